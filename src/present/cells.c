@@ -1,0 +1,200 @@
+/* cells: an RGB image -> a grid of terminal cells.
+ *
+ * half:    one cell = 1x2 pixels, U+2580 upper half block with the top
+ *          pixel as fg and the bottom one as bg (U+2584 when only the
+ *          bottom is lit, so the unlit half keeps the terminal's own bg).
+ * ascii:   one cell = one pixel, a glyph from a luminance ramp.
+ * braille: one cell = 2x4 pixels, one dot per lit pixel, fg = the mean
+ *          colour of the lit dots.
+ * Pixels past the image edge (an image that is not a whole number of
+ * cells) count as background. */
+
+#include <stdlib.h>
+#include <string.h>
+#include "present.h"
+
+#define CH_UPPER_HALF 0x2580u
+#define CH_LOWER_HALF 0x2584u
+#define CH_BRAILLE    0x2800u
+
+/* Lit pixels use ramp[1..]: a dark face never vanishes into ' '. */
+static const char ascii_ramp[] = " .:-=+*#%@";
+#define RAMP_LEN ((int)sizeof ascii_ramp - 1)
+
+/* Braille dot bit of pixel (x, y) in a 2x4 cell: dots 1,2,3,7 run down
+ * the left column, 4,5,6,8 down the right. */
+static const uint8_t braille_bit[4][2] = {
+    { 0x01, 0x08 },
+    { 0x02, 0x10 },
+    { 0x04, 0x20 },
+    { 0x40, 0x80 },
+};
+
+void mode_cell_pixels(DisplayMode m, int *px_w, int *px_h)
+{
+    int w = 1, h = 1;
+    if (m == MODE_HALF) {
+        h = 2;
+    } else if (m == MODE_BRAILLE) {
+        w = 2;
+        h = 4;
+    }
+    if (px_w)
+        *px_w = w;
+    if (px_h)
+        *px_h = h;
+}
+
+float mode_pixel_aspect(DisplayMode m)
+{
+    /* A cell is 1 wide and 2 tall; its pixels split that. */
+    int pw, ph;
+    mode_cell_pixels(m, &pw, &ph);
+    return (2.0f / (float)ph) / (1.0f / (float)pw);
+}
+
+void cells_free(CellGrid *g)
+{
+    free(g->cells);
+    memset(g, 0, sizeof *g);
+}
+
+static int grid_resize(CellGrid *g, int cols, int rows)
+{
+    size_t n = (size_t)cols * (size_t)rows;
+    if (n > g->cap || !g->cells) {
+        size_t cap = n ? n : 1;
+        Cell *c = realloc(g->cells, cap * sizeof *c);
+        if (!c)
+            return -1;
+        g->cells = c;
+        g->cap = cap;
+    }
+    g->cols = cols;
+    g->rows = rows;
+    return 0;
+}
+
+static inline void set_fg(Cell *c, const uint8_t *p)
+{
+    c->fg[0] = p[0];
+    c->fg[1] = p[1];
+    c->fg[2] = p[2];
+}
+
+static inline void set_empty(Cell *c)
+{
+    memset(c, 0, sizeof *c);
+    c->ch = ' ';
+}
+
+static void cells_half(const Image *im, CellGrid *g)
+{
+    int w = im->w, h = im->h;
+    for (int r = 0; r < g->rows; r++) {
+        int yt = 2 * r, yb = 2 * r + 1;
+        const uint8_t *top = im->rgb + 3 * (size_t)yt * w, *tl = im->lit + (size_t)yt * w;
+        const uint8_t *bot = yb < h ? im->rgb + 3 * (size_t)yb * w : NULL;
+        const uint8_t *bl = yb < h ? im->lit + (size_t)yb * w : NULL;
+        Cell *c = g->cells + (size_t)r * g->cols;
+        for (int x = 0; x < w; x++, c++) {
+            int lt = tl[x], lb = bl ? bl[x] : 0;
+            if (lt) {
+                c->ch = CH_UPPER_HALF;
+                set_fg(c, top + 3 * x);
+                if (lb) {
+                    const uint8_t *p = bot + 3 * x;
+                    c->bg[0] = p[0];
+                    c->bg[1] = p[1];
+                    c->bg[2] = p[2];
+                    c->flags = CELL_FG | CELL_BG;
+                } else {
+                    c->bg[0] = c->bg[1] = c->bg[2] = 0;
+                    c->flags = CELL_FG;
+                }
+            } else if (lb) {
+                c->ch = CH_LOWER_HALF;
+                set_fg(c, bot + 3 * x);
+                c->bg[0] = c->bg[1] = c->bg[2] = 0;
+                c->flags = CELL_FG;
+            } else {
+                set_empty(c);
+            }
+        }
+    }
+}
+
+static void cells_ascii(const Image *im, CellGrid *g)
+{
+    size_t n = (size_t)im->w * (size_t)im->h;
+    for (size_t i = 0; i < n; i++) {
+        Cell *c = g->cells + i;
+        if (!im->lit[i]) {
+            set_empty(c);
+            continue;
+        }
+        const uint8_t *p = im->rgb + 3 * i;
+        /* Rec. 709 luma in 8.8 fixed point (weights sum to 256). */
+        unsigned lum = (54u * p[0] + 183u * p[1] + 19u * p[2]) >> 8;
+        c->ch = (uint32_t)(unsigned char)ascii_ramp[1 + lum * (RAMP_LEN - 1) / 256];
+        set_fg(c, p);
+        c->bg[0] = c->bg[1] = c->bg[2] = 0;
+        c->flags = CELL_FG;
+    }
+}
+
+static void cells_braille(const Image *im, CellGrid *g)
+{
+    int w = im->w, h = im->h;
+    for (int r = 0; r < g->rows; r++) {
+        Cell *c = g->cells + (size_t)r * g->cols;
+        for (int col = 0; col < g->cols; col++, c++) {
+            unsigned bits = 0, nlit = 0, sr = 0, sg = 0, sb = 0;
+            for (int dy = 0; dy < 4; dy++) {
+                int y = 4 * r + dy;
+                if (y >= h)
+                    break;
+                for (int dx = 0; dx < 2; dx++) {
+                    int x = 2 * col + dx;
+                    size_t i = (size_t)y * w + x;
+                    if (x >= w || !im->lit[i])
+                        continue;
+                    const uint8_t *p = im->rgb + 3 * i;
+                    bits |= braille_bit[dy][dx];
+                    nlit++;
+                    sr += p[0];
+                    sg += p[1];
+                    sb += p[2];
+                }
+            }
+            if (!bits) {
+                set_empty(c);
+                continue;
+            }
+            c->ch = CH_BRAILLE + bits;
+            c->fg[0] = (uint8_t)((sr + nlit / 2) / nlit);
+            c->fg[1] = (uint8_t)((sg + nlit / 2) / nlit);
+            c->fg[2] = (uint8_t)((sb + nlit / 2) / nlit);
+            c->bg[0] = c->bg[1] = c->bg[2] = 0;
+            c->flags = CELL_FG;
+        }
+    }
+}
+
+int cells_from_image(const Image *im, DisplayMode m, CellGrid *out)
+{
+    int pw, ph;
+    if ((unsigned)m >= MODE_COUNT || im->w < 0 || im->h < 0)
+        return -1;
+    mode_cell_pixels(m, &pw, &ph);
+    int cols = (im->w + pw - 1) / pw, rows = (im->h + ph - 1) / ph;
+    if (grid_resize(out, cols, rows) != 0)
+        return -1;
+    switch (m) {
+    case MODE_HALF:    cells_half(im, out); break;
+    case MODE_ASCII:   cells_ascii(im, out); break;
+    case MODE_BRAILLE: cells_braille(im, out); break;
+    default:           return -1;
+    }
+    return 0;
+}

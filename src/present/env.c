@@ -1,0 +1,75 @@
+/* env: option names of the presenters and defaults from the environment
+ * (colour depth from NO_COLOR / COLORTERM / TERM, display mode from the
+ * locale's character set). */
+
+#define _XOPEN_SOURCE 700       /* nl_langinfo */
+#include <langinfo.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include "present.h"
+
+const char *const mode_names[MODE_COUNT] = { "half", "ascii", "braille" };
+
+static const char *const color_names[] = { "none", "16", "256", "truecolor" };
+
+int mode_from_name(const char *name)
+{
+    if (!name)
+        return -1;
+    for (int i = 0; i < MODE_COUNT; i++)
+        if (strcmp(name, mode_names[i]) == 0)
+            return i;
+    return -1;
+}
+
+int color_from_name(const char *name)
+{
+    if (!name)
+        return -1;
+    for (int i = 0; i <= COLOR_TRUE; i++)
+        if (strcmp(name, color_names[i]) == 0)
+            return i;
+    /* The spellings COLORTERM uses are accepted too. */
+    if (strcmp(name, "24bit") == 0 || strcmp(name, "true") == 0)
+        return COLOR_TRUE;
+    return -1;
+}
+
+const char *color_name(ColorDepth c)
+{
+    return (unsigned)c <= COLOR_TRUE ? color_names[c] : "?";
+}
+
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    return n >= m && strcmp(s + n - m, suffix) == 0;
+}
+
+ColorDepth color_from_env(void)
+{
+    /* https://no-color.org: present and non-empty disables colour. */
+    const char *no = getenv("NO_COLOR");
+    if (no && *no)
+        return COLOR_NONE;
+    const char *ct = getenv("COLORTERM");
+    if (ct && (strcmp(ct, "truecolor") == 0 || strcmp(ct, "24bit") == 0))
+        return COLOR_TRUE;
+    const char *term = getenv("TERM");
+    if (term && ends_with(term, "-direct"))
+        return COLOR_TRUE;
+    if (term && strstr(term, "256color"))
+        return COLOR_256;
+    if (!term || !*term || strcmp(term, "dumb") == 0)
+        return COLOR_NONE;
+    return COLOR_16;
+}
+
+DisplayMode mode_from_locale(void)
+{
+    const char *cs = nl_langinfo(CODESET);
+    if (cs && (strcasecmp(cs, "UTF-8") == 0 || strcasecmp(cs, "UTF8") == 0))
+        return MODE_HALF;
+    return MODE_ASCII;
+}

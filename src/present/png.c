@@ -1,0 +1,80 @@
+/* png: save an Image as an 8-bit RGB PNG through libpng. libpng reports
+ * errors by longjmp; the handler below copies its message into our own
+ * buffer first, so the caller gets "path: reason" like every writer. */
+
+#include <errno.h>
+#include <png.h>
+#include <setjmp.h>
+#include <stdio.h>
+#include <string.h>
+#include "present.h"
+
+typedef struct {
+    jmp_buf jmp;
+    char    msg[160];
+} PngErr;
+
+static void png_on_error(png_structp png, png_const_charp msg)
+{
+    PngErr *e = png_get_error_ptr(png);
+    snprintf(e->msg, sizeof e->msg, "%s", msg ? msg : "libpng error");
+    longjmp(e->jmp, 1);
+}
+
+static void png_on_warning(png_structp png, png_const_charp msg)
+{
+    (void)png;
+    (void)msg;      /* warnings do not stop the write; keep stderr quiet */
+}
+
+int write_png(const char *path, const Image *im, char *err, size_t errlen)
+{
+    if (im->w <= 0 || im->h <= 0) {
+        snprintf(err, errlen, "%s: empty image", path);
+        return -1;
+    }
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        return -1;
+    }
+    /* png, info and f are not changed after setjmp, so they stay valid
+     * when libpng longjmps back. */
+    PngErr e;
+    e.msg[0] = '\0';
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &e,
+                                              png_on_error, png_on_warning);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!png || !info) {
+        png_destroy_write_struct(png ? &png : NULL, NULL);
+        fclose(f);
+        snprintf(err, errlen, "%s: out of memory", path);
+        return -1;
+    }
+    if (setjmp(e.jmp)) {
+        png_destroy_write_struct(&png, &info);
+        fclose(f);
+        snprintf(err, errlen, "%s: %s", path, e.msg);
+        return -1;
+    }
+    png_init_io(png, f);
+    png_set_IHDR(png, info, (png_uint_32)im->w, (png_uint_32)im->h, 8,
+                 PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    for (int y = 0; y < im->h; y++)
+        png_write_row(png, im->rgb + 3 * (size_t)y * (size_t)im->w);
+    png_write_end(png, info);
+    png_destroy_write_struct(&png, &info);
+    /* A full disk shows up only when the buffered bytes are flushed. */
+    if (fflush(f) != 0 || ferror(f)) {
+        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        fclose(f);
+        return -1;
+    }
+    if (fclose(f) != 0) {
+        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        return -1;
+    }
+    return 0;
+}

@@ -1,0 +1,150 @@
+/* print: a cell grid -> text with ANSI SGR colours, built in one buffer
+ * and written with one fwrite (a frame never reaches the terminal half
+ * drawn). An escape is emitted only when a colour differs from the
+ * previous cell's, as the terminal would show it: under 256 and 16
+ * colours two RGB values that map to the same index need no escape. */
+
+#include <stdlib.h>
+#include <string.h>
+#include "present.h"
+
+/* Longest escapes: "\x1b[38;2;255;255;255m" is 19 bytes, a UTF-8 code
+ * point 4, the row reset "\x1b[0m" 4 and the newline 1. */
+#define SGR_MAX  19
+#define CELL_MAX (2 * SGR_MAX + 4)
+
+#define KEY_DEFAULT (-1)
+
+/* A colour as the terminal sees it under depth c: a packed 24-bit RGB
+ * for truecolor, else a palette index; KEY_DEFAULT when unset. */
+static inline long colour_key(const uint8_t rgb[3], int set, ColorDepth c)
+{
+    if (!set)
+        return KEY_DEFAULT;
+    switch (c) {
+    case COLOR_TRUE: return ((long)rgb[0] << 16) | ((long)rgb[1] << 8) | rgb[2];
+    case COLOR_256:  return palette_256(rgb);
+    default:         return palette_16(rgb);
+    }
+}
+
+static inline char *put_str(char *p, const char *s)
+{
+    while (*s)
+        *p++ = *s++;
+    return p;
+}
+
+static inline char *put_uint(char *p, unsigned v)
+{
+    char tmp[10];
+    int n = 0;
+    do {
+        tmp[n++] = (char)('0' + v % 10);
+        v /= 10;
+    } while (v);
+    while (n)
+        *p++ = tmp[--n];
+    return p;
+}
+
+/* The SGR selecting key k as foreground (bg = 0) or background (bg = 1). */
+static char *put_sgr(char *p, long k, int bg, ColorDepth c)
+{
+    p = put_str(p, "\x1b[");
+    if (k == KEY_DEFAULT) {
+        p = put_uint(p, bg ? 49 : 39);
+    } else if (c == COLOR_TRUE) {
+        p = put_str(p, bg ? "48;2;" : "38;2;");
+        p = put_uint(p, (unsigned)(k >> 16) & 0xff);
+        *p++ = ';';
+        p = put_uint(p, (unsigned)(k >> 8) & 0xff);
+        *p++ = ';';
+        p = put_uint(p, (unsigned)k & 0xff);
+    } else if (c == COLOR_256) {
+        p = put_str(p, bg ? "48;5;" : "38;5;");
+        p = put_uint(p, (unsigned)k);
+    } else {
+        unsigned base = k < 8 ? (bg ? 40 : 30) : (bg ? 100 - 8 : 90 - 8);
+        p = put_uint(p, base + (unsigned)k);
+    }
+    *p++ = 'm';
+    return p;
+}
+
+static inline char *put_utf8(char *p, uint32_t cp)
+{
+    if (cp < 0x80) {
+        *p++ = (char)cp;
+    } else if (cp < 0x800) {
+        *p++ = (char)(0xc0 | (cp >> 6));
+        *p++ = (char)(0x80 | (cp & 0x3f));
+    } else if (cp < 0x10000) {
+        *p++ = (char)(0xe0 | (cp >> 12));
+        *p++ = (char)(0x80 | ((cp >> 6) & 0x3f));
+        *p++ = (char)(0x80 | (cp & 0x3f));
+    } else if (cp < 0x110000) {
+        *p++ = (char)(0xf0 | (cp >> 18));
+        *p++ = (char)(0x80 | ((cp >> 12) & 0x3f));
+        *p++ = (char)(0x80 | ((cp >> 6) & 0x3f));
+        *p++ = (char)(0x80 | (cp & 0x3f));
+    } else {
+        *p++ = '?';
+    }
+    return p;
+}
+
+char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out)
+{
+    size_t ncells = (size_t)g->cols * (size_t)g->rows;
+    size_t cap = ncells * CELL_MAX + (size_t)g->rows * 5 + 1;
+    char *buf = malloc(cap);
+    if (!buf)
+        return NULL;
+    char *p = buf;
+    for (int r = 0; r < g->rows; r++) {
+        const Cell *cell = g->cells + (size_t)r * g->cols;
+        /* Each row starts from the terminal's default colours. */
+        long fg = KEY_DEFAULT, bg = KEY_DEFAULT;
+        int coloured = 0;
+        for (int x = 0; x < g->cols; x++, cell++) {
+            if (c != COLOR_NONE) {
+                long kf = colour_key(cell->fg, cell->flags & CELL_FG, c);
+                long kb = colour_key(cell->bg, cell->flags & CELL_BG, c);
+                if (kf != fg) {
+                    p = put_sgr(p, kf, 0, c);
+                    fg = kf;
+                    coloured = 1;
+                }
+                if (kb != bg) {
+                    p = put_sgr(p, kb, 1, c);
+                    bg = kb;
+                    coloured = 1;
+                }
+            }
+            p = put_utf8(p, cell->ch);
+        }
+        if (coloured)
+            p = put_str(p, "\x1b[0m");
+        *p++ = '\n';
+    }
+    *p = '\0';
+    if (len_out)
+        *len_out = (size_t)(p - buf);
+    return buf;
+}
+
+int print_cells(FILE *f, const CellGrid *g, ColorDepth c)
+{
+    size_t len;
+    char *buf = print_cells_to_string(g, c, &len);
+    if (!buf)
+        return -1;
+    int rc = 0;
+    if (len && fwrite(buf, 1, len, f) != len)
+        rc = -1;
+    if (fflush(f) != 0)
+        rc = -1;
+    free(buf);
+    return rc;
+}

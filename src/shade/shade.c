@@ -1,0 +1,270 @@
+/* shade: face ids + depths in, an RGB image out.
+ *
+ * Lambert and id colours depend only on the face, so they are computed
+ * once per visible face per frame and kept in a ShadeCache keyed by a
+ * frame stamp; the per-pixel loop is then a lookup and a 3-byte copy.
+ * Depth colours depend on the pixel and are computed per pixel. */
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "shade.h"
+
+/* ==== Names ==== */
+
+const char *const shade_names[SHADE_COUNT] = { "lambert", "depth", "id" };
+
+int shade_from_name(const char *name)
+{
+    if (!name)
+        return -1;
+    for (int i = 0; i < SHADE_COUNT; i++)
+        if (strcmp(name, shade_names[i]) == 0)
+            return i;
+    return -1;
+}
+
+/* ==== Image ==== */
+
+int image_resize(Image *im, int w, int h)
+{
+    if (w < 0 || h < 0)
+        return -1;
+    size_t n = (size_t)w * (size_t)h;
+    if (n > im->cap || !im->rgb || !im->lit) {
+        size_t cap = n ? n : 1;
+        uint8_t *rgb = malloc(3 * cap);
+        uint8_t *lit = malloc(cap);
+        if (!rgb || !lit) {
+            free(rgb);
+            free(lit);
+            return -1;
+        }
+        free(im->rgb);
+        free(im->lit);
+        im->rgb = rgb;
+        im->lit = lit;
+        im->cap = cap;
+    }
+    im->w = w;
+    im->h = h;
+    return 0;
+}
+
+void image_free(Image *im)
+{
+    free(im->rgb);
+    free(im->lit);
+    memset(im, 0, sizeof *im);
+}
+
+/* ==== Cache ==== */
+
+void shade_cache_free(ShadeCache *c)
+{
+    free(c->stamp);
+    free(c->rgb);
+    memset(c, 0, sizeof *c);
+}
+
+/* Room for n faces; new faces get stamp 0, which no frame uses. */
+static int cache_grow(ShadeCache *c, uint32_t n)
+{
+    if (n <= c->cap && c->stamp && c->rgb)
+        return 0;
+    uint32_t cap = n ? n : 1;
+    uint32_t *st = realloc(c->stamp, (size_t)cap * sizeof *st);
+    if (!st)
+        return -1;
+    c->stamp = st;      /* bigger than before: valid even if rgb fails */
+    uint8_t *rgb = realloc(c->rgb, (size_t)cap * 3);
+    if (!rgb)
+        return -1;
+    c->rgb = rgb;
+    uint32_t old = c->cap < cap ? c->cap : cap;
+    memset(c->stamp + old, 0, (size_t)(cap - old) * sizeof *st);
+    c->cap = cap;
+    return 0;
+}
+
+/* Start a frame: a fresh stamp makes every cached colour stale at once. */
+static void cache_next_frame(ShadeCache *c)
+{
+    if (++c->frame == 0) {
+        memset(c->stamp, 0, (size_t)c->cap * sizeof *c->stamp);
+        c->frame = 1;
+    }
+}
+
+/* ==== Colours ==== */
+
+static inline uint8_t clamp_u8(float v)
+{
+    v += 0.5f;
+    return v <= 0.0f ? 0 : v >= 255.0f ? 255 : (uint8_t)v;
+}
+
+/* 32-bit finaliser (from the murmur3 family): every input bit moves
+ * every output bit, so neighbouring ids get unrelated values. */
+static inline uint32_t mix32(uint32_t x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+void shade_id_colour(int32_t id, uint8_t rgb_out[3])
+{
+    /* Hue steps by the golden ratio so consecutive ids land far apart
+     * on the wheel; saturation and value vary with a second hash so ids
+     * whose hues nearly meet still differ. Value stays >= 0.65 so no
+     * face is close to the black background. */
+    uint32_t u = (uint32_t)id;
+    float hue = (float)((u * 2654435769u) >> 8) * (6.0f / 16777216.0f);
+    uint32_t hsh = mix32(u);
+    float sat = 0.55f + 0.45f * (float)(hsh & 0xff) / 255.0f;
+    float val = 0.65f + 0.35f * (float)((hsh >> 8) & 0xff) / 255.0f;
+    int sector = (int)hue;
+    if (sector > 5)
+        sector = 5;
+    float f = hue - (float)sector;
+    float p = val * (1.0f - sat);
+    float q = val * (1.0f - sat * f);
+    float t = val * (1.0f - sat * (1.0f - f));
+    float r, g, b;
+    switch (sector) {
+    case 0: r = val; g = t; b = p; break;
+    case 1: r = q; g = val; b = p; break;
+    case 2: r = p; g = val; b = t; break;
+    case 3: r = p; g = q; b = val; break;
+    case 4: r = t; g = p; b = val; break;
+    default: r = val; g = p; b = q; break;
+    }
+    rgb_out[0] = clamp_u8(r * 255.0f);
+    rgb_out[1] = clamp_u8(g * 255.0f);
+    rgb_out[2] = clamp_u8(b * 255.0f);
+}
+
+/* The linear part of view * object for one object: rotates (and scales)
+ * object-space normals into view space. */
+typedef struct {
+    int   obj;          /* -1 = empty slot */
+    float m[3][3];
+} NormalMat;
+
+#define NMAT_SLOTS 64   /* direct-mapped by object index, lives on the stack */
+
+static void normal_mat(const Scene *s, const Mat4 *view, int obj, NormalMat *out)
+{
+    Mat4 om = object_matrix(&s->objs[obj]);
+    Mat4 m = m4_mul(*view, om);
+    out->obj = obj;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            out->m[i][j] = m.m[i][j];
+}
+
+/* Lambert colour of one face, two-sided (|n.l|) so faces seen from the
+ * back are lit like their fronts. */
+static void lambert_face(const Scene *s, const NormalMat *nm, uint32_t face, uint8_t out[3])
+{
+    const float *n = s->face_normal + 3 * (size_t)face;
+    Vec3 v = v3(nm->m[0][0] * n[0] + nm->m[0][1] * n[1] + nm->m[0][2] * n[2],
+                nm->m[1][0] * n[0] + nm->m[1][1] * n[1] + nm->m[1][2] * n[2],
+                nm->m[2][0] * n[0] + nm->m[2][1] * n[1] + nm->m[2][2] * n[2]);
+    v = v3_norm(v);
+    float amb = s->light.ambient;
+    float k = amb + (1.0f - amb) * fabsf(v3_dot(v, s->light.dir));
+    static const uint8_t grey[3] = { 200, 200, 200 };
+    const uint8_t *base = s->face_rgb ? s->face_rgb + 3 * (size_t)face : grey;
+    out[0] = clamp_u8((float)base[0] * k);
+    out[1] = clamp_u8((float)base[1] * k);
+    out[2] = clamp_u8((float)base[2] * k);
+}
+
+/* ==== Frame ==== */
+
+static void shade_depth(const FrameBufs *fb, uint32_t nfaces, Image *out)
+{
+    size_t n = (size_t)fb->w * (size_t)fb->h;
+    float lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        if (fb->ids[i] < 0 || (uint32_t)fb->ids[i] >= nfaces)
+            continue;
+        float d = fb->depth[i];
+        if (!isfinite(d))
+            continue;
+        if (d < lo) lo = d;
+        if (d > hi) hi = d;
+    }
+    /* One depth (or none) in the frame: everything drawn is "nearest". */
+    float scale = hi > lo ? 255.0f / (hi - lo) : 0.0f;
+    for (size_t i = 0; i < n; i++) {
+        uint8_t *px = out->rgb + 3 * i;
+        if (fb->ids[i] < 0 || (uint32_t)fb->ids[i] >= nfaces) {
+            px[0] = px[1] = px[2] = 0;
+            out->lit[i] = 0;
+            continue;
+        }
+        float d = fb->depth[i];
+        uint8_t v = !isfinite(d) ? 0 : scale == 0.0f ? 255 : clamp_u8(255.0f - (d - lo) * scale);
+        px[0] = px[1] = px[2] = v;
+        out->lit[i] = 1;
+    }
+}
+
+int shade_frame(const Scene *s, const FrameBufs *fb, ShadeMode mode,
+                ShadeCache *cache, Image *out)
+{
+    if (image_resize(out, fb->w, fb->h) != 0)
+        return -1;
+    uint32_t nfaces = s->nfaces;
+    if (mode == SHADE_DEPTH) {
+        shade_depth(fb, nfaces, out);
+        return 0;
+    }
+    if (cache_grow(cache, nfaces) != 0)
+        return -1;
+    cache_next_frame(cache);
+
+    const uint32_t frame = cache->frame;
+    uint32_t *stamp = cache->stamp;
+    uint8_t *crgb = cache->rgb;
+    Mat4 view = camera_view(&s->cam);
+    NormalMat nmat[NMAT_SLOTS];
+    for (int k = 0; k < NMAT_SLOTS; k++)
+        nmat[k].obj = -1;
+
+    size_t n = (size_t)fb->w * (size_t)fb->h;
+    const int32_t *ids = fb->ids;
+    uint8_t *rgb = out->rgb, *lit = out->lit;
+    for (size_t i = 0; i < n; i++, rgb += 3) {
+        int32_t id = ids[i];
+        if (id < 0 || (uint32_t)id >= nfaces) {
+            rgb[0] = rgb[1] = rgb[2] = 0;
+            lit[i] = 0;
+            continue;
+        }
+        uint8_t *c = crgb + 3 * (size_t)id;
+        if (stamp[id] != frame) {
+            if (mode == SHADE_ID) {
+                shade_id_colour(id, c);
+            } else {
+                int obj = s->face_obj ? s->face_obj[id] : 0;
+                NormalMat *nm = &nmat[obj & (NMAT_SLOTS - 1)];
+                if (nm->obj != obj)
+                    normal_mat(s, &view, obj, nm);
+                lambert_face(s, nm, (uint32_t)id, c);
+            }
+            stamp[id] = frame;
+        }
+        rgb[0] = c[0];
+        rgb[1] = c[1];
+        rgb[2] = c[2];
+        lit[i] = 1;
+    }
+    return 0;
+}

@@ -1,0 +1,377 @@
+/* Tests of the shading stage: lambert (two-sided, rotated normals, the
+ * per-frame face cache), depth and id colours, image buffers, speed. */
+
+#define _POSIX_C_SOURCE 200809L
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "present.h"
+#include "shade.h"
+
+/* ==== A hand-made scene: one object, faces with given normals ==== */
+
+#define MAXF 4096
+
+typedef struct {
+    Scene    s;
+    Object   obj[2];
+    float    normal[3 * MAXF];
+    uint8_t  rgb[3 * MAXF];
+    uint16_t fobj[MAXF];
+} TestScene;
+
+static void scene_init(TestScene *t, uint32_t nfaces)
+{
+    memset(t, 0, sizeof *t);
+    for (int i = 0; i < 2; i++)
+        t->obj[i].scale = 1;
+    for (uint32_t f = 0; f < nfaces; f++) {
+        t->normal[3 * f + 2] = 1;                  /* +z: towards the viewer */
+        t->rgb[3 * f + 0] = 200;
+        t->rgb[3 * f + 1] = 100;
+        t->rgb[3 * f + 2] = 50;
+    }
+    t->s.objs = t->obj;
+    t->s.nobjs = 1;
+    t->s.nfaces = nfaces;
+    t->s.face_normal = t->normal;
+    t->s.face_rgb = t->rgb;
+    t->s.face_obj = t->fobj;
+    t->s.cam.zoom = 1;
+    t->s.cam.radius = 1;
+    t->s.light.dir = v3(0, 0, 1);
+    t->s.light.ambient = 0.2f;
+}
+
+static void set_normal(TestScene *t, uint32_t f, float x, float y, float z)
+{
+    Vec3 n = v3_norm(v3(x, y, z));
+    t->normal[3 * f + 0] = n.x;
+    t->normal[3 * f + 1] = n.y;
+    t->normal[3 * f + 2] = n.z;
+}
+
+/* A w x h frame whose pixels show ids[] (and depths, +inf if NULL). */
+static void frame_init(FrameBufs *fb, int w, int h, const int32_t *ids, const float *depth)
+{
+    size_t n = (size_t)w * h;
+    fb->w = w;
+    fb->h = h;
+    fb->cap = n;
+    fb->ids = malloc(n * sizeof *fb->ids);
+    fb->depth = malloc(n * sizeof *fb->depth);
+    for (size_t i = 0; i < n; i++) {
+        fb->ids[i] = ids[i];
+        fb->depth[i] = depth ? depth[i] : (ids[i] >= 0 ? 0.5f : INFINITY);
+    }
+}
+
+static void frame_done(FrameBufs *fb)
+{
+    free(fb->ids);
+    free(fb->depth);
+}
+
+static int px(const Image *im, int i, int c) { return im->rgb[3 * i + c]; }
+
+/* ==== Lambert ==== */
+
+Test(shade, lambert_facing_light_is_brightest_and_two_sided)
+{
+    static TestScene t;
+    scene_init(&t, 3);
+    set_normal(&t, 1, 1, 0, 1);        /* tilted 45 degrees */
+    set_normal(&t, 2, 0, 0, -1);       /* facing away: two-sided */
+    int32_t ids[4] = { 0, 1, 2, -1 };
+    FrameBufs fb;
+    frame_init(&fb, 4, 1, ids, NULL);
+    Image im = { 0 };
+    ShadeCache cache = { 0 };
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_LAMBERT, &cache, &im), 0);
+    cr_assert_eq(im.w, 4);
+    cr_assert_eq(im.h, 1);
+
+    /* Facing the light: the full base colour. */
+    cr_expect_eq(px(&im, 0, 0), 200);
+    cr_expect_eq(px(&im, 0, 1), 100);
+    cr_expect_eq(px(&im, 0, 2), 50);
+    /* 45 degrees: ambient + (1 - ambient) cos 45. */
+    float k = 0.2f + 0.8f * sqrtf(0.5f);
+    for (int c = 0; c < 3; c++) {
+        cr_expect_lt(px(&im, 1, c), px(&im, 0, c));
+        cr_expect_leq(abs(px(&im, 1, c) - (int)lroundf(t.rgb[c] * k)), 1,
+                      "channel %d: got %d want %f", c, px(&im, 1, c), t.rgb[c] * k);
+        cr_expect_eq(px(&im, 2, c), px(&im, 0, c), "flipped normal differs");
+        cr_expect_eq(px(&im, 3, c), 0);
+    }
+    cr_expect_eq(im.lit[0], 1);
+    cr_expect_eq(im.lit[1], 1);
+    cr_expect_eq(im.lit[2], 1);
+    cr_expect_eq(im.lit[3], 0);
+    frame_done(&fb);
+    image_free(&im);
+    shade_cache_free(&cache);
+}
+
+Test(shade, lambert_edge_on_face_gets_ambient_only)
+{
+    static TestScene t;
+    scene_init(&t, 1);
+    set_normal(&t, 0, 0, 1, 0);        /* perpendicular to the light */
+    int32_t ids[1] = { 0 };
+    FrameBufs fb;
+    frame_init(&fb, 1, 1, ids, NULL);
+    Image im = { 0 };
+    ShadeCache cache = { 0 };
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_LAMBERT, &cache, &im), 0);
+    cr_expect_eq(px(&im, 0, 0), 40);   /* 200 * 0.2 */
+    cr_expect_eq(px(&im, 0, 1), 20);
+    cr_expect_eq(px(&im, 0, 2), 10);
+    frame_done(&fb);
+    image_free(&im);
+    shade_cache_free(&cache);
+}
+
+/* The normal is turned by the object's placement and by the camera: a
+ * +z face turned a quarter turn about y is edge-on to a +z light. */
+Test(shade, lambert_uses_object_and_camera_rotation)
+{
+    static TestScene t;
+    scene_init(&t, 2);
+    t.s.nobjs = 2;
+    t.fobj[1] = 1;
+    t.obj[1].yaw = ZV_PI / 2;
+    int32_t ids[2] = { 0, 1 };
+    FrameBufs fb;
+    frame_init(&fb, 2, 1, ids, NULL);
+    Image im = { 0 };
+    ShadeCache cache = { 0 };
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_LAMBERT, &cache, &im), 0);
+    cr_expect_eq(px(&im, 0, 0), 200);
+    cr_expect_eq(px(&im, 1, 0), 40, "rotated object: got %d", px(&im, 1, 0));
+
+    /* Now turn the camera instead: both faces go edge-on... */
+    t.obj[1].yaw = 0;
+    t.s.cam.yaw = ZV_PI / 2;
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_LAMBERT, &cache, &im), 0);
+    cr_expect_eq(px(&im, 0, 0), 40);
+    cr_expect_eq(px(&im, 1, 0), 40);
+    /* ...and the scale of an object does not change its brightness. */
+    t.s.cam.yaw = 0;
+    t.obj[1].scale = 3;
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_LAMBERT, &cache, &im), 0);
+    cr_expect_eq(px(&im, 1, 0), 200);
+    frame_done(&fb);
+    image_free(&im);
+    shade_cache_free(&cache);
+}
+
+Test(shade, cache_is_per_frame)
+{
+    static TestScene t;
+    scene_init(&t, 5);
+    int32_t ids[6] = { 3, 3, 1, 3, -1, 1 };
+    FrameBufs fb;
+    frame_init(&fb, 3, 2, ids, NULL);
+    Image im = { 0 };
+    ShadeCache cache = { 0 };
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_LAMBERT, &cache, &im), 0);
+    cr_assert_geq(cache.cap, 5);
+    uint32_t f1 = cache.frame;
+    cr_expect_eq(cache.stamp[1], f1);
+    cr_expect_eq(cache.stamp[3], f1);
+    cr_expect_neq(cache.stamp[0], f1, "face 0 is not visible");
+    cr_expect_neq(cache.stamp[2], f1);
+    cr_expect_neq(cache.stamp[4], f1);
+    cr_expect_eq(px(&im, 0, 0), 200);
+
+    /* A new frame sees the new light: nothing stale is reused. */
+    t.s.light.dir = v3(0, 1, 0);
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_LAMBERT, &cache, &im), 0);
+    cr_expect_neq(cache.frame, f1);
+    cr_expect_eq(px(&im, 0, 0), 40);
+    cr_expect_eq(px(&im, 5, 0), 40);
+
+    /* The cache grows with the scene. */
+    static TestScene big;
+    scene_init(&big, 3000);
+    int32_t ids2[2] = { 2999, 0 };
+    FrameBufs fb2;
+    frame_init(&fb2, 2, 1, ids2, NULL);
+    cr_assert_eq(shade_frame(&big.s, &fb2, SHADE_LAMBERT, &cache, &im), 0);
+    cr_expect_geq(cache.cap, 3000);
+    cr_expect_eq(cache.stamp[2999], cache.frame);
+    cr_expect_eq(px(&im, 0, 0), 200);
+    frame_done(&fb);
+    frame_done(&fb2);
+    image_free(&im);
+    shade_cache_free(&cache);
+}
+
+/* ==== Depth ==== */
+
+Test(shade, depth_near_white_far_black)
+{
+    static TestScene t;
+    scene_init(&t, 3);
+    int32_t ids[4] = { 0, 1, 2, -1 };
+    float depth[4] = { 0.5f, 0.2f, 0.8f, INFINITY };
+    FrameBufs fb;
+    frame_init(&fb, 2, 2, ids, depth);
+    Image im = { 0 };
+    ShadeCache cache = { 0 };
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_DEPTH, &cache, &im), 0);
+    cr_expect_eq(px(&im, 1, 0), 255, "nearest is white");
+    cr_expect_eq(px(&im, 2, 0), 0, "farthest is black");
+    cr_expect(px(&im, 0, 0) >= 126 && px(&im, 0, 0) <= 129, "middle: %d", px(&im, 0, 0));
+    cr_expect_eq(px(&im, 0, 0), px(&im, 0, 1));
+    cr_expect_eq(px(&im, 0, 0), px(&im, 0, 2));
+    cr_expect_eq(px(&im, 3, 0), 0);
+    cr_expect_eq(im.lit[2], 1, "far black pixel is still lit");
+    cr_expect_eq(im.lit[3], 0);
+
+    /* One depth in the whole frame: white. */
+    fb.depth[0] = fb.depth[1] = fb.depth[2] = 0.3f;
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_DEPTH, &cache, &im), 0);
+    for (int i = 0; i < 3; i++)
+        cr_expect_eq(px(&im, i, 0), 255);
+    frame_done(&fb);
+    image_free(&im);
+    shade_cache_free(&cache);
+}
+
+/* ==== Id colours ==== */
+
+Test(shade, id_colours_distinct_and_never_black)
+{
+    static uint8_t c[1000][3];
+    for (int i = 0; i < 1000; i++) {
+        shade_id_colour(i, c[i]);
+        int mx = c[i][0] > c[i][1] ? c[i][0] : c[i][1];
+        mx = mx > c[i][2] ? mx : c[i][2];
+        cr_assert_geq(mx, 128, "id %d too dark: %d %d %d", i, c[i][0], c[i][1], c[i][2]);
+    }
+    int same = 0, close = 0;
+    for (int i = 0; i < 1000; i++)
+        for (int j = i + 1; j < 1000; j++) {
+            int d0 = c[i][0] - c[j][0], d1 = c[i][1] - c[j][1], d2 = c[i][2] - c[j][2];
+            if (!d0 && !d1 && !d2)
+                same++;
+            if (abs(j - i) == 1 && d0 * d0 + d1 * d1 + d2 * d2 < 60 * 60)
+                close++;
+        }
+    cr_expect_leq(same, 5, "%d identical pairs among 1000 ids", same);
+    cr_expect_eq(close, 0, "%d neighbouring ids look alike", close);
+    /* Deterministic. */
+    uint8_t again[3];
+    shade_id_colour(417, again);
+    cr_expect_eq(memcmp(again, c[417], 3), 0);
+}
+
+Test(shade, id_mode_paints_id_colours)
+{
+    static TestScene t;
+    scene_init(&t, 10);
+    int32_t ids[4] = { 7, -1, 7, 9 };
+    FrameBufs fb;
+    frame_init(&fb, 4, 1, ids, NULL);
+    Image im = { 0 };
+    ShadeCache cache = { 0 };
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_ID, &cache, &im), 0);
+    uint8_t c7[3], c9[3];
+    shade_id_colour(7, c7);
+    shade_id_colour(9, c9);
+    cr_expect_eq(memcmp(im.rgb + 0, c7, 3), 0);
+    cr_expect_eq(memcmp(im.rgb + 6, c7, 3), 0);
+    cr_expect_eq(memcmp(im.rgb + 9, c9, 3), 0);
+    cr_expect_eq(im.lit[1], 0);
+    cr_expect_eq(px(&im, 1, 0) + px(&im, 1, 1) + px(&im, 1, 2), 0);
+
+    /* Lambert next frame on the same cache: no id colour is left over. */
+    cr_assert_eq(shade_frame(&t.s, &fb, SHADE_LAMBERT, &cache, &im), 0);
+    cr_expect_eq(px(&im, 0, 0), 200);
+    frame_done(&fb);
+    image_free(&im);
+    shade_cache_free(&cache);
+}
+
+/* ==== Buffers and names ==== */
+
+Test(shade, image_resize_reuses_memory)
+{
+    Image im = { 0 };
+    cr_assert_eq(image_resize(&im, 10, 10), 0);
+    uint8_t *rgb = im.rgb;
+    cr_assert_geq(im.cap, 100);
+    cr_assert_eq(image_resize(&im, 5, 20), 0);
+    cr_expect_eq(im.rgb, rgb, "same pixel count must not reallocate");
+    cr_expect_eq(im.w, 5);
+    cr_expect_eq(im.h, 20);
+    cr_assert_eq(image_resize(&im, 30, 30), 0);
+    cr_expect_geq(im.cap, 900);
+    image_free(&im);
+    cr_expect_null(im.rgb);
+}
+
+Test(shade, names)
+{
+    cr_expect_eq(shade_from_name("lambert"), SHADE_LAMBERT);
+    cr_expect_eq(shade_from_name("depth"), SHADE_DEPTH);
+    cr_expect_eq(shade_from_name("id"), SHADE_ID);
+    cr_expect_eq(shade_from_name("phong"), -1);
+    cr_expect_eq(shade_from_name(NULL), -1);
+    for (int i = 0; i < SHADE_COUNT; i++)
+        cr_expect_eq(shade_from_name(shade_names[i]), i);
+}
+
+/* ==== Speed: shade + cells of a 320x96 frame ==== */
+
+static double ms_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+Test(shade, speed_320x96)
+{
+    enum { W = 320, H = 96, NF = 2000 };
+    static TestScene t;
+    scene_init(&t, NF);
+    for (uint32_t f = 0; f < NF; f++)
+        set_normal(&t, f, sinf((float)f), cosf((float)f * 0.7f), 1);
+    static int32_t ids[W * H];
+    /* Blocks of 8x4 pixels per face, a ring of background round them. */
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            ids[y * W + x] = (x < 8 || x >= W - 8) ? -1 : ((y / 4) * (W / 8) + x / 8) % NF;
+    FrameBufs fb;
+    frame_init(&fb, W, H, ids, NULL);
+    Image im = { 0 };
+    ShadeCache cache = { 0 };
+    CellGrid g = { 0 };
+    double best[MODE_COUNT];
+    for (int m = 0; m < MODE_COUNT; m++) {
+        best[m] = 1e9;
+        for (int rep = 0; rep < 50; rep++) {
+            double t0 = ms_now();
+            cr_assert_eq(shade_frame(&t.s, &fb, SHADE_LAMBERT, &cache, &im), 0);
+            cr_assert_eq(cells_from_image(&im, (DisplayMode)m, &g), 0);
+            double dt = ms_now() - t0;
+            if (dt < best[m])
+                best[m] = dt;
+        }
+    }
+    fprintf(stderr, "shade+cells 320x96: half %.3f ms, ascii %.3f ms, braille %.3f ms\n",
+            best[MODE_HALF], best[MODE_ASCII], best[MODE_BRAILLE]);
+    /* Generous bound (sanitizer builds are slower); the figure is printed. */
+    for (int m = 0; m < MODE_COUNT; m++)
+        cr_expect_lt(best[m], 10.0);
+    frame_done(&fb);
+    image_free(&im);
+    shade_cache_free(&cache);
+    cells_free(&g);
+}
