@@ -1,0 +1,76 @@
+# zview: make builds ./zview; make test runs every test; make asan runs
+# them under AddressSanitizer + UBSan; make bench prints the benchmark.
+CC      ?= cc
+PREFIX  ?= /usr/local
+PKGS    := ncursesw libpng
+PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -ltinfo -lpng16)
+
+OPT     ?= -O2
+CFLAGS  ?= $(OPT) -g
+CFLAGS  += -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude $(PKG_CFLAGS) -MMD -MP -pthread
+LDLIBS  += $(PKG_LIBS) -lm -pthread
+
+BUILD   ?= build
+SRCS    := $(wildcard src/*/*.c)
+LIBSRCS := $(filter-out src/app/main.c,$(SRCS))
+OBJS    := $(SRCS:%.c=$(BUILD)/%.o)
+LIBOBJS := $(LIBSRCS:%.c=$(BUILD)/%.o)
+TSRCS   := $(wildcard tests/test_*.c)
+TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
+TESTBIN := $(BUILD)/zview-tests
+BIN     ?= zview
+
+.PHONY: all test unit e2e asan run bench bench-full install clean assets models-test
+
+all: $(BIN)
+
+$(BIN): $(OBJS)
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -c -o $@ $<
+
+$(TESTBIN): $(LIBOBJS) $(TOBJS)
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS) -lcriterion
+
+# The whole suite: unit tests (Criterion) then end-to-end shell tests.
+test: $(BIN) $(TESTBIN)
+	ZVIEW=$(abspath $(BIN)) $(TESTBIN) --jobs 2
+	ZVIEW=$(abspath $(BIN)) sh tests/e2e/run.sh
+
+unit: $(TESTBIN)
+	ZVIEW=$(abspath $(BIN)) $(TESTBIN) --jobs 2
+
+e2e: $(BIN)
+	ZVIEW=$(abspath $(BIN)) sh tests/e2e/run.sh
+
+# Sanitized build in its own folder, same tests.
+asan:
+	$(MAKE) BUILD=build-asan BIN=build-asan/zview \
+	    OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
+
+run: $(BIN)
+	./$(BIN)
+
+bench: $(BIN)
+	sh tools/bench.sh
+
+# Regenerate the bundled models (they are committed; this is how they were made).
+assets: $(BUILD)/genassets
+	$(BUILD)/genassets assets
+
+$(BUILD)/genassets: tools/genassets.c
+	@mkdir -p $(BUILD)
+	$(CC) $(CFLAGS) -o $@ $< -lm
+
+install: $(BIN)
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1
+	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/zview
+	install -m 644 doc/zview.1 $(DESTDIR)$(PREFIX)/share/man/man1/zview.1
+
+clean:
+	rm -rf build build-asan $(BIN)
+
+-include $(OBJS:.o=.d) $(TOBJS:.o=.d)

@@ -1,0 +1,69 @@
+#ifndef ZV_PRESENT_H
+#define ZV_PRESENT_H
+/* present: an RGB image in, bytes out. cells.c turns pixels into
+ * terminal cells (half blocks, ascii ramp, braille); print.c writes a
+ * cell grid with ANSI colours in one write; png.c / ppm writers save the
+ * image. Only term.c (the viewer) includes curses. */
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include "shade.h"
+
+typedef enum { MODE_HALF = 0, MODE_ASCII, MODE_BRAILLE, MODE_COUNT } DisplayMode;
+typedef enum { COLOR_NONE = 0, COLOR_16, COLOR_256, COLOR_TRUE } ColorDepth;
+
+extern const char *const mode_names[MODE_COUNT];
+int mode_from_name(const char *name);           /* -1 if unknown */
+int color_from_name(const char *name);          /* -1 if unknown */
+const char *color_name(ColorDepth c);
+
+/* Default colour depth from the environment: NO_COLOR -> none;
+ * COLORTERM truecolor/24bit or TERM *-direct -> true; TERM *256color* ->
+ * 256; other TERM -> 16; TERM unset or dumb -> none. */
+ColorDepth color_from_env(void);
+/* Default display mode: half on a UTF-8 locale, else ascii. Call after
+ * setlocale(LC_ALL, ""). */
+DisplayMode mode_from_locale(void);
+
+#define CELL_FG 1       /* fg colour set (else terminal default) */
+#define CELL_BG 2       /* bg colour set (else terminal default) */
+
+typedef struct {
+    uint32_t ch;        /* Unicode code point (' ' for empty) */
+    uint8_t  fg[3], bg[3];
+    uint8_t  flags;     /* CELL_FG | CELL_BG */
+} Cell;
+
+typedef struct {
+    int   cols, rows;
+    Cell *cells;        /* cols * rows */
+    size_t cap;
+} CellGrid;
+
+/* Pixels per cell of a mode (half 1x2, ascii 1x1, braille 2x4) and the
+ * pixel aspect (pixel height / width) given cells twice as tall as wide. */
+void  mode_cell_pixels(DisplayMode m, int *px_w, int *px_h);
+float mode_pixel_aspect(DisplayMode m);
+
+/* Image of (cols * px_w) x (rows * px_h) pixels -> cells. */
+int  cells_from_image(const Image *im, DisplayMode m, CellGrid *out);
+void cells_free(CellGrid *g);
+
+/* The colour of a cell colour under a depth: palette indices. */
+int  palette_256(const uint8_t rgb[3]);         /* 16..255, nearest of cube + greys */
+int  palette_16(const uint8_t rgb[3]);          /* 0..15, nearest ANSI colour */
+void palette_256_rgb(int idx, uint8_t rgb_out[3]);
+
+/* The grid as text with ANSI SGR colours (none: plain text), each row
+ * ending in a reset and "\n". Built in one buffer, written with one
+ * fwrite. Returns 0, or -1 on a write error. */
+int  print_cells(FILE *f, const CellGrid *g, ColorDepth c);
+/* Same bytes into a malloc'd buffer (*len_out), for tests. */
+char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out);
+
+/* Image writers. Return 0, or -1 with "path: reason" in err. */
+int  write_png(const char *path, const Image *im, char *err, size_t errlen);
+int  write_ppm(const char *path, const Image *im, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,103 @@
+#ifndef ZV_RASTER_H
+#define ZV_RASTER_H
+/* raster: the coverage rule, written once and used by every algorithm.
+ *
+ * An edge from (xa, ya) to (xb, yb) in 24.8 fixed point counts for the
+ * rows j whose centre yc = 256 j + 128 satisfies y_top <= yc < y_bottom
+ * (horizontal edges count for none). Where it counts, its crossing is
+ * c = x_top + (yc - y_top) * dx / dy, and the walker keeps
+ *     xi = ceil((c - 128) / 256),
+ * the first column whose centre is at or right of the crossing, as an
+ * exact integer quotient plus remainder (no float, no drift). A row's
+ * crossings sorted as xi_0 <= xi_1 <= ... cover the columns
+ * [xi_0, xi_1), [xi_2, xi_3), ...: the even-odd rule with half-open
+ * intervals, which is the top-left rule. */
+
+#include <stdint.h>
+#include "screen.h"
+
+typedef struct {
+    int32_t row0, row1;   /* rows [row0, row1) where the edge counts */
+    int32_t xi;           /* column of the crossing at the current row */
+    int32_t q;            /* whole columns added per row */
+    int64_t r;            /* remainder, 0 <= r < den */
+    int64_t rs;           /* remainder added per row, 0 <= rs < den */
+    int64_t den;          /* 256 * dy */
+} EdgeWalk;
+
+static inline int64_t floordiv64(int64_t n, int64_t d)   /* d > 0 */
+{
+    int64_t q = n / d;
+    return (n % d != 0 && n < 0) ? q - 1 : q;
+}
+
+/* First sample index whose centre 256 k + 128 is >= fixed-point v:
+ * ceil((v - 128) / 256). Rows and columns alike. */
+static inline int32_t sample_ceil(int32_t v)
+{
+    return (int32_t)floordiv64((int64_t)v - 128 + 255, 256);
+}
+
+/* Set up the edge a->b. Returns 0 when it counts for no row. The walker
+ * starts at row max(row0, start_row). */
+static inline int edge_setup(EdgeWalk *e, const ScreenVert *a, const ScreenVert *b, int32_t start_row)
+{
+    if (a->y == b->y)
+        return 0;
+    const ScreenVert *t = a->y < b->y ? a : b;   /* top */
+    const ScreenVert *m = a->y < b->y ? b : a;   /* bottom */
+    e->row0 = sample_ceil(t->y);
+    e->row1 = sample_ceil(m->y);
+    if (e->row0 >= e->row1)
+        return 0;
+    int64_t dy = (int64_t)m->y - t->y, dx = (int64_t)m->x - t->x;
+    int32_t row = e->row0 > start_row ? e->row0 : start_row;
+    e->den = 256 * dy;
+    int64_t yc = (int64_t)row * 256 + 128;
+    int64_t num = (int64_t)t->x * dy + (yc - t->y) * dx - 128 * dy + e->den - 1;
+    int64_t q = floordiv64(num, e->den);
+    e->xi = (int32_t)q;
+    e->r = num - q * e->den;
+    int64_t qs = floordiv64(256 * dx, e->den);
+    e->q = (int32_t)qs;
+    e->rs = 256 * dx - qs * e->den;
+    return 1;
+}
+
+/* Advance one row down. */
+static inline void edge_step(EdgeWalk *e)
+{
+    e->xi += e->q;
+    e->r += e->rs;
+    if (e->r >= e->den) {
+        e->r -= e->den;
+        e->xi++;
+    }
+}
+
+/* Columns covered by a triangle-like span are clamped to the image. */
+static inline int32_t clamp_col(int32_t x, int32_t w)
+{
+    return x < 0 ? 0 : (x > w ? w : x);
+}
+
+/* ---- A whole polygon, row by row (any number of corners, even-odd) ---- */
+
+typedef struct {
+    EdgeWalk *e;          /* the polygon's non-horizontal edges */
+    int       n;
+    int       cap;
+} PolyWalk;
+
+/* Set up every edge of polygon pi for rows from start_row on. Returns the
+ * number of edges (0: covers nothing). Grows w->e as needed (-1 on OOM). */
+int polywalk_begin(PolyWalk *w, const ScreenPolys *sp, uint32_t pi, int32_t start_row);
+
+/* Crossings of row j (which must be the walker's current row) into xs[],
+ * sorted ascending, then step every counting edge to row j + 1. Returns
+ * the count (always even). xs must hold w->n entries. */
+int polywalk_row(PolyWalk *w, int32_t j, int32_t *xs);
+
+void polywalk_free(PolyWalk *w);
+
+#endif

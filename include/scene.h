@@ -1,0 +1,90 @@
+#ifndef ZV_SCENE_H
+#define ZV_SCENE_H
+/* scene: objects placed in the world, a camera and a light, and the
+ * polygon list every frame starts from. Meshes in, the world out; the
+ * projection to screen-space polygons lives in project.c (screen.h). */
+
+#include <stdint.h>
+#include "mesh.h"
+#include "vec.h"
+
+typedef struct {
+    char       name[MESH_NAME_MAX];
+    const Mesh *mesh;         /* geometry owner (several objects may share one) */
+    uint32_t   face_first;    /* face range in the mesh */
+    uint32_t   face_count;
+    uint32_t   vert_min, vert_max; /* mesh vertex range used (inclusive) */
+    int32_t    face_base;     /* global face id of its first face */
+    uint32_t   poly_first;    /* polygon range in Scene.poly_* */
+    uint32_t   poly_count;
+    Vec3       centre;        /* object-space centre of its bounding box; it turns about this */
+    Vec3       half;          /* object-space half extents of that box */
+    /* placement, changed by the viewer */
+    float      yaw, pitch, roll;   /* radians */
+    Vec3       offset;        /* world translation (moves by the viewer) */
+    Vec3       home;          /* offset after a reset (grid copies sit apart) */
+    float      scale;         /* uniform, 1 = as loaded */
+} Object;
+
+typedef struct {
+    float yaw, pitch, roll;   /* radians, the whole scene's turn about its centre */
+    Vec3  pan;                /* view-space translation in fit radii (x right, y up) */
+    float zoom;               /* 1 = fitted */
+    int   persp;              /* 0 = orthographic */
+    float fov_deg;            /* vertical field of view under perspective */
+    /* set by scene_fit() */
+    Vec3  centre;             /* world centre of the scene */
+    float radius;             /* world radius of the scene about centre */
+} Camera;
+
+typedef struct {
+    Vec3  dir;                /* unit vector towards the light, view space (x right, y up, z to viewer) */
+    float ambient;            /* 0..1 */
+} Light;
+
+typedef struct Scene {
+    Mesh     *meshes;         /* owned */
+    int       nmeshes;
+    Object   *objs;
+    int       nobjs;
+    uint32_t  nfaces;         /* all faces, all objects: face ids are 0..nfaces-1 */
+    /* Polygons every frame projects: a face kept whole when planar, else
+     * split into triangles that keep the face's id. */
+    uint32_t  npolys;
+    uint32_t *poly_start;     /* npolys + 1 offsets into poly_corner */
+    uint32_t *poly_corner;    /* mesh vertex index (of the polygon's object's mesh) */
+    uint32_t *poly_lface;     /* face index within its object: id = face_base + lface */
+    /* Objects refer to polygon ranges; copies made by scene_make_grid
+     * share the ranges of the object they copy. */
+    /* Per global face, for shading. */
+    float    *face_normal;    /* 3 * nfaces, object space, unit (Newell) */
+    uint8_t  *face_rgb;       /* 3 * nfaces, base colour (Kd, vertex colours, or default) */
+    uint16_t *face_obj;       /* object index per face */
+    uint32_t  nbase_objs;     /* objects loaded (before grid copies) */
+    Camera    cam;
+    Light     light;
+} Scene;
+
+/* Build a scene from loaded meshes (ownership of the array and the meshes
+ * moves to the scene). Every `o` object of every mesh becomes one Object.
+ * Returns 0, or -1 with a message in err (out of memory). */
+int  scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen);
+
+/* Add copies of object 0..n-1 laid out as an N x N x N grid (for the deep
+ * scene benchmark): the scene then has nobjs * N^3 objects. */
+int  scene_make_grid(Scene *s, int n, char *err, size_t errlen);
+
+void scene_free(Scene *s);
+
+/* Reset the camera (and object placements) and fit the scene's bounding
+ * sphere to about 90% of the viewport. */
+void scene_reset(Scene *s);
+void scene_fit(Scene *s);
+
+/* Object-to-world matrix: turn and scale about the object's centre, then
+ * offset. */
+Mat4 object_matrix(const Object *o);
+/* World-to-view matrix (rotation + pan, before projection). */
+Mat4 camera_view(const Camera *c);
+
+#endif

@@ -1,0 +1,96 @@
+#ifndef ZV_SCREEN_H
+#define ZV_SCREEN_H
+/* screen: the one front end every hidden-surface algorithm starts from.
+ * Scene + camera + viewport in, screen-space polygons out: transformed,
+ * projected, clipped (near plane, guard band), vertices snapped to a
+ * 24.8 fixed-point grid, and one depth plane per polygon computed from
+ * the snapped vertices. Polygons that cover no sample centre are dropped
+ * here, so no algorithm pays for them.
+ *
+ * Coordinates: pixels, x right, y down; sample (i, j) sits at
+ * (i + 0.5, j + 0.5), i.e. at fixed-point (256 i + 128, 256 j + 128). */
+
+#include <stdint.h>
+#include "scene.h"
+
+#define SUBPIX_BITS 8
+#define SUBPIX      (1 << SUBPIX_BITS)   /* 256 sub-pixel steps per pixel */
+#define SCREEN_MAX  16384                /* largest W or H accepted */
+
+typedef struct {
+    int32_t x, y;       /* 24.8 fixed-point pixels */
+    float   z;          /* depth at the vertex (for --dump-screen) */
+} ScreenVert;
+
+/* Depth plane: depth(i, j) = zc + b * (j - y0) + a * (i - x0) at sample
+ * (i, j), evaluated in float in exactly that order by plane_row() and
+ * plane_at(). Smaller is nearer. */
+typedef struct {
+    uint32_t first;     /* verts[first .. next polygon's first) */
+    int32_t  face;      /* source face id */
+    int32_t  x0, x1;    /* sample columns [x0, x1) the polygon may cover, clamped to the screen */
+    int32_t  y0, y1;    /* sample rows [y0, y1), clamped */
+    float    a, b, zc;  /* the plane, referenced to sample (x0, y0) */
+    float    zmin;      /* smallest vertex depth (hierarchical tests) */
+} ScreenPoly;
+
+typedef struct {
+    int         w, h;
+    float       pixel_aspect;   /* pixel height / width (2 for terminal cells) */
+    int         cull;           /* drop back faces */
+    ScreenVert *verts;
+    uint32_t    nverts, cap_verts;
+    ScreenPoly *polys;          /* polys[npolys].first is a sentinel = nverts */
+    uint32_t    npolys, cap_polys;
+    /* Scene polygon instance -> screen polygon index, -1 when dropped.
+     * Instance of polygon k (scene index) of object o is
+     * map_first[o] + (k - objs[o].poly_first). */
+    int32_t    *map;
+    uint32_t    cap_map;
+    uint32_t   *map_first;          /* per object */
+    int         cap_objs;
+    /* projection used, for object-space tests (octree node boxes) */
+    float       focal_x, focal_y;   /* pixels per view unit (ortho) or per unit/distance (persp) */
+    float       eye_z;              /* persp: eye position on the view z axis */
+    float       near_z, far_z;      /* persp: clip distances in front of the eye */
+    float       depth_scale, depth_bias; /* ortho depth = bias - scale * z_view */
+    int         persp;
+    /* statistics of the last projection */
+    uint32_t    in_polys;       /* scene polygons considered */
+    uint32_t    culled_back;    /* dropped as back faces */
+    uint32_t    culled_empty;   /* dropped: clipped away or cover no sample */
+    double      ms;             /* time spent projecting */
+} ScreenPolys;
+
+typedef struct {
+    int   w, h;                 /* image size in pixels */
+    float pixel_aspect;         /* pixel height / width */
+    int   cull;                 /* back-face culling */
+} Viewport;
+
+/* Project every polygon of the scene. Buffers in *sp grow as needed and
+ * are reused across frames (no allocation once grown). Returns 0, or -1
+ * on out of memory. */
+int  screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp);
+void screen_free(ScreenPolys *sp);
+
+static inline uint32_t screen_poly_nverts(const ScreenPolys *sp, uint32_t i)
+{
+    return sp->polys[i + 1].first - sp->polys[i].first;
+}
+
+/* The depth rule, written once: every algorithm evaluates depth through
+ * these two, so equal inputs give bit-equal depths. */
+static inline float plane_row(const ScreenPoly *p, int j)
+{
+    return p->zc + p->b * (float)(j - p->y0);
+}
+static inline float plane_at(const ScreenPoly *p, float zrow, int i)
+{
+    return zrow + p->a * (float)(i - p->x0);
+}
+
+/* Write the polygons as OBJ text ("# zview screen W H", v x y z, f ... # id). */
+int  screen_dump_obj(const ScreenPolys *sp, const char *path);
+
+#endif

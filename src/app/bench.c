@@ -1,0 +1,159 @@
+/* bench.c: --bench. Each model from N fixed views with each algorithm
+ * (a warm-up frame first); medians and minimums of the hidden-surface
+ * step and of the whole frame. Timing lives here, never in tests. */
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+
+#define MAX_VIEWS 4096
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* View k of n: a turn around the model with a gentle nod. */
+static void set_view(Scene *s, const Options *o, int k, int n)
+{
+    s->cam.yaw = deg2rad(o->yaw + 360.0f * k / n + 17.0f);
+    s->cam.pitch = deg2rad(o->pitch + 25.0f * ((k % 3) - 1));
+    s->cam.roll = deg2rad(o->roll);
+}
+
+typedef struct {
+    const char *algos[16];
+    int         n;
+} AlgoList;
+
+static int parse_algos(const char *spec, AlgoList *l)
+{
+    l->n = 0;
+    if (!spec || !strcmp(spec, "all")) {
+        for (int i = 0; i < hsr_nalgos && i < 16; i++)
+            l->algos[l->n++] = hsr_algos[i]->name;
+        return 0;
+    }
+    static char buf[256];
+    snprintf(buf, sizeof buf, "%s", spec);
+    for (char *t = strtok(buf, ","); t && l->n < 16; t = strtok(NULL, ",")) {
+        if (!hsr_find(t)) {
+            fprintf(stderr, "zview: unknown algorithm '%s'\n", t);
+            return -1;
+        }
+        l->algos[l->n++] = t;
+    }
+    return l->n ? 0 : -1;
+}
+
+static int bench_model(const Options *o, const char *file, const AlgoList *al, int *first_json)
+{
+    char err[512];
+    Options one = *o;
+    one.nfiles = file ? 1 : 0;
+    one.files[0] = file;
+    Scene s;
+    if (app_load_scene(&one, &s, err, sizeof err)) {
+        fprintf(stderr, "zview: %s\n", err);
+        return 1;
+    }
+    const char *name = file ? file : app_demo_path();
+    const char *base = strrchr(name, '/');
+    base = base ? base + 1 : name;
+    char label[128];
+    if (o->grid > 1)
+        snprintf(label, sizeof label, "%s x%d^3", base, o->grid);
+    else
+        snprintf(label, sizeof label, "%s", base);
+    int w = o->w > 0 ? o->w : 1920, h = o->h > 0 ? o->h : 1080;
+    int views = o->views < MAX_VIEWS ? o->views : MAX_VIEWS;
+    double *hsr = malloc(sizeof(double) * views), *frame = malloc(sizeof(double) * views);
+    if (!hsr || !frame) {
+        free(hsr);
+        free(frame);
+        scene_free(&s);
+        return 1;
+    }
+    for (int a = 0; a < al->n; a++) {
+        Pipeline p;
+        if (pipeline_init(&p, &s, hsr_find(al->algos[a]), o->threads)) {
+            fprintf(stderr, "zview: out of memory\n");
+            break;
+        }
+        uint64_t culled = 0, given = 0, written = 0, covered = 0;
+        set_view(&s, o, 0, views);
+        pipeline_render(&p, w, h, 1.0f, o->cull, 1);   /* warm-up */
+        for (int k = 0; k < views; k++) {
+            set_view(&s, o, k, views);
+            double t0 = now_ms();
+            if (pipeline_render(&p, w, h, 1.0f, o->cull, 1)) {
+                fprintf(stderr, "zview: out of memory\n");
+                break;
+            }
+            frame[k] = now_ms() - t0;
+            hsr[k] = p.hsr_ms;
+            culled += p.st.polys_culled;
+            given += p.st.polys_in;
+            written += p.st.pixels_written;
+            for (size_t i = 0; i < (size_t)w * h; i++)
+                covered += p.fb.ids[i] >= 0;
+        }
+        double hmin = hsr[0];
+        for (int k = 1; k < views; k++)
+            if (hsr[k] < hmin)
+                hmin = hsr[k];
+        double hmed = median(hsr, views), fmed = median(frame, views);
+        double culled_pct = given ? 100.0 * culled / given : 0;
+        double overdraw = covered ? (double)written / covered : 0;
+        if (o->json) {
+            printf("%s\n  {\"model\": \"%s\", \"polygons\": %u, \"algo\": \"%s\", \"width\": %d, "
+                   "\"height\": %d, \"threads\": %d, \"views\": %d, \"median_ms\": %.3f, "
+                   "\"min_ms\": %.3f, \"frame_median_ms\": %.3f, \"culled_pct\": %.1f, "
+                   "\"overdraw\": %.2f}",
+                   *first_json ? "" : ",", label, s.npolys, al->algos[a], w, h, p.threads, views,
+                   hmed, hmin, fmed, culled_pct, overdraw);
+            *first_json = 0;
+        } else {
+            printf("%-24s %9u %-11s %5dx%-5d %2d %9.2f %9.2f %9.2f %7.1f %8.2f\n", label,
+                   s.npolys, al->algos[a], w, h, p.threads, hmed, hmin, fmed, culled_pct, overdraw);
+        }
+        fflush(stdout);
+        pipeline_free(&p);
+    }
+    free(hsr);
+    free(frame);
+    scene_free(&s);
+    return 0;
+}
+
+int app_bench(const Options *o, Scene *s)
+{
+    (void)s;   /* models are loaded one at a time */
+    if (o->bench_tty)
+        return app_bench_tty(o);
+    AlgoList al;
+    if (parse_algos(o->algo, &al))
+        return 2;
+    int first = 1, rc = 0;
+    if (o->json)
+        printf("[");
+    else
+        printf("%-24s %9s %-11s %11s %2s %9s %9s %9s %7s %8s\n", "model", "polygons", "algo",
+               "size", "th", "median_ms", "min_ms", "frame_ms", "culled%", "overdraw");
+    if (o->nfiles == 0)
+        rc |= bench_model(o, NULL, &al, &first);
+    for (int i = 0; i < o->nfiles; i++)
+        rc |= bench_model(o, o->files[i], &al, &first);
+    if (o->json)
+        printf("\n]\n");
+    return rc;
+}

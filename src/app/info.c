@@ -1,0 +1,79 @@
+/* info.c: --info: what was loaded, and (with --algo) what a render did. */
+
+#include <float.h>
+#include <stdio.h>
+
+#include "app.h"
+
+static void print_mesh(const Mesh *m)
+{
+    float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
+    for (uint32_t v = 0; v < m->nverts; v++)
+        for (int k = 0; k < 3; k++) {
+            float c = m->pos[3 * v + k];
+            if (c < lo[k]) lo[k] = c;
+            if (c > hi[k]) hi[k] = c;
+        }
+    if (!m->nverts)
+        lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
+    double mb = m->info.bytes / 1e6;
+    printf("file:       %s\n", m->path ? m->path : "?");
+    printf("vertices:   %u\n", m->nverts);
+    printf("faces:      %u\n", m->nfaces);
+    printf("triangles:  %u\n", m->info.triangles);
+    printf("objects:    %u\n", m->nobjs);
+    printf("bounds:     %g %g %g .. %g %g %g\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    printf("materials:  %u\n", m->nmats);
+    printf("texcoords:  %u   normals: %u   vertex colours: %s\n", m->info.texcoords,
+           m->info.normals, m->rgb ? "yes" : "no");
+    if (m->info.unknown)
+        printf("unknown:    %u statements skipped (first: '%s')\n", m->info.unknown,
+               m->info.first_unknown);
+    else
+        printf("unknown:    0\n");
+    printf("load:       %.1f ms, %.1f MB, %.0f MB/s\n", m->info.load_ms, mb,
+           m->info.load_ms > 0 ? mb / (m->info.load_ms / 1e3) : 0.0);
+}
+
+int app_info(const Options *o, Scene *s)
+{
+    for (int i = 0; i < s->nmeshes; i++) {
+        if (i)
+            putchar('\n');
+        print_mesh(&s->meshes[i]);
+    }
+    printf("\nscene:      %d objects, %u faces, %u polygons after splitting non-planar faces\n",
+           s->nobjs, s->nfaces, s->npolys);
+    if (!o->algo)
+        return 0;
+    const HsrAlgo *algo = hsr_find(o->algo);
+    Pipeline p;
+    if (pipeline_init(&p, s, algo, o->threads)) {
+        fprintf(stderr, "zview: out of memory\n");
+        return 1;
+    }
+    int w = o->w > 0 ? o->w : 640, h = o->h > 0 ? o->h : 480;
+    if (pipeline_render(&p, w, h, 1.0f, o->cull, 1)) {
+        fprintf(stderr, "zview: out of memory\n");
+        pipeline_free(&p);
+        return 1;
+    }
+    uint64_t covered = 0;
+    for (size_t i = 0; i < (size_t)w * h; i++)
+        covered += p.fb.ids[i] >= 0;
+    const HsrStats *st = &p.st;
+    printf("\nrender:     %s, %dx%d pixels, %d thread%s\n", algo->name, w, h, p.threads,
+           p.threads > 1 ? "s" : "");
+    printf("polygons:   %u in, %u back faces culled, %u cover no sample, %u to the algorithm\n",
+           p.sp.in_polys, p.sp.culled_back, p.sp.culled_empty, p.sp.npolys);
+    printf("pyramid:    %llu polygons culled, %llu octree nodes visited, %llu culled\n",
+           (unsigned long long)st->polys_culled, (unsigned long long)st->nodes_visited,
+           (unsigned long long)st->nodes_culled);
+    printf("pixels:     %llu written, %llu covered, overdraw %.2f\n",
+           (unsigned long long)st->pixels_written, (unsigned long long)covered,
+           covered ? (double)st->pixels_written / covered : 0.0);
+    printf("time:       transform %.2f ms, build %.2f ms, scan %.2f ms, shade %.2f ms\n",
+           p.project_ms, st->build_ms, st->scan_ms, p.shade_ms);
+    pipeline_free(&p);
+    return 0;
+}

@@ -1,0 +1,111 @@
+/* oneshot.c: --print, -o, --dump-ids, --dump-screen: one frame, no curses. */
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include "app.h"
+
+/* Cells for --print: --size, else the terminal's size, else 80x24. */
+static void print_size(const Options *o, int *cols, int *rows)
+{
+    if (o->w > 0) {
+        *cols = o->w;
+        *rows = o->h;
+        return;
+    }
+    struct winsize ws;
+    if (isatty(STDOUT_FILENO) && ioctl(STDOUT_FILENO, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0 &&
+        ws.ws_row > 1) {
+        *cols = ws.ws_col;
+        *rows = ws.ws_row - 1;   /* leave the prompt's line */
+        return;
+    }
+    *cols = 80;
+    *rows = 24;
+}
+
+static int write_ids(const char *path, const FrameBufs *fb)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return -1;
+    size_t n = (size_t)fb->w * fb->h;
+    /* little-endian int32 on any host */
+    unsigned char buf[4096];
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t v = (uint32_t)fb->ids[i];
+        buf[k++] = (unsigned char)v;
+        buf[k++] = (unsigned char)(v >> 8);
+        buf[k++] = (unsigned char)(v >> 16);
+        buf[k++] = (unsigned char)(v >> 24);
+        if (k == sizeof buf) {
+            fwrite(buf, 1, k, f);
+            k = 0;
+        }
+    }
+    fwrite(buf, 1, k, f);
+    return fclose(f) == 0 ? 0 : -1;
+}
+
+int app_oneshot(const Options *o, Scene *s)
+{
+    const HsrAlgo *algo = hsr_find(o->algo ? o->algo : "zbuffer");
+    char err[512];
+    Pipeline p;
+    if (pipeline_init(&p, s, algo, o->threads)) {
+        fprintf(stderr, "zview: out of memory\n");
+        return 1;
+    }
+    p.shade = (ShadeMode)o->shade;
+    int rc = 0;
+    int text = o->print || (!o->out && !o->dump_ids && !o->dump_screen);
+    if (o->out || ((o->dump_ids || o->dump_screen) && !text)) {
+        int w = o->w > 0 ? o->w : 640, h = o->h > 0 ? o->h : 480;
+        if (pipeline_render(&p, w, h, 1.0f, o->cull, o->out != NULL)) {
+            fprintf(stderr, "zview: out of memory\n");
+            rc = 1;
+            goto out;
+        }
+        if (o->out) {
+            size_t n = strlen(o->out);
+            int png = n >= 4 && !strcmp(o->out + n - 4, ".png");
+            if ((png ? write_png : write_ppm)(o->out, &p.img, err, sizeof err)) {
+                fprintf(stderr, "zview: %s\n", err);
+                rc = 1;
+                goto out;
+            }
+        }
+    }
+    if (text) {
+        DisplayMode mode = o->mode >= 0 ? (DisplayMode)o->mode : mode_from_locale();
+        ColorDepth color = o->color >= 0 ? (ColorDepth)o->color : color_from_env();
+        int cols, rows, pw, ph;
+        print_size(o, &cols, &rows);
+        mode_cell_pixels(mode, &pw, &ph);
+        if (pipeline_render(&p, cols * pw, rows * ph, mode_pixel_aspect(mode), o->cull, 1) ||
+            cells_from_image(&p.img, mode, &p.cells)) {
+            fprintf(stderr, "zview: out of memory\n");
+            rc = 1;
+            goto out;
+        }
+        if (print_cells(stdout, &p.cells, color) || fflush(stdout)) {
+            rc = 1;
+            goto out;
+        }
+    }
+    if (o->dump_ids && write_ids(o->dump_ids, &p.fb)) {
+        fprintf(stderr, "zview: %s: cannot write\n", o->dump_ids);
+        rc = 1;
+    }
+    if (o->dump_screen && screen_dump_obj(&p.sp, o->dump_screen)) {
+        fprintf(stderr, "zview: %s: cannot write\n", o->dump_screen);
+        rc = 1;
+    }
+out:
+    pipeline_free(&p);
+    return rc;
+}

@@ -1,0 +1,273 @@
+/* hsr.c: the algorithm registry, frame buffers, and the runner that
+ * splits a frame into bands of rows, one per thread. The exact rules are
+ * written in hsr.h, raster.h and screen.h. */
+
+#define _POSIX_C_SOURCE 200809L
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "hsr.h"
+
+extern const HsrAlgo hsr_zbuffer, hsr_scanline, hsr_span, hsr_hzb, hsr_hzb_octree;
+
+const HsrAlgo *const hsr_algos[] = {
+    &hsr_zbuffer,
+#ifdef ZV_HAVE_SCANLINE
+    &hsr_scanline,
+#endif
+#ifdef ZV_HAVE_SPAN
+    &hsr_span,
+#endif
+#ifdef ZV_HAVE_HZB
+    &hsr_hzb,
+    &hsr_hzb_octree,
+#endif
+};
+const int hsr_nalgos = (int)(sizeof hsr_algos / sizeof hsr_algos[0]);
+
+const HsrAlgo *hsr_find(const char *name)
+{
+    for (int i = 0; i < hsr_nalgos; i++)
+        if (strcmp(hsr_algos[i]->name, name) == 0)
+            return hsr_algos[i];
+    return NULL;
+}
+
+double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+/* ==== frame buffers ==== */
+
+int fbuf_resize(FrameBufs *fb, int w, int h)
+{
+    size_t n = (size_t)w * h;
+    if (n > fb->cap) {
+        int32_t *ids = realloc(fb->ids, n * sizeof *ids);
+        if (!ids)
+            return -1;
+        fb->ids = ids;
+        float *d = realloc(fb->depth, n * sizeof *d);
+        if (!d)
+            return -1;
+        fb->depth = d;
+        fb->cap = n;
+    }
+    fb->w = w;
+    fb->h = h;
+    return 0;
+}
+
+void fbuf_free(FrameBufs *fb)
+{
+    free(fb->ids);
+    free(fb->depth);
+    memset(fb, 0, sizeof *fb);
+}
+
+/* ==== the runner: a small persistent pool, one band per thread ==== */
+
+typedef struct Pool Pool;
+typedef struct { Pool *pool; int idx; } Worker;
+
+struct Pool {
+    pthread_mutex_t mu;
+    pthread_cond_t  go, done;
+    unsigned        gen;        /* bumped for each frame */
+    int             pending;    /* bands not finished yet */
+    int             quit;
+    HsrRunner      *r;
+    const HsrInput *in;
+    FrameBufs      *fb;
+    int             band[65];   /* row boundaries */
+    HsrStats        st[64];
+    pthread_t       th[64];
+    int             nth;
+    Worker          workers[64];
+};
+
+static void run_band(Pool *p, int t)
+{
+    memset(&p->st[t], 0, sizeof p->st[t]);
+    if (p->band[t] < p->band[t + 1])
+        p->r->algo->render(p->r->state[t], p->in, p->fb, p->band[t], p->band[t + 1], &p->st[t]);
+}
+
+static void *worker_main(void *arg)
+{
+    Worker *w = arg;
+    Pool *p = w->pool;
+    unsigned seen = 0;
+    pthread_mutex_lock(&p->mu);
+    for (;;) {
+        while (p->gen == seen && !p->quit)
+            pthread_cond_wait(&p->go, &p->mu);
+        if (p->quit)
+            break;
+        seen = p->gen;
+        pthread_mutex_unlock(&p->mu);
+        run_band(p, w->idx);
+        pthread_mutex_lock(&p->mu);
+        if (--p->pending == 0)
+            pthread_cond_signal(&p->done);
+    }
+    pthread_mutex_unlock(&p->mu);
+    return NULL;
+}
+
+int hsr_runner_init(HsrRunner *r, const HsrAlgo *algo, int nthreads)
+{
+    memset(r, 0, sizeof *r);
+    if (nthreads < 1)
+        nthreads = 1;
+    if (nthreads > 64)
+        nthreads = 64;
+    r->algo = algo;
+    r->nthreads = nthreads;
+    for (int t = 0; t < nthreads; t++) {
+        r->state[t] = algo->create ? algo->create() : NULL;
+        if (algo->create && !r->state[t]) {
+            hsr_runner_free(r);
+            return -1;
+        }
+    }
+    if (nthreads > 1) {
+        Pool *p = calloc(1, sizeof *p);
+        if (!p) {
+            hsr_runner_free(r);
+            return -1;
+        }
+        pthread_mutex_init(&p->mu, NULL);
+        pthread_cond_init(&p->go, NULL);
+        pthread_cond_init(&p->done, NULL);
+        p->r = r;
+        p->nth = nthreads;
+        r->pool = p;
+        for (int t = 1; t < nthreads; t++) {
+            p->workers[t].pool = p;
+            p->workers[t].idx = t;
+            if (pthread_create(&p->th[t], NULL, worker_main, &p->workers[t]) != 0) {
+                p->nth = t;
+                hsr_runner_free(r);
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+void hsr_runner_free(HsrRunner *r)
+{
+    Pool *p = r->pool;
+    if (p) {
+        pthread_mutex_lock(&p->mu);
+        p->quit = 1;
+        pthread_cond_broadcast(&p->go);
+        pthread_mutex_unlock(&p->mu);
+        for (int t = 1; t < p->nth; t++)
+            pthread_join(p->th[t], NULL);
+        pthread_mutex_destroy(&p->mu);
+        pthread_cond_destroy(&p->go);
+        pthread_cond_destroy(&p->done);
+        free(p);
+    }
+    for (int t = 0; t < r->nthreads; t++)
+        if (r->state[t] && r->algo->destroy)
+            r->algo->destroy(r->state[t]);
+    memset(r, 0, sizeof *r);
+}
+
+static void stats_add(HsrStats *a, const HsrStats *b)
+{
+    a->polys_in += b->polys_in;
+    a->polys_culled += b->polys_culled;
+    a->nodes_visited += b->nodes_visited;
+    a->nodes_culled += b->nodes_culled;
+    a->pixels_written += b->pixels_written;
+    if (b->build_ms > a->build_ms)   /* bands build in parallel: the slowest counts */
+        a->build_ms = b->build_ms;
+}
+
+/* Row boundaries that give each band about the same number of polygon
+ * rows plus pixel rows, so that a model in one part of the image still
+ * splits evenly. */
+static void split_bands(const ScreenPolys *sp, int h, int n, int *band)
+{
+    band[0] = 0;
+    band[n] = h;
+    if (n == 1)
+        return;
+    /* weight per row: polygons starting there (their setup dominates) + 1 */
+    static uint32_t *hist;
+    static int hist_cap;
+    if (h + 1 > hist_cap) {
+        uint32_t *q = realloc(hist, (size_t)(h + 1) * sizeof *q);
+        if (!q) {
+            for (int t = 1; t < n; t++)
+                band[t] = h * t / n;
+            return;
+        }
+        hist = q;
+        hist_cap = h + 1;
+    }
+    memset(hist, 0, (size_t)h * sizeof *hist);
+    uint64_t total = 0;
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        const ScreenPoly *p = &sp->polys[i];
+        uint32_t rows = (uint32_t)(p->y1 - p->y0);
+        /* spread the polygon's weight over its rows, coarsely */
+        hist[(p->y0 + p->y1) / 2] += 4 + rows;
+        total += 4 + rows;
+    }
+    for (int j = 0; j < h; j++)
+        hist[j] += (uint32_t)(sp->w / 8 + 1);
+    total += (uint64_t)h * (sp->w / 8 + 1);
+    uint64_t acc = 0;
+    int t = 1;
+    for (int j = 0; j < h && t < n; j++) {
+        acc += hist[j];
+        while (t < n && acc * n >= total * t)
+            band[t++] = j + 1;
+    }
+    while (t < n)
+        band[t++] = h;
+}
+
+int hsr_run(HsrRunner *r, const HsrInput *in, FrameBufs *fb, HsrStats *stats)
+{
+    double t0 = now_ms();
+    memset(stats, 0, sizeof *stats);
+    if (fbuf_resize(fb, in->sp->w, in->sp->h))
+        return -1;
+    int h = in->sp->h;
+    if (r->nthreads == 1 || !r->pool) {
+        r->algo->render(r->state[0], in, fb, 0, h, stats);
+        stats->scan_ms = now_ms() - t0 - stats->build_ms;
+        return 0;
+    }
+    Pool *p = r->pool;
+    int n = r->nthreads < h ? r->nthreads : (h > 0 ? h : 1);
+    pthread_mutex_lock(&p->mu);
+    p->in = in;
+    p->fb = fb;
+    split_bands(in->sp, h, r->nthreads, p->band);
+    p->pending = r->nthreads - 1;
+    p->gen++;
+    pthread_cond_broadcast(&p->go);
+    pthread_mutex_unlock(&p->mu);
+    (void)n;
+    run_band(p, 0);
+    pthread_mutex_lock(&p->mu);
+    while (p->pending > 0)
+        pthread_cond_wait(&p->done, &p->mu);
+    pthread_mutex_unlock(&p->mu);
+    for (int t = 0; t < r->nthreads; t++)
+        stats_add(stats, &p->st[t]);
+    stats->scan_ms = now_ms() - t0 - stats->build_ms;
+    return 0;
+}

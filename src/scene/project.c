@@ -1,0 +1,414 @@
+/* project.c: the one front end. Scene -> screen-space polygons.
+ *
+ * Per object: vertices to view space and, where in front of the near
+ * plane and inside the guard band, straight to snapped 24.8 screen
+ * coordinates (each vertex once). Per polygon: the fast path copies its
+ * snapped corners; a polygon crossing the near plane or the guard band is
+ * clipped (Sutherland-Hodgman) and snapped on the slow path. Then the
+ * sample box, back-face test, and the depth plane from the snapped
+ * corners. */
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hsr.h"
+#include "raster.h"
+#include "screen.h"
+
+/* Vertices farther than this outside the image (pixels) are clipped, so
+ * that fixed-point values stay below 2^23 and edge products fit int64. */
+#define GUARD_PX 8192.0
+
+typedef struct {
+    double x, y, z;         /* view space (persp) or screen (guard clip): px, px, depth */
+} CVert;
+
+/* Per-vertex scratch, reused across frames. */
+typedef struct {
+    float   *view;          /* 3 per vertex, view space */
+    ScreenVert *sv;         /* snapped, valid when ok */
+    uint8_t *ok;            /* 1: in front of near and inside the guard band */
+    uint32_t cap_view, cap_sv, cap_ok;
+    CVert   *clip[2];       /* clip polygon buffers */
+    uint32_t clip_cap;
+} Scratch;
+
+static Scratch scratch_tls;     /* the front end runs on one thread */
+
+static int grow(void **p, uint32_t *cap, uint32_t need, size_t elem)
+{
+    if (need <= *cap)
+        return 0;
+    uint32_t n = *cap ? *cap : 256;
+    while (n < need)
+        n = n > UINT32_MAX / 2 ? need : n * 2;
+    void *q = realloc(*p, (size_t)n * elem);
+    if (!q)
+        return -1;
+    *p = q;
+    *cap = n;
+    return 0;
+}
+
+void screen_free(ScreenPolys *sp)
+{
+    free(sp->verts);
+    free(sp->polys);
+    free(sp->map);
+    free(sp->map_first);
+    memset(sp, 0, sizeof *sp);
+}
+
+/* ==== projection parameters ==== */
+
+typedef struct {
+    int     persp;
+    double  cx, cy;         /* image centre, px */
+    double  fx, fy;         /* px per unit (ortho) or focal px (persp) */
+    double  eye;            /* persp: eye on +z view axis */
+    double  n, f;           /* persp: near, far distances */
+    double  dscale, dbias;  /* ortho depth */
+    double  gx0, gx1, gy0, gy1; /* guard band, px */
+} Proj;
+
+static void proj_setup(Proj *p, const Scene *s, const Viewport *vp)
+{
+    const Camera *c = &s->cam;
+    double aspect = vp->pixel_aspect > 0 ? vp->pixel_aspect : 1;
+    double r = c->radius > 0 ? c->radius : 1;
+    double zoom = c->zoom > 0 ? c->zoom : 1;
+    /* the image's smaller side, in x-pixel units */
+    double half = 0.5 * fmin((double)vp->w, vp->h * aspect);
+    p->persp = c->persp;
+    p->cx = vp->w * 0.5;
+    p->cy = vp->h * 0.5;
+    if (!c->persp) {
+        p->fx = zoom * 0.9 * half / r;
+        p->dscale = 0.25 / r;       /* view z in [-2r, 2r] -> depth [0, 1] */
+        p->dbias = 0.5;
+    } else {
+        double fov = (c->fov_deg > 1 && c->fov_deg < 179 ? c->fov_deg : 50) * 3.14159265358979323846 / 180;
+        p->fx = half / tan(fov / 2);
+        p->eye = r / sin(fov / 2) / 0.9 / zoom;
+        p->n = fmax(0.5 * (p->eye - r), 0.01 * r);
+        p->f = p->eye + 3 * r;
+    }
+    p->fy = p->fx / aspect;
+    p->gx0 = -GUARD_PX;
+    p->gx1 = vp->w + GUARD_PX;
+    p->gy0 = -GUARD_PX;
+    p->gy1 = vp->h + GUARD_PX;
+}
+
+/* View space -> screen px and depth. Persp: the point must be in front. */
+static inline void proj_point(const Proj *p, double x, double y, double z, double out[3])
+{
+    if (!p->persp) {
+        out[0] = p->cx + p->fx * x;
+        out[1] = p->cy - p->fy * y;
+        out[2] = p->dbias - p->dscale * z;
+    } else {
+        double ze = p->eye - z;     /* distance in front of the eye */
+        out[0] = p->cx + p->fx * x / ze;
+        out[1] = p->cy - p->fy * y / ze;
+        out[2] = p->f / (p->f - p->n) * (1 - p->n / ze);   /* NDC z in [0, 1] */
+    }
+}
+
+static inline int32_t snap(double v)
+{
+    return (int32_t)floor(v * SUBPIX + 0.5);
+}
+
+static inline int in_guard(const Proj *p, const double s[3])
+{
+    return s[0] >= p->gx0 && s[0] <= p->gx1 && s[1] >= p->gy0 && s[1] <= p->gy1;
+}
+
+/* ==== clipping (slow path) ==== */
+
+/* Keep the part of polygon in[0..n) where dist(v) >= 0; returns count. */
+static uint32_t clip_poly(const CVert *in, uint32_t n, CVert *out, int axis, double k, double sign)
+{
+    uint32_t m = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        const CVert *a = &in[i], *b = &in[(i + 1) % n];
+        double va = axis == 0 ? a->x : axis == 1 ? a->y : a->z;
+        double vb = axis == 0 ? b->x : axis == 1 ? b->y : b->z;
+        double da = sign * (va - k), db = sign * (vb - k);
+        if (da >= 0)
+            out[m++] = *a;
+        if ((da >= 0) != (db >= 0)) {
+            double t = da / (da - db);
+            out[m].x = a->x + t * (b->x - a->x);
+            out[m].y = a->y + t * (b->y - a->y);
+            out[m].z = a->z + t * (b->z - a->z);
+            m++;
+        }
+    }
+    return m;
+}
+
+/* ==== polygon emission ==== */
+
+/* Finish polygon whose snapped corners are verts[first .. nverts):
+ * sample box, culling, plane. Returns 1 if kept. */
+static int finish_poly(ScreenPolys *sp, uint32_t first, int32_t face)
+{
+    ScreenVert *v = &sp->verts[first];
+    uint32_t n = sp->nverts - first;
+    if (n < 3)
+        return 0;
+    int32_t xmin = v[0].x, xmax = v[0].x, ymin = v[0].y, ymax = v[0].y;
+    for (uint32_t k = 1; k < n; k++) {
+        if (v[k].x < xmin) xmin = v[k].x;
+        if (v[k].x > xmax) xmax = v[k].x;
+        if (v[k].y < ymin) ymin = v[k].y;
+        if (v[k].y > ymax) ymax = v[k].y;
+    }
+    /* samples (i, j) with xmin <= 256i+128 < xmax could be covered */
+    int32_t x0 = sample_ceil(xmin), x1 = sample_ceil(xmax);
+    int32_t y0 = sample_ceil(ymin), y1 = sample_ceil(ymax);
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > sp->w) x1 = sp->w;
+    if (y1 > sp->h) y1 = sp->h;
+    if (x0 >= x1 || y0 >= y1) {
+        sp->culled_empty++;
+        return 0;
+    }
+    /* Twice the signed area, y down: negative = counter-clockwise seen
+     * with y up = front face for CCW-from-outside models. */
+    int64_t area2 = 0;
+    for (uint32_t k = 0; k < n; k++) {
+        const ScreenVert *a = &v[k], *b = &v[k + 1 < n ? k + 1 : 0];
+        area2 += (int64_t)a->x * b->y - (int64_t)b->x * a->y;
+    }
+    if (sp->cull && area2 >= 0) {
+        sp->culled_back++;
+        return 0;
+    }
+    /* The plane z = z0 + a (x - X0) + b (y - Y0) from the snapped corners,
+     * in double: Newell's normal of (x, y, z); a best-area triangle when
+     * the outline's net area vanishes (a symmetric bow tie). */
+    double X0 = v[0].x / (double)SUBPIX, Y0 = v[0].y / (double)SUBPIX, Z0 = v[0].z;
+    double nx = 0, ny = 0, nz = 0;
+    if (n == 3) {
+        double x1d = v[1].x / (double)SUBPIX - X0, y1d = v[1].y / (double)SUBPIX - Y0, z1d = v[1].z - Z0;
+        double x2d = v[2].x / (double)SUBPIX - X0, y2d = v[2].y / (double)SUBPIX - Y0, z2d = v[2].z - Z0;
+        nx = y1d * z2d - z1d * y2d;
+        ny = z1d * x2d - x1d * z2d;
+        nz = x1d * y2d - y1d * x2d;
+    } else {
+        for (uint32_t k = 0; k < n; k++) {
+            const ScreenVert *p = &v[k], *q = &v[k + 1 < n ? k + 1 : 0];
+            double px = p->x / (double)SUBPIX - X0, py = p->y / (double)SUBPIX - Y0, pz = p->z - Z0;
+            double qx = q->x / (double)SUBPIX - X0, qy = q->y / (double)SUBPIX - Y0, qz = q->z - Z0;
+            nx += (py - qy) * (pz + qz);
+            ny += (pz - qz) * (px + qx);
+            nz += (px - qx) * (py + qy);
+        }
+        if (fabs(nz) < 1e-9) {
+            double best = 0;
+            for (uint32_t k = 1; k + 1 < n; k++) {
+                double x1d = v[k].x / (double)SUBPIX - X0, y1d = v[k].y / (double)SUBPIX - Y0, z1d = v[k].z - Z0;
+                double x2d = v[k + 1].x / (double)SUBPIX - X0, y2d = v[k + 1].y / (double)SUBPIX - Y0,
+                       z2d = v[k + 1].z - Z0;
+                double cz = x1d * y2d - y1d * x2d;
+                if (fabs(cz) > fabs(best)) {
+                    best = cz;
+                    nx = y1d * z2d - z1d * y2d;
+                    ny = z1d * x2d - x1d * z2d;
+                    nz = cz;
+                }
+            }
+        }
+    }
+    if (nz == 0) {          /* no area at all: covers no sample */
+        sp->culled_empty++;
+        return 0;
+    }
+    double a = -nx / nz, b = -ny / nz;
+    ScreenPoly *p = &sp->polys[sp->npolys];
+    p->first = first;
+    p->face = face;
+    p->x0 = x0; p->x1 = x1; p->y0 = y0; p->y1 = y1;
+    double zc = Z0 + a * (x0 + 0.5 - X0) + b * (y0 + 0.5 - Y0);
+    p->a = (float)a;
+    p->b = (float)b;
+    p->zc = (float)zc;
+    /* A lower bound of every depth plane_at() can return inside: the
+     * plane's least corner value, less a margin for float rounding. */
+    double lo = 1e300, mag = fabs(zc) + fabs(a) * (x1 - x0) + fabs(b) * (y1 - y0);
+    for (uint32_t k = 0; k < n; k++) {
+        double z = Z0 + a * (v[k].x / (double)SUBPIX - X0) + b * (v[k].y / (double)SUBPIX - Y0);
+        if (z < lo)
+            lo = z;
+    }
+    p->zmin = (float)(lo - (fabs(lo) + mag) * (1.0 / (1 << 20)));
+    sp->npolys++;
+    return 1;
+}
+
+int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
+{
+    double t0 = now_ms();
+    Scratch *sc = &scratch_tls;
+    Proj pj = { 0 };
+    proj_setup(&pj, s, vp);
+    sp->w = vp->w;
+    sp->h = vp->h;
+    sp->pixel_aspect = vp->pixel_aspect;
+    sp->cull = vp->cull;
+    sp->nverts = sp->npolys = 0;
+    sp->in_polys = sp->culled_back = sp->culled_empty = 0;
+    sp->persp = pj.persp;
+    sp->focal_x = (float)pj.fx;
+    sp->focal_y = (float)pj.fy;
+    sp->eye_z = (float)pj.eye;
+    sp->near_z = (float)pj.n;
+    sp->far_z = (float)pj.f;
+    sp->depth_scale = (float)pj.dscale;
+    sp->depth_bias = (float)pj.dbias;
+
+    uint64_t ninst = 0;
+    for (int oi = 0; oi < s->nobjs; oi++)
+        ninst += s->objs[oi].poly_count;
+    if (ninst > INT32_MAX)
+        return -1;
+    if (s->nobjs > sp->cap_objs) {
+        uint32_t *q = realloc(sp->map_first, (size_t)s->nobjs * sizeof *q);
+        if (!q)
+            return -1;
+        sp->map_first = q;
+        sp->cap_objs = s->nobjs;
+    }
+    if (grow((void **)&sp->map, &sp->cap_map, (uint32_t)ninst + 1, sizeof *sp->map) ||
+        grow((void **)&sp->polys, &sp->cap_polys, (uint32_t)ninst + 1, sizeof *sp->polys))
+        return -1;
+
+    Mat4 view = camera_view(&s->cam);
+    uint32_t inst = 0;
+    for (int oi = 0; oi < s->nobjs; oi++) {
+        const Object *o = &s->objs[oi];
+        const Mesh *m = o->mesh;
+        sp->map_first[oi] = inst;
+        if (!o->poly_count) {
+            continue;
+        }
+        Mat4 mv = m4_mul(view, object_matrix(o));
+        uint32_t nv = o->vert_max - o->vert_min + 1;
+        if (grow((void **)&sc->view, &sc->cap_view, nv, 3 * sizeof(float)) ||
+            grow((void **)&sc->sv, &sc->cap_sv, nv, sizeof(ScreenVert)) ||
+            grow((void **)&sc->ok, &sc->cap_ok, nv, 1))
+            return -1;
+
+        /* Each vertex once: view space, and the snapped screen point. */
+        const float *pos = m->pos + 3 * (size_t)o->vert_min;
+        for (uint32_t i = 0; i < nv; i++) {
+            Vec3 q = m4_point(&mv, v3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
+            sc->view[3 * i] = q.x;
+            sc->view[3 * i + 1] = q.y;
+            sc->view[3 * i + 2] = q.z;
+            int ok = !pj.persp || pj.eye - q.z >= pj.n;
+            if (ok) {
+                double scr[3];
+                proj_point(&pj, q.x, q.y, q.z, scr);
+                ok = in_guard(&pj, scr);
+                sc->sv[i].x = snap(scr[0]);
+                sc->sv[i].y = snap(scr[1]);
+                sc->sv[i].z = (float)scr[2];
+            }
+            sc->ok[i] = (uint8_t)ok;
+        }
+
+        for (uint32_t k = o->poly_first; k < o->poly_first + o->poly_count; k++, inst++) {
+            uint32_t c0 = s->poly_start[k], c1 = s->poly_start[k + 1], nc = c1 - c0;
+            int32_t face = o->face_base + (int32_t)s->poly_lface[k];
+            sp->in_polys++;
+            sp->map[inst] = -1;
+            /* room for the clipped outline: each plane adds at most one vertex */
+            if (grow((void **)&sp->verts, &sp->cap_verts, sp->nverts + nc + 8, sizeof *sp->verts))
+                return -1;
+            int all_ok = 1;
+            for (uint32_t c = c0; c < c1; c++)
+                all_ok &= sc->ok[s->poly_corner[c] - o->vert_min];
+            uint32_t first = sp->nverts;
+            if (all_ok) {
+                ScreenVert *dst = &sp->verts[first];
+                for (uint32_t c = c0; c < c1; c++)
+                    *dst++ = sc->sv[s->poly_corner[c] - o->vert_min];
+                sp->nverts += nc;
+            } else {
+                /* Slow path: near plane in view space, then the guard band
+                 * in screen space (depth is affine there). */
+                uint32_t need = nc + 8;
+                if (need > sc->clip_cap) {
+                    CVert *a = realloc(sc->clip[0], need * 2 * sizeof(CVert));
+                    CVert *b = realloc(sc->clip[1], need * 2 * sizeof(CVert));
+                    if (a) sc->clip[0] = a;
+                    if (b) sc->clip[1] = b;
+                    if (!a || !b)
+                        return -1;
+                    sc->clip_cap = need * 2;
+                }
+                CVert *in = sc->clip[0], *out = sc->clip[1];
+                uint32_t n = 0;
+                for (uint32_t c = c0; c < c1; c++) {
+                    const float *q = &sc->view[3 * (s->poly_corner[c] - o->vert_min)];
+                    in[n].x = q[0]; in[n].y = q[1]; in[n].z = q[2];
+                    n++;
+                }
+                if (pj.persp) {
+                    /* keep eye - z >= near, i.e. z <= eye - near */
+                    n = clip_poly(in, n, out, 2, pj.eye - pj.n, -1);
+                    CVert *t = in; in = out; out = t;
+                }
+                for (uint32_t i = 0; i < n; i++) {
+                    double scr[3];
+                    proj_point(&pj, in[i].x, in[i].y, in[i].z, scr);
+                    in[i].x = scr[0]; in[i].y = scr[1]; in[i].z = scr[2];
+                }
+                n = clip_poly(in, n, out, 0, pj.gx0, 1);
+                n = clip_poly(out, n, in, 0, pj.gx1, -1);
+                n = clip_poly(in, n, out, 1, pj.gy0, 1);
+                n = clip_poly(out, n, in, 1, pj.gy1, -1);
+                if (grow((void **)&sp->verts, &sp->cap_verts, sp->nverts + n + 1, sizeof *sp->verts))
+                    return -1;
+                for (uint32_t i = 0; i < n; i++) {
+                    ScreenVert *d = &sp->verts[sp->nverts++];
+                    d->x = snap(in[i].x);
+                    d->y = snap(in[i].y);
+                    d->z = (float)in[i].z;
+                }
+            }
+            if (finish_poly(sp, first, face))
+                sp->map[inst] = (int32_t)(sp->npolys - 1);
+            else
+                sp->nverts = first;
+        }
+    }
+    sp->polys[sp->npolys].first = sp->nverts;   /* sentinel */
+    sp->ms = now_ms() - t0;
+    return 0;
+}
+
+int screen_dump_obj(const ScreenPolys *sp, const char *path)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return -1;
+    fprintf(f, "# zview screen %d %d\n", sp->w, sp->h);
+    for (uint32_t i = 0; i < sp->nverts; i++)
+        fprintf(f, "v %.9g %.9g %.9g\n", sp->verts[i].x / (double)SUBPIX,
+                sp->verts[i].y / (double)SUBPIX, (double)sp->verts[i].z);
+    for (uint32_t p = 0; p < sp->npolys; p++) {
+        fputs("f", f);
+        for (uint32_t k = sp->polys[p].first; k < sp->polys[p + 1].first; k++)
+            fprintf(f, " %u", k + 1);
+        fprintf(f, " # %d\n", sp->polys[p].face);
+    }
+    return fclose(f) == 0 ? 0 : -1;
+}

@@ -1,0 +1,387 @@
+/* scene.c: meshes -> objects, the polygon list, per-face shading data,
+ * and fitting the camera to the scene. */
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene.h"
+
+/* A face whose corners stray from its plane by more than this fraction
+ * of its size is split into triangles. */
+#define PLANAR_TOL 1e-4
+
+static const uint8_t default_rgb[3] = { 204, 204, 196 };
+
+/* ==== per-face geometry ==== */
+
+static Vec3 mesh_vertex(const Mesh *m, uint32_t v)
+{
+    return v3(m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2]);
+}
+
+/* Newell's normal: robust for any simple or concave polygon. Not unit. */
+static void face_newell(const Mesh *m, uint32_t f, double n[3])
+{
+    uint32_t a = m->face_start[f], b = m->face_start[f + 1];
+    n[0] = n[1] = n[2] = 0;
+    for (uint32_t k = a; k < b; k++) {
+        Vec3 p = mesh_vertex(m, m->corner[k]);
+        Vec3 q = mesh_vertex(m, m->corner[k + 1 < b ? k + 1 : a]);
+        n[0] += ((double)p.y - q.y) * ((double)p.z + q.z);
+        n[1] += ((double)p.z - q.z) * ((double)p.x + q.x);
+        n[2] += ((double)p.x - q.x) * ((double)p.y + q.y);
+    }
+}
+
+static int face_is_planar(const Mesh *m, uint32_t f, const double n[3])
+{
+    uint32_t a = m->face_start[f], b = m->face_start[f + 1];
+    if (b - a <= 3)
+        return 1;
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len == 0)
+        return 1;   /* degenerate: nothing to split */
+    double c[3] = { 0, 0, 0 }, lo[3] = { DBL_MAX, DBL_MAX, DBL_MAX }, hi[3] = { -DBL_MAX, -DBL_MAX, -DBL_MAX };
+    for (uint32_t k = a; k < b; k++) {
+        const float *p = &m->pos[3 * m->corner[k]];
+        for (int i = 0; i < 3; i++) {
+            c[i] += p[i];
+            if (p[i] < lo[i]) lo[i] = p[i];
+            if (p[i] > hi[i]) hi[i] = p[i];
+        }
+    }
+    double size = 0;
+    for (int i = 0; i < 3; i++) {
+        c[i] /= (b - a);
+        size += (hi[i] - lo[i]) * (hi[i] - lo[i]);
+    }
+    size = sqrt(size);
+    for (uint32_t k = a; k < b; k++) {
+        const float *p = &m->pos[3 * m->corner[k]];
+        double d = ((p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1] + (p[2] - c[2]) * n[2]) / len;
+        if (fabs(d) > PLANAR_TOL * size)
+            return 0;
+    }
+    return 1;
+}
+
+static void face_base_rgb(const Mesh *m, uint32_t f, uint8_t out[3])
+{
+    int32_t mat = m->face_mat ? m->face_mat[f] : -1;
+    if (mat >= 0 && (uint32_t)mat < m->nmats) {
+        for (int i = 0; i < 3; i++) {
+            float c = m->mats[mat].kd[i];
+            out[i] = (uint8_t)(c <= 0 ? 0 : c >= 1 ? 255 : c * 255.0f + 0.5f);
+        }
+        return;
+    }
+    if (m->rgb) {
+        uint32_t a = m->face_start[f], b = m->face_start[f + 1];
+        float s[3] = { 0, 0, 0 };
+        for (uint32_t k = a; k < b; k++)
+            for (int i = 0; i < 3; i++)
+                s[i] += m->rgb[3 * m->corner[k] + i];
+        for (int i = 0; i < 3; i++) {
+            float c = s[i] / (float)(b - a);
+            out[i] = (uint8_t)(c <= 0 ? 0 : c >= 1 ? 255 : c * 255.0f + 0.5f);
+        }
+        return;
+    }
+    memcpy(out, default_rgb, 3);
+}
+
+/* ==== building ==== */
+
+void scene_free(Scene *s)
+{
+    for (int i = 0; i < s->nmeshes; i++)
+        mesh_free(&s->meshes[i]);
+    free(s->meshes);
+    free(s->objs);
+    free(s->poly_start);
+    free(s->poly_corner);
+    free(s->poly_lface);
+    free(s->face_normal);
+    free(s->face_rgb);
+    free(s->face_obj);
+    memset(s, 0, sizeof *s);
+}
+
+static void object_bounds(Object *o)
+{
+    const Mesh *m = o->mesh;
+    float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
+    for (uint32_t f = o->face_first; f < o->face_first + o->face_count; f++)
+        for (uint32_t k = m->face_start[f]; k < m->face_start[f + 1]; k++) {
+            const float *p = &m->pos[3 * m->corner[k]];
+            for (int i = 0; i < 3; i++) {
+                if (p[i] < lo[i]) lo[i] = p[i];
+                if (p[i] > hi[i]) hi[i] = p[i];
+            }
+        }
+    if (lo[0] > hi[0]) {
+        o->centre = o->half = v3(0, 0, 0);
+        return;
+    }
+    o->centre = v3((lo[0] + hi[0]) * 0.5f, (lo[1] + hi[1]) * 0.5f, (lo[2] + hi[2]) * 0.5f);
+    o->half = v3((hi[0] - lo[0]) * 0.5f, (hi[1] - lo[1]) * 0.5f, (hi[2] - lo[2]) * 0.5f);
+}
+
+int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
+{
+    memset(s, 0, sizeof *s);
+    s->meshes = meshes;
+    s->nmeshes = nmeshes;
+
+    /* Count objects, faces, and polygons/corners after splitting. */
+    uint64_t nobjs = 0, nfaces = 0, npolys = 0, ncorners = 0;
+    for (int mi = 0; mi < nmeshes; mi++) {
+        const Mesh *m = &meshes[mi];
+        nobjs += m->nobjs;
+        nfaces += m->nfaces;
+    }
+    if (nobjs > 65535 || nfaces > INT32_MAX) {
+        snprintf(err, errlen, "scene too large (%llu objects, %llu faces)",
+                 (unsigned long long)nobjs, (unsigned long long)nfaces);
+        return -1;
+    }
+    s->objs = calloc(nobjs ? nobjs : 1, sizeof *s->objs);
+    s->face_normal = malloc((nfaces ? nfaces : 1) * 3 * sizeof(float));
+    s->face_rgb = malloc((nfaces ? nfaces : 1) * 3);
+    s->face_obj = malloc((nfaces ? nfaces : 1) * sizeof(uint16_t));
+    uint8_t *planar = malloc(nfaces ? nfaces : 1);
+    if (!s->objs || !s->face_normal || !s->face_rgb || !s->face_obj || !planar)
+        goto oom;
+
+    uint32_t gface = 0;
+    for (int mi = 0; mi < nmeshes; mi++) {
+        const Mesh *m = &meshes[mi];
+        for (uint32_t f = 0; f < m->nfaces; f++, gface++) {
+            double n[3];
+            face_newell(m, f, n);
+            double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (int i = 0; i < 3; i++)
+                s->face_normal[3 * gface + i] = len > 0 ? (float)(n[i] / len) : (i == 2);
+            face_base_rgb(m, f, &s->face_rgb[3 * gface]);
+            planar[gface] = (uint8_t)face_is_planar(m, f, n);
+            uint32_t nc = m->face_start[f + 1] - m->face_start[f];
+            if (planar[gface]) {
+                npolys += 1;
+                ncorners += nc;
+            } else {
+                npolys += nc - 2;
+                ncorners += 3 * (nc - 2);
+            }
+        }
+    }
+    if (npolys > UINT32_MAX / 2 || ncorners > UINT32_MAX / 2) {
+        snprintf(err, errlen, "scene too large (%llu polygons)", (unsigned long long)npolys);
+        free(planar);
+        return -1;
+    }
+    s->poly_start = malloc((npolys + 1) * sizeof(uint32_t));
+    s->poly_corner = malloc((ncorners ? ncorners : 1) * sizeof(uint32_t));
+    s->poly_lface = malloc((npolys ? npolys : 1) * sizeof(uint32_t));
+    if (!s->poly_start || !s->poly_corner || !s->poly_lface)
+        goto oom;
+
+    uint32_t pi = 0, ci = 0, oi = 0;
+    gface = 0;
+    for (int mi = 0; mi < nmeshes; mi++) {
+        const Mesh *m = &meshes[mi];
+        for (uint32_t k = 0; k < m->nobjs; k++, oi++) {
+            const MeshObject *mo = &m->objs[k];
+            Object *o = &s->objs[oi];
+            memcpy(o->name, mo->name, sizeof o->name);
+            o->name[sizeof o->name - 1] = 0;
+            o->mesh = m;
+            o->face_first = mo->face_first;
+            o->face_count = mo->face_count;
+            o->vert_min = mo->vert_min;
+            o->vert_max = mo->vert_max;
+            o->face_base = (int32_t)(gface + mo->face_first);
+            o->poly_first = pi;
+            o->scale = 1;
+            object_bounds(o);
+            for (uint32_t f = mo->face_first; f < mo->face_first + mo->face_count; f++) {
+                uint32_t g = gface + f, a = m->face_start[f], b = m->face_start[f + 1];
+                s->face_obj[g] = (uint16_t)oi;
+                if (planar[g]) {
+                    s->poly_start[pi] = ci;
+                    s->poly_lface[pi++] = f - mo->face_first;
+                    for (uint32_t c = a; c < b; c++)
+                        s->poly_corner[ci++] = m->corner[c];
+                } else {
+                    for (uint32_t c = a + 1; c + 1 < b; c++) {
+                        s->poly_start[pi] = ci;
+                        s->poly_lface[pi++] = f - mo->face_first;
+                        s->poly_corner[ci++] = m->corner[a];
+                        s->poly_corner[ci++] = m->corner[c];
+                        s->poly_corner[ci++] = m->corner[c + 1];
+                    }
+                }
+            }
+            o->poly_count = pi - o->poly_first;
+        }
+        gface += m->nfaces;
+    }
+    s->poly_start[pi] = ci;
+    s->npolys = pi;
+    s->nobjs = (int)oi;
+    s->nbase_objs = oi;
+    s->nfaces = gface;
+    free(planar);
+    scene_reset(s);
+    return 0;
+
+oom:
+    free(planar);
+    s->meshes = NULL;   /* the caller still owns them on failure */
+    s->nmeshes = 0;
+    scene_free(s);
+    snprintf(err, errlen, "out of memory building the scene");
+    return -1;
+}
+
+int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
+{
+    if (n <= 1)
+        return 0;
+    uint64_t copies = (uint64_t)n * n * n;
+    uint64_t nobjs = (uint64_t)s->nobjs * copies, nfaces = (uint64_t)s->nfaces * copies;
+    if (nobjs > 65535 || nfaces > INT32_MAX) {
+        snprintf(err, errlen, "--grid %d: too many objects or faces", n);
+        return -1;
+    }
+    Object *objs = realloc(s->objs, nobjs * sizeof *objs);
+    if (objs)
+        s->objs = objs;
+    float *fn = realloc(s->face_normal, nfaces * 3 * sizeof(float));
+    if (fn)
+        s->face_normal = fn;
+    uint8_t *fc = realloc(s->face_rgb, nfaces * 3);
+    if (fc)
+        s->face_rgb = fc;
+    uint16_t *fo = realloc(s->face_obj, nfaces * sizeof(uint16_t));
+    if (fo)
+        s->face_obj = fo;
+    if (!objs || !fn || !fc || !fo) {
+        snprintf(err, errlen, "--grid %d: out of memory", n);
+        return -1;
+    }
+    scene_fit(s);
+    float step = 2.2f * s->cam.radius;
+    int nb = s->nobjs;
+    uint32_t nf = s->nfaces;
+    for (uint64_t c = 1; c < copies; c++) {
+        int gx = (int)(c % n), gy = (int)(c / n % n), gz = (int)(c / n / n);
+        Vec3 off = v3((float)gx * step, (float)gy * step, -(float)gz * step);
+        for (int k = 0; k < nb; k++) {
+            Object *o = &s->objs[c * nb + k];
+            *o = s->objs[k];
+            o->face_base = (int32_t)(s->objs[k].face_base + c * nf);
+            o->offset = o->home = off;
+        }
+        memcpy(&s->face_normal[3 * c * nf], s->face_normal, 3 * (size_t)nf * sizeof(float));
+        memcpy(&s->face_rgb[3 * c * nf], s->face_rgb, 3 * (size_t)nf);
+        for (uint32_t f = 0; f < nf; f++)
+            s->face_obj[c * nf + f] = (uint16_t)(s->face_obj[f] + c * nb);
+    }
+    s->nobjs = (int)nobjs;
+    s->nfaces = (uint32_t)nfaces;
+    scene_fit(s);
+    return 0;
+}
+
+/* ==== transforms and fitting ==== */
+
+Mat4 object_matrix(const Object *o)
+{
+    Mat4 m = m4_translate(v3_scale(o->centre, -1));
+    m = m4_mul(m4_scale(o->scale), m);
+    m = m4_mul(m4_rotate_ypr(o->yaw, o->pitch, o->roll), m);
+    return m4_mul(m4_translate(v3_add(o->centre, o->offset)), m);
+}
+
+Mat4 camera_view(const Camera *c)
+{
+    Mat4 m = m4_translate(v3_scale(c->centre, -1));
+    m = m4_mul(m4_rotate_ypr(c->yaw, c->pitch, c->roll), m);
+    return m4_mul(m4_translate(v3_scale(c->pan, c->radius)), m);
+}
+
+void scene_fit(Scene *s)
+{
+    /* Bounding box of every object's box corners in world space, then the
+     * radius of the sphere about its centre through the farthest vertex
+     * of the boxes: a bound that does not change as the scene turns. */
+    float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
+    for (int i = 0; i < s->nobjs; i++) {
+        const Object *o = &s->objs[i];
+        Mat4 m = object_matrix(o);
+        for (int c = 0; c < 8; c++) {
+            Vec3 p = v3(o->centre.x + (c & 1 ? o->half.x : -o->half.x),
+                        o->centre.y + (c & 2 ? o->half.y : -o->half.y),
+                        o->centre.z + (c & 4 ? o->half.z : -o->half.z));
+            p = m4_point(&m, p);
+            float q[3] = { p.x, p.y, p.z };
+            for (int k = 0; k < 3; k++) {
+                if (q[k] < lo[k]) lo[k] = q[k];
+                if (q[k] > hi[k]) hi[k] = q[k];
+            }
+        }
+    }
+    if (lo[0] > hi[0]) {
+        s->cam.centre = v3(0, 0, 0);
+        s->cam.radius = 1;
+        return;
+    }
+    Vec3 c = v3((lo[0] + hi[0]) * 0.5f, (lo[1] + hi[1]) * 0.5f, (lo[2] + hi[2]) * 0.5f);
+    /* Tighter than the box's half diagonal: the farthest actual vertex. */
+    double r2 = 0;
+    for (int i = 0; i < s->nobjs; i++) {
+        const Object *o = &s->objs[i];
+        if (i >= (int)s->nbase_objs && s->nobjs > (int)s->nbase_objs) {
+            /* grid copies: their boxes bound them well enough */
+            Vec3 d = v3_sub(v3_add(o->centre, o->offset), c);
+            double r = v3_len(d) + v3_len(o->half) * o->scale;
+            if (r * r > r2)
+                r2 = r * r;
+            continue;
+        }
+        Mat4 m = object_matrix(o);
+        const Mesh *me = o->mesh;
+        for (uint32_t v = o->vert_min; v <= o->vert_max && v < me->nverts; v++) {
+            Vec3 p = m4_point(&m, mesh_vertex(me, v));
+            Vec3 d = v3_sub(p, c);
+            double q = (double)d.x * d.x + (double)d.y * d.y + (double)d.z * d.z;
+            if (q > r2)
+                r2 = q;
+        }
+    }
+    s->cam.centre = c;
+    s->cam.radius = r2 > 0 ? (float)sqrt(r2) : 1.0f;
+    s->cam.pan = v3(0, 0, 0);
+    s->cam.zoom = 1;
+}
+
+void scene_reset(Scene *s)
+{
+    for (int i = 0; i < s->nobjs; i++) {
+        Object *o = &s->objs[i];
+        o->yaw = o->pitch = o->roll = 0;
+        o->scale = 1;
+        o->offset = o->home;
+    }
+    int persp = s->cam.persp;
+    float fov = s->cam.fov_deg > 0 ? s->cam.fov_deg : 50;
+    memset(&s->cam, 0, sizeof s->cam);
+    s->cam.persp = persp;
+    s->cam.fov_deg = fov;
+    s->light.dir = v3_norm(v3(-0.45f, 0.6f, 0.66f));   /* over the viewer's upper left */
+    s->light.ambient = 0.22f;
+    scene_fit(s);
+}
