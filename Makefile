@@ -3,7 +3,8 @@
 CC      ?= cc
 PREFIX  ?= /usr/local
 PKGS    := ncursesw libpng
-PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+# feature macros are set per file (term.c needs the wide-char curses ones)
+PKG_CFLAGS := $(filter-out -D%,$(shell pkg-config --cflags $(PKGS) 2>/dev/null))
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -ltinfo -lpng16)
 
 OPT     ?= -O2

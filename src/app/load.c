@@ -1,5 +1,7 @@
 /* load.c: command-line files (or the demo scene) -> one scene. */
 
+#define _DEFAULT_SOURCE
+
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>

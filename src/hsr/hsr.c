@@ -13,17 +13,7 @@
 extern const HsrAlgo hsr_zbuffer, hsr_scanline, hsr_span, hsr_hzb, hsr_hzb_octree;
 
 const HsrAlgo *const hsr_algos[] = {
-    &hsr_zbuffer,
-#ifdef ZV_HAVE_SCANLINE
-    &hsr_scanline,
-#endif
-#ifdef ZV_HAVE_SPAN
-    &hsr_span,
-#endif
-#ifdef ZV_HAVE_HZB
-    &hsr_hzb,
-    &hsr_hzb_octree,
-#endif
+    &hsr_zbuffer, &hsr_scanline, &hsr_span, &hsr_hzb, &hsr_hzb_octree,
 };
 const int hsr_nalgos = (int)(sizeof hsr_algos / sizeof hsr_algos[0]);
 

@@ -616,7 +616,7 @@ static int parse_face(Parser *ps, const char *ls, const char *p, const char *e)
     }
     size_t n = ps->ncorner - start;
     if (n < 3)
-        return fail(ps, "face has %zu vertices, needs at least 3", n);
+        return fail(ps, "face has fewer than 3 vertices (%zu)", n);
     if (m->nfaces == ps->fcap) {
         if (m->nfaces >= UINT32_MAX - 1)
             return fail(ps, "too many faces");
