@@ -7,7 +7,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include "present.h"
 #include "shade.h"
 
@@ -327,51 +326,3 @@ Test(shade, names)
         cr_expect_eq(shade_from_name(shade_names[i]), i);
 }
 
-/* ==== Speed: shade + cells of a 320x96 frame ==== */
-
-static double ms_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
-Test(shade, speed_320x96)
-{
-    enum { W = 320, H = 96, NF = 2000 };
-    static TestScene t;
-    scene_init(&t, NF);
-    for (uint32_t f = 0; f < NF; f++)
-        set_normal(&t, f, sinf((float)f), cosf((float)f * 0.7f), 1);
-    static int32_t ids[W * H];
-    /* Blocks of 8x4 pixels per face, a ring of background round them. */
-    for (int y = 0; y < H; y++)
-        for (int x = 0; x < W; x++)
-            ids[y * W + x] = (x < 8 || x >= W - 8) ? -1 : ((y / 4) * (W / 8) + x / 8) % NF;
-    FrameBufs fb;
-    frame_init(&fb, W, H, ids, NULL);
-    Image im = { 0 };
-    ShadeCache cache = { 0 };
-    CellGrid g = { 0 };
-    double best[MODE_COUNT];
-    for (int m = 0; m < MODE_COUNT; m++) {
-        best[m] = 1e9;
-        for (int rep = 0; rep < 50; rep++) {
-            double t0 = ms_now();
-            cr_assert_eq(shade_frame(&t.s, &fb, SHADE_LAMBERT, &cache, &im), 0);
-            cr_assert_eq(cells_from_image(&im, (DisplayMode)m, &g), 0);
-            double dt = ms_now() - t0;
-            if (dt < best[m])
-                best[m] = dt;
-        }
-    }
-    fprintf(stderr, "shade+cells 320x96: half %.3f ms, ascii %.3f ms, braille %.3f ms\n",
-            best[MODE_HALF], best[MODE_ASCII], best[MODE_BRAILLE]);
-    /* Generous bound (sanitizer builds are slower); the figure is printed. */
-    for (int m = 0; m < MODE_COUNT; m++)
-        cr_expect_lt(best[m], 10.0);
-    frame_done(&fb);
-    image_free(&im);
-    shade_cache_free(&cache);
-    cells_free(&g);
-}
