@@ -878,9 +878,9 @@ static int make_demo(const char *dir, Stats *st)
 {
     static const char *const about[] = {
         "zview's demo scene (what `zview` shows with no file): an orange",
-        "trefoil knot standing over an 8 x 8 checker floor, with a blue sphere,",
-        "a green cube, a red cone and a violet torus around it. The whole",
-        "scene is pitched 28 degrees toward +z so the default view from +z",
+        "trefoil knot standing over an 8 x 5 checker floor, with a red cone,",
+        "a blue sphere, a green cube and a violet torus in front. The whole",
+        "scene is pitched 34 degrees toward +z so the default view from +z",
         "looks down onto the floor.",
         NULL };
     Model m;
@@ -894,22 +894,24 @@ static int make_demo(const char *dir, Stats *st)
     int violet = model_mat(&m, "torus_violet", 0.7, 0.3, 0.9);
     uint32_t v0;
 
-    /* Floor: a shared 9 x 9 vertex grid, light tiles first, then dark. */
-    enum { T = 8 };
-    const double tile = 0.6, half = T * tile / 2;
+    /* Floor: a shared (COLS+1) x (ROWS+1) vertex grid, light tiles first,
+     * then dark. Wide and shallow, like the terminal, so the scene's
+     * bounding sphere (what a fit-to-view sees) stays tight. */
+    enum { COLS = 8, ROWS = 5 };
+    const double tile = 0.6, hx = COLS * tile / 2, hz = ROWS * tile / 2;
     model_obj(&m, "floor", 0, v3(0, 1, 0));
     uint32_t g0 = m.nv;
-    for (int r = 0; r <= T; r++)
-        for (int c = 0; c <= T; c++)
-            model_v(&m, v3(-half + c * tile, 0, half - r * tile));
+    for (int r = 0; r <= ROWS; r++)
+        for (int c = 0; c <= COLS; c++)
+            model_v(&m, v3(-hx + c * tile, 0, hz - r * tile));
     for (int pass = 0; pass < 2; pass++) {
         model_use(&m, pass ? dark : light);
-        for (int r = 0; r < T; r++)
-            for (int c = 0; c < T; c++) {
+        for (int r = 0; r < ROWS; r++)
+            for (int c = 0; c < COLS; c++) {
                 if ((r + c) % 2 != pass)
                     continue;
-                uint32_t a = g0 + (uint32_t)(r * (T + 1) + c);
-                model_quad(&m, a, a + 1, a + T + 2, a + T + 1);
+                uint32_t a = g0 + (uint32_t)(r * (COLS + 1) + c);
+                model_quad(&m, a, a + 1, a + COLS + 2, a + COLS + 1);
             }
     }
 
@@ -922,31 +924,32 @@ static int make_demo(const char *dir, Stats *st)
     model_obj(&m, "trefoil", 1, NO_FACING);
     v0 = m.nv;
     shape_knot(&m, &k, 320, 24);
-    model_place(&m, v0, xf_then(xf_turn(2, 90), xf_move(v3(0, 1.75, -0.4))));
+    model_place(&m, v0, xf_then(xf_turn(2, 90), xf_move(v3(0, 1.6, -0.7))));
+
+    /* The small solids stand in a row in front, two each side. */
+    model_use(&m, red);
+    model_obj(&m, "cone", 1, NO_FACING);
+    v0 = m.nv;
+    shape_cone(&m, 0.36, 1.0, 32, 0);
+    model_place(&m, v0, xf_move(v3(-1.85, 0.01, 0.75)));
 
     model_use(&m, blue);
     model_obj(&m, "sphere", 1, NO_FACING);
-    shape_sphere(&m, v3(-1.55, 0.46, 1.1), 0.45, 32, 16);
+    shape_sphere(&m, v3(-0.85, 0.41, 0.9), 0.4, 32, 16);
 
     model_use(&m, green);
     model_obj(&m, "cube", 1, NO_FACING);
     v0 = m.nv;
-    shape_box(&m, v3(-0.35, 0, -0.35), v3(0.35, 0.7, 0.35));
-    model_place(&m, v0, xf_then(xf_turn(1, 30), xf_move(v3(1.55, 0.01, 1.1))));
-
-    model_use(&m, red);
-    model_obj(&m, "cone", 1, NO_FACING);
-    v0 = m.nv;
-    shape_cone(&m, 0.4, 1.1, 32, 0);
-    model_place(&m, v0, xf_move(v3(-1.6, 0.01, -1.5)));
+    shape_box(&m, v3(-0.32, 0, -0.32), v3(0.32, 0.64, 0.32));
+    model_place(&m, v0, xf_then(xf_turn(1, 30), xf_move(v3(0.85, 0.01, 0.9))));
 
     model_use(&m, violet);
     model_obj(&m, "torus", 1, NO_FACING);
     v0 = m.nv;
-    shape_torus(&m, 0.35, 0.12, 40, 16);
-    model_place(&m, v0, xf_then(xf_turn(0, -90), xf_move(v3(1.6, 0.13, -1.5))));
+    shape_torus(&m, 0.34, 0.12, 40, 16);
+    model_place(&m, v0, xf_then(xf_turn(0, -90), xf_move(v3(1.85, 0.13, 0.75))));
 
-    model_place(&m, 0, xf_turn(0, 28));   /* pitch the whole scene toward the camera */
+    model_place(&m, 0, xf_turn(0, 34));   /* pitch the whole scene toward the camera */
 
     int rc = model_write(&m, dir, about, st);
     model_free(&m);
