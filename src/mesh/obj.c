@@ -112,7 +112,15 @@ int mesh_file_open(MeshFile *f, const char *path, char *msg, size_t msglen)
         }
         if (r == 0)
             break;
+        /* A NUL already makes the text invalid; stop there so that an
+         * endless binary stream (/dev/zero) ends in an error, not in
+         * exhausted memory. */
+        const char *nul = memchr(buf + len, '\0', (size_t)r);
         len += (size_t)r;
+        if (nul) {
+            len = (size_t)(nul - buf) + 1;
+            break;
+        }
     }
     close(fd);
     f->heap = buf;
@@ -825,6 +833,8 @@ static int parse_line(Parser *ps, const char *ls, const char *e)
 /* Append [p, e) to the scratch buffer at *n. */
 static int scratch_put(Parser *ps, size_t *n, const char *p, size_t len)
 {
+    if (len == 0)
+        return 0;
     if (*n + len > ps->scap &&
         grow((void **)&ps->scratch, &ps->scap, *n + len, 1))
         return fail_oom(ps);
