@@ -17,12 +17,12 @@ SRCS    := $(wildcard src/*/*.c)
 LIBSRCS := $(filter-out src/app/main.c,$(SRCS))
 OBJS    := $(SRCS:%.c=$(BUILD)/%.o)
 LIBOBJS := $(LIBSRCS:%.c=$(BUILD)/%.o)
-TSRCS   := $(wildcard tests/test_*.c)
+TSRCS   := $(wildcard tests/test_*.c) tests/testlib.c
 TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all test unit e2e asan run bench bench-full install clean assets models-test
+.PHONY: all test unit e2e asan run bench install clean assets test-models
 
 all: $(BIN)
 
@@ -43,6 +43,10 @@ test: $(BIN) $(TESTBIN)
 
 unit: $(TESTBIN)
 	ZVIEW=$(abspath $(BIN)) $(TESTBIN) --jobs 2
+
+# Every algorithm against the z-buffer on every model of ../shared/models.
+test-models: $(TESTBIN)
+	ZV_MODELS=1 $(TESTBIN) --jobs 2 --filter 'models/*'
 
 e2e: $(BIN)
 	ZVIEW=$(abspath $(BIN)) sh tests/e2e/run.sh

@@ -1,0 +1,322 @@
+/* test_algos.c: every hidden-surface algorithm gives the z-buffer's
+ * face-id and depth buffers, byte for byte: on the bundled assets from
+ * seeded random views at three sizes, orthographic and perspective,
+ * culling on and off, on one and two threads; on dedicated scenes
+ * (piercing, cyclic overlap, concave, vertices on sample centres,
+ * horizontal edges, sub-pixel, larger than the screen, the near plane);
+ * and (suite "models", run by `make test-models`) on ../shared/models. */
+
+#include <criterion/criterion.h>
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "testlib.h"
+
+static const int sizes[3][2] = { { 80, 48 }, { 320, 240 }, { 1280, 720 } };
+
+/* Render the current view of s with every algorithm and compare with
+ * the z-buffer. Returns the number of frames compared. */
+static int compare_all(Scene *s, int w, int h, int cull, const char *what)
+{
+    ScreenPolys sp = { 0 };
+    Viewport vp = { w, h, 1.0f, cull };
+    cr_assert_eq(screen_project(&sp, s, &vp), 0);
+    HsrInput in = { &sp, s, &vp };
+    FrameBufs ref = { 0 }, fb = { 0 };
+    HsrStats st;
+    HsrRunner r;
+    cr_assert_eq(hsr_runner_init(&r, &hsr_zbuffer, 1), 0);
+    cr_assert_eq(hsr_run(&r, &in, &ref, &st), 0);
+    hsr_runner_free(&r);
+    int frames = 0;
+    for (int a = 0; a < hsr_nalgos; a++) {
+        for (int threads = 1; threads <= 2; threads++) {
+            cr_assert_eq(hsr_runner_init(&r, hsr_algos[a], threads), 0);
+            cr_assert_eq(hsr_run(&r, &in, &fb, &st), 0);
+            hsr_runner_free(&r);
+            int fx, fy;
+            long n = tl_diff(&ref, &fb, &fx, &fy);
+            if (n) {
+                size_t k = (size_t)fy * w + fx;
+                cr_assert_fail("%s %dx%d cull=%d: %s (%d threads) differs from zbuffer in %ld pixels; "
+                         "first (%d,%d): id %d depth %.9g, zbuffer id %d depth %.9g",
+                         what, w, h, cull, hsr_algos[a]->name, threads, n, fx, fy, fb.ids[k],
+                         (double)fb.depth[k], ref.ids[k], (double)ref.depth[k]);
+            }
+            frames++;
+        }
+    }
+    fbuf_free(&ref);
+    fbuf_free(&fb);
+    screen_free(&sp);
+    return frames;
+}
+
+/* 8 seeded views x 3 sizes x ortho/persp x cull off/on. */
+static void matrix(Scene *s, const char *name, int nviews)
+{
+    char what[256];
+    for (int v = 0; v < nviews; v++)
+        for (int persp = 0; persp <= 1; persp++) {
+            tl_random_view(s, (uint32_t)(v * 2 + persp), persp);
+            for (int z = 0; z < 3; z++)
+                for (int cull = 0; cull <= 1; cull++) {
+                    snprintf(what, sizeof what, "%s view %d %s", name, v, persp ? "persp" : "ortho");
+                    compare_all(s, sizes[z][0], sizes[z][1], cull, what);
+                }
+        }
+}
+
+static void matrix_folder(const char *dir, const char *const *skip)
+{
+    DIR *d = opendir(dir);
+    cr_assert_not_null(d, "cannot open %s", dir);
+    int files = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        size_t n = strlen(e->d_name);
+        if (n < 5 || strcmp(e->d_name + n - 4, ".obj"))
+            continue;
+        int skipped = 0;
+        for (int k = 0; skip && skip[k]; k++)
+            skipped |= !strcmp(skip[k], e->d_name);
+        if (skipped)
+            continue;
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        Scene s;
+        cr_assert_eq(tl_scene_from_file(&s, path), 0, "%s failed to load", path);
+        matrix(&s, e->d_name, 8);
+        scene_free(&s);
+        files++;
+    }
+    closedir(d);
+    cr_assert_gt(files, 0, "no models in %s", dir);
+}
+
+Test(agree, every_asset_every_view, .timeout = 600)
+{
+    matrix_folder("assets", NULL);
+}
+
+/* The shared models, when present (make test-models). */
+Test(models, every_shared_model_every_view, .timeout = 3000)
+{
+    if (!tl_shared_model("cube.obj") || !getenv("ZV_MODELS"))
+        cr_skip_test("set ZV_MODELS=1 with ../shared/models present (make test-models)");
+    matrix_folder("../shared/models", NULL);
+}
+
+/* ==== dedicated scenes ==== */
+
+static void scene_check(const char *name, const char *obj, int nviews)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, name, obj), 0);
+    matrix(&s, name, nviews);
+    /* and the straight-on view, where edges and vertices fall on exact
+     * sample rows and centres */
+    for (int persp = 0; persp <= 1; persp++) {
+        s.cam.persp = persp;
+        scene_reset(&s);
+        for (int z = 0; z < 3; z++)
+            compare_all(&s, sizes[z][0], sizes[z][1], 0, name);
+    }
+    scene_free(&s);
+}
+
+Test(agree, piercing_triangles)
+{
+    scene_check("pierce",
+                "v -1 -1 0\nv 1 -1 0\nv 0 1 0\n"
+                "v -1 0 -1\nv 1 0 1\nv 0.2 0.1 1\n"      /* pierces the first */
+                "v -1 0.5 1\nv 1 -0.5 -1\nv 0 -1 0.7\n"   /* pierces both */
+                "f 1 2 3\nf 4 5 6\nf 7 8 9\n", 8);
+}
+
+Test(agree, cyclic_overlap)
+{
+    /* three bars, each above the next where they cross: no depth order */
+    scene_check("cyclic",
+                "v -1 -0.1 0.0\nv 1 -0.1 0.2\nv 1 0.1 0.2\nv -1 0.1 0.0\n"
+                "v -0.1 -1 0.2\nv 0.1 -1 0.2\nv 0.1 1 0.0\nv -0.1 1 0.0\n"
+                "v -0.8 -0.8 0.1\nv -0.6 -0.8 0.1\nv 0.8 0.8 0.1\nv 0.6 0.8 0.1\n"
+                "f 1 2 3 4\nf 5 6 7 8\nf 9 10 11 12\n", 8);
+}
+
+Test(agree, concave_and_self_overlapping)
+{
+    scene_check("concave",
+                /* an L, a comb, and a pentagram drawn as one self-crossing outline */
+                "v 0 0 0\nv 2 0 0\nv 2 0.5 0\nv 0.5 0.5 0\nv 0.5 2 0\nv 0 2 0\n"
+                "v -3 0 0.2\nv -1 0 0.2\nv -1 1 0.2\nv -1.5 1 0.2\nv -1.5 0.3 0.2\nv -2 0.3 0.2\n"
+                "v -2 1 0.2\nv -2.5 1 0.2\nv -2.5 0.3 0.2\nv -3 0.3 0.2\n"
+                "v 0 -1 0.1\nv 0.59 -2.81 0.1\nv -0.95 -1.69 0.1\nv 0.95 -1.69 0.1\nv -0.59 -2.81 0.1\n"
+                "f 1 2 3 4 5 6\nf 7 8 9 10 11 12 13 14 15 16\nf 17 18 19 20 21\n", 8);
+}
+
+Test(agree, vertices_on_sample_centres_and_horizontal_edges)
+{
+    /* a grid of axis-aligned quads and triangles sharing edges: seen
+     * straight on, their corners and edges land on rows and centres */
+    char obj[8192];
+    size_t n = 0;
+    int v = 0;
+    for (int y = 0; y < 6; y++)
+        for (int x = 0; x < 6; x++) {
+            n += (size_t)snprintf(obj + n, sizeof obj - n, "v %d %d %g\nv %d %d %g\nv %d %d %g\nv %d %d %g\n",
+                                  x, y, 0.01 * ((x + y) % 3), x + 1, y, 0.01 * ((x + y) % 3), x + 1,
+                                  y + 1, 0.01 * ((x + y) % 3), x, y + 1, 0.01 * ((x + y) % 3));
+            if ((x + y) % 2)
+                n += (size_t)snprintf(obj + n, sizeof obj - n, "f %d %d %d %d\n", v + 1, v + 2, v + 3, v + 4);
+            else
+                n += (size_t)snprintf(obj + n, sizeof obj - n, "f %d %d %d\nf %d %d %d\n", v + 1, v + 2,
+                                      v + 3, v + 1, v + 3, v + 4);
+            v += 4;
+        }
+    scene_check("grid", obj, 4);
+}
+
+Test(agree, subpixel_and_huge_polygons)
+{
+    /* a cloud of tiny triangles in front of a wall much larger than the
+     * screen once zoomed */
+    char *obj = malloc(200000);
+    size_t n = 0;
+    n += (size_t)sprintf(obj + n, "v -50 -50 -1\nv 50 -50 -1\nv 50 50 -1\nv -50 50 -1\nf 1 2 3 4\n");
+    uint32_t r = 99;
+    for (int k = 0; k < 800; k++) {
+        r = r * 1664525u + 1013904223u;
+        double x = (r >> 8) % 2000 / 1000.0 - 1;
+        r = r * 1664525u + 1013904223u;
+        double y = (r >> 8) % 2000 / 1000.0 - 1;
+        r = r * 1664525u + 1013904223u;
+        double z = (r >> 8) % 1000 / 1000.0 - 0.5;
+        n += (size_t)sprintf(obj + n, "v %g %g %g\nv %g %g %g\nv %g %g %g\nf -3 -2 -1\n", x, y, z,
+                             x + 0.004, y + 0.001, z, x + 0.001, y + 0.005, z + 0.002);
+    }
+    scene_check("tiny+huge", obj, 6);
+    free(obj);
+}
+
+Test(agree, near_plane_crossing)
+{
+    /* a long corridor: the eye sits inside it under perspective */
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "corridor",
+                                    "v -1 -1 -10\nv 1 -1 -10\nv 1 -1 10\nv -1 -1 10\n"
+                                    "v -1 1 -10\nv 1 1 -10\nv 1 1 10\nv -1 1 10\n"
+                                    "f 1 2 3 4\nf 8 7 6 5\nf 1 4 8 5\nf 2 6 7 3\n"
+                                    "v -0.5 -0.5 0\nv 0.5 -0.5 0\nv 0 0.5 -3\nf 9 10 11\n"),
+                 0);
+    s.cam.persp = 1;
+    s.cam.fov_deg = 90;
+    scene_reset(&s);
+    s.cam.zoom = 4;   /* the eye well inside the corridor's bounding sphere */
+    ScreenPolys sp = { 0 };
+    Viewport vp = { 160, 120, 1, 0 };
+    cr_assert_eq(screen_project(&sp, &s, &vp), 0);
+    cr_assert_gt(sp.npolys, 0);
+    for (uint32_t i = 0; i < sp.nverts; i++)
+        cr_assert_geq(sp.verts[i].z, -1e-5f, "a vertex behind the near plane survived");
+    screen_free(&sp);
+    for (int z = 0; z < 3; z++)
+        compare_all(&s, sizes[z][0], sizes[z][1], 0, "corridor");
+    scene_free(&s);
+}
+
+/* ==== the depth rule ==== */
+
+Test(depth, piercing_boundary_follows_the_planes)
+{
+    /* Two triangles piercing each other: at every sample both cover, the
+     * winner is the one whose plane (plane_row/plane_at) is nearer, the
+     * lower id on a tie; and the boundary really runs through the image. */
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "pierce2",
+                                    "v -1 -1 -0.5\nv 1 -1 -0.5\nv 0 1 0.5\n"
+                                    "v -1 1 -0.4\nv 1 1 -0.4\nv 0 -1 0.6\nf 1 2 3\nf 4 5 6\n"),
+                 0);
+    ScreenPolys sp = { 0 };
+    FrameBufs fb = { 0 };
+    HsrStats st;
+    for (int a = 0; a < hsr_nalgos; a++) {
+        cr_assert_eq(tl_render(&s, hsr_algos[a], 1, 200, 160, 0, &sp, &fb, &st), 0);
+        cr_assert_eq(sp.npolys, 2);
+        int wins[2] = { 0, 0 };
+        for (int j = 0; j < 160; j++)
+            for (int i = 0; i < 200; i++) {
+                int32_t id = fb.ids[j * 200 + i];
+                if (id < 0)
+                    continue;
+                /* is the other polygon also covering here? test with the
+                 * plane values the rules say */
+                float z0 = plane_at(&sp.polys[0], plane_row(&sp.polys[0], j), i);
+                float z1 = plane_at(&sp.polys[1], plane_row(&sp.polys[1], j), i);
+                cr_assert_eq(fb.depth[j * 200 + i], id == sp.polys[0].face ? z0 : z1,
+                             "%s: stored depth is not the winner's plane", hsr_algos[a]->name);
+                wins[id]++;
+            }
+        cr_assert_gt(wins[0], 100, "%s", hsr_algos[a]->name);
+        cr_assert_gt(wins[1], 100, "%s", hsr_algos[a]->name);
+    }
+    /* where both cover, the nearer plane wins: check through single renders */
+    FrameBufs one[2] = { { 0 }, { 0 } };
+    for (int k = 0; k < 2; k++) {
+        ScreenPolys only = sp;
+        ScreenPoly tmp[2] = { sp.polys[k], { .first = sp.polys[k + 1].first } };
+        only.polys = tmp;
+        only.npolys = 1;
+        Viewport vp = { 200, 160, 1, 0 };
+        HsrInput in = { &only, &s, &vp };
+        HsrRunner r;
+        hsr_runner_init(&r, &hsr_zbuffer, 1);
+        hsr_run(&r, &in, &one[k], &st);
+        hsr_runner_free(&r);
+    }
+    int overlap = 0;
+    for (int i = 0; i < 200 * 160; i++) {
+        if (one[0].ids[i] < 0 || one[1].ids[i] < 0)
+            continue;
+        overlap++;
+        float z0 = one[0].depth[i], z1 = one[1].depth[i];
+        int want = z0 < z1 || (z0 == z1) ? 0 : 1;
+        cr_assert_eq(fb.ids[i], want, "sample %d: depths %.9g %.9g", i, (double)z0, (double)z1);
+    }
+    cr_assert_gt(overlap, 500);
+    fbuf_free(&one[0]);
+    fbuf_free(&one[1]);
+    fbuf_free(&fb);
+    screen_free(&sp);
+    scene_free(&s);
+}
+
+Test(depth, equal_depths_go_to_the_lower_id)
+{
+    /* the same square twice (ids 0 and 1), then a third copy (id 2):
+     * id 0 must win everywhere, with every algorithm */
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "coplanar",
+                                    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                    "f 1 2 3 4\nf 1 2 3 4\nf 1 2 3 4\n"),
+                 0);
+    ScreenPolys sp = { 0 };
+    FrameBufs fb = { 0 };
+    HsrStats st;
+    for (int a = 0; a < hsr_nalgos; a++) {
+        cr_assert_eq(tl_render(&s, hsr_algos[a], 2, 64, 48, 0, &sp, &fb, &st), 0);
+        int lit = 0;
+        for (int i = 0; i < 64 * 48; i++) {
+            cr_assert(fb.ids[i] == -1 || fb.ids[i] == 0, "%s: id %d won a tie", hsr_algos[a]->name,
+                      fb.ids[i]);
+            lit += fb.ids[i] == 0;
+        }
+        cr_assert_gt(lit, 500);
+    }
+    fbuf_free(&fb);
+    screen_free(&sp);
+    scene_free(&s);
+}

@@ -1,0 +1,382 @@
+/* test_hsr.c: the exact rules. Coverage against a brute-force even-odd
+ * reference on the fixed-point values, the top-left rule on shared edges
+ * and fans, the depth rule on piercing polygons, and every algorithm
+ * against the z-buffer, byte for byte. */
+
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hsr.h"
+#include "testlib.h"
+#include "raster.h"
+
+/* ==== brute force: the rule as written, one sample at a time ==== */
+
+/* Is sample (i, j) inside polygon verts[0..n) by the even-odd rule with
+ * half-open rows and columns? Exact: compares c * dy with xc * dy. */
+static int brute_inside(const ScreenVert *v, int n, int i, int j)
+{
+    int64_t xc = 256LL * i + 128, yc = 256LL * j + 128;
+    int crossings = 0;
+    for (int k = 0; k < n; k++) {
+        const ScreenVert *a = &v[k], *b = &v[(k + 1) % n];
+        if (a->y == b->y)
+            continue;
+        const ScreenVert *t = a->y < b->y ? a : b, *m = a->y < b->y ? b : a;
+        if (!(t->y <= yc && yc < m->y))
+            continue;
+        int64_t dy = m->y - t->y, dx = m->x - t->x;
+        /* crossing c = t.x + (yc - t.y) dx / dy; counts when c <= xc */
+        if (t->x * dy + (yc - t->y) * dx <= xc * dy)
+            crossings++;
+    }
+    return crossings & 1;
+}
+
+/* ==== hand-made screen polygons ==== */
+
+typedef struct {
+    ScreenPolys sp;
+} Polys;
+
+static void polys_init(Polys *p, int w, int h)
+{
+    memset(p, 0, sizeof *p);
+    p->sp.w = w;
+    p->sp.h = h;
+    p->sp.verts = calloc(4096, sizeof(ScreenVert));
+    p->sp.polys = calloc(1025, sizeof(ScreenPoly));
+    p->sp.cap_verts = 4096;
+    p->sp.cap_polys = 1025;
+}
+
+static void polys_free(Polys *p)
+{
+    free(p->sp.verts);
+    free(p->sp.polys);
+}
+
+/* Add a polygon at constant depth z (a = b = 0). Returns 0 if it covers
+ * no sample box (then it is not added, as the front end would drop it). */
+static int polys_add(Polys *p, const ScreenVert *v, int n, int face, float z)
+{
+    ScreenPolys *sp = &p->sp;
+    int32_t xmin = v[0].x, xmax = v[0].x, ymin = v[0].y, ymax = v[0].y;
+    for (int k = 0; k < n; k++) {
+        if (v[k].x < xmin) xmin = v[k].x;
+        if (v[k].x > xmax) xmax = v[k].x;
+        if (v[k].y < ymin) ymin = v[k].y;
+        if (v[k].y > ymax) ymax = v[k].y;
+    }
+    int x0 = sample_ceil(xmin), x1 = sample_ceil(xmax), y0 = sample_ceil(ymin), y1 = sample_ceil(ymax);
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > sp->w) x1 = sp->w;
+    if (y1 > sp->h) y1 = sp->h;
+    if (x0 >= x1 || y0 >= y1)
+        return 0;
+    ScreenPoly *q = &sp->polys[sp->npolys++];
+    q->first = sp->nverts;
+    q->face = face;
+    q->x0 = x0; q->x1 = x1; q->y0 = y0; q->y1 = y1;
+    q->a = q->b = 0;
+    q->zc = q->zmin = z;
+    for (int k = 0; k < n; k++)
+        sp->verts[sp->nverts++] = v[k];
+    sp->polys[sp->npolys].first = sp->nverts;
+    return 1;
+}
+
+static void polys_clear(Polys *p)
+{
+    p->sp.nverts = p->sp.npolys = 0;
+    p->sp.polys[0].first = 0;
+}
+
+/* Render with the z-buffer and count, per sample, how many of the
+ * polygons cover it (each polygon rendered alone). */
+static void coverage_count(Polys *p, const HsrAlgo *algo, uint8_t *count)
+{
+    int w = p->sp.w, h = p->sp.h;
+    memset(count, 0, (size_t)w * h);
+    ScreenPolys one = p->sp;
+    ScreenPoly tmp[2];
+    for (uint32_t k = 0; k < p->sp.npolys; k++) {
+        tmp[0] = p->sp.polys[k];
+        tmp[1].first = p->sp.polys[k + 1].first;
+        one.polys = tmp;
+        one.npolys = 1;
+        FrameBufs fb = { 0 };
+        HsrRunner r;
+        cr_assert_eq(hsr_runner_init(&r, algo, 1), 0);
+        Viewport vp = { w, h, 1, 0 };
+        HsrInput in = { &one, NULL, &vp };
+        HsrStats st;
+        cr_assert_eq(hsr_run(&r, &in, &fb, &st), 0);
+        for (int i = 0; i < w * h; i++)
+            if (fb.ids[i] >= 0)
+                count[i]++;
+        hsr_runner_free(&r);
+        fbuf_free(&fb);
+    }
+}
+
+static uint32_t rng_state = 12345;
+static uint32_t rnd(void)
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 17;
+    rng_state ^= rng_state << 5;
+    return rng_state;
+}
+/* Fixed-point coordinate in [lo, hi) px; one in four lands exactly on a
+ * sample centre or pixel corner to exercise the ties. */
+static int32_t rnd_coord(int lo, int hi)
+{
+    int32_t v = (int32_t)(lo * 256 + rnd() % (uint32_t)((hi - lo) * 256));
+    switch (rnd() % 4) {
+    case 0: return (v & ~255) | 128;    /* sample centre */
+    case 1: return v & ~255;            /* pixel corner */
+    default: return v;
+    }
+}
+
+/* ==== coverage: brute force agreement ==== */
+
+static void check_brute(Polys *p, const char *what)
+{
+    int w = p->sp.w, h = p->sp.h;
+    uint8_t *count = malloc((size_t)w * h);
+    coverage_count(p, &hsr_zbuffer, count);
+    /* with one polygon in p, count is its coverage */
+    const ScreenVert *v = &p->sp.verts[p->sp.polys[0].first];
+    int n = (int)screen_poly_nverts(&p->sp, 0);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            int want = brute_inside(v, n, i, j);
+            if (count[j * w + i] != want)
+                cr_assert_fail("%s: sample (%d,%d) covered %d, rule says %d", what, i, j,
+                         count[j * w + i], want);
+        }
+    free(count);
+}
+
+Test(coverage, random_polygons_match_the_rule)
+{
+    Polys p;
+    polys_init(&p, 48, 40);
+    for (int t = 0; t < 300; t++) {
+        polys_clear(&p);
+        int n = 3 + (int)(rnd() % 8);  /* triangles to concave / self-crossing 10-gons */
+        ScreenVert v[16];
+        for (int k = 0; k < n; k++) {
+            v[k].x = rnd_coord(-6, 54);
+            v[k].y = rnd_coord(-6, 46);
+            v[k].z = 0;
+        }
+        if (!polys_add(&p, v, n, 0, 0.5f))
+            continue;
+        char what[64];
+        snprintf(what, sizeof what, "polygon %d (%d corners)", t, n);
+        check_brute(&p, what);
+    }
+    polys_free(&p);
+}
+
+Test(coverage, subpixel_polygons)
+{
+    Polys p;
+    polys_init(&p, 16, 16);
+    int covered = 0;
+    for (int t = 0; t < 400; t++) {
+        polys_clear(&p);
+        /* around a sample centre, nudged by under half a pixel */
+        int32_t cx = (rnd_coord(2, 14) & ~255) + 128 + (int32_t)(rnd() % 160) - 80;
+        int32_t cy = (rnd_coord(2, 14) & ~255) + 128 + (int32_t)(rnd() % 160) - 80;
+        ScreenVert v[3];
+        for (int k = 0; k < 3; k++) {
+            v[k].x = cx + (int32_t)(rnd() % 200) - 100;
+            v[k].y = cy + (int32_t)(rnd() % 200) - 100;
+            v[k].z = 0;
+        }
+        if (!polys_add(&p, v, 3, 0, 0.5f))
+            continue;
+        check_brute(&p, "sub-pixel triangle");
+        covered++;
+    }
+    cr_assert_gt(covered, 50, "too few sub-pixel triangles had a sample box");
+    polys_free(&p);
+}
+
+Test(coverage, square_on_sample_centres_is_top_left)
+{
+    /* Corners exactly on centres (1.5,1.5)-(3.5,3.5): the left and top
+     * edges are in, the right and bottom out: samples 1..2 x 1..2. */
+    Polys p;
+    polys_init(&p, 6, 6);
+    ScreenVert v[4] = { { 384, 384, 0 }, { 896, 384, 0 }, { 896, 896, 0 }, { 384, 896, 0 } };
+    cr_assert(polys_add(&p, v, 4, 0, 0.5f));
+    uint8_t count[36];
+    coverage_count(&p, &hsr_zbuffer, count);
+    for (int j = 0; j < 6; j++)
+        for (int i = 0; i < 6; i++)
+            cr_assert_eq(count[j * 6 + i], (i >= 1 && i <= 2 && j >= 1 && j <= 2),
+                         "sample (%d,%d)", i, j);
+    polys_free(&p);
+}
+
+Test(coverage, horizontal_edges_count_for_no_row)
+{
+    /* A triangle whose bottom is horizontal exactly on row 3's centre:
+     * row 3 is out (y < y_bottom). Its apex sits on row 1's centre: both
+     * edges count there, but cross at the same x, so the interval
+     * x_enter <= x < x_leave is empty and the apex sample is out too. */
+    Polys p;
+    polys_init(&p, 8, 8);
+    ScreenVert v[3] = { { 4 * 256 + 128, 1 * 256 + 128, 0 }, { 7 * 256 + 128, 3 * 256 + 128, 0 },
+                        { 1 * 256 + 128, 3 * 256 + 128, 0 } };
+    cr_assert(polys_add(&p, v, 3, 0, 0.5f));
+    uint8_t count[64];
+    coverage_count(&p, &hsr_zbuffer, count);
+    for (int i = 0; i < 8; i++)
+        cr_assert_eq(count[3 * 8 + i], 0, "row 3 sample %d must be out", i);
+    cr_assert_eq(count[1 * 8 + 4], 0, "an empty interval at the apex covers nothing");
+    cr_assert_eq(count[2 * 8 + 4], 1, "row 2 is inside");
+    cr_assert_eq(count[1 * 8 + 3], 0);
+    cr_assert_eq(count[1 * 8 + 5], 0);
+    check_brute(&p, "flat-bottom triangle");
+    polys_free(&p);
+}
+
+Test(coverage, shared_edges_cover_exactly_once)
+{
+    /* A random convex quad split along a diagonal: the two triangles
+     * together cover exactly the quad's samples, none twice. */
+    Polys p, q;
+    polys_init(&p, 40, 40);
+    polys_init(&q, 40, 40);
+    uint8_t *c2 = malloc(1600), *c1 = malloc(1600);
+    int tested = 0;
+    for (int t = 0; t < 200; t++) {
+        /* convex: corners on a circle at increasing angles */
+        double cx = 20 + (rnd() % 1000) / 100.0 - 5, cy = 20 + (rnd() % 1000) / 100.0 - 5;
+        double r = 4 + (rnd() % 2000) / 100.0, ang = (rnd() % 628) / 100.0;
+        ScreenVert v[4];
+        for (int k = 0; k < 4; k++) {
+            ang += 0.3 + (rnd() % 100) / 100.0;
+            v[k].x = (int32_t)lround((cx + r * cos(ang)) * 256);
+            v[k].y = (int32_t)lround((cy + r * sin(ang)) * 256);
+            if (rnd() % 3 == 0) {
+                v[k].x = (v[k].x & ~255) | 128;
+                v[k].y = (v[k].y & ~255) | 128;
+            }
+            v[k].z = 0;
+        }
+        polys_clear(&p);
+        polys_clear(&q);
+        ScreenVert t1[3] = { v[0], v[1], v[2] }, t2[3] = { v[0], v[2], v[3] };
+        int a = polys_add(&p, t1, 3, 0, 0.5f);
+        int b = polys_add(&p, t2, 3, 1, 0.5f);
+        if (!polys_add(&q, v, 4, 0, 0.5f))
+            continue;
+        coverage_count(&q, &hsr_zbuffer, c1);
+        if (a || b)
+            coverage_count(&p, &hsr_zbuffer, c2);
+        else
+            memset(c2, 0, 1600);
+        for (int i = 0; i < 1600; i++)
+            cr_assert_eq(c2[i], c1[i], "quad %d: sample (%d,%d) covered %d times by the halves, %d by the quad",
+                         t, i % 40, i / 40, c2[i], c1[i]);
+        tested++;
+    }
+    cr_assert_gt(tested, 100);
+    free(c1);
+    free(c2);
+    polys_free(&p);
+    polys_free(&q);
+}
+
+Test(coverage, fans_around_a_vertex_cover_exactly_once)
+{
+    /* Triangles around a centre (on a sample centre or not) closing a
+     * disc: every sample of the outline polygon is covered exactly once. */
+    Polys p, q;
+    polys_init(&p, 40, 40);
+    polys_init(&q, 40, 40);
+    uint8_t *cf = malloc(1600), *co = malloc(1600);
+    for (int t = 0; t < 60; t++) {
+        int n = 3 + (int)(rnd() % 14);
+        ScreenVert c = { rnd_coord(14, 26), rnd_coord(14, 26), 0 };
+        ScreenVert ring[17];
+        double r = 3 + (rnd() % 1600) / 100.0, ang0 = (rnd() % 628) / 100.0;
+        for (int k = 0; k < n; k++) {
+            double ang = ang0 + 2 * 3.14159265358979323846 * k / n;
+            ring[k].x = c.x + (int32_t)lround(r * cos(ang) * 256);
+            ring[k].y = c.y + (int32_t)lround(r * sin(ang) * 256);
+            ring[k].z = 0;
+        }
+        polys_clear(&p);
+        polys_clear(&q);
+        for (int k = 0; k < n; k++) {
+            ScreenVert tri[3] = { c, ring[k], ring[(k + 1) % n] };
+            polys_add(&p, tri, 3, k, 0.5f);
+        }
+        polys_add(&q, ring, n, 0, 0.5f);
+        coverage_count(&p, &hsr_zbuffer, cf);
+        coverage_count(&q, &hsr_zbuffer, co);
+        for (int i = 0; i < 1600; i++)
+            cr_assert_eq(cf[i], co[i], "fan %d of %d: sample (%d,%d) covered %d times, outline %d",
+                         t, n, i % 40, i / 40, cf[i], co[i]);
+    }
+    free(cf);
+    free(co);
+    polys_free(&p);
+    polys_free(&q);
+}
+
+Test(coverage, polygons_outside_the_image_are_clamped)
+{
+    Polys p;
+    polys_init(&p, 10, 8);
+    /* a triangle far larger than the image: covers everything on its side */
+    ScreenVert big[3] = { { -100000, -100000, 0 }, { 200000, -100000, 0 }, { -100000, 200000, 0 } };
+    cr_assert(polys_add(&p, big, 3, 0, 0.5f));
+    check_brute(&p, "huge triangle");
+    polys_clear(&p);
+    ScreenVert out[3] = { { -5000, 100, 0 }, { -256, 900, 0 }, { -3000, 1500, 0 } };
+    cr_assert_eq(polys_add(&p, out, 3, 0, 0.5f), 0, "wholly left of the image: no sample box");
+    polys_free(&p);
+}
+
+/* ==== every algorithm obeys the same coverage rule ==== */
+
+Test(coverage, every_algorithm_covers_like_the_reference)
+{
+    Polys p;
+    polys_init(&p, 48, 40);
+    uint8_t *ref = malloc(48 * 40), *got = malloc(48 * 40);
+    for (int t = 0; t < 80; t++) {
+        polys_clear(&p);
+        int n = 3 + (int)(rnd() % 6);
+        ScreenVert v[12];
+        for (int k = 0; k < n; k++) {
+            v[k].x = rnd_coord(-6, 54);
+            v[k].y = rnd_coord(-6, 46);
+            v[k].z = 0;
+        }
+        if (!polys_add(&p, v, n, 0, 0.5f))
+            continue;
+        coverage_count(&p, &hsr_zbuffer, ref);
+        for (int a = 0; a < hsr_nalgos; a++) {
+            coverage_count(&p, hsr_algos[a], got);
+            cr_assert_eq(memcmp(ref, got, 48 * 40), 0, "%s covers differently (polygon %d)",
+                         hsr_algos[a]->name, t);
+        }
+    }
+    free(ref);
+    free(got);
+    polys_free(&p);
+}
