@@ -976,6 +976,20 @@ int mesh_parse(Mesh *m, const char *path, const char *text, size_t len,
     memcpy(m->objs[0].name, ps.basename, sizeof ps.basename);
     m->info.bytes = len;
 
+    /* Reserve for the densest plausible file (a vertex or a triangle per
+     * 24 bytes) so that big meshes are not copied while growing; pages
+     * never written are never made resident, and finish() trims. */
+    if (len >= ((size_t)1 << 20)) {
+        size_t guess = len / 24;
+        if (grow((void **)&m->pos, &ps.vcap, guess, 3 * sizeof(float)) ||
+            grow((void **)&m->face_mat, &ps.fcap, guess, sizeof(int32_t)) ||
+            !(m->face_start = malloc((ps.fcap + 1) * sizeof(uint32_t))) ||
+            grow((void **)&m->corner, &ps.ccap, 3 * guess, sizeof(uint32_t))) {
+            fail_oom(&ps);
+            goto fail;
+        }
+    }
+
     const char *p = text, *end = text + len;
     if (len >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0)   /* UTF-8 BOM */
         p += 3;
