@@ -1,7 +1,383 @@
-/* TEMPORARY forwarder to the z-buffer until the real algorithm lands. */
+/* scanline.c: the scanline z-buffer. The band is rendered one row at a
+ * time, top to bottom, and only the polygons that cross the current row
+ * are looked at.
+ *
+ * Tables, built once per band:
+ *  - the polygon table: every polygon meeting the band, bucketed by the
+ *    first band row it covers (a counting sort into one index array, so
+ *    there is no per-polygon allocation);
+ *  - the edge table: a polygon's non-horizontal edges, each set up with
+ *    edge_setup() at the first row it counts for in the band. A triangle
+ *    keeps its long edge plus the one short edge that counts for the
+ *    current row, and sets up its lower short edge only when the row
+ *    reaches the middle vertex; a general polygon keeps its edges sorted
+ *    by first row.
+ * Active lists, updated as rows advance:
+ *  - active triangles (a plain array of records with their two walkers,
+ *    removed by swapping in the last one when they end), and
+ *  - active general polygons with their active edges in one shared pool,
+ *    compacted in order every row as edges and polygons finish.
+ * A triangle covering a single row of the band never enters the active
+ * list: its span is drawn when it is taken from the polygon table.
+ *
+ * For each row every active polygon's crossings are sorted and the
+ * pairs [x_a, x_b) are depth-tested against the row's depth/id buffer
+ * (the frame buffer's own row, which stays in L1 while the row is
+ * scanned: it is written once as background, then only where a sample
+ * wins), so the whole frame buffer is walked once, in order.
+ *
+ * Why it is exact: coverage comes only from the walkers of raster.h,
+ * whose crossings are exact integer quotients; a walker set up at a later
+ * row holds the same crossing as one set up earlier and stepped, so
+ * setting edges up lazily changes nothing. Each row sees exactly the
+ * edges that count for it (a triangle's long edge and one short edge;
+ * every active edge of a polygon, even-odd), so spans are the z-buffer's.
+ * Depth is plane_row() then plane_at() and samples compare (depth, id)
+ * with hsr_wins(), so the order polygons are visited in does not matter
+ * and ids and depths are bit-identical to the z-buffer's. */
+
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster.h"
 #include "hsr.h"
-extern const HsrAlgo hsr_zbuffer;
-static void *cr(void) { return hsr_zbuffer.create(); }
-static void de(void *s) { hsr_zbuffer.destroy(s); }
-static void re(void *s, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *st) { hsr_zbuffer.render(s, in, fb, y0, y1, st); }
-const HsrAlgo hsr_scanline = { .name = "scanline", .summary = "TODO", .create = cr, .destroy = de, .render = re };
+
+/* An active triangle: its long edge, the short edge counting now, and
+ * where the lower short edge takes over. */
+typedef struct {
+    EdgeWalk          lng, shrt;
+    const ScreenPoly *p;
+    const ScreenVert *vm, *vb;  /* middle and bottom corners (by y) */
+    int32_t           ymid;     /* row the lower short edge starts at (INT32_MAX: done) */
+    int32_t           yend;     /* one past the last row in the band */
+} ScanTri;
+
+/* An active general polygon: edges pool[off .. off + n), sorted by the
+ * first row they count for. */
+typedef struct {
+    const ScreenPoly *p;
+    uint32_t          off, n;
+    int32_t           yend;
+} ScanGon;
+
+typedef struct {
+    uint16_t *key;              /* per polygon: bucket row in the band, KEY_NONE outside */
+    uint32_t  key_cap;
+    uint32_t *order;            /* polygon indices by first row */
+    uint32_t  order_cap;
+    uint32_t *start;            /* bucket boundaries: rows + 1 */
+    uint32_t  start_cap;
+    ScanTri  *tri;              /* active triangles */
+    uint32_t  ntri, tri_cap;
+    ScanGon  *gon;              /* active general polygons */
+    uint32_t  ngon, gon_cap;
+    EdgeWalk *pool;             /* their edges */
+    uint32_t  npool, pool_cap;
+    int32_t  *xs;               /* one polygon's crossings on one row */
+    uint32_t  xs_cap;
+} ScanState;
+
+#define KEY_NONE 0xFFFFu        /* SCREEN_MAX rows fit below it */
+
+static void *scan_create(void)
+{
+    return calloc(1, sizeof(ScanState));
+}
+
+static void scan_destroy(void *st)
+{
+    ScanState *s = st;
+    if (!s)
+        return;
+    free(s->key);
+    free(s->order);
+    free(s->start);
+    free(s->tri);
+    free(s->gon);
+    free(s->pool);
+    free(s->xs);
+    free(s);
+}
+
+/* Grow *buf to hold n elements of size sz (amortised doubling). */
+static int grow(void *buf, uint32_t *cap, uint32_t n, size_t sz)
+{
+    if (n <= *cap)
+        return 0;
+    uint32_t c = *cap ? *cap : 64;
+    while (c < n)
+        c = c > UINT32_MAX / 2 ? n : c * 2;
+    void *q = realloc(*(void **)buf, (size_t)c * sz);
+    if (!q)
+        return -1;
+    *(void **)buf = q;
+    *cap = c;
+    return 0;
+}
+
+/* ==== the spans ==== */
+
+/* Depth-test samples [xa, xb) of row j (ids/dep point at that row).
+ * Returns the samples written. */
+static inline uint32_t span_test(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
+                                 int j, int xa, int xb)
+{
+    float zr = plane_row(p, j);
+    int32_t id = p->face;
+    uint32_t n = 0;
+    for (int i = xa; i < xb; i++) {
+        float z = plane_at(p, zr, i);
+        if (hsr_wins(z, id, dep[i], ids[i])) {
+            dep[i] = z;
+            ids[i] = id;
+            n++;
+        }
+    }
+    return n;
+}
+
+/* The span between two crossings, clamped to the row. */
+static inline uint32_t span_pair(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
+                                 int j, int32_t x0, int32_t x1, int32_t w)
+{
+    int32_t xa = x0 < x1 ? x0 : x1, xb = x0 < x1 ? x1 : x0;
+    xa = clamp_col(xa, w);
+    xb = clamp_col(xb, w);
+    return xa < xb ? span_test(p, ids, dep, j, xa, xb) : 0;
+}
+
+/* ==== triangles ==== */
+
+/* Take triangle p from the polygon table at row j (its first row in the
+ * band; rows [j, yend) remain). A single row is drawn at once; otherwise
+ * the triangle joins the active list, which draws row j next. */
+static inline uint32_t tri_start(ScanState *s, const ScreenPolys *sp, const ScreenPoly *p, int j,
+                                 int yend, int32_t *ids, float *dep, int32_t w)
+{
+    const ScreenVert *t = &sp->verts[p->first], *m = t + 1, *b = t + 2, *x;
+    if (m->y < t->y) { x = t; t = m; m = x; }
+    if (b->y < m->y) { x = m; m = b; b = x; }
+    if (m->y < t->y) { x = t; t = m; m = x; }
+    /* Rows [row(t), row(m)) see the long edge t-b and the upper edge t-m;
+     * rows [row(m), row(b)) the long edge and the lower edge m-b. Both
+     * count for row j (row(t) <= j < row(b)), so neither setup fails. */
+    int32_t rm = sample_ceil(m->y);
+    int upper = j < rm;
+    if (yend - j == 1) {
+        /* One row: only the crossings are needed, and the walkers stay
+         * local so the compiler drops their per-row steps. */
+        EdgeWalk el, es;
+        if (!edge_setup(&el, t, b, j) || !edge_setup(&es, upper ? t : m, upper ? m : b, j))
+            return 0;
+        return span_pair(p, ids, dep, j, el.xi, es.xi, w);
+    }
+    ScanTri *a = &s->tri[s->ntri++];
+    (void)edge_setup(&a->lng, t, b, j);
+    (void)edge_setup(&a->shrt, upper ? t : m, upper ? m : b, j);
+    a->p = p;
+    a->vm = m;
+    a->vb = b;
+    a->ymid = upper ? rm : INT32_MAX;
+    a->yend = yend;
+    return 0;
+}
+
+/* Row j of every active triangle. Steps the walkers to row j + 1 and drops
+ * the triangles that end at j. */
+static uint64_t tri_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w)
+{
+    uint64_t n = 0;
+    uint32_t k = 0;
+    while (k < s->ntri) {
+        ScanTri *a = &s->tri[k];
+        n += span_pair(a->p, ids, dep, j, a->lng.xi, a->shrt.xi, w);
+        if (j + 1 == a->yend) {
+            *a = s->tri[--s->ntri];
+            continue;
+        }
+        edge_step(&a->lng);
+        if (j + 1 == a->ymid) {
+            (void)edge_setup(&a->shrt, a->vm, a->vb, j + 1);
+            a->ymid = INT32_MAX;
+        } else {
+            edge_step(&a->shrt);
+        }
+        k++;
+    }
+    return n;
+}
+
+/* ==== general polygons (any corner count, concave, self-overlapping) ==== */
+
+/* Take polygon pi from the polygon table at row j: set up its edges at
+ * the first row each counts for and append it to the active list. */
+static int gon_start(ScanState *s, const ScreenPolys *sp, uint32_t pi, int j, int yend)
+{
+    const ScreenPoly *p = &sp->polys[pi];
+    uint32_t nv = screen_poly_nverts(sp, pi);
+    if (grow(&s->pool, &s->pool_cap, s->npool + nv, sizeof *s->pool) ||
+        grow(&s->xs, &s->xs_cap, nv, sizeof *s->xs) ||
+        grow(&s->gon, &s->gon_cap, s->ngon + 1, sizeof *s->gon))
+        return -1;
+    const ScreenVert *v = &sp->verts[p->first];
+    EdgeWalk *e = &s->pool[s->npool];
+    uint32_t n = 0;
+    for (uint32_t k = 0; k < nv; k++) {
+        EdgeWalk w;
+        if (!edge_setup(&w, &v[k], &v[k + 1 < nv ? k + 1 : 0], j) || w.row1 <= j)
+            continue;
+        /* insertion by first counting row: the edge table of this polygon */
+        uint32_t q = n++;
+        while (q > 0 && e[q - 1].row0 > w.row0) {
+            e[q] = e[q - 1];
+            q--;
+        }
+        e[q] = w;
+    }
+    if (n < 2)
+        return 0;
+    s->gon[s->ngon++] = (ScanGon){ .p = p, .off = s->npool, .n = n, .yend = yend };
+    s->npool += n;
+    return 0;
+}
+
+/* Row j of every active general polygon: crossings of its counting edges
+ * sorted, pairs filled; edges and polygons that end at j dropped, the
+ * pool and the list compacted in order. */
+static uint64_t gon_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w)
+{
+    uint64_t written = 0;
+    uint32_t gout = 0, eout = 0;
+    int32_t *xs = s->xs;
+    for (uint32_t g = 0; g < s->ngon; g++) {
+        ScanGon a = s->gon[g];
+        EdgeWalk *e = &s->pool[a.off];
+        int m = 0;
+        uint32_t k = 0;
+        /* active edges: the leading ones that have started */
+        for (; k < a.n && e[k].row0 <= j; k++) {
+            int32_t x = e[k].xi;
+            int q = m++;
+            while (q > 0 && xs[q - 1] > x) {
+                xs[q] = xs[q - 1];
+                q--;
+            }
+            xs[q] = x;
+        }
+        for (int i = 0; i + 1 < m; i += 2)
+            written += span_pair(a.p, ids, dep, j, xs[i], xs[i + 1], w);
+        if (j + 1 == a.yend)
+            continue;
+        /* step the active edges, keep the unfinished ones and the ones
+         * still to come, moving them down to the pool's write point */
+        uint32_t off = eout;
+        for (uint32_t q = 0; q < a.n; q++) {
+            EdgeWalk ew = e[q];
+            if (q < k) {
+                if (ew.row1 == j + 1)
+                    continue;
+                edge_step(&ew);
+            }
+            s->pool[eout++] = ew;
+        }
+        a.off = off;
+        a.n = eout - off;
+        s->gon[gout++] = a;
+    }
+    s->ngon = gout;
+    s->npool = eout;
+    return written;
+}
+
+/* ==== the band ==== */
+
+/* Bucket the polygons meeting rows [y0, y1) by their first row there.
+ * Returns -1 on out of memory. */
+static int build_table(ScanState *s, const ScreenPolys *sp, int y0, int y1, uint64_t *polys)
+{
+    uint32_t np = sp->npolys, rows = (uint32_t)(y1 - y0);
+    if (grow(&s->key, &s->key_cap, np, sizeof *s->key) ||
+        grow(&s->start, &s->start_cap, rows + 1, sizeof *s->start))
+        return -1;
+    uint32_t *start = s->start;
+    memset(start, 0, (size_t)(rows + 1) * sizeof *start);
+    uint16_t *key = s->key;
+    const ScreenPoly *P = sp->polys;
+    for (uint32_t i = 0; i < np; i++) {
+        int32_t a = P[i].y0, b = P[i].y1;
+        if (b <= y0 || a >= y1) {
+            key[i] = KEY_NONE;
+            continue;
+        }
+        uint32_t r = (uint32_t)((a > y0 ? a : y0) - y0);
+        key[i] = (uint16_t)r;
+        start[r + 1]++;
+    }
+    for (uint32_t r = 0; r < rows; r++)
+        start[r + 1] += start[r];
+    uint32_t total = start[rows];
+    *polys += total;
+    if (grow(&s->order, &s->order_cap, total, sizeof *s->order))
+        return -1;
+    /* start[r] becomes the fill point of bucket r; after the scatter it is
+     * the end of bucket r, i.e. the start of bucket r + 1 */
+    uint32_t *order = s->order;
+    for (uint32_t i = 0; i < np; i++)
+        if (key[i] != KEY_NONE)
+            order[start[key[i]]++] = i;
+    return 0;
+}
+
+static void scan_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *stats)
+{
+    ScanState *s = st;
+    const ScreenPolys *sp = in->sp;
+    int32_t w = fb->w;
+    double t0 = now_ms();
+    uint64_t polys = 0, written = 0;
+    int ok = build_table(s, sp, y0, y1, &polys) == 0;
+    stats->build_ms += now_ms() - t0;
+    stats->polys_in += polys;
+    s->ntri = s->ngon = s->npool = 0;
+    uint32_t next = 0;
+    for (int j = y0; j < y1; j++) {
+        int32_t *ids = fb->ids + (size_t)j * w;
+        float *dep = fb->depth + (size_t)j * w;
+        for (int32_t i = 0; i < w; i++) {
+            ids[i] = -1;
+            dep[i] = INFINITY;
+        }
+        if (!ok)
+            continue;   /* out of memory: the rest of the band stays background */
+        uint32_t end = s->start[j - y0];
+        for (; next < end; next++) {
+            uint32_t pi = s->order[next];
+            const ScreenPoly *p = &sp->polys[pi];
+            int yend = p->y1 < y1 ? p->y1 : y1;
+            if (screen_poly_nverts(sp, pi) == 3) {
+                if (s->ntri == s->tri_cap && grow(&s->tri, &s->tri_cap, s->ntri + 1, sizeof *s->tri)) {
+                    ok = 0;
+                    break;
+                }
+                written += tri_start(s, sp, p, j, yend, ids, dep, w);
+            } else if (gon_start(s, sp, pi, j, yend)) {
+                ok = 0;
+                break;
+            }
+        }
+        written += tri_row(s, j, ids, dep, w);
+        if (s->ngon)
+            written += gon_row(s, j, ids, dep, w);
+    }
+    stats->pixels_written += written;
+}
+
+const HsrAlgo hsr_scanline = {
+    .name = "scanline",
+    .summary = "scanline z-buffer: polygon and edge tables, active lists, one row at a time",
+    .create = scan_create,
+    .destroy = scan_destroy,
+    .render = scan_render,
+};
