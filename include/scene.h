@@ -33,8 +33,10 @@ typedef struct {
     int   persp;              /* 0 = orthographic */
     float fov_deg;            /* vertical field of view under perspective */
     /* set by scene_fit() */
-    Vec3  centre;             /* world centre of the scene */
-    float radius;             /* world radius of the scene about centre */
+    Vec3  centre;             /* world point that maps to the image centre */
+    float radius;             /* world radius of the scene about centre (depth range) */
+    Vec3  fit_half;           /* view-space half extents of the scene when fitted:
+                                 the projection scales these to 90% of the image */
 } Camera;
 
 typedef struct {
@@ -76,9 +78,11 @@ int  scene_make_grid(Scene *s, int n, char *err, size_t errlen);
 
 void scene_free(Scene *s);
 
-/* Reset the camera (and object placements) and fit the scene's bounding
- * sphere to about 90% of the viewport. */
+/* Reset the camera (and object placements), then fit. */
 void scene_reset(Scene *s);
+/* Fit: centre the scene as seen from the camera's current turn and set
+ * its view-space extents, which the projection scales to about 90% of
+ * the viewport (pan and zoom are reset). */
 void scene_fit(Scene *s);
 
 /* Object-to-world matrix: turn and scale about the object's centre, then

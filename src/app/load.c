@@ -78,6 +78,7 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
     s->cam.yaw = deg2rad(o->yaw);
     s->cam.pitch = deg2rad(o->pitch);
     s->cam.roll = deg2rad(o->roll);
+    scene_fit(s);   /* as seen from the requested turn */
     s->cam.zoom = o->zoom;
     return 0;
 }

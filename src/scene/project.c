@@ -79,19 +79,22 @@ static void proj_setup(Proj *p, const Scene *s, const Viewport *vp)
     double aspect = vp->pixel_aspect > 0 ? vp->pixel_aspect : 1;
     double r = c->radius > 0 ? c->radius : 1;
     double zoom = c->zoom > 0 ? c->zoom : 1;
-    /* the image's smaller side, in x-pixel units */
-    double half = 0.5 * fmin((double)vp->w, vp->h * aspect);
+    /* the fitted half extents, 90% of the image at zoom 1 (x-pixel units) */
+    double hx = c->fit_half.x > 0 ? c->fit_half.x : r, hy = c->fit_half.y > 0 ? c->fit_half.y : r;
+    double hz = c->fit_half.z > 0 ? c->fit_half.z : r;
+    double half_w = 0.5 * vp->w, half_h = 0.5 * vp->h * aspect;
     p->persp = c->persp;
     p->cx = vp->w * 0.5;
     p->cy = vp->h * 0.5;
     if (!c->persp) {
-        p->fx = zoom * 0.9 * half / r;
+        p->fx = zoom * 0.9 * fmin(half_w / hx, half_h / hy);
         p->dscale = 0.25 / r;       /* view z in [-2r, 2r] -> depth [0, 1] */
         p->dbias = 0.5;
     } else {
         double fov = (c->fov_deg > 1 && c->fov_deg < 179 ? c->fov_deg : 50) * 3.14159265358979323846 / 180;
-        p->fx = half / tan(fov / 2);
-        p->eye = r / sin(fov / 2) / 0.9 / zoom;
+        p->fx = fmin(half_w, half_h) / tan(fov / 2);
+        /* the box's front face fills 90%; zoom moves the eye in */
+        p->eye = hz + fmax(hx * p->fx / half_w, hy * p->fx / half_h) / 0.9 / zoom;
         p->n = fmax(0.5 * (p->eye - r), 0.01 * r);
         p->f = p->eye + 3 * r;
     }

@@ -313,59 +313,78 @@ Mat4 camera_view(const Camera *c)
     return m4_mul(m4_translate(v3_scale(c->pan, c->radius)), m);
 }
 
+/* Grow a view-space box by point p. */
+static void box_add(float lo[3], float hi[3], Vec3 p)
+{
+    float q[3] = { p.x, p.y, p.z };
+    for (int k = 0; k < 3; k++) {
+        if (q[k] < lo[k]) lo[k] = q[k];
+        if (q[k] > hi[k]) hi[k] = q[k];
+    }
+}
+
 void scene_fit(Scene *s)
 {
-    /* Bounding box of every object's box corners in world space, then the
-     * radius of the sphere about its centre through the farthest vertex
-     * of the boxes: a bound that does not change as the scene turns. */
+    /* The box of every vertex as the camera sees it (turned, not panned):
+     * its centre becomes the image centre and its half extents what the
+     * projection fills 90% of the image with. Grid copies, which can be
+     * many, count by their boxes' corners. The radius about the centre
+     * bounds the depth range. */
+    Camera *c = &s->cam;
+    Mat4 turn = m4_rotate_ypr(c->yaw, c->pitch, c->roll);
     float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
+    float wlo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, whi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
     for (int i = 0; i < s->nobjs; i++) {
         const Object *o = &s->objs[i];
         Mat4 m = object_matrix(o);
-        for (int c = 0; c < 8; c++) {
-            Vec3 p = v3(o->centre.x + (c & 1 ? o->half.x : -o->half.x),
-                        o->centre.y + (c & 2 ? o->half.y : -o->half.y),
-                        o->centre.z + (c & 4 ? o->half.z : -o->half.z));
-            p = m4_point(&m, p);
-            float q[3] = { p.x, p.y, p.z };
-            for (int k = 0; k < 3; k++) {
-                if (q[k] < lo[k]) lo[k] = q[k];
-                if (q[k] > hi[k]) hi[k] = q[k];
+        if (i >= (int)s->nbase_objs) {
+            for (int k = 0; k < 8; k++) {
+                Vec3 p = v3(o->centre.x + (k & 1 ? o->half.x : -o->half.x),
+                            o->centre.y + (k & 2 ? o->half.y : -o->half.y),
+                            o->centre.z + (k & 4 ? o->half.z : -o->half.z));
+                p = m4_point(&m, p);
+                box_add(wlo, whi, p);
+                box_add(lo, hi, m4_dir(&turn, p));
             }
-        }
-    }
-    if (lo[0] > hi[0]) {
-        s->cam.centre = v3(0, 0, 0);
-        s->cam.radius = 1;
-        return;
-    }
-    Vec3 c = v3((lo[0] + hi[0]) * 0.5f, (lo[1] + hi[1]) * 0.5f, (lo[2] + hi[2]) * 0.5f);
-    /* Tighter than the box's half diagonal: the farthest actual vertex. */
-    double r2 = 0;
-    for (int i = 0; i < s->nobjs; i++) {
-        const Object *o = &s->objs[i];
-        if (i >= (int)s->nbase_objs && s->nobjs > (int)s->nbase_objs) {
-            /* grid copies: their boxes bound them well enough */
-            Vec3 d = v3_sub(v3_add(o->centre, o->offset), c);
-            double r = v3_len(d) + v3_len(o->half) * o->scale;
-            if (r * r > r2)
-                r2 = r * r;
             continue;
         }
-        Mat4 m = object_matrix(o);
+        Mat4 tm = m4_mul(turn, m);
         const Mesh *me = o->mesh;
         for (uint32_t v = o->vert_min; v <= o->vert_max && v < me->nverts; v++) {
-            Vec3 p = m4_point(&m, mesh_vertex(me, v));
-            Vec3 d = v3_sub(p, c);
-            double q = (double)d.x * d.x + (double)d.y * d.y + (double)d.z * d.z;
-            if (q > r2)
-                r2 = q;
+            Vec3 p = mesh_vertex(me, v);
+            box_add(wlo, whi, m4_point(&m, p));
+            box_add(lo, hi, m4_point(&tm, p));
         }
     }
-    s->cam.centre = c;
-    s->cam.radius = r2 > 0 ? (float)sqrt(r2) : 1.0f;
-    s->cam.pan = v3(0, 0, 0);
-    s->cam.zoom = 1;
+    c->pan = v3(0, 0, 0);
+    c->zoom = 1;
+    if (lo[0] > hi[0]) {
+        c->centre = v3(0, 0, 0);
+        c->radius = 1;
+        c->fit_half = v3(1, 1, 1);
+        return;
+    }
+    /* view-space box centre back to world space (turn is a rotation) */
+    Vec3 vc = v3((lo[0] + hi[0]) * 0.5f, (lo[1] + hi[1]) * 0.5f, (lo[2] + hi[2]) * 0.5f);
+    Mat4 back = turn;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            back.m[i][j] = turn.m[j][i];
+    c->centre = m4_dir(&back, vc);
+    Vec3 h = v3((hi[0] - lo[0]) * 0.5f, (hi[1] - lo[1]) * 0.5f, (hi[2] - lo[2]) * 0.5f);
+    float big = fmaxf(h.x, fmaxf(h.y, h.z));
+    float tiny = big > 0 ? big * 1e-3f : 1;
+    c->fit_half = v3(fmaxf(h.x, tiny), fmaxf(h.y, tiny), fmaxf(h.z, tiny));
+    /* radius: the world box's half diagonal, measured from the centre */
+    float r2 = 0;
+    for (int k = 0; k < 8; k++) {
+        Vec3 p = v3(k & 1 ? whi[0] : wlo[0], k & 2 ? whi[1] : wlo[1], k & 4 ? whi[2] : wlo[2]);
+        Vec3 d = v3_sub(p, c->centre);
+        float q = v3_dot(d, d);
+        if (q > r2)
+            r2 = q;
+    }
+    c->radius = r2 > 0 ? sqrtf(r2) : 1.0f;
 }
 
 void scene_reset(Scene *s)
