@@ -8,8 +8,9 @@ PKG_CFLAGS := $(filter-out -D%,$(shell pkg-config --cflags $(PKGS) 2>/dev/null))
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -ltinfo -lpng16)
 
 OPT     ?= -O2
+EXTRA_CFLAGS ?=
 CFLAGS  ?= $(OPT) -g
-CFLAGS  += -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude $(PKG_CFLAGS) -MMD -MP -pthread
+CFLAGS  += $(EXTRA_CFLAGS) -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude $(PKG_CFLAGS) -MMD -MP -pthread
 LDLIBS  += $(PKG_LIBS) -lm -pthread
 
 BUILD   ?= build
@@ -71,9 +72,10 @@ $(BUILD)/genassets: tools/genassets.c
 	$(CC) $(CFLAGS) -o $@ $< -lm
 
 install: $(BIN)
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/zview
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/zview
 	install -m 644 doc/zview.1 $(DESTDIR)$(PREFIX)/share/man/man1/zview.1
+	install -m 644 assets/demo.obj assets/demo.mtl $(DESTDIR)$(PREFIX)/share/zview/
 
 clean:
 	rm -rf build build-asan $(BIN)

@@ -1,0 +1,82 @@
+#!/bin/sh
+# The command line: exit statuses, error messages naming file and line,
+# one-shot outputs and their formats.
+. "$(dirname "$0")/lib.sh"
+Z=$ZVIEW
+
+expect_status "help exits 0" 0 "$Z" --help
+expect_out "help lists --algo" "--algo"
+expect_status "version exits 0" 0 "$Z" --version
+expect_out "version names zview" "zview"
+expect_status "unknown option is a usage error" 2 "$Z" --frobnicate
+expect_err "unknown option is named" "--frobnicate"
+expect_status "bad --size is a usage error" 2 "$Z" --size 12 assets/cube.obj
+expect_status "unknown algorithm is a usage error" 2 "$Z" --algo painter assets/cube.obj
+
+expect_status "missing file fails" 1 "$Z" --print no/such/file.obj
+expect_err "missing file is named" "no/such/file.obj"
+expect_status "a directory fails" 1 "$Z" --print assets
+expect_err "the directory is named" "assets"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n' >"$T/zero.obj"
+expect_status "index 0 fails" 1 "$Z" --print "$T/zero.obj"
+expect_err "index 0 names file and line" "zero.obj:4:"
+printf 'v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n' >"$T/nan.obj"
+expect_status "NaN fails" 1 "$Z" --print "$T/nan.obj"
+expect_err "NaN names file and line" "nan.obj:3:"
+: >"$T/empty.obj"
+expect_status "an empty file fails" 1 "$Z" --print "$T/empty.obj"
+head -c 3000 /dev/urandom >"$T/garbage.obj"
+"$Z" --print "$T/garbage.obj" >/dev/null 2>&1 </dev/null
+st=$?
+if [ "$st" -eq 1 ]; then ok "binary garbage fails cleanly"; else notok "binary garbage fails cleanly" "status $st"; fi
+
+# one-shot image outputs
+expect_status "-o png" 0 "$Z" assets/cube.obj --size 64x48 -o "$T/c.png"
+if [ "$(head -c 8 "$T/c.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; then ok "png signature"; else notok "png signature"; fi
+expect_status "-o ppm" 0 "$Z" assets/cube.obj --size 64x48 -o "$T/c.ppm"
+if [ "$(head -c 13 "$T/c.ppm")" = "$(printf 'P6\n64 48\n255')" ] && [ "$(wc -c <"$T/c.ppm")" -eq $((15 + 64 * 48 * 3)) ]; then
+    ok "ppm header and size"; else notok "ppm header and size" "$(head -c 20 "$T/c.ppm" | od -c | head -2)"; fi
+expect_status "-o with another extension is a usage error" 2 "$Z" assets/cube.obj -o "$T/c.jpg"
+
+# face ids and screen polygons
+expect_status "--dump-ids" 0 "$Z" assets/cube.obj --size 40x30 --dump-ids "$T/ids" -o "$T/x.ppm"
+if [ "$(wc -c <"$T/ids")" -eq $((40 * 30 * 4)) ]; then ok "dump-ids is W*H int32"; else notok "dump-ids is W*H int32" "$(wc -c <"$T/ids")"; fi
+# corner pixel is background (-1 = ff ff ff ff), the centre is a face (0..5)
+if [ "$(head -c 4 "$T/ids" | od -An -tx1 | tr -d ' \n')" = "ffffffff" ]; then ok "background id is -1"; else notok "background id is -1"; fi
+centre=$(od -An -t d4 -j $(((15 * 40 + 20) * 4)) -N 4 "$T/ids" | tr -d ' ')
+if [ "$centre" -ge 0 ] && [ "$centre" -le 5 ]; then ok "centre pixel is a cube face"; else notok "centre pixel is a cube face" "id $centre"; fi
+expect_status "--dump-screen" 0 "$Z" assets/cube.obj --size 40x30 --yaw 30 --pitch 20 --dump-screen "$T/s.obj" -o "$T/x.ppm"
+if [ "$(head -n 1 "$T/s.obj")" = "# zview screen 40 30" ]; then ok "dump-screen header"; else notok "dump-screen header" "$(head -n 1 "$T/s.obj")"; fi
+nf=$(grep -c '^f .* # [0-5]$' "$T/s.obj")
+if [ "$nf" -eq 6 ]; then ok "dump-screen has the 6 faces with ids"; else notok "dump-screen has the 6 faces with ids" "$nf"; fi
+"$Z" "$T/s.obj" --info >"$T/out" 2>"$T/err"
+expect_out "the dump is valid OBJ" "faces:      6"
+
+# --info
+expect_status "--info" 0 "$Z" --info assets/cube.obj
+expect_out "info vertices" "vertices:   8"
+expect_out "info faces" "faces:      6"
+expect_out "info triangles" "triangles:  12"
+expect_out "info speed" "MB/s"
+expect_status "--info --algo" 0 "$Z" --info --algo zbuffer --size 64x48 assets/cube.obj
+expect_out "info render stats" "overdraw"
+
+# --print: the committed frames, and stdout that is not a terminal
+for f in tests/expected/*.txt; do
+    args=$(head -n 1 "$f" | sed 's/^# args: //')
+    # shellcheck disable=SC2086
+    "$Z" $args >"$T/frame" 2>"$T/err" </dev/null
+    if tail -n +2 "$f" | cmp -s - "$T/frame"; then ok "print frame $(basename "$f")"; else
+        notok "print frame $(basename "$f")" "output differs from $f"; fi
+done
+"$Z" assets/cube.obj --size 30x10 --mode ascii --color none >"$T/a" </dev/null
+"$Z" assets/cube.obj --size 30x10 --mode ascii --color none --print >"$T/b" </dev/null
+if cmp -s "$T/a" "$T/b" && [ "$(wc -l <"$T/a")" -eq 10 ]; then ok "no terminal behaves like --print"; else notok "no terminal behaves like --print"; fi
+# every algorithm prints the same frame
+for a in scanline span hzb hzb-octree; do
+    "$Z" assets/scene.obj --size 60x20 --mode half --color 256 --algo "$a" --yaw 20 --pitch 15 >"$T/alg" </dev/null
+    "$Z" assets/scene.obj --size 60x20 --mode half --color 256 --algo zbuffer --yaw 20 --pitch 15 >"$T/ref" </dev/null
+    if cmp -s "$T/alg" "$T/ref"; then ok "print with $a equals zbuffer"; else notok "print with $a equals zbuffer"; fi
+done
+NO_COLOR=1 TERM=xterm-256color "$Z" assets/cube.obj --size 20x8 --mode half >"$T/nc" </dev/null
+if grep -q "$(printf '\033')" "$T/nc"; then notok "NO_COLOR gives no escapes"; else ok "NO_COLOR gives no escapes"; fi

@@ -1,0 +1,11 @@
+#!/bin/sh
+# Install what zview needs to build and test, on Debian or Ubuntu.
+# Run as root (or through sudo). Safe to run again.
+set -e
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libcriterion-dev tmux"
+SUDO=
+[ "$(id -u)" -eq 0 ] || SUDO=sudo
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends $PKGS >/dev/null
+echo "deps: installed $PKGS"
