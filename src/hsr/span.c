@@ -1,7 +1,561 @@
-/* TEMPORARY forwarder to the z-buffer until the real algorithm lands. */
+/* span.c: the interval (span) scanline algorithm. No depth row: each row
+ * is cut into intervals of samples covered by one constant set of
+ * polygons, and each interval is decided as a whole where that is
+ * provably what the z-buffer would pick.
+ *
+ * Per band of rows [y0, y1):
+ *  - Polygon table: the band's polygons counting-sorted by their first
+ *    row. When a polygon's row comes, its edges are set up with the
+ *    exact walkers of raster.h; edges that start lower down wait in a
+ *    per-row pending list (an index-linked pool, reused).
+ *  - Active edge list: an array of walkers sorted by crossing column.
+ *    New edges are radix-sorted and merged in; after edge_step the list
+ *    is re-sorted by insertion sort, which is near-linear because the
+ *    order changes little from one row to the next.
+ *  - Each row is one merged pass over the crossings, left to right. A
+ *    polygon's in/out flag toggles at each of its crossings (even-odd),
+ *    so between two distinct clamped crossing columns lies an interval
+ *    [xa, xb) whose covering set is constant; it is exactly the set of
+ *    polygons the z-buffer would test at those samples (rule 3).
+ *
+ * Deciding an interval (the only place depth matters):
+ *  - no polygon: background; one polygon: it wins every sample (the
+ *    z-buffer's (inf, -1) background always loses to a non-NaN depth;
+ *    polygons whose plane could give NaN or overflow never take a fast
+ *    path).
+ *  - several: evaluate every plane with plane_row/plane_at at xa and
+ *    xb - 1. The computed value f differs from the exact affine value g
+ *    of the same float coefficients by at most u(|a k| + |f|), u = 2^-24
+ *    (one rounding in the product, one in the sum); both magnitudes are
+ *    affine in the column, so their maxima M over the interval sit at the
+ *    ends. If one polygon w beats every other q at both ends by more than
+ *    T = 2^-19 M (four times the 2^-21 M needed: two errors at the end
+ *    plus two inside), then g_q - g_w, being affine and above 2E at both
+ *    ends, stays above it inside, so f_q > f_w strictly at every sample:
+ *    w is the z-buffer's (depth, id) minimum everywhere and fills the
+ *    interval (depth = its own plane_at value, as the z-buffer stores).
+ *  - otherwise, if the end winners differ (polygons pierce each other),
+ *    the interval is split where the two winners' planes cross and both
+ *    parts are decided again; if only one end is unsafe it is halved;
+ *    small pieces, near-ties at both ends and deep recursion fall back to
+ *    a per-sample minimum with hsr_wins over the set, the z-buffer's own
+ *    comparison. The split points are heuristics only: correctness rests
+ *    on the leaf decisions above.
+ * Cyclic overlap needs nothing special: decisions are per interval. */
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster.h"
 #include "hsr.h"
-extern const HsrAlgo hsr_zbuffer;
-static void *cr(void) { return hsr_zbuffer.create(); }
-static void de(void *s) { hsr_zbuffer.destroy(s); }
-static void re(void *s, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *st) { hsr_zbuffer.render(s, in, fb, y0, y1, st); }
-const HsrAlgo hsr_span = { .name = "span", .summary = "TODO", .create = cr, .destroy = de, .render = re };
+#include "span.h"
+#include "zbuffer.h"
+
+/* An active or pending edge: the exact walker and its polygon. */
+typedef struct {
+    EdgeWalk e;
+    uint32_t poly;
+    int32_t  next;          /* pending pool: next in the row's list */
+} SpanEdge;
+
+/* A polygon currently "in", with what depth needs at this row. */
+typedef struct {
+    uint32_t pi;
+    int32_t  face;
+    int32_t  x0;
+    float    a;
+    float    zrow;          /* plane_row() at the current row */
+    int      ok;            /* plane finite and small: fast paths allowed */
+} InPoly;
+
+typedef struct {
+    /* polygon table */
+    uint32_t *row_start;    /* band rows + 1 offsets into order */
+    uint32_t *order;        /* polygon indices by first row */
+    uint32_t  order_cap;
+    int       rows_cap;
+    /* pending edges: per-row lists in a pool with a free list */
+    int32_t  *pend_head;
+    int       pend_cap;
+    SpanEdge *pool;
+    int32_t   pool_n, pool_cap, pool_free;
+    /* active edge list, double-buffered */
+    SpanEdge *act, *nxt;
+    int       act_n, act_cap;
+    /* edges entering at this row, and their sort keys */
+    SpanEdge *fresh;
+    int       fresh_n, fresh_cap;
+    uint32_t *keys, *keys_tmp;  /* both hold keys_cap entries */
+    int       keys_cap;
+    /* the covering set */
+    InPoly   *in;
+    int       in_n, in_cap;
+    /* per-sample decisions taken (analysis) */
+    uint64_t  fallback;
+    uint64_t  covered;
+} SpanState;
+
+static void *span_create(void)
+{
+    SpanState *s = calloc(1, sizeof *s);
+    if (s)
+        s->pool_free = -1;
+    return s;
+}
+
+static void span_destroy(void *st)
+{
+    SpanState *s = st;
+    if (!s)
+        return;
+    free(s->row_start);
+    free(s->order);
+    free(s->pend_head);
+    free(s->pool);
+    free(s->act);
+    free(s->nxt);
+    free(s->fresh);
+    free(s->keys);
+    free(s->keys_tmp);
+    free(s->in);
+    free(s);
+}
+
+uint64_t span_fallback_samples(const void *st)
+{
+    return ((const SpanState *)st)->fallback;
+}
+
+/* Grow *p to hold n elements of size sz (never shrinks). */
+static int grow(void **p, int *cap, int n, size_t sz)
+{
+    if (n <= *cap)
+        return 0;
+    int c = *cap ? *cap : 64;
+    while (c < n)
+        c *= 2;
+    void *q = realloc(*p, (size_t)c * sz);
+    if (!q)
+        return -1;
+    *p = q;
+    *cap = c;
+    return 0;
+}
+
+/* ==== filling ==== */
+
+static void fill_bg(int32_t *ids, float *dep, int xa, int xb)
+{
+    for (int i = xa; i < xb; i++) {
+        ids[i] = -1;
+        dep[i] = INFINITY;
+    }
+}
+
+static void fill_poly(int32_t *ids, float *dep, const InPoly *p, int xa, int xb)
+{
+    int32_t face = p->face, x0 = p->x0;
+    float zr = p->zrow, a = p->a;
+    for (int i = xa; i < xb; i++) {
+        ids[i] = face;
+        dep[i] = zr + a * (float)(i - x0);   /* = plane_at() */
+    }
+}
+
+/* The z-buffer's own decision, sample by sample. */
+static void fill_per_sample(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
+{
+    const InPoly *in = s->in;
+    int n = s->in_n;
+    for (int i = xa; i < xb; i++) {
+        float bz = INFINITY;
+        int32_t bid = -1;
+        for (int k = 0; k < n; k++) {
+            float z = in[k].zrow + in[k].a * (float)(i - in[k].x0);
+            if (hsr_wins(z, in[k].face, bz, bid)) {
+                bz = z;
+                bid = in[k].face;
+            }
+        }
+        ids[i] = bid;
+        dep[i] = bz;
+    }
+    s->fallback += (uint64_t)(xb - xa);
+}
+
+/* ==== deciding an interval covered by several polygons ==== */
+
+#define SPAN_MAX_DEPTH 24
+#define SPAN_MIN_SPLIT 4
+
+static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int depth)
+{
+    const InPoly *in = s->in;
+    int n = s->in_n;
+    int xl = xb - 1;
+    if (xb - xa <= 1 || depth > SPAN_MAX_DEPTH) {
+        fill_per_sample(s, ids, dep, xa, xb);
+        return;
+    }
+    /* end values, end winners and the magnitude bound M */
+    int wa = -1, wb = -1;
+    float za = INFINITY, zb = INFINITY, mag = 0;
+    for (int k = 0; k < n; k++) {
+        if (!in[k].ok) {
+            fill_per_sample(s, ids, dep, xa, xb);
+            return;
+        }
+        float pa = in[k].a * (float)(xa - in[k].x0), pb = in[k].a * (float)(xl - in[k].x0);
+        float fa = in[k].zrow + pa, fb = in[k].zrow + pb;
+        if (wa < 0 || hsr_wins(fa, in[k].face, za, in[wa].face)) {
+            wa = k;
+            za = fa;
+        }
+        if (wb < 0 || hsr_wins(fb, in[k].face, zb, in[wb].face)) {
+            wb = k;
+            zb = fb;
+        }
+        float m = fmaxf(fmaxf(fabsf(pa), fabsf(pb)), fmaxf(fabsf(fa), fabsf(fb)));
+        mag = fmaxf(mag, m);
+    }
+    float t = mag * (1.0f / (1 << 19)) + 1e-30f;
+    if (wa == wb) {
+        /* safe at each end against every other polygon? */
+        int safe_a = 1, safe_b = 1;
+        for (int k = 0; k < n; k++) {
+            if (k == wa)
+                continue;
+            float pa = in[k].zrow + in[k].a * (float)(xa - in[k].x0);
+            float pb = in[k].zrow + in[k].a * (float)(xl - in[k].x0);
+            if (!(pa - za > t))
+                safe_a = 0;
+            if (!(pb - zb > t))
+                safe_b = 0;
+        }
+        if (safe_a && safe_b) {
+            fill_poly(ids, dep, &in[wa], xa, xb);
+            return;
+        }
+        if ((!safe_a && !safe_b) || xb - xa <= SPAN_MIN_SPLIT) {
+            /* near-equal at both ends: near-equal throughout */
+            fill_per_sample(s, ids, dep, xa, xb);
+            return;
+        }
+        int c = xa + (xb - xa) / 2;
+        resolve(s, ids, dep, xa, c, depth + 1);
+        resolve(s, ids, dep, c, xb, depth + 1);
+        return;
+    }
+    if (xb - xa <= SPAN_MIN_SPLIT) {
+        fill_per_sample(s, ids, dep, xa, xb);
+        return;
+    }
+    /* wa wins at xa, wb at xl: split where their planes cross */
+    float da = (in[wb].zrow + in[wb].a * (float)(xa - in[wb].x0)) - za;     /* >= 0 */
+    float db = zb - (in[wa].zrow + in[wa].a * (float)(xl - in[wa].x0));     /* <= 0 */
+    float den = da - db;
+    int c = xa + (xb - xa) / 2;
+    if (den > 0 && isfinite(den)) {
+        float f = da / den * (float)(xl - xa);
+        if (f >= 0 && f < (float)(xl - xa))
+            c = xa + (int)f + 1;
+    }
+    if (c <= xa)
+        c = xa + 1;
+    if (c >= xb)
+        c = xb - 1;
+    resolve(s, ids, dep, xa, c, depth + 1);
+    resolve(s, ids, dep, c, xb, depth + 1);
+}
+
+static void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
+{
+    if (s->in_n == 0) {
+        fill_bg(ids, dep, xa, xb);
+        return;
+    }
+    s->covered += (uint64_t)(xb - xa);
+    if (s->in_n == 1) {
+        if (s->in[0].ok)
+            fill_poly(ids, dep, &s->in[0], xa, xb);
+        else
+            fill_per_sample(s, ids, dep, xa, xb);
+        return;
+    }
+    resolve(s, ids, dep, xa, xb, 0);
+}
+
+/* Flip polygon pi's in/out flag at row j. Returns -1 on OOM. */
+static int toggle(SpanState *s, const ScreenPolys *sp, uint32_t pi, int j)
+{
+    InPoly *in = s->in;
+    int n = s->in_n;
+    for (int k = 0; k < n; k++) {
+        if (in[k].pi == pi) {
+            in[k] = in[n - 1];
+            s->in_n = n - 1;
+            return 0;
+        }
+    }
+    if (grow((void **)&s->in, &s->in_cap, n + 1, sizeof *s->in))
+        return -1;
+    const ScreenPoly *p = &sp->polys[pi];
+    InPoly *q = &s->in[n];
+    q->pi = pi;
+    q->face = p->face;
+    q->x0 = p->x0;
+    q->a = p->a;
+    q->zrow = plane_row(p, j);
+    q->ok = fabsf(p->a) < 1e30f && fabsf(p->b) < 1e30f && fabsf(p->zc) < 1e30f;
+    s->in_n = n + 1;
+    return 0;
+}
+
+/* ==== edge tables ==== */
+
+static inline int32_t key_of(const SpanEdge *e, int32_t w)
+{
+    return clamp_col(e->e.xi, w);
+}
+
+/* Order s->fresh by clamped column: s->keys gets the entry indices in
+ * that order. Insertion sort when short, else an LSD radix sort in two
+ * 8-bit passes (clamped columns are at most SCREEN_MAX = 2^14). */
+static void sort_fresh(SpanState *s, int32_t w)
+{
+    int n = s->fresh_n;
+    uint32_t *k = s->keys;
+    if (n < 48) {
+        for (int i = 0; i < n; i++) {
+            int32_t x = key_of(&s->fresh[i], w);
+            int q = i;
+            while (q > 0 && key_of(&s->fresh[k[q - 1]], w) > x) {
+                k[q] = k[q - 1];
+                q--;
+            }
+            k[q] = (uint32_t)i;
+        }
+        return;
+    }
+    uint32_t *t = s->keys_tmp;
+    uint32_t cnt[256];
+    /* pass 1: low byte into t */
+    memset(cnt, 0, sizeof cnt);
+    for (int i = 0; i < n; i++)
+        cnt[key_of(&s->fresh[i], w) & 255]++;
+    uint32_t sum = 0;
+    for (int b = 0; b < 256; b++) {
+        uint32_t c = cnt[b];
+        cnt[b] = sum;
+        sum += c;
+    }
+    for (int i = 0; i < n; i++)
+        t[cnt[key_of(&s->fresh[i], w) & 255]++] = (uint32_t)i;
+    /* pass 2: high byte into k (keys < 2^15: 7 bits suffice, 8 are safe) */
+    memset(cnt, 0, sizeof cnt);
+    for (int i = 0; i < n; i++)
+        cnt[(key_of(&s->fresh[i], w) >> 8) & 255]++;
+    sum = 0;
+    for (int b = 0; b < 256; b++) {
+        uint32_t c = cnt[b];
+        cnt[b] = sum;
+        sum += c;
+    }
+    for (int i = 0; i < n; i++) {
+        uint32_t e = t[i];
+        k[cnt[(key_of(&s->fresh[e], w) >> 8) & 255]++] = e;
+    }
+}
+
+/* Set up polygon pi's edges from row j: the ones counting at j join the
+ * fresh list, lower ones wait in their row's pending list. */
+static int activate(SpanState *s, const ScreenPolys *sp, uint32_t pi, int j, int y0, int y1)
+{
+    const ScreenPoly *p = &sp->polys[pi];
+    uint32_t nv = screen_poly_nverts(sp, pi);
+    const ScreenVert *v = &sp->verts[p->first];
+    if (grow((void **)&s->fresh, &s->fresh_cap, s->fresh_n + (int)nv, sizeof *s->fresh))
+        return -1;
+    for (uint32_t k = 0; k < nv; k++) {
+        EdgeWalk e;
+        if (!edge_setup(&e, &v[k], &v[k + 1 < nv ? k + 1 : 0], j) || e.row1 <= j || e.row0 >= y1)
+            continue;
+        if (e.row0 <= j) {
+            SpanEdge *f = &s->fresh[s->fresh_n++];
+            f->e = e;
+            f->poly = pi;
+            continue;
+        }
+        int32_t slot = s->pool_free;
+        if (slot >= 0) {
+            s->pool_free = s->pool[slot].next;
+        } else {
+            if (grow((void **)&s->pool, &s->pool_cap, s->pool_n + 1, sizeof *s->pool))
+                return -1;
+            slot = s->pool_n++;
+        }
+        SpanEdge *q = &s->pool[slot];
+        q->e = e;
+        q->poly = pi;
+        q->next = s->pend_head[e.row0 - y0];
+        s->pend_head[e.row0 - y0] = slot;
+    }
+    return 0;
+}
+
+/* Counting sort of the band's polygons by first row. */
+static int build_table(SpanState *s, const ScreenPolys *sp, int y0, int y1, uint64_t *npolys)
+{
+    int rows = y1 - y0;
+    if (grow((void **)&s->row_start, &s->rows_cap, rows + 2, sizeof *s->row_start))
+        return -1;
+    if (grow((void **)&s->pend_head, &s->pend_cap, rows, sizeof *s->pend_head))
+        return -1;
+    uint32_t *rs = s->row_start;
+    memset(rs, 0, (size_t)(rows + 2) * sizeof *rs);
+    for (int r = 0; r < rows; r++)
+        s->pend_head[r] = -1;
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        const ScreenPoly *p = &sp->polys[i];
+        if (p->y1 <= y0 || p->y0 >= y1)
+            continue;
+        int r = p->y0 > y0 ? p->y0 - y0 : 0;
+        rs[r + 2]++;
+        n++;
+    }
+    if (n > s->order_cap) {
+        uint32_t *q = realloc(s->order, (size_t)n * sizeof *q);
+        if (!q)
+            return -1;
+        s->order = q;
+        s->order_cap = n;
+    }
+    for (int r = 2; r < rows + 2; r++)
+        rs[r] += rs[r - 1];
+    /* rs[r + 1] is now the start of row r; placing advances it to the end */
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        const ScreenPoly *p = &sp->polys[i];
+        if (p->y1 <= y0 || p->y0 >= y1)
+            continue;
+        int r = p->y0 > y0 ? p->y0 - y0 : 0;
+        s->order[rs[r + 1]++] = i;
+    }
+    *npolys = n;
+    return 0;
+}
+
+/* ==== the scan ==== */
+
+static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *stats)
+{
+    SpanState *s = st;
+    const ScreenPolys *sp = in->sp;
+    int32_t w = fb->w;
+    double t0 = now_ms();
+    uint64_t npolys = 0;
+    s->act_n = 0;
+    s->in_n = 0;
+    s->pool_n = 0;
+    s->pool_free = -1;
+    s->covered = 0;
+    if (build_table(s, sp, y0, y1, &npolys))
+        goto oom;
+    stats->build_ms += now_ms() - t0;
+    stats->polys_in += npolys;
+
+    for (int j = y0; j < y1; j++) {
+        int r = j - y0;
+        int32_t *ids = fb->ids + (size_t)j * w;
+        float *dep = fb->depth + (size_t)j * w;
+        /* edges entering at this row */
+        s->fresh_n = 0;
+        for (uint32_t k = s->row_start[r]; k < s->row_start[r + 1]; k++)
+            if (activate(s, sp, s->order[k], j, y0, y1))
+                goto oom;
+        for (int32_t q = s->pend_head[r]; q >= 0;) {
+            if (grow((void **)&s->fresh, &s->fresh_cap, s->fresh_n + 1, sizeof *s->fresh))
+                goto oom;
+            SpanEdge *e = &s->pool[q];
+            s->fresh[s->fresh_n++] = *e;
+            int32_t nx = e->next;
+            e->next = s->pool_free;
+            s->pool_free = q;
+            q = nx;
+        }
+        if (s->fresh_n > s->keys_cap) {
+            int kc = s->keys_cap;
+            if (grow((void **)&s->keys, &kc, s->fresh_n, sizeof *s->keys))
+                goto oom;
+            uint32_t *t = realloc(s->keys_tmp, (size_t)kc * sizeof *t);
+            if (!t)
+                goto oom;
+            s->keys_tmp = t;
+            s->keys_cap = kc;
+        }
+        sort_fresh(s, w);
+        int total = s->act_n + s->fresh_n;
+        int cap = s->act_cap;
+        if (total > cap) {
+            int c2 = cap;
+            if (grow((void **)&s->act, &cap, total, sizeof *s->act) ||
+                grow((void **)&s->nxt, &c2, total, sizeof *s->nxt))
+                goto oom;
+            s->act_cap = cap;
+        }
+        /* one merged pass over the row's crossings */
+        int ia = 0, inew = 0, nb = 0, cur = 0;
+        const SpanEdge *act = s->act;
+        SpanEdge *nxt = s->nxt;
+        while (ia < s->act_n || inew < s->fresh_n) {
+            const SpanEdge *e;
+            if (inew >= s->fresh_n ||
+                (ia < s->act_n && key_of(&act[ia], w) <= key_of(&s->fresh[s->keys[inew]], w)))
+                e = &act[ia++];
+            else
+                e = &s->fresh[s->keys[inew++]];
+            int x = clamp_col(e->e.xi, w);
+            if (x > cur) {
+                emit(s, ids, dep, cur, x);
+                cur = x;
+            }
+            if (toggle(s, sp, e->poly, j))
+                goto oom;
+            if (e->e.row1 > j + 1) {
+                nxt[nb] = *e;
+                edge_step(&nxt[nb].e);
+                /* keep sorted: the order changes little from row to row */
+                int q = nb++;
+                int32_t kx = key_of(&nxt[q], w);
+                if (q > 0 && key_of(&nxt[q - 1], w) > kx) {
+                    SpanEdge tmp = nxt[q];
+                    while (q > 0 && key_of(&nxt[q - 1], w) > kx) {
+                        nxt[q] = nxt[q - 1];
+                        q--;
+                    }
+                    nxt[q] = tmp;
+                }
+            }
+        }
+        if (cur < w)
+            emit(s, ids, dep, cur, w);
+        s->in_n = 0;    /* even crossings per polygon: already empty */
+        s->nxt = s->act;
+        s->act = nxt;
+        s->act_n = nb;
+    }
+    stats->pixels_written += s->covered;
+    return;
+oom:
+    /* out of memory: leave a defined image (background) */
+    fbuf_clear_rows(fb, y0, y1);
+}
+
+const HsrAlgo hsr_span = {
+    .name = "span",
+    .summary = "interval scanline: whole spans decided at their ends",
+    .create = span_create,
+    .destroy = span_destroy,
+    .render = span_render,
+};
