@@ -52,29 +52,49 @@
 #include "span.h"
 #include "zbuffer.h"
 
-/* An active or pending edge: the exact walker and its polygon. */
+/* A polygon of the table, in first-row order: a copy of what activation
+ * needs, so the scan reads the table front to back instead of jumping
+ * around the front end's arrays. */
+typedef struct {
+    ScreenPoly p;
+    uint32_t   pi;              /* index in sp->polys */
+    ScreenVert v[3];            /* the corners of a triangle */
+} PolyRec;
+
+/* A polygon with live edges: its plane and its place in the covering
+ * set. Slots are reused as polygons finish, so they stay in cache. */
+typedef struct {
+    ScreenPoly p;
+    int32_t    live;            /* edges active or pending */
+    int32_t    inpos;           /* index in the covering set, -1 = out */
+    int32_t    ok;              /* plane finite and small: fast paths allowed */
+    int32_t    next_free;
+} Slot;
+
+/* An active or pending edge: the exact walker and its polygon's slot. */
 typedef struct {
     EdgeWalk e;
-    uint32_t poly;
-    int32_t  next;          /* pending pool: next in the row's list */
+    int32_t  slot;
+    int32_t  next;              /* pending pool: next in the row's list */
 } SpanEdge;
 
-/* A polygon currently "in", with what depth needs at this row. */
+/* A polygon currently "in", with its plane row value at this row. */
 typedef struct {
-    uint32_t pi;
-    int32_t  face;
-    int32_t  x0;
-    float    a;
-    float    zrow;          /* plane_row() at the current row */
-    int      ok;            /* plane finite and small: fast paths allowed */
+    ScreenPoly p;               /* copy of the plane (plane_at's input) */
+    float      zrow;            /* plane_row() at the current row */
+    int32_t    slot;
+    int32_t    ok;
 } InPoly;
 
 typedef struct {
     /* polygon table */
-    uint32_t *row_start;    /* band rows + 1 offsets into order */
-    uint32_t *order;        /* polygon indices by first row */
-    uint32_t  order_cap;
+    uint32_t *row_start;        /* band rows + 2 offsets into recs */
     int       rows_cap;
+    PolyRec  *recs;
+    uint32_t  recs_cap;
+    /* slots */
+    Slot     *slots;
+    int       slots_n, slots_cap, slots_free;
     /* pending edges: per-row lists in a pool with a free list */
     int32_t  *pend_head;
     int       pend_cap;
@@ -83,7 +103,7 @@ typedef struct {
     /* active edge list, double-buffered */
     SpanEdge *act, *nxt;
     int       act_n, act_cap;
-    /* edges entering at this row, and their sort keys */
+    /* edges entering at this row, and their order */
     SpanEdge *fresh;
     int       fresh_n, fresh_cap;
     uint32_t *keys, *keys_tmp;  /* both hold keys_cap entries */
@@ -98,10 +118,7 @@ typedef struct {
 
 static void *span_create(void)
 {
-    SpanState *s = calloc(1, sizeof *s);
-    if (s)
-        s->pool_free = -1;
-    return s;
+    return calloc(1, sizeof(SpanState));
 }
 
 static void span_destroy(void *st)
@@ -110,7 +127,8 @@ static void span_destroy(void *st)
     if (!s)
         return;
     free(s->row_start);
-    free(s->order);
+    free(s->recs);
+    free(s->slots);
     free(s->pend_head);
     free(s->pool);
     free(s->act);
@@ -153,13 +171,14 @@ static void fill_bg(int32_t *ids, float *dep, int xa, int xb)
     }
 }
 
-static void fill_poly(int32_t *ids, float *dep, const InPoly *p, int xa, int xb)
+static void fill_poly(int32_t *ids, float *dep, const InPoly *q, int xa, int xb)
 {
-    int32_t face = p->face, x0 = p->x0;
-    float zr = p->zrow, a = p->a;
+    ScreenPoly p = q->p;        /* a local copy: stores cannot alias it */
+    float zr = q->zrow;
+    int32_t face = p.face;
     for (int i = xa; i < xb; i++) {
         ids[i] = face;
-        dep[i] = zr + a * (float)(i - x0);   /* = plane_at() */
+        dep[i] = plane_at(&p, zr, i);
     }
 }
 
@@ -172,10 +191,10 @@ static void fill_per_sample(SpanState *s, int32_t *ids, float *dep, int xa, int 
         float bz = INFINITY;
         int32_t bid = -1;
         for (int k = 0; k < n; k++) {
-            float z = in[k].zrow + in[k].a * (float)(i - in[k].x0);
-            if (hsr_wins(z, in[k].face, bz, bid)) {
+            float z = plane_at(&in[k].p, in[k].zrow, i);
+            if (hsr_wins(z, in[k].p.face, bz, bid)) {
                 bz = z;
-                bid = in[k].face;
+                bid = in[k].p.face;
             }
         }
         ids[i] = bid;
@@ -189,6 +208,11 @@ static void fill_per_sample(SpanState *s, int32_t *ids, float *dep, int xa, int 
 #define SPAN_MAX_DEPTH 24
 #define SPAN_MIN_SPLIT 4
 
+static inline float maxf(float a, float b)
+{
+    return a > b ? a : b;
+}
+
 static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int depth)
 {
     const InPoly *in = s->in;
@@ -199,25 +223,26 @@ static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int 
         return;
     }
     /* end values, end winners and the magnitude bound M */
-    int wa = -1, wb = -1;
+    int wa = 0, wb = 0;
     float za = INFINITY, zb = INFINITY, mag = 0;
     for (int k = 0; k < n; k++) {
         if (!in[k].ok) {
             fill_per_sample(s, ids, dep, xa, xb);
             return;
         }
-        float pa = in[k].a * (float)(xa - in[k].x0), pb = in[k].a * (float)(xl - in[k].x0);
-        float fa = in[k].zrow + pa, fb = in[k].zrow + pb;
-        if (wa < 0 || hsr_wins(fa, in[k].face, za, in[wa].face)) {
+        const ScreenPoly *p = &in[k].p;
+        float pa = p->a * (float)(xa - p->x0), pb = p->a * (float)(xl - p->x0);
+        float fa = plane_at(p, in[k].zrow, xa), fb = plane_at(p, in[k].zrow, xl);
+        if (k == 0 || hsr_wins(fa, p->face, za, in[wa].p.face)) {
             wa = k;
             za = fa;
         }
-        if (wb < 0 || hsr_wins(fb, in[k].face, zb, in[wb].face)) {
+        if (k == 0 || hsr_wins(fb, p->face, zb, in[wb].p.face)) {
             wb = k;
             zb = fb;
         }
-        float m = fmaxf(fmaxf(fabsf(pa), fabsf(pb)), fmaxf(fabsf(fa), fabsf(fb)));
-        mag = fmaxf(mag, m);
+        float m = maxf(maxf(fabsf(pa), fabsf(pb)), maxf(fabsf(fa), fabsf(fb)));
+        mag = maxf(mag, m);
     }
     float t = mag * (1.0f / (1 << 19)) + 1e-30f;
     if (wa == wb) {
@@ -226,11 +251,10 @@ static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int 
         for (int k = 0; k < n; k++) {
             if (k == wa)
                 continue;
-            float pa = in[k].zrow + in[k].a * (float)(xa - in[k].x0);
-            float pb = in[k].zrow + in[k].a * (float)(xl - in[k].x0);
-            if (!(pa - za > t))
+            float fa = plane_at(&in[k].p, in[k].zrow, xa), fb = plane_at(&in[k].p, in[k].zrow, xl);
+            if (!(fa - za > t))
                 safe_a = 0;
-            if (!(pb - zb > t))
+            if (!(fb - zb > t))
                 safe_b = 0;
         }
         if (safe_a && safe_b) {
@@ -252,8 +276,8 @@ static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int 
         return;
     }
     /* wa wins at xa, wb at xl: split where their planes cross */
-    float da = (in[wb].zrow + in[wb].a * (float)(xa - in[wb].x0)) - za;     /* >= 0 */
-    float db = zb - (in[wa].zrow + in[wa].a * (float)(xl - in[wa].x0));     /* <= 0 */
+    float da = plane_at(&in[wb].p, in[wb].zrow, xa) - za;     /* >= 0 */
+    float db = zb - plane_at(&in[wa].p, in[wa].zrow, xl);     /* <= 0 */
     float den = da - db;
     int c = xa + (xb - xa) / 2;
     if (den > 0 && isfinite(den)) {
@@ -269,45 +293,40 @@ static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int 
     resolve(s, ids, dep, c, xb, depth + 1);
 }
 
-static void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
+static inline void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
 {
     if (s->in_n == 0) {
         fill_bg(ids, dep, xa, xb);
         return;
     }
     s->covered += (uint64_t)(xb - xa);
-    if (s->in_n == 1) {
-        if (s->in[0].ok)
-            fill_poly(ids, dep, &s->in[0], xa, xb);
-        else
-            fill_per_sample(s, ids, dep, xa, xb);
-        return;
-    }
-    resolve(s, ids, dep, xa, xb, 0);
+    if (s->in_n == 1 && s->in[0].ok)
+        fill_poly(ids, dep, &s->in[0], xa, xb);
+    else
+        resolve(s, ids, dep, xa, xb, 0);
 }
 
-/* Flip polygon pi's in/out flag at row j. Returns -1 on OOM. */
-static int toggle(SpanState *s, const ScreenPolys *sp, uint32_t pi, int j)
+/* Flip a polygon's in/out flag at row j. Returns -1 on OOM. */
+static inline int toggle(SpanState *s, int32_t slot, int j)
 {
-    InPoly *in = s->in;
+    Slot *sl = &s->slots[slot];
     int n = s->in_n;
-    for (int k = 0; k < n; k++) {
-        if (in[k].pi == pi) {
-            in[k] = in[n - 1];
-            s->in_n = n - 1;
-            return 0;
-        }
+    if (sl->inpos >= 0) {
+        int k = sl->inpos;
+        s->in[k] = s->in[n - 1];
+        s->slots[s->in[k].slot].inpos = k;
+        sl->inpos = -1;
+        s->in_n = n - 1;
+        return 0;
     }
-    if (grow((void **)&s->in, &s->in_cap, n + 1, sizeof *s->in))
+    if (n + 1 > s->in_cap && grow((void **)&s->in, &s->in_cap, n + 1, sizeof *s->in))
         return -1;
-    const ScreenPoly *p = &sp->polys[pi];
     InPoly *q = &s->in[n];
-    q->pi = pi;
-    q->face = p->face;
-    q->x0 = p->x0;
-    q->a = p->a;
-    q->zrow = plane_row(p, j);
-    q->ok = fabsf(p->a) < 1e30f && fabsf(p->b) < 1e30f && fabsf(p->zc) < 1e30f;
+    q->p = sl->p;
+    q->zrow = plane_row(&sl->p, j);
+    q->slot = slot;
+    q->ok = sl->ok;
+    sl->inpos = n;
     s->in_n = n + 1;
     return 0;
 }
@@ -340,77 +359,101 @@ static void sort_fresh(SpanState *s, int32_t w)
     }
     uint32_t *t = s->keys_tmp;
     uint32_t cnt[256];
-    /* pass 1: low byte into t */
-    memset(cnt, 0, sizeof cnt);
-    for (int i = 0; i < n; i++)
-        cnt[key_of(&s->fresh[i], w) & 255]++;
-    uint32_t sum = 0;
-    for (int b = 0; b < 256; b++) {
-        uint32_t c = cnt[b];
-        cnt[b] = sum;
-        sum += c;
-    }
-    for (int i = 0; i < n; i++)
-        t[cnt[key_of(&s->fresh[i], w) & 255]++] = (uint32_t)i;
-    /* pass 2: high byte into k (keys < 2^15: 7 bits suffice, 8 are safe) */
-    memset(cnt, 0, sizeof cnt);
-    for (int i = 0; i < n; i++)
-        cnt[(key_of(&s->fresh[i], w) >> 8) & 255]++;
-    sum = 0;
-    for (int b = 0; b < 256; b++) {
-        uint32_t c = cnt[b];
-        cnt[b] = sum;
-        sum += c;
-    }
-    for (int i = 0; i < n; i++) {
-        uint32_t e = t[i];
-        k[cnt[(key_of(&s->fresh[e], w) >> 8) & 255]++] = e;
+    for (int pass = 0; pass < 2; pass++) {
+        int sh = pass * 8;
+        uint32_t *src = pass ? t : NULL, *dst = pass ? k : t;
+        memset(cnt, 0, sizeof cnt);
+        for (int i = 0; i < n; i++)
+            cnt[(key_of(&s->fresh[i], w) >> sh) & 255]++;
+        uint32_t sum = 0;
+        for (int b = 0; b < 256; b++) {
+            uint32_t c = cnt[b];
+            cnt[b] = sum;
+            sum += c;
+        }
+        for (int i = 0; i < n; i++) {
+            uint32_t e = src ? src[i] : (uint32_t)i;
+            dst[cnt[(key_of(&s->fresh[e], w) >> sh) & 255]++] = e;
+        }
     }
 }
 
-/* Set up polygon pi's edges from row j: the ones counting at j join the
- * fresh list, lower ones wait in their row's pending list. */
-static int activate(SpanState *s, const ScreenPolys *sp, uint32_t pi, int j, int y0, int y1)
+/* Take a free slot for polygon rec. Returns its index, -1 on OOM. */
+static int32_t slot_take(SpanState *s, const PolyRec *rec)
 {
-    const ScreenPoly *p = &sp->polys[pi];
-    uint32_t nv = screen_poly_nverts(sp, pi);
-    const ScreenVert *v = &sp->verts[p->first];
-    if (grow((void **)&s->fresh, &s->fresh_cap, s->fresh_n + (int)nv, sizeof *s->fresh))
+    int32_t k = s->slots_free;
+    if (k >= 0) {
+        s->slots_free = s->slots[k].next_free;
+    } else {
+        if (grow((void **)&s->slots, &s->slots_cap, s->slots_n + 1, sizeof *s->slots))
+            return -1;
+        k = s->slots_n++;
+    }
+    Slot *sl = &s->slots[k];
+    sl->p = rec->p;
+    sl->live = 0;
+    sl->inpos = -1;
+    sl->ok = fabsf(rec->p.a) < 1e30f && fabsf(rec->p.b) < 1e30f && fabsf(rec->p.zc) < 1e30f;
+    return k;
+}
+
+static inline void slot_release(SpanState *s, int32_t k)
+{
+    if (--s->slots[k].live == 0) {
+        s->slots[k].next_free = s->slots_free;
+        s->slots_free = k;
+    }
+}
+
+/* Set up a polygon's edges from row j: the ones counting at j join the
+ * fresh list, lower ones wait in their row's pending list. */
+static int activate(SpanState *s, const ScreenPolys *sp, const PolyRec *rec, int j, int y0, int y1)
+{
+    uint32_t nv = screen_poly_nverts(sp, rec->pi);
+    const ScreenVert *v = nv == 3 ? rec->v : &sp->verts[rec->p.first];
+    if (s->fresh_n + (int)nv > s->fresh_cap &&
+        grow((void **)&s->fresh, &s->fresh_cap, s->fresh_n + (int)nv, sizeof *s->fresh))
         return -1;
+    int32_t slot = slot_take(s, rec);
+    if (slot < 0)
+        return -1;
+    int live = 0;
     for (uint32_t k = 0; k < nv; k++) {
         EdgeWalk e;
         if (!edge_setup(&e, &v[k], &v[k + 1 < nv ? k + 1 : 0], j) || e.row1 <= j || e.row0 >= y1)
             continue;
+        live++;
         if (e.row0 <= j) {
             SpanEdge *f = &s->fresh[s->fresh_n++];
             f->e = e;
-            f->poly = pi;
+            f->slot = slot;
             continue;
         }
-        int32_t slot = s->pool_free;
-        if (slot >= 0) {
-            s->pool_free = s->pool[slot].next;
+        int32_t q = s->pool_free;
+        if (q >= 0) {
+            s->pool_free = s->pool[q].next;
         } else {
             if (grow((void **)&s->pool, &s->pool_cap, s->pool_n + 1, sizeof *s->pool))
                 return -1;
-            slot = s->pool_n++;
+            q = s->pool_n++;
         }
-        SpanEdge *q = &s->pool[slot];
-        q->e = e;
-        q->poly = pi;
-        q->next = s->pend_head[e.row0 - y0];
-        s->pend_head[e.row0 - y0] = slot;
+        SpanEdge *pe = &s->pool[q];
+        pe->e = e;
+        pe->slot = slot;
+        pe->next = s->pend_head[e.row0 - y0];
+        s->pend_head[e.row0 - y0] = q;
     }
+    s->slots[slot].live = live + 1;
+    slot_release(s, slot);      /* frees it at once when no edge counts */
     return 0;
 }
 
-/* Counting sort of the band's polygons by first row. */
+/* Counting sort of the band's polygons by first row, copied into recs. */
 static int build_table(SpanState *s, const ScreenPolys *sp, int y0, int y1, uint64_t *npolys)
 {
     int rows = y1 - y0;
-    if (grow((void **)&s->row_start, &s->rows_cap, rows + 2, sizeof *s->row_start))
-        return -1;
-    if (grow((void **)&s->pend_head, &s->pend_cap, rows, sizeof *s->pend_head))
+    if (grow((void **)&s->row_start, &s->rows_cap, rows + 2, sizeof *s->row_start) ||
+        grow((void **)&s->pend_head, &s->pend_cap, rows, sizeof *s->pend_head))
         return -1;
     uint32_t *rs = s->row_start;
     memset(rs, 0, (size_t)(rows + 2) * sizeof *rs);
@@ -425,12 +468,12 @@ static int build_table(SpanState *s, const ScreenPolys *sp, int y0, int y1, uint
         rs[r + 2]++;
         n++;
     }
-    if (n > s->order_cap) {
-        uint32_t *q = realloc(s->order, (size_t)n * sizeof *q);
+    if (n > s->recs_cap) {
+        PolyRec *q = realloc(s->recs, (size_t)n * sizeof *q);
         if (!q)
             return -1;
-        s->order = q;
-        s->order_cap = n;
+        s->recs = q;
+        s->recs_cap = n;
     }
     for (int r = 2; r < rows + 2; r++)
         rs[r] += rs[r - 1];
@@ -440,13 +483,32 @@ static int build_table(SpanState *s, const ScreenPolys *sp, int y0, int y1, uint
         if (p->y1 <= y0 || p->y0 >= y1)
             continue;
         int r = p->y0 > y0 ? p->y0 - y0 : 0;
-        s->order[rs[r + 1]++] = i;
+        PolyRec *rec = &s->recs[rs[r + 1]++];
+        rec->p = *p;
+        rec->pi = i;
+        if (sp->polys[i + 1].first - p->first == 3)
+            memcpy(rec->v, &sp->verts[p->first], sizeof rec->v);
     }
     *npolys = n;
     return 0;
 }
 
 /* ==== the scan ==== */
+
+static int grow_fresh_order(SpanState *s)
+{
+    if (s->fresh_n <= s->keys_cap)
+        return 0;
+    int kc = s->keys_cap;
+    if (grow((void **)&s->keys, &kc, s->fresh_n, sizeof *s->keys))
+        return -1;
+    uint32_t *t = realloc(s->keys_tmp, (size_t)kc * sizeof *t);
+    if (!t)
+        return -1;
+    s->keys_tmp = t;
+    s->keys_cap = kc;
+    return 0;
+}
 
 static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *stats)
 {
@@ -459,6 +521,8 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
     s->in_n = 0;
     s->pool_n = 0;
     s->pool_free = -1;
+    s->slots_n = 0;
+    s->slots_free = -1;
     s->covered = 0;
     if (build_table(s, sp, y0, y1, &npolys))
         goto oom;
@@ -472,7 +536,7 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
         /* edges entering at this row */
         s->fresh_n = 0;
         for (uint32_t k = s->row_start[r]; k < s->row_start[r + 1]; k++)
-            if (activate(s, sp, s->order[k], j, y0, y1))
+            if (activate(s, sp, &s->recs[k], j, y0, y1))
                 goto oom;
         for (int32_t q = s->pend_head[r]; q >= 0;) {
             if (grow((void **)&s->fresh, &s->fresh_cap, s->fresh_n + 1, sizeof *s->fresh))
@@ -484,43 +548,35 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
             s->pool_free = q;
             q = nx;
         }
-        if (s->fresh_n > s->keys_cap) {
-            int kc = s->keys_cap;
-            if (grow((void **)&s->keys, &kc, s->fresh_n, sizeof *s->keys))
-                goto oom;
-            uint32_t *t = realloc(s->keys_tmp, (size_t)kc * sizeof *t);
-            if (!t)
-                goto oom;
-            s->keys_tmp = t;
-            s->keys_cap = kc;
-        }
+        if (grow_fresh_order(s))
+            goto oom;
         sort_fresh(s, w);
         int total = s->act_n + s->fresh_n;
-        int cap = s->act_cap;
-        if (total > cap) {
-            int c2 = cap;
+        if (total > s->act_cap) {
+            int cap = s->act_cap, c2 = s->act_cap;
             if (grow((void **)&s->act, &cap, total, sizeof *s->act) ||
                 grow((void **)&s->nxt, &c2, total, sizeof *s->nxt))
                 goto oom;
             s->act_cap = cap;
         }
-        /* one merged pass over the row's crossings */
+        /* one merged pass over the row's crossings, left to right */
         int ia = 0, inew = 0, nb = 0, cur = 0;
-        const SpanEdge *act = s->act;
+        int na = s->act_n, nf = s->fresh_n;
+        const SpanEdge *act = s->act, *fresh = s->fresh;
+        const uint32_t *ord = s->keys;
         SpanEdge *nxt = s->nxt;
-        while (ia < s->act_n || inew < s->fresh_n) {
+        while (ia < na || inew < nf) {
             const SpanEdge *e;
-            if (inew >= s->fresh_n ||
-                (ia < s->act_n && key_of(&act[ia], w) <= key_of(&s->fresh[s->keys[inew]], w)))
+            if (inew >= nf || (ia < na && key_of(&act[ia], w) <= key_of(&fresh[ord[inew]], w)))
                 e = &act[ia++];
             else
-                e = &s->fresh[s->keys[inew++]];
-            int x = clamp_col(e->e.xi, w);
+                e = &fresh[ord[inew++]];
+            int x = key_of(e, w);
             if (x > cur) {
                 emit(s, ids, dep, cur, x);
                 cur = x;
             }
-            if (toggle(s, sp, e->poly, j))
+            if (toggle(s, e->slot, j))
                 goto oom;
             if (e->e.row1 > j + 1) {
                 nxt[nb] = *e;
@@ -536,11 +592,12 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
                     }
                     nxt[q] = tmp;
                 }
+            } else {
+                slot_release(s, e->slot);
             }
         }
         if (cur < w)
             emit(s, ids, dep, cur, w);
-        s->in_n = 0;    /* even crossings per polygon: already empty */
         s->nxt = s->act;
         s->act = nxt;
         s->act_n = nb;
