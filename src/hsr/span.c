@@ -58,6 +58,7 @@
 typedef struct {
     ScreenPoly p;
     uint32_t   pi;              /* index in sp->polys */
+    uint32_t   nv;              /* corners */
     ScreenVert v[3];            /* the corners of a triangle */
 } PolyRec;
 
@@ -75,13 +76,17 @@ typedef struct {
 typedef struct {
     EdgeWalk e;
     int32_t  slot;
-    int32_t  next;              /* pending pool: next in the row's list */
+    union {
+        int32_t key;            /* active: clamp_col(e.xi, w), the sort key */
+        int32_t next;           /* pending pool: next in the row's list */
+    } u;
 } SpanEdge;
 
 /* A polygon currently "in", with its plane row value at this row. */
 typedef struct {
-    ScreenPoly p;               /* copy of the plane (plane_at's input) */
+    const ScreenPoly *p;        /* the slot's plane (slots do not move during a row) */
     float      zrow;            /* plane_row() at the current row */
+    int32_t    face;
     int32_t    slot;
     int32_t    ok;
 } InPoly;
@@ -173,9 +178,9 @@ static void fill_bg(int32_t *ids, float *dep, int xa, int xb)
 
 static void fill_poly(int32_t *ids, float *dep, const InPoly *q, int xa, int xb)
 {
-    ScreenPoly p = q->p;        /* a local copy: stores cannot alias it */
+    ScreenPoly p = *q->p;       /* a local copy: stores cannot alias it */
     float zr = q->zrow;
-    int32_t face = p.face;
+    int32_t face = q->face;
     for (int i = xa; i < xb; i++) {
         ids[i] = face;
         dep[i] = plane_at(&p, zr, i);
@@ -191,10 +196,10 @@ static void fill_per_sample(SpanState *s, int32_t *ids, float *dep, int xa, int 
         float bz = INFINITY;
         int32_t bid = -1;
         for (int k = 0; k < n; k++) {
-            float z = plane_at(&in[k].p, in[k].zrow, i);
-            if (hsr_wins(z, in[k].p.face, bz, bid)) {
+            float z = plane_at(in[k].p, in[k].zrow, i);
+            if (hsr_wins(z, in[k].face, bz, bid)) {
                 bz = z;
-                bid = in[k].p.face;
+                bid = in[k].face;
             }
         }
         ids[i] = bid;
@@ -230,14 +235,14 @@ static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int 
             fill_per_sample(s, ids, dep, xa, xb);
             return;
         }
-        const ScreenPoly *p = &in[k].p;
+        const ScreenPoly *p = in[k].p;
         float pa = p->a * (float)(xa - p->x0), pb = p->a * (float)(xl - p->x0);
         float fa = plane_at(p, in[k].zrow, xa), fb = plane_at(p, in[k].zrow, xl);
-        if (k == 0 || hsr_wins(fa, p->face, za, in[wa].p.face)) {
+        if (k == 0 || hsr_wins(fa, in[k].face, za, in[wa].face)) {
             wa = k;
             za = fa;
         }
-        if (k == 0 || hsr_wins(fb, p->face, zb, in[wb].p.face)) {
+        if (k == 0 || hsr_wins(fb, in[k].face, zb, in[wb].face)) {
             wb = k;
             zb = fb;
         }
@@ -251,7 +256,7 @@ static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int 
         for (int k = 0; k < n; k++) {
             if (k == wa)
                 continue;
-            float fa = plane_at(&in[k].p, in[k].zrow, xa), fb = plane_at(&in[k].p, in[k].zrow, xl);
+            float fa = plane_at(in[k].p, in[k].zrow, xa), fb = plane_at(in[k].p, in[k].zrow, xl);
             if (!(fa - za > t))
                 safe_a = 0;
             if (!(fb - zb > t))
@@ -276,8 +281,8 @@ static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int 
         return;
     }
     /* wa wins at xa, wb at xl: split where their planes cross */
-    float da = plane_at(&in[wb].p, in[wb].zrow, xa) - za;     /* >= 0 */
-    float db = zb - plane_at(&in[wa].p, in[wa].zrow, xl);     /* <= 0 */
+    float da = plane_at(in[wb].p, in[wb].zrow, xa) - za;     /* >= 0 */
+    float db = zb - plane_at(in[wa].p, in[wa].zrow, xl);     /* <= 0 */
     float den = da - db;
     int c = xa + (xb - xa) / 2;
     if (den > 0 && isfinite(den)) {
@@ -293,16 +298,59 @@ static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int 
     resolve(s, ids, dep, c, xb, depth + 1);
 }
 
+/* One sample: the z-buffer's minimum, directly. */
+static inline void decide_sample(const SpanState *s, int32_t *ids, float *dep, int i)
+{
+    const InPoly *in = s->in;
+    float bz = INFINITY;
+    int32_t bid = -1;
+    for (int k = 0; k < s->in_n; k++) {
+        float z = plane_at(in[k].p, in[k].zrow, i);
+        if (hsr_wins(z, in[k].face, bz, bid)) {
+            bz = z;
+            bid = in[k].face;
+        }
+    }
+    ids[i] = bid;
+    dep[i] = bz;
+}
+
+/* Two polygons: the test of resolve() written out for the common case
+ * (front and back of a closed surface). Returns 0 when undecided. */
+static inline int decide_two(const SpanState *s, int32_t *ids, float *dep, int xa, int xb)
+{
+    const InPoly *u = &s->in[0], *v = &s->in[1];
+    if (!u->ok || !v->ok)
+        return 0;
+    int xl = xb - 1;
+    float ua = plane_at(u->p, u->zrow, xa), ub = plane_at(u->p, u->zrow, xl);
+    float va = plane_at(v->p, v->zrow, xa), vb = plane_at(v->p, v->zrow, xl);
+    float pu = maxf(fabsf(u->p->a * (float)(xa - u->p->x0)), fabsf(u->p->a * (float)(xl - u->p->x0)));
+    float pv = maxf(fabsf(v->p->a * (float)(xa - v->p->x0)), fabsf(v->p->a * (float)(xl - v->p->x0)));
+    float mag = maxf(maxf(maxf(fabsf(ua), fabsf(ub)), maxf(fabsf(va), fabsf(vb))), maxf(pu, pv));
+    float t = mag * (1.0f / (1 << 19)) + 1e-30f;
+    if (va - ua > t && vb - ub > t)
+        fill_poly(ids, dep, u, xa, xb);
+    else if (ua - va > t && ub - vb > t)
+        fill_poly(ids, dep, v, xa, xb);
+    else
+        return 0;
+    return 1;
+}
+
 static inline void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
 {
-    if (s->in_n == 0) {
+    int n = s->in_n;
+    if (n == 0) {
         fill_bg(ids, dep, xa, xb);
         return;
     }
     s->covered += (uint64_t)(xb - xa);
-    if (s->in_n == 1 && s->in[0].ok)
+    if (n == 1 && s->in[0].ok)
         fill_poly(ids, dep, &s->in[0], xa, xb);
-    else
+    else if (xb - xa == 1)
+        decide_sample(s, ids, dep, xa);
+    else if (n != 2 || !decide_two(s, ids, dep, xa, xb))
         resolve(s, ids, dep, xa, xb, 0);
 }
 
@@ -322,7 +370,8 @@ static inline int toggle(SpanState *s, int32_t slot, int j)
     if (n + 1 > s->in_cap && grow((void **)&s->in, &s->in_cap, n + 1, sizeof *s->in))
         return -1;
     InPoly *q = &s->in[n];
-    q->p = sl->p;
+    q->p = &sl->p;
+    q->face = sl->p.face;
     q->zrow = plane_row(&sl->p, j);
     q->slot = slot;
     q->ok = sl->ok;
@@ -333,23 +382,18 @@ static inline int toggle(SpanState *s, int32_t slot, int j)
 
 /* ==== edge tables ==== */
 
-static inline int32_t key_of(const SpanEdge *e, int32_t w)
-{
-    return clamp_col(e->e.xi, w);
-}
-
 /* Order s->fresh by clamped column: s->keys gets the entry indices in
  * that order. Insertion sort when short, else an LSD radix sort in two
  * 8-bit passes (clamped columns are at most SCREEN_MAX = 2^14). */
-static void sort_fresh(SpanState *s, int32_t w)
+static void sort_fresh(SpanState *s)
 {
     int n = s->fresh_n;
     uint32_t *k = s->keys;
     if (n < 48) {
         for (int i = 0; i < n; i++) {
-            int32_t x = key_of(&s->fresh[i], w);
+            int32_t x = s->fresh[i].u.key;
             int q = i;
-            while (q > 0 && key_of(&s->fresh[k[q - 1]], w) > x) {
+            while (q > 0 && s->fresh[k[q - 1]].u.key > x) {
                 k[q] = k[q - 1];
                 q--;
             }
@@ -364,7 +408,7 @@ static void sort_fresh(SpanState *s, int32_t w)
         uint32_t *src = pass ? t : NULL, *dst = pass ? k : t;
         memset(cnt, 0, sizeof cnt);
         for (int i = 0; i < n; i++)
-            cnt[(key_of(&s->fresh[i], w) >> sh) & 255]++;
+            cnt[(s->fresh[i].u.key >> sh) & 255]++;
         uint32_t sum = 0;
         for (int b = 0; b < 256; b++) {
             uint32_t c = cnt[b];
@@ -373,7 +417,7 @@ static void sort_fresh(SpanState *s, int32_t w)
         }
         for (int i = 0; i < n; i++) {
             uint32_t e = src ? src[i] : (uint32_t)i;
-            dst[cnt[(key_of(&s->fresh[e], w) >> sh) & 255]++] = e;
+            dst[cnt[(s->fresh[e].u.key >> sh) & 255]++] = e;
         }
     }
 }
@@ -407,9 +451,9 @@ static inline void slot_release(SpanState *s, int32_t k)
 
 /* Set up a polygon's edges from row j: the ones counting at j join the
  * fresh list, lower ones wait in their row's pending list. */
-static int activate(SpanState *s, const ScreenPolys *sp, const PolyRec *rec, int j, int y0, int y1)
+static int activate(SpanState *s, const ScreenPolys *sp, const PolyRec *rec, int j, int y0, int y1, int32_t w)
 {
-    uint32_t nv = screen_poly_nverts(sp, rec->pi);
+    uint32_t nv = rec->nv;
     const ScreenVert *v = nv == 3 ? rec->v : &sp->verts[rec->p.first];
     if (s->fresh_n + (int)nv > s->fresh_cap &&
         grow((void **)&s->fresh, &s->fresh_cap, s->fresh_n + (int)nv, sizeof *s->fresh))
@@ -427,11 +471,12 @@ static int activate(SpanState *s, const ScreenPolys *sp, const PolyRec *rec, int
             SpanEdge *f = &s->fresh[s->fresh_n++];
             f->e = e;
             f->slot = slot;
+            f->u.key = clamp_col(e.xi, w);
             continue;
         }
         int32_t q = s->pool_free;
         if (q >= 0) {
-            s->pool_free = s->pool[q].next;
+            s->pool_free = s->pool[q].u.next;
         } else {
             if (grow((void **)&s->pool, &s->pool_cap, s->pool_n + 1, sizeof *s->pool))
                 return -1;
@@ -440,7 +485,7 @@ static int activate(SpanState *s, const ScreenPolys *sp, const PolyRec *rec, int
         SpanEdge *pe = &s->pool[q];
         pe->e = e;
         pe->slot = slot;
-        pe->next = s->pend_head[e.row0 - y0];
+        pe->u.next = s->pend_head[e.row0 - y0];
         s->pend_head[e.row0 - y0] = q;
     }
     s->slots[slot].live = live + 1;
@@ -486,7 +531,8 @@ static int build_table(SpanState *s, const ScreenPolys *sp, int y0, int y1, uint
         PolyRec *rec = &s->recs[rs[r + 1]++];
         rec->p = *p;
         rec->pi = i;
-        if (sp->polys[i + 1].first - p->first == 3)
+        rec->nv = sp->polys[i + 1].first - p->first;
+        if (rec->nv == 3)
             memcpy(rec->v, &sp->verts[p->first], sizeof rec->v);
     }
     *npolys = n;
@@ -536,21 +582,23 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
         /* edges entering at this row */
         s->fresh_n = 0;
         for (uint32_t k = s->row_start[r]; k < s->row_start[r + 1]; k++)
-            if (activate(s, sp, &s->recs[k], j, y0, y1))
+            if (activate(s, sp, &s->recs[k], j, y0, y1, w))
                 goto oom;
         for (int32_t q = s->pend_head[r]; q >= 0;) {
             if (grow((void **)&s->fresh, &s->fresh_cap, s->fresh_n + 1, sizeof *s->fresh))
                 goto oom;
             SpanEdge *e = &s->pool[q];
-            s->fresh[s->fresh_n++] = *e;
-            int32_t nx = e->next;
-            e->next = s->pool_free;
+            int32_t nx = e->u.next;
+            SpanEdge *f = &s->fresh[s->fresh_n++];
+            *f = *e;
+            f->u.key = clamp_col(f->e.xi, w);
+            e->u.next = s->pool_free;
             s->pool_free = q;
             q = nx;
         }
         if (grow_fresh_order(s))
             goto oom;
-        sort_fresh(s, w);
+        sort_fresh(s);
         int total = s->act_n + s->fresh_n;
         if (total > s->act_cap) {
             int cap = s->act_cap, c2 = s->act_cap;
@@ -567,11 +615,11 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
         SpanEdge *nxt = s->nxt;
         while (ia < na || inew < nf) {
             const SpanEdge *e;
-            if (inew >= nf || (ia < na && key_of(&act[ia], w) <= key_of(&fresh[ord[inew]], w)))
+            if (inew >= nf || (ia < na && act[ia].u.key <= fresh[ord[inew]].u.key))
                 e = &act[ia++];
             else
                 e = &fresh[ord[inew++]];
-            int x = key_of(e, w);
+            int x = e->u.key;
             if (x > cur) {
                 emit(s, ids, dep, cur, x);
                 cur = x;
@@ -583,10 +631,11 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
                 edge_step(&nxt[nb].e);
                 /* keep sorted: the order changes little from row to row */
                 int q = nb++;
-                int32_t kx = key_of(&nxt[q], w);
-                if (q > 0 && key_of(&nxt[q - 1], w) > kx) {
+                int32_t kx = clamp_col(nxt[q].e.xi, w);
+                nxt[q].u.key = kx;
+                if (q > 0 && nxt[q - 1].u.key > kx) {
                     SpanEdge tmp = nxt[q];
-                    while (q > 0 && key_of(&nxt[q - 1], w) > kx) {
+                    while (q > 0 && nxt[q - 1].u.key > kx) {
                         nxt[q] = nxt[q - 1];
                         q--;
                     }
