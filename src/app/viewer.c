@@ -1,15 +1,338 @@
-/* viewer.c: the interactive terminal viewer (placeholder until the
- * curses front end lands: behaves like --print). */
+/* viewer.c: the interactive viewer. kilo's loop: draw what changed, wait
+ * for input, read every pending event before the next frame (held-down
+ * keys coalesce, the view never lags), repeat. Frames are rendered only
+ * when something changed, or on the auto-rotate clock (--fps). Also
+ * --bench-tty: the bytes curses writes per frame of a scripted turn. */
 
-#include "app.h"
+#define _DEFAULT_SOURCE         /* tmpfile, fileno, lstat on glibc */
+
+#include <langinfo.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "term.h"
+#include "viewer.h"
+
+#define MIN_COLS 16
+#define MIN_ROWS 4
+#define SPIN_DEG_PER_S 40.0f
+
+/* ==== Set-up ==== */
+
+static const char *base_name(const char *path)
+{
+    const char *s = strrchr(path, '/');
+    return s ? s + 1 : path;
+}
+
+static int locale_utf8(void)
+{
+    const char *cs = nl_langinfo(CODESET);
+    return cs && (!strcmp(cs, "UTF-8") || !strcmp(cs, "utf-8") || !strcmp(cs, "UTF8"));
+}
+
+static int app_init(App *a, const Options *o, Scene *s)
+{
+    memset(a, 0, sizeof *a);
+    a->s = s;
+    a->sel = -1;
+    a->cull = o->cull;
+    a->utf8 = locale_utf8();
+    a->mode = o->mode >= 0 ? (DisplayMode)o->mode : mode_from_locale();
+    const HsrAlgo *algo = hsr_find(o->algo ? o->algo : "zbuffer");
+    if (!algo)
+        algo = hsr_algos[0];
+    for (int i = 0; i < hsr_nalgos; i++)
+        if (hsr_algos[i] == algo)
+            a->algo = i;
+    if (o->nfiles == 0)
+        snprintf(a->name, sizeof a->name, "demo");
+    else if (o->nfiles == 1)
+        snprintf(a->name, sizeof a->name, "%s", base_name(o->files[0]));
+    else
+        snprintf(a->name, sizeof a->name, "%s +%d", base_name(o->files[0]), o->nfiles - 1);
+    if (pipeline_init(&a->p, s, algo, o->threads))
+        return -1;
+    a->p.shade = (ShadeMode)o->shade;
+    return 0;
+}
+
+/* ==== One frame ==== */
+
+/* Render the picture for cols x rows cells: the same call --print makes,
+ * so the same view gives the same cells. */
+static int render(App *a, int cols, int rows)
+{
+    int pw, ph;
+    mode_cell_pixels(a->mode, &pw, &ph);
+    if (pipeline_render(&a->p, cols * pw, rows * ph, mode_pixel_aspect(a->mode), a->cull, 1))
+        return -1;
+    return cells_from_image(&a->p.img, a->mode, &a->p.cells);
+}
+
+static void status_text(const App *a, char *buf, size_t len, double frame_ms, int fps_cap)
+{
+    const Scene *s = a->s;
+    char sel[96] = "";
+    if (a->sel >= 0)
+        snprintf(sel, sizeof sel, " [%s %d/%d]", s->objs[a->sel].name, a->sel + 1, s->nobjs);
+    else if (s->nobjs > 1)
+        snprintf(sel, sizeof sel, " [all %d]", s->nobjs);
+    char spin[24] = "";
+    if (a->spin)
+        snprintf(spin, sizeof spin, " spin@%d", fps_cap);
+    double fps = frame_ms > 0 ? 1000.0 / frame_ms : 0;
+    int n = snprintf(buf, len,
+                     " %s%s | faces %u drawn %u | %s %.2fms | frame %.1fms %.0ffps | %s %s%s%s%s"
+                     " | %dx%dpx | ? help",
+                     a->name, sel, s->nfaces, a->p.sp.npolys, a->p.algo->name, a->p.hsr_ms,
+                     frame_ms, fps, mode_names[a->mode], shade_names[a->p.shade],
+                     s->cam.persp ? " persp" : "", a->cull ? " cull" : "", spin,
+                     a->p.img.w, a->p.img.h);
+    if (a->note[0] && n > 0 && (size_t)n < len)
+        snprintf(buf + n, len - (size_t)n, " | %s", a->note);
+}
+
+typedef struct {
+    int    cols, rows;      /* window size last drawn (0 = none yet) */
+    int    small;           /* last draw was the too-small message */
+    double out_ms;          /* last curses output time */
+    double frame_ms;        /* last rendered frame, render + output */
+} DrawState;
+
+/* Draw the screen; render first when asked or when the size changed. */
+static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
+{
+    int cols, rows;
+    term_size(&cols, &rows);
+    int full = (what & RE_CLEAR) != 0;
+    if (cols < MIN_COLS || rows < MIN_ROWS) {
+        term_message("window too small");
+        term_update(full);
+        d->small = 1;
+        return 0;
+    }
+    if (d->small || cols != d->cols || rows != d->rows) {
+        term_erase();
+        what |= RE_RENDER;
+        d->small = 0;
+        d->cols = cols;
+        d->rows = rows;
+    }
+    double t0 = now_ms();
+    if ((what & RE_RENDER) == RE_RENDER && render(a, cols, rows - 1))
+        return -1;
+    term_draw_cells(&a->p.cells, 0);
+    double t1 = now_ms();
+    if ((what & RE_RENDER) == RE_RENDER)
+        d->frame_ms = (t1 - t0) + d->out_ms;
+    char bar[512];
+    status_text(a, bar, sizeof bar, d->frame_ms, fps_cap);
+    term_draw_bar(rows - 1, bar);
+    if (a->help)
+        term_draw_box(app_help, app_help_lines);
+    term_update(full);
+    if ((what & RE_RENDER) == RE_RENDER)
+        d->out_ms = now_ms() - t1;
+    return 0;
+}
+
+static Reaction dispatch(App *a, const TermEvent *ev)
+{
+    switch (ev->type) {
+    case TE_KEY:    return app_key(a, ev->key);
+    case TE_RESIZE: return RE_RENDER;
+    case TE_DRAG:   return app_drag(a, ev->button, ev->dx, ev->dy);
+    case TE_WHEEL:  return app_wheel(a, ev->dy);
+    }
+    return RE_NONE;
+}
+
+/* ==== The loop ==== */
+
+static int run(App *a, int fps)
+{
+    DrawState d = { 0 };
+    Reaction todo = RE_RENDER;
+    double period = 1000.0 / (fps > 0 ? fps : 30);
+    double next = 0, last_spin = 0;
+    for (;;) {
+        if (todo & RE_DRAW && draw(a, &d, todo, fps))
+            return -1;
+        todo = RE_NONE;
+        int timeout = -1;
+        if (a->spin) {
+            double now = now_ms();
+            timeout = next > now ? (int)(next - now + 0.999) : 0;
+        }
+        TermEvent ev;
+        if (term_read(&ev, timeout)) {
+            int was_spinning = a->spin;
+            /* take everything already typed before drawing again */
+            do
+                todo |= dispatch(a, &ev);
+            while (!(todo & RE_QUIT) && term_read(&ev, 0));
+            if (todo & RE_QUIT)
+                return 0;
+            if (a->spin && !was_spinning)
+                next = last_spin = now_ms();
+        }
+        if (a->spin) {
+            double now = now_ms();
+            if (now >= next) {
+                /* by elapsed time: the turn keeps its speed when frames are slow */
+                app_spin(a, deg2rad(SPIN_DEG_PER_S) * (float)((now - last_spin) / 1000.0));
+                last_spin = now;
+                next = next + period > now ? next + period : now + period;
+                todo |= RE_RENDER;
+            }
+        }
+    }
+}
 
 int app_viewer(const Options *o, Scene *s)
 {
-    return app_oneshot(o, s);
+    const char *t = getenv("TERM");
+    if (!t || !*t || !strcmp(t, "dumb"))
+        return app_oneshot(o, s);
+    App a;
+    if (app_init(&a, o, s)) {
+        fprintf(stderr, "zview: out of memory\n");
+        return 1;
+    }
+    char err[256];
+    TermConfig cfg = {
+        .color = o->color >= 0 ? (ColorDepth)o->color : color_from_env(),
+        .mouse = 1,
+        .signals = 1,
+    };
+    if (term_open(&cfg, err, sizeof err)) {
+        pipeline_free(&a.p);
+        return app_oneshot(o, s);
+    }
+    int rc = run(&a, o->fps);
+    term_restore();
+    pipeline_free(&a.p);
+    if (rc) {
+        fprintf(stderr, "zview: out of memory\n");
+        return 1;
+    }
+    return 0;
 }
 
+/* ==== --bench-tty ==== */
+
+static int cmp_long(const void *x, const void *y)
+{
+    long a = *(const long *)x, b = *(const long *)y;
+    return a < b ? -1 : a > b;
+}
+
+static int cmp_dbl(const void *x, const void *y)
+{
+    double a = *(const double *)x, b = *(const double *)y;
+    return a < b ? -1 : a > b;
+}
+
+static long file_bytes(FILE *f)
+{
+    struct stat st;
+    fflush(f);
+    return fstat(fileno(f), &st) == 0 ? (long)st.st_size : -1;
+}
+
+#define TTY_FRAMES 72   /* a whole turn at 5 degrees a frame */
+
+/* Curses writes into a temporary file standing in for the terminal; the
+ * file's growth after each update is what a terminal would receive. */
 int app_bench_tty(const Options *o)
 {
-    (void)o;
-    return 1;
+    char err[512];
+    Scene s;
+    if (app_load_scene(o, &s, err, sizeof err)) {
+        fprintf(stderr, "zview: %s\n", err);
+        return 1;
+    }
+    int cols = o->w > 0 ? o->w : 160, rows = o->h > 0 ? o->h : 48;
+    Options opt = *o;
+    if (opt.mode < 0)
+        opt.mode = MODE_HALF;
+    ColorDepth color = o->color >= 0 ? (ColorDepth)o->color : COLOR_256;
+    const char *termname = color == COLOR_TRUE ? "xterm-direct" : "xterm-256color";
+    int rc = 1;
+    App a;
+    FILE *out = tmpfile(), *in = fopen("/dev/null", "r");
+    if (!out || !in || app_init(&a, &opt, &s)) {
+        fprintf(stderr, "zview: cannot set up the benchmark\n");
+        goto done;
+    }
+    TermConfig cfg = { .out = out, .in = in, .termname = termname, .color = color };
+    if (term_open(&cfg, err, sizeof err)) {
+        fprintf(stderr, "zview: %s: %s\n", termname, err);
+        pipeline_free(&a.p);
+        goto done;
+    }
+    term_set_size(cols, rows + 1);
+    long bytes[TTY_FRAMES + 1];
+    double render_ms[TTY_FRAMES + 1], out_ms[TTY_FRAMES + 1];
+    long before = file_bytes(out);
+    char bar[512];
+    for (int k = 0; k <= TTY_FRAMES; k++) {
+        if (k > 0)
+            s.cam.yaw += deg2rad(5);
+        double t0 = now_ms();
+        if (render(&a, cols, rows)) {
+            term_restore();
+            fprintf(stderr, "zview: out of memory\n");
+            pipeline_free(&a.p);
+            goto done;
+        }
+        double t1 = now_ms();
+        term_draw_cells(&a.p.cells, 0);
+        status_text(&a, bar, sizeof bar, k ? render_ms[k - 1] + out_ms[k - 1] : 0, o->fps);
+        term_draw_bar(rows, bar);
+        term_update(0);
+        long now = file_bytes(out);
+        out_ms[k] = now_ms() - t1;
+        render_ms[k] = t1 - t0;
+        bytes[k] = now - before;
+        before = now;
+    }
+    term_restore();
+    ColorDepth used = term_color();
+    /* frame 0 paints the whole screen; the turn is frames 1.. */
+    long sum = 0, first = bytes[0];
+    double frame[TTY_FRAMES];
+    for (int k = 1; k <= TTY_FRAMES; k++) {
+        sum += bytes[k];
+        frame[k - 1] = render_ms[k] + out_ms[k];
+    }
+    double rmed[TTY_FRAMES], omed[TTY_FRAMES];
+    memcpy(rmed, render_ms + 1, sizeof rmed);
+    memcpy(omed, out_ms + 1, sizeof omed);
+    qsort(bytes + 1, TTY_FRAMES, sizeof *bytes, cmp_long);
+    qsort(frame, TTY_FRAMES, sizeof *frame, cmp_dbl);
+    qsort(rmed, TTY_FRAMES, sizeof *rmed, cmp_dbl);
+    qsort(omed, TTY_FRAMES, sizeof *omed, cmp_dbl);
+    printf("bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s\n",
+           a.name, cols, rows, mode_names[a.mode], color_name(used), termname, a.p.algo->name,
+           a.p.threads, a.p.threads == 1 ? "" : "s");
+    printf("turn of %d frames at 5 degrees a frame; first frame (full paint) %ld bytes\n",
+           TTY_FRAMES, first);
+    printf("bytes per frame: median %ld, mean %ld, max %ld\n", bytes[1 + TTY_FRAMES / 2],
+           sum / TTY_FRAMES, bytes[TTY_FRAMES]);
+    printf("frame time: median %.2f ms (render %.2f ms + curses output %.2f ms), max %.2f ms\n",
+           frame[TTY_FRAMES / 2], rmed[TTY_FRAMES / 2], omed[TTY_FRAMES / 2],
+           frame[TTY_FRAMES - 1]);
+    pipeline_free(&a.p);
+    rc = 0;
+done:
+    if (out)
+        fclose(out);
+    if (in)
+        fclose(in);
+    scene_free(&s);
+    return rc;
 }

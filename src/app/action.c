@@ -1,0 +1,287 @@
+/* action: the viewer's key table. Each key indexes a tiny action that
+ * changes the view and returns what to redo (viewer.h). Turns, moves and
+ * scaling apply to the selected object, or to the whole scene (the
+ * camera) when none is selected. */
+
+#include <math.h>
+#include <string.h>
+
+#include "term.h"
+#include "viewer.h"
+
+#define STEP_DEG   5.0f     /* arrows, hjkl, u/o */
+#define COARSE_DEG 15.0f    /* IJKL */
+#define DRAG_DEG   3.0f     /* per cell of a left drag */
+#define MOVE_FRAC  0.05f    /* of the scene radius (or fit radius) per key */
+#define SCALE_STEP 1.15f
+
+/* ==== Helpers ==== */
+
+static Object *selected(App *a)
+{
+    return a->sel >= 0 && a->sel < a->s->nobjs ? &a->s->objs[a->sel] : NULL;
+}
+
+/* Turn by degrees: yaw about the vertical (positive brings the front to
+ * the right), pitch about the horizontal (positive tips the front down),
+ * roll about the view axis (positive is anticlockwise). */
+static Reaction turn(App *a, float dyaw, float dpitch, float droll)
+{
+    Object *o = selected(a);
+    float *y = o ? &o->yaw : &a->s->cam.yaw;
+    float *p = o ? &o->pitch : &a->s->cam.pitch;
+    float *r = o ? &o->roll : &a->s->cam.roll;
+    *y = remainderf(*y + deg2rad(dyaw), 2 * ZV_PI);
+    *p = remainderf(*p + deg2rad(dpitch), 2 * ZV_PI);
+    *r = remainderf(*r + deg2rad(droll), 2 * ZV_PI);
+    return RE_RENDER;
+}
+
+/* Move by fractions of the scene's size along the screen's right and up. */
+static Reaction move(App *a, float right, float up)
+{
+    Camera *c = &a->s->cam;
+    float zoom = c->zoom > 0 ? c->zoom : 1;
+    Object *o = selected(a);
+    if (!o) {
+        c->pan.x += right / zoom;
+        c->pan.y += up / zoom;
+        return RE_RENDER;
+    }
+    /* The screen's axes in world space: the camera turn is a rotation,
+     * so its inverse is its transpose. */
+    Mat4 t = m4_rotate_ypr(c->yaw, c->pitch, c->roll);
+    float k = c->radius / zoom;
+    for (int i = 0; i < 3; i++) {
+        float d = (t.m[0][i] * right + t.m[1][i] * up) * k;
+        if (i == 0) o->offset.x += d;
+        else if (i == 1) o->offset.y += d;
+        else o->offset.z += d;
+    }
+    return RE_RENDER;
+}
+
+static Reaction scale(App *a, float f)
+{
+    Object *o = selected(a);
+    float *v = o ? &o->scale : &a->s->cam.zoom;
+    float n = *v * f;
+    if (n < 1e-3f || n > 1e3f)
+        return RE_NONE;
+    *v = n;
+    return RE_RENDER;
+}
+
+/* ==== Actions ==== */
+
+static Reaction act_yaw_left(App *a)    { return turn(a, -STEP_DEG, 0, 0); }
+static Reaction act_yaw_right(App *a)   { return turn(a, STEP_DEG, 0, 0); }
+static Reaction act_pitch_up(App *a)    { return turn(a, 0, -STEP_DEG, 0); }
+static Reaction act_pitch_down(App *a)  { return turn(a, 0, STEP_DEG, 0); }
+static Reaction act_roll_left(App *a)   { return turn(a, 0, 0, STEP_DEG); }
+static Reaction act_roll_right(App *a)  { return turn(a, 0, 0, -STEP_DEG); }
+static Reaction act_big_left(App *a)    { return turn(a, -COARSE_DEG, 0, 0); }
+static Reaction act_big_right(App *a)   { return turn(a, COARSE_DEG, 0, 0); }
+static Reaction act_big_up(App *a)      { return turn(a, 0, -COARSE_DEG, 0); }
+static Reaction act_big_down(App *a)    { return turn(a, 0, COARSE_DEG, 0); }
+static Reaction act_move_left(App *a)   { return move(a, -MOVE_FRAC, 0); }
+static Reaction act_move_right(App *a)  { return move(a, MOVE_FRAC, 0); }
+static Reaction act_move_up(App *a)     { return move(a, 0, MOVE_FRAC); }
+static Reaction act_move_down(App *a)   { return move(a, 0, -MOVE_FRAC); }
+static Reaction act_bigger(App *a)      { return scale(a, SCALE_STEP); }
+static Reaction act_smaller(App *a)     { return scale(a, 1 / SCALE_STEP); }
+
+static Reaction act_fit(App *a)
+{
+    scene_fit(a->s);
+    return RE_RENDER;
+}
+
+static Reaction act_reset(App *a)
+{
+    scene_reset(a->s);
+    return RE_RENDER;
+}
+
+static Reaction act_next_object(App *a)
+{
+    a->sel = (a->sel + 1) % a->s->nobjs;
+    return RE_DRAW;
+}
+
+static Reaction act_prev_object(App *a)
+{
+    a->sel = a->sel <= 0 ? a->s->nobjs - 1 : a->sel - 1;
+    return RE_DRAW;
+}
+
+static Reaction act_whole_scene(App *a)
+{
+    a->sel = -1;
+    return RE_DRAW;
+}
+
+static Reaction set_algo(App *a, int k)
+{
+    k = (k + hsr_nalgos) % hsr_nalgos;
+    if (pipeline_set_algo(&a->p, hsr_algos[k])) {
+        /* keep the old one running */
+        pipeline_set_algo(&a->p, hsr_algos[a->algo]);
+        snprintf(a->note, sizeof a->note, "out of memory for %s", hsr_algos[k]->name);
+        return RE_DRAW;
+    }
+    a->algo = k;
+    return RE_RENDER;
+}
+
+static Reaction act_next_algo(App *a) { return set_algo(a, a->algo + 1); }
+static Reaction act_prev_algo(App *a) { return set_algo(a, a->algo - 1); }
+
+static Reaction act_mode(App *a)
+{
+    if (!a->utf8) {
+        snprintf(a->note, sizeof a->note, "half and braille need a UTF-8 locale");
+        return RE_DRAW;
+    }
+    a->mode = (DisplayMode)((a->mode + 1) % MODE_COUNT);
+    return RE_RENDER;
+}
+
+static Reaction act_shade(App *a)
+{
+    a->p.shade = (ShadeMode)((a->p.shade + 1) % SHADE_COUNT);
+    return RE_RENDER;
+}
+
+static Reaction act_persp(App *a)
+{
+    a->s->cam.persp = !a->s->cam.persp;
+    if (a->s->cam.fov_deg <= 1)
+        a->s->cam.fov_deg = 50;
+    return RE_RENDER;
+}
+
+static Reaction act_cull(App *a)
+{
+    a->cull = !a->cull;
+    return RE_RENDER;
+}
+
+static Reaction act_spin(App *a)
+{
+    a->spin = !a->spin;
+    return RE_DRAW;
+}
+
+static Reaction act_help(App *a)
+{
+    a->help = !a->help;
+    return RE_DRAW;
+}
+
+static Reaction act_redraw(App *a)
+{
+    (void)a;
+    return RE_CLEAR | RE_DRAW;
+}
+
+static Reaction act_quit(App *a)
+{
+    (void)a;
+    return RE_QUIT;
+}
+
+/* ==== Entry points ==== */
+
+#define K_SPECIAL 128   /* table index of TK_UP; the other specials follow */
+#define K_COUNT   (K_SPECIAL + (TK_BTAB - TK_UP) + 1)
+
+typedef Reaction (*Action)(App *a);
+static const Action keys[K_COUNT];
+
+Reaction app_key(App *a, int key)
+{
+    a->note[0] = 0;
+    if (a->help && key != 'q') {
+        /* any key closes the help; ? and Esc only do that */
+        a->help = 0;
+        if (key == '?' || key == TK_ESC)
+            return RE_DRAW;
+    }
+    int i = key >= 0 && key < K_SPECIAL ? key
+          : key >= TK_UP && key <= TK_BTAB ? K_SPECIAL + (key - TK_UP) : -1;
+    if (i < 0 || !keys[i])
+        return a->help ? RE_DRAW : RE_NONE;
+    return keys[i](a) | RE_DRAW;
+}
+
+Reaction app_drag(App *a, int button, int dx, int dy)
+{
+    if (button == 1)
+        return turn(a, DRAG_DEG * dx, DRAG_DEG * dy, 0);
+    /* a cell is about 1/40 of a typical window: move about that much */
+    return move(a, 0.05f * dx, -0.1f * dy);
+}
+
+Reaction app_wheel(App *a, int dy)
+{
+    return scale(a, dy < 0 ? SCALE_STEP : 1 / SCALE_STEP);
+}
+
+void app_spin(App *a, float radians)
+{
+    Object *o = selected(a);
+    float *y = o ? &o->yaw : &a->s->cam.yaw;
+    *y = remainderf(*y + radians, 2 * ZV_PI);
+}
+
+const char *const app_help[] = {
+    "zview keys (any key closes this)",
+    "",
+    "arrows, h j k l   turn (yaw, pitch)     u / o     roll",
+    "I J K L           turn in 15-degree steps",
+    "w a s d           move                  f         fit to view",
+    "+ -   z c         scale (mouse wheel)   r / x     reset",
+    "Tab / n           next object           N / 0     whole scene",
+    "shift-Tab         previous object",
+    "g / G             next / previous algorithm",
+    "m                 display mode (half, ascii, braille)",
+    "v                 shading (lambert, depth, id)",
+    "p                 orthographic / perspective",
+    "b                 back-face culling",
+    "space             auto-rotate (turntable, --fps cap)",
+    "Ctrl-L            redraw                q / Esc   quit",
+    "mouse             left drag turns, right drag moves",
+};
+const int app_help_lines = (int)(sizeof app_help / sizeof app_help[0]);
+
+/* The key table. */
+static const Action keys[K_COUNT] = {
+    [K_SPECIAL + (TK_LEFT - TK_UP)] = act_yaw_left,
+    [K_SPECIAL + (TK_RIGHT - TK_UP)] = act_yaw_right,
+    [K_SPECIAL + (TK_UP - TK_UP)] = act_pitch_up,
+    [K_SPECIAL + (TK_DOWN - TK_UP)] = act_pitch_down,
+    [K_SPECIAL + (TK_BTAB - TK_UP)] = act_prev_object,
+    ['h'] = act_yaw_left,    ['l'] = act_yaw_right,
+    ['k'] = act_pitch_up,    ['j'] = act_pitch_down,
+    ['u'] = act_roll_left,   ['o'] = act_roll_right,
+    ['J'] = act_big_left,    ['L'] = act_big_right,
+    ['I'] = act_big_up,      ['K'] = act_big_down,
+    ['a'] = act_move_left,   ['d'] = act_move_right,
+    ['w'] = act_move_up,     ['s'] = act_move_down,
+    ['+'] = act_bigger,      ['='] = act_bigger,     ['z'] = act_bigger,
+    ['-'] = act_smaller,     ['_'] = act_smaller,    ['c'] = act_smaller,
+    ['f'] = act_fit,
+    ['r'] = act_reset,       ['x'] = act_reset,
+    [TK_TAB] = act_next_object, ['n'] = act_next_object,
+    ['N'] = act_whole_scene, ['0'] = act_whole_scene,
+    ['g'] = act_next_algo,   ['G'] = act_prev_algo,
+    ['m'] = act_mode,
+    ['v'] = act_shade,
+    ['p'] = act_persp,
+    ['b'] = act_cull,
+    [' '] = act_spin,
+    ['?'] = act_help,
+    [TK_CTRL_L] = act_redraw,
+    ['q'] = act_quit,        [TK_ESC] = act_quit,
+};
