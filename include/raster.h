@@ -31,11 +31,33 @@ static inline int64_t floordiv64(int64_t n, int64_t d)   /* d > 0 */
     return (n % d != 0 && n < 0) ? q - 1 : q;
 }
 
+/* floor(n / d) and its remainder for d > 0 and |n| < 2^52: a double
+ * division (exact operands, correctly rounded quotient, so off by at most
+ * one after truncation) fixed up with exact integer arithmetic. Several
+ * times faster than a 64-bit idiv, and just as exact. */
+static inline int64_t floordiv64_rem(int64_t n, int64_t d, int64_t *rem_out)
+{
+    int64_t q = (int64_t)((double)n / (double)d);
+    int64_t r = n - q * d;
+    while (r < 0) {
+        q--;
+        r += d;
+    }
+    while (r >= d) {
+        q++;
+        r -= d;
+    }
+    *rem_out = r;
+    return q;
+}
+
 /* First sample index whose centre 256 k + 128 is >= fixed-point v:
- * ceil((v - 128) / 256). Rows and columns alike. */
+ * ceil((v - 128) / 256) = floor((v + 127) / 256), an arithmetic shift
+ * (GCC and Clang shift signed values arithmetically). Rows and columns
+ * alike. */
 static inline int32_t sample_ceil(int32_t v)
 {
-    return (int32_t)floordiv64((int64_t)v - 128 + 255, 256);
+    return (v + 127) >> SUBPIX_BITS;
 }
 
 /* Set up the edge a->b. Returns 0 when it counts for no row. The walker
@@ -55,12 +77,11 @@ static inline int edge_setup(EdgeWalk *e, const ScreenVert *a, const ScreenVert 
     e->den = 256 * dy;
     int64_t yc = (int64_t)row * 256 + 128;
     int64_t num = (int64_t)t->x * dy + (yc - t->y) * dx - 128 * dy + e->den - 1;
-    int64_t q = floordiv64(num, e->den);
-    e->xi = (int32_t)q;
-    e->r = num - q * e->den;
-    int64_t qs = floordiv64(256 * dx, e->den);
-    e->q = (int32_t)qs;
-    e->rs = 256 * dx - qs * e->den;
+    e->xi = (int32_t)floordiv64_rem(num, e->den, &e->r);
+    /* per row: 256 dx / (256 dy) = dx / dy, remainder scaled back by 256 */
+    int64_t rs;
+    e->q = (int32_t)floordiv64_rem(dx, dy, &rs);
+    e->rs = 256 * rs;
     return 1;
 }
 

@@ -380,3 +380,28 @@ Test(coverage, every_algorithm_covers_like_the_reference)
     free(got);
     polys_free(&p);
 }
+
+Test(coverage, small_triangles_with_corners_on_centres)
+{
+    /* boxes of a few samples (the z-buffer's edge-function path) with
+     * corners on sample centres and pixel corners half the time */
+    Polys p;
+    polys_init(&p, 12, 12);
+    int tested = 0;
+    for (int t = 0; t < 1500; t++) {
+        polys_clear(&p);
+        int ox = 2 + (int)(rnd() % 4), oy = 2 + (int)(rnd() % 4);
+        ScreenVert v[3];
+        for (int k = 0; k < 3; k++) {
+            v[k].x = rnd_coord(ox, ox + 5);
+            v[k].y = rnd_coord(oy, oy + 5);
+            v[k].z = 0;
+        }
+        if (!polys_add(&p, v, 3, 0, 0.5f))
+            continue;
+        check_brute(&p, "small triangle");
+        tested++;
+    }
+    cr_assert_gt(tested, 500);
+    polys_free(&p);
+}

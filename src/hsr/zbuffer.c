@@ -5,6 +5,10 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include "raster.h"
 #include "hsr.h"
@@ -32,10 +36,17 @@ static void zb_destroy(void *st)
 void fbuf_clear_rows(FrameBufs *fb, int y0, int y1)
 {
     size_t a = (size_t)y0 * fb->w, b = (size_t)y1 * fb->w;
-    for (size_t i = a; i < b; i++) {
-        fb->ids[i] = -1;
+    memset(fb->ids + a, 0xff, (b - a) * sizeof *fb->ids);   /* -1 */
+    size_t i = a;
+#ifdef __SSE2__
+    const __m128 inf = _mm_set1_ps(INFINITY);
+    for (; i < b && (i & 3); i++)
         fb->depth[i] = INFINITY;
-    }
+    for (; i + 4 <= b; i += 4)
+        _mm_store_ps(fb->depth + i, inf);
+#endif
+    for (; i < b; i++)
+        fb->depth[i] = INFINITY;
 }
 
 /* Depth-test samples [xa, xb) of row j. Returns samples written. */
@@ -46,7 +57,39 @@ static inline uint64_t span_test(const ScreenPoly *p, FrameBufs *fb, int j, int 
     float zr = plane_row(p, j);
     int32_t id = p->face;
     uint64_t n = 0;
-    for (int i = xa; i < xb; i++) {
+    int i = xa;
+#ifdef __SSE2__
+    /* Four samples at a time: the same IEEE operations as plane_at()
+     * (a convert, a multiply, an add), so bit-equal depths; the (depth,
+     * id) comparison of hsr_wins() without branches. */
+    if (xb - xa >= 4) {
+        const __m128 va = _mm_set1_ps(p->a), vzr = _mm_set1_ps(zr);
+        const __m128i vid = _mm_set1_epi32(id);
+        const __m128i bias = _mm_set1_epi32(INT32_MIN);
+        const __m128i vidb = _mm_xor_si128(vid, bias);   /* unsigned compare via bias */
+        __m128i vk = _mm_setr_epi32(xa - p->x0, xa - p->x0 + 1, xa - p->x0 + 2, xa - p->x0 + 3);
+        const __m128i four = _mm_set1_epi32(4);
+        for (; i + 4 <= xb; i += 4) {
+            __m128 z = _mm_add_ps(vzr, _mm_mul_ps(va, _mm_cvtepi32_ps(vk)));
+            vk = _mm_add_epi32(vk, four);
+            __m128 zb = _mm_loadu_ps(dep + i);
+            __m128i ib = _mm_loadu_si128((const __m128i *)(ids + i));
+            __m128i lt = _mm_castps_si128(_mm_cmplt_ps(z, zb));
+            __m128i eq = _mm_castps_si128(_mm_cmpeq_ps(z, zb));
+            __m128i idlt = _mm_cmpgt_epi32(_mm_xor_si128(ib, bias), vidb);
+            __m128i win = _mm_or_si128(lt, _mm_and_si128(eq, idlt));
+            int mask = _mm_movemask_ps(_mm_castsi128_ps(win));
+            if (!mask)
+                continue;
+            __m128 wf = _mm_castsi128_ps(win);
+            _mm_storeu_ps(dep + i, _mm_or_ps(_mm_and_ps(wf, z), _mm_andnot_ps(wf, zb)));
+            _mm_storeu_si128((__m128i *)(ids + i),
+                             _mm_or_si128(_mm_and_si128(win, vid), _mm_andnot_si128(win, ib)));
+            n += (uint64_t)((0x4332322132212110ULL >> (4 * mask)) & 15);   /* popcount of 4 bits */
+        }
+    }
+#endif
+    for (; i < xb; i++) {
         float z = plane_at(p, zr, i);
         if (hsr_wins(z, id, dep[i], ids[i])) {
             dep[i] = z;
@@ -57,35 +100,97 @@ static inline uint64_t span_test(const ScreenPoly *p, FrameBufs *fb, int j, int 
     return n;
 }
 
-/* A triangle: two edge walkers active per row. */
+/* A triangle with few samples in its box: exact integer edge functions
+ * per sample, no division. E > 0 inside; E == 0 counts on a left edge
+ * (interior at larger x) or a top edge (horizontal, interior below): the
+ * same samples as the crossing rule of raster.h, as the coverage tests
+ * check against the brute-force reference. */
+static uint64_t draw_small_triangle(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+{
+    const ScreenVert *a = &v[0], *b = &v[1], *c = &v[2];
+    int64_t orient = (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(b->y - a->y) * (c->x - a->x);
+    if (orient == 0)
+        return 0;
+    if (orient < 0) {
+        const ScreenVert *t = b;
+        b = c;
+        c = t;
+    }
+    const ScreenVert *ea[3] = { a, b, c }, *eb[3] = { b, c, a };
+    int64_t e_row[3], step_x[3], step_y[3], bias[3];
+    int64_t px = 256LL * p->x0 + 128, py = 256LL * ya + 128;
+    for (int k = 0; k < 3; k++) {
+        int64_t dx = eb[k]->x - ea[k]->x, dy = eb[k]->y - ea[k]->y;
+        e_row[k] = dx * (py - ea[k]->y) - dy * (px - ea[k]->x);
+        step_x[k] = -dy * 256;
+        step_y[k] = dx * 256;
+        int topleft = -dy > 0 || (dy == 0 && dx > 0);
+        bias[k] = topleft ? 0 : 1;
+    }
+    uint64_t n = 0;
+    int w = fb->w;
+    int32_t id = p->face;
+    for (int j = ya; j < yb; j++) {
+        int64_t e0 = e_row[0], e1 = e_row[1], e2 = e_row[2];
+        int32_t *ids = fb->ids + (size_t)j * w;
+        float *dep = fb->depth + (size_t)j * w;
+        float zr = plane_row(p, j);
+        for (int i = p->x0; i < p->x1; i++) {
+            if (e0 >= bias[0] && e1 >= bias[1] && e2 >= bias[2]) {
+                float z = plane_at(p, zr, i);
+                if (hsr_wins(z, id, dep[i], ids[i])) {
+                    dep[i] = z;
+                    ids[i] = id;
+                    n++;
+                }
+            }
+            e0 += step_x[0];
+            e1 += step_x[1];
+            e2 += step_x[2];
+        }
+        e_row[0] += step_y[0];
+        e_row[1] += step_y[1];
+        e_row[2] += step_y[2];
+    }
+    return n;
+}
+
+/* Boxes of at most this many samples take the edge-function path. */
+#define SMALL_BOX 24
+
+/* A triangle: sorted by y, the long edge against the two short ones. */
 static uint64_t draw_triangle(const ScreenPolys *sp, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
     const ScreenVert *v = &sp->verts[p->first];
-    EdgeWalk e[3];
-    int ne = 0;
-    for (int k = 0; k < 3; k++)
-        if (edge_setup(&e[ne], &v[k], &v[k == 2 ? 0 : k + 1], ya) && e[ne].row1 > ya)
-            ne++;
-    if (ne < 2)
+    if ((p->x1 - p->x0) * (yb - ya) <= SMALL_BOX)
+        return draw_small_triangle(v, p, fb, ya, yb);
+    const ScreenVert *t = &v[0], *m = &v[1], *b = &v[2], *x;
+    if (m->y < t->y) { x = t; t = m; m = x; }
+    if (b->y < m->y) { x = m; m = b; b = x; }
+    if (m->y < t->y) { x = t; t = m; m = x; }
+    EdgeWalk lg, sh;
+    if (!edge_setup(&lg, t, b, ya))
         return 0;
     uint64_t n = 0;
     int w = fb->w;
-    for (int j = ya; j < yb; j++) {
-        int32_t x[2];
-        int m = 0;
-        for (int k = 0; k < ne; k++) {
-            if (j < e[k].row0 || j >= e[k].row1)
-                continue;
-            x[m++ & 1] = e[k].xi;
-            edge_step(&e[k]);
-        }
-        if (m < 2)
+    int rm = sample_ceil(m->y);
+    /* upper part: long edge and top->mid; lower part: long and mid->bottom */
+    for (int part = 0; part < 2; part++) {
+        const ScreenVert *s0 = part ? m : t, *s1 = part ? b : m;
+        int r0 = part ? rm : lg.row0, r1 = part ? lg.row1 : rm;
+        if (r0 < ya) r0 = ya;
+        if (r1 > yb) r1 = yb;
+        if (r0 >= r1 || !edge_setup(&sh, s0, s1, r0))
             continue;
-        int32_t xa = x[0] < x[1] ? x[0] : x[1], xb = x[0] < x[1] ? x[1] : x[0];
-        xa = clamp_col(xa, w);
-        xb = clamp_col(xb, w);
-        if (xa < xb)
-            n += span_test(p, fb, j, xa, xb);
+        for (int j = r0; j < r1; j++) {
+            int32_t xa = lg.xi < sh.xi ? lg.xi : sh.xi, xb = lg.xi < sh.xi ? sh.xi : lg.xi;
+            xa = clamp_col(xa, w);
+            xb = clamp_col(xb, w);
+            if (xa < xb)
+                n += span_test(p, fb, j, xa, xb);
+            edge_step(&lg);
+            edge_step(&sh);
+        }
     }
     return n;
 }

@@ -120,9 +120,13 @@ static inline void proj_point(const Proj *p, double x, double y, double z, doubl
     }
 }
 
+/* Round to the nearest 1/256 px (halves up). floor() without the libm
+ * call: truncate, then step down for negatives that were cut up. */
 static inline int32_t snap(double v)
 {
-    return (int32_t)floor(v * SUBPIX + 0.5);
+    double t = v * SUBPIX + 0.5;
+    int32_t i = (int32_t)t;
+    return i - (t < (double)i);
 }
 
 static inline int in_guard(const Proj *p, const double s[3])
@@ -244,11 +248,17 @@ static int finish_poly(ScreenPolys *sp, uint32_t first, int32_t face)
     p->zc = (float)zc;
     /* A lower bound of every depth plane_at() can return inside: the
      * plane's least corner value, less a margin for float rounding. */
-    double lo = 1e300, mag = fabs(zc) + fabs(a) * (x1 - x0) + fabs(b) * (y1 - y0);
-    for (uint32_t k = 0; k < n; k++) {
-        double z = Z0 + a * (v[k].x / (double)SUBPIX - X0) + b * (v[k].y / (double)SUBPIX - Y0);
-        if (z < lo)
-            lo = z;
+    double lo, mag = fabs(zc) + fabs(a) * (x1 - x0) + fabs(b) * (y1 - y0);
+    if (n == 3) {
+        /* the plane passes through the corners */
+        lo = fmin(Z0, fmin(v[1].z, v[2].z));
+    } else {
+        lo = 1e300;
+        for (uint32_t k = 0; k < n; k++) {
+            double z = Z0 + a * (v[k].x / (double)SUBPIX - X0) + b * (v[k].y / (double)SUBPIX - Y0);
+            if (z < lo)
+                lo = z;
+        }
     }
     p->zmin = (float)(lo - (fabs(lo) + mag) * (1.0 / (1 << 20)));
     sp->npolys++;
