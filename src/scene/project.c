@@ -93,8 +93,9 @@ static void proj_setup(Proj *p, const Scene *s, const Viewport *vp)
     } else {
         double fov = (c->fov_deg > 1 && c->fov_deg < 179 ? c->fov_deg : 50) * 3.14159265358979323846 / 180;
         p->fx = fmin(half_w, half_h) / tan(fov / 2);
-        /* the box's front face fills 90%; zoom moves the eye in */
-        p->eye = hz + fmax(hx * p->fx / half_w, hy * p->fx / half_h) / 0.9 / zoom;
+        /* at zoom 1 the box's front face fills 90%; zoom moves the eye
+         * towards the centre (and into the scene past the box's front) */
+        p->eye = (hz + fmax(hx * p->fx / half_w, hy * p->fx / half_h) / 0.9) / zoom;
         p->n = fmax(0.5 * (p->eye - r), 0.01 * r);
         p->f = p->eye + 3 * r;
     }
