@@ -47,6 +47,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 #include "raster.h"
 #include "hsr.h"
 #include "span.h"
@@ -70,17 +74,22 @@ typedef struct {
     int32_t    inpos;           /* index in the covering set, -1 = out */
     int32_t    ok;              /* plane finite and small: fast paths allowed */
     int32_t    next_free;
+    float      lo, hi;          /* bounds of every plane_at() value in the sample box */
 } Slot;
 
-/* An active or pending edge: the exact walker and its polygon's slot. */
+/* An edge: the exact walker and its polygon's slot. Edges live in a
+ * pool and are reused; sorting moves only (column, edge) pairs. */
 typedef struct {
     EdgeWalk e;
     int32_t  slot;
-    union {
-        int32_t key;            /* active: clamp_col(e.xi, w), the sort key */
-        int32_t next;           /* pending pool: next in the row's list */
-    } u;
+    int32_t  next;              /* pending list of its first row / free list */
 } SpanEdge;
+
+/* A crossing: the clamped column clamp_col(xi, w) and the edge. */
+typedef struct {
+    int32_t key;
+    int32_t edge;
+} Cross;
 
 /* A polygon currently "in", with its plane row value at this row. */
 typedef struct {
@@ -89,6 +98,7 @@ typedef struct {
     int32_t    face;
     int32_t    slot;
     int32_t    ok;
+    float      lo, hi;          /* the slot's depth bounds */
 } InPoly;
 
 typedef struct {
@@ -100,23 +110,23 @@ typedef struct {
     /* slots */
     Slot     *slots;
     int       slots_n, slots_cap, slots_free;
-    /* pending edges: per-row lists in a pool with a free list */
+    /* edges, and the per-row lists of edges waiting for their first row */
+    SpanEdge *edges;
+    int       edges_n, edges_cap, edges_free;
     int32_t  *pend_head;
     int       pend_cap;
-    SpanEdge *pool;
-    int32_t   pool_n, pool_cap, pool_free;
-    /* active edge list, double-buffered */
-    SpanEdge *act, *nxt;
+    /* crossings: active (sorted), next row's, entering, merged */
+    Cross    *act, *nxt, *mrg;
     int       act_n, act_cap;
-    /* edges entering at this row, and their order */
-    SpanEdge *fresh;
+    Cross    *fresh, *fresh_tmp;  /* both hold fresh_cap entries */
     int       fresh_n, fresh_cap;
-    uint32_t *keys, *keys_tmp;  /* both hold keys_cap entries */
-    int       keys_cap;
     /* the covering set */
     InPoly   *in;
     int       in_n, in_cap;
-    /* per-sample decisions taken (analysis) */
+    /* a row of +inf for background fills */
+    float    *inf_row;
+    int       inf_cap;
+    /* per-sample decisions taken on intervals of 2+ samples (analysis) */
     uint64_t  fallback;
     uint64_t  covered;
 } SpanState;
@@ -134,14 +144,15 @@ static void span_destroy(void *st)
     free(s->row_start);
     free(s->recs);
     free(s->slots);
+    free(s->edges);
     free(s->pend_head);
-    free(s->pool);
     free(s->act);
     free(s->nxt);
+    free(s->mrg);
     free(s->fresh);
-    free(s->keys);
-    free(s->keys_tmp);
+    free(s->fresh_tmp);
     free(s->in);
+    free(s->inf_row);
     free(s);
 }
 
@@ -168,12 +179,10 @@ static int grow(void **p, int *cap, int n, size_t sz)
 
 /* ==== filling ==== */
 
-static void fill_bg(int32_t *ids, float *dep, int xa, int xb)
+static void fill_bg(const SpanState *s, int32_t *ids, float *dep, int xa, int xb)
 {
-    for (int i = xa; i < xb; i++) {
-        ids[i] = -1;
-        dep[i] = INFINITY;
-    }
+    memset(ids + xa, 0xff, (size_t)(xb - xa) * sizeof *ids);     /* -1 */
+    memcpy(dep + xa, s->inf_row, (size_t)(xb - xa) * sizeof *dep);
 }
 
 static void fill_poly(int32_t *ids, float *dep, const InPoly *q, int xa, int xb)
@@ -181,7 +190,23 @@ static void fill_poly(int32_t *ids, float *dep, const InPoly *q, int xa, int xb)
     ScreenPoly p = *q->p;       /* a local copy: stores cannot alias it */
     float zr = q->zrow;
     int32_t face = q->face;
-    for (int i = xa; i < xb; i++) {
+    int i = xa;
+#ifdef __SSE2__
+    /* plane_at() four samples at a time: the same IEEE operations
+     * (convert, multiply, add; no fused multiply-add), so the same bits */
+    if (xb - xa >= 8) {
+        const __m128 va = _mm_set1_ps(p.a), vzr = _mm_set1_ps(zr);
+        const __m128i vid = _mm_set1_epi32(face), four = _mm_set1_epi32(4);
+        int k0 = xa - p.x0;
+        __m128i vk = _mm_setr_epi32(k0, k0 + 1, k0 + 2, k0 + 3);
+        for (; i + 4 <= xb; i += 4) {
+            _mm_storeu_ps(dep + i, _mm_add_ps(vzr, _mm_mul_ps(va, _mm_cvtepi32_ps(vk))));
+            _mm_storeu_si128((__m128i *)(ids + i), vid);
+            vk = _mm_add_epi32(vk, four);
+        }
+    }
+#endif
+    for (; i < xb; i++) {
         ids[i] = face;
         dep[i] = plane_at(&p, zr, i);
     }
@@ -342,12 +367,26 @@ static inline void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
 {
     int n = s->in_n;
     if (n == 0) {
-        fill_bg(ids, dep, xa, xb);
+        fill_bg(s, ids, dep, xa, xb);
         return;
     }
     s->covered += (uint64_t)(xb - xa);
-    if (n == 1 && s->in[0].ok)
+    if (n == 1 && s->in[0].ok) {
         fill_poly(ids, dep, &s->in[0], xa, xb);
+        return;
+    }
+    /* one polygon's whole depth range before every other's: it wins
+     * every sample strictly (hi < lo), without evaluating a plane */
+    const InPoly *in = s->in;
+    int best = 0;
+    for (int k = 1; k < n; k++)
+        if (in[k].hi < in[best].hi)
+            best = k;
+    int sep = in[best].ok;
+    for (int k = 0; k < n && sep; k++)
+        sep = k == best || in[best].hi < in[k].lo;
+    if (sep)
+        fill_poly(ids, dep, &in[best], xa, xb);
     else if (xb - xa == 1)
         decide_sample(s, ids, dep, xa);
     else if (n != 2 || !decide_two(s, ids, dep, xa, xb))
@@ -375,6 +414,8 @@ static inline int toggle(SpanState *s, int32_t slot, int j)
     q->zrow = plane_row(&sl->p, j);
     q->slot = slot;
     q->ok = sl->ok;
+    q->lo = sl->lo;
+    q->hi = sl->hi;
     sl->inpos = n;
     s->in_n = n + 1;
     return 0;
@@ -382,44 +423,68 @@ static inline int toggle(SpanState *s, int32_t slot, int j)
 
 /* ==== edge tables ==== */
 
-/* Order s->fresh by clamped column: s->keys gets the entry indices in
- * that order. Insertion sort when short, else an LSD radix sort in two
- * 8-bit passes (clamped columns are at most SCREEN_MAX = 2^14). */
+/* Sort the entering crossings by column: insertion sort when short,
+ * else an LSD radix sort in two 8-bit passes (clamped columns are at
+ * most SCREEN_MAX = 2^14). */
 static void sort_fresh(SpanState *s)
 {
     int n = s->fresh_n;
-    uint32_t *k = s->keys;
+    Cross *f = s->fresh;
     if (n < 48) {
-        for (int i = 0; i < n; i++) {
-            int32_t x = s->fresh[i].u.key;
+        for (int i = 1; i < n; i++) {
+            Cross c = f[i];
             int q = i;
-            while (q > 0 && s->fresh[k[q - 1]].u.key > x) {
-                k[q] = k[q - 1];
+            while (q > 0 && f[q - 1].key > c.key) {
+                f[q] = f[q - 1];
                 q--;
             }
-            k[q] = (uint32_t)i;
+            f[q] = c;
         }
         return;
     }
-    uint32_t *t = s->keys_tmp;
+    Cross *t = s->fresh_tmp;
     uint32_t cnt[256];
-    for (int pass = 0; pass < 2; pass++) {
-        int sh = pass * 8;
-        uint32_t *src = pass ? t : NULL, *dst = pass ? k : t;
+    for (int sh = 0; sh < 16; sh += 8) {
         memset(cnt, 0, sizeof cnt);
         for (int i = 0; i < n; i++)
-            cnt[(s->fresh[i].u.key >> sh) & 255]++;
+            cnt[(f[i].key >> sh) & 255]++;
         uint32_t sum = 0;
         for (int b = 0; b < 256; b++) {
             uint32_t c = cnt[b];
             cnt[b] = sum;
             sum += c;
         }
-        for (int i = 0; i < n; i++) {
-            uint32_t e = src ? src[i] : (uint32_t)i;
-            dst[cnt[(s->fresh[e].u.key >> sh) & 255]++] = e;
-        }
+        for (int i = 0; i < n; i++)
+            t[cnt[(f[i].key >> sh) & 255]++] = f[i];
+        Cross *x = f;
+        f = t;
+        t = x;
     }
+    /* two passes: the result is back in s->fresh */
+}
+
+static int fresh_push(SpanState *s, int32_t key, int32_t edge)
+{
+    if (s->fresh_n >= s->fresh_cap) {
+        int c = s->fresh_cap;
+        if (grow((void **)&s->fresh, &c, s->fresh_n + 1, sizeof *s->fresh))
+            return -1;
+        Cross *t = realloc(s->fresh_tmp, (size_t)c * sizeof *t);
+        if (!t)
+            return -1;
+        s->fresh_tmp = t;
+        s->fresh_cap = c;
+    }
+    s->fresh[s->fresh_n].key = key;
+    s->fresh[s->fresh_n].edge = edge;
+    s->fresh_n++;
+    return 0;
+}
+
+static inline void edge_free(SpanState *s, int32_t k)
+{
+    s->edges[k].next = s->edges_free;
+    s->edges_free = k;
 }
 
 /* Take a free slot for polygon rec. Returns its index, -1 on OOM. */
@@ -437,7 +502,22 @@ static int32_t slot_take(SpanState *s, const PolyRec *rec)
     sl->p = rec->p;
     sl->live = 0;
     sl->inpos = -1;
-    sl->ok = fabsf(rec->p.a) < 1e30f && fabsf(rec->p.b) < 1e30f && fabsf(rec->p.zc) < 1e30f;
+    const ScreenPoly *p = &rec->p;
+    sl->ok = fabsf(p->a) < 1e30f && fabsf(p->b) < 1e30f && fabsf(p->zc) < 1e30f;
+    /* Depth bounds over the sample box. The exact plane of the float
+     * coefficients lies in [zc + min terms, zc + max terms] there; each
+     * plane_at() value is within 3u M of it and these sums within 3u M
+     * of their exact values (u = 2^-24, M = |zc| + |a| dx + |b| dy), so a
+     * 2^-20 M margin (16u M) bounds every value the polygon produces. */
+    float ax = p->a * (float)(p->x1 - p->x0), by = p->b * (float)(p->y1 - p->y0);
+    float mag = fabsf(p->zc) + fabsf(ax) + fabsf(by);
+    float m = mag * (1.0f / (1 << 20)) + 1e-30f;
+    sl->hi = (p->zc + (ax > 0 ? ax : 0) + (by > 0 ? by : 0)) + m;
+    sl->lo = (p->zc + (ax < 0 ? ax : 0) + (by < 0 ? by : 0)) - m;
+    if (!sl->ok) {
+        sl->hi = INFINITY;
+        sl->lo = -INFINITY;
+    }
     return k;
 }
 
@@ -449,15 +529,12 @@ static inline void slot_release(SpanState *s, int32_t k)
     }
 }
 
-/* Set up a polygon's edges from row j: the ones counting at j join the
- * fresh list, lower ones wait in their row's pending list. */
+/* Set up a polygon's edges from row j: the ones counting at j enter
+ * now, lower ones wait in their first row's pending list. */
 static int activate(SpanState *s, const ScreenPolys *sp, const PolyRec *rec, int j, int y0, int y1, int32_t w)
 {
     uint32_t nv = rec->nv;
     const ScreenVert *v = nv == 3 ? rec->v : &sp->verts[rec->p.first];
-    if (s->fresh_n + (int)nv > s->fresh_cap &&
-        grow((void **)&s->fresh, &s->fresh_cap, s->fresh_n + (int)nv, sizeof *s->fresh))
-        return -1;
     int32_t slot = slot_take(s, rec);
     if (slot < 0)
         return -1;
@@ -466,27 +543,25 @@ static int activate(SpanState *s, const ScreenPolys *sp, const PolyRec *rec, int
         EdgeWalk e;
         if (!edge_setup(&e, &v[k], &v[k + 1 < nv ? k + 1 : 0], j) || e.row1 <= j || e.row0 >= y1)
             continue;
+        int32_t q = s->edges_free;
+        if (q >= 0) {
+            s->edges_free = s->edges[q].next;
+        } else {
+            if (grow((void **)&s->edges, &s->edges_cap, s->edges_n + 1, sizeof *s->edges))
+                return -1;
+            q = s->edges_n++;
+        }
+        SpanEdge *se = &s->edges[q];
+        se->e = e;
+        se->slot = slot;
         live++;
         if (e.row0 <= j) {
-            SpanEdge *f = &s->fresh[s->fresh_n++];
-            f->e = e;
-            f->slot = slot;
-            f->u.key = clamp_col(e.xi, w);
-            continue;
-        }
-        int32_t q = s->pool_free;
-        if (q >= 0) {
-            s->pool_free = s->pool[q].u.next;
-        } else {
-            if (grow((void **)&s->pool, &s->pool_cap, s->pool_n + 1, sizeof *s->pool))
+            if (fresh_push(s, clamp_col(e.xi, w), q))
                 return -1;
-            q = s->pool_n++;
+        } else {
+            se->next = s->pend_head[e.row0 - y0];
+            s->pend_head[e.row0 - y0] = q;
         }
-        SpanEdge *pe = &s->pool[q];
-        pe->e = e;
-        pe->slot = slot;
-        pe->u.next = s->pend_head[e.row0 - y0];
-        s->pend_head[e.row0 - y0] = q;
     }
     s->slots[slot].live = live + 1;
     slot_release(s, slot);      /* frees it at once when no edge counts */
@@ -541,21 +616,6 @@ static int build_table(SpanState *s, const ScreenPolys *sp, int y0, int y1, uint
 
 /* ==== the scan ==== */
 
-static int grow_fresh_order(SpanState *s)
-{
-    if (s->fresh_n <= s->keys_cap)
-        return 0;
-    int kc = s->keys_cap;
-    if (grow((void **)&s->keys, &kc, s->fresh_n, sizeof *s->keys))
-        return -1;
-    uint32_t *t = realloc(s->keys_tmp, (size_t)kc * sizeof *t);
-    if (!t)
-        return -1;
-    s->keys_tmp = t;
-    s->keys_cap = kc;
-    return 0;
-}
-
 static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *stats)
 {
     SpanState *s = st;
@@ -565,11 +625,20 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
     uint64_t npolys = 0;
     s->act_n = 0;
     s->in_n = 0;
-    s->pool_n = 0;
-    s->pool_free = -1;
+    s->edges_n = 0;
+    s->edges_free = -1;
     s->slots_n = 0;
     s->slots_free = -1;
     s->covered = 0;
+    if (w > s->inf_cap) {
+        float *r = realloc(s->inf_row, (size_t)w * sizeof *r);
+        if (!r)
+            goto oom;
+        s->inf_row = r;
+        s->inf_cap = w;
+        for (int i = 0; i < w; i++)
+            r[i] = INFINITY;
+    }
     if (build_table(s, sp, y0, y1, &npolys))
         goto oom;
     stats->build_ms += now_ms() - t0;
@@ -579,70 +648,70 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
         int r = j - y0;
         int32_t *ids = fb->ids + (size_t)j * w;
         float *dep = fb->depth + (size_t)j * w;
-        /* edges entering at this row */
+        /* crossings entering at this row */
         s->fresh_n = 0;
         for (uint32_t k = s->row_start[r]; k < s->row_start[r + 1]; k++)
             if (activate(s, sp, &s->recs[k], j, y0, y1, w))
                 goto oom;
-        for (int32_t q = s->pend_head[r]; q >= 0;) {
-            if (grow((void **)&s->fresh, &s->fresh_cap, s->fresh_n + 1, sizeof *s->fresh))
+        for (int32_t q = s->pend_head[r]; q >= 0; q = s->edges[q].next)
+            if (fresh_push(s, clamp_col(s->edges[q].e.xi, w), q))
                 goto oom;
-            SpanEdge *e = &s->pool[q];
-            int32_t nx = e->u.next;
-            SpanEdge *f = &s->fresh[s->fresh_n++];
-            *f = *e;
-            f->u.key = clamp_col(f->e.xi, w);
-            e->u.next = s->pool_free;
-            s->pool_free = q;
-            q = nx;
-        }
-        if (grow_fresh_order(s))
-            goto oom;
         sort_fresh(s);
-        int total = s->act_n + s->fresh_n;
+        int na = s->act_n, nf = s->fresh_n, total = na + nf;
         if (total > s->act_cap) {
-            int cap = s->act_cap, c2 = s->act_cap;
+            int cap = s->act_cap, c2 = cap, c3 = cap;
             if (grow((void **)&s->act, &cap, total, sizeof *s->act) ||
-                grow((void **)&s->nxt, &c2, total, sizeof *s->nxt))
+                grow((void **)&s->nxt, &c2, total, sizeof *s->nxt) ||
+                grow((void **)&s->mrg, &c3, total, sizeof *s->mrg))
                 goto oom;
             s->act_cap = cap;
         }
-        /* one merged pass over the row's crossings, left to right */
-        int ia = 0, inew = 0, nb = 0, cur = 0;
-        int na = s->act_n, nf = s->fresh_n;
-        const SpanEdge *act = s->act, *fresh = s->fresh;
-        const uint32_t *ord = s->keys;
-        SpanEdge *nxt = s->nxt;
-        while (ia < na || inew < nf) {
-            const SpanEdge *e;
-            if (inew >= nf || (ia < na && act[ia].u.key <= fresh[ord[inew]].u.key))
-                e = &act[ia++];
-            else
-                e = &fresh[ord[inew++]];
-            int x = e->u.key;
+        /* merge the entering crossings into the active ones */
+        const Cross *act = s->act, *fresh = s->fresh;
+        Cross *mrg = s->mrg;
+        const Cross *m = act;
+        if (nf > 0) {
+            int ia = 0, inew = 0, k = 0;
+            while (ia < na && inew < nf) {
+                int take_a = act[ia].key <= fresh[inew].key;
+                mrg[k++] = take_a ? act[ia] : fresh[inew];
+                ia += take_a;
+                inew += !take_a;
+            }
+            while (ia < na)
+                mrg[k++] = act[ia++];
+            while (inew < nf)
+                mrg[k++] = fresh[inew++];
+            m = mrg;
+        }
+        /* one pass over the row's crossings, left to right */
+        Cross *nxt = s->nxt;
+        SpanEdge *edges = s->edges;
+        int nb = 0, cur = 0;
+        for (int k = 0; k < total; k++) {
+            int x = m[k].key;
+            int32_t ei = m[k].edge;
             if (x > cur) {
                 emit(s, ids, dep, cur, x);
                 cur = x;
             }
+            SpanEdge *e = &edges[ei];
             if (toggle(s, e->slot, j))
                 goto oom;
             if (e->e.row1 > j + 1) {
-                nxt[nb] = *e;
-                edge_step(&nxt[nb].e);
+                edge_step(&e->e);
                 /* keep sorted: the order changes little from row to row */
+                int32_t kx = clamp_col(e->e.xi, w);
                 int q = nb++;
-                int32_t kx = clamp_col(nxt[q].e.xi, w);
-                nxt[q].u.key = kx;
-                if (q > 0 && nxt[q - 1].u.key > kx) {
-                    SpanEdge tmp = nxt[q];
-                    while (q > 0 && nxt[q - 1].u.key > kx) {
-                        nxt[q] = nxt[q - 1];
-                        q--;
-                    }
-                    nxt[q] = tmp;
+                while (q > 0 && nxt[q - 1].key > kx) {
+                    nxt[q] = nxt[q - 1];
+                    q--;
                 }
+                nxt[q].key = kx;
+                nxt[q].edge = ei;
             } else {
                 slot_release(s, e->slot);
+                edge_free(s, ei);
             }
         }
         if (cur < w)
