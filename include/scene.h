@@ -69,6 +69,8 @@ typedef struct Scene {
 
 /* Build a scene from loaded meshes (ownership of the array and the meshes
  * moves to the scene). Every `o` object of every mesh becomes one Object.
+ * The meshes' face arrays (face_start, corner, face_mat) are released:
+ * the scene's polygon lists and per-face arrays replace them.
  * Returns 0, or -1 with a message in err (out of memory). */
 int  scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen);
 

@@ -41,9 +41,10 @@ static int grow(void **p, uint32_t *cap, uint32_t need, size_t elem)
 {
     if (need <= *cap)
         return 0;
+    /* grow by half: big frames stay close to what they need */
     uint32_t n = *cap ? *cap : 256;
     while (n < need)
-        n = n > UINT32_MAX / 2 ? need : n * 2;
+        n = n > UINT32_MAX / 3 * 2 ? need : n + n / 2;
     void *q = realloc(*p, (size_t)n * elem);
     if (!q)
         return -1;
@@ -287,9 +288,12 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
     sp->depth_scale = (float)pj.dscale;
     sp->depth_bias = (float)pj.dbias;
 
-    uint64_t ninst = 0;
-    for (int oi = 0; oi < s->nobjs; oi++)
-        ninst += s->objs[oi].poly_count;
+    uint64_t ninst = 0, ncorners = 0;
+    for (int oi = 0; oi < s->nobjs; oi++) {
+        const Object *o = &s->objs[oi];
+        ninst += o->poly_count;
+        ncorners += s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
+    }
     if (ninst > INT32_MAX)
         return -1;
     if (s->nobjs > sp->cap_objs) {
@@ -299,7 +303,11 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
         sp->map_first = q;
         sp->cap_objs = s->nobjs;
     }
-    if (grow((void **)&sp->map, &sp->cap_map, (uint32_t)ninst + 1, sizeof *sp->map) ||
+    if (ncorners + 64 > UINT32_MAX / 2)
+        return -1;
+    /* every corner at most once, plus a little for clipped outlines */
+    if (grow((void **)&sp->verts, &sp->cap_verts, (uint32_t)(ncorners + ncorners / 64 + 64), sizeof *sp->verts) ||
+        grow((void **)&sp->map, &sp->cap_map, (uint32_t)ninst + 1, sizeof *sp->map) ||
         grow((void **)&sp->polys, &sp->cap_polys, (uint32_t)ninst + 1, sizeof *sp->polys))
         return -1;
 
