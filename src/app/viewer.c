@@ -109,7 +109,7 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     term_size(&cols, &rows);
     int full = (what & RE_CLEAR) != 0;
     if (cols < MIN_COLS || rows < MIN_ROWS) {
-        term_message("window too small");
+        term_message("too small");
         term_update(full);
         d->small = 1;
         return 0;

@@ -48,6 +48,17 @@ static uint32_t *cache_stamp;
 static uint32_t  cache_sets;
 static uint32_t  frame_stamp;
 
+/* Under 256 colours a cell keeps the index it had last frame, or takes
+ * its left neighbour's, when that colour is within STICKY (squared RGB
+ * distance) of the nearest one: a slowly shading surface then keeps its
+ * colours from frame to frame and along a row, and curses has fewer
+ * cells and colour changes to send. prev256 holds fg | bg << 8 per cell
+ * (0 = none). */
+#define STICKY 300
+static uint16_t *prev256;
+static int prev_cols, prev_rows;
+static uint8_t pal_rgb[256][3];
+
 /* Mouse drag state: ncurses reports motion without the button. */
 static int drag_button, drag_x, drag_y;
 
@@ -192,6 +203,27 @@ static int cache_pair(int fg, int bg)
     return (int)victim + 1;
 }
 
+static inline int dist2(const uint8_t a[3], const uint8_t b[3])
+{
+    int dr = a[0] - b[0], dg = a[1] - b[1], db = a[2] - b[2];
+    return dr * dr + dg * dg + db * db;
+}
+
+/* The 256-colour index for rgb, preferring the cell's previous index,
+ * then its left neighbour's, when they are nearly as close. */
+static inline int pick256(const uint8_t rgb[3], int prev, int left)
+{
+    int best = palette_256(rgb);
+    if (best == prev || best == left)
+        return best;
+    int lim = dist2(rgb, pal_rgb[best]) + STICKY;
+    if (prev && dist2(rgb, pal_rgb[prev]) <= lim)
+        return prev;
+    if (left && dist2(rgb, pal_rgb[left]) <= lim)
+        return left;
+    return best;
+}
+
 static inline int c16(const uint8_t rgb[3])
 {
     int k = palette_16(rgb);
@@ -217,11 +249,6 @@ static inline int colour_number(const uint8_t rgb[3], int set)
 static inline int cell_pair(const Cell *c)
 {
     switch (pair_kind) {
-    case PAIRS_256: {
-        int f = c->flags & CELL_FG ? palette_256(c->fg) - 15 : 0;
-        int b = c->flags & CELL_BG ? palette_256(c->bg) - 15 : 0;
-        return f * 241 + b;
-    }
     case PAIRS_16: {
         int f = c->flags & CELL_FG ? c16(c->fg) + 1 : 0;
         int b = c->flags & CELL_BG ? c16(c->bg) + 1 : 0;
@@ -257,6 +284,8 @@ static void colours_init(ColorDepth want)
     fold16 = colors < 16;
     if (depth == COLOR_256 && pairs > 241 * 241) {
         pair_kind = PAIRS_256;
+        for (int i = 0; i < 256; i++)
+            palette_256_rgb(i, pal_rgb[i]);
         for (int f = 0; f <= 240; f++)
             for (int b = 0; b <= 240; b++)
                 if (f || b)
@@ -362,11 +391,29 @@ void term_draw_cells(const CellGrid *g, int top)
     int cols = g->cols < W ? g->cols : W;
     cchar_t cc;
     wchar_t wc[2] = { 0, 0 };
+    if (pair_kind == PAIRS_256 && (g->cols != prev_cols || g->rows != prev_rows || !prev256)) {
+        free(prev256);
+        prev256 = calloc((size_t)g->cols * g->rows + 1, sizeof *prev256);
+        prev_cols = g->cols;
+        prev_rows = g->rows;
+    }
     for (int r = 0; r < g->rows && top + r < H; r++) {
         const Cell *c = g->cells + (size_t)r * g->cols;
+        uint16_t *pv = prev256 ? prev256 + (size_t)r * g->cols : NULL;
+        int lf = 0, lb = 0;
         wmove(stdscr, top + r, 0);
         for (int x = 0; x < cols; x++, c++) {
-            int pair = cell_pair(c);
+            int pair;
+            if (pair_kind == PAIRS_256 && pv) {
+                int f = c->flags & CELL_FG ? pick256(c->fg, pv[x] & 0xff, lf) : 0;
+                int b = c->flags & CELL_BG ? pick256(c->bg, pv[x] >> 8, lb) : 0;
+                pv[x] = (uint16_t)(f | b << 8);
+                lf = f;
+                lb = b;
+                pair = (f ? f - 15 : 0) * 241 + (b ? b - 15 : 0);
+            } else {
+                pair = cell_pair(c);
+            }
             wc[0] = (wchar_t)c->ch;
             setcchar(&cc, wc, A_NORMAL, 0, &pair);
             wadd_wch(stdscr, &cc);

@@ -1,0 +1,237 @@
+#!/bin/sh
+# The interactive viewer under tmux: a shell runs in a detached pane of a
+# fixed size, zview is typed into it, keys are sent, and the pane's text
+# is polled (capture-pane) until a condition holds or a bounded timeout
+# passes. Each session has its own server socket, killed on exit even
+# when a check fails.
+. "$(dirname "$0")/lib.sh"
+Z=$ZVIEW
+
+if ! command -v tmux >/dev/null 2>&1; then
+    echo "ok - # skip no tmux"
+    exit 0
+fi
+
+export LC_ALL=C.UTF-8 LANG=C.UTF-8
+# One server socket per started session: a new server never races the
+# old one's shutdown. The trap kills every one of them.
+n=0
+SOCK=zv-$$-0
+tm() { tmux -L "$SOCK" -f /dev/null "$@"; }
+cleanup() {
+    k=0
+    while [ $k -le $n ]; do
+        tmux -L "zv-$$-$k" -f /dev/null kill-server >/dev/null 2>&1
+        k=$((k + 1))
+    done
+    rm -rf "$T"
+}
+trap cleanup EXIT
+trap 'exit 1' INT TERM HUP
+
+# session TERM COLS ROWS: a fresh server with a shell in a COLS x ROWS pane
+session() {
+    tm kill-server >/dev/null 2>&1
+    n=$((n + 1))
+    SOCK=zv-$$-$n
+    tm new-session -d -s zv -x "$2" -y "$3" -c "$ROOT" \
+        -e TERM="$1" -e LANG=C.UTF-8 -e LC_ALL=C.UTF-8 -e NO_COLOR= -e COLORTERM= sh
+    tm set-option -t zv remain-on-exit on >/dev/null
+}
+
+# start COLS ROWS ARGS...: zview ARGS typed into a fresh pane (tmux sets
+# the pane's TERM itself, so the command sets it again). zview writes its
+# pid to $T/pid; after it exits the shell prints zv-exit=STATUS.
+start() {
+    cols=$1; rows=$2; shift 2
+    session xterm-256color "$cols" "$rows"
+    rm -f "$T/pid"
+    tm send-keys -t zv "TERM=xterm-256color sh -c 'echo \$\$ >$T/pid; exec $Z $*'; echo zv-exit=\$?" Enter
+}
+
+# prompt_back: the shell reads commands again after zview left
+prompt_back() {
+    tm send-keys -t zv "echo back-in-\$((40 + 2))" Enter
+    wait_for '^back-in-42$'
+}
+
+# cap: the pane's text, trailing blanks dropped
+cap() { tm capture-pane -p -t zv | sed 's/[[:space:]]*$//' >"$T/screen"; }
+# wait_for EXTENDED-REGEX: poll the pane (up to about 10 s) until it matches
+wait_for() {
+    i=0
+    while [ $i -lt 200 ]; do
+        cap
+        grep -Eq -- "$1" "$T/screen" && return 0
+        sleep 0.05
+        i=$((i + 1))
+    done
+    return 1
+}
+# picture ROWS: the first ROWS lines of the last capture (above the status bar)
+picture() { head -n "$1" "$T/screen"; }
+status() { sed -n "$1p" "$T/screen"; }
+# wait_change FILE ROWS: poll until the picture differs from FILE
+wait_change() {
+    i=0
+    while [ $i -lt 200 ]; do
+        cap
+        picture "$2" | cmp -s - "$1" || return 0
+        sleep 0.05
+        i=$((i + 1))
+    done
+    return 1
+}
+# wait_stable: poll until two captures 0.1 s apart agree (a frame can be
+# caught half written)
+wait_stable() {
+    cap
+    cp "$T/screen" "$T/prev"
+    i=0
+    while [ $i -lt 100 ]; do
+        sleep 0.1
+        cap
+        cmp -s "$T/screen" "$T/prev" && return 0
+        cp "$T/screen" "$T/prev"
+        i=$((i + 1))
+    done
+    return 1
+}
+# wait_gone EXTENDED-REGEX: poll until the pane no longer matches
+wait_gone() {
+    i=0
+    while [ $i -lt 200 ]; do
+        cap
+        grep -Eq -- "$1" "$T/screen" || return 0
+        sleep 0.05
+        i=$((i + 1))
+    done
+    return 1
+}
+check() { if eval "$2"; then ok "$1"; else notok "$1" "$3"; fi; }
+
+# ==== start-up, status bar, --print equality ====
+start 100 30 assets/torus.obj
+if wait_for 'faces [0-9]+ drawn'; then ok "status bar shows"; else notok "status bar shows" "$(cat "$T/screen")"; fi
+bar=$(status 30)
+nf=$(grep -c '^f ' assets/torus.obj)
+check "polygon count is the face count ($nf)" 'echo "$bar" | grep -q "faces $nf "' "$bar"
+check "algorithm named" 'echo "$bar" | grep -q "| zbuffer "' "$bar"
+check "picture size in pixels" 'echo "$bar" | grep -q "100x58px"' "$bar"
+picture 29 >"$T/p0"
+check "picture is not empty" '[ "$(tr -d " \n" <"$T/p0" | wc -c)" -gt 500 ]' "$(head -c 300 "$T/p0")"
+"$Z" --print --color none --size 100x29 assets/torus.obj | sed 's/[[:space:]]*$//' >"$T/print"
+check "screen equals --print cell for cell" 'cmp -s "$T/p0" "$T/print"' "$(diff "$T/p0" "$T/print" | head -5)"
+
+# ==== keys ====
+tm send-keys -t zv Right
+if wait_change "$T/p0" 29; then ok "a rotation key changes the picture"; else notok "a rotation key changes the picture"; fi
+wait_stable
+picture 29 >"$T/p1"
+tm send-keys -t zv g
+if wait_for '\| scanline '; then ok "g switches to the next algorithm"; else notok "g switches to the next algorithm" "$(status 30)"; fi
+picture 29 >"$T/p2"
+check "another algorithm draws the same picture" 'cmp -s "$T/p1" "$T/p2"' "$(diff "$T/p1" "$T/p2" | head -5)"
+for algo in span hzb hzb-octree; do
+    tm send-keys -t zv g
+    if wait_for "\\| $algo "; then
+        picture 29 >"$T/pa"
+        check "$algo draws the same picture" 'cmp -s "$T/p1" "$T/pa"' "$(diff "$T/p1" "$T/pa" | head -5)"
+    else
+        notok "$algo draws the same picture" "not selected: $(status 30)"
+    fi
+done
+check "half mode draws half blocks" 'grep -q "▀" "$T/p1"'
+tm send-keys -t zv m
+if wait_for '\| ascii '; then ok "m switches to ascii"; else notok "m switches to ascii" "$(status 30)"; fi
+picture 29 >"$T/p3"
+check "ascii mode uses other characters" '! grep -q "[▀▄]" "$T/p3" && grep -q "[.:=+*#%@-]" "$T/p3"' "$(head -c 300 "$T/p3")"
+tm send-keys -t zv m
+if wait_for '\| braille '; then
+    picture 29 >"$T/p4"
+    check "braille mode draws braille dots" 'grep -q "⣿" "$T/p4" && ! grep -q "[▀▄]" "$T/p4"' "$(head -c 300 "$T/p4")"
+else
+    notok "m switches to braille" "$(status 30)"
+fi
+tm send-keys -t zv '?'
+if wait_for 'zview keys'; then ok "? shows the help"; else notok "? shows the help"; fi
+check "help lists the quit key" 'grep -q "q / Esc" "$T/screen"'
+tm send-keys -t zv '?'
+if wait_gone 'zview keys'; then ok "? again closes the help"; else notok "? again closes the help"; fi
+
+# ==== quit with q: prompt back, normal screen, cursor visible ====
+tm send-keys -t zv q
+if wait_for 'zv-exit=0'; then ok "q quits with status 0"; else notok "q quits with status 0" "$(cat "$T/screen")"; fi
+if prompt_back; then ok "the shell prompt is back after q"; else notok "the shell prompt is back after q" "$(cat "$T/screen")"; fi
+check "no alternate screen after q" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
+check "cursor visible after q" '[ "$(tm display -p -t zv "#{cursor_flag}")" = 1 ]'
+
+# ==== objects ====
+# ascii: the shading shows in the characters, so a move shows in the text
+start 120 30 --mode ascii --yaw 30 --pitch 25 assets/scene.obj
+wait_for 'faces [0-9]+ drawn' >/dev/null
+check "a scene of several objects shows them all" 'grep -q "\[all 6\]" "$T/screen"' "$(status 30)"
+tm send-keys -t zv n
+if wait_for '\[cone 1/6\]'; then ok "n selects the first object"; else notok "n selects the first object" "$(status 30)"; fi
+tm send-keys -t zv Tab
+if wait_for '\[floor 2/6\]'; then ok "Tab selects the next object"; else notok "Tab selects the next object" "$(status 30)"; fi
+picture 29 >"$T/s0"
+tm send-keys -t zv d d d
+if wait_change "$T/s0" 29; then ok "moving the selected object changes the picture"; else notok "moving the selected object changes the picture"; fi
+tm send-keys -t zv N
+if wait_for '\[all 6\]'; then ok "N selects the whole scene"; else notok "N selects the whole scene" "$(status 30)"; fi
+
+# ==== resize ====
+start 100 30 assets/torus.obj
+wait_for 'faces [0-9]+ drawn' >/dev/null
+picture 29 >"$T/r0"
+"$Z" --print --color none --size 70x21 assets/torus.obj | sed 's/[[:space:]]*$//' >"$T/print"
+tm resize-window -t zv -x 70 -y 22
+# the new picture is exactly what --print draws at the new size
+i=0
+while [ $i -lt 200 ]; do
+    cap
+    picture 21 | cmp -s - "$T/print" && break
+    sleep 0.05
+    i=$((i + 1))
+done
+picture 21 >"$T/r1"
+check "the picture follows a resize (equals --print at the new size)" 'cmp -s "$T/r1" "$T/print"' "$(diff "$T/r1" "$T/print" | head -5)"
+check "the status bar moves to the new last line" 'status 22 | grep -q "faces 12288"' "$(status 22)"
+tm resize-window -t zv -x 10 -y 3
+if wait_for 'too small'; then ok "a tiny window shows a short message"; else notok "a tiny window shows a short message" "$(cat "$T/screen")"; fi
+tm resize-window -t zv -x 100 -y 30
+if wait_for '100x58px'; then ok "the picture comes back after growing"; else notok "the picture comes back after growing"; fi
+
+# ==== SIGTERM and SIGINT: the terminal is restored ====
+i=0
+while [ ! -s "$T/pid" ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
+kill -TERM "$(cat "$T/pid")"
+if wait_for 'zv-exit=143'; then ok "SIGTERM ends zview"; else notok "SIGTERM ends zview" "$(cat "$T/screen")"; fi
+check "no alternate screen after SIGTERM" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
+check "cursor visible after SIGTERM" '[ "$(tm display -p -t zv "#{cursor_flag}")" = 1 ]'
+if prompt_back; then ok "the shell prompt is back after SIGTERM"; else notok "the shell prompt is back after SIGTERM" "$(cat "$T/screen")"; fi
+
+start 80 24 assets/cube.obj
+if wait_for 'faces 6 drawn'; then ok "the cube shows 6 faces"; else notok "the cube shows 6 faces" "$(cat "$T/screen")"; fi
+i=0
+while [ ! -s "$T/pid" ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
+pid=$(cat "$T/pid")
+tm send-keys -t zv C-c
+# the interactive shell drops the rest of a command line stopped by
+# Ctrl-C, so watch the process instead of its exit status
+i=0
+while kill -0 "$pid" 2>/dev/null && [ $i -lt 200 ]; do sleep 0.05; i=$((i + 1)); done
+if ! kill -0 "$pid" 2>/dev/null; then ok "Ctrl-C ends zview"; else notok "Ctrl-C ends zview" "$(cat "$T/screen")"; fi
+if prompt_back; then ok "the shell prompt is back after Ctrl-C"; else notok "the shell prompt is back after Ctrl-C" "$(cat "$T/screen")"; fi
+check "no alternate screen after Ctrl-C" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
+check "cursor visible after Ctrl-C" '[ "$(tm display -p -t zv "#{cursor_flag}")" = 1 ]'
+
+# ==== not a terminal / unknown terminal: behave like --print ====
+"$Z" assets/cube.obj --size 40x12 --color none >"$T/pipe" 2>"$T/err" </dev/null
+st=$?
+check "stdout not a terminal prints one frame" '[ $st -eq 0 ] && [ "$(wc -l <"$T/pipe")" -eq 12 ] && ! grep -q "$(printf "\033")" "$T/pipe"' "status $st"
+session xterm-256color 80 24
+tm send-keys -t zv "TERM=no-such-terminal $Z --color none assets/cube.obj; echo zv-exit=\$?" Enter
+if wait_for 'zv-exit=0'; then ok "an unknown TERM falls back to --print"; else notok "an unknown TERM falls back to --print" "$(cat "$T/screen")"; fi
+check "the fallback frame has the cube" 'grep -q "▀" "$T/screen"' "$(cat "$T/screen")"
