@@ -5,25 +5,35 @@
  *
  * Per band of rows [y0, y1):
  *  - Polygon table: the band's polygons counting-sorted by their first
- *    row. When a polygon's row comes, its edges are set up with the
- *    exact walkers of raster.h; edges that start lower down wait in a
- *    per-row pending list (an index-linked pool, reused).
- *  - Active edge list: an array of walkers sorted by crossing column.
- *    New edges are radix-sorted and merged in; after edge_step the list
- *    is re-sorted by insertion sort, which is near-linear because the
- *    order changes little from one row to the next.
- *  - Each row is one merged pass over the crossings, left to right. A
- *    polygon's in/out flag toggles at each of its crossings (even-odd),
- *    so between two distinct clamped crossing columns lies an interval
- *    [xa, xb) whose covering set is constant; it is exactly the set of
- *    polygons the z-buffer would test at those samples (rule 3).
+ *    row and copied (plane, triangle corners) in that order, so the scan
+ *    reads it front to back. When a polygon's row comes it takes a slot
+ *    (its plane, depth bounds, in/out state; slots are reused as polygons
+ *    finish, so they stay in cache) and its edges are set up with the
+ *    exact walkers of raster.h in a reusable edge pool; edges that start
+ *    lower down (a triangle's second short edge, n-gon local tops) wait
+ *    in their first row's pending list.
+ *  - Active edge list: (clamped column, edge) pairs sorted by column.
+ *    The row's entering edges are sorted (insertion or 2-pass radix) and
+ *    merged in; after edge_step the next row's list is kept sorted by
+ *    insertion as it is written, which is near-linear because the order
+ *    changes little from one row to the next.
+ *  - Each row is one pass over the crossings, left to right. A polygon's
+ *    in/out flag toggles at each of its crossings (even-odd), so between
+ *    two distinct clamped crossing columns lies an interval [xa, xb)
+ *    whose covering set is constant; it is exactly the set of polygons
+ *    the z-buffer would test at those samples (rule 3). Every sample of
+ *    the band is written once (background included).
  *
  * Deciding an interval (the only place depth matters):
  *  - no polygon: background; one polygon: it wins every sample (the
  *    z-buffer's (inf, -1) background always loses to a non-NaN depth;
  *    polygons whose plane could give NaN or overflow never take a fast
  *    path).
- *  - several: evaluate every plane with plane_row/plane_at at xa and
+ *  - several, one of whose depth range over its sample box lies wholly
+ *    before every other's (hi < lo, bounds with a rounding margin, see
+ *    slot_take): it wins every sample strictly, no plane is evaluated.
+ *    This settles the front and back of a closed surface at once.
+ *  - otherwise evaluate every plane with plane_row/plane_at at xa and
  *    xb - 1. The computed value f differs from the exact affine value g
  *    of the same float coefficients by at most u(|a k| + |f|), u = 2^-24
  *    (one rounding in the product, one in the sum); both magnitudes are
@@ -671,17 +681,18 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
         Cross *mrg = s->mrg;
         const Cross *m = act;
         if (nf > 0) {
-            int ia = 0, inew = 0, k = 0;
-            while (ia < na && inew < nf) {
-                int take_a = act[ia].key <= fresh[inew].key;
-                mrg[k++] = take_a ? act[ia] : fresh[inew];
-                ia += take_a;
-                inew += !take_a;
+            /* few entering among many active: copy runs of active ones */
+            int ia = 0, k = 0;
+            for (int f = 0; f < nf; f++) {
+                int32_t key = fresh[f].key;
+                int a0 = ia;
+                while (ia < na && act[ia].key <= key)
+                    ia++;
+                memcpy(mrg + k, act + a0, (size_t)(ia - a0) * sizeof *mrg);
+                k += ia - a0;
+                mrg[k++] = fresh[f];
             }
-            while (ia < na)
-                mrg[k++] = act[ia++];
-            while (inew < nf)
-                mrg[k++] = fresh[inew++];
+            memcpy(mrg + k, act + ia, (size_t)(na - ia) * sizeof *mrg);
             m = mrg;
         }
         /* one pass over the row's crossings, left to right */
