@@ -500,27 +500,32 @@ void term_update(int full)
 
 /* ==== Input ==== */
 
-/* A mouse report -> an event; 0 for reports that only change state. */
-static int mouse_event(TermEvent *ev)
+/* Mouse reports that arrive together come out of ncurses as one KEY_MOUSE
+ * with several queued events: they are drained into this queue. */
+#define MQ_MAX 16
+static TermEvent mq[MQ_MAX];
+static int mq_head, mq_len;
+
+static void mq_push(const TermEvent *ev)
 {
-    MEVENT me;
-    if (getmouse(&me) != OK)
-        return 0;
-    mmask_t b = me.bstate;
-    if (b & BUTTON4_PRESSED) {
+    if (mq_len < MQ_MAX)
+        mq[(mq_head + mq_len++) % MQ_MAX] = *ev;
+}
+
+/* One mouse report -> an event; 0 for reports that only change state. */
+static int mouse_event(const MEVENT *me, TermEvent *ev)
+{
+    mmask_t b = me->bstate;
+    memset(ev, 0, sizeof *ev);
+    if (b & (BUTTON4_PRESSED | BUTTON5_PRESSED)) {
         ev->type = TE_WHEEL;
-        ev->dy = -1;
-        return 1;
-    }
-    if (b & BUTTON5_PRESSED) {
-        ev->type = TE_WHEEL;
-        ev->dy = 1;
+        ev->dy = b & BUTTON4_PRESSED ? -1 : 1;
         return 1;
     }
     if (b & (BUTTON1_PRESSED | BUTTON3_PRESSED)) {
         drag_button = b & BUTTON1_PRESSED ? 1 : 3;
-        drag_x = me.x;
-        drag_y = me.y;
+        drag_x = me->x;
+        drag_y = me->y;
         return 0;
     }
     int release = (b & (BUTTON1_RELEASED | BUTTON3_RELEASED)) != 0;
@@ -528,18 +533,39 @@ static int mouse_event(TermEvent *ev)
         return 0;
     ev->type = TE_DRAG;
     ev->button = drag_button;
-    ev->dx = me.x - drag_x;
-    ev->dy = me.y - drag_y;
-    drag_x = me.x;
-    drag_y = me.y;
+    ev->dx = me->x - drag_x;
+    ev->dy = me->y - drag_y;
+    drag_x = me->x;
+    drag_y = me->y;
     if (release)
         drag_button = 0;
     return ev->dx || ev->dy;
 }
 
+static int mq_pop(TermEvent *ev)
+{
+    if (!mq_len)
+        return 0;
+    *ev = mq[mq_head];
+    mq_head = (mq_head + 1) % MQ_MAX;
+    mq_len--;
+    return 1;
+}
+
+static void mouse_drain(void)
+{
+    MEVENT me;
+    TermEvent ev;
+    while (getmouse(&me) == OK)
+        if (mouse_event(&me, &ev))
+            mq_push(&ev);
+}
+
 int term_read(TermEvent *ev, int timeout_ms)
 {
     memset(ev, 0, sizeof *ev);
+    if (mq_pop(ev))
+        return 1;
     wtimeout(stdscr, timeout_ms);
     for (;;) {
         wint_t wc;
@@ -560,7 +586,8 @@ int term_read(TermEvent *ev, int timeout_ms)
         case KEY_BTAB:   ev->key = TK_BTAB; return 1;
         case KEY_RESIZE: ev->type = TE_RESIZE; return 1;
         case KEY_MOUSE:
-            if (mouse_event(ev))
+            mouse_drain();
+            if (mq_pop(ev))
                 return 1;
             break;
         default:

@@ -159,6 +159,30 @@ check "help lists the quit key" 'grep -q "q / Esc" "$T/screen"'
 tm send-keys -t zv '?'
 if wait_gone 'zview keys'; then ok "? again closes the help"; else notok "? again closes the help"; fi
 
+# ==== mouse (SGR reports, as xterm and tmux send them) and auto-rotate ====
+tm send-keys -t zv m
+wait_for '\| half ' >/dev/null
+wait_stable
+picture 29 >"$T/m0"
+tm send-keys -t zv -l "$(printf '\033[<0;50;15M\033[<32;56;15M\033[<32;62;17M\033[<0;62;17m')"
+if wait_change "$T/m0" 29; then ok "a left drag turns the model"; else notok "a left drag turns the model"; fi
+wait_stable
+picture 29 >"$T/m1"
+tm send-keys -t zv -l "$(printf '\033[<65;50;15M\033[<65;50;15M')"
+if wait_change "$T/m1" 29; then ok "the wheel scales the model"; else notok "the wheel scales the model"; fi
+wait_stable
+picture 29 >"$T/m2"
+tm send-keys -t zv ' '
+if wait_for ' spin@30'; then ok "space starts the turntable"; else notok "space starts the turntable" "$(status 30)"; fi
+if wait_change "$T/m2" 29; then
+    picture 29 >"$T/m3"
+    if wait_change "$T/m3" 29; then ok "the turntable keeps turning without keys"; else notok "the turntable keeps turning without keys"; fi
+else
+    notok "the turntable keeps turning without keys" "no change"
+fi
+tm send-keys -t zv ' '
+if wait_gone ' spin@' && wait_stable; then ok "space stops the turntable"; else notok "space stops the turntable" "$(status 30)"; fi
+
 # ==== quit with q: prompt back, normal screen, cursor visible ====
 tm send-keys -t zv q
 if wait_for 'zv-exit=0'; then ok "q quits with status 0"; else notok "q quits with status 0" "$(cat "$T/screen")"; fi
@@ -211,6 +235,15 @@ if wait_for 'zv-exit=143'; then ok "SIGTERM ends zview"; else notok "SIGTERM end
 check "no alternate screen after SIGTERM" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
 check "cursor visible after SIGTERM" '[ "$(tm display -p -t zv "#{cursor_flag}")" = 1 ]'
 if prompt_back; then ok "the shell prompt is back after SIGTERM"; else notok "the shell prompt is back after SIGTERM" "$(cat "$T/screen")"; fi
+
+start 80 24 assets/cube.obj
+wait_for 'faces 6 drawn' >/dev/null
+i=0
+while [ ! -s "$T/pid" ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
+kill -HUP "$(cat "$T/pid")"
+if wait_for 'zv-exit=129'; then ok "SIGHUP (a dropped ssh link) ends zview"; else notok "SIGHUP (a dropped ssh link) ends zview" "$(cat "$T/screen")"; fi
+check "no alternate screen after SIGHUP" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
+check "cursor visible after SIGHUP" '[ "$(tm display -p -t zv "#{cursor_flag}")" = 1 ]'
 
 start 80 24 assets/cube.obj
 if wait_for 'faces 6 drawn'; then ok "the cube shows 6 faces"; else notok "the cube shows 6 faces" "$(cat "$T/screen")"; fi
