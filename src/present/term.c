@@ -25,6 +25,13 @@
 
 #include "term.h"
 
+/* From ncurses' term.h, which is not included: include/term.h shadows it
+ * and its capability macros (lines, columns, ...) clash with plain names. */
+struct term;
+extern int setupterm(const char *name, int fd, int *err_out);
+extern struct term *set_curterm(struct term *t);
+extern int del_curterm(struct term *t);
+
 /* ==== State ==== */
 
 static SCREEN *scr;
@@ -320,6 +327,15 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     if (cfg->signals)
         install_handlers();
     fflush(out);
+    /* Look the terminal up first: newterm() leaks when it fails. */
+    int found = 0;
+    if (setupterm(cfg->termname, fileno(out), &found) != OK || found != 1) {
+        restore_handlers();
+        snprintf(err, errlen, "unknown terminal type '%s'",
+                 cfg->termname ? cfg->termname : getenv("TERM") ? getenv("TERM") : "");
+        return -1;
+    }
+    del_curterm(set_curterm(NULL));
     SCREEN *s = newterm(cfg->termname, out, in);
     if (!s) {
         restore_handlers();
