@@ -66,6 +66,9 @@ static uint16_t *prev256;
 static int prev_cols, prev_rows;
 static uint8_t pal_rgb[256][3];
 
+static cchar_t *row_buf;        /* one row of cells for term_draw_cells */
+static size_t   row_cap;
+
 /* Mouse drag state: ncurses reports motion without the button. */
 static int drag_button, drag_x, drag_y;
 
@@ -405,19 +408,28 @@ void term_draw_cells(const CellGrid *g, int top)
     getmaxyx(stdscr, H, W);
     frame_stamp++;
     int cols = g->cols < W ? g->cols : W;
-    cchar_t cc;
-    wchar_t wc[2] = { 0, 0 };
+    if (cols <= 0)
+        return;
+    /* A row is built as cchar_t and copied in one call: much cheaper
+     * than adding cell by cell (no cursor, wrap or attribute logic). */
+    if ((size_t)cols > row_cap) {
+        cchar_t *nb = realloc(row_buf, (size_t)cols * sizeof *nb);
+        if (!nb)
+            return;
+        row_buf = nb;
+        row_cap = (size_t)cols;
+    }
     if (pair_kind == PAIRS_256 && (g->cols != prev_cols || g->rows != prev_rows || !prev256)) {
         free(prev256);
         prev256 = calloc((size_t)g->cols * g->rows + 1, sizeof *prev256);
         prev_cols = g->cols;
         prev_rows = g->rows;
     }
+    wchar_t wc[2] = { 0, 0 };
     for (int r = 0; r < g->rows && top + r < H; r++) {
         const Cell *c = g->cells + (size_t)r * g->cols;
         uint16_t *pv = prev256 ? prev256 + (size_t)r * g->cols : NULL;
         int lf = 0, lb = 0;
-        wmove(stdscr, top + r, 0);
         for (int x = 0; x < cols; x++, c++) {
             int pair;
             if (pair_kind == PAIRS_256 && pv) {
@@ -431,9 +443,9 @@ void term_draw_cells(const CellGrid *g, int top)
                 pair = cell_pair(c);
             }
             wc[0] = (wchar_t)c->ch;
-            setcchar(&cc, wc, A_NORMAL, 0, &pair);
-            wadd_wch(stdscr, &cc);
+            setcchar(&row_buf[x], wc, A_NORMAL, 0, &pair);
         }
+        mvwadd_wchnstr(stdscr, top + r, 0, row_buf, cols);
     }
 }
 
