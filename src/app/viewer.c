@@ -208,7 +208,20 @@ int app_viewer(const Options *o, Scene *s)
         .mouse = 1,
         .signals = 1,
     };
-    if (term_open(&cfg, err, sizeof err)) {
+    /* COLORTERM=truecolor on a TERM without direct colour: curses can
+     * only send RGB through a *-direct description, so try the same
+     * family's (xterm-256color -> xterm-direct) when it is installed. */
+    char direct[64];
+    const char *dash = strchr(t, '-');
+    int rc_open = -1;
+    if (cfg.color == COLOR_TRUE && !strstr(t, "-direct") &&
+        snprintf(direct, sizeof direct, "%.*s-direct", dash ? (int)(dash - t) : 40, t) <
+            (int)sizeof direct) {
+        cfg.termname = direct;
+        rc_open = term_open(&cfg, err, sizeof err);
+        cfg.termname = NULL;
+    }
+    if (rc_open && term_open(&cfg, err, sizeof err)) {
         pipeline_free(&a.p);
         return app_oneshot(o, s);
     }
@@ -269,7 +282,13 @@ int app_bench_tty(const Options *o)
         goto done;
     }
     TermConfig cfg = { .out = out, .in = in, .termname = termname, .color = color };
-    if (term_open(&cfg, err, sizeof err)) {
+    int opened = term_open(&cfg, err, sizeof err) == 0;
+    if (!opened && color == COLOR_TRUE) {
+        /* no xterm-direct description installed: 256 colours it is */
+        cfg.termname = termname = "xterm-256color";
+        opened = term_open(&cfg, err, sizeof err) == 0;
+    }
+    if (!opened) {
         fprintf(stderr, "zview: %s: %s\n", termname, err);
         pipeline_free(&a.p);
         goto done;

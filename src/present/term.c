@@ -236,8 +236,19 @@ static inline int pick256(const uint8_t rgb[3], int prev, int left)
 
 static inline int c16(const uint8_t rgb[3])
 {
-    int k = palette_16(rgb);
-    return fold16 && k >= 8 ? k - 8 : k;
+    if (!fold16)
+        return palette_16(rgb);
+    /* 8 colours: the nearest of those (folding bright grey onto black
+     * would lose every grey surface) */
+    int best = 0, bestd = 1 << 30;
+    for (int i = 0; i < 8; i++) {
+        int d = dist2(rgb, pal_rgb[i]);
+        if (d < bestd) {
+            bestd = d;
+            best = i;
+        }
+    }
+    return best;
 }
 
 /* Colour number of a cell colour under the depth in use (-1 = unset). */
@@ -292,10 +303,10 @@ static void colours_init(ColorDepth want)
     else
         return;
     fold16 = colors < 16;
+    for (int i = 0; i < 256; i++)
+        palette_256_rgb(i, pal_rgb[i]);
     if (depth == COLOR_256 && pairs > 241 * 241) {
         pair_kind = PAIRS_256;
-        for (int i = 0; i < 256; i++)
-            palette_256_rgb(i, pal_rgb[i]);
         for (int f = 0; f <= 240; f++)
             for (int b = 0; b <= 240; b++)
                 if (f || b)
