@@ -22,6 +22,8 @@ cleanup() {
     k=0
     while [ $k -le $n ]; do
         tmux -L "zv-$$-$k" -f /dev/null kill-server >/dev/null 2>&1
+        # tmux leaves its socket file behind
+        rm -f "${TMUX_TMPDIR:-/tmp}/tmux-$(id -u)/zv-$$-$k"
         k=$((k + 1))
     done
     rm -rf "$T"
