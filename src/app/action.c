@@ -6,7 +6,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "term.h"
+#include "tty.h"
 #include "viewer.h"
 
 #define STEP_DEG   5.0f     /* arrows, hjkl, u/o */

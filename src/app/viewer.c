@@ -12,7 +12,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "term.h"
+#include "tty.h"
 #include "viewer.h"
 
 #define MIN_COLS 16

@@ -23,10 +23,10 @@
 #include <unistd.h>
 #include <wchar.h>
 
-#include "term.h"
+#include "tty.h"
 
-/* From ncurses' term.h, which is not included: include/term.h shadows it
- * and its capability macros (lines, columns, ...) clash with plain names. */
+/* From ncurses' <term.h>, which is not included: its capability macros
+ * (lines, columns, ...) clash with plain names. */
 struct term;
 extern int setupterm(const char *name, int fd, int *err_out);
 extern struct term *set_curterm(struct term *t);

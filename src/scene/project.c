@@ -351,6 +351,27 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
             int32_t face = o->face_base + (int32_t)s->poly_lface[k];
             sp->in_polys++;
             sp->map[inst] = -1;
+            if (nc == 3) {
+                /* Fast reject of a triangle that covers no sample centre
+                 * (most of a big model in a small image), before copying. */
+                uint32_t i0 = s->poly_corner[c0] - o->vert_min, i1 = s->poly_corner[c0 + 1] - o->vert_min,
+                         i2 = s->poly_corner[c0 + 2] - o->vert_min;
+                if (sc->ok[i0] & sc->ok[i1] & sc->ok[i2]) {
+                    const ScreenVert *a = &sc->sv[i0], *b = &sc->sv[i1], *c = &sc->sv[i2];
+                    int32_t xmin = a->x < b->x ? a->x : b->x, xmax = a->x < b->x ? b->x : a->x;
+                    int32_t ymin = a->y < b->y ? a->y : b->y, ymax = a->y < b->y ? b->y : a->y;
+                    xmin = c->x < xmin ? c->x : xmin;
+                    xmax = c->x > xmax ? c->x : xmax;
+                    ymin = c->y < ymin ? c->y : ymin;
+                    ymax = c->y > ymax ? c->y : ymax;
+                    int32_t x0 = sample_ceil(xmin), x1 = sample_ceil(xmax);
+                    int32_t y0 = sample_ceil(ymin), y1 = sample_ceil(ymax);
+                    if (x0 >= x1 || y0 >= y1 || x1 <= 0 || y1 <= 0 || x0 >= sp->w || y0 >= sp->h) {
+                        sp->culled_empty++;
+                        continue;
+                    }
+                }
+            }
             /* room for the clipped outline: each plane adds at most one vertex */
             if (grow((void **)&sp->verts, &sp->cap_verts, sp->nverts + nc + 8, sizeof *sp->verts))
                 return -1;

@@ -26,6 +26,16 @@ static Vec3 mesh_vertex(const Mesh *m, uint32_t v)
 static void face_newell(const Mesh *m, uint32_t f, double n[3])
 {
     uint32_t a = m->face_start[f], b = m->face_start[f + 1];
+    if (b - a == 3) {   /* a triangle: one cross product */
+        Vec3 p = mesh_vertex(m, m->corner[a]), q = mesh_vertex(m, m->corner[a + 1]),
+             r = mesh_vertex(m, m->corner[a + 2]);
+        double ux = (double)q.x - p.x, uy = (double)q.y - p.y, uz = (double)q.z - p.z;
+        double vx = (double)r.x - p.x, vy = (double)r.y - p.y, vz = (double)r.z - p.z;
+        n[0] = uy * vz - uz * vy;
+        n[1] = uz * vx - ux * vz;
+        n[2] = ux * vy - uy * vx;
+        return;
+    }
     n[0] = n[1] = n[2] = 0;
     for (uint32_t k = a; k < b; k++) {
         Vec3 p = mesh_vertex(m, m->corner[k]);
@@ -324,7 +334,7 @@ Mat4 camera_view(const Camera *c)
 }
 
 /* Grow a view-space box by point p. */
-static void box_add(float lo[3], float hi[3], Vec3 p)
+static inline void box_add(float lo[3], float hi[3], Vec3 p)
 {
     float q[3] = { p.x, p.y, p.z };
     for (int k = 0; k < 3; k++) {

@@ -1,6 +1,6 @@
-#ifndef ZV_TERM_H
-#define ZV_TERM_H
-/* term: the viewer's screen. Owns curses (only term.c includes it): start
+#ifndef ZV_TTY_H
+#define ZV_TTY_H
+/* tty: the viewer's screen (src/present/term.c). Owns curses (only term.c includes it): start
  * and the one restore path (atexit, SIGINT/SIGTERM/SIGHUP, SIGTSTP and
  * back), colour pairs, drawing a cell grid and the status line, and
  * reading keys and mouse drags as plain events. */
