@@ -24,6 +24,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "hsr.h"
 #include "hzb.h"
@@ -47,32 +48,41 @@ int hzb_pyr_begin(HzbPyramid *p, FrameBufs *fb, int y0, int y1)
     p->off[0] = 0;
     int k = 0;
     size_t total = 0;
-    while ((p->lw[k] > 1 || p->lh[k] > 1) && k + 1 < HZB_MAX_LEVELS) {
+    /* halve up to one texel, and at least up to the first kept level */
+    while ((p->lw[k] > 1 || p->lh[k] > 1 || k < HZB_FIRST) && k + 1 < HZB_MAX_LEVELS) {
         k++;
         p->lw[k] = (p->lw[k - 1] + 1) / 2;
         p->lh[k] = (p->lh[k - 1] + 1) / 2;
         p->off[k] = total;
-        total += (size_t)p->lw[k] * p->lh[k];
+        if (k >= HZB_FIRST)
+            total += (size_t)p->lw[k] * p->lh[k];
     }
     p->nlev = k + 1;
     if (total > p->cap) {
         float *t = realloc(p->tex, total * sizeof *t);
-        if (!t) {
+        if (t)
+            p->tex = t;
+        uint8_t *d = realloc(p->dirty, total);
+        if (d)
+            p->dirty = d;
+        if (!t || !d) {
             p->nlev = 0;        /* still correct: nothing is culled */
             return -1;
         }
-        p->tex = t;
         p->cap = total;
     }
     for (size_t i = 0; i < total; i++)
         p->tex[i] = INFINITY;
+    memset(p->dirty, 0, total);
     return 0;
 }
 
 void hzb_pyr_free(HzbPyramid *p)
 {
     free(p->tex);
+    free(p->dirty);
     p->tex = NULL;
+    p->dirty = NULL;
     p->cap = 0;
 }
 
@@ -81,36 +91,78 @@ static inline float maxf(float a, float b)
     return a > b ? a : b;
 }
 
-void hzb_pyr_update(HzbPyramid *p, int x0, int x1, int ya, int yb)
+void hzb_pyr_mark(HzbPyramid *p, int x0, int x1, int ya, int yb)
 {
-    int bx0 = x0, bx1 = x1 - 1, by0 = ya - p->y0, by1 = yb - 1 - p->y0;
-    const float *src = p->d0;
-    int sw = p->w, sh = p->h, sstride = p->w;
-    for (int k = 1; k < p->nlev; k++) {
-        float *dst = p->tex + p->off[k];
-        int dstride = p->lw[k];
-        bx0 >>= 1; bx1 >>= 1; by0 >>= 1; by1 >>= 1;
-        int changed = 0;
-        for (int ty = by0; ty <= by1; ty++) {
-            int sy0 = 2 * ty, sy1 = 2 * ty + 1 < sh ? 2 * ty + 1 : sh - 1;
-            const float *ra = src + (size_t)sy0 * sstride, *rb = src + (size_t)sy1 * sstride;
-            float *d = dst + (size_t)ty * dstride;
-            for (int tx = bx0; tx <= bx1; tx++) {
-                int sx0 = 2 * tx, sx1 = 2 * tx + 1 < sw ? 2 * tx + 1 : sw - 1;
-                float m = maxf(maxf(ra[sx0], ra[sx1]), maxf(rb[sx0], rb[sx1]));
-                if (m != d[tx]) {
-                    d[tx] = m;
-                    changed = 1;
-                }
+    if (p->nlev == 0)
+        return;
+    int tx0 = x0 >> HZB_FIRST, tx1 = (x1 - 1) >> HZB_FIRST;
+    int ty0 = (ya - p->y0) >> HZB_FIRST, ty1 = (yb - 1 - p->y0) >> HZB_FIRST;
+    uint8_t *dl = p->dirty + p->off[HZB_FIRST];
+    int stride = p->lw[HZB_FIRST];
+    for (int ty = ty0; ty <= ty1; ty++) {
+        for (int tx = tx0; tx <= tx1; tx++) {
+            size_t i = (size_t)ty * stride + tx;
+            if (dl[i])
+                continue;       /* and so are its ancestors */
+            dl[i] = 1;
+            int ax = tx >> 1, ay = ty >> 1;
+            for (int k = HZB_FIRST + 1; k < p->nlev; k++, ax >>= 1, ay >>= 1) {
+                uint8_t *d = &p->dirty[p->off[k] + (size_t)ay * p->lw[k] + ax];
+                if (*d)
+                    break;
+                *d = 1;
             }
         }
-        if (!changed)
-            break;
-        src = dst;
-        sw = p->lw[k];
-        sh = p->lh[k];
-        sstride = dstride;
     }
+}
+
+/* Max of the pixels under texel (tx, ty) of level HZB_FIRST. */
+static float block_max(const HzbPyramid *p, int tx, int ty)
+{
+    const int S = 1 << HZB_FIRST;
+    int sx = tx * S, sy = ty * S, ey = sy + S < p->h ? sy + S : p->h;
+    const float *row = p->d0 + (size_t)sy * p->w;
+#ifdef __SSE2__
+    if (sx + S <= p->w) {
+        __m128 v = _mm_loadu_ps(row + sx);
+        for (int j = sy; j < ey; j++, row += p->w)
+            for (int x = sx; x < sx + S; x += 4)
+                v = _mm_max_ps(v, _mm_loadu_ps(row + x));
+        v = _mm_max_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1)));
+        v = _mm_max_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 0, 3, 2)));
+        return _mm_cvtss_f32(v);
+    }
+#endif
+    int ex = sx + S < p->w ? sx + S : p->w;
+    float m = -INFINITY;
+    for (int j = sy; j < ey; j++, row += p->w)
+        for (int x = sx; x < ex; x++)
+            m = maxf(m, row[x]);
+    return m;
+}
+
+float hzb_pyr_refresh(HzbPyramid *p, int k, int tx, int ty)
+{
+    size_t i = p->off[k] + (size_t)ty * p->lw[k] + tx;
+    float m;
+    if (k == HZB_FIRST) {
+        m = block_max(p, tx, ty);
+    } else {
+        /* children 2t and 2t + 1, the last one repeated at an odd edge */
+        int cw = p->lw[k - 1], ch = p->lh[k - 1];
+        int cx[2] = { 2 * tx, 2 * tx + 1 < cw ? 2 * tx + 1 : cw - 1 };
+        int cy[2] = { 2 * ty, 2 * ty + 1 < ch ? 2 * ty + 1 : ch - 1 };
+        m = -INFINITY;
+        for (int b = 0; b < 2; b++)
+            for (int a = 0; a < 2; a++) {
+                size_t c = p->off[k - 1] + (size_t)cy[b] * cw + cx[a];
+                float v = p->dirty[c] ? hzb_pyr_refresh(p, k - 1, cx[a], cy[b]) : p->tex[c];
+                m = maxf(m, v);
+            }
+    }
+    p->tex[i] = m;
+    p->dirty[i] = 0;
+    return m;
 }
 
 /* ==== one polygon: test, draw, update ==== */
@@ -130,7 +182,7 @@ void hzb_draw_poly(HzbPyramid *p, void *zstate, const ScreenPolys *sp, uint32_t 
     uint64_t n = zbuffer_draw_poly(zstate, sp, pi, fb, ya, yb);
     if (n) {
         stats->pixels_written += n;
-        hzb_pyr_update(p, q->x0, q->x1, ya, yb);
+        hzb_pyr_mark(p, q->x0, q->x1, ya, yb);
     }
 }
 

@@ -47,6 +47,10 @@ extern const HsrAlgo hsr_zbuffer;
 
 #define LEAF_POLYS  48      /* a node with more polygons is split */
 #define MAX_DEPTH   20      /* and never deeper than this */
+#ifndef FLAT_RATIO
+#define FLAT_RATIO  4       /* walk objects flat when under 1/4 of their polygons are on screen */
+#endif
+#define CHUNK       64      /* polygons fetched ahead together */
 #define STACK_MAX   (MAX_DEPTH * 7 + 16)
 #define NO_TREE     UINT32_MAX
 
@@ -63,6 +67,8 @@ typedef struct {
     double zfront;          /* view z of its root box's nearest corner */
     int    obj;
     uint32_t root;
+    uint32_t sfirst, send;  /* its screen polygons, when known (flat) */
+    int    flat;            /* 1: few of its polygons reached the screen: no tree walk */
 } ObjView;
 
 typedef struct {
@@ -110,6 +116,12 @@ static int new_nodes(OctState *s, uint32_t n, uint32_t *first_out)
     return 0;
 }
 
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
 /* Fill node ni over order[first .. first + count) (polygon indices local
  * to the object, scratch indexed by them) and split it when large. */
 static int build_node(OctState *s, BuildScratch *b, uint32_t ni, uint32_t first, uint32_t count, int depth)
@@ -133,8 +145,11 @@ static int build_node(OctState *s, BuildScratch *b, uint32_t ni, uint32_t first,
     n->count = count;
     n->child = 0;
     n->nchild = 0;
-    if (count <= LEAF_POLYS || depth >= MAX_DEPTH)
+    if (count <= LEAF_POLYS || depth >= MAX_DEPTH) {
+        /* ascending, so that a leaf reads the screen polygons in order */
+        qsort(ord, count, sizeof *ord, cmp_u32);
         return 0;
+    }
     float mid[3];
     for (int a = 0; a < 3; a++)
         mid[a] = 0.5f * (clo[a] + chi[a]);
@@ -148,8 +163,10 @@ static int build_node(OctState *s, BuildScratch *b, uint32_t ni, uint32_t first,
     int used = 0;
     for (int o = 0; o < 8; o++)
         used += cnt[o] > 0;
-    if (used < 2)           /* all centroids coincide: nothing to split */
+    if (used < 2) {         /* all centroids coincide: nothing to split */
+        qsort(ord, count, sizeof *ord, cmp_u32);
         return 0;
+    }
     uint32_t start[8], acc = 0;
     for (int o = 0; o < 8; o++) {
         start[o] = acc;
@@ -278,6 +295,10 @@ typedef struct {
  * float rounding of the vertex transform, the projection and plane_at()
  * (a few units of 2^-24), far less than depth steps between objects. */
 #define DEPTH_MARGIN (1.0 / 4096)
+/* Screen positions are widened by this many pixels: some hundred times
+ * the float rounding of the vertex transform and the 1/512 pixel of the
+ * snapping. */
+#define SAMPLE_EPS   0.05
 
 enum { NODE_OFF, NODE_BOX, NODE_OPEN };
 
@@ -334,15 +355,15 @@ static int node_project(const NodeProj *pp, const ObjView *ov, const OctNode *nd
         double ze = pp->eye - zmax;
         dmin = pp->f / (pp->f - pp->n) * (1 - pp->n / ze);
     }
-    /* samples i with xlo <= i + 0.5 <= xhi, and a pixel more each way for
-     * the vertices' rounding and snapping */
+    /* samples i with xlo <= i + 0.5 <= xhi, widened by SAMPLE_EPS for the
+     * rounding of the vertices and of their snapping (1/512 pixel) */
     const double big = 1e8;
     xlo = fmax(fmin(xlo, big), -big);
     xhi = fmax(fmin(xhi, big), -big);
     ylo = fmax(fmin(ylo, big), -big);
     yhi = fmax(fmin(yhi, big), -big);
-    int x0 = (int)floor(xlo) - 1, x1 = (int)floor(xhi) + 2;
-    int ya = (int)floor(ylo) - 1, yb = (int)floor(yhi) + 2;
+    int x0 = (int)ceil(xlo - 0.5 - SAMPLE_EPS), x1 = (int)floor(xhi - 0.5 + SAMPLE_EPS) + 1;
+    int ya = (int)ceil(ylo - 0.5 - SAMPLE_EPS), yb = (int)floor(yhi - 0.5 + SAMPLE_EPS) + 1;
     if (x0 < 0) x0 = 0;
     if (x1 > pp->w) x1 = pp->w;
     if (ya < pp->y0) ya = pp->y0;
@@ -362,6 +383,21 @@ static inline double view_z(const ObjView *ov, const OctNode *nd)
     const double *m = ov->m[2];
     return 0.5 * (m[0] * ((double)nd->lo[0] + nd->hi[0]) + m[1] * ((double)nd->lo[1] + nd->hi[1]) +
                   m[2] * ((double)nd->lo[2] + nd->hi[2])) + m[3];
+}
+
+/* First screen polygon at or after lo whose face id is >= face (they are
+ * sorted by face id). */
+static uint32_t first_face_at(const ScreenPolys *sp, uint32_t lo, int32_t face)
+{
+    uint32_t hi = sp->npolys;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (sp->polys[mid].face < face)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
 }
 
 static int cmp_front(const void *a, const void *b)
@@ -415,6 +451,27 @@ static void walk_object(OctState *s, const HsrInput *in, const NodeProj *pp, con
 {
     const ScreenPolys *sp = in->sp;
     const int32_t *map = sp->map + sp->map_first[ov->obj];
+    if (ov->flat) {
+        /* Most of its polygons cover no sample (a far or small object):
+         * the tree would mostly read their -1 in the map. Test the root,
+         * then take its screen polygons in order. */
+        const OctNode *nd = &s->nodes[ov->root];
+        int box[4];
+        float zmin;
+        st->nodes_visited++;
+        int kind = node_project(pp, ov, nd, box, &zmin);
+        if (kind == NODE_OFF)
+            return;
+        if (kind == NODE_BOX && hzb_pyr_hidden(&s->pyr, box[0], box[1], box[2], box[3], zmin)) {
+            st->nodes_culled++;
+            st->polys_culled += ov->send - ov->sfirst;
+            st->polys_in += ov->send - ov->sfirst;
+            return;
+        }
+        for (uint32_t i = ov->sfirst; i < ov->send; i++)
+            hzb_draw_poly(&s->pyr, s->zb, sp, i, fb, pp->y0, pp->y1, st);
+        return;
+    }
     uint32_t stack[STACK_MAX];
     int top = 0;
     stack[top++] = ov->root;
@@ -433,11 +490,25 @@ static void walk_object(OctState *s, const HsrInput *in, const NodeProj *pp, con
             continue;
         }
         if (!nd->nchild) {
+            /* gather the screen polygons first and fetch them (then their
+             * corners) ahead, a chunk at a time: a leaf's polygons lie
+             * anywhere in the object's range */
             const uint32_t *ord = s->order + nd->first;
-            for (uint32_t i = 0; i < nd->count; i++) {
-                int32_t q = map[ord[i]];
-                if (q >= 0)
-                    hzb_draw_poly(&s->pyr, s->zb, sp, (uint32_t)q, fb, pp->y0, pp->y1, st);
+            for (uint32_t c = 0; c < nd->count; c += CHUNK) {
+                uint32_t e = nd->count - c < CHUNK ? nd->count : c + CHUNK;
+                int32_t idx[CHUNK];
+                uint32_t n = 0;
+                for (uint32_t i = c; i < e; i++) {
+                    int32_t q = map[ord[i]];
+                    if (q >= 0) {
+                        __builtin_prefetch(&sp->polys[q]);
+                        idx[n++] = q;
+                    }
+                }
+                for (uint32_t i = 0; i < n; i++)
+                    __builtin_prefetch(&sp->verts[sp->polys[idx[i]].first]);
+                for (uint32_t i = 0; i < n; i++)
+                    hzb_draw_poly(&s->pyr, s->zb, sp, (uint32_t)idx[i], fb, pp->y0, pp->y1, st);
             }
             continue;
         }
@@ -457,8 +528,14 @@ static void walk_object(OctState *s, const HsrInput *in, const NodeProj *pp, con
             kz[at] = z;
             kid[at] = c;
         }
-        for (int k = 0; k < nk && top < STACK_MAX; k++)
+        for (int k = 0; k < nk && top < STACK_MAX; k++) {
             stack[top++] = kid[k];
+            /* a leaf's map entries are scattered: fetch them before it pops */
+            const OctNode *c = &s->nodes[kid[k]];
+            if (!c->nchild)
+                for (uint32_t i = 0; i < c->count; i += 2)
+                    __builtin_prefetch(&map[s->order[c->first + i]]);
+        }
     }
 }
 
@@ -493,6 +570,13 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
         .dscale = sp->depth_scale, .dbias = sp->depth_bias, .w = sp->w, .y0 = y0, .y1 = y1,
     };
     Mat4 view = camera_view(&sc->cam);
+    /* The front end emits objects in order and each object's polygons in
+     * face order, so when face ids grow with the object index, an
+     * object's screen polygons are the run of faces in its range. */
+    int ordered = 1;
+    for (int oi = 1; oi < sc->nobjs && ordered; oi++)
+        ordered = sc->objs[oi].face_base >= sc->objs[oi - 1].face_base + (int32_t)sc->objs[oi - 1].face_count;
+    uint32_t run = 0;
     int nv = 0;
     for (int oi = 0; oi < sc->nobjs; oi++) {
         const Object *o = &sc->objs[oi];
@@ -511,9 +595,15 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
         for (int r = 0; r < 3; r++)
             for (int c = 0; c < 4; c++)
                 ov->m[r][c] = mv.m[r][c];
+        ov->flat = 0;
         if (ov->root == NO_TREE) {
             ov->zfront = INFINITY;
             continue;
+        }
+        if (ordered) {
+            ov->sfirst = run = first_face_at(sp, run, o->face_base);
+            ov->send = run = first_face_at(sp, run, o->face_base + (int32_t)o->face_count);
+            ov->flat = (uint64_t)(ov->send - ov->sfirst) * FLAT_RATIO < o->poly_count;
         }
         const OctNode *nd = &s->nodes[ov->root];
         double zc = view_z(ov, nd), ez = 0;
