@@ -79,14 +79,17 @@ static inline int hzb_fine_hides(const HzbPyramid *p, int x0, int x1, int by0, i
     if (p->w >= 4) {
         /* 4-wide loads from xa on, and one at xb, cover [x0, x1) inside the row */
         int xa = x0 < p->w - 4 ? x0 : p->w - 4, xb = x1 - 4 > 0 ? x1 - 4 : 0;
-        __m128 m = _mm_loadu_ps(row + xa);
+        const __m128 vz = _mm_set1_ps(z);
         for (int j = by0; j <= by1; j++, row += p->w) {
+            __m128 m = _mm_loadu_ps(row + xb);
             for (int x = xa; x < xb; x += 4)
                 m = _mm_max_ps(m, _mm_loadu_ps(row + x));
-            m = _mm_max_ps(m, _mm_loadu_ps(row + xb));
+            /* z > every max (false for a NaN z); most visible polygons
+             * leave at their first row */
+            if (_mm_movemask_ps(_mm_cmpgt_ps(vz, m)) != 15)
+                return 0;
         }
-        /* z > every max; false for a NaN z */
-        return _mm_movemask_ps(_mm_cmpgt_ps(_mm_set1_ps(z), m)) == 15;
+        return 1;
     }
 #endif
     for (int j = by0; j <= by1; j++, row += p->w)

@@ -14,25 +14,33 @@
  * corner of their root box in view space), and each tree is walked with a
  * stack, children nearest first (by the view depth of their box centres).
  * A node's 8 box corners are projected with the front end's formulas
- * (project.c proj_point) to a screen box, widened by a pixel or two, and
- * to the depth of the nearest corner, lowered by a relative margin: every
- * sample any of its polygons can cover lies in that box, and every depth
- * plane_at() can give there is at least that depth (the box is convex,
- * the projected depth is monotonic in view z, and the margin dwarfs the
- * float rounding of the transforms and of the plane). So when the pyramid
- * holds a strictly nearer depth everywhere in the box, no polygon of the
- * node can win a sample and the whole node is skipped; a node with a
- * corner behind the near plane is never culled (its projection is not
- * bounded). Leaves draw their polygons through hzb_draw_poly() (the
- * per-polygon zmin test, the z-buffer's exact rasterization, the pyramid
- * update), finding each one's screen polygon through ScreenPolys.map.
- * Every sample that is written is decided by hsr_wins() on (depth, id),
- * so the front-to-back order changes nothing in the result, which stays
- * byte-identical to the z-buffer's.
+ * (project.c proj_point) to the sample rows and columns whose centres lie
+ * in their bounding rectangle (widened by SAMPLE_EPS pixels) and to the
+ * depth of the nearest corner, lowered by DEPTH_MARGIN: every sample any
+ * of its polygons can cover lies in that box, and every depth plane_at()
+ * can give there is at least that depth (the box is convex, the projected
+ * depth is monotonic in view z, and the margins dwarf the float rounding
+ * of the transforms, of the snapping and of the plane). So when the
+ * pyramid holds a strictly nearer depth everywhere in the box, no polygon
+ * of the node can win a sample and the whole node is skipped; a node with
+ * a corner behind the near plane is never culled (its projection is not
+ * bounded), one that covers no sample centre of the band is skipped.
+ * Leaves draw their polygons through hzb_draw_poly() (the per-polygon
+ * zmin test, the z-buffer's exact rasterization, the pyramid marks),
+ * finding each one's screen polygon through ScreenPolys.map. An object
+ * with few polygons on screen (small or far: most of its map reads -1) is
+ * not walked: its root is tested, then its screen polygons, a contiguous
+ * run found by face id, are taken in order. Every sample that is written
+ * is decided by hsr_wins() on (depth, id), so the front-to-back order
+ * changes nothing in the result, which stays byte-identical to the
+ * z-buffer's.
  *
- * It wins on deep scenes (many objects one behind another, --grid): near
- * objects fill the pyramid first and whole far objects or subtrees are
- * rejected with one test each, without touching their polygons. */
+ * It wins on deep scenes (many objects one behind another, --grid) and on
+ * closed models with culling off: near geometry fills the pyramid first
+ * and whole far objects or subtrees are rejected with one test each,
+ * without touching their polygons. It loses some of that to memory: a
+ * leaf's polygons lie anywhere in the screen polygon array, which the
+ * z-buffer reads in order (they are fetched ahead a chunk at a time). */
 
 #include <math.h>
 #include <stdlib.h>
@@ -45,11 +53,9 @@
 
 extern const HsrAlgo hsr_zbuffer;
 
-#define LEAF_POLYS  48      /* a node with more polygons is split */
+#define LEAF_POLYS  128     /* a node with more polygons is split */
 #define MAX_DEPTH   20      /* and never deeper than this */
-#ifndef FLAT_RATIO
 #define FLAT_RATIO  4       /* walk objects flat when under 1/4 of their polygons are on screen */
-#endif
 #define CHUNK       64      /* polygons fetched ahead together */
 #define STACK_MAX   (MAX_DEPTH * 7 + 16)
 #define NO_TREE     UINT32_MAX
@@ -85,6 +91,7 @@ typedef struct {
     uint32_t  *roots;       /* per loaded object, NO_TREE if it has no polygons */
     int        nroots;
     int        built_ok;
+    int        lface_sorted;    /* each object's polygons are in face order */
     /* per frame */
     ObjView   *views;
     int        cap_views;
@@ -236,6 +243,14 @@ static int tree_build(OctState *s, const Scene *sc)
     if (!s->roots || !s->order || !b.box || !b.cen || !b.tmp)
         goto out;
     s->nroots = nb;
+    /* the flat walk finds an object's screen polygons by face id */
+    s->lface_sorted = 1;
+    for (int k = 0; k < nb; k++) {
+        const Object *o = &sc->objs[k];
+        for (uint32_t i = 1; i < o->poly_count; i++)
+            if (sc->poly_lface[o->poly_first + i] < sc->poly_lface[o->poly_first + i - 1])
+                s->lface_sorted = 0;
+    }
     uint32_t at = 0;
     for (int k = 0; k < nb; k++) {
         const Object *o = &sc->objs[k];
@@ -446,6 +461,31 @@ static void draw_object_flat(OctState *s, const HsrInput *in, int oi, FrameBufs 
             hzb_draw_poly(&s->pyr, s->zb, sp, (uint32_t)map[i], fb, y0, y1, st);
 }
 
+/* Every polygon of node nd's subtree. The screen polygons are gathered
+ * first and fetched (then their corners) ahead, a chunk at a time: they
+ * lie anywhere in the object's range. */
+static void draw_node_polys(OctState *s, const ScreenPolys *sp, const int32_t *map, const OctNode *nd,
+                            FrameBufs *fb, int y0, int y1, HsrStats *st)
+{
+    const uint32_t *ord = s->order + nd->first;
+    for (uint32_t c = 0; c < nd->count; c += CHUNK) {
+        uint32_t e = nd->count - c < CHUNK ? nd->count : c + CHUNK;
+        int32_t idx[CHUNK];
+        uint32_t n = 0;
+        for (uint32_t i = c; i < e; i++) {
+            int32_t q = map[ord[i]];
+            if (q >= 0) {
+                __builtin_prefetch(&sp->polys[q]);
+                idx[n++] = q;
+            }
+        }
+        for (uint32_t i = 0; i < n; i++)
+            __builtin_prefetch(&sp->verts[sp->polys[idx[i]].first]);
+        for (uint32_t i = 0; i < n; i++)
+            hzb_draw_poly(&s->pyr, s->zb, sp, (uint32_t)idx[i], fb, y0, y1, st);
+    }
+}
+
 static void walk_object(OctState *s, const HsrInput *in, const NodeProj *pp, const ObjView *ov,
                         FrameBufs *fb, HsrStats *st)
 {
@@ -490,26 +530,7 @@ static void walk_object(OctState *s, const HsrInput *in, const NodeProj *pp, con
             continue;
         }
         if (!nd->nchild) {
-            /* gather the screen polygons first and fetch them (then their
-             * corners) ahead, a chunk at a time: a leaf's polygons lie
-             * anywhere in the object's range */
-            const uint32_t *ord = s->order + nd->first;
-            for (uint32_t c = 0; c < nd->count; c += CHUNK) {
-                uint32_t e = nd->count - c < CHUNK ? nd->count : c + CHUNK;
-                int32_t idx[CHUNK];
-                uint32_t n = 0;
-                for (uint32_t i = c; i < e; i++) {
-                    int32_t q = map[ord[i]];
-                    if (q >= 0) {
-                        __builtin_prefetch(&sp->polys[q]);
-                        idx[n++] = q;
-                    }
-                }
-                for (uint32_t i = 0; i < n; i++)
-                    __builtin_prefetch(&sp->verts[sp->polys[idx[i]].first]);
-                for (uint32_t i = 0; i < n; i++)
-                    hzb_draw_poly(&s->pyr, s->zb, sp, (uint32_t)idx[i], fb, pp->y0, pp->y1, st);
-            }
+            draw_node_polys(s, sp, map, nd, fb, pp->y0, pp->y1, st);
             continue;
         }
         /* children far to near onto the stack, so the nearest pops first */
@@ -528,10 +549,16 @@ static void walk_object(OctState *s, const HsrInput *in, const NodeProj *pp, con
             kz[at] = z;
             kid[at] = c;
         }
-        for (int k = 0; k < nk && top < STACK_MAX; k++) {
+        for (int k = 0; k < nk; k++) {
+            const OctNode *c = &s->nodes[kid[k]];
+            if (top == STACK_MAX) {
+                /* cannot happen (depth <= MAX_DEPTH holds at most 7
+                 * pending siblings a level), but never drop polygons */
+                draw_node_polys(s, sp, map, c, fb, pp->y0, pp->y1, st);
+                continue;
+            }
             stack[top++] = kid[k];
             /* a leaf's map entries are scattered: fetch them before it pops */
-            const OctNode *c = &s->nodes[kid[k]];
             if (!c->nchild)
                 for (uint32_t i = 0; i < c->count; i += 2)
                     __builtin_prefetch(&map[s->order[c->first + i]]);
@@ -573,7 +600,7 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     /* The front end emits objects in order and each object's polygons in
      * face order, so when face ids grow with the object index, an
      * object's screen polygons are the run of faces in its range. */
-    int ordered = 1;
+    int ordered = s->lface_sorted;
     for (int oi = 1; oi < sc->nobjs && ordered; oi++)
         ordered = sc->objs[oi].face_base >= sc->objs[oi - 1].face_base + (int32_t)sc->objs[oi - 1].face_count;
     uint32_t run = 0;
