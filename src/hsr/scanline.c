@@ -41,17 +41,25 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 #include "raster.h"
 #include "hsr.h"
 
-/* An active triangle: its long edge, the short edge counting now, and
- * where the lower short edge takes over. */
+/* An active triangle: e[0] is its left edge, e[1] its right one (the
+ * long edge on one side, the short edge counting now on the other), a
+ * copy of its plane, and where the lower short edge takes over. */
 typedef struct {
-    EdgeWalk          lng, shrt;
-    const ScreenPoly *p;
-    const ScreenVert *vm, *vb;  /* middle and bottom corners (by y) */
-    int32_t           ymid;     /* row the lower short edge starts at (INT32_MAX: done) */
-    int32_t           yend;     /* one past the last row in the band */
+    EdgeWalk e[2];
+    float    a, b, zc;          /* ScreenPoly's plane, referenced to (x0, y0) */
+    int32_t  x0, y0, face;
+    int32_t  ymid;              /* row the lower short edge starts at (INT32_MAX: none) */
+    int32_t  yend;              /* one past the last row in the band */
+    uint32_t vm, vb;            /* middle and bottom corners (by y), verts[] indices */
+    int16_t  side;              /* which of e[] is the short edge */
+    int16_t  clip;              /* may cross the image's left or right side */
 } ScanTri;
 
 /* An active general polygon: edges pool[off .. off + n), sorted by the
@@ -77,9 +85,16 @@ typedef struct {
     uint32_t  npool, pool_cap;
     int32_t  *xs;               /* one polygon's crossings on one row */
     uint32_t  xs_cap;
+    float    *inf;              /* a row of +inf: the background depth */
+    uint32_t  inf_cap;
 } ScanState;
 
-#define KEY_NONE 0xFFFFu        /* SCREEN_MAX rows fit below it */
+#define KEY_NONE    0xFFFFu     /* key: polygon outside the band */
+#define KEY_GON_BIT 15          /* key: not a triangle */
+#define KEY_GON     (1u << KEY_GON_BIT)
+#define KEY_ROW     0x7FFFu     /* key: first band row (SCREEN_MAX rows fit) */
+#define PF_POLY  16             /* prefetch distances, in table entries */
+#define PF_VERT  8
 
 static void *scan_create(void)
 {
@@ -98,6 +113,7 @@ static void scan_destroy(void *st)
     free(s->gon);
     free(s->pool);
     free(s->xs);
+    free(s->inf);
     free(s);
 }
 
@@ -119,12 +135,12 @@ static int grow(void *buf, uint32_t *cap, uint32_t n, size_t sz)
 
 /* ==== the spans ==== */
 
-/* Depth-test samples [xa, xb) of row j (ids/dep point at that row).
- * Returns the samples written. */
-static inline uint32_t span_test(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
-                                 int j, int xa, int xb)
+/* Depth-test samples [xa, xb) of row j (ids/dep point at that row) for
+ * polygon p. Returns the samples written. The scalar loop is the rule
+ * itself: plane_row(), plane_at(), hsr_wins(). */
+static inline uint32_t span_scalar(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
+                                   float zr, int xa, int xb)
 {
-    float zr = plane_row(p, j);
     int32_t id = p->face;
     uint32_t n = 0;
     for (int i = xa; i < xb; i++) {
@@ -138,6 +154,68 @@ static inline uint32_t span_test(const ScreenPoly *p, int32_t *restrict ids, flo
     return n;
 }
 
+#ifdef __SSE2__
+
+/* Four samples at a time. Bit-identical to span_scalar(): the packed
+ * instructions are the same IEEE single operations as the scalar ones
+ * (int -> float, then a * that, then zrow + that: plane_at()'s order, no
+ * fused multiply-add), and the win mask is hsr_wins() lane by lane (the
+ * unsigned id comparison as a signed one on sign-flipped values). Lanes
+ * outside [xa, xb) store back what they loaded, so a group may run past
+ * xb as long as it stays inside the row (this band's own memory). */
+static const uint8_t popcount4[16] = { 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4 };
+
+static inline uint32_t span_simd(float pa, int32_t px0, int32_t face, int32_t *restrict ids,
+                          float *restrict dep, float zr, int xa, int xb, int w)
+{
+    uint32_t n = 0;
+    const __m128i lane = _mm_setr_epi32(0, 1, 2, 3), flip = _mm_set1_epi32(INT32_MIN);
+    const __m128 va = _mm_set1_ps(pa), vzr = _mm_set1_ps(zr);
+    const __m128i vid = _mm_set1_epi32(face), vidf = _mm_xor_si128(vid, flip);
+    const __m128i vend = _mm_set1_epi32(xb), four = _mm_set1_epi32(4);
+    __m128i vi = _mm_add_epi32(_mm_set1_epi32(xa), lane);             /* columns */
+    __m128i vrel = _mm_sub_epi32(vi, _mm_set1_epi32(px0));            /* i - x0 */
+    int i = xa;
+    for (; i < xb && i + 4 <= w; i += 4) {
+        __m128 z = _mm_add_ps(vzr, _mm_mul_ps(va, _mm_cvtepi32_ps(vrel)));
+        __m128 zb = _mm_loadu_ps(dep + i);
+        __m128i idb = _mm_loadu_si128((const __m128i *)(ids + i));
+        __m128 idlt = _mm_castsi128_ps(_mm_cmplt_epi32(vidf, _mm_xor_si128(idb, flip)));
+        __m128 win = _mm_or_ps(_mm_cmplt_ps(z, zb), _mm_and_ps(_mm_cmpeq_ps(z, zb), idlt));
+        win = _mm_and_ps(win, _mm_castsi128_ps(_mm_cmplt_epi32(vi, vend)));
+        /* stored even when nothing wins: a branch here mispredicts */
+        _mm_storeu_ps(dep + i, _mm_or_ps(_mm_and_ps(win, z), _mm_andnot_ps(win, zb)));
+        __m128i wi = _mm_castps_si128(win);
+        _mm_storeu_si128((__m128i *)(ids + i),
+                         _mm_or_si128(_mm_and_si128(wi, vid), _mm_andnot_si128(wi, idb)));
+        n += popcount4[_mm_movemask_ps(win)];
+        vi = _mm_add_epi32(vi, four);
+        vrel = _mm_add_epi32(vrel, four);
+    }
+    if (i < xb) {   /* the last few columns of the image */
+        ScreenPoly p;
+        p.a = pa;
+        p.x0 = px0;
+        p.face = face;
+        n += span_scalar(&p, ids, dep, zr, i, xb);
+    }
+    return n;
+}
+#endif
+
+/* Depth-test samples [xa, xb) of row j, xa < xb. */
+static inline uint32_t span_test(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
+                                 int j, int xa, int xb, int w)
+{
+    float zr = plane_row(p, j);
+#ifdef __SSE2__
+    return span_simd(p->a, p->x0, p->face, ids, dep, zr, xa, xb, w);
+#else
+    (void)w;
+    return span_scalar(p, ids, dep, zr, xa, xb);
+#endif
+}
+
 /* The span between two crossings, clamped to the row. */
 static inline uint32_t span_pair(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
                                  int j, int32_t x0, int32_t x1, int32_t w)
@@ -145,64 +223,142 @@ static inline uint32_t span_pair(const ScreenPoly *p, int32_t *restrict ids, flo
     int32_t xa = x0 < x1 ? x0 : x1, xb = x0 < x1 ? x1 : x0;
     xa = clamp_col(xa, w);
     xb = clamp_col(xb, w);
-    return xa < xb ? span_test(p, ids, dep, j, xa, xb) : 0;
+    return xa < xb ? span_test(p, ids, dep, j, xa, xb, w) : 0;
 }
 
 /* ==== triangles ==== */
 
-/* Take triangle p from the polygon table at row j (its first row in the
- * band; rows [j, yend) remain). A single row is drawn at once; otherwise
- * the triangle joins the active list, which draws row j next. */
+/* Set up edge a-b at row j. When it is needed for row j only (more = 0)
+ * just its crossing is kept: the per-row step (a second division) is
+ * then dead code, and the walker is never stepped. */
+static inline void edge_start(EdgeWalk *e, const ScreenVert *a, const ScreenVert *b, int32_t j,
+                              int more)
+{
+    if (more) {
+        (void)edge_setup(e, a, b, j);
+        return;
+    }
+    EdgeWalk one;
+    e->xi = edge_setup(&one, a, b, j) ? one.xi : 0;
+}
+
+/* edge_step() on a copy of the walker's live fields: in registers the
+ * compiler makes the carry branch-free (it is as random as the slope),
+ * where on the record itself it keeps a mispredicting branch. */
+static inline void walk_step(EdgeWalk *e)
+{
+    EdgeWalk l;
+    l.xi = e->xi;
+    l.q = e->q;
+    l.r = e->r;
+    l.rs = e->rs;
+    l.den = e->den;
+    edge_step(&l);
+    e->xi = l.xi;
+    e->r = l.r;
+}
+
+/* The depth plane of an active triangle, as the ScreenPoly the depth
+ * rule reads (only the plane fields are used). */
+static inline ScreenPoly tri_plane(const ScanTri *a)
+{
+    ScreenPoly p;
+    p.a = a->a;
+    p.b = a->b;
+    p.zc = a->zc;
+    p.x0 = a->x0;
+    p.y0 = a->y0;
+    p.face = a->face;
+    return p;
+}
+
+/* Take triangle pi from the polygon table at row j (its first row in
+ * the band; rows [j, yend) remain). A single row is drawn at once;
+ * otherwise the triangle joins the active list, which draws row j next. */
 static inline uint32_t tri_start(ScanState *s, const ScreenPolys *sp, const ScreenPoly *p, int j,
                                  int yend, int32_t *ids, float *dep, int32_t w)
 {
-    const ScreenVert *t = &sp->verts[p->first], *m = t + 1, *b = t + 2, *x;
-    if (m->y < t->y) { x = t; t = m; m = x; }
-    if (b->y < m->y) { x = m; m = b; b = x; }
-    if (m->y < t->y) { x = t; t = m; m = x; }
+    /* Corners copied into locals (nothing the walkers write can alias
+     * them), sorted by y, remembering where the middle and bottom ones
+     * live for the lower edge's setup later. */
+    uint32_t it = p->first, im = it + 1, ib = it + 2, ix;
+    const ScreenVert *v = sp->verts;
+    int32_t yt = v[it].y, ym = v[im].y, yb = v[ib].y, yx;
+    if (ym < yt) { yx = yt; yt = ym; ym = yx; ix = it; it = im; im = ix; }
+    if (yb < ym) { yx = ym; ym = yb; yb = yx; ix = im; im = ib; ib = ix; }
+    if (ym < yt) { yx = yt; yt = ym; ym = yx; ix = it; it = im; im = ix; }
+    ScreenVert t = { .x = v[it].x, .y = yt }, m = { .x = v[im].x, .y = ym },
+               b = { .x = v[ib].x, .y = yb };
     /* Rows [row(t), row(m)) see the long edge t-b and the upper edge t-m;
      * rows [row(m), row(b)) the long edge and the lower edge m-b. Both
      * count for row j (row(t) <= j < row(b)), so neither setup fails. */
-    int32_t rm = sample_ceil(m->y);
+    int32_t rm = sample_ceil(m.y);
     int upper = j < rm;
+    const ScreenVert *sa = upper ? &t : &m, *sb = upper ? &m : &b;
+    EdgeWalk el, es;
     if (yend - j == 1) {
         /* One row: only the crossings are needed, and the walkers stay
          * local so the compiler drops their per-row steps. */
-        EdgeWalk el, es;
-        if (!edge_setup(&el, t, b, j) || !edge_setup(&es, upper ? t : m, upper ? m : b, j))
+        if (!edge_setup(&el, &t, &b, j) || !edge_setup(&es, sa, sb, j))
             return 0;
         return span_pair(p, ids, dep, j, el.xi, es.xi, w);
     }
+    /* The middle corner is on one side of the long edge for the whole
+     * triangle, and so is the short edge's crossing on every row (exact
+     * crossings only meet at corners; the rounding to columns is
+     * monotonic), so left and right are decided once. */
+    int64_t cross = ((int64_t)b.x - t.x) * ((int64_t)m.y - t.y) -
+                    ((int64_t)b.y - t.y) * ((int64_t)m.x - t.x);
+    int side = cross < 0;          /* m right of the long edge */
     ScanTri *a = &s->tri[s->ntri++];
-    (void)edge_setup(&a->lng, t, b, j);
-    (void)edge_setup(&a->shrt, upper ? t : m, upper ? m : b, j);
-    a->p = p;
-    a->vm = m;
-    a->vb = b;
+    (void)edge_setup(&a->e[!side], &t, &b, j);
+    edge_start(&a->e[side], sa, sb, j, (upper ? rm : yend) - j > 1);
+    a->side = (int16_t)side;
+    a->clip = p->x0 == 0 || p->x1 == w;
+    a->a = p->a;
+    a->b = p->b;
+    a->zc = p->zc;
+    a->x0 = p->x0;
+    a->y0 = p->y0;
+    a->face = p->face;
+    a->vm = im;
+    a->vb = ib;
     a->ymid = upper ? rm : INT32_MAX;
     a->yend = yend;
     return 0;
 }
 
-/* Row j of every active triangle. Steps the walkers to row j + 1 and drops
- * the triangles that end at j. */
-static uint64_t tri_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w)
+/* Row j of every active triangle. Steps the walkers to row j + 1 and
+ * drops the triangles that end at j. */
+static uint64_t tri_row(ScanState *s, const ScreenVert *verts, int j, int32_t *ids, float *dep,
+                        int32_t w)
 {
     uint64_t n = 0;
     uint32_t k = 0;
     while (k < s->ntri) {
         ScanTri *a = &s->tri[k];
-        n += span_pair(a->p, ids, dep, j, a->lng.xi, a->shrt.xi, w);
+        int32_t xa = a->e[0].xi, xb = a->e[1].xi;
+        if (a->clip) {
+            xa = clamp_col(xa, w);
+            xb = clamp_col(xb, w);
+        }
+        if (xa < xb) {
+            ScreenPoly p = tri_plane(a);
+            n += span_test(&p, ids, dep, j, xa, xb, w);
+        }
         if (j + 1 == a->yend) {
             *a = s->tri[--s->ntri];
             continue;
         }
-        edge_step(&a->lng);
-        if (j + 1 == a->ymid) {
-            (void)edge_setup(&a->shrt, a->vm, a->vb, j + 1);
-            a->ymid = INT32_MAX;
+        if (j + 1 != a->ymid) {
+            walk_step(&a->e[0]);
+            walk_step(&a->e[1]);
         } else {
-            edge_step(&a->shrt);
+            /* the lower short edge takes over */
+            int sd = a->side;
+            walk_step(&a->e[!sd]);
+            edge_start(&a->e[sd], &verts[a->vm], &verts[a->vb], j + 1, a->yend - j > 2);
+            a->ymid = INT32_MAX;
         }
         k++;
     }
@@ -312,7 +468,9 @@ static int build_table(ScanState *s, const ScreenPolys *sp, int y0, int y1, uint
             continue;
         }
         uint32_t r = (uint32_t)((a > y0 ? a : y0) - y0);
-        key[i] = (uint16_t)r;
+        /* the corner count rides along (read here in memory order,
+         * rather than later at random) */
+        key[i] = (uint16_t)(r | (P[i + 1].first - P[i].first == 3 ? 0 : KEY_GON));
         start[r + 1]++;
     }
     for (uint32_t r = 0; r < rows; r++)
@@ -324,9 +482,11 @@ static int build_table(ScanState *s, const ScreenPolys *sp, int y0, int y1, uint
     /* start[r] becomes the fill point of bucket r; after the scatter it is
      * the end of bucket r, i.e. the start of bucket r + 1 */
     uint32_t *order = s->order;
-    for (uint32_t i = 0; i < np; i++)
-        if (key[i] != KEY_NONE)
-            order[start[key[i]]++] = i;
+    for (uint32_t i = 0; i < np; i++) {
+        uint32_t k = key[i];
+        if (k != KEY_NONE)
+            order[start[k & KEY_ROW]++] = i << 1 | (k >> KEY_GON_BIT);
+    }
     return 0;
 }
 
@@ -335,28 +495,45 @@ static void scan_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
     ScanState *s = st;
     const ScreenPolys *sp = in->sp;
     int32_t w = fb->w;
+    if (y0 >= y1)
+        return;
     double t0 = now_ms();
     uint64_t polys = 0, written = 0;
     int ok = build_table(s, sp, y0, y1, &polys) == 0;
+    if (s->inf_cap < (uint32_t)w && grow(&s->inf, &s->inf_cap, (uint32_t)w, sizeof *s->inf) == 0)
+        for (uint32_t i = 0; i < s->inf_cap; i++)
+            s->inf[i] = INFINITY;
     stats->build_ms += now_ms() - t0;
     stats->polys_in += polys;
     s->ntri = s->ngon = s->npool = 0;
-    uint32_t next = 0;
+    uint32_t next = 0, total = ok ? s->start[y1 - y0 - 1] : 0;
     for (int j = y0; j < y1; j++) {
         int32_t *ids = fb->ids + (size_t)j * w;
         float *dep = fb->depth + (size_t)j * w;
-        for (int32_t i = 0; i < w; i++) {
-            ids[i] = -1;
-            dep[i] = INFINITY;
-        }
+        memset(ids, 0xff, (size_t)w * sizeof *ids);            /* -1 */
+        if (s->inf_cap >= (uint32_t)w)
+            memcpy(dep, s->inf, (size_t)w * sizeof *dep);
+        else
+            for (int32_t i = 0; i < w; i++)
+                dep[i] = INFINITY;
         if (!ok)
             continue;   /* out of memory: the rest of the band stays background */
         uint32_t end = s->start[j - y0];
         for (; next < end; next++) {
-            uint32_t pi = s->order[next];
+            /* The table visits polygons out of memory order: fetch the
+             * polygon PF_POLY entries ahead (both lines it may straddle)
+             * and its corners PF_VERT ahead. */
+            if (next + PF_POLY < total) {
+                const char *q = (const char *)&sp->polys[s->order[next + PF_POLY] >> 1];
+                __builtin_prefetch(q);
+                __builtin_prefetch(q + sizeof(ScreenPoly) - 1);
+            }
+            if (next + PF_VERT < total)
+                __builtin_prefetch(&sp->verts[sp->polys[s->order[next + PF_VERT] >> 1].first]);
+            uint32_t o = s->order[next], pi = o >> 1;
             const ScreenPoly *p = &sp->polys[pi];
             int yend = p->y1 < y1 ? p->y1 : y1;
-            if (screen_poly_nverts(sp, pi) == 3) {
+            if (!(o & 1)) {
                 if (s->ntri == s->tri_cap && grow(&s->tri, &s->tri_cap, s->ntri + 1, sizeof *s->tri)) {
                     ok = 0;
                     break;
@@ -367,7 +544,7 @@ static void scan_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
                 break;
             }
         }
-        written += tri_row(s, j, ids, dep, w);
+        written += tri_row(s, sp->verts, j, ids, dep, w);
         if (s->ngon)
             written += gon_row(s, j, ids, dep, w);
     }
