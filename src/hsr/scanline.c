@@ -4,27 +4,33 @@
  *
  * Tables, built once per band:
  *  - the polygon table: every polygon meeting the band, bucketed by the
- *    first band row it covers (a counting sort into one index array, so
- *    there is no per-polygon allocation);
+ *    first band row it covers (a counting sort into one entry array, no
+ *    per-polygon allocation). An entry carries the polygon's index and
+ *    where its corners are, so both can be prefetched a few entries
+ *    ahead: the table visits polygons out of memory order;
  *  - the edge table: a polygon's non-horizontal edges, each set up with
  *    edge_setup() at the first row it counts for in the band. A triangle
  *    keeps its long edge plus the one short edge that counts for the
  *    current row, and sets up its lower short edge only when the row
- *    reaches the middle vertex; a general polygon keeps its edges sorted
+ *    reaches the middle corner; a general polygon keeps its edges sorted
  *    by first row.
  * Active lists, updated as rows advance:
- *  - active triangles (a plain array of records with their two walkers,
- *    removed by swapping in the last one when they end), and
+ *  - active triangles (a plain array of records with their left and
+ *    right walkers and a copy of the plane, removed by swapping in the
+ *    last one when they end), and
  *  - active general polygons with their active edges in one shared pool,
  *    compacted in order every row as edges and polygons finish.
  * A triangle covering a single row of the band never enters the active
- * list: its span is drawn when it is taken from the polygon table.
+ * list: its span is drawn when it is taken from the polygon table. An
+ * edge needed for one row only keeps just its crossing (no per-row step).
  *
- * For each row every active polygon's crossings are sorted and the
- * pairs [x_a, x_b) are depth-tested against the row's depth/id buffer
- * (the frame buffer's own row, which stays in L1 while the row is
- * scanned: it is written once as background, then only where a sample
- * wins), so the whole frame buffer is walked once, in order.
+ * For each row every active polygon's crossings are sorted (a triangle's
+ * left and right are known once: its middle corner's side of the long
+ * edge) and the pairs [x_a, x_b) are depth-tested, four samples at a time
+ * with SSE2, against the row's depth/id buffer. That buffer is the frame
+ * buffer's own row: it stays in L1 while the row is scanned, is written
+ * once as background and then only where samples win, so the frame
+ * buffer is walked once, in order, with no copy.
  *
  * Why it is exact: coverage comes only from the walkers of raster.h,
  * whose crossings are exact integer quotients; a walker set up at a later
@@ -32,11 +38,11 @@
  * setting edges up lazily changes nothing. Each row sees exactly the
  * edges that count for it (a triangle's long edge and one short edge;
  * every active edge of a polygon, even-odd), so spans are the z-buffer's.
- * Depth is plane_row() then plane_at() and samples compare (depth, id)
- * with hsr_wins(), so the order polygons are visited in does not matter
- * and ids and depths are bit-identical to the z-buffer's. */
+ * Depth is plane_row() then plane_at() (the SSE2 path performs the same
+ * IEEE single operations in the same order) and samples compare (depth,
+ * id) as hsr_wins() does, so the order polygons are visited in does not
+ * matter and ids and depths are bit-identical to the z-buffer's. */
 
-#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -70,10 +76,19 @@ typedef struct {
     int32_t           yend;
 } ScanGon;
 
+/* A polygon table entry: the polygon, and where its corners are, so the
+ * corners can be fetched ahead without reading the polygon first. */
+typedef struct {
+    uint32_t poly;              /* index << 1 | 1 when not a triangle */
+    uint32_t first;             /* its first corner in verts[] */
+} ScanEntry;
+
 typedef struct {
     uint16_t *key;              /* per polygon: bucket row in the band, KEY_NONE outside */
     uint32_t  key_cap;
-    uint32_t *order;            /* polygon indices by first row */
+    uint32_t *first;            /* per polygon: its first corner (copied in memory order) */
+    uint32_t  first_cap;
+    ScanEntry *order;           /* the polygon table: entries by first row */
     uint32_t  order_cap;
     uint32_t *start;            /* bucket boundaries: rows + 1 */
     uint32_t  start_cap;
@@ -93,8 +108,7 @@ typedef struct {
 #define KEY_GON_BIT 15          /* key: not a triangle */
 #define KEY_GON     (1u << KEY_GON_BIT)
 #define KEY_ROW     0x7FFFu     /* key: first band row (SCREEN_MAX rows fit) */
-#define PF_POLY  16             /* prefetch distances, in table entries */
-#define PF_VERT  8
+#define PF_AHEAD    12          /* prefetch distance, in table entries */
 
 static void *scan_create(void)
 {
@@ -107,6 +121,7 @@ static void scan_destroy(void *st)
     if (!s)
         return;
     free(s->key);
+    free(s->first);
     free(s->order);
     free(s->start);
     free(s->tri);
@@ -117,7 +132,9 @@ static void scan_destroy(void *st)
     free(s);
 }
 
-/* Grow *buf to hold n elements of size sz (amortised doubling). */
+/* Grow the array whose pointer is at buf (any element type) to hold n
+ * elements of size sz, doubling. The pointer is read and written with
+ * memcpy so that no pointer type is accessed as another. */
 static int grow(void *buf, uint32_t *cap, uint32_t n, size_t sz)
 {
     if (n <= *cap)
@@ -125,10 +142,12 @@ static int grow(void *buf, uint32_t *cap, uint32_t n, size_t sz)
     uint32_t c = *cap ? *cap : 64;
     while (c < n)
         c = c > UINT32_MAX / 2 ? n : c * 2;
-    void *q = realloc(*(void **)buf, (size_t)c * sz);
+    void *old, *q;
+    memcpy(&old, buf, sizeof old);
+    q = realloc(old, (size_t)c * sz);
     if (!q)
         return -1;
-    *(void **)buf = q;
+    memcpy(buf, &q, sizeof q);
     *cap = c;
     return 0;
 }
@@ -295,14 +314,6 @@ static inline uint32_t tri_start(ScanState *s, const ScreenPolys *sp, const Scre
     int32_t rm = sample_ceil(m.y);
     int upper = j < rm;
     const ScreenVert *sa = upper ? &t : &m, *sb = upper ? &m : &b;
-    EdgeWalk el, es;
-    if (yend - j == 1) {
-        /* One row: only the crossings are needed, and the walkers stay
-         * local so the compiler drops their per-row steps. */
-        if (!edge_setup(&el, &t, &b, j) || !edge_setup(&es, sa, sb, j))
-            return 0;
-        return span_pair(p, ids, dep, j, el.xi, es.xi, w);
-    }
     /* The middle corner is on one side of the long edge for the whole
      * triangle, and so is the short edge's crossing on every row (exact
      * crossings only meet at corners; the rounding to columns is
@@ -310,6 +321,24 @@ static inline uint32_t tri_start(ScanState *s, const ScreenPolys *sp, const Scre
     int64_t cross = ((int64_t)b.x - t.x) * ((int64_t)m.y - t.y) -
                     ((int64_t)b.y - t.y) * ((int64_t)m.x - t.x);
     int side = cross < 0;          /* m right of the long edge */
+    if (yend - j == 1) {
+        /* One row: only the crossings are needed, and the walkers stay
+         * local so the compiler drops their per-row steps. Most such
+         * triangles (small ones) cover no sample: when the left crossing
+         * is right of the box's last column, the span is empty whatever
+         * the right one is, and the second setup is skipped. */
+        EdgeWalk el, er;
+        const ScreenVert *la = side ? &t : sa, *lb = side ? &b : sb;
+        const ScreenVert *ra = side ? sa : &t, *rb = side ? sb : &b;
+        if (!edge_setup(&el, la, lb, j) || el.xi >= p->x1 || !edge_setup(&er, ra, rb, j))
+            return 0;
+        int32_t xa = el.xi, xb = er.xi;
+        if (p->x0 == 0 || p->x1 == w) {
+            xa = clamp_col(xa, w);
+            xb = clamp_col(xb, w);
+        }
+        return xa < xb ? span_test(p, ids, dep, j, xa, xb, w) : 0;
+    }
     ScanTri *a = &s->tri[s->ntri++];
     (void)edge_setup(&a->e[!side], &t, &b, j);
     edge_start(&a->e[side], sa, sb, j, (upper ? rm : yend) - j > 1);
@@ -455,11 +484,13 @@ static int build_table(ScanState *s, const ScreenPolys *sp, int y0, int y1, uint
 {
     uint32_t np = sp->npolys, rows = (uint32_t)(y1 - y0);
     if (grow(&s->key, &s->key_cap, np, sizeof *s->key) ||
+        grow(&s->first, &s->first_cap, np, sizeof *s->first) ||
         grow(&s->start, &s->start_cap, rows + 1, sizeof *s->start))
         return -1;
     uint32_t *start = s->start;
     memset(start, 0, (size_t)(rows + 1) * sizeof *start);
     uint16_t *key = s->key;
+    uint32_t *first = s->first;
     const ScreenPoly *P = sp->polys;
     for (uint32_t i = 0; i < np; i++) {
         int32_t a = P[i].y0, b = P[i].y1;
@@ -471,6 +502,7 @@ static int build_table(ScanState *s, const ScreenPolys *sp, int y0, int y1, uint
         /* the corner count rides along (read here in memory order,
          * rather than later at random) */
         key[i] = (uint16_t)(r | (P[i + 1].first - P[i].first == 3 ? 0 : KEY_GON));
+        first[i] = P[i].first;
         start[r + 1]++;
     }
     for (uint32_t r = 0; r < rows; r++)
@@ -481,11 +513,11 @@ static int build_table(ScanState *s, const ScreenPolys *sp, int y0, int y1, uint
         return -1;
     /* start[r] becomes the fill point of bucket r; after the scatter it is
      * the end of bucket r, i.e. the start of bucket r + 1 */
-    uint32_t *order = s->order;
+    ScanEntry *order = s->order;
     for (uint32_t i = 0; i < np; i++) {
         uint32_t k = key[i];
         if (k != KEY_NONE)
-            order[start[k & KEY_ROW]++] = i << 1 | (k >> KEY_GON_BIT);
+            order[start[k & KEY_ROW]++] = (ScanEntry){ i << 1 | (k >> KEY_GON_BIT), first[i] };
     }
     return 0;
 }
@@ -521,16 +553,16 @@ static void scan_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
         uint32_t end = s->start[j - y0];
         for (; next < end; next++) {
             /* The table visits polygons out of memory order: fetch the
-             * polygon PF_POLY entries ahead (both lines it may straddle)
-             * and its corners PF_VERT ahead. */
-            if (next + PF_POLY < total) {
-                const char *q = (const char *)&sp->polys[s->order[next + PF_POLY] >> 1];
+             * polygon (both lines it may straddle) and its corners
+             * PF_AHEAD entries ahead. */
+            if (next + PF_AHEAD < total) {
+                const ScanEntry *f = &s->order[next + PF_AHEAD];
+                const char *q = (const char *)&sp->polys[f->poly >> 1];
                 __builtin_prefetch(q);
                 __builtin_prefetch(q + sizeof(ScreenPoly) - 1);
+                __builtin_prefetch(&sp->verts[f->first]);
             }
-            if (next + PF_VERT < total)
-                __builtin_prefetch(&sp->verts[sp->polys[s->order[next + PF_VERT] >> 1].first]);
-            uint32_t o = s->order[next], pi = o >> 1;
+            uint32_t o = s->order[next].poly, pi = o >> 1;
             const ScreenPoly *p = &sp->polys[pi];
             int yend = p->y1 < y1 ? p->y1 : y1;
             if (!(o & 1)) {
