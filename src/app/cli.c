@@ -1,5 +1,6 @@
 /* cli.c: argv -> Options. Reports errors, never exits. */
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -49,7 +50,7 @@ static int parse_float(const char *s, float *out)
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (end == s || *end || errno || !isfinite(v))
+    if (end == s || *end || errno || !isfinite((float)v) || fabs(v) > 1e9)
         return -1;
     *out = (float)v;
     return 0;
@@ -69,6 +70,9 @@ static int parse_int(const char *s, int lo, int hi, int *out)
 static int parse_size(const char *s, int *w, int *h)
 {
     char *end;
+    const char *x = strpbrk(s, "xX");
+    if (!isdigit((unsigned char)s[0]) || !x || !isdigit((unsigned char)x[1]))
+        return -1;
     long a = strtol(s, &end, 10);
     if (end == s || (*end != 'x' && *end != 'X'))
         return -1;

@@ -79,6 +79,8 @@ struct Pool {
     pthread_t       th[64];
     int             nth;
     Worker          workers[64];
+    uint32_t       *hist;       /* split_bands' row weights */
+    int             hist_cap;
 };
 
 static void run_band(Pool *p, int t)
@@ -164,6 +166,7 @@ void hsr_runner_free(HsrRunner *r)
         pthread_mutex_destroy(&p->mu);
         pthread_cond_destroy(&p->go);
         pthread_cond_destroy(&p->done);
+        free(p->hist);
         free(p);
     }
     for (int t = 0; t < r->nthreads; t++)
@@ -186,25 +189,24 @@ static void stats_add(HsrStats *a, const HsrStats *b)
 /* Row boundaries that give each band about the same number of polygon
  * rows plus pixel rows, so that a model in one part of the image still
  * splits evenly. */
-static void split_bands(const ScreenPolys *sp, int h, int n, int *band)
+static void split_bands(Pool *pool, const ScreenPolys *sp, int h, int n, int *band)
 {
     band[0] = 0;
     band[n] = h;
     if (n == 1)
         return;
     /* weight per row: polygons starting there (their setup dominates) + 1 */
-    static uint32_t *hist;
-    static int hist_cap;
-    if (h + 1 > hist_cap) {
-        uint32_t *q = realloc(hist, (size_t)(h + 1) * sizeof *q);
+    if (h + 1 > pool->hist_cap) {
+        uint32_t *q = realloc(pool->hist, (size_t)(h + 1) * sizeof *q);
         if (!q) {
             for (int t = 1; t < n; t++)
                 band[t] = h * t / n;
             return;
         }
-        hist = q;
-        hist_cap = h + 1;
+        pool->hist = q;
+        pool->hist_cap = h + 1;
     }
+    uint32_t *hist = pool->hist;
     memset(hist, 0, (size_t)h * sizeof *hist);
     uint64_t total = 0;
     for (uint32_t i = 0; i < sp->npolys; i++) {
@@ -241,16 +243,14 @@ int hsr_run(HsrRunner *r, const HsrInput *in, FrameBufs *fb, HsrStats *stats)
         return 0;
     }
     Pool *p = r->pool;
-    int n = r->nthreads < h ? r->nthreads : (h > 0 ? h : 1);
     pthread_mutex_lock(&p->mu);
     p->in = in;
     p->fb = fb;
-    split_bands(in->sp, h, r->nthreads, p->band);
+    split_bands(p, in->sp, h, r->nthreads, p->band);
     p->pending = r->nthreads - 1;
     p->gen++;
     pthread_cond_broadcast(&p->go);
     pthread_mutex_unlock(&p->mu);
-    (void)n;
     run_band(p, 0);
     pthread_mutex_lock(&p->mu);
     while (p->pending > 0)

@@ -13,14 +13,15 @@
  * the polygon is skipped without changing the result. Otherwise it is
  * drawn exactly as the z-buffer draws it (zbuffer_draw_poly: the raster.h
  * edge walkers and plane_row()/plane_at()), and the texels above the
- * samples it wrote are lowered level by level until a level no longer
- * changes. Because depths only decrease, a texel is never below the true
- * max of its pixels, so culling never removes a possible winner, and the
- * face-id and depth buffers are byte-identical to the z-buffer's.
+ * samples it wrote are flagged dirty: a later test recomputes a dirty
+ * texel only when its stale value fails to cull. Because depths only
+ * decrease, a texel is never below the true max of its pixels, so culling
+ * never removes a possible winner, and the face-id and depth buffers are
+ * byte-identical to the z-buffer's.
  *
  * It wins when many polygons are hidden behind earlier ones in scene
  * order (depth complexity, closed models seen with culling off); it costs
- * a 4-texel lookup per polygon and the pyramid updates otherwise. */
+ * a small lookup per polygon and the lazy pyramid upkeep otherwise. */
 
 #include <math.h>
 #include <stdlib.h>

@@ -4,17 +4,18 @@
  * rows, shared by hzb.c (polygons in scene order) and octree.c (octree
  * nodes front to back).
  *
- * Level 0 is the band's own depth buffer; texel (tx, ty) of level k >= 3
- * holds an upper bound of the depths of the pixels it covers, columns
- * [tx << k, (tx + 1) << k) and band rows [ty << k, (ty + 1) << k), up to
- * a level of one texel. Levels 1 and 2 are not kept: a box of at most
- * 8 x 8 pixels is tested on the depth buffer itself (two 4-wide loads a
- * row), which is both tighter than any texel and free of upkeep; level 3
- * (8 x 8 pixels) is computed straight from the depth buffer.
+ * Level 0 is the band's own depth buffer; texel (tx, ty) of level
+ * k >= HZB_FIRST (4) holds an upper bound of the depths of the pixels it
+ * covers, columns [tx << k, (tx + 1) << k) and band rows
+ * [ty << k, (ty + 1) << k), up to a level of one texel. Levels 1 to
+ * HZB_FIRST - 1 are not kept: a box of at most HZB_FINE (16) pixels a
+ * side is tested on the depth buffer itself (4-wide loads along each row),
+ * which is both tighter than any texel and free of upkeep; level HZB_FIRST
+ * (16 x 16 pixels) is computed straight from the depth buffer.
  *
  * Depths only ever decrease as polygons are drawn, so a stale texel is
  * merely too large: a test against it stays safe (it culls less). That
- * makes the pyramid lazy: drawing only flags the level-3 texels it wrote
+ * makes the pyramid lazy: drawing only flags the level-HZB_FIRST texels it wrote
  * under, and their ancestors, dirty; a test first compares with the
  * stored (possibly stale) values, and only when that fails to cull
  * recomputes the dirty texels it reads, from their dirty descendants

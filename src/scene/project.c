@@ -127,6 +127,12 @@ static inline void proj_point(const Proj *p, double x, double y, double z, doubl
 static inline int32_t snap(double v)
 {
     double t = v * SUBPIX + 0.5;
+    /* only vertices inside the guard band are kept; clamp the others (and
+     * NaN) so that the conversion stays defined */
+    if (!(t > -1073741824.0))
+        t = -1073741824.0;
+    if (t > 1073741824.0)
+        t = 1073741824.0;
     int32_t i = (int32_t)t;
     return i - (t < (double)i);
 }
@@ -387,15 +393,21 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
             } else {
                 /* Slow path: near plane in view space, then the guard band
                  * in screen space (depth is affine there). */
-                uint32_t need = nc + 8;
+                /* Each clip stage at most doubles the outline (a concave or
+                 * self-crossing one can gain a vertex per edge): room for
+                 * five stages. */
+                uint64_t need64 = (uint64_t)nc << 5;
+                if (need64 > UINT32_MAX / 4)
+                    continue;
+                uint32_t need = (uint32_t)need64 + 8;
                 if (need > sc->clip_cap) {
-                    CVert *a = realloc(sc->clip[0], need * 2 * sizeof(CVert));
-                    CVert *b = realloc(sc->clip[1], need * 2 * sizeof(CVert));
+                    CVert *a = realloc(sc->clip[0], need * sizeof(CVert));
+                    CVert *b = realloc(sc->clip[1], need * sizeof(CVert));
                     if (a) sc->clip[0] = a;
                     if (b) sc->clip[1] = b;
                     if (!a || !b)
                         return -1;
-                    sc->clip_cap = need * 2;
+                    sc->clip_cap = need;
                 }
                 CVert *in = sc->clip[0], *out = sc->clip[1];
                 uint32_t n = 0;
