@@ -327,3 +327,29 @@ Test(depth, equal_depths_go_to_the_lower_id)
     screen_free(&sp);
     scene_free(&s);
 }
+
+Test(agree, self_crossing_outline_through_the_guard_band)
+{
+    /* a 65-point star drawn as one self-crossing face, zoomed so far in
+     * that its outline is clipped by the guard band on every side: each
+     * clip stage can nearly double the corner count */
+    char obj[8192];
+    size_t n = 0;
+    for (int k = 0; k < 65; k++) {
+        double a = k * (3.14159265358979323846 + 0.0483);
+        n += (size_t)snprintf(obj + n, sizeof obj - n, "v %.6f %.6f 0\n", cos(a), sin(a));
+    }
+    n += (size_t)snprintf(obj + n, sizeof obj - n, "f");
+    for (int k = 1; k <= 65; k++)
+        n += (size_t)snprintf(obj + n, sizeof obj - n, " %d", k);
+    snprintf(obj + n, sizeof obj - n, "\n");
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "star65", obj), 0);
+    for (int persp = 0; persp <= 1; persp++) {
+        s.cam.persp = persp;
+        scene_reset(&s);
+        s.cam.zoom = persp ? 50 : 6000;
+        compare_all(&s, 100, 100, 0, "star65");
+    }
+    scene_free(&s);
+}
