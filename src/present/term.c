@@ -20,6 +20,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <termios.h>
 #include <unistd.h>
 #include <wchar.h>
 
@@ -89,6 +90,61 @@ void term_restore(void)
     endwin();           /* cursor back, alternate screen left, modes reset */
     if (scr_out)
         fflush(scr_out);
+}
+
+/* ==== Crashes ====
+ * A fatal signal (a bug) must not leave the shell in the alternate screen
+ * with echo off. Its handler may only use async-signal-safe calls, so the
+ * bytes that undo our modes and the terminal's original settings are
+ * prepared at open: the handler writes them, restores the termios, and
+ * dies of the same signal with the default action. */
+
+static char crash_reset[256];
+static size_t crash_reset_len;
+static struct termios crash_tios;
+static int crash_fd = -1, crash_tios_ok;
+static struct sigaction old_crash[5];
+static const int crash_sigs[5] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT };
+
+static void crash_add(const char *cap)
+{
+    if (!cap || cap == (const char *)-1)
+        return;
+    size_t n = strlen(cap);
+    if (crash_reset_len + n < sizeof crash_reset) {
+        memcpy(crash_reset + crash_reset_len, cap, n);
+        crash_reset_len += n;
+    }
+}
+
+static void on_crash(int sig)
+{
+    if (term_on && crash_fd >= 0) {
+        ssize_t w = write(crash_fd, crash_reset, crash_reset_len);
+        (void)w;
+        if (crash_tios_ok)
+            tcsetattr(crash_fd, TCSANOW, &crash_tios);
+    }
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+static void crash_prepare(int fd)
+{
+    crash_fd = fd;
+    crash_tios_ok = tcgetattr(fd, &crash_tios) == 0;
+    crash_reset_len = 0;
+    crash_add(DRAG_OFF);
+    crash_add(tigetstr("sgr0"));
+    crash_add(tigetstr("cnorm"));
+    crash_add(tigetstr("rmcup"));
+    crash_add(tigetstr("rmkx"));
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sigemptyset(&sa.sa_mask);
+    sa.sa_handler = on_crash;
+    for (int i = 0; i < 5; i++)
+        sigaction(crash_sigs[i], &sa, &old_crash[i]);
 }
 
 static void restore_handlers(void)
@@ -349,6 +405,8 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
                  cfg->termname ? cfg->termname : getenv("TERM") ? getenv("TERM") : "");
         return -1;
     }
+    if (cfg->signals)
+        crash_prepare(fileno(out));   /* termios as the shell left it */
     del_curterm(set_curterm(NULL));
     SCREEN *s = newterm(cfg->termname, out, in);
     if (!s) {

@@ -248,6 +248,16 @@ if wait_for 'zv-exit=129'; then ok "SIGHUP (a dropped ssh link) ends zview"; els
 check "no alternate screen after SIGHUP" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
 check "cursor visible after SIGHUP" '[ "$(tm display -p -t zv "#{cursor_flag}")" = 1 ]'
 
+# a crash (a bug) must not leave the terminal in curses modes either
+start 80 24 assets/cube.obj
+wait_for 'faces 6 drawn' >/dev/null
+i=0
+while [ ! -s "$T/pid" ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
+kill -SEGV "$(cat "$T/pid")"
+if wait_for 'zv-exit=139'; then ok "SIGSEGV ends zview"; else notok "SIGSEGV ends zview" "$(cat "$T/screen")"; fi
+check "no alternate screen after a crash" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
+check "cursor visible after a crash" '[ "$(tm display -p -t zv "#{cursor_flag}")" = 1 ]'
+
 start 80 24 assets/cube.obj
 if wait_for 'faces 6 drawn'; then ok "the cube shows 6 faces"; else notok "the cube shows 6 faces" "$(cat "$T/screen")"; fi
 i=0
