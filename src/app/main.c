@@ -2,6 +2,7 @@
  * one-shot output, or the interactive viewer. */
 
 #include <locale.h>
+#include <malloc.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -13,6 +14,10 @@ int main(int argc, char **argv)
     char err[512];
     Options o;
     setlocale(LC_ALL, "");
+    /* Big buffers (meshes, screen polygons, build scratch) come from mmap
+     * and go back to the system when freed: a fixed threshold keeps glibc
+     * from raising it after the first free and keeping freed scratch. */
+    mallopt(M_MMAP_THRESHOLD, 1 << 20);
     if (cli_parse(argc, argv, &o, err, sizeof err)) {
         fprintf(stderr, "zview: %s\n", err);
         return 2;

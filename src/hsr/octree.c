@@ -43,6 +43,7 @@
  * z-buffer reads in order (they are fetched ahead a chunk at a time). */
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -99,10 +100,16 @@ typedef struct {
 
 /* ==== building ==== */
 
+static pthread_mutex_t build_lock = PTHREAD_MUTEX_INITIALIZER;
+
 typedef struct {
-    float *box;             /* 6 per polygon: lo xyz, hi xyz */
     float *cen;             /* 3 per polygon: centroid */
     uint32_t *tmp;          /* partition scratch */
+    /* the object being built: node boxes come straight from its corners
+     * (no per-polygon box array: a big model's build stays small) */
+    const Scene *sc;
+    const float *pos;
+    uint32_t poly_first;
 } BuildScratch;
 
 static int new_nodes(OctState *s, uint32_t n, uint32_t *first_out)
@@ -137,10 +144,16 @@ static int build_node(OctState *s, BuildScratch *b, uint32_t ni, uint32_t first,
     float lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
     float clo[3] = { INFINITY, INFINITY, INFINITY }, chi[3] = { -INFINITY, -INFINITY, -INFINITY };
     for (uint32_t i = 0; i < count; i++) {
-        const float *bx = &b->box[6 * (size_t)ord[i]], *c = &b->cen[3 * (size_t)ord[i]];
+        const float *c = &b->cen[3 * (size_t)ord[i]];
+        uint32_t pk = b->poly_first + ord[i];
+        for (uint32_t q = b->sc->poly_start[pk]; q < b->sc->poly_start[pk + 1]; q++) {
+            const float *v = &b->pos[3 * (size_t)b->sc->poly_corner[q]];
+            for (int a = 0; a < 3; a++) {
+                lo[a] = fminf(lo[a], v[a]);
+                hi[a] = fmaxf(hi[a], v[a]);
+            }
+        }
         for (int a = 0; a < 3; a++) {
-            lo[a] = fminf(lo[a], bx[a]);
-            hi[a] = fmaxf(hi[a], bx[3 + a]);
             clo[a] = fminf(clo[a], c[a]);
             chi[a] = fmaxf(chi[a], c[a]);
         }
@@ -236,11 +249,10 @@ static int tree_build(OctState *s, const Scene *sc)
     BuildScratch b = { 0 };
     s->roots = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *s->roots);
     s->order = malloc((size_t)(total > 0 ? total : 1) * sizeof *s->order);
-    b.box = malloc((size_t)(maxp > 0 ? maxp : 1) * 6 * sizeof(float));
     b.cen = malloc((size_t)(maxp > 0 ? maxp : 1) * 3 * sizeof(float));
     b.tmp = malloc((size_t)(maxp > 0 ? maxp : 1) * sizeof(uint32_t));
     int rc = -1;
-    if (!s->roots || !s->order || !b.box || !b.cen || !b.tmp)
+    if (!s->roots || !s->order || !b.cen || !b.tmp)
         goto out;
     s->nroots = nb;
     /* the flat walk finds an object's screen polygons by face id */
@@ -258,20 +270,18 @@ static int tree_build(OctState *s, const Scene *sc)
         if (!o->poly_count || !o->mesh)
             continue;
         const float *pos = o->mesh->pos;
+        b.sc = sc;
+        b.pos = pos;
+        b.poly_first = o->poly_first;
         for (uint32_t i = 0; i < o->poly_count; i++) {
             uint32_t pk = o->poly_first + i;
-            float *bx = &b.box[6 * (size_t)i], *c = &b.cen[3 * (size_t)i];
-            bx[0] = bx[1] = bx[2] = INFINITY;
-            bx[3] = bx[4] = bx[5] = -INFINITY;
+            float *c = &b.cen[3 * (size_t)i];
             c[0] = c[1] = c[2] = 0;
             uint32_t c0 = sc->poly_start[pk], c1 = sc->poly_start[pk + 1];
             for (uint32_t q = c0; q < c1; q++) {
                 const float *v = &pos[3 * (size_t)sc->poly_corner[q]];
-                for (int a = 0; a < 3; a++) {
-                    bx[a] = fminf(bx[a], v[a]);
-                    bx[3 + a] = fmaxf(bx[3 + a], v[a]);
+                for (int a = 0; a < 3; a++)
                     c[a] += v[a];
-                }
             }
             float inv = c1 > c0 ? 1.0f / (float)(c1 - c0) : 0;
             for (int a = 0; a < 3; a++)
@@ -287,7 +297,6 @@ static int tree_build(OctState *s, const Scene *sc)
     s->built_ok = 1;
     rc = 0;
 out:
-    free(b.box);
     free(b.cen);
     free(b.tmp);
     if (rc)
@@ -574,8 +583,13 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     double t0 = now_ms();
     hzb_pyr_begin(&s->pyr, fb, y0, y1);
     if (sc && (s->key != sc || s->key_npolys != sc->npolys || s->key_nobjs != sc->nobjs ||
-               s->key_corner != sc->poly_corner))
+               s->key_corner != sc->poly_corner)) {
+        /* Bands build their trees one at a time, so that only one build's
+         * scratch (tens of MB on a big model) is alive at once. */
+        pthread_mutex_lock(&build_lock);
         tree_build(s, sc);
+        pthread_mutex_unlock(&build_lock);
+    }
     stats->build_ms += now_ms() - t0;
 
     if (!sc || !s->built_ok || sc->nobjs == 0) {

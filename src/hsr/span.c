@@ -66,14 +66,11 @@
 #include "span.h"
 #include "zbuffer.h"
 
-/* A polygon of the table, in first-row order: a copy of what activation
- * needs, so the scan reads the table front to back instead of jumping
- * around the front end's arrays. */
+/* A polygon of the table, in first-row order: its index in sp->polys
+ * (an index, not a copy: a copy of a big model's polygons and corners
+ * would cost tens of MB per frame for little speed). */
 typedef struct {
-    ScreenPoly p;
     uint32_t   pi;              /* index in sp->polys */
-    uint32_t   nv;              /* corners */
-    ScreenVert v[3];            /* the corners of a triangle */
 } PolyRec;
 
 /* A polygon with live edges: its plane and its place in the covering
@@ -498,7 +495,7 @@ static inline void edge_free(SpanState *s, int32_t k)
 }
 
 /* Take a free slot for polygon rec. Returns its index, -1 on OOM. */
-static int32_t slot_take(SpanState *s, const PolyRec *rec)
+static int32_t slot_take(SpanState *s, const ScreenPoly *p)
 {
     int32_t k = s->slots_free;
     if (k >= 0) {
@@ -509,10 +506,9 @@ static int32_t slot_take(SpanState *s, const PolyRec *rec)
         k = s->slots_n++;
     }
     Slot *sl = &s->slots[k];
-    sl->p = rec->p;
+    sl->p = *p;
     sl->live = 0;
     sl->inpos = -1;
-    const ScreenPoly *p = &rec->p;
     sl->ok = fabsf(p->a) < 1e30f && fabsf(p->b) < 1e30f && fabsf(p->zc) < 1e30f;
     /* Depth bounds over the sample box. The exact plane of the float
      * coefficients lies in [zc + min terms, zc + max terms] there; each
@@ -543,9 +539,10 @@ static inline void slot_release(SpanState *s, int32_t k)
  * now, lower ones wait in their first row's pending list. */
 static int activate(SpanState *s, const ScreenPolys *sp, const PolyRec *rec, int j, int y0, int y1, int32_t w)
 {
-    uint32_t nv = rec->nv;
-    const ScreenVert *v = nv == 3 ? rec->v : &sp->verts[rec->p.first];
-    int32_t slot = slot_take(s, rec);
+    const ScreenPoly *p = &sp->polys[rec->pi];
+    uint32_t nv = screen_poly_nverts(sp, rec->pi);
+    const ScreenVert *v = &sp->verts[p->first];
+    int32_t slot = slot_take(s, p);
     if (slot < 0)
         return -1;
     int live = 0;
@@ -613,12 +610,7 @@ static int build_table(SpanState *s, const ScreenPolys *sp, int y0, int y1, uint
         if (p->y1 <= y0 || p->y0 >= y1)
             continue;
         int r = p->y0 > y0 ? p->y0 - y0 : 0;
-        PolyRec *rec = &s->recs[rs[r + 1]++];
-        rec->p = *p;
-        rec->pi = i;
-        rec->nv = sp->polys[i + 1].first - p->first;
-        if (rec->nv == 3)
-            memcpy(rec->v, &sp->verts[p->first], sizeof rec->v);
+        s->recs[rs[r + 1]++].pi = i;
     }
     *npolys = n;
     return 0;
@@ -660,9 +652,16 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
         float *dep = fb->depth + (size_t)j * w;
         /* crossings entering at this row */
         s->fresh_n = 0;
-        for (uint32_t k = s->row_start[r]; k < s->row_start[r + 1]; k++)
+        for (uint32_t k = s->row_start[r]; k < s->row_start[r + 1]; k++) {
+            /* the table holds indices: fetch a few polygons ahead */
+            if (k + 8 < s->row_start[r + 1]) {
+                const ScreenPoly *ahead = &sp->polys[s->recs[k + 8].pi];
+                __builtin_prefetch(ahead);
+                __builtin_prefetch(&sp->verts[ahead->first]);
+            }
             if (activate(s, sp, &s->recs[k], j, y0, y1, w))
                 goto oom;
+        }
         for (int32_t q = s->pend_head[r]; q >= 0; q = s->edges[q].next)
             if (fresh_push(s, clamp_col(s->edges[q].e.xi, w), q))
                 goto oom;
