@@ -75,6 +75,10 @@ static int bench_model(const Options *o, const char *file, const AlgoList *al, i
     else
         snprintf(label, sizeof label, "%s", base);
     int w = o->w > 0 ? o->w : 1920, h = o->h > 0 ? o->h : 1080;
+    /* polygons of every object (grid copies share their source's lists) */
+    uint64_t npolys = 0;
+    for (int k = 0; k < s.nobjs; k++)
+        npolys += s.objs[k].poly_count;
     int views = o->views < MAX_VIEWS ? o->views : MAX_VIEWS;
     double *hsr = malloc(sizeof(double) * views), *frame = malloc(sizeof(double) * views);
     if (!hsr || !frame) {
@@ -115,16 +119,16 @@ static int bench_model(const Options *o, const char *file, const AlgoList *al, i
         double culled_pct = given ? 100.0 * culled / given : 0;
         double overdraw = covered ? (double)written / covered : 0;
         if (o->json) {
-            printf("%s\n  {\"model\": \"%s\", \"polygons\": %u, \"algo\": \"%s\", \"width\": %d, "
+            printf("%s\n  {\"model\": \"%s\", \"polygons\": %llu, \"algo\": \"%s\", \"width\": %d, "
                    "\"height\": %d, \"threads\": %d, \"views\": %d, \"median_ms\": %.3f, "
                    "\"min_ms\": %.3f, \"frame_median_ms\": %.3f, \"culled_pct\": %.1f, "
                    "\"overdraw\": %.2f}",
-                   *first_json ? "" : ",", label, s.npolys, al->algos[a], w, h, p.threads, views,
+                   *first_json ? "" : ",", label, (unsigned long long)npolys, al->algos[a], w, h, p.threads, views,
                    hmed, hmin, fmed, culled_pct, overdraw);
             *first_json = 0;
         } else {
-            printf("%-24s %9u %-11s %5dx%-5d %2d %9.2f %9.2f %9.2f %7.1f %8.2f\n", label,
-                   s.npolys, al->algos[a], w, h, p.threads, hmed, hmin, fmed, culled_pct, overdraw);
+            printf("%-24s %9llu %-11s %5dx%-5d %2d %9.2f %9.2f %9.2f %7.1f %8.2f\n", label,
+                   (unsigned long long)npolys, al->algos[a], w, h, p.threads, hmed, hmin, fmed, culled_pct, overdraw);
         }
         fflush(stdout);
         pipeline_free(&p);

@@ -42,8 +42,11 @@ int app_info(const Options *o, Scene *s)
             putchar('\n');
         print_mesh(&s->meshes[i]);
     }
-    printf("\nscene:      %d objects, %u faces, %u polygons after splitting non-planar faces\n",
-           s->nobjs, s->nfaces, s->npolys);
+    uint64_t npolys = 0;   /* grid copies share their source's polygon lists */
+    for (int k = 0; k < s->nobjs; k++)
+        npolys += s->objs[k].poly_count;
+    printf("\nscene:      %d objects, %u faces, %llu polygons after splitting non-planar faces\n",
+           s->nobjs, s->nfaces, (unsigned long long)npolys);
     if (!o->algo)
         return 0;
     const HsrAlgo *algo = hsr_find(o->algo);

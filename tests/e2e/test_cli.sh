@@ -80,3 +80,15 @@ for a in scanline span hzb hzb-octree; do
 done
 NO_COLOR=1 TERM=xterm-256color "$Z" assets/cube.obj --size 20x8 --mode half >"$T/nc" </dev/null
 if grep -q "$(printf '\033')" "$T/nc"; then notok "NO_COLOR gives no escapes"; else ok "NO_COLOR gives no escapes"; fi
+
+# the benchmark: a table, and JSON with the documented keys
+expect_status "--bench" 0 "$Z" --bench --views 2 --size 64x48 --algo zbuffer,span assets/cube.obj
+expect_out "bench table names the algorithm" "span"
+"$Z" --bench --json --views 2 --size 64x48 --algo all --grid 2 assets/cube.obj >"$T/b.json" 2>"$T/err"
+n=$(grep -c '"algo": ' "$T/b.json")
+if [ "$n" -eq 5 ]; then ok "bench --json has one object per algorithm"; else notok "bench --json has one object per algorithm" "$n"; fi
+for key in model polygons algo width height threads views median_ms min_ms frame_median_ms culled_pct overdraw; do
+    if [ "$(grep -c "\"$key\": " "$T/b.json")" -eq 5 ]; then ok "bench --json has $key"; else notok "bench --json has $key"; fi
+done
+if grep -q '"polygons": 48,' "$T/b.json"; then ok "grid polygons count every copy"; else notok "grid polygons count every copy" "$(head -c 300 "$T/b.json")"; fi
+if head -c 1 "$T/b.json" | grep -q '\[' && tail -n 1 "$T/b.json" | grep -q '^\]$'; then ok "bench --json is one array"; else notok "bench --json is one array"; fi
