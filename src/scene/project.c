@@ -259,7 +259,9 @@ static int finish_poly(ScreenPolys *sp, uint32_t first, int32_t face)
     double lo, mag = fabs(zc) + fabs(a) * (x1 - x0) + fabs(b) * (y1 - y0);
     if (n == 3) {
         /* the plane passes through the corners */
-        lo = fmin(Z0, fmin(v[1].z, v[2].z));
+        double z1 = v[1].z, z2 = v[2].z;
+        lo = Z0 < z1 ? Z0 : z1;
+        lo = z2 < lo ? z2 : lo;
     } else {
         lo = 1e300;
         for (uint32_t k = 0; k < n; k++) {
