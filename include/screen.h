@@ -69,8 +69,9 @@ typedef struct {
 } Viewport;
 
 /* Project every polygon of the scene. Buffers in *sp grow as needed and
- * are reused across frames (no allocation once grown). Returns 0, or -1
- * on out of memory. */
+ * are reused across frames (no allocation once grown). Big objects are
+ * projected on two threads with the same result as one. Not reentrant:
+ * one call at a time per process. Returns 0, or -1 on out of memory. */
 int  screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp);
 void screen_free(ScreenPolys *sp);
 

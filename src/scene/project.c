@@ -6,9 +6,14 @@
  * snapped corners; a polygon crossing the near plane or the guard band is
  * clipped (Sutherland-Hodgman) and snapped on the slow path. Then the
  * sample box, back-face test, and the depth plane from the snapped
- * corners. */
+ * corners. A big object's polygons are split between the caller and one
+ * helper thread, and the helper's half is appended in order: the output is
+ * the same as one thread's. */
 
+#define _DEFAULT_SOURCE
 #include <math.h>
+#include <pthread.h>
+#include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +26,9 @@
  * that fixed-point values stay below 2^23 and edge products fit int64. */
 #define GUARD_PX 8192.0
 
+/* Objects with at least this many polygons are projected on two threads. */
+#define PARALLEL_MIN 16384
+
 typedef struct {
     double x, y, z;         /* view space (persp) or screen (guard clip): px, px, depth */
 } CVert;
@@ -31,11 +39,19 @@ typedef struct {
     ScreenVert *sv;         /* snapped, valid when ok */
     uint8_t *ok;            /* 1: in front of near and inside the guard band */
     uint32_t cap_view, cap_sv, cap_ok;
-    CVert   *clip[2];       /* clip polygon buffers */
-    uint32_t clip_cap;
 } Scratch;
 
-static Scratch scratch_tls;     /* the front end runs on one thread */
+/* Clip polygon buffers, one set per worker. */
+typedef struct {
+    CVert   *buf[2];
+    uint32_t cap;
+} ClipBuf;
+
+/* The front end is called from one thread at a time; a big object's
+ * polygons are split between it and one helper thread. */
+static Scratch scratch;
+static ClipBuf clip_main, clip_helper;
+static ScreenPolys helper_out;  /* the helper's half, appended after */
 
 static int grow(void **p, uint32_t *cap, uint32_t need, size_t elem)
 {
@@ -275,10 +291,169 @@ static int finish_poly(ScreenPolys *sp, uint32_t first, int32_t face)
     return 1;
 }
 
+/* Project the polygons [k0, k1) of object o (its vertices are in vs) into
+ * j->out, and record where each went in map (an index into j->out). */
+typedef struct {
+    ScreenPolys   *out;
+    const Scene   *s;
+    const Object  *o;
+    const Proj    *pj;
+    const Scratch *vs;
+    ClipBuf       *cb;
+    uint32_t       k0, k1, inst0;
+    int32_t       *map;
+    int            rc;
+} RangeJob;
+
+static int project_range(RangeJob *j)
+{
+    ScreenPolys *sp = j->out;
+    const Scene *s = j->s;
+    const Object *o = j->o;
+    const Proj *pj = j->pj;
+    const Scratch *sc = j->vs;
+    ClipBuf *cb = j->cb;
+    int32_t *map = j->map;
+    uint32_t inst = j->inst0;
+    for (uint32_t k = j->k0; k < j->k1; k++, inst++) {
+        uint32_t c0 = s->poly_start[k], c1 = s->poly_start[k + 1], nc = c1 - c0;
+        int32_t face = o->face_base + (int32_t)s->poly_lface[k];
+        sp->in_polys++;
+        map[inst] = -1;
+        if (nc == 3) {
+            /* Fast reject of a triangle that covers no sample centre
+             * (most of a big model in a small image), before copying. */
+            uint32_t i0 = s->poly_corner[c0] - o->vert_min, i1 = s->poly_corner[c0 + 1] - o->vert_min,
+                     i2 = s->poly_corner[c0 + 2] - o->vert_min;
+            if (sc->ok[i0] & sc->ok[i1] & sc->ok[i2]) {
+                const ScreenVert *a = &sc->sv[i0], *b = &sc->sv[i1], *c = &sc->sv[i2];
+                int32_t xmin = a->x < b->x ? a->x : b->x, xmax = a->x < b->x ? b->x : a->x;
+                int32_t ymin = a->y < b->y ? a->y : b->y, ymax = a->y < b->y ? b->y : a->y;
+                xmin = c->x < xmin ? c->x : xmin;
+                xmax = c->x > xmax ? c->x : xmax;
+                ymin = c->y < ymin ? c->y : ymin;
+                ymax = c->y > ymax ? c->y : ymax;
+                int32_t x0 = sample_ceil(xmin), x1 = sample_ceil(xmax);
+                int32_t y0 = sample_ceil(ymin), y1 = sample_ceil(ymax);
+                if (x0 >= x1 || y0 >= y1 || x1 <= 0 || y1 <= 0 || x0 >= sp->w || y0 >= sp->h) {
+                    sp->culled_empty++;
+                    continue;
+                }
+            }
+        }
+        /* room for the clipped outline: each plane adds at most one vertex */
+        if (grow((void **)&sp->verts, &sp->cap_verts, sp->nverts + nc + 8, sizeof *sp->verts))
+            return -1;
+        int all_ok = 1;
+        for (uint32_t c = c0; c < c1; c++)
+            all_ok &= sc->ok[s->poly_corner[c] - o->vert_min];
+        uint32_t first = sp->nverts;
+        if (all_ok) {
+            ScreenVert *dst = &sp->verts[first];
+            for (uint32_t c = c0; c < c1; c++)
+                *dst++ = sc->sv[s->poly_corner[c] - o->vert_min];
+            sp->nverts += nc;
+        } else {
+            /* Slow path: near plane in view space, then the guard band
+             * in screen space (depth is affine there). */
+            /* Each clip stage at most doubles the outline (a concave or
+             * self-crossing one can gain a vertex per edge): room for
+             * five stages. */
+            uint64_t need64 = (uint64_t)nc << 5;
+            if (need64 > UINT32_MAX / 4)
+                continue;
+            uint32_t need = (uint32_t)need64 + 8;
+            if (need > cb->cap) {
+                CVert *a = realloc(cb->buf[0], need * sizeof(CVert));
+                CVert *b = realloc(cb->buf[1], need * sizeof(CVert));
+                if (a) cb->buf[0] = a;
+                if (b) cb->buf[1] = b;
+                if (!a || !b)
+                    return -1;
+                cb->cap = need;
+            }
+            CVert *in = cb->buf[0], *out = cb->buf[1];
+            uint32_t n = 0;
+            for (uint32_t c = c0; c < c1; c++) {
+                const float *q = &sc->view[3 * (s->poly_corner[c] - o->vert_min)];
+                in[n].x = q[0]; in[n].y = q[1]; in[n].z = q[2];
+                n++;
+            }
+            if (pj->persp) {
+                /* keep eye - z >= near, i.e. z <= eye - near */
+                n = clip_poly(in, n, out, 2, pj->eye - pj->n, -1);
+                CVert *t = in; in = out; out = t;
+            }
+            for (uint32_t i = 0; i < n; i++) {
+                double scr[3];
+                proj_point(pj, in[i].x, in[i].y, in[i].z, scr);
+                in[i].x = scr[0]; in[i].y = scr[1]; in[i].z = scr[2];
+            }
+            n = clip_poly(in, n, out, 0, pj->gx0, 1);
+            n = clip_poly(out, n, in, 0, pj->gx1, -1);
+            n = clip_poly(in, n, out, 1, pj->gy0, 1);
+            n = clip_poly(out, n, in, 1, pj->gy1, -1);
+            if (grow((void **)&sp->verts, &sp->cap_verts, sp->nverts + n + 1, sizeof *sp->verts))
+                return -1;
+            for (uint32_t i = 0; i < n; i++) {
+                ScreenVert *d = &sp->verts[sp->nverts++];
+                d->x = snap(in[i].x);
+                d->y = snap(in[i].y);
+                d->z = (float)in[i].z;
+            }
+        }
+        if (finish_poly(sp, first, face))
+            map[inst] = (int32_t)(sp->npolys - 1);
+        else
+            sp->nverts = first;
+    }
+    return 0;
+}
+
+static void *range_thread(void *arg)
+{
+    RangeJob *j = arg;
+    j->rc = project_range(j);
+    return NULL;
+}
+
+/* Append part (the helper's half, instances inst0 .. inst0 + n) to sp. */
+static int append_part(ScreenPolys *sp, const ScreenPolys *part, uint32_t inst0, uint32_t n)
+{
+    uint32_t bv = sp->nverts, bp = sp->npolys;
+    if (grow((void **)&sp->verts, &sp->cap_verts, bv + part->nverts + 1, sizeof *sp->verts) ||
+        grow((void **)&sp->polys, &sp->cap_polys, bp + part->npolys + 1, sizeof *sp->polys))
+        return -1;
+    memcpy(sp->verts + bv, part->verts, (size_t)part->nverts * sizeof *sp->verts);
+    for (uint32_t i = 0; i < part->npolys; i++) {
+        sp->polys[bp + i] = part->polys[i];
+        sp->polys[bp + i].first += bv;
+    }
+    for (uint32_t i = inst0; i < inst0 + n; i++)
+        if (sp->map[i] >= 0)
+            sp->map[i] += (int32_t)bp;
+    sp->nverts += part->nverts;
+    sp->npolys += part->npolys;
+    sp->in_polys += part->in_polys;
+    sp->culled_back += part->culled_back;
+    sp->culled_empty += part->culled_empty;
+    return 0;
+}
+
+static int ncpus(void)
+{
+    static int n;
+    if (!n) {
+        long c = sysconf(_SC_NPROCESSORS_ONLN);
+        n = c > 1 ? 2 : 1;
+    }
+    return n;
+}
+
 int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
 {
     double t0 = now_ms();
-    Scratch *sc = &scratch_tls;
+    Scratch *sc = &scratch;
     Proj pj = { 0 };
     proj_setup(&pj, s, vp);
     sp->w = vp->w;
@@ -354,98 +529,40 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
             sc->ok[i] = (uint8_t)ok;
         }
 
-        for (uint32_t k = o->poly_first; k < o->poly_first + o->poly_count; k++, inst++) {
-            uint32_t c0 = s->poly_start[k], c1 = s->poly_start[k + 1], nc = c1 - c0;
-            int32_t face = o->face_base + (int32_t)s->poly_lface[k];
-            sp->in_polys++;
-            sp->map[inst] = -1;
-            if (nc == 3) {
-                /* Fast reject of a triangle that covers no sample centre
-                 * (most of a big model in a small image), before copying. */
-                uint32_t i0 = s->poly_corner[c0] - o->vert_min, i1 = s->poly_corner[c0 + 1] - o->vert_min,
-                         i2 = s->poly_corner[c0 + 2] - o->vert_min;
-                if (sc->ok[i0] & sc->ok[i1] & sc->ok[i2]) {
-                    const ScreenVert *a = &sc->sv[i0], *b = &sc->sv[i1], *c = &sc->sv[i2];
-                    int32_t xmin = a->x < b->x ? a->x : b->x, xmax = a->x < b->x ? b->x : a->x;
-                    int32_t ymin = a->y < b->y ? a->y : b->y, ymax = a->y < b->y ? b->y : a->y;
-                    xmin = c->x < xmin ? c->x : xmin;
-                    xmax = c->x > xmax ? c->x : xmax;
-                    ymin = c->y < ymin ? c->y : ymin;
-                    ymax = c->y > ymax ? c->y : ymax;
-                    int32_t x0 = sample_ceil(xmin), x1 = sample_ceil(xmax);
-                    int32_t y0 = sample_ceil(ymin), y1 = sample_ceil(ymax);
-                    if (x0 >= x1 || y0 >= y1 || x1 <= 0 || y1 <= 0 || x0 >= sp->w || y0 >= sp->h) {
-                        sp->culled_empty++;
-                        continue;
-                    }
-                }
-            }
-            /* room for the clipped outline: each plane adds at most one vertex */
-            if (grow((void **)&sp->verts, &sp->cap_verts, sp->nverts + nc + 8, sizeof *sp->verts))
+        /* The polygons: a big object's in two halves, the second on a
+         * helper thread into its own buffers, appended in order after. */
+        uint32_t kend = o->poly_first + o->poly_count;
+        if (o->poly_count >= PARALLEL_MIN && ncpus() > 1) {
+            uint32_t mid = o->poly_first + o->poly_count / 2;
+            helper_out.w = sp->w;
+            helper_out.h = sp->h;
+            helper_out.cull = sp->cull;
+            helper_out.nverts = helper_out.npolys = 0;
+            helper_out.in_polys = helper_out.culled_back = helper_out.culled_empty = 0;
+            uint32_t hc = s->poly_start[kend] - s->poly_start[mid];
+            if (grow((void **)&helper_out.polys, &helper_out.cap_polys, kend - mid + 1,
+                     sizeof *helper_out.polys) ||
+                grow((void **)&helper_out.verts, &helper_out.cap_verts, hc + hc / 64 + 64,
+                     sizeof *helper_out.verts))
                 return -1;
-            int all_ok = 1;
-            for (uint32_t c = c0; c < c1; c++)
-                all_ok &= sc->ok[s->poly_corner[c] - o->vert_min];
-            uint32_t first = sp->nverts;
-            if (all_ok) {
-                ScreenVert *dst = &sp->verts[first];
-                for (uint32_t c = c0; c < c1; c++)
-                    *dst++ = sc->sv[s->poly_corner[c] - o->vert_min];
-                sp->nverts += nc;
-            } else {
-                /* Slow path: near plane in view space, then the guard band
-                 * in screen space (depth is affine there). */
-                /* Each clip stage at most doubles the outline (a concave or
-                 * self-crossing one can gain a vertex per edge): room for
-                 * five stages. */
-                uint64_t need64 = (uint64_t)nc << 5;
-                if (need64 > UINT32_MAX / 4)
-                    continue;
-                uint32_t need = (uint32_t)need64 + 8;
-                if (need > sc->clip_cap) {
-                    CVert *a = realloc(sc->clip[0], need * sizeof(CVert));
-                    CVert *b = realloc(sc->clip[1], need * sizeof(CVert));
-                    if (a) sc->clip[0] = a;
-                    if (b) sc->clip[1] = b;
-                    if (!a || !b)
-                        return -1;
-                    sc->clip_cap = need;
-                }
-                CVert *in = sc->clip[0], *out = sc->clip[1];
-                uint32_t n = 0;
-                for (uint32_t c = c0; c < c1; c++) {
-                    const float *q = &sc->view[3 * (s->poly_corner[c] - o->vert_min)];
-                    in[n].x = q[0]; in[n].y = q[1]; in[n].z = q[2];
-                    n++;
-                }
-                if (pj.persp) {
-                    /* keep eye - z >= near, i.e. z <= eye - near */
-                    n = clip_poly(in, n, out, 2, pj.eye - pj.n, -1);
-                    CVert *t = in; in = out; out = t;
-                }
-                for (uint32_t i = 0; i < n; i++) {
-                    double scr[3];
-                    proj_point(&pj, in[i].x, in[i].y, in[i].z, scr);
-                    in[i].x = scr[0]; in[i].y = scr[1]; in[i].z = scr[2];
-                }
-                n = clip_poly(in, n, out, 0, pj.gx0, 1);
-                n = clip_poly(out, n, in, 0, pj.gx1, -1);
-                n = clip_poly(in, n, out, 1, pj.gy0, 1);
-                n = clip_poly(out, n, in, 1, pj.gy1, -1);
-                if (grow((void **)&sp->verts, &sp->cap_verts, sp->nverts + n + 1, sizeof *sp->verts))
-                    return -1;
-                for (uint32_t i = 0; i < n; i++) {
-                    ScreenVert *d = &sp->verts[sp->nverts++];
-                    d->x = snap(in[i].x);
-                    d->y = snap(in[i].y);
-                    d->z = (float)in[i].z;
-                }
-            }
-            if (finish_poly(sp, first, face))
-                sp->map[inst] = (int32_t)(sp->npolys - 1);
+            RangeJob ja = { sp, s, o, &pj, sc, &clip_main, o->poly_first, mid, inst, sp->map, 0 };
+            RangeJob jb = { &helper_out, s, o, &pj, sc, &clip_helper, mid, kend,
+                            inst + (mid - o->poly_first), sp->map, 0 };
+            pthread_t th;
+            int threaded = pthread_create(&th, NULL, range_thread, &jb) == 0;
+            ja.rc = project_range(&ja);
+            if (threaded)
+                pthread_join(th, NULL);
             else
-                sp->nverts = first;
+                jb.rc = project_range(&jb);
+            if (ja.rc || jb.rc || append_part(sp, &helper_out, jb.inst0, kend - mid))
+                return -1;
+        } else {
+            RangeJob j = { sp, s, o, &pj, sc, &clip_main, o->poly_first, kend, inst, sp->map, 0 };
+            if (project_range(&j))
+                return -1;
         }
+        inst += o->poly_count;
     }
     sp->polys[sp->npolys].first = sp->nverts;   /* sentinel */
     sp->ms = now_ms() - t0;
