@@ -96,6 +96,35 @@ static inline void edge_step(EdgeWalk *e)
     }
 }
 
+/* Does triangle v[0..2] cover sample (i, j)? The same rule for a single
+ * sample, by exact integer edge functions: inside where every edge
+ * function is > 0, or 0 on a left edge (interior at larger x) or a top
+ * edge (horizontal, interior below). The front end uses it to drop
+ * triangles whose only candidate sample is outside them. */
+static inline int tri_covers_sample(const ScreenVert *v, int32_t i, int32_t j)
+{
+    int64_t px = 256LL * i + 128, py = 256LL * j + 128;
+    int64_t orient = (int64_t)(v[1].x - v[0].x) * (v[2].y - v[0].y) -
+                     (int64_t)(v[1].y - v[0].y) * (v[2].x - v[0].x);
+    if (orient == 0)
+        return 0;
+    for (int k = 0; k < 3; k++) {
+        const ScreenVert *a = &v[k], *b = &v[k == 2 ? 0 : k + 1];
+        int64_t dx = b->x - a->x, dy = b->y - a->y;
+        if (orient < 0) {       /* walk the edges the other way round */
+            dx = -dx;
+            dy = -dy;
+        }
+        int64_t e = dx * (py - a->y) - dy * (px - a->x);
+        if (orient < 0)
+            e = dx * (py - b->y) - dy * (px - b->x);
+        int topleft = -dy > 0 || (dy == 0 && dx > 0);
+        if (e < (topleft ? 0 : 1))
+            return 0;
+    }
+    return 1;
+}
+
 /* Columns covered by a triangle-like span are clamped to the image. */
 static inline int32_t clamp_col(int32_t x, int32_t w)
 {

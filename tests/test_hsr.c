@@ -405,3 +405,24 @@ Test(coverage, small_triangles_with_corners_on_centres)
     cr_assert_gt(tested, 500);
     polys_free(&p);
 }
+
+Test(coverage, single_sample_test_matches_the_rule)
+{
+    /* tri_covers_sample (the front end's early drop) agrees with the
+     * brute-force rule on random triangles, both orientations, corners on
+     * sample centres half the time */
+    int inside = 0;
+    for (int t = 0; t < 20000; t++) {
+        ScreenVert v[3];
+        for (int k = 0; k < 3; k++) {
+            v[k].x = rnd_coord(0, 4);
+            v[k].y = rnd_coord(0, 4);
+            v[k].z = 0;
+        }
+        int i = (int)(rnd() % 4), j = (int)(rnd() % 4);
+        int want = brute_inside(v, 3, i, j);
+        cr_assert_eq(tri_covers_sample(v, i, j), want, "triangle %d, sample (%d,%d)", t, i, j);
+        inside += want;
+    }
+    cr_assert_gt(inside, 1000);
+}

@@ -221,6 +221,19 @@ static int finish_poly(ScreenPolys *sp, uint32_t first, int32_t face)
         sp->culled_back++;
         return 0;
     }
+    /* A triangle whose few candidate samples all lie outside it covers
+     * nothing: drop it here rather than in every algorithm (much of a big
+     * model in a small image). */
+    if (n == 3 && (x1 - x0) * (y1 - y0) <= 4) {
+        int hit = 0;
+        for (int32_t j = y0; j < y1 && !hit; j++)
+            for (int32_t i = x0; i < x1 && !hit; i++)
+                hit = tri_covers_sample(v, i, j);
+        if (!hit) {
+            sp->culled_empty++;
+            return 0;
+        }
+    }
     /* The plane z = z0 + a (x - X0) + b (y - Y0) from the snapped corners,
      * in double: Newell's normal of (x, y, z); a best-area triangle when
      * the outline's net area vanishes (a symmetric bow tie). */
