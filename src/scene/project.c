@@ -51,7 +51,7 @@ typedef struct {
  * polygons are split between it and one helper thread. */
 static Scratch scratch;
 static ClipBuf clip_main, clip_helper;
-static ScreenPolys helper_out;  /* the helper's half, appended after */
+
 
 static int grow(void **p, uint32_t *cap, uint32_t need, size_t elem)
 {
@@ -315,8 +315,21 @@ typedef struct {
     ClipBuf       *cb;
     uint32_t       k0, k1, inst0;
     int32_t       *map;
-    int            rc;
+    int            fixed;       /* out's arrays are a window of another's: never grow */
+    int            rc;          /* 0, -1 out of memory, -2 window full */
 } RangeJob;
+
+/* Room for `need` vertices in j->out: grow, or in a fixed window report
+ * that it is full (the caller then redoes the work on one thread). */
+static int vert_room(RangeJob *j, uint32_t need)
+{
+    ScreenPolys *sp = j->out;
+    if (need <= sp->cap_verts)
+        return 0;
+    if (j->fixed)
+        return -2;
+    return grow((void **)&sp->verts, &sp->cap_verts, need, sizeof *sp->verts);
+}
 
 static int project_range(RangeJob *j)
 {
@@ -355,8 +368,9 @@ static int project_range(RangeJob *j)
             }
         }
         /* room for the clipped outline: each plane adds at most one vertex */
-        if (grow((void **)&sp->verts, &sp->cap_verts, sp->nverts + nc + 8, sizeof *sp->verts))
-            return -1;
+        int rv = vert_room(j, sp->nverts + nc + 8);
+        if (rv)
+            return rv;
         int all_ok = 1;
         for (uint32_t c = c0; c < c1; c++)
             all_ok &= sc->ok[s->poly_corner[c] - o->vert_min];
@@ -406,8 +420,9 @@ static int project_range(RangeJob *j)
             n = clip_poly(out, n, in, 0, pj->gx1, -1);
             n = clip_poly(in, n, out, 1, pj->gy0, 1);
             n = clip_poly(out, n, in, 1, pj->gy1, -1);
-            if (grow((void **)&sp->verts, &sp->cap_verts, sp->nverts + n + 1, sizeof *sp->verts))
-                return -1;
+            rv = vert_room(j, sp->nverts + n + 1);
+            if (rv)
+                return rv;
             for (uint32_t i = 0; i < n; i++) {
                 ScreenVert *d = &sp->verts[sp->nverts++];
                 d->x = snap(in[i].x);
@@ -430,18 +445,17 @@ static void *range_thread(void *arg)
     return NULL;
 }
 
-/* Append part (the helper's half, instances inst0 .. inst0 + n) to sp. */
-static int append_part(ScreenPolys *sp, const ScreenPolys *part, uint32_t inst0, uint32_t n)
+/* Move the helper's half, written in a window further up sp's arrays
+ * (polygons at pb, vertices at vb, instances inst0 .. inst0 + n), down to
+ * right after the caller's half. */
+static void compact_part(ScreenPolys *sp, const ScreenPolys *part, uint32_t pb, uint32_t vb,
+                         uint32_t inst0, uint32_t n)
 {
     uint32_t bv = sp->nverts, bp = sp->npolys;
-    if (grow((void **)&sp->verts, &sp->cap_verts, bv + part->nverts + 1, sizeof *sp->verts) ||
-        grow((void **)&sp->polys, &sp->cap_polys, bp + part->npolys + 1, sizeof *sp->polys))
-        return -1;
-    memcpy(sp->verts + bv, part->verts, (size_t)part->nverts * sizeof *sp->verts);
-    for (uint32_t i = 0; i < part->npolys; i++) {
-        sp->polys[bp + i] = part->polys[i];
+    memmove(sp->verts + bv, sp->verts + vb, (size_t)part->nverts * sizeof *sp->verts);
+    memmove(sp->polys + bp, sp->polys + pb, (size_t)part->npolys * sizeof *sp->polys);
+    for (uint32_t i = 0; i < part->npolys; i++)
         sp->polys[bp + i].first += bv;
-    }
     for (uint32_t i = inst0; i < inst0 + n; i++)
         if (sp->map[i] >= 0)
             sp->map[i] += (int32_t)bp;
@@ -450,7 +464,6 @@ static int append_part(ScreenPolys *sp, const ScreenPolys *part, uint32_t inst0,
     sp->in_polys += part->in_polys;
     sp->culled_back += part->culled_back;
     sp->culled_empty += part->culled_empty;
-    return 0;
 }
 
 static int ncpus(void)
@@ -545,22 +558,32 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
         /* The polygons: a big object's in two halves, the second on a
          * helper thread into its own buffers, appended in order after. */
         uint32_t kend = o->poly_first + o->poly_count;
+        int done = 0;
         if (o->poly_count >= PARALLEL_MIN && ncpus() > 1) {
+            /* The helper writes into a window of sp's own arrays past the
+             * room the caller's half can need, then its output moves down:
+             * no second set of buffers. A half whose clipping outgrows its
+             * window (rare) makes the object go again on one thread. */
             uint32_t mid = o->poly_first + o->poly_count / 2;
-            helper_out.w = sp->w;
-            helper_out.h = sp->h;
-            helper_out.cull = sp->cull;
-            helper_out.nverts = helper_out.npolys = 0;
-            helper_out.in_polys = helper_out.culled_back = helper_out.culled_empty = 0;
-            uint32_t hc = s->poly_start[kend] - s->poly_start[mid];
-            if (grow((void **)&helper_out.polys, &helper_out.cap_polys, kend - mid + 1,
-                     sizeof *helper_out.polys) ||
-                grow((void **)&helper_out.verts, &helper_out.cap_verts, hc + hc / 64 + 64,
-                     sizeof *helper_out.verts))
+            uint32_t ca = s->poly_start[mid] - s->poly_start[o->poly_first];
+            uint32_t cb = s->poly_start[kend] - s->poly_start[mid];
+            uint32_t slack_a = ca / 16 + 64, slack_b = cb / 16 + 64;
+            uint32_t vb = sp->nverts + ca + slack_a, pb = sp->npolys + (mid - o->poly_first);
+            if (grow((void **)&sp->verts, &sp->cap_verts, vb + cb + slack_b, sizeof *sp->verts))
                 return -1;
-            RangeJob ja = { sp, s, o, &pj, sc, &clip_main, o->poly_first, mid, inst, sp->map, 0 };
-            RangeJob jb = { &helper_out, s, o, &pj, sc, &clip_helper, mid, kend,
-                            inst + (mid - o->poly_first), sp->map, 0 };
+            ScreenPolys part = *sp;
+            part.verts = sp->verts + vb;
+            part.polys = sp->polys + pb;
+            part.cap_verts = cb + slack_b;
+            part.cap_polys = kend - mid + 1;
+            part.nverts = part.npolys = 0;
+            part.in_polys = part.culled_back = part.culled_empty = 0;
+            ScreenPolys before = *sp;
+            ScreenPolys win_a = *sp;
+            win_a.cap_verts = vb;       /* the caller's half may not reach the window */
+            RangeJob ja = { &win_a, s, o, &pj, sc, &clip_main, o->poly_first, mid, inst, sp->map, 1, 0 };
+            RangeJob jb = { &part, s, o, &pj, sc, &clip_helper, mid, kend,
+                            inst + (mid - o->poly_first), sp->map, 1, 0 };
             pthread_t th;
             int threaded = pthread_create(&th, NULL, range_thread, &jb) == 0;
             ja.rc = project_range(&ja);
@@ -568,10 +591,22 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
                 pthread_join(th, NULL);
             else
                 jb.rc = project_range(&jb);
-            if (ja.rc || jb.rc || append_part(sp, &helper_out, jb.inst0, kend - mid))
+            if (ja.rc == -1 || jb.rc == -1)
                 return -1;
-        } else {
-            RangeJob j = { sp, s, o, &pj, sc, &clip_main, o->poly_first, kend, inst, sp->map, 0 };
+            if (!ja.rc && !jb.rc) {
+                sp->nverts = win_a.nverts;
+                sp->npolys = win_a.npolys;
+                sp->in_polys = win_a.in_polys;
+                sp->culled_back = win_a.culled_back;
+                sp->culled_empty = win_a.culled_empty;
+                compact_part(sp, &part, pb, vb, jb.inst0, kend - mid);
+                done = 1;
+            } else {
+                *sp = before;   /* a window was full: start the object again */
+            }
+        }
+        if (!done) {
+            RangeJob j = { sp, s, o, &pj, sc, &clip_main, o->poly_first, kend, inst, sp->map, 0, 0 };
             if (project_range(&j))
                 return -1;
         }
