@@ -117,7 +117,8 @@ static void crash_add(const char *cap)
     }
 }
 
-static void on_crash(int sig)
+/* Undo our modes: only write(2) and tcsetattr(3), both signal-safe. */
+static void crash_write(void)
 {
     if (term_on && crash_fd >= 0) {
         ssize_t w = write(crash_fd, crash_reset, crash_reset_len);
@@ -125,6 +126,12 @@ static void on_crash(int sig)
         if (crash_tios_ok)
             tcsetattr(crash_fd, TCSANOW, &crash_tios);
     }
+}
+
+static void on_crash(int sig)
+{
+    crash_write();
+    term_on = 0;
     signal(sig, SIG_DFL);
     raise(sig);
 }
@@ -135,6 +142,7 @@ static void crash_prepare(int fd)
     crash_tios_ok = tcgetattr(fd, &crash_tios) == 0;
     crash_reset_len = 0;
     crash_add(DRAG_OFF);
+    crash_add("\033[?1006;1000l");   /* the mouse reporting ncurses turns on */
     crash_add(tigetstr("sgr0"));
     crash_add(tigetstr("cnorm"));
     crash_add(tigetstr("rmcup"));
@@ -158,11 +166,14 @@ static void restore_handlers(void)
     sigaction(SIGTSTP, &old_tstp, NULL);
 }
 
-/* Quit signals: put the terminal back, then die of the same signal so the
- * parent sees the real cause. */
+/* Quit signals: put the terminal back with the async-signal-safe bytes
+ * prepared at open (crash_write below; endwin() is not safe here), then
+ * die of the same signal so the parent sees the real cause. */
+static void crash_write(void);
 static void on_quit(int sig)
 {
-    term_restore();
+    crash_write();
+    term_on = 0;
     signal(sig, SIG_DFL);
     sigset_t set;
     sigemptyset(&set);

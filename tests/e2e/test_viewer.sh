@@ -237,6 +237,8 @@ kill -TERM "$(cat "$T/pid")"
 if wait_for 'zv-exit=143'; then ok "SIGTERM ends zview"; else notok "SIGTERM ends zview" "$(cat "$T/screen")"; fi
 check "no alternate screen after SIGTERM" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
 check "cursor visible after SIGTERM" '[ "$(tm display -p -t zv "#{cursor_flag}")" = 1 ]'
+check "mouse reporting off after SIGTERM" '[ "$(tm display -p -t zv "#{mouse_any_flag}#{mouse_standard_flag}#{mouse_button_flag}#{mouse_sgr_flag}")" = 0000 ]'
+check "keypad mode off after SIGTERM" '[ "$(tm display -p -t zv "#{keypad_flag}#{keypad_cursor_flag}")" = 00 ]'
 if prompt_back; then ok "the shell prompt is back after SIGTERM"; else notok "the shell prompt is back after SIGTERM" "$(cat "$T/screen")"; fi
 
 start 80 24 assets/cube.obj
