@@ -8,16 +8,15 @@
 
 #include "testlib.h"
 
-int tl_scene_from_text(Scene *s, const char *name, const char *obj_text)
+/* Build a one-mesh scene from m (loaded or not: rc says). */
+static int scene_from_mesh(Scene *s, Mesh *m, int rc, char *err, size_t errlen)
 {
-    char err[512];
-    Mesh *m = calloc(1, sizeof *m);
-    if (mesh_parse(m, name, obj_text, strlen(obj_text), err, sizeof err)) {
+    if (rc) {
         fprintf(stderr, "%s\n", err);
         free(m);
         return -1;
     }
-    if (scene_build(s, m, 1, err, sizeof err)) {
+    if (scene_build(s, m, 1, err, errlen)) {
         fprintf(stderr, "%s\n", err);
         mesh_free(m);
         free(m);
@@ -26,22 +25,20 @@ int tl_scene_from_text(Scene *s, const char *name, const char *obj_text)
     return 0;
 }
 
+int tl_scene_from_text(Scene *s, const char *name, const char *obj_text)
+{
+    char err[512];
+    Mesh *m = calloc(1, sizeof *m);
+    int rc = mesh_parse(m, name, obj_text, strlen(obj_text), err, sizeof err);
+    return scene_from_mesh(s, m, rc, err, sizeof err);
+}
+
 int tl_scene_from_file(Scene *s, const char *path)
 {
     char err[512];
     Mesh *m = calloc(1, sizeof *m);
-    if (mesh_load(m, path, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
-        free(m);
-        return -1;
-    }
-    if (scene_build(s, m, 1, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
-        mesh_free(m);
-        free(m);
-        return -1;
-    }
-    return 0;
+    int rc = mesh_load(m, path, err, sizeof err);
+    return scene_from_mesh(s, m, rc, err, sizeof err);
 }
 
 static uint32_t hash32(uint32_t x)
