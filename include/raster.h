@@ -25,12 +25,6 @@ typedef struct {
     int64_t den;          /* 256 * dy */
 } EdgeWalk;
 
-static inline int64_t floordiv64(int64_t n, int64_t d)   /* d > 0 */
-{
-    int64_t q = n / d;
-    return (n % d != 0 && n < 0) ? q - 1 : q;
-}
-
 /* floor(n / d) and its remainder for d > 0 and |n| < 2^52: a double
  * division (exact operands, correctly rounded quotient, so off by at most
  * one after truncation) fixed up with exact integer arithmetic. Several
@@ -96,33 +90,50 @@ static inline void edge_step(EdgeWalk *e)
     }
 }
 
-/* Does triangle v[0..2] cover sample (i, j)? The same rule for a single
- * sample, by exact integer edge functions: inside where every edge
- * function is > 0, or 0 on a left edge (interior at larger x) or a top
- * edge (horizontal, interior below). The front end uses it to drop
- * triangles whose only candidate sample is outside them. */
-static inline int tri_covers_sample(const ScreenVert *v, int32_t i, int32_t j)
+/* ---- The same rule as edge functions, for small triangles ----
+ * Triangle v[0..2] covers a sample where every edge function is > 0, or
+ * 0 on a left edge (interior at larger x) or a top edge (horizontal,
+ * interior below): exactly the samples of the crossing rule above, as
+ * the tests check against a brute-force reference. Exact integers, no
+ * division; the values step by whole samples. */
+typedef struct {
+    int64_t e[3];         /* edge functions at the sample the setup named */
+    int64_t step_x[3];    /* added per column */
+    int64_t step_y[3];    /* added per row */
+    int64_t bias[3];      /* inside where e >= bias: 0 on top-left edges, else 1 */
+} TriEdges;
+
+/* Set up at sample (i, j). Returns 0 for a triangle without area. */
+static inline int tri_edges_setup(TriEdges *t, const ScreenVert *v, int32_t i, int32_t j)
 {
-    int64_t px = 256LL * i + 128, py = 256LL * j + 128;
-    int64_t orient = (int64_t)(v[1].x - v[0].x) * (v[2].y - v[0].y) -
-                     (int64_t)(v[1].y - v[0].y) * (v[2].x - v[0].x);
+    const ScreenVert *a = &v[0], *b = &v[1], *c = &v[2];
+    int64_t orient = (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(b->y - a->y) * (c->x - a->x);
     if (orient == 0)
         return 0;
+    if (orient < 0) {           /* walk the edges the other way round */
+        const ScreenVert *x = b;
+        b = c;
+        c = x;
+    }
+    const ScreenVert *ea[3] = { a, b, c }, *eb[3] = { b, c, a };
+    int64_t px = 256LL * i + 128, py = 256LL * j + 128;
     for (int k = 0; k < 3; k++) {
-        const ScreenVert *a = &v[k], *b = &v[k == 2 ? 0 : k + 1];
-        int64_t dx = b->x - a->x, dy = b->y - a->y;
-        if (orient < 0) {       /* walk the edges the other way round */
-            dx = -dx;
-            dy = -dy;
-        }
-        int64_t e = dx * (py - a->y) - dy * (px - a->x);
-        if (orient < 0)
-            e = dx * (py - b->y) - dy * (px - b->x);
-        int topleft = -dy > 0 || (dy == 0 && dx > 0);
-        if (e < (topleft ? 0 : 1))
-            return 0;
+        int64_t dx = eb[k]->x - ea[k]->x, dy = eb[k]->y - ea[k]->y;
+        t->e[k] = dx * (py - ea[k]->y) - dy * (px - ea[k]->x);
+        t->step_x[k] = -dy * 256;
+        t->step_y[k] = dx * 256;
+        t->bias[k] = (-dy > 0 || (dy == 0 && dx > 0)) ? 0 : 1;
     }
     return 1;
+}
+
+/* Does triangle v[0..2] cover sample (i, j)? The front end uses it to drop
+ * triangles whose few candidate samples all lie outside them. */
+static inline int tri_covers_sample(const ScreenVert *v, int32_t i, int32_t j)
+{
+    TriEdges t;
+    return tri_edges_setup(&t, v, i, j) && t.e[0] >= t.bias[0] && t.e[1] >= t.bias[1] &&
+           t.e[2] >= t.bias[2];
 }
 
 /* Columns covered by a triangle-like span are clamped to the image. */

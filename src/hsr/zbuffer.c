@@ -100,33 +100,14 @@ static inline uint64_t span_test(const ScreenPoly *p, FrameBufs *fb, int j, int 
     return n;
 }
 
-/* A triangle with few samples in its box: exact integer edge functions
- * per sample, no division. E > 0 inside; E == 0 counts on a left edge
- * (interior at larger x) or a top edge (horizontal, interior below): the
- * same samples as the crossing rule of raster.h, as the coverage tests
- * check against the brute-force reference. */
+/* A triangle with few samples in its box: the edge functions of
+ * raster.h per sample, no division. */
 static uint64_t draw_small_triangle(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
-    const ScreenVert *a = &v[0], *b = &v[1], *c = &v[2];
-    int64_t orient = (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(b->y - a->y) * (c->x - a->x);
-    if (orient == 0)
+    TriEdges t;
+    if (!tri_edges_setup(&t, v, p->x0, ya))
         return 0;
-    if (orient < 0) {
-        const ScreenVert *t = b;
-        b = c;
-        c = t;
-    }
-    const ScreenVert *ea[3] = { a, b, c }, *eb[3] = { b, c, a };
-    int64_t e_row[3], step_x[3], step_y[3], bias[3];
-    int64_t px = 256LL * p->x0 + 128, py = 256LL * ya + 128;
-    for (int k = 0; k < 3; k++) {
-        int64_t dx = eb[k]->x - ea[k]->x, dy = eb[k]->y - ea[k]->y;
-        e_row[k] = dx * (py - ea[k]->y) - dy * (px - ea[k]->x);
-        step_x[k] = -dy * 256;
-        step_y[k] = dx * 256;
-        int topleft = -dy > 0 || (dy == 0 && dx > 0);
-        bias[k] = topleft ? 0 : 1;
-    }
+    int64_t *e_row = t.e, *step_x = t.step_x, *step_y = t.step_y, *bias = t.bias;
     uint64_t n = 0;
     int w = fb->w;
     int32_t id = p->face;
