@@ -72,9 +72,9 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         scene_free(s);
         return -1;
     }
+    /* scene_build left everything reset: set the view, then fit once */
     s->cam.persp = o->persp;
     s->cam.fov_deg = o->fov;
-    scene_reset(s);
     s->cam.yaw = deg2rad(o->yaw);
     s->cam.pitch = deg2rad(o->pitch);
     s->cam.roll = deg2rad(o->roll);
