@@ -189,37 +189,40 @@ void hzb_draw_poly(HzbPyramid *p, void *zstate, const ScreenPolys *sp, uint32_t 
 
 /* ==== the algorithm ==== */
 
-typedef struct {
-    void      *zb;          /* the z-buffer's state (edge walkers) */
-    HzbPyramid pyr;
-} HzbState;
+int hzb_base_init(HzbBase *b)
+{
+    b->zb = hsr_zbuffer.create();
+    return b->zb ? 0 : -1;
+}
+
+void hzb_base_free(HzbBase *b)
+{
+    if (b->zb)
+        hsr_zbuffer.destroy(b->zb);
+    hzb_pyr_free(&b->pyr);
+}
 
 static void *hzb_create(void)
 {
-    HzbState *s = calloc(1, sizeof *s);
-    if (!s)
-        return NULL;
-    s->zb = hsr_zbuffer.create();
-    if (!s->zb) {
+    HzbBase *s = calloc(1, sizeof *s);
+    if (s && hzb_base_init(s)) {
         free(s);
-        return NULL;
+        s = NULL;
     }
     return s;
 }
 
 static void hzb_destroy(void *st)
 {
-    HzbState *s = st;
-    if (!s)
+    if (!st)
         return;
-    hsr_zbuffer.destroy(s->zb);
-    hzb_pyr_free(&s->pyr);
-    free(s);
+    hzb_base_free(st);
+    free(st);
 }
 
 static void hzb_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *stats)
 {
-    HzbState *s = st;
+    HzbBase *s = st;
     const ScreenPolys *sp = in->sp;
     double t0 = now_ms();
     hzb_pyr_begin(&s->pyr, fb, y0, y1);

@@ -135,6 +135,16 @@ static inline int hzb_pyr_hidden(HzbPyramid *p, int x0, int x1, int ya, int yb, 
     return 1;
 }
 
+/* What both hierarchical algorithms keep per thread: the z-buffer's
+ * state (its edge walkers draw the polygons that pass) and the pyramid. */
+typedef struct {
+    void      *zb;
+    HzbPyramid pyr;
+} HzbBase;
+
+int  hzb_base_init(HzbBase *b);     /* 0, or -1 on out of memory */
+void hzb_base_free(HzbBase *b);
+
 /* The per-polygon step both algorithms share: clip polygon pi's box to
  * the band, skip it when the pyramid hides it (zmin strictly farther),
  * else depth-test it like the z-buffer and mark the pyramid dirty over

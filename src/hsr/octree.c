@@ -52,7 +52,6 @@
 #include "scene.h"
 #include "zbuffer.h"
 
-extern const HsrAlgo hsr_zbuffer;
 
 #define LEAF_POLYS  128     /* a node with more polygons is split */
 #define MAX_DEPTH   20      /* and never deeper than this */
@@ -79,8 +78,7 @@ typedef struct {
 } ObjView;
 
 typedef struct {
-    void      *zb;          /* the z-buffer's state (edge walkers) */
-    HzbPyramid pyr;
+    HzbBase    hz;          /* the z-buffer's state and the pyramid */
     /* the octree, built once per model */
     const Scene *key;
     uint32_t   key_npolys;
@@ -437,12 +435,9 @@ static int cmp_front(const void *a, const void *b)
 static void *oct_create(void)
 {
     OctState *s = calloc(1, sizeof *s);
-    if (!s)
-        return NULL;
-    s->zb = hsr_zbuffer.create();
-    if (!s->zb) {
+    if (s && hzb_base_init(&s->hz)) {
         free(s);
-        return NULL;
+        s = NULL;
     }
     return s;
 }
@@ -452,8 +447,7 @@ static void oct_destroy(void *st)
     OctState *s = st;
     if (!s)
         return;
-    hsr_zbuffer.destroy(s->zb);
-    hzb_pyr_free(&s->pyr);
+    hzb_base_free(&s->hz);
     tree_free(s);
     free(s->views);
     free(s);
@@ -467,7 +461,7 @@ static void draw_object_flat(OctState *s, const HsrInput *in, int oi, FrameBufs 
     const int32_t *map = sp->map + sp->map_first[oi];
     for (uint32_t i = 0; i < o->poly_count; i++)
         if (map[i] >= 0)
-            hzb_draw_poly(&s->pyr, s->zb, sp, (uint32_t)map[i], fb, y0, y1, st);
+            hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, (uint32_t)map[i], fb, y0, y1, st);
 }
 
 /* Every polygon of node nd's subtree. The screen polygons are gathered
@@ -491,7 +485,7 @@ static void draw_node_polys(OctState *s, const ScreenPolys *sp, const int32_t *m
         for (uint32_t i = 0; i < n; i++)
             __builtin_prefetch(&sp->verts[sp->polys[idx[i]].first]);
         for (uint32_t i = 0; i < n; i++)
-            hzb_draw_poly(&s->pyr, s->zb, sp, (uint32_t)idx[i], fb, y0, y1, st);
+            hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, (uint32_t)idx[i], fb, y0, y1, st);
     }
 }
 
@@ -511,14 +505,14 @@ static void walk_object(OctState *s, const HsrInput *in, const NodeProj *pp, con
         int kind = node_project(pp, ov, nd, box, &zmin);
         if (kind == NODE_OFF)
             return;
-        if (kind == NODE_BOX && hzb_pyr_hidden(&s->pyr, box[0], box[1], box[2], box[3], zmin)) {
+        if (kind == NODE_BOX && hzb_pyr_hidden(&s->hz.pyr, box[0], box[1], box[2], box[3], zmin)) {
             st->nodes_culled++;
             st->polys_culled += ov->send - ov->sfirst;
             st->polys_in += ov->send - ov->sfirst;
             return;
         }
         for (uint32_t i = ov->sfirst; i < ov->send; i++)
-            hzb_draw_poly(&s->pyr, s->zb, sp, i, fb, pp->y0, pp->y1, st);
+            hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, i, fb, pp->y0, pp->y1, st);
         return;
     }
     uint32_t stack[STACK_MAX];
@@ -532,7 +526,7 @@ static void walk_object(OctState *s, const HsrInput *in, const NodeProj *pp, con
         int kind = node_project(pp, ov, nd, box, &zmin);
         if (kind == NODE_OFF)
             continue;
-        if (kind == NODE_BOX && hzb_pyr_hidden(&s->pyr, box[0], box[1], box[2], box[3], zmin)) {
+        if (kind == NODE_BOX && hzb_pyr_hidden(&s->hz.pyr, box[0], box[1], box[2], box[3], zmin)) {
             st->nodes_culled++;
             st->polys_culled += nd->count;
             st->polys_in += nd->count;
@@ -581,7 +575,7 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     const Scene *sc = in->scene;
     const ScreenPolys *sp = in->sp;
     double t0 = now_ms();
-    hzb_pyr_begin(&s->pyr, fb, y0, y1);
+    hzb_pyr_begin(&s->hz.pyr, fb, y0, y1);
     if (sc && (s->key != sc || s->key_npolys != sc->npolys || s->key_nobjs != sc->nobjs ||
                s->key_corner != sc->poly_corner)) {
         /* Bands build their trees one at a time, so that only one build's
@@ -595,7 +589,7 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     if (!sc || !s->built_ok || sc->nobjs == 0) {
         /* no scene to build from: the plain hzb over every polygon */
         for (uint32_t i = 0; i < sp->npolys; i++)
-            hzb_draw_poly(&s->pyr, s->zb, sp, i, fb, y0, y1, stats);
+            hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, i, fb, y0, y1, stats);
         return;
     }
     if (sc->nobjs > s->cap_views) {
