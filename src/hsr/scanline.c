@@ -52,6 +52,7 @@
 #endif
 
 #include "raster.h"
+#include "grow.h"
 #include "hsr.h"
 
 /* An active triangle: e[0] is its left edge, e[1] its right one (the
@@ -135,23 +136,6 @@ static void scan_destroy(void *st)
 /* Grow the array whose pointer is at buf (any element type) to hold n
  * elements of size sz, doubling. The pointer is read and written with
  * memcpy so that no pointer type is accessed as another. */
-static int grow(void *buf, uint32_t *cap, uint32_t n, size_t sz)
-{
-    if (n <= *cap)
-        return 0;
-    uint32_t c = *cap ? *cap : 64;
-    while (c < n)
-        c = c > UINT32_MAX / 2 ? n : c * 2;
-    void *old, *q;
-    memcpy(&old, buf, sizeof old);
-    q = realloc(old, (size_t)c * sz);
-    if (!q)
-        return -1;
-    memcpy(buf, &q, sizeof q);
-    *cap = c;
-    return 0;
-}
-
 /* ==== the spans ==== */
 
 /* Depth-test samples [xa, xb) of row j (ids/dep point at that row) for
@@ -402,9 +386,9 @@ static int gon_start(ScanState *s, const ScreenPolys *sp, uint32_t pi, int j, in
 {
     const ScreenPoly *p = &sp->polys[pi];
     uint32_t nv = screen_poly_nverts(sp, pi);
-    if (grow(&s->pool, &s->pool_cap, s->npool + nv, sizeof *s->pool) ||
-        grow(&s->xs, &s->xs_cap, nv, sizeof *s->xs) ||
-        grow(&s->gon, &s->gon_cap, s->ngon + 1, sizeof *s->gon))
+    if (grow_array((void **)&s->pool, &s->pool_cap, s->npool + nv, sizeof *s->pool) ||
+        grow_array((void **)&s->xs, &s->xs_cap, nv, sizeof *s->xs) ||
+        grow_array((void **)&s->gon, &s->gon_cap, s->ngon + 1, sizeof *s->gon))
         return -1;
     const ScreenVert *v = &sp->verts[p->first];
     EdgeWalk *e = &s->pool[s->npool];
@@ -483,9 +467,9 @@ static uint64_t gon_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w
 static int build_table(ScanState *s, const ScreenPolys *sp, int y0, int y1, uint64_t *polys)
 {
     uint32_t np = sp->npolys, rows = (uint32_t)(y1 - y0);
-    if (grow(&s->key, &s->key_cap, np, sizeof *s->key) ||
-        grow(&s->first, &s->first_cap, np, sizeof *s->first) ||
-        grow(&s->start, &s->start_cap, rows + 1, sizeof *s->start))
+    if (grow_array((void **)&s->key, &s->key_cap, np, sizeof *s->key) ||
+        grow_array((void **)&s->first, &s->first_cap, np, sizeof *s->first) ||
+        grow_array((void **)&s->start, &s->start_cap, rows + 1, sizeof *s->start))
         return -1;
     uint32_t *start = s->start;
     memset(start, 0, (size_t)(rows + 1) * sizeof *start);
@@ -509,7 +493,7 @@ static int build_table(ScanState *s, const ScreenPolys *sp, int y0, int y1, uint
         start[r + 1] += start[r];
     uint32_t total = start[rows];
     *polys += total;
-    if (grow(&s->order, &s->order_cap, total, sizeof *s->order))
+    if (grow_array((void **)&s->order, &s->order_cap, total, sizeof *s->order))
         return -1;
     /* start[r] becomes the fill point of bucket r; after the scatter it is
      * the end of bucket r, i.e. the start of bucket r + 1 */
@@ -532,7 +516,7 @@ static void scan_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
     double t0 = now_ms();
     uint64_t polys = 0, written = 0;
     int ok = build_table(s, sp, y0, y1, &polys) == 0;
-    if (s->inf_cap < (uint32_t)w && grow(&s->inf, &s->inf_cap, (uint32_t)w, sizeof *s->inf) == 0)
+    if (s->inf_cap < (uint32_t)w && grow_array((void **)&s->inf, &s->inf_cap, (uint32_t)w, sizeof *s->inf) == 0)
         for (uint32_t i = 0; i < s->inf_cap; i++)
             s->inf[i] = INFINITY;
     stats->build_ms += now_ms() - t0;
@@ -566,7 +550,7 @@ static void scan_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
             const ScreenPoly *p = &sp->polys[pi];
             int yend = p->y1 < y1 ? p->y1 : y1;
             if (!(o & 1)) {
-                if (s->ntri == s->tri_cap && grow(&s->tri, &s->tri_cap, s->ntri + 1, sizeof *s->tri)) {
+                if (s->ntri == s->tri_cap && grow_array((void **)&s->tri, &s->tri_cap, s->ntri + 1, sizeof *s->tri)) {
                     ok = 0;
                     break;
                 }

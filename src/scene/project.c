@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "hsr.h"
+#include "grow.h"
 #include "raster.h"
 #include "screen.h"
 
@@ -52,22 +53,6 @@ typedef struct {
 static Scratch scratch;
 static ClipBuf clip_main, clip_helper;
 
-
-static int grow(void **p, uint32_t *cap, uint32_t need, size_t elem)
-{
-    if (need <= *cap)
-        return 0;
-    /* grow by half: big frames stay close to what they need */
-    uint32_t n = *cap ? *cap : 256;
-    while (n < need)
-        n = n > UINT32_MAX / 3 * 2 ? need : n + n / 2;
-    void *q = realloc(*p, (size_t)n * elem);
-    if (!q)
-        return -1;
-    *p = q;
-    *cap = n;
-    return 0;
-}
 
 void screen_free(ScreenPolys *sp)
 {
@@ -328,7 +313,7 @@ static int vert_room(RangeJob *j, uint32_t need)
         return 0;
     if (j->fixed)
         return -2;
-    return grow((void **)&sp->verts, &sp->cap_verts, need, sizeof *sp->verts);
+    return grow_array((void **)&sp->verts, &sp->cap_verts, need, sizeof *sp->verts);
 }
 
 static int project_range(RangeJob *j)
@@ -515,9 +500,9 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
     if (ncorners + 64 > UINT32_MAX / 2)
         return -1;
     /* every corner at most once, plus a little for clipped outlines */
-    if (grow((void **)&sp->verts, &sp->cap_verts, (uint32_t)(ncorners + ncorners / 64 + 64), sizeof *sp->verts) ||
-        grow((void **)&sp->map, &sp->cap_map, (uint32_t)ninst + 1, sizeof *sp->map) ||
-        grow((void **)&sp->polys, &sp->cap_polys, (uint32_t)ninst + 1, sizeof *sp->polys))
+    if (grow_array((void **)&sp->verts, &sp->cap_verts, (uint32_t)(ncorners + ncorners / 64 + 64), sizeof *sp->verts) ||
+        grow_array((void **)&sp->map, &sp->cap_map, (uint32_t)ninst + 1, sizeof *sp->map) ||
+        grow_array((void **)&sp->polys, &sp->cap_polys, (uint32_t)ninst + 1, sizeof *sp->polys))
         return -1;
 
     Mat4 view = camera_view(&s->cam);
@@ -531,9 +516,9 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
         }
         Mat4 mv = m4_mul(view, object_matrix(o));
         uint32_t nv = o->vert_max - o->vert_min + 1;
-        if (grow((void **)&sc->view, &sc->cap_view, nv, 3 * sizeof(float)) ||
-            grow((void **)&sc->sv, &sc->cap_sv, nv, sizeof(ScreenVert)) ||
-            grow((void **)&sc->ok, &sc->cap_ok, nv, 1))
+        if (grow_array((void **)&sc->view, &sc->cap_view, nv, 3 * sizeof(float)) ||
+            grow_array((void **)&sc->sv, &sc->cap_sv, nv, sizeof(ScreenVert)) ||
+            grow_array((void **)&sc->ok, &sc->cap_ok, nv, 1))
             return -1;
 
         /* Each vertex once: view space, and the snapped screen point. */
@@ -569,7 +554,7 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
             uint32_t cb = s->poly_start[kend] - s->poly_start[mid];
             uint32_t slack_a = ca / 16 + 64, slack_b = cb / 16 + 64;
             uint32_t vb = sp->nverts + ca + slack_a, pb = sp->npolys + (mid - o->poly_first);
-            if (grow((void **)&sp->verts, &sp->cap_verts, vb + cb + slack_b, sizeof *sp->verts))
+            if (grow_array((void **)&sp->verts, &sp->cap_verts, vb + cb + slack_b, sizeof *sp->verts))
                 return -1;
             ScreenPolys part = *sp;
             part.verts = sp->verts + vb;
