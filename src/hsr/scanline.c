@@ -133,9 +133,6 @@ static void scan_destroy(void *st)
     free(s);
 }
 
-/* Grow the array whose pointer is at buf (any element type) to hold n
- * elements of size sz, doubling. The pointer is read and written with
- * memcpy so that no pointer type is accessed as another. */
 /* ==== the spans ==== */
 
 /* Depth-test samples [xa, xb) of row j (ids/dep point at that row) for
