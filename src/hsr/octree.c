@@ -5,43 +5,42 @@
  * its polygon and object counts), the polygons of each loaded object are
  * sorted into an octree over their mesh vertex positions: a node splits
  * its polygons by centroid into the octants about the middle of their
- * centroids' box, until a leaf holds at most LEAF_POLYS; every node keeps
- * the tight box of all the vertices of the polygons below it, and its
- * polygons are one contiguous run of a flat index array. Grid copies of an
- * object share its polygon range, so they share its tree.
+ * centroids' box, until a leaf holds at most LEAF_POLYS; a node's
+ * polygons are one contiguous run of a flat index array, and every
+ * polygon knows its leaf. Grid copies of an object share its polygon
+ * range, so they share its tree.
  *
- * Each frame, per band: objects are taken nearest first (by the nearest
- * corner of their root box in view space), and each tree is walked with a
- * stack, children nearest first (by the view depth of their box centres).
- * A node's 8 box corners are projected with the front end's formulas
- * (project.c proj_point) to the sample rows and columns whose centres lie
- * in their bounding rectangle (widened by SAMPLE_EPS pixels) and to the
- * depth of the nearest corner, lowered by DEPTH_MARGIN: every sample any
- * of its polygons can cover lies in that box, and every depth plane_at()
- * can give there is at least that depth (the box is convex, the projected
- * depth is monotonic in view z, and the margins dwarf the float rounding
- * of the transforms, of the snapping and of the plane). So when the
- * pyramid holds a strictly nearer depth everywhere in the box, no polygon
- * of the node can win a sample and the whole node is skipped; a node with
- * a corner behind the near plane is never culled (its projection is not
- * bounded), one that covers no sample centre of the band is skipped.
- * Leaves draw their polygons through hzb_draw_poly() (the per-polygon
- * zmin test, the z-buffer's exact rasterization, the pyramid marks),
- * finding each one's screen polygon through ScreenPolys.map. An object
- * with few polygons on screen (small or far: most of its map reads -1) is
- * not walked: its root is tested, then its screen polygons, a contiguous
- * run found by face id, are taken in order. Every sample that is written
- * is decided by hsr_wins() on (depth, id), so the front-to-back order
- * changes nothing in the result, which stays byte-identical to the
- * z-buffer's.
+ * Each frame, per band, objects are taken nearest first (by the nearest
+ * corner of their box in view space). Before an object's tree is walked,
+ * its node bounds are gathered from the front end's own output: one pass
+ * over the object's screen polygons in order puts each polygon's sample
+ * box (clipped to the band) and its zmin (the front end's safe lower
+ * bound of every depth plane_at() can give inside it) into its leaf, and
+ * one pass over the nodes, children before parents, folds them upwards.
+ * A node's bound is therefore exactly the union of its polygons' own
+ * bounds: when the pyramid holds a strictly nearer depth everywhere in
+ * its box, each of its polygons would fail the per-polygon test of
+ * hzb_draw_poly() too, so the whole node is skipped without changing the
+ * result. No margin or projection of object-space boxes is involved: an
+ * earlier version projected each node's box and widened it by fixed
+ * margins, which the float rounding of the vertex transform outgrew on
+ * small objects far from the origin (a nearer face was lost).
+ *
+ * The walk is a stack, children nearest first (by their zmin). Leaves
+ * draw their polygons through hzb_draw_poly() (the per-polygon zmin
+ * test, the z-buffer's exact rasterization, the pyramid marks). An
+ * object with few polygons on screen (small or far: most of its map reads
+ * -1) is not walked: its screen polygons, a contiguous run found by face
+ * id, are drawn in order. Every sample that is written is decided by
+ * hsr_wins() on (depth, id), so the order changes nothing in the result,
+ * which stays byte-identical to the z-buffer's.
  *
  * It wins on deep scenes (many objects one behind another, --grid) and on
  * closed models with culling off: near geometry fills the pyramid first
- * and whole far objects or subtrees are rejected with one test each,
- * without touching their polygons. It loses some of that to memory: a
- * leaf's polygons lie anywhere in the screen polygon array, which the
- * z-buffer reads in order (they are fetched ahead a chunk at a time). */
+ * and whole far subtrees are rejected with one test each, without
+ * rasterizing their polygons. */
 
+#include <limits.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -55,26 +54,31 @@
 
 #define LEAF_POLYS  128     /* a node with more polygons is split */
 #define MAX_DEPTH   20      /* and never deeper than this */
-#define FLAT_RATIO  4       /* walk objects flat when under 1/4 of their polygons are on screen */
+#define FLAT_RATIO  4       /* draw objects flat when under 1/4 of their polygons are on screen */
 #define CHUNK       64      /* polygons fetched ahead together */
 #define STACK_MAX   (MAX_DEPTH * 7 + 16)
 #define NO_TREE     UINT32_MAX
 
 typedef struct {
-    float    lo[3], hi[3];  /* object-space box of every vertex of its polygons */
     uint32_t first, count;  /* its polygons (whole subtree): order[first .. first + count) */
-    uint32_t child;         /* first child, children contiguous; 0 = leaf (0 is a root) */
+    uint32_t child;         /* first child, children contiguous and after it; 0 = leaf */
     uint32_t nchild;
 } OctNode;
 
-/* An object's view for this frame: object space -> view space. */
+/* A node's bound in this band, gathered from its screen polygons. */
 typedef struct {
-    double m[3][4];
-    double zfront;          /* view z of its root box's nearest corner */
-    int    obj;
-    uint32_t root;
+    int32_t  x0, x1, y0, y1;    /* union of their sample boxes; empty when x0 >= x1 */
+    float    zmin;              /* least of their zmin */
+    uint32_t n;                 /* how many */
+} NodeBound;
+
+/* An object's place in this frame's front-to-back order. */
+typedef struct {
+    double   zfront;        /* view z of its box's nearest corner (larger is nearer) */
+    int      obj;
+    int      tree;          /* index of its loaded object's tree, -1 for none */
     uint32_t sfirst, send;  /* its screen polygons, when known (flat) */
-    int    flat;            /* 1: few of its polygons reached the screen: no tree walk */
+    int      flat;          /* 1: few of its polygons reached the screen: no tree walk */
 } ObjView;
 
 typedef struct {
@@ -87,28 +91,22 @@ typedef struct {
     OctNode   *nodes;
     uint32_t   nnodes, cap_nodes;
     uint32_t  *order;       /* polygon index within its object, per node run */
-    uint32_t  *roots;       /* per loaded object, NO_TREE if it has no polygons */
+    uint32_t  *leaf;        /* per polygon (tree's base + index within object): its leaf */
+    uint32_t  *roots;       /* per loaded object: its first node, NO_TREE if none */
+    uint32_t  *node_end;    /* per loaded object: one past its last node */
+    uint32_t  *base;        /* per loaded object: its polygons' start in order[] and leaf[] */
     int        nroots;
     int        built_ok;
     int        lface_sorted;    /* each object's polygons are in face order */
     /* per frame */
     ObjView   *views;
     int        cap_views;
+    NodeBound *bound;       /* per node of the object being walked */
 } OctState;
 
 /* ==== building ==== */
 
 static pthread_mutex_t build_lock = PTHREAD_MUTEX_INITIALIZER;
-
-typedef struct {
-    float *cen;             /* 3 per polygon: centroid */
-    uint32_t *tmp;          /* partition scratch */
-    /* the object being built: node boxes come straight from its corners
-     * (no per-polygon box array: a big model's build stays small) */
-    const Scene *sc;
-    const float *pos;
-    uint32_t poly_first;
-} BuildScratch;
 
 static int new_nodes(OctState *s, uint32_t n, uint32_t *first_out)
 {
@@ -135,30 +133,12 @@ static int cmp_u32(const void *a, const void *b)
 }
 
 /* Fill node ni over order[first .. first + count) (polygon indices local
- * to the object, scratch indexed by them) and split it when large. */
-static int build_node(OctState *s, BuildScratch *b, uint32_t ni, uint32_t first, uint32_t count, int depth)
+ * to the object, cen indexed by them) and split it when large. */
+static int build_node(OctState *s, const float *cen, uint32_t *tmp, uint32_t ni, uint32_t first,
+                      uint32_t count, int depth)
 {
     uint32_t *ord = s->order + first;
-    float lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-    float clo[3] = { INFINITY, INFINITY, INFINITY }, chi[3] = { -INFINITY, -INFINITY, -INFINITY };
-    for (uint32_t i = 0; i < count; i++) {
-        const float *c = &b->cen[3 * (size_t)ord[i]];
-        uint32_t pk = b->poly_first + ord[i];
-        for (uint32_t q = b->sc->poly_start[pk]; q < b->sc->poly_start[pk + 1]; q++) {
-            const float *v = &b->pos[3 * (size_t)b->sc->poly_corner[q]];
-            for (int a = 0; a < 3; a++) {
-                lo[a] = fminf(lo[a], v[a]);
-                hi[a] = fmaxf(hi[a], v[a]);
-            }
-        }
-        for (int a = 0; a < 3; a++) {
-            clo[a] = fminf(clo[a], c[a]);
-            chi[a] = fmaxf(chi[a], c[a]);
-        }
-    }
     OctNode *n = &s->nodes[ni];
-    memcpy(n->lo, lo, sizeof lo);
-    memcpy(n->hi, hi, sizeof hi);
     n->first = first;
     n->count = count;
     n->child = 0;
@@ -168,13 +148,21 @@ static int build_node(OctState *s, BuildScratch *b, uint32_t ni, uint32_t first,
         qsort(ord, count, sizeof *ord, cmp_u32);
         return 0;
     }
+    float clo[3] = { INFINITY, INFINITY, INFINITY }, chi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (uint32_t i = 0; i < count; i++) {
+        const float *c = &cen[3 * (size_t)ord[i]];
+        for (int a = 0; a < 3; a++) {
+            clo[a] = fminf(clo[a], c[a]);
+            chi[a] = fmaxf(chi[a], c[a]);
+        }
+    }
     float mid[3];
     for (int a = 0; a < 3; a++)
         mid[a] = 0.5f * (clo[a] + chi[a]);
     /* octant of each polygon's centroid; counting sort by octant */
     uint32_t cnt[8] = { 0 };
     for (uint32_t i = 0; i < count; i++) {
-        const float *c = &b->cen[3 * (size_t)ord[i]];
+        const float *c = &cen[3 * (size_t)ord[i]];
         int o = (c[0] > mid[0]) | (c[1] > mid[1]) << 1 | (c[2] > mid[2]) << 2;
         cnt[o]++;
     }
@@ -191,11 +179,11 @@ static int build_node(OctState *s, BuildScratch *b, uint32_t ni, uint32_t first,
         acc += cnt[o];
     }
     for (uint32_t i = 0; i < count; i++) {
-        const float *c = &b->cen[3 * (size_t)ord[i]];
+        const float *c = &cen[3 * (size_t)ord[i]];
         int o = (c[0] > mid[0]) | (c[1] > mid[1]) << 1 | (c[2] > mid[2]) << 2;
-        b->tmp[start[o]++] = ord[i];
+        tmp[start[o]++] = ord[i];
     }
-    memcpy(ord, b->tmp, count * sizeof *ord);
+    memcpy(ord, tmp, count * sizeof *ord);
     uint32_t kids;
     if (new_nodes(s, (uint32_t)used, &kids))
         return -1;
@@ -205,7 +193,7 @@ static int build_node(OctState *s, BuildScratch *b, uint32_t ni, uint32_t first,
     for (int o = 0; o < 8; o++) {
         if (!cnt[o])
             continue;
-        if (build_node(s, b, kids + k, at, cnt[o], depth + 1))
+        if (build_node(s, cen, tmp, kids + k, at, cnt[o], depth + 1))
             return -1;
         at += cnt[o];
         k++;
@@ -217,10 +205,14 @@ static void tree_free(OctState *s)
 {
     free(s->nodes);
     free(s->order);
+    free(s->leaf);
     free(s->roots);
+    free(s->node_end);
+    free(s->base);
+    free(s->bound);
     s->nodes = NULL;
-    s->order = NULL;
-    s->roots = NULL;
+    s->order = s->leaf = s->roots = s->node_end = s->base = NULL;
+    s->bound = NULL;
     s->nnodes = s->cap_nodes = 0;
     s->nroots = 0;
     s->built_ok = 0;
@@ -244,13 +236,17 @@ static int tree_build(OctState *s, const Scene *sc)
         if (sc->objs[k].poly_count > maxp)
             maxp = sc->objs[k].poly_count;
     }
-    BuildScratch b = { 0 };
-    s->roots = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *s->roots);
-    s->order = malloc((size_t)(total > 0 ? total : 1) * sizeof *s->order);
-    b.cen = malloc((size_t)(maxp > 0 ? maxp : 1) * 3 * sizeof(float));
-    b.tmp = malloc((size_t)(maxp > 0 ? maxp : 1) * sizeof(uint32_t));
+    size_t nbs = (size_t)(nb > 0 ? nb : 1), tot = (size_t)(total > 0 ? total : 1),
+           mp = (size_t)(maxp > 0 ? maxp : 1);
+    s->roots = malloc(nbs * sizeof *s->roots);
+    s->node_end = malloc(nbs * sizeof *s->node_end);
+    s->base = malloc(nbs * sizeof *s->base);
+    s->order = malloc(tot * sizeof *s->order);
+    s->leaf = malloc(tot * sizeof *s->leaf);
+    float *cen = malloc(mp * 3 * sizeof(float));
+    uint32_t *tmp = malloc(mp * sizeof(uint32_t));
     int rc = -1;
-    if (!s->roots || !s->order || !b.cen || !b.tmp)
+    if (!s->roots || !s->node_end || !s->base || !s->order || !s->leaf || !cen || !tmp)
         goto out;
     s->nroots = nb;
     /* the flat walk finds an object's screen polygons by face id */
@@ -265,15 +261,13 @@ static int tree_build(OctState *s, const Scene *sc)
     for (int k = 0; k < nb; k++) {
         const Object *o = &sc->objs[k];
         s->roots[k] = NO_TREE;
+        s->base[k] = at;
         if (!o->poly_count || !o->mesh)
             continue;
         const float *pos = o->mesh->pos;
-        b.sc = sc;
-        b.pos = pos;
-        b.poly_first = o->poly_first;
         for (uint32_t i = 0; i < o->poly_count; i++) {
             uint32_t pk = o->poly_first + i;
-            float *c = &b.cen[3 * (size_t)i];
+            float *c = &cen[3 * (size_t)i];
             c[0] = c[1] = c[2] = 0;
             uint32_t c0 = sc->poly_start[pk], c1 = sc->poly_start[pk + 1];
             for (uint32_t q = c0; q < c1; q++) {
@@ -287,124 +281,71 @@ static int tree_build(OctState *s, const Scene *sc)
             s->order[at + i] = i;
         }
         uint32_t root;
-        if (new_nodes(s, 1, &root) || build_node(s, &b, root, at, o->poly_count, 0))
+        if (new_nodes(s, 1, &root) || build_node(s, cen, tmp, root, at, o->poly_count, 0))
             goto out;
         s->roots[k] = root;
+        s->node_end[k] = s->nnodes;
+        /* each polygon's leaf, for gathering the bounds in polygon order */
+        for (uint32_t n = root; n < s->nnodes; n++)
+            if (!s->nodes[n].nchild)
+                for (uint32_t i = 0; i < s->nodes[n].count; i++)
+                    s->leaf[at + s->order[s->nodes[n].first + i] ] = n;
         at += o->poly_count;
     }
+    s->bound = malloc((size_t)(s->nnodes > 0 ? s->nnodes : 1) * sizeof *s->bound);
+    if (!s->bound)
+        goto out;
     s->built_ok = 1;
     rc = 0;
 out:
-    free(b.cen);
-    free(b.tmp);
+    free(cen);
+    free(tmp);
     if (rc)
         tree_free(s);
     return rc;
 }
 
-/* ==== projecting a node ==== */
+/* ==== the bounds of one object's nodes in a band ==== */
 
-/* The front end's projection (project.c proj_point), in double. */
-typedef struct {
-    int    persp;
-    double cx, cy, fx, fy;
-    double eye, n, f;       /* persp */
-    double dscale, dbias;   /* ortho */
-    int    w, y0, y1;       /* the band */
-} NodeProj;
-
-/* Depths are lowered by this fraction of (1 + |depth|): far more than the
- * float rounding of the vertex transform, the projection and plane_at()
- * (a few units of 2^-24), far less than depth steps between objects. */
-#define DEPTH_MARGIN (1.0 / 4096)
-/* Screen positions are widened by this many pixels: some hundred times
- * the float rounding of the vertex transform and the 1/512 pixel of the
- * snapping. */
-#define SAMPLE_EPS   0.05
-
-enum { NODE_OFF, NODE_BOX, NODE_OPEN };
-
-/* Screen box [x0, x1) x [ya, yb) of node nd clipped to the band and its
- * conservative least depth. NODE_OFF: it covers no sample of the band;
- * NODE_OPEN: a corner is behind the near plane, no bound (never culled). */
-static int node_project(const NodeProj *pp, const ObjView *ov, const OctNode *nd, int box[4], float *zmin_out)
+static inline void bound_add(NodeBound *b, int32_t x0, int32_t x1, int32_t y0, int32_t y1, float zmin, uint32_t n)
 {
-    double c[3], h[3], vc[3], e[3];
-    for (int a = 0; a < 3; a++) {
-        c[a] = 0.5 * ((double)nd->lo[a] + nd->hi[a]);
-        h[a] = 0.5 * ((double)nd->hi[a] - nd->lo[a]);
-    }
-    for (int r = 0; r < 3; r++) {
-        const double *m = ov->m[r];
-        vc[r] = m[0] * c[0] + m[1] * c[1] + m[2] * c[2] + m[3];
-        e[r] = fabs(m[0]) * h[0] + fabs(m[1]) * h[1] + fabs(m[2]) * h[2];
-    }
-    double xlo, xhi, ylo, yhi, dmin;
-    if (!pp->persp) {
-        /* affine: the box's extents are those of its centre +- half sizes */
-        xlo = pp->cx + pp->fx * (vc[0] - e[0]);
-        xhi = pp->cx + pp->fx * (vc[0] + e[0]);
-        ylo = pp->cy - pp->fy * (vc[1] + e[1]);
-        yhi = pp->cy - pp->fy * (vc[1] - e[1]);
-        dmin = pp->dbias - pp->dscale * (vc[2] + e[2]);
-    } else {
-        /* the convex box projects inside the hull of its projected corners */
-        double zmax = vc[2] + e[2];
-        if (pp->eye - zmax < pp->n * (1 + 1e-6))
-            return NODE_OPEN;
-        xlo = ylo = INFINITY;
-        xhi = yhi = -INFINITY;
-        double ax[3], ay[3];
-        for (int a = 0; a < 3; a++) {
-            ax[a] = ov->m[0][a] * h[a];
-            ay[a] = ov->m[1][a] * h[a];
-        }
-        double az[3] = { ov->m[2][0] * h[0], ov->m[2][1] * h[1], ov->m[2][2] * h[2] };
-        for (int k = 0; k < 8; k++) {
-            double sx = k & 1 ? 1 : -1, sy = k & 2 ? 1 : -1, sz = k & 4 ? 1 : -1;
-            double x = vc[0] + sx * ax[0] + sy * ax[1] + sz * ax[2];
-            double y = vc[1] + sx * ay[0] + sy * ay[1] + sz * ay[2];
-            double z = vc[2] + sx * az[0] + sy * az[1] + sz * az[2];
-            double ze = pp->eye - z;
-            if (ze < pp->n * (1 + 1e-6))
-                return NODE_OPEN;
-            double px = pp->cx + pp->fx * x / ze, py = pp->cy - pp->fy * y / ze;
-            xlo = fmin(xlo, px);
-            xhi = fmax(xhi, px);
-            ylo = fmin(ylo, py);
-            yhi = fmax(yhi, py);
-        }
-        double ze = pp->eye - zmax;
-        dmin = pp->f / (pp->f - pp->n) * (1 - pp->n / ze);
-    }
-    /* samples i with xlo <= i + 0.5 <= xhi, widened by SAMPLE_EPS for the
-     * rounding of the vertices and of their snapping (1/512 pixel) */
-    const double big = 1e8;
-    xlo = fmax(fmin(xlo, big), -big);
-    xhi = fmax(fmin(xhi, big), -big);
-    ylo = fmax(fmin(ylo, big), -big);
-    yhi = fmax(fmin(yhi, big), -big);
-    int x0 = (int)ceil(xlo - 0.5 - SAMPLE_EPS), x1 = (int)floor(xhi - 0.5 + SAMPLE_EPS) + 1;
-    int ya = (int)ceil(ylo - 0.5 - SAMPLE_EPS), yb = (int)floor(yhi - 0.5 + SAMPLE_EPS) + 1;
-    if (x0 < 0) x0 = 0;
-    if (x1 > pp->w) x1 = pp->w;
-    if (ya < pp->y0) ya = pp->y0;
-    if (yb > pp->y1) yb = pp->y1;
-    if (x0 >= x1 || ya >= yb)
-        return NODE_OFF;
-    box[0] = x0;
-    box[1] = x1;
-    box[2] = ya;
-    box[3] = yb;
-    *zmin_out = (float)(dmin - (1 + fabs(dmin)) * DEPTH_MARGIN);
-    return NODE_BOX;
+    if (x0 < b->x0) b->x0 = x0;
+    if (x1 > b->x1) b->x1 = x1;
+    if (y0 < b->y0) b->y0 = y0;
+    if (y1 > b->y1) b->y1 = y1;
+    /* a NaN bound must not be lost: it culls nothing */
+    if (!(zmin >= b->zmin))
+        b->zmin = zmin == zmin ? zmin : -INFINITY;
+    b->n += n;
 }
 
-static inline double view_z(const ObjView *ov, const OctNode *nd)
+/* Gather the bounds of tree t's nodes for object instance oi from its
+ * screen polygons that reach rows [y0, y1): each into its leaf, then the
+ * leaves up to the root (children come after their parent). */
+static void gather_bounds(OctState *s, const ScreenPolys *sp, const Object *o, int oi, int t, int y0, int y1)
 {
-    const double *m = ov->m[2];
-    return 0.5 * (m[0] * ((double)nd->lo[0] + nd->hi[0]) + m[1] * ((double)nd->lo[1] + nd->hi[1]) +
-                  m[2] * ((double)nd->lo[2] + nd->hi[2])) + m[3];
+    uint32_t r = s->roots[t], e = s->node_end[t];
+    NodeBound *bd = s->bound;
+    for (uint32_t n = r; n < e; n++)
+        bd[n] = (NodeBound){ INT32_MAX, INT32_MIN, INT32_MAX, INT32_MIN, INFINITY, 0 };
+    const int32_t *map = sp->map + sp->map_first[oi];
+    const uint32_t *leaf = s->leaf + s->base[t];
+    for (uint32_t i = 0; i < o->poly_count; i++) {
+        int32_t q = map[i];
+        if (q < 0)
+            continue;
+        const ScreenPoly *p = &sp->polys[q];
+        int32_t ya = p->y0 > y0 ? p->y0 : y0, yb = p->y1 < y1 ? p->y1 : y1;
+        if (ya >= yb)
+            continue;
+        bound_add(&bd[leaf[i]], p->x0, p->x1, ya, yb, p->zmin, 1);
+    }
+    for (uint32_t n = e; n-- > r;) {
+        const OctNode *nd = &s->nodes[n];
+        for (uint32_t c = nd->child; c < nd->child + nd->nchild; c++)
+            if (bd[c].n)
+                bound_add(&bd[n], bd[c].x0, bd[c].x1, bd[c].y0, bd[c].y1, bd[c].zmin, bd[c].n);
+    }
 }
 
 /* First screen polygon at or after lo whose face id is >= face (they are
@@ -489,62 +430,63 @@ static void draw_node_polys(OctState *s, const ScreenPolys *sp, const int32_t *m
     }
 }
 
-static void walk_object(OctState *s, const HsrInput *in, const NodeProj *pp, const ObjView *ov,
-                        FrameBufs *fb, HsrStats *st)
+/* Is node n (its bound gathered) hidden? Counts it either way. */
+static int node_hidden(OctState *s, uint32_t n, HsrStats *st)
+{
+    const NodeBound *b = &s->bound[n];
+    st->nodes_visited++;
+    if (!hzb_pyr_hidden(&s->hz.pyr, b->x0, b->x1, b->y0, b->y1, b->zmin))
+        return 0;
+    st->nodes_culled++;
+    st->polys_culled += b->n;
+    st->polys_in += b->n;
+    return 1;
+}
+
+static void walk_object(OctState *s, const HsrInput *in, const ObjView *ov, FrameBufs *fb, int y0, int y1,
+                        HsrStats *st)
 {
     const ScreenPolys *sp = in->sp;
-    const int32_t *map = sp->map + sp->map_first[ov->obj];
     if (ov->flat) {
         /* Most of its polygons cover no sample (a far or small object):
-         * the tree would mostly read their -1 in the map. Test the root,
-         * then take its screen polygons in order. */
-        const OctNode *nd = &s->nodes[ov->root];
-        int box[4];
-        float zmin;
-        st->nodes_visited++;
-        int kind = node_project(pp, ov, nd, box, &zmin);
-        if (kind == NODE_OFF)
-            return;
-        if (kind == NODE_BOX && hzb_pyr_hidden(&s->hz.pyr, box[0], box[1], box[2], box[3], zmin)) {
-            st->nodes_culled++;
-            st->polys_culled += ov->send - ov->sfirst;
-            st->polys_in += ov->send - ov->sfirst;
-            return;
-        }
+         * the tree would mostly read their -1 in the map. Take its
+         * screen polygons in order, each tested on its own. */
         for (uint32_t i = ov->sfirst; i < ov->send; i++)
-            hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, i, fb, pp->y0, pp->y1, st);
+            hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, i, fb, y0, y1, st);
         return;
     }
+    const Object *o = &in->scene->objs[ov->obj];
+    double tg = now_ms();
+    gather_bounds(s, sp, o, ov->obj, ov->tree, y0, y1);
+    st->build_ms += now_ms() - tg;      /* per-frame upkeep of the structure */
+    const int32_t *map = sp->map + sp->map_first[ov->obj];
+    const NodeBound *bd = s->bound;
+    uint32_t root = s->roots[ov->tree];
+    if (!bd[root].n)
+        return;
     uint32_t stack[STACK_MAX];
     int top = 0;
-    stack[top++] = ov->root;
+    stack[top++] = root;
     while (top > 0) {
-        const OctNode *nd = &s->nodes[stack[--top]];
-        st->nodes_visited++;
-        int box[4];
-        float zmin;
-        int kind = node_project(pp, ov, nd, box, &zmin);
-        if (kind == NODE_OFF)
+        uint32_t ni = stack[--top];
+        const OctNode *nd = &s->nodes[ni];
+        if (node_hidden(s, ni, st))
             continue;
-        if (kind == NODE_BOX && hzb_pyr_hidden(&s->hz.pyr, box[0], box[1], box[2], box[3], zmin)) {
-            st->nodes_culled++;
-            st->polys_culled += nd->count;
-            st->polys_in += nd->count;
-            continue;
-        }
         if (!nd->nchild) {
-            draw_node_polys(s, sp, map, nd, fb, pp->y0, pp->y1, st);
+            draw_node_polys(s, sp, map, nd, fb, y0, y1, st);
             continue;
         }
-        /* children far to near onto the stack, so the nearest pops first */
+        /* children with polygons in the band, far to near onto the stack,
+         * so that the nearest pops first */
         uint32_t kid[8];
-        double kz[8];
-        int nk = (int)nd->nchild;
-        for (int k = 0; k < nk; k++) {
-            uint32_t c = nd->child + (uint32_t)k;
-            double z = view_z(ov, &s->nodes[c]);
-            int at = k;
-            while (at > 0 && kz[at - 1] > z) {
+        float kz[8];
+        int nk = 0;
+        for (uint32_t c = nd->child; c < nd->child + nd->nchild; c++) {
+            if (!bd[c].n)
+                continue;
+            float z = bd[c].zmin;
+            int at = nk++;
+            while (at > 0 && kz[at - 1] < z) {
                 kz[at] = kz[at - 1];
                 kid[at] = kid[at - 1];
                 at--;
@@ -557,16 +499,21 @@ static void walk_object(OctState *s, const HsrInput *in, const NodeProj *pp, con
             if (top == STACK_MAX) {
                 /* cannot happen (depth <= MAX_DEPTH holds at most 7
                  * pending siblings a level), but never drop polygons */
-                draw_node_polys(s, sp, map, c, fb, pp->y0, pp->y1, st);
+                draw_node_polys(s, sp, map, c, fb, y0, y1, st);
                 continue;
             }
             stack[top++] = kid[k];
-            /* a leaf's map entries are scattered: fetch them before it pops */
-            if (!c->nchild)
-                for (uint32_t i = 0; i < c->count; i += 2)
-                    __builtin_prefetch(&map[s->order[c->first + i]]);
         }
     }
+}
+
+/* View z of the nearest corner of object o's box (larger is nearer). */
+static double object_front(const Mat4 *view, const Object *o)
+{
+    Mat4 mv = m4_mul(*view, object_matrix(o));
+    const float *m = mv.m[2];
+    double z = m[0] * (double)o->centre.x + m[1] * (double)o->centre.y + m[2] * (double)o->centre.z + m[3];
+    return z + fabs(m[0]) * o->half.x + fabs(m[1]) * o->half.y + fabs(m[2]) * o->half.z;
 }
 
 static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *stats)
@@ -599,11 +546,6 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
         s->views = v;
         s->cap_views = sc->nobjs;
     }
-    NodeProj pp = {
-        .persp = sp->persp, .cx = sp->w * 0.5, .cy = sp->h * 0.5,
-        .fx = sp->focal_x, .fy = sp->focal_y, .eye = sp->eye_z, .n = sp->near_z, .f = sp->far_z,
-        .dscale = sp->depth_scale, .dbias = sp->depth_bias, .w = sp->w, .y0 = y0, .y1 = y1,
-    };
     Mat4 view = camera_view(&sc->cam);
     /* The front end emits objects in order and each object's polygons in
      * face order, so when face ids grow with the object index, an
@@ -619,19 +561,14 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
             continue;
         ObjView *ov = &s->views[nv++];
         ov->obj = oi;
-        ov->root = NO_TREE;
+        ov->tree = -1;
+        ov->flat = 0;
         int b = oi % s->nroots;
         const Object *base = &sc->objs[b];
         if (s->roots[b] != NO_TREE && base->poly_first == o->poly_first &&
             base->poly_count == o->poly_count && base->mesh == o->mesh)
-            ov->root = s->roots[b];
-        /* the front end's float matrix, widened */
-        Mat4 mv = m4_mul(view, object_matrix(o));
-        for (int r = 0; r < 3; r++)
-            for (int c = 0; c < 4; c++)
-                ov->m[r][c] = mv.m[r][c];
-        ov->flat = 0;
-        if (ov->root == NO_TREE) {
+            ov->tree = b;
+        if (ov->tree < 0) {
             ov->zfront = INFINITY;
             continue;
         }
@@ -640,19 +577,15 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
             ov->send = run = first_face_at(sp, run, o->face_base + (int32_t)o->face_count);
             ov->flat = (uint64_t)(ov->send - ov->sfirst) * FLAT_RATIO < o->poly_count;
         }
-        const OctNode *nd = &s->nodes[ov->root];
-        double zc = view_z(ov, nd), ez = 0;
-        for (int a = 0; a < 3; a++)
-            ez += fabs(ov->m[2][a]) * 0.5 * ((double)nd->hi[a] - nd->lo[a]);
-        ov->zfront = zc + ez;
+        ov->zfront = object_front(&view, o);
     }
     qsort(s->views, (size_t)nv, sizeof *s->views, cmp_front);
     for (int k = 0; k < nv; k++) {
         const ObjView *ov = &s->views[k];
-        if (ov->root == NO_TREE)
+        if (ov->tree < 0)
             draw_object_flat(s, in, ov->obj, fb, y0, y1, stats);
         else
-            walk_object(s, in, &pp, ov, fb, stats);
+            walk_object(s, in, ov, fb, y0, y1, stats);
     }
 }
 
