@@ -13,6 +13,15 @@
 
 #define ZV_VERSION "0.1.0"
 #define MAX_FILES 64
+#define MAX_PLACE 64
+
+/* --move, --turn, --scale: one object's placement. */
+typedef enum { PLACE_MOVE, PLACE_TURN, PLACE_SCALE } PlaceKind;
+typedef struct {
+    PlaceKind kind;
+    int       obj;              /* 0-based object index */
+    float     v[3];             /* x y z, yaw pitch roll (degrees), or the scale in v[0] */
+} Placement;
 
 typedef struct {
     const char *files[MAX_FILES];
@@ -28,6 +37,12 @@ typedef struct {
     const char *algo;           /* name, "all", or a comma list (bench) */
     float       yaw, pitch, roll;   /* degrees */
     float       zoom;
+    float       pan[2];         /* --pan, fractions of the scene radius */
+    float       fit_from[3];    /* --fit-from yaw pitch roll, degrees */
+    int         has_fit_from;
+    Placement   place[MAX_PLACE];
+    int         nplace;
+    uint64_t    max_polys;      /* refuse bigger scenes */
     int         persp;          /* 1 = --persp given */
     float       fov;
     int         cull;
@@ -35,6 +50,7 @@ typedef struct {
 } Options;
 
 /* Parse argv. Returns 0, or -1 with a message in err (a usage error). */
+void cli_defaults(Options *o);
 int  cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen);
 void cli_usage(FILE *f);
 

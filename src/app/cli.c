@@ -1,7 +1,9 @@
-/* cli.c: argv -> Options. Reports errors, never exits. */
+/* cli.c: argv -> Options, GNU style (getopt_long): --size=80x24 or
+ * --size 80x24, -oout.png or -o out.png, clusters of short flags, `--`
+ * ends the options. Reports errors, never exits. */
 
-#include <ctype.h>
 #include <errno.h>
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,9 +19,9 @@ void cli_usage(FILE *f)
 "bundled demo scene. Several files make one scene of several objects.\n"
 "\n"
 "Output (default: the interactive viewer; --print when stdout is no terminal):\n"
-"  --print               write one frame to stdout as text, no curses\n"
-"  -o FILE.png|FILE.ppm  write the image to a file\n"
-"  --size WxH            pixels for -o (default 640x480); cells for --print\n"
+"  -p, --print           write one frame to stdout as text, no curses\n"
+"  -o, --output FILE     write the image to FILE.png or FILE.ppm\n"
+"  -s, --size WxH        pixels for -o (default 640x480); cells for --print\n"
 "  --mode half|ascii|braille      text mode (default: half on UTF-8)\n"
 "  --color truecolor|256|16|none  colours (default: from COLORTERM/TERM/NO_COLOR)\n"
 "  --shade lambert|depth|id       shading (default lambert)\n"
@@ -28,20 +30,26 @@ void cli_usage(FILE *f)
 "  --dump-screen FILE    screen-space polygons as OBJ text\n"
 "\n"
 "View:\n"
-"  --algo NAME           zbuffer, scanline, span, hzb, hzb-octree (default zbuffer)\n"
+"  -a, --algo NAME       zbuffer, scanline, span, hzb, hzb-octree (default zbuffer)\n"
 "  --yaw DEG --pitch DEG --roll DEG   turn the scene\n"
 "  --zoom F              scale (1 = fit to 90% of the view)\n"
+"  --pan X,Y             move the view (fractions of the scene's radius, right and up)\n"
+"  --fit-from YAW,PITCH,ROLL  the turn the view was fitted at (default: the turn)\n"
+"  --move I:X,Y,Z        move object I (1 = the first) in world units\n"
+"  --turn I:YAW,PITCH,ROLL   turn object I about its centre (degrees)\n"
+"  --scale I:F           scale object I about its centre\n"
 "  --persp FOV | --ortho perspective with a vertical field of view, or orthographic\n"
 "  --cull                back-face culling (off by default)\n"
 "  --grid N              N x N x N copies of the scene (a deep scene)\n"
+"  --max-polys N         refuse scenes of more polygons (default 20000000)\n"
 "\n"
 "Benchmark:\n"
 "  --bench [--views N] [--threads N] [--json] [--algo all|a,b,...]\n"
 "  --bench-tty           bytes written per frame for a scripted rotation\n"
-"  --threads N           threads for the hidden-surface step (default: all cores)\n"
+"  -j, --threads N       threads for every stage (default: all cores)\n"
 "  --fps N               auto-rotate frame cap in the viewer (default 30)\n"
 "\n"
-"  --help, --version\n"
+"  -h, --help, -V, --version\n"
 "Exit status: 0 ok, 1 runtime error, 2 usage error.\n", f);
 }
 
@@ -50,20 +58,41 @@ static int parse_float(const char *s, float *out)
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (end == s || *end || errno || !isfinite((float)v) || fabs(v) > 1e9)
+    if (end == s || *end || errno || !isfinite(v) || fabs(v) > 1e9)
         return -1;
     *out = (float)v;
     return 0;
 }
 
-static int parse_int(const char *s, int lo, int hi, int *out)
+static int parse_int(const char *s, long lo, long hi, long *out)
 {
     char *end;
     errno = 0;
     long v = strtol(s, &end, 10);
     if (end == s || *end || errno || v < lo || v > hi)
         return -1;
-    *out = (int)v;
+    *out = v;
+    return 0;
+}
+
+/* "a,b,c": exactly n finite numbers of at most 1e9 in size. */
+static int parse_floats(const char *s, float *out, int n)
+{
+    char buf[256];
+    if (strlen(s) >= sizeof buf)
+        return -1;
+    strcpy(buf, s);
+    char *p = buf;
+    for (int k = 0; k < n; k++) {
+        char *comma = strchr(p, ',');
+        if ((comma != NULL) != (k + 1 < n))
+            return -1;
+        if (comma)
+            *comma = 0;
+        if (parse_float(p, &out[k]))
+            return -1;
+        p = comma + 1;
+    }
     return 0;
 }
 
@@ -71,148 +100,252 @@ static int parse_size(const char *s, int *w, int *h)
 {
     char *end;
     const char *x = strpbrk(s, "xX");
-    if (!isdigit((unsigned char)s[0]) || !x || !isdigit((unsigned char)x[1]))
+    if (s[0] < '0' || s[0] > '9' || !x || x[1] < '0' || x[1] > '9')
         return -1;
     long a = strtol(s, &end, 10);
-    if (end == s || (*end != 'x' && *end != 'X'))
+    if (end != x)
         return -1;
-    const char *t = end + 1;
-    long b = strtol(t, &end, 10);
-    if (end == t || *end || a < 1 || b < 1 || a > SCREEN_MAX || b > SCREEN_MAX)
+    long b = strtol(x + 1, &end, 10);
+    if (*end || a < 1 || b < 1 || a > SCREEN_MAX || b > SCREEN_MAX)
         return -1;
     *w = (int)a;
     *h = (int)b;
     return 0;
 }
 
-int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
+/* "I:v1,v2,..." for --move, --turn, --scale. */
+static int parse_place(const char *s, int n, Placement *pl)
+{
+    char *end;
+    errno = 0;
+    long i = strtol(s, &end, 10);
+    if (end == s || *end != ':' || errno || i < 1 || i > 65535)
+        return -1;
+    pl->obj = (int)i - 1;
+    return parse_floats(end + 1, pl->v, n);
+}
+
+enum {
+    OPT_INFO = 256, OPT_BENCH, OPT_BENCH_TTY, OPT_JSON, OPT_CULL, OPT_ORTHO, OPT_PERSP,
+    OPT_DUMP_IDS, OPT_DUMP_SCREEN, OPT_MODE, OPT_COLOR, OPT_SHADE, OPT_YAW, OPT_PITCH,
+    OPT_ROLL, OPT_ZOOM, OPT_PAN, OPT_FIT_FROM, OPT_MOVE, OPT_TURN, OPT_SCALE, OPT_VIEWS,
+    OPT_GRID, OPT_FPS, OPT_MAX_POLYS,
+};
+
+static const struct option long_opts[] = {
+    { "help", no_argument, NULL, 'h' },
+    { "version", no_argument, NULL, 'V' },
+    { "print", no_argument, NULL, 'p' },
+    { "output", required_argument, NULL, 'o' },
+    { "size", required_argument, NULL, 's' },
+    { "algo", required_argument, NULL, 'a' },
+    { "threads", required_argument, NULL, 'j' },
+    { "info", no_argument, NULL, OPT_INFO },
+    { "bench", no_argument, NULL, OPT_BENCH },
+    { "bench-tty", no_argument, NULL, OPT_BENCH_TTY },
+    { "json", no_argument, NULL, OPT_JSON },
+    { "cull", no_argument, NULL, OPT_CULL },
+    { "ortho", no_argument, NULL, OPT_ORTHO },
+    { "persp", required_argument, NULL, OPT_PERSP },
+    { "dump-ids", required_argument, NULL, OPT_DUMP_IDS },
+    { "dump-screen", required_argument, NULL, OPT_DUMP_SCREEN },
+    { "mode", required_argument, NULL, OPT_MODE },
+    { "color", required_argument, NULL, OPT_COLOR },
+    { "colour", required_argument, NULL, OPT_COLOR },
+    { "shade", required_argument, NULL, OPT_SHADE },
+    { "yaw", required_argument, NULL, OPT_YAW },
+    { "pitch", required_argument, NULL, OPT_PITCH },
+    { "roll", required_argument, NULL, OPT_ROLL },
+    { "zoom", required_argument, NULL, OPT_ZOOM },
+    { "pan", required_argument, NULL, OPT_PAN },
+    { "fit-from", required_argument, NULL, OPT_FIT_FROM },
+    { "move", required_argument, NULL, OPT_MOVE },
+    { "turn", required_argument, NULL, OPT_TURN },
+    { "scale", required_argument, NULL, OPT_SCALE },
+    { "views", required_argument, NULL, OPT_VIEWS },
+    { "grid", required_argument, NULL, OPT_GRID },
+    { "fps", required_argument, NULL, OPT_FPS },
+    { "max-polys", required_argument, NULL, OPT_MAX_POLYS },
+    { NULL, 0, NULL, 0 },
+};
+
+/* The option as the user wrote it, for messages. */
+static void opt_name(int c, int long_index, char *buf, size_t n)
+{
+    if (long_index >= 0)
+        snprintf(buf, n, "--%s", long_opts[long_index].name);
+    else
+        snprintf(buf, n, "-%c", c);
+}
+
+void cli_defaults(Options *o)
 {
     memset(o, 0, sizeof *o);
     o->mode = -1;
     o->color = -1;
     o->shade = SHADE_LAMBERT;
-    o->algo = NULL;
     o->zoom = 1;
     o->fov = 50;
     o->views = 8;
-    o->threads = 0;
     o->fps = 30;
     o->grid = 1;
-    int only_files = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *val = NULL;
-#define NEED_VAL()                                                              \
-    do {                                                                        \
-        if (i + 1 >= argc) {                                                    \
-            snprintf(err, errlen, "option '%s' needs a value", a);              \
-            return -1;                                                          \
-        }                                                                       \
-        val = argv[++i];                                                        \
-    } while (0)
+    o->max_polys = 20000000;
+}
+
+int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
+{
+    cli_defaults(o);
+    /* getopt keeps its place in globals: start afresh on every call; a
+     * leading ':' in the short options and opterr = 0 let us word the
+     * errors ourselves */
+    optind = 0;
+    opterr = 0;
+    for (;;) {
+        int li = -1;
+        int c = getopt_long(argc, argv, ":hVpo:s:a:j:", long_opts, &li);
+        if (c == -1)
+            break;
+        char name[64];
+        const char *val = optarg;
+        long n;
+        if (c == '?' || c == ':') {
+            /* optind has moved past the faulty word */
+            const char *word = optind > 0 && optind <= argc ? argv[optind - 1] : "?";
+            if (c == ':')
+                snprintf(err, errlen, "option '%s' needs a value", word);
+            else if (optopt && word[0] == '-' && word[1] != '-')
+                snprintf(err, errlen, "unknown option '-%c' (see --help)", optopt);
+            else
+                snprintf(err, errlen, "unknown option '%s' (see --help)", word);
+            return -1;
+        }
+        opt_name(c, li, name, sizeof name);
 #define BAD_VAL(what)                                                           \
     do {                                                                        \
-        snprintf(err, errlen, "bad value '%s' for %s (%s)", val, a, what);      \
+        snprintf(err, errlen, "bad value '%s' for %s (%s)", val, name, what);   \
         return -1;                                                              \
     } while (0)
-        if (only_files || a[0] != '-' || a[1] == 0) {
-            if (o->nfiles >= MAX_FILES) {
-                snprintf(err, errlen, "too many files (at most %d)", MAX_FILES);
-                return -1;
-            }
-            o->files[o->nfiles++] = a;
-        } else if (!strcmp(a, "--")) {
-            only_files = 1;
-        } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            o->help = 1;
-        } else if (!strcmp(a, "-V") || !strcmp(a, "--version")) {
-            o->version = 1;
-        } else if (!strcmp(a, "--print")) {
-            o->print = 1;
-        } else if (!strcmp(a, "--info")) {
-            o->info = 1;
-        } else if (!strcmp(a, "--bench")) {
-            o->bench = 1;
-        } else if (!strcmp(a, "--bench-tty")) {
-            o->bench_tty = 1;
-        } else if (!strcmp(a, "--json")) {
-            o->json = 1;
-        } else if (!strcmp(a, "--cull")) {
-            o->cull = 1;
-        } else if (!strcmp(a, "--ortho")) {
-            o->persp = 0;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            NEED_VAL();
-            size_t n = strlen(val);
-            if (n < 5 || (strcmp(val + n - 4, ".png") && strcmp(val + n - 4, ".ppm")))
+        switch (c) {
+        case 'h': o->help = 1; break;
+        case 'V': o->version = 1; break;
+        case 'p': o->print = 1; break;
+        case OPT_INFO: o->info = 1; break;
+        case OPT_BENCH: o->bench = 1; break;
+        case OPT_BENCH_TTY: o->bench_tty = 1; break;
+        case OPT_JSON: o->json = 1; break;
+        case OPT_CULL: o->cull = 1; break;
+        case OPT_ORTHO: o->persp = 0; break;
+        case 'o': {
+            size_t len = strlen(val);
+            if (len < 5 || (strcmp(val + len - 4, ".png") && strcmp(val + len - 4, ".ppm")))
                 BAD_VAL("the file must end in .png or .ppm");
             o->out = val;
-        } else if (!strcmp(a, "--dump-ids")) {
-            NEED_VAL();
-            o->dump_ids = val;
-        } else if (!strcmp(a, "--dump-screen")) {
-            NEED_VAL();
-            o->dump_screen = val;
-        } else if (!strcmp(a, "--size")) {
-            NEED_VAL();
+            break;
+        }
+        case OPT_DUMP_IDS: o->dump_ids = val; break;
+        case OPT_DUMP_SCREEN: o->dump_screen = val; break;
+        case 's':
             if (parse_size(val, &o->w, &o->h))
                 BAD_VAL("expected WxH, e.g. 640x480");
-        } else if (!strcmp(a, "--mode")) {
-            NEED_VAL();
+            break;
+        case OPT_MODE:
             if ((o->mode = mode_from_name(val)) < 0)
                 BAD_VAL("half, ascii or braille");
-        } else if (!strcmp(a, "--color") || !strcmp(a, "--colour")) {
-            NEED_VAL();
+            break;
+        case OPT_COLOR:
             if ((o->color = color_from_name(val)) < 0)
                 BAD_VAL("truecolor, 256, 16 or none");
-        } else if (!strcmp(a, "--shade")) {
-            NEED_VAL();
+            break;
+        case OPT_SHADE:
             if ((o->shade = shade_from_name(val)) < 0)
                 BAD_VAL("lambert, depth or id");
-        } else if (!strcmp(a, "--algo")) {
-            NEED_VAL();
-            o->algo = val;
-        } else if (!strcmp(a, "--yaw") || !strcmp(a, "--pitch") || !strcmp(a, "--roll") ||
-                   !strcmp(a, "--zoom")) {
-            NEED_VAL();
-            float v;
-            if (parse_float(val, &v))
-                BAD_VAL("a number");
-            if (a[2] == 'y') o->yaw = v;
-            else if (a[2] == 'p') o->pitch = v;
-            else if (a[2] == 'r') o->roll = v;
-            else {
-                if (v <= 0)
-                    BAD_VAL("a positive number");
-                o->zoom = v;
+            break;
+        case 'a': o->algo = val; break;
+        case OPT_YAW:
+            if (parse_float(val, &o->yaw))
+                BAD_VAL("degrees, at most 1e9 in size");
+            break;
+        case OPT_PITCH:
+            if (parse_float(val, &o->pitch))
+                BAD_VAL("degrees, at most 1e9 in size");
+            break;
+        case OPT_ROLL:
+            if (parse_float(val, &o->roll))
+                BAD_VAL("degrees, at most 1e9 in size");
+            break;
+        case OPT_ZOOM:
+            if (parse_float(val, &o->zoom) || !(o->zoom >= 1e-3f && o->zoom <= 1e3f))
+                BAD_VAL("from 0.001 to 1000");
+            break;
+        case OPT_PAN:
+            if (parse_floats(val, o->pan, 2) || fabsf(o->pan[0]) > 1e4f || fabsf(o->pan[1]) > 1e4f)
+                BAD_VAL("X,Y, each at most 10000 in size");
+            break;
+        case OPT_FIT_FROM:
+            if (parse_floats(val, o->fit_from, 3))
+                BAD_VAL("YAW,PITCH,ROLL in degrees");
+            o->has_fit_from = 1;
+            break;
+        case OPT_MOVE:
+        case OPT_TURN:
+        case OPT_SCALE: {
+            if (o->nplace >= MAX_PLACE) {
+                snprintf(err, errlen, "too many --move, --turn and --scale (at most %d)", MAX_PLACE);
+                return -1;
             }
-        } else if (!strcmp(a, "--persp")) {
-            NEED_VAL();
+            Placement *pl = &o->place[o->nplace];
+            pl->kind = c == OPT_MOVE ? PLACE_MOVE : c == OPT_TURN ? PLACE_TURN : PLACE_SCALE;
+            if (c == OPT_MOVE && parse_place(val, 3, pl))
+                BAD_VAL("I:X,Y,Z with I the object's number from 1");
+            if (c == OPT_TURN && parse_place(val, 3, pl))
+                BAD_VAL("I:YAW,PITCH,ROLL with I the object's number from 1");
+            if (c == OPT_SCALE && (parse_place(val, 1, pl) || !(pl->v[0] >= 1e-3f && pl->v[0] <= 1e3f)))
+                BAD_VAL("I:F with I the object's number from 1 and F from 0.001 to 1000");
+            o->nplace++;
+            break;
+        }
+        case OPT_PERSP:
             if (parse_float(val, &o->fov) || o->fov <= 1 || o->fov >= 179)
                 BAD_VAL("a field of view in degrees, 1 < FOV < 179");
             o->persp = 1;
-        } else if (!strcmp(a, "--views")) {
-            NEED_VAL();
-            if (parse_int(val, 1, 100000, &o->views))
-                BAD_VAL("a count >= 1");
-        } else if (!strcmp(a, "--threads")) {
-            NEED_VAL();
-            if (parse_int(val, 1, 64, &o->threads))
+            break;
+        case OPT_VIEWS:
+            if (parse_int(val, 1, 100000, &n))
+                BAD_VAL("1 to 100000");
+            o->views = (int)n;
+            break;
+        case 'j':
+            if (parse_int(val, 1, 64, &n))
                 BAD_VAL("1 to 64");
-        } else if (!strcmp(a, "--grid")) {
-            NEED_VAL();
-            if (parse_int(val, 1, 40, &o->grid))
-                BAD_VAL("1 to 40");
-        } else if (!strcmp(a, "--fps")) {
-            NEED_VAL();
-            if (parse_int(val, 1, 1000, &o->fps))
+            o->threads = (int)n;
+            break;
+        case OPT_GRID:
+            if (parse_int(val, 1, 100, &n))
+                BAD_VAL("1 to 100");
+            o->grid = (int)n;
+            break;
+        case OPT_FPS:
+            if (parse_int(val, 1, 1000, &n))
                 BAD_VAL("1 to 1000");
-        } else {
-            snprintf(err, errlen, "unknown option '%s' (see --help)", a);
+            o->fps = (int)n;
+            break;
+        case OPT_MAX_POLYS:
+            if (parse_int(val, 1, 2000000000L, &n))
+                BAD_VAL("1 to 2000000000");
+            o->max_polys = (uint64_t)n;
+            break;
+        default:
+            snprintf(err, errlen, "unknown option (see --help)");
             return -1;
         }
-#undef NEED_VAL
 #undef BAD_VAL
+    }
+    for (int i = optind; i < argc; i++) {
+        if (o->nfiles >= MAX_FILES) {
+            snprintf(err, errlen, "too many files (at most %d)", MAX_FILES);
+            return -1;
+        }
+        o->files[o->nfiles++] = argv[i];
     }
     if (o->algo && !o->bench && !hsr_find(o->algo)) {
         snprintf(err, errlen, "unknown algorithm '%s' (zbuffer, scanline, span, hzb, hzb-octree)", o->algo);

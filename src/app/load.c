@@ -72,13 +72,37 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         scene_free(s);
         return -1;
     }
-    /* scene_build left everything reset: set the view, then fit once */
+    /* scene_build left everything reset: place the objects, fit once as
+     * seen from the requested (or the --fit-from) turn, then turn, zoom
+     * and pan: any state of the viewer is reachable from here */
+    for (int k = 0; k < o->nplace; k++) {
+        const Placement *pl = &o->place[k];
+        if (pl->obj >= (int)s->nbase_objs) {
+            snprintf(err, errlen, "object %d does not exist (the scene has %u)", pl->obj + 1, s->nbase_objs);
+            scene_free(s);
+            return -1;
+        }
+        Object *ob = &s->objs[pl->obj];
+        if (pl->kind == PLACE_MOVE)
+            ob->offset = v3_add(ob->home, v3(pl->v[0], pl->v[1], pl->v[2]));
+        else if (pl->kind == PLACE_TURN) {
+            ob->yaw = deg2rad(pl->v[0]);
+            ob->pitch = deg2rad(pl->v[1]);
+            ob->roll = deg2rad(pl->v[2]);
+        } else
+            ob->scale = pl->v[0];
+    }
     s->cam.persp = o->persp;
     s->cam.fov_deg = o->fov;
+    const float *fit = o->has_fit_from ? o->fit_from : (const float[3]){ o->yaw, o->pitch, o->roll };
+    s->cam.yaw = deg2rad(fit[0]);
+    s->cam.pitch = deg2rad(fit[1]);
+    s->cam.roll = deg2rad(fit[2]);
+    scene_fit(s);
     s->cam.yaw = deg2rad(o->yaw);
     s->cam.pitch = deg2rad(o->pitch);
     s->cam.roll = deg2rad(o->roll);
-    scene_fit(s);   /* as seen from the requested turn */
     s->cam.zoom = o->zoom;
+    s->cam.pan = v3(o->pan[0], o->pan[1], 0);
     return 0;
 }

@@ -92,3 +92,12 @@ for key in model polygons algo width height threads views median_ms min_ms frame
 done
 if grep -q '"polygons": 48,' "$T/b.json"; then ok "grid polygons count every copy"; else notok "grid polygons count every copy" "$(head -c 300 "$T/b.json")"; fi
 if head -c 1 "$T/b.json" | grep -q '\[' && tail -n 1 "$T/b.json" | grep -q '^\]$'; then ok "bench --json is one array"; else notok "bench --json is one array"; fi
+
+# the view state from the command line (what the viewer's keys change)
+"$Z" --print --size=40x12 --mode ascii --color none assets/cube.obj >"$T/nopan.txt"
+"$Z" --print --size=40x12 --mode ascii --color none --pan=0.5,0 assets/cube.obj >"$T/pan.txt"
+lead() { sed -n 6p "$1" | sed 's/[^ ].*//' | wc -c; }
+if [ "$(lead "$T/pan.txt")" -gt "$(lead "$T/nopan.txt")" ]; then ok "--pan moves the picture right"; else
+    notok "--pan moves the picture right" "$(cat "$T/pan.txt")"; fi
+expect_status "--move of a missing object fails" 1 "$Z" --print --move 2:1,0,0 assets/cube.obj
+expect_err "the missing object is named" "object 2"

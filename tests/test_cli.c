@@ -1,0 +1,104 @@
+/* test_cli.c: the command line, GNU style: both spellings of values,
+ * short clusters, `--`, the view-state options and their errors. */
+
+#include <criterion/criterion.h>
+#include <string.h>
+
+#include "app.h"
+
+static int parse(Options *o, char *err, int n, const char **args)
+{
+    char *argv[32];
+    argv[0] = "zview";
+    for (int i = 0; i < n; i++)
+        argv[i + 1] = (char *)args[i];
+    argv[n + 1] = NULL;
+    return cli_parse(n + 1, argv, o, err, 256);
+}
+#define PARSE(o, err, ...)                                                      \
+    parse(o, err, (int)(sizeof((const char *[]){ __VA_ARGS__ }) / sizeof(char *)), \
+          (const char *[]){ __VA_ARGS__ })
+
+Test(cli, equals_and_separate_values_agree)
+{
+    Options a, b;
+    char err[256];
+    cr_assert_eq(PARSE(&a, err, "--size=80x24", "--yaw=30", "-oout.png", "m.obj"), 0, "%s", err);
+    cr_assert_eq(PARSE(&b, err, "--size", "80x24", "--yaw", "30", "-o", "out.png", "m.obj"), 0, "%s", err);
+    cr_assert_eq(a.w, 80);
+    cr_assert_eq(a.h, 24);
+    cr_assert_eq(a.w, b.w);
+    cr_assert_eq(a.h, b.h);
+    cr_assert_float_eq(a.yaw, 30.0f, 1e-6);
+    cr_assert_float_eq(b.yaw, 30.0f, 1e-6);
+    cr_assert_str_eq(a.out, "out.png");
+    cr_assert_str_eq(b.out, "out.png");
+    cr_assert_eq(a.nfiles, 1);
+    cr_assert_str_eq(a.files[0], "m.obj");
+}
+
+Test(cli, short_clusters_and_files_anywhere)
+{
+    Options o;
+    char err[256];
+    cr_assert_eq(PARSE(&o, err, "a.obj", "-pVs10x5", "b.obj"), 0, "%s", err);
+    cr_assert(o.print && o.version);
+    cr_assert_eq(o.w, 10);
+    cr_assert_eq(o.nfiles, 2);
+    cr_assert_str_eq(o.files[1], "b.obj");
+}
+
+Test(cli, double_dash_ends_options)
+{
+    Options o;
+    char err[256];
+    cr_assert_eq(PARSE(&o, err, "--print", "--", "--weird-name.obj", "-"), 0, "%s", err);
+    cr_assert(o.print);
+    cr_assert_eq(o.nfiles, 2);
+    cr_assert_str_eq(o.files[0], "--weird-name.obj");
+    cr_assert_str_eq(o.files[1], "-");
+}
+
+Test(cli, view_state_options)
+{
+    Options o;
+    char err[256];
+    cr_assert_eq(PARSE(&o, err, "--pan", "0.25,-1.5", "--fit-from=10,20,30", "--move", "2:1,2,3",
+                       "--turn=1:5,6,7", "--scale", "3:0.5", "--zoom", "2"),
+                 0, "%s", err);
+    cr_assert_float_eq(o.pan[0], 0.25f, 1e-6);
+    cr_assert_float_eq(o.pan[1], -1.5f, 1e-6);
+    cr_assert(o.has_fit_from);
+    cr_assert_float_eq(o.fit_from[2], 30.0f, 1e-6);
+    cr_assert_eq(o.nplace, 3);
+    cr_assert_eq(o.place[0].kind, PLACE_MOVE);
+    cr_assert_eq(o.place[0].obj, 1);
+    cr_assert_float_eq(o.place[0].v[2], 3.0f, 1e-6);
+    cr_assert_eq(o.place[1].kind, PLACE_TURN);
+    cr_assert_eq(o.place[1].obj, 0);
+    cr_assert_eq(o.place[2].kind, PLACE_SCALE);
+    cr_assert_float_eq(o.place[2].v[0], 0.5f, 1e-6);
+}
+
+Test(cli, errors_name_the_option_and_the_limit)
+{
+    Options o;
+    char err[256];
+    cr_assert_neq(PARSE(&o, err, "--pan", "1"), 0);
+    cr_assert(strstr(err, "--pan"), "%s", err);
+    cr_assert_neq(PARSE(&o, err, "--move", "0:1,2,3"), 0);
+    cr_assert(strstr(err, "--move"), "%s", err);
+    cr_assert_neq(PARSE(&o, err, "--zoom", "1e38"), 0);
+    cr_assert(strstr(err, "1000"), "the real limit is named: %s", err);
+    cr_assert_neq(PARSE(&o, err, "--size"), 0);
+    cr_assert(strstr(err, "needs a value"), "%s", err);
+    cr_assert_neq(PARSE(&o, err, "-q"), 0);
+    cr_assert(strstr(err, "-q"), "%s", err);
+    cr_assert_neq(PARSE(&o, err, "--frobnicate"), 0);
+    cr_assert(strstr(err, "--frobnicate"), "%s", err);
+    cr_assert_neq(PARSE(&o, err, "--max-polys", "0"), 0);
+    cr_assert_neq(PARSE(&o, err, "--scale", "1:0"), 0);
+    /* the parser starts afresh each time */
+    cr_assert_eq(PARSE(&o, err, "--print", "x.obj"), 0, "%s", err);
+    cr_assert_eq(o.nfiles, 1);
+}
