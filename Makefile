@@ -23,7 +23,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all test unit e2e asan run bench install clean assets test-models
+.PHONY: all test unit e2e asan run bench install clean assets test-models colour-error
 
 all: $(BIN)
 
@@ -62,6 +62,15 @@ run: $(BIN)
 
 bench: $(BIN)
 	sh tools/bench.sh
+
+# How far 256/16/8-colour pictures are from truecolor, before and after
+# the perceptual quantizer (README: Colour).
+COLORERR_MODELS ?= assets/demo.obj assets/knot.obj $(wildcard ../shared/models/spot.obj ../shared/models/cornell_box.obj ../shared/models/stanford-bunny.obj)
+colour-error: $(BUILD)/colorerr
+	$(BUILD)/colorerr $(COLORERR_MODELS)
+
+$(BUILD)/colorerr: tools/colorerr.c $(LIBOBJS)
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 # Regenerate the bundled models (they are committed; this is how they were made).
 assets: $(BUILD)/genassets

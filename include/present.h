@@ -11,7 +11,7 @@
 #include "shade.h"
 
 typedef enum { MODE_HALF = 0, MODE_ASCII, MODE_BRAILLE, MODE_COUNT } DisplayMode;
-typedef enum { COLOR_NONE = 0, COLOR_16, COLOR_256, COLOR_TRUE } ColorDepth;
+typedef enum { COLOR_NONE = 0, COLOR_8, COLOR_16, COLOR_256, COLOR_TRUE } ColorDepth;
 
 extern const char *const mode_names[MODE_COUNT];
 int mode_from_name(const char *name);           /* -1 if unknown */
@@ -46,14 +46,40 @@ typedef struct {
 void  mode_cell_pixels(DisplayMode m, int *px_w, int *px_h);
 float mode_pixel_aspect(DisplayMode m);
 
-/* Image of (cols * px_w) x (rows * px_h) pixels -> cells. */
-int  cells_from_image(const Image *im, DisplayMode m, CellGrid *out);
+/* Image of (cols * px_w) x (rows * px_h) pixels -> cells. Under
+ * COLOR_NONE the shading goes into the glyphs (dithered blocks and dots). */
+int  cells_from_image(const Image *im, DisplayMode m, ColorDepth depth, CellGrid *out);
 void cells_free(CellGrid *g);
 
-/* The colour of a cell colour under a depth: palette indices. */
+/* The xterm palette (the first 16 at xterm's defaults). */
+void palette_256_rgb(int idx, uint8_t rgb_out[3]);
+void palette_rgb(ColorDepth depth, int idx, uint8_t rgb_out[3]);
+/* Plain nearest palette index in RGB (kept to measure against). */
 int  palette_256(const uint8_t rgb[3]);         /* 16..255, nearest of cube + greys */
 int  palette_16(const uint8_t rgb[3]);          /* 0..15, nearest ANSI colour */
-void palette_256_rgb(int idx, uint8_t rgb_out[3]);
+
+/* Colour quantizer for 256, 16 and 8 colours (quant.c): the nearest
+ * palette colour in OKLab, ordered-dithered with the partner that best
+ * mixes towards the wanted colour. Keep one across frames: it memoises
+ * the pairs (a lazily filled 1 MB table). */
+typedef struct {
+    ColorDepth depth;
+    int        n;               /* palette entries searched */
+    uint8_t    num[240];        /* their palette numbers */
+    float      plin[240][3];    /* their linear RGB */
+    float      plab[240][3];    /* their OKLab */
+    float      lin[256];        /* sRGB byte -> linear */
+    uint32_t  *lut;             /* pair per colour rounded to 6 bits a channel */
+} Quantizer;
+
+int   quant_init(Quantizer *q, ColorDepth depth);   /* 0, or -1 out of memory */
+void  quant_free(Quantizer *q);
+/* The palette number to show for rgb at pixel (x, y); -1 under
+ * truecolor or no colour. */
+int   quant_pick(Quantizer *q, const uint8_t rgb[3], int x, int y);
+/* The ordered-dither threshold at pixel (x, y), in (0, 1). */
+float quant_threshold(int x, int y);
+void  quant_rgb_to_oklab(const uint8_t rgb[3], float lab_out[3]);
 
 /* The grid as text with ANSI SGR colours (none: plain text), each row
  * ending in a reset and "\n". Built in one buffer, written with one

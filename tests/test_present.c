@@ -88,7 +88,7 @@ Test(present, half_blocks)
     img_set(&im, 1, 1, 0, 200, 0);          /* only the bottom lit */
     img_set(&im, 3, 0, 9, 8, 7);            /* only the top lit */
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_HALF, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_HALF, COLOR_TRUE, &g), 0);
     cr_assert_eq(g.cols, 4);
     cr_assert_eq(g.rows, 1);
 
@@ -117,7 +117,7 @@ Test(present, half_odd_height_pads_with_background)
     img_init(&im, 1, 3);
     img_set(&im, 0, 2, 1, 2, 3);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_HALF, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_HALF, COLOR_TRUE, &g), 0);
     cr_assert_eq(g.rows, 2);
     cr_expect_eq(g.cells[0].ch, (uint32_t)' ');
     cr_expect_eq(g.cells[1].ch, 0x2580u);
@@ -138,7 +138,7 @@ Test(present, ascii_ramp)
     img_set(&im, 2, 0, 60, 60, 60);
     img_set(&im, 3, 0, 160, 160, 160);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_ASCII, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_ASCII, COLOR_TRUE, &g), 0);
     cr_assert_eq(g.cols, 5);
     cr_assert_eq(g.rows, 1);
     cr_expect_eq(g.cells[0].ch, (uint32_t)'@');
@@ -172,7 +172,7 @@ static uint32_t braille_of(const int lit[4][2])
             if (lit[y][x])
                 img_set(&im, x, y, 10, 20, 30);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_BRAILLE, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_BRAILLE, COLOR_TRUE, &g), 0);
     cr_assert_eq(g.cols, 1);
     cr_assert_eq(g.rows, 1);
     uint32_t ch = g.cells[0].ch;
@@ -211,7 +211,7 @@ Test(present, braille_colour_is_mean_of_lit_dots)
     img_set(&im, 1, 3, 200, 30, 1);
     img_set(&im, 0, 2, 0, 90, 2);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_BRAILLE, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_BRAILLE, COLOR_TRUE, &g), 0);
     cr_assert_eq(g.cols, 2);
     cr_assert_eq(g.rows, 1);
     cr_expect_eq(g.cells[0].ch, 0x2800u + 0x01 + 0x80 + 0x04);

@@ -87,7 +87,7 @@ int app_oneshot(const Options *o, Scene *s)
         print_size(o, &cols, &rows);
         mode_cell_pixels(mode, &pw, &ph);
         if (pipeline_render(&p, cols * pw, rows * ph, mode_pixel_aspect(mode), o->cull, 1) ||
-            cells_from_image(&p.img, mode, &p.cells)) {
+            cells_from_image(&p.img, mode, color, &p.cells)) {
             fprintf(stderr, "zview: out of memory\n");
             rc = 1;
             goto out;

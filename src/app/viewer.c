@@ -69,7 +69,7 @@ static int render(App *a, int cols, int rows)
     mode_cell_pixels(a->mode, &pw, &ph);
     if (pipeline_render(&a->p, cols * pw, rows * ph, mode_pixel_aspect(a->mode), a->cull, 1))
         return -1;
-    return cells_from_image(&a->p.img, a->mode, &a->p.cells);
+    return cells_from_image(&a->p.img, a->mode, term_color(), &a->p.cells);
 }
 
 static void status_text(const App *a, char *buf, size_t len, double frame_ms, int fps_cap)

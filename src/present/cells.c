@@ -7,7 +7,13 @@
  * braille: one cell = 2x4 pixels, one dot per lit pixel, fg = the mean
  *          colour of the lit dots.
  * Pixels past the image edge (an image that is not a whole number of
- * cells) count as background. */
+ * cells) count as background.
+ *
+ * Without colour (COLOR_NONE) the colours are lost on the way out, so the
+ * shading goes into the glyphs instead: half blocks and braille dots are
+ * set per pixel by an ordered dither of the pixel's lightness (kept above
+ * a floor, so that dark faces still show the silhouette); the ascii ramp
+ * already carries it. */
 
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +21,8 @@
 
 #define CH_UPPER_HALF 0x2580u
 #define CH_LOWER_HALF 0x2584u
+#define CH_FULL_BLOCK 0x2588u
+#define MONO_FLOOR    0.2f      /* the darkest lit pixel still lights a fifth of its dots */
 #define CH_BRAILLE    0x2800u
 
 /* Lit pixels use ramp[1..]: a dark face never vanishes into ' '. */
@@ -88,6 +96,38 @@ static inline void set_empty(Cell *c)
     c->ch = ' ';
 }
 
+/* Rec. 709 luma of a pixel, 0..1. */
+static inline float luma(const uint8_t *p)
+{
+    return (float)(54u * p[0] + 183u * p[1] + 19u * p[2]) / (256.0f * 255.0f);
+}
+
+/* Without colour: is pixel i at (x, y) drawn (a dithered share of its
+ * lightness)? */
+static inline int mono_on(const Image *im, size_t i, int x, int y)
+{
+    if (!im->lit[i])
+        return 0;
+    float v = MONO_FLOOR + (1 - MONO_FLOOR) * luma(im->rgb + 3 * i);
+    return v > quant_threshold(x, y);
+}
+
+static void cells_half_mono(const Image *im, CellGrid *g)
+{
+    int w = im->w, h = im->h;
+    for (int r = 0; r < g->rows; r++) {
+        Cell *c = g->cells + (size_t)r * g->cols;
+        for (int x = 0; x < w; x++, c++) {
+            int yt = 2 * r, yb = 2 * r + 1;
+            int t = mono_on(im, (size_t)yt * w + x, x, yt);
+            int b = yb < h && mono_on(im, (size_t)yb * w + x, x, yb);
+            set_empty(c);
+            if (t || b)
+                c->ch = t && b ? CH_FULL_BLOCK : t ? CH_UPPER_HALF : CH_LOWER_HALF;
+        }
+    }
+}
+
 static void cells_half(const Image *im, CellGrid *g)
 {
     int w = im->w, h = im->h;
@@ -143,7 +183,7 @@ static void cells_ascii(const Image *im, CellGrid *g)
     }
 }
 
-static void cells_braille(const Image *im, CellGrid *g)
+static void cells_braille(const Image *im, CellGrid *g, int mono)
 {
     int w = im->w, h = im->h;
     for (int r = 0; r < g->rows; r++) {
@@ -157,7 +197,7 @@ static void cells_braille(const Image *im, CellGrid *g)
                 for (int dx = 0; dx < 2; dx++) {
                     int x = 2 * col + dx;
                     size_t i = (size_t)y * w + x;
-                    if (x >= w || !im->lit[i])
+                    if (x >= w || !im->lit[i] || (mono && !mono_on(im, i, x, y)))
                         continue;
                     const uint8_t *p = im->rgb + 3 * i;
                     bits |= braille_bit[dy][dx];
@@ -176,12 +216,12 @@ static void cells_braille(const Image *im, CellGrid *g)
             c->fg[1] = (uint8_t)((sg + nlit / 2) / nlit);
             c->fg[2] = (uint8_t)((sb + nlit / 2) / nlit);
             c->bg[0] = c->bg[1] = c->bg[2] = 0;
-            c->flags = CELL_FG;
+            c->flags = mono ? 0 : CELL_FG;
         }
     }
 }
 
-int cells_from_image(const Image *im, DisplayMode m, CellGrid *out)
+int cells_from_image(const Image *im, DisplayMode m, ColorDepth depth, CellGrid *out)
 {
     int pw, ph;
     if ((unsigned)m >= MODE_COUNT || im->w < 0 || im->h < 0)
@@ -190,10 +230,11 @@ int cells_from_image(const Image *im, DisplayMode m, CellGrid *out)
     int cols = (im->w + pw - 1) / pw, rows = (im->h + ph - 1) / ph;
     if (grid_resize(out, cols, rows) != 0)
         return -1;
+    int mono = depth == COLOR_NONE;
     switch (m) {
-    case MODE_HALF:    cells_half(im, out); break;
+    case MODE_HALF:    (mono ? cells_half_mono : cells_half)(im, out); break;
     case MODE_ASCII:   cells_ascii(im, out); break;
-    case MODE_BRAILLE: cells_braille(im, out); break;
+    case MODE_BRAILLE: cells_braille(im, out, mono); break;
     default:           return -1;
     }
     return 0;

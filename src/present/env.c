@@ -11,7 +11,7 @@
 
 const char *const mode_names[MODE_COUNT] = { "half", "ascii", "braille" };
 
-static const char *const color_names[] = { "none", "16", "256", "truecolor" };
+static const char *const color_names[] = { "none", "8", "16", "256", "truecolor" };
 
 int mode_from_name(const char *name)
 {

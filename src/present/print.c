@@ -1,8 +1,10 @@
 /* print: a cell grid -> text with ANSI SGR colours, built in one buffer
  * and written with one fwrite (a frame never reaches the terminal half
- * drawn). An escape is emitted only when a colour differs from the
- * previous cell's, as the terminal would show it: under 256 and 16
- * colours two RGB values that map to the same index need no escape. */
+ * drawn). Under 256, 16 and 8 colours the quantizer (quant.c) picks the
+ * palette number, dithered by position: a cell's foreground sits at pixel
+ * row 2 * row and its background at 2 * row + 1 (the half-block mode's
+ * two pixels). An escape is emitted only when a colour differs from the
+ * previous cell's as the terminal would show it. */
 
 #include <stdlib.h>
 #include <string.h>
@@ -15,17 +17,15 @@
 
 #define KEY_DEFAULT (-1)
 
-/* A colour as the terminal sees it under depth c: a packed 24-bit RGB
- * for truecolor, else a palette index; KEY_DEFAULT when unset. */
-static inline long colour_key(const uint8_t rgb[3], int set, ColorDepth c)
+/* A colour as the terminal sees it: a packed 24-bit RGB for truecolor,
+ * else a palette number; KEY_DEFAULT when unset. */
+static inline long colour_key(Quantizer *q, const uint8_t rgb[3], int set, int x, int y)
 {
     if (!set)
         return KEY_DEFAULT;
-    switch (c) {
-    case COLOR_TRUE: return ((long)rgb[0] << 16) | ((long)rgb[1] << 8) | rgb[2];
-    case COLOR_256:  return palette_256(rgb);
-    default:         return palette_16(rgb);
-    }
+    if (q->depth == COLOR_TRUE)
+        return ((long)rgb[0] << 16) | ((long)rgb[1] << 8) | rgb[2];
+    return quant_pick(q, rgb, x, y);
 }
 
 static inline char *put_str(char *p, const char *s)
@@ -98,9 +98,14 @@ char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out)
 {
     size_t ncells = (size_t)g->cols * (size_t)g->rows;
     size_t cap = ncells * CELL_MAX + (size_t)g->rows * 5 + 1;
-    char *buf = malloc(cap);
-    if (!buf)
+    Quantizer q;
+    if (quant_init(&q, c))
         return NULL;
+    char *buf = malloc(cap);
+    if (!buf) {
+        quant_free(&q);
+        return NULL;
+    }
     char *p = buf;
     for (int r = 0; r < g->rows; r++) {
         const Cell *cell = g->cells + (size_t)r * g->cols;
@@ -109,8 +114,8 @@ char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out)
         int coloured = 0;
         for (int x = 0; x < g->cols; x++, cell++) {
             if (c != COLOR_NONE) {
-                long kf = colour_key(cell->fg, cell->flags & CELL_FG, c);
-                long kb = colour_key(cell->bg, cell->flags & CELL_BG, c);
+                long kf = colour_key(&q, cell->fg, cell->flags & CELL_FG, x, 2 * r);
+                long kb = colour_key(&q, cell->bg, cell->flags & CELL_BG, x, 2 * r + 1);
                 if (kf != fg) {
                     p = put_sgr(p, kf, 0, c);
                     fg = kf;
@@ -129,6 +134,7 @@ char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out)
         *p++ = '\n';
     }
     *p = '\0';
+    quant_free(&q);
     if (len_out)
         *len_out = (size_t)(p - buf);
     return buf;

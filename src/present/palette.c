@@ -1,5 +1,6 @@
-/* palette: RGB -> xterm 256- and 16-colour indices, by nearest squared
- * RGB distance. The 256 map searches only 16..255 (cube and greys):
+/* palette: the xterm palette's colours, and RGB -> 256- and 16-colour
+ * indices by nearest squared RGB distance (quant.c chooses perceptually
+ * and dithers; these plain nearest maps stay for comparison). The 256 map searches only 16..255 (cube and greys):
  * the first 16 are themable, so their real colour is unknown. */
 
 #include "present.h"
@@ -53,6 +54,14 @@ int palette_16(const uint8_t rgb[3])
         }
     }
     return best;
+}
+
+void palette_rgb(ColorDepth depth, int idx, uint8_t rgb_out[3])
+{
+    /* 8 and 16 colours are the first entries of the same table */
+    if (depth != COLOR_256 && idx >= 16)
+        idx = 15;
+    palette_256_rgb(idx, rgb_out);
 }
 
 void palette_256_rgb(int idx, uint8_t rgb_out[3])
