@@ -23,7 +23,7 @@ void cli_usage(FILE *f)
 "  -o, --output FILE     write the image to FILE.png or FILE.ppm\n"
 "  -s, --size WxH        pixels for -o (default 640x480); cells for --print\n"
 "  --mode half|ascii|braille      text mode (default: half on UTF-8)\n"
-"  --color truecolor|256|16|none  colours (default: from COLORTERM/TERM/NO_COLOR)\n"
+"  --color truecolor|256|16|8|none colours (default: from COLORTERM/TERM/NO_COLOR)\n"
 "  --shade lambert|depth|id       shading (default lambert)\n"
 "  --info                print file statistics (with --algo: render statistics)\n"
 "  --dump-ids FILE       face-id buffer: W*H little-endian int32, -1 = background\n"
@@ -254,7 +254,7 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
             break;
         case OPT_COLOR:
             if ((o->color = color_from_name(val)) < 0)
-                BAD_VAL("truecolor, 256, 16 or none");
+                BAD_VAL("truecolor, 256, 16, 8 or none");
             break;
         case OPT_SHADE:
             if ((o->shade = shade_from_name(val)) < 0)
