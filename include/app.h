@@ -14,6 +14,7 @@
 #define ZV_VERSION "0.1.0"
 #define MAX_FILES 64
 #define MAX_PLACE 64
+#define TEXT_SAMPLES 4          /* default samples per pixel of text pictures (viewer, --print) */
 
 /* --move, --turn, --scale: one object's placement. */
 typedef enum { PLACE_MOVE, PLACE_TURN, PLACE_SCALE } PlaceKind;
@@ -47,6 +48,7 @@ typedef struct {
     float       fov;
     int         cull;
     int         views, threads, grid, fps;
+    int         samples;        /* --samples, 0 = the default of the output */
 } Options;
 
 /* Parse argv. Returns 0, or -1 with a message in err (a usage error). */
@@ -72,6 +74,8 @@ typedef struct {
     CellGrid     cells;
     Viewport     vp;
     ShadeMode    shade;
+    int          samples;       /* per pixel: 1, 4, 9 or 16 (rendered at sqrt x the size, averaged) */
+    Image        img_ss;        /* the supersampled picture before averaging */
     HsrStats     st;
     double       project_ms, hsr_ms, shade_ms, cells_ms;
 } Pipeline;
@@ -79,8 +83,13 @@ typedef struct {
 int  pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads);
 int  pipeline_set_algo(Pipeline *p, const HsrAlgo *algo);
 void pipeline_free(Pipeline *p);
-/* Project + hidden surfaces (+ shading when shade_too). */
+/* Project + hidden surfaces (+ shading when shade_too) for a w x h
+ * picture: at (k w) x (k h) pixels when samples = k^2 > 1, the shaded
+ * image then averaged down to w x h in img (fb holds the full-size
+ * buffers: the exact render at the higher resolution). */
 int  pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int shade_too);
+/* The side k of the k x k samples a pixel gets for a sample count. */
+int  pipeline_samples_side(int samples);
 
 /* The modes main() dispatches to; each returns the exit status. */
 int  app_info(const Options *o, Scene *s);

@@ -22,6 +22,11 @@ typedef struct {
 
 int  image_resize(Image *im, int w, int h);
 void image_free(Image *im);
+/* Supersampling's last step: each k x k block of src becomes one pixel
+ * of dst ((src->w / k) x (src->h / k)), lit when at least half of its
+ * samples are, coloured by the mean of its lit samples (the background's
+ * colour is the terminal's, unknown here, so it is not mixed in). */
+int  image_downsample(const Image *src, int k, Image *dst);
 
 /* Per-face colour cache, reused across frames (grows to the face count). */
 typedef struct {

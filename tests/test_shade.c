@@ -326,3 +326,35 @@ Test(shade, names)
         cr_expect_eq(shade_from_name(shade_names[i]), i);
 }
 
+
+/* ==== supersampling ==== */
+
+Test(shade, downsample_lit_by_majority_coloured_by_lit_mean)
+{
+    Image src = { 0 }, dst = { 0 };
+    cr_assert_eq(image_resize(&src, 4, 2), 0);
+    memset(src.rgb, 0, 3 * 8);
+    memset(src.lit, 0, 8);
+    /* left 2x2 block: two lit samples (red 200 and 100): lit, mean 150 */
+    src.lit[0] = src.lit[5] = 1;
+    src.rgb[0] = 200;
+    src.rgb[3 * 5] = 100;
+    /* right block: one lit sample: under half, background */
+    src.lit[3] = 1;
+    src.rgb[3 * 3 + 1] = 255;
+    cr_assert_eq(image_downsample(&src, 2, &dst), 0);
+    cr_assert_eq(dst.w, 2);
+    cr_assert_eq(dst.h, 1);
+    cr_expect_eq(dst.lit[0], 1);
+    cr_expect_eq(dst.rgb[0], 150);
+    cr_expect_eq(dst.rgb[1], 0);
+    cr_expect_eq(dst.lit[1], 0);
+    cr_expect_eq(dst.rgb[3 + 1], 0, "the background stays black");
+    /* k = 1 is a copy */
+    cr_assert_eq(image_downsample(&src, 1, &dst), 0);
+    cr_expect_eq(dst.w, 4);
+    cr_expect_eq(memcmp(dst.rgb, src.rgb, 24), 0);
+    cr_expect_eq(memcmp(dst.lit, src.lit, 8), 0);
+    image_free(&src);
+    image_free(&dst);
+}

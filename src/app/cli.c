@@ -25,6 +25,8 @@ void cli_usage(FILE *f)
 "  --mode half|ascii|braille      text mode (default: half on UTF-8)\n"
 "  --color truecolor|256|16|8|none colours (default: from COLORTERM/TERM/NO_COLOR)\n"
 "  --shade lambert|depth|id       shading (default lambert)\n"
+"  --samples N           samples per pixel, 1, 4, 9 or 16, averaged (default 4 for\n"
+"                        text and the viewer, 1 for -o)\n"
 "  --info                print file statistics (with --algo: render statistics)\n"
 "  --dump-ids FILE       face-id buffer: W*H little-endian int32, -1 = background\n"
 "  --dump-screen FILE    screen-space polygons as OBJ text\n"
@@ -129,7 +131,7 @@ enum {
     OPT_INFO = 256, OPT_BENCH, OPT_BENCH_TTY, OPT_JSON, OPT_CULL, OPT_ORTHO, OPT_PERSP,
     OPT_DUMP_IDS, OPT_DUMP_SCREEN, OPT_MODE, OPT_COLOR, OPT_SHADE, OPT_YAW, OPT_PITCH,
     OPT_ROLL, OPT_ZOOM, OPT_PAN, OPT_FIT_FROM, OPT_MOVE, OPT_TURN, OPT_SCALE, OPT_VIEWS,
-    OPT_GRID, OPT_FPS, OPT_MAX_POLYS,
+    OPT_GRID, OPT_FPS, OPT_MAX_POLYS, OPT_SAMPLES,
 };
 
 static const struct option long_opts[] = {
@@ -166,6 +168,7 @@ static const struct option long_opts[] = {
     { "grid", required_argument, NULL, OPT_GRID },
     { "fps", required_argument, NULL, OPT_FPS },
     { "max-polys", required_argument, NULL, OPT_MAX_POLYS },
+    { "samples", required_argument, NULL, OPT_SAMPLES },
     { NULL, 0, NULL, 0 },
 };
 
@@ -328,6 +331,11 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
             if (parse_int(val, 1, 1000, &n))
                 BAD_VAL("1 to 1000");
             o->fps = (int)n;
+            break;
+        case OPT_SAMPLES:
+            if (parse_int(val, 1, 16, &n) || (n != 1 && n != 4 && n != 9 && n != 16))
+                BAD_VAL("1, 4, 9 or 16");
+            o->samples = (int)n;
             break;
         case OPT_MAX_POLYS:
             if (parse_int(val, 1, 2000000000L, &n))

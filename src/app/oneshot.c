@@ -61,6 +61,7 @@ int app_oneshot(const Options *o, Scene *s)
         return 1;
     }
     p.shade = (ShadeMode)o->shade;
+    p.samples = o->samples > 0 ? o->samples : 1;      /* images: full resolution already */
     int rc = 0;
     int text = o->print || (!o->out && !o->dump_ids && !o->dump_screen);
     if (o->out || ((o->dump_ids || o->dump_screen) && !text)) {
@@ -85,6 +86,7 @@ int app_oneshot(const Options *o, Scene *s)
         ColorDepth color = o->color >= 0 ? (ColorDepth)o->color : color_from_env();
         int cols, rows, pw, ph;
         print_size(o, &cols, &rows);
+        p.samples = o->samples > 0 ? o->samples : TEXT_SAMPLES;   /* as the viewer draws */
         mode_cell_pixels(mode, &pw, &ph);
         if (pipeline_render(&p, cols * pw, rows * ph, mode_pixel_aspect(mode), o->cull, 1) ||
             cells_from_image(&p.img, mode, color, &p.cells)) {

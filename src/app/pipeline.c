@@ -17,6 +17,7 @@ int pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads)
     p->scene = s;
     p->threads = threads > 0 ? threads : default_threads();
     p->shade = SHADE_LAMBERT;
+    p->samples = 1;
     return pipeline_set_algo(p, algo);
 }
 
@@ -35,15 +36,27 @@ void pipeline_free(Pipeline *p)
     screen_free(&p->sp);
     fbuf_free(&p->fb);
     image_free(&p->img);
+    image_free(&p->img_ss);
     shade_cache_free(&p->shade_cache);
     cells_free(&p->cells);
     memset(p, 0, sizeof *p);
 }
 
+int pipeline_samples_side(int samples)
+{
+    int k = 1;
+    while ((k + 1) * (k + 1) <= samples)
+        k++;
+    return k;
+}
+
 int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int shade_too)
 {
-    p->vp.w = w;
-    p->vp.h = h;
+    int k = pipeline_samples_side(p->samples);
+    if ((long)w * k > SCREEN_MAX || (long)h * k > SCREEN_MAX)
+        k = 1;          /* a huge image needs no supersampling */
+    p->vp.w = w * k;
+    p->vp.h = h * k;
     p->vp.pixel_aspect = pixel_aspect;
     p->vp.cull = cull;
     double t0 = now_ms();
@@ -58,7 +71,9 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     p->hsr_ms = t2 - t1;
     p->shade_ms = 0;
     if (shade_too) {
-        if (shade_frame(p->scene, &p->fb, p->shade, &p->shade_cache, &p->img))
+        if (k == 1 ? shade_frame(p->scene, &p->fb, p->shade, &p->shade_cache, &p->img)
+                   : shade_frame(p->scene, &p->fb, p->shade, &p->shade_cache, &p->img_ss) ||
+                         image_downsample(&p->img_ss, k, &p->img))
             return -1;
         p->shade_ms = now_ms() - t2;
     }

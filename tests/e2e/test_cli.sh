@@ -101,3 +101,12 @@ if [ "$(lead "$T/pan.txt")" -gt "$(lead "$T/nopan.txt")" ]; then ok "--pan moves
     notok "--pan moves the picture right" "$(cat "$T/pan.txt")"; fi
 expect_status "--move of a missing object fails" 1 "$Z" --print --move 2:1,0,0 assets/cube.obj
 expect_err "the missing object is named" "object 2"
+
+# supersampling
+expect_status "--samples 3 is a usage error" 2 "$Z" --print --samples 3 assets/cube.obj
+expect_err "the allowed counts are named" "1, 4, 9 or 16"
+"$Z" --print --size 40x12 --color none --mode ascii assets/knot.obj >"$T/s-default"
+"$Z" --print --size 40x12 --color none --mode ascii --samples 4 assets/knot.obj >"$T/s4"
+"$Z" --print --size 40x12 --color none --mode ascii --samples 1 assets/knot.obj >"$T/s1"
+if cmp -s "$T/s-default" "$T/s4" && ! cmp -s "$T/s4" "$T/s1"; then ok "--print takes 4 samples by default"; else
+    notok "--print takes 4 samples by default"; fi
