@@ -49,6 +49,9 @@ typedef struct {
     int         cull;
     int         views, threads, grid, fps;
     int         samples;        /* --samples, 0 = the default of the output */
+    float       crease;         /* --crease, degrees */
+    float       light[2];       /* --light yaw, pitch in degrees */
+    float       ambient;        /* --ambient */
 } Options;
 
 /* Parse argv. Returns 0, or -1 with a message in err (a usage error). */
@@ -74,6 +77,7 @@ typedef struct {
     CellGrid     cells;
     Viewport     vp;
     ShadeMode    shade;
+    float        crease;        /* smooth shading's crease angle, degrees */
     int          samples;       /* per pixel: 1, 4, 9 or 16 (rendered at sqrt x the size, averaged) */
     Image        img_ss;        /* the supersampled picture before averaging */
     HsrStats     st;

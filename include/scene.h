@@ -41,8 +41,19 @@ typedef struct {
 
 typedef struct {
     Vec3  dir;                /* unit vector towards the light, view space (x right, y up, z to viewer) */
+    float yaw, pitch;         /* degrees: dir turned right of the viewer, and up (light_set) */
     float ambient;            /* 0..1 */
 } Light;
+
+/* The default light: over the viewer's upper left. */
+#define LIGHT_YAW     (-34.0f)
+#define LIGHT_PITCH   37.0f
+#define LIGHT_AMBIENT 0.22f
+
+/* A light yaw degrees to the right of the view direction and pitch
+ * degrees up (0, 0: from the viewer), ambient clamped to 0..1. The light
+ * stays fixed to the view when the scene turns, and a reset keeps it. */
+void light_set(Light *l, float yaw_deg, float pitch_deg, float ambient);
 
 typedef struct Scene {
     Mesh     *meshes;         /* owned */
@@ -80,7 +91,7 @@ int  scene_make_grid(Scene *s, int n, char *err, size_t errlen);
 
 void scene_free(Scene *s);
 
-/* Reset the camera (and object placements), then fit. */
+/* Reset the camera (and object placements), then fit. The light stays. */
 void scene_reset(Scene *s);
 /* Fit: centre the scene as seen from the camera's current turn and set
  * its view-space extents, which the projection scales to about 90% of

@@ -7,8 +7,9 @@
 #include <stdint.h>
 #include "hsr.h"
 #include "scene.h"
+#include "screen.h"
 
-typedef enum { SHADE_LAMBERT = 0, SHADE_DEPTH, SHADE_ID, SHADE_COUNT } ShadeMode;
+typedef enum { SHADE_LAMBERT = 0, SHADE_SMOOTH, SHADE_DEPTH, SHADE_ID, SHADE_COUNT } ShadeMode;
 
 extern const char *const shade_names[SHADE_COUNT];
 int shade_from_name(const char *name);          /* -1 if unknown */
@@ -28,21 +29,41 @@ void image_free(Image *im);
  * colour is the terminal's, unknown here, so it is not mixed in). */
 int  image_downsample(const Image *src, int k, Image *dst);
 
+/* Smooth shading's per-scene data (smooth.c), built on first use. */
+typedef struct {
+    const Scene *key;
+    uint32_t  key_npolys;
+    float     crease;       /* degrees it was built for */
+    float    *cnorm;        /* 3 per scene polygon corner: object-space unit normal */
+    uint32_t *face_poly;    /* 2 per face: first scene polygon, count */
+} SmoothData;
+
 /* Per-face colour cache, reused across frames (grows to the face count). */
 typedef struct {
     uint32_t *stamp;    /* frame stamp per face: colour below is current */
     uint8_t  *rgb;      /* 3 per face */
     uint32_t  cap, frame;
+    SmoothData smooth;
 } ShadeCache;
+
+#define SHADE_CREASE_DEFAULT 60.0f  /* degrees: sharper edges stay sharp under smooth */
 
 void shade_cache_free(ShadeCache *c);
 
 /* Colour every pixel: lambert (ambient + two-sided Lambert from
- * scene->light on the face's base colour), depth (near white, far black,
- * over the frame's depth range) or id (a distinct colour per face id).
- * Background pixels get rgb 0 and lit 0. */
-int  shade_frame(const Scene *s, const FrameBufs *fb, ShadeMode mode,
-                 ShadeCache *cache, Image *out);
+ * scene->light on the face's base colour), smooth (the same with normals
+ * interpolated per pixel from the corners, edges sharper than crease
+ * degrees kept), depth (near white, far black, over the frame's depth
+ * range) or id (a distinct colour per face id). sp gives the projection
+ * the frame was rendered with. Background pixels get rgb 0 and lit 0. */
+int  shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode,
+                 float crease, ShadeCache *cache, Image *out);
+
+/* smooth.c */
+int  smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg);
+void smooth_free(SmoothData *sd);
+int  shade_smooth(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, SmoothData *sd,
+                  const uint8_t *face_rgb_default, Image *out);
 
 /* Distinct colour for a face id (also used by tests). */
 void shade_id_colour(int32_t id, uint8_t rgb_out[3]);

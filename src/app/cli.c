@@ -24,7 +24,10 @@ void cli_usage(FILE *f)
 "  -s, --size WxH        pixels for -o (default 640x480); cells for --print\n"
 "  --mode half|ascii|braille      text mode (default: half on UTF-8)\n"
 "  --color truecolor|256|16|8|none colours (default: from COLORTERM/TERM/NO_COLOR)\n"
-"  --shade lambert|depth|id       shading (default lambert)\n"
+"  --shade lambert|smooth|depth|id  shading (default lambert: flat per face)\n"
+"  --crease DEG          smooth shading keeps edges sharper than this (default 60)\n"
+"  --light YAW,PITCH     light direction in degrees from the viewer (default -34,37)\n"
+"  --ambient F           ambient light, 0 to 1 (default 0.22)\n"
 "  --samples N           samples per pixel, 1, 4, 9 or 16, averaged (default 4 for\n"
 "                        text and the viewer, 1 for -o)\n"
 "  --info                print file statistics (with --algo: render statistics)\n"
@@ -131,7 +134,7 @@ enum {
     OPT_INFO = 256, OPT_BENCH, OPT_BENCH_TTY, OPT_JSON, OPT_CULL, OPT_ORTHO, OPT_PERSP,
     OPT_DUMP_IDS, OPT_DUMP_SCREEN, OPT_MODE, OPT_COLOR, OPT_SHADE, OPT_YAW, OPT_PITCH,
     OPT_ROLL, OPT_ZOOM, OPT_PAN, OPT_FIT_FROM, OPT_MOVE, OPT_TURN, OPT_SCALE, OPT_VIEWS,
-    OPT_GRID, OPT_FPS, OPT_MAX_POLYS, OPT_SAMPLES,
+    OPT_GRID, OPT_FPS, OPT_MAX_POLYS, OPT_SAMPLES, OPT_CREASE, OPT_LIGHT, OPT_AMBIENT,
 };
 
 static const struct option long_opts[] = {
@@ -169,6 +172,9 @@ static const struct option long_opts[] = {
     { "fps", required_argument, NULL, OPT_FPS },
     { "max-polys", required_argument, NULL, OPT_MAX_POLYS },
     { "samples", required_argument, NULL, OPT_SAMPLES },
+    { "crease", required_argument, NULL, OPT_CREASE },
+    { "light", required_argument, NULL, OPT_LIGHT },
+    { "ambient", required_argument, NULL, OPT_AMBIENT },
     { NULL, 0, NULL, 0 },
 };
 
@@ -193,6 +199,10 @@ void cli_defaults(Options *o)
     o->fps = 30;
     o->grid = 1;
     o->max_polys = 20000000;
+    o->crease = SHADE_CREASE_DEFAULT;
+    o->light[0] = LIGHT_YAW;
+    o->light[1] = LIGHT_PITCH;
+    o->ambient = LIGHT_AMBIENT;
 }
 
 int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
@@ -261,7 +271,7 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
             break;
         case OPT_SHADE:
             if ((o->shade = shade_from_name(val)) < 0)
-                BAD_VAL("lambert, depth or id");
+                BAD_VAL("lambert, smooth, depth or id");
             break;
         case 'a': o->algo = val; break;
         case OPT_YAW:
@@ -331,6 +341,18 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
             if (parse_int(val, 1, 1000, &n))
                 BAD_VAL("1 to 1000");
             o->fps = (int)n;
+            break;
+        case OPT_CREASE:
+            if (parse_float(val, &o->crease) || o->crease < 0 || o->crease > 180)
+                BAD_VAL("degrees from 0 to 180");
+            break;
+        case OPT_LIGHT:
+            if (parse_floats(val, o->light, 2))
+                BAD_VAL("YAW,PITCH in degrees");
+            break;
+        case OPT_AMBIENT:
+            if (parse_float(val, &o->ambient) || o->ambient < 0 || o->ambient > 1)
+                BAD_VAL("from 0 to 1");
             break;
         case OPT_SAMPLES:
             if (parse_int(val, 1, 16, &n) || (n != 1 && n != 4 && n != 9 && n != 16))

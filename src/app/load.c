@@ -92,6 +92,7 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         } else
             ob->scale = pl->v[0];
     }
+    light_set(&s->light, o->light[0], o->light[1], o->ambient);
     s->cam.persp = o->persp;
     s->cam.fov_deg = o->fov;
     const float *fit = o->has_fit_from ? o->fit_from : (const float[3]){ o->yaw, o->pitch, o->roll };

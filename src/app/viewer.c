@@ -56,6 +56,7 @@ static int app_init(App *a, const Options *o, Scene *s)
     if (pipeline_init(&a->p, s, algo, o->threads))
         return -1;
     a->p.shade = (ShadeMode)o->shade;
+    a->p.crease = o->crease;
     a->p.samples = o->samples > 0 ? o->samples : TEXT_SAMPLES;
     return 0;
 }

@@ -254,6 +254,7 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
         m->face_start = m->corner = NULL;
         m->face_mat = NULL;
     }
+    light_set(&s->light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
     scene_reset(s);
     return 0;
 
@@ -420,7 +421,14 @@ void scene_reset(Scene *s)
     memset(&s->cam, 0, sizeof s->cam);
     s->cam.persp = persp;
     s->cam.fov_deg = fov;
-    s->light.dir = v3_norm(v3(-0.45f, 0.6f, 0.66f));   /* over the viewer's upper left */
-    s->light.ambient = 0.22f;
     scene_fit(s);
+}
+
+void light_set(Light *l, float yaw_deg, float pitch_deg, float ambient)
+{
+    float y = deg2rad(yaw_deg), p = deg2rad(pitch_deg);
+    l->yaw = yaw_deg;
+    l->pitch = pitch_deg;
+    l->dir = v3(cosf(p) * sinf(y), sinf(p), cosf(p) * cosf(y));
+    l->ambient = ambient < 0 ? 0 : ambient > 1 ? 1 : ambient;
 }

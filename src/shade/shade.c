@@ -12,7 +12,7 @@
 
 /* ==== Names ==== */
 
-const char *const shade_names[SHADE_COUNT] = { "lambert", "depth", "id" };
+const char *const shade_names[SHADE_COUNT] = { "lambert", "smooth", "depth", "id" };
 
 int shade_from_name(const char *name)
 {
@@ -98,6 +98,7 @@ void shade_cache_free(ShadeCache *c)
 {
     free(c->stamp);
     free(c->rgb);
+    smooth_free(&c->smooth);
     memset(c, 0, sizeof *c);
 }
 
@@ -201,6 +202,8 @@ static void normal_mat(const Scene *s, const Mat4 *view, int obj, NormalMat *out
             out->m[i][j] = m.m[i][j];
 }
 
+static const uint8_t default_grey[3] = { 200, 200, 200 };
+
 /* Lambert colour of one face, two-sided (|n.l|) so faces seen from the
  * back are lit like their fronts. */
 static void lambert_face(const Scene *s, const NormalMat *nm, uint32_t face, uint8_t out[3])
@@ -212,8 +215,7 @@ static void lambert_face(const Scene *s, const NormalMat *nm, uint32_t face, uin
     v = v3_norm(v);
     float amb = s->light.ambient;
     float k = amb + (1.0f - amb) * fabsf(v3_dot(v, s->light.dir));
-    static const uint8_t grey[3] = { 200, 200, 200 };
-    const uint8_t *base = s->face_rgb ? s->face_rgb + 3 * (size_t)face : grey;
+    const uint8_t *base = s->face_rgb ? s->face_rgb + 3 * (size_t)face : default_grey;
     out[0] = clamp_u8((float)base[0] * k);
     out[1] = clamp_u8((float)base[1] * k);
     out[2] = clamp_u8((float)base[2] * k);
@@ -250,8 +252,8 @@ static void shade_depth(const FrameBufs *fb, uint32_t nfaces, Image *out)
     }
 }
 
-int shade_frame(const Scene *s, const FrameBufs *fb, ShadeMode mode,
-                ShadeCache *cache, Image *out)
+int shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode,
+                float crease, ShadeCache *cache, Image *out)
 {
     if (image_resize(out, fb->w, fb->h) != 0)
         return -1;
@@ -259,6 +261,11 @@ int shade_frame(const Scene *s, const FrameBufs *fb, ShadeMode mode,
     if (mode == SHADE_DEPTH) {
         shade_depth(fb, nfaces, out);
         return 0;
+    }
+    if (mode == SHADE_SMOOTH) {
+        if (smooth_prepare(&cache->smooth, s, crease))
+            return -1;
+        return shade_smooth(s, sp, fb, &cache->smooth, default_grey, out);
     }
     if (cache_grow(cache, nfaces) != 0)
         return -1;
