@@ -36,7 +36,9 @@ typedef struct {
     int         color;          /* ColorDepth, -1 = from the environment */
     int         shade;          /* ShadeMode */
     const char *algo;           /* name, "all", or a comma list (bench) */
-    float       yaw, pitch, roll;   /* degrees */
+    const char *view;           /* --view name, "auto", or NULL */
+    float       yaw, pitch, roll;   /* degrees, added to the view's turn */
+    int         turned;         /* --yaw, --pitch or --roll given */
     float       zoom;
     float       pan[2];         /* --pan, fractions of the scene radius */
     float       fit_from[3];    /* --fit-from yaw pitch roll, degrees */

@@ -98,6 +98,14 @@ void scene_reset(Scene *s);
  * the viewport (pan and zoom are reset). */
 void scene_fit(Scene *s);
 
+/* view.c: the named views (front back left right top bottom iso), as a
+ * yaw and pitch in degrees; -1 for an unknown name. */
+int  view_from_name(const char *name, float *yaw_out, float *pitch_out);
+const char *view_name(int i);           /* the i-th name, NULL past the end */
+/* A useful first view of the loaded objects: the three-quarter view from
+ * above that sees the most surface facing it (yaw and pitch, degrees). */
+void scene_pick_view(const Scene *s, float *yaw_out, float *pitch_out);
+
 /* Object-to-world matrix: turn and scale about the object's centre, then
  * offset. */
 Mat4 object_matrix(const Object *o);

@@ -227,3 +227,54 @@ Test(scene, grid_copies_get_their_own_face_ids)
     screen_free(&sp);
     scene_free(&s);
 }
+
+/* ==== first view ==== */
+
+Test(view, picks_the_long_side_of_a_long_model)
+{
+    /* a box 10 long in x, 1 in y and z, wound CCW from outside */
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "bar.obj",
+                                    "v -5 -0.5 -0.5\nv 5 -0.5 -0.5\nv 5 0.5 -0.5\nv -5 0.5 -0.5\n"
+                                    "v -5 -0.5 0.5\nv 5 -0.5 0.5\nv 5 0.5 0.5\nv -5 0.5 0.5\n"
+                                    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n"),
+                 0);
+    float yaw, pitch;
+    scene_pick_view(&s, &yaw, &pitch);
+    cr_expect(fabsf(yaw) <= 30.5f || fabsf(yaw) >= 149.5f, "seen from its long side, yaw %g", yaw);
+    cr_expect(pitch > 0, "from above");
+    cr_expect(fabsf(yaw) < 90, "from the front side when both long sides tie: %g", yaw);
+    scene_free(&s);
+}
+
+Test(view, looks_into_an_open_box)
+{
+    /* a box open towards -z (no back face), faces wound to be seen from
+     * inside: the view must come from behind, through the opening */
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "room.obj",
+                                    "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                                    "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                                    "f 8 7 6 5\n"           /* the wall at +z, facing -z */
+                                    "f 1 2 6 5\nf 4 8 7 3\n" /* floor up, ceiling down */
+                                    "f 1 5 8 4\nf 2 3 7 6\n"),
+                 0);
+    float yaw, pitch;
+    scene_pick_view(&s, &yaw, &pitch);
+    cr_expect(fabsf(yaw) > 90, "seen through the opening at -z, yaw %g", yaw);
+    scene_free(&s);
+}
+
+Test(view, named_views)
+{
+    float y, p;
+    cr_assert_eq(view_from_name("front", &y, &p), 0);
+    cr_expect(y == 0 && p == 0);
+    cr_assert_eq(view_from_name("top", &y, &p), 0);
+    cr_expect(p == 90);
+    cr_assert_eq(view_from_name("right", &y, &p), 0);
+    cr_expect(y == -90);
+    cr_expect_eq(view_from_name("sideways", &y, &p), -1);
+    for (int i = 0; view_name(i); i++)
+        cr_expect_eq(view_from_name(view_name(i), &y, &p), 0);
+}

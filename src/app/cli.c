@@ -36,7 +36,9 @@ void cli_usage(FILE *f)
 "\n"
 "View:\n"
 "  -a, --algo NAME       zbuffer, scanline, span, hzb, hzb-octree (default zbuffer)\n"
-"  --yaw DEG --pitch DEG --roll DEG   turn the scene\n"
+"  --view NAME           front, back, left, right, top, bottom, iso, or auto (the\n"
+"                        default: the three-quarter view that sees most of the model)\n"
+"  --yaw DEG --pitch DEG --roll DEG   turn the scene (on top of --view's turn)\n"
 "  --zoom F              scale (1 = fit to 90% of the view)\n"
 "  --pan X,Y             move the view (fractions of the scene's radius, right and up)\n"
 "  --fit-from YAW,PITCH,ROLL  the turn the view was fitted at (default: the turn)\n"
@@ -134,7 +136,7 @@ enum {
     OPT_INFO = 256, OPT_BENCH, OPT_BENCH_TTY, OPT_JSON, OPT_CULL, OPT_ORTHO, OPT_PERSP,
     OPT_DUMP_IDS, OPT_DUMP_SCREEN, OPT_MODE, OPT_COLOR, OPT_SHADE, OPT_YAW, OPT_PITCH,
     OPT_ROLL, OPT_ZOOM, OPT_PAN, OPT_FIT_FROM, OPT_MOVE, OPT_TURN, OPT_SCALE, OPT_VIEWS,
-    OPT_GRID, OPT_FPS, OPT_MAX_POLYS, OPT_SAMPLES, OPT_CREASE, OPT_LIGHT, OPT_AMBIENT,
+    OPT_GRID, OPT_FPS, OPT_MAX_POLYS, OPT_SAMPLES, OPT_CREASE, OPT_LIGHT, OPT_AMBIENT, OPT_VIEW,
 };
 
 static const struct option long_opts[] = {
@@ -158,6 +160,7 @@ static const struct option long_opts[] = {
     { "color", required_argument, NULL, OPT_COLOR },
     { "colour", required_argument, NULL, OPT_COLOR },
     { "shade", required_argument, NULL, OPT_SHADE },
+    { "view", required_argument, NULL, OPT_VIEW },
     { "yaw", required_argument, NULL, OPT_YAW },
     { "pitch", required_argument, NULL, OPT_PITCH },
     { "roll", required_argument, NULL, OPT_ROLL },
@@ -274,17 +277,27 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
                 BAD_VAL("lambert, smooth, depth or id");
             break;
         case 'a': o->algo = val; break;
+        case OPT_VIEW: {
+            float y, p;
+            if (strcmp(val, "auto") && view_from_name(val, &y, &p))
+                BAD_VAL("front, back, left, right, top, bottom, iso or auto");
+            o->view = val;
+            break;
+        }
         case OPT_YAW:
             if (parse_float(val, &o->yaw))
                 BAD_VAL("degrees, at most 1e9 in size");
+            o->turned = 1;
             break;
         case OPT_PITCH:
             if (parse_float(val, &o->pitch))
                 BAD_VAL("degrees, at most 1e9 in size");
+            o->turned = 1;
             break;
         case OPT_ROLL:
             if (parse_float(val, &o->roll))
                 BAD_VAL("degrees, at most 1e9 in size");
+            o->turned = 1;
             break;
         case OPT_ZOOM:
             if (parse_float(val, &o->zoom) || !(o->zoom >= 1e-3f && o->zoom <= 1e3f))

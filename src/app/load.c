@@ -93,15 +93,23 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
             ob->scale = pl->v[0];
     }
     light_set(&s->light, o->light[0], o->light[1], o->ambient);
+    /* the view: a named one, the picked one (asked for, or when no turn
+     * is given at all), or just the turn given */
+    float vy = 0, vp = 0;
+    if (o->view && strcmp(o->view, "auto"))
+        view_from_name(o->view, &vy, &vp);
+    else if (o->view || !o->turned)
+        scene_pick_view(s, &vy, &vp);
+    float yaw = vy + o->yaw, pitch = vp + o->pitch;
     s->cam.persp = o->persp;
     s->cam.fov_deg = o->fov;
-    const float *fit = o->has_fit_from ? o->fit_from : (const float[3]){ o->yaw, o->pitch, o->roll };
+    const float *fit = o->has_fit_from ? o->fit_from : (const float[3]){ yaw, pitch, o->roll };
     s->cam.yaw = deg2rad(fit[0]);
     s->cam.pitch = deg2rad(fit[1]);
     s->cam.roll = deg2rad(fit[2]);
     scene_fit(s);
-    s->cam.yaw = deg2rad(o->yaw);
-    s->cam.pitch = deg2rad(o->pitch);
+    s->cam.yaw = deg2rad(yaw);
+    s->cam.pitch = deg2rad(pitch);
     s->cam.roll = deg2rad(o->roll);
     s->cam.zoom = o->zoom;
     s->cam.pan = v3(o->pan[0], o->pan[1], 0);

@@ -110,3 +110,12 @@ expect_err "the allowed counts are named" "1, 4, 9 or 16"
 "$Z" --print --size 40x12 --color none --mode ascii --samples 1 assets/knot.obj >"$T/s1"
 if cmp -s "$T/s-default" "$T/s4" && ! cmp -s "$T/s4" "$T/s1"; then ok "--print takes 4 samples by default"; else
     notok "--print takes 4 samples by default"; fi
+
+# views
+expect_status "an unknown --view is a usage error" 2 "$Z" --print --view sideways assets/cube.obj
+expect_err "the views are named" "front, back, left"
+"$Z" --print --size 30x10 --color none --view front assets/knot.obj >"$T/vf"
+"$Z" --print --size 30x10 --color none --yaw 0 --pitch 0 assets/knot.obj >"$T/v0"
+"$Z" --print --size 30x10 --color none assets/knot.obj >"$T/vauto"
+if cmp -s "$T/vf" "$T/v0" && ! cmp -s "$T/vf" "$T/vauto"; then ok "--view front is the plain view; the default picks another"; else
+    notok "--view front is the plain view; the default picks another"; fi
