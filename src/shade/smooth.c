@@ -110,7 +110,7 @@ int smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg)
         return -1;
     }
     /* face -> its run of polygons (first, count) in its loaded object */
-    memset(sd->face_poly, 0, ((size_t)s->nfaces + 1) * 2 * sizeof(uint32_t));
+    memset(sd->face_poly, 0, ((size_t)s->nfaces + 1) * 2 * sizeof(uint32_t));   /* loaded faces only */
     float cos_crease = cosf(deg2rad(crease_deg < 0 ? 0 : crease_deg > 180 ? 180 : crease_deg));
     uint32_t nb = s->nbase_objs ? s->nbase_objs : (uint32_t)s->nobjs;
     for (uint32_t oi = 0; oi < nb && (int)oi < s->nobjs; oi++) {
@@ -226,42 +226,15 @@ static Vec3 face_normal_at(const SmoothData *sd, const Scene *s, const Object *o
     return n;
 }
 
-/* The object instance that drew face f at world point q: the loaded
- * object, or among its grid copies (which share its faces) the one whose
- * box holds q. */
-static int instance_of(const Scene *s, int base, Vec3 q, int hint)
-{
-    if (s->nobjs <= (int)s->nbase_objs)
-        return base;
-    const Object *b = &s->objs[base];
-    int best = base;
-    float bestd = INFINITY;
-    for (int k = 0; k < s->nobjs; k++) {
-        int oi = (hint + k) % s->nobjs;
-        const Object *o = &s->objs[oi];
-        if (o->poly_first != b->poly_first || o->poly_count != b->poly_count)
-            continue;
-        Vec3 c = v3_add(o->centre, o->offset);     /* its box's centre in the world */
-        float d = v3_len(v3_sub(q, c));
-        float r = v3_len(o->half) * o->scale * 1.001f;
-        if (d <= r)
-            return oi;
-        if (d < bestd) {
-            bestd = d;
-            best = oi;
-        }
-    }
-    return best;
-}
-
 int shade_smooth(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, SmoothData *sd,
                  const uint8_t *face_rgb_default, Image *out)
 {
     Mat4 view = camera_view(&s->cam);
-    Mat4 vinv = placement_inverse(&view);   /* view -> world, to find grid copies */
     double cx = fb->w * 0.5, cy = fb->h * 0.5;
-    int cached = -1, hint = 0;
+    int cached = -1;
+    int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
     InstMat im;
+    memset(&im, 0, sizeof im);     /* set before use (cached starts at -1) */
     float amb = s->light.ambient;
     for (int y = 0; y < fb->h; y++)
         for (int x = 0; x < fb->w; x++) {
@@ -287,19 +260,18 @@ int shade_smooth(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, Smo
                 vx = (x + 0.5 - cx) * ze / sp->focal_x;
                 vy = (cy - (y + 0.5)) * ze / sp->focal_y;
             }
-            int base = s->face_obj ? s->face_obj[id] : 0;
-            int inst = base;
-            if (s->nobjs > (int)s->nbase_objs) {
-                Vec3 w = m4_point(&vinv, v3((float)vx, (float)vy, (float)vz));
-                inst = hint = instance_of(s, base, w, hint);
-            }
+            /* the instance that drew it (grid copies have faces of their
+             * own) and the loaded object whose polygons it shares */
+            int inst = s->face_obj ? s->face_obj[id] : 0;
+            int base = inst % nb;
+            uint32_t bface = (uint32_t)(s->objs[base].face_base + (id - s->objs[inst].face_base));
             if (inst != cached) {
                 inst_mat(s, &view, inst, &im);
                 cached = inst;
             }
             Vec3 q = m4_point(&im.inv, v3((float)vx, (float)vy, (float)vz));
             float p[3] = { q.x, q.y, q.z };
-            Vec3 n = face_normal_at(sd, s, &s->objs[base], (uint32_t)id, p);
+            Vec3 n = face_normal_at(sd, s, &s->objs[base], bface, p);
             Vec3 v = v3_norm(m4_dir(&im.fwd, n));
             float k = amb + (1.0f - amb) * fabsf(v3_dot(v, s->light.dir));
             const uint8_t *c = s->face_rgb ? s->face_rgb + 3 * (size_t)id : face_rgb_default;
