@@ -37,6 +37,7 @@ typedef struct {
     int         shade;          /* ShadeMode */
     const char *algo;           /* name, "all", or a comma list (bench) */
     const char *view;           /* --view name, "auto", or NULL */
+    int         layout;         /* LayoutKind of several files */
     float       yaw, pitch, roll;   /* degrees, added to the view's turn */
     int         turned;         /* --yaw, --pitch or --roll given */
     float       zoom;
@@ -80,6 +81,7 @@ typedef struct {
     Viewport     vp;
     ShadeMode    shade;
     float        crease;        /* smooth shading's crease angle, degrees */
+    int          highlight;     /* object shown highlighted, -1 none */
     int          samples;       /* per pixel: 1, 4, 9 or 16 (rendered at sqrt x the size, averaged) */
     Image        img_ss;        /* the supersampled picture before averaging */
     HsrStats     st;

@@ -22,8 +22,9 @@ typedef struct {
     /* placement, changed by the viewer */
     float      yaw, pitch, roll;   /* radians */
     Vec3       offset;        /* world translation (moves by the viewer) */
-    Vec3       home;          /* offset after a reset (grid copies sit apart) */
+    Vec3       home;          /* offset after a reset (grid copies, laid-out files sit apart) */
     float      scale;         /* uniform, 1 = as loaded */
+    float      home_scale;    /* scale after a reset (a laid-out file's common size) */
 } Object;
 
 typedef struct {
@@ -105,6 +106,16 @@ const char *view_name(int i);           /* the i-th name, NULL past the end */
 /* A useful first view of the loaded objects: the three-quarter view from
  * above that sees the most surface facing it (yaw and pitch, degrees). */
 void scene_pick_view(const Scene *s, float *yaw_out, float *pitch_out);
+
+/* layout.c: several files side by side (row, grid) at a common size,
+ * across the screen under the first turn (radians), or as their
+ * coordinates place them (none); sets the objects' homes. */
+typedef enum { LAYOUT_ROW = 0, LAYOUT_GRID, LAYOUT_NONE, LAYOUT_COUNT } LayoutKind;
+extern const char *const layout_names[LAYOUT_COUNT];
+int  layout_from_name(const char *name);        /* -1 if unknown */
+void scene_layout(Scene *s, LayoutKind kind, float yaw, float pitch, float roll);
+/* The colour of the i-th object when it has none of its own. */
+void object_colour(int i, uint8_t rgb_out[3]);
 
 /* Object-to-world matrix: turn and scale about the object's centre, then
  * offset. */

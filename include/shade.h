@@ -55,9 +55,16 @@ void shade_cache_free(ShadeCache *c);
  * interpolated per pixel from the corners, edges sharper than crease
  * degrees kept), depth (near white, far black, over the frame's depth
  * range) or id (a distinct colour per face id). sp gives the projection
- * the frame was rendered with. Background pixels get rgb 0 and lit 0. */
-int  shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode,
-                 float crease, ShadeCache *cache, Image *out);
+ * the frame was rendered with. The highlighted object's pixels are
+ * tinted warm. Background pixels get rgb 0 and lit 0. */
+typedef struct {
+    ShadeMode mode;
+    float     crease;       /* smooth: degrees */
+    int       highlight;    /* object drawn highlighted (the viewer's selection), -1 none */
+} ShadeSettings;
+
+int  shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,
+                 ShadeCache *cache, Image *out);
 
 /* smooth.c */
 int  smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg);

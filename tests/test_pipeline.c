@@ -161,3 +161,98 @@ Test(pipeline, smooth_varies_within_faces_and_changes_slowly)
     pipeline_free(&smooth);
     scene_free(&s);
 }
+
+/* ==== several files ==== */
+
+static void load_files(Scene *s, int layout, int n, const char **files)
+{
+    Options o;
+    cli_defaults(&o);
+    o.layout = layout;
+    for (int i = 0; i < n; i++)
+        o.files[i] = files[i];
+    o.nfiles = n;
+    char err[512];
+    cr_assert_eq(app_load_scene(&o, s, err, sizeof err), 0, "%s", err);
+}
+
+/* World box of object i at its current placement. */
+static void world_box(const Scene *s, int i, Vec3 *lo, Vec3 *hi)
+{
+    const Object *o = &s->objs[i];
+    Vec3 c = v3_add(o->centre, o->offset), h = v3_scale(o->half, o->scale);
+    *lo = v3_sub(c, h);
+    *hi = v3_add(c, h);
+}
+
+Test(pipeline, row_layout_sets_files_apart_at_one_size)
+{
+    const char *files[] = { "assets/cube.obj", "assets/knot.obj" };
+    Scene s;
+    load_files(&s, LAYOUT_ROW, 2, files);
+    cr_assert_eq(s.nobjs, 2);
+    Vec3 alo, ahi, blo, bhi;
+    world_box(&s, 0, &alo, &ahi);
+    world_box(&s, 1, &blo, &bhi);
+    int overlap = alo.x < bhi.x && blo.x < ahi.x && alo.y < bhi.y && blo.y < ahi.y && alo.z < bhi.z && blo.z < ahi.z;
+    cr_expect(!overlap, "the two files' boxes are apart");
+    float da = v3_len(v3_sub(ahi, alo)), db = v3_len(v3_sub(bhi, blo));
+    cr_expect_float_eq(da, db, 1e-3f * da, "a common size: %g vs %g", da, db);
+    /* a reset comes back to the layout */
+    Vec3 before = s.objs[1].offset;
+    s.objs[1].offset = v3(9, 9, 9);
+    s.objs[1].scale = 5;
+    scene_reset(&s);
+    cr_expect(s.objs[1].offset.x == before.x && s.objs[1].offset.y == before.y && s.objs[1].scale != 5);
+    scene_free(&s);
+}
+
+Test(pipeline, layout_none_keeps_coordinates)
+{
+    const char *files[] = { "assets/cube.obj", "assets/knot.obj" };
+    Scene s;
+    load_files(&s, LAYOUT_NONE, 2, files);
+    for (int i = 0; i < 2; i++) {
+        cr_expect(s.objs[i].offset.x == 0 && s.objs[i].offset.y == 0 && s.objs[i].offset.z == 0);
+        cr_expect_eq(s.objs[i].scale, 1.0f);
+    }
+    scene_free(&s);
+}
+
+Test(pipeline, objects_without_colour_get_distinct_ones_and_the_selection_shows)
+{
+    const char *files[] = { "assets/cube.obj", "assets/torus.obj" };
+    Scene s;
+    load_files(&s, LAYOUT_ROW, 2, files);
+    const uint8_t *a = &s.face_rgb[3 * (size_t)s.objs[0].face_base];
+    const uint8_t *b = &s.face_rgb[3 * (size_t)s.objs[1].face_base];
+    cr_expect(memcmp(a, b, 3) != 0, "two uncoloured objects, two colours");
+    Pipeline plain, sel;
+    cr_assert_eq(pipeline_init(&plain, &s, hsr_find("zbuffer"), 1), 0);
+    cr_assert_eq(pipeline_init(&sel, &s, hsr_find("zbuffer"), 1), 0);
+    sel.highlight = 1;
+    cr_assert_eq(pipeline_render(&plain, 120, 60, 1.0f, 0, 1), 0);
+    cr_assert_eq(pipeline_render(&sel, 120, 60, 1.0f, 0, 1), 0);
+    long same0 = 0, n0 = 0, diff1 = 0, n1 = 0;
+    for (int i = 0; i < 120 * 60; i++) {
+        int32_t id = plain.fb.ids[i];
+        if (id < 0)
+            continue;
+        int obj = s.face_obj[id];
+        int d = memcmp(plain.img.rgb + 3 * i, sel.img.rgb + 3 * i, 3) != 0;
+        if (obj == 0) {
+            n0++;
+            same0 += !d;
+        } else {
+            n1++;
+            diff1 += d;
+        }
+    }
+    cr_assert_gt(n0, 100);
+    cr_assert_gt(n1, 100);
+    cr_expect_eq(same0, n0, "the other object is untouched");
+    cr_expect_eq(diff1, n1, "every pixel of the selected object is tinted");
+    pipeline_free(&plain);
+    pipeline_free(&sel);
+    scene_free(&s);
+}

@@ -68,6 +68,16 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         free(meshes);
         return -1;
     }
+    /* the view: a named one, the picked one (asked for, or when no turn
+     * is given at all), or just the turn given; several files are laid
+     * out across it */
+    float vy = 0, vp = 0;
+    if (o->view && strcmp(o->view, "auto"))
+        view_from_name(o->view, &vy, &vp);
+    else if (o->view || !o->turned)
+        scene_pick_view(s, &vy, &vp);
+    float yaw = vy + o->yaw, pitch = vp + o->pitch;
+    scene_layout(s, (LayoutKind)o->layout, deg2rad(yaw), deg2rad(pitch), deg2rad(o->roll));
     if (o->grid > 1 && scene_make_grid(s, o->grid, err, errlen)) {
         scene_free(s);
         return -1;
@@ -90,17 +100,9 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
             ob->pitch = deg2rad(pl->v[1]);
             ob->roll = deg2rad(pl->v[2]);
         } else
-            ob->scale = pl->v[0];
+            ob->scale = ob->home_scale * pl->v[0];
     }
     light_set(&s->light, o->light[0], o->light[1], o->ambient);
-    /* the view: a named one, the picked one (asked for, or when no turn
-     * is given at all), or just the turn given */
-    float vy = 0, vp = 0;
-    if (o->view && strcmp(o->view, "auto"))
-        view_from_name(o->view, &vy, &vp);
-    else if (o->view || !o->turned)
-        scene_pick_view(s, &vy, &vp);
-    float yaw = vy + o->yaw, pitch = vp + o->pitch;
     s->cam.persp = o->persp;
     s->cam.fov_deg = o->fov;
     const float *fit = o->has_fit_from ? o->fit_from : (const float[3]){ yaw, pitch, o->roll };

@@ -19,6 +19,7 @@ int pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads)
     p->shade = SHADE_LAMBERT;
     p->samples = 1;
     p->crease = SHADE_CREASE_DEFAULT;
+    p->highlight = -1;
     return pipeline_set_algo(p, algo);
 }
 
@@ -72,8 +73,9 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     p->hsr_ms = t2 - t1;
     p->shade_ms = 0;
     if (shade_too) {
-        if (k == 1 ? shade_frame(p->scene, &p->sp, &p->fb, p->shade, p->crease, &p->shade_cache, &p->img)
-                   : shade_frame(p->scene, &p->sp, &p->fb, p->shade, p->crease, &p->shade_cache, &p->img_ss) ||
+        ShadeSettings set = { p->shade, p->crease, p->highlight };
+        if (k == 1 ? shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img)
+                   : shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img_ss) ||
                          image_downsample(&p->img_ss, k, &p->img))
             return -1;
         p->shade_ms = now_ms() - t2;

@@ -69,6 +69,7 @@ static int render(App *a, int cols, int rows)
 {
     int pw, ph;
     mode_cell_pixels(a->mode, &pw, &ph);
+    a->p.highlight = a->s->nobjs > 1 ? a->sel : -1;      /* the selection shows in the picture */
     if (pipeline_render(&a->p, cols * pw, rows * ph, mode_pixel_aspect(a->mode), a->cull, 1))
         return -1;
     return cells_from_image(&a->p.img, a->mode, term_color(), &a->p.cells);

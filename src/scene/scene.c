@@ -78,7 +78,9 @@ static int face_is_planar(const Mesh *m, uint32_t f, const double n[3])
     return 1;
 }
 
-static void face_base_rgb(const Mesh *m, uint32_t f, uint8_t out[3])
+/* The face's own colour (material, else its corners' colours); returns
+ * 0 when it has none and gets the default. */
+static int face_base_rgb(const Mesh *m, uint32_t f, uint8_t out[3])
 {
     int32_t mat = m->face_mat ? m->face_mat[f] : -1;
     if (mat >= 0 && (uint32_t)mat < m->nmats) {
@@ -86,7 +88,7 @@ static void face_base_rgb(const Mesh *m, uint32_t f, uint8_t out[3])
             float c = m->mats[mat].kd[i];
             out[i] = (uint8_t)(c <= 0 ? 0 : c >= 1 ? 255 : c * 255.0f + 0.5f);
         }
-        return;
+        return 1;
     }
     if (m->rgb) {
         uint32_t a = m->face_start[f], b = m->face_start[f + 1];
@@ -98,9 +100,10 @@ static void face_base_rgb(const Mesh *m, uint32_t f, uint8_t out[3])
             float c = s[i] / (float)(b - a);
             out[i] = (uint8_t)(c <= 0 ? 0 : c >= 1 ? 255 : c * 255.0f + 0.5f);
         }
-        return;
+        return 1;
     }
     memcpy(out, default_rgb, 3);
+    return 0;
 }
 
 /* ==== building ==== */
@@ -175,10 +178,10 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
             double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
             for (int i = 0; i < 3; i++)
                 s->face_normal[3 * gface + i] = len > 0 ? (float)(n[i] / len) : (i == 2);
-            face_base_rgb(m, f, &s->face_rgb[3 * gface]);
-            planar[gface] = (uint8_t)face_is_planar(m, f, n);
+            int own = face_base_rgb(m, f, &s->face_rgb[3 * gface]);
+            planar[gface] = (uint8_t)(face_is_planar(m, f, n) | own << 1);
             uint32_t nc = m->face_start[f + 1] - m->face_start[f];
-            if (planar[gface]) {
+            if (planar[gface] & 1) {
                 npolys += 1;
                 ncorners += nc;
             } else {
@@ -214,12 +217,15 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
             o->vert_max = mo->vert_max;
             o->face_base = (int32_t)(gface + mo->face_first);
             o->poly_first = pi;
-            o->scale = 1;
+            o->scale = o->home_scale = 1;
             object_bounds(o);
             for (uint32_t f = mo->face_first; f < mo->face_first + mo->face_count; f++) {
                 uint32_t g = gface + f, a = m->face_start[f], b = m->face_start[f + 1];
                 s->face_obj[g] = (uint16_t)oi;
-                if (planar[g]) {
+                /* objects without colours of their own get distinct ones */
+                if (!(planar[g] & 2) && nobjs > 1)
+                    object_colour((int)oi, &s->face_rgb[3 * (size_t)g]);
+                if (planar[g] & 1) {
                     s->poly_start[pi] = ci;
                     s->poly_lface[pi++] = f - mo->face_first;
                     for (uint32_t c = a; c < b; c++)
@@ -413,7 +419,7 @@ void scene_reset(Scene *s)
     for (int i = 0; i < s->nobjs; i++) {
         Object *o = &s->objs[i];
         o->yaw = o->pitch = o->roll = 0;
-        o->scale = 1;
+        o->scale = o->home_scale;
         o->offset = o->home;
     }
     int persp = s->cam.persp;

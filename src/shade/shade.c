@@ -252,11 +252,40 @@ static void shade_depth(const FrameBufs *fb, uint32_t nfaces, Image *out)
     }
 }
 
-int shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode,
-                float crease, ShadeCache *cache, Image *out)
+/* Tint the pixels of object obj towards a warm yellow: the selection
+ * shows in any shading and at any colour depth. */
+static void highlight_object(const Scene *s, const FrameBufs *fb, int obj, Image *out)
+{
+    static const float tint[3] = { 255, 205, 60 }, share = 0.45f;
+    size_t n = (size_t)fb->w * (size_t)fb->h;
+    for (size_t i = 0; i < n; i++) {
+        int32_t id = fb->ids[i];
+        if (id < 0 || (uint32_t)id >= s->nfaces || !s->face_obj || s->face_obj[id] != obj)
+            continue;
+        uint8_t *px = out->rgb + 3 * i;
+        for (int a = 0; a < 3; a++)
+            px[a] = clamp_u8((1 - share) * (float)px[a] + share * tint[a]);
+    }
+}
+
+static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode,
+                      float crease, ShadeCache *cache, Image *out);
+
+int shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,
+                ShadeCache *cache, Image *out)
 {
     if (image_resize(out, fb->w, fb->h) != 0)
         return -1;
+    if (shade_mode(s, sp, fb, set->mode, set->crease, cache, out))
+        return -1;
+    if (set->highlight >= 0 && set->highlight < s->nobjs)
+        highlight_object(s, fb, set->highlight, out);
+    return 0;
+}
+
+static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode,
+                      float crease, ShadeCache *cache, Image *out)
+{
     uint32_t nfaces = s->nfaces;
     if (mode == SHADE_DEPTH) {
         shade_depth(fb, nfaces, out);
