@@ -99,6 +99,21 @@ int  pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, in
 /* The side k of the k x k samples a pixel gets for a sample count. */
 int  pipeline_samples_side(int samples);
 
+/* The settings outside the scene that change the picture. */
+typedef struct {
+    int         mode;           /* DisplayMode, -1 = not part of the view (images) */
+    ShadeMode   shade;
+    float       crease;
+    int         cull;
+    int         samples;        /* 0 = the default */
+    const char *algo;           /* NULL = the default */
+} ViewSettings;
+
+/* viewcmd.c: the command line that reproduces the view (the files of o,
+ * the scene's camera and placements, the settings v) into buf. Returns
+ * 0, or -1 when buf is too small. */
+int  view_command(char *buf, size_t len, const Options *o, const Scene *s, const ViewSettings *v);
+
 /* The modes main() dispatches to; each returns the exit status. */
 int  app_info(const Options *o, Scene *s);
 int  app_bench(const Options *o, Scene *s);

@@ -34,6 +34,7 @@ typedef struct {
     int   persp;              /* 0 = orthographic */
     float fov_deg;            /* vertical field of view under perspective */
     /* set by scene_fit() */
+    float fit_yaw, fit_pitch, fit_roll;   /* the turn it fitted from (radians) */
     Vec3  centre;             /* world point that maps to the image centre */
     float radius;             /* world radius of the scene about centre (depth range) */
     Vec3  fit_half;           /* view-space half extents of the scene when fitted:
@@ -94,9 +95,9 @@ void scene_free(Scene *s);
 
 /* Reset the camera (and object placements), then fit. The light stays. */
 void scene_reset(Scene *s);
-/* Fit: centre the scene as seen from the camera's current turn and set
- * its view-space extents, which the projection scales to about 90% of
- * the viewport (pan and zoom are reset). */
+/* Fit: centre the scene (its objects at home) as seen from the camera's
+ * current turn and set its view-space extents, which the projection
+ * scales to about 90% of the viewport (pan and zoom are reset). */
 void scene_fit(Scene *s);
 
 /* view.c: the named views (front back left right top bottom iso), as a
@@ -108,12 +109,12 @@ const char *view_name(int i);           /* the i-th name, NULL past the end */
 void scene_pick_view(const Scene *s, float *yaw_out, float *pitch_out);
 
 /* layout.c: several files side by side (row, grid) at a common size,
- * across the screen under the first turn (radians), or as their
- * coordinates place them (none); sets the objects' homes. */
+ * level and across the screen of a view turned by yaw (radians), or as
+ * their coordinates place them (none); sets the objects' homes. */
 typedef enum { LAYOUT_ROW = 0, LAYOUT_GRID, LAYOUT_NONE, LAYOUT_COUNT } LayoutKind;
 extern const char *const layout_names[LAYOUT_COUNT];
 int  layout_from_name(const char *name);        /* -1 if unknown */
-void scene_layout(Scene *s, LayoutKind kind, float yaw, float pitch, float roll);
+void scene_layout(Scene *s, LayoutKind kind, float yaw);
 /* The colour of the i-th object when it has none of its own. */
 void object_colour(int i, uint8_t rgb_out[3]);
 

@@ -69,15 +69,19 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         return -1;
     }
     /* the view: a named one, the picked one (asked for, or when no turn
-     * is given at all), or just the turn given; several files are laid
-     * out across it */
-    float vy = 0, vp = 0;
+     * is given at all), or just the turn given. Several files are laid
+     * out across the picked view, whatever view is asked for, so that a
+     * view's command line (viewcmd.c) finds them where they were. */
+    float py, pp, vy = 0, vp = 0;
+    scene_pick_view(s, &py, &pp);
     if (o->view && strcmp(o->view, "auto"))
         view_from_name(o->view, &vy, &vp);
-    else if (o->view || !o->turned)
-        scene_pick_view(s, &vy, &vp);
+    else if (o->view || !o->turned) {
+        vy = py;
+        vp = pp;
+    }
     float yaw = vy + o->yaw, pitch = vp + o->pitch;
-    scene_layout(s, (LayoutKind)o->layout, deg2rad(yaw), deg2rad(pitch), deg2rad(o->roll));
+    scene_layout(s, (LayoutKind)o->layout, deg2rad(py));
     if (o->grid > 1 && scene_make_grid(s, o->grid, err, errlen)) {
         scene_free(s);
         return -1;

@@ -5,8 +5,8 @@
  * 0.15 units tall sits invisibly inside a teapot 3 units wide. `row`
  * and `grid` scale each file (all its objects together, about the centre
  * of its box) to a common size and set the files side by side, a file's
- * own objects keeping their places relative to each other, across the
- * screen as the scene is first seen; `none` keeps
+ * own objects keeping their places relative to each other, level and
+ * across the screen of a view turned by the given yaw; `none` keeps
  * the files' coordinates, which an assembly of parts needs. The result
  * is the objects' home placement, so a reset comes back to it. */
 
@@ -47,7 +47,7 @@ static void files_box(const Scene *s, int a, int b, Vec3 *lo_out, Vec3 *hi_out)
     *hi_out = v3(hi[0], hi[1], hi[2]);
 }
 
-void scene_layout(Scene *s, LayoutKind kind, float yaw, float pitch, float roll)
+void scene_layout(Scene *s, LayoutKind kind, float yaw)
 {
     if (kind == LAYOUT_NONE || s->nmeshes < 2)
         return;
@@ -55,11 +55,11 @@ void scene_layout(Scene *s, LayoutKind kind, float yaw, float pitch, float roll)
     int cols = kind == LAYOUT_ROW ? nfiles : (int)ceil(sqrt((double)nfiles));
     /* each file to a box of diagonal 1, in cells 1.25 apart */
     const float cell = 1.25f;
-    /* rows run along the screen's x as the scene is first seen, and
-     * stack down its y: the world axes those are, under the first turn */
-    Mat4 turn = m4_rotate_ypr(yaw, pitch, roll);
+    /* rows run level, across the screen of a view turned by yaw (whatever
+     * its pitch), and stack down the vertical */
+    Mat4 turn = m4_rotate_ypr(yaw, 0, 0);
     Vec3 right = v3(turn.m[0][0], turn.m[0][1], turn.m[0][2]);
-    Vec3 up = v3(turn.m[1][0], turn.m[1][1], turn.m[1][2]);
+    Vec3 up = v3(0, 1, 0);
     int first = 0;
     for (int f = 0; f < nfiles; f++) {
         int last = first;

@@ -356,13 +356,23 @@ void scene_fit(Scene *s)
      * its centre becomes the image centre and its half extents what the
      * projection fills 90% of the image with. Grid copies, which can be
      * many, count by their boxes' corners. The radius about the centre
-     * bounds the depth range. */
+     * bounds the depth range. Objects count at their home placement (as
+     * loaded and laid out), not where the viewer has moved them: the fit
+     * then depends only on the turn, which the command line can give
+     * (--fit-from), so every view can be reproduced exactly. */
     Camera *c = &s->cam;
     Mat4 turn = m4_rotate_ypr(c->yaw, c->pitch, c->roll);
+    c->fit_yaw = c->yaw;
+    c->fit_pitch = c->pitch;
+    c->fit_roll = c->roll;
     float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
     float wlo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, whi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
     for (int i = 0; i < s->nobjs; i++) {
-        const Object *o = &s->objs[i];
+        Object home = s->objs[i];
+        home.yaw = home.pitch = home.roll = 0;
+        home.offset = home.home;
+        home.scale = home.home_scale;
+        const Object *o = &home;
         Mat4 m = object_matrix(o);
         if (i >= (int)s->nbase_objs) {
             for (int k = 0; k < 8; k++) {

@@ -1,0 +1,156 @@
+/* test_viewcmd.c: the command line written for a view gives that view
+ * back: parsed and loaded, the same camera, placements and picture. */
+
+#include <criterion/criterion.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+
+/* Split a command line as a POSIX shell would for our quoting: plain
+ * words and '...' (with '\'' for a quote). Returns argc. */
+static int split(char *line, char **argv, int max)
+{
+    int n = 0;
+    char *p = line, *w = line;
+    while (*p && n < max) {
+        while (*p == ' ')
+            p++;
+        if (!*p)
+            break;
+        argv[n++] = w;
+        while (*p && *p != ' ') {
+            if (*p == '\'') {
+                p++;
+                while (*p && *p != '\'')
+                    *w++ = *p++;
+                if (*p)
+                    p++;
+            } else if (*p == '\\' && p[1]) {
+                *w++ = p[1];
+                p += 2;
+            } else {
+                *w++ = *p++;
+            }
+        }
+        if (*p)
+            p++;
+        *w++ = 0;
+    }
+    return n;
+}
+
+static void load(Options *o, Scene *s)
+{
+    char err[512];
+    cr_assert_eq(app_load_scene(o, s, err, sizeof err), 0, "%s", err);
+}
+
+static void render_ids(Scene *s, int cull, int32_t *out)
+{
+    Pipeline p;
+    cr_assert_eq(pipeline_init(&p, s, hsr_find("zbuffer"), 1), 0);
+    cr_assert_eq(pipeline_render(&p, 160, 96, 1.0f, cull, 0), 0);
+    memcpy(out, p.fb.ids, 160 * 96 * sizeof *out);
+    pipeline_free(&p);
+}
+
+static void round_trip(int persp)
+{
+    Options o;
+    cli_defaults(&o);
+    o.files[0] = "assets/scene.obj";
+    o.files[1] = "assets/torus.obj";
+    o.nfiles = 2;
+    Scene s;
+    load(&o, &s);
+    cr_assert_geq(s.nobjs, 3);
+    /* a session in the viewer: turn, refit from there, turn on, zoom,
+     * pan, move, turn and scale objects, change the light */
+    s.cam.persp = persp;
+    s.cam.fov_deg = 47;
+    s.cam.yaw = 0.7f;
+    s.cam.pitch = -0.3f;
+    scene_fit(&s);
+    s.cam.yaw = 1.234567f;
+    s.cam.pitch = 0.456f;
+    s.cam.roll = -0.1f;
+    s.cam.zoom = 1.15f * 1.15f * 1.15f;
+    s.cam.pan = v3(0.05f / s.cam.zoom, -0.15f, 0);
+    s.objs[1].offset = v3_add(s.objs[1].home, v3(0.25f, -0.5f, 0.125f));
+    s.objs[2].yaw = 0.3f;
+    s.objs[2].roll = -1.2f;
+    s.objs[0].scale = s.objs[0].home_scale * 1.15f;
+    light_set(&s.light, 20, 10, 0.3f);
+    ViewSettings v = { MODE_HALF, SHADE_SMOOTH, 45, 1, 9, "span" };
+    char cmd[4096];
+    cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
+    cr_assert(strncmp(cmd, "zview ", 6) == 0, "%s", cmd);
+
+    char *argv[128];
+    int argc = split(cmd, argv, 128);
+    Options o2;
+    char err[256];
+    cr_assert_eq(cli_parse(argc, argv, &o2, err, sizeof err), 0, "%s: %s", err, cmd);
+    cr_expect_eq(o2.mode, MODE_HALF);
+    cr_expect_eq(o2.shade, SHADE_SMOOTH);
+    cr_expect_eq(o2.crease, 45);
+    cr_expect(o2.cull);
+    cr_expect_eq(o2.samples, 9);
+    cr_expect_str_eq(o2.algo, "span");
+    cr_assert_eq(o2.nfiles, 2);
+    Scene t;
+    load(&o2, &t);
+    const Camera *a = &s.cam, *b = &t.cam;
+    cr_expect(a->yaw == b->yaw && a->pitch == b->pitch && a->roll == b->roll, "turn");
+    cr_expect(a->fit_yaw == b->fit_yaw && a->fit_pitch == b->fit_pitch, "fit turn");
+    cr_expect(memcmp(&a->centre, &b->centre, sizeof a->centre) == 0, "fitted centre");
+    cr_expect(memcmp(&a->fit_half, &b->fit_half, sizeof a->fit_half) == 0, "fitted extents");
+    cr_expect(a->radius == b->radius && a->zoom == b->zoom, "radius, zoom");
+    cr_expect(a->pan.x == b->pan.x && a->pan.y == b->pan.y, "pan");
+    cr_expect(a->persp == b->persp && (!persp || a->fov_deg == b->fov_deg), "projection");
+    cr_expect(s.light.dir.x == t.light.dir.x && s.light.ambient == t.light.ambient, "light");
+    for (int i = 0; i < s.nobjs; i++) {
+        const Object *p = &s.objs[i], *q = &t.objs[i];
+        cr_expect(p->yaw == q->yaw && p->pitch == q->pitch && p->roll == q->roll, "object %d turn", i);
+        cr_expect(fabsf(p->offset.x - q->offset.x) <= 1e-6f * (1 + fabsf(p->offset.x)) &&
+                      fabsf(p->offset.y - q->offset.y) <= 1e-6f * (1 + fabsf(p->offset.y)),
+                  "object %d place", i);
+        cr_expect(fabsf(p->scale - q->scale) <= 1e-6f * p->scale, "object %d scale", i);
+    }
+    int32_t *ia = malloc(160 * 96 * 4), *ib = malloc(160 * 96 * 4);
+    render_ids(&s, 1, ia);
+    render_ids(&t, 1, ib);
+    cr_expect_eq(memcmp(ia, ib, 160 * 96 * 4), 0, "the same picture from: %s", cmd);
+    free(ia);
+    free(ib);
+    scene_free(&s);
+    scene_free(&t);
+}
+
+Test(viewcmd, orthographic_view_comes_back)
+{
+    round_trip(0);
+}
+
+Test(viewcmd, perspective_view_comes_back)
+{
+    round_trip(1);
+}
+
+Test(viewcmd, defaults_are_left_out_and_odd_file_names_quoted)
+{
+    Options o;
+    cli_defaults(&o);
+    o.files[0] = "it's here.obj";
+    o.nfiles = 1;
+    Scene s;
+    memset(&s, 0, sizeof s);
+    s.cam.zoom = 1;
+    light_set(&s.light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
+    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL };
+    char cmd[512];
+    cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
+    cr_expect_str_eq(cmd, "zview --yaw 0 --pitch 0 -- 'it'\\''s here.obj'");
+    cr_expect_eq(view_command(cmd, 10, &o, &s, &v), -1, "too small a buffer is reported");
+}
