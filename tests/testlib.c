@@ -1,6 +1,8 @@
 /* testlib.c: see testlib.h. */
+#define _DEFAULT_SOURCE   /* strdup */
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -102,6 +104,167 @@ long tl_diff(const FrameBufs *ref, const FrameBufs *fb, int *first_x, int *first
             }
         }
     return n;
+}
+
+/* ==== scenes built without OBJ text ==== */
+
+/* Grow *p to n elements of `size` bytes. Sizes here are small (test and
+ * fuzz scenes), so exact reallocation keeps this short. */
+static int resize(void *pp, size_t n, size_t size)
+{
+    void **p = pp;
+    void *q = realloc(*p, (n ? n : 1) * size);
+    if (!q)
+        return -1;
+    *p = q;
+    return 0;
+}
+
+int tl_mesh_init(Mesh *m, const char *path)
+{
+    memset(m, 0, sizeof *m);
+    m->path = strdup(path);
+    m->objs = calloc(1, sizeof *m->objs);
+    m->face_start = calloc(1, sizeof *m->face_start);
+    if (!m->path || !m->objs || !m->face_start)
+        return -1;
+    m->nobjs = 1;
+    snprintf(m->objs[0].name, sizeof m->objs[0].name, "%s", path);
+    return 0;
+}
+
+int tl_mesh_object(Mesh *m, const char *name)
+{
+    MeshObject *cur = &m->objs[m->nobjs - 1];
+    if (cur->face_first != m->nfaces) {
+        if (resize(&m->objs, m->nobjs + 1, sizeof *m->objs))
+            return -1;
+        cur = &m->objs[m->nobjs++];
+    }
+    memset(cur, 0, sizeof *cur);
+    cur->face_first = m->nfaces;
+    snprintf(cur->name, sizeof cur->name, "%s", name);
+    return 0;
+}
+
+int tl_mesh_vertex(Mesh *m, float x, float y, float z)
+{
+    if (resize(&m->pos, 3 * ((size_t)m->nverts + 1), sizeof *m->pos))
+        return -1;
+    float *p = &m->pos[3 * (size_t)m->nverts++];
+    p[0] = x;
+    p[1] = y;
+    p[2] = z;
+    return 0;
+}
+
+int tl_mesh_face(Mesh *m, const uint32_t *corner, uint32_t n)
+{
+    uint32_t c0 = m->face_start[m->nfaces];
+    if (resize(&m->corner, (size_t)c0 + n, sizeof *m->corner) ||
+        resize(&m->face_start, (size_t)m->nfaces + 2, sizeof *m->face_start) ||
+        resize(&m->face_mat, (size_t)m->nfaces + 1, sizeof *m->face_mat))
+        return -1;
+    memcpy(&m->corner[c0], corner, n * sizeof *corner);
+    m->face_mat[m->nfaces++] = -1;
+    m->face_start[m->nfaces] = c0 + n;
+    m->info.triangles += n - 2;
+    return 0;
+}
+
+int tl_mesh_finish(Mesh *m)
+{
+    if (m->nfaces == 0)
+        return -1;
+    if (m->objs[m->nobjs - 1].face_first == m->nfaces)
+        m->nobjs--;
+    for (uint32_t i = 0; i < m->nobjs; i++) {
+        MeshObject *o = &m->objs[i];
+        uint32_t next = i + 1 < m->nobjs ? m->objs[i + 1].face_first : m->nfaces;
+        o->face_count = next - o->face_first;
+        o->vert_min = UINT32_MAX;
+        o->vert_max = 0;
+        for (uint32_t c = m->face_start[o->face_first]; c < m->face_start[next]; c++) {
+            uint32_t v = m->corner[c];
+            o->vert_min = v < o->vert_min ? v : o->vert_min;
+            o->vert_max = v > o->vert_max ? v : o->vert_max;
+        }
+    }
+    return 0;
+}
+
+void tl_set_view(Scene *s, const TlView *v)
+{
+    s->cam.persp = v->persp;
+    s->cam.fov_deg = v->fov_deg;
+    s->cam.yaw = v->fit_yaw;
+    s->cam.pitch = v->fit_pitch;
+    s->cam.roll = v->fit_roll;
+    scene_fit(s);
+    s->cam.yaw = v->yaw;
+    s->cam.pitch = v->pitch;
+    s->cam.roll = v->roll;
+    s->cam.zoom = v->zoom;
+    s->cam.pan = v3(v->pan_x, v->pan_y, 0);
+}
+
+/* Render with fresh buffers' contents: ids that no algorithm writes and
+ * NaN depths, so that a pixel an algorithm skips cannot match by luck. */
+static int render_poisoned(const HsrAlgo *algo, int threads, const HsrInput *in, FrameBufs *fb)
+{
+    HsrRunner r;
+    HsrStats st;
+    if (fbuf_resize(fb, in->sp->w, in->sp->h))
+        return -1;
+    size_t n = (size_t)fb->w * fb->h;
+    for (size_t i = 0; i < n; i++) {
+        fb->ids[i] = INT32_MIN;
+        fb->depth[i] = NAN;
+    }
+    if (hsr_runner_init(&r, algo, threads))
+        return -1;
+    int rc = hsr_run(&r, in, fb, &st);
+    hsr_runner_free(&r);
+    return rc;
+}
+
+long tl_agree(Scene *s, const Viewport *vp, int threads, char *msg, size_t msglen)
+{
+    ScreenPolys sp = { 0 };
+    FrameBufs ref = { 0 }, fb = { 0 };
+    HsrInput in = { &sp, s, vp };
+    long bad = -1;
+    snprintf(msg, msglen, "out of memory");
+    if (screen_project(&sp, s, vp) || render_poisoned(&hsr_zbuffer, 1, &in, &ref))
+        goto out;
+    bad = 0;
+    msg[0] = '\0';
+    for (int a = 0; a < hsr_nalgos && !bad; a++) {
+        if (hsr_algos[a] == &hsr_zbuffer && threads == 1)
+            continue;   /* the reference itself */
+        if (render_poisoned(hsr_algos[a], threads, &in, &fb)) {
+            bad = -1;
+            snprintf(msg, msglen, "out of memory");
+            break;
+        }
+        int fx, fy;
+        long n = tl_diff(&ref, &fb, &fx, &fy);
+        if (n) {
+            size_t k = (size_t)fy * vp->w + fx;
+            snprintf(msg, msglen,
+                     "%dx%d aspect %g cull %d, %u polygons: %s on %d thread%s differs from zbuffer "
+                     "in %ld pixels; first (%d,%d): id %d depth %.9g, zbuffer id %d depth %.9g",
+                     vp->w, vp->h, (double)vp->pixel_aspect, vp->cull, sp.npolys,
+                     hsr_algos[a]->name, threads, threads == 1 ? "" : "s", n, fx, fy, fb.ids[k],
+                     (double)fb.depth[k], ref.ids[k], (double)ref.depth[k]);
+            bad = n;
+        }
+    }
+out:
+    fbuf_free(&ref);
+    fbuf_free(&fb);
+    screen_free(&sp);
+    return bad;
 }
 
 const char *tl_shared_model(const char *name)
