@@ -228,43 +228,41 @@ static int render_poisoned(const HsrAlgo *algo, int threads, const HsrInput *in,
     return rc;
 }
 
-long tl_agree(Scene *s, const Viewport *vp, int threads, char *msg, size_t msglen)
+long tl_agree(TlAgree *a, Scene *s, const Viewport *vp, int threads, char *msg, size_t msglen)
 {
-    ScreenPolys sp = { 0 };
-    FrameBufs ref = { 0 }, fb = { 0 };
-    HsrInput in = { &sp, s, vp };
-    long bad = -1;
+    HsrInput in = { &a->sp, s, vp };
     snprintf(msg, msglen, "out of memory");
-    if (screen_project(&sp, s, vp) || render_poisoned(&hsr_zbuffer, 1, &in, &ref))
-        goto out;
-    bad = 0;
+    if (screen_project(&a->sp, s, vp) || render_poisoned(&hsr_zbuffer, 1, &in, &a->ref))
+        return -1;
     msg[0] = '\0';
-    for (int a = 0; a < hsr_nalgos && !bad; a++) {
-        if (hsr_algos[a] == &hsr_zbuffer && threads == 1)
+    for (int k = 0; k < hsr_nalgos; k++) {
+        if (hsr_algos[k] == &hsr_zbuffer && threads == 1)
             continue;   /* the reference itself */
-        if (render_poisoned(hsr_algos[a], threads, &in, &fb)) {
-            bad = -1;
+        if (render_poisoned(hsr_algos[k], threads, &in, &a->fb)) {
             snprintf(msg, msglen, "out of memory");
-            break;
+            return -1;
         }
         int fx, fy;
-        long n = tl_diff(&ref, &fb, &fx, &fy);
+        long n = tl_diff(&a->ref, &a->fb, &fx, &fy);
         if (n) {
-            size_t k = (size_t)fy * vp->w + fx;
+            size_t i = (size_t)fy * vp->w + fx;
             snprintf(msg, msglen,
                      "%dx%d aspect %g cull %d, %u polygons: %s on %d thread%s differs from zbuffer "
                      "in %ld pixels; first (%d,%d): id %d depth %.9g, zbuffer id %d depth %.9g",
-                     vp->w, vp->h, (double)vp->pixel_aspect, vp->cull, sp.npolys,
-                     hsr_algos[a]->name, threads, threads == 1 ? "" : "s", n, fx, fy, fb.ids[k],
-                     (double)fb.depth[k], ref.ids[k], (double)ref.depth[k]);
-            bad = n;
+                     vp->w, vp->h, (double)vp->pixel_aspect, vp->cull, a->sp.npolys,
+                     hsr_algos[k]->name, threads, threads == 1 ? "" : "s", n, fx, fy, a->fb.ids[i],
+                     (double)a->fb.depth[i], a->ref.ids[i], (double)a->ref.depth[i]);
+            return n;
         }
     }
-out:
-    fbuf_free(&ref);
-    fbuf_free(&fb);
-    screen_free(&sp);
-    return bad;
+    return 0;
+}
+
+void tl_agree_free(TlAgree *a)
+{
+    screen_free(&a->sp);
+    fbuf_free(&a->ref);
+    fbuf_free(&a->fb);
 }
 
 const char *tl_shared_model(const char *name)

@@ -54,13 +54,22 @@ typedef struct {
 /* Set the camera of s to v. Place the objects first: the fit sees them. */
 void tl_set_view(Scene *s, const TlView *v);
 
+/* The buffers tl_agree renders into, kept from call to call (the fuzzer
+ * makes thousands a second: fresh big buffers each time would cost more
+ * than the rendering). Zero-initialise; tl_agree_free when done. */
+typedef struct {
+    ScreenPolys sp;
+    FrameBufs   ref, fb;
+} TlAgree;
+
 /* Project the current view at vp, render it with the z-buffer on one
  * thread and with every algorithm on `threads` threads (the buffers
  * poisoned before each run, so a pixel left unwritten shows). Returns 0
  * when every result equals the z-buffer's byte for byte; else the number
  * of pixels of the first one that differs, described in msg; -1 when out
  * of memory. */
-long tl_agree(Scene *s, const Viewport *vp, int threads, char *msg, size_t msglen);
+long tl_agree(TlAgree *a, Scene *s, const Viewport *vp, int threads, char *msg, size_t msglen);
+void tl_agree_free(TlAgree *a);
 
 /* Path to ../shared/models/NAME if that folder exists, else NULL. */
 const char *tl_shared_model(const char *name);
