@@ -108,16 +108,12 @@ long tl_diff(const FrameBufs *ref, const FrameBufs *fb, int *first_x, int *first
 
 /* ==== scenes built without OBJ text ==== */
 
-/* Grow *p to n elements of `size` bytes. Sizes here are small (test and
- * fuzz scenes), so exact reallocation keeps this short. */
-static int resize(void *pp, size_t n, size_t size)
+/* p reallocated to n elements of `size` bytes (NULL when out of memory,
+ * p then unchanged). Test and fuzz scenes are small, so exact sizes keep
+ * this short. */
+static void *grown(void *p, size_t n, size_t size)
 {
-    void **p = pp;
-    void *q = realloc(*p, (n ? n : 1) * size);
-    if (!q)
-        return -1;
-    *p = q;
-    return 0;
+    return realloc(p, (n ? n : 1) * size);
 }
 
 int tl_mesh_init(Mesh *m, const char *path)
@@ -137,8 +133,10 @@ int tl_mesh_object(Mesh *m, const char *name)
 {
     MeshObject *cur = &m->objs[m->nobjs - 1];
     if (cur->face_first != m->nfaces) {
-        if (resize(&m->objs, m->nobjs + 1, sizeof *m->objs))
+        MeshObject *objs = grown(m->objs, m->nobjs + 1, sizeof *objs);
+        if (!objs)
             return -1;
+        m->objs = objs;
         cur = &m->objs[m->nobjs++];
     }
     memset(cur, 0, sizeof *cur);
@@ -149,8 +147,10 @@ int tl_mesh_object(Mesh *m, const char *name)
 
 int tl_mesh_vertex(Mesh *m, float x, float y, float z)
 {
-    if (resize(&m->pos, 3 * ((size_t)m->nverts + 1), sizeof *m->pos))
+    float *pos = grown(m->pos, 3 * ((size_t)m->nverts + 1), sizeof *pos);
+    if (!pos)
         return -1;
+    m->pos = pos;
     float *p = &m->pos[3 * (size_t)m->nverts++];
     p[0] = x;
     p[1] = y;
@@ -161,9 +161,16 @@ int tl_mesh_vertex(Mesh *m, float x, float y, float z)
 int tl_mesh_face(Mesh *m, const uint32_t *corner, uint32_t n)
 {
     uint32_t c0 = m->face_start[m->nfaces];
-    if (resize(&m->corner, (size_t)c0 + n, sizeof *m->corner) ||
-        resize(&m->face_start, (size_t)m->nfaces + 2, sizeof *m->face_start) ||
-        resize(&m->face_mat, (size_t)m->nfaces + 1, sizeof *m->face_mat))
+    uint32_t *cs = grown(m->corner, (size_t)c0 + n, sizeof *cs);
+    if (cs)
+        m->corner = cs;
+    uint32_t *fs = grown(m->face_start, (size_t)m->nfaces + 2, sizeof *fs);
+    if (fs)
+        m->face_start = fs;
+    int32_t *fm = grown(m->face_mat, (size_t)m->nfaces + 1, sizeof *fm);
+    if (fm)
+        m->face_mat = fm;
+    if (!cs || !fs || !fm)
         return -1;
     memcpy(&m->corner[c0], corner, n * sizeof *corner);
     m->face_mat[m->nfaces++] = -1;
