@@ -90,6 +90,7 @@ typedef struct {
     int           nf;
     const uint8_t *faces;       /* per face: corner count, then indices */
     double        turn[3], move[3], scale;   /* SO_PLACED */
+    int           gen[3];       /* SO_GEN: kind, n, seed */
 } Obj;
 
 static void wobj(Out *o, const Obj *b)
@@ -102,6 +103,11 @@ static void wobj(Out *o, const Obj *b)
             wcoord(o, b->base[i]);
     }
     w8(o, (unsigned)b->unit);
+    if (b->flags & SO_GEN) {
+        w8(o, (unsigned)b->gen[0]);
+        w8(o, (unsigned)b->gen[1]);
+        w16(o, b->gen[2]);
+    }
     w8(o, (unsigned)b->nv - 3);
     for (int k = 0; k < b->nv; k++)
         for (int i = 0; i < 3; i++) {
@@ -186,7 +192,7 @@ static const int bridge_v[3][3] = { { 0, 0, 0 }, { 10, 0, 0 }, { 0, 10, 0 } };
 static const uint8_t bridge_f[] = { 3, 0, 9, 17, 3, 1, 12, 20 };
 
 #define OBJ(fl, bx, by, bz, u, verts, faces, nfaces) \
-    { fl, { bx, by, bz }, u, (int)(sizeof verts / sizeof verts[0]), verts, nfaces, faces, { 0, 0, 0 }, { 0, 0, 0 }, 1 }
+    { fl, { bx, by, bz }, u, (int)(sizeof verts / sizeof verts[0]), verts, nfaces, faces, { 0, 0, 0 }, { 0, 0, 0 }, 1, { 0, 0, 0 } }
 
 int main(int argc, char **argv)
 {
@@ -292,5 +298,34 @@ int main(int argc, char **argv)
     h = (Head){ 1, 1, 0, 0, 50, 0, 0, 0, { 0 }, 1, 0, 0, 0 };
     o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &pierce);
     rc |= save(dir, "one-pixel", &o);
+
+    /* 12: generated objects of many faces: a closed sphere (culled, and
+     * deep enough for octree nodes), a rough height field (quads that are
+     * not planar), a cloud of small triangles; perspective, two threads */
+    Obj sphere = OBJ(SO_GEN, 0, 0, 0, 34, bridge_v, bridge_f, 1);
+    sphere.gen[0] = 2; sphere.gen[1] = 21 + 22 * 9; sphere.gen[2] = 1;
+    Obj field = OBJ(SO_GEN | SO_PLACED, 0, 0, -1.5, 34, bridge_v, bridge_f, 1);
+    field.gen[0] = 0; field.gen[1] = 14 + 16 * 3; field.gen[2] = 7;
+    field.turn[1] = -60; field.scale = 2;
+    Obj cloud = OBJ(SO_GEN, 0.5, 0.5, 1, 33, bridge_v, bridge_f, 1);
+    cloud.gen[0] = 1; cloud.gen[1] = 250; cloud.gen[2] = 3;
+    h = (Head){ 180, 120, SC_PERSP | SC_THREADS2, 0, 60, 20, 25, 0, { 0 }, 1.2, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 2);
+    wobj(&o, &sphere); wobj(&o, &field); wobj(&o, &cloud);
+    rc |= save(dir, "generated-persp", &o);
+    h.flags = SC_CULL | 1 << 5;
+    h.zoom = 3;
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 2);
+    wobj(&o, &sphere); wobj(&o, &field); wobj(&o, &cloud);
+    rc |= save(dir, "generated-ortho-cull-aspect2", &o);
+
+    /* 13: spheres one behind another in a grid, far from the origin:
+     * whole objects hidden (the octree's object and node culling) */
+    Obj fs = OBJ(SO_GEN, 1e5, 2e5, -1e5, 30, bridge_v, bridge_f, 1);
+    fs.gen[0] = 2; fs.gen[1] = 15 + 22 * 5; fs.gen[2] = 9;
+    h = (Head){ 200, 150, SC_PERSP | SC_GRID | SC_THREADS2, 0, 45, 5, 5, 0, { 0 }, 1.5, 0, 0.05, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0);
+    wobj(&o, &fs);
+    rc |= save(dir, "generated-far-grid", &o);
     return rc ? 1 : 0;
 }

@@ -50,6 +50,113 @@ static double rd_coord(Rd *r, int raw)
     return m / 32768.0 * ldexp(1, (int)(rd_u8(r) % 64) - 24);
 }
 
+/* The vertex base + d * unit, as a float. */
+static int add_vertex(Mesh *m, const double base[3], double unit, const int d[3])
+{
+    float p[3];
+    for (int i = 0; i < 3; i++) {
+        p[i] = (float)(base[i] + d[i] * unit);
+        if (!isfinite(p[i]))    /* files cannot give an infinite vertex either */
+            p[i] = (float)base[i];
+    }
+    return tl_mesh_vertex(m, p[0], p[1], p[2]);
+}
+
+/* A face of corners v0 + idx[], within the budget. */
+static int add_face(Mesh *m, uint32_t v0, const uint32_t *idx, uint32_t n, uint32_t *faces_left)
+{
+    uint32_t c[4];
+    if (*faces_left == 0)
+        return 0;
+    (*faces_left)--;
+    for (uint32_t k = 0; k < n; k++)
+        c[k] = v0 + idx[k];
+    return tl_mesh_face(m, c, n);
+}
+
+static uint32_t xorshift(uint32_t *s)
+{
+    *s ^= *s << 13;
+    *s ^= *s >> 17;
+    *s ^= *s << 5;
+    return *s;
+}
+
+/* SO_GEN: many faces from a few bytes (see scenecode.h). */
+static int generate_object(Rd *r, Mesh *m, const double base[3], double unit, uint32_t *faces_left)
+{
+    unsigned kind = rd_u8(r) % 3, n = rd_u8(r), seed = rd_u16(r);
+    uint32_t st = seed * 2654435761u + kind + 1, v0 = m->nverts;
+    if (kind == 0) {
+        int g = 2 + (int)(n % 15), amp = (int)(n >> 4) * 8;
+        for (int j = 0; j <= g; j++)
+            for (int i = 0; i <= g; i++) {
+                int d[3] = { i * 254 / g - 127, j * 254 / g - 127,
+                             amp ? (int)(xorshift(&st) % (2u * amp + 1)) - amp : 0 };
+                if (add_vertex(m, base, unit, d))
+                    return -1;
+            }
+        for (int j = 0; j < g; j++)
+            for (int i = 0; i < g; i++) {
+                uint32_t a = (uint32_t)(j * (g + 1) + i), q[4] = { a, a + 1, a + g + 2, a + g + 1 };
+                int rc;
+                if (xorshift(&st) % 4 == 0) {
+                    uint32_t t[3] = { q[0], q[2], q[3] };
+                    rc = add_face(m, v0, q, 3, faces_left) || add_face(m, v0, t, 3, faces_left);
+                } else {
+                    rc = add_face(m, v0, q, 4, faces_left);
+                }
+                if (rc)
+                    return -1;
+            }
+    } else if (kind == 1) {
+        int size = 1 << (seed % 8);
+        for (unsigned t = 0; t < 8 + n; t++) {
+            int c[3], d[3];
+            for (int i = 0; i < 3; i++)
+                c[i] = (int)(xorshift(&st) % 255) - 127;
+            uint32_t idx[3];
+            for (int k = 0; k < 3; k++) {
+                for (int i = 0; i < 3; i++)
+                    d[i] = c[i] + (int)(xorshift(&st) % (2u * size + 1)) - size;
+                idx[k] = m->nverts - v0;
+                if (add_vertex(m, base, unit, d))
+                    return -1;
+            }
+            if (add_face(m, v0, idx, 3, faces_left))
+                return -1;
+        }
+    } else {
+        int segs = 3 + (int)(n % 22), rings = 2 + (int)(n / 22 % 10);
+        int pole[2][3] = { { 0, 0, 127 }, { 0, 0, -127 } };
+        if (add_vertex(m, base, unit, pole[0]) || add_vertex(m, base, unit, pole[1]))
+            return -1;
+        for (int j = 1; j <= rings; j++)
+            for (int i = 0; i < segs; i++) {
+                double th = 3.141592653589793 * j / (rings + 1), ph = 6.283185307179586 * i / segs;
+                int d[3] = { (int)lround(127 * sin(th) * cos(ph)), (int)lround(127 * sin(th) * sin(ph)),
+                             (int)lround(127 * cos(th)) };
+                if (add_vertex(m, base, unit, d))
+                    return -1;
+            }
+        for (int i = 0; i < segs; i++) {
+            uint32_t i1 = (uint32_t)((i + 1) % segs), i0 = (uint32_t)i;
+            uint32_t top[3] = { 0, 2 + i0, 2 + i1 };
+            uint32_t last = 2 + (uint32_t)((rings - 1) * segs);
+            uint32_t bottom[3] = { 1, last + i1, last + i0 };
+            if (add_face(m, v0, top, 3, faces_left) || add_face(m, v0, bottom, 3, faces_left))
+                return -1;
+            for (int j = 0; j + 1 < rings; j++) {
+                uint32_t a = 2 + (uint32_t)(j * segs), b = a + (uint32_t)segs;
+                uint32_t q[4] = { a + i0, b + i0, b + i1, a + i1 };
+                if (add_face(m, v0, q, 4, faces_left))
+                    return -1;
+            }
+        }
+    }
+    return 0;
+}
+
 /* One object's vertices and faces into m. */
 static int decode_object(Rd *r, Mesh *m, int oflags, uint32_t *faces_left)
 {
@@ -57,16 +164,14 @@ static int decode_object(Rd *r, Mesh *m, int oflags, uint32_t *faces_left)
     for (int i = 0; i < 3; i++)
         base[i] = rd_coord(r, oflags & SO_RAW);
     double unit = ldexp(1, (int)(rd_u8(r) % 64) - 40);
+    if ((oflags & SO_GEN) && generate_object(r, m, base, unit, faces_left))
+        return -1;
     uint32_t v0 = m->nverts, nv = 3 + rd_u8(r) % 30;
     for (uint32_t k = 0; k < nv; k++) {
-        float p[3];
-        for (int i = 0; i < 3; i++) {
-            int d = oflags & SO_WIDE ? rd_i16(r) : (int8_t)rd_u8(r);
-            p[i] = (float)(base[i] + d * unit);
-            if (!isfinite(p[i]))    /* files cannot give an infinite vertex either */
-                p[i] = (float)base[i];
-        }
-        if (tl_mesh_vertex(m, p[0], p[1], p[2]))
+        int d[3];
+        for (int i = 0; i < 3; i++)
+            d[i] = oflags & SO_WIDE ? rd_i16(r) : (int8_t)rd_u8(r);
+        if (add_vertex(m, base, unit, d))
             return -1;
     }
     uint32_t nf = 1 + rd_u8(r) % 16;
