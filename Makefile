@@ -23,7 +23,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all test unit e2e asan run bench install clean assets test-models colour-error
+.PHONY: all test unit e2e asan run bench install clean assets test-models colour-error fuzz fuzz-run fuzz-seeds replay
 
 all: $(BIN)
 
@@ -37,9 +37,31 @@ $(BUILD)/%.o: %.c
 $(TESTBIN): $(LIBOBJS) $(TOBJS)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS) -lcriterion
 
-# The whole suite: unit tests (Criterion) then end-to-end shell tests.
-test: $(BIN) $(TESTBIN)
+# The fuzz harnesses (tests/fuzz/) linked with a plain main() instead of
+# libFuzzer: they replay the seed and regression corpora in every build.
+FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c
+FUZZ_DIFF_SRCS := tests/fuzz/fuzz_diff.c tests/fuzz/scenecode.c tests/testlib.c
+REPLAY_OBJS    := $(sort $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
+REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff
+
+$(BUILD)/tests/fuzz/%.o: CFLAGS += -Itests
+
+$(BUILD)/replay-obj: $(LIBOBJS) $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/replay-diff: $(LIBOBJS) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
+# Every input that ever failed, and the seeds (pending/ is not replayed).
+replay: $(REPLAYS)
+	$(BUILD)/replay-obj tests/fuzz/seeds/obj tests/fuzz/regress/obj
+	$(BUILD)/replay-diff tests/fuzz/seeds/diff tests/fuzz/regress/diff
+
+# The whole suite: unit tests (Criterion), the fuzz corpora, then
+# end-to-end shell tests.
+test: $(BIN) $(TESTBIN) $(REPLAYS)
 	ZVIEW=$(abspath $(BIN)) $(TESTBIN) --jobs 2
+	$(MAKE) --no-print-directory replay
 	ZVIEW=$(abspath $(BIN)) sh tests/e2e/run.sh
 
 unit: $(TESTBIN)
@@ -86,7 +108,59 @@ install: $(BIN)
 	install -m 644 doc/zview.1 $(DESTDIR)$(PREFIX)/share/man/man1/zview.1
 	install -m 644 assets/demo.obj assets/demo.mtl $(DESTDIR)$(PREFIX)/share/zview/
 
-clean:
-	rm -rf build build-asan $(BIN)
+# ==== Fuzzing: clang + libFuzzer (sh tools/deps.sh installs both) ====
+# make fuzz builds build-fuzz/fuzz-obj and build-fuzz/fuzz-diff; make
+# fuzz-run SECONDS=N runs each for N seconds on the seeds and regression
+# inputs, growing its corpus in build-fuzz/corpus/ and writing failing
+# inputs to build-fuzz/artifacts/. FUZZ_FLAGS adds libFuzzer options
+# (e.g. -jobs=2 -workers=2; the machine is shared, so one by default).
+FUZZ_CC     ?= clang
+FUZZ_BUILD  := build-fuzz
+FUZZ_SAN    := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+FUZZ_CFLAGS := -O1 -g $(EXTRA_CFLAGS) -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude -Itests \
+               $(PKG_CFLAGS) -MMD -MP -pthread $(FUZZ_SAN)
+FUZZ_LIBOBJS := $(LIBSRCS:%.c=$(FUZZ_BUILD)/%.o)
+FUZZ_OBJS   := $(sort $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o))
+SECONDS     ?= 60
+FUZZ_FLAGS  ?=
 
--include $(OBJS:.o=.d) $(TOBJS:.o=.d)
+fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff
+
+# Rewrite the differential fuzzer's seed scenes (they are committed).
+fuzz-seeds: $(BUILD)/mkseeds
+	$(BUILD)/mkseeds tests/fuzz/seeds/diff
+
+$(BUILD)/mkseeds: tests/fuzz/mkseeds.c tests/fuzz/scenecode.h
+	@mkdir -p $(BUILD)
+	$(CC) $(CFLAGS) -Itests/fuzz -o $@ $< -lm
+
+# the library instrumented for coverage, the harnesses linked with
+# libFuzzer; testlib's per-pixel compares would only flood the coverage
+# maps (and cost most of the time), so it is left uninstrumented
+FUZZ_COV := -fsanitize=fuzzer-no-link
+$(FUZZ_BUILD)/tests/testlib.o: FUZZ_COV :=
+$(FUZZ_BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) $(FUZZ_COV) -c -o $@ $<
+
+$(FUZZ_BUILD)/fuzz-obj: $(FUZZ_LIBOBJS) $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+
+$(FUZZ_BUILD)/fuzz-diff: $(FUZZ_LIBOBJS) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+
+# fuzz-obj's stderr is closed (-close_fd_mask=2): the loader's warnings
+# would drown its output; crash reports still get through.
+fuzz-run: fuzz
+	@mkdir -p $(FUZZ_BUILD)/corpus/obj $(FUZZ_BUILD)/corpus/diff $(FUZZ_BUILD)/artifacts/obj $(FUZZ_BUILD)/artifacts/diff
+	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -max_len=16384 -close_fd_mask=2 \
+	    -dict=tests/fuzz/obj.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/obj/ $(FUZZ_FLAGS) \
+	    $(FUZZ_BUILD)/corpus/obj tests/fuzz/seeds/obj tests/fuzz/regress/obj
+	nice $(FUZZ_BUILD)/fuzz-diff -max_total_time=$(SECONDS) -timeout=20 -max_len=8192 \
+	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/diff/ $(FUZZ_FLAGS) \
+	    $(FUZZ_BUILD)/corpus/diff tests/fuzz/seeds/diff tests/fuzz/regress/diff
+
+clean:
+	rm -rf build build-asan $(FUZZ_BUILD) $(BIN)
+
+-include $(OBJS:.o=.d) $(TOBJS:.o=.d) $(REPLAY_OBJS:.o=.d) $(FUZZ_LIBOBJS:.o=.d) $(FUZZ_OBJS:.o=.d)

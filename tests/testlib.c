@@ -1,6 +1,8 @@
 /* testlib.c: see testlib.h. */
+#define _DEFAULT_SOURCE   /* strdup */
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -102,6 +104,172 @@ long tl_diff(const FrameBufs *ref, const FrameBufs *fb, int *first_x, int *first
             }
         }
     return n;
+}
+
+/* ==== scenes built without OBJ text ==== */
+
+/* p reallocated to n elements of `size` bytes (NULL when out of memory,
+ * p then unchanged). Test and fuzz scenes are small, so exact sizes keep
+ * this short. */
+static void *grown(void *p, size_t n, size_t size)
+{
+    return realloc(p, (n ? n : 1) * size);
+}
+
+int tl_mesh_init(Mesh *m, const char *path)
+{
+    memset(m, 0, sizeof *m);
+    m->path = strdup(path);
+    m->objs = calloc(1, sizeof *m->objs);
+    m->face_start = calloc(1, sizeof *m->face_start);
+    if (!m->path || !m->objs || !m->face_start)
+        return -1;
+    m->nobjs = 1;
+    snprintf(m->objs[0].name, sizeof m->objs[0].name, "%s", path);
+    return 0;
+}
+
+int tl_mesh_object(Mesh *m, const char *name)
+{
+    MeshObject *cur = &m->objs[m->nobjs - 1];
+    if (cur->face_first != m->nfaces) {
+        MeshObject *objs = grown(m->objs, m->nobjs + 1, sizeof *objs);
+        if (!objs)
+            return -1;
+        m->objs = objs;
+        cur = &m->objs[m->nobjs++];
+    }
+    memset(cur, 0, sizeof *cur);
+    cur->face_first = m->nfaces;
+    snprintf(cur->name, sizeof cur->name, "%s", name);
+    return 0;
+}
+
+int tl_mesh_vertex(Mesh *m, float x, float y, float z)
+{
+    float *pos = grown(m->pos, 3 * ((size_t)m->nverts + 1), sizeof *pos);
+    if (!pos)
+        return -1;
+    m->pos = pos;
+    float *p = &m->pos[3 * (size_t)m->nverts++];
+    p[0] = x;
+    p[1] = y;
+    p[2] = z;
+    return 0;
+}
+
+int tl_mesh_face(Mesh *m, const uint32_t *corner, uint32_t n)
+{
+    uint32_t c0 = m->face_start[m->nfaces];
+    uint32_t *cs = grown(m->corner, (size_t)c0 + n, sizeof *cs);
+    if (cs)
+        m->corner = cs;
+    uint32_t *fs = grown(m->face_start, (size_t)m->nfaces + 2, sizeof *fs);
+    if (fs)
+        m->face_start = fs;
+    int32_t *fm = grown(m->face_mat, (size_t)m->nfaces + 1, sizeof *fm);
+    if (fm)
+        m->face_mat = fm;
+    if (!cs || !fs || !fm)
+        return -1;
+    memcpy(&m->corner[c0], corner, n * sizeof *corner);
+    m->face_mat[m->nfaces++] = -1;
+    m->face_start[m->nfaces] = c0 + n;
+    m->info.triangles += n - 2;
+    return 0;
+}
+
+int tl_mesh_finish(Mesh *m)
+{
+    if (m->nfaces == 0)
+        return -1;
+    if (m->objs[m->nobjs - 1].face_first == m->nfaces)
+        m->nobjs--;
+    for (uint32_t i = 0; i < m->nobjs; i++) {
+        MeshObject *o = &m->objs[i];
+        uint32_t next = i + 1 < m->nobjs ? m->objs[i + 1].face_first : m->nfaces;
+        o->face_count = next - o->face_first;
+        o->vert_min = UINT32_MAX;
+        o->vert_max = 0;
+        for (uint32_t c = m->face_start[o->face_first]; c < m->face_start[next]; c++) {
+            uint32_t v = m->corner[c];
+            o->vert_min = v < o->vert_min ? v : o->vert_min;
+            o->vert_max = v > o->vert_max ? v : o->vert_max;
+        }
+    }
+    return 0;
+}
+
+void tl_set_view(Scene *s, const TlView *v)
+{
+    s->cam.persp = v->persp;
+    s->cam.fov_deg = v->fov_deg;
+    s->cam.yaw = v->fit_yaw;
+    s->cam.pitch = v->fit_pitch;
+    s->cam.roll = v->fit_roll;
+    scene_fit(s);
+    s->cam.yaw = v->yaw;
+    s->cam.pitch = v->pitch;
+    s->cam.roll = v->roll;
+    s->cam.zoom = v->zoom;
+    s->cam.pan = v3(v->pan_x, v->pan_y, 0);
+}
+
+/* Render with fresh buffers' contents: ids that no algorithm writes and
+ * NaN depths, so that a pixel an algorithm skips cannot match by luck. */
+static int render_poisoned(const HsrAlgo *algo, int threads, const HsrInput *in, FrameBufs *fb)
+{
+    HsrRunner r;
+    HsrStats st;
+    if (fbuf_resize(fb, in->sp->w, in->sp->h))
+        return -1;
+    size_t n = (size_t)fb->w * fb->h;
+    for (size_t i = 0; i < n; i++) {
+        fb->ids[i] = INT32_MIN;
+        fb->depth[i] = NAN;
+    }
+    if (hsr_runner_init(&r, algo, threads))
+        return -1;
+    int rc = hsr_run(&r, in, fb, &st);
+    hsr_runner_free(&r);
+    return rc;
+}
+
+long tl_agree(TlAgree *a, Scene *s, const Viewport *vp, int threads, char *msg, size_t msglen)
+{
+    HsrInput in = { &a->sp, s, vp };
+    snprintf(msg, msglen, "out of memory");
+    if (screen_project(&a->sp, s, vp) || render_poisoned(&hsr_zbuffer, 1, &in, &a->ref))
+        return -1;
+    msg[0] = '\0';
+    for (int k = 0; k < hsr_nalgos; k++) {
+        if (hsr_algos[k] == &hsr_zbuffer && threads == 1)
+            continue;   /* the reference itself */
+        if (render_poisoned(hsr_algos[k], threads, &in, &a->fb)) {
+            snprintf(msg, msglen, "out of memory");
+            return -1;
+        }
+        int fx, fy;
+        long n = tl_diff(&a->ref, &a->fb, &fx, &fy);
+        if (n) {
+            size_t i = (size_t)fy * vp->w + fx;
+            snprintf(msg, msglen,
+                     "%dx%d aspect %g cull %d, %u polygons: %s on %d thread%s differs from zbuffer "
+                     "in %ld pixels; first (%d,%d): id %d depth %.9g, zbuffer id %d depth %.9g",
+                     vp->w, vp->h, (double)vp->pixel_aspect, vp->cull, a->sp.npolys,
+                     hsr_algos[k]->name, threads, threads == 1 ? "" : "s", n, fx, fy, a->fb.ids[i],
+                     (double)a->fb.depth[i], a->ref.ids[i], (double)a->ref.depth[i]);
+            return n;
+        }
+    }
+    return 0;
+}
+
+void tl_agree_free(TlAgree *a)
+{
+    screen_free(&a->sp);
+    fbuf_free(&a->ref);
+    fbuf_free(&a->fb);
 }
 
 const char *tl_shared_model(const char *name)

@@ -25,6 +25,52 @@ int  tl_render(Scene *s, const HsrAlgo *algo, int threads, int w, int h, int cul
 /* Compare fb with ref; returns differing pixels and the first of them. */
 long tl_diff(const FrameBufs *ref, const FrameBufs *fb, int *first_x, int *first_y);
 
+/* ==== Scenes built without OBJ text (the multi-object agreement test
+ * and the differential fuzzer) ==== */
+
+/* Fill a Mesh as the loader would: vertices, faces as 0-based corner
+ * lists, `o` objects as contiguous face ranges (an object that got no
+ * faces is renamed, as the loader does). Each returns 0, or -1 when out
+ * of memory (the mesh is then still safe to mesh_free). */
+int  tl_mesh_init(Mesh *m, const char *path);
+int  tl_mesh_object(Mesh *m, const char *name);
+int  tl_mesh_vertex(Mesh *m, float x, float y, float z);
+int  tl_mesh_face(Mesh *m, const uint32_t *corner, uint32_t n);
+/* Close the objects (face counts, vertex ranges) as the loader's end of
+ * file does; -1 when the mesh has no face. */
+int  tl_mesh_finish(Mesh *m);
+
+/* A view as the command line gives it (app_load_scene): fitted at one
+ * turn, then turned, zoomed and panned. */
+typedef struct {
+    float yaw, pitch, roll;             /* the camera's turn, radians */
+    float fit_yaw, fit_pitch, fit_roll; /* the turn it was fitted at */
+    float zoom;                         /* 1 = fitted */
+    float pan_x, pan_y;                 /* in fit radii, right and up */
+    int   persp;
+    float fov_deg;
+} TlView;
+
+/* Set the camera of s to v. Place the objects first: the fit sees them. */
+void tl_set_view(Scene *s, const TlView *v);
+
+/* The buffers tl_agree renders into, kept from call to call (the fuzzer
+ * makes thousands a second: fresh big buffers each time would cost more
+ * than the rendering). Zero-initialise; tl_agree_free when done. */
+typedef struct {
+    ScreenPolys sp;
+    FrameBufs   ref, fb;
+} TlAgree;
+
+/* Project the current view at vp, render it with the z-buffer on one
+ * thread and with every algorithm on `threads` threads (the buffers
+ * poisoned before each run, so a pixel left unwritten shows). Returns 0
+ * when every result equals the z-buffer's byte for byte; else the number
+ * of pixels of the first one that differs, described in msg; -1 when out
+ * of memory. */
+long tl_agree(TlAgree *a, Scene *s, const Viewport *vp, int threads, char *msg, size_t msglen);
+void tl_agree_free(TlAgree *a);
+
 /* Path to ../shared/models/NAME if that folder exists, else NULL. */
 const char *tl_shared_model(const char *name);
 

@@ -9,3 +9,11 @@ export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends $PKGS >/dev/null
 echo "deps: installed $PKGS"
+# make fuzz only: clang and its sanitizer + libFuzzer runtime (a package of
+# its own on Debian 12); the build and tests above do not need them
+FUZZ_PKGS="clang libclang-rt-dev"
+if $SUDO apt-get install -y -qq --no-install-recommends $FUZZ_PKGS >/dev/null; then
+    echo "deps: installed $FUZZ_PKGS"
+else
+    echo "deps: could not install $FUZZ_PKGS (needed by make fuzz only)"
+fi

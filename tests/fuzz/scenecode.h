@@ -1,0 +1,75 @@
+#ifndef ZV_SCENECODE_H
+#define ZV_SCENECODE_H
+/* scenecode: the differential fuzzer's input format. Bytes in, a scene
+ * (meshes, objects and their placements, camera) plus a viewport and a
+ * thread count out. Every byte string decodes (reads past the end give
+ * 0), and the work is bounded, so each input renders fast.
+ *
+ * Little-endian, in this order:
+ *   u8  w - 1, u8 h - 1           image 1..256 x 1..256 pixels
+ *   u8  flags                     SC_PERSP SC_CULL SC_THREADS2 SC_REFIT SC_GRID,
+ *                                 bits 5-7: pixel aspect sc_aspects[], 7 = custom:
+ *   [u8 a]                        custom aspect 0.25 + a / 32
+ *   u8  fov                       2 + fov * 176 / 255 degrees
+ *   i16 yaw, pitch, roll          camera turn, v * 180 / 32768 degrees
+ *   [i16 yaw, pitch, roll]        SC_REFIT: the turn the view was fitted at
+ *   u16 zoom                      10^(-3 + 6 v / 65535): 0.001 .. 1000
+ *   u8  pan scale                 sc_pan_scales[v & 3] (fit radii)
+ *   i16 pan x, y                  v / 32768 * scale
+ *   u8  meshes                    1 + v % SC_MAX_MESHES
+ *   per mesh: u8 objects          1 + v % SC_MAX_MESH_OBJS, each:
+ *     u8  oflags                  SO_PLACED SO_SHARE SO_WIDE SO_RAW SO_GEN
+ *     coord x, y, z               the object's base point (see below)
+ *     u8  unit                    2^(v % 64 - 40): the vertex grid step
+ *     SO_GEN: u8 kind, u8 n, u16 seed: a generated object of up to a few
+ *             hundred faces (enough for an octree of several levels),
+ *             vertices within +-127 units of the base:
+ *             kind % 3 = 0: a height field of (2 + n % 15)^2 quads,
+ *                           heights up to (n >> 4) * 8 units, some quads
+ *                           split in two, the rest mostly not planar
+ *                        1: 8 + n triangles strewn about, each up to
+ *                           2^(seed % 8) units across
+ *                        2: a closed sphere of 3 + n % 22 segments and
+ *                           2 + n / 22 % 10 rings (quads, pole triangles)
+ *             the seed drives a xorshift generator; then, as for others:
+ *     u8  vertices                3 + v % 30, each three deltas from the
+ *                                 base in units: i8 (i16 with SO_WIDE)
+ *     u8  faces                   1 + v % 16, each:
+ *       u8 corners                < 160: 3, < 224: 4, else 5 + v % 12
+ *       u8 per corner             index mod the object's vertices
+ *                                 (SO_SHARE: mod all of the mesh's so far)
+ *                                 (SO_GEN: the generated faces come first,
+ *                                 then these)
+ *     SO_PLACED: i16 yaw, pitch, roll; coord x, y, z offset;
+ *                u8 scale 10^(-3 + 6 v / 255)
+ *   coord: SO_RAW: f32 bits (not finite: 0); else i16 m, u8 e:
+ *          m / 32768 * 2^(e % 64 - 24)
+ * Objects stop at SC_MAX_OBJS and faces at SC_MAX_FACES (8 times that
+ * with SC_GRID's 2 x 2 x 2 copies). */
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "scene.h"
+#include "screen.h"
+
+enum {
+    SC_PERSP = 1, SC_CULL = 2, SC_THREADS2 = 4, SC_REFIT = 8, SC_GRID = 16
+};
+enum {
+    SO_PLACED = 1, SO_SHARE = 2, SO_WIDE = 4, SO_RAW = 8, SO_GEN = 16
+};
+#define SC_MAX_MESHES    3
+#define SC_MAX_MESH_OBJS 4
+#define SC_MAX_OBJS      12
+#define SC_MAX_FACES     2048
+
+extern const float sc_aspects[7];
+extern const float sc_pan_scales[4];
+
+/* Decode data into *s (built, placed, fitted, turned, zoomed and panned),
+ * *vp and *threads. Returns 0, or -1 when out of memory (s is then
+ * empty). */
+int sc_decode(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *threads);
+
+#endif
