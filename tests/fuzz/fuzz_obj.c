@@ -125,7 +125,7 @@ static void render_all(Scene *s)
         p.shade = runs[k].shade;
         mode_cell_pixels(runs[k].mode, &pw, &ph);
         if (pipeline_render(&p, 40 * pw, 20 * ph, mode_pixel_aspect(runs[k].mode), runs[k].cull, 1) ||
-            cells_from_image(&p.img, runs[k].mode, &p.cells))
+            cells_from_image(&p.img, runs[k].mode, runs[k].color, &p.cells))
             break;
         print_cells(work.null, &p.cells, runs[k].color);
     }
