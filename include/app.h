@@ -55,6 +55,7 @@ typedef struct {
     float       crease;         /* --crease, degrees */
     float       light[2];       /* --light yaw, pitch in degrees */
     float       ambient;        /* --ambient */
+    int         edges;          /* --edges */
 } Options;
 
 /* Parse argv. Returns 0, or -1 with a message in err (a usage error). */
@@ -82,6 +83,7 @@ typedef struct {
     ShadeMode    shade;
     float        crease;        /* smooth shading's crease angle, degrees */
     int          highlight;     /* object shown highlighted, -1 none */
+    int          edges;         /* outlines (--edges) */
     int          samples;       /* per pixel: 1, 4, 9 or 16 (rendered at sqrt x the size, averaged) */
     Image        img_ss;        /* the supersampled picture before averaging */
     HsrStats     st;

@@ -38,12 +38,19 @@ typedef struct {
     uint32_t *face_poly;    /* 2 per face: first scene polygon, count */
 } SmoothData;
 
+/* Outlines' per-frame data (edges.c). */
+typedef struct {
+    int32_t  *face_sp;      /* per face: its screen polygon this frame, -1 none */
+    uint32_t  cap;
+} EdgeData;
+
 /* Per-face colour cache, reused across frames (grows to the face count). */
 typedef struct {
     uint32_t *stamp;    /* frame stamp per face: colour below is current */
     uint8_t  *rgb;      /* 3 per face */
     uint32_t  cap, frame;
     SmoothData smooth;
+    EdgeData   edges;
 } ShadeCache;
 
 #define SHADE_CREASE_DEFAULT 60.0f  /* degrees: sharper edges stay sharp under smooth */
@@ -61,10 +68,16 @@ typedef struct {
     ShadeMode mode;
     float     crease;       /* smooth: degrees */
     int       highlight;    /* object drawn highlighted (the viewer's selection), -1 none */
+    int       edges;        /* draw outlines: silhouettes, creases, depth steps */
 } ShadeSettings;
 
 int  shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,
                  ShadeCache *cache, Image *out);
+
+/* edges.c: outlines over a shaded image (creases sharper than crease). */
+int  shade_edges(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, float crease_deg, EdgeData *ed,
+                 Image *out);
+void edges_free(EdgeData *ed);
 
 /* smooth.c */
 int  smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg);

@@ -256,3 +256,112 @@ Test(pipeline, objects_without_colour_get_distinct_ones_and_the_selection_shows)
     pipeline_free(&sel);
     scene_free(&s);
 }
+
+/* ==== outlines ==== */
+
+/* Pixels whose colour --edges changed, in a w x h render of s. */
+static int outline_mask(Scene *s, int w, int h, uint8_t *mask, int32_t *ids)
+{
+    Pipeline a, b;
+    cr_assert_eq(pipeline_init(&a, s, hsr_find("zbuffer"), 1), 0);
+    cr_assert_eq(pipeline_init(&b, s, hsr_find("span"), 2), 0);
+    b.edges = 1;
+    cr_assert_eq(pipeline_render(&a, w, h, 1.0f, 0, 1), 0);
+    cr_assert_eq(pipeline_render(&b, w, h, 1.0f, 0, 1), 0);
+    int n = 0;
+    for (int i = 0; i < w * h; i++) {
+        mask[i] = memcmp(a.img.rgb + 3 * i, b.img.rgb + 3 * i, 3) != 0;
+        n += mask[i];
+        ids[i] = a.fb.ids[i];
+    }
+    pipeline_free(&a);
+    pipeline_free(&b);
+    return n;
+}
+
+/* Is pixel i at least r pixels from any pixel with another id? */
+static int deep_inside(const int32_t *ids, int w, int h, int x, int y, int r)
+{
+    for (int dy = -r; dy <= r; dy++)
+        for (int dx = -r; dx <= r; dx++) {
+            int u = x + dx, v = y + dy;
+            if (u < 0 || v < 0 || u >= w || v >= h || ids[v * w + u] != ids[y * w + x])
+                return 0;
+        }
+    return 1;
+}
+
+Test(pipeline, outlines_follow_silhouettes_and_creases_only)
+{
+    enum { W = 120, H = 90 };
+    uint8_t mask[W * H];
+    int32_t ids[W * H];
+    /* the cube: its visible faces meet at creases and the background */
+    Scene s;
+    cr_assert_eq(tl_scene_from_file(&s, "assets/cube.obj"), 0);
+    s.cam.yaw = 0.6f;
+    s.cam.pitch = 0.5f;
+    int n = outline_mask(&s, W, H, mask, ids);
+    cr_assert_gt(n, 100, "the cube has outlines");
+    int deep = 0, near_crease = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            int i = y * W + x;
+            if (ids[i] < 0)
+                cr_assert_eq(mask[i], 0, "nothing is drawn on the background");
+            else if (deep_inside(ids, W, H, x, y, 2))
+                deep += mask[i];
+            else if (x + 1 < W && ids[i + 1] >= 0 && ids[i + 1] != ids[i])
+                near_crease += mask[i] || mask[i + 1];
+        }
+    cr_expect_eq(deep, 0, "face interiors stay clean");
+    cr_expect_gt(near_crease, 20, "the creases between faces are drawn");
+    scene_free(&s);
+
+    /* a smooth sphere: no crease inside, only the silhouette */
+    char *obj = uv_sphere();
+    cr_assert_eq(tl_scene_from_text(&s, "sphere.obj", obj), 0);
+    free(obj);
+    n = outline_mask(&s, W, H, mask, ids);
+    int inner = 0;
+    for (int y = 1; y + 1 < H; y++)
+        for (int x = 1; x + 1 < W; x++) {
+            int i = y * W + x;
+            int by_bg = ids[i - 1] < 0 || ids[i + 1] < 0 || ids[i - W] < 0 || ids[i + W] < 0;
+            inner += mask[i] && !by_bg;
+        }
+    cr_assert_gt(n, 50, "the sphere's silhouette is drawn");
+    cr_expect_eq(inner, 0, "and nothing inside it (faces meet at under 25 degrees)");
+    scene_free(&s);
+}
+
+Test(pipeline, outlines_mark_the_front_of_a_depth_step)
+{
+    /* a small square floating in front of a big one, parallel */
+    enum { W = 100, H = 100 };
+    uint8_t mask[W * H];
+    int32_t ids[W * H];
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "step.obj",
+                                    "v -2 -2 0\nv 2 -2 0\nv 2 2 0\nv -2 2 0\n"
+                                    "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                                    "f 1 2 3 4\nf 5 6 7 8\n"),
+                 0);
+    s.cam.yaw = 0;
+    s.cam.pitch = 0;
+    scene_fit(&s);
+    outline_mask(&s, W, H, mask, ids);
+    int front = 0, back = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x + 1 < W; x++) {
+            int i = y * W + x;
+            if (ids[i] >= 0 && ids[i + 1] >= 0 && ids[i] != ids[i + 1]) {
+                int fi = ids[i] == 1 ? i : i + 1, bi = ids[i] == 1 ? i + 1 : i;
+                front += mask[fi];
+                back += mask[bi];
+            }
+        }
+    cr_expect_gt(front, 20, "the near square's rim is outlined");
+    cr_expect_eq(back, 0, "the far square is not, beside it");
+    scene_free(&s);
+}

@@ -89,7 +89,7 @@ Test(shade, lambert_facing_light_is_brightest_and_two_sided)
     frame_init(&fb, 4, 1, ids, NULL);
     Image im = { 0 };
     ShadeCache cache = { 0 };
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_LAMBERT, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_assert_eq(im.w, 4);
     cr_assert_eq(im.h, 1);
 
@@ -125,7 +125,7 @@ Test(shade, lambert_edge_on_face_gets_ambient_only)
     frame_init(&fb, 1, 1, ids, NULL);
     Image im = { 0 };
     ShadeCache cache = { 0 };
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_LAMBERT, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_expect_eq(px(&im, 0, 0), 40);   /* 200 * 0.2 */
     cr_expect_eq(px(&im, 0, 1), 20);
     cr_expect_eq(px(&im, 0, 2), 10);
@@ -148,20 +148,20 @@ Test(shade, lambert_uses_object_and_camera_rotation)
     frame_init(&fb, 2, 1, ids, NULL);
     Image im = { 0 };
     ShadeCache cache = { 0 };
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_LAMBERT, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_expect_eq(px(&im, 0, 0), 200);
     cr_expect_eq(px(&im, 1, 0), 40, "rotated object: got %d", px(&im, 1, 0));
 
     /* Now turn the camera instead: both faces go edge-on... */
     t.obj[1].yaw = 0;
     t.s.cam.yaw = ZV_PI / 2;
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_LAMBERT, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_expect_eq(px(&im, 0, 0), 40);
     cr_expect_eq(px(&im, 1, 0), 40);
     /* ...and the scale of an object does not change its brightness. */
     t.s.cam.yaw = 0;
     t.obj[1].scale = 3;
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_LAMBERT, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_expect_eq(px(&im, 1, 0), 200);
     frame_done(&fb);
     image_free(&im);
@@ -177,7 +177,7 @@ Test(shade, cache_is_per_frame)
     frame_init(&fb, 3, 2, ids, NULL);
     Image im = { 0 };
     ShadeCache cache = { 0 };
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_LAMBERT, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_assert_geq(cache.cap, 5);
     uint32_t f1 = cache.frame;
     cr_expect_eq(cache.stamp[1], f1);
@@ -189,7 +189,7 @@ Test(shade, cache_is_per_frame)
 
     /* A new frame sees the new light: nothing stale is reused. */
     t.s.light.dir = v3(0, 1, 0);
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_LAMBERT, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_expect_neq(cache.frame, f1);
     cr_expect_eq(px(&im, 0, 0), 40);
     cr_expect_eq(px(&im, 5, 0), 40);
@@ -200,7 +200,7 @@ Test(shade, cache_is_per_frame)
     int32_t ids2[2] = { 2999, 0 };
     FrameBufs fb2;
     frame_init(&fb2, 2, 1, ids2, NULL);
-    cr_assert_eq(shade_frame(&big.s, NULL, &fb2, &(ShadeSettings){ SHADE_LAMBERT, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&big.s, NULL, &fb2, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_expect_geq(cache.cap, 3000);
     cr_expect_eq(cache.stamp[2999], cache.frame);
     cr_expect_eq(px(&im, 0, 0), 200);
@@ -222,7 +222,7 @@ Test(shade, depth_near_white_far_black)
     frame_init(&fb, 2, 2, ids, depth);
     Image im = { 0 };
     ShadeCache cache = { 0 };
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_DEPTH, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_DEPTH, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_expect_eq(px(&im, 1, 0), 255, "nearest is white");
     cr_expect_eq(px(&im, 2, 0), 0, "farthest is black");
     cr_expect(px(&im, 0, 0) >= 126 && px(&im, 0, 0) <= 129, "middle: %d", px(&im, 0, 0));
@@ -234,7 +234,7 @@ Test(shade, depth_near_white_far_black)
 
     /* One depth in the whole frame: white. */
     fb.depth[0] = fb.depth[1] = fb.depth[2] = 0.3f;
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_DEPTH, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_DEPTH, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     for (int i = 0; i < 3; i++)
         cr_expect_eq(px(&im, i, 0), 255);
     frame_done(&fb);
@@ -279,7 +279,7 @@ Test(shade, id_mode_paints_id_colours)
     frame_init(&fb, 4, 1, ids, NULL);
     Image im = { 0 };
     ShadeCache cache = { 0 };
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_ID, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_ID, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     uint8_t c7[3], c9[3];
     shade_id_colour(7, c7);
     shade_id_colour(9, c9);
@@ -290,7 +290,7 @@ Test(shade, id_mode_paints_id_colours)
     cr_expect_eq(px(&im, 1, 0) + px(&im, 1, 1) + px(&im, 1, 2), 0);
 
     /* Lambert next frame on the same cache: no id colour is left over. */
-    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ SHADE_LAMBERT, SHADE_CREASE_DEFAULT, -1 }, &cache, &im), 0);
+    cr_assert_eq(shade_frame(&t.s, NULL, &fb, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_expect_eq(px(&im, 0, 0), 200);
     frame_done(&fb);
     image_free(&im);

@@ -25,7 +25,8 @@ void cli_usage(FILE *f)
 "  --mode half|ascii|braille      text mode (default: half on UTF-8)\n"
 "  --color truecolor|256|16|8|none colours (default: from COLORTERM/TERM/NO_COLOR)\n"
 "  --shade lambert|smooth|depth|id  shading (default lambert: flat per face)\n"
-"  --crease DEG          smooth shading keeps edges sharper than this (default 60)\n"
+"  --edges               outline silhouettes, creases and depth steps\n"
+"  --crease DEG          smooth shading and --edges: a sharper edge is a crease (default 60)\n"
 "  --light YAW,PITCH     light direction in degrees from the viewer (default -34,37)\n"
 "  --ambient F           ambient light, 0 to 1 (default 0.22)\n"
 "  --samples N           samples per pixel, 1, 4, 9 or 16, averaged (default 4 for\n"
@@ -139,7 +140,7 @@ enum {
     OPT_DUMP_IDS, OPT_DUMP_SCREEN, OPT_MODE, OPT_COLOR, OPT_SHADE, OPT_YAW, OPT_PITCH,
     OPT_ROLL, OPT_ZOOM, OPT_PAN, OPT_FIT_FROM, OPT_MOVE, OPT_TURN, OPT_SCALE, OPT_VIEWS,
     OPT_GRID, OPT_FPS, OPT_MAX_POLYS, OPT_SAMPLES, OPT_CREASE, OPT_LIGHT, OPT_AMBIENT, OPT_VIEW,
-    OPT_LAYOUT,
+    OPT_LAYOUT, OPT_EDGES,
 };
 
 static const struct option long_opts[] = {
@@ -165,6 +166,7 @@ static const struct option long_opts[] = {
     { "shade", required_argument, NULL, OPT_SHADE },
     { "view", required_argument, NULL, OPT_VIEW },
     { "layout", required_argument, NULL, OPT_LAYOUT },
+    { "edges", no_argument, NULL, OPT_EDGES },
     { "yaw", required_argument, NULL, OPT_YAW },
     { "pitch", required_argument, NULL, OPT_PITCH },
     { "roll", required_argument, NULL, OPT_ROLL },
@@ -254,6 +256,7 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
         case OPT_BENCH_TTY: o->bench_tty = 1; break;
         case OPT_JSON: o->json = 1; break;
         case OPT_CULL: o->cull = 1; break;
+        case OPT_EDGES: o->edges = 1; break;
         case OPT_ORTHO: o->persp = 0; break;
         case 'o': {
             size_t len = strlen(val);

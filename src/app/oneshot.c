@@ -62,6 +62,7 @@ int app_oneshot(const Options *o, Scene *s)
     }
     p.shade = (ShadeMode)o->shade;
     p.crease = o->crease;
+    p.edges = o->edges;
     p.samples = o->samples > 0 ? o->samples : 1;      /* images: full resolution already */
     int rc = 0;
     int text = o->print || (!o->out && !o->dump_ids && !o->dump_screen);

@@ -57,6 +57,7 @@ static int app_init(App *a, const Options *o, Scene *s)
         return -1;
     a->p.shade = (ShadeMode)o->shade;
     a->p.crease = o->crease;
+    a->p.edges = o->edges;
     a->p.samples = o->samples > 0 ? o->samples : TEXT_SAMPLES;
     return 0;
 }

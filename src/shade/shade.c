@@ -99,6 +99,7 @@ void shade_cache_free(ShadeCache *c)
     free(c->stamp);
     free(c->rgb);
     smooth_free(&c->smooth);
+    edges_free(&c->edges);
     memset(c, 0, sizeof *c);
 }
 
@@ -280,6 +281,8 @@ int shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, cons
         return -1;
     if (set->highlight >= 0 && set->highlight < s->nobjs)
         highlight_object(s, fb, set->highlight, out);
+    if (set->edges && sp && shade_edges(s, sp, fb, set->crease, &cache->edges, out))
+        return -1;
     return 0;
 }
 
