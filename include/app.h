@@ -56,6 +56,7 @@ typedef struct {
     float       light[2];       /* --light yaw, pitch in degrees */
     float       ambient;        /* --ambient */
     int         edges;          /* --edges */
+    int         order;          /* PolyOrder */
 } Options;
 
 /* Parse argv. Returns 0, or -1 with a message in err (a usage error). */
@@ -75,6 +76,8 @@ typedef struct {
     HsrRunner    run;
     int          threads;
     ScreenPolys  sp;
+    PolyOrder    order;         /* --order: polygons to the algorithm in this order */
+    ReorderScratch reorder;
     FrameBufs    fb;
     Image        img;
     ShadeCache   shade_cache;
@@ -92,6 +95,9 @@ typedef struct {
 
 int  pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads);
 int  pipeline_set_algo(Pipeline *p, const HsrAlgo *algo);
+/* The picture settings of the options: shading, crease, outlines, polygon
+ * order, and samples when given (each output has its own default). */
+void pipeline_apply_options(Pipeline *p, const Options *o);
 void pipeline_free(Pipeline *p);
 /* Project + hidden surfaces (+ shading when shade_too) for a w x h
  * picture: at (k w) x (k h) pixels when samples = k^2 > 1, the shaded

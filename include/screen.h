@@ -46,7 +46,8 @@ typedef struct {
      * Instance of polygon k (scene index) of object o is
      * map_first[o] + (k - objs[o].poly_first). */
     int32_t    *map;
-    uint32_t    cap_map;
+    uint32_t    cap_map, nmap;  /* nmap: entries in use (polygon instances) */
+    int         face_sorted;    /* polys are in face-id order (as projected; --order undoes it) */
     uint32_t   *map_first;          /* per object */
     int         cap_objs;
     /* projection used, for object-space tests (octree node boxes) */
@@ -90,6 +91,27 @@ static inline float plane_at(const ScreenPoly *p, float zrow, int i)
 {
     return zrow + p->a * (float)(i - p->x0);
 }
+
+/* order.c: the order polygons reach the algorithm (--order). The ids
+ * and the picture do not change; the hierarchical z-buffer's speed does. */
+typedef enum { ORDER_FILE = 0, ORDER_FRONT, ORDER_BACK, ORDER_SHUFFLE, ORDER_COUNT } PolyOrder;
+extern const char *const order_names[ORDER_COUNT];
+int order_from_name(const char *name);          /* -1 if unknown */
+
+/* Second arrays the polygons are copied into, kept across frames. */
+typedef struct {
+    ScreenVert *verts;
+    ScreenPoly *polys;
+    uint64_t   *key;
+    int32_t    *newpos;
+    uint32_t    cap_verts, cap_polys, cap_key, cap_newpos;
+} ReorderScratch;
+
+/* Put sp's polygons in the given order (front-to-back and back-to-front
+ * by their least depth; shuffle seeded), map following. 0, or -1 on out
+ * of memory (sp is then unchanged). */
+int  screen_reorder(ScreenPolys *sp, PolyOrder order, uint32_t seed, ReorderScratch *rs);
+void reorder_free(ReorderScratch *rs);
 
 /* Write the polygons as OBJ text ("# zview screen W H", v x y z, f ... # id). */
 int  screen_dump_obj(const ScreenPolys *sp, const char *path);

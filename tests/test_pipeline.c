@@ -365,3 +365,53 @@ Test(pipeline, outlines_mark_the_front_of_a_depth_step)
     cr_expect_eq(back, 0, "the far square is not, beside it");
     scene_free(&s);
 }
+
+/* ==== polygon order ==== */
+
+Test(pipeline, every_order_gives_the_same_buffers)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_file(&s, "assets/demo.obj"), 0);
+    s.cam.yaw = 0.4f;
+    s.cam.pitch = 0.3f;
+    Pipeline ref;
+    cr_assert_eq(pipeline_init(&ref, &s, hsr_find("zbuffer"), 1), 0);
+    cr_assert_eq(pipeline_render(&ref, 200, 120, 1.0f, 0, 0), 0);
+    size_t n = 200 * 120;
+    for (int ord = 0; ord < ORDER_COUNT; ord++)
+        for (int a = 0; a < hsr_nalgos; a++) {
+            Pipeline p;
+            cr_assert_eq(pipeline_init(&p, &s, hsr_algos[a], 1 + (a & 1)), 0);
+            p.order = (PolyOrder)ord;
+            cr_assert_eq(pipeline_render(&p, 200, 120, 1.0f, 0, 0), 0);
+            cr_expect_eq(p.sp.face_sorted, ord == ORDER_FILE);
+            cr_assert_eq(memcmp(p.fb.ids, ref.fb.ids, n * 4), 0, "%s under %s", hsr_algos[a]->name,
+                         order_names[ord]);
+            cr_assert_eq(memcmp(p.fb.depth, ref.fb.depth, n * 4), 0, "%s under %s", hsr_algos[a]->name,
+                         order_names[ord]);
+            pipeline_free(&p);
+        }
+    pipeline_free(&ref);
+    scene_free(&s);
+}
+
+Test(pipeline, front_to_back_helps_the_pyramid_most)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_file(&s, "assets/torus.obj"), 0);
+    char err[256];
+    cr_assert_eq(scene_make_grid(&s, 3, err, sizeof err), 0, "%s", err);
+    uint64_t culled[ORDER_COUNT];
+    for (int ord = 0; ord < ORDER_COUNT; ord++) {
+        Pipeline p;
+        cr_assert_eq(pipeline_init(&p, &s, hsr_find("hzb"), 1), 0);
+        p.order = (PolyOrder)ord;
+        cr_assert_eq(pipeline_render(&p, 320, 240, 1.0f, 0, 0), 0);
+        culled[ord] = p.st.polys_culled;
+        pipeline_free(&p);
+    }
+    cr_expect_gt(culled[ORDER_FRONT], culled[ORDER_FILE]);
+    cr_expect_gt(culled[ORDER_FRONT], culled[ORDER_SHUFFLE]);
+    cr_expect_lt(culled[ORDER_BACK], culled[ORDER_SHUFFLE], "back to front culls least");
+    scene_free(&s);
+}

@@ -93,6 +93,7 @@ static int bench_model(const Options *o, const char *file, const AlgoList *al, i
             fprintf(stderr, "zview: out of memory\n");
             break;
         }
+        pipeline_apply_options(&p, o);
         uint64_t culled = 0, given = 0, written = 0, covered = 0;
         set_view(&s, o, 0, views);
         pipeline_render(&p, w, h, 1.0f, o->cull, 1);   /* warm-up */

@@ -49,6 +49,8 @@ void cli_usage(FILE *f)
 "  --persp FOV | --ortho perspective with a vertical field of view, or orthographic\n"
 "  --cull                back-face culling (off by default)\n"
 "  --grid N              N x N x N copies of the scene (a deep scene)\n"
+"  --order file|front-to-back|back-to-front|shuffle\n"
+"                        the order polygons reach the algorithm (same picture)\n"
 "  --layout row|grid|none  several files side by side at a common size (row, the\n"
 "                        default; grid), or where their coordinates put them (none)\n"
 "  --max-polys N         refuse scenes of more polygons (default 20000000)\n"
@@ -140,7 +142,7 @@ enum {
     OPT_DUMP_IDS, OPT_DUMP_SCREEN, OPT_MODE, OPT_COLOR, OPT_SHADE, OPT_YAW, OPT_PITCH,
     OPT_ROLL, OPT_ZOOM, OPT_PAN, OPT_FIT_FROM, OPT_MOVE, OPT_TURN, OPT_SCALE, OPT_VIEWS,
     OPT_GRID, OPT_FPS, OPT_MAX_POLYS, OPT_SAMPLES, OPT_CREASE, OPT_LIGHT, OPT_AMBIENT, OPT_VIEW,
-    OPT_LAYOUT, OPT_EDGES,
+    OPT_LAYOUT, OPT_EDGES, OPT_ORDER,
 };
 
 static const struct option long_opts[] = {
@@ -167,6 +169,7 @@ static const struct option long_opts[] = {
     { "view", required_argument, NULL, OPT_VIEW },
     { "layout", required_argument, NULL, OPT_LAYOUT },
     { "edges", no_argument, NULL, OPT_EDGES },
+    { "order", required_argument, NULL, OPT_ORDER },
     { "yaw", required_argument, NULL, OPT_YAW },
     { "pitch", required_argument, NULL, OPT_PITCH },
     { "roll", required_argument, NULL, OPT_ROLL },
@@ -291,6 +294,10 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
             o->view = val;
             break;
         }
+        case OPT_ORDER:
+            if ((o->order = order_from_name(val)) < 0)
+                BAD_VAL("file, front-to-back, back-to-front or shuffle");
+            break;
         case OPT_LAYOUT:
             if ((o->layout = layout_from_name(val)) < 0)
                 BAD_VAL("row, grid or none");

@@ -55,6 +55,7 @@ int app_info(const Options *o, Scene *s)
         fprintf(stderr, "zview: out of memory\n");
         return 1;
     }
+    pipeline_apply_options(&p, o);
     int w = o->w > 0 ? o->w : 640, h = o->h > 0 ? o->h : 480;
     if (pipeline_render(&p, w, h, 1.0f, o->cull, 1)) {
         fprintf(stderr, "zview: out of memory\n");

@@ -60,10 +60,7 @@ int app_oneshot(const Options *o, Scene *s)
         fprintf(stderr, "zview: out of memory\n");
         return 1;
     }
-    p.shade = (ShadeMode)o->shade;
-    p.crease = o->crease;
-    p.edges = o->edges;
-    p.samples = o->samples > 0 ? o->samples : 1;      /* images: full resolution already */
+    pipeline_apply_options(&p, o);     /* images: 1 sample unless asked, full resolution already */
     int rc = 0;
     int text = o->print || (!o->out && !o->dump_ids && !o->dump_screen);
     if (o->out || ((o->dump_ids || o->dump_screen) && !text)) {

@@ -23,6 +23,16 @@ int pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads)
     return pipeline_set_algo(p, algo);
 }
 
+void pipeline_apply_options(Pipeline *p, const Options *o)
+{
+    p->shade = (ShadeMode)o->shade;
+    p->crease = o->crease;
+    p->edges = o->edges;
+    p->order = (PolyOrder)o->order;
+    if (o->samples > 0)
+        p->samples = o->samples;
+}
+
 int pipeline_set_algo(Pipeline *p, const HsrAlgo *algo)
 {
     if (p->algo)
@@ -36,6 +46,7 @@ void pipeline_free(Pipeline *p)
     if (p->algo)
         hsr_runner_free(&p->run);
     screen_free(&p->sp);
+    reorder_free(&p->reorder);
     fbuf_free(&p->fb);
     image_free(&p->img);
     image_free(&p->img_ss);
@@ -63,6 +74,8 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     p->vp.cull = cull;
     double t0 = now_ms();
     if (screen_project(&p->sp, p->scene, &p->vp))
+        return -1;
+    if (p->order != ORDER_FILE && screen_reorder(&p->sp, p->order, 1, &p->reorder))
         return -1;
     double t1 = now_ms();
     HsrInput in = { .sp = &p->sp, .scene = p->scene, .vp = &p->vp };

@@ -55,10 +55,8 @@ static int app_init(App *a, const Options *o, Scene *s)
         snprintf(a->name, sizeof a->name, "%s +%d", base_name(o->files[0]), o->nfiles - 1);
     if (pipeline_init(&a->p, s, algo, o->threads))
         return -1;
-    a->p.shade = (ShadeMode)o->shade;
-    a->p.crease = o->crease;
-    a->p.edges = o->edges;
-    a->p.samples = o->samples > 0 ? o->samples : TEXT_SAMPLES;
+    a->p.samples = TEXT_SAMPLES;
+    pipeline_apply_options(&a->p, o);
     return 0;
 }
 

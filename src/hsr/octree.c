@@ -548,9 +548,10 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     }
     Mat4 view = camera_view(&sc->cam);
     /* The front end emits objects in order and each object's polygons in
-     * face order, so when face ids grow with the object index, an
-     * object's screen polygons are the run of faces in its range. */
-    int ordered = s->lface_sorted;
+     * face order (unless --order changed it), so when face ids grow with
+     * the object index, an object's screen polygons are the run of faces
+     * in its range. */
+    int ordered = s->lface_sorted && sp->face_sorted;
     for (int oi = 1; oi < sc->nobjs && ordered; oi++)
         ordered = sc->objs[oi].face_base >= sc->objs[oi - 1].face_base + (int32_t)sc->objs[oi - 1].face_count;
     uint32_t run = 0;

@@ -598,6 +598,8 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
         inst += o->poly_count;
     }
     sp->polys[sp->npolys].first = sp->nverts;   /* sentinel */
+    sp->nmap = inst;
+    sp->face_sorted = 1;
     sp->ms = now_ms() - t0;
     return 0;
 }
