@@ -16,6 +16,7 @@ int pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads)
     memset(p, 0, sizeof *p);
     p->scene = s;
     p->threads = threads > 0 ? threads : default_threads();
+    p->sp.threads = p->threads;     /* --threads 1: no helper thread anywhere */
     p->shade = SHADE_LAMBERT;
     return pipeline_set_algo(p, algo);
 }
