@@ -68,7 +68,8 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         free(meshes);
         return -1;
     }
-    if (o->grid > 1 && scene_make_grid(s, o->grid, err, errlen)) {
+    if (app_check_size(o, s, err, errlen) ||
+        (o->grid > 1 && scene_make_grid(s, o->grid, err, errlen))) {
         scene_free(s);
         return -1;
     }

@@ -101,3 +101,17 @@ if [ "$(lead "$T/pan.txt")" -gt "$(lead "$T/nopan.txt")" ]; then ok "--pan moves
     notok "--pan moves the picture right" "$(cat "$T/pan.txt")"; fi
 expect_status "--move of a missing object fails" 1 "$Z" --print --move 2:1,0,0 assets/cube.obj
 expect_err "the missing object is named" "object 2"
+
+# runaway scenes are refused before they are built: --grid 40 of the torus
+# is 64,000 copies (hundreds of millions of polygons)
+expect_status "--grid 40 is refused" 1 "$Z" --print --grid 40 assets/torus.obj
+expect_err "the refusal gives the polygon count" "would have "
+expect_err "the refusal gives the memory estimate" "GB for itself and one frame"
+expect_err "the refusal gives the limit" "(limit 20,000,000 polygons; --max-polys raises it)"
+# the limit is the exact polygon count, grid copies counted
+np=$("$Z" --info assets/torus.obj | sed -n 's/.* faces, \([0-9]*\) polygons.*/\1/p')
+expect_status "--max-polys lets a moderate grid through" 0 "$Z" --print --size 20x6 --grid 3 --max-polys $((np * 27)) assets/torus.obj
+expect_status "one polygon less is refused" 1 "$Z" --print --size 20x6 --grid 3 --max-polys $((np * 27 - 1)) assets/torus.obj
+expect_err "the refusal names the count with the copies" "$(printf "%d" $((np * 27)) | sed ':a;s/\B[0-9]\{3\}\>/,&/;ta') polygons"
+expect_status "the benchmark refuses it too" 1 "$Z" --bench --views 1 --grid 40 assets/torus.obj
+expect_err "the benchmark names the limit" "--max-polys raises it"
