@@ -106,7 +106,8 @@ static inline float plane_at(const ScreenPoly *p, float zrow, int i)
     return zrow + p->a * (float)(i - p->x0);
 }
 
-/* Write the polygons as OBJ text ("# zview screen W H", v x y z, f ... # id). */
+/* Write the polygons as OBJ text ("# zview screen W H", v x y z, f ... # id).
+ * Returns 0, or -1 with errno set (open, write or close failed). */
 int  screen_dump_obj(const ScreenPolys *sp, const char *path);
 
 #endif

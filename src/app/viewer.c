@@ -335,16 +335,23 @@ int app_bench_tty(const Options *o)
     qsort(frame, TTY_FRAMES, sizeof *frame, cmp_dbl);
     qsort(rmed, TTY_FRAMES, sizeof *rmed, cmp_dbl);
     qsort(omed, TTY_FRAMES, sizeof *omed, cmp_dbl);
-    printf("bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s\n",
+    Out rep;
+    out_init(&rep, stdout, "standard output");
+    out_printf(&rep, "bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s\n",
            a.name, cols, rows, mode_names[a.mode], color_name(used), termname, a.p.algo->name,
            a.p.threads, a.p.threads == 1 ? "" : "s");
-    printf("turn of %d frames at 5 degrees a frame; first frame (full paint) %ld bytes\n",
+    out_printf(&rep, "turn of %d frames at 5 degrees a frame; first frame (full paint) %ld bytes\n",
            TTY_FRAMES, first);
-    printf("bytes per frame: median %ld, mean %ld, max %ld\n", bytes[1 + TTY_FRAMES / 2],
+    out_printf(&rep, "bytes per frame: median %ld, mean %ld, max %ld\n", bytes[1 + TTY_FRAMES / 2],
            sum / TTY_FRAMES, bytes[TTY_FRAMES]);
-    printf("frame time: median %.2f ms (render %.2f ms + curses output %.2f ms), max %.2f ms\n",
+    out_printf(&rep, "frame time: median %.2f ms (render %.2f ms + curses output %.2f ms), max %.2f ms\n",
            frame[TTY_FRAMES / 2], rmed[TTY_FRAMES / 2], omed[TTY_FRAMES / 2],
            frame[TTY_FRAMES - 1]);
+    if (out_flush(&rep)) {
+        fprintf(stderr, "zview: standard output: %s\n", out_error(&rep));
+        pipeline_free(&a.p);
+        goto done;
+    }
     pipeline_free(&a.p);
     rc = 0;
 done:

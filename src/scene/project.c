@@ -13,8 +13,10 @@
  * the front end keeps no state of its own between calls. */
 
 #define _DEFAULT_SOURCE
+#include <errno.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdarg.h>
 #include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -678,20 +680,41 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
     return 0;
 }
 
+/* fprintf unless an earlier write failed; the first failure's errno
+ * stays in *err. */
+static void put(FILE *f, int *err, const char *fmt, ...)
+{
+    if (*err)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    if (vfprintf(f, fmt, ap) < 0)
+        *err = errno ? errno : EIO;
+    va_end(ap);
+}
+
+/* Every write is checked: a full disk must not pass for a short dump.
+ * On failure errno is the first failure's. */
 int screen_dump_obj(const ScreenPolys *sp, const char *path)
 {
     FILE *f = fopen(path, "w");
     if (!f)
         return -1;
-    fprintf(f, "# zview screen %d %d\n", sp->w, sp->h);
-    for (uint32_t i = 0; i < sp->nverts; i++)
-        fprintf(f, "v %.9g %.9g %.9g\n", sp->verts[i].x / (double)SUBPIX,
-                sp->verts[i].y / (double)SUBPIX, (double)sp->verts[i].z);
-    for (uint32_t p = 0; p < sp->npolys; p++) {
-        fputs("f", f);
+    int err = 0;
+    put(f, &err, "# zview screen %d %d\n", sp->w, sp->h);
+    for (uint32_t i = 0; i < sp->nverts && !err; i++)
+        put(f, &err, "v %.9g %.9g %.9g\n", sp->verts[i].x / (double)SUBPIX,
+            sp->verts[i].y / (double)SUBPIX, (double)sp->verts[i].z);
+    for (uint32_t p = 0; p < sp->npolys && !err; p++) {
+        put(f, &err, "f");
         for (uint32_t k = sp->polys[p].first; k < sp->polys[p + 1].first; k++)
-            fprintf(f, " %u", k + 1);
-        fprintf(f, " # %d\n", sp->polys[p].face);
+            put(f, &err, " %u", k + 1);
+        put(f, &err, " # %d\n", sp->polys[p].face);
     }
-    return fclose(f) == 0 ? 0 : -1;
+    if (!err && (fflush(f) != 0 || ferror(f)))
+        err = errno ? errno : EIO;
+    if (fclose(f) != 0 && !err)
+        err = errno ? errno : EIO;
+    errno = err;
+    return err ? -1 : 0;
 }
