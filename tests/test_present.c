@@ -12,6 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "present.h"
+#include "tty.h"
 
 /* ==== Helpers ==== */
 
@@ -544,4 +545,26 @@ Test(present, print_cells_reports_a_full_device)
     cr_expect_eq(print_cells(f, &g, COLOR_256), -1);
     cr_expect_eq(errno, ENOSPC);
     fclose(f);
+}
+
+/* ==== The viewer's input ==== */
+
+/* Input at its end (here /dev/null) makes every read return at once: the
+ * viewer must learn that no key will come, or it spins waiting. */
+Test(present, term_read_reports_the_end_of_input)
+{
+    FILE *out = tmpfile(), *in = fopen("/dev/null", "r");
+    cr_assert(out && in);
+    char err[128];
+    TermConfig cfg = { .out = out, .in = in, .termname = "xterm-256color", .color = COLOR_256 };
+    if (term_open(&cfg, err, sizeof err))
+        cr_skip_test("no xterm-256color description: %s", err);
+    TermEvent ev;
+    int forever = term_read(&ev, -1), timed = term_read(&ev, 20), now = term_read(&ev, 0);
+    term_restore();
+    cr_expect_eq(forever, -1, "a blocking read at the end of input returned %d", forever);
+    cr_expect_eq(timed, -1, "a timed read at the end of input returned %d", timed);
+    cr_expect_eq(now, -1, "a poll at the end of input returned %d", now);
+    fclose(out);
+    fclose(in);
 }

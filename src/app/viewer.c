@@ -6,11 +6,13 @@
 
 #define _DEFAULT_SOURCE         /* tmpfile, fileno, lstat on glibc */
 
+#include <errno.h>
 #include <langinfo.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "tty.h"
 #include "viewer.h"
@@ -152,6 +154,9 @@ static Reaction dispatch(App *a, const TermEvent *ev)
 
 /* ==== The loop ==== */
 
+/* Why the loop ended. */
+enum { RUN_QUIT = 0, RUN_NO_MEMORY = -1, RUN_INPUT_ENDED = 1 };
+
 static int run(App *a, int fps)
 {
     DrawState d = { 0 };
@@ -160,7 +165,7 @@ static int run(App *a, int fps)
     double next = 0, last_spin = 0;
     for (;;) {
         if (todo & RE_DRAW && draw(a, &d, todo, fps))
-            return -1;
+            return RUN_NO_MEMORY;
         todo = RE_NONE;
         int timeout = -1;
         if (a->spin) {
@@ -168,17 +173,20 @@ static int run(App *a, int fps)
             timeout = next > now ? (int)(next - now + 0.999) : 0;
         }
         TermEvent ev;
-        if (term_read(&ev, timeout)) {
+        int got = term_read(&ev, timeout);
+        if (got > 0) {
             int was_spinning = a->spin;
             /* take everything already typed before drawing again */
             do
                 todo |= dispatch(a, &ev);
-            while (!(todo & RE_QUIT) && term_read(&ev, 0));
+            while (!(todo & RE_QUIT) && (got = term_read(&ev, 0)) > 0);
             if (todo & RE_QUIT)
-                return 0;
+                return RUN_QUIT;
             if (a->spin && !was_spinning)
                 next = last_spin = now_ms();
         }
+        if (got < 0)
+            return RUN_INPUT_ENDED;     /* no key will come: waiting would spin */
         if (a->spin) {
             double now = now_ms();
             if (now >= next) {
@@ -192,18 +200,44 @@ static int run(App *a, int fps)
     }
 }
 
+/* Where keys come from: standard input when it is a terminal, else the
+ * controlling terminal (`echo | zview m.obj`, `zview m.obj < /dev/null`),
+ * whose end of file would otherwise read as a key that never comes.
+ * NULL when there is none; *name says which for messages. */
+static FILE *open_keys(FILE **opened, const char **name)
+{
+    *opened = NULL;
+    *name = "standard input";
+    if (isatty(STDIN_FILENO))
+        return stdin;
+    *name = "/dev/tty";
+    *opened = fopen("/dev/tty", "re");
+    return *opened;
+}
+
 int app_viewer(const Options *o, Scene *s)
 {
     const char *t = getenv("TERM");
     if (!t || !*t || !strcmp(t, "dumb"))
         return app_oneshot(o, s);
+    FILE *tty;
+    const char *keys_name;
+    FILE *keys = open_keys(&tty, &keys_name);
+    if (!keys) {
+        fprintf(stderr, "zview: no terminal to read keys from (standard input is not one, "
+                        "/dev/tty: %s): one frame instead\n", strerror(errno));
+        return app_oneshot(o, s);
+    }
     App a;
     if (app_init(&a, o, s)) {
         fprintf(stderr, "zview: out of memory\n");
+        if (tty)
+            fclose(tty);
         return 1;
     }
     char err[256];
     TermConfig cfg = {
+        .in = keys,
         .color = o->color >= 0 ? (ColorDepth)o->color : color_from_env(),
         .mouse = 1,
         .signals = 1,
@@ -223,13 +257,21 @@ int app_viewer(const Options *o, Scene *s)
     }
     if (rc_open && term_open(&cfg, err, sizeof err)) {
         pipeline_free(&a.p);
+        if (tty)
+            fclose(tty);
         return app_oneshot(o, s);
     }
     int rc = run(&a, o->fps);
     term_restore();
     pipeline_free(&a.p);
-    if (rc) {
+    if (tty)
+        fclose(tty);
+    if (rc == RUN_NO_MEMORY) {
         fprintf(stderr, "zview: out of memory\n");
+        return 1;
+    }
+    if (rc == RUN_INPUT_ENDED) {
+        fprintf(stderr, "zview: %s: the input ended (no more keys)\n", keys_name);
         return 1;
     }
     return 0;

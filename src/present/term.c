@@ -16,10 +16,12 @@
 #define NCURSES_WIDECHAR 1
 
 #include <curses.h>
+#include <poll.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <termios.h>
 #include <unistd.h>
 #include <wchar.h>
@@ -37,6 +39,7 @@ extern int del_curterm(struct term *t);
 
 static SCREEN *scr;
 static FILE *scr_out;
+static int in_fd = -1;          /* where keys come from (ncurses keeps it private) */
 static volatile sig_atomic_t term_on;
 static int mouse_on;
 static int signals_on;
@@ -437,6 +440,7 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     }
     scr = s;
     scr_out = out;
+    in_fd = fileno(in);
     term_on = 1;
     if (!atexit_done) {
         atexit(term_restore);
@@ -669,6 +673,21 @@ static void mouse_drain(void)
             mq_push(&ev);
 }
 
+/* wget_wch gave ERR: a timeout, a signal, or the end of the input (a
+ * hung-up terminal, a file or pipe at its end), where every read returns
+ * at once and waiting again would spin. The end shows as input that
+ * polls readable with no byte waiting. */
+static int input_ended(void)
+{
+    struct pollfd p = { .fd = in_fd, .events = POLLIN };
+    if (in_fd < 0 || poll(&p, 1, 0) <= 0)
+        return 0;       /* nothing pending: a timeout or a signal */
+    int n = 0;
+    if (ioctl(in_fd, FIONREAD, &n) == 0 && n > 0)
+        return 0;       /* a key came just after the timeout */
+    return 1;
+}
+
 int term_read(TermEvent *ev, int timeout_ms)
 {
     memset(ev, 0, sizeof *ev);
@@ -679,7 +698,7 @@ int term_read(TermEvent *ev, int timeout_ms)
         wint_t wc;
         int r = wget_wch(stdscr, &wc);
         if (r == ERR)
-            return 0;
+            return input_ended() ? -1 : 0;
         if (r != KEY_CODE_YES) {
             ev->type = TE_KEY;
             ev->key = (int)wc;

@@ -283,3 +283,37 @@ session xterm-256color 80 24
 tm send-keys -t zv "TERM=no-such-terminal $Z --color none assets/cube.obj; echo zv-exit=\$?" Enter
 if wait_for 'zv-exit=0'; then ok "an unknown TERM falls back to --print"; else notok "an unknown TERM falls back to --print" "$(cat "$T/screen")"; fi
 check "the fallback frame has the cube" 'grep -q "▀" "$T/screen"' "$(cat "$T/screen")"
+
+# ==== standard input not a terminal: keys come from the terminal ====
+# cpu_ticks PID: user + system time so far, in clock ticks
+cpu_ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
+session xterm-256color 80 24
+rm -f "$T/pid"
+tm send-keys -t zv "echo | TERM=xterm-256color sh -c 'echo \$\$ >$T/pid; exec $Z assets/cube.obj'; echo zv-exit=\$?" Enter
+if wait_for 'faces 6 drawn'; then ok "stdin at its end: the viewer shows the model"; else notok "stdin at its end: the viewer shows the model" "$(cat "$T/screen")"; fi
+check "stdin at its end: the picture is drawn" 'grep -q "▀" "$T/screen"' "$(cat "$T/screen")"
+i=0
+while [ ! -s "$T/pid" ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
+pid=$(cat "$T/pid")
+# a CPU-use check, not a timing test: idle, the process must not run
+t0=$(cpu_ticks "$pid")
+sleep 2
+t1=$(cpu_ticks "$pid")
+check "stdin at its end: no CPU while idle (< 5 ticks in 2 s)" '[ $((t1 - t0)) -lt 5 ]' "ticks $t0 -> $t1"
+tm send-keys -t zv q
+if wait_for 'zv-exit=0'; then ok "stdin at its end: q (read from the terminal) quits"; else notok "stdin at its end: q (read from the terminal) quits" "$(cat "$T/screen")"; fi
+check "no alternate screen after q with stdin at its end" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
+
+start 80 24 assets/cube.obj '</dev/null'
+if wait_for 'faces 6 drawn'; then ok "stdin from /dev/null: the viewer shows the model"; else notok "stdin from /dev/null: the viewer shows the model" "$(cat "$T/screen")"; fi
+tm send-keys -t zv Right
+wait_for 'faces 6 drawn 3' >/dev/null
+tm send-keys -t zv q
+if wait_for 'zv-exit=0'; then ok "stdin from /dev/null: keys work and q quits"; else notok "stdin from /dev/null: keys work and q quits" "$(cat "$T/screen")"; fi
+
+# no terminal to read keys from (setsid: no controlling terminal): one frame and a note
+session xterm-256color 80 24
+tm send-keys -t zv "echo | TERM=xterm-256color setsid -w $Z --color none assets/cube.obj 2>$T/note; echo zv-exit=\$?" Enter
+if wait_for 'zv-exit=0'; then ok "no terminal for keys: one frame, status 0"; else notok "no terminal for keys: one frame, status 0" "$(cat "$T/screen")"; fi
+check "no terminal for keys: the note says so" 'grep -q "^zview: no terminal to read keys from" "$T/note"' "$(cat "$T/note")"
+check "no terminal for keys: the frame has the cube" 'grep -q "▀" "$T/screen"' "$(cat "$T/screen")"
