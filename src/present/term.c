@@ -34,6 +34,7 @@ struct term;
 extern int setupterm(const char *name, int fd, int *err_out);
 extern struct term *set_curterm(struct term *t);
 extern int del_curterm(struct term *t);
+extern int tputs(const char *str, int affcnt, int (*putc)(int));
 
 /* ==== State ==== */
 
@@ -83,13 +84,43 @@ static struct sigaction old_int, old_term, old_hup, old_tstp;
 
 /* ==== Restore and signals ==== */
 
+/* One byte to the terminal, now. */
+static int send_byte(int c)
+{
+    unsigned char b = (unsigned char)c;
+    return write(fileno(scr_out), &b, 1) == 1 ? c : EOF;
+}
+
+/* Send a capability (or an escape of our own) to the terminal now.
+ * Curses keeps its output in a buffer of its own that every update
+ * empties, so between updates this lands in order. putp() would not: it
+ * goes through stdio's stdout buffer, which nothing flushes until exit
+ * (the drag reporting asked for at start reached the terminal only as
+ * zview quit). */
+static void send_cap(const char *cap)
+{
+    if (cap && cap != (const char *)-1 && scr_out)
+        tputs(cap, 1, send_byte);
+}
+
+/* Blank the terminal before leaving curses: a terminal whose window grew
+ * while in the alternate screen (tmux) keeps the part beyond the old size
+ * when it switches back, and a terminal without one keeps everything.
+ * Sent to the terminal, not drawn in stdscr: curses' copy of the screen
+ * stays for a resume after Ctrl-Z. */
+static void blank_terminal(void)
+{
+    send_cap(tigetstr("clear"));
+}
+
 void term_restore(void)
 {
     if (!term_on)
         return;
     term_on = 0;
     if (mouse_on)
-        putp(DRAG_OFF);
+        send_cap(DRAG_OFF);
+    blank_terminal();
     endwin();           /* cursor back, alternate screen left, modes reset */
     if (scr_out)
         fflush(scr_out);
@@ -148,6 +179,7 @@ static void crash_prepare(int fd)
     crash_add("\033[?1006;1000l");   /* the mouse reporting ncurses turns on */
     crash_add(tigetstr("sgr0"));
     crash_add(tigetstr("cnorm"));
+    crash_add(tigetstr("clear"));    /* as term_restore: nothing left behind */
     crash_add(tigetstr("rmcup"));
     crash_add(tigetstr("rmkx"));
     struct sigaction sa;
@@ -193,7 +225,8 @@ static void on_tstp(int sig)
     int was_on = term_on;
     if (was_on) {
         if (mouse_on)
-            putp(DRAG_OFF);
+            send_cap(DRAG_OFF);
+        blank_terminal();
         endwin();
         fflush(scr_out);
     }
@@ -210,7 +243,7 @@ static void on_tstp(int sig)
     sigaction(SIGTSTP, &mine, NULL);
     if (was_on && term_on) {
         if (mouse_on)
-            putp(DRAG_ON);
+            send_cap(DRAG_ON);
         clearok(curscr, TRUE);
         doupdate();
     }
@@ -462,7 +495,7 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
                        BUTTON4_PRESSED | BUTTON5_PRESSED | REPORT_MOUSE_POSITION;
         if (mousemask(want, NULL) != 0) {
             mouseinterval(0);   /* presses and releases as they come, no clicks */
-            putp(DRAG_ON);      /* ncurses never asks for drag reports itself */
+            send_cap(DRAG_ON);      /* ncurses never asks for drag reports itself */
             mouse_on = 1;
         }
     }
