@@ -67,6 +67,10 @@ void cli_usage(FILE *f);
 /* Load every file (or the demo scene when none) into a scene. Returns 0,
  * or -1 with "file:line: message" in err. */
 int  app_load_scene(const Options *o, Scene *s, char *err, size_t errlen);
+/* Refuse (-1, the reason in err) a scene that, with its --grid copies,
+ * would have more than --max-polys polygons; the message gives the count
+ * and an estimate of the memory. Called before the copies are made. */
+int  app_check_size(const Options *o, const Scene *s, char *err, size_t errlen);
 /* Path of the bundled demo scene (next to the binary or installed). */
 const char *app_demo_path(void);
 

@@ -83,10 +83,31 @@ void  quant_rgb_to_oklab(const uint8_t rgb[3], float lab_out[3]);
 
 /* The grid as text with ANSI SGR colours (none: plain text), each row
  * ending in a reset and "\n". Built in one buffer, written with one
- * fwrite. Returns 0, or -1 on a write error. */
+ * fwrite, then flushed. Returns 0, or -1 on a write error (errno says
+ * which) or out of memory (ENOMEM). */
 int  print_cells(FILE *f, const CellGrid *g, ColorDepth c);
 /* Same bytes into a malloc'd buffer (*len_out), for tests. */
 char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out);
+
+/* Checked output: every write of a report or a file goes through one of
+ * these. The first failure is kept (its errno); later calls then write
+ * nothing and return -1. name is what a message calls the stream: a path,
+ * or "standard output". */
+typedef struct {
+    FILE       *f;
+    const char *name;
+    int         err;        /* errno of the first failure, 0 = none */
+} Out;
+
+void out_init(Out *o, FILE *f, const char *name);
+int  out_printf(Out *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+int  out_write(Out *o, const void *p, size_t n);
+/* Flush, and fail too when the stream has an error from any write. */
+int  out_flush(Out *o);
+/* Flush and fclose (not for stdout). */
+int  out_close(Out *o);
+/* The reason of the first failure (strerror). */
+const char *out_error(const Out *o);
 
 /* Image writers. Return 0, or -1 with "path: reason" in err. */
 int  write_png(const char *path, const Image *im, char *err, size_t errlen);

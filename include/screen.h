@@ -16,6 +16,12 @@
 #define SUBPIX_BITS 8
 #define SUBPIX      (1 << SUBPIX_BITS)   /* 256 sub-pixel steps per pixel */
 #define SCREEN_MAX  16384                /* largest W or H accepted */
+#define SCREEN_MAX_THREADS 64            /* most threads one projection uses */
+
+/* The front end's scratch (per-vertex arrays, clip buffers), private to
+ * project.c. Each ScreenPolys owns one, so projections into different
+ * ScreenPolys may run at the same time. */
+typedef struct ScreenWork ScreenWork;
 
 typedef struct {
     int32_t x, y;       /* 24.8 fixed-point pixels */
@@ -35,6 +41,10 @@ typedef struct {
 } ScreenPoly;
 
 typedef struct {
+    /* set by the caller, kept across frames */
+    int         threads;        /* threads the front end may use: 1 = the caller
+                                   alone, 0 = one per core (at most SCREEN_MAX_THREADS) */
+    /* set by screen_project */
     int         w, h;
     float       pixel_aspect;   /* pixel height / width (2 for terminal cells) */
     int         cull;           /* drop back faces */
@@ -60,7 +70,9 @@ typedef struct {
     uint32_t    in_polys;       /* scene polygons considered */
     uint32_t    culled_back;    /* dropped as back faces */
     uint32_t    culled_empty;   /* dropped: clipped away or cover no sample */
+    uint32_t    helpers;        /* helper threads started */
     double      ms;             /* time spent projecting */
+    ScreenWork *work;           /* scratch, made on first use, freed by screen_free */
 } ScreenPolys;
 
 typedef struct {
@@ -70,10 +82,13 @@ typedef struct {
 } Viewport;
 
 /* Project every polygon of the scene. Buffers in *sp grow as needed and
- * are reused across frames (no allocation once grown). Big objects are
- * projected on two threads with the same result as one. Not reentrant:
- * one call at a time per process. Returns 0, or -1 on out of memory. */
+ * are reused across frames (no allocation once grown). A big object is
+ * split between the caller and up to sp->threads - 1 helper threads, with
+ * the same result as one thread. All state lives in *sp: calls on
+ * different ScreenPolys may run at the same time (the scene is only
+ * read). Returns 0, or -1 on out of memory. */
 int  screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp);
+/* Free the buffers and the scratch; sp->threads is kept. */
 void screen_free(ScreenPolys *sp);
 
 static inline uint32_t screen_poly_nverts(const ScreenPolys *sp, uint32_t i)
@@ -113,7 +128,8 @@ typedef struct {
 int  screen_reorder(ScreenPolys *sp, PolyOrder order, uint32_t seed, ReorderScratch *rs);
 void reorder_free(ReorderScratch *rs);
 
-/* Write the polygons as OBJ text ("# zview screen W H", v x y z, f ... # id). */
+/* Write the polygons as OBJ text ("# zview screen W H", v x y z, f ... # id).
+ * Returns 0, or -1 with errno set (open, write or close failed). */
 int  screen_dump_obj(const ScreenPolys *sp, const char *path);
 
 #endif

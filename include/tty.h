@@ -70,7 +70,9 @@ void term_erase(void);
 void term_update(int full);
 
 /* Wait up to timeout_ms (< 0: forever, 0: poll) for an event. Returns 1
- * with *ev filled, 0 when none came. */
+ * with *ev filled, 0 when none came, -1 when the input has ended (a
+ * hung-up terminal, a file at its end): no key will ever come, and
+ * waiting again would return at once. */
 int  term_read(TermEvent *ev, int timeout_ms);
 
 #endif

@@ -4,6 +4,7 @@
 
 #define _POSIX_C_SOURCE 200809L
 #include <criterion/criterion.h>
+#include <errno.h>
 #include <locale.h>
 #include <png.h>
 #include <stdio.h>
@@ -11,6 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "present.h"
+#include "tty.h"
 
 /* ==== Helpers ==== */
 
@@ -493,4 +495,76 @@ Test(present, writers_report_path_and_reason)
     cr_expect_eq(write_ppm("/nonexistent-zview-dir/out.ppm", &im, err, sizeof err), -1);
     cr_expect_str_eq(err, "/nonexistent-zview-dir/out.ppm: No such file or directory");
     image_free(&im);
+}
+
+/* ==== Checked output ==== */
+
+Test(present, checked_output_keeps_the_first_failure)
+{
+    FILE *f = fopen("/dev/full", "w");
+    if (!f)
+        cr_skip_test("no /dev/full");
+    Out o;
+    out_init(&o, f, "/dev/full");
+    /* buffered: the write itself may pass, the flush cannot */
+    out_printf(&o, "%s", "hello");
+    cr_expect_eq(out_flush(&o), -1);
+    cr_expect_eq(o.err, ENOSPC);
+    /* a later success must not hide it, nor a later failure change it */
+    errno = EINTR;
+    cr_expect_eq(out_write(&o, "x", 1), -1);
+    cr_expect_eq(o.err, ENOSPC);
+    cr_expect_eq(out_close(&o), -1);
+    cr_expect_str_eq(out_error(&o), strerror(ENOSPC));
+}
+
+Test(present, checked_output_passes_good_writes)
+{
+    FILE *f = tmpfile();
+    cr_assert_not_null(f);
+    Out o;
+    out_init(&o, f, "tmp");
+    cr_expect_eq(out_printf(&o, "%d-%s", 42, "ok"), 0);
+    cr_expect_eq(out_write(&o, "!", 1), 0);
+    cr_expect_eq(out_flush(&o), 0);
+    rewind(f);
+    char buf[16] = "";
+    cr_expect_eq(fread(buf, 1, sizeof buf - 1, f), 6);
+    cr_expect_str_eq(buf, "42-ok!");
+    cr_expect_eq(out_close(&o), 0);
+}
+
+Test(present, print_cells_reports_a_full_device)
+{
+    FILE *f = fopen("/dev/full", "w");
+    if (!f)
+        cr_skip_test("no /dev/full");
+    Cell st[4];
+    CellGrid g = two_rows(st);
+    errno = 0;
+    cr_expect_eq(print_cells(f, &g, COLOR_256), -1);
+    cr_expect_eq(errno, ENOSPC);
+    fclose(f);
+}
+
+/* ==== The viewer's input ==== */
+
+/* Input at its end (here /dev/null) makes every read return at once: the
+ * viewer must learn that no key will come, or it spins waiting. */
+Test(present, term_read_reports_the_end_of_input)
+{
+    FILE *out = tmpfile(), *in = fopen("/dev/null", "r");
+    cr_assert(out && in);
+    char err[128];
+    TermConfig cfg = { .out = out, .in = in, .termname = "xterm-256color", .color = COLOR_256 };
+    if (term_open(&cfg, err, sizeof err))
+        cr_skip_test("no xterm-256color description: %s", err);
+    TermEvent ev;
+    int forever = term_read(&ev, -1), timed = term_read(&ev, 20), now = term_read(&ev, 0);
+    term_restore();
+    cr_expect_eq(forever, -1, "a blocking read at the end of input returned %d", forever);
+    cr_expect_eq(timed, -1, "a timed read at the end of input returned %d", timed);
+    cr_expect_eq(now, -1, "a poll at the end of input returned %d", now);
+    fclose(out);
+    fclose(in);
 }

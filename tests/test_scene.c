@@ -3,6 +3,8 @@
  * and back-face culling. */
 
 #include <criterion/criterion.h>
+#include <pthread.h>
+#include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -277,4 +279,112 @@ Test(view, named_views)
     cr_expect_eq(view_from_name("sideways", &y, &p), -1);
     for (int i = 0; view_name(i); i++)
         cr_expect_eq(view_from_name(view_name(i), &y, &p), 0);
+}
+/* ==== threads and reentrancy ==== */
+
+/* A wavy n x n grid of quads split into triangles: one object big enough
+ * for the front end to split over several threads. */
+static char *wavy_grid_obj(int n)
+{
+    size_t cap = (size_t)(n + 1) * (n + 1) * 48 + (size_t)n * n * 2 * 40 + 1;
+    char *t = malloc(cap), *p = t;
+    cr_assert(t);
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            p += snprintf(p, cap - (size_t)(p - t), "v %d %d %.4f\n", i, j,
+                          2.0 * sin(i * 0.21) * cos(j * 0.17));
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+            p += snprintf(p, cap - (size_t)(p - t), "f %d %d %d\nf %d %d %d\n", a, b, d, a, d, c);
+        }
+    return t;
+}
+
+static void expect_same_polys(const ScreenPolys *a, const ScreenPolys *b, const Scene *s)
+{
+    cr_assert_eq(a->npolys, b->npolys);
+    cr_assert_eq(a->nverts, b->nverts);
+    cr_assert_eq(a->culled_empty, b->culled_empty);
+    cr_assert_eq(memcmp(a->verts, b->verts, a->nverts * sizeof *a->verts), 0);
+    cr_assert_eq(memcmp(a->polys, b->polys, (a->npolys + 1) * sizeof *a->polys), 0);
+    cr_assert_eq(memcmp(a->map, b->map, s->npolys * sizeof *a->map), 0);
+}
+
+typedef struct {
+    const Scene *s;
+    Viewport     vp;
+    ScreenPolys  sp;
+    int          rounds, rc;
+} ProjectJob;
+
+static void *project_rounds(void *arg)
+{
+    ProjectJob *j = arg;
+    for (int r = 0; r < j->rounds && !j->rc; r++)
+        j->rc = screen_project(&j->sp, j->s, &j->vp);
+    return NULL;
+}
+
+Test(scene, two_projections_at_once_equal_one)
+{
+    char *text = wavy_grid_obj(120);   /* 28,800 triangles */
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "wavy", text), 0);
+    free(text);
+    tl_random_view(&s, 7, 1);
+    s.cam.zoom = 3.5f;                 /* the near plane cuts: the clipping path runs too */
+    Viewport vp = { 320, 200, 1.0f, 0 };
+    ScreenPolys ref = { 0 };
+    ref.threads = 1;
+    cr_assert_eq(screen_project(&ref, &s, &vp), 0);
+    cr_assert_gt(ref.npolys, 1000);
+    /* alternately: two ScreenPolys, each keeps its own scratch */
+    ScreenPolys a = { 0 }, b = { 0 };
+    a.threads = b.threads = 2;
+    Viewport small = { 97, 61, 2.0f, 1 };
+    for (int r = 0; r < 3; r++) {
+        cr_assert_eq(screen_project(&a, &s, &vp), 0);
+        cr_assert_eq(screen_project(&b, &s, &small), 0);
+    }
+    expect_same_polys(&ref, &a, &s);
+    screen_free(&a);
+    screen_free(&b);
+    /* concurrently: two threads, each with its own ScreenPolys */
+    ProjectJob j[2] = { { &s, vp, { 0 }, 20, 0 }, { &s, vp, { 0 }, 20, 0 } };
+    j[0].sp.threads = 2;    /* with helper threads of its own */
+    j[1].sp.threads = 1;
+    pthread_t th[2];
+    for (int i = 0; i < 2; i++)
+        cr_assert_eq(pthread_create(&th[i], NULL, project_rounds, &j[i]), 0);
+    for (int i = 0; i < 2; i++) {
+        pthread_join(th[i], NULL);
+        cr_assert_eq(j[i].rc, 0);
+        expect_same_polys(&ref, &j[i].sp, &s);
+        screen_free(&j[i].sp);
+    }
+    screen_free(&ref);
+    scene_free(&s);
+}
+
+Test(scene, one_thread_means_no_helper_thread)
+{
+    char *text = wavy_grid_obj(120);
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "wavy", text), 0);
+    free(text);
+    tl_random_view(&s, 3, 0);
+    Viewport vp = { 200, 150, 1.0f, 0 };
+    ScreenPolys one = { 0 }, three = { 0 };
+    one.threads = 1;
+    three.threads = 3;
+    cr_assert_eq(screen_project(&one, &s, &vp), 0);
+    cr_assert_eq(one.helpers, 0, "threads = 1 started %u helper threads", one.helpers);
+    /* the count is real: more threads on the same object do start helpers */
+    cr_assert_eq(screen_project(&three, &s, &vp), 0);
+    cr_assert_eq(three.helpers, 2);
+    expect_same_polys(&one, &three, &s);
+    screen_free(&one);
+    screen_free(&three);
+    scene_free(&s);
 }

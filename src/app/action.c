@@ -4,6 +4,7 @@
  * camera) when none is selected. */
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "tty.h"
@@ -175,7 +176,8 @@ static Reaction act_spin(App *a)
 
 static Reaction act_help(App *a)
 {
-    a->help = !a->help;
+    a->help = 1;
+    a->help_top = 0;
     return RE_DRAW;
 }
 
@@ -199,19 +201,33 @@ static Reaction act_quit(App *a)
 typedef Reaction (*Action)(App *a);
 static const Action keys[K_COUNT];
 
+/* A key while the help is shown: it scrolls the help when the help does
+ * not fit, else it closes the help and does nothing more (a `q` that
+ * closes the help does not also quit). */
+static Reaction help_key(App *a, int key)
+{
+    if (a->help_hidden > 0 && (key == TK_UP || key == 'k')) {
+        if (a->help_top > 0)
+            a->help_top--;
+        return RE_DRAW;
+    }
+    if (a->help_hidden > 0 && (key == TK_DOWN || key == 'j')) {
+        a->help_top++;      /* clamped by the next layout */
+        return RE_DRAW;
+    }
+    a->help = 0;
+    return RE_DRAW;
+}
+
 Reaction app_key(App *a, int key)
 {
     a->note[0] = 0;
-    if (a->help && key != 'q') {
-        /* any key closes the help; ? and Esc only do that */
-        a->help = 0;
-        if (key == '?' || key == TK_ESC)
-            return RE_DRAW;
-    }
+    if (a->help)
+        return help_key(a, key);
     int i = key >= 0 && key < K_SPECIAL ? key
           : key >= TK_UP && key <= TK_BTAB ? K_SPECIAL + (key - TK_UP) : -1;
     if (i < 0 || !keys[i])
-        return a->help ? RE_DRAW : RE_NONE;
+        return RE_NONE;
     return keys[i](a) | RE_DRAW;
 }
 
@@ -235,25 +251,104 @@ void app_spin(App *a, float radians)
     *y = remainderf(*y + radians, 2 * ZV_PI);
 }
 
-const char *const app_help[] = {
-    "zview keys (any key closes this)",
-    "",
-    "arrows, h j k l   turn (yaw, pitch)     u / o     roll",
-    "I J K L           turn in 15-degree steps",
-    "w a s d           move                  f         fit to view",
-    "+ -   z c         scale (mouse wheel)   r / x     reset",
-    "Tab / n           next object           N / 0     whole scene",
-    "shift-Tab         previous object",
-    "g / G             next / previous algorithm",
-    "m                 display mode (half, ascii, braille)",
-    "v                 shading (lambert, depth, id)",
-    "p                 orthographic / perspective",
-    "b                 back-face culling",
-    "space             auto-rotate (turntable, --fps cap)",
-    "Ctrl-L            redraw                q / Esc   quit",
-    "mouse             left drag turns, right drag moves",
+/* ==== The help overlay ==== */
+
+typedef struct {
+    const char *keys, *what;
+} HelpEntry;
+
+static const HelpEntry help[] = {
+    { "arrows h j k l", "turn (yaw, pitch)" },
+    { "u o", "roll" },
+    { "I J K L", "turn 15 degrees" },
+    { "w a s d", "move" },
+    { "+ - z c wheel", "scale" },
+    { "f", "fit to view" },
+    { "r x", "reset" },
+    { "Tab n", "next object" },
+    { "shift-Tab", "previous object" },
+    { "N 0", "whole scene" },
+    { "g G", "next / previous algorithm" },
+    { "m", "display mode" },
+    { "v", "shading" },
+    { "p", "ortho / perspective" },
+    { "b", "back-face culling" },
+    { "space", "auto-rotate" },
+    { "Ctrl-L", "redraw" },
+    { "q Esc", "quit" },
+    { "left drag", "turn" },
+    { "right drag", "move" },
 };
-const int app_help_lines = (int)(sizeof app_help / sizeof app_help[0]);
+#define HELP_N ((int)(sizeof help / sizeof help[0]))
+#define HELP_GAP 3          /* spaces between columns */
+#define HELP_MAX_COLUMNS 3
+
+/* Row r of the layout: ncols entries side by side (column-major), or in
+ * the stacked form (ncols 0) the keys on even rows, the meaning below. */
+static void help_row(char *out, int r, int nrows, int ncols, int kw, int ew)
+{
+    if (ncols == 0) {
+        const HelpEntry *e = &help[r / 2];
+        snprintf(out, HELP_LINE_MAX, r % 2 ? "  %s" : "%s", r % 2 ? e->what : e->keys);
+        return;
+    }
+    int len = 0;
+    out[0] = 0;
+    for (int c = 0; c < ncols; c++) {
+        int k = c * nrows + r;
+        if (k >= HELP_N)
+            break;
+        len += snprintf(out + len, (size_t)(HELP_LINE_MAX - len), "%*s%-*s  %-*s", c ? HELP_GAP : 0, "",
+                        kw, help[k].keys, ew - kw - 2, help[k].what);
+        if (len >= HELP_LINE_MAX)
+            break;
+    }
+    while (len > 0 && out[len - 1] == ' ')
+        out[--len] = 0;
+}
+
+int app_help_layout(App *a, int cols, int rows, const char **lines)
+{
+    int kw = 0, dw = 0;
+    for (int k = 0; k < HELP_N; k++) {
+        int n = (int)strlen(help[k].keys), m = (int)strlen(help[k].what);
+        kw = n > kw ? n : kw;
+        dw = m > dw ? m : dw;
+    }
+    int ew = kw + 2 + dw;
+    int inner = cols - 4;               /* the box's frame and margins */
+    int avail = rows - 1 - 2 - 1;       /* less the status bar, the frame, the title */
+    if (avail > HELP_LINES_MAX - 1)
+        avail = HELP_LINES_MAX - 1;
+    /* as few columns as show everything, else as many as fit across */
+    int ncols = 0, nrows = 2 * HELP_N;
+    for (int c = 1; c <= HELP_MAX_COLUMNS && c * ew + (c - 1) * HELP_GAP <= inner; c++) {
+        ncols = c;
+        nrows = (HELP_N + c - 1) / c;
+        if (nrows <= avail)
+            break;
+    }
+    int shown = nrows < avail ? nrows : avail > 0 ? avail : 0;
+    a->help_hidden = nrows - shown;
+    if (a->help_top > a->help_hidden)
+        a->help_top = a->help_hidden;
+    if (a->help_top < 0)
+        a->help_top = 0;
+    const char *title = "zview keys (any key closes this)";
+    char more[HELP_LINE_MAX];
+    if (a->help_hidden) {
+        snprintf(more, sizeof more, "keys %d-%d of %d: Up/Down scroll, other keys close",
+                 a->help_top + 1, a->help_top + shown, nrows);
+        title = (int)strlen(more) <= inner ? more : inner >= 18 ? "Up/Down: more keys" : "Up/Down: more";
+    }
+    snprintf(a->help_text[0], HELP_LINE_MAX, "%s", title);
+    lines[0] = a->help_text[0];
+    for (int i = 0; i < shown; i++) {
+        help_row(a->help_text[1 + i], a->help_top + i, nrows, ncols, kw, ew);
+        lines[1 + i] = a->help_text[1 + i];
+    }
+    return 1 + shown;
+}
 
 /* The key table. */
 static const Action keys[K_COUNT] = {

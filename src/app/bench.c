@@ -2,6 +2,8 @@
  * (a warm-up frame first); medians and minimums of the hidden-surface
  * step and of the whole frame. Timing lives here, never in tests. */
 
+#define _POSIX_C_SOURCE 200809L     /* strtok_r */
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -43,19 +45,29 @@ static int parse_algos(const char *spec, AlgoList *l)
             l->algos[l->n++] = hsr_algos[i]->name;
         return 0;
     }
-    static char buf[256];
+    char buf[256], *save = NULL;
     snprintf(buf, sizeof buf, "%s", spec);
-    for (char *t = strtok(buf, ","); t && l->n < 16; t = strtok(NULL, ",")) {
-        if (!hsr_find(t)) {
+    for (char *t = strtok_r(buf, ",", &save); t && l->n < 16; t = strtok_r(NULL, ",", &save)) {
+        const HsrAlgo *a = hsr_find(t);
+        if (!a) {
             fprintf(stderr, "zview: unknown algorithm '%s'\n", t);
             return -1;
         }
-        l->algos[l->n++] = t;
+        l->algos[l->n++] = a->name;   /* the registry's string outlives buf */
     }
     return l->n ? 0 : -1;
 }
 
-static int bench_model(const Options *o, const char *file, const AlgoList *al, int *first_json)
+/* The rows so far went out, or a message says why not. */
+static int report_ok(Out *out)
+{
+    if (out_flush(out) == 0)
+        return 1;
+    fprintf(stderr, "zview: %s: %s\n", out->name, out_error(out));
+    return 0;
+}
+
+static int bench_model(Out *out, const Options *o, const char *file, const AlgoList *al, int *first_json)
 {
     char err[512];
     Options one = *o;
@@ -87,10 +99,12 @@ static int bench_model(const Options *o, const char *file, const AlgoList *al, i
         scene_free(&s);
         return 1;
     }
-    for (int a = 0; a < al->n; a++) {
+    int rc = 0;
+    for (int a = 0; a < al->n && !rc; a++) {
         Pipeline p;
         if (pipeline_init(&p, &s, hsr_find(al->algos[a]), o->threads)) {
             fprintf(stderr, "zview: out of memory\n");
+            rc = 1;
             break;
         }
         pipeline_apply_options(&p, o);
@@ -102,6 +116,7 @@ static int bench_model(const Options *o, const char *file, const AlgoList *al, i
             double t0 = now_ms();
             if (pipeline_render(&p, w, h, 1.0f, o->cull, 1)) {
                 fprintf(stderr, "zview: out of memory\n");
+                rc = 1;
                 break;
             }
             frame[k] = now_ms() - t0;
@@ -112,6 +127,10 @@ static int bench_model(const Options *o, const char *file, const AlgoList *al, i
             for (size_t i = 0; i < (size_t)w * h; i++)
                 covered += p.fb.ids[i] >= 0;
         }
+        if (rc) {
+            pipeline_free(&p);
+            break;
+        }
         double hmin = hsr[0];
         for (int k = 1; k < views; k++)
             if (hsr[k] < hmin)
@@ -120,7 +139,7 @@ static int bench_model(const Options *o, const char *file, const AlgoList *al, i
         double culled_pct = given ? 100.0 * culled / given : 0;
         double overdraw = covered ? (double)written / covered : 0;
         if (o->json) {
-            printf("%s\n  {\"model\": \"%s\", \"polygons\": %llu, \"algo\": \"%s\", \"width\": %d, "
+            out_printf(out, "%s\n  {\"model\": \"%s\", \"polygons\": %llu, \"algo\": \"%s\", \"width\": %d, "
                    "\"height\": %d, \"threads\": %d, \"views\": %d, \"median_ms\": %.3f, "
                    "\"min_ms\": %.3f, \"frame_median_ms\": %.3f, \"culled_pct\": %.1f, "
                    "\"overdraw\": %.2f}",
@@ -128,16 +147,17 @@ static int bench_model(const Options *o, const char *file, const AlgoList *al, i
                    hmed, hmin, fmed, culled_pct, overdraw);
             *first_json = 0;
         } else {
-            printf("%-24s %9llu %-11s %5dx%-5d %2d %9.2f %9.2f %9.2f %7.1f %8.2f\n", label,
+            out_printf(out, "%-24s %9llu %-11s %5dx%-5d %2d %9.2f %9.2f %9.2f %7.1f %8.2f\n", label,
                    (unsigned long long)npolys, al->algos[a], w, h, p.threads, hmed, hmin, fmed, culled_pct, overdraw);
         }
-        fflush(stdout);
         pipeline_free(&p);
+        if (!report_ok(out))
+            rc = 1;     /* nobody sees the rest: stop */
     }
     free(hsr);
     free(frame);
     scene_free(&s);
-    return 0;
+    return rc;
 }
 
 int app_bench(const Options *o, Scene *s)
@@ -148,17 +168,23 @@ int app_bench(const Options *o, Scene *s)
     AlgoList al;
     if (parse_algos(o->algo, &al))
         return 2;
+    Out out;
+    out_init(&out, stdout, "standard output");
     int first = 1, rc = 0;
     if (o->json)
-        printf("[");
+        out_printf(&out, "[");
     else
-        printf("%-24s %9s %-11s %11s %2s %9s %9s %9s %7s %8s\n", "model", "polygons", "algo",
+        out_printf(&out, "%-24s %9s %-11s %11s %2s %9s %9s %9s %7s %8s\n", "model", "polygons", "algo",
                "size", "th", "median_ms", "min_ms", "frame_ms", "culled%", "overdraw");
+    if (!report_ok(&out))
+        return 1;
     if (o->nfiles == 0)
-        rc |= bench_model(o, NULL, &al, &first);
-    for (int i = 0; i < o->nfiles; i++)
-        rc |= bench_model(o, o->files[i], &al, &first);
+        rc |= bench_model(&out, o, NULL, &al, &first);
+    for (int i = 0; i < o->nfiles && !out.err; i++)
+        rc |= bench_model(&out, o, o->files[i], &al, &first);
+    if (out.err)
+        return 1;       /* said already */
     if (o->json)
-        printf("\n]\n");
-    return rc;
+        out_printf(&out, "\n]\n");
+    return report_ok(&out) ? rc : 1;
 }

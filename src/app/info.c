@@ -5,7 +5,7 @@
 
 #include "app.h"
 
-static void print_mesh(const Mesh *m)
+static void print_mesh(Out *out, const Mesh *m)
 {
     float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
     for (uint32_t v = 0; v < m->nverts; v++)
@@ -17,36 +17,49 @@ static void print_mesh(const Mesh *m)
     if (!m->nverts)
         lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
     double mb = m->info.bytes / 1e6;
-    printf("file:       %s\n", m->path ? m->path : "?");
-    printf("vertices:   %u\n", m->nverts);
-    printf("faces:      %u\n", m->nfaces);
-    printf("triangles:  %u\n", m->info.triangles);
-    printf("objects:    %u\n", m->nobjs);
-    printf("bounds:     %g %g %g .. %g %g %g\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
-    printf("materials:  %u\n", m->nmats);
-    printf("texcoords:  %u   normals: %u   vertex colours: %s\n", m->info.texcoords,
+    out_printf(out, "file:       %s\n", m->path ? m->path : "?");
+    out_printf(out, "vertices:   %u\n", m->nverts);
+    out_printf(out, "faces:      %u\n", m->nfaces);
+    out_printf(out, "triangles:  %u\n", m->info.triangles);
+    out_printf(out, "objects:    %u\n", m->nobjs);
+    out_printf(out, "bounds:     %g %g %g .. %g %g %g\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    out_printf(out, "materials:  %u\n", m->nmats);
+    out_printf(out, "texcoords:  %u   normals: %u   vertex colours: %s\n", m->info.texcoords,
            m->info.normals, m->rgb ? "yes" : "no");
     if (m->info.unknown)
-        printf("unknown:    %u statements skipped (first: '%s')\n", m->info.unknown,
+        out_printf(out, "unknown:    %u statements skipped (first: '%s')\n", m->info.unknown,
                m->info.first_unknown);
     else
-        printf("unknown:    0\n");
-    printf("load:       %.1f ms, %.1f MB, %.0f MB/s\n", m->info.load_ms, mb,
+        out_printf(out, "unknown:    0\n");
+    out_printf(out, "load:       %.1f ms, %.1f MB, %.0f MB/s\n", m->info.load_ms, mb,
            m->info.load_ms > 0 ? mb / (m->info.load_ms / 1e3) : 0.0);
+}
+
+/* The report so far went out, or a message says why not. */
+static int report_ok(Out *out)
+{
+    if (out_flush(out) == 0)
+        return 1;
+    fprintf(stderr, "zview: %s: %s\n", out->name, out_error(out));
+    return 0;
 }
 
 int app_info(const Options *o, Scene *s)
 {
+    Out outs, *out = &outs;
+    out_init(out, stdout, "standard output");
     for (int i = 0; i < s->nmeshes; i++) {
         if (i)
-            putchar('\n');
-        print_mesh(&s->meshes[i]);
+            out_printf(out, "\n");
+        print_mesh(out, &s->meshes[i]);
     }
     uint64_t npolys = 0;   /* grid copies share their source's polygon lists */
     for (int k = 0; k < s->nobjs; k++)
         npolys += s->objs[k].poly_count;
-    printf("\nscene:      %d objects, %u faces, %llu polygons after splitting non-planar faces\n",
+    out_printf(out, "\nscene:      %d objects, %u faces, %llu polygons after splitting non-planar faces\n",
            s->nobjs, s->nfaces, (unsigned long long)npolys);
+    if (!report_ok(out))
+        return 1;
     if (!o->algo)
         return 0;
     const HsrAlgo *algo = hsr_find(o->algo);
@@ -66,18 +79,18 @@ int app_info(const Options *o, Scene *s)
     for (size_t i = 0; i < (size_t)w * h; i++)
         covered += p.fb.ids[i] >= 0;
     const HsrStats *st = &p.st;
-    printf("\nrender:     %s, %dx%d pixels, %d thread%s\n", algo->name, w, h, p.threads,
+    out_printf(out, "\nrender:     %s, %dx%d pixels, %d thread%s\n", algo->name, w, h, p.threads,
            p.threads > 1 ? "s" : "");
-    printf("polygons:   %u in, %u back faces culled, %u cover no sample, %u to the algorithm\n",
+    out_printf(out, "polygons:   %u in, %u back faces culled, %u cover no sample, %u to the algorithm\n",
            p.sp.in_polys, p.sp.culled_back, p.sp.culled_empty, p.sp.npolys);
-    printf("pyramid:    %llu polygons culled, %llu octree nodes visited, %llu culled\n",
+    out_printf(out, "pyramid:    %llu polygons culled, %llu octree nodes visited, %llu culled\n",
            (unsigned long long)st->polys_culled, (unsigned long long)st->nodes_visited,
            (unsigned long long)st->nodes_culled);
-    printf("pixels:     %llu written, %llu covered, overdraw %.2f\n",
+    out_printf(out, "pixels:     %llu written, %llu covered, overdraw %.2f\n",
            (unsigned long long)st->pixels_written, (unsigned long long)covered,
            covered ? (double)st->pixels_written / covered : 0.0);
-    printf("time:       transform %.2f ms, build %.2f ms, scan %.2f ms, shade %.2f ms\n",
+    out_printf(out, "time:       transform %.2f ms, build %.2f ms, scan %.2f ms, shade %.2f ms\n",
            p.project_ms, st->build_ms, st->scan_ms, p.shade_ms);
     pipeline_free(&p);
-    return 0;
+    return report_ok(out) ? 0 : 1;
 }

@@ -82,7 +82,8 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
     }
     float yaw = vy + o->yaw, pitch = vp + o->pitch;
     scene_layout(s, (LayoutKind)o->layout, deg2rad(py));
-    if (o->grid > 1 && scene_make_grid(s, o->grid, err, errlen)) {
+    if (app_check_size(o, s, err, errlen) ||
+        (o->grid > 1 && scene_make_grid(s, o->grid, err, errlen))) {
         scene_free(s);
         return -1;
     }

@@ -1,6 +1,10 @@
 /* main.c: parse options, load the scene, then one of: info, benchmark,
  * one-shot output, or the interactive viewer. */
 
+#define _DEFAULT_SOURCE         /* mallopt */
+
+#include <errno.h>
+#include <fcntl.h>
 #include <locale.h>
 #include <malloc.h>
 #include <stdio.h>
@@ -9,10 +13,40 @@
 
 #include "app.h"
 
+/* A standard descriptor the shell left closed (`>&-`) would be taken by
+ * the next open(): the model file, or the PNG, would become "standard
+ * output". Hold each with /dev/null instead, opened so that writes to
+ * standard output still fail (read-only: EBADF, as a closed one would)
+ * and the error is reported. */
+static void hold_closed_std_fds(void)
+{
+    static const int modes[3] = { O_RDONLY, O_RDONLY, O_WRONLY };
+    for (int fd = 0; fd <= 2; fd++)
+        if (fcntl(fd, F_GETFD) == -1 && errno == EBADF) {
+            int got = open("/dev/null", modes[fd]);
+            if (got >= 0 && got != fd) {
+                dup2(got, fd);
+                close(got);
+            }
+        }
+}
+
+/* Flush standard output; on failure say why (exit status 1). */
+static int finish_stdout(void)
+{
+    Out out;
+    out_init(&out, stdout, "standard output");
+    if (out_flush(&out) == 0)
+        return 0;
+    fprintf(stderr, "zview: standard output: %s\n", out_error(&out));
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
     char err[512];
     Options o;
+    hold_closed_std_fds();
     setlocale(LC_ALL, "");
     /* Big buffers (meshes, screen polygons, build scratch) come from mmap
      * and go back to the system when freed: a fixed threshold keeps glibc
@@ -24,20 +58,22 @@ int main(int argc, char **argv)
     }
     if (o.help) {
         cli_usage(stdout);
-        return 0;
+        return finish_stdout();
     }
     if (o.version) {
         printf("zview %s\n", ZV_VERSION);
-        return 0;
+        return finish_stdout();
     }
-    if (o.bench || o.bench_tty)
-        return app_bench(&o, NULL);   /* loads each model on its own */
+    int rc;
+    if (o.bench || o.bench_tty) {
+        rc = app_bench(&o, NULL);   /* loads each model on its own */
+        return rc ? rc : finish_stdout();
+    }
     Scene scene;
     if (app_load_scene(&o, &scene, err, sizeof err)) {
         fprintf(stderr, "zview: %s\n", err);
         return 1;
     }
-    int rc;
     if (o.info)
         rc = app_info(&o, &scene);
     else if (o.print || o.out || o.dump_ids || o.dump_screen || !isatty(STDOUT_FILENO))
@@ -45,5 +81,6 @@ int main(int argc, char **argv)
     else
         rc = app_viewer(&o, &scene);
     scene_free(&scene);
-    return rc;
+    /* every path checks its own writes; this catches any left in the buffer */
+    return rc ? rc : finish_stdout();
 }

@@ -1,5 +1,6 @@
 /* oneshot.c: --print, -o, --dump-ids, --dump-screen: one frame, no curses. */
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,28 +28,37 @@ static void print_size(const Options *o, int *cols, int *rows)
     *rows = 24;
 }
 
+/* The face ids as little-endian int32 on any host. Returns 0, or -1
+ * after a message naming the file. */
 static int write_ids(const char *path, const FrameBufs *fb)
 {
     FILE *f = fopen(path, "wb");
-    if (!f)
+    if (!f) {
+        fprintf(stderr, "zview: %s: %s\n", path, strerror(errno));
         return -1;
+    }
+    Out out;
+    out_init(&out, f, path);
     size_t n = (size_t)fb->w * fb->h;
-    /* little-endian int32 on any host */
     unsigned char buf[4096];
     size_t k = 0;
-    for (size_t i = 0; i < n; i++) {
+    for (size_t i = 0; i < n && !out.err; i++) {
         uint32_t v = (uint32_t)fb->ids[i];
         buf[k++] = (unsigned char)v;
         buf[k++] = (unsigned char)(v >> 8);
         buf[k++] = (unsigned char)(v >> 16);
         buf[k++] = (unsigned char)(v >> 24);
         if (k == sizeof buf) {
-            fwrite(buf, 1, k, f);
+            out_write(&out, buf, k);
             k = 0;
         }
     }
-    fwrite(buf, 1, k, f);
-    return fclose(f) == 0 ? 0 : -1;
+    out_write(&out, buf, k);
+    if (out_close(&out)) {
+        fprintf(stderr, "zview: %s: %s\n", path, out_error(&out));
+        return -1;
+    }
+    return 0;
 }
 
 int app_oneshot(const Options *o, Scene *s)
@@ -93,17 +103,16 @@ int app_oneshot(const Options *o, Scene *s)
             rc = 1;
             goto out;
         }
-        if (print_cells(stdout, &p.cells, color) || fflush(stdout)) {
+        if (print_cells(stdout, &p.cells, color)) {
+            fprintf(stderr, "zview: standard output: %s\n", strerror(errno));
             rc = 1;
             goto out;
         }
     }
-    if (o->dump_ids && write_ids(o->dump_ids, &p.fb)) {
-        fprintf(stderr, "zview: %s: cannot write\n", o->dump_ids);
+    if (o->dump_ids && write_ids(o->dump_ids, &p.fb))
         rc = 1;
-    }
     if (o->dump_screen && screen_dump_obj(&p.sp, o->dump_screen)) {
-        fprintf(stderr, "zview: %s: cannot write\n", o->dump_screen);
+        fprintf(stderr, "zview: %s: %s\n", o->dump_screen, strerror(errno));
         rc = 1;
     }
 out:

@@ -1,9 +1,82 @@
 /* pipeline.c: one frame through the stages, timed stage by stage. */
 
+#include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "app.h"
+
+/* The hidden-surface algorithms' own tables per polygon (bucket keys,
+ * sort order, records): a few words each, rounded up. */
+#define ALGO_BYTES_PER_POLY 16
+/* Pixels assumed when --size is not given: the benchmark's default,
+ * the biggest of the defaults. */
+#define DEFAULT_PIXELS (1920u * 1080u)
+/* Bytes per pixel: face ids and depths, RGB and the lit mask. */
+#define BYTES_PER_PIXEL (4 + 4 + 3 + 1)
+
+/* 398131200 -> "398,131,200". */
+static void with_commas(uint64_t v, char *buf, size_t len)
+{
+    char tmp[32];
+    int n = snprintf(tmp, sizeof tmp, "%llu", (unsigned long long)v);
+    size_t o = 0;
+    for (int i = 0; i < n && o + 2 < len; i++) {
+        if (i && (n - i) % 3 == 0)
+            buf[o++] = ',';
+        buf[o++] = tmp[i];
+    }
+    buf[o] = 0;
+}
+
+/* An estimate of the memory of the scene (--grid copies included) and of
+ * one frame of polys polygons with `corners` corners. */
+static uint64_t scene_frame_bytes(const Scene *s, uint64_t copies, uint64_t polys, uint64_t corners,
+                                  uint64_t pixels)
+{
+    uint64_t verts = 0;
+    for (int i = 0; i < s->nmeshes; i++)
+        verts += s->meshes[i].nverts;
+    uint64_t scene = verts * 3 * sizeof(float) +
+                     (uint64_t)s->npolys * 2 * sizeof(uint32_t) +                /* start, lface */
+                     (uint64_t)s->poly_start[s->npolys] * sizeof(uint32_t) +    /* corners */
+                     (uint64_t)s->nfaces * copies * (3 * sizeof(float) + 3 + sizeof(uint16_t)) +
+                     (uint64_t)s->nobjs * copies * sizeof(Object);
+    uint64_t frame = polys * (sizeof(ScreenPoly) + sizeof(int32_t) + ALGO_BYTES_PER_POLY) +
+                     corners * sizeof(ScreenVert) * 65 / 64 +
+                     (uint64_t)s->nfaces * copies * 7 +                         /* shade cache */
+                     pixels * BYTES_PER_PIXEL;
+    return scene + frame;
+}
+
+int app_check_size(const Options *o, const Scene *s, char *err, size_t errlen)
+{
+    uint64_t copies = o->grid > 1 ? (uint64_t)o->grid * o->grid * o->grid : 1;
+    uint64_t polys = 0, corners = 0;   /* grid copies project their source's polygons again */
+    for (int k = 0; k < s->nobjs; k++) {
+        const Object *ob = &s->objs[k];
+        polys += ob->poly_count;
+        corners += s->poly_start[ob->poly_first + ob->poly_count] - s->poly_start[ob->poly_first];
+    }
+    polys *= copies;
+    corners *= copies;
+    if (polys <= o->max_polys)
+        return 0;
+    uint64_t pixels = o->w > 0 ? (uint64_t)o->w * o->h : DEFAULT_PIXELS;
+    double bytes = (double)scene_frame_bytes(s, copies, polys, corners, pixels);
+    char np[32], lim[32], mem[32];
+    with_commas(polys, np, sizeof np);
+    with_commas(o->max_polys, lim, sizeof lim);
+    if (bytes >= 1e9)
+        snprintf(mem, sizeof mem, "%.1f GB", bytes / 1e9);
+    else
+        snprintf(mem, sizeof mem, "%.0f MB", bytes / 1e6);
+    snprintf(err, errlen,
+             "the scene would have %s polygons and need about %s for itself and one frame "
+             "(limit %s polygons; --max-polys raises it)",
+             np, mem, lim);
+    return -1;
+}
 
 int default_threads(void)
 {
@@ -16,6 +89,7 @@ int pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads)
     memset(p, 0, sizeof *p);
     p->scene = s;
     p->threads = threads > 0 ? threads : default_threads();
+    p->sp.threads = p->threads;     /* --threads 1: no helper thread anywhere */
     p->shade = SHADE_LAMBERT;
     p->samples = 1;
     p->crease = SHADE_CREASE_DEFAULT;

@@ -20,9 +20,9 @@ typedef struct {
     char  *buf;
     size_t len, at;
     int    full;        /* ran out of room */
-} Out;
+} CmdBuf;
 
-static void put(Out *o, const char *fmt, ...)
+static void put(CmdBuf *o, const char *fmt, ...)
 {
     if (o->full)
         return;
@@ -38,7 +38,7 @@ static void put(Out *o, const char *fmt, ...)
 
 /* A word for a POSIX shell: as is when it is plain, else in single
  * quotes (a quote inside becomes '\''). */
-static void put_word(Out *o, const char *w)
+static void put_word(CmdBuf *o, const char *w)
 {
     int plain = *w != 0;
     for (const char *c = w; *c; c++)
@@ -75,7 +75,7 @@ static float deg(float rad)
 
 int view_command(char *buf, size_t len, const Options *opt, const Scene *s, const ViewSettings *v)
 {
-    Out o = { buf, len, 0, 0 };
+    CmdBuf o = { buf, len, 0, 0 };
     const Camera *c = &s->cam;
     put(&o, "zview");
     /* the turn, and where it was fitted from when that differs */

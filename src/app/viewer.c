@@ -6,11 +6,14 @@
 
 #define _DEFAULT_SOURCE         /* tmpfile, fileno, lstat on glibc */
 
+#include <errno.h>
 #include <langinfo.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "tty.h"
 #include "viewer.h"
@@ -57,6 +60,8 @@ static int app_init(App *a, const Options *o, Scene *s)
         return -1;
     a->p.samples = TEXT_SAMPLES;
     pipeline_apply_options(&a->p, o);
+    a->pic_cols = o->w;     /* --size fixes the picture (0: the window's size) */
+    a->pic_rows = o->h;
     return 0;
 }
 
@@ -74,32 +79,102 @@ static int render(App *a, int cols, int rows)
     return cells_from_image(&a->p.img, a->mode, term_color(), &a->p.cells);
 }
 
-static void status_text(const App *a, char *buf, size_t len, double frame_ms, int fps_cap)
+/* The status bar's fields, in the order shown. When the bar is wider
+ * than the window, fields go by rank, lowest first: 1 frame time and
+ * fps, 2 picture size, 3 display mode and shading, 4 view flags
+ * (persp, cull, spin), 5 selection, 6 note. Rank 0 stays: the file,
+ * the polygons, the algorithm and its time, and "? help"; in a window
+ * still too narrow they take their brief forms ("drawn/faces", "?"), and
+ * last of all the file name is shortened. README and the man page give
+ * the same order. */
+#define BAR_FIELDS 10
+#define BAR_RANKS  6
+
+typedef struct {
+    char text[96];
+    char brief[32];     /* a rank 0 field's short form ("" = none) */
+    int  rank;          /* -1: dropped */
+    int  glued;         /* joined to the field before by a space, not " | " */
+} BarField;
+
+static void bar_field(BarField *f, int rank, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void bar_field(BarField *f, int rank, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(f->text, sizeof f->text, fmt, ap);
+    va_end(ap);
+    f->brief[0] = 0;
+    f->rank = rank;
+    f->glued = 0;
+}
+
+/* Join the fields still in (not dropped, not empty). Returns the length. */
+static int bar_join(const BarField *f, char *buf, size_t len)
+{
+    size_t o = 0;
+    buf[0] = 0;
+    for (int i = 0; i < BAR_FIELDS; i++) {
+        if (f[i].rank < 0 || !f[i].text[0])
+            continue;
+        int k = snprintf(buf + o, len - o, "%s%s", !o ? " " : f[i].glued ? " " : " | ", f[i].text);
+        if (k < 0 || (size_t)k >= len - o)
+            break;
+        o += (size_t)k;
+    }
+    return (int)o;
+}
+
+static void status_text(const App *a, char *buf, size_t len, double frame_ms, int fps_cap, int width)
 {
     const Scene *s = a->s;
-    char sel[96] = "";
+    BarField f[BAR_FIELDS];
+    bar_field(&f[0], 0, "%s", a->name);
+    bar_field(&f[1], 5, "%s", "");
     if (a->sel >= 0)
-        snprintf(sel, sizeof sel, " [%s %d/%d]", s->objs[a->sel].name, a->sel + 1, s->nobjs);
+        bar_field(&f[1], 5, "[%s %d/%d]", s->objs[a->sel].name, a->sel + 1, s->nobjs);
     else if (s->nobjs > 1)
-        snprintf(sel, sizeof sel, " [all %d]", s->nobjs);
+        bar_field(&f[1], 5, "[all %d]", s->nobjs);
+    f[1].glued = 1;
+    bar_field(&f[2], 0, "faces %u drawn %u", s->nfaces, a->p.sp.npolys);
+    snprintf(f[2].brief, sizeof f[2].brief, "%u/%u", a->p.sp.npolys, s->nfaces);
+    bar_field(&f[3], 0, "%s %.2fms", a->p.algo->name, a->p.hsr_ms);
+    bar_field(&f[4], 1, "frame %.1fms %.0ffps", frame_ms, frame_ms > 0 ? 1000.0 / frame_ms : 0);
+    bar_field(&f[5], 3, "%s %s", mode_names[a->mode], shade_names[a->p.shade]);
     char spin[24] = "";
     if (a->spin)
-        snprintf(spin, sizeof spin, " spin@%d", fps_cap);
-    double fps = frame_ms > 0 ? 1000.0 / frame_ms : 0;
-    int n = snprintf(buf, len,
-                     " %s%s | faces %u drawn %u | %s %.2fms | frame %.1fms %.0ffps | %s %s%s%s%s"
-                     " | %dx%dpx | ? help",
-                     a->name, sel, s->nfaces, a->p.sp.npolys, a->p.algo->name, a->p.hsr_ms,
-                     frame_ms, fps, mode_names[a->mode], shade_names[a->p.shade],
-                     s->cam.persp ? " persp" : "", a->cull ? " cull" : "", spin,
-                     a->p.img.w, a->p.img.h);
-    if (a->note[0] && n > 0 && (size_t)n < len)
-        snprintf(buf + n, len - (size_t)n, " | %s", a->note);
+        snprintf(spin, sizeof spin, "spin@%d", fps_cap);
+    bar_field(&f[6], 4, "%s%s%s%s%s", s->cam.persp ? "persp" : "",
+              s->cam.persp && (a->cull || a->spin) ? " " : "", a->cull ? "cull" : "",
+              a->cull && a->spin ? " " : "", spin);
+    bar_field(&f[7], 2, "%dx%dpx", a->p.img.w, a->p.img.h);
+    bar_field(&f[8], 6, "%s", a->note);
+    bar_field(&f[9], 0, "? help");
+    snprintf(f[9].brief, sizeof f[9].brief, "?");
+    for (int rank = 1; rank <= BAR_RANKS && bar_join(f, buf, len) > width; rank++)
+        for (int i = 0; i < BAR_FIELDS; i++)
+            if (f[i].rank == rank)
+                f[i].rank = -1;
+    if (bar_join(f, buf, len) > width)
+        for (int i = 0; i < BAR_FIELDS; i++)
+            if (f[i].brief[0])
+                memcpy(f[i].text, f[i].brief, sizeof f[i].brief);
+    int over = bar_join(f, buf, len) - width;
+    int name_len = (int)strlen(f[0].text);
+    if (over > 0 && name_len > 4) {
+        int keep = name_len - over - 1 > 3 ? name_len - over - 1 : 3;
+        while (keep > 3 && (f[0].text[keep] & 0xc0) == 0x80)
+            keep--;         /* not inside a UTF-8 character */
+        f[0].text[keep] = '~';      /* ASCII: the locale may not be UTF-8 */
+        f[0].text[keep + 1] = 0;
+        bar_join(f, buf, len);
+    }
 }
 
 typedef struct {
     int    cols, rows;      /* window size last drawn (0 = none yet) */
     int    small;           /* last draw was the too-small message */
+    int    help;            /* last draw showed the help */
     double out_ms;          /* last curses output time */
     double frame_ms;        /* last rendered frame, render + output */
 } DrawState;
@@ -122,19 +197,27 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
         d->small = 0;
         d->cols = cols;
         d->rows = rows;
+    } else if (d->help && !a->help) {
+        term_erase();       /* the box may reach past a --size picture */
     }
+    d->help = a->help;
+    /* --size: that many cells, or fewer when the window is smaller */
+    int pc = a->pic_cols > 0 && a->pic_cols < cols ? a->pic_cols : cols;
+    int pr = a->pic_rows > 0 && a->pic_rows < rows - 1 ? a->pic_rows : rows - 1;
     double t0 = now_ms();
-    if ((what & RE_RENDER) == RE_RENDER && render(a, cols, rows - 1))
+    if ((what & RE_RENDER) == RE_RENDER && render(a, pc, pr))
         return -1;
     term_draw_cells(&a->p.cells, 0);
     double t1 = now_ms();
     if ((what & RE_RENDER) == RE_RENDER)
         d->frame_ms = (t1 - t0) + d->out_ms;
     char bar[512];
-    status_text(a, bar, sizeof bar, d->frame_ms, fps_cap);
+    status_text(a, bar, sizeof bar, d->frame_ms, fps_cap, cols);
     term_draw_bar(rows - 1, bar);
-    if (a->help)
-        term_draw_box(app_help, app_help_lines);
+    if (a->help) {
+        const char *lines[HELP_LINES_MAX];
+        term_draw_box(lines, app_help_layout(a, cols, rows, lines));
+    }
     term_update(full);
     if ((what & RE_RENDER) == RE_RENDER)
         d->out_ms = now_ms() - t1;
@@ -154,6 +237,9 @@ static Reaction dispatch(App *a, const TermEvent *ev)
 
 /* ==== The loop ==== */
 
+/* Why the loop ended. */
+enum { RUN_QUIT = 0, RUN_NO_MEMORY = -1, RUN_INPUT_ENDED = 1 };
+
 static int run(App *a, int fps)
 {
     DrawState d = { 0 };
@@ -162,7 +248,7 @@ static int run(App *a, int fps)
     double next = 0, last_spin = 0;
     for (;;) {
         if (todo & RE_DRAW && draw(a, &d, todo, fps))
-            return -1;
+            return RUN_NO_MEMORY;
         todo = RE_NONE;
         int timeout = -1;
         if (a->spin) {
@@ -170,17 +256,20 @@ static int run(App *a, int fps)
             timeout = next > now ? (int)(next - now + 0.999) : 0;
         }
         TermEvent ev;
-        if (term_read(&ev, timeout)) {
+        int got = term_read(&ev, timeout);
+        if (got > 0) {
             int was_spinning = a->spin;
             /* take everything already typed before drawing again */
             do
                 todo |= dispatch(a, &ev);
-            while (!(todo & RE_QUIT) && term_read(&ev, 0));
+            while (!(todo & RE_QUIT) && (got = term_read(&ev, 0)) > 0);
             if (todo & RE_QUIT)
-                return 0;
+                return RUN_QUIT;
             if (a->spin && !was_spinning)
                 next = last_spin = now_ms();
         }
+        if (got < 0)
+            return RUN_INPUT_ENDED;     /* no key will come: waiting would spin */
         if (a->spin) {
             double now = now_ms();
             if (now >= next) {
@@ -194,18 +283,44 @@ static int run(App *a, int fps)
     }
 }
 
+/* Where keys come from: standard input when it is a terminal, else the
+ * controlling terminal (`echo | zview m.obj`, `zview m.obj < /dev/null`),
+ * whose end of file would otherwise read as a key that never comes.
+ * NULL when there is none; *name says which for messages. */
+static FILE *open_keys(FILE **opened, const char **name)
+{
+    *opened = NULL;
+    *name = "standard input";
+    if (isatty(STDIN_FILENO))
+        return stdin;
+    *name = "/dev/tty";
+    *opened = fopen("/dev/tty", "re");
+    return *opened;
+}
+
 int app_viewer(const Options *o, Scene *s)
 {
     const char *t = getenv("TERM");
     if (!t || !*t || !strcmp(t, "dumb"))
         return app_oneshot(o, s);
+    FILE *tty;
+    const char *keys_name;
+    FILE *keys = open_keys(&tty, &keys_name);
+    if (!keys) {
+        fprintf(stderr, "zview: no terminal to read keys from (standard input is not one, "
+                        "/dev/tty: %s): one frame instead\n", strerror(errno));
+        return app_oneshot(o, s);
+    }
     App a;
     if (app_init(&a, o, s)) {
         fprintf(stderr, "zview: out of memory\n");
+        if (tty)
+            fclose(tty);
         return 1;
     }
     char err[256];
     TermConfig cfg = {
+        .in = keys,
         .color = o->color >= 0 ? (ColorDepth)o->color : color_from_env(),
         .mouse = 1,
         .signals = 1,
@@ -225,13 +340,21 @@ int app_viewer(const Options *o, Scene *s)
     }
     if (rc_open && term_open(&cfg, err, sizeof err)) {
         pipeline_free(&a.p);
+        if (tty)
+            fclose(tty);
         return app_oneshot(o, s);
     }
     int rc = run(&a, o->fps);
     term_restore();
     pipeline_free(&a.p);
-    if (rc) {
+    if (tty)
+        fclose(tty);
+    if (rc == RUN_NO_MEMORY) {
         fprintf(stderr, "zview: out of memory\n");
+        return 1;
+    }
+    if (rc == RUN_INPUT_ENDED) {
+        fprintf(stderr, "zview: %s: the input ended (no more keys)\n", keys_name);
         return 1;
     }
     return 0;
@@ -312,7 +435,7 @@ int app_bench_tty(const Options *o)
         }
         double t1 = now_ms();
         term_draw_cells(&a.p.cells, 0);
-        status_text(&a, bar, sizeof bar, k ? render_ms[k - 1] + out_ms[k - 1] : 0, o->fps);
+        status_text(&a, bar, sizeof bar, k ? render_ms[k - 1] + out_ms[k - 1] : 0, o->fps, cols);
         term_draw_bar(rows, bar);
         term_update(0);
         long now = file_bytes(out);
@@ -337,16 +460,23 @@ int app_bench_tty(const Options *o)
     qsort(frame, TTY_FRAMES, sizeof *frame, cmp_dbl);
     qsort(rmed, TTY_FRAMES, sizeof *rmed, cmp_dbl);
     qsort(omed, TTY_FRAMES, sizeof *omed, cmp_dbl);
-    printf("bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s\n",
+    Out rep;
+    out_init(&rep, stdout, "standard output");
+    out_printf(&rep, "bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s\n",
            a.name, cols, rows, mode_names[a.mode], color_name(used), termname, a.p.algo->name,
            a.p.threads, a.p.threads == 1 ? "" : "s");
-    printf("turn of %d frames at 5 degrees a frame; first frame (full paint) %ld bytes\n",
+    out_printf(&rep, "turn of %d frames at 5 degrees a frame; first frame (full paint) %ld bytes\n",
            TTY_FRAMES, first);
-    printf("bytes per frame: median %ld, mean %ld, max %ld\n", bytes[1 + TTY_FRAMES / 2],
+    out_printf(&rep, "bytes per frame: median %ld, mean %ld, max %ld\n", bytes[1 + TTY_FRAMES / 2],
            sum / TTY_FRAMES, bytes[TTY_FRAMES]);
-    printf("frame time: median %.2f ms (render %.2f ms + curses output %.2f ms), max %.2f ms\n",
+    out_printf(&rep, "frame time: median %.2f ms (render %.2f ms + curses output %.2f ms), max %.2f ms\n",
            frame[TTY_FRAMES / 2], rmed[TTY_FRAMES / 2], omed[TTY_FRAMES / 2],
            frame[TTY_FRAMES - 1]);
+    if (out_flush(&rep)) {
+        fprintf(stderr, "zview: standard output: %s\n", out_error(&rep));
+        pipeline_free(&a.p);
+        goto done;
+    }
     pipeline_free(&a.p);
     rc = 0;
 done:

@@ -14,6 +14,10 @@ typedef enum {
     RE_QUIT   = 8,
 } Reaction;
 
+/* The help overlay's lines: a title, then rows of one or more columns. */
+#define HELP_LINES_MAX 48
+#define HELP_LINE_MAX  160
+
 typedef struct App {
     Scene      *s;
     Pipeline    p;
@@ -24,8 +28,12 @@ typedef struct App {
     int         sel;        /* selected object, -1 = the whole scene */
     int         spin;       /* auto-rotate (turntable) */
     int         help;       /* help overlay shown */
+    int         help_top;   /* first help row shown (scrolled) */
+    int         help_hidden; /* help rows that did not fit the window (0: all shown) */
+    int         pic_cols, pic_rows; /* --size: the picture's cells (0 = the window's) */
     char        name[96];   /* file name(s) for the status line */
     char        note[80];   /* a one-off note for the status line */
+    char        help_text[HELP_LINES_MAX][HELP_LINE_MAX];
 } App;
 
 /* The effect of a key (term.h codes), a drag of dx, dy cells with button
@@ -36,8 +44,11 @@ Reaction app_wheel(App *a, int dy);
 /* Turn the scene (or the selected object) about the vertical axis. */
 void     app_spin(App *a, float radians);
 
-/* The help overlay, one line per key group. */
-extern const char *const app_help[];
-extern const int app_help_lines;
+/* The help overlay laid out for a window of cols x rows (the status bar
+ * included): a title and as many rows of keys as fit, in as few columns
+ * as fit (keys over their meaning when even one column is too wide);
+ * a->help_top is clamped and a->help_hidden set. Fills lines[] (pointers
+ * into a->help_text) and returns how many. */
+int      app_help_layout(App *a, int cols, int rows, const char **lines);
 
 #endif

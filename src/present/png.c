@@ -12,7 +12,30 @@
 typedef struct {
     jmp_buf jmp;
     char    msg[160];
+    FILE   *f;
+    int     write_errno;    /* why a write failed (libpng only says "Write Error") */
 } PngErr;
+
+/* libpng's own writer drops errno; this one keeps it for the message. */
+static void png_write_cb(png_structp png, png_bytep data, size_t len)
+{
+    PngErr *e = png_get_error_ptr(png);
+    errno = 0;
+    if (fwrite(data, 1, len, e->f) != len) {
+        e->write_errno = errno ? errno : EIO;
+        png_error(png, strerror(e->write_errno));
+    }
+}
+
+static void png_flush_cb(png_structp png)
+{
+    PngErr *e = png_get_error_ptr(png);
+    errno = 0;
+    if (fflush(e->f) != 0) {
+        e->write_errno = errno ? errno : EIO;
+        png_error(png, strerror(e->write_errno));
+    }
+}
 
 static void png_on_error(png_structp png, png_const_charp msg)
 {
@@ -42,6 +65,8 @@ int write_png(const char *path, const Image *im, char *err, size_t errlen)
      * when libpng longjmps back. */
     PngErr e;
     e.msg[0] = '\0';
+    e.f = f;
+    e.write_errno = 0;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &e,
                                               png_on_error, png_on_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
@@ -57,7 +82,7 @@ int write_png(const char *path, const Image *im, char *err, size_t errlen)
         snprintf(err, errlen, "%s: %s", path, e.msg);
         return -1;
     }
-    png_init_io(png, f);
+    png_set_write_fn(png, &e, png_write_cb, png_flush_cb);
     png_set_IHDR(png, info, (png_uint_32)im->w, (png_uint_32)im->h, 8,
                  PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -67,13 +92,10 @@ int write_png(const char *path, const Image *im, char *err, size_t errlen)
     png_write_end(png, info);
     png_destroy_write_struct(&png, &info);
     /* A full disk shows up only when the buffered bytes are flushed. */
-    if (fflush(f) != 0 || ferror(f)) {
-        snprintf(err, errlen, "%s: %s", path, strerror(errno));
-        fclose(f);
-        return -1;
-    }
-    if (fclose(f) != 0) {
-        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+    Out out;
+    out_init(&out, f, path);
+    if (out_close(&out)) {
+        snprintf(err, errlen, "%s: %s", path, out_error(&out));
         return -1;
     }
     return 0;

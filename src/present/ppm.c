@@ -18,15 +18,12 @@ int write_ppm(const char *path, const Image *im, char *err, size_t errlen)
         return -1;
     }
     size_t n = 3 * (size_t)im->w * (size_t)im->h;
-    int ok = fprintf(f, "P6\n%d %d\n255\n", im->w, im->h) > 0 &&
-             fwrite(im->rgb, 1, n, f) == n && fflush(f) == 0;
-    int saved = errno;
-    if (fclose(f) != 0 && ok) {
-        ok = 0;
-        saved = errno;
-    }
-    if (!ok) {
-        snprintf(err, errlen, "%s: %s", path, strerror(saved ? saved : EIO));
+    Out out;
+    out_init(&out, f, path);
+    out_printf(&out, "P6\n%d %d\n255\n", im->w, im->h);
+    out_write(&out, im->rgb, n);
+    if (out_close(&out)) {
+        snprintf(err, errlen, "%s: %s", path, out_error(&out));
         return -1;
     }
     return 0;

@@ -6,6 +6,7 @@
  * two pixels). An escape is emitted only when a colour differs from the
  * previous cell's as the terminal would show it. */
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include "present.h"
@@ -144,13 +145,18 @@ int print_cells(FILE *f, const CellGrid *g, ColorDepth c)
 {
     size_t len;
     char *buf = print_cells_to_string(g, c, &len);
-    if (!buf)
+    if (!buf) {
+        errno = ENOMEM;
         return -1;
-    int rc = 0;
-    if (len && fwrite(buf, 1, len, f) != len)
-        rc = -1;
-    if (fflush(f) != 0)
-        rc = -1;
+    }
+    Out o;
+    out_init(&o, f, NULL);
+    out_write(&o, buf, len);
+    out_flush(&o);
     free(buf);
-    return rc;
+    if (o.err) {
+        errno = o.err;
+        return -1;
+    }
+    return 0;
 }

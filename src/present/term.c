@@ -16,10 +16,12 @@
 #define NCURSES_WIDECHAR 1
 
 #include <curses.h>
+#include <poll.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <termios.h>
 #include <unistd.h>
 #include <wchar.h>
@@ -32,11 +34,13 @@ struct term;
 extern int setupterm(const char *name, int fd, int *err_out);
 extern struct term *set_curterm(struct term *t);
 extern int del_curterm(struct term *t);
+extern int tputs(const char *str, int affcnt, int (*putc)(int));
 
 /* ==== State ==== */
 
 static SCREEN *scr;
 static FILE *scr_out;
+static int in_fd = -1;          /* where keys come from (ncurses keeps it private) */
 static volatile sig_atomic_t term_on;
 static int mouse_on;
 static int signals_on;
@@ -80,13 +84,43 @@ static struct sigaction old_int, old_term, old_hup, old_tstp;
 
 /* ==== Restore and signals ==== */
 
+/* One byte to the terminal, now. */
+static int send_byte(int c)
+{
+    unsigned char b = (unsigned char)c;
+    return write(fileno(scr_out), &b, 1) == 1 ? c : EOF;
+}
+
+/* Send a capability (or an escape of our own) to the terminal now.
+ * Curses keeps its output in a buffer of its own that every update
+ * empties, so between updates this lands in order. putp() would not: it
+ * goes through stdio's stdout buffer, which nothing flushes until exit
+ * (the drag reporting asked for at start reached the terminal only as
+ * zview quit). */
+static void send_cap(const char *cap)
+{
+    if (cap && cap != (const char *)-1 && scr_out)
+        tputs(cap, 1, send_byte);
+}
+
+/* Blank the terminal before leaving curses: a terminal whose window grew
+ * while in the alternate screen (tmux) keeps the part beyond the old size
+ * when it switches back, and a terminal without one keeps everything.
+ * Sent to the terminal, not drawn in stdscr: curses' copy of the screen
+ * stays for a resume after Ctrl-Z. */
+static void blank_terminal(void)
+{
+    send_cap(tigetstr("clear"));
+}
+
 void term_restore(void)
 {
     if (!term_on)
         return;
     term_on = 0;
     if (mouse_on)
-        putp(DRAG_OFF);
+        send_cap(DRAG_OFF);
+    blank_terminal();
     endwin();           /* cursor back, alternate screen left, modes reset */
     if (scr_out)
         fflush(scr_out);
@@ -145,6 +179,7 @@ static void crash_prepare(int fd)
     crash_add("\033[?1006;1000l");   /* the mouse reporting ncurses turns on */
     crash_add(tigetstr("sgr0"));
     crash_add(tigetstr("cnorm"));
+    crash_add(tigetstr("clear"));    /* as term_restore: nothing left behind */
     crash_add(tigetstr("rmcup"));
     crash_add(tigetstr("rmkx"));
     struct sigaction sa;
@@ -190,7 +225,8 @@ static void on_tstp(int sig)
     int was_on = term_on;
     if (was_on) {
         if (mouse_on)
-            putp(DRAG_OFF);
+            send_cap(DRAG_OFF);
+        blank_terminal();
         endwin();
         fflush(scr_out);
     }
@@ -207,7 +243,7 @@ static void on_tstp(int sig)
     sigaction(SIGTSTP, &mine, NULL);
     if (was_on && term_on) {
         if (mouse_on)
-            putp(DRAG_ON);
+            send_cap(DRAG_ON);
         clearok(curscr, TRUE);
         doupdate();
     }
@@ -437,6 +473,7 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     }
     scr = s;
     scr_out = out;
+    in_fd = fileno(in);
     term_on = 1;
     if (!atexit_done) {
         atexit(term_restore);
@@ -458,7 +495,7 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
                        BUTTON4_PRESSED | BUTTON5_PRESSED | REPORT_MOUSE_POSITION;
         if (mousemask(want, NULL) != 0) {
             mouseinterval(0);   /* presses and releases as they come, no clicks */
-            putp(DRAG_ON);      /* ncurses never asks for drag reports itself */
+            send_cap(DRAG_ON);      /* ncurses never asks for drag reports itself */
             mouse_on = 1;
         }
     }
@@ -669,6 +706,21 @@ static void mouse_drain(void)
             mq_push(&ev);
 }
 
+/* wget_wch gave ERR: a timeout, a signal, or the end of the input (a
+ * hung-up terminal, a file or pipe at its end), where every read returns
+ * at once and waiting again would spin. The end shows as input that
+ * polls readable with no byte waiting. */
+static int input_ended(void)
+{
+    struct pollfd p = { .fd = in_fd, .events = POLLIN };
+    if (in_fd < 0 || poll(&p, 1, 0) <= 0)
+        return 0;       /* nothing pending: a timeout or a signal */
+    int n = 0;
+    if (ioctl(in_fd, FIONREAD, &n) == 0 && n > 0)
+        return 0;       /* a key came just after the timeout */
+    return 1;
+}
+
 int term_read(TermEvent *ev, int timeout_ms)
 {
     memset(ev, 0, sizeof *ev);
@@ -679,7 +731,7 @@ int term_read(TermEvent *ev, int timeout_ms)
         wint_t wc;
         int r = wget_wch(stdscr, &wc);
         if (r == ERR)
-            return 0;
+            return input_ended() ? -1 : 0;
         if (r != KEY_CODE_YES) {
             ev->type = TE_KEY;
             ev->key = (int)wc;

@@ -6,13 +6,17 @@
  * snapped corners; a polygon crossing the near plane or the guard band is
  * clipped (Sutherland-Hodgman) and snapped on the slow path. Then the
  * sample box, back-face test, and the depth plane from the snapped
- * corners. A big object's polygons are split between the caller and one
- * helper thread, and the helper's half is appended in order: the output is
- * the same as one thread's. */
+ * corners. A big object's polygons are split between the caller and up
+ * to ScreenPolys.threads - 1 helper threads, and the helpers' parts are
+ * appended in order: the output is the same as one thread's. Every
+ * scratch buffer belongs to the ScreenPolys being filled (ScreenWork), so
+ * the front end keeps no state of its own between calls. */
 
 #define _DEFAULT_SOURCE
+#include <errno.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdarg.h>
 #include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,14 +31,15 @@
  * that fixed-point values stay below 2^23 and edge products fit int64. */
 #define GUARD_PX 8192.0
 
-/* Objects with at least this many polygons are projected on two threads. */
-#define PARALLEL_MIN 16384
+/* A thread is worth starting for at least this many polygons of one
+ * object (below it, creating and joining costs more than it saves). */
+#define PART_MIN 8192
 
 typedef struct {
     double x, y, z;         /* view space (persp) or screen (guard clip): px, px, depth */
 } CVert;
 
-/* Per-vertex scratch, reused across frames. */
+/* Per-vertex scratch of the object being projected, reused across frames. */
 typedef struct {
     float   *view;          /* 3 per vertex, view space */
     ScreenVert *sv;         /* snapped, valid when ok */
@@ -48,19 +53,49 @@ typedef struct {
     uint32_t cap;
 } ClipBuf;
 
-/* The front end is called from one thread at a time; a big object's
- * polygons are split between it and one helper thread. */
-static Scratch scratch;
-static ClipBuf clip_main, clip_helper;
+struct ScreenWork {
+    Scratch sc;
+    ClipBuf clip[SCREEN_MAX_THREADS];   /* [0] the caller's, [i] helper i's */
+    int     ncpus;                      /* cores online, read once */
+};
 
+static ScreenWork *work_get(ScreenPolys *sp)
+{
+    if (!sp->work) {
+        sp->work = calloc(1, sizeof *sp->work);
+        if (sp->work) {
+            long c = sysconf(_SC_NPROCESSORS_ONLN);
+            sp->work->ncpus = c < 1 ? 1 : c > SCREEN_MAX_THREADS ? SCREEN_MAX_THREADS : (int)c;
+        }
+    }
+    return sp->work;
+}
 
+static void work_free(ScreenWork *w)
+{
+    if (!w)
+        return;
+    free(w->sc.view);
+    free(w->sc.sv);
+    free(w->sc.ok);
+    for (int i = 0; i < SCREEN_MAX_THREADS; i++) {
+        free(w->clip[i].buf[0]);
+        free(w->clip[i].buf[1]);
+    }
+    free(w);
+}
+
+/* Everything but the caller's settings goes. */
 void screen_free(ScreenPolys *sp)
 {
+    int threads = sp->threads;
     free(sp->verts);
     free(sp->polys);
     free(sp->map);
     free(sp->map_first);
+    work_free(sp->work);
     memset(sp, 0, sizeof *sp);
+    sp->threads = threads;
 }
 
 /* ==== projection parameters ==== */
@@ -430,9 +465,9 @@ static void *range_thread(void *arg)
     return NULL;
 }
 
-/* Move the helper's half, written in a window further up sp's arrays
+/* Move a helper's part, written in a window further up sp's arrays
  * (polygons at pb, vertices at vb, instances inst0 .. inst0 + n), down to
- * right after the caller's half. */
+ * right after what sp holds. */
 static void compact_part(ScreenPolys *sp, const ScreenPolys *part, uint32_t pb, uint32_t vb,
                          uint32_t inst0, uint32_t n)
 {
@@ -451,44 +486,142 @@ static void compact_part(ScreenPolys *sp, const ScreenPolys *part, uint32_t pb, 
     sp->culled_empty += part->culled_empty;
 }
 
-static int ncpus(void)
+/* How many threads to split object o over: sp->threads (0 = every core),
+ * and no more than one per PART_MIN polygons. 1 = the caller alone. */
+static int object_parts(const ScreenPolys *sp, const Object *o)
 {
-    static int n;
-    if (!n) {
-        long c = sysconf(_SC_NPROCESSORS_ONLN);
-        n = c > 1 ? 2 : 1;
-    }
-    return n;
+    int t = sp->threads > 0 ? sp->threads : sp->work->ncpus;
+    if (t > SCREEN_MAX_THREADS)
+        t = SCREEN_MAX_THREADS;
+    uint32_t most = o->poly_count / PART_MIN;
+    return most < (uint32_t)t ? (most ? (int)most : 1) : t;
 }
 
-int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
+/* Transform object o's vertices once each: view space, and the snapped
+ * screen point where it is in front of the near plane and in the band. */
+static void project_vertices(Scratch *sc, const Object *o, const Mat4 *mv, const Proj *pj)
 {
-    double t0 = now_ms();
-    Scratch *sc = &scratch;
-    Proj pj = { 0 };
-    proj_setup(&pj, s, vp);
+    uint32_t nv = o->vert_max - o->vert_min + 1;
+    const float *pos = o->mesh->pos + 3 * (size_t)o->vert_min;
+    for (uint32_t i = 0; i < nv; i++) {
+        Vec3 q = m4_point(mv, v3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
+        sc->view[3 * i] = q.x;
+        sc->view[3 * i + 1] = q.y;
+        sc->view[3 * i + 2] = q.z;
+        int ok = !pj->persp || pj->eye - q.z >= pj->n;
+        if (ok) {
+            double scr[3];
+            proj_point(pj, q.x, q.y, q.z, scr);
+            ok = in_guard(pj, scr);
+            sc->sv[i].x = snap(scr[0]);
+            sc->sv[i].y = snap(scr[1]);
+            sc->sv[i].z = (float)scr[2];
+        }
+        sc->ok[i] = (uint8_t)ok;
+    }
+}
+
+/* Object o's polygons in `parts` consecutive parts: part 0 on the caller,
+ * the others on helper threads. Each part writes into its own window of
+ * sp's arrays, past the room the parts before it can need; then the parts
+ * move down in order: no second set of buffers. Returns 0 when done, 1
+ * when a part's clipping outgrew its window (rare: sp is as it was and
+ * the caller projects the object again on one thread), -1 on out of
+ * memory. */
+static int project_parts(ScreenPolys *sp, const Scene *s, const Object *o, const Proj *pj,
+                         ScreenWork *w, uint32_t inst, int parts)
+{
+    uint32_t k[SCREEN_MAX_THREADS + 1], vb[SCREEN_MAX_THREADS + 1];
+    uint64_t end = sp->nverts;
+    for (int i = 0; i <= parts; i++)
+        k[i] = o->poly_first + (uint32_t)((uint64_t)o->poly_count * (uint32_t)i / (uint32_t)parts);
+    for (int i = 0; i < parts; i++) {
+        uint32_t corners = s->poly_start[k[i + 1]] - s->poly_start[k[i]];
+        vb[i] = (uint32_t)end;
+        end += (uint64_t)corners + corners / 16 + 64;
+    }
+    if (end > UINT32_MAX / 2 ||
+        grow_array((void **)&sp->verts, &sp->cap_verts, (uint32_t)end, sizeof *sp->verts))
+        return -1;
+    vb[parts] = (uint32_t)end;
+    ScreenPolys win[SCREEN_MAX_THREADS];
+    RangeJob job[SCREEN_MAX_THREADS];
+    pthread_t th[SCREEN_MAX_THREADS];
+    int started[SCREEN_MAX_THREADS] = { 0 };
+    for (int i = 0; i < parts; i++) {
+        win[i] = *sp;
+        if (i == 0) {
+            win[i].cap_verts = vb[1];   /* part 0 continues sp and may not reach part 1 */
+        } else {
+            win[i].verts = sp->verts + vb[i];
+            win[i].polys = sp->polys + sp->npolys + (k[i] - o->poly_first);
+            win[i].cap_verts = vb[i + 1] - vb[i];
+            win[i].cap_polys = k[i + 1] - k[i] + 1;
+            win[i].nverts = win[i].npolys = 0;
+            win[i].in_polys = win[i].culled_back = win[i].culled_empty = 0;
+        }
+        job[i] = (RangeJob){ &win[i], s, o, pj, &w->sc, &w->clip[i], k[i], k[i + 1],
+                             inst + (k[i] - o->poly_first), sp->map, 1, 0 };
+    }
+    for (int i = 1; i < parts; i++)
+        if (pthread_create(&th[i], NULL, range_thread, &job[i]) == 0) {
+            started[i] = 1;
+            sp->helpers++;
+        }
+    job[0].rc = project_range(&job[0]);
+    int rc = job[0].rc;
+    for (int i = 1; i < parts; i++) {
+        if (started[i])
+            pthread_join(th[i], NULL);
+        else
+            job[i].rc = project_range(&job[i]);   /* no thread to be had: do it here */
+        if (job[i].rc == -1 || (job[i].rc && rc != -1))
+            rc = job[i].rc;
+    }
+    if (rc == -1)
+        return -1;
+    if (rc)
+        return 1;
+    uint32_t pb0 = sp->npolys;
+    sp->nverts = win[0].nverts;
+    sp->npolys = win[0].npolys;
+    sp->in_polys = win[0].in_polys;
+    sp->culled_back = win[0].culled_back;
+    sp->culled_empty = win[0].culled_empty;
+    for (int i = 1; i < parts; i++)
+        compact_part(sp, &win[i], pb0 + (k[i] - o->poly_first), vb[i], job[i].inst0, k[i + 1] - k[i]);
+    return 0;
+}
+
+/* Set sp's size, projection and statistics for a new frame. */
+static void frame_begin(ScreenPolys *sp, const Viewport *vp, const Proj *pj)
+{
     sp->w = vp->w;
     sp->h = vp->h;
     sp->pixel_aspect = vp->pixel_aspect;
     sp->cull = vp->cull;
     sp->nverts = sp->npolys = 0;
-    sp->in_polys = sp->culled_back = sp->culled_empty = 0;
-    sp->persp = pj.persp;
-    sp->focal_x = (float)pj.fx;
-    sp->focal_y = (float)pj.fy;
-    sp->eye_z = (float)pj.eye;
-    sp->near_z = (float)pj.n;
-    sp->far_z = (float)pj.f;
-    sp->depth_scale = (float)pj.dscale;
-    sp->depth_bias = (float)pj.dbias;
+    sp->in_polys = sp->culled_back = sp->culled_empty = sp->helpers = 0;
+    sp->persp = pj->persp;
+    sp->focal_x = (float)pj->fx;
+    sp->focal_y = (float)pj->fy;
+    sp->eye_z = (float)pj->eye;
+    sp->near_z = (float)pj->n;
+    sp->far_z = (float)pj->f;
+    sp->depth_scale = (float)pj->dscale;
+    sp->depth_bias = (float)pj->dbias;
+}
 
+/* Room for every polygon instance and corner of the scene. */
+static int frame_room(ScreenPolys *sp, const Scene *s)
+{
     uint64_t ninst = 0, ncorners = 0;
     for (int oi = 0; oi < s->nobjs; oi++) {
         const Object *o = &s->objs[oi];
         ninst += o->poly_count;
         ncorners += s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
     }
-    if (ninst > INT32_MAX)
+    if (ninst > INT32_MAX || ncorners + 64 > UINT32_MAX / 2)
         return -1;
     if (s->nobjs > sp->cap_objs) {
         uint32_t *q = realloc(sp->map_first, (size_t)s->nobjs * sizeof *q);
@@ -497,101 +630,46 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
         sp->map_first = q;
         sp->cap_objs = s->nobjs;
     }
-    if (ncorners + 64 > UINT32_MAX / 2)
-        return -1;
     /* every corner at most once, plus a little for clipped outlines */
     if (grow_array((void **)&sp->verts, &sp->cap_verts, (uint32_t)(ncorners + ncorners / 64 + 64), sizeof *sp->verts) ||
         grow_array((void **)&sp->map, &sp->cap_map, (uint32_t)ninst + 1, sizeof *sp->map) ||
         grow_array((void **)&sp->polys, &sp->cap_polys, (uint32_t)ninst + 1, sizeof *sp->polys))
         return -1;
+    return 0;
+}
 
+int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
+{
+    double t0 = now_ms();
+    ScreenWork *w = work_get(sp);
+    if (!w)
+        return -1;
+    Scratch *sc = &w->sc;
+    Proj pj = { 0 };
+    proj_setup(&pj, s, vp);
+    frame_begin(sp, vp, &pj);
+    if (frame_room(sp, s))
+        return -1;
     Mat4 view = camera_view(&s->cam);
     uint32_t inst = 0;
     for (int oi = 0; oi < s->nobjs; oi++) {
         const Object *o = &s->objs[oi];
-        const Mesh *m = o->mesh;
         sp->map_first[oi] = inst;
-        if (!o->poly_count) {
+        if (!o->poly_count)
             continue;
-        }
         Mat4 mv = m4_mul(view, object_matrix(o));
         uint32_t nv = o->vert_max - o->vert_min + 1;
         if (grow_array((void **)&sc->view, &sc->cap_view, nv, 3 * sizeof(float)) ||
             grow_array((void **)&sc->sv, &sc->cap_sv, nv, sizeof(ScreenVert)) ||
             grow_array((void **)&sc->ok, &sc->cap_ok, nv, 1))
             return -1;
-
-        /* Each vertex once: view space, and the snapped screen point. */
-        const float *pos = m->pos + 3 * (size_t)o->vert_min;
-        for (uint32_t i = 0; i < nv; i++) {
-            Vec3 q = m4_point(&mv, v3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
-            sc->view[3 * i] = q.x;
-            sc->view[3 * i + 1] = q.y;
-            sc->view[3 * i + 2] = q.z;
-            int ok = !pj.persp || pj.eye - q.z >= pj.n;
-            if (ok) {
-                double scr[3];
-                proj_point(&pj, q.x, q.y, q.z, scr);
-                ok = in_guard(&pj, scr);
-                sc->sv[i].x = snap(scr[0]);
-                sc->sv[i].y = snap(scr[1]);
-                sc->sv[i].z = (float)scr[2];
-            }
-            sc->ok[i] = (uint8_t)ok;
-        }
-
-        /* The polygons: a big object's in two halves, the second on a
-         * helper thread into its own buffers, appended in order after. */
-        uint32_t kend = o->poly_first + o->poly_count;
-        int done = 0;
-        if (o->poly_count >= PARALLEL_MIN && ncpus() > 1) {
-            /* The helper writes into a window of sp's own arrays past the
-             * room the caller's half can need, then its output moves down:
-             * no second set of buffers. A half whose clipping outgrows its
-             * window (rare) makes the object go again on one thread. */
-            uint32_t mid = o->poly_first + o->poly_count / 2;
-            uint32_t ca = s->poly_start[mid] - s->poly_start[o->poly_first];
-            uint32_t cb = s->poly_start[kend] - s->poly_start[mid];
-            uint32_t slack_a = ca / 16 + 64, slack_b = cb / 16 + 64;
-            uint32_t vb = sp->nverts + ca + slack_a, pb = sp->npolys + (mid - o->poly_first);
-            if (grow_array((void **)&sp->verts, &sp->cap_verts, vb + cb + slack_b, sizeof *sp->verts))
-                return -1;
-            ScreenPolys part = *sp;
-            part.verts = sp->verts + vb;
-            part.polys = sp->polys + pb;
-            part.cap_verts = cb + slack_b;
-            part.cap_polys = kend - mid + 1;
-            part.nverts = part.npolys = 0;
-            part.in_polys = part.culled_back = part.culled_empty = 0;
-            ScreenPolys before = *sp;
-            ScreenPolys win_a = *sp;
-            win_a.cap_verts = vb;       /* the caller's half may not reach the window */
-            RangeJob ja = { &win_a, s, o, &pj, sc, &clip_main, o->poly_first, mid, inst, sp->map, 1, 0 };
-            RangeJob jb = { &part, s, o, &pj, sc, &clip_helper, mid, kend,
-                            inst + (mid - o->poly_first), sp->map, 1, 0 };
-            pthread_t th;
-            int threaded = pthread_create(&th, NULL, range_thread, &jb) == 0;
-            ja.rc = project_range(&ja);
-            if (threaded)
-                pthread_join(th, NULL);
-            else
-                jb.rc = project_range(&jb);
-            if (ja.rc == -1 || jb.rc == -1)
-                return -1;
-            if (!ja.rc && !jb.rc) {
-                sp->nverts = win_a.nverts;
-                sp->npolys = win_a.npolys;
-                sp->in_polys = win_a.in_polys;
-                sp->culled_back = win_a.culled_back;
-                sp->culled_empty = win_a.culled_empty;
-                compact_part(sp, &part, pb, vb, jb.inst0, kend - mid);
-                done = 1;
-            } else {
-                *sp = before;   /* a window was full: start the object again */
-            }
-        }
-        if (!done) {
-            RangeJob j = { sp, s, o, &pj, sc, &clip_main, o->poly_first, kend, inst, sp->map, 0, 0 };
+        project_vertices(sc, o, &mv, &pj);
+        int parts = object_parts(sp, o), rc = 1;
+        if (parts > 1 && (rc = project_parts(sp, s, o, &pj, w, inst, parts)) < 0)
+            return -1;
+        if (rc) {
+            RangeJob j = { sp, s, o, &pj, sc, &w->clip[0], o->poly_first,
+                           o->poly_first + o->poly_count, inst, sp->map, 0, 0 };
             if (project_range(&j))
                 return -1;
         }
@@ -604,20 +682,41 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
     return 0;
 }
 
+/* fprintf unless an earlier write failed; the first failure's errno
+ * stays in *err. */
+static void put(FILE *f, int *err, const char *fmt, ...)
+{
+    if (*err)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    if (vfprintf(f, fmt, ap) < 0)
+        *err = errno ? errno : EIO;
+    va_end(ap);
+}
+
+/* Every write is checked: a full disk must not pass for a short dump.
+ * On failure errno is the first failure's. */
 int screen_dump_obj(const ScreenPolys *sp, const char *path)
 {
     FILE *f = fopen(path, "w");
     if (!f)
         return -1;
-    fprintf(f, "# zview screen %d %d\n", sp->w, sp->h);
-    for (uint32_t i = 0; i < sp->nverts; i++)
-        fprintf(f, "v %.9g %.9g %.9g\n", sp->verts[i].x / (double)SUBPIX,
-                sp->verts[i].y / (double)SUBPIX, (double)sp->verts[i].z);
-    for (uint32_t p = 0; p < sp->npolys; p++) {
-        fputs("f", f);
+    int err = 0;
+    put(f, &err, "# zview screen %d %d\n", sp->w, sp->h);
+    for (uint32_t i = 0; i < sp->nverts && !err; i++)
+        put(f, &err, "v %.9g %.9g %.9g\n", sp->verts[i].x / (double)SUBPIX,
+            sp->verts[i].y / (double)SUBPIX, (double)sp->verts[i].z);
+    for (uint32_t p = 0; p < sp->npolys && !err; p++) {
+        put(f, &err, "f");
         for (uint32_t k = sp->polys[p].first; k < sp->polys[p + 1].first; k++)
-            fprintf(f, " %u", k + 1);
-        fprintf(f, " # %d\n", sp->polys[p].face);
+            put(f, &err, " %u", k + 1);
+        put(f, &err, " # %d\n", sp->polys[p].face);
     }
-    return fclose(f) == 0 ? 0 : -1;
+    if (!err && (fflush(f) != 0 || ferror(f)))
+        err = errno ? errno : EIO;
+    if (fclose(f) != 0 && !err)
+        err = errno ? errno : EIO;
+    errno = err;
+    return err ? -1 : 0;
 }

@@ -119,3 +119,64 @@ expect_err "the views are named" "front, back, left"
 "$Z" --print --size 30x10 --color none assets/knot.obj >"$T/vauto"
 if cmp -s "$T/vf" "$T/v0" && ! cmp -s "$T/vf" "$T/vauto"; then ok "--view front is the plain view; the default picks another"; else
     notok "--view front is the plain view; the default picks another"; fi
+# runaway scenes are refused before they are built: --grid 40 of the torus
+# is 64,000 copies (hundreds of millions of polygons)
+expect_status "--grid 40 is refused" 1 "$Z" --print --grid 40 assets/torus.obj
+expect_err "the refusal gives the polygon count" "would have "
+expect_err "the refusal gives the memory estimate" "GB for itself and one frame"
+expect_err "the refusal gives the limit" "(limit 20,000,000 polygons; --max-polys raises it)"
+# the limit is the exact polygon count, grid copies counted
+np=$("$Z" --info assets/torus.obj | sed -n 's/.* faces, \([0-9]*\) polygons.*/\1/p')
+expect_status "--max-polys lets a moderate grid through" 0 "$Z" --print --size 20x6 --grid 3 --max-polys $((np * 27)) assets/torus.obj
+expect_status "one polygon less is refused" 1 "$Z" --print --size 20x6 --grid 3 --max-polys $((np * 27 - 1)) assets/torus.obj
+expect_err "the refusal names the count with the copies" "$(printf "%d" $((np * 27)) | sed ':a;s/\B[0-9]\{3\}\>/,&/;ta') polygons"
+expect_status "the benchmark refuses it too" 1 "$Z" --bench --views 1 --grid 40 assets/torus.obj
+expect_err "the benchmark names the limit" "--max-polys raises it"
+
+# every write is checked: a full device (/dev/full) or a closed standard
+# output (>&-) is an error naming the file, status 1, never a quiet success
+# write_fails NAME WHERE MESSAGE CMD...: WHERE is "full" (stdout on
+# /dev/full), "closed" (stdout closed) or "file" (CMD writes a file itself)
+write_fails() {
+    name=$1; where=$2; msg=$3; shift 3
+    # the C locale: strerror's messages in English
+    case $where in
+    full) LC_ALL=C "$@" >/dev/full 2>"$T/err" </dev/null ;;
+    closed) LC_ALL=C "$@" >&- 2>"$T/err" </dev/null ;;
+    *) LC_ALL=C "$@" >"$T/out" 2>"$T/err" </dev/null ;;
+    esac
+    st=$?
+    if [ "$st" -eq 1 ] && grep -qxF "zview: $msg" "$T/err"; then ok "$name"; else
+        notok "$name" "status $st, stderr: $(head -c 300 "$T/err")"; fi
+}
+if [ -w /dev/full ]; then
+    NOSPC="No space left on device"
+    FULL="standard output: $NOSPC"
+    CLOSED="standard output: Bad file descriptor"
+    ln -s /dev/full "$T/full.png"
+    ln -s /dev/full "$T/full.ppm"
+    write_fails "--print to a full device" full "$FULL" "$Z" --print --size 20x6 assets/cube.obj
+    write_fails "--print to a closed stdout" closed "$CLOSED" "$Z" --print --size 20x6 assets/cube.obj
+    write_fails "--info to a full device" full "$FULL" "$Z" --info assets/cube.obj
+    write_fails "--info to a closed stdout" closed "$CLOSED" "$Z" --info assets/cube.obj
+    write_fails "--info --algo to a full device" full "$FULL" "$Z" --info --algo span --size 32x24 assets/cube.obj
+    write_fails "--bench to a full device" full "$FULL" "$Z" --bench --views 1 --size 32x24 assets/cube.obj
+    write_fails "--bench to a closed stdout" closed "$CLOSED" "$Z" --bench --views 1 --size 32x24 assets/cube.obj
+    write_fails "--bench --json to a full device" full "$FULL" "$Z" --bench --json --views 1 --size 32x24 assets/cube.obj
+    write_fails "--bench --json to a closed stdout" closed "$CLOSED" "$Z" --bench --json --views 1 --size 32x24 assets/cube.obj
+    write_fails "--bench-tty to a full device" full "$FULL" "$Z" --bench-tty --size 20x6 assets/cube.obj
+    write_fails "--bench-tty to a closed stdout" closed "$CLOSED" "$Z" --bench-tty --size 20x6 assets/cube.obj
+    write_fails "--help to a full device" full "$FULL" "$Z" --help
+    write_fails "--version to a closed stdout" closed "$CLOSED" "$Z" --version
+    write_fails "-o png to a full device" file "$T/full.png: $NOSPC" "$Z" --size 64x48 -o "$T/full.png" assets/cube.obj
+    write_fails "-o ppm to a full device" file "$T/full.ppm: $NOSPC" "$Z" --size 4x3 -o "$T/full.ppm" assets/cube.obj
+    write_fails "--dump-ids to a full device" file "/dev/full: $NOSPC" "$Z" --size 4x3 --dump-ids /dev/full -o "$T/x.ppm" assets/cube.obj
+    write_fails "--dump-screen to a full device" file "/dev/full: $NOSPC" "$Z" --size 4x3 --dump-screen /dev/full -o "$T/x.ppm" assets/cube.obj
+    write_fails "--dump-ids to a folder that does not exist" file "$T/no/ids: No such file or directory" "$Z" --size 4x3 --dump-ids "$T/no/ids" -o "$T/x.ppm" assets/cube.obj
+    # a closed stdout must not be taken by the next file opened
+    "$Z" --size 4x3 -o "$T/c.ppm" assets/cube.obj >&- 2>"$T/err"
+    if [ "$(head -c 2 "$T/c.ppm")" = P6 ] && [ "$(wc -c <"$T/c.ppm")" -eq $((11 + 36)) ]; then ok "-o with stdout closed writes only the file"; else
+        notok "-o with stdout closed writes only the file" "$(head -c 40 "$T/c.ppm" | od -c | head -3)"; fi
+else
+    echo "ok - # skip no /dev/full"
+fi

@@ -159,7 +159,7 @@ fi
 tm send-keys -t zv '?'
 if wait_for 'zview keys'; then ok "? shows the help"; else notok "? shows the help"; fi
 # the overlay may still be drawing when its title shows: wait for its line
-if wait_for 'q / Esc'; then ok "help lists the quit key"; else notok "help lists the quit key" "$(head -c 400 "$T/screen")"; fi
+if wait_for 'q Esc +quit'; then ok "help lists the quit key"; else notok "help lists the quit key" "$(head -c 400 "$T/screen")"; fi
 tm send-keys -t zv '?'
 if wait_gone 'zview keys'; then ok "? again closes the help"; else notok "? again closes the help"; fi
 
@@ -284,3 +284,121 @@ session xterm-256color 80 24
 tm send-keys -t zv "TERM=no-such-terminal $Z --color none assets/cube.obj; echo zv-exit=\$?" Enter
 if wait_for 'zv-exit=0'; then ok "an unknown TERM falls back to --print"; else notok "an unknown TERM falls back to --print" "$(cat "$T/screen")"; fi
 check "the fallback frame has the cube" 'grep -q "▀" "$T/screen"' "$(cat "$T/screen")"
+
+# ==== standard input not a terminal: keys come from the terminal ====
+# cpu_ticks PID: user + system time so far, in clock ticks
+cpu_ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
+session xterm-256color 80 24
+rm -f "$T/pid"
+tm send-keys -t zv "echo | TERM=xterm-256color sh -c 'echo \$\$ >$T/pid; exec $Z assets/cube.obj'; echo zv-exit=\$?" Enter
+if wait_for 'faces 6 drawn'; then ok "stdin at its end: the viewer shows the model"; else notok "stdin at its end: the viewer shows the model" "$(cat "$T/screen")"; fi
+check "stdin at its end: the picture is drawn" 'grep -q "▀" "$T/screen"' "$(cat "$T/screen")"
+i=0
+while [ ! -s "$T/pid" ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
+pid=$(cat "$T/pid")
+# a CPU-use check, not a timing test: idle, the process must not run
+t0=$(cpu_ticks "$pid")
+sleep 2
+t1=$(cpu_ticks "$pid")
+check "stdin at its end: no CPU while idle (< 5 ticks in 2 s)" '[ $((t1 - t0)) -lt 5 ]' "ticks $t0 -> $t1"
+tm send-keys -t zv q
+if wait_for 'zv-exit=0'; then ok "stdin at its end: q (read from the terminal) quits"; else notok "stdin at its end: q (read from the terminal) quits" "$(cat "$T/screen")"; fi
+check "no alternate screen after q with stdin at its end" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
+
+start 80 24 assets/cube.obj '</dev/null'
+if wait_for 'faces 6 drawn'; then ok "stdin from /dev/null: the viewer shows the model"; else notok "stdin from /dev/null: the viewer shows the model" "$(cat "$T/screen")"; fi
+tm send-keys -t zv Right
+wait_for 'faces 6 drawn 3' >/dev/null
+tm send-keys -t zv q
+if wait_for 'zv-exit=0'; then ok "stdin from /dev/null: keys work and q quits"; else notok "stdin from /dev/null: keys work and q quits" "$(cat "$T/screen")"; fi
+
+# no terminal to read keys from (setsid: no controlling terminal): one frame and a note
+session xterm-256color 80 24
+tm send-keys -t zv "echo | TERM=xterm-256color setsid -w $Z --color none assets/cube.obj 2>$T/note; echo zv-exit=\$?" Enter
+if wait_for 'zv-exit=0'; then ok "no terminal for keys: one frame, status 0"; else notok "no terminal for keys: one frame, status 0" "$(cat "$T/screen")"; fi
+check "no terminal for keys: the note says so" 'grep -q "^zview: no terminal to read keys from" "$T/note"' "$(cat "$T/note")"
+check "no terminal for keys: the frame has the cube" 'grep -q "▀" "$T/screen"' "$(cat "$T/screen")"
+
+# ==== the help overlay ====
+start 100 30 assets/cube.obj
+wait_for 'faces 6 drawn' >/dev/null
+check "drag reporting is on while the viewer runs" '[ "$(tm display -p -t zv "#{mouse_button_flag}")" = 1 ]'
+tm send-keys -t zv '?'
+wait_for 'zview keys' >/dev/null
+tm send-keys -t zv q
+if wait_gone 'zview keys'; then ok "q closes the help"; else notok "q closes the help" "$(cat "$T/screen")"; fi
+# the q that closed the help must not also have quit: the viewer still takes keys
+tm send-keys -t zv m
+if wait_for '\| ascii ' && ! grep -q 'zv-exit' "$T/screen"; then ok "the key that closes the help does nothing else"; else
+    notok "the key that closes the help does nothing else" "$(cat "$T/screen")"; fi
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
+
+# a small window: the box fits, and scrolling reaches every key
+start 40 12 assets/torus.obj
+wait_for 'zbuffer' >/dev/null
+tm send-keys -t zv '?'
+if wait_for 'more'; then ok "the help in a small window says there is more"; else notok "the help in a small window says there is more" "$(cat "$T/screen")"; fi
+check "the help box fits the small window (both frame lines show)" '[ "$(grep -c "^ *+---*+ *$" "$T/screen")" -eq 2 ] || [ "$(grep -c "+---*+" "$T/screen")" -eq 2 ]' "$(cat "$T/screen")"
+i=0
+while [ $i -lt 50 ] && ! grep -q 'right drag' "$T/screen"; do
+    tm send-keys -t zv j
+    sleep 0.05
+    cap
+    i=$((i + 1))
+done
+check "scrolling the help reaches its last key" 'grep -q "right drag" "$T/screen"' "$(cat "$T/screen")"
+check "scrolling did not leave the help" 'grep -q "more" "$T/screen"' "$(cat "$T/screen")"
+tm send-keys -t zv Escape
+if wait_gone 'right drag' && ! grep -q 'zv-exit' "$T/screen"; then ok "Esc closes the help without quitting"; else
+    notok "Esc closes the help without quitting" "$(cat "$T/screen")"; fi
+
+# ==== the status bar keeps what matters at 80 columns ====
+start 80 24 assets/scene.obj
+wait_for 'faces [0-9]+ drawn' >/dev/null
+bar=$(status 24)
+for want in 'scene\.obj' '\[all 6\]' 'faces 3049 drawn [0-9]+' 'zbuffer [0-9.]+ms' '\? help$'; do
+    check "80 columns: the status bar keeps $want" 'echo "$bar" | grep -Eq "$want"' "$bar"
+done
+check "80 columns: the frame time went first" '! echo "$bar" | grep -q "fps"' "$bar"
+tm resize-window -t zv -x 110 -y 24
+wait_for '110x46px' >/dev/null
+bar=$(status 24)
+check "110 columns: picture size and mode are back, the frame time is not" 'echo "$bar" | grep -q "half lambert | 110x46px | ? help" && ! echo "$bar" | grep -q fps' "$bar"
+tm resize-window -t zv -x 140 -y 24
+wait_for 'fps' >/dev/null
+bar=$(status 24)
+check "140 columns: every field" 'echo "$bar" | grep -Eq "frame [0-9.]+ms [0-9]+fps \| half lambert \| 140x46px \| \? help"' "$bar"
+
+# ==== nothing left on the shell after quitting from a grown or shrunk window ====
+for size in "110 34" "60 14"; do
+    start 80 24 assets/torus.obj
+    wait_for 'faces [0-9]+ drawn' >/dev/null
+    set -- $size
+    tm resize-window -t zv -x "$1" -y "$2"
+    wait_for "${1}x" >/dev/null
+    tm send-keys -t zv q
+    wait_for 'zv-exit=0' >/dev/null
+    check "quit after resizing to $1x$2 leaves no picture on the shell" '! grep -q "[▀▄]" "$T/screen"' "$(cat "$T/screen")"
+done
+
+# ==== --size fixes the viewer's picture ====
+start 100 30 --size 40x10 --color none assets/torus.obj
+wait_for '40x20px' >/dev/null
+"$Z" --print --color none --size 40x10 assets/torus.obj | sed 's/[[:space:]]*$//' >"$T/print"
+picture 10 >"$T/p10"
+check "--size 40x10: the picture is the --print picture of that size" 'cmp -s "$T/p10" "$T/print"' "$(diff "$T/p10" "$T/print" | head -5)"
+check "--size 40x10: nothing drawn below it" '[ -z "$(sed -n 11,29p "$T/screen" | tr -d " \n")" ]' "$(sed -n 11,29p "$T/screen")"
+check "--size 40x10: the status bar on the last line" 'status 30 | grep -q "40x20px"' "$(status 30)"
+# a window smaller than --size: the picture shrinks to the window
+"$Z" --print --color none --size 30x7 assets/torus.obj | sed 's/[[:space:]]*$//' >"$T/print"
+tm resize-window -t zv -x 30 -y 8
+i=0
+while [ $i -lt 200 ]; do
+    cap
+    picture 7 | cmp -s - "$T/print" && break
+    sleep 0.05
+    i=$((i + 1))
+done
+picture 7 >"$T/p7"
+check "--size bigger than the window: the window's size" 'cmp -s "$T/p7" "$T/print"' "$(diff "$T/p7" "$T/print" | head -5)"
