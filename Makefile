@@ -18,7 +18,7 @@ SRCS    := $(wildcard src/*/*.c)
 LIBSRCS := $(filter-out src/app/main.c,$(SRCS))
 OBJS    := $(SRCS:%.c=$(BUILD)/%.o)
 LIBOBJS := $(LIBSRCS:%.c=$(BUILD)/%.o)
-TSRCS   := $(wildcard tests/test_*.c) tests/testlib.c
+TSRCS   := $(wildcard tests/test_*.c) tests/testlib.c tests/writers.c
 TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview

@@ -87,6 +87,8 @@ int  mb_start(MeshBuild *b, Mesh *m, MeshErr *e, const char *name);
 /* Room for at least this many more vertices, faces and corners, so that
  * loaders that know their counts allocate once (exactly). */
 int  mb_reserve(MeshBuild *b, size_t verts, size_t faces, size_t corners);
+/* The same; exact = 0 for a guess (its pages are not faulted in ahead). */
+int  mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int exact);
 /* Start vertex colours: earlier vertices become white. */
 int  mb_want_rgb(MeshBuild *b);
 int  mb_grow_verts(MeshBuild *b);
@@ -151,14 +153,14 @@ void mb_abort(MeshBuild *b);
 
 /* Loaders of formats that repeat each corner's position (STL) merge
  * equal positions, exact bit patterns, in one hash pass, so that the
- * front end transforms each point once. Slots hold the position's bits
- * and its index: a probe never touches the vertex array. */
+ * front end transforms each point once and the mesh is as small as an
+ * OBJ's. A slot holds 32 bits of the position's hash and its vertex
+ * index + 1 (0 = empty): 8 bytes, so the table stays small enough to
+ * live in cache, and a probe compares positions only when the hash
+ * bits agree, almost only for the vertex it is looking for, which was
+ * usually added recently (its position is still in cache too). */
 typedef struct {
-    uint32_t x, y, z, idx1;   /* idx1 = vertex index + 1, 0 = empty */
-} VertSlot;
-
-typedef struct {
-    VertSlot *slot;
+    uint64_t *slot;
     uint32_t  mask;           /* capacity - 1, a power of two minus one */
     uint32_t  used;
 } VertMerge;
@@ -166,50 +168,49 @@ typedef struct {
 /* Room for about `expect` distinct vertices at most half full. */
 int  vm_init(VertMerge *vm, size_t expect);
 void vm_free(VertMerge *vm);
-int  vm_grow(VertMerge *vm);
+int  vm_grow(VertMerge *vm, const float *pos);
 
-static inline uint32_t vm_hash(uint32_t x, uint32_t y, uint32_t z)
+static inline uint64_t vm_hash(uint32_t x, uint32_t y, uint32_t z)
 {
     uint64_t h = (uint64_t)x * 0x9E3779B97F4A7C15ull;
     h ^= (uint64_t)y * 0xC2B2AE3D27D4EB4Full;
     h ^= (uint64_t)z * 0x165667B19E3779F9ull;
     h ^= h >> 29;
     h *= 0xBF58476D1CE4E5B9ull;
-    return (uint32_t)(h >> 32);
+    return h ^ (h >> 32);
 }
 
-static inline void vm_prefetch(const VertMerge *vm, uint32_t h)
+static inline void vm_prefetch(const VertMerge *vm, uint64_t h)
 {
-    __builtin_prefetch(&vm->slot[h & vm->mask]);
+    __builtin_prefetch(&vm->slot[(uint32_t)(h >> 32) & vm->mask]);
 }
 
 /* The index of the vertex with these coordinate bits (h = vm_hash of
  * them), appended to the mesh if new. Returns 0, -1 out of memory. */
-static inline int vm_add(VertMerge *vm, MeshBuild *b, const uint32_t bits[3], uint32_t h,
+static inline int vm_add(VertMerge *vm, MeshBuild *b, const uint32_t bits[3], uint64_t h,
                          uint32_t *idx)
 {
-    for (uint32_t i = h & vm->mask;; i = (i + 1) & vm->mask) {
-        VertSlot *s = &vm->slot[i];
-        if (!s->idx1) {
+    uint32_t tag = (uint32_t)h;
+    const float *pos = b->m->pos;
+    for (uint32_t i = (uint32_t)(h >> 32) & vm->mask;; i = (i + 1) & vm->mask) {
+        uint64_t s = vm->slot[i];
+        if (!s) {
             if ((vm->used + 1) * 2 > vm->mask + 1) {
-                if (vm_grow(vm))
-                    return -1;
+                if (vm_grow(vm, pos))
+                    return me_oom(b->e);
                 return vm_add(vm, b, bits, h, idx);
             }
             float p[3];
             memcpy(p, bits, sizeof p);
             if (mb_vertex(b, p[0], p[1], p[2]))
                 return -1;
-            s->x = bits[0];
-            s->y = bits[1];
-            s->z = bits[2];
-            s->idx1 = b->m->nverts;
+            vm->slot[i] = (uint64_t)tag << 32 | b->m->nverts;
             vm->used++;
             *idx = b->m->nverts - 1;
             return 0;
         }
-        if (s->x == bits[0] && s->y == bits[1] && s->z == bits[2]) {
-            *idx = s->idx1 - 1;
+        if ((uint32_t)(s >> 32) == tag && memcmp(pos + 3 * (size_t)((uint32_t)s - 1), bits, 12) == 0) {
+            *idx = (uint32_t)s - 1;
             return 0;
         }
     }

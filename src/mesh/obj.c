@@ -701,7 +701,7 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
      * never written are never made resident, and the finish trims. */
     if (len >= ((size_t)1 << 20)) {
         size_t guess = len / 24;
-        if (mb_reserve(&ps.b, guess, guess, 3 * guess))
+        if (mb_reserve_ex(&ps.b, guess, guess, 3 * guess, 0))
             goto fail;
     }
 

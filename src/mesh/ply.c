@@ -298,47 +298,48 @@ typedef struct {
     int swap;
 } Bin;
 
-static inline uint64_t load_bits(const unsigned char *p, unsigned n, int swap)
+/* Loads of 1, 2, 4 and 8 bytes in the file's byte order. Constant-size
+ * copies compile to single moves (a size known only at run time would
+ * call memcpy for every value). */
+static inline uint16_t ld16(const unsigned char *p, int swap)
 {
-    uint64_t v = 0;
-    if (!swap) {
-#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-        memcpy(&v, p, n);
-#else
-        for (unsigned i = 0; i < n; i++)
-            v |= (uint64_t)p[i] << (8 * i);
-#endif
-    } else {
-#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-        for (unsigned i = 0; i < n; i++)
-            v = v << 8 | p[i];
-#else
-        memcpy((unsigned char *)&v + 8 - n, p, n);
-#endif
-    }
-    return v;
+    uint16_t v;
+    memcpy(&v, p, 2);
+    return swap ? __builtin_bswap16(v) : v;
+}
+static inline uint32_t ld32(const unsigned char *p, int swap)
+{
+    uint32_t v;
+    memcpy(&v, p, 4);
+    return swap ? __builtin_bswap32(v) : v;
+}
+static inline uint64_t ld64(const unsigned char *p, int swap)
+{
+    uint64_t v;
+    memcpy(&v, p, 8);
+    return swap ? __builtin_bswap64(v) : v;
 }
 
 /* A scalar as double (exact for every integer type). */
 static inline double get_num(const unsigned char *p, PlyType t, int swap)
 {
-    uint64_t v = load_bits(p, type_size[t], swap);
     switch (t) {
-    case T_I8: return (int8_t)v;
-    case T_U8: return (uint8_t)v;
-    case T_I16: return (int16_t)v;
-    case T_U16: return (uint16_t)v;
-    case T_I32: return (int32_t)v;
-    case T_U32: return (uint32_t)v;
+    case T_I8: return (int8_t)p[0];
+    case T_U8: return p[0];
+    case T_I16: return (int16_t)ld16(p, swap);
+    case T_U16: return ld16(p, swap);
+    case T_I32: return (int32_t)ld32(p, swap);
+    case T_U32: return ld32(p, swap);
     case T_F32: {
-        uint32_t u = (uint32_t)v;
+        uint32_t u = ld32(p, swap);
         float f;
         memcpy(&f, &u, 4);
         return f;
     }
     default: {
+        uint64_t u = ld64(p, swap);
         double d;
-        memcpy(&d, &v, 8);
+        memcpy(&d, &u, 8);
         return d;
     }
     }
@@ -347,12 +348,13 @@ static inline double get_num(const unsigned char *p, PlyType t, int swap)
 /* An integer-typed value (list counts, indices) as int64. */
 static inline int64_t get_int(const unsigned char *p, PlyType t, int swap)
 {
-    uint64_t v = load_bits(p, type_size[t], swap);
     switch (t) {
-    case T_I8: return (int8_t)v;
-    case T_I16: return (int16_t)v;
-    case T_I32: return (int32_t)v;
-    default: return (int64_t)v;
+    case T_I8: return (int8_t)p[0];
+    case T_U8: return p[0];
+    case T_I16: return (int16_t)ld16(p, swap);
+    case T_U16: return ld16(p, swap);
+    case T_I32: return (int32_t)ld32(p, swap);
+    default: return ld32(p, swap);
     }
 }
 
@@ -399,9 +401,8 @@ static int bin_vertices(Ply *ply, PlyElem *el, Bin *bn)
             if ((i & 0xffff) == 0)
                 mf_progress(ply->c->file, (const char *)r);
             if (fast) {
-                uint32_t u[3] = { (uint32_t)load_bits(r + px->offset, 4, swap),
-                                  (uint32_t)load_bits(r + py->offset, 4, swap),
-                                  (uint32_t)load_bits(r + pz->offset, 4, swap) };
+                uint32_t u[3] = { ld32(r + px->offset, swap), ld32(r + py->offset, swap),
+                                  ld32(r + pz->offset, swap) };
                 if (bits_nonfinite(u[0]) || bits_nonfinite(u[1]) || bits_nonfinite(u[2]))
                     return me_fail_at(ply->e, (uint64_t)(r - bn->base),
                                       "NaN or infinite coordinate (vertex %u)", i + 1);
@@ -510,11 +511,22 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
                         return -1;
             }
             uint32_t *dst = m->corner + b->ncorner;
-            for (int64_t k = 0; k < cnt; k++, r += is) {
-                int64_t v = get_int(r, only->type, swap);
-                if ((uint64_t)v >= nv)
-                    return bad_index(ply, (uint64_t)(r - bn->base), v, i);
-                dst[k] = (uint32_t)v;
+            if (is == 4) {
+                /* int and uint indices: one unsigned compare rejects
+                 * negative ones too (they wrap past any count) */
+                for (int64_t k = 0; k < cnt; k++, r += 4) {
+                    uint32_t v = ld32(r, swap);
+                    if (v >= nv)
+                        return bad_index(ply, (uint64_t)(r - bn->base), get_int(r, only->type, swap), i);
+                    dst[k] = v;
+                }
+            } else {
+                for (int64_t k = 0; k < cnt; k++, r += is) {
+                    int64_t v = get_int(r, only->type, swap);
+                    if ((uint64_t)v >= nv)
+                        return bad_index(ply, (uint64_t)(r - bn->base), v, i);
+                    dst[k] = (uint32_t)v;
+                }
             }
             b->ncorner += (size_t)cnt;
         } else {

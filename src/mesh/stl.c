@@ -176,7 +176,7 @@ static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
     snprintf(m->info.format, sizeof m->info.format, "stl ascii");
     /* About 250 bytes a triangle; a guess only (arrays grow past it). */
     size_t guess = len / 250 + 64;
-    if (mb_reserve(b, guess / 2, guess, 3 * guess))
+    if (mb_reserve_ex(b, guess / 2, guess, 3 * guess, 0))
         return -1;
     VertMerge vm;
     if (vm_init(&vm, guess / 2))
@@ -248,7 +248,12 @@ static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
                 goto out;
             }
             /* The normal is not needed (faces get theirs from the
-             * corners): the rest of the line is not even parsed. */
+             * corners): the rest of the line is only checked for bytes
+             * no text has. */
+            if (mesh_has_binary(p, le)) {
+                me_fail_line(e, lr.line, "binary or unreadable data");
+                goto out;
+            }
             in_facet = 1;
             facet_line = lr.line;
             first = b->ncorner;
@@ -329,7 +334,8 @@ static int stl_parse(MeshCtx *c, const char *data, size_t len)
     size_t hn = len < MESH_HEAD ? len : MESH_HEAD;
     int sized = len >= 84 && len == STL_HEADER + 4 + (uint64_t)STL_TRI * rd_u32le(data + 80);
     int ascii = sized ? looks_ascii(data, hn)
-                      : after_solid(data, data + hn) && !mesh_has_binary(data, data + hn);
+                      : after_solid(data, data + hn) &&
+                            (!mesh_has_binary(data, data + hn) || len < STL_HEADER + 4);
     int r = ascii ? stl_ascii(c, &b, data, len) : stl_binary(c, &b, data, len);
     if (r || mb_finish(&b, 0)) {
         mb_abort(&b);
