@@ -118,13 +118,18 @@ int mb_grow_faces(MeshBuild *b)
     return 0;
 }
 
-int mb_grow_corners(MeshBuild *b)
+int mb_room_corners(MeshBuild *b, size_t n)
 {
-    if (b->ncorner >= UINT32_MAX - 1)
+    if (b->ncorner + n >= UINT32_MAX - 1)
         return me_fail(b->e, "too many face corners");
-    if (grow((void **)&b->m->corner, &b->ccap, b->ncorner + 1, sizeof(uint32_t)))
+    if (grow((void **)&b->m->corner, &b->ccap, b->ncorner + n, sizeof(uint32_t)))
         return me_oom(b->e);
     return 0;
+}
+
+int mb_grow_corners(MeshBuild *b)
+{
+    return mb_room_corners(b, 1);
 }
 
 int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int exact)

@@ -94,6 +94,8 @@ int  mb_want_rgb(MeshBuild *b);
 int  mb_grow_verts(MeshBuild *b);
 int  mb_grow_faces(MeshBuild *b);
 int  mb_grow_corners(MeshBuild *b);
+/* Room for n more corners. */
+int  mb_room_corners(MeshBuild *b, size_t n);
 
 static inline int mb_vertex(MeshBuild *b, float x, float y, float z)
 {

@@ -184,6 +184,7 @@ static int parse_header(Ply *ply, const char *data, size_t len)
             if (!cur)
                 return me_fail_line(e, line, "property before any element");
             PlyProp pr = { .count_type = T_NONE };
+            const char *ts = NULL, *te = NULL;   /* the item type, for messages */
             if (!word(&p, le, &a, &ae))
                 return me_fail_line(e, line, "property needs a type and a name");
             if (eq(a, ae, "list")) {
@@ -194,8 +195,13 @@ static int parse_header(Ply *ply, const char *data, size_t len)
                     return me_fail_line(e, line, "bad list count type '%.*s'", (int)(ae - a), a);
                 if (type_of(t2, t2e, &pr.type))
                     return me_fail_line(e, line, "unknown type '%.*s'", (int)(t2e - t2), t2);
+                ts = t2;
+                te = t2e;
             } else if (type_of(a, ae, &pr.type)) {
                 return me_fail_line(e, line, "unknown type '%.*s'", (int)(ae - a), a);
+            } else {
+                ts = a;
+                te = ae;
             }
             const char *n, *ne;
             if (!word(&p, le, &n, &ne))
@@ -210,7 +216,7 @@ static int parse_header(Ply *ply, const char *data, size_t len)
             }
             if (pr.role == R_INDICES && pr.type >= T_F32)
                 return me_fail_line(e, line, "vertex indices of type %.*s (not an integer type)",
-                                    (int)(ae - a), a);
+                                    (int)(te - ts), ts);
             for (uint32_t i = 0; i < cur->nprops; i++)
                 if (pr.role != R_NONE && cur->props[i].role == pr.role)
                     return me_fail_line(e, line, "property '%.*s' given twice", (int)(ne - n), n);
@@ -505,11 +511,8 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
                 return me_fail_at(ply->e, (uint64_t)(r - cs - bn->base),
                                   "face %u of %lld vertices goes past the end of the file", i + 1,
                                   (long long)cnt);
-            if (b->ncorner + (size_t)cnt > b->ccap) {
-                while (b->ncorner + (size_t)cnt > b->ccap)
-                    if (mb_grow_corners(b))
-                        return -1;
-            }
+            if (b->ncorner + (size_t)cnt > b->ccap && mb_room_corners(b, (size_t)cnt))
+                return -1;
             uint32_t *dst = m->corner + b->ncorner;
             if (is == 4) {
                 /* int and uint indices: one unsigned compare rejects
@@ -689,6 +692,7 @@ static int txt_element(Ply *ply, PlyElem *el, Txt *t)
             const PlyProp *pr = &el->props[k];
             if (pr->count_type != T_NONE) {
                 int64_t cnt;
+                txt_ws(t);
                 uint64_t line = t->line;
                 if (txt_int(ply, t, &cnt, el->name))
                     return -1;
