@@ -219,10 +219,11 @@ static int off_parse(MeshCtx *c, const char *data, size_t len)
         goto fail;
     }
     /* Checked against the size before anything is allocated: a vertex
-     * line takes at least 6 bytes ("0 0 0\n"), a face line 8. */
+     * line takes 6 bytes or more ("0 0 0\n"), a face line 8; the bound
+     * is looser (4 and 6) so that a short line gets its own message. */
     uint64_t rest = (uint64_t)(o.lr.end - o.lr.p) + 1;
-    if ((uint64_t)cnt[0] > rest / 6 || (uint64_t)cnt[1] > rest / 8 ||
-        (uint64_t)cnt[0] * 6 + (uint64_t)cnt[1] * 8 > rest) {
+    if ((uint64_t)cnt[0] > rest / 4 || (uint64_t)cnt[1] > rest / 6 ||
+        (uint64_t)cnt[0] * 4 + (uint64_t)cnt[1] * 6 > rest) {
         me_fail_line(o.e, o.lr.line, "%lld vertices and %lld faces cannot fit in the %llu bytes "
                      "left", (long long)cnt[0], (long long)cnt[1], (unsigned long long)rest - 1);
         goto fail;
