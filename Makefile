@@ -7,14 +7,25 @@ PKGS    := ncursesw libpng
 PKG_CFLAGS := $(filter-out -D%,$(shell pkg-config --cflags $(PKGS) 2>/dev/null))
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -ltinfo -lpng16)
 
+# Optional: assimp for the long tail of formats (glTF, FBX, 3DS, ...).
+# On when pkg-config finds it; `make ASSIMP=0` builds without.
+ASSIMP  ?= $(shell pkg-config --exists assimp 2>/dev/null && echo 1 || echo 0)
+ifeq ($(ASSIMP),1)
+AI_CFLAGS := -DZV_ASSIMP $(filter-out -D%,$(shell pkg-config --cflags assimp 2>/dev/null))
+AI_LIBS   := $(shell pkg-config --libs assimp 2>/dev/null || echo -lassimp)
+endif
+
 OPT     ?= -O2
 EXTRA_CFLAGS ?=
 CFLAGS  ?= $(OPT) -g
-CFLAGS  += $(EXTRA_CFLAGS) -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude $(PKG_CFLAGS) -MMD -MP -pthread
-LDLIBS  += $(PKG_LIBS) -lm -pthread
+CFLAGS  += $(EXTRA_CFLAGS) -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude $(PKG_CFLAGS) $(AI_CFLAGS) -MMD -MP -pthread
+LDLIBS  += $(PKG_LIBS) $(AI_LIBS) -lm -pthread
 
 BUILD   ?= build
 SRCS    := $(wildcard src/*/*.c)
+ifneq ($(ASSIMP),1)
+SRCS    := $(filter-out src/mesh/assimp.c,$(SRCS))
+endif
 LIBSRCS := $(filter-out src/app/main.c,$(SRCS))
 OBJS    := $(SRCS:%.c=$(BUILD)/%.o)
 LIBOBJS := $(LIBSRCS:%.c=$(BUILD)/%.o)
@@ -27,15 +38,21 @@ BIN     ?= zview
 
 all: $(BIN)
 
-$(BIN): $(OBJS)
-	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+# The build's configuration, rewritten only when it changes, so that
+# switching ASSIMP rebuilds what depends on it and relinks.
+CONFIG  := $(BUILD)/config
+$(shell mkdir -p $(BUILD); echo 'ASSIMP=$(ASSIMP)' | cmp -s - $(CONFIG) || echo 'ASSIMP=$(ASSIMP)' > $(CONFIG))
+$(BUILD)/src/mesh/format.o: $(CONFIG)
+
+$(BIN): $(OBJS) $(CONFIG)
+	$(CC) $(CFLAGS) -o $@ $(filter %.o,$^) $(LDLIBS)
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c -o $@ $<
 
-$(TESTBIN): $(LIBOBJS) $(TOBJS)
-	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS) -lcriterion
+$(TESTBIN): $(LIBOBJS) $(TOBJS) $(CONFIG)
+	$(CC) $(CFLAGS) -o $@ $(filter %.o,$^) $(LDLIBS) -lcriterion
 
 # The whole suite: unit tests (Criterion) then end-to-end shell tests.
 test: $(BIN) $(TESTBIN)

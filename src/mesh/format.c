@@ -249,6 +249,12 @@ static int refuse(MeshErr *e, const char *what)
 {
     char list[160];
     mesh_formats_short(list, sizeof list);
+#ifndef ZV_ASSIMP
+    /* formats assimp would read: say why this build does not */
+    if (!strcmp(what, "glTF binary") || !strcmp(what, "FBX binary") || !strcmp(what, "Blender file"))
+        return me_fail(e, "not a model zview can read (%s: this build has no assimp; formats: %s)",
+                       what, list);
+#endif
     return me_fail(e, "not a model zview can read (%s; formats: %s)", what, list);
 }
 
