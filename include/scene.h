@@ -8,6 +8,14 @@
 #include "mesh.h"
 #include "vec.h"
 
+/* Which model axis points up on screen (--up, the viewer's U key): the
+ * model is turned by quarter turns so that it does, exactly (entries of
+ * 0 and +-1). Most scans and CAD files are z-up; the default is y. */
+typedef enum { UP_Y, UP_Z, UP_X, UP_NEG_Y, UP_NEG_Z, UP_NEG_X, UP_COUNT } UpAxis;
+
+const char *up_axis_name(int up);          /* "y", "z", "x", "-y", "-z", "-x" */
+int         up_axis_from_name(const char *s);   /* -1 if none */
+
 typedef struct {
     char       name[MESH_NAME_MAX];
     const Mesh *mesh;         /* geometry owner (several objects may share one) */
@@ -24,6 +32,7 @@ typedef struct {
     Vec3       offset;        /* world translation (moves by the viewer) */
     Vec3       home;          /* offset after a reset (grid copies sit apart) */
     float      scale;         /* uniform, 1 = as loaded */
+    int        up;            /* UpAxis: applied first, about the centre */
 } Object;
 
 typedef struct {
@@ -80,6 +89,9 @@ int  scene_make_grid(Scene *s, int n, char *err, size_t errlen);
 
 void scene_free(Scene *s);
 
+/* Turn every object so that its `up` axis points up, then fit. */
+void scene_set_up(Scene *s, int up);
+
 /* Reset the camera (and object placements), then fit. */
 void scene_reset(Scene *s);
 /* Fit: centre the scene as seen from the camera's current turn and set
@@ -87,8 +99,8 @@ void scene_reset(Scene *s);
  * the viewport (pan and zoom are reset). */
 void scene_fit(Scene *s);
 
-/* Object-to-world matrix: turn and scale about the object's centre, then
- * offset. */
+/* Object-to-world matrix: the up axis, turn and scale about the
+ * object's centre, then offset. */
 Mat4 object_matrix(const Object *o);
 /* World-to-view matrix (rotation + pan, before projection). */
 Mat4 camera_view(const Camera *c);

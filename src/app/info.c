@@ -18,7 +18,12 @@ static void print_mesh(const Mesh *m)
         lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
     double mb = m->info.bytes / 1e6;
     printf("file:       %s\n", m->path ? m->path : "?");
-    printf("vertices:   %u\n", m->nverts);
+    printf("format:     %s\n", m->info.format[0] ? m->info.format : "?");
+    if (m->info.corners_read)
+        printf("vertices:   %u (merged from %llu corners)\n", m->nverts,
+               (unsigned long long)m->info.corners_read);
+    else
+        printf("vertices:   %u\n", m->nverts);
     printf("faces:      %u\n", m->nfaces);
     printf("triangles:  %u\n", m->info.triangles);
     printf("objects:    %u\n", m->nobjs);
@@ -26,6 +31,8 @@ static void print_mesh(const Mesh *m)
     printf("materials:  %u\n", m->nmats);
     printf("texcoords:  %u   normals: %u   vertex colours: %s\n", m->info.texcoords,
            m->info.normals, m->rgb ? "yes" : "no");
+    if (m->info.points || m->info.lines)
+        printf("not drawn:  %u points, %u lines\n", m->info.points, m->info.lines);
     if (m->info.unknown)
         printf("unknown:    %u statements skipped (first: '%s')\n", m->info.unknown,
                m->info.first_unknown);

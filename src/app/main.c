@@ -30,6 +30,10 @@ int main(int argc, char **argv)
         printf("zview %s\n", ZV_VERSION);
         return 0;
     }
+    if (o.formats) {
+        mesh_formats_print(stdout);
+        return 0;
+    }
     if (o.bench || o.bench_tty)
         return app_bench(&o, NULL);   /* loads each model on its own */
     Scene scene;

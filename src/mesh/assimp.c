@@ -294,39 +294,24 @@ int mesh_assimp_has_ext(const char *ext)
     return aiIsExtensionSupported(dot) == AI_TRUE;
 }
 
-/* Every importer's extensions, each once, blank-separated. */
-void mesh_assimp_exts(char *buf, size_t n)
+/* Every importer's extensions, with the importer's name. */
+void mesh_assimp_list(void (*fn)(const char *ext, const char *what, void *ctx), void *ctx)
 {
-    size_t k = 0;
-    buf[0] = '\0';
     size_t nf = aiGetImportFormatCount();
     for (size_t i = 0; i < nf; i++) {
         const struct aiImporterDesc *d = aiGetImportFormatDescription(i);
         if (!d || !d->mFileExtensions)
             continue;
         const char *p = d->mFileExtensions;
-        while (*p) {
+        for (;;) {
             while (*p == ' ')
                 p++;
             size_t wl = strcspn(p, " ");
             if (!wl)
                 break;
-            /* skip one already listed */
-            int seen = 0;
-            for (const char *q = buf; *q && !seen;) {
-                size_t ql = strcspn(q, " ");
-                seen = ql == wl && strncmp(q, p, wl) == 0;
-                q += ql;
-                while (*q == ' ')
-                    q++;
-            }
-            if (!seen && k + wl + 2 < n) {
-                if (k)
-                    buf[k++] = ' ';
-                memcpy(buf + k, p, wl);
-                k += wl;
-                buf[k] = '\0';
-            }
+            char ext[32];
+            snprintf(ext, sizeof ext, "%.*s", (int)(wl < 31 ? wl : 31), p);
+            fn(ext, d->mName ? d->mName : "", ctx);
             p += wl;
         }
     }

@@ -168,28 +168,56 @@ void mesh_formats_short(char *buf, size_t n)
 #endif
 }
 
+#ifdef ZV_ASSIMP
+typedef struct {
+    char ext[32], what[72];
+} ExtRow;
+
+typedef struct {
+    ExtRow *rows;
+    size_t  n, cap;
+} ExtList;
+
+static void collect(const char *ext, const char *what, void *ctx)
+{
+    ExtList *l = ctx;
+    if (native_by_ext(ext))
+        return;             /* read natively; --format assimp still forces assimp */
+    for (size_t i = 0; i < l->n; i++)
+        if (!strcmp(l->rows[i].ext, ext))
+            return;         /* several importers: the first is named */
+    if (l->n == l->cap) {
+        size_t nc = l->cap ? l->cap * 2 : 64;
+        ExtRow *r = realloc(l->rows, nc * sizeof *r);
+        if (!r)
+            return;
+        l->rows = r;
+        l->cap = nc;
+    }
+    snprintf(l->rows[l->n].ext, sizeof l->rows[0].ext, "%s", ext);
+    snprintf(l->rows[l->n].what, sizeof l->rows[0].what, "%s", what);
+    l->n++;
+}
+
+static int row_cmp(const void *a, const void *b)
+{
+    return strcmp(((const ExtRow *)a)->ext, ((const ExtRow *)b)->ext);
+}
+#endif
+
 void mesh_formats_print(FILE *f)
 {
     for (size_t i = 0; i < NNATIVE; i++)
         fprintf(f, "%-8s native  %s\n", natives[i]->name, natives[i]->what);
 #ifdef ZV_ASSIMP
     char ver[32];
-    char *exts = malloc(4096);
-    if (!exts)
-        return;
-    mesh_assimp_exts(exts, 4096);
+    ExtList l = { 0 };
+    mesh_assimp_list(collect, &l);
+    qsort(l.rows, l.n, sizeof *l.rows, row_cmp);
     mesh_assimp_version(ver, sizeof ver);
-    for (char *p = exts; *p;) {
-        char *q = strchr(p, ' ');
-        if (q)
-            *q = '\0';
-        if (!native_by_ext(p))
-            fprintf(f, "%-8s assimp  through assimp %s\n", p, ver);
-        if (!q)
-            break;
-        p = q + 1;
-    }
-    free(exts);
+    for (size_t i = 0; i < l.n; i++)
+        fprintf(f, "%-8s assimp  %s (assimp %s)\n", l.rows[i].ext, l.rows[i].what, ver);
+    free(l.rows);
 #endif
 }
 

@@ -48,8 +48,8 @@ extern const MeshLoader mesh_loader_obj, mesh_loader_stl, mesh_loader_ply, mesh_
 extern const MeshLoader mesh_loader_assimp;
 /* Does assimp read files of this extension (no dot, any case)? */
 int  mesh_assimp_has_ext(const char *ext);
-/* Blank-separated extensions assimp reads, into buf. */
-void mesh_assimp_exts(char *buf, size_t n);
+/* Call fn for each extension assimp reads, with its importer's name. */
+void mesh_assimp_list(void (*fn)(const char *ext, const char *what, void *ctx), void *ctx);
 const char *mesh_assimp_version(char *buf, size_t n);
 #endif
 
