@@ -262,9 +262,10 @@ static const MeshLoader *pick(const char *head, size_t n, uint64_t size, const c
         *what = other;
         return NULL;
     }
-    /* 3. the extension; a text format is not given binary bytes */
+    /* 3. the extension; a text format is not given binary bytes, nor a
+     * format with a magic bytes without it */
     const MeshLoader *l = native_by_ext(ext);
-    if (l && !(l->text && has_nul(head, n)))
+    if (l && !(l->text && has_nul(head, n)) && !l->needs_magic)
         return l;
     /* 4. text that could be OBJ */
     if (maybe)

@@ -41,6 +41,7 @@ typedef struct MeshLoader {
      * refers to); used instead of parse for a regular file. */
     int  (*parse_path)(MeshCtx *c, const char *path);
     int  text;             /* a text format: streams are read up to a NUL only */
+    int  needs_magic;      /* chosen by extension only when the probe agrees */
 } MeshLoader;
 
 extern const MeshLoader mesh_loader_obj, mesh_loader_stl, mesh_loader_ply, mesh_loader_off;

@@ -754,9 +754,9 @@ fail:
     return -1;
 }
 
-/* OBJ is text whose statements start with a few keywords: plausible
- * when the first statement of the head is one of them (or the head is
- * all comments). */
+/* OBJ is text whose statements start with a few keywords: sure when
+ * the first statement of the head is one of them (no other format here
+ * starts so), plausible when the head is all comments. */
 static int obj_probe(const char *head, size_t n, uint64_t size)
 {
     (void)size;
@@ -782,7 +782,7 @@ static int obj_probe(const char *head, size_t n, uint64_t size)
             p++;
         for (size_t i = 0; i < sizeof kw / sizeof kw[0]; i++)
             if (strlen(kw[i]) == (size_t)(p - k) && memcmp(k, kw[i], (size_t)(p - k)) == 0)
-                return PROBE_MAYBE;
+                return PROBE_SURE;
         return PROBE_NO;
     }
     return n ? PROBE_MAYBE : PROBE_NO;

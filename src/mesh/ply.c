@@ -824,4 +824,5 @@ const MeshLoader mesh_loader_ply = {
     .what = "PLY: ascii, binary little and big endian (+ vertex and face colours)",
     .probe = ply_probe,
     .parse = ply_parse,
+    .needs_magic = 1,
 };

@@ -457,6 +457,21 @@ int mesh_tok_len(const char *p, const char *end)
 
 /* ==== Lines ==== */
 
+const char *lr_long_line(const char *p, const char *end, char eol)
+{
+    const size_t chunk = (size_t)64 << 10;
+    while (p < end) {
+        size_t n = (size_t)(end - p) < chunk ? (size_t)(end - p) : chunk;
+        const char *nl = memchr(p, eol, n), *nul = memchr(p, '\0', nl ? (size_t)(nl - p) : n);
+        if (nul)
+            return nul + 1 < end ? nul + 1 : NULL;   /* the line holds its NUL */
+        if (nl)
+            return nl;
+        p += n;
+    }
+    return NULL;
+}
+
 void lr_init(LineReader *lr, const char *data, size_t len)
 {
     lr->p = data;

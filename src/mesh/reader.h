@@ -153,6 +153,14 @@ typedef struct {
 } LineReader;
 
 void lr_init(LineReader *lr, const char *data, size_t len);
+/* Where the line at p ends, when it is longer than a first look: it
+ * ends at its line end, or just after a NUL (no text line holds one, and
+ * a file of zeros past a valid start must not be read to its end to find
+ * a line end it does not have). */
+const char *lr_long_line(const char *p, const char *end, char eol);
+
+#define LR_LOOK 4096
+
 /* The next line [*ls, *le) without its line end (a trailing CR of CRLF
  * is stripped). Returns 0 at the end of the input. */
 static inline int lr_next(LineReader *lr, const char **ls, const char **le)
@@ -161,17 +169,18 @@ static inline int lr_next(LineReader *lr, const char **ls, const char **le)
     if (p >= end)
         return 0;
     lr->line++;
-    const char *nl = memchr(p, lr->eol, (size_t)(end - p));
+    size_t look = (size_t)(end - p) < LR_LOOK ? (size_t)(end - p) : LR_LOOK;
+    const char *nl = memchr(p, lr->eol, look);
+    if (!nl && look < (size_t)(end - p))
+        nl = lr_long_line(p, end, lr->eol);
     const char *e = nl ? nl : end;
     *ls = p;
+    lr->p = nl ? nl + 1 : end;
     if (lr->eol == '\n') {
-        lr->p = nl ? nl + 1 : end;
         if (e > p && e[-1] == '\r')
             e--;
-    } else {
-        lr->p = nl ? nl + 1 : end;
-        if (lr->p < end && *lr->p == '\n')
-            lr->p++;
+    } else if (lr->p < end && *lr->p == '\n') {
+        lr->p++;
     }
     *le = e;
     return 1;

@@ -91,6 +91,11 @@ static int stl_binary(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
                           "bytes, the file has %zu)",
                           (unsigned long long)whole + 1, n, n, (unsigned long long)need, len);
     }
+    if (len - need >= STL_TRI)
+        /* a whole triangle more or beyond: the count is wrong, and what
+         * follows it cannot be trusted either */
+        return me_fail(&c->err, "the header's count, %u triangles, makes %llu bytes; the file has %zu",
+                       n, (unsigned long long)need, len);
     if (need < len)
         me_warn(c->err.name, 0, "%llu bytes after the last of %u triangles ignored",
                 (unsigned long long)(len - need), n);
