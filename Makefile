@@ -34,7 +34,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all test unit e2e asan run bench install clean assets test-models
+.PHONY: all test unit e2e asan run bench install clean assets test-models noassimp
 
 all: $(BIN)
 
@@ -74,6 +74,10 @@ asan:
 	$(MAKE) BUILD=build-asan BIN=build-asan/zview \
 	    OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
 
+# The build without assimp, in its own folder (both must compile).
+noassimp:
+	$(MAKE) ASSIMP=0 BUILD=build-noassimp BIN=build-noassimp/zview
+
 run: $(BIN)
 	./$(BIN)
 
@@ -95,6 +99,6 @@ install: $(BIN)
 	install -m 644 assets/demo.obj assets/demo.mtl $(DESTDIR)$(PREFIX)/share/zview/
 
 clean:
-	rm -rf build build-asan $(BIN)
+	rm -rf build build-asan build-noassimp $(BIN)
 
 -include $(OBJS:.o=.d) $(TOBJS:.o=.d)

@@ -71,9 +71,16 @@ static int32_t material(Walk *w, unsigned i)
         return w->matmap[i];
     const struct aiMaterial *mat = w->sc->mMaterials[i];
     struct aiString name;
-    if (aiGetMaterialString(mat, AI_MATKEY_NAME, &name) != aiReturn_SUCCESS)
-        snprintf(name.data, sizeof name.data, "material %u", i);
+    int named = aiGetMaterialString(mat, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS && name.length;
     struct aiColor4D c = base_colour(mat);
+    /* What assimp adds to a file without materials (named so, or glTF's
+     * unnamed white default): zview's default colour, as every other
+     * format gets. */
+    if ((named && strcmp(name.data, AI_DEFAULT_MATERIAL_NAME) == 0) ||
+        (!named && c.r == 1 && c.g == 1 && c.b == 1 && c.a == 1))
+        return w->matmap[i] = -1;
+    if (!named)
+        snprintf(name.data, sizeof name.data, "material %u", i);
     int32_t k = mb_material(&w->b, name.data, clamp01(c.r), clamp01(c.g), clamp01(c.b), clamp01(c.a));
     if (k >= 0)
         w->matmap[i] = k;
