@@ -93,9 +93,12 @@ $(BUILD)/genassets: tools/genassets.c
 	$(CC) $(CFLAGS) -o $@ $< -lm
 
 install: $(BIN)
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/zview
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/zview \
+	    $(DESTDIR)$(PREFIX)/share/bash-completion/completions $(DESTDIR)$(PREFIX)/share/zsh/site-functions
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/zview
 	install -m 644 doc/zview.1 $(DESTDIR)$(PREFIX)/share/man/man1/zview.1
+	install -m 644 tools/completion/zview.bash $(DESTDIR)$(PREFIX)/share/bash-completion/completions/zview
+	install -m 644 tools/completion/_zview $(DESTDIR)$(PREFIX)/share/zsh/site-functions/_zview
 	install -m 644 assets/demo.obj assets/demo.mtl $(DESTDIR)$(PREFIX)/share/zview/
 
 clean:
