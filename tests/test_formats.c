@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "mesh.h"
+#include "app.h"
 #include "testlib.h"
 #include "writers.h"
 
@@ -455,4 +456,48 @@ Test(models, same_ids_in_every_format_dragon, .timeout = 3000)
     setup();
     same_everywhere(p, 2, 640, 480);
     teardown();
+}
+
+/* ==== The command line's new options ==== */
+
+static int cli(Options *o, char *err, int n, const char **args)
+{
+    char *argv[16];
+    argv[0] = "zview";
+    for (int i = 0; i < n; i++)
+        argv[i + 1] = (char *)args[i];
+    argv[n + 1] = NULL;
+    return cli_parse(n + 1, argv, o, err, 256);
+}
+#define CLI(o, err, ...)                                                        \
+    cli(o, err, (int)(sizeof((const char *[]){ __VA_ARGS__ }) / sizeof(char *)), \
+        (const char *[]){ __VA_ARGS__ })
+
+Test(formats, cli_options)
+{
+    Options o;
+    char err[256];
+    cr_assert_eq(CLI(&o, err, "--format=stl", "--up", "-z", "--flip", "-"), 0, "%s", err);
+    cr_assert_str_eq(o.format, "stl");
+    cr_assert_eq(o.up, UP_NEG_Z);
+    cr_assert(o.flip);
+    cr_assert_str_eq(o.files[0], "-");
+    cr_assert_eq(CLI(&o, err, "m.obj"), 0);
+    cr_assert_eq(o.up, UP_Y);
+    cr_assert_null(o.format);
+    cr_assert_eq(CLI(&o, err, "--formats"), 0);
+    cr_assert(o.formats);
+    cr_assert_eq(CLI(&o, err, "-o", "-", "m.obj"), 0, "%s", err);
+    cr_assert_str_eq(o.out, "-");
+    cr_assert_eq(CLI(&o, err, "--image-format=ppm", "-oimage", "m.obj"), 0, "%s", err);
+    cr_assert_eq(o.image_format, IMG_PPM);
+
+    cr_assert_eq(CLI(&o, err, "--format", "zip", "m.obj"), -1);
+    cr_assert_not_null(strstr(err, "bad value 'zip' for --format"), "%s", err);
+    cr_assert_eq(CLI(&o, err, "--up", "w"), -1);
+    cr_assert_eq(CLI(&o, err, "-", "-"), -1);
+    cr_assert_not_null(strstr(err, "standard input) given twice"), "%s", err);
+    cr_assert_eq(CLI(&o, err, "-o", "image", "m.obj"), -1);
+    cr_assert_eq(CLI(&o, err, "-p", "-o", "-", "m.obj"), -1);
+    cr_assert_eq(CLI(&o, err, "--image-format", "gif"), -1);
 }

@@ -174,6 +174,45 @@ static int stl_binary(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
 
 /* ==== ASCII ==== */
 
+/* A facet's corners (coordinate bits) waiting to be merged. Facets are
+ * merged one facet late: the merge table's slots for a facet are
+ * prefetched when it ends and looked up after the next one is parsed,
+ * so the memory latency of the table hides behind the parsing. */
+typedef struct {
+    uint32_t *bits;      /* 3 a corner */
+    size_t    n, cap;    /* corners */
+} Pending;
+
+static int pend_add(Pending *pd, const uint32_t bits[3])
+{
+    if (pd->n == pd->cap) {
+        size_t nc = pd->cap ? pd->cap * 2 : 8;
+        uint32_t *nb = realloc(pd->bits, nc * 3 * sizeof *nb);
+        if (!nb)
+            return -1;
+        pd->bits = nb;
+        pd->cap = nc;
+    }
+    memcpy(pd->bits + 3 * pd->n++, bits, 3 * sizeof *bits);
+    return 0;
+}
+
+/* Merge a pending facet's corners and close it as a face. */
+static int pend_flush(Pending *pd, VertMerge *vm, MeshBuild *b)
+{
+    if (!pd->n)
+        return 0;
+    size_t first = b->ncorner;
+    for (size_t k = 0; k < pd->n; k++) {
+        const uint32_t *p = pd->bits + 3 * k;
+        uint32_t idx;
+        if (vm_add(vm, b, p, vm_hash(p[0], p[1], p[2]), &idx) || mb_corner(b, idx))
+            return -1;
+    }
+    pd->n = 0;
+    return mb_face_end(b, first, -1);
+}
+
 static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
 {
     Mesh *m = c->m;
@@ -192,7 +231,7 @@ static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
     const char *ls, *le;
     int in_solid = 0, in_facet = 0, in_loop = 0;
     uint64_t facet_line = 0;
-    size_t first = 0;
+    Pending cur = { 0 }, prev = { 0 };
     int r = -1;
     while (lr_next(&lr, &ls, &le)) {
         mf_progress(c->file, ls);
@@ -242,10 +281,10 @@ static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
                              mesh_tok_len(p, le), p);
                 goto out;
             }
-            uint32_t idx;
-            if (vm_add(&vm, b, bits, vm_hash(bits[0], bits[1], bits[2]), &idx) ||
-                mb_corner(b, idx))
+            if (pend_add(&cur, bits)) {
+                me_oom(e);
                 goto out;
+            }
             m->info.corners_read++;
         } else if (kn == 5 && mesh_word_is(k, le, "facet")) {
             if (in_facet) {
@@ -261,7 +300,7 @@ static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
             }
             in_facet = 1;
             facet_line = lr.line;
-            first = b->ncorner;
+            cur.n = 0;
         } else if (kn == 5 && mesh_word_is(k, le, "outer")) {
             if (!in_facet || in_loop) {
                 me_fail_line(e, lr.line, "'outer loop' outside a facet");
@@ -275,13 +314,19 @@ static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
                 me_fail_line(e, lr.line, "endfacet without a facet");
                 goto out;
             }
-            size_t nc = b->ncorner - first;
-            if (nc < 3) {
-                me_fail_line(e, facet_line, "facet has fewer than 3 vertices (%zu)", nc);
+            if (cur.n < 3) {
+                me_fail_line(e, facet_line, "facet has fewer than 3 vertices (%zu)", cur.n);
                 goto out;
             }
-            if (mb_face_end(b, first, -1))
+            for (size_t k = 0; k < cur.n; k++) {
+                const uint32_t *q = cur.bits + 3 * k;
+                vm_prefetch(&vm, vm_hash(q[0], q[1], q[2]));
+            }
+            if (pend_flush(&prev, &vm, b))
                 goto out;
+            Pending t = prev;
+            prev = cur;
+            cur = t;
             in_facet = in_loop = 0;
         } else if (kn == 5 && mesh_word_is(k, le, "solid")) {
             if (in_facet) {
@@ -298,7 +343,7 @@ static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
                 me_fail_line(e, lr.line, "binary or unreadable data");
                 goto out;
             }
-            if (mb_object(b, p, (size_t)(ne - p)))
+            if (pend_flush(&prev, &vm, b) || mb_object(b, p, (size_t)(ne - p)))
                 goto out;
             in_solid = 1;
         } else if (kn == 8 && mesh_word_is(k, le, "endsolid")) {
@@ -321,8 +366,12 @@ static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
         me_fail_line(e, facet_line, "file ends inside this facet");
         goto out;
     }
+    if (pend_flush(&prev, &vm, b))
+        goto out;
     r = 0;
 out:
+    free(cur.bits);
+    free(prev.bits);
     vm_free(&vm);
     return r;
 }
