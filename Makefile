@@ -34,7 +34,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all test unit e2e asan run bench install clean assets test-models noassimp
+.PHONY: all test unit e2e asan run bench bench-formats install clean assets test-models noassimp
 
 all: $(BIN)
 
@@ -83,6 +83,10 @@ run: $(BIN)
 
 bench: $(BIN)
 	sh tools/bench.sh
+
+# Load speed and peak memory of every format (the README's table).
+bench-formats: $(BIN) $(TESTBIN)
+	ZVIEW=$(abspath $(BIN)) sh tools/bench-formats.sh
 
 # Regenerate the bundled models (they are committed; this is how they were made).
 assets: $(BUILD)/genassets

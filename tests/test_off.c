@@ -23,6 +23,7 @@ static int parse_as(const char *path, const char *s)
     char *buf = malloc(n ? n : 1);
     cr_assert_not_null(buf);
     memcpy(buf, s, n);
+    mesh_free(&M);   /* a parse zeroes the mesh: free the last one */
     int r = mesh_parse_buffer(&M, path, NULL, buf, n, E, sizeof E);
     free(buf);
     return r;

@@ -25,6 +25,7 @@ static int parse_fmt(const char *path, const char *fmt, const void *s, size_t n)
     char *buf = malloc(n ? n : 1);
     cr_assert_not_null(buf);
     memcpy(buf, s, n);
+    mesh_free(&M);   /* a parse zeroes the mesh: free the last one */
     int r = mesh_parse_buffer(&M, path, fmt, buf, n, E, sizeof E);
     free(buf);
     return r;

@@ -698,9 +698,12 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
 
     /* Reserve for the densest plausible file (a vertex or a triangle per
      * 24 bytes) so that big meshes are not copied while growing; pages
-     * never written are never made resident, and the finish trims. */
+     * never written are never made resident, and the finish trims. Past
+     * 256 MB the arrays grow instead (big blocks grow by remapping, not
+     * copying): a huge file that fails on its first lines reserves
+     * little. */
     if (len >= ((size_t)1 << 20)) {
-        size_t guess = len / 24;
+        size_t guess = (len < ((size_t)256 << 20) ? len : ((size_t)256 << 20)) / 24;
         if (mb_reserve_ex(&ps.b, guess, guess, 3 * guess, 0))
             goto fail;
     }
