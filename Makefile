@@ -10,9 +10,13 @@ PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -
 # Optional: assimp for the long tail of formats (glTF, FBX, 3DS, ...).
 # On when pkg-config finds it; `make ASSIMP=0` builds without.
 ASSIMP  ?= $(shell pkg-config --exists assimp 2>/dev/null && echo 1 || echo 0)
+# The library is opened at run time (dlopen, by its soname), not linked:
+# see src/mesh/assimp.c.
 ifeq ($(ASSIMP),1)
-AI_CFLAGS := -DZV_ASSIMP $(filter-out -D%,$(shell pkg-config --cflags assimp 2>/dev/null))
-AI_LIBS   := $(shell pkg-config --libs assimp 2>/dev/null || echo -lassimp)
+AI_SONAME := $(shell objdump -p $$(pkg-config --variable=libdir assimp)/libassimp.so 2>/dev/null | awk '/SONAME/ { print $$2 }')
+AI_CFLAGS := -DZV_ASSIMP $(if $(AI_SONAME),-DZV_ASSIMP_SONAME='"$(AI_SONAME)"') \
+             $(filter-out -D%,$(shell pkg-config --cflags assimp 2>/dev/null))
+AI_LIBS   := -ldl
 endif
 
 OPT     ?= -O2

@@ -10,10 +10,17 @@
  * diffuse colour) becomes the faces' material; a mesh with vertex
  * colours gets them, multiplied by that base colour as glTF says, and
  * no material (a material would hide them). Points and lines are
- * counted, not kept (see Mesh). */
+ * counted, not kept (see Mesh).
+ *
+ * The library is opened (dlopen) the first time a format of its is
+ * asked for, not linked: linking it costs every run 5 MB of resident
+ * memory (it and the C++ runtime), and zview then runs, native formats
+ * and all, where assimp is not installed. */
 #define _DEFAULT_SOURCE
 
+#include <dlfcn.h>
 #include <limits.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +33,53 @@
 
 #include "mesh.h"
 #include "mesh_internal.h"
+
+#ifndef ZV_ASSIMP_SONAME
+#define ZV_ASSIMP_SONAME "libassimp.so.5"
+#endif
+
+/* The functions used, typed by the library's own declarations. */
+#define AI_FUNCS(X)                                                                    \
+    X(aiImportFile) X(aiImportFileFromMemory) X(aiReleaseImport) X(aiGetErrorString)   \
+    X(aiIsExtensionSupported) X(aiGetImportFormatCount) X(aiGetImportFormatDescription) \
+    X(aiGetVersionMajor) X(aiGetVersionMinor) X(aiGetVersionPatch) X(aiGetMaterialColor) \
+    X(aiGetMaterialFloatArray) X(aiGetMaterialString) X(aiIdentityMatrix4)
+
+typedef struct {
+#define AI_FIELD(f) __typeof__(f) *f;
+    AI_FUNCS(AI_FIELD)
+#undef AI_FIELD
+} AiApi;
+
+/* Set once (pthread_once), read-only after: the one piece of state here,
+ * the library's handle, not any loader's. */
+static AiApi ai_table;
+static int ai_loaded;
+static pthread_once_t ai_once = PTHREAD_ONCE_INIT;
+
+static void ai_open(void)
+{
+    void *h = dlopen(ZV_ASSIMP_SONAME, RTLD_NOW | RTLD_LOCAL);
+    if (!h)
+        h = dlopen("libassimp.so", RTLD_NOW | RTLD_LOCAL);
+    if (!h)
+        return;
+#define AI_SYM(f)                                                   \
+    if (!(*(void **)&ai_table.f = dlsym(h, #f))) {                  \
+        dlclose(h);                                                 \
+        return;                                                     \
+    }
+    AI_FUNCS(AI_SYM)
+#undef AI_SYM
+    ai_loaded = 1;
+}
+
+/* The library, or NULL when it cannot be opened. */
+static const AiApi *ai(void)
+{
+    pthread_once(&ai_once, ai_open);
+    return ai_loaded ? &ai_table : NULL;
+}
 
 /* Validation guards the walk below against malformed files. Joining
  * identical vertices undoes the per-corner copies many formats store
@@ -51,14 +105,14 @@ static float clamp01(float v) { return v < 0 ? 0 : v > 1 ? 1 : v; }
 static struct aiColor4D base_colour(const struct aiMaterial *mat)
 {
     struct aiColor4D c = { 1, 1, 1, 1 };
-    if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) != aiReturn_SUCCESS &&
-        aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) != aiReturn_SUCCESS) {
+    if (ai()->aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) != aiReturn_SUCCESS &&
+        ai()->aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) != aiReturn_SUCCESS) {
         c.r = c.g = c.b = 0.8f;   /* what MTL gives a material without Kd */
         c.a = 1;
     }
     float op;
     unsigned int one = 1;
-    if (aiGetMaterialFloatArray(mat, AI_MATKEY_OPACITY, &op, &one) == aiReturn_SUCCESS && op < c.a)
+    if (ai()->aiGetMaterialFloatArray(mat, AI_MATKEY_OPACITY, &op, &one) == aiReturn_SUCCESS && op < c.a)
         c.a = op;
     return c;
 }
@@ -71,7 +125,7 @@ static int32_t material(Walk *w, unsigned i)
         return w->matmap[i];
     const struct aiMaterial *mat = w->sc->mMaterials[i];
     struct aiString name;
-    int named = aiGetMaterialString(mat, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS && name.length;
+    int named = ai()->aiGetMaterialString(mat, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS && name.length;
     struct aiColor4D c = base_colour(mat);
     /* What assimp adds to a file without materials (named so, or glTF's
      * unnamed white default): zview's default colour, as every other
@@ -199,7 +253,7 @@ static int walk(Walk *w, const struct aiNode *n, const struct aiMatrix4x4 *paren
 /* assimp's message, first line only. */
 static int import_failed(MeshCtx *c)
 {
-    const char *s = aiGetErrorString();
+    const char *s = ai()->aiGetErrorString();
     if (!s || !*s)
         s = "assimp could not read it";
     size_t n = strcspn(s, "\n");
@@ -222,7 +276,7 @@ static int from_scene(MeshCtx *c, const struct aiScene *sc)
     for (unsigned i = 0; i < sc->mNumMaterials; i++)
         w.matmap[i] = -2;
     struct aiMatrix4x4 id;
-    aiIdentityMatrix4(&id);
+    ai()->aiIdentityMatrix4(&id);
     if (!sc->mRootNode) {
         me_fail(&c->err, "no scene in the file");
         goto out;
@@ -239,29 +293,38 @@ out:
     return r;
 }
 
+static int no_library(MeshCtx *c)
+{
+    return me_fail(&c->err, "the assimp library (%s) cannot be opened", ZV_ASSIMP_SONAME);
+}
+
 static int ai_parse_path(MeshCtx *c, const char *path)
 {
-    const struct aiScene *sc = aiImportFile(path, ai_flags(c->hint));
+    if (!ai())
+        return no_library(c);
+    const struct aiScene *sc = ai()->aiImportFile(path, ai_flags(c->hint));
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);
-    aiReleaseImport(sc);
+    ai()->aiReleaseImport(sc);
     return r;
 }
 
 static int ai_parse(MeshCtx *c, const char *data, size_t len)
 {
+    if (!ai())
+        return no_library(c);
     if (len > UINT_MAX)
         return me_fail(&c->err, "too large for assimp from memory");
     /* the hint is an extension, or "assimp" when forced without one */
     const char *hint = c->hint && strcmp(c->hint, "assimp") ? c->hint : "";
-    const struct aiScene *sc = aiImportFileFromMemory(data, (unsigned)len, ai_flags(hint), hint);
+    const struct aiScene *sc = ai()->aiImportFileFromMemory(data, (unsigned)len, ai_flags(hint), hint);
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);
     if (r == 0)
         c->m->info.bytes = len;
-    aiReleaseImport(sc);
+    ai()->aiReleaseImport(sc);
     return r;
 }
 
@@ -292,21 +355,28 @@ static int ai_probe(const char *h, size_t n, uint64_t size)
     return PROBE_NO;
 }
 
+int mesh_assimp_available(void)
+{
+    return ai() != NULL;
+}
+
 int mesh_assimp_has_ext(const char *ext)
 {
-    if (!ext || !*ext || strlen(ext) > 30 || strchr(ext, '.') || strchr(ext, '*'))
+    if (!ai() || !ext || !*ext || strlen(ext) > 30 || strchr(ext, '.') || strchr(ext, '*'))
         return 0;
     char dot[34];
     snprintf(dot, sizeof dot, ".%s", ext);
-    return aiIsExtensionSupported(dot) == AI_TRUE;
+    return ai()->aiIsExtensionSupported(dot) == AI_TRUE;
 }
 
 /* Every importer's extensions, with the importer's name. */
 void mesh_assimp_list(void (*fn)(const char *ext, const char *what, void *ctx), void *ctx)
 {
-    size_t nf = aiGetImportFormatCount();
+    if (!ai())
+        return;
+    size_t nf = ai()->aiGetImportFormatCount();
     for (size_t i = 0; i < nf; i++) {
-        const struct aiImporterDesc *d = aiGetImportFormatDescription(i);
+        const struct aiImporterDesc *d = ai()->aiGetImportFormatDescription(i);
         if (!d || !d->mFileExtensions)
             continue;
         const char *p = d->mFileExtensions;
@@ -326,7 +396,11 @@ void mesh_assimp_list(void (*fn)(const char *ext, const char *what, void *ctx), 
 
 const char *mesh_assimp_version(char *buf, size_t n)
 {
-    snprintf(buf, n, "%u.%u.%u", aiGetVersionMajor(), aiGetVersionMinor(), aiGetVersionPatch());
+    if (!ai())
+        snprintf(buf, n, "not found");
+    else
+        snprintf(buf, n, "%u.%u.%u", ai()->aiGetVersionMajor(), ai()->aiGetVersionMinor(),
+                 ai()->aiGetVersionPatch());
     return buf;
 }
 

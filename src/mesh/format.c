@@ -150,7 +150,7 @@ int mesh_format_valid(const char *name)
     if (native_by_name(name))
         return 1;
 #ifdef ZV_ASSIMP
-    if (strcasecmp(name, "assimp") == 0 || mesh_assimp_has_ext(name))
+    if ((strcasecmp(name, "assimp") == 0 && mesh_assimp_available()) || mesh_assimp_has_ext(name))
         return 1;
 #endif
     return 0;
@@ -163,7 +163,7 @@ void mesh_formats_short(char *buf, size_t n)
     for (size_t i = 0; i < NNATIVE && k < n; i++)
         k += (size_t)snprintf(buf + k, n - k, "%s%s", i ? " " : "", natives[i]->name);
 #ifdef ZV_ASSIMP
-    if (k < n)
+    if (k < n && mesh_assimp_available())
         snprintf(buf + k, n - k, " + assimp: " ASSIMP_SHORT);
 #endif
 }

@@ -47,6 +47,8 @@ typedef struct MeshLoader {
 extern const MeshLoader mesh_loader_obj, mesh_loader_stl, mesh_loader_ply, mesh_loader_off;
 #ifdef ZV_ASSIMP
 extern const MeshLoader mesh_loader_assimp;
+/* Can the library be opened (it is opened on first use)? */
+int  mesh_assimp_available(void);
 /* Does assimp read files of this extension (no dot, any case)? */
 int  mesh_assimp_has_ext(const char *ext);
 /* Call fn for each extension assimp reads, with its importer's name. */
