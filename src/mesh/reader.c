@@ -160,7 +160,10 @@ int mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen)
         mf_close(f);
         return -1;
     }
-    if (S_ISREG(st.st_mode)) {
+    /* Standard input redirected from a file part-way through it (a
+     * script read some of it first) is read from where it stands, as a
+     * stream: a mapping would start at the file's beginning. */
+    if (S_ISREG(st.st_mode) && lseek(fd, 0, SEEK_CUR) == 0) {
         f->regular = 1;
         f->size = (uint64_t)st.st_size;
         size_t want = f->size < MESH_HEAD ? (size_t)f->size : MESH_HEAD;
