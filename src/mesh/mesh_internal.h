@@ -192,19 +192,18 @@ static inline void vm_prefetch(const VertMerge *vm, uint64_t h)
 
 /* The index of the vertex with these coordinate bits (h = vm_hash of
  * them), appended to the mesh if new. Returns 0, -1 out of memory. */
-static inline int vm_add(VertMerge *vm, MeshBuild *b, const uint32_t bits[3], uint64_t h,
+static inline __attribute__((always_inline)) int vm_add(VertMerge *vm, MeshBuild *b, const uint32_t bits[3], uint64_t h,
                          uint32_t *idx)
 {
+    /* grown before the probe (not from inside it), so that this stays
+     * a loop the compiler can inline into the loaders' hot loops */
+    if ((vm->used + 1) * 2 > vm->mask + 1 && vm_grow(vm, b->m->pos))
+        return me_oom(b->e);
     uint32_t tag = (uint32_t)h;
     const float *pos = b->m->pos;
     for (uint32_t i = (uint32_t)(h >> 32) & vm->mask;; i = (i + 1) & vm->mask) {
         uint64_t s = vm->slot[i];
         if (!s) {
-            if ((vm->used + 1) * 2 > vm->mask + 1) {
-                if (vm_grow(vm, pos))
-                    return me_oom(b->e);
-                return vm_add(vm, b, bits, h, idx);
-            }
             float p[3];
             memcpy(p, bits, sizeof p);
             if (mb_vertex(b, p[0], p[1], p[2]))

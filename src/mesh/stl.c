@@ -205,7 +205,7 @@ static int pend_flush(Pending *pd, VertMerge *vm, MeshBuild *b)
     size_t first = b->ncorner;
     for (size_t k = 0; k < pd->n; k++) {
         const uint32_t *p = pd->bits + 3 * k;
-        uint32_t idx;
+        uint32_t idx = 0;
         if (vm_add(vm, b, p, vm_hash(p[0], p[1], p[2]), &idx) || mb_corner(b, idx))
             return -1;
     }
