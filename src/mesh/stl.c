@@ -22,6 +22,9 @@
 
 #define STL_HEADER 80
 #define STL_TRI    50   /* normal, 3 corners (12 floats), attribute word */
+#ifndef STL_FILE_AHEAD
+#define STL_FILE_AHEAD 2048
+#endif
 
 /* ==== Telling binary from ASCII ==== */
 
@@ -130,6 +133,10 @@ static int stl_binary(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
         }
         if ((i & 0x3fff) == 0)
             mf_progress(c->file, tri);
+        /* the file's bytes too: the hardware prefetcher stops at each
+         * 4 KB page, and a miss on the file is a third of the time */
+        if ((size_t)(tri - data) + STL_FILE_AHEAD < len)
+            __builtin_prefetch(tri + STL_FILE_AHEAD);
         uint32_t v[9];
         memcpy(v, tri + 12, sizeof v);
 #if __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
