@@ -15,12 +15,13 @@ Z=${ZVIEW:-$ROOT/zview}
 T=${ZV_FORMATS_OUT:-$(mktemp -d)}
 mkdir -p "$T"
 cd "$ROOT"
-ZV_FORMATS_OUT=$T ZV_FORMATS_MODEL=$MODEL build/zview-tests --filter 'models/write_formats' >/dev/null
+ZV_FORMATS_OUT=$T ZV_FORMATS_MODEL=$MODEL build/zview-tests --filter 'models/write_formats' >/dev/null 2>&1
+ln -sf "$MODEL" "$T/original.obj"
 median() { sort -n | awk '{ a[NR] = $1 } END { print a[int((NR + 1) / 2)] }'; }
 best() { sort -n | head -n 1; }
 printf '| format | file MB | load ms (median, best) | MB/s (median, best) | peak RSS MB (median) |\n'
 printf '|---|---:|---:|---:|---:|\n'
-for f in model.obj model.stl model-ascii.stl model-le.ply model-be.ply model-ascii.ply model.off model.glb; do
+for f in original.obj model.obj model.stl model-ascii.stl model-le.ply model-be.ply model-ascii.ply model.off model.glb; do
     [ -f "$T/$f" ] || continue
     : >"$T/ms"
     : >"$T/rss"
@@ -32,6 +33,8 @@ for f in model.obj model.stl model-ascii.stl model-le.ply model-be.ply model-asc
         i=$((i + 1))
     done
     fmt=$(sed -n 's/^format: *//p' "$T/info")
+    [ "$f" = original.obj ] && fmt="obj (the original file)"
+    [ "$f" = model.obj ] && fmt="obj (written with %.9g)"
     mb=$(awk -v b="$(wc -c <"$T/$f")" 'BEGIN { printf "%.1f", b / 1e6 }')
     ms=$(median <"$T/ms")
     msb=$(best <"$T/ms")
