@@ -42,6 +42,7 @@ typedef struct {
     uint32_t triangles;     /* sum of (corners - 2) over faces */
     uint32_t groups;        /* `g` statements */
     double   load_ms;       /* wall time of mesh_load, MTL included */
+    double   load_cpu_ms;   /* the loading thread's CPU time over the same */
 } MeshInfo;
 
 typedef struct Mesh {

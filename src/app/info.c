@@ -38,8 +38,9 @@ static void print_mesh(const Mesh *m)
                m->info.first_unknown);
     else
         printf("unknown:    0\n");
-    printf("load:       %.1f ms, %.1f MB, %.0f MB/s\n", m->info.load_ms, mb,
-           m->info.load_ms > 0 ? mb / (m->info.load_ms / 1e3) : 0.0);
+    printf("load:       %.1f ms, %.1f MB, %.0f MB/s (cpu %.1f ms, %.0f MB/s)\n", m->info.load_ms, mb,
+           m->info.load_ms > 0 ? mb / (m->info.load_ms / 1e3) : 0.0, m->info.load_cpu_ms,
+           m->info.load_cpu_ms > 0 ? mb / (m->info.load_cpu_ms / 1e3) : 0.0);
 }
 
 int app_info(const Options *o, Scene *s)
