@@ -1,5 +1,7 @@
 /* oneshot.c: --print, -o, --dump-ids, --dump-screen: one frame, no curses. */
 
+#define _DEFAULT_SOURCE
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -61,6 +63,54 @@ static int write_ids(const char *path, const FrameBufs *fb)
     return 0;
 }
 
+/* -o FILE or -o - (standard output): PNG or PPM by --image-format, else
+ * by the name (standard output: PNG). The writers take a path, so
+ * standard output gets the image through a temporary file, copied: that
+ * works for pipes and files alike (opening /dev/stdout again would
+ * truncate a file the shell opened for appending). */
+static int write_image(const Options *o, const Image *img, char *err, size_t errlen)
+{
+    size_t n = strlen(o->out);
+    int to_stdout = !strcmp(o->out, "-");
+    int png = o->image_format ? o->image_format == IMG_PNG
+                              : to_stdout || (n >= 4 && !strcmp(o->out + n - 4, ".png"));
+    int (*writer)(const char *, const Image *, char *, size_t) = png ? write_png : write_ppm;
+    if (!to_stdout)
+        return writer(o->out, img, err, errlen);
+    if (isatty(STDOUT_FILENO)) {
+        snprintf(err, errlen, "-o -: standard output is a terminal (pipe the image on, e.g. "
+                              "| img2sixel)");
+        return -1;
+    }
+    const char *dir = getenv("TMPDIR");
+    char tmp[4096];
+    snprintf(tmp, sizeof tmp, "%s/zview-XXXXXX", dir && *dir ? dir : "/tmp");
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        snprintf(err, errlen, "-o -: cannot make a temporary file in %s", dir && *dir ? dir : "/tmp");
+        return -1;
+    }
+    close(fd);
+    int rc = writer(tmp, img, err, errlen);
+    FILE *f = rc ? NULL : fopen(tmp, "rb");
+    if (!rc && !f)
+        rc = -1;
+    if (f) {
+        char buf[65536];
+        size_t k;
+        while ((k = fread(buf, 1, sizeof buf, f)) > 0)
+            if (fwrite(buf, 1, k, stdout) != k)
+                break;
+        if (ferror(f) || fflush(stdout) != 0 || ferror(stdout)) {
+            snprintf(err, errlen, "-o -: cannot write to standard output");
+            rc = -1;
+        }
+        fclose(f);
+    }
+    unlink(tmp);
+    return rc;
+}
+
 int app_oneshot(const Options *o, Scene *s)
 {
     const HsrAlgo *algo = hsr_find(o->algo ? o->algo : "zbuffer");
@@ -81,9 +131,7 @@ int app_oneshot(const Options *o, Scene *s)
             goto out;
         }
         if (o->out) {
-            size_t n = strlen(o->out);
-            int png = n >= 4 && !strcmp(o->out + n - 4, ".png");
-            if ((png ? write_png : write_ppm)(o->out, &p.img, err, sizeof err)) {
+            if (write_image(o, &p.img, err, sizeof err)) {
                 fprintf(stderr, "zview: %s\n", err);
                 rc = 1;
                 goto out;
