@@ -39,7 +39,7 @@ $(TESTBIN): $(LIBOBJS) $(TOBJS)
 
 # The fuzz harnesses (tests/fuzz/) linked with a plain main() instead of
 # libFuzzer: they replay the seed and regression corpora in every build.
-FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c
+FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c tests/testlib.c
 FUZZ_DIFF_SRCS := tests/fuzz/fuzz_diff.c tests/fuzz/scenecode.c tests/testlib.c
 REPLAY_OBJS    := $(sort $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
 REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff
