@@ -144,10 +144,10 @@ $(FUZZ_BUILD)/fuzz-diff: $(FUZZ_LIBOBJS) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 # would drown its output; crash reports still get through.
 fuzz-run: fuzz
 	@mkdir -p $(FUZZ_BUILD)/corpus/obj $(FUZZ_BUILD)/corpus/diff $(FUZZ_BUILD)/artifacts/obj $(FUZZ_BUILD)/artifacts/diff
-	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -max_len=16384 -close_fd_mask=2 \
+	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
 	    -dict=tests/fuzz/obj.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/obj/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/obj tests/fuzz/seeds/obj tests/fuzz/regress/obj
-	nice $(FUZZ_BUILD)/fuzz-diff -max_total_time=$(SECONDS) -timeout=20 -max_len=8192 \
+	nice $(FUZZ_BUILD)/fuzz-diff -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=8192 \
 	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/diff/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/diff tests/fuzz/seeds/diff tests/fuzz/regress/diff
 
