@@ -60,7 +60,7 @@ $(TESTBIN): $(LIBOBJS) $(TOBJS) $(CONFIG)
 
 # The fuzz harnesses (tests/fuzz/) linked with a plain main() instead of
 # libFuzzer: they replay the seed and regression corpora in every build.
-FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c
+FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c tests/testlib.c
 FUZZ_DIFF_SRCS := tests/fuzz/fuzz_diff.c tests/fuzz/scenecode.c tests/testlib.c
 REPLAY_OBJS    := $(sort $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
 REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff
@@ -185,10 +185,10 @@ $(FUZZ_BUILD)/fuzz-diff: $(FUZZ_LIBOBJS) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 # would drown its output; crash reports still get through.
 fuzz-run: fuzz
 	@mkdir -p $(FUZZ_BUILD)/corpus/obj $(FUZZ_BUILD)/corpus/diff $(FUZZ_BUILD)/artifacts/obj $(FUZZ_BUILD)/artifacts/diff
-	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -max_len=16384 -close_fd_mask=2 \
+	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
 	    -dict=tests/fuzz/obj.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/obj/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/obj tests/fuzz/seeds/obj tests/fuzz/regress/obj
-	nice $(FUZZ_BUILD)/fuzz-diff -max_total_time=$(SECONDS) -timeout=20 -max_len=8192 \
+	nice $(FUZZ_BUILD)/fuzz-diff -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=8192 \
 	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/diff/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/diff tests/fuzz/seeds/diff tests/fuzz/regress/diff
 
