@@ -41,6 +41,8 @@ typedef struct {
     uint64_t nodes_culled;        /* octree nodes hidden by the pyramid */
     uint64_t pixels_written;      /* sample writes (overdraw = this / covered) */
     double   build_ms;            /* tables, pyramid, octree */
+    int      building;            /* structures still being built in the background:
+                                     this frame was drawn without them (same picture) */
     double   scan_ms;             /* the scan itself */
 } HsrStats;
 
@@ -77,7 +79,14 @@ typedef struct {
     const HsrAlgo *algo;
     int            nthreads;
     void          *state[64];
-    struct Pool   *pool;          /* worker threads when nthreads > 1 */
+    struct Pool   *pool;          /* helper threads when nthreads > 1 (pool.h) */
+    /* the frame being rendered, for the bands */
+    const HsrInput *in;
+    FrameBufs     *fb;
+    int            band[65];      /* row boundaries */
+    HsrStats       st[64];
+    uint32_t      *hist;          /* split_bands' row weights */
+    int            hist_cap;
 } HsrRunner;
 
 int  hsr_runner_init(HsrRunner *r, const HsrAlgo *algo, int nthreads);
