@@ -86,6 +86,15 @@ int hsr_runner_init(HsrRunner *r, const HsrAlgo *algo, int nthreads)
             return -1;
         }
     }
+    if (algo->create_shared) {
+        r->shared = algo->create_shared(nthreads);
+        if (!r->shared) {
+            hsr_runner_free(r);
+            return -1;
+        }
+        for (int t = 0; t < nthreads && algo->share; t++)
+            algo->share(r->state[t], r->shared);
+    }
     if (nthreads > 1) {
         r->pool = pool_create(nthreads - 1);
         if (!r->pool || pool_helpers(r->pool) < nthreads - 1) {
@@ -100,6 +109,8 @@ void hsr_runner_free(HsrRunner *r)
 {
     pool_free(r->pool);
     free(r->hist);
+    if (r->shared && r->algo->destroy_shared)
+        r->algo->destroy_shared(r->shared);
     for (int t = 0; t < r->nthreads; t++)
         if (r->state[t] && r->algo->destroy)
             r->algo->destroy(r->state[t]);
@@ -168,9 +179,16 @@ int hsr_run(HsrRunner *r, const HsrInput *in, FrameBufs *fb, HsrStats *stats)
     memset(stats, 0, sizeof *stats);
     if (fbuf_resize(fb, in->sp->w, in->sp->h))
         return -1;
+    double tb = 0;
+    if (r->algo->frame_begin) {
+        double t1 = now_ms();
+        r->algo->frame_begin(r->shared, in);
+        tb = now_ms() - t1;     /* structures built before the bands (one thread) */
+    }
     int h = in->sp->h;
     if (r->nthreads == 1 || !r->pool) {
         r->algo->render(r->state[0], in, fb, 0, h, stats);
+        stats->build_ms += tb;
         stats->scan_ms = now_ms() - t0 - stats->build_ms;
         return 0;
     }
@@ -180,6 +198,7 @@ int hsr_run(HsrRunner *r, const HsrInput *in, FrameBufs *fb, HsrStats *stats)
     pool_run(r->pool, r->nthreads, run_band, r);
     for (int t = 0; t < r->nthreads; t++)
         stats_add(stats, &r->st[t]);
+    stats->build_ms += tb;
     stats->scan_ms = now_ms() - t0 - stats->build_ms;
     return 0;
 }
