@@ -314,6 +314,37 @@ static inline const uint8_t *face_colour(FaceColours *fc, int32_t id)
     return c;
 }
 
+/* Distance (in polygons) the colour pre-pass fetches ahead. */
+#define FETCH_AHEAD 16
+
+/* Every drawn polygon's face colour, before the pixels: the polygons come
+ * in face order, so the per-face arrays are read in order (and fetched
+ * ahead), where the pixels would visit them scattered, one cache miss
+ * each. Only faces of sp's polygons can be in the picture, so the pixel
+ * loop then finds every colour current. */
+static void colour_polys(FaceColours *fc, const ScreenPolys *sp)
+{
+    const Scene *s = fc->s;
+    int32_t last = -1;
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        if (i + FETCH_AHEAD < sp->npolys) {
+            uint32_t f = (uint32_t)sp->polys[i + FETCH_AHEAD].face;
+            if (f < s->nfaces) {
+                __builtin_prefetch(&fc->stamp[f]);
+                __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
+                if (s->face_rgb)
+                    __builtin_prefetch(&s->face_rgb[3 * (size_t)f]);
+                __builtin_prefetch(&fc->crgb[3 * (size_t)f], 1);
+            }
+        }
+        int32_t f = sp->polys[i].face;
+        if (f == last || f < 0 || (uint32_t)f >= s->nfaces)
+            continue;
+        last = f;
+        face_colour(fc, f);
+    }
+}
+
 /* Pixels [i0, i1) one at a time. */
 static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t i1, uint8_t *rgb, uint8_t *lit)
 {
@@ -410,6 +441,12 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
     for (int k = 0; k < NMAT_SLOTS; k++)
         fc.nmat[k].obj = -1;
     size_t n = (size_t)fb->w * (size_t)fb->h, i = 0;
+    /* Colour the polygons first when they are no more than the pixels;
+     * a huge mesh in a small picture is coloured face by face as pixels
+     * show it (measured: the bunny at 1920x1080 shades in half the time
+     * this way, the dragon at 160x96 and at 1920x1080 the same). */
+    if (sp && sp->npolys <= n)
+        colour_polys(&fc, sp);
 #ifdef ZV_AVX2
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx2"))
