@@ -1095,6 +1095,217 @@ static int emit_poly(RangeJob *j, uint32_t k, uint32_t c0, uint32_t c1, uint32_t
     return 0;
 }
 
+#ifdef ZV_AVX2
+/* Four triangles' finish_tri(), lane by lane the same operations: the
+ * sample box in 32-bit lanes, twice the signed area and, for a box of at
+ * most four samples, tri_hits_box()'s edge functions in 64-bit ones
+ * (exact products), the plane in double. A lane's state: kept (its box,
+ * plane and zmin filled in), or dropped as empty or as facing away. */
+enum { FIN_KEPT, FIN_EMPTY, FIN_BACK };
+
+/* edge_covers() in four 64-bit lanes: e = dx (py - ay) - dy (px - ax) > 0,
+ * or == 0 on a top or left edge (tl). Every factor fits 32 bits. */
+AVX2_FN static inline __m256i edge4_covers(__m256i ax, __m256i ay, __m256i dx, __m256i dy, __m256i tl, __m256i px,
+                                           __m256i py)
+{
+    __m256i e = _mm256_sub_epi64(_mm256_mul_epi32(dx, _mm256_sub_epi64(py, ay)),
+                                 _mm256_mul_epi32(dy, _mm256_sub_epi64(px, ax)));
+    const __m256i zero = _mm256_setzero_si256();
+    return _mm256_or_si256(_mm256_cmpgt_epi64(e, zero), _mm256_and_si256(_mm256_cmpeq_epi64(e, zero), tl));
+}
+
+typedef struct {
+    int32_t x0[4], x1[4], y0[4], y1[4];
+    float   a[4], b[4], zc[4], zmin[4];
+    int     state[4];
+} Finish4;
+
+AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *const v[4][3], Finish4 *f)
+{
+    __m128i X[3], Y[3];
+    __m128 Z[3];
+    for (int k = 0; k < 3; k++) {
+        X[k] = _mm_setr_epi32(v[0][k]->x, v[1][k]->x, v[2][k]->x, v[3][k]->x);
+        Y[k] = _mm_setr_epi32(v[0][k]->y, v[1][k]->y, v[2][k]->y, v[3][k]->y);
+        Z[k] = _mm_setr_ps(v[0][k]->z, v[1][k]->z, v[2][k]->z, v[3][k]->z);
+    }
+    /* sample_box() */
+    const __m128i k127 = _mm_set1_epi32(127), zero = _mm_setzero_si128();
+    __m128i x0 = _mm_srai_epi32(_mm_add_epi32(_mm_min_epi32(_mm_min_epi32(X[0], X[1]), X[2]), k127), SUBPIX_BITS);
+    __m128i x1 = _mm_srai_epi32(_mm_add_epi32(_mm_max_epi32(_mm_max_epi32(X[0], X[1]), X[2]), k127), SUBPIX_BITS);
+    __m128i y0 = _mm_srai_epi32(_mm_add_epi32(_mm_min_epi32(_mm_min_epi32(Y[0], Y[1]), Y[2]), k127), SUBPIX_BITS);
+    __m128i y1 = _mm_srai_epi32(_mm_add_epi32(_mm_max_epi32(_mm_max_epi32(Y[0], Y[1]), Y[2]), k127), SUBPIX_BITS);
+    x0 = _mm_max_epi32(x0, zero);
+    y0 = _mm_max_epi32(y0, zero);
+    x1 = _mm_min_epi32(x1, _mm_set1_epi32(sp->w));
+    y1 = _mm_min_epi32(y1, _mm_set1_epi32(sp->h));
+    __m128i bw = _mm_sub_epi32(x1, x0), bh = _mm_sub_epi32(y1, y0);
+    __m128i empty = _mm_or_si128(_mm_cmpgt_epi32(_mm_set1_epi32(1), bw), _mm_cmpgt_epi32(_mm_set1_epi32(1), bh));
+    /* twice the signed area: (x0 y1 - x1 y0) + (x1 y2 - x2 y1) + (x2 y0 - x0 y2) */
+    __m256i xl[3], yl[3];
+    for (int k = 0; k < 3; k++) {
+        xl[k] = _mm256_cvtepi32_epi64(X[k]);
+        yl[k] = _mm256_cvtepi32_epi64(Y[k]);
+    }
+    __m256i area2 = _mm256_setzero_si256();
+    for (int k = 0; k < 3; k++) {
+        int m = k == 2 ? 0 : k + 1;
+        area2 = _mm256_add_epi64(area2, _mm256_sub_epi64(_mm256_mul_epi32(xl[k], yl[m]), _mm256_mul_epi32(xl[m], yl[k])));
+    }
+    __m256i back = _mm256_cmpgt_epi64(area2, _mm256_set1_epi64x(-1));     /* area2 >= 0 */
+    __m128i nsamp = _mm_mullo_epi32(bw, bh);
+    __m128i tiny = _mm_cmpgt_epi32(_mm_set1_epi32(5), nsamp);
+    int mt = _mm_movemask_ps(_mm_castsi128_ps(tiny)), hits = 0;
+    if (mt) {
+        /* tri_hits_box(): b and c swapped where the area is negative, then
+         * the box's samples (at most four) against the three edges */
+        const __m256i zero4 = _mm256_setzero_si256();
+        __m256i neg = _mm256_cmpgt_epi64(zero4, area2);
+        __m256i ex[3] = { xl[0], _mm256_blendv_epi8(xl[1], xl[2], neg), _mm256_blendv_epi8(xl[2], xl[1], neg) };
+        __m256i ey[3] = { yl[0], _mm256_blendv_epi8(yl[1], yl[2], neg), _mm256_blendv_epi8(yl[2], yl[1], neg) };
+        __m256i dx[3], dy[3], tl[3];
+        for (int k = 0; k < 3; k++) {
+            int m = k == 2 ? 0 : k + 1;
+            dx[k] = _mm256_sub_epi64(ex[m], ex[k]);
+            dy[k] = _mm256_sub_epi64(ey[m], ey[k]);
+            tl[k] = _mm256_or_si256(_mm256_cmpgt_epi64(zero4, dy[k]),
+                                    _mm256_and_si256(_mm256_cmpeq_epi64(dy[k], zero4), _mm256_cmpgt_epi64(dx[k], zero4)));
+        }
+        __m256i hit = zero4;
+        for (int smp = 0; smp < 4; smp++) {
+            /* sample smp of each lane's box, row by row: row = how many
+             * whole box widths fit in smp, col = what is left */
+            __m128i vs = _mm_set1_epi32(smp), bw1 = _mm_max_epi32(bw, _mm_set1_epi32(1));
+            __m128i row = _mm_setzero_si128(), lim = bw1;
+            for (int r = 1; r < 4; r++) {
+                row = _mm_sub_epi32(row, _mm_cmpgt_epi32(_mm_add_epi32(vs, _mm_set1_epi32(1)), lim));
+                lim = _mm_add_epi32(lim, bw1);
+            }
+            __m128i col = _mm_sub_epi32(vs, _mm_mullo_epi32(row, bw1));
+            __m128i ok32 = _mm_cmpgt_epi32(nsamp, vs);
+            __m128i px32 = _mm_add_epi32(_mm_slli_epi32(_mm_add_epi32(x0, col), SUBPIX_BITS), _mm_set1_epi32(128));
+            __m128i py32 = _mm_add_epi32(_mm_slli_epi32(_mm_add_epi32(y0, row), SUBPIX_BITS), _mm_set1_epi32(128));
+            __m256i vx = _mm256_cvtepi32_epi64(px32), vy = _mm256_cvtepi32_epi64(py32);
+            __m256i in = _mm256_cvtepi32_epi64(ok32);
+            for (int k = 0; k < 3; k++)
+                in = _mm256_and_si256(in, edge4_covers(ex[k], ey[k], dx[k], dy[k], tl[k], vx, vy));
+            hit = _mm256_or_si256(hit, in);
+        }
+        hit = _mm256_andnot_si256(_mm256_cmpeq_epi64(area2, zero4), hit);
+        hits = _mm256_movemask_pd(_mm256_castsi256_pd(hit));
+    }
+    /* the plane, in double */
+    const __m256d inv = _mm256_set1_pd(1.0 / SUBPIX);
+    __m256d Xd[3], Yd[3], Zd[3];
+    for (int k = 0; k < 3; k++) {
+        Xd[k] = _mm256_mul_pd(_mm256_cvtepi32_pd(X[k]), inv);
+        Yd[k] = _mm256_mul_pd(_mm256_cvtepi32_pd(Y[k]), inv);
+        Zd[k] = _mm256_cvtps_pd(Z[k]);
+    }
+    __m256d x1d = _mm256_sub_pd(Xd[1], Xd[0]), y1d = _mm256_sub_pd(Yd[1], Yd[0]), z1d = _mm256_sub_pd(Zd[1], Zd[0]);
+    __m256d x2d = _mm256_sub_pd(Xd[2], Xd[0]), y2d = _mm256_sub_pd(Yd[2], Yd[0]), z2d = _mm256_sub_pd(Zd[2], Zd[0]);
+    __m256d nx = _mm256_sub_pd(_mm256_mul_pd(y1d, z2d), _mm256_mul_pd(z1d, y2d));
+    __m256d ny = _mm256_sub_pd(_mm256_mul_pd(z1d, x2d), _mm256_mul_pd(x1d, z2d));
+    __m256d nz = _mm256_sub_pd(_mm256_mul_pd(x1d, y2d), _mm256_mul_pd(y1d, x2d));
+    __m256d flat = _mm256_cmp_pd(nz, _mm256_setzero_pd(), _CMP_EQ_OQ);
+    const __m256d sign = _mm256_set1_pd(-0.0), half = _mm256_set1_pd(0.5);
+    __m256d a = _mm256_div_pd(_mm256_xor_pd(nx, sign), nz), b = _mm256_div_pd(_mm256_xor_pd(ny, sign), nz);
+    __m256d zc = _mm256_add_pd(
+        _mm256_add_pd(Zd[0], _mm256_mul_pd(a, _mm256_sub_pd(_mm256_add_pd(_mm256_cvtepi32_pd(x0), half), Xd[0]))),
+        _mm256_mul_pd(b, _mm256_sub_pd(_mm256_add_pd(_mm256_cvtepi32_pd(y0), half), Yd[0])));
+    __m256d mag = _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, zc),
+                                              _mm256_mul_pd(_mm256_andnot_pd(sign, a), _mm256_cvtepi32_pd(bw))),
+                                _mm256_mul_pd(_mm256_andnot_pd(sign, b), _mm256_cvtepi32_pd(bh)));
+    __m256d lo = _mm256_min_pd(Zd[2], _mm256_min_pd(Zd[0], Zd[1]));     /* min_pd(p, q) is p < q ? p : q */
+    __m256d zmin = _mm256_sub_pd(lo, _mm256_mul_pd(_mm256_add_pd(_mm256_andnot_pd(sign, lo), mag),
+                                                   _mm256_set1_pd(1.0 / (1 << 20))));
+    _mm_storeu_si128((__m128i *)f->x0, x0);
+    _mm_storeu_si128((__m128i *)f->x1, x1);
+    _mm_storeu_si128((__m128i *)f->y0, y0);
+    _mm_storeu_si128((__m128i *)f->y1, y1);
+    _mm_storeu_ps(f->a, _mm256_cvtpd_ps(a));
+    _mm_storeu_ps(f->b, _mm256_cvtpd_ps(b));
+    _mm_storeu_ps(f->zc, _mm256_cvtpd_ps(zc));
+    _mm_storeu_ps(f->zmin, _mm256_cvtpd_ps(zmin));
+    int me = _mm_movemask_ps(_mm_castsi128_ps(empty)), mb = _mm256_movemask_pd(_mm256_castsi256_pd(back));
+    int mf = _mm256_movemask_pd(flat);
+    for (int l = 0; l < 4; l++)
+        f->state[l] = me >> l & 1 ? FIN_EMPTY
+                    : sp->cull && (mb >> l & 1) ? FIN_BACK
+                    : (mt >> l & 1) && !(hits >> l & 1) ? FIN_EMPTY
+                    : mf >> l & 1 ? FIN_EMPTY : FIN_KEPT;
+}
+
+/* The kept triangles keep[0 .. nk) of a chunk of triangles (polygon k +
+ * keep[i], corners c0 + 3 keep[i], instance inst + keep[i]), four at a
+ * time through finish_tris4, in order; those with a corner to clip go
+ * through emit_poly. */
+AVX2_FN static int emit_tris_avx2(RangeJob *j, uint32_t k, uint32_t c0, uint32_t inst, const uint32_t *keep,
+                                  uint32_t nk)
+{
+    ScreenPolys *sp = j->out;
+    const ScreenVert *sv = j->vs->sv;
+    const uint32_t *corner = j->s->poly_corner, vmin = j->o->vert_min;
+    uint32_t i = 0;
+    for (; i + 4 <= nk; i += 4) {
+        int rv = vert_room(j, sp->nverts + 4 * 11);
+        if (rv)
+            return rv;
+        const ScreenVert *v[4][3];
+        int out[4];
+        for (int l = 0; l < 4; l++) {
+            const uint32_t *c = corner + c0 + 3 * keep[i + l];
+            v[l][0] = &sv[c[0] - vmin];
+            v[l][1] = &sv[c[1] - vmin];
+            v[l][2] = &sv[c[2] - vmin];
+            out[l] = (v[l][0]->x == VERT_OUT) | (v[l][1]->x == VERT_OUT) | (v[l][2]->x == VERT_OUT);
+        }
+        Finish4 f;
+        finish_tris4(sp, v, &f);
+        for (int l = 0; l < 4; l++) {
+            uint32_t q = keep[i + l];
+            if (out[l]) {
+                rv = emit_poly(j, k + q, c0 + 3 * q, c0 + 3 * q + 3, inst + q);
+                if (rv)
+                    return rv;
+                continue;
+            }
+            if (f.state[l] == FIN_EMPTY) {
+                sp->culled_empty++;
+                continue;
+            }
+            if (f.state[l] == FIN_BACK) {
+                sp->culled_back++;
+                continue;
+            }
+            ScreenVert *dst = &sp->verts[sp->nverts];
+            dst[0] = *v[l][0];
+            dst[1] = *v[l][1];
+            dst[2] = *v[l][2];
+            ScreenPoly *p = &sp->polys[sp->npolys++];
+            p->first = sp->nverts;
+            sp->nverts += 3;
+            p->x0 = f.x0[l];
+            p->x1 = f.x1[l];
+            p->y0 = f.y0[l];
+            p->y1 = f.y1[l];
+            p->a = f.a[l];
+            p->b = f.b[l];
+            p->zc = f.zc[l];
+            p->zmin = f.zmin[l];
+            kept_poly(j, k + q, inst + q);
+        }
+    }
+    for (; i < nk; i++) {
+        uint32_t q = keep[i];
+        int rv = emit_poly(j, k + q, c0 + 3 * q, c0 + 3 * q + 3, inst + q);
+        if (rv)
+            return rv;
+    }
+    return 0;
+}
+#endif
+
 static int project_range(RangeJob *j)
 {
     ScreenPolys *sp = j->out;
@@ -1135,6 +1346,16 @@ static int project_range(RangeJob *j)
             }
             empty += n - nk;
         }
+#ifdef ZV_AVX2
+        if (tris && j->simd >= SCREEN_SIMD_AVX2) {
+            int rv = emit_tris_avx2(j, k, c0, inst, keep, nk);
+            if (rv) {
+                sp->culled_empty += empty;
+                return rv;
+            }
+            continue;
+        }
+#endif
         for (uint32_t i = 0; i < nk; i++) {
             uint32_t q = k + keep[i];
             uint32_t a = tris ? c0 + 3 * keep[i] : s->poly_start[q], b = tris ? a + 3 : s->poly_start[q + 1];
