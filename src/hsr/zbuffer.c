@@ -382,6 +382,123 @@ draw_tri_narrow(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya,
     return n;
 }
 
+/* A triangle whose sample box fits one block: at most wl (2 or 4) columns
+ * and 8 / wl rows, inside the image's width. No loop and no stepping:
+ * each lane's edge functions straight from its sample's offset (the
+ * products stay within 2^31 at these sizes), then one depth test. Rows
+ * past yb are neither read nor written. */
+AVX2_FN static inline __attribute__((always_inline)) uint64_t
+draw_tri_block(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb, const int wl)
+{
+    int32_t x0 = p->x0, ox = 256 * x0 + 128, oy = 256 * ya + 128;
+    int32_t ax = v[0].x - ox, ay = v[0].y - oy, bx = v[1].x - ox, by = v[1].y - oy, cx = v[2].x - ox,
+            cy = v[2].y - oy;
+    int32_t orient = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+    if (orient == 0)
+        return 0;
+    if (orient < 0) {           /* walk the edges the other way round */
+        int32_t q = bx;
+        bx = cx;
+        cx = q;
+        q = by;
+        by = cy;
+        cy = q;
+    }
+    const int rows = 8 / wl, left = yb - ya;
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i col = _mm256_and_si256(lane, _mm256_set1_epi32(wl - 1));
+    const __m256i row = _mm256_srli_epi32(lane, wl == 4 ? 2 : 1);
+    const __m256i sx = _mm256_slli_epi32(col, SUBPIX_BITS), sy = _mm256_slli_epi32(row, SUBPIX_BITS);
+    __m256i in = _mm256_and_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(p->x1 - x0), col),
+                                  _mm256_cmpgt_epi32(_mm256_set1_epi32(left), row));
+    const int32_t px[4] = { ax, bx, cx, ax }, py[4] = { ay, by, cy, ay };
+    for (int k = 0; k < 3; k++) {
+        int32_t dx = px[k + 1] - px[k], dy = py[k + 1] - py[k];
+        /* e = dx (y - ay) - dy (x - ax) at the lane's sample */
+        __m256i e = _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(dx), _mm256_sub_epi32(sy, _mm256_set1_epi32(py[k]))),
+                                     _mm256_mullo_epi32(_mm256_set1_epi32(dy), _mm256_sub_epi32(sx, _mm256_set1_epi32(px[k]))));
+        int32_t lim = (-dy > 0 || (dy == 0 && dx > 0)) ? -1 : 0;
+        in = _mm256_and_si256(in, _mm256_cmpgt_epi32(e, _mm256_set1_epi32(lim)));
+    }
+    if (_mm256_testz_si256(in, in))
+        return 0;
+    /* plane_row() of each lane's row, then plane_at()'s add */
+    __m256i jrow = _mm256_add_epi32(_mm256_set1_epi32(ya - p->y0), row);
+    __m256 z = _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(p->zc), _mm256_mul_ps(_mm256_set1_ps(p->b), _mm256_cvtepi32_ps(jrow))),
+                             _mm256_mul_ps(_mm256_set1_ps(p->a), _mm256_cvtepi32_ps(col)));
+    int w = fb->w;
+    float *dr[4];
+    int32_t *ir[4];
+    for (int r = 0; r < rows; r++) {
+        int jr = r < left ? ya + r : ya;        /* a row past yb: read row ya again, masked out */
+        dr[r] = fb->depth + (size_t)jr * w + x0;
+        ir[r] = fb->ids + (size_t)jr * w + x0;
+    }
+    __m256 zb;
+    __m256i ib;
+    if (wl == 4) {
+        zb = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(dr[0])), _mm_loadu_ps(dr[1]), 1);
+        ib = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128((const __m128i *)ir[0])),
+                                     _mm_loadu_si128((const __m128i *)ir[1]), 1);
+    } else {
+        __m128d d01 = _mm_loadh_pd(_mm_load_sd((const double *)dr[0]), (const double *)dr[1]);
+        __m128d d23 = _mm_loadh_pd(_mm_load_sd((const double *)dr[2]), (const double *)dr[3]);
+        __m128d i01 = _mm_loadh_pd(_mm_load_sd((const double *)ir[0]), (const double *)ir[1]);
+        __m128d i23 = _mm_loadh_pd(_mm_load_sd((const double *)ir[2]), (const double *)ir[3]);
+        zb = _mm256_castpd_ps(_mm256_insertf128_pd(_mm256_castpd128_pd256(d01), d23, 1));
+        ib = _mm256_castpd_si256(_mm256_insertf128_pd(_mm256_castpd128_pd256(i01), i23, 1));
+    }
+    int32_t id = p->face;
+    const __m256i vid = _mm256_set1_epi32(id), vidb = _mm256_xor_si256(vid, _mm256_set1_epi32(INT32_MIN));
+    __m256i win = wins8(z, vidb, zb, ib, in);
+    int mask = _mm256_movemask_ps(_mm256_castsi256_ps(win));
+    if (!mask)
+        return 0;
+    __m256 zn = _mm256_blendv_ps(zb, z, _mm256_castsi256_ps(win));
+    __m256i idn = _mm256_blendv_epi8(ib, vid, win);
+    /* store only the rows that won something (the rows past yb never do) */
+    if (wl == 4) {
+        if (mask & 0x0f) {
+            _mm_storeu_ps(dr[0], _mm256_castps256_ps128(zn));
+            _mm_storeu_si128((__m128i *)ir[0], _mm256_castsi256_si128(idn));
+        }
+        if (mask & 0xf0) {
+            _mm_storeu_ps(dr[1], _mm256_extractf128_ps(zn, 1));
+            _mm_storeu_si128((__m128i *)ir[1], _mm256_extracti128_si256(idn, 1));
+        }
+    } else {
+        __m128d zl = _mm_castps_pd(_mm256_castps256_ps128(zn)), zh = _mm_castps_pd(_mm256_extractf128_ps(zn, 1));
+        __m128d il = _mm_castsi128_pd(_mm256_castsi256_si128(idn)), ih = _mm_castsi128_pd(_mm256_extracti128_si256(idn, 1));
+        if (mask & 0x03) {
+            _mm_store_sd((double *)dr[0], zl);
+            _mm_store_sd((double *)ir[0], il);
+        }
+        if (mask & 0x0c) {
+            _mm_storeh_pd((double *)dr[1], zl);
+            _mm_storeh_pd((double *)ir[1], il);
+        }
+        if (mask & 0x30) {
+            _mm_store_sd((double *)dr[2], zh);
+            _mm_store_sd((double *)ir[2], ih);
+        }
+        if (mask & 0xc0) {
+            _mm_storeh_pd((double *)dr[3], zh);
+            _mm_storeh_pd((double *)ir[3], ih);
+        }
+    }
+    return (uint64_t)__builtin_popcount((unsigned)mask);
+}
+
+AVX2_FN static uint64_t draw_tri_block2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+{
+    return draw_tri_block(v, p, fb, ya, yb, 2);
+}
+
+AVX2_FN static uint64_t draw_tri_block4(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+{
+    return draw_tri_block(v, p, fb, ya, yb, 4);
+}
+
 /* draw_tri_narrow made once for each width, so that the lane layout is
  * known to the compiler. */
 AVX2_FN static uint64_t draw_tri_narrow2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
@@ -397,7 +514,11 @@ AVX2_FN static uint64_t draw_tri_narrow4(const ScreenVert *v, const ScreenPoly *
 /* The AVX2 path for triangle v: the narrowest layout its box fits. */
 AVX2_FN static uint64_t draw_triangle_avx2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
-    int bw = p->x1 - p->x0;
+    int bw = p->x1 - p->x0, bh = yb - ya;
+    if (bw <= 2 && bh <= 4 && p->x0 + 2 <= fb->w)
+        return draw_tri_block2(v, p, fb, ya, yb);
+    if (bw <= 4 && bh <= 2 && p->x0 + 4 <= fb->w)
+        return draw_tri_block4(v, p, fb, ya, yb);
     if (bw <= 2 && p->x0 + 2 <= fb->w)
         return draw_tri_narrow2(v, p, fb, ya, yb);
     if (bw <= 4 && p->x0 + 4 <= fb->w)
