@@ -1372,25 +1372,37 @@ static int project_range(RangeJob *j)
 
 /* ==== an object over several threads ==== */
 
-/* Move a helper's part, written in a window further up sp's arrays
- * (polygons at pb, vertices at vb, instances inst0 .. inst0 + n), down to
- * right after what sp holds. */
-static void compact_part(ScreenPolys *sp, const ScreenPolys *part, uint32_t pb, uint32_t vb,
-                         uint32_t inst0, uint32_t n)
+/* The helpers' parts, written in windows further up sp's arrays, moved
+ * down after part 0: the vertices on one thread, the polygons (their
+ * first corner shifted) and the map entries on another. Within an array
+ * the parts move in order, each into room the ones before it left. */
+typedef struct {
+    ScreenPolys       *sp;
+    const ScreenPolys *win;     /* each part's counts */
+    const uint32_t    *pb, *vb; /* where each part was written */
+    const uint32_t    *inst0, *ninst;
+    uint32_t           bv[SCREEN_MAX_THREADS], bp[SCREEN_MAX_THREADS];  /* where each part goes */
+    int                parts;
+} CompactJob;
+
+static void compact_task(void *arg, int task)
 {
-    uint32_t bv = sp->nverts, bp = sp->npolys;
-    memmove(sp->verts + bv, sp->verts + vb, (size_t)part->nverts * sizeof *sp->verts);
-    memmove(sp->polys + bp, sp->polys + pb, (size_t)part->npolys * sizeof *sp->polys);
-    for (uint32_t i = 0; i < part->npolys; i++)
-        sp->polys[bp + i].first += bv;
-    for (uint32_t i = inst0; i < inst0 + n; i++)
-        if (sp->map[i] >= 0)
-            sp->map[i] += (int32_t)bp;
-    sp->nverts += part->nverts;
-    sp->npolys += part->npolys;
-    sp->in_polys += part->in_polys;
-    sp->culled_back += part->culled_back;
-    sp->culled_empty += part->culled_empty;
+    CompactJob *c = arg;
+    ScreenPolys *sp = c->sp;
+    for (int i = 1; i < c->parts; i++) {
+        const ScreenPolys *part = &c->win[i];
+        if (task == 0) {
+            memmove(sp->verts + c->bv[i], sp->verts + c->vb[i], (size_t)part->nverts * sizeof *sp->verts);
+            continue;
+        }
+        uint32_t bp = c->bp[i], bv = c->bv[i];
+        memmove(sp->polys + bp, sp->polys + c->pb[i], (size_t)part->npolys * sizeof *sp->polys);
+        for (uint32_t q = 0; q < part->npolys; q++)
+            sp->polys[bp + q].first += bv;
+        for (uint32_t q = c->inst0[i]; q < c->inst0[i] + c->ninst[i]; q++)
+            if (sp->map[q] >= 0)
+                sp->map[q] += (int32_t)bp;
+    }
 }
 
 /* How many threads to split object o over: sp->threads (0 = every core),
@@ -1473,14 +1485,29 @@ static int project_parts(ScreenPolys *sp, const Scene *s, const Object *o, const
         return -1;
     if (rc)
         return 1;
-    uint32_t pb0 = sp->npolys;
-    sp->nverts = win[0].nverts;
-    sp->npolys = win[0].npolys;
+    uint32_t pb[SCREEN_MAX_THREADS], inst0[SCREEN_MAX_THREADS], ninst[SCREEN_MAX_THREADS];
+    CompactJob cj = { .sp = sp, .win = win, .pb = pb, .vb = vb, .inst0 = inst0, .ninst = ninst, .parts = parts };
+    uint32_t nv = win[0].nverts, np = win[0].npolys;
+    for (int i = 1; i < parts; i++) {
+        pb[i] = sp->npolys + (k[i] - o->poly_first);
+        inst0[i] = job[i].inst0;
+        ninst[i] = k[i + 1] - k[i];
+        cj.bv[i] = nv;
+        cj.bp[i] = np;
+        nv += win[i].nverts;
+        np += win[i].npolys;
+    }
+    pool_run(pool, 2, compact_task, &cj);
+    sp->nverts = nv;
+    sp->npolys = np;
     sp->in_polys = win[0].in_polys;
     sp->culled_back = win[0].culled_back;
     sp->culled_empty = win[0].culled_empty;
-    for (int i = 1; i < parts; i++)
-        compact_part(sp, &win[i], pb0 + (k[i] - o->poly_first), vb[i], job[i].inst0, k[i + 1] - k[i]);
+    for (int i = 1; i < parts; i++) {
+        sp->in_polys += win[i].in_polys;
+        sp->culled_back += win[i].culled_back;
+        sp->culled_empty += win[i].culled_empty;
+    }
     return 0;
 }
 
