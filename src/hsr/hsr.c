@@ -62,12 +62,13 @@ void fbuf_free(FrameBufs *fb)
 
 /* ==== the runner: one band per thread on a persistent pool ==== */
 
-static void run_band(void *arg, int t)
+/* Band t on worker `worker`, with that worker's state. */
+static void run_band(void *arg, int t, int worker)
 {
     HsrRunner *r = arg;
     memset(&r->st[t], 0, sizeof r->st[t]);
     if (r->band[t] < r->band[t + 1])
-        r->algo->render(r->state[t], r->in, r->fb, r->band[t], r->band[t + 1], &r->st[t]);
+        r->algo->render(r->state[worker], r->in, r->fb, r->band[t], r->band[t + 1], &r->st[t]);
 }
 
 int hsr_runner_init(HsrRunner *r, const HsrAlgo *algo, int nthreads)

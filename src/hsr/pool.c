@@ -1,7 +1,14 @@
 /* pool.c: persistent helper threads for fork-join work (pool.h).
  * Creating and joining threads every frame costs tens of microseconds
  * each and more on a loaded machine; a helper waiting on a condition
- * variable costs nothing and wakes in a few. */
+ * variable costs nothing and wakes in a few.
+ *
+ * Tasks are claimed one at a time from a shared counter, by the caller
+ * as well as the helpers: when a woken helper does not get a core at
+ * once, the caller takes its tasks rather than wait for it. A helper
+ * joins a run under the lock (running++) and reads the run's function
+ * then; a new run starts only when no helper is still in the last one,
+ * so no helper can take a task of one run with another's function. */
 
 #define _POSIX_C_SOURCE 200809L
 #include <pthread.h>
@@ -13,22 +20,34 @@
 
 typedef struct {
     Pool *pool;
-    int   idx;              /* its part number: 1 .. helpers */
+    int   idx;              /* its worker number: 1 .. helpers */
 } Helper;
 
 struct Pool {
     pthread_mutex_t mu;
     pthread_cond_t  go, done;
     unsigned        gen;        /* bumped for each pool_run */
-    int             pending;    /* helpers' parts not finished yet */
+    int             running;    /* helpers inside a run */
     int             quit;
     PoolFn          fn;
     void           *arg;
-    int             nparts;     /* of the current run */
+    int             ntasks;
+    int             next;       /* next task to claim (atomic) */
     int             nth;        /* helpers running */
     pthread_t       th[POOL_MAX];
     Helper          helper[POOL_MAX];
 };
+
+/* Claim and run tasks until none is left. */
+static void take_tasks(Pool *p, PoolFn fn, void *arg, int ntasks, int worker)
+{
+    for (;;) {
+        int t = __atomic_fetch_add(&p->next, 1, __ATOMIC_ACQ_REL);
+        if (t >= ntasks)
+            return;
+        fn(arg, t, worker);
+    }
+}
 
 static void *helper_main(void *a)
 {
@@ -42,15 +61,15 @@ static void *helper_main(void *a)
         if (p->quit)
             break;
         seen = p->gen;
-        if (h->idx >= p->nparts)
-            continue;           /* no part for it this time */
+        p->running++;
         PoolFn fn = p->fn;
         void *arg = p->arg;
+        int ntasks = p->ntasks;
         pthread_mutex_unlock(&p->mu);
-        fn(arg, h->idx);
+        take_tasks(p, fn, arg, ntasks, h->idx);
         pthread_mutex_lock(&p->mu);
-        if (--p->pending == 0)
-            pthread_cond_signal(&p->done);
+        if (--p->running == 0)
+            pthread_cond_broadcast(&p->done);
     }
     pthread_mutex_unlock(&p->mu);
     return NULL;
@@ -81,29 +100,28 @@ int pool_helpers(const Pool *p)
     return p ? p->nth : 0;
 }
 
-void pool_run(Pool *p, int nparts, PoolFn fn, void *arg)
+void pool_run(Pool *p, int ntasks, PoolFn fn, void *arg)
 {
-    int on_helpers = 0;
-    if (p && nparts > 1) {
-        on_helpers = nparts - 1 < p->nth ? nparts - 1 : p->nth;
-        pthread_mutex_lock(&p->mu);
-        p->fn = fn;
-        p->arg = arg;
-        p->nparts = on_helpers + 1;
-        p->pending = on_helpers;
-        p->gen++;
-        pthread_cond_broadcast(&p->go);
-        pthread_mutex_unlock(&p->mu);
+    if (!p || p->nth == 0 || ntasks < 2) {
+        for (int t = 0; t < ntasks; t++)
+            fn(arg, t, 0);
+        return;
     }
-    fn(arg, 0);
-    for (int i = on_helpers + 1; i < nparts; i++)
-        fn(arg, i);             /* more parts than helpers: the caller does them */
-    if (on_helpers) {
-        pthread_mutex_lock(&p->mu);
-        while (p->pending > 0)
-            pthread_cond_wait(&p->done, &p->mu);
-        pthread_mutex_unlock(&p->mu);
-    }
+    pthread_mutex_lock(&p->mu);
+    while (p->running > 0)      /* a late helper still leaving the last run */
+        pthread_cond_wait(&p->done, &p->mu);
+    p->fn = fn;
+    p->arg = arg;
+    p->ntasks = ntasks;
+    __atomic_store_n(&p->next, 0, __ATOMIC_RELEASE);
+    p->gen++;
+    pthread_cond_broadcast(&p->go);
+    pthread_mutex_unlock(&p->mu);
+    take_tasks(p, fn, arg, ntasks, 0);
+    pthread_mutex_lock(&p->mu);
+    while (p->running > 0)      /* helpers finishing the tasks they took */
+        pthread_cond_wait(&p->done, &p->mu);
+    pthread_mutex_unlock(&p->mu);
 }
 
 void pool_free(Pool *p)

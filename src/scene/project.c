@@ -62,6 +62,9 @@
  * object (below it, the hand-over costs more than it saves). */
 #define PART_MIN 8192
 
+/* Vertices per task of pass 1 on several threads. */
+#define VERT_CHUNK 65536
+
 /* Polygons per chunk of pass 2: the survivors' list lives on the stack. */
 #define CHUNK 2048
 
@@ -541,9 +544,10 @@ static void verts_range(const VertJob *j, uint32_t a, uint32_t b)
         vert_one(j, i);
 }
 
-static void verts_part(void *arg, int part)
+static void verts_part(void *arg, int part, int worker)
 {
     const VertJob *j = arg;
+    (void)worker;
     uint32_t a = (uint32_t)((uint64_t)j->nv * (uint32_t)part / (uint32_t)j->parts);
     uint32_t b = (uint32_t)((uint64_t)j->nv * (uint32_t)(part + 1) / (uint32_t)j->parts);
     verts_range(j, a, b);
@@ -1385,8 +1389,9 @@ typedef struct {
     int                parts;
 } CompactJob;
 
-static void compact_task(void *arg, int task)
+static void compact_task(void *arg, int task, int worker)
 {
+    (void)worker;
     CompactJob *c = arg;
     ScreenPolys *sp = c->sp;
     for (int i = 1; i < c->parts; i++) {
@@ -1430,8 +1435,11 @@ static Pool *work_pool(ScreenWork *w, int parts)
     return w->pool;
 }
 
-static void range_part(void *arg, int part)
+/* Part `part` (its window and clip buffers are its own, whichever worker
+ * takes it). */
+static void range_part(void *arg, int part, int worker)
 {
+    (void)worker;
     RangeJob *j = (RangeJob *)arg + part;
     j->rc = project_range(j);
 }
@@ -1594,8 +1602,12 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
             parts = have;           /* no more threads to be had: fewer parts */
         if (parts > 1)
             sp->helpers = (uint32_t)(parts - 1) > sp->helpers ? (uint32_t)(parts - 1) : sp->helpers;
-        vj.parts = parts;
-        pool_run(pool, parts, verts_part, &vj);
+        /* vertices in chunks of about VERT_CHUNK, taken by whichever
+         * thread is free */
+        vj.parts = parts > 1 ? (int)(vj.nv / VERT_CHUNK) + parts : 1;
+        if (vj.parts > 4 * SCREEN_MAX_THREADS)
+            vj.parts = 4 * SCREEN_MAX_THREADS;
+        pool_run(pool, vj.parts, verts_part, &vj);
         if (parts > 1 && (rc = project_parts(sp, s, o, &pj, &vj.mv, w, pool, inst, parts, simd)) < 0)
             return -1;
         if (rc) {
