@@ -218,6 +218,20 @@ AVX2_FN static inline __m256i edges8_in(const Edges8 *t, __m256i e0, __m256i e1,
                             _mm256_cmpgt_epi32(e2, t->lim[2]));
 }
 
+/* Two 32-bit values (a float or id pair of one row) at p and at q, as the
+ * low and high halves of a vector; and the low pair of v stored at p.
+ * 64-bit moves through the unaligned integer intrinsics: the pairs sit
+ * at any 4-byte boundary. */
+AVX2_FN static inline __m128i load2x2(const void *p, const void *q)
+{
+    return _mm_unpacklo_epi64(_mm_loadl_epi64((const __m128i *)p), _mm_loadl_epi64((const __m128i *)q));
+}
+
+AVX2_FN static inline void store2(void *p, __m128i v)
+{
+    _mm_storel_epi64((__m128i *)p, v);
+}
+
 /* hsr_wins() of (z, id) against (zb, ib), eight lanes, within in. */
 AVX2_FN static inline __m256i wins8(__m256 z, __m256i vidb, __m256 zb, __m256i ib, __m256i in)
 {
@@ -339,12 +353,9 @@ draw_tri_narrow(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya,
             ib = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128((const __m128i *)ir[0])),
                                          _mm_loadu_si128((const __m128i *)ir[1]), 1);
         } else {
-            __m128d d01 = _mm_loadh_pd(_mm_load_sd((const double *)dr[0]), (const double *)dr[1]);
-            __m128d d23 = _mm_loadh_pd(_mm_load_sd((const double *)dr[2]), (const double *)dr[3]);
-            __m128d i01 = _mm_loadh_pd(_mm_load_sd((const double *)ir[0]), (const double *)ir[1]);
-            __m128d i23 = _mm_loadh_pd(_mm_load_sd((const double *)ir[2]), (const double *)ir[3]);
-            zb = _mm256_castpd_ps(_mm256_insertf128_pd(_mm256_castpd128_pd256(d01), d23, 1));
-            ib = _mm256_castpd_si256(_mm256_insertf128_pd(_mm256_castpd128_pd256(i01), i23, 1));
+            zb = _mm256_castsi256_ps(_mm256_inserti128_si256(_mm256_castsi128_si256(load2x2(dr[0], dr[1])),
+                                                             load2x2(dr[2], dr[3]), 1));
+            ib = _mm256_inserti128_si256(_mm256_castsi128_si256(load2x2(ir[0], ir[1])), load2x2(ir[2], ir[3]), 1);
         }
         __m256i win = wins8(z, vidb, zb, ib, in);
         int mask = _mm256_movemask_ps(_mm256_castsi256_ps(win));
@@ -361,21 +372,21 @@ draw_tri_narrow(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya,
                 _mm_storeu_si128((__m128i *)ir[1], _mm256_extracti128_si256(in_, 1));
             }
         } else {
-            __m128d zl = _mm_castps_pd(_mm256_castps256_ps128(zn)), zh = _mm_castps_pd(_mm256_extractf128_ps(zn, 1));
-            __m128d il = _mm_castsi128_pd(_mm256_castsi256_si128(in_)), ih = _mm_castsi128_pd(_mm256_extracti128_si256(in_, 1));
-            _mm_store_sd((double *)dr[0], zl);
-            _mm_store_sd((double *)ir[0], il);
+            __m128i zl = _mm256_castsi256_si128(_mm256_castps_si256(zn)), zh = _mm256_extracti128_si256(_mm256_castps_si256(zn), 1);
+            __m128i il = _mm256_castsi256_si128(in_), ih = _mm256_extracti128_si256(in_, 1);
+            store2(dr[0], zl);
+            store2(ir[0], il);
             if (left > 1) {
-                _mm_storeh_pd((double *)dr[1], zl);
-                _mm_storeh_pd((double *)ir[1], il);
+                store2(dr[1], _mm_unpackhi_epi64(zl, zl));
+                store2(ir[1], _mm_unpackhi_epi64(il, il));
             }
             if (left > 2) {
-                _mm_store_sd((double *)dr[2], zh);
-                _mm_store_sd((double *)ir[2], ih);
+                store2(dr[2], zh);
+                store2(ir[2], ih);
             }
             if (left > 3) {
-                _mm_storeh_pd((double *)dr[3], zh);
-                _mm_storeh_pd((double *)ir[3], ih);
+                store2(dr[3], _mm_unpackhi_epi64(zh, zh));
+                store2(ir[3], _mm_unpackhi_epi64(ih, ih));
             }
         }
     }
@@ -441,12 +452,9 @@ draw_tri_block(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, 
         ib = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128((const __m128i *)ir[0])),
                                      _mm_loadu_si128((const __m128i *)ir[1]), 1);
     } else {
-        __m128d d01 = _mm_loadh_pd(_mm_load_sd((const double *)dr[0]), (const double *)dr[1]);
-        __m128d d23 = _mm_loadh_pd(_mm_load_sd((const double *)dr[2]), (const double *)dr[3]);
-        __m128d i01 = _mm_loadh_pd(_mm_load_sd((const double *)ir[0]), (const double *)ir[1]);
-        __m128d i23 = _mm_loadh_pd(_mm_load_sd((const double *)ir[2]), (const double *)ir[3]);
-        zb = _mm256_castpd_ps(_mm256_insertf128_pd(_mm256_castpd128_pd256(d01), d23, 1));
-        ib = _mm256_castpd_si256(_mm256_insertf128_pd(_mm256_castpd128_pd256(i01), i23, 1));
+        zb = _mm256_castsi256_ps(_mm256_inserti128_si256(_mm256_castsi128_si256(load2x2(dr[0], dr[1])),
+                                                         load2x2(dr[2], dr[3]), 1));
+        ib = _mm256_inserti128_si256(_mm256_castsi128_si256(load2x2(ir[0], ir[1])), load2x2(ir[2], ir[3]), 1);
     }
     int32_t id = p->face;
     const __m256i vid = _mm256_set1_epi32(id), vidb = _mm256_xor_si256(vid, _mm256_set1_epi32(INT32_MIN));
@@ -467,23 +475,23 @@ draw_tri_block(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, 
             _mm_storeu_si128((__m128i *)ir[1], _mm256_extracti128_si256(idn, 1));
         }
     } else {
-        __m128d zl = _mm_castps_pd(_mm256_castps256_ps128(zn)), zh = _mm_castps_pd(_mm256_extractf128_ps(zn, 1));
-        __m128d il = _mm_castsi128_pd(_mm256_castsi256_si128(idn)), ih = _mm_castsi128_pd(_mm256_extracti128_si256(idn, 1));
+        __m128i zl = _mm256_castsi256_si128(_mm256_castps_si256(zn)), zh = _mm256_extracti128_si256(_mm256_castps_si256(zn), 1);
+        __m128i il = _mm256_castsi256_si128(idn), ih = _mm256_extracti128_si256(idn, 1);
         if (mask & 0x03) {
-            _mm_store_sd((double *)dr[0], zl);
-            _mm_store_sd((double *)ir[0], il);
+            store2(dr[0], zl);
+            store2(ir[0], il);
         }
         if (mask & 0x0c) {
-            _mm_storeh_pd((double *)dr[1], zl);
-            _mm_storeh_pd((double *)ir[1], il);
+            store2(dr[1], _mm_unpackhi_epi64(zl, zl));
+            store2(ir[1], _mm_unpackhi_epi64(il, il));
         }
         if (mask & 0x30) {
-            _mm_store_sd((double *)dr[2], zh);
-            _mm_store_sd((double *)ir[2], ih);
+            store2(dr[2], zh);
+            store2(ir[2], ih);
         }
         if (mask & 0xc0) {
-            _mm_storeh_pd((double *)dr[3], zh);
-            _mm_storeh_pd((double *)ir[3], ih);
+            store2(dr[3], _mm_unpackhi_epi64(zh, zh));
+            store2(ir[3], _mm_unpackhi_epi64(ih, ih));
         }
     }
     return (uint64_t)__builtin_popcount((unsigned)mask);

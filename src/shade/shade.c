@@ -371,8 +371,8 @@ static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t 
  * shade_pixels, which makes its colour), their colours gathered as 4-byte
  * words at 3 id (the cache's spare byte keeps the last in bounds), packed
  * to 24 bytes, and the lit bytes from the same mask. Stops short of the
- * end (its stores run 4 bytes past the eighth pixel); returns where the
- * caller's plain loop takes over. */
+ * end (the second 16-byte store ends 4 bytes past the eighth pixel, in
+ * the tenth); returns where the caller's plain loop takes over. */
 AVX2_FN static size_t shade_pixels_avx2(FaceColours *fc, const int32_t *ids, size_t n, uint8_t *rgb, uint8_t *lit)
 {
     const __m256i bias = _mm256_set1_epi32(INT32_MIN);
@@ -382,7 +382,7 @@ AVX2_FN static size_t shade_pixels_avx2(FaceColours *fc, const int32_t *ids, siz
                                           0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
     const __m256i one8 = _mm256_set1_epi8(1);
     size_t i = 0;
-    for (; i + 9 <= n; i += 8) {
+    for (; i + 10 <= n; i += 8) {
         __m256i id = _mm256_loadu_si256((const __m256i *)(ids + i));
         /* 0 <= id < nfaces, as unsigned */
         __m256i valid = _mm256_cmpgt_epi32(nf, _mm256_xor_si256(id, bias));
