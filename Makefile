@@ -107,8 +107,13 @@ noassimp:
 run: $(BIN)
 	./$(BIN)
 
-bench: $(BIN)
-	sh tools/bench.sh
+# tools/subdiv writes the many-triangle model into /tmp at bench time
+bench: $(BIN) $(BUILD)/subdiv
+	SUBDIV=$(BUILD)/subdiv sh tools/bench.sh
+
+$(BUILD)/subdiv: tools/subdiv.c
+	@mkdir -p $(BUILD)
+	$(CC) $(CFLAGS) -o $@ $<
 
 # How far 256/16/8-colour pictures are from truecolor, before and after
 # the perceptual quantizer (README: Colour).

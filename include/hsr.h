@@ -41,6 +41,8 @@ typedef struct {
     uint64_t nodes_culled;        /* octree nodes hidden by the pyramid */
     uint64_t pixels_written;      /* sample writes (overdraw = this / covered) */
     double   build_ms;            /* tables, pyramid, octree */
+    int      building;            /* structures still being built in the background:
+                                     this frame was drawn without them (same picture) */
     double   scan_ms;             /* the scan itself */
 } HsrStats;
 
@@ -61,6 +63,16 @@ typedef struct HsrAlgo {
     void  (*destroy)(void *st);
     void  (*render)(void *st, const HsrInput *in, FrameBufs *fb,
                     int y0, int y1, HsrStats *stats);
+    /* Optional: state shared by the bands of one runner (made with it, for
+     * its thread count, and handed to each band's state by share()), and
+     * a step before each frame's bands start, on the caller's thread. A
+     * state used without a runner is never given one. A runner's scene
+     * must outlive the frames and structures it renders or builds from it
+     * (hsr_runner_free first). */
+    void *(*create_shared)(int nthreads);
+    void  (*destroy_shared)(void *sh);
+    void  (*share)(void *st, void *sh);
+    void  (*frame_begin)(void *sh, const HsrInput *in);
 } HsrAlgo;
 
 /* Registry, in the order the viewer cycles through them. */
@@ -77,7 +89,15 @@ typedef struct {
     const HsrAlgo *algo;
     int            nthreads;
     void          *state[64];
-    struct Pool   *pool;          /* worker threads when nthreads > 1 */
+    struct Pool   *pool;          /* helper threads when nthreads > 1 (pool.h) */
+    void          *shared;        /* algo->create_shared(), or NULL */
+    /* the frame being rendered, for the bands */
+    const HsrInput *in;
+    FrameBufs     *fb;
+    int            band[65];      /* row boundaries */
+    HsrStats       st[64];
+    uint32_t      *hist;          /* split_bands' row weights */
+    int            hist_cap;
 } HsrRunner;
 
 int  hsr_runner_init(HsrRunner *r, const HsrAlgo *algo, int nthreads);

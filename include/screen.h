@@ -40,10 +40,18 @@ typedef struct {
     float    zmin;      /* smallest vertex depth (hierarchical tests) */
 } ScreenPoly;
 
+/* The front end's loops at each level of SIMD give the same bits; the
+ * level is chosen at run time (AVX2 when the CPU has it). */
+#define SCREEN_SIMD_C    1      /* plain C */
+#define SCREEN_SIMD_SSE2 2      /* the x86-64 baseline */
+#define SCREEN_SIMD_AVX2 3
+
 typedef struct {
     /* set by the caller, kept across frames */
     int         threads;        /* threads the front end may use: 1 = the caller
                                    alone, 0 = one per core (at most SCREEN_MAX_THREADS) */
+    int         simd;           /* 0 = the best level this CPU runs, else at most
+                                   SCREEN_SIMD_*: the tests compare the levels */
     /* set by screen_project */
     int         w, h;
     float       pixel_aspect;   /* pixel height / width (2 for terminal cells) */
@@ -70,7 +78,7 @@ typedef struct {
     uint32_t    in_polys;       /* scene polygons considered */
     uint32_t    culled_back;    /* dropped as back faces */
     uint32_t    culled_empty;   /* dropped: clipped away or cover no sample */
-    uint32_t    helpers;        /* helper threads started */
+    uint32_t    helpers;        /* helper threads that took part (most for one object) */
     double      ms;             /* time spent projecting */
     ScreenWork *work;           /* scratch, made on first use, freed by screen_free */
 } ScreenPolys;

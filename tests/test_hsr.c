@@ -3,11 +3,13 @@
  * and fans, the depth rule on piercing polygons, and every algorithm
  * against the z-buffer, byte for byte. */
 
+#define _POSIX_C_SOURCE 200809L   /* nanosleep */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "hsr.h"
 #include "testlib.h"
@@ -425,4 +427,140 @@ Test(coverage, single_sample_test_matches_the_rule)
         inside += want;
     }
     cr_assert_gt(inside, 1000);
+}
+
+/* ==== the complete hierarchical z-buffer's trees, built in the background ==== */
+
+/* A wavy n x n grid of quads, each split into two triangles. */
+static char *wavy_obj(int n)
+{
+    size_t cap = (size_t)(n + 1) * (n + 1) * 48 + (size_t)n * n * 2 * 40 + 1;
+    char *t = malloc(cap), *p = t;
+    cr_assert(t);
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            p += snprintf(p, cap - (size_t)(p - t), "v %d %d %.4f\n", i, j, 9.0 * sin(i * 0.11) * cos(j * 0.07));
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+            p += snprintf(p, cap - (size_t)(p - t), "f %d %d %d\nf %d %d %d\n", a, b, d, a, d, c);
+        }
+    return t;
+}
+
+static void render_with(HsrRunner *r, Scene *s, ScreenPolys *sp, const Viewport *vp, FrameBufs *fb, HsrStats *st)
+{
+    HsrInput in = { sp, s, vp };
+    cr_assert_eq(hsr_run(r, &in, fb, st), 0);
+}
+
+static void expect_same_buffers(const FrameBufs *a, const FrameBufs *b, const char *what)
+{
+    size_t n = (size_t)a->w * a->h;
+    cr_assert_eq(memcmp(a->ids, b->ids, n * sizeof *a->ids), 0, "%s: ids", what);
+    cr_assert_eq(memcmp(a->depth, b->depth, n * sizeof *a->depth), 0, "%s: depths", what);
+}
+
+/* On two threads a big scene's trees are built on a thread of their own:
+ * the first frames draw without them (and say so), every frame equals the
+ * z-buffer's, and once they are ready the walk culls with them. */
+Test(octree, built_in_the_background_same_picture_before_and_after)
+{
+    char *text = wavy_obj(200);         /* 80,000 triangles: built in the background */
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "wavy", text), 0);
+    free(text);
+    tl_random_view(&s, 5, 0);
+    ScreenPolys sp = { 0 };
+    sp.threads = 2;
+    Viewport vp = { 240, 160, 1.0f, 0 };
+    cr_assert_eq(screen_project(&sp, &s, &vp), 0);
+    HsrRunner ref, oct;
+    FrameBufs fr = { 0 }, fo = { 0 };
+    HsrStats st;
+    cr_assert_eq(hsr_runner_init(&ref, &hsr_zbuffer, 1), 0);
+    cr_assert_eq(hsr_runner_init(&oct, hsr_find("hzb-octree"), 2), 0);
+    render_with(&ref, &s, &sp, &vp, &fr, &st);
+    render_with(&oct, &s, &sp, &vp, &fo, &st);
+    cr_expect_eq(st.building, 1, "the first frame is drawn while the trees are built");
+    cr_expect_eq(st.nodes_visited, 0);
+    expect_same_buffers(&fr, &fo, "while building");
+    /* frames until the trees are in (a frame each millisecond; the cap is
+     * only there so that a builder that never ends fails the test) */
+    int frames = 0;
+    while (st.building && frames++ < 600000) {
+        struct timespec ms = { 0, 1000000 };
+        nanosleep(&ms, NULL);
+        render_with(&oct, &s, &sp, &vp, &fo, &st);
+        expect_same_buffers(&fr, &fo, "while building");
+    }
+    cr_assert_eq(st.building, 0);
+    render_with(&oct, &s, &sp, &vp, &fo, &st);
+    cr_expect_gt(st.nodes_visited, 0, "the trees are walked once built");
+    expect_same_buffers(&fr, &fo, "with the trees");
+    /* and on other views with them */
+    for (uint32_t seed = 6; seed < 12; seed++) {
+        tl_random_view(&s, seed, (int)(seed & 1));
+        cr_assert_eq(screen_project(&sp, &s, &vp), 0);
+        render_with(&ref, &s, &sp, &vp, &fr, &st);
+        render_with(&oct, &s, &sp, &vp, &fo, &st);
+        cr_assert_eq(st.building, 0);
+        expect_same_buffers(&fr, &fo, "another view");
+    }
+    hsr_runner_free(&ref);
+    hsr_runner_free(&oct);
+    fbuf_free(&fr);
+    fbuf_free(&fo);
+    screen_free(&sp);
+    scene_free(&s);
+}
+
+/* A runner freed while its builder runs stops and joins it (the sanitizer
+ * build checks that nothing leaks or is touched after). */
+Test(octree, freed_while_building)
+{
+    char *text = wavy_obj(200);
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "wavy", text), 0);
+    free(text);
+    tl_random_view(&s, 3, 1);
+    ScreenPolys sp = { 0 };
+    Viewport vp = { 120, 80, 1.0f, 0 };
+    cr_assert_eq(screen_project(&sp, &s, &vp), 0);
+    for (int k = 0; k < 3; k++) {
+        HsrRunner oct;
+        FrameBufs fb = { 0 };
+        HsrStats st;
+        cr_assert_eq(hsr_runner_init(&oct, hsr_find("hzb-octree"), 2), 0);
+        render_with(&oct, &s, &sp, &vp, &fb, &st);
+        hsr_runner_free(&oct);
+        fbuf_free(&fb);
+    }
+    screen_free(&sp);
+    scene_free(&s);
+}
+
+/* A small scene's trees are built before the first frame, on any number
+ * of threads: no frame is drawn without them. */
+Test(octree, small_scenes_build_at_once)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_file(&s, "assets/torus.obj"), 0);
+    tl_random_view(&s, 1, 0);
+    ScreenPolys sp = { 0 };
+    Viewport vp = { 160, 100, 1.0f, 0 };
+    cr_assert_eq(screen_project(&sp, &s, &vp), 0);
+    for (int th = 1; th <= 2; th++) {
+        HsrRunner oct;
+        FrameBufs fb = { 0 };
+        HsrStats st;
+        cr_assert_eq(hsr_runner_init(&oct, hsr_find("hzb-octree"), th), 0);
+        render_with(&oct, &s, &sp, &vp, &fb, &st);
+        cr_expect_eq(st.building, 0);
+        cr_expect_gt(st.nodes_visited, 0);
+        hsr_runner_free(&oct);
+        fbuf_free(&fb);
+    }
+    screen_free(&sp);
+    scene_free(&s);
 }

@@ -388,3 +388,109 @@ Test(scene, one_thread_means_no_helper_thread)
     screen_free(&three);
     scene_free(&s);
 }
+
+/* ==== the front end's SIMD levels ==== */
+
+/* Every level of the front end's loops (plain C, SSE2, AVX2 where the CPU
+ * has it) gives the same polygons, bit for bit, on one thread and two:
+ * triangles small and large, general polygons, corners behind the near
+ * plane and outside the guard band, culling on and off. */
+Test(scene, simd_levels_give_the_same_polygons)
+{
+    char *grid = wavy_grid_obj(90);    /* 16,200 triangles, two parts on two threads */
+    size_t n = strlen(grid);
+    /* a warped quad, a triangle, a concave pentagon (relative indices) */
+    const char *more = "o quads\nv 0 0 5\nv 9 0 5\nv 9 9 6\nv 0 9 5\nv 4 4 9\n"
+                       "f -5 -4 -3 -2\nf -5 -4 -1\n"
+                       "o star\nv 20 20 0\nv 40 20 0\nv 22 35 0\nv 30 10 0\nv 38 35 0\nf -5 -4 -3 -2 -1\n";
+    char *text = malloc(n + strlen(more) + 1);
+    cr_assert(text);
+    strcpy(text, grid);
+    strcat(text, more);
+    free(grid);
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "mix", text), 0);
+    free(text);
+    static const int sizes[][2] = { { 160, 96 }, { 7, 5 }, { 331, 199 } };
+    static const float zooms[] = { 1.0f, 0.04f, 3.5f, 40.0f };
+    ScreenPolys ref = { 0 }, sp = { 0 };
+    ref.threads = 1;
+    ref.simd = SCREEN_SIMD_C;
+    int cases = 0;
+    for (uint32_t seed = 0; seed < 6; seed++)
+        for (int zi = 0; zi < 4; zi++)
+            for (int si = 0; si < 3; si++) {
+                tl_random_view(&s, seed, (int)(seed & 1));
+                s.cam.zoom = zooms[zi];
+                Viewport vp = { sizes[si][0], sizes[si][1], si == 1 ? 2.0f : 1.0f, (int)(seed % 3 == 0) };
+                cr_assert_eq(screen_project(&ref, &s, &vp), 0);
+                for (int level = SCREEN_SIMD_SSE2; level <= SCREEN_SIMD_AVX2; level++)
+                    for (int th = 1; th <= 2; th++) {
+                        sp.simd = level;
+                        sp.threads = th;
+                        cr_assert_eq(screen_project(&sp, &s, &vp), 0);
+                        cr_assert_eq(sp.culled_back, ref.culled_back);
+                        cr_assert_eq(sp.in_polys, ref.in_polys);
+                        expect_same_polys(&ref, &sp, &s);
+                        cases++;
+                    }
+            }
+    cr_assert_gt(cases, 0);
+    screen_free(&ref);
+    screen_free(&sp);
+    scene_free(&s);
+}
+
+/* Tiny triangles with corners on half-pixel positions, so that sample
+ * centres fall exactly on their corners and edges: the top-left rule
+ * decides, and each SIMD level must decide as plain C does. The view is
+ * set by hand (front, 8 pixels a unit, centred on the origin). */
+Test(scene, simd_levels_agree_where_samples_touch_edges)
+{
+    size_t cap = 1 << 20;
+    char *text = malloc(cap), *p = text;
+    cr_assert(text);
+    const int n = 48;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            p += snprintf(p, cap - (size_t)(p - text), "v %.6f %.6f %.6f\n", i / 16.0 - 1.5, j / 16.0 - 1.5,
+                          0.01 * ((i * 7 + j * 3) % 5));
+    for (int j = 0; j + 2 <= n; j++)
+        for (int i = 0; i + 2 <= n; i++) {
+            int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1, e = a + 2 * (n + 1) + 2;
+            if ((i + j) % 3 == 0)
+                p += snprintf(p, cap - (size_t)(p - text), "f %d %d %d\n", a, b, c);
+            else if ((i + j) % 3 == 1)
+                p += snprintf(p, cap - (size_t)(p - text), "f %d %d %d\n", d, c, b);
+            else
+                p += snprintf(p, cap - (size_t)(p - text), "f %d %d %d\n", a, e, c + 1);
+        }
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "lattice", text), 0);
+    free(text);
+    ScreenPolys ref = { 0 }, sp = { 0 };
+    ref.threads = sp.threads = 1;
+    ref.simd = SCREEN_SIMD_C;
+    for (int cull = 0; cull < 2; cull++)
+        for (int shift = 0; shift < 4; shift++) {
+            s.cam.persp = 0;
+            s.cam.yaw = s.cam.pitch = s.cam.roll = 0;
+            s.cam.centre = v3(0.03125f * shift, 0.015625f * shift, 0);    /* quarter and eighth pixels */
+            s.cam.pan = v3(0, 0, 0);
+            s.cam.zoom = 1;
+            s.cam.radius = 4;
+            s.cam.fit_half = v3(3.6f, 3.6f, 3.6f);
+            Viewport vp = { 64, 64, 1.0f, cull };
+            cr_assert_eq(screen_project(&ref, &s, &vp), 0);
+            cr_assert_gt(ref.culled_empty, 100, "tiny triangles that miss their sample");
+            for (int level = SCREEN_SIMD_SSE2; level <= SCREEN_SIMD_AVX2; level++) {
+                sp.simd = level;
+                cr_assert_eq(screen_project(&sp, &s, &vp), 0);
+                cr_assert_eq(sp.culled_back, ref.culled_back);
+                expect_same_polys(&ref, &sp, &s);
+            }
+        }
+    screen_free(&ref);
+    screen_free(&sp);
+    scene_free(&s);
+}

@@ -3,12 +3,12 @@
  * written in hsr.h, raster.h and screen.h. */
 
 #define _POSIX_C_SOURCE 200809L
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
 #include "hsr.h"
+#include "pool.h"
 
 extern const HsrAlgo hsr_zbuffer, hsr_scanline, hsr_span, hsr_hzb, hsr_hzb_octree;
 
@@ -60,56 +60,15 @@ void fbuf_free(FrameBufs *fb)
     memset(fb, 0, sizeof *fb);
 }
 
-/* ==== the runner: a small persistent pool, one band per thread ==== */
+/* ==== the runner: one band per thread on a persistent pool ==== */
 
-typedef struct Pool Pool;
-typedef struct { Pool *pool; int idx; } Worker;
-
-struct Pool {
-    pthread_mutex_t mu;
-    pthread_cond_t  go, done;
-    unsigned        gen;        /* bumped for each frame */
-    int             pending;    /* bands not finished yet */
-    int             quit;
-    HsrRunner      *r;
-    const HsrInput *in;
-    FrameBufs      *fb;
-    int             band[65];   /* row boundaries */
-    HsrStats        st[64];
-    pthread_t       th[64];
-    int             nth;
-    Worker          workers[64];
-    uint32_t       *hist;       /* split_bands' row weights */
-    int             hist_cap;
-};
-
-static void run_band(Pool *p, int t)
+/* Band t on worker `worker`, with that worker's state. */
+static void run_band(void *arg, int t, int worker)
 {
-    memset(&p->st[t], 0, sizeof p->st[t]);
-    if (p->band[t] < p->band[t + 1])
-        p->r->algo->render(p->r->state[t], p->in, p->fb, p->band[t], p->band[t + 1], &p->st[t]);
-}
-
-static void *worker_main(void *arg)
-{
-    Worker *w = arg;
-    Pool *p = w->pool;
-    unsigned seen = 0;
-    pthread_mutex_lock(&p->mu);
-    for (;;) {
-        while (p->gen == seen && !p->quit)
-            pthread_cond_wait(&p->go, &p->mu);
-        if (p->quit)
-            break;
-        seen = p->gen;
-        pthread_mutex_unlock(&p->mu);
-        run_band(p, w->idx);
-        pthread_mutex_lock(&p->mu);
-        if (--p->pending == 0)
-            pthread_cond_signal(&p->done);
-    }
-    pthread_mutex_unlock(&p->mu);
-    return NULL;
+    HsrRunner *r = arg;
+    memset(&r->st[t], 0, sizeof r->st[t]);
+    if (r->band[t] < r->band[t + 1])
+        r->algo->render(r->state[worker], r->in, r->fb, r->band[t], r->band[t + 1], &r->st[t]);
 }
 
 int hsr_runner_init(HsrRunner *r, const HsrAlgo *algo, int nthreads)
@@ -128,26 +87,20 @@ int hsr_runner_init(HsrRunner *r, const HsrAlgo *algo, int nthreads)
             return -1;
         }
     }
-    if (nthreads > 1) {
-        Pool *p = calloc(1, sizeof *p);
-        if (!p) {
+    if (algo->create_shared) {
+        r->shared = algo->create_shared(nthreads);
+        if (!r->shared) {
             hsr_runner_free(r);
             return -1;
         }
-        pthread_mutex_init(&p->mu, NULL);
-        pthread_cond_init(&p->go, NULL);
-        pthread_cond_init(&p->done, NULL);
-        p->r = r;
-        p->nth = nthreads;
-        r->pool = p;
-        for (int t = 1; t < nthreads; t++) {
-            p->workers[t].pool = p;
-            p->workers[t].idx = t;
-            if (pthread_create(&p->th[t], NULL, worker_main, &p->workers[t]) != 0) {
-                p->nth = t;
-                hsr_runner_free(r);
-                return -1;
-            }
+        for (int t = 0; t < nthreads && algo->share; t++)
+            algo->share(r->state[t], r->shared);
+    }
+    if (nthreads > 1) {
+        r->pool = pool_create(nthreads - 1);
+        if (!r->pool || pool_helpers(r->pool) < nthreads - 1) {
+            hsr_runner_free(r);
+            return -1;
         }
     }
     return 0;
@@ -155,20 +108,10 @@ int hsr_runner_init(HsrRunner *r, const HsrAlgo *algo, int nthreads)
 
 void hsr_runner_free(HsrRunner *r)
 {
-    Pool *p = r->pool;
-    if (p) {
-        pthread_mutex_lock(&p->mu);
-        p->quit = 1;
-        pthread_cond_broadcast(&p->go);
-        pthread_mutex_unlock(&p->mu);
-        for (int t = 1; t < p->nth; t++)
-            pthread_join(p->th[t], NULL);
-        pthread_mutex_destroy(&p->mu);
-        pthread_cond_destroy(&p->go);
-        pthread_cond_destroy(&p->done);
-        free(p->hist);
-        free(p);
-    }
+    pool_free(r->pool);
+    free(r->hist);
+    if (r->shared && r->algo->destroy_shared)
+        r->algo->destroy_shared(r->shared);
     for (int t = 0; t < r->nthreads; t++)
         if (r->state[t] && r->algo->destroy)
             r->algo->destroy(r->state[t]);
@@ -182,6 +125,7 @@ static void stats_add(HsrStats *a, const HsrStats *b)
     a->nodes_visited += b->nodes_visited;
     a->nodes_culled += b->nodes_culled;
     a->pixels_written += b->pixels_written;
+    a->building |= b->building;
     if (b->build_ms > a->build_ms)   /* bands build in parallel: the slowest counts */
         a->build_ms = b->build_ms;
 }
@@ -189,7 +133,7 @@ static void stats_add(HsrStats *a, const HsrStats *b)
 /* Row boundaries that give each band about the same number of polygon
  * rows plus pixel rows, so that a model in one part of the image still
  * splits evenly. */
-static void split_bands(Pool *pool, const ScreenPolys *sp, int h, int n, int *band)
+static void split_bands(HsrRunner *pool, const ScreenPolys *sp, int h, int n, int *band)
 {
     band[0] = 0;
     band[n] = h;
@@ -236,28 +180,26 @@ int hsr_run(HsrRunner *r, const HsrInput *in, FrameBufs *fb, HsrStats *stats)
     memset(stats, 0, sizeof *stats);
     if (fbuf_resize(fb, in->sp->w, in->sp->h))
         return -1;
+    double tb = 0;
+    if (r->algo->frame_begin) {
+        double t1 = now_ms();
+        r->algo->frame_begin(r->shared, in);
+        tb = now_ms() - t1;     /* structures built before the bands (one thread) */
+    }
     int h = in->sp->h;
     if (r->nthreads == 1 || !r->pool) {
         r->algo->render(r->state[0], in, fb, 0, h, stats);
+        stats->build_ms += tb;
         stats->scan_ms = now_ms() - t0 - stats->build_ms;
         return 0;
     }
-    Pool *p = r->pool;
-    pthread_mutex_lock(&p->mu);
-    p->in = in;
-    p->fb = fb;
-    split_bands(p, in->sp, h, r->nthreads, p->band);
-    p->pending = r->nthreads - 1;
-    p->gen++;
-    pthread_cond_broadcast(&p->go);
-    pthread_mutex_unlock(&p->mu);
-    run_band(p, 0);
-    pthread_mutex_lock(&p->mu);
-    while (p->pending > 0)
-        pthread_cond_wait(&p->done, &p->mu);
-    pthread_mutex_unlock(&p->mu);
+    r->in = in;
+    r->fb = fb;
+    split_bands(r, in->sp, h, r->nthreads, r->band);
+    pool_run(r->pool, r->nthreads, run_band, r);
     for (int t = 0; t < r->nthreads; t++)
-        stats_add(stats, &p->st[t]);
+        stats_add(stats, &r->st[t]);
+    stats->build_ms += tb;
     stats->scan_ms = now_ms() - t0 - stats->build_ms;
     return 0;
 }

@@ -38,7 +38,17 @@
  * It wins on deep scenes (many objects one behind another, --grid) and on
  * closed models with culling off: near geometry fills the pyramid first
  * and whole far subtrees are rejected with one test each, without
- * rasterizing their polygons. */
+ * rasterizing their polygons.
+ *
+ * The trees belong to the runner, not to a band: every band walks the
+ * same trees (with bounds of its own). For a big scene with more than one
+ * thread they are built on a thread of their own, started by the first
+ * frame that needs them; until they are ready, frames draw every polygon
+ * through hzb_draw_poly() in scene order (the plain hzb: the same
+ * picture) and say so in HsrStats.building. A small scene (they take a
+ * few milliseconds), or one thread (no thread may be started), builds
+ * them before the first frame's bands. The builder is told to stop and
+ * joined when the runner goes, or when a frame brings another scene. */
 
 #include <limits.h>
 #include <math.h>
@@ -50,6 +60,9 @@
 #include "hzb.h"
 #include "scene.h"
 #include "zbuffer.h"
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 
 #define LEAF_POLYS  128     /* a node with more polygons is split */
@@ -58,6 +71,9 @@
 #define CHUNK       64      /* polygons fetched ahead together */
 #define STACK_MAX   (MAX_DEPTH * 7 + 16)
 #define NO_TREE     UINT32_MAX
+/* Scenes of fewer polygons (loaded objects) build their trees right away,
+ * in a few milliseconds, even with threads to spare. */
+#define BACKGROUND_MIN 65536
 
 typedef struct {
     uint32_t first, count;  /* its polygons (whole subtree): order[first .. first + count) */
@@ -81,9 +97,8 @@ typedef struct {
     int      flat;          /* 1: few of its polygons reached the screen: no tree walk */
 } ObjView;
 
+/* The trees of every loaded object of one scene, built once. */
 typedef struct {
-    HzbBase    hz;          /* the z-buffer's state and the pyramid */
-    /* the octree, built once per model */
     const Scene *key;
     uint32_t   key_npolys;
     int        key_nobjs;
@@ -96,19 +111,41 @@ typedef struct {
     uint32_t  *node_end;    /* per loaded object: one past its last node */
     uint32_t  *base;        /* per loaded object: its polygons' start in order[] and leaf[] */
     int        nroots;
-    int        built_ok;
     int        lface_sorted;    /* each object's polygons are in face order */
-    /* per frame */
+    const int *cancel;      /* while building: stop when this becomes nonzero */
+} OctTree;
+
+/* Shared by the bands of one runner: the current trees and the builder. */
+typedef struct {
+    pthread_mutex_t mu;
+    int        background;  /* build on a thread of its own (more than one thread) */
+    OctTree   *cur;         /* the trees frames use, NULL before the first */
+    OctTree   *next;        /* being built by the builder thread */
+    int        building;    /* the builder thread runs (or has ended, not yet joined) */
+    int        done;        /* ... and has ended: join it, take next */
+    int        failed;      /* the last build ran out of memory: do not retry for that scene */
+    const Scene *failed_key;
+    int        cancel;      /* tell the builder to stop (read atomically) */
+    const Scene *build_key; /* the scene the builder builds for */
+    pthread_t  th;
+    /* for this frame, set by frame_begin before the bands start */
+    const OctTree *use;     /* the trees of this frame's scene, or NULL */
+} OctShared;
+
+/* Per band. */
+typedef struct {
+    HzbBase    hz;          /* the z-buffer's state and the pyramid */
+    OctShared *shared;      /* the runner's, or NULL */
+    OctShared  own;         /* when rendered without a runner's shared state */
     ObjView   *views;
     int        cap_views;
     NodeBound *bound;       /* per node of the object being walked */
+    uint32_t   cap_bound;
 } OctState;
 
 /* ==== building ==== */
 
-static pthread_mutex_t build_lock = PTHREAD_MUTEX_INITIALIZER;
-
-static int new_nodes(OctState *s, uint32_t n, uint32_t *first_out)
+static int new_nodes(OctTree *s, uint32_t n, uint32_t *first_out)
 {
     if (s->nnodes + n > s->cap_nodes) {
         uint32_t cap = s->cap_nodes ? s->cap_nodes : 256;
@@ -126,64 +163,104 @@ static int new_nodes(OctState *s, uint32_t n, uint32_t *first_out)
     return 0;
 }
 
-static int cmp_u32(const void *a, const void *b)
+static int cancelled(const OctTree *s)
 {
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return x < y ? -1 : x > y;
+    return s->cancel && __atomic_load_n(s->cancel, __ATOMIC_RELAXED);
 }
 
+/* Build scratch: the centroids travel with the polygons they belong to,
+ * so each pass over a node reads them in order. */
+typedef struct {
+    float    *cen;          /* 3 per polygon, in order[] order */
+    float    *cen2;         /* scratch of the same size */
+    uint32_t *ord2;         /* scratch for order[] */
+    uint8_t  *oct;          /* each polygon's octant in its node */
+} BuildWork;
+
 /* Fill node ni over order[first .. first + count) (polygon indices local
- * to the object, cen indexed by them) and split it when large. */
-static int build_node(OctState *s, const float *cen, uint32_t *tmp, uint32_t ni, uint32_t first,
-                      uint32_t count, int depth)
+ * to the object, ascending; w->cen[first ..] their centroids, within the
+ * box lo..hi) and split it when large: about the middle of the box, by a
+ * stable counting sort that also finds each child's box. Stable, so every
+ * node's run stays ascending: a leaf reads the screen polygons in order. */
+static int build_node(OctTree *s, BuildWork *w, uint32_t ni, uint32_t first, uint32_t count, const float lo[3],
+                      const float hi[3], int depth)
 {
-    uint32_t *ord = s->order + first;
     OctNode *n = &s->nodes[ni];
     n->first = first;
     n->count = count;
     n->child = 0;
     n->nchild = 0;
-    if (count <= LEAF_POLYS || depth >= MAX_DEPTH) {
-        /* ascending, so that a leaf reads the screen polygons in order */
-        qsort(ord, count, sizeof *ord, cmp_u32);
+    if (count <= LEAF_POLYS || depth >= MAX_DEPTH)
         return 0;
-    }
-    float clo[3] = { INFINITY, INFINITY, INFINITY }, chi[3] = { -INFINITY, -INFINITY, -INFINITY };
-    for (uint32_t i = 0; i < count; i++) {
-        const float *c = &cen[3 * (size_t)ord[i]];
-        for (int a = 0; a < 3; a++) {
-            clo[a] = fminf(clo[a], c[a]);
-            chi[a] = fmaxf(chi[a], c[a]);
-        }
-    }
+    if (cancelled(s))
+        return -1;
     float mid[3];
     for (int a = 0; a < 3; a++)
-        mid[a] = 0.5f * (clo[a] + chi[a]);
-    /* octant of each polygon's centroid; counting sort by octant */
+        mid[a] = 0.5f * (lo[a] + hi[a]);
     uint32_t cnt[8] = { 0 };
-    for (uint32_t i = 0; i < count; i++) {
-        const float *c = &cen[3 * (size_t)ord[i]];
-        int o = (c[0] > mid[0]) | (c[1] > mid[1]) << 1 | (c[2] > mid[2]) << 2;
-        cnt[o]++;
+    float clo[8][3], chi[8][3];
+    for (int o = 0; o < 8; o++)
+        for (int a = 0; a < 3; a++) {
+            clo[o][a] = INFINITY;
+            chi[o][a] = -INFINITY;
+        }
+    const float *cen = w->cen + 3 * (size_t)first;
+    uint8_t *oct = w->oct + first;
+#ifdef __SSE2__
+    /* four floats a load (the scratch has one to spare at its end): the
+     * octant from one compare, the child's box by min and max */
+    __m128 vlo[8], vhi[8];
+    const __m128 vmid = _mm_setr_ps(mid[0], mid[1], mid[2], 0);
+    for (int o = 0; o < 8; o++) {
+        vlo[o] = _mm_set1_ps(INFINITY);
+        vhi[o] = _mm_set1_ps(-INFINITY);
     }
+    for (uint32_t i = 0; i < count; i++) {
+        __m128 c = _mm_loadu_ps(cen + 3 * (size_t)i);
+        int o = _mm_movemask_ps(_mm_cmpgt_ps(c, vmid)) & 7;
+        oct[i] = (uint8_t)o;
+        cnt[o]++;
+        vlo[o] = _mm_min_ps(vlo[o], c);
+        vhi[o] = _mm_max_ps(vhi[o], c);
+    }
+    for (int o = 0; o < 8; o++) {
+        float l[4], h[4];
+        _mm_storeu_ps(l, vlo[o]);
+        _mm_storeu_ps(h, vhi[o]);
+        memcpy(clo[o], l, sizeof clo[o]);
+        memcpy(chi[o], h, sizeof chi[o]);
+    }
+#else
+    for (uint32_t i = 0; i < count; i++) {
+        const float *c = cen + 3 * (size_t)i;
+        int o = (c[0] > mid[0]) | (c[1] > mid[1]) << 1 | (c[2] > mid[2]) << 2;
+        oct[i] = (uint8_t)o;
+        cnt[o]++;
+        for (int a = 0; a < 3; a++) {
+            clo[o][a] = c[a] < clo[o][a] ? c[a] : clo[o][a];
+            chi[o][a] = c[a] > chi[o][a] ? c[a] : chi[o][a];
+        }
+    }
+#endif
     int used = 0;
     for (int o = 0; o < 8; o++)
         used += cnt[o] > 0;
-    if (used < 2) {         /* all centroids coincide: nothing to split */
-        qsort(ord, count, sizeof *ord, cmp_u32);
+    if (used < 2)           /* all centroids on one side: nothing to split */
         return 0;
-    }
     uint32_t start[8], acc = 0;
     for (int o = 0; o < 8; o++) {
         start[o] = acc;
         acc += cnt[o];
     }
+    uint32_t *ord = s->order + first, *ord2 = w->ord2 + first;
+    float *cen2 = w->cen2 + 3 * (size_t)first;
     for (uint32_t i = 0; i < count; i++) {
-        const float *c = &cen[3 * (size_t)ord[i]];
-        int o = (c[0] > mid[0]) | (c[1] > mid[1]) << 1 | (c[2] > mid[2]) << 2;
-        tmp[start[o]++] = ord[i];
+        uint32_t at = start[oct[i]]++;
+        ord2[at] = ord[i];
+        memcpy(cen2 + 3 * (size_t)at, cen + 3 * (size_t)i, 3 * sizeof(float));
     }
-    memcpy(ord, tmp, count * sizeof *ord);
+    memcpy(ord, ord2, count * sizeof *ord);
+    memcpy(w->cen + 3 * (size_t)first, cen2, 3 * (size_t)count * sizeof(float));
     uint32_t kids;
     if (new_nodes(s, (uint32_t)used, &kids))
         return -1;
@@ -193,7 +270,7 @@ static int build_node(OctState *s, const float *cen, uint32_t *tmp, uint32_t ni,
     for (int o = 0; o < 8; o++) {
         if (!cnt[o])
             continue;
-        if (build_node(s, cen, tmp, kids + k, at, cnt[o], depth + 1))
+        if (build_node(s, w, kids + k, at, cnt[o], clo[o], chi[o], depth + 1))
             return -1;
         at += cnt[o];
         k++;
@@ -201,27 +278,29 @@ static int build_node(OctState *s, const float *cen, uint32_t *tmp, uint32_t ni,
     return 0;
 }
 
-static void tree_free(OctState *s)
+static void tree_free(OctTree *s)
 {
+    if (!s)
+        return;
     free(s->nodes);
     free(s->order);
     free(s->leaf);
     free(s->roots);
     free(s->node_end);
     free(s->base);
-    free(s->bound);
-    s->nodes = NULL;
-    s->order = s->leaf = s->roots = s->node_end = s->base = NULL;
-    s->bound = NULL;
-    s->nnodes = s->cap_nodes = 0;
-    s->nroots = 0;
-    s->built_ok = 0;
+    free(s);
 }
 
-/* Build the trees of every loaded object of the scene. */
-static int tree_build(OctState *s, const Scene *sc)
+static int tree_is_for(const OctTree *t, const Scene *sc)
 {
-    tree_free(s);
+    return t && t->key == sc && t->key_npolys == sc->npolys && t->key_nobjs == sc->nobjs &&
+           t->key_corner == sc->poly_corner;
+}
+
+/* Build the trees of every loaded object of the scene into s (zeroed but
+ * for cancel). Returns 0, or -1 (out of memory, or cancelled). */
+static int tree_build(OctTree *s, const Scene *sc)
+{
     s->key = sc;
     s->key_npolys = sc->npolys;
     s->key_nobjs = sc->nobjs;
@@ -230,23 +309,22 @@ static int tree_build(OctState *s, const Scene *sc)
     if (nb <= 0 || nb > sc->nobjs)
         nb = sc->nobjs;
     uint64_t total = 0;
-    uint32_t maxp = 0;
-    for (int k = 0; k < nb; k++) {
+    for (int k = 0; k < nb; k++)
         total += sc->objs[k].poly_count;
-        if (sc->objs[k].poly_count > maxp)
-            maxp = sc->objs[k].poly_count;
-    }
-    size_t nbs = (size_t)(nb > 0 ? nb : 1), tot = (size_t)(total > 0 ? total : 1),
-           mp = (size_t)(maxp > 0 ? maxp : 1);
+    size_t nbs = (size_t)(nb > 0 ? nb : 1), tot = (size_t)(total > 0 ? total : 1);
     s->roots = malloc(nbs * sizeof *s->roots);
     s->node_end = malloc(nbs * sizeof *s->node_end);
     s->base = malloc(nbs * sizeof *s->base);
     s->order = malloc(tot * sizeof *s->order);
     s->leaf = malloc(tot * sizeof *s->leaf);
-    float *cen = malloc(mp * 3 * sizeof(float));
-    uint32_t *tmp = malloc(mp * sizeof(uint32_t));
+    BuildWork w;
+    /* indexed like order[]: every loaded object's polygons */
+    w.cen = malloc((tot * 3 + 1) * sizeof(float));     /* + 1: 4-float loads */
+    w.cen2 = malloc((tot * 3 + 1) * sizeof(float));
+    w.ord2 = malloc(tot * sizeof(uint32_t));
+    w.oct = malloc(tot);
     int rc = -1;
-    if (!s->roots || !s->node_end || !s->base || !s->order || !s->leaf || !cen || !tmp)
+    if (!s->roots || !s->node_end || !s->base || !s->order || !s->leaf || !w.cen || !w.cen2 || !w.ord2 || !w.oct)
         goto out;
     s->nroots = nb;
     /* the flat walk finds an object's screen polygons by face id */
@@ -265,23 +343,29 @@ static int tree_build(OctState *s, const Scene *sc)
         if (!o->poly_count || !o->mesh)
             continue;
         const float *pos = o->mesh->pos;
+        float lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
         for (uint32_t i = 0; i < o->poly_count; i++) {
             uint32_t pk = o->poly_first + i;
-            float *c = &cen[3 * (size_t)i];
-            c[0] = c[1] = c[2] = 0;
+            /* summed in locals: a store to w.cen could alias pos */
+            float c[3] = { 0, 0, 0 };
             uint32_t c0 = sc->poly_start[pk], c1 = sc->poly_start[pk + 1];
             for (uint32_t q = c0; q < c1; q++) {
                 const float *v = &pos[3 * (size_t)sc->poly_corner[q]];
-                for (int a = 0; a < 3; a++)
-                    c[a] += v[a];
+                c[0] += v[0];
+                c[1] += v[1];
+                c[2] += v[2];
             }
             float inv = c1 > c0 ? 1.0f / (float)(c1 - c0) : 0;
-            for (int a = 0; a < 3; a++)
+            for (int a = 0; a < 3; a++) {
                 c[a] *= inv;
+                lo[a] = c[a] < lo[a] ? c[a] : lo[a];
+                hi[a] = c[a] > hi[a] ? c[a] : hi[a];
+            }
+            memcpy(&w.cen[3 * ((size_t)at + i)], c, sizeof c);
             s->order[at + i] = i;
         }
         uint32_t root;
-        if (new_nodes(s, 1, &root) || build_node(s, cen, tmp, root, at, o->poly_count, 0))
+        if (cancelled(s) || new_nodes(s, 1, &root) || build_node(s, &w, root, at, o->poly_count, lo, hi, 0))
             goto out;
         s->roots[k] = root;
         s->node_end[k] = s->nnodes;
@@ -292,17 +376,122 @@ static int tree_build(OctState *s, const Scene *sc)
                     s->leaf[at + s->order[s->nodes[n].first + i] ] = n;
         at += o->poly_count;
     }
-    s->bound = malloc((size_t)(s->nnodes > 0 ? s->nnodes : 1) * sizeof *s->bound);
-    if (!s->bound)
-        goto out;
-    s->built_ok = 1;
     rc = 0;
 out:
-    free(cen);
-    free(tmp);
-    if (rc)
-        tree_free(s);
+    free(w.cen);
+    free(w.cen2);
+    free(w.ord2);
+    free(w.oct);
     return rc;
+}
+
+/* ==== the shared trees: built once, in the background or not ==== */
+
+static void *builder_main(void *arg)
+{
+    OctShared *sh = arg;
+    /* next and its scene stay as they are until this thread is joined */
+    int rc = tree_build(sh->next, sh->build_key);
+    pthread_mutex_lock(&sh->mu);
+    if (rc) {
+        sh->failed = !__atomic_load_n(&sh->cancel, __ATOMIC_RELAXED);
+        sh->failed_key = sh->build_key;
+        tree_free(sh->next);
+        sh->next = NULL;
+    }
+    sh->done = 1;
+    pthread_mutex_unlock(&sh->mu);
+    return NULL;
+}
+
+/* Wait for the builder (told to stop first when cancel), and take what
+ * it built. Called with sh->mu not held, from one thread. */
+static void builder_join(OctShared *sh, int cancel)
+{
+    if (!sh->building)
+        return;
+    if (cancel)
+        __atomic_store_n(&sh->cancel, 1, __ATOMIC_RELAXED);
+    pthread_join(sh->th, NULL);
+    sh->building = sh->done = 0;
+    __atomic_store_n(&sh->cancel, 0, __ATOMIC_RELAXED);
+    if (sh->next) {
+        tree_free(sh->cur);
+        sh->cur = sh->next;
+        sh->next = NULL;
+    }
+}
+
+static OctTree *tree_new(OctShared *sh, const Scene *sc)
+{
+    OctTree *t = calloc(1, sizeof *t);
+    if (t) {
+        t->key = sc;
+        t->cancel = &sh->cancel;
+    }
+    return t;
+}
+
+/* Before a frame's bands start (one thread): take finished trees, start
+ * (or, on one thread, do) the build this frame's scene needs, and set
+ * sh->use. */
+static void shared_frame_begin(OctShared *sh, const Scene *sc)
+{
+    sh->use = NULL;
+    if (!sc || sc->nobjs == 0)
+        return;
+    pthread_mutex_lock(&sh->mu);
+    int done = sh->done;
+    pthread_mutex_unlock(&sh->mu);
+    if (sh->building && (done || sh->build_key != sc))
+        builder_join(sh, !done);     /* finished, or building for a scene gone by */
+    if (tree_is_for(sh->cur, sc)) {
+        sh->use = sh->cur;
+        return;
+    }
+    if (sh->building || (sh->failed && sh->failed_key == sc))
+        return;
+    sh->failed = 0;
+    OctTree *t = tree_new(sh, sc);
+    if (!t)
+        return;
+    uint64_t polys = 0;
+    for (int k = 0; k < (int)sc->nbase_objs && k < sc->nobjs; k++)
+        polys += sc->objs[k].poly_count;
+    if (sh->background && polys >= BACKGROUND_MIN) {
+        sh->next = t;
+        sh->build_key = sc;
+        sh->done = 0;
+        if (pthread_create(&sh->th, NULL, builder_main, sh) == 0) {
+            sh->building = 1;
+            return;
+        }
+        sh->next = NULL;        /* no thread to be had: build it here */
+    }
+    if (tree_build(t, sc)) {
+        tree_free(t);
+        sh->failed = 1;
+        sh->failed_key = sc;
+        return;
+    }
+    tree_free(sh->cur);
+    sh->cur = t;
+    sh->use = t;
+}
+
+static void shared_init(OctShared *sh, int background)
+{
+    memset(sh, 0, sizeof *sh);
+    pthread_mutex_init(&sh->mu, NULL);
+    sh->background = background;
+}
+
+static void shared_free(OctShared *sh)
+{
+    builder_join(sh, 1);
+    tree_free(sh->cur);
+    tree_free(sh->next);
+    pthread_mutex_destroy(&sh->mu);
 }
 
 /* ==== the bounds of one object's nodes in a band ==== */
@@ -322,14 +511,15 @@ static inline void bound_add(NodeBound *b, int32_t x0, int32_t x1, int32_t y0, i
 /* Gather the bounds of tree t's nodes for object instance oi from its
  * screen polygons that reach rows [y0, y1): each into its leaf, then the
  * leaves up to the root (children come after their parent). */
-static void gather_bounds(OctState *s, const ScreenPolys *sp, const Object *o, int oi, int t, int y0, int y1)
+static void gather_bounds(OctState *s, const OctTree *tr, const ScreenPolys *sp, const Object *o, int oi, int t,
+                          int y0, int y1)
 {
-    uint32_t r = s->roots[t], e = s->node_end[t];
+    uint32_t r = tr->roots[t], e = tr->node_end[t];
     NodeBound *bd = s->bound;
     for (uint32_t n = r; n < e; n++)
         bd[n] = (NodeBound){ INT32_MAX, INT32_MIN, INT32_MAX, INT32_MIN, INFINITY, 0 };
     const int32_t *map = sp->map + sp->map_first[oi];
-    const uint32_t *leaf = s->leaf + s->base[t];
+    const uint32_t *leaf = tr->leaf + tr->base[t];
     for (uint32_t i = 0; i < o->poly_count; i++) {
         int32_t q = map[i];
         if (q < 0)
@@ -341,7 +531,7 @@ static void gather_bounds(OctState *s, const ScreenPolys *sp, const Object *o, i
         bound_add(&bd[leaf[i]], p->x0, p->x1, ya, yb, p->zmin, 1);
     }
     for (uint32_t n = e; n-- > r;) {
-        const OctNode *nd = &s->nodes[n];
+        const OctNode *nd = &tr->nodes[n];
         for (uint32_t c = nd->child; c < nd->child + nd->nchild; c++)
             if (bd[c].n)
                 bound_add(&bd[n], bd[c].x0, bd[c].x1, bd[c].y0, bd[c].y1, bd[c].zmin, bd[c].n);
@@ -378,8 +568,10 @@ static void *oct_create(void)
     OctState *s = calloc(1, sizeof *s);
     if (s && hzb_base_init(&s->hz)) {
         free(s);
-        s = NULL;
+        return NULL;
     }
+    if (s)
+        shared_init(&s->own, 0);
     return s;
 }
 
@@ -389,9 +581,36 @@ static void oct_destroy(void *st)
     if (!s)
         return;
     hzb_base_free(&s->hz);
-    tree_free(s);
+    shared_free(&s->own);
     free(s->views);
+    free(s->bound);
     free(s);
+}
+
+static void *oct_create_shared(int nthreads)
+{
+    OctShared *sh = malloc(sizeof *sh);
+    if (sh)
+        shared_init(sh, nthreads > 1);
+    return sh;
+}
+
+static void oct_destroy_shared(void *p)
+{
+    if (!p)
+        return;
+    shared_free(p);
+    free(p);
+}
+
+static void oct_share(void *st, void *sh)
+{
+    ((OctState *)st)->shared = sh;
+}
+
+static void oct_frame_begin(void *p, const HsrInput *in)
+{
+    shared_frame_begin(p, in->scene);
 }
 
 /* Every polygon of object oi, in order: the fallback when it has no tree. */
@@ -408,10 +627,10 @@ static void draw_object_flat(OctState *s, const HsrInput *in, int oi, FrameBufs 
 /* Every polygon of node nd's subtree. The screen polygons are gathered
  * first and fetched (then their corners) ahead, a chunk at a time: they
  * lie anywhere in the object's range. */
-static void draw_node_polys(OctState *s, const ScreenPolys *sp, const int32_t *map, const OctNode *nd,
-                            FrameBufs *fb, int y0, int y1, HsrStats *st)
+static void draw_node_polys(OctState *s, const OctTree *tr, const ScreenPolys *sp, const int32_t *map,
+                            const OctNode *nd, FrameBufs *fb, int y0, int y1, HsrStats *st)
 {
-    const uint32_t *ord = s->order + nd->first;
+    const uint32_t *ord = tr->order + nd->first;
     for (uint32_t c = 0; c < nd->count; c += CHUNK) {
         uint32_t e = nd->count - c < CHUNK ? nd->count : c + CHUNK;
         int32_t idx[CHUNK];
@@ -443,8 +662,8 @@ static int node_hidden(OctState *s, uint32_t n, HsrStats *st)
     return 1;
 }
 
-static void walk_object(OctState *s, const HsrInput *in, const ObjView *ov, FrameBufs *fb, int y0, int y1,
-                        HsrStats *st)
+static void walk_object(OctState *s, const OctTree *tr, const HsrInput *in, const ObjView *ov, FrameBufs *fb,
+                        int y0, int y1, HsrStats *st)
 {
     const ScreenPolys *sp = in->sp;
     if (ov->flat) {
@@ -457,11 +676,11 @@ static void walk_object(OctState *s, const HsrInput *in, const ObjView *ov, Fram
     }
     const Object *o = &in->scene->objs[ov->obj];
     double tg = now_ms();
-    gather_bounds(s, sp, o, ov->obj, ov->tree, y0, y1);
+    gather_bounds(s, tr, sp, o, ov->obj, ov->tree, y0, y1);
     st->build_ms += now_ms() - tg;      /* per-frame upkeep of the structure */
     const int32_t *map = sp->map + sp->map_first[ov->obj];
     const NodeBound *bd = s->bound;
-    uint32_t root = s->roots[ov->tree];
+    uint32_t root = tr->roots[ov->tree];
     if (!bd[root].n)
         return;
     uint32_t stack[STACK_MAX];
@@ -469,11 +688,11 @@ static void walk_object(OctState *s, const HsrInput *in, const ObjView *ov, Fram
     stack[top++] = root;
     while (top > 0) {
         uint32_t ni = stack[--top];
-        const OctNode *nd = &s->nodes[ni];
+        const OctNode *nd = &tr->nodes[ni];
         if (node_hidden(s, ni, st))
             continue;
         if (!nd->nchild) {
-            draw_node_polys(s, sp, map, nd, fb, y0, y1, st);
+            draw_node_polys(s, tr, sp, map, nd, fb, y0, y1, st);
             continue;
         }
         /* children with polygons in the band, far to near onto the stack,
@@ -495,11 +714,11 @@ static void walk_object(OctState *s, const HsrInput *in, const ObjView *ov, Fram
             kid[at] = c;
         }
         for (int k = 0; k < nk; k++) {
-            const OctNode *c = &s->nodes[kid[k]];
+            const OctNode *c = &tr->nodes[kid[k]];
             if (top == STACK_MAX) {
                 /* cannot happen (depth <= MAX_DEPTH holds at most 7
                  * pending siblings a level), but never drop polygons */
-                draw_node_polys(s, sp, map, c, fb, y0, y1, st);
+                draw_node_polys(s, tr, sp, map, c, fb, y0, y1, st);
                 continue;
             }
             stack[top++] = kid[k];
@@ -523,21 +742,31 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     const ScreenPolys *sp = in->sp;
     double t0 = now_ms();
     hzb_pyr_begin(&s->hz.pyr, fb, y0, y1);
-    if (sc && (s->key != sc || s->key_npolys != sc->npolys || s->key_nobjs != sc->nobjs ||
-               s->key_corner != sc->poly_corner)) {
-        /* Bands build their trees one at a time, so that only one build's
-         * scratch (tens of MB on a big model) is alive at once. */
-        pthread_mutex_lock(&build_lock);
-        tree_build(s, sc);
-        pthread_mutex_unlock(&build_lock);
+    OctShared *sh = s->shared;
+    if (!sh) {
+        /* rendered without a runner (a band on its own): trees of its own */
+        sh = &s->own;
+        shared_frame_begin(sh, sc);
     }
+    const OctTree *tr = sh->use;
     stats->build_ms += now_ms() - t0;
-
-    if (!sc || !s->built_ok || sc->nobjs == 0) {
-        /* no scene to build from: the plain hzb over every polygon */
+    if (!tr) {
+        /* no trees (yet, or no scene to build from): the plain hzb over
+         * every polygon, the same picture */
+        stats->building |= sh->building;
         for (uint32_t i = 0; i < sp->npolys; i++)
             hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, i, fb, y0, y1, stats);
         return;
+    }
+    if (tr->nnodes > s->cap_bound) {
+        NodeBound *q = realloc(s->bound, (size_t)tr->nnodes * sizeof *q);
+        if (!q) {
+            for (uint32_t i = 0; i < sp->npolys; i++)
+                hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, i, fb, y0, y1, stats);
+            return;
+        }
+        s->bound = q;
+        s->cap_bound = tr->nnodes;
     }
     if (sc->nobjs > s->cap_views) {
         ObjView *v = realloc(s->views, (size_t)sc->nobjs * sizeof *v);
@@ -551,7 +780,7 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
      * face order (unless --order changed it), so when face ids grow with
      * the object index, an object's screen polygons are the run of faces
      * in its range. */
-    int ordered = s->lface_sorted && sp->face_sorted;
+    int ordered = tr->lface_sorted && sp->face_sorted;
     for (int oi = 1; oi < sc->nobjs && ordered; oi++)
         ordered = sc->objs[oi].face_base >= sc->objs[oi - 1].face_base + (int32_t)sc->objs[oi - 1].face_count;
     uint32_t run = 0;
@@ -564,9 +793,9 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
         ov->obj = oi;
         ov->tree = -1;
         ov->flat = 0;
-        int b = oi % s->nroots;
+        int b = oi % tr->nroots;
         const Object *base = &sc->objs[b];
-        if (s->roots[b] != NO_TREE && base->poly_first == o->poly_first &&
+        if (tr->roots[b] != NO_TREE && base->poly_first == o->poly_first &&
             base->poly_count == o->poly_count && base->mesh == o->mesh)
             ov->tree = b;
         if (ov->tree < 0) {
@@ -586,7 +815,7 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
         if (ov->tree < 0)
             draw_object_flat(s, in, ov->obj, fb, y0, y1, stats);
         else
-            walk_object(s, in, ov, fb, y0, y1, stats);
+            walk_object(s, tr, in, ov, fb, y0, y1, stats);
     }
 }
 
@@ -596,4 +825,8 @@ const HsrAlgo hsr_hzb_octree = {
     .create = oct_create,
     .destroy = oct_destroy,
     .render = oct_render,
+    .create_shared = oct_create_shared,
+    .destroy_shared = oct_destroy_shared,
+    .share = oct_share,
+    .frame_begin = oct_frame_begin,
 };

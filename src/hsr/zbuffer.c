@@ -9,6 +9,13 @@
 #ifdef __SSE2__
 #include <emmintrin.h>
 #endif
+/* The AVX2 rasterizer is compiled with a target attribute and chosen at
+ * run time: the build stays baseline. */
+#if defined(__SSE2__) && (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#define ZV_AVX2 1
+#include <immintrin.h>
+#define AVX2_FN __attribute__((target("avx2")))
+#endif
 
 #include "raster.h"
 #include "hsr.h"
@@ -18,11 +25,19 @@ typedef struct {
     PolyWalk walk;          /* general polygons */
     int32_t *xs;            /* crossings of one row */
     int      xs_cap;
+    int      avx2;          /* the CPU runs the AVX2 rasterizer */
 } ZState;
 
 static void *zb_create(void)
 {
-    return calloc(1, sizeof(ZState));
+    ZState *z = calloc(1, sizeof(ZState));
+#ifdef ZV_AVX2
+    if (z) {
+        __builtin_cpu_init();
+        z->avx2 = __builtin_cpu_supports("avx2") != 0;
+    }
+#endif
+    return z;
 }
 
 static void zb_destroy(void *st)
@@ -139,10 +154,406 @@ static uint64_t draw_small_triangle(const ScreenVert *v, const ScreenPoly *p, Fr
 /* Boxes of at most this many samples take the edge-function path. */
 #define SMALL_BOX 24
 
+#ifdef ZV_AVX2
+/* Triangles whose corners lie within this many pixels of each other, each
+ * way, take the AVX2 path: relative to the first sample of their box,
+ * every edge function value it meets (eight columns past the box
+ * included) stays below 2^31, so 32-bit lanes hold them exactly. */
+#define AVX2_SPAN 64
+
+/* A triangle's edges as raster.h's TriEdges (exactly the crossing rule),
+ * in 32-bit lanes: e at the sample of each lane, its step to the next
+ * block, and the bias (inside where e > lim, i.e. e >= bias). */
+typedef struct {
+    __m256i e[3], step[3], lim[3];
+    int32_t sx[3], sy[3];       /* per column, per row */
+} Edges8;
+
+/* Set up the edges of triangle v at sample (x0, ya) for lanes that sit
+ * at column x0 + (l % wl), row ya + (l / wl), stepping rows by 8 / wl a
+ * block (wl = 8: a block steps columns instead, by 8). 0: no area. */
+AVX2_FN static inline __attribute__((always_inline)) int edges8_setup(Edges8 *t, const ScreenVert *v, int32_t x0, int32_t ya, int wl)
+{
+    int32_t ox = 256 * x0 + 128, oy = 256 * ya + 128;
+    int32_t ax = v[0].x - ox, ay = v[0].y - oy, bx = v[1].x - ox, by = v[1].y - oy, cx = v[2].x - ox,
+            cy = v[2].y - oy;
+    /* twice the signed area: within 2^31 at these spans */
+    int32_t orient = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+    if (orient == 0)
+        return 0;
+    if (orient < 0) {           /* walk the edges the other way round */
+        int32_t q = bx;
+        bx = cx;
+        cx = q;
+        q = by;
+        by = cy;
+        cy = q;
+    }
+    const int32_t px[4] = { ax, bx, cx, ax }, py[4] = { ay, by, cy, ay };
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    __m256i col = lane, row = _mm256_setzero_si256();
+    if (wl < 8) {
+        int sh = wl == 4 ? 2 : 1;
+        col = _mm256_and_si256(lane, _mm256_set1_epi32(wl - 1));
+        row = _mm256_srli_epi32(lane, sh);
+    }
+    for (int k = 0; k < 3; k++) {
+        int32_t dx = px[k + 1] - px[k], dy = py[k + 1] - py[k];
+        t->sx[k] = -dy * 256;
+        t->sy[k] = dx * 256;
+        /* e at the sample itself: dx (0 - ay) - dy (0 - ax) */
+        int32_t e0 = dy * px[k] - dx * py[k];
+        t->e[k] = _mm256_add_epi32(_mm256_set1_epi32(e0),
+                                   _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(t->sx[k]), col),
+                                                    _mm256_mullo_epi32(_mm256_set1_epi32(t->sy[k]), row)));
+        t->step[k] = _mm256_set1_epi32(wl < 8 ? t->sy[k] * (8 / wl) : t->sx[k] * 8);
+        t->lim[k] = _mm256_set1_epi32((-dy > 0 || (dy == 0 && dx > 0)) ? -1 : 0);
+    }
+    return 1;
+}
+
+AVX2_FN static inline __m256i edges8_in(const Edges8 *t, __m256i e0, __m256i e1, __m256i e2)
+{
+    return _mm256_and_si256(_mm256_and_si256(_mm256_cmpgt_epi32(e0, t->lim[0]), _mm256_cmpgt_epi32(e1, t->lim[1])),
+                            _mm256_cmpgt_epi32(e2, t->lim[2]));
+}
+
+/* Two 32-bit values (a float or id pair of one row) at p and at q, as the
+ * low and high halves of a vector; and the low pair of v stored at p.
+ * 64-bit moves through the unaligned integer intrinsics: the pairs sit
+ * at any 4-byte boundary. */
+AVX2_FN static inline __m128i load2x2(const void *p, const void *q)
+{
+    return _mm_unpacklo_epi64(_mm_loadl_epi64((const __m128i *)p), _mm_loadl_epi64((const __m128i *)q));
+}
+
+AVX2_FN static inline void store2(void *p, __m128i v)
+{
+    _mm_storel_epi64((__m128i *)p, v);
+}
+
+/* hsr_wins() of (z, id) against (zb, ib), eight lanes, within in. */
+AVX2_FN static inline __m256i wins8(__m256 z, __m256i vidb, __m256 zb, __m256i ib, __m256i in)
+{
+    const __m256i bias = _mm256_set1_epi32(INT32_MIN);
+    __m256i lt = _mm256_castps_si256(_mm256_cmp_ps(z, zb, _CMP_LT_OQ));
+    __m256i eq = _mm256_castps_si256(_mm256_cmp_ps(z, zb, _CMP_EQ_OQ));
+    __m256i idlt = _mm256_cmpgt_epi32(_mm256_xor_si256(ib, bias), vidb);    /* id < ib, unsigned */
+    return _mm256_and_si256(in, _mm256_or_si256(lt, _mm256_and_si256(eq, idlt)));
+}
+
+/* A triangle by edge functions, eight samples of a row a block: three
+ * adds step the edges, compares with the top-left bias give coverage, and
+ * the depth test is span_test()'s (plane_at()'s convert, multiply and
+ * add; hsr_wins() on (depth, id)), eight wide. Blocks reaching past the
+ * image's right edge finish one sample at a time. Returns the samples
+ * written. */
+AVX2_FN static uint64_t draw_tri_rows8(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+{
+    Edges8 t;
+    if (!edges8_setup(&t, v, p->x0, ya, 8))
+        return 0;
+    int w = fb->w, x0 = p->x0, x1 = p->x1;
+    int32_t id = p->face;
+    const __m256 va = _mm256_set1_ps(p->a);
+    const __m256i vid = _mm256_set1_epi32(id), vidb = _mm256_xor_si256(vid, _mm256_set1_epi32(INT32_MIN));
+    const __m256i xend = _mm256_set1_epi32(x1 - x0), lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i step_y[3] = { _mm256_set1_epi32(t.sy[0]), _mm256_set1_epi32(t.sy[1]), _mm256_set1_epi32(t.sy[2]) };
+    uint64_t n = 0;
+    for (int j = ya; j < yb; j++) {
+        int32_t *ids = fb->ids + (size_t)j * w;
+        float *dep = fb->depth + (size_t)j * w;
+        const __m256 vzr = _mm256_set1_ps(plane_row(p, j));
+        __m256i e0 = t.e[0], e1 = t.e[1], e2 = t.e[2];
+        for (int x = x0; x < x1; x += 8) {
+            __m256i rel = _mm256_add_epi32(_mm256_set1_epi32(x - x0), lane);    /* i - x0 */
+            __m256i in = _mm256_and_si256(edges8_in(&t, e0, e1, e2), _mm256_cmpgt_epi32(xend, rel));
+            e0 = _mm256_add_epi32(e0, t.step[0]);
+            e1 = _mm256_add_epi32(e1, t.step[1]);
+            e2 = _mm256_add_epi32(e2, t.step[2]);
+            if (_mm256_testz_si256(in, in))
+                continue;
+            __m256 z = _mm256_add_ps(vzr, _mm256_mul_ps(va, _mm256_cvtepi32_ps(rel)));
+            if (x + 8 > w) {
+                /* the image's right edge: sample by sample */
+                float zs[8];
+                int32_t m[8];
+                _mm256_storeu_ps(zs, z);
+                _mm256_storeu_si256((__m256i *)m, in);
+                for (int l = 0; l < 8 && x + l < w; l++)
+                    if (m[l] && hsr_wins(zs[l], id, dep[x + l], ids[x + l])) {
+                        dep[x + l] = zs[l];
+                        ids[x + l] = id;
+                        n++;
+                    }
+                continue;
+            }
+            __m256 zb = _mm256_loadu_ps(dep + x);
+            __m256i ib = _mm256_loadu_si256((const __m256i *)(ids + x));
+            __m256i win = wins8(z, vidb, zb, ib, in);
+            int mask = _mm256_movemask_ps(_mm256_castsi256_ps(win));
+            if (!mask)
+                continue;
+            _mm256_storeu_ps(dep + x, _mm256_blendv_ps(zb, z, _mm256_castsi256_ps(win)));
+            _mm256_storeu_si256((__m256i *)(ids + x), _mm256_blendv_epi8(ib, vid, win));
+            n += (uint64_t)__builtin_popcount((unsigned)mask);
+        }
+        t.e[0] = _mm256_add_epi32(t.e[0], step_y[0]);
+        t.e[1] = _mm256_add_epi32(t.e[1], step_y[1]);
+        t.e[2] = _mm256_add_epi32(t.e[2], step_y[2]);
+    }
+    return n;
+}
+
+/* A triangle whose sample box is at most wl (2 or 4) columns wide and
+ * wholly inside the image's width: 8 / wl rows a block, lane l at column
+ * x0 + l % wl of row j + l / wl. Rows past yb are neither read nor
+ * written (they may belong to another band, or lie past the image). */
+AVX2_FN static inline __attribute__((always_inline)) uint64_t
+draw_tri_narrow(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb, const int wl)
+{
+    Edges8 t;
+    if (!edges8_setup(&t, v, p->x0, ya, wl))
+        return 0;
+    const int rows = 8 / wl;
+    int w = fb->w, x0 = p->x0;
+    int32_t id = p->face;
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i col = _mm256_and_si256(lane, _mm256_set1_epi32(wl - 1));
+    const __m256i row = _mm256_srli_epi32(lane, wl == 4 ? 2 : 1);
+    const __m256i inbox = _mm256_cmpgt_epi32(_mm256_set1_epi32(p->x1 - x0), col);
+    const __m256 za = _mm256_mul_ps(_mm256_set1_ps(p->a), _mm256_cvtepi32_ps(col));   /* a (i - x0) */
+    const __m256 vzc = _mm256_set1_ps(p->zc), vb = _mm256_set1_ps(p->b);
+    const __m256i vid = _mm256_set1_epi32(id), vidb = _mm256_xor_si256(vid, _mm256_set1_epi32(INT32_MIN));
+    uint64_t n = 0;
+    for (int j = ya; j < yb; j += rows) {
+        int left = yb - j < rows ? yb - j : rows;
+        __m256i in = _mm256_and_si256(edges8_in(&t, t.e[0], t.e[1], t.e[2]),
+                                      _mm256_and_si256(inbox, _mm256_cmpgt_epi32(_mm256_set1_epi32(left), row)));
+        t.e[0] = _mm256_add_epi32(t.e[0], t.step[0]);
+        t.e[1] = _mm256_add_epi32(t.e[1], t.step[1]);
+        t.e[2] = _mm256_add_epi32(t.e[2], t.step[2]);
+        if (_mm256_testz_si256(in, in))
+            continue;
+        /* plane_row() of each lane's row, then plane_at()'s add: the
+         * same float operations in the same order, lane by lane */
+        __m256i jrow = _mm256_add_epi32(_mm256_set1_epi32(j - p->y0), row);
+        __m256 z = _mm256_add_ps(_mm256_add_ps(vzc, _mm256_mul_ps(vb, _mm256_cvtepi32_ps(jrow))), za);
+        float *dr[4];
+        int32_t *ir[4];
+        for (int r = 0; r < rows; r++) {
+            int jr = r < left ? j + r : j;          /* a row past yb: read row j again, masked out */
+            dr[r] = fb->depth + (size_t)jr * w + x0;
+            ir[r] = fb->ids + (size_t)jr * w + x0;
+        }
+        __m256 zb;
+        __m256i ib;
+        if (wl == 4) {
+            zb = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(dr[0])), _mm_loadu_ps(dr[1]), 1);
+            ib = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128((const __m128i *)ir[0])),
+                                         _mm_loadu_si128((const __m128i *)ir[1]), 1);
+        } else {
+            zb = _mm256_castsi256_ps(_mm256_inserti128_si256(_mm256_castsi128_si256(load2x2(dr[0], dr[1])),
+                                                             load2x2(dr[2], dr[3]), 1));
+            ib = _mm256_inserti128_si256(_mm256_castsi128_si256(load2x2(ir[0], ir[1])), load2x2(ir[2], ir[3]), 1);
+        }
+        __m256i win = wins8(z, vidb, zb, ib, in);
+        int mask = _mm256_movemask_ps(_mm256_castsi256_ps(win));
+        if (!mask)
+            continue;
+        n += (uint64_t)__builtin_popcount((unsigned)mask);
+        __m256 zn = _mm256_blendv_ps(zb, z, _mm256_castsi256_ps(win));
+        __m256i in_ = _mm256_blendv_epi8(ib, vid, win);
+        if (wl == 4) {
+            _mm_storeu_ps(dr[0], _mm256_castps256_ps128(zn));
+            _mm_storeu_si128((__m128i *)ir[0], _mm256_castsi256_si128(in_));
+            if (left > 1) {
+                _mm_storeu_ps(dr[1], _mm256_extractf128_ps(zn, 1));
+                _mm_storeu_si128((__m128i *)ir[1], _mm256_extracti128_si256(in_, 1));
+            }
+        } else {
+            __m128i zl = _mm256_castsi256_si128(_mm256_castps_si256(zn)), zh = _mm256_extracti128_si256(_mm256_castps_si256(zn), 1);
+            __m128i il = _mm256_castsi256_si128(in_), ih = _mm256_extracti128_si256(in_, 1);
+            store2(dr[0], zl);
+            store2(ir[0], il);
+            if (left > 1) {
+                store2(dr[1], _mm_unpackhi_epi64(zl, zl));
+                store2(ir[1], _mm_unpackhi_epi64(il, il));
+            }
+            if (left > 2) {
+                store2(dr[2], zh);
+                store2(ir[2], ih);
+            }
+            if (left > 3) {
+                store2(dr[3], _mm_unpackhi_epi64(zh, zh));
+                store2(ir[3], _mm_unpackhi_epi64(ih, ih));
+            }
+        }
+    }
+    return n;
+}
+
+/* A triangle whose sample box fits one block: at most wl (2 or 4) columns
+ * and 8 / wl rows, inside the image's width. No loop and no stepping:
+ * each lane's edge functions straight from its sample's offset (the
+ * products stay within 2^31 at these sizes), then one depth test. Rows
+ * past yb are neither read nor written. */
+AVX2_FN static inline __attribute__((always_inline)) uint64_t
+draw_tri_block(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb, const int wl)
+{
+    int32_t x0 = p->x0, ox = 256 * x0 + 128, oy = 256 * ya + 128;
+    int32_t ax = v[0].x - ox, ay = v[0].y - oy, bx = v[1].x - ox, by = v[1].y - oy, cx = v[2].x - ox,
+            cy = v[2].y - oy;
+    int32_t orient = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+    if (orient == 0)
+        return 0;
+    if (orient < 0) {           /* walk the edges the other way round */
+        int32_t q = bx;
+        bx = cx;
+        cx = q;
+        q = by;
+        by = cy;
+        cy = q;
+    }
+    const int rows = 8 / wl, left = yb - ya;
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i col = _mm256_and_si256(lane, _mm256_set1_epi32(wl - 1));
+    const __m256i row = _mm256_srli_epi32(lane, wl == 4 ? 2 : 1);
+    const __m256i sx = _mm256_slli_epi32(col, SUBPIX_BITS), sy = _mm256_slli_epi32(row, SUBPIX_BITS);
+    __m256i in = _mm256_and_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(p->x1 - x0), col),
+                                  _mm256_cmpgt_epi32(_mm256_set1_epi32(left), row));
+    const int32_t px[4] = { ax, bx, cx, ax }, py[4] = { ay, by, cy, ay };
+    for (int k = 0; k < 3; k++) {
+        int32_t dx = px[k + 1] - px[k], dy = py[k + 1] - py[k];
+        /* e = dx (y - ay) - dy (x - ax) at the lane's sample */
+        __m256i e = _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(dx), _mm256_sub_epi32(sy, _mm256_set1_epi32(py[k]))),
+                                     _mm256_mullo_epi32(_mm256_set1_epi32(dy), _mm256_sub_epi32(sx, _mm256_set1_epi32(px[k]))));
+        int32_t lim = (-dy > 0 || (dy == 0 && dx > 0)) ? -1 : 0;
+        in = _mm256_and_si256(in, _mm256_cmpgt_epi32(e, _mm256_set1_epi32(lim)));
+    }
+    if (_mm256_testz_si256(in, in))
+        return 0;
+    /* plane_row() of each lane's row, then plane_at()'s add */
+    __m256i jrow = _mm256_add_epi32(_mm256_set1_epi32(ya - p->y0), row);
+    __m256 z = _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(p->zc), _mm256_mul_ps(_mm256_set1_ps(p->b), _mm256_cvtepi32_ps(jrow))),
+                             _mm256_mul_ps(_mm256_set1_ps(p->a), _mm256_cvtepi32_ps(col)));
+    int w = fb->w;
+    float *dr[4];
+    int32_t *ir[4];
+    for (int r = 0; r < rows; r++) {
+        int jr = r < left ? ya + r : ya;        /* a row past yb: read row ya again, masked out */
+        dr[r] = fb->depth + (size_t)jr * w + x0;
+        ir[r] = fb->ids + (size_t)jr * w + x0;
+    }
+    __m256 zb;
+    __m256i ib;
+    if (wl == 4) {
+        zb = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(dr[0])), _mm_loadu_ps(dr[1]), 1);
+        ib = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128((const __m128i *)ir[0])),
+                                     _mm_loadu_si128((const __m128i *)ir[1]), 1);
+    } else {
+        zb = _mm256_castsi256_ps(_mm256_inserti128_si256(_mm256_castsi128_si256(load2x2(dr[0], dr[1])),
+                                                         load2x2(dr[2], dr[3]), 1));
+        ib = _mm256_inserti128_si256(_mm256_castsi128_si256(load2x2(ir[0], ir[1])), load2x2(ir[2], ir[3]), 1);
+    }
+    int32_t id = p->face;
+    const __m256i vid = _mm256_set1_epi32(id), vidb = _mm256_xor_si256(vid, _mm256_set1_epi32(INT32_MIN));
+    __m256i win = wins8(z, vidb, zb, ib, in);
+    int mask = _mm256_movemask_ps(_mm256_castsi256_ps(win));
+    if (!mask)
+        return 0;
+    __m256 zn = _mm256_blendv_ps(zb, z, _mm256_castsi256_ps(win));
+    __m256i idn = _mm256_blendv_epi8(ib, vid, win);
+    /* store only the rows that won something (the rows past yb never do) */
+    if (wl == 4) {
+        if (mask & 0x0f) {
+            _mm_storeu_ps(dr[0], _mm256_castps256_ps128(zn));
+            _mm_storeu_si128((__m128i *)ir[0], _mm256_castsi256_si128(idn));
+        }
+        if (mask & 0xf0) {
+            _mm_storeu_ps(dr[1], _mm256_extractf128_ps(zn, 1));
+            _mm_storeu_si128((__m128i *)ir[1], _mm256_extracti128_si256(idn, 1));
+        }
+    } else {
+        __m128i zl = _mm256_castsi256_si128(_mm256_castps_si256(zn)), zh = _mm256_extracti128_si256(_mm256_castps_si256(zn), 1);
+        __m128i il = _mm256_castsi256_si128(idn), ih = _mm256_extracti128_si256(idn, 1);
+        if (mask & 0x03) {
+            store2(dr[0], zl);
+            store2(ir[0], il);
+        }
+        if (mask & 0x0c) {
+            store2(dr[1], _mm_unpackhi_epi64(zl, zl));
+            store2(ir[1], _mm_unpackhi_epi64(il, il));
+        }
+        if (mask & 0x30) {
+            store2(dr[2], zh);
+            store2(ir[2], ih);
+        }
+        if (mask & 0xc0) {
+            store2(dr[3], _mm_unpackhi_epi64(zh, zh));
+            store2(ir[3], _mm_unpackhi_epi64(ih, ih));
+        }
+    }
+    return (uint64_t)__builtin_popcount((unsigned)mask);
+}
+
+AVX2_FN static uint64_t draw_tri_block2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+{
+    return draw_tri_block(v, p, fb, ya, yb, 2);
+}
+
+AVX2_FN static uint64_t draw_tri_block4(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+{
+    return draw_tri_block(v, p, fb, ya, yb, 4);
+}
+
+/* draw_tri_narrow made once for each width, so that the lane layout is
+ * known to the compiler. */
+AVX2_FN static uint64_t draw_tri_narrow2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+{
+    return draw_tri_narrow(v, p, fb, ya, yb, 2);
+}
+
+AVX2_FN static uint64_t draw_tri_narrow4(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+{
+    return draw_tri_narrow(v, p, fb, ya, yb, 4);
+}
+
+/* The AVX2 path for triangle v: the narrowest layout its box fits. */
+AVX2_FN static uint64_t draw_triangle_avx2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+{
+    int bw = p->x1 - p->x0, bh = yb - ya;
+    if (bw <= 2 && bh <= 4 && p->x0 + 2 <= fb->w)
+        return draw_tri_block2(v, p, fb, ya, yb);
+    if (bw <= 4 && bh <= 2 && p->x0 + 4 <= fb->w)
+        return draw_tri_block4(v, p, fb, ya, yb);
+    if (bw <= 2 && p->x0 + 2 <= fb->w)
+        return draw_tri_narrow2(v, p, fb, ya, yb);
+    if (bw <= 4 && p->x0 + 4 <= fb->w)
+        return draw_tri_narrow4(v, p, fb, ya, yb);
+    return draw_tri_rows8(v, p, fb, ya, yb);
+}
+#endif
+
 /* A triangle: sorted by y, the long edge against the two short ones. */
-static uint64_t draw_triangle(const ScreenPolys *sp, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+static uint64_t draw_triangle(const ZState *zs, const ScreenPolys *sp, const ScreenPoly *p, FrameBufs *fb, int ya,
+                              int yb)
 {
     const ScreenVert *v = &sp->verts[p->first];
+#ifdef ZV_AVX2
+    if (zs->avx2) {
+        int32_t xlo = v[0].x < v[1].x ? v[0].x : v[1].x, xhi = v[0].x < v[1].x ? v[1].x : v[0].x;
+        int32_t ylo = v[0].y < v[1].y ? v[0].y : v[1].y, yhi = v[0].y < v[1].y ? v[1].y : v[0].y;
+        xlo = v[2].x < xlo ? v[2].x : xlo;
+        xhi = v[2].x > xhi ? v[2].x : xhi;
+        ylo = v[2].y < ylo ? v[2].y : ylo;
+        yhi = v[2].y > yhi ? v[2].y : yhi;
+        if (xhi - xlo <= AVX2_SPAN * SUBPIX && yhi - ylo <= AVX2_SPAN * SUBPIX)
+            return draw_triangle_avx2(v, p, fb, ya, yb);
+    }
+#else
+    (void)zs;
+#endif
     if ((p->x1 - p->x0) * (yb - ya) <= SMALL_BOX)
         return draw_small_triangle(v, p, fb, ya, yb);
     const ScreenVert *t = &v[0], *m = &v[1], *b = &v[2], *x;
@@ -208,7 +619,7 @@ uint64_t zbuffer_draw_poly(void *st, const ScreenPolys *sp, uint32_t pi, FrameBu
     if (ya >= yb)
         return 0;
     if (screen_poly_nverts(sp, pi) == 3)
-        return draw_triangle(sp, p, fb, ya, yb);
+        return draw_triangle(st, sp, p, fb, ya, yb);
     return draw_polygon(st, sp, pi, fb, ya, yb);
 }
 

@@ -10,6 +10,14 @@
 #include <string.h>
 #include "shade.h"
 
+/* The AVX2 pixel loop is compiled with a target attribute and chosen at
+ * run time: the build stays baseline. */
+#if defined(__SSE2__) && (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#define ZV_AVX2 1
+#include <immintrin.h>
+#define AVX2_FN __attribute__((target("avx2")))
+#endif
+
 /* ==== Names ==== */
 
 const char *const shade_names[SHADE_COUNT] = { "lambert", "smooth", "depth", "id" };
@@ -113,7 +121,7 @@ static int cache_grow(ShadeCache *c, uint32_t n)
     if (!st)
         return -1;
     c->stamp = st;      /* bigger than before: valid even if rgb fails */
-    uint8_t *rgb = realloc(c->rgb, (size_t)cap * 3);
+    uint8_t *rgb = realloc(c->rgb, (size_t)cap * 3 + 1);     /* + 1: the pixel loop loads 4 bytes a face */
     if (!rgb)
         return -1;
     c->rgb = rgb;
@@ -272,6 +280,132 @@ static void highlight_object(const Scene *s, const FrameBufs *fb, int obj, Image
 static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode,
                       float crease, ShadeCache *cache, Image *out);
 
+/* ==== Lambert and id colours, per face, per pixel ==== */
+
+/* What the per-pixel loops need: the per-face colours (computed once a
+ * frame, on first sight, stamped with the frame) and how to make them. */
+typedef struct {
+    const Scene *s;
+    ShadeMode    mode;
+    uint32_t     frame;
+    uint32_t    *stamp;
+    uint8_t     *crgb;          /* 3 per face, and one byte more (4-byte loads) */
+    Mat4         view;
+    NormalMat    nmat[NMAT_SLOTS];
+} FaceColours;
+
+/* Face id's colour, made current. */
+static inline const uint8_t *face_colour(FaceColours *fc, int32_t id)
+{
+    uint8_t *c = fc->crgb + 3 * (size_t)id;
+    if (fc->stamp[id] != fc->frame) {
+        if (fc->mode == SHADE_ID) {
+            shade_id_colour(id, c);
+        } else {
+            const Scene *s = fc->s;
+            int obj = s->face_obj ? s->face_obj[id] : 0;
+            NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
+            if (nm->obj != obj)
+                normal_mat(s, &fc->view, obj, nm);
+            lambert_face(s, nm, (uint32_t)id, c);
+        }
+        fc->stamp[id] = fc->frame;
+    }
+    return c;
+}
+
+/* Distance (in polygons) the colour pre-pass fetches ahead. */
+#define FETCH_AHEAD 16
+
+/* Every drawn polygon's face colour, before the pixels: the polygons come
+ * in face order, so the per-face arrays are read in order (and fetched
+ * ahead), where the pixels would visit them scattered, one cache miss
+ * each. Only faces of sp's polygons can be in the picture, so the pixel
+ * loop then finds every colour current. */
+static void colour_polys(FaceColours *fc, const ScreenPolys *sp)
+{
+    const Scene *s = fc->s;
+    int32_t last = -1;
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        if (i + FETCH_AHEAD < sp->npolys) {
+            uint32_t f = (uint32_t)sp->polys[i + FETCH_AHEAD].face;
+            if (f < s->nfaces) {
+                __builtin_prefetch(&fc->stamp[f]);
+                __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
+                if (s->face_rgb)
+                    __builtin_prefetch(&s->face_rgb[3 * (size_t)f]);
+                __builtin_prefetch(&fc->crgb[3 * (size_t)f], 1);
+            }
+        }
+        int32_t f = sp->polys[i].face;
+        if (f == last || f < 0 || (uint32_t)f >= s->nfaces)
+            continue;
+        last = f;
+        face_colour(fc, f);
+    }
+}
+
+/* Pixels [i0, i1) one at a time. */
+static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t i1, uint8_t *rgb, uint8_t *lit)
+{
+    uint32_t nfaces = fc->s->nfaces;
+    for (size_t i = i0; i < i1; i++) {
+        int32_t id = ids[i];
+        uint8_t *px = rgb + 3 * i;
+        if (id < 0 || (uint32_t)id >= nfaces) {
+            px[0] = px[1] = px[2] = 0;
+            lit[i] = 0;
+            continue;
+        }
+        const uint8_t *c = face_colour(fc, id);
+        px[0] = c[0];
+        px[1] = c[1];
+        px[2] = c[2];
+        lit[i] = 1;
+    }
+}
+
+#ifdef ZV_AVX2
+/* Eight pixels a step: their stamps gathered and checked at once (a face
+ * seen for the first time this frame sends the eight through
+ * shade_pixels, which makes its colour), their colours gathered as 4-byte
+ * words at 3 id (the cache's spare byte keeps the last in bounds), packed
+ * to 24 bytes, and the lit bytes from the same mask. Stops short of the
+ * end (the second 16-byte store ends 4 bytes past the eighth pixel, in
+ * the tenth); returns where the caller's plain loop takes over. */
+AVX2_FN static size_t shade_pixels_avx2(FaceColours *fc, const int32_t *ids, size_t n, uint8_t *rgb, uint8_t *lit)
+{
+    const __m256i bias = _mm256_set1_epi32(INT32_MIN);
+    const __m256i nf = _mm256_xor_si256(_mm256_set1_epi32((int32_t)fc->s->nfaces), bias);
+    const __m256i vframe = _mm256_set1_epi32((int32_t)fc->frame), low24 = _mm256_set1_epi32(0xffffff);
+    const __m256i pack = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
+                                          0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
+    const __m256i one8 = _mm256_set1_epi8(1);
+    size_t i = 0;
+    for (; i + 10 <= n; i += 8) {
+        __m256i id = _mm256_loadu_si256((const __m256i *)(ids + i));
+        /* 0 <= id < nfaces, as unsigned */
+        __m256i valid = _mm256_cmpgt_epi32(nf, _mm256_xor_si256(id, bias));
+        __m256i st = _mm256_mask_i32gather_epi32(vframe, (const int *)fc->stamp, id, valid, 4);
+        if (!_mm256_testc_si256(_mm256_cmpeq_epi32(st, vframe), _mm256_set1_epi32(-1))) {
+            shade_pixels(fc, ids, i, i + 8, rgb, lit);
+            continue;
+        }
+        __m256i id3 = _mm256_add_epi32(_mm256_add_epi32(id, id), id);
+        __m256i col = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), (const int *)fc->crgb, id3, valid, 1);
+        col = _mm256_shuffle_epi8(_mm256_and_si256(col, low24), pack);
+        uint8_t *px = rgb + 3 * i;
+        _mm_storeu_si128((__m128i *)px, _mm256_castsi256_si128(col));
+        _mm_storeu_si128((__m128i *)(px + 12), _mm256_extracti128_si256(col, 1));
+        /* the mask's lanes as bytes: two packs, the high half's four next to the low's */
+        __m256i b = _mm256_packs_epi16(_mm256_packs_epi32(valid, valid), _mm256_setzero_si256());
+        b = _mm256_permutevar8x32_epi32(b, _mm256_setr_epi32(0, 4, 0, 4, 0, 4, 0, 4));
+        _mm_storel_epi64((__m128i *)(lit + i), _mm_and_si128(_mm256_castsi256_si128(b), _mm256_castsi256_si128(one8)));
+    }
+    return i;
+}
+#endif
+
 int shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,
                 ShadeCache *cache, Image *out)
 {
@@ -303,41 +437,21 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
         return -1;
     cache_next_frame(cache);
 
-    const uint32_t frame = cache->frame;
-    uint32_t *stamp = cache->stamp;
-    uint8_t *crgb = cache->rgb;
-    Mat4 view = camera_view(&s->cam);
-    NormalMat nmat[NMAT_SLOTS];
+    FaceColours fc = { s, mode, cache->frame, cache->stamp, cache->rgb, camera_view(&s->cam), { { 0 } } };
     for (int k = 0; k < NMAT_SLOTS; k++)
-        nmat[k].obj = -1;
-
-    size_t n = (size_t)fb->w * (size_t)fb->h;
-    const int32_t *ids = fb->ids;
-    uint8_t *rgb = out->rgb, *lit = out->lit;
-    for (size_t i = 0; i < n; i++, rgb += 3) {
-        int32_t id = ids[i];
-        if (id < 0 || (uint32_t)id >= nfaces) {
-            rgb[0] = rgb[1] = rgb[2] = 0;
-            lit[i] = 0;
-            continue;
-        }
-        uint8_t *c = crgb + 3 * (size_t)id;
-        if (stamp[id] != frame) {
-            if (mode == SHADE_ID) {
-                shade_id_colour(id, c);
-            } else {
-                int obj = s->face_obj ? s->face_obj[id] : 0;
-                NormalMat *nm = &nmat[obj & (NMAT_SLOTS - 1)];
-                if (nm->obj != obj)
-                    normal_mat(s, &view, obj, nm);
-                lambert_face(s, nm, (uint32_t)id, c);
-            }
-            stamp[id] = frame;
-        }
-        rgb[0] = c[0];
-        rgb[1] = c[1];
-        rgb[2] = c[2];
-        lit[i] = 1;
-    }
+        fc.nmat[k].obj = -1;
+    size_t n = (size_t)fb->w * (size_t)fb->h, i = 0;
+    /* Colour the polygons first when they are no more than the pixels;
+     * a huge mesh in a small picture is coloured face by face as pixels
+     * show it (measured: the bunny at 1920x1080 shades in half the time
+     * this way, the dragon at 160x96 and at 1920x1080 the same). */
+    if (sp && sp->npolys <= n)
+        colour_polys(&fc, sp);
+#ifdef ZV_AVX2
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2"))
+        i = shade_pixels_avx2(&fc, fb->ids, n, out->rgb, out->lit);
+#endif
+    shade_pixels(&fc, fb->ids, i, n, out->rgb, out->lit);
     return 0;
 }
