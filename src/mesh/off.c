@@ -337,7 +337,7 @@ static int off_parse(MeshCtx *c, const char *data, size_t len)
         if (mb_face_end(&b, first, mat))
             goto fail;
     }
-    if (mb_finish(&b, 0))
+    if (mb_finish(&b, 1))
         goto fail;
     return 0;
 

@@ -8,7 +8,8 @@
  * Everything else (other elements, other properties, in any order) is
  * skipped by its size. Every element's count is checked against the
  * bytes after the header before anything is allocated. A file with
- * vertices and no faces (a point cloud) loads its vertices. */
+ * vertices and no faces is a point cloud: every vertex a point (with its
+ * colour), and no per-point array. */
 #define _DEFAULT_SOURCE
 
 #include <math.h>
@@ -805,10 +806,6 @@ static int ply_parse(MeshCtx *c, const char *data, size_t len)
      * when faces were read: indices were checked against the header's
      * count, which the vertex element then filled. */
     r = mb_finish(&b, 1);
-    if (r == 0 && m->nfaces == 0)
-        me_warn(c->err.name, 0, "no faces: %u points, not drawn yet", m->nverts);
-    if (r == 0)
-        m->info.points = m->nfaces ? 0 : m->nverts;
 out:
     for (uint32_t i = 0; i < ply.nel; i++)
         free(ply.el[i].props);
