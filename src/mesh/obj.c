@@ -186,9 +186,11 @@ typedef struct {
     uint64_t line;               /* first usemtl naming it */
 } UseName;
 
-/* A statement with an index past the vertices read so far. */
+/* A statement with an index past the vertices read so far; for a `p`
+ * statement, the points it added (all dropped when it is skipped). */
 typedef struct {
     uint64_t line, max;
+    uint32_t point_first, point_count;
 } FwdRef;
 
 /* Free-form geometry and rendering statements of the OBJ format that
@@ -449,8 +451,9 @@ static int read_corner(Parser *ps, const char *what, const char *ls, const char 
     return 1;
 }
 
-/* A statement read whole had an index past the vertices so far. */
-static int note_forward(Parser *ps, uint64_t fwd)
+/* A statement read whole had an index past the vertices so far (a `p`
+ * statement: its points start at point_first). */
+static int note_forward(Parser *ps, uint64_t fwd, uint32_t point_first)
 {
     if (!fwd)
         return 0;
@@ -466,7 +469,7 @@ static int note_forward(Parser *ps, uint64_t fwd)
             return fail_oom(ps);
         ps->fwdcap = (uint32_t)cap;
     }
-    ps->fwd[ps->nfwd++] = (FwdRef){ ps->line, fwd };
+    ps->fwd[ps->nfwd++] = (FwdRef){ ps->line, fwd, point_first, ps->m->npoints - point_first };
     return 0;
 }
 
@@ -484,7 +487,7 @@ static int parse_face(Parser *ps, const char *ls, const char *p, const char *e)
     size_t n = ps->b.ncorner - start;
     if (n < 3)
         return fail(ps, "face has fewer than 3 vertices (%zu)", n);
-    if (note_forward(ps, fwd))
+    if (note_forward(ps, fwd, ps->m->npoints))
         return -1;
     return mb_face_end(&ps->b, start, ps->cur_use);
 }
@@ -502,7 +505,7 @@ static int parse_points(Parser *ps, const char *ls, const char *p, const char *e
         return -1;
     if (ps->m->npoints == start)
         return fail(ps, "point statement without a vertex");
-    return note_forward(ps, fwd);
+    return note_forward(ps, fwd, start);
 }
 
 /* l v1 v2 ...: a polyline through the vertices. */
@@ -520,7 +523,7 @@ static int parse_polyline(Parser *ps, const char *ls, const char *p, const char 
     size_t n = ps->b.nlcorner - start;
     if (n < 2)
         return fail(ps, "line has fewer than 2 vertices (%zu)", n);
-    if (note_forward(ps, fwd))
+    if (note_forward(ps, fwd, ps->m->npoints))
         return -1;
     return mb_line_end(&ps->b, start);
 }
@@ -908,16 +911,22 @@ static int drop_unreadable(Parser *ps)
         m->objs[ob].face_first = nf;
     m->nfaces = nf;
     b->ncorner = nc;
-    /* points */
-    uint32_t np = 0;
+    /* points: a skipped `p` statement takes all its points along (fwd[]
+     * lists the statements in order, so their runs rise with k) */
+    uint32_t np = 0, fi = 0;
     ob = 0;
     for (uint32_t k = 0; k < m->npoints; k++) {
         for (; ob < m->nobjs && m->objs[ob].point_first == k; ob++)
             m->objs[ob].point_first = np;
+        while (fi < ps->nfwd && (ps->fwd[fi].point_count == 0 || ps->fwd[fi].max <= nv ||
+                                 ps->fwd[fi].point_first + ps->fwd[fi].point_count <= k))
+            fi++;
+        if (fi < ps->nfwd && ps->fwd[fi].point_first <= k)
+            continue;       /* counted with its statement above */
         if (vert_ok(bad, nv, m->point[k]))
             m->point[np++] = m->point[k];
         else
-            more += m->point[k] < nv;
+            more++;
     }
     for (; ob < m->nobjs; ob++)
         m->objs[ob].point_first = np;
