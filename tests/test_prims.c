@@ -652,3 +652,52 @@ Test(prims, an_empty_frame_says_why)
     cr_assert_not_null(strstr(empty_reason(square, 0, 0, 0, 1, 50, 0), "outside the picture"));
     cr_assert_not_null(strstr(empty_reason(square, 0, 0, 0, 0.001f, 0, 0), "covers no sample"));
 }
+
+Test(load, lenient_ply_and_off_skip_bad_faces, .init = cr_redirect_stderr)
+{
+    const char *head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                       "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+    char ply[1024];
+    snprintf(ply, sizeof ply, "%s3 0 1 2\n3 0 1 7\n2 0 1\n3 0 x 2\n", head);
+    cr_assert_eq(strict("a.ply", ply), -1);
+    cr_assert_str_eq(E, "a.ply:14: vertex index 7 out of range (3 vertices)");
+    cr_assert_eq(lenient("a.ply", ply), 0, "%s", E);
+    cr_assert_eq(M.nfaces, 1);
+    cr_assert_eq(M.info.skipped, 3);
+    /* a file that ends inside the faces keeps those read */
+    snprintf(ply, sizeof ply, "%s3 0 1 2\n3 0 1", head);
+    cr_assert_eq(strict("a.ply", ply), -1);
+    cr_assert_eq(lenient("a.ply", ply), 0, "%s", E);
+    cr_assert_eq(M.nfaces, 1);
+    cr_assert_geq(M.info.skipped, 1);
+    /* binary, little endian: a face with an index past the end */
+    char bin[512];
+    int n = snprintf(bin, sizeof bin, "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                                      "property float y\nproperty float z\nelement face 2\n"
+                                      "property list uchar int vertex_indices\nend_header\n");
+    float v[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+    memcpy(bin + n, v, sizeof v);
+    n += (int)sizeof v;
+    const int32_t f1[3] = { 0, 1, 2 }, f2[3] = { 0, 5, 2 };
+    bin[n++] = 3;
+    memcpy(bin + n, f1, sizeof f1);
+    n += (int)sizeof f1;
+    bin[n++] = 3;
+    memcpy(bin + n, f2, sizeof f2);
+    n += (int)sizeof f2;
+    MeshLoadOpts o = { NULL, 0 };
+    mesh_free(&M);
+    cr_assert_eq(mesh_parse_buffer_ex(&M, "b.ply", &o, bin, (size_t)n, E, sizeof E), 0, "%s", E);
+    cr_assert_eq(M.nfaces, 1);
+    cr_assert_eq(M.info.skipped, 1);
+    mesh_free(&M);
+    cr_assert_eq(mesh_parse_buffer(&M, "b.ply", NULL, bin, (size_t)n, E, sizeof E), -1);
+    cr_assert_not_null(strstr(E, "vertex index 5 out of range"), "%s", E);
+    /* OFF */
+    const char *off = "OFF\n3 3 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 3\n1 0\n";
+    cr_assert_eq(strict("c.off", off), -1);
+    cr_assert_str_eq(E, "c.off:7: vertex index 3 out of range (3 vertices)");
+    cr_assert_eq(lenient("c.off", off), 0, "%s", E);
+    cr_assert_eq(M.nfaces, 1);
+    cr_assert_eq(M.info.skipped, 2);
+}

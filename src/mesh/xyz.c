@@ -172,7 +172,8 @@ fail:
 }
 
 /* Plausible when every whole line of the head that is not a comment
- * holds the same number (three or more) of numbers, after a lone count:
+ * holds the same number (three or more) of numbers, after a lone count
+ * or a line of column names:
  * a scanner writes one layout a line. (An OFF file without its keyword
  * starts with three counts too, but its face lines differ from its
  * vertex lines.) Never sure: plain numbers prove nothing, so the
@@ -193,9 +194,15 @@ static int xyz_probe(const char *head, size_t n, uint64_t size)
         float v[XYZ_MAX_COLS];
         int k;
         const char *bad;
-        if (line_numbers(ls, le, v, &k, &bad) != MESH_NUM_OK)
+        int first = seen == 0 && cols == 0;
+        if (line_numbers(ls, le, v, &k, &bad) != MESH_NUM_OK) {
+            if (first && no_numbers(ls, le)) {
+                cols = -1;  /* column names, once */
+                continue;
+            }
             return PROBE_NO;
-        if (seen == 0 && cols == 0 && k == 1) {
+        }
+        if (first && k == 1) {
             cols = -1;      /* the point count of .pts, once */
             continue;
         }
