@@ -403,6 +403,8 @@ static int bin_vertices(Ply *ply, PlyElem *el, Bin *bn)
     if (rgb && mb_want_rgb(b))
         return -1;
     uint32_t n = (uint32_t)el->count;
+    if (n == 0)
+        return 0;           /* no vertex: no array to point into (it may be NULL) */
     float *pos = m->pos + 3 * (size_t)m->nverts;
     float *col = rgb ? m->rgb + 3 * (size_t)m->nverts : NULL;
     if (!el->has_list) {
@@ -410,6 +412,14 @@ static int bin_vertices(Ply *ply, PlyElem *el, Bin *bn)
         size_t rs = (size_t)el->fixed;
         const unsigned char *r = bn->p;
         int fast = px->type == T_F32 && py->type == T_F32 && pz->type == T_F32;
+        /* a scan's colours: three uchar, each through a table (a
+         * conversion and a division per channel cost more than the rest
+         * of the record) */
+        int rgb8 = col && pc[0] && pc[1] && pc[2] && pc[0]->type == T_U8 && pc[1]->type == T_U8 &&
+                   pc[2]->type == T_U8;
+        float lut[256];
+        for (int k = 0; rgb8 && k < 256; k++)
+            lut[k] = colour_of(k, T_U8);
         for (uint32_t i = 0; i < n; i++, r += rs) {
             if ((i & 0xffff) == 0)
                 mf_progress(ply->c->file, (const char *)r);
@@ -428,10 +438,16 @@ static int bin_vertices(Ply *ply, PlyElem *el, Bin *bn)
                     return me_fail_at(ply->e, (uint64_t)(r - bn->base),
                                       "NaN, infinite or out-of-range coordinate (vertex %u)", i + 1);
             }
-            if (col)
+            if (rgb8) {
+                float *c = col + 3 * (size_t)i;
+                c[0] = lut[r[pc[0]->offset]];
+                c[1] = lut[r[pc[1]->offset]];
+                c[2] = lut[r[pc[2]->offset]];
+            } else if (col) {
                 for (int k = 0; k < 3; k++)
                     col[3 * (size_t)i + k] =
                         pc[k] ? colour_of(get_num(r + pc[k]->offset, pc[k]->type, swap), pc[k]->type) : 1.0f;
+            }
         }
         bn->p = r;
     } else {
