@@ -38,7 +38,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay
+.PHONY: all test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points
 
 all: $(BIN)
 
@@ -129,6 +129,15 @@ $(BUILD)/colorerr: tools/colorerr.c $(LIBOBJS)
 # Load speed and peak memory of every format (the README's table).
 bench-formats: $(BIN) $(TESTBIN)
 	ZVIEW=$(abspath $(BIN)) sh tools/bench-formats.sh
+
+# The point-cloud figures: a 10M-point scan sampled from the dragon
+# (POINTS=N for another size), its load and frames (README: Points and
+# lines).
+bench-points: $(BIN) $(BUILD)/mkcloud
+	ZVIEW=$(abspath $(BIN)) MKCLOUD=$(BUILD)/mkcloud sh tests/bench_points.sh
+
+$(BUILD)/mkcloud: tests/mkcloud.c $(LIBOBJS)
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 # Regenerate the bundled models (they are committed; this is how they were made).
 assets: $(BUILD)/genassets

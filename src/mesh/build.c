@@ -177,6 +177,7 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
             return me_oom(b->e);
         m->pos = p;
         prefault(p, nv * 3 * sizeof(float), exact);
+        b->vexact = exact;
         if (m->rgb) {
             float *q = realloc(m->rgb, nv * 3 * sizeof(float));
             if (!q)
@@ -222,6 +223,9 @@ int mb_want_rgb(MeshBuild *b)
     m->rgb = malloc((b->vcap ? b->vcap : 1) * 3 * sizeof(float));
     if (!m->rgb)
         return me_oom(b->e);
+    /* a point cloud's colours are as big as its positions: fault them in
+     * at once too when the count is exact */
+    prefault(m->rgb, b->vcap * 3 * sizeof(float), b->vexact);
     for (size_t i = 0; i < 3 * (size_t)m->nverts; i++)
         m->rgb[i] = 1.0f;
     return 0;

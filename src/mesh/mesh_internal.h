@@ -76,6 +76,7 @@ typedef struct {
     Mesh       *m;
     MeshErr    *e;
     size_t      vcap;      /* vertices pos (and rgb) can hold */
+    int         vexact;    /* vcap is a count read from a header (prefault rgb too) */
     size_t      fcap;      /* faces face_mat can hold; face_start holds fcap + 1 */
     size_t      ccap;      /* corners */
     size_t      ncorner;

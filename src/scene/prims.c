@@ -42,6 +42,10 @@
 #include <string.h>
 #include <unistd.h>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 #include "grow.h"
 #include "hsr.h"
 #include "raster.h"
@@ -49,6 +53,8 @@
 
 /* Points worth a helper thread each (below it, starting one costs more). */
 #define POINTS_PER_THREAD (1u << 18)
+/* Points whose boxes are fetched ahead together. */
+#define CHUNK 256
 
 struct PrimWork {
     uint64_t *box[SCREEN_MAX_THREADS];      /* per thread: the best key per sample box */
@@ -135,28 +141,148 @@ static inline float key_depth(uint64_t k)
 
 /* ==== points ==== */
 
+/* One object's points straight from object space to the screen: the
+ * object-to-view matrix and the projection folded into one affine map
+ * per coordinate, in float (a point is one of millions: this loop is
+ * the cost of a cloud). The map gives U = 256 x + 0.5 and V = 256 y +
+ * 0.5 (x, y in pixels), whose floors are the snapped centre, and the
+ * depth; under perspective x and y are divided by the distance first.
+ * Any fixed rule would do for exactness (every point is placed by this
+ * one, whether kept or not); this one rounds like the front end. */
+typedef struct {
+    int   persp, size, w, h;
+    float r[3][4];          /* ortho: U, V, depth; persp: view x, view y, distance */
+    float u0, v0, fu, fv;   /* persp: U = u0 + fu x / d, V = v0 + fv y / d */
+    float near, dk;         /* persp: depth = dk (1 - near / d) */
+    float umin, umax, vmin, vmax;   /* beyond these the square misses the screen */
+} PointMap;
+
+static void point_map(PointMap *pm, const PProj *pj, const Mat4 *mv, int size)
+{
+    pm->persp = pj->persp;
+    pm->size = size;
+    pm->w = pj->w;
+    pm->h = pj->h;
+    double u0 = 256 * pj->cx + 0.5, v0 = 256 * pj->cy + 0.5;
+    for (int j = 0; j < 4; j++) {
+        double m0 = mv->m[0][j], m1 = mv->m[1][j], m2 = mv->m[2][j];
+        int t = j == 3;
+        if (!pj->persp) {
+            pm->r[0][j] = (float)(256 * pj->fx * m0 + (t ? u0 : 0));
+            pm->r[1][j] = (float)(-256 * pj->fy * m1 + (t ? v0 : 0));
+            pm->r[2][j] = (float)(-pj->dscale * m2 + (t ? pj->dbias : 0));
+        } else {
+            pm->r[0][j] = (float)m0;
+            pm->r[1][j] = (float)m1;
+            pm->r[2][j] = (float)(-m2 + (t ? pj->eye : 0));
+        }
+    }
+    pm->u0 = (float)u0;
+    pm->v0 = (float)v0;
+    pm->fu = (float)(256 * pj->fx);
+    pm->fv = (float)(-256 * pj->fy);
+    pm->near = (float)pj->n;
+    pm->dk = (float)(pj->f / (pj->f - pj->n));
+    /* a square of any size near the screen lies within size + 2 pixels */
+    pm->umin = (float)(-256.0 * (size + 2));
+    pm->umax = (float)(256.0 * (pj->w + size + 2));
+    pm->vmin = (float)(-256.0 * (size + 2));
+    pm->vmax = (float)(256.0 * (pj->h + size + 2));
+}
+
+/* floor of a float known to lie well within int32 */
+static inline int32_t floor_i32(float x)
+{
+    int32_t t = (int32_t)x;
+    return t - (x < (float)t);
+}
+
 /* A point's sample box (its corner sample) and depth. Returns 0 when it
  * draws nothing: behind the near plane, off the screen, not finite. */
-static inline int point_box(const PProj *pj, const Mat4 *mv, const float *pos, int size, int32_t *i0,
-                            int32_t *j0, float *depth)
+static inline __attribute__((always_inline)) int point_box(const PointMap *pm, const float *p, int32_t *i0,
+                                                           int32_t *j0, float *depth)
 {
-    Vec3 q = m4_point(mv, v3(pos[0], pos[1], pos[2]));
-    if (pj->persp && !(pj->eye - q.z >= pj->n))
+    float x = p[0], y = p[1], z = p[2];
+    float a = pm->r[0][0] * x + pm->r[0][1] * y + pm->r[0][2] * z + pm->r[0][3];
+    float b = pm->r[1][0] * x + pm->r[1][1] * y + pm->r[1][2] * z + pm->r[1][3];
+    float c = pm->r[2][0] * x + pm->r[2][1] * y + pm->r[2][2] * z + pm->r[2][3];
+    if (pm->persp) {
+        if (!(c >= pm->near))
+            return 0;
+        float inv = 1.0f / c;
+        a = pm->u0 + pm->fu * a * inv;
+        b = pm->v0 + pm->fv * b * inv;
+        c = pm->dk - pm->dk * pm->near * inv;
+    }
+    if (!(a > pm->umin && a < pm->umax && b > pm->vmin && b < pm->vmax))
+        return 0;           /* off the screen, or NaN */
+    float d = c + 0.0f;     /* -0 becomes +0: equal depths compare equal */
+    if (!(d - d == 0))
         return 0;
-    double s[3];
-    pproj_point(pj, q.x, q.y, q.z, s);
-    /* a square of any size near the screen lies within size + 2 pixels */
-    if (!(s[0] > -size - 2 && s[0] < pj->w + size + 2 && s[1] > -size - 2 && s[1] < pj->h + size + 2))
-        return 0;
-    float z = (float)s[2] + 0.0f;       /* -0 becomes +0: equal depths compare equal */
-    if (!isfinite(z))
-        return 0;
-    /* first sample whose centre is at or right of the square's left edge */
-    *i0 = sample_ceil(snap(s[0]) - 128 * size);
-    *j0 = sample_ceil(snap(s[1]) - 128 * size);
-    *depth = z;
-    return *i0 < pj->w && *i0 + size > 0 && *j0 < pj->h && *j0 + size > 0;
+    /* the snapped centre, then the first sample whose centre is at or
+     * right of (below) the square's edge */
+    int size = pm->size;
+    *i0 = sample_ceil(floor_i32(a) - 128 * size);
+    *j0 = sample_ceil(floor_i32(b) - 128 * size);
+    *depth = d;
+    return *i0 < pm->w && *i0 + size > 0 && *j0 < pm->h && *j0 + size > 0;
 }
+
+#ifdef __SSE2__
+/* point_box for four consecutive points at p (12 floats), in SSE2: the
+ * same operations in the same order as point_box (so the same bits:
+ * -ffp-contract=off, no fused multiply-add), four lanes at a time; the
+ * boxes' checks and the keys per lane. Returns a mask of the points that
+ * reach a box. A cloud's points are consecutive vertices: this is its
+ * loop. */
+static inline __attribute__((always_inline)) int point_box4(const PointMap *pm, const float *p, int32_t i0[4],
+                                                            int32_t j0[4], float depth[4])
+{
+    __m128 v0 = _mm_loadu_ps(p), v1 = _mm_loadu_ps(p + 4), v2 = _mm_loadu_ps(p + 8);
+    /* x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3  ->  X, Y, Z */
+    __m128 B = _mm_shuffle_ps(v1, v2, _MM_SHUFFLE(1, 0, 2, 2));
+    __m128 X = _mm_shuffle_ps(v0, B, _MM_SHUFFLE(3, 0, 3, 0));
+    __m128 C = _mm_shuffle_ps(v0, v1, _MM_SHUFFLE(0, 0, 1, 1));
+    __m128 D = _mm_shuffle_ps(v1, v2, _MM_SHUFFLE(2, 2, 3, 3));
+    __m128 Y = _mm_shuffle_ps(C, D, _MM_SHUFFLE(2, 0, 2, 0));
+    __m128 E = _mm_shuffle_ps(v0, v1, _MM_SHUFFLE(1, 1, 2, 2));
+    __m128 F = _mm_shuffle_ps(v2, v2, _MM_SHUFFLE(3, 3, 0, 0));
+    __m128 Z = _mm_shuffle_ps(E, F, _MM_SHUFFLE(2, 0, 2, 0));
+    __m128 r[3];
+    for (int k = 0; k < 3; k++)
+        r[k] = _mm_add_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(pm->r[k][0]), X),
+                                                _mm_mul_ps(_mm_set1_ps(pm->r[k][1]), Y)),
+                                     _mm_mul_ps(_mm_set1_ps(pm->r[k][2]), Z)),
+                          _mm_set1_ps(pm->r[k][3]));
+    __m128 a = r[0], b = r[1], c = r[2], ok = _mm_castsi128_ps(_mm_set1_epi32(-1));
+    if (pm->persp) {
+        ok = _mm_cmpge_ps(c, _mm_set1_ps(pm->near));
+        __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), c);
+        a = _mm_add_ps(_mm_set1_ps(pm->u0), _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(pm->fu), a), inv));
+        b = _mm_add_ps(_mm_set1_ps(pm->v0), _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(pm->fv), b), inv));
+        c = _mm_sub_ps(_mm_set1_ps(pm->dk), _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(pm->dk), _mm_set1_ps(pm->near)), inv));
+    }
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(a, _mm_set1_ps(pm->umin)), _mm_cmplt_ps(a, _mm_set1_ps(pm->umax))));
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(b, _mm_set1_ps(pm->vmin)), _mm_cmplt_ps(b, _mm_set1_ps(pm->vmax))));
+    __m128 d = _mm_add_ps(c, _mm_setzero_ps());
+    ok = _mm_and_ps(ok, _mm_cmpeq_ps(_mm_sub_ps(d, d), _mm_setzero_ps()));
+    int mask = _mm_movemask_ps(ok);
+    if (!mask)
+        return 0;
+    /* floors of the lanes that passed (the others' values are not used) */
+    __m128i ta = _mm_cvttps_epi32(a), tb = _mm_cvttps_epi32(b);
+    ta = _mm_add_epi32(ta, _mm_castps_si128(_mm_cmplt_ps(a, _mm_cvtepi32_ps(ta))));
+    tb = _mm_add_epi32(tb, _mm_castps_si128(_mm_cmplt_ps(b, _mm_cvtepi32_ps(tb))));
+    __m128i off = _mm_set1_epi32(127 - 128 * pm->size);
+    _mm_storeu_si128((__m128i *)i0, _mm_srai_epi32(_mm_add_epi32(ta, off), SUBPIX_BITS));
+    _mm_storeu_si128((__m128i *)j0, _mm_srai_epi32(_mm_add_epi32(tb, off), SUBPIX_BITS));
+    _mm_storeu_ps(depth, d);
+    for (int k = 0; k < 4; k++)
+        if (!(i0[k] < pm->w && i0[k] + pm->size > 0 && j0[k] < pm->h && j0[k] + pm->size > 0))
+            mask &= ~(1 << k);
+    return mask;
+}
+#endif
 
 /* Append the square of size s with corner sample (i0, j0). */
 static void emit_square(ScreenPolys *sp, int32_t i0, int32_t j0, int size, float z, int32_t id)
@@ -205,19 +331,52 @@ static void points_reduce(PointJob *j)
         if (lo >= hi)
             continue;
         Mat4 mv = m4_mul(j->view, object_matrix(o));
+        PointMap pm;
+        point_map(&pm, j->pj, &mv, size);
         const float *pos = o->mesh->pos;
         const uint32_t *pt = o->mesh->point;
-        for (uint32_t g = lo; g < hi; g++) {
-            uint32_t k = g - a, v = pt ? pt[o->point_first + k] : o->point_first + k;
-            int32_t i0, j0;
-            float z;
-            if (!point_box(j->pj, &mv, &pos[3 * (size_t)v], size, &i0, &j0, &z))
-                continue;
-            in++;
-            uint64_t key = point_key(z, o->point_id0 + (int32_t)k);
-            uint64_t *c = &j->box[(size_t)(j0 + size - 1) * j->gw + (i0 + size - 1)];
-            if (key < *c)
-                *c = key;
+        /* A chunk at a time: first each point's box and key, its box's
+         * line asked for ahead (boxes are met in no order a cache can
+         * guess), then the minima, by then mostly in L1. */
+        for (uint32_t g0 = lo; g0 < hi; g0 += CHUNK) {
+            uint32_t g1 = hi - g0 < CHUNK ? hi : g0 + CHUNK, n = 0;
+            uint32_t cell[CHUNK];
+            uint64_t keys[CHUNK];
+            uint32_t g = g0;
+#ifdef __SSE2__
+            /* a cloud (consecutive vertices): four at a time */
+            for (; !pt && g + 4 <= g1; g += 4) {
+                uint32_t k = g - a;
+                int32_t i4[4], j4[4];
+                float z4[4];
+                int mask = point_box4(&pm, &pos[3 * ((size_t)o->point_first + k)], i4, j4, z4);
+                for (int q = 0; q < 4; q++)
+                    if (mask >> q & 1) {
+                        cell[n] = (uint32_t)((j4[q] + size - 1) * j->gw + (i4[q] + size - 1));
+                        keys[n] = point_key(z4[q], o->point_id0 + (int32_t)(k + (uint32_t)q));
+                        __builtin_prefetch(&j->box[cell[n]], 1);
+                        n++;
+                    }
+            }
+#endif
+            for (; g < g1; g++) {
+                uint32_t k = g - a, v = pt ? pt[o->point_first + k] : o->point_first + k;
+                int32_t i0, j0;
+                float z;
+                if (!point_box(&pm, &pos[3 * (size_t)v], &i0, &j0, &z))
+                    continue;
+                cell[n] = (uint32_t)((j0 + size - 1) * j->gw + (i0 + size - 1));
+                keys[n] = point_key(z, o->point_id0 + (int32_t)k);
+                __builtin_prefetch(&j->box[cell[n]], 1);
+                n++;
+            }
+            in += n;
+            for (uint32_t q = 0; q < n; q++) {
+                /* a select, not a branch: whether a point is nearer than
+                 * its box's best so far is a coin toss */
+                uint64_t *c = &j->box[cell[q]], old = *c;
+                *c = keys[q] < old ? keys[q] : old;
+            }
         }
     }
     j->in = in;
@@ -235,10 +394,12 @@ static int points_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Ma
     for (int oi = 0; oi < s->nobjs; oi++) {
         const Object *o = &s->objs[oi];
         Mat4 mv = m4_mul(*view, object_matrix(o));
+        PointMap pm;
+        point_map(&pm, pj, &mv, size);
         for (uint32_t k = 0; k < o->point_count; k++) {
             int32_t i0, j0;
             float z;
-            if (!point_box(pj, &mv, &o->mesh->pos[3 * (size_t)object_point_vert(o, k)], size, &i0, &j0, &z))
+            if (!point_box(&pm, &o->mesh->pos[3 * (size_t)object_point_vert(o, k)], &i0, &j0, &z))
                 continue;
             sp->points_in++;
             if (grow_array((void **)&sp->polys, &sp->cap_polys, sp->npolys + 2, sizeof *sp->polys) ||
