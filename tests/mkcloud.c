@@ -11,7 +11,7 @@
  *                               the file land near each other), or
  *                               sorted along the model's triangles, as
  *                               a scanner sweeps a surface
- *   mkcloud MODEL OUT.ply 0     the model's vertices, grey
+ *   mkcloud MODEL OUT.ply 0     the model's vertices, no colour
  *
  * Built and run by make bench-points (tests/bench_points.sh). */
 
@@ -65,13 +65,13 @@ int main(int argc, char **argv)
         return 1;
     }
     fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment mkcloud %s\nelement vertex %llu\n"
-               "property float x\nproperty float y\nproperty float z\n"
-               "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n",
-            argv[1], (unsigned long long)count);
+               "property float x\nproperty float y\nproperty float z\n%send_header\n",
+            argv[1], (unsigned long long)count,
+            n ? "property uchar red\nproperty uchar green\nproperty uchar blue\n" : "");
     if (!n) {
-        const unsigned char grey[3] = { 200, 200, 200 };
+        /* positions only: zview shades an uncoloured cloud by depth */
         for (uint32_t v = 0; v < m.nverts; v++)
-            put_point(f, &m.pos[3 * (size_t)v], grey);
+            fwrite(&m.pos[3 * (size_t)v], 4, 3, f);
     } else {
         /* triangles and their cumulative areas */
         size_t ntri = 0;
