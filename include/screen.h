@@ -118,8 +118,9 @@ static inline float plane_at(const ScreenPoly *p, float zrow, int i)
 }
 
 /* prims.c: points and lines as polygons. Each point becomes a square
- * of point_size x point_size samples, aligned to the sample grid,
- * placed by its projected centre, at its depth; each segment (and
+ * of point_size x point_size samples, aligned to the sample grid (to
+ * the pixel grid when supersampled), placed by its projected centre, at
+ * its depth; each segment (and
  * wireframe edge) a quad line_width samples wide along it, with square
  * ends half as long as it is wide, its depth varying along it as the
  * segment's does. Wireframe edges are brought nearer by PRIM_WIRE_BIAS,
@@ -134,6 +135,8 @@ typedef struct {
     int wire;               /* the wireframe edges too (scene_wire_build first) */
     int all_points;         /* every point as a square, none dropped (tests: the
                                reduction gives the same buffers) */
+    int pixel;              /* samples a pixel's side (supersampling): squares
+                               of whole pixels start on a pixel (0, 1: any sample) */
 } PrimStyle;
 
 typedef struct PrimWork PrimWork;   /* per-frame scratch, kept across frames */

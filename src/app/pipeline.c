@@ -164,7 +164,7 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     if (p->wireframe && !p->scene->wire_built && scene_wire_build(p->scene, err, sizeof err))
         return -1;
     int ps = p->point_size > 0 ? p->point_size : 1, lw = p->line_width > 0 ? p->line_width : 1;
-    PrimStyle style = { ps * k, lw * k, p->wireframe, 0 };
+    PrimStyle style = { ps * k, lw * k, p->wireframe, 0, k };
     if (screen_prims(&p->sp, p->scene, &style, &p->prims))
         return -1;
     double t1 = now_ms();

@@ -9,9 +9,12 @@
  *
  * A point of size s (samples) is the square of s x s samples whose
  * corner sample is fixed by its snapped centre c: columns
- * [ceil((c.x - 128 s - 128) / 256), + s), rows likewise; its corners
- * lie on pixel boundaries and its depth plane is flat (a = b = 0,
- * zc = its depth, which plane_at() returns exactly). Two points with
+ * [ceil((c.x - 128 s - 128) / 256), + s), rows likewise (supersampled
+ * with k x k samples a pixel and s a multiple of k: the first whole
+ * pixel instead, so that a one-pixel point lights one pixel of the
+ * averaged picture); its corners lie on sample boundaries and its depth
+ * plane is flat (a = b = 0, zc = its depth, which plane_at() returns
+ * exactly). Two points with
  * the same corner sample cover the same samples, and at each of them
  * the one with the smaller (depth, id) wins; so of all the points in
  * one box only that one can show anywhere, and keeping only it gives
@@ -151,16 +154,18 @@ static inline float key_depth(uint64_t k)
  * one, whether kept or not); this one rounds like the front end. */
 typedef struct {
     int   persp, size, w, h;
+    int   align;            /* squares start on multiples of this many samples (a pixel's side) */
     float r[3][4];          /* ortho: U, V, depth; persp: view x, view y, distance */
     float u0, v0, fu, fv;   /* persp: U = u0 + fu x / d, V = v0 + fv y / d */
     float near, dk;         /* persp: depth = dk (1 - near / d) */
     float umin, umax, vmin, vmax;   /* beyond these the square misses the screen */
 } PointMap;
 
-static void point_map(PointMap *pm, const PProj *pj, const Mat4 *mv, int size)
+static void point_map(PointMap *pm, const PProj *pj, const Mat4 *mv, int size, int align)
 {
     pm->persp = pj->persp;
     pm->size = size;
+    pm->align = align;
     pm->w = pj->w;
     pm->h = pj->h;
     double u0 = 256 * pj->cx + 0.5, v0 = 256 * pj->cy + 0.5;
@@ -188,6 +193,22 @@ static void point_map(PointMap *pm, const PProj *pj, const Mat4 *mv, int size)
     pm->umax = (float)(256.0 * (pj->w + size + 2));
     pm->vmin = (float)(-256.0 * (size + 2));
     pm->vmax = (float)(256.0 * (pj->h + size + 2));
+}
+
+/* The first column (row) of a square of the map's size whose snapped
+ * centre is at fixed-point c: the first sample whose centre is at or
+ * right of its edge; with supersampling, the first whole pixel (align
+ * samples a side) whose centre is: a one-pixel point then lights one
+ * pixel of the averaged picture, where a square astride four pixels'
+ * samples would light none of them fully. The quotient of integers
+ * below 2^26 by 256 align is floored exactly in double. */
+static inline int32_t box_start(const PointMap *pm, int32_t c)
+{
+    int32_t edge = c - 128 * pm->size;
+    if (pm->align == 1)
+        return sample_ceil(edge);
+    int32_t k = pm->align;
+    return k * (int32_t)floor((double)(edge + 128 * k - 1) / (256.0 * k));
 }
 
 /* floor of a float known to lie well within int32 */
@@ -222,8 +243,8 @@ static inline __attribute__((always_inline)) int point_box(const PointMap *pm, c
     /* the snapped centre, then the first sample whose centre is at or
      * right of (below) the square's edge */
     int size = pm->size;
-    *i0 = sample_ceil(floor_i32(a) - 128 * size);
-    *j0 = sample_ceil(floor_i32(b) - 128 * size);
+    *i0 = box_start(pm, floor_i32(a));
+    *j0 = box_start(pm, floor_i32(b));
     *depth = d;
     return *i0 < pm->w && *i0 + size > 0 && *j0 < pm->h && *j0 + size > 0;
 }
@@ -273,9 +294,19 @@ static inline __attribute__((always_inline)) int point_box4(const PointMap *pm, 
     __m128i ta = _mm_cvttps_epi32(a), tb = _mm_cvttps_epi32(b);
     ta = _mm_add_epi32(ta, _mm_castps_si128(_mm_cmplt_ps(a, _mm_cvtepi32_ps(ta))));
     tb = _mm_add_epi32(tb, _mm_castps_si128(_mm_cmplt_ps(b, _mm_cvtepi32_ps(tb))));
-    __m128i off = _mm_set1_epi32(127 - 128 * pm->size);
-    _mm_storeu_si128((__m128i *)i0, _mm_srai_epi32(_mm_add_epi32(ta, off), SUBPIX_BITS));
-    _mm_storeu_si128((__m128i *)j0, _mm_srai_epi32(_mm_add_epi32(tb, off), SUBPIX_BITS));
+    if (pm->align == 1) {
+        __m128i off = _mm_set1_epi32(127 - 128 * pm->size);
+        _mm_storeu_si128((__m128i *)i0, _mm_srai_epi32(_mm_add_epi32(ta, off), SUBPIX_BITS));
+        _mm_storeu_si128((__m128i *)j0, _mm_srai_epi32(_mm_add_epi32(tb, off), SUBPIX_BITS));
+    } else {
+        _mm_storeu_si128((__m128i *)i0, ta);
+        _mm_storeu_si128((__m128i *)j0, tb);
+        for (int k = 0; k < 4; k++)
+            if (mask >> k & 1) {
+                i0[k] = box_start(pm, i0[k]);
+                j0[k] = box_start(pm, j0[k]);
+            }
+    }
     _mm_storeu_ps(depth, d);
     for (int k = 0; k < 4; k++)
         if (!(i0[k] < pm->w && i0[k] + pm->size > 0 && j0[k] < pm->h && j0[k] + pm->size > 0))
@@ -312,7 +343,7 @@ typedef struct {
     Mat4         view;
     uint64_t    *box;       /* gw * gh keys, UINT64_MAX = empty */
     int32_t      gw, gh;    /* boxes: corner samples [1 - size, w) x [1 - size, h) */
-    int          size;
+    int          size, align;
     uint32_t     g0, g1;    /* global point numbers this job takes */
     uint32_t     in;        /* points that reached a box */
 } PointJob;
@@ -332,7 +363,7 @@ static void points_reduce(PointJob *j)
             continue;
         Mat4 mv = m4_mul(j->view, object_matrix(o));
         PointMap pm;
-        point_map(&pm, j->pj, &mv, size);
+        point_map(&pm, j->pj, &mv, size, j->align);
         const float *pos = o->mesh->pos;
         const uint32_t *pt = o->mesh->point;
         /* A chunk at a time: first each point's box and key, its box's
@@ -389,13 +420,13 @@ static void *points_thread(void *arg)
 }
 
 /* Every point as its own square (PrimStyle.all_points). */
-static int points_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat4 *view, int size)
+static int points_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat4 *view, int size, int align)
 {
     for (int oi = 0; oi < s->nobjs; oi++) {
         const Object *o = &s->objs[oi];
         Mat4 mv = m4_mul(*view, object_matrix(o));
         PointMap pm;
-        point_map(&pm, pj, &mv, size);
+        point_map(&pm, pj, &mv, size, align);
         for (uint32_t k = 0; k < o->point_count; k++) {
             int32_t i0, j0;
             float z;
@@ -412,7 +443,7 @@ static int points_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Ma
     return 0;
 }
 
-static int points_reduced(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat4 *view, int size,
+static int points_reduced(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat4 *view, int size, int align,
                           PrimWork *w)
 {
     int32_t gw = sp->w + size - 1, gh = sp->h + size - 1;
@@ -433,7 +464,7 @@ static int points_reduced(ScreenPolys *sp, const Scene *s, const PProj *pj, cons
         if (grow_array((void **)&w->box[i], &w->cap[i], (uint32_t)nbox, sizeof *w->box[i]))
             return -1;
         memset(w->box[i], 0xff, nbox * sizeof *w->box[i]);
-        job[i] = (PointJob){ s, pj, *view, w->box[i], gw, gh, size,
+        job[i] = (PointJob){ s, pj, *view, w->box[i], gw, gh, size, align,
                              (uint32_t)((uint64_t)s->npoints * (uint32_t)i / (uint32_t)t),
                              (uint32_t)((uint64_t)s->npoints * (uint32_t)(i + 1) / (uint32_t)t), 0 };
     }
@@ -638,11 +669,15 @@ int screen_prims(ScreenPolys *sp, const Scene *s, const PrimStyle *st, PrimWork 
     pproj_from(&pj, sp);
     Mat4 view = camera_view(&s->cam);
     int size = st->point_size < 1 ? 1 : st->point_size > PRIM_SIZE_MAX ? PRIM_SIZE_MAX : st->point_size;
+    /* squares on whole pixels when a pixel is several samples a side
+     * (and the size is a whole number of pixels) */
+    int align = st->pixel > 1 && size % st->pixel == 0 ? st->pixel : 1;
     PrimStyle style = *st;
     style.line_width = st->line_width < 1 ? 1 : st->line_width > PRIM_SIZE_MAX ? PRIM_SIZE_MAX : st->line_width;
     int rc = 0;
     if (s->npoints)
-        rc = st->all_points ? points_all(sp, s, &pj, &view, size) : points_reduced(sp, s, &pj, &view, size, *work);
+        rc = st->all_points ? points_all(sp, s, &pj, &view, size, align)
+                            : points_reduced(sp, s, &pj, &view, size, align, *work);
     if (!rc)
         rc = edges_all(sp, s, &pj, &view, &style);
     if (grow_array((void **)&sp->polys, &sp->cap_polys, sp->npolys + 1, sizeof *sp->polys))

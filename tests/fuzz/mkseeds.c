@@ -399,7 +399,7 @@ int main(int argc, char **argv)
                      { 0 }, { 0 }, 1 };
     h = (Head){ 120, 90, SC_PERSP | SC_THREADS2, 0, 50, 30, 20, 10, { 0 }, 1, 0, 0, 0 };
     o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &cube);
-    wstyle(&o, 2, 1, 1, 0); w8(&o, 1); wpobj(&o, &on_cube);
+    wstyle(&o, 2, 1, 1, 0); w8(&o, 1 | 1 << 4); wpobj(&o, &on_cube);     /* squares on pixels of 2 samples */
     rc |= save(dir, "points-lines-wire-on-cube", &o);
 
     /* 15: a dense cloud (4096 points on a coarse grid: many share a

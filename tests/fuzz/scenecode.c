@@ -328,7 +328,9 @@ int sc_decode_style(const uint8_t *data, size_t size, Scene *s, Viewport *vp, in
     style->line_width = 1 + (int)(sb >> 3 & 7);
     style->wire = sb >> 6 & 1;
     style->all_points = sb >> 7 & 1;
-    int nprim = (int)(rd_u8(&r) % (SC_MAX_PRIM_MESHES + 1));
+    unsigned pb = rd_u8(&r);
+    int nprim = (int)(pb % (SC_MAX_PRIM_MESHES + 1));
+    style->pixel = 1 + (int)(pb >> 4 & 3) % 3;
     for (int k = 0; k < nprim; k++) {
         Mesh *m = &meshes[nmeshes++];     /* counted first: fail frees it */
         char name[16];

@@ -54,7 +54,10 @@
  *                                 wireframe of the faces, bit 7: every
  *                                 point drawn (no one-per-box reduction)
  *   u8  prim meshes               v % (SC_MAX_PRIM_MESHES + 1), each a mesh
- *                                 of its own after the others, one object:
+ *                                 of its own after the others, one object;
+ *                                 bits 4-5: samples a pixel's side, 1 +
+ *                                 v % 3 (points on whole pixels when their
+ *                                 size is a multiple):
  *     u8  pflags                  PF_PLACED PF_COPY PF_WIDE PF_RAW PF_CLOUD
  *     coord x, y, z; u8 unit      as for objects
  *     PF_COPY: u8 mesh            the vertices of that earlier mesh (v % its
