@@ -38,7 +38,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-seeds replay
+.PHONY: all test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points
 
 all: $(BIN)
 
@@ -62,8 +62,10 @@ $(TESTBIN): $(LIBOBJS) $(TOBJS) $(CONFIG)
 # libFuzzer: they replay the seed and regression corpora in every build.
 FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c tests/testlib.c
 FUZZ_DIFF_SRCS := tests/fuzz/fuzz_diff.c tests/fuzz/scenecode.c tests/testlib.c
-REPLAY_OBJS    := $(sort $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
-REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff
+FUZZ_MESH_SRCS := tests/fuzz/fuzz_mesh.c tests/testlib.c
+REPLAY_OBJS    := $(sort $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) \
+                  $(FUZZ_MESH_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
+REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff $(BUILD)/replay-mesh
 
 $(BUILD)/tests/fuzz/%.o: CFLAGS += -Itests
 
@@ -73,10 +75,15 @@ $(BUILD)/replay-obj: $(LIBOBJS) $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests
 $(BUILD)/replay-diff: $(LIBOBJS) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
+$(BUILD)/replay-mesh: $(LIBOBJS) $(FUZZ_MESH_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
 # Every input that ever failed, and the seeds (pending/ is not replayed).
+# fuzz-mesh's loaders warn about what they skip: that goes to /dev/null.
 replay: $(REPLAYS)
 	$(BUILD)/replay-obj tests/fuzz/seeds/obj tests/fuzz/regress/obj
 	$(BUILD)/replay-diff tests/fuzz/seeds/diff tests/fuzz/regress/diff
+	$(BUILD)/replay-mesh tests/fuzz/seeds/mesh tests/fuzz/regress/mesh 2>/dev/null
 
 # The whole suite: unit tests (Criterion), the fuzz corpora, then
 # end-to-end shell tests.
@@ -128,6 +135,15 @@ $(BUILD)/colorerr: tools/colorerr.c $(LIBOBJS)
 bench-formats: $(BIN) $(TESTBIN)
 	ZVIEW=$(abspath $(BIN)) sh tools/bench-formats.sh
 
+# The point-cloud figures: a 10M-point scan sampled from the dragon
+# (POINTS=N for another size), its load and frames (README: Points and
+# lines).
+bench-points: $(BIN) $(BUILD)/mkcloud
+	ZVIEW=$(abspath $(BIN)) MKCLOUD=$(BUILD)/mkcloud sh tests/bench_points.sh
+
+$(BUILD)/mkcloud: tests/mkcloud.c $(LIBOBJS)
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
 # Regenerate the bundled models (they are committed; this is how they were made).
 assets: $(BUILD)/genassets
 	$(BUILD)/genassets assets
@@ -146,7 +162,7 @@ install: $(BIN)
 	install -m 644 assets/demo.obj assets/demo.mtl $(DESTDIR)$(PREFIX)/share/zview/
 
 # ==== Fuzzing: clang + libFuzzer (sh tools/deps.sh installs both) ====
-# make fuzz builds build-fuzz/fuzz-obj and build-fuzz/fuzz-diff; make
+# make fuzz builds build-fuzz/fuzz-obj, fuzz-diff and fuzz-mesh; make
 # fuzz-run SECONDS=N runs each for N seconds on the seeds and regression
 # inputs, growing its corpus in build-fuzz/corpus/ and writing failing
 # inputs to build-fuzz/artifacts/. FUZZ_FLAGS adds libFuzzer options
@@ -157,11 +173,12 @@ FUZZ_SAN    := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno
 FUZZ_CFLAGS := -O1 -g $(EXTRA_CFLAGS) -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude -Itests \
                $(PKG_CFLAGS) -MMD -MP -pthread $(FUZZ_SAN)
 FUZZ_LIBOBJS := $(LIBSRCS:%.c=$(FUZZ_BUILD)/%.o)
-FUZZ_OBJS   := $(sort $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o))
+FUZZ_OBJS   := $(sort $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o) \
+                      $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o))
 SECONDS     ?= 60
 FUZZ_FLAGS  ?=
 
-fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff
+fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff $(FUZZ_BUILD)/fuzz-mesh
 
 # Rewrite the differential fuzzer's seed scenes (they are committed).
 fuzz-seeds: $(BUILD)/mkseeds
@@ -186,9 +203,13 @@ $(FUZZ_BUILD)/fuzz-obj: $(FUZZ_LIBOBJS) $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 $(FUZZ_BUILD)/fuzz-diff: $(FUZZ_LIBOBJS) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
 
-# fuzz-obj's stderr is closed (-close_fd_mask=2): the loader's warnings
-# would drown its output; crash reports still get through.
-fuzz-run: fuzz
+$(FUZZ_BUILD)/fuzz-mesh: $(FUZZ_LIBOBJS) $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+
+# fuzz-obj's and fuzz-mesh's stderr is closed (-close_fd_mask=2): the
+# loaders' warnings would drown their output; crash reports still get
+# through. make fuzz-run-mesh runs fuzz-mesh alone.
+fuzz-run: fuzz fuzz-run-mesh
 	@mkdir -p $(FUZZ_BUILD)/corpus/obj $(FUZZ_BUILD)/corpus/diff $(FUZZ_BUILD)/artifacts/obj $(FUZZ_BUILD)/artifacts/diff
 	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
 	    -dict=tests/fuzz/obj.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/obj/ $(FUZZ_FLAGS) \
@@ -196,6 +217,12 @@ fuzz-run: fuzz
 	nice $(FUZZ_BUILD)/fuzz-diff -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=8192 \
 	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/diff/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/diff tests/fuzz/seeds/diff tests/fuzz/regress/diff
+
+fuzz-run-mesh: $(FUZZ_BUILD)/fuzz-mesh
+	@mkdir -p $(FUZZ_BUILD)/corpus/mesh $(FUZZ_BUILD)/artifacts/mesh
+	nice $(FUZZ_BUILD)/fuzz-mesh -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
+	    -dict=tests/fuzz/mesh.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/mesh/ $(FUZZ_FLAGS) \
+	    $(FUZZ_BUILD)/corpus/mesh tests/fuzz/seeds/mesh tests/fuzz/regress/mesh
 
 clean:
 	rm -rf build build-asan build-noassimp $(FUZZ_BUILD) $(BIN)

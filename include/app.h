@@ -62,7 +62,15 @@ typedef struct {
     float       ambient;        /* --ambient */
     int         edges;          /* --edges */
     int         order;          /* PolyOrder */
+    /* points, lines and lenient loading */
+    int         point_size;     /* --point-size, pixels */
+    int         line_width;     /* --line-width, pixels */
+    int         wireframe;      /* --wireframe */
+    int         points;         /* --points: every vertex a point, faces dropped */
+    int         strict;         /* --strict: refuse a file with a statement it cannot read */
 } Options;
+
+#define POINT_SIZE_MAX 16       /* pixels: at 4 x 4 samples a pixel, PRIM_SIZE_MAX samples */
 
 enum { IMG_AUTO, IMG_PNG, IMG_PPM };
 
@@ -102,6 +110,11 @@ typedef struct {
     Image        img_ss;        /* the supersampled picture before averaging */
     HsrStats     st;
     double       project_ms, hsr_ms, shade_ms, cells_ms;
+    /* points and lines (prims.c) */
+    int          point_size;    /* pixels a side (times the samples' side in samples) */
+    int          line_width;    /* pixels */
+    int          wireframe;     /* every face edge as a line (the scene's wire is built on first use) */
+    PrimWork    *prims;
 } Pipeline;
 
 int  pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads);
@@ -117,6 +130,10 @@ void pipeline_free(Pipeline *p);
 int  pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int shade_too);
 /* The side k of the k x k samples a pixel gets for a sample count. */
 int  pipeline_samples_side(int samples);
+/* Why the last frame covers no pixel, as one line with the key or
+ * option that fixes it ("the model is edge-on: try --view iso or turn
+ * with the arrow keys"); NULL when something was drawn. */
+const char *frame_empty_reason(const Pipeline *p);
 
 /* The settings outside the scene that change the picture. */
 typedef struct {

@@ -1,7 +1,8 @@
 #ifndef ZV_MESH_H
 #define ZV_MESH_H
 /* mesh: model files in, plain arrays out. Native loaders for Wavefront
- * OBJ (+ MTL), STL (binary and ASCII), PLY (ascii and binary) and OFF;
+ * OBJ (+ MTL), STL (binary and ASCII), PLY (ascii and binary), OFF and
+ * the XYZ text of scanners (x y z [r g b] a line);
  * the long tail (glTF, FBX, 3DS, COLLADA, 3MF, ...) through assimp when
  * the build has it. Knows nothing of cameras, screens or terminals.
  *
@@ -27,22 +28,28 @@ typedef struct {
     char     name[MESH_NAME_MAX]; /* from `o`, else the file's base name */
     uint32_t face_first;          /* first face of this object */
     uint32_t face_count;
-    uint32_t vert_min, vert_max;  /* vertex index range its faces use (inclusive) */
+    uint32_t vert_min, vert_max;  /* vertex index range its faces, points and lines use (inclusive) */
+    uint32_t point_first, point_count;  /* its points (Mesh.point) */
+    uint32_t line_first, line_count;    /* its polylines (Mesh.line_start) */
 } MeshObject;
 
 typedef struct {
     char     format[32];    /* what read it: "obj", "stl binary", "ply ascii", "gltf (assimp)" */
     uint64_t bytes;         /* size of the input */
     uint64_t corners_read;  /* STL: corners in the file, before merging equal vertices */
-    uint32_t points, lines; /* point and line primitives not kept (see Mesh) */
     uint32_t texcoords;     /* `vt` count */
     uint32_t normals;       /* `vn` count */
-    uint32_t unknown;       /* statements skipped (unknown keywords) */
+    uint32_t unknown;       /* unknown keywords (each also a skipped statement) */
     char     first_unknown[32]; /* the first unknown keyword, for --info */
     uint32_t triangles;     /* sum of (corners - 2) over faces */
     uint32_t groups;        /* `g` statements */
     double   load_ms;       /* wall time of mesh_load, MTL included */
     double   load_cpu_ms;   /* the loading thread's CPU time over the same */
+    /* Statements skipped because they could not be read (a face with no
+     * vertices, an index out of range, an unknown keyword): the rest of
+     * the file is shown, and a warning names the count and the first. */
+    uint32_t skipped;
+    char     first_skipped[256];    /* "x.obj:12: vertex index 40 out of range ..." */
 } MeshInfo;
 
 typedef struct Mesh {
@@ -58,14 +65,16 @@ typedef struct Mesh {
     uint32_t   nmats;
     MeshObject *objs;       /* at least one */
     uint32_t   nobjs;
-    /* Points and polylines (OBJ p and l, PLY point clouds, glTF POINTS
-     * and LINES) belong here, beside the faces: a later change adds
-     * `uint32_t nlines; uint32_t *line_start, *line_corner;` (polylines
-     * as runs of vertex indices, as faces are) and draws the vertices no
-     * face or line uses as points. Loaders already keep such vertices (a
-     * PLY without faces loads its vertices and no faces, its object
-     * spanning them) and count what they drop in info.points and
-     * info.lines. */
+    /* Points and polylines (OBJ p and l, PLY and XYZ point clouds, glTF
+     * POINTS and LINES), beside the faces. A point is a vertex; a
+     * polyline a run of vertices (k corners, k - 1 segments), stored as
+     * faces are. Objects own contiguous runs of each. */
+    uint32_t   npoints;
+    uint32_t  *point;       /* vertex index per point; NULL: point i is vertex i
+                               (a cloud: no array for millions of points) */
+    uint32_t   nlines;
+    uint32_t  *line_start;  /* nlines + 1 offsets into line_corner */
+    uint32_t  *line_corner; /* vertex index per polyline corner */
     MeshInfo   info;
 } Mesh;
 
@@ -81,6 +90,19 @@ typedef struct Mesh {
 int  mesh_load(Mesh *m, const char *path, char *err, size_t errlen);
 int  mesh_load_as(Mesh *m, const char *path, const char *format, char *err, size_t errlen);
 
+/* How to load: format NULL detects; strict refuses a file with any
+ * statement it cannot read (exit 1, "path:line: message") where the
+ * default skips such statements, shows the rest and warns once on
+ * stderr ("zview: warning: x.obj: 3 statements skipped (first: ...)"),
+ * the count and first message also in info.skipped and
+ * info.first_skipped. */
+typedef struct {
+    const char *format;
+    int         strict;
+} MeshLoadOpts;
+
+int  mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, size_t errlen);
+
 /* Parse a model already in memory (what a fuzz harness calls): `path`
  * names it in messages, gives the extension, and is what files it
  * refers to (mtllib) are resolved against; path NULL: named "(input)",
@@ -88,6 +110,9 @@ int  mesh_load_as(Mesh *m, const char *path, const char *format, char *err, size
  * No state outside *m and the arguments. Same contract as mesh_load. */
 int  mesh_parse_buffer(Mesh *m, const char *path, const char *format, const void *data,
                        size_t len, char *err, size_t errlen);
+
+int  mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, const void *data,
+                          size_t len, char *err, size_t errlen);
 
 /* OBJ text in memory: mesh_parse_buffer with format "obj". */
 int  mesh_parse(Mesh *m, const char *path, const char *text, size_t len,
@@ -105,5 +130,9 @@ void mesh_formats_short(char *buf, size_t n);
 
 /* Reverse every face's corner order (--flip: the other winding). */
 void mesh_flip_winding(Mesh *m);
+
+/* --points: every vertex becomes a point and the faces and lines go
+ * (one object of the whole mesh, named after the file). */
+void mesh_as_points(Mesh *m);
 
 #endif

@@ -34,6 +34,15 @@ typedef struct {
     float      scale;         /* uniform, 1 = as loaded */
     float      home_scale;    /* scale after a reset (a laid-out file's common size) */
     int        up;            /* UpAxis: applied first, about the centre */
+    /* Points, line segments and wireframe edges (screen-aligned squares
+     * and quads made each frame by prims.c): ids past every face's, in
+     * load order: all objects' points, then their segments, then their
+     * wireframe edges (see scene_prim_of). */
+    uint32_t   point_first, point_count;  /* its points in the mesh (Mesh.point, or vertices) */
+    uint32_t   seg_first, seg_count;      /* its segments in Scene.seg_corner */
+    uint32_t   wire_first, wire_count;    /* its edges in Scene.wire (when built) */
+    int32_t    point_id0, seg_id0, wire_id0; /* global id of its first of each */
+    uint32_t   line_count;                /* polylines (for counts) */
 } Object;
 
 typedef struct {
@@ -87,7 +96,45 @@ typedef struct Scene {
     uint32_t  nbase_objs;     /* objects loaded (before grid copies) */
     Camera    cam;
     Light     light;
+    /* Points and lines, beside the faces (all objects, grid copies
+     * counted): ids nfaces .. nfaces + nprims - 1 (scene_prim_of). */
+    uint32_t  npoints;        /* point primitives */
+    uint32_t  nlines;         /* polylines */
+    uint32_t  nsegs;          /* their segments (a polyline of k corners has k - 1) */
+    uint32_t *seg_corner;     /* per segment of the loaded objects: its first corner
+                                 in the mesh's line_corner (the second follows) */
+    /* The wireframe (--wireframe): every edge of the loaded objects' faces
+     * once per object, as mesh vertex pairs; made by scene_wire_build. */
+    uint32_t *wire;           /* 2 per edge */
+    uint32_t  nwire_edges;    /* edges of the loaded objects */
+    uint32_t  nwire;          /* wireframe edges drawn, grid copies counted (0: not built) */
+    int       wire_built;
+    uint32_t  nprims;         /* npoints + nsegs + nwire: the ids after the faces' */
 } Scene;
+
+/* What an id of the face-id buffer is. */
+typedef enum { PRIM_NONE = -1, PRIM_FACE = 0, PRIM_POINT, PRIM_SEG, PRIM_WIRE } PrimKind;
+
+/* The kind of id, its object (*obj) and its index among that object's
+ * points, segments or wireframe edges (*local; for a face, the face
+ * index within the object). PRIM_NONE for the background and ids past
+ * the scene's. */
+PrimKind scene_prim_of(const Scene *s, int32_t id, int *obj, uint32_t *local);
+
+/* The two mesh vertices of a segment or wireframe edge (local index k
+ * of object o). */
+void scene_edge_verts(const Scene *s, const Object *o, PrimKind kind, uint32_t k, uint32_t v[2]);
+
+/* The mesh vertex of point k of object o. */
+static inline uint32_t object_point_vert(const Object *o, uint32_t k)
+{
+    const uint32_t *pt = o->mesh->point;
+    return pt ? pt[o->point_first + k] : o->point_first + k;
+}
+
+/* Make the wireframe's edges (once; later calls return at once).
+ * Returns 0, or -1 with a message (out of memory, too many ids). */
+int  scene_wire_build(Scene *s, char *err, size_t errlen);
 
 /* Build a scene from loaded meshes (ownership of the array and the meshes
  * moves to the scene). Every `o` object of every mesh becomes one Object.

@@ -81,6 +81,16 @@ typedef struct {
     uint32_t    helpers;        /* helper threads that took part (most for one object) */
     double      ms;             /* time spent projecting */
     ScreenWork *work;           /* scratch, made on first use, freed by screen_free */
+    /* Points, line segments and wireframe edges (prims.c): appended by
+     * screen_prims after the faces' polygons, polys[prim_first ..
+     * npolys), ids past the faces' (scene_prim_of). They are in no
+     * object's map. */
+    uint32_t    prim_first;
+    uint32_t    points_in;      /* points in front of the eye and on screen */
+    uint32_t    points_drawn;   /* squares kept: one per sample box (see prims.c) */
+    uint32_t    edges_in;       /* segments and wireframe edges considered */
+    uint32_t    edges_drawn;    /* quads kept */
+    double      prim_ms;        /* time spent on them */
 } ScreenPolys;
 
 typedef struct {
@@ -114,6 +124,39 @@ static inline float plane_at(const ScreenPoly *p, float zrow, int i)
 {
     return zrow + p->a * (float)(i - p->x0);
 }
+
+/* prims.c: points and lines as polygons. Each point becomes a square
+ * of point_size x point_size samples, aligned to the sample grid (to
+ * the pixel grid when supersampled), placed by its projected centre, at
+ * its depth; each segment (and
+ * wireframe edge) a quad line_width samples wide along it, with square
+ * ends half as long as it is wide, its depth varying along it as the
+ * segment's does. Wireframe edges are brought nearer by PRIM_WIRE_BIAS,
+ * so that an edge wins against its own faces. They are ordinary
+ * polygons for every algorithm, with ids past the faces'. */
+#define PRIM_SIZE_MAX  64          /* largest point size and line width, in samples */
+#define PRIM_WIRE_BIAS (1.0f / 4096) /* depth units (the fitted scene spans about 0.5) */
+
+typedef struct {
+    int point_size;         /* samples a side, 1 .. PRIM_SIZE_MAX */
+    int line_width;         /* samples, 1 .. PRIM_SIZE_MAX */
+    int wire;               /* the wireframe edges too (scene_wire_build first) */
+    int all_points;         /* every point as a square, none dropped (tests: the
+                               reduction gives the same buffers) */
+    int pixel;              /* samples a pixel's side (supersampling): squares
+                               of whole pixels start on a pixel (0, 1: any sample) */
+} PrimStyle;
+
+typedef struct PrimWork PrimWork;   /* per-frame scratch, kept across frames */
+
+/* Append the scene's points, segments (and wireframe edges) to sp, as
+ * screen_project left it for the same scene and viewport. Of the points
+ * whose squares cover the same samples only the nearest (by depth, then
+ * id) can show anywhere, so only it is kept: exactly the picture of all
+ * of them, at a cost bounded by the screen. *work is made on first use.
+ * Returns 0, or -1 on out of memory. */
+int  screen_prims(ScreenPolys *sp, const Scene *s, const PrimStyle *st, PrimWork **work);
+void prims_free(PrimWork **work);
 
 /* order.c: the order polygons reach the algorithm (--order). The ids
  * and the picture do not change; the hierarchical z-buffer's speed does. */

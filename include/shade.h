@@ -69,6 +69,7 @@ typedef struct {
     float     crease;       /* smooth: degrees */
     int       highlight;    /* object drawn highlighted (the viewer's selection), -1 none */
     int       edges;        /* draw outlines: silhouettes, creases, depth steps */
+    int       wire;         /* the wireframe is drawn: faces dimmed under its edges */
 } ShadeSettings;
 
 int  shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,
@@ -84,6 +85,15 @@ int  smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg);
 void smooth_free(SmoothData *sd);
 int  shade_smooth(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, SmoothData *sd,
                   const uint8_t *face_rgb_default, Image *out);
+
+/* prims.c's points, segments and wireframe edges are not lit: a point
+ * or segment takes its vertices' colours (PLY, XYZ, OBJ `v x y z r g
+ * b`), else its object's colour dimmed with depth (near full, the
+ * farthest of the frame's points and lines at 40%), so a scan without
+ * colours still shows its shape; wireframe edges are near white over
+ * faces dimmed to 40%. Depth and id shading treat them as faces do. */
+#define PRIM_FAR_SHADE  0.4f
+#define WIRE_FACE_SHADE 0.4f
 
 /* Distinct colour for a face id (also used by tests). */
 void shade_id_colour(int32_t id, uint8_t rgb_out[3]);

@@ -2,6 +2,7 @@
 #define _DEFAULT_SOURCE   /* strdup */
 
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -72,11 +73,27 @@ void tl_random_view(Scene *s, uint32_t seed, int persp)
     s->cam.pan = v3(0.4f * (unit(seed, 6) - 0.5f), 0.4f * (unit(seed, 7) - 0.5f), 0);
 }
 
+int tl_project(ScreenPolys *sp, Scene *s, const Viewport *vp, const PrimStyle *style, PrimWork **work)
+{
+    PrimStyle st = { 1, 1, 0, 0, 0 };
+    if (style)
+        st = *style;
+    st.point_size = st.point_size > 0 ? st.point_size : 1;
+    st.line_width = st.line_width > 0 ? st.line_width : 1;
+    char err[160];
+    if (screen_project(sp, s, vp) || (st.wire && scene_wire_build(s, err, sizeof err)))
+        return -1;
+    return screen_prims(sp, s, &st, work);
+}
+
 int tl_render(Scene *s, const HsrAlgo *algo, int threads, int w, int h, int cull,
               ScreenPolys *sp, FrameBufs *fb, HsrStats *st)
 {
     Viewport vp = { w, h, 1.0f, cull };
-    if (screen_project(sp, s, &vp))
+    PrimWork *work = NULL;
+    int prc = tl_project(sp, s, &vp, NULL, &work);
+    prims_free(&work);
+    if (prc)
         return -1;
     HsrRunner r;
     if (hsr_runner_init(&r, algo, threads))
@@ -132,7 +149,7 @@ int tl_mesh_init(Mesh *m, const char *path)
 int tl_mesh_object(Mesh *m, const char *name)
 {
     MeshObject *cur = &m->objs[m->nobjs - 1];
-    if (cur->face_first != m->nfaces) {
+    if (cur->face_first != m->nfaces || cur->point_first != m->npoints || cur->line_first != m->nlines) {
         MeshObject *objs = grown(m->objs, m->nobjs + 1, sizeof *objs);
         if (!objs)
             return -1;
@@ -141,6 +158,8 @@ int tl_mesh_object(Mesh *m, const char *name)
     }
     memset(cur, 0, sizeof *cur);
     cur->face_first = m->nfaces;
+    cur->point_first = m->npoints;
+    cur->line_first = m->nlines;
     snprintf(cur->name, sizeof cur->name, "%s", name);
     return 0;
 }
@@ -179,23 +198,75 @@ int tl_mesh_face(Mesh *m, const uint32_t *corner, uint32_t n)
     return 0;
 }
 
+int tl_mesh_point(Mesh *m, uint32_t v)
+{
+    uint32_t *pt = grown(m->point, (size_t)m->npoints + 1, sizeof *pt);
+    if (!pt)
+        return -1;
+    m->point = pt;
+    m->point[m->npoints++] = v;
+    return 0;
+}
+
+int tl_mesh_line(Mesh *m, const uint32_t *corner, uint32_t n)
+{
+    uint32_t *ls = grown(m->line_start, (size_t)m->nlines + 2, sizeof *ls);
+    if (ls)
+        m->line_start = ls;
+    if (!ls)
+        return -1;
+    if (m->nlines == 0)
+        m->line_start[0] = 0;
+    uint32_t c0 = m->line_start[m->nlines];
+    uint32_t *lc = grown(m->line_corner, (size_t)c0 + n, sizeof *lc);
+    if (!lc)
+        return -1;
+    m->line_corner = lc;
+    memcpy(&m->line_corner[c0], corner, n * sizeof *corner);
+    m->line_start[++m->nlines] = c0 + n;
+    return 0;
+}
+
+static void range_add(MeshObject *o, uint32_t v)
+{
+    o->vert_min = v < o->vert_min ? v : o->vert_min;
+    o->vert_max = v > o->vert_max ? v : o->vert_max;
+}
+
 int tl_mesh_finish(Mesh *m)
 {
-    if (m->nfaces == 0)
+    if (m->nfaces == 0 && m->npoints == 0 && m->nlines == 0 && m->nverts) {
+        /* a cloud, as the loaders make it */
+        free(m->point);
+        m->point = NULL;
+        m->npoints = m->nverts;
+        m->nobjs = 1;
+        memset(&m->objs[0].face_first, 0, sizeof *m->objs - offsetof(MeshObject, face_first));
+    }
+    if (m->nfaces == 0 && m->npoints == 0 && m->nlines == 0)
         return -1;
-    if (m->objs[m->nobjs - 1].face_first == m->nfaces)
+    MeshObject *last = &m->objs[m->nobjs - 1];
+    if (m->nobjs > 1 && last->face_first == m->nfaces && last->point_first == m->npoints &&
+        last->line_first == m->nlines)
         m->nobjs--;
     for (uint32_t i = 0; i < m->nobjs; i++) {
         MeshObject *o = &m->objs[i];
-        uint32_t next = i + 1 < m->nobjs ? m->objs[i + 1].face_first : m->nfaces;
+        int end = i + 1 == m->nobjs;
+        uint32_t next = end ? m->nfaces : m->objs[i + 1].face_first;
         o->face_count = next - o->face_first;
+        o->point_count = (end ? m->npoints : m->objs[i + 1].point_first) - o->point_first;
+        o->line_count = (end ? m->nlines : m->objs[i + 1].line_first) - o->line_first;
         o->vert_min = UINT32_MAX;
         o->vert_max = 0;
-        for (uint32_t c = m->face_start[o->face_first]; c < m->face_start[next]; c++) {
-            uint32_t v = m->corner[c];
-            o->vert_min = v < o->vert_min ? v : o->vert_min;
-            o->vert_max = v > o->vert_max ? v : o->vert_max;
-        }
+        for (uint32_t c = m->face_start[o->face_first]; c < m->face_start[next]; c++)
+            range_add(o, m->corner[c]);
+        for (uint32_t k = o->point_first; k < o->point_first + o->point_count; k++)
+            range_add(o, m->point ? m->point[k] : k);
+        for (uint32_t l = o->line_first; l < o->line_first + o->line_count; l++)
+            for (uint32_t c = m->line_start[l]; c < m->line_start[l + 1]; c++)
+                range_add(o, m->line_corner[c]);
+        if (o->vert_min > o->vert_max)
+            o->vert_min = o->vert_max = 0;
     }
     return 0;
 }
@@ -239,7 +310,7 @@ long tl_agree(TlAgree *a, Scene *s, const Viewport *vp, int threads, char *msg, 
 {
     HsrInput in = { &a->sp, s, vp };
     snprintf(msg, msglen, "out of memory");
-    if (screen_project(&a->sp, s, vp) || render_poisoned(&hsr_zbuffer, 1, &in, &a->ref))
+    if (tl_project(&a->sp, s, vp, &a->style, &a->prims) || render_poisoned(&hsr_zbuffer, 1, &in, &a->ref))
         return -1;
     msg[0] = '\0';
     for (int k = 0; k < hsr_nalgos; k++) {
@@ -267,6 +338,7 @@ long tl_agree(TlAgree *a, Scene *s, const Viewport *vp, int threads, char *msg, 
 
 void tl_agree_free(TlAgree *a)
 {
+    prims_free(&a->prims);
     screen_free(&a->sp);
     fbuf_free(&a->ref);
     fbuf_free(&a->fb);

@@ -36,8 +36,13 @@ int  tl_mesh_init(Mesh *m, const char *path);
 int  tl_mesh_object(Mesh *m, const char *name);
 int  tl_mesh_vertex(Mesh *m, float x, float y, float z);
 int  tl_mesh_face(Mesh *m, const uint32_t *corner, uint32_t n);
-/* Close the objects (face counts, vertex ranges) as the loader's end of
- * file does; -1 when the mesh has no face. */
+/* A point at vertex v; a polyline through n >= 2 vertices. */
+int  tl_mesh_point(Mesh *m, uint32_t v);
+int  tl_mesh_line(Mesh *m, const uint32_t *corner, uint32_t n);
+/* Close the objects (face, point and line counts, vertex ranges) as the
+ * loader's end of file does; -1 when the mesh has nothing to draw. A
+ * mesh with vertices and nothing else becomes a point cloud (every
+ * vertex a point, no index array), as loaded clouds are. */
 int  tl_mesh_finish(Mesh *m);
 
 /* A view as the command line gives it (app_load_scene): fitted at one
@@ -60,7 +65,14 @@ void tl_set_view(Scene *s, const TlView *v);
 typedef struct {
     ScreenPolys sp;
     FrameBufs   ref, fb;
+    PrimStyle   style;      /* points and lines (zero: size and width 1, no wireframe) */
+    PrimWork   *prims;
 } TlAgree;
+
+/* The front end as the pipeline runs it: screen_project, then the
+ * points and lines (style NULL: size and width 1, no wireframe; the
+ * wireframe is built when asked for). */
+int  tl_project(ScreenPolys *sp, Scene *s, const Viewport *vp, const PrimStyle *style, PrimWork **work);
 
 /* Project the current view at vp, render it with the z-buffer on one
  * thread and with every algorithm on `threads` threads (the buffers

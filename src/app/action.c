@@ -178,6 +178,30 @@ static Reaction act_up(App *a)
     return RE_RENDER;
 }
 
+/* Points and lines: the squares' size and the lines' width in pixels,
+ * and the wireframe (every face edge as a line). */
+static Reaction prim_step(App *a, int *v, int d, const char *what)
+{
+    int n = *v + d;
+    if (n < 1 || n > POINT_SIZE_MAX)
+        return RE_NONE;
+    *v = n;
+    snprintf(a->note, sizeof a->note, "%s %d", what, n);
+    return RE_RENDER;
+}
+
+static Reaction act_point_bigger(App *a)  { return prim_step(a, &a->p.point_size, 1, "point size"); }
+static Reaction act_point_smaller(App *a) { return prim_step(a, &a->p.point_size, -1, "point size"); }
+static Reaction act_line_wider(App *a)    { return prim_step(a, &a->p.line_width, 1, "line width"); }
+static Reaction act_line_thinner(App *a)  { return prim_step(a, &a->p.line_width, -1, "line width"); }
+
+static Reaction act_wireframe(App *a)
+{
+    a->p.wireframe = !a->p.wireframe;
+    snprintf(a->note, sizeof a->note, "wireframe %s", a->p.wireframe ? "on" : "off");
+    return RE_RENDER;
+}
+
 static Reaction act_spin(App *a)
 {
     a->spin = !a->spin;
@@ -284,6 +308,9 @@ static const HelpEntry help[] = {
     { "p", "ortho / perspective" },
     { "b", "back-face culling" },
     { "U", "up axis (y z x -y -z -x)" },
+    { "[ ]", "point size" },
+    { "{ }", "line width" },
+    { "W", "wireframe" },
     { "space", "auto-rotate" },
     { "Ctrl-L", "redraw" },
     { "q Esc", "quit" },
@@ -387,6 +414,9 @@ static const Action keys[K_COUNT] = {
     ['p'] = act_persp,
     ['b'] = act_cull,
     ['U'] = act_up,
+    ['['] = act_point_smaller, [']'] = act_point_bigger,
+    ['{'] = act_line_thinner,  ['}'] = act_line_wider,
+    ['W'] = act_wireframe,
     [' '] = act_spin,
     ['?'] = act_help,
     [TK_CTRL_L] = act_redraw,

@@ -25,6 +25,9 @@ void cli_usage(FILE *f)
 "  --formats             list the formats this build reads\n"
 "  --up x|y|z|-x|-y|-z   the model's up axis (default y; scans and CAD are often z)\n"
 "  --flip                reverse every face's winding (inside out)\n"
+"  --strict              refuse a file with a statement zview cannot read (default:\n"
+"                        skip such statements, show the rest, warn with their count)\n"
+"  --points              draw every vertex as a point instead of the faces\n"
 "\n"
 "Output (default: the interactive viewer; --print when stdout is no terminal):\n"
 "  -p, --print           write one frame to stdout as text, no curses\n"
@@ -36,6 +39,9 @@ void cli_usage(FILE *f)
 "  --shade lambert|smooth|depth|id  shading (default lambert: flat per face)\n"
 "  --edges               outline silhouettes, creases and depth steps\n"
 "  --crease DEG          smooth shading and --edges: a sharper edge is a crease (default 60)\n"
+"  --point-size N        points as N x N pixel squares (1 to 16, default 1; [ ] in the viewer)\n"
+"  --line-width N        lines N pixels wide (1 to 16, default 1; { } in the viewer)\n"
+"  --wireframe           every edge of the faces as a line, hidden where faces hide it (W)\n"
 "  --light YAW,PITCH     light direction in degrees from the viewer (default -34,37)\n"
 "  --ambient F           ambient light, 0 to 1 (default 0.22)\n"
 "  --samples N           samples per pixel, 1, 4, 9 or 16, averaged (default 4 for\n"
@@ -152,6 +158,8 @@ enum {
     OPT_ROLL, OPT_ZOOM, OPT_PAN, OPT_FIT_FROM, OPT_MOVE, OPT_TURN, OPT_SCALE, OPT_VIEWS,
     OPT_GRID, OPT_FPS, OPT_MAX_POLYS, OPT_SAMPLES, OPT_CREASE, OPT_LIGHT, OPT_AMBIENT, OPT_VIEW,
     OPT_LAYOUT, OPT_EDGES, OPT_ORDER, OPT_FORMAT, OPT_FORMATS, OPT_UP, OPT_FLIP, OPT_IMAGE_FORMAT,
+    /* points, lines, lenient loading */
+    OPT_POINT_SIZE, OPT_LINE_WIDTH, OPT_WIREFRAME, OPT_POINTS, OPT_STRICT,
 };
 
 static const struct option long_opts[] = {
@@ -201,6 +209,12 @@ static const struct option long_opts[] = {
     { "up", required_argument, NULL, OPT_UP },
     { "flip", no_argument, NULL, OPT_FLIP },
     { "image-format", required_argument, NULL, OPT_IMAGE_FORMAT },
+    /* points, lines, lenient loading */
+    { "point-size", required_argument, NULL, OPT_POINT_SIZE },
+    { "line-width", required_argument, NULL, OPT_LINE_WIDTH },
+    { "wireframe", no_argument, NULL, OPT_WIREFRAME },
+    { "points", no_argument, NULL, OPT_POINTS },
+    { "strict", no_argument, NULL, OPT_STRICT },
     { NULL, 0, NULL, 0 },
 };
 
@@ -229,6 +243,8 @@ void cli_defaults(Options *o)
     o->light[0] = LIGHT_YAW;
     o->light[1] = LIGHT_PITCH;
     o->ambient = LIGHT_AMBIENT;
+    o->point_size = 1;
+    o->line_width = 1;
 }
 
 int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
@@ -432,6 +448,20 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
                 BAD_VAL("1 to 2000000000");
             o->max_polys = (uint64_t)n;
             break;
+        /* points, lines, lenient loading */
+        case OPT_POINT_SIZE:
+            if (parse_int(val, 1, POINT_SIZE_MAX, &n))
+                BAD_VAL("pixels, 1 to 16");
+            o->point_size = (int)n;
+            break;
+        case OPT_LINE_WIDTH:
+            if (parse_int(val, 1, POINT_SIZE_MAX, &n))
+                BAD_VAL("pixels, 1 to 16");
+            o->line_width = (int)n;
+            break;
+        case OPT_WIREFRAME: o->wireframe = 1; break;
+        case OPT_POINTS: o->points = 1; break;
+        case OPT_STRICT: o->strict = 1; break;
         default:
             snprintf(err, errlen, "unknown option (see --help)");
             return -1;

@@ -31,8 +31,13 @@ static void print_mesh(Out *out, const Mesh *m)
     out_printf(out, "materials:  %u\n", m->nmats);
     out_printf(out, "texcoords:  %u   normals: %u   vertex colours: %s\n", m->info.texcoords,
            m->info.normals, m->rgb ? "yes" : "no");
-    if (m->info.points || m->info.lines)
-        printf("not drawn:  %u points, %u lines\n", m->info.points, m->info.lines);
+    if (m->npoints || m->nlines) {
+        uint32_t segs = m->nlines ? m->line_start[m->nlines] - m->nlines : 0;
+        out_printf(out, "points:     %u%s\n", m->npoints, m->npoints && !m->point ? " (every vertex)" : "");
+        out_printf(out, "lines:      %u (%u segments)\n", m->nlines, segs);
+    }
+    if (m->info.skipped)
+        out_printf(out, "skipped:    %u statements (first: %s)\n", m->info.skipped, m->info.first_skipped);
     if (m->info.unknown)
         out_printf(out, "unknown:    %u statements skipped (first: '%s')\n", m->info.unknown,
                m->info.first_unknown);
@@ -66,6 +71,8 @@ int app_info(const Options *o, Scene *s)
         npolys += s->objs[k].poly_count;
     out_printf(out, "\nscene:      %d objects, %u faces, %llu polygons after splitting non-planar faces\n",
            s->nobjs, s->nfaces, (unsigned long long)npolys);
+    if (s->npoints || s->nlines)
+        out_printf(out, "            %u points, %u lines (%u segments)\n", s->npoints, s->nlines, s->nsegs);
     if (!report_ok(out))
         return 1;
     if (!o->algo)
@@ -91,14 +98,21 @@ int app_info(const Options *o, Scene *s)
            p.threads > 1 ? "s" : "");
     out_printf(out, "polygons:   %u in, %u back faces culled, %u cover no sample, %u to the algorithm\n",
            p.sp.in_polys, p.sp.culled_back, p.sp.culled_empty, p.sp.npolys);
+    if (p.sp.points_in || p.sp.edges_in)
+        out_printf(out, "points:     %u on screen, %u squares after keeping the nearest per sample box; "
+                        "%u segments and edges, %u quads\n",
+                   p.sp.points_in, p.sp.points_drawn, p.sp.edges_in, p.sp.edges_drawn);
     out_printf(out, "pyramid:    %llu polygons culled, %llu octree nodes visited, %llu culled\n",
            (unsigned long long)st->polys_culled, (unsigned long long)st->nodes_visited,
            (unsigned long long)st->nodes_culled);
     out_printf(out, "pixels:     %llu written, %llu covered, overdraw %.2f\n",
            (unsigned long long)st->pixels_written, (unsigned long long)covered,
            covered ? (double)st->pixels_written / covered : 0.0);
-    out_printf(out, "time:       transform %.2f ms, build %.2f ms, scan %.2f ms, shade %.2f ms\n",
-           p.project_ms, st->build_ms, st->scan_ms, p.shade_ms);
+    out_printf(out, "time:       transform %.2f ms (points and lines %.2f), build %.2f ms, scan %.2f ms, shade %.2f ms\n",
+           p.project_ms, p.sp.prim_ms, st->build_ms, st->scan_ms, p.shade_ms);
+    const char *why = frame_empty_reason(&p);
+    if (why)
+        out_printf(out, "empty:      %s\n", why);
     pipeline_free(&p);
     return report_ok(out) ? 0 : 1;
 }

@@ -56,8 +56,9 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         return -1;
     }
     int from_stdin = 0;
+    MeshLoadOpts lo = { o->format, o->strict };
     for (int i = 0; i < nfiles; i++) {
-        if (mesh_load_as(&meshes[i], files[i], o->format, err, errlen)) {
+        if (mesh_load_ex(&meshes[i], files[i], &lo, err, errlen)) {
             for (int k = 0; k < i; k++)
                 mesh_free(&meshes[k]);
             free(meshes);
@@ -65,6 +66,8 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         }
         if (o->flip)
             mesh_flip_winding(&meshes[i]);
+        if (o->points)
+            mesh_as_points(&meshes[i]);
         from_stdin |= strcmp(files[i], "-") == 0;
     }
     /* The model came through standard input (`curl ... | zview -`): the

@@ -157,6 +157,9 @@ int app_oneshot(const Options *o, Scene *s)
             goto out;
         }
     }
+    const char *why = frame_empty_reason(&p);     /* an empty picture says why */
+    if (why)
+        fprintf(stderr, "zview: nothing drawn: %s\n", why);
     if (o->dump_ids && write_ids(o->dump_ids, &p.fb))
         rc = 1;
     if (o->dump_screen && screen_dump_obj(&p.sp, o->dump_screen)) {

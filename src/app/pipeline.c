@@ -1,5 +1,6 @@
 /* pipeline.c: one frame through the stages, timed stage by stage. */
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -94,6 +95,8 @@ int pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads)
     p->samples = 1;
     p->crease = SHADE_CREASE_DEFAULT;
     p->highlight = -1;
+    p->point_size = 1;
+    p->line_width = 1;
     return pipeline_set_algo(p, algo);
 }
 
@@ -105,6 +108,9 @@ void pipeline_apply_options(Pipeline *p, const Options *o)
     p->order = (PolyOrder)o->order;
     if (o->samples > 0)
         p->samples = o->samples;
+    p->point_size = o->point_size > 0 ? o->point_size : 1;
+    p->line_width = o->line_width > 0 ? o->line_width : 1;
+    p->wireframe = o->wireframe;
 }
 
 int pipeline_set_algo(Pipeline *p, const HsrAlgo *algo)
@@ -126,6 +132,7 @@ void pipeline_free(Pipeline *p)
     image_free(&p->img_ss);
     shade_cache_free(&p->shade_cache);
     cells_free(&p->cells);
+    prims_free(&p->prims);
     memset(p, 0, sizeof *p);
 }
 
@@ -151,6 +158,15 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
         return -1;
     if (p->order != ORDER_FILE && screen_reorder(&p->sp, p->order, 1, &p->reorder))
         return -1;
+    /* points and lines after the faces (and after --order's reordering,
+     * which they need not take part in) */
+    char err[160];
+    if (p->wireframe && !p->scene->wire_built && scene_wire_build(p->scene, err, sizeof err))
+        return -1;
+    int ps = p->point_size > 0 ? p->point_size : 1, lw = p->line_width > 0 ? p->line_width : 1;
+    PrimStyle style = { ps * k, lw * k, p->wireframe, 0, k };
+    if (screen_prims(&p->sp, p->scene, &style, &p->prims))
+        return -1;
     double t1 = now_ms();
     HsrInput in = { .sp = &p->sp, .scene = p->scene, .vp = &p->vp };
     if (hsr_run(&p->run, &in, &p->fb, &p->st))
@@ -160,7 +176,7 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     p->hsr_ms = t2 - t1;
     p->shade_ms = 0;
     if (shade_too) {
-        ShadeSettings set = { p->shade, p->crease, p->highlight, p->edges };
+        ShadeSettings set = { p->shade, p->crease, p->highlight, p->edges, p->wireframe };
         if (k == 1 ? shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img)
                    : shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img_ss) ||
                          image_downsample(&p->img_ss, k, &p->img))
@@ -168,4 +184,84 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
         p->shade_ms = now_ms() - t2;
     }
     return 0;
+}
+
+/* ==== why a frame is empty ==== */
+
+/* The screen box of every object's box (its 8 corners, through the
+ * projection the frame used); which of them are in front of the eye. */
+typedef struct {
+    double x0, x1, y0, y1;      /* screen pixels of the corners in front */
+    int    in_front, behind;    /* corners of each kind */
+    int    objects;             /* objects with something to draw */
+} SceneExtent;
+
+static void scene_extent(const Pipeline *p, SceneExtent *e)
+{
+    const Scene *s = p->scene;
+    const ScreenPolys *sp = &p->sp;
+    memset(e, 0, sizeof *e);
+    e->x0 = e->y0 = INFINITY;
+    e->x1 = e->y1 = -INFINITY;
+    Mat4 view = camera_view(&s->cam);
+    for (int i = 0; i < s->nobjs; i++) {
+        const Object *o = &s->objs[i];
+        if (!o->poly_count && !o->point_count && !o->seg_count)
+            continue;
+        e->objects++;
+        Mat4 mv = m4_mul(view, object_matrix(o));
+        for (int k = 0; k < 8; k++) {
+            Vec3 c = v3(o->centre.x + (k & 1 ? o->half.x : -o->half.x), o->centre.y + (k & 2 ? o->half.y : -o->half.y),
+                        o->centre.z + (k & 4 ? o->half.z : -o->half.z));
+            Vec3 q = m4_point(&mv, c);
+            double x, y;
+            if (sp->persp) {
+                double ze = (double)sp->eye_z - q.z;
+                if (!(ze >= sp->near_z)) {
+                    e->behind++;
+                    continue;
+                }
+                x = sp->w * 0.5 + sp->focal_x * q.x / ze;
+                y = sp->h * 0.5 - sp->focal_y * q.y / ze;
+            } else {
+                x = sp->w * 0.5 + (double)sp->focal_x * q.x;
+                y = sp->h * 0.5 - (double)sp->focal_y * q.y;
+            }
+            e->in_front++;
+            e->x0 = fmin(e->x0, x);
+            e->x1 = fmax(e->x1, x);
+            e->y0 = fmin(e->y0, y);
+            e->y1 = fmax(e->y1, y);
+        }
+    }
+}
+
+const char *frame_empty_reason(const Pipeline *p)
+{
+    const FrameBufs *fb = &p->fb;
+    size_t n = (size_t)fb->w * fb->h;
+    for (size_t i = 0; i < n; i++)
+        if (fb->ids[i] >= 0)
+            return NULL;
+    const Scene *s = p->scene;
+    if (!s || (s->nfaces == 0 && s->nprims == 0))
+        return "the scene has nothing to draw";
+    SceneExtent e;
+    scene_extent(p, &e);
+    const ScreenPolys *sp = &p->sp;
+    if (e.objects && !e.in_front)
+        return "everything is behind the eye (--persp with a --zoom that moves the eye past the model): "
+               "try --zoom 1, or fit with f, reset with r";
+    if (e.objects && (e.x1 <= 0 || e.x0 >= sp->w || e.y1 <= 0 || e.y0 >= sp->h))
+        return "everything is outside the picture (--pan, --move or --zoom): try --pan 0,0, or fit with f, "
+               "reset with r";
+    /* a flat model turned edge-on: its box's outline has no width or no
+     * height (less than a sample across); not from a sample's size */
+    if (e.objects && (e.x1 - e.x0 < 1 || e.y1 - e.y0 < 1) && (e.x1 - e.x0 >= 1 || e.y1 - e.y0 >= 1) &&
+        s->nprims == 0)
+        return "the model is edge-on: try --view iso or turn with the arrow keys";
+    if (sp->cull && sp->culled_back > 0 && sp->culled_back + sp->culled_empty >= sp->in_polys)
+        return "every face was culled as a back face (--cull): try without --cull (b in the viewer), "
+               "or --flip if the faces point inwards";
+    return "the model covers no sample at this size: try a bigger --size or --zoom (+ in the viewer)";
 }

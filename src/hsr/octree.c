@@ -726,6 +726,24 @@ static void walk_object(OctState *s, const OctTree *tr, const HsrInput *in, cons
     }
 }
 
+/* Points and lines (prims.c) are in no object's map: their polygons
+ * follow the faces' at the end of the list, with ids past every face's.
+ * Each is drawn through the per-polygon test. When the list was
+ * reordered (--order), stragglers anywhere are found by their ids. */
+static void draw_unmapped(OctState *s, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *st)
+{
+    const ScreenPolys *sp = in->sp;
+    uint32_t nf = in->scene->nfaces, i = sp->npolys;
+    while (i > 0 && (uint32_t)sp->polys[i - 1].face >= nf)
+        i--;
+    if (!sp->face_sorted)
+        for (uint32_t k = 0; k < i; k++)
+            if ((uint32_t)sp->polys[k].face >= nf)
+                hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, k, fb, y0, y1, st);
+    for (; i < sp->npolys; i++)
+        hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, i, fb, y0, y1, st);
+}
+
 /* View z of the nearest corner of object o's box (larger is nearer). */
 static double object_front(const Mat4 *view, const Object *o)
 {
@@ -817,6 +835,7 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
         else
             walk_object(s, tr, in, ov, fb, y0, y1, stats);
     }
+    draw_unmapped(s, in, fb, y0, y1, stats);
 }
 
 const HsrAlgo hsr_hzb_octree = {

@@ -9,8 +9,9 @@
  * them. A material's base colour (glTF's baseColorFactor, else the
  * diffuse colour) becomes the faces' material; a mesh with vertex
  * colours gets them, multiplied by that base colour as glTF says, and
- * no material (a material would hide them). Points and lines are
- * counted, not kept (see Mesh).
+ * no material (a material would hide them). Points (glTF POINTS) and
+ * segments (LINES, LINE_STRIP, LINE_LOOP: assimp gives each segment as
+ * a face of two indices) are kept as the mesh's points and lines.
  *
  * The library is opened (dlopen) the first time a format of its is
  * asked for, not linked: linking it costs every run 5 MB of resident
@@ -185,10 +186,20 @@ static int add_mesh(Walk *w, const struct aiMesh *am, const struct aiMatrix4x4 *
     for (unsigned f = 0; f < am->mNumFaces; f++) {
         const struct aiFace *af = &am->mFaces[f];
         if (af->mNumIndices < 3) {
-            if (af->mNumIndices == 1)
-                m->info.points++;
-            else if (af->mNumIndices == 2)
-                m->info.lines++;
+            /* glTF POINTS come as faces of one index, LINES, LINE_STRIP
+             * and LINE_LOOP as faces of two (a segment each) */
+            for (unsigned k = 0; k < af->mNumIndices; k++)
+                if (af->mIndices[k] >= am->mNumVertices)
+                    return me_fail(e, "vertex index %u out of range (mesh '%s', %u vertices)", af->mIndices[k],
+                                   am->mName.data, am->mNumVertices);
+            if (af->mNumIndices == 1 && mb_point(&w->b, base + af->mIndices[0]))
+                return -1;
+            if (af->mNumIndices == 2) {
+                size_t first = w->b.nlcorner;
+                if (mb_line_corner(&w->b, base + af->mIndices[0]) ||
+                    mb_line_corner(&w->b, base + af->mIndices[1]) || mb_line_end(&w->b, first))
+                    return -1;
+            }
             continue;
         }
         size_t first = w->b.ncorner;
@@ -284,8 +295,6 @@ static int from_scene(MeshCtx *c, const struct aiScene *sc)
     if (walk(&w, sc->mRootNode, &id))
         goto out;
     r = mb_finish(&w.b, 1);
-    if (r == 0 && m->nfaces == 0)
-        me_warn(c->err.name, 0, "no faces: %u points, not drawn yet", m->nverts);
 out:
     free(w.matmap);
     if (r)

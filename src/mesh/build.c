@@ -132,6 +132,38 @@ int mb_grow_corners(MeshBuild *b)
     return mb_room_corners(b, 1);
 }
 
+int mb_grow_points(MeshBuild *b)
+{
+    Mesh *m = b->m;
+    if (m->npoints >= UINT32_MAX - 1)
+        return me_fail(b->e, "too many points");
+    if (grow((void **)&m->point, &b->pcap, (size_t)m->npoints + 1, sizeof(uint32_t)))
+        return me_oom(b->e);
+    return 0;
+}
+
+int mb_grow_lines(MeshBuild *b)
+{
+    Mesh *m = b->m;
+    if (m->nlines >= UINT32_MAX - 2)
+        return me_fail(b->e, "too many lines");
+    size_t cap = b->lcap;
+    /* line_start holds one more: the end of the last line */
+    if (grow((void **)&m->line_start, &cap, (size_t)m->nlines + 2, sizeof(uint32_t)))
+        return me_oom(b->e);
+    b->lcap = cap - 1;
+    return 0;
+}
+
+int mb_grow_line_corners(MeshBuild *b)
+{
+    if (b->nlcorner >= UINT32_MAX - 1)
+        return me_fail(b->e, "too many line corners");
+    if (grow((void **)&b->m->line_corner, &b->lccap, b->nlcorner + 1, sizeof(uint32_t)))
+        return me_oom(b->e);
+    return 0;
+}
+
 int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int exact)
 {
     Mesh *m = b->m;
@@ -145,6 +177,7 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
             return me_oom(b->e);
         m->pos = p;
         prefault(p, nv * 3 * sizeof(float), exact);
+        b->vexact = exact;
         if (m->rgb) {
             float *q = realloc(m->rgb, nv * 3 * sizeof(float));
             if (!q)
@@ -190,6 +223,9 @@ int mb_want_rgb(MeshBuild *b)
     m->rgb = malloc((b->vcap ? b->vcap : 1) * 3 * sizeof(float));
     if (!m->rgb)
         return me_oom(b->e);
+    /* a point cloud's colours are as big as its positions: fault them in
+     * at once too when the count is exact */
+    prefault(m->rgb, b->vcap * 3 * sizeof(float), b->vexact);
     for (size_t i = 0; i < 3 * (size_t)m->nverts; i++)
         m->rgb[i] = 1.0f;
     return 0;
@@ -199,15 +235,17 @@ int mb_object(MeshBuild *b, const char *name, size_t len)
 {
     Mesh *m = b->m;
     MeshObject *cur = &m->objs[m->nobjs - 1];
-    if (cur->face_first != m->nfaces) {
+    if (cur->face_first != m->nfaces || cur->point_first != m->npoints || cur->line_first != m->nlines) {
         if (m->nobjs == b->ocap &&
             grow((void **)&m->objs, &b->ocap, (size_t)m->nobjs + 1, sizeof(MeshObject)))
             return me_oom(b->e);
         cur = &m->objs[m->nobjs++];
     }
-    /* An object that got no faces is renamed rather than kept. */
+    /* An object that got nothing is renamed rather than kept. */
     memset(cur, 0, sizeof *cur);
     cur->face_first = m->nfaces;
+    cur->point_first = m->npoints;
+    cur->line_first = m->nlines;
     if (len > MESH_NAME_MAX - 1)
         len = MESH_NAME_MAX - 1;
     if (len) {
@@ -292,30 +330,54 @@ int32_t mb_colour(MeshBuild *b, uint8_t r, uint8_t g, uint8_t bl, uint8_t a)
     return mi;
 }
 
-int mb_finish(MeshBuild *b, int points_ok)
+int mb_finish(MeshBuild *b, int cloud_ok)
 {
     Mesh *m = b->m;
+    MeshErr *e = b->e;
     free(b->colours.slot);
     b->colours.slot = NULL;
     b->colours.cap = b->colours.used = 0;
-    if (m->nfaces == 0 && !(points_ok && m->nverts)) {
+    if (cloud_ok && m->nfaces == 0 && m->npoints == 0 && m->nlines == 0 && m->nverts) {
+        /* Vertices alone: a point cloud (a PLY or OFF without faces, an
+         * OBJ of `v` lines). No index array: point i is vertex i. */
+        free(m->point);
+        m->point = NULL;
+        b->pcap = 0;
+        m->npoints = m->nverts;
+        m->nobjs = 1;
+        m->objs[0].face_first = m->objs[0].line_first = m->objs[0].point_first = 0;
+    }
+    if (m->nfaces == 0 && m->npoints == 0 && m->nlines == 0) {
+        /* nothing to show: when statements were skipped, the first is why */
+        if (e->skipped) {
+            char first[sizeof e->first];
+            memcpy(first, e->first, sizeof first);
+            return me_fail_raw(e, "%s (%u statement%s skipped, nothing left to show)", first, e->skipped,
+                               e->skipped == 1 ? "" : "s");
+        }
         if (m->info.bytes == 0)
-            return me_fail(b->e, "no faces (empty file)");
-        if (m->nverts)
-            return me_fail(b->e, "no faces (%u vertices)", m->nverts);
-        return me_fail(b->e, "no faces");
+            return me_fail(e, "no faces (empty file)");
+        return me_fail(e, "no faces");
     }
     if (!m->face_start && !(m->face_start = malloc(sizeof(uint32_t))))
-        return me_oom(b->e);
+        return me_oom(e);
     m->face_start[m->nfaces] = (uint32_t)b->ncorner;
+    if (m->nlines)
+        m->line_start[m->nlines] = (uint32_t)b->nlcorner;
 
     /* Close the objects; only the last can be empty (see mb_object). */
     for (uint32_t i = 0; i < m->nobjs; i++) {
-        uint32_t next = i + 1 < m->nobjs ? m->objs[i + 1].face_first : m->nfaces;
-        m->objs[i].face_count = next - m->objs[i].face_first;
+        MeshObject *o = &m->objs[i];
+        int last = i + 1 == m->nobjs;
+        o->face_count = (last ? m->nfaces : m->objs[i + 1].face_first) - o->face_first;
+        o->point_count = (last ? m->npoints : m->objs[i + 1].point_first) - o->point_first;
+        o->line_count = (last ? m->nlines : m->objs[i + 1].line_first) - o->line_first;
     }
-    if (m->nobjs > 1 && m->objs[m->nobjs - 1].face_count == 0)
-        m->nobjs--;
+    if (m->nobjs > 1) {
+        const MeshObject *o = &m->objs[m->nobjs - 1];
+        if (o->face_count == 0 && o->point_count == 0 && o->line_count == 0)
+            m->nobjs--;
+    }
     for (uint32_t i = 0; i < m->nobjs; i++) {
         MeshObject *o = &m->objs[i];
         uint32_t lo = UINT32_MAX, hi = 0;
@@ -326,10 +388,26 @@ int mb_finish(MeshBuild *b, int points_ok)
             lo = v < lo ? v : lo;
             hi = v > hi ? v : hi;
         }
-        if (m->nfaces == 0) {       /* a point cloud: the object spans it */
-            lo = 0;
-            hi = m->nverts - 1;
+        if (o->point_count && !m->point) {
+            /* a cloud: its points are a run of vertices */
+            lo = o->point_first < lo ? o->point_first : lo;
+            hi = o->point_first + o->point_count - 1 > hi ? o->point_first + o->point_count - 1 : hi;
         }
+        for (uint32_t k = o->point_first; k < o->point_first + o->point_count && m->point; k++) {
+            uint32_t v = m->point[k];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+        if (o->line_count) {
+            uint32_t l0 = m->line_start[o->line_first], l1 = m->line_start[o->line_first + o->line_count];
+            for (uint32_t c = l0; c < l1; c++) {
+                uint32_t v = m->line_corner[c];
+                lo = v < lo ? v : lo;
+                hi = v > hi ? v : hi;
+            }
+        }
+        if (lo > hi)        /* an empty first object */
+            lo = hi = 0;
         o->vert_min = lo;
         o->vert_max = hi;
     }
@@ -347,8 +425,14 @@ int mb_finish(MeshBuild *b, int points_ok)
         m->face_start = q;
     if (m->face_mat && (q = realloc(m->face_mat, nf * sizeof(int32_t))))
         m->face_mat = q;
+    if (m->point && (q = realloc(m->point, (m->npoints ? m->npoints : 1) * sizeof(uint32_t))))
+        m->point = q;
+    if (m->line_start && (q = realloc(m->line_start, ((size_t)m->nlines + 1) * sizeof(uint32_t))))
+        m->line_start = q;
+    if (m->line_corner && (q = realloc(m->line_corner, (b->nlcorner ? b->nlcorner : 1) * sizeof(uint32_t))))
+        m->line_corner = q;
     if (!m->face_mat && !(m->face_mat = calloc(1, sizeof(int32_t))))
-        return me_oom(b->e);
+        return me_oom(e);
     return 0;
 }
 
@@ -371,7 +455,49 @@ void mesh_free(Mesh *m)
     free(m->face_mat);
     free(m->mats);
     free(m->objs);
+    free(m->point);
+    free(m->line_start);
+    free(m->line_corner);
     memset(m, 0, sizeof *m);
+}
+
+void mesh_as_points(Mesh *m)
+{
+    /* the vertices stay; every vertex is a point of one object */
+    free(m->face_start);
+    free(m->corner);
+    free(m->face_mat);
+    free(m->point);
+    free(m->line_start);
+    free(m->line_corner);
+    m->face_start = m->corner = m->point = m->line_start = m->line_corner = NULL;
+    m->face_mat = NULL;
+    m->nfaces = m->nlines = 0;
+    m->info.triangles = 0;
+    m->npoints = m->nverts;
+    /* a mesh is never without its face_start sentinel */
+    m->face_start = calloc(1, sizeof *m->face_start);
+    m->face_mat = calloc(1, sizeof *m->face_mat);
+    if (m->nobjs > 1) {
+        /* the whole mesh, named after the file as its default object is */
+        const char *base = m->path ? strrchr(m->path, '/') : NULL;
+        base = base ? base + 1 : m->path ? m->path : "points";
+        const char *dot = strrchr(base, '.');
+        size_t n = dot && dot > base ? (size_t)(dot - base) : strlen(base);
+        if (n > MESH_NAME_MAX - 1)
+            n = MESH_NAME_MAX - 1;
+        memcpy(m->objs[0].name, base, n);
+        m->objs[0].name[n] = '\0';
+    }
+    m->nobjs = m->nobjs ? 1 : 0;
+    if (m->nobjs) {
+        MeshObject *o = &m->objs[0];
+        o->face_first = o->face_count = o->line_first = o->line_count = 0;
+        o->point_first = 0;
+        o->point_count = m->nverts;
+        o->vert_min = 0;
+        o->vert_max = m->nverts ? m->nverts - 1 : 0;
+    }
 }
 
 void mesh_flip_winding(Mesh *m)

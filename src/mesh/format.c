@@ -15,7 +15,7 @@
 #include "mesh_internal.h"
 
 static const MeshLoader *const natives[] = {
-    &mesh_loader_obj, &mesh_loader_stl, &mesh_loader_ply, &mesh_loader_off,
+    &mesh_loader_obj, &mesh_loader_stl, &mesh_loader_ply, &mesh_loader_off, &mesh_loader_xyz,
 };
 #define NNATIVE (sizeof natives / sizeof natives[0])
 
@@ -292,6 +292,21 @@ static int refuse(MeshErr *e, const char *what)
     return me_fail(e, "not a model zview can read (%s; formats: %s)", what, list);
 }
 
+/* A load that skipped statements says so once, and keeps the count and
+ * the first for the status bar and --info. */
+static void report_skipped(MeshCtx *c)
+{
+    MeshErr *e = &c->err;
+    if (!e->skipped)
+        return;
+    c->m->info.skipped = e->skipped;
+    snprintf(c->m->info.first_skipped, sizeof c->m->info.first_skipped, "%s", e->first);
+    me_warn(e->name, 0, "%u statement%s skipped (first: %s)", e->skipped, e->skipped == 1 ? "" : "s",
+            e->first);
+    if (e->buf && e->len)
+        e->buf[0] = '\0';
+}
+
 /* Run the loader on bytes in memory. */
 static int run(const MeshLoader *l, MeshCtx *c, const char *data, size_t len)
 {
@@ -300,12 +315,22 @@ static int run(const MeshLoader *l, MeshCtx *c, const char *data, size_t len)
     int r = l->parse(c, data, len);
     if (r)
         mesh_free(c->m);
+    else
+        report_skipped(c);
     return r;
 }
 
 int mesh_parse_buffer(Mesh *m, const char *path, const char *format, const void *data,
                       size_t len, char *err, size_t errlen)
 {
+    MeshLoadOpts opt = { format, 1 };
+    return mesh_parse_buffer_ex(m, path, &opt, data, len, err, errlen);
+}
+
+int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, const void *data,
+                         size_t len, char *err, size_t errlen)
+{
+    const char *format = opt ? opt->format : NULL;
     double t0 = now_ms(), c0 = cpu_ms();
     char dummy[1];
     if (!err || !errlen) {
@@ -316,7 +341,9 @@ int mesh_parse_buffer(Mesh *m, const char *path, const char *format, const void 
     memset(m, 0, sizeof *m);
     if (!data)
         len = 0;
-    MeshCtx c = { .m = m, .err = { path ? path : "(input)", err, errlen }, .path = path };
+    MeshCtx c = { .m = m, .err = { .name = path ? path : "(input)", .buf = err, .len = errlen,
+                                   .strict = opt ? opt->strict : 1 },
+                  .path = path };
     char ext[16];
     extension(path, ext, sizeof ext);
     c.hint = format ? format : ext;
@@ -369,6 +396,13 @@ static void stream_limits(const MeshFile *f, const char *forced, MfLimits *lim)
 
 int mesh_load_as(Mesh *m, const char *path, const char *format, char *err, size_t errlen)
 {
+    MeshLoadOpts opt = { format, 1 };
+    return mesh_load_ex(m, path, &opt, err, errlen);
+}
+
+int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, size_t errlen)
+{
+    const char *format = opt ? opt->format : NULL;
     double t0 = now_ms(), c0 = cpu_ms();
     char dummy[1];
     if (!err || !errlen) {
@@ -379,7 +413,8 @@ int mesh_load_as(Mesh *m, const char *path, const char *format, char *err, size_
     memset(m, 0, sizeof *m);
     int is_stdin = strcmp(path, "-") == 0;
     const char *name = is_stdin ? "stdin" : path;
-    MeshCtx c = { .m = m, .err = { name, err, errlen }, .path = path };
+    MeshCtx c = { .m = m, .err = { .name = name, .buf = err, .len = errlen, .strict = opt ? opt->strict : 1 },
+                  .path = path };
     char ext[16];
     extension(is_stdin ? NULL : path, ext, sizeof ext);
     c.hint = format ? format : ext;
@@ -411,10 +446,12 @@ int mesh_load_as(Mesh *m, const char *path, const char *format, char *err, size_
         uint64_t size = f.size;
         mf_close(&f);
         r = l->parse_path(&c, path);
-        if (r)
+        if (r) {
             mesh_free(m);
-        else
+        } else {
             m->info.bytes = size;
+            report_skipped(&c);
+        }
     } else {
         if (f.regular && mf_load(&f, NULL, msg, sizeof msg)) {
             mf_close(&f);

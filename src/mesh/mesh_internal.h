@@ -44,7 +44,8 @@ typedef struct MeshLoader {
     int  needs_magic;      /* chosen by extension only when the probe agrees */
 } MeshLoader;
 
-extern const MeshLoader mesh_loader_obj, mesh_loader_stl, mesh_loader_ply, mesh_loader_off;
+extern const MeshLoader mesh_loader_obj, mesh_loader_stl, mesh_loader_ply, mesh_loader_off,
+    mesh_loader_xyz;
 #ifdef ZV_ASSIMP
 extern const MeshLoader mesh_loader_assimp;
 /* Can the library be opened (it is opened on first use)? */
@@ -75,9 +76,14 @@ typedef struct {
     Mesh       *m;
     MeshErr    *e;
     size_t      vcap;      /* vertices pos (and rgb) can hold */
+    int         vexact;    /* vcap is a count read from a header (prefault rgb too) */
     size_t      fcap;      /* faces face_mat can hold; face_start holds fcap + 1 */
     size_t      ccap;      /* corners */
     size_t      ncorner;
+    size_t      pcap;      /* points point[] can hold */
+    size_t      lcap;      /* polylines: line_start holds lcap + 1 */
+    size_t      lccap;     /* polyline corners */
+    size_t      nlcorner;
     size_t      ocap;
     uint32_t    mcap;
     ColourIndex colours;   /* face colours -> materials */
@@ -139,18 +145,55 @@ static inline int mb_face_end(MeshBuild *b, size_t first, int32_t mat)
     return 0;
 }
 
-/* Faces from here on belong to a new object (the current one is renamed
- * instead when it has no faces yet). An empty name: the file's. */
+int  mb_grow_points(MeshBuild *b);
+int  mb_grow_lines(MeshBuild *b);
+int  mb_grow_line_corners(MeshBuild *b);
+
+/* A point at vertex v (an index the caller checked, or checks later). */
+static inline int mb_point(MeshBuild *b, uint32_t v)
+{
+    Mesh *m = b->m;
+    if (m->npoints == b->pcap && mb_grow_points(b))
+        return -1;
+    m->point[m->npoints++] = v;
+    return 0;
+}
+
+static inline int mb_line_corner(MeshBuild *b, uint32_t v)
+{
+    if (b->nlcorner == b->lccap && mb_grow_line_corners(b))
+        return -1;
+    b->m->line_corner[b->nlcorner++] = v;
+    return 0;
+}
+
+/* Close the polyline whose corners start at `first` (the caller checks
+ * it has at least 2). */
+static inline int mb_line_end(MeshBuild *b, size_t first)
+{
+    Mesh *m = b->m;
+    if (m->nlines == b->lcap && mb_grow_lines(b))
+        return -1;
+    m->line_start[m->nlines++] = (uint32_t)first;
+    return 0;
+}
+
+/* Faces, points and lines from here on belong to a new object (the
+ * current one is renamed instead when it has none of them yet). An empty
+ * name: the file's. */
 int  mb_object(MeshBuild *b, const char *name, size_t len);
 /* Append a material; returns its index or -1 out of memory. */
 int32_t mb_material(MeshBuild *b, const char *name, float r, float g, float bl, float alpha);
 /* The material of a face colour (8 bits a channel), made once per
  * distinct colour and named "#rrggbb". -1 out of memory. */
 int32_t mb_colour(MeshBuild *b, uint8_t r, uint8_t g, uint8_t bl, uint8_t a);
-/* Finish: close faces and objects, vertex ranges, give back slack.
- * Without faces: an error "no faces" unless points_ok (a point cloud:
- * vertices kept, one object spanning them). Returns 0 or -1. */
-int  mb_finish(MeshBuild *b, int points_ok);
+/* Finish: close faces, lines and objects, vertex ranges, give back
+ * slack. With cloud_ok (the file gave vertices and no face, line or
+ * point at all), the vertices make a point cloud (every vertex a point,
+ * one object spanning them). Nothing to show is an error ("no faces";
+ * when statements were skipped, the first one's message). Returns 0 or
+ * -1. */
+int  mb_finish(MeshBuild *b, int cloud_ok);
 /* Free what was built (the mesh is left empty). */
 void mb_abort(MeshBuild *b);
 

@@ -186,6 +186,22 @@ typedef struct {
     uint64_t line;               /* first usemtl naming it */
 } UseName;
 
+/* A statement with an index past the vertices read so far; for a `p`
+ * statement, the points it added (all dropped when it is skipped). */
+typedef struct {
+    uint64_t line, max;
+    uint32_t point_first, point_count;
+} FwdRef;
+
+/* Free-form geometry and rendering statements of the OBJ format that
+ * zview does not draw: counted and named once in a warning, not
+ * errors (a file full of curves is a valid OBJ). */
+static const char *const undrawn_kw[] = {
+    "vp", "cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv",
+    "sp", "end", "con", "mg", "bevel", "c_interp", "d_interp", "lod", "shadow_obj", "trace_obj",
+    "maplib", "usemap", "call", "csh", "ctech", "stech", "res",
+};
+
 typedef struct {
     Mesh       *m;
     MeshBuild   b;
@@ -201,9 +217,23 @@ typedef struct {
     LibSet      libs;
 
     /* Positive indices may point past the vertices read so far; they
-     * are checked once the whole file is read, against the largest. */
+     * are checked once the whole file is read, against the largest.
+     * Leniently, each statement that had one is kept in fwd[] (its
+     * line and largest index), so that the bad ones can be skipped. */
     uint64_t    fwd_max;
     uint64_t    fwd_line;
+    FwdRef     *fwd;
+    uint32_t    nfwd, fwdcap;
+    int         stmt_failed;     /* the statement being read could not be */
+    int         stmt_vertex;     /* ... and it is a `v` */
+    int         saw_elements;    /* some f, l or p statement, read or not */
+    uint32_t    undrawn;         /* free-form statements (undrawn_kw) */
+    const char *first_undrawn;
+    /* Vertices whose statement could not be read keep their number (so
+     * later indices still mean what the file meant): a stand-in is
+     * added, and whatever uses it is dropped at the end. */
+    uint32_t   *bad_vert;
+    uint32_t    nbad, badcap;
 
     char       *scratch;         /* joined `\` continuation lines */
     size_t      scap;
@@ -213,6 +243,7 @@ static int fail(Parser *ps, const char *fmt, ...) __attribute__((format(printf, 
 static int fail(Parser *ps, const char *fmt, ...)
 {
     char msg[256];
+    ps->stmt_failed = 1;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
@@ -280,6 +311,7 @@ static void take_name(char *dst, const char *p, const char *e)
 static int parse_vertex(Parser *ps, const char *ls, const char *p, const char *e)
 {
     Mesh *m = ps->m;
+    ps->stmt_vertex = 1;
     float v[7];
     int n = 0;
     for (;;) {
@@ -354,76 +386,146 @@ static int skip_int(const char **pp, const char *e)
     return 1;
 }
 
-static int parse_face(Parser *ps, const char *ls, const char *p, const char *e)
+/* The next corner of an f, l or p statement at *pp (v, v/vt, v/vt/vn
+ * or v//vn), resolved to a 0-based vertex index. Returns 1 with *idx
+ * set, 0 at the end of the statement, -1 on a bad corner. A positive
+ * index past the vertices so far raises *fwd (checked at the end). */
+static int read_corner(Parser *ps, const char *what, const char *ls, const char **pp, const char *e,
+                       uint32_t *idx, uint64_t *fwd)
 {
     Mesh *m = ps->m;
-    size_t start = ps->b.ncorner;
-    for (;;) {
-        while (p < e && is_space(*p))
-            p++;
-        if (p >= e || *p == '#')
-            break;
-        const char *tok = p;
-        int neg = 0;
-        if (*p == '-' || *p == '+') {
-            neg = *p == '-';
-            p++;
-        }
-        uint64_t val = 0;
-        const char *d0 = p;
-        while (p < e && is_digit(*p)) {
-            if (val < ((uint64_t)1 << 40))    /* saturate: still out of range */
-                val = val * 10 + (uint64_t)(*p - '0');
-            p++;
-        }
-        const char *d1 = p;
-        int ok = p > d0;
+    const char *p = *pp;
+    while (p < e && is_space(*p))
+        p++;
+    if (p >= e || *p == '#')
+        return 0;
+    const char *tok = p;
+    int neg = 0;
+    if (*p == '-' || *p == '+') {
+        neg = *p == '-';
+        p++;
+    }
+    uint64_t val = 0;
+    const char *d0 = p;
+    while (p < e && is_digit(*p)) {
+        if (val < ((uint64_t)1 << 40))    /* saturate: still out of range */
+            val = val * 10 + (uint64_t)(*p - '0');
+        p++;
+    }
+    const char *d1 = p;
+    int ok = p > d0;
+    if (ok && p < e && *p == '/') {
+        p++;
+        if (p < e && *p != '/' && !is_space(*p))
+            ok = skip_int(&p, e);          /* vt */
         if (ok && p < e && *p == '/') {
             p++;
-            if (p < e && *p != '/' && !is_space(*p))
-                ok = skip_int(&p, e);          /* vt */
-            if (ok && p < e && *p == '/') {
-                p++;
-                if (p < e && !is_space(*p))
-                    ok = skip_int(&p, e);      /* vn */
-            }
+            if (p < e && !is_space(*p))
+                ok = skip_int(&p, e);      /* vn */
         }
-        if (!ok || (p < e && !is_space(*p))) {
-            if (mesh_has_binary(ls, e))
-                return fail(ps, "binary or unreadable data");
-            return fail(ps, "malformed face corner '%.*s'", mesh_tok_len(tok, e), tok);
-        }
+    }
+    if (!ok || (p < e && !is_space(*p))) {
+        if (mesh_has_binary(ls, e))
+            return fail(ps, "binary or unreadable data");
+        return fail(ps, "malformed %s '%.*s'", what, mesh_tok_len(tok, e), tok);
+    }
+    *pp = p;
 
-        /* Messages print the index as written (the value saturates). */
-        int nd = (int)(d1 - d0);
-        uint32_t idx;
-        if (val == 0)
-            return fail(ps, "vertex index 0 is invalid (indices start at 1; %u vertices)",
-                        m->nverts);
-        if (neg) {
-            if (val > m->nverts)
-                return fail(ps, "vertex index -%.*s out of range (%u vertices so far)", nd, d0,
-                            m->nverts);
-            idx = m->nverts - (uint32_t)val;
-        } else {
-            if (val > m->nverts) {
-                if (val >= UINT32_MAX)
-                    return fail(ps, "vertex index %.*s out of range (%u vertices)", nd, d0,
-                                m->nverts);
-                if (val > ps->fwd_max) {
-                    ps->fwd_max = val;
-                    ps->fwd_line = ps->line;
-                }
-            }
-            idx = (uint32_t)(val - 1);
-        }
+    /* Messages print the index as written (the value saturates). */
+    int nd = (int)(d1 - d0);
+    if (val == 0)
+        return fail(ps, "vertex index 0 is invalid (indices start at 1; %u vertices)", m->nverts);
+    if (neg) {
+        if (val > m->nverts)
+            return fail(ps, "vertex index -%.*s out of range (%u vertices so far)", nd, d0, m->nverts);
+        *idx = m->nverts - (uint32_t)val;
+        return 1;
+    }
+    if (val > m->nverts) {
+        if (val >= UINT32_MAX)
+            return fail(ps, "vertex index %.*s out of range (%u vertices)", nd, d0, m->nverts);
+        if (val > *fwd)
+            *fwd = val;
+    }
+    *idx = (uint32_t)(val - 1);
+    return 1;
+}
+
+/* A statement read whole had an index past the vertices so far (a `p`
+ * statement: its points start at point_first). */
+static int note_forward(Parser *ps, uint64_t fwd, uint32_t point_first)
+{
+    if (!fwd)
+        return 0;
+    if (fwd > ps->fwd_max) {
+        ps->fwd_max = fwd;
+        ps->fwd_line = ps->line;
+    }
+    if (ps->e->strict)
+        return 0;           /* the first bad one fails the load at the end */
+    if (ps->nfwd == ps->fwdcap) {
+        size_t cap = ps->fwdcap;
+        if (grow((void **)&ps->fwd, &cap, (size_t)ps->nfwd + 1, sizeof *ps->fwd))
+            return fail_oom(ps);
+        ps->fwdcap = (uint32_t)cap;
+    }
+    ps->fwd[ps->nfwd++] = (FwdRef){ ps->line, fwd, point_first, ps->m->npoints - point_first };
+    return 0;
+}
+
+static int parse_face(Parser *ps, const char *ls, const char *p, const char *e)
+{
+    size_t start = ps->b.ncorner;
+    uint64_t fwd = 0;
+    uint32_t idx;
+    int r;
+    while ((r = read_corner(ps, "face corner", ls, &p, e, &idx, &fwd)) > 0)
         if (mb_corner(&ps->b, idx))
             return -1;
-    }
+    if (r < 0)
+        return -1;
     size_t n = ps->b.ncorner - start;
     if (n < 3)
         return fail(ps, "face has fewer than 3 vertices (%zu)", n);
+    if (note_forward(ps, fwd, ps->m->npoints))
+        return -1;
     return mb_face_end(&ps->b, start, ps->cur_use);
+}
+
+/* p v1 v2 ...: a point at each vertex. */
+static int parse_points(Parser *ps, const char *ls, const char *p, const char *e)
+{
+    uint32_t start = ps->m->npoints, idx;
+    uint64_t fwd = 0;
+    int r;
+    while ((r = read_corner(ps, "point", ls, &p, e, &idx, &fwd)) > 0)
+        if (mb_point(&ps->b, idx))
+            return -1;
+    if (r < 0)
+        return -1;
+    if (ps->m->npoints == start)
+        return fail(ps, "point statement without a vertex");
+    return note_forward(ps, fwd, start);
+}
+
+/* l v1 v2 ...: a polyline through the vertices. */
+static int parse_polyline(Parser *ps, const char *ls, const char *p, const char *e)
+{
+    size_t start = ps->b.nlcorner;
+    uint64_t fwd = 0;
+    uint32_t idx;
+    int r;
+    while ((r = read_corner(ps, "line corner", ls, &p, e, &idx, &fwd)) > 0)
+        if (mb_line_corner(&ps->b, idx))
+            return -1;
+    if (r < 0)
+        return -1;
+    size_t n = ps->b.nlcorner - start;
+    if (n < 2)
+        return fail(ps, "line has fewer than 2 vertices (%zu)", n);
+    if (note_forward(ps, fwd, ps->m->npoints))
+        return -1;
+    return mb_line_end(&ps->b, start);
 }
 
 static int start_object(Parser *ps, const char *p, const char *e)
@@ -561,8 +663,10 @@ static int parse_line(Parser *ps, const char *ls, const char *e)
     if (p + 1 < e && (p[1] == ' ' || p[1] == '\t')) {
         if (p[0] == 'v')
             return parse_vertex(ps, ls, p + 2, e);
-        if (p[0] == 'f')
+        if (p[0] == 'f') {
+            ps->saw_elements = 1;
             return parse_face(ps, ls, p + 2, e);
+        }
     }
     if (*p == '#') {
         if (mesh_has_binary(p, e))
@@ -583,6 +687,8 @@ static int parse_line(Parser *ps, const char *ls, const char *e)
 
     if (kw_is(k, kn, "v"))
         return parse_vertex(ps, ls, p, e);
+    if (kw_is(k, kn, "f") || kw_is(k, kn, "p") || kw_is(k, kn, "l"))
+        ps->saw_elements = 1;
     if (kw_is(k, kn, "f"))
         return parse_face(ps, ls, p, e);
     if (kw_is(k, kn, "vt")) {
@@ -609,22 +715,23 @@ static int parse_line(Parser *ps, const char *ls, const char *e)
         return use_material(ps, p, e);
     if (kw_is(k, kn, "mtllib"))
         return parse_mtllib(ps, p, e);
-    /* Points and polylines are not kept yet (see Mesh): counted. */
-    if (kw_is(k, kn, "p")) {
-        ps->m->info.points++;
-        return 0;
-    }
-    if (kw_is(k, kn, "l")) {
-        ps->m->info.lines++;
-        return 0;
-    }
+    if (kw_is(k, kn, "p"))
+        return parse_points(ps, ls, p, e);
+    if (kw_is(k, kn, "l"))
+        return parse_polyline(ps, ls, p, e);
     MeshInfo *info = &ps->m->info;
     if (info->unknown++ == 0) {
         size_t n = kn < sizeof info->first_unknown - 1 ? kn : sizeof info->first_unknown - 1;
         memcpy(info->first_unknown, k, n);
         info->first_unknown[n] = '\0';
     }
-    return 0;
+    for (size_t i = 0; i < sizeof undrawn_kw / sizeof undrawn_kw[0]; i++)
+        if (kw_is(k, kn, undrawn_kw[i])) {
+            if (ps->undrawn++ == 0)
+                ps->first_undrawn = undrawn_kw[i];
+            return 0;
+        }
+    return fail(ps, "unknown statement '%.*s'", (int)(kn < 40 ? kn : 40), k);
 }
 
 /* Append [p, e) to the scratch buffer at *n. */
@@ -677,10 +784,181 @@ static int resolve_materials(Parser *ps)
 
 static void parser_free(Parser *ps)
 {
+    free(ps->fwd);
+    free(ps->bad_vert);
     free(ps->uses);
     free(ps->use_index.slot);
     free(ps->scratch);
     libset_free(&ps->libs);
+}
+
+/* Where a statement's additions start, to take back a statement that
+ * fails halfway (the vertex is the last thing a `v` adds). */
+typedef struct {
+    size_t   ncorner, nlcorner;
+    uint32_t npoints;
+} Undo;
+
+static Undo undo_mark(const Parser *ps)
+{
+    return (Undo){ ps->b.ncorner, ps->b.nlcorner, ps->m->npoints };
+}
+
+/* One logical line; a statement that cannot be read is skipped (undone
+ * and counted) unless the load is strict. Returns -1 to stop. */
+static int statement(Parser *ps, const char *ls, const char *e)
+{
+    Undo u = undo_mark(ps);
+    ps->stmt_failed = ps->stmt_vertex = 0;
+    if (!parse_line(ps, ls, e))
+        return 0;
+    if (!ps->stmt_failed || me_skip(ps->e, ps->line))
+        return -1;      /* out of memory, a limit, or --strict */
+    ps->b.ncorner = u.ncorner;
+    ps->b.nlcorner = u.nlcorner;
+    ps->m->npoints = u.npoints;
+    if (ps->stmt_vertex) {
+        if (ps->nbad == ps->badcap) {
+            size_t cap = ps->badcap;
+            if (grow((void **)&ps->bad_vert, &cap, (size_t)ps->nbad + 1, sizeof *ps->bad_vert))
+                return fail_oom(ps);
+            ps->badcap = (uint32_t)cap;
+        }
+        ps->bad_vert[ps->nbad++] = ps->m->nverts;
+        if (mb_vertex(&ps->b, 0, 0, 0))     /* placed at the end (drop_unreadable) */
+            return -1;
+    }
+    return 0;
+}
+
+/* Is vertex v usable: read, and not a stand-in? */
+static inline int vert_ok(const uint8_t *bad, uint32_t nv, uint32_t v)
+{
+    return v < nv && !(bad && bad[v >> 3] >> (v & 7) & 1);
+}
+
+/* What could not be resolved until the end: positive indices past the
+ * last vertex (strict: the load fails on the largest; otherwise each
+ * statement that had one is skipped) and the stand-ins of unreadable
+ * vertices. Faces, points and lines using either are dropped (each
+ * counted as a skipped statement once), and the objects' ranges closed
+ * up. */
+static int drop_unreadable(Parser *ps)
+{
+    Mesh *m = ps->m;
+    MeshBuild *b = &ps->b;
+    int fwd = ps->fwd_max > m->nverts;
+    if (!fwd && !ps->nbad)
+        return 0;
+    if (fwd && ps->e->strict) {
+        ps->line = ps->fwd_line;
+        return fail(ps, "vertex index %llu out of range (%u vertices)", (unsigned long long)ps->fwd_max,
+                    m->nverts);
+    }
+    for (uint32_t i = 0; i < ps->nfwd; i++) {
+        if (ps->fwd[i].max <= m->nverts)
+            continue;
+        ps->line = ps->fwd[i].line;
+        fail(ps, "vertex index %llu out of range (%u vertices)", (unsigned long long)ps->fwd[i].max,
+             m->nverts);
+        me_skip(ps->e, ps->fwd[i].line);
+    }
+    uint32_t nv = m->nverts, ob = 0, more = 0;
+    uint8_t *bad = NULL;
+    if (ps->nbad) {
+        bad = calloc((size_t)nv / 8 + 1, 1);
+        if (!bad)
+            return fail_oom(ps);
+        for (uint32_t i = 0; i < ps->nbad; i++) {
+            uint32_t v = ps->bad_vert[i];
+            bad[v >> 3] |= (uint8_t)(1u << (v & 7));
+        }
+        /* a stand-in sits on a vertex that was read (the one before it,
+         * else the first), so that bounds and fits ignore it */
+        uint32_t good = 0;
+        while (good < nv && !vert_ok(bad, nv, good))
+            good++;
+        for (uint32_t v = 0; v < nv && good < nv; v++) {
+            if (vert_ok(bad, nv, v))
+                good = v;
+            else
+                memcpy(&m->pos[3 * (size_t)v], &m->pos[3 * (size_t)good], 3 * sizeof(float));
+        }
+    }
+    /* faces */
+    uint32_t nf = 0;
+    size_t nc = 0;
+    for (uint32_t f = 0; f < m->nfaces; f++) {
+        for (; ob < m->nobjs && m->objs[ob].face_first == f; ob++)
+            m->objs[ob].face_first = nf;
+        size_t c0 = m->face_start[f], c1 = f + 1 < m->nfaces ? m->face_start[f + 1] : b->ncorner;
+        int ok = 1, past = 0;
+        for (size_t c = c0; c < c1; c++) {
+            ok &= vert_ok(bad, nv, m->corner[c]);
+            past |= m->corner[c] >= nv;
+        }
+        if (!ok) {
+            more += !past;      /* those past the end were counted above */
+            m->info.triangles -= (uint32_t)(c1 - c0 - 2);
+            continue;
+        }
+        memmove(&m->corner[nc], &m->corner[c0], (c1 - c0) * sizeof *m->corner);
+        m->face_start[nf] = (uint32_t)nc;
+        m->face_mat[nf++] = m->face_mat[f];
+        nc += c1 - c0;
+    }
+    for (; ob < m->nobjs; ob++)
+        m->objs[ob].face_first = nf;
+    m->nfaces = nf;
+    b->ncorner = nc;
+    /* points: a skipped `p` statement takes all its points along (fwd[]
+     * lists the statements in order, so their runs rise with k) */
+    uint32_t np = 0, fi = 0;
+    ob = 0;
+    for (uint32_t k = 0; k < m->npoints; k++) {
+        for (; ob < m->nobjs && m->objs[ob].point_first == k; ob++)
+            m->objs[ob].point_first = np;
+        while (fi < ps->nfwd && (ps->fwd[fi].point_count == 0 || ps->fwd[fi].max <= nv ||
+                                 ps->fwd[fi].point_first + ps->fwd[fi].point_count <= k))
+            fi++;
+        if (fi < ps->nfwd && ps->fwd[fi].point_first <= k)
+            continue;       /* counted with its statement above */
+        if (vert_ok(bad, nv, m->point[k]))
+            m->point[np++] = m->point[k];
+        else
+            more++;
+    }
+    for (; ob < m->nobjs; ob++)
+        m->objs[ob].point_first = np;
+    m->npoints = np;
+    /* polylines */
+    uint32_t nl = 0;
+    size_t nlc = 0;
+    ob = 0;
+    for (uint32_t l = 0; l < m->nlines; l++) {
+        for (; ob < m->nobjs && m->objs[ob].line_first == l; ob++)
+            m->objs[ob].line_first = nl;
+        size_t c0 = m->line_start[l], c1 = l + 1 < m->nlines ? m->line_start[l + 1] : b->nlcorner;
+        int ok = 1, past = 0;
+        for (size_t c = c0; c < c1; c++) {
+            ok &= vert_ok(bad, nv, m->line_corner[c]);
+            past |= m->line_corner[c] >= nv;
+        }
+        if (!ok) {
+            more += !past;
+            continue;
+        }
+        memmove(&m->line_corner[nlc], &m->line_corner[c0], (c1 - c0) * sizeof *m->line_corner);
+        m->line_start[nl++] = (uint32_t)nlc;
+        nlc += c1 - c0;
+    }
+    for (; ob < m->nobjs; ob++)
+        m->objs[ob].line_first = nl;
+    m->nlines = nl;
+    b->nlcorner = nlc;
+    free(bad);
+    ps->e->skipped = ps->e->skipped + more < ps->e->skipped ? UINT32_MAX : ps->e->skipped + more;
+    return 0;
 }
 
 static int obj_parse(MeshCtx *c, const char *text, size_t len)
@@ -734,20 +1012,17 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
                     break;
                 }
             }
-            if (parse_line(&ps, ps.scratch, ps.scratch + n))
+            if (statement(&ps, ps.scratch, ps.scratch + n))
                 goto fail;
-        } else if (parse_line(&ps, ls, le)) {
+        } else if (statement(&ps, ls, le)) {
             goto fail;
         }
     }
-    if (ps.fwd_max > m->nverts) {
-        ps.line = ps.fwd_line;
-        fail(&ps, "vertex index %llu out of range (%u vertices)",
-             (unsigned long long)ps.fwd_max, m->nverts);
+    if (drop_unreadable(&ps) || resolve_materials(&ps) || mb_finish(&ps.b, !ps.saw_elements))
         goto fail;
-    }
-    if (resolve_materials(&ps) || mb_finish(&ps.b, 0))
-        goto fail;
+    if (ps.undrawn)
+        me_warn(c->err.name, 0, "%u free-form statement%s (curves, surfaces) not drawn, first '%s'",
+                ps.undrawn, ps.undrawn == 1 ? "" : "s", ps.first_undrawn);
     parser_free(&ps);
     return 0;
 

@@ -279,23 +279,31 @@ static int off_parse(MeshCtx *c, const char *data, size_t len)
         }
         m->nverts++;
     }
-    /* Faces: n indices, then maybe a colour. */
+    /* Faces: n indices, then maybe a colour. A face line that cannot be
+     * read is skipped (counted; strict fails on it); a file that ends
+     * early keeps the faces read (not strict). */
     for (uint32_t i = 0; i < nf; i++) {
-        if (!next_line(&o))
-            goto short_;
+        if (!next_line(&o)) {
+            me_fail_line(o.e, o.lr.line, "file ends early (%lld vertices and %lld faces stated; "
+                         "%u vertices and %u faces read)", (long long)cnt[0], (long long)cnt[1],
+                         m->nverts, m->nfaces);
+            if (me_skip(o.e, 0))
+                goto fail;
+            break;
+        }
         p = o.ls;
         int64_t n;
         const char *t = p;
+        size_t first = b.ncorner;
         int r = mesh_parse_int(&p, o.le, &n);
         if (r) {
             bad_number(&o, r, t, "face");
-            goto fail;
+            goto skip_face;
         }
         if (n < 3) {
             me_fail_line(o.e, o.lr.line, "face has %lld vertices (at least 3)", (long long)n);
-            goto fail;
+            goto skip_face;
         }
-        size_t first = b.ncorner;
         for (int64_t q = 0; q < n; q++) {
             blanks(&p, o.le);
             int64_t idx;
@@ -303,16 +311,16 @@ static int off_parse(MeshCtx *c, const char *data, size_t len)
             if (p >= o.le) {
                 me_fail_line(o.e, o.lr.line, "face of %lld vertices lists %lld", (long long)n,
                              (long long)q);
-                goto fail;
+                goto skip_face;
             }
             if ((r = mesh_parse_int(&p, o.le, &idx))) {
                 bad_number(&o, r, t, "face");
-                goto fail;
+                goto skip_face;
             }
             if (idx < 0 || (uint64_t)idx >= nv) {
                 me_fail_line(o.e, o.lr.line, "vertex index %lld out of range (%u vertices)",
                              (long long)idx, nv);
-                goto fail;
+                goto skip_face;
             }
             if (mb_corner(&b, (uint32_t)idx))
                 goto fail;
@@ -322,7 +330,7 @@ static int off_parse(MeshCtx *c, const char *data, size_t len)
         const char *cs = p;
         int nc = numbers(&o, &p, col, 4, "face colour");
         if (nc < 0)
-            goto fail;
+            goto skip_face;
         if (nc >= 3) {
             float s = written_as_floats(cs, o.le) ? 1.0f : 255.0f;
             uint8_t q8[3];
@@ -336,8 +344,13 @@ static int off_parse(MeshCtx *c, const char *data, size_t len)
         }
         if (mb_face_end(&b, first, mat))
             goto fail;
+        continue;
+    skip_face:
+        b.ncorner = first;
+        if (me_skip(o.e, o.lr.line))
+            goto fail;
     }
-    if (mb_finish(&b, 0))
+    if (mb_finish(&b, 1))
         goto fail;
     return 0;
 

@@ -8,7 +8,8 @@
  * Everything else (other elements, other properties, in any order) is
  * skipped by its size. Every element's count is checked against the
  * bytes after the header before anything is allocated. A file with
- * vertices and no faces (a point cloud) loads its vertices. */
+ * vertices and no faces is a point cloud: every vertex a point (with its
+ * colour), and no per-point array. */
 #define _DEFAULT_SOURCE
 
 #include <math.h>
@@ -59,6 +60,7 @@ typedef struct {
     const char *data, *body, *end;
     uint64_t   body_line;  /* ascii: the line the body starts on */
     uint64_t   nverts;     /* the vertex element's count */
+    int        ended;      /* the file ended inside the faces (kept so far) */
 } Ply;
 
 static int type_of(const char *p, const char *e, PlyType *t)
@@ -286,10 +288,15 @@ static int check_counts(Ply *ply)
         }
         uint64_t unit = ply->fmt == FMT_ASCII ? el->min_tokens : el->min_size;
         uint64_t left = (ply->fmt == FMT_ASCII ? budget : avail) - used;
-        if (unit && el->count > left / unit)
-            return me_fail(e, "element '%s' of %llu records needs more than the %llu bytes "
-                              "after the header",
-                           el->name, (unsigned long long)el->count, (unsigned long long)avail);
+        if (unit && el->count > left / unit) {
+            me_fail(e, "element '%s' of %llu records needs more than the %llu bytes after the header",
+                    el->name, (unsigned long long)el->count, (unsigned long long)avail);
+            /* a file cut short in its faces shows what it has (not
+             * strict): the faces are read until the bytes run out */
+            if (el->kind != EL_FACE || me_skip(e, 0))
+                return -1;
+            el->count = left / unit;
+        }
         used += unit * el->count;
     }
     if (!have_vertex)
@@ -396,6 +403,8 @@ static int bin_vertices(Ply *ply, PlyElem *el, Bin *bn)
     if (rgb && mb_want_rgb(b))
         return -1;
     uint32_t n = (uint32_t)el->count;
+    if (n == 0)
+        return 0;           /* no vertex: no array to point into (it may be NULL) */
     float *pos = m->pos + 3 * (size_t)m->nverts;
     float *col = rgb ? m->rgb + 3 * (size_t)m->nverts : NULL;
     if (!el->has_list) {
@@ -403,6 +412,14 @@ static int bin_vertices(Ply *ply, PlyElem *el, Bin *bn)
         size_t rs = (size_t)el->fixed;
         const unsigned char *r = bn->p;
         int fast = px->type == T_F32 && py->type == T_F32 && pz->type == T_F32;
+        /* a scan's colours: three uchar, each through a table (a
+         * conversion and a division per channel cost more than the rest
+         * of the record) */
+        int rgb8 = col && pc[0] && pc[1] && pc[2] && pc[0]->type == T_U8 && pc[1]->type == T_U8 &&
+                   pc[2]->type == T_U8;
+        float lut[256];
+        for (int k = 0; rgb8 && k < 256; k++)
+            lut[k] = colour_of(k, T_U8);
         for (uint32_t i = 0; i < n; i++, r += rs) {
             if ((i & 0xffff) == 0)
                 mf_progress(ply->c->file, (const char *)r);
@@ -421,10 +438,16 @@ static int bin_vertices(Ply *ply, PlyElem *el, Bin *bn)
                     return me_fail_at(ply->e, (uint64_t)(r - bn->base),
                                       "NaN, infinite or out-of-range coordinate (vertex %u)", i + 1);
             }
-            if (col)
+            if (rgb8) {
+                float *c = col + 3 * (size_t)i;
+                c[0] = lut[r[pc[0]->offset]];
+                c[1] = lut[r[pc[1]->offset]];
+                c[2] = lut[r[pc[2]->offset]];
+            } else if (col) {
                 for (int k = 0; k < 3; k++)
                     col[3 * (size_t)i + k] =
                         pc[k] ? colour_of(get_num(r + pc[k]->offset, pc[k]->type, swap), pc[k]->type) : 1.0f;
+            }
         }
         bn->p = r;
     } else {
@@ -480,6 +503,17 @@ static int bad_index(Ply *ply, uint64_t at, int64_t v, uint32_t face)
                       (long long)v, (unsigned long long)ply->nverts, face + 1);
 }
 
+/* The faces read so far are kept when the file ends inside one (not
+ * strict): the rest of the file is one skipped statement. Returns 0 to
+ * go on (with ply->ended set), -1 to fail. */
+static int ended_early(Ply *ply)
+{
+    if (me_skip(ply->e, 0))
+        return -1;
+    ply->ended = 1;
+    return 0;
+}
+
 static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
 {
     MeshBuild *b = ply->b;
@@ -498,19 +532,34 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
             mf_progress(ply->c->file, (const char *)r);
         size_t first = b->ncorner;
         float c3[3] = { 1, 1, 1 };
+        /* a face that cannot be read whole but whose size is known is
+         * skipped (counted; strict fails on it) */
+        int skip = 0;
         if (only) {
             unsigned cs = type_size[only->count_type], is = type_size[only->type];
-            if ((size_t)(end - r) < cs)
-                return me_fail_at(ply->e, (uint64_t)(r - bn->base), "file ends inside face %u", i + 1);
+            if ((size_t)(end - r) < cs) {
+                me_fail_at(ply->e, (uint64_t)(r - bn->base), "file ends inside face %u", i + 1);
+                return ended_early(ply);
+            }
             int64_t cnt = get_int(r, only->count_type, swap);
             r += cs;
-            if (cnt < 3)
+            if (cnt < 0)
                 return me_fail_at(ply->e, (uint64_t)(r - cs - bn->base),
                                   "face %u has %lld vertices (at least 3)", i + 1, (long long)cnt);
-            if ((uint64_t)cnt > (uint64_t)(end - r) / is)
-                return me_fail_at(ply->e, (uint64_t)(r - cs - bn->base),
-                                  "face %u of %lld vertices goes past the end of the file", i + 1,
-                                  (long long)cnt);
+            if ((uint64_t)cnt > (uint64_t)(end - r) / is) {
+                me_fail_at(ply->e, (uint64_t)(r - cs - bn->base),
+                           "face %u of %lld vertices goes past the end of the file", i + 1, (long long)cnt);
+                return ended_early(ply);
+            }
+            const unsigned char *fe = r + (size_t)cnt * is;
+            if (cnt < 3) {
+                me_fail_at(ply->e, (uint64_t)(r - cs - bn->base), "face %u has %lld vertices (at least 3)",
+                           i + 1, (long long)cnt);
+                if (me_skip(ply->e, (uint64_t)(r - cs - bn->base)))
+                    return -1;
+                r = fe;
+                continue;
+            }
             if (b->ncorner + (size_t)cnt > b->ccap && mb_room_corners(b, (size_t)cnt))
                 return -1;
             uint32_t *dst = m->corner + b->ncorner;
@@ -519,53 +568,95 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
                  * negative ones too (they wrap past any count) */
                 for (int64_t k = 0; k < cnt; k++, r += 4) {
                     uint32_t v = ld32(r, swap);
-                    if (v >= nv)
-                        return bad_index(ply, (uint64_t)(r - bn->base), get_int(r, only->type, swap), i);
+                    if (v >= nv) {
+                        bad_index(ply, (uint64_t)(r - bn->base), get_int(r, only->type, swap), i);
+                        skip = 1;
+                        break;
+                    }
                     dst[k] = v;
                 }
             } else {
                 for (int64_t k = 0; k < cnt; k++, r += is) {
                     int64_t v = get_int(r, only->type, swap);
-                    if ((uint64_t)v >= nv)
-                        return bad_index(ply, (uint64_t)(r - bn->base), v, i);
+                    if ((uint64_t)v >= nv) {
+                        bad_index(ply, (uint64_t)(r - bn->base), v, i);
+                        skip = 1;
+                        break;
+                    }
                     dst[k] = (uint32_t)v;
                 }
             }
+            if (skip) {
+                if (me_skip(ply->e, (uint64_t)(r - bn->base)))
+                    return -1;
+                r = fe;
+                continue;
+            }
             b->ncorner += (size_t)cnt;
         } else {
+            uint64_t at = 0;
             for (uint32_t k = 0; k < el->nprops; k++) {
                 const PlyProp *pr = &el->props[k];
                 if (pr->count_type != T_NONE) {
                     unsigned cs = type_size[pr->count_type], is = type_size[pr->type];
-                    if ((size_t)(end - r) < cs)
-                        return me_fail_at(ply->e, (uint64_t)(r - bn->base), "file ends inside face %u", i + 1);
+                    if ((size_t)(end - r) < cs) {
+                        me_fail_at(ply->e, (uint64_t)(r - bn->base), "file ends inside face %u", i + 1);
+                        b->ncorner = first;
+                        return ended_early(ply);
+                    }
                     int64_t cnt = get_int(r, pr->count_type, swap);
                     r += cs;
-                    if (cnt < 0 || (uint64_t)cnt > (uint64_t)(end - r) / is)
+                    if (cnt < 0)
                         return me_fail_at(ply->e, (uint64_t)(r - cs - bn->base),
-                                          "list of %lld goes past the end of the file (face %u)",
-                                          (long long)cnt, i + 1);
-                    if (pr->role != R_INDICES) {
-                        r += (size_t)cnt * is;
+                                          "list of %lld (face %u)", (long long)cnt, i + 1);
+                    if ((uint64_t)cnt > (uint64_t)(end - r) / is) {
+                        me_fail_at(ply->e, (uint64_t)(r - cs - bn->base),
+                                   "list of %lld goes past the end of the file (face %u)", (long long)cnt, i + 1);
+                        b->ncorner = first;
+                        return ended_early(ply);
+                    }
+                    const unsigned char *le = r + (size_t)cnt * is;
+                    if (pr->role != R_INDICES || skip) {
+                        r = le;
                         continue;
                     }
-                    if (cnt < 3)
-                        return me_fail_at(ply->e, (uint64_t)(r - cs - bn->base),
-                                          "face %u has %lld vertices (at least 3)", i + 1, (long long)cnt);
+                    if (cnt < 3) {
+                        me_fail_at(ply->e, at = (uint64_t)(r - cs - bn->base),
+                                   "face %u has %lld vertices (at least 3)", i + 1, (long long)cnt);
+                        skip = 1;
+                        r = le;
+                        continue;
+                    }
                     for (int64_t q = 0; q < cnt; q++, r += is) {
                         int64_t v = get_int(r, pr->type, swap);
-                        if ((uint64_t)v >= nv)
-                            return bad_index(ply, (uint64_t)(r - bn->base), v, i);
+                        if ((uint64_t)v >= nv) {
+                            bad_index(ply, at = (uint64_t)(r - bn->base), v, i);
+                            skip = 1;
+                            break;
+                        }
                         if (mb_corner(b, (uint32_t)v))
                             return -1;
                     }
+                    r = le;
                     continue;
                 }
-                if ((size_t)(end - r) < type_size[pr->type])
-                    return me_fail_at(ply->e, (uint64_t)(r - bn->base), "file ends inside face %u", i + 1);
+                if ((size_t)(end - r) < type_size[pr->type]) {
+                    me_fail_at(ply->e, (uint64_t)(r - bn->base), "file ends inside face %u", i + 1);
+                    b->ncorner = first;
+                    return ended_early(ply);
+                }
                 if (pr->role >= R_RED && pr->role <= R_BLUE)
                     c3[pr->role - R_RED] = colour_of(get_num(r, pr->type, swap), pr->type);
                 r += type_size[pr->type];
+            }
+            if (skip || b->ncorner == first) {
+                /* a face without an index list reads as one of no vertices */
+                if (!skip)
+                    me_fail_at(ply->e, at = (uint64_t)(r - bn->base), "face %u has no vertices", i + 1);
+                b->ncorner = first;
+                if (me_skip(ply->e, at))
+                    return -1;
+                continue;
             }
         }
         int32_t mat = -1;
@@ -573,6 +664,7 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
             return -1;
         if (mb_face_end(b, first, mat))
             return -1;
+        bn->p = r;
     }
     bn->p = r;
     return 0;
@@ -674,6 +766,29 @@ static inline int txt_int(Ply *ply, Txt *t, int64_t *out, const char *elname)
     return r ? txt_bad(ply, t, r, "integer", elname) : 0;
 }
 
+/* The rest of a face's line (ascii records are a line each). */
+static void txt_skip_line(Txt *t)
+{
+    while (t->p < t->end && *t->p != '\n' && *t->p != '\r')
+        t->p++;
+}
+
+/* A number of a face could not be read (the message is written): at
+ * the end of the file the faces so far are kept; else, unless strict,
+ * the face's line is skipped. Elsewhere it fails the load. */
+#define FACE_UNREADABLE()                                                   \
+    do {                                                                    \
+        if (!face)                                                          \
+            return -1;                                                      \
+        b->ncorner = first;                                                 \
+        if (t->p >= t->end)                                                 \
+            return ended_early(ply);                                        \
+        if (me_skip(ply->e, t->line))                                       \
+            return -1;                                                      \
+        txt_skip_line(t);                                                   \
+        goto next_record;                                                   \
+    } while (0)
+
 static int txt_element(Ply *ply, PlyElem *el, Txt *t)
 {
     MeshBuild *b = ply->b;
@@ -688,6 +803,10 @@ static int txt_element(Ply *ply, PlyElem *el, Txt *t)
         mf_progress(ply->c->file, t->p);
         float v[3] = { 0, 0, 0 }, c3[3] = { 1, 1, 1 };
         size_t first = b->ncorner;
+        /* a face that cannot be used but can be read past is skipped
+         * (counted; strict fails on it); at its first problem's line */
+        int skip = 0;
+        uint64_t skip_line = 0;
         for (uint32_t k = 0; k < el->nprops; k++) {
             const PlyProp *pr = &el->props[k];
             if (pr->count_type != T_NONE) {
@@ -695,19 +814,28 @@ static int txt_element(Ply *ply, PlyElem *el, Txt *t)
                 txt_ws(t);
                 uint64_t line = t->line;
                 if (txt_int(ply, t, &cnt, el->name))
-                    return -1;
-                if (pr->role == R_INDICES && cnt < 3)
-                    return me_fail_line(ply->e, line, "face has %lld vertices (at least 3)", (long long)cnt);
+                    FACE_UNREADABLE();
                 if (cnt < 0 || (uint64_t)cnt > (uint64_t)(t->end - t->p) / 2 + 1)
                     return me_fail_line(ply->e, line, "bad list count %lld", (long long)cnt);
+                if (pr->role == R_INDICES && cnt < 3 && !skip) {
+                    me_fail_line(ply->e, line, "face has %lld vertices (at least 3)", (long long)cnt);
+                    skip = 1;
+                    skip_line = line;
+                }
                 for (int64_t q = 0; q < cnt; q++) {
                     if (pr->role == R_INDICES) {
                         int64_t idx;
                         if (txt_int(ply, t, &idx, el->name))
-                            return -1;
-                        if (idx < 0 || (uint64_t)idx >= ply->nverts)
-                            return me_fail_line(ply->e, t->line, "vertex index %lld out of range (%llu vertices)",
-                                                (long long)idx, (unsigned long long)ply->nverts);
+                            FACE_UNREADABLE();
+                        if (skip)
+                            continue;
+                        if (idx < 0 || (uint64_t)idx >= ply->nverts) {
+                            me_fail_line(ply->e, t->line, "vertex index %lld out of range (%llu vertices)",
+                                         (long long)idx, (unsigned long long)ply->nverts);
+                            skip = 1;
+                            skip_line = t->line;
+                            continue;
+                        }
                         if (mb_corner(b, (uint32_t)idx))
                             return -1;
                     } else {
@@ -720,7 +848,7 @@ static int txt_element(Ply *ply, PlyElem *el, Txt *t)
             }
             double d;
             if (txt_num(ply, t, pr->type, &d, el->name))
-                return -1;
+                FACE_UNREADABLE();
             if (pr->role >= R_X && pr->role <= R_Z && vertex && to_coord(d, &v[pr->role - R_X]))
                 return me_fail_line(ply->e, t->line, "coordinate out of range");
             if (pr->role >= R_RED && pr->role <= R_BLUE)
@@ -732,6 +860,10 @@ static int txt_element(Ply *ply, PlyElem *el, Txt *t)
             if (m->rgb)
                 memcpy(m->rgb + 3 * (size_t)m->nverts, c3, sizeof c3);
             m->nverts++;
+        } else if (face && skip) {
+            b->ncorner = first;
+            if (me_skip(ply->e, skip_line))
+                return -1;
         } else if (face) {
             int32_t mat = -1;
             if (coloured && face_colour(ply, c3, &mat))
@@ -739,6 +871,7 @@ static int txt_element(Ply *ply, PlyElem *el, Txt *t)
             if (mb_face_end(b, first, mat))
                 return -1;
         }
+    next_record:;
     }
     return 0;
 }
@@ -782,8 +915,10 @@ static int ply_parse(MeshCtx *c, const char *data, size_t len)
                 continue;
             if (txt_element(&ply, el, &t))
                 goto out;
+            if (ply.ended)
+                break;
         }
-        if (txt_ws(&t))
+        if (!ply.ended && txt_ws(&t))
             me_warn(c->err.name, t.line, "data after the last element ignored");
     } else {
         Bin bn = { (const unsigned char *)ply.body, (const unsigned char *)ply.end,
@@ -796,8 +931,10 @@ static int ply_parse(MeshCtx *c, const char *data, size_t len)
                                            : bin_skip(&ply, el, &bn);
             if (rr)
                 goto out;
+            if (ply.ended)
+                break;
         }
-        if (bn.p < bn.end)
+        if (!ply.ended && bn.p < bn.end)
             me_warn(c->err.name, 0, "%zu bytes after the last element ignored",
                     (size_t)(bn.end - bn.p));
     }
@@ -805,10 +942,6 @@ static int ply_parse(MeshCtx *c, const char *data, size_t len)
      * when faces were read: indices were checked against the header's
      * count, which the vertex element then filled. */
     r = mb_finish(&b, 1);
-    if (r == 0 && m->nfaces == 0)
-        me_warn(c->err.name, 0, "no faces: %u points, not drawn yet", m->nverts);
-    if (r == 0)
-        m->info.points = m->nfaces ? 0 : m->nverts;
 out:
     for (uint32_t i = 0; i < ply.nel; i++)
         free(ply.el[i].props);

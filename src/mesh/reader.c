@@ -16,43 +16,49 @@
 
 /* ==== Errors ==== */
 
-/* The message after its prefix ("name: ", "name:12: ", ...). */
+/* The message after its prefix ("name: ", "name:12: ", ...), written
+ * into e->msg (kept for me_skip) and copied into the caller's buffer. */
 static int vtail(MeshErr *e, int k, const char *fmt, va_list ap)
 {
-    if (k >= 0 && (size_t)k < e->len)
-        vsnprintf(e->buf + k, e->len - (size_t)k, fmt, ap);
+    if (k >= 0 && (size_t)k < sizeof e->msg)
+        vsnprintf(e->msg + k, sizeof e->msg - (size_t)k, fmt, ap);
+    if (e->buf && e->len)
+        snprintf(e->buf, e->len, "%s", e->msg);
     return -1;
 }
 
 int me_fail(MeshErr *e, const char *fmt, ...)
 {
-    if (!e->buf || !e->len)
-        return -1;
     va_list ap;
     va_start(ap, fmt);
-    vtail(e, snprintf(e->buf, e->len, "%s: ", e->name), fmt, ap);
+    vtail(e, snprintf(e->msg, sizeof e->msg, "%s: ", e->name), fmt, ap);
     va_end(ap);
     return -1;
 }
 
 int me_fail_line(MeshErr *e, uint64_t line, const char *fmt, ...)
 {
-    if (!e->buf || !e->len)
-        return -1;
     va_list ap;
     va_start(ap, fmt);
-    vtail(e, snprintf(e->buf, e->len, "%s:%llu: ", e->name, (unsigned long long)line), fmt, ap);
+    vtail(e, snprintf(e->msg, sizeof e->msg, "%s:%llu: ", e->name, (unsigned long long)line), fmt, ap);
     va_end(ap);
     return -1;
 }
 
 int me_fail_at(MeshErr *e, uint64_t byte, const char *fmt, ...)
 {
-    if (!e->buf || !e->len)
-        return -1;
     va_list ap;
     va_start(ap, fmt);
-    vtail(e, snprintf(e->buf, e->len, "%s: byte %llu: ", e->name, (unsigned long long)byte), fmt, ap);
+    vtail(e, snprintf(e->msg, sizeof e->msg, "%s: byte %llu: ", e->name, (unsigned long long)byte), fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+int me_fail_raw(MeshErr *e, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vtail(e, 0, fmt, ap);
     va_end(ap);
     return -1;
 }
@@ -60,6 +66,24 @@ int me_fail_at(MeshErr *e, uint64_t byte, const char *fmt, ...)
 int me_oom(MeshErr *e)
 {
     return me_fail(e, "out of memory");
+}
+
+int me_skip(MeshErr *e, uint64_t at)
+{
+    if (e->strict)
+        return -1;
+    if (at == 0)
+        at = UINT64_MAX;
+    if (e->skipped == 0 || at < e->first_at) {
+        memcpy(e->first, e->msg, sizeof e->first);
+        e->first[sizeof e->first - 1] = '\0';
+        e->first_at = at;
+    }
+    if (e->skipped < UINT32_MAX)
+        e->skipped++;
+    if (e->buf && e->len)
+        e->buf[0] = '\0';
+    return 0;
 }
 
 void me_warn(const char *name, uint64_t line, const char *fmt, ...)

@@ -26,6 +26,15 @@ typedef struct {
     const char *name;      /* the input as messages name it */
     char       *buf;       /* the message goes here */
     size_t      len;
+    /* Statements a loader could not read (a face without vertices, an
+     * index out of range, an unknown keyword): with strict, the load
+     * fails with the first one's message; otherwise they are skipped and
+     * counted here, and the rest of the file is shown. */
+    int         strict;
+    uint32_t    skipped;
+    uint64_t    first_at;  /* line (text) or byte (binary) of the first, for ordering */
+    char        first[256];/* its message, "path:line: msg" */
+    char        msg[256];  /* the last message, whatever buf's size */
 } MeshErr;
 
 /* Each writes the message and returns -1, so `return me_fail(...)`. */
@@ -35,6 +44,13 @@ int me_fail_line(MeshErr *e, uint64_t line, const char *fmt, ...)
 int me_fail_at(MeshErr *e, uint64_t byte, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 int me_oom(MeshErr *e);
+/* The whole message as given (it names the input itself). */
+int me_fail_raw(MeshErr *e, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* The statement whose message was just written (at line or byte `at`,
+ * 0 = after the end) is skipped: returns 0 and counts it, keeping the
+ * message when it is the earliest so far; under strict returns -1 and
+ * leaves the message as the load's error. */
+int me_skip(MeshErr *e, uint64_t at);
 /* A warning on stderr: "zview: warning: name: msg" (line 0: none). */
 void me_warn(const char *name, uint64_t line, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));

@@ -3,6 +3,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -120,21 +121,134 @@ void scene_free(Scene *s)
     free(s->face_normal);
     free(s->face_rgb);
     free(s->face_obj);
+    free(s->seg_corner);
+    free(s->wire);
     memset(s, 0, sizeof *s);
 }
 
-static void object_bounds(Object *o)
+/* Number the points, segments and wireframe edges after the faces: every
+ * object's points, then every object's segments, then every object's
+ * edges. -1 when the ids would pass INT32_MAX. */
+static int number_prims(Scene *s)
+{
+    uint64_t id = s->nfaces, np = 0, ns = 0, nw = 0, nl = 0;
+    for (int i = 0; i < s->nobjs; i++) {
+        s->objs[i].point_id0 = (int32_t)(id < INT32_MAX ? id : INT32_MAX);
+        id += s->objs[i].point_count;
+        np += s->objs[i].point_count;
+        nl += s->objs[i].line_count;
+    }
+    for (int i = 0; i < s->nobjs; i++) {
+        s->objs[i].seg_id0 = (int32_t)(id < INT32_MAX ? id : INT32_MAX);
+        id += s->objs[i].seg_count;
+        ns += s->objs[i].seg_count;
+    }
+    for (int i = 0; i < s->nobjs; i++) {
+        s->objs[i].wire_id0 = (int32_t)(id < INT32_MAX ? id : INT32_MAX);
+        id += s->objs[i].wire_count;
+        nw += s->objs[i].wire_count;
+    }
+    if (id > INT32_MAX)
+        return -1;
+    s->npoints = (uint32_t)np;
+    s->nsegs = (uint32_t)ns;
+    s->nwire = (uint32_t)nw;
+    s->nlines = nl > UINT32_MAX ? UINT32_MAX : (uint32_t)nl;
+    s->nprims = (uint32_t)(np + ns + nw);
+    return 0;
+}
+
+/* The last object whose first id of this kind is at most id (objects'
+ * first ids rise with their index). */
+static int object_at(const Scene *s, int32_t id, size_t field)
+{
+    int lo = 0, hi = s->nobjs - 1;
+    while (lo < hi) {
+        int mid = lo + (hi - lo + 1) / 2;
+        int32_t f;
+        memcpy(&f, (const char *)&s->objs[mid] + field, sizeof f);
+        if (f <= id)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+PrimKind scene_prim_of(const Scene *s, int32_t id, int *obj, uint32_t *local)
+{
+    *obj = -1;
+    *local = 0;
+    if (id < 0 || s->nobjs <= 0)
+        return PRIM_NONE;
+    if ((uint32_t)id < s->nfaces) {
+        int o = s->face_obj ? s->face_obj[id] : 0;
+        *obj = o;
+        *local = (uint32_t)(id - s->objs[o].face_base);
+        return PRIM_FACE;
+    }
+    if ((uint64_t)id >= (uint64_t)s->nfaces + s->nprims)
+        return PRIM_NONE;
+    static const struct {
+        PrimKind kind;
+        size_t   id0, count;
+    } kinds[3] = {
+        { PRIM_WIRE, offsetof(Object, wire_id0), offsetof(Object, wire_count) },
+        { PRIM_SEG, offsetof(Object, seg_id0), offsetof(Object, seg_count) },
+        { PRIM_POINT, offsetof(Object, point_id0), offsetof(Object, point_count) },
+    };
+    /* the kinds follow one another: the last whose range starts at or
+     * before id holds it */
+    for (int k = 0; k < 3; k++) {
+        int o = object_at(s, id, kinds[k].id0);
+        int32_t f;
+        uint32_t n;
+        memcpy(&f, (const char *)&s->objs[o] + kinds[k].id0, sizeof f);
+        memcpy(&n, (const char *)&s->objs[o] + kinds[k].count, sizeof n);
+        if (f <= id && (uint32_t)(id - f) < n) {
+            *obj = o;
+            *local = (uint32_t)(id - f);
+            return kinds[k].kind;
+        }
+    }
+    return PRIM_NONE;
+}
+
+void scene_edge_verts(const Scene *s, const Object *o, PrimKind kind, uint32_t k, uint32_t v[2])
+{
+    if (kind == PRIM_WIRE) {
+        const uint32_t *w = &s->wire[2 * ((size_t)o->wire_first + k)];
+        v[0] = w[0];
+        v[1] = w[1];
+        return;
+    }
+    uint32_t c = s->seg_corner[o->seg_first + k];
+    v[0] = o->mesh->line_corner[c];
+    v[1] = o->mesh->line_corner[c + 1];
+}
+
+static inline void bounds_add(float lo[3], float hi[3], const float *p)
+{
+    for (int i = 0; i < 3; i++) {
+        if (p[i] < lo[i]) lo[i] = p[i];
+        if (p[i] > hi[i]) hi[i] = p[i];
+    }
+}
+
+/* The box of what the object draws: its faces' corners, its points and
+ * its lines' corners. */
+static void object_bounds(Object *o, const MeshObject *mo)
 {
     const Mesh *m = o->mesh;
     float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
     for (uint32_t f = o->face_first; f < o->face_first + o->face_count; f++)
-        for (uint32_t k = m->face_start[f]; k < m->face_start[f + 1]; k++) {
-            const float *p = &m->pos[3 * m->corner[k]];
-            for (int i = 0; i < 3; i++) {
-                if (p[i] < lo[i]) lo[i] = p[i];
-                if (p[i] > hi[i]) hi[i] = p[i];
-            }
-        }
+        for (uint32_t k = m->face_start[f]; k < m->face_start[f + 1]; k++)
+            bounds_add(lo, hi, &m->pos[3 * (size_t)m->corner[k]]);
+    for (uint32_t k = 0; k < o->point_count; k++)
+        bounds_add(lo, hi, &m->pos[3 * (size_t)object_point_vert(o, k)]);
+    if (mo->line_count)
+        for (uint32_t c = m->line_start[mo->line_first]; c < m->line_start[mo->line_first + mo->line_count]; c++)
+            bounds_add(lo, hi, &m->pos[3 * (size_t)m->line_corner[c]]);
     if (lo[0] > hi[0]) {
         o->centre = o->half = v3(0, 0, 0);
         return;
@@ -149,14 +263,16 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     s->meshes = meshes;
     s->nmeshes = nmeshes;
 
-    /* Count objects, faces, and polygons/corners after splitting. */
-    uint64_t nobjs = 0, nfaces = 0, npolys = 0, ncorners = 0;
+    /* Count objects, faces, segments, and polygons/corners after splitting. */
+    uint64_t nobjs = 0, nfaces = 0, npolys = 0, ncorners = 0, nsegs = 0;
     for (int mi = 0; mi < nmeshes; mi++) {
         const Mesh *m = &meshes[mi];
         nobjs += m->nobjs;
         nfaces += m->nfaces;
+        if (m->nlines)
+            nsegs += m->line_start[m->nlines] - m->nlines;
     }
-    if (nobjs > 65535 || nfaces > INT32_MAX) {
+    if (nobjs > 65535 || nfaces > INT32_MAX || nsegs > INT32_MAX) {
         snprintf(err, errlen, "scene too large (%llu objects, %llu faces)",
                  (unsigned long long)nobjs, (unsigned long long)nfaces);
         return -1;
@@ -166,7 +282,8 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     s->face_rgb = malloc((nfaces ? nfaces : 1) * 3);
     s->face_obj = malloc((nfaces ? nfaces : 1) * sizeof(uint16_t));
     uint8_t *planar = malloc(nfaces ? nfaces : 1);
-    if (!s->objs || !s->face_normal || !s->face_rgb || !s->face_obj || !planar)
+    s->seg_corner = malloc((nsegs ? nsegs : 1) * sizeof *s->seg_corner);
+    if (!s->objs || !s->face_normal || !s->face_rgb || !s->face_obj || !planar || !s->seg_corner)
         goto oom;
 
     uint32_t gface = 0;
@@ -201,7 +318,7 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     if (!s->poly_start || !s->poly_corner || !s->poly_lface)
         goto oom;
 
-    uint32_t pi = 0, ci = 0, oi = 0;
+    uint32_t pi = 0, ci = 0, oi = 0, si = 0;
     gface = 0;
     for (int mi = 0; mi < nmeshes; mi++) {
         const Mesh *m = &meshes[mi];
@@ -218,7 +335,16 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
             o->face_base = (int32_t)(gface + mo->face_first);
             o->poly_first = pi;
             o->scale = o->home_scale = 1;
-            object_bounds(o);
+            o->point_first = mo->point_first;
+            o->point_count = mo->point_count;
+            o->line_count = mo->line_count;
+            /* each polyline's segments: its corners but the last */
+            o->seg_first = si;
+            for (uint32_t l = mo->line_first; l < mo->line_first + mo->line_count; l++)
+                for (uint32_t c = m->line_start[l]; c + 1 < m->line_start[l + 1]; c++)
+                    s->seg_corner[si++] = c;
+            o->seg_count = si - o->seg_first;
+            object_bounds(o, mo);
             for (uint32_t f = mo->face_first; f < mo->face_first + mo->face_count; f++) {
                 uint32_t g = gface + f, a = m->face_start[f], b = m->face_start[f + 1];
                 s->face_obj[g] = (uint16_t)oi;
@@ -250,6 +376,13 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     s->nbase_objs = oi;
     s->nfaces = gface;
     free(planar);
+    if (number_prims(s)) {
+        s->meshes = NULL;
+        s->nmeshes = 0;
+        scene_free(s);
+        snprintf(err, errlen, "scene too large (more than %d faces, points and segments)", INT32_MAX);
+        return -1;
+    }
     /* The scene keeps its own polygon lists and per-face data: the meshes'
      * face arrays are no longer needed (a third of a big model's memory). */
     for (int mi = 0; mi < nmeshes; mi++) {
@@ -279,7 +412,7 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
         return 0;
     uint64_t copies = (uint64_t)n * n * n;
     uint64_t nobjs = (uint64_t)s->nobjs * copies, nfaces = (uint64_t)s->nfaces * copies;
-    if (nobjs > 65535 || nfaces > INT32_MAX) {
+    if (nobjs > 65535 || nfaces + (uint64_t)s->nprims * copies > INT32_MAX) {
         snprintf(err, errlen, "--grid %d: too many objects or faces", n);
         return -1;
     }
@@ -319,6 +452,7 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
     }
     s->nobjs = (int)nobjs;
     s->nfaces = (uint32_t)nfaces;
+    number_prims(s);        /* fits: checked above */
     scene_fit(s);
     return 0;
 }
@@ -486,4 +620,140 @@ void light_set(Light *l, float yaw_deg, float pitch_deg, float ambient)
     l->pitch = pitch_deg;
     l->dir = v3(cosf(p) * sinf(y), sinf(p), cosf(p) * cosf(y));
     l->ambient = ambient < 0 ? 0 : ambient > 1 ? 1 : ambient;
+}
+
+/* ==== the wireframe ==== */
+
+/* A hash of an edge's two vertex indices (the smaller first). */
+static inline uint32_t edge_hash(uint32_t a, uint32_t b)
+{
+    uint64_t h = ((uint64_t)a << 32 | b) * 0x9E3779B97F4A7C15ull;
+    return (uint32_t)(h >> 32);
+}
+
+/* Add edge (a, b) to the table unless there (slots hold an edge's two
+ * vertices and the stamp of the object they were added for: another
+ * stamp is an empty slot, so the table is not cleared between objects). */
+static int edge_add(uint64_t *key, uint32_t *stamp, uint32_t mask, uint32_t st, uint32_t a, uint32_t b)
+{
+    if (a == b)
+        return 0;       /* a degenerate edge draws nothing */
+    if (a > b) {
+        uint32_t t = a;
+        a = b;
+        b = t;
+    }
+    uint64_t k = (uint64_t)a << 32 | b;
+    for (uint32_t i = edge_hash(a, b) & mask;; i = (i + 1) & mask) {
+        if (stamp[i] != st) {
+            stamp[i] = st;
+            key[i] = k;
+            return 1;
+        }
+        if (key[i] == k)
+            return 0;
+    }
+}
+
+int scene_wire_build(Scene *s, char *err, size_t errlen)
+{
+    if (s->wire_built)
+        return 0;
+    int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
+    /* an edge per polygon corner at most; the table at most half full */
+    uint64_t corners = s->poly_start[s->npolys], most = 0;
+    for (int k = 0; k < nb; k++) {
+        const Object *o = &s->objs[k];
+        uint64_t c = s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
+        most = c > most ? c : most;
+    }
+    uint64_t cap = 64;
+    while (cap < 2 * most)
+        cap *= 2;
+    if (corners > INT32_MAX || cap > ((uint64_t)1 << 31)) {
+        snprintf(err, errlen, "--wireframe: too many edges (%llu corners)", (unsigned long long)corners);
+        return -1;
+    }
+    uint32_t *wire = malloc((corners ? corners : 1) * 2 * sizeof *wire);
+    uint64_t *key = malloc(cap * sizeof *key);
+    uint32_t *stamp = calloc(cap, sizeof *stamp);
+    if (!wire || !key || !stamp) {
+        free(wire);
+        free(key);
+        free(stamp);
+        snprintf(err, errlen, "--wireframe: out of memory");
+        return -1;
+    }
+    uint32_t mask = (uint32_t)(cap - 1), n = 0;
+    for (int k = 0; k < nb; k++) {
+        Object *o = &s->objs[k];
+        o->wire_first = n;
+        uint32_t p = o->poly_first, pe = o->poly_first + o->poly_count;
+        while (p < pe) {
+            /* a face's polygons: one when it is kept whole, else a fan
+             * (c0, ck, ck+1) whose diagonals are no edges of the face:
+             * its outline is c0, each fan triangle's second corner, and
+             * the last one's third */
+            uint32_t q = p + 1;
+            while (q < pe && s->poly_lface[q] == s->poly_lface[p])
+                q++;
+            const uint32_t *pc = s->poly_corner;
+            uint32_t prev, first;
+            if (q - p == 1) {
+                uint32_t c0 = s->poly_start[p], c1 = s->poly_start[p + 1];
+                first = prev = pc[c0];
+                for (uint32_t c = c0 + 1; c < c1; c++) {
+                    if (edge_add(key, stamp, mask, (uint32_t)k + 1, prev, pc[c])) {
+                        wire[2 * n] = prev;
+                        wire[2 * n + 1] = pc[c];
+                        n++;
+                    }
+                    prev = pc[c];
+                }
+            } else {
+                first = prev = pc[s->poly_start[p]];
+                for (uint32_t t = p; t < q; t++) {
+                    uint32_t c0 = s->poly_start[t];
+                    uint32_t next[2] = { pc[c0 + 1], pc[c0 + 2] };
+                    for (int j = 0; j < (t + 1 == q ? 2 : 1); j++) {
+                        if (edge_add(key, stamp, mask, (uint32_t)k + 1, prev, next[j])) {
+                            wire[2 * n] = prev;
+                            wire[2 * n + 1] = next[j];
+                            n++;
+                        }
+                        prev = next[j];
+                    }
+                }
+            }
+            if (edge_add(key, stamp, mask, (uint32_t)k + 1, prev, first)) {
+                wire[2 * n] = prev;
+                wire[2 * n + 1] = first;
+                n++;
+            }
+            p = q;
+        }
+        o->wire_count = n - o->wire_first;
+    }
+    free(key);
+    free(stamp);
+    uint32_t *w = realloc(wire, (n ? n : 1) * 2 * sizeof *wire);
+    s->wire = w ? w : wire;
+    s->nwire_edges = n;
+    /* grid copies draw their source's edges */
+    for (int k = nb; k < s->nobjs; k++) {
+        s->objs[k].wire_first = s->objs[k % nb].wire_first;
+        s->objs[k].wire_count = s->objs[k % nb].wire_count;
+    }
+    if (number_prims(s)) {
+        for (int k = 0; k < s->nobjs; k++)
+            s->objs[k].wire_count = 0;
+        number_prims(s);
+        free(s->wire);
+        s->wire = NULL;
+        s->nwire_edges = 0;
+        snprintf(err, errlen, "--wireframe: more than %d faces and edges", INT32_MAX);
+        return -1;
+    }
+    s->wire_built = 1;
+    return 0;
 }

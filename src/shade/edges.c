@@ -75,6 +75,8 @@ static int edge_against(const Scene *s, const ScreenPolys *sp, const FrameBufs *
     int32_t a = fb->ids[i], b = fb->ids[j];
     if (b == a)
         return 0;
+    if (b >= 0 && (uint32_t)b >= s->nfaces && (uint32_t)b - s->nfaces < s->nprims)
+        return 0;                                   /* a point or line: drawn on its own */
     if (b < 0 || (uint32_t)b >= s->nfaces)
         return 1;                                   /* silhouette */
     double da = fb->depth[i], db = fb->depth[j];

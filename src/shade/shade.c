@@ -234,6 +234,7 @@ static void lambert_face(const Scene *s, const NormalMat *nm, uint32_t face, uin
 
 static void shade_depth(const FrameBufs *fb, uint32_t nfaces, Image *out)
 {
+    /* nfaces here: every id drawn, points and lines included */
     size_t n = (size_t)fb->w * (size_t)fb->h;
     float lo = INFINITY, hi = -INFINITY;
     for (size_t i = 0; i < n; i++) {
@@ -261,6 +262,8 @@ static void shade_depth(const FrameBufs *fb, uint32_t nfaces, Image *out)
     }
 }
 
+static int id_object(const Scene *s, int32_t id);
+
 /* Tint the pixels of object obj towards a warm yellow: the selection
  * shows in any shading and at any colour depth. */
 static void highlight_object(const Scene *s, const FrameBufs *fb, int obj, Image *out)
@@ -269,7 +272,7 @@ static void highlight_object(const Scene *s, const FrameBufs *fb, int obj, Image
     size_t n = (size_t)fb->w * (size_t)fb->h;
     for (size_t i = 0; i < n; i++) {
         int32_t id = fb->ids[i];
-        if (id < 0 || (uint32_t)id >= s->nfaces || !s->face_obj || s->face_obj[id] != obj)
+        if (id < 0 || id_object(s, id) != obj)
             continue;
         uint8_t *px = out->rgb + 3 * i;
         for (int a = 0; a < 3; a++)
@@ -279,6 +282,103 @@ static void highlight_object(const Scene *s, const FrameBufs *fb, int obj, Image
 
 static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode,
                       float crease, ShadeCache *cache, Image *out);
+
+static inline uint8_t unit_u8(float c)
+{
+    return (uint8_t)(c <= 0 ? 0 : c >= 1 ? 255 : c * 255.0f + 0.5f);
+}
+
+/* The colour of point or segment k of object o before the depth cue;
+ * returns 1 when it has vertex colours of its own (no cue then). */
+static int prim_base(const Scene *s, int obj, PrimKind kind, uint32_t k, uint8_t out[3])
+{
+    const Object *o = &s->objs[obj];
+    const Mesh *m = o->mesh;
+    if (m->rgb) {
+        uint32_t v[2];
+        if (kind == PRIM_POINT)
+            v[0] = v[1] = object_point_vert(o, k);
+        else
+            scene_edge_verts(s, o, kind, k, v);
+        for (int a = 0; a < 3; a++)
+            out[a] = unit_u8(0.5f * (m->rgb[3 * (size_t)v[0] + a] + m->rgb[3 * (size_t)v[1] + a]));
+        return 1;
+    }
+    if (s->nbase_objs > 1) {
+        object_colour(obj % (int)s->nbase_objs, out);
+    } else {
+        out[0] = 204;
+        out[1] = 204;
+        out[2] = 196;
+    }
+    return 0;
+}
+
+static inline int is_prim(const Scene *s, int32_t id)
+{
+    return id >= 0 && (uint32_t)id >= s->nfaces && (uint32_t)id - s->nfaces < s->nprims;
+}
+
+/* Colour the pixels of points, segments and wireframe edges (lambert
+ * and smooth; depth and id shading did them with the faces), and dim
+ * the faces under a wireframe. */
+static void shade_prims(const Scene *s, const FrameBufs *fb, const ShadeSettings *set, Image *out)
+{
+    size_t n = (size_t)fb->w * (size_t)fb->h;
+    int lit_mode = set->mode == SHADE_LAMBERT || set->mode == SHADE_SMOOTH;
+    if (set->wire && lit_mode)
+        for (size_t i = 0; i < n; i++)
+            if (fb->ids[i] >= 0 && (uint32_t)fb->ids[i] < s->nfaces)
+                for (int a = 0; a < 3; a++)
+                    out->rgb[3 * i + a] = (uint8_t)(out->rgb[3 * i + a] * WIRE_FACE_SHADE + 0.5f);
+    if (!s->nprims || !lit_mode)
+        return;
+    /* the depth range of the frame's points and lines, for the cue */
+    float lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < n; i++)
+        if (is_prim(s, fb->ids[i]) && isfinite(fb->depth[i])) {
+            lo = fb->depth[i] < lo ? fb->depth[i] : lo;
+            hi = fb->depth[i] > hi ? fb->depth[i] : hi;
+        }
+    float scale = hi > lo ? (1.0f - PRIM_FAR_SHADE) / (hi - lo) : 0;
+    int32_t last = -1;
+    uint8_t base[3] = { 0, 0, 0 };
+    int own = 0;
+    PrimKind kind = PRIM_NONE;
+    for (size_t i = 0; i < n; i++) {
+        int32_t id = fb->ids[i];
+        if (!is_prim(s, id))
+            continue;
+        if (id != last) {       /* neighbouring pixels mostly share an id */
+            int obj;
+            uint32_t k;
+            kind = scene_prim_of(s, id, &obj, &k);
+            if (kind == PRIM_WIRE) {
+                base[0] = base[1] = base[2] = 235;
+                own = 1;
+            } else {
+                own = prim_base(s, obj, kind, k, base);
+            }
+            last = id;
+        }
+        uint8_t *px = out->rgb + 3 * i;
+        float cue = own || !isfinite(fb->depth[i]) ? 1.0f : 1.0f - (fb->depth[i] - lo) * scale;
+        for (int a = 0; a < 3; a++)
+            px[a] = clamp_u8((float)base[a] * cue);
+        out->lit[i] = 1;
+    }
+}
+
+/* The object of a drawn id (faces, points, lines), -1 for none. */
+static int id_object(const Scene *s, int32_t id)
+{
+    int obj;
+    uint32_t k;
+    if (id >= 0 && (uint32_t)id < s->nfaces)
+        return s->face_obj ? s->face_obj[id] : 0;
+    return is_prim(s, id) && scene_prim_of(s, id, &obj, &k) != PRIM_NONE ? obj : -1;
+}
+
 
 /* ==== Lambert and id colours, per face, per pixel ==== */
 
@@ -353,6 +453,11 @@ static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t 
         int32_t id = ids[i];
         uint8_t *px = rgb + 3 * i;
         if (id < 0 || (uint32_t)id >= nfaces) {
+            if (fc->mode == SHADE_ID && is_prim(fc->s, id)) {
+                shade_id_colour(id, px);    /* points and lines: their id's colour too */
+                lit[i] = 1;
+                continue;
+            }
             px[0] = px[1] = px[2] = 0;
             lit[i] = 0;
             continue;
@@ -413,6 +518,7 @@ int shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, cons
         return -1;
     if (shade_mode(s, sp, fb, set->mode, set->crease, cache, out))
         return -1;
+    shade_prims(s, fb, set, out);
     if (set->highlight >= 0 && set->highlight < s->nobjs)
         highlight_object(s, fb, set->highlight, out);
     if (set->edges && sp && shade_edges(s, sp, fb, set->crease, &cache->edges, out))
@@ -425,7 +531,7 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
 {
     uint32_t nfaces = s->nfaces;
     if (mode == SHADE_DEPTH) {
-        shade_depth(fb, nfaces, out);
+        shade_depth(fb, nfaces + s->nprims, out);
         return 0;
     }
     if (mode == SHADE_SMOOTH) {
@@ -449,7 +555,9 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
         colour_polys(&fc, sp);
 #ifdef ZV_AVX2
     __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2"))
+    /* the eight-pixel loop leaves ids past the faces black: not for id
+     * colours of points and lines */
+    if (__builtin_cpu_supports("avx2") && !(mode == SHADE_ID && s->nprims))
         i = shade_pixels_avx2(&fc, fb->ids, n, out->rgb, out->lit);
 #endif
     shade_pixels(&fc, fb->ids, i, n, out->rgb, out->lit);

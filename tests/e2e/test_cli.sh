@@ -17,12 +17,26 @@ expect_status "missing file fails" 1 "$Z" --print no/such/file.obj
 expect_err "missing file is named" "no/such/file.obj"
 expect_status "a directory fails" 1 "$Z" --print assets
 expect_err "the directory is named" "assets"
+# A bad statement: --strict refuses the file with file:line; by default
+# it is skipped, and a file with nothing else left still fails, naming it
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n' >"$T/zero.obj"
-expect_status "index 0 fails" 1 "$Z" --print "$T/zero.obj"
+expect_status "index 0 fails with --strict" 1 "$Z" --strict --print "$T/zero.obj"
 expect_err "index 0 names file and line" "zero.obj:4:"
+expect_status "index 0 in the only face fails anyway" 1 "$Z" --print "$T/zero.obj"
+expect_err "... naming file, line and why nothing is left" "zero.obj:4: vertex index 0 is invalid (indices start at 1; 3 vertices) (1 statement skipped, nothing left to show)"
 printf 'v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n' >"$T/nan.obj"
-expect_status "NaN fails" 1 "$Z" --print "$T/nan.obj"
+expect_status "NaN fails with --strict" 1 "$Z" --strict --print "$T/nan.obj"
 expect_err "NaN names file and line" "nan.obj:3:"
+expect_status "NaN in the only face's vertex fails anyway" 1 "$Z" --print "$T/nan.obj"
+expect_err "... naming the vertex's line" "nan.obj:3: NaN or infinite number 'nan'"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf\nfoo bar\nf 2 4 3\nf 1 2 40\n' >"$T/few.obj"
+expect_status "a few broken statements: the rest is shown" 0 "$Z" --print --size 20x8 "$T/few.obj"
+expect_err "... with a warning that counts them and names the first" \
+    "zview: warning: $T/few.obj: 3 statements skipped (first: $T/few.obj:6: face has fewer than 3 vertices (0))"
+expect_status "--strict refuses it" 1 "$Z" --strict --print --size 20x8 "$T/few.obj"
+expect_err "... with the first one's file and line" "few.obj:6: face has fewer than 3 vertices (0)"
+expect_status "--info counts what was skipped" 0 "$Z" --info "$T/few.obj"
+expect_out "... in a line of its own" "skipped:    3 statements (first: $T/few.obj:6:"
 : >"$T/empty.obj"
 expect_status "an empty file fails" 1 "$Z" --print "$T/empty.obj"
 head -c 3000 /dev/urandom >"$T/garbage.obj"

@@ -1,7 +1,8 @@
-/* fuzz_diff.c: the differential harness. The input decodes to a scene, a
- * view and a viewport (scenecode.h); every algorithm renders it on one or
- * two threads and must give the z-buffer's face-id and depth buffers byte
- * for byte. A difference aborts, so libFuzzer keeps the input. */
+/* fuzz_diff.c: the differential harness. The input decodes to a scene
+ * (faces, points and lines), a view and a viewport (scenecode.h); every
+ * algorithm renders it on one or two threads and must give the
+ * z-buffer's face-id and depth buffers byte for byte. A difference
+ * aborts, so libFuzzer keeps the input. */
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,7 +22,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     Scene s;
     Viewport vp;
     int threads;
-    if (sc_decode(data, size, &s, &vp, &threads))
+    if (sc_decode_style(data, size, &s, &vp, &threads, &bufs.style))
         return 0;
     char msg[512];
     long n = tl_agree(&bufs, &s, &vp, threads, msg, sizeof msg);

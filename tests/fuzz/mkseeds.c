@@ -137,6 +137,68 @@ static void wobj(Out *o, const Obj *b)
     }
 }
 
+/* A mesh of points and lines (scenecode.h, after the meshes). */
+typedef struct {
+    int            flags;       /* PF_* */
+    double         base[3];
+    int            unit;
+    int            copy;        /* PF_COPY: the mesh whose vertices it takes */
+    int            nv;
+    const int    (*v)[3];
+    int            cloud[2];    /* PF_CLOUD: n, seed */
+    int            np;
+    const uint8_t *pts;
+    int            nl;
+    const uint8_t *lines;       /* per line: corner count, then indices */
+    double         turn[3], move[3], scale;
+} PObj;
+
+/* The style byte: point size and line width in samples, wireframe,
+ * every point drawn. */
+static void wstyle(Out *o, int size, int width, int wire, int all)
+{
+    w8(o, (unsigned)(size - 1) | (unsigned)(width - 1) << 3 | (unsigned)wire << 6 | (unsigned)all << 7);
+}
+
+static void wpobj(Out *o, const PObj *b)
+{
+    w8(o, (unsigned)b->flags);
+    for (int i = 0; i < 3; i++)
+        wcoord(o, b->base[i]);
+    w8(o, (unsigned)b->unit);
+    if (b->flags & PF_COPY) {
+        w8(o, (unsigned)b->copy);
+    } else {
+        w8(o, (unsigned)b->nv - 1);
+        for (int k = 0; k < b->nv; k++)
+            for (int i = 0; i < 3; i++)
+                w8(o, (unsigned)b->v[k][i] & 0xff);
+    }
+    if (b->flags & PF_CLOUD) {
+        w8(o, (unsigned)b->cloud[0]);
+        w16(o, b->cloud[1]);
+    } else {
+        w8(o, (unsigned)b->np);
+        for (int k = 0; k < b->np; k++)
+            w8(o, b->pts[k]);
+    }
+    w8(o, (unsigned)b->nl);
+    const uint8_t *l = b->lines;
+    for (int k = 0; k < b->nl; k++) {
+        int n = *l++;
+        w8(o, (unsigned)n - 2);
+        for (int c = 0; c < n; c++)
+            w8(o, *l++);
+    }
+    if (b->flags & PF_PLACED) {
+        for (int i = 0; i < 3; i++)
+            wangle(o, b->turn[i]);
+        for (int i = 0; i < 3; i++)
+            wcoord(o, b->move[i]);
+        w8(o, (unsigned)lround((log10(b->scale) + 3) / 6 * 255));
+    }
+}
+
 static int save(const char *dir, const char *name, const Out *o)
 {
     char path[1024];
@@ -327,5 +389,41 @@ int main(int argc, char **argv)
     o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0);
     wobj(&o, &fs);
     rc |= save(dir, "generated-far-grid", &o);
+
+    /* 14: points on the cube's corners and lines along its edges (the
+     * same float vertices: ties with the faces' depths), the wireframe
+     * over it, squares of 2 samples; perspective, two threads */
+    static const uint8_t corner_pts[] = { 0, 1, 2, 3, 4, 5, 6, 7 };
+    static const uint8_t cube_lines[] = { 5, 0, 1, 3, 2, 0, 2, 4, 7, 3, 6, 5, 1 };
+    PObj on_cube = { PF_COPY, { 0, 0, 0 }, 34, 0, 0, NULL, { 0, 0 }, 8, corner_pts, 3, cube_lines,
+                     { 0 }, { 0 }, 1 };
+    h = (Head){ 120, 90, SC_PERSP | SC_THREADS2, 0, 50, 30, 20, 10, { 0 }, 1, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &cube);
+    wstyle(&o, 2, 1, 1, 0); w8(&o, 1 | 1 << 4); wpobj(&o, &on_cube);     /* squares on pixels of 2 samples */
+    rc |= save(dir, "points-lines-wire-on-cube", &o);
+
+    /* 15: a dense cloud (4096 points on a coarse grid: many share a
+     * position or a sample box) beside a star, orthographic, squares of
+     * 3 samples, lines 2 wide; then every point drawn, in perspective */
+    PObj cloud_p = { PF_CLOUD | PF_PLACED, { 0.5, 0, 0 }, 33, 0, 3, bridge_v, { 255, 11 }, 0, NULL, 2, cube_lines,
+                     { 10, 20, 0 }, { 0 }, 0.8 };
+    h = (Head){ 64, 40, SC_THREADS2, 0, 50, 25, 15, 0, { 0 }, 1, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &star);
+    wstyle(&o, 3, 2, 0, 0); w8(&o, 1); wpobj(&o, &cloud_p);
+    rc |= save(dir, "cloud-dense-ortho", &o);
+    h.flags = SC_PERSP | 1 << 5;
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &star);
+    wstyle(&o, 1, 1, 1, 1); w8(&o, 1); wpobj(&o, &cloud_p);
+    rc |= save(dir, "cloud-all-points-persp", &o);
+
+    /* 16: the eye inside the corridor, lines running past it (the near
+     * plane cuts them) and the corridor's wireframe, 3 samples wide */
+    static const int past_v[4][3] = { { 0, 0, -120 }, { 0, 0, 120 }, { 10, -10, -100 }, { -10, 10, 110 } };
+    static const uint8_t past_l[] = { 2, 0, 1, 3, 2, 3, 0 };
+    PObj past = { 0, { 0, 0, 0 }, 34, 0, 4, past_v, { 0, 0 }, 4, corner_pts, 2, past_l, { 0 }, { 0 }, 1 };
+    h = (Head){ 128, 96, SC_PERSP | SC_THREADS2, 0, 90, 0, 0, 0, { 0 }, 6, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &corridor);
+    wstyle(&o, 4, 3, 1, 0); w8(&o, 1); wpobj(&o, &past);
+    rc |= save(dir, "lines-near-plane-wire", &o);
     return rc ? 1 : 0;
 }

@@ -195,7 +195,63 @@ typedef struct {
     Vec3  move;
 } Place;
 
+/* A mesh of points and lines (see scenecode.h), after the others. */
+static int decode_prim_mesh(Rd *r, Mesh *m, const Mesh *earlier, int nearlier, int pflags)
+{
+    double base[3];
+    for (int i = 0; i < 3; i++)
+        base[i] = rd_coord(r, pflags & PF_RAW);
+    double unit = ldexp(1, (int)(rd_u8(r) % 64) - 40);
+    if ((pflags & PF_COPY) && nearlier > 0) {
+        const Mesh *src = &earlier[rd_u8(r) % (unsigned)nearlier];
+        for (uint32_t v = 0; v < src->nverts && v < 4096; v++)
+            if (tl_mesh_vertex(m, src->pos[3 * v], src->pos[3 * v + 1], src->pos[3 * v + 2]))
+                return -1;
+    } else {
+        uint32_t nv = 1 + rd_u8(r) % 30;
+        for (uint32_t k = 0; k < nv; k++) {
+            int d[3];
+            for (int i = 0; i < 3; i++)
+                d[i] = pflags & PF_WIDE ? rd_i16(r) : (int8_t)rd_u8(r);
+            if (add_vertex(m, base, unit, d))
+                return -1;
+        }
+    }
+    if (pflags & PF_CLOUD) {
+        unsigned n = rd_u8(r), seed = rd_u16(r);
+        uint32_t st = seed * 2654435761u + 7;
+        for (unsigned k = 0; k < 16 * (n + 1); k++) {
+            /* a coarse grid: many points share a position or a box */
+            int d[3];
+            for (int i = 0; i < 3; i++)
+                d[i] = ((int)(xorshift(&st) % 33) - 16) * 8;
+            if (add_vertex(m, base, unit, d))
+                return -1;
+        }
+    } else {
+        unsigned np = rd_u8(r) % 64;
+        for (unsigned k = 0; k < np; k++)
+            if (tl_mesh_point(m, rd_u8(r) % m->nverts))
+                return -1;
+    }
+    unsigned nl = rd_u8(r) % 8;
+    for (unsigned l = 0; l < nl; l++) {
+        uint32_t nc = 2 + rd_u8(r) % 6, c[8];
+        for (uint32_t k = 0; k < nc; k++)
+            c[k] = rd_u8(r) % m->nverts;
+        if (tl_mesh_line(m, c, nc))
+            return -1;
+    }
+    return 0;
+}
+
 int sc_decode(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *threads)
+{
+    PrimStyle st;
+    return sc_decode_style(data, size, s, vp, threads, &st);
+}
+
+int sc_decode_style(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *threads, PrimStyle *style)
 {
     Rd r = { data, data + size };
     memset(s, 0, sizeof *s);
@@ -227,8 +283,8 @@ int sc_decode(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *thr
     v.pan_y = (float)rd_i16(&r) / 32768.0f * pan;
 
     int nmeshes = 1 + (int)(rd_u8(&r) % SC_MAX_MESHES);
-    Mesh *meshes = calloc((size_t)nmeshes, sizeof *meshes);
-    Place place[SC_MAX_OBJS];
+    Mesh *meshes = calloc((size_t)nmeshes + SC_MAX_PRIM_MESHES, sizeof *meshes);
+    Place place[SC_MAX_OBJS + SC_MAX_PRIM_MESHES];
     int nplace = 0;
     uint32_t faces_left = SC_MAX_FACES;
     if (!meshes)
@@ -266,10 +322,44 @@ int sc_decode(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *thr
             memset(m, 0, sizeof *m);
         }
     }
-    /* drop the empty meshes, keep the order */
+    /* points and lines: their style, then meshes of their own */
+    unsigned sb = rd_u8(&r);
+    style->point_size = 1 + (int)(sb & 7);
+    style->line_width = 1 + (int)(sb >> 3 & 7);
+    style->wire = sb >> 6 & 1;
+    style->all_points = sb >> 7 & 1;
+    unsigned pb = rd_u8(&r);
+    int nprim = (int)(pb % (SC_MAX_PRIM_MESHES + 1));
+    style->pixel = 1 + (int)(pb >> 4 & 3) % 3;
+    for (int k = 0; k < nprim; k++) {
+        Mesh *m = &meshes[nmeshes++];     /* counted first: fail frees it */
+        char name[16];
+        snprintf(name, sizeof name, "prims%d", k);
+        int pflags = (int)rd_u8(&r);
+        if (tl_mesh_init(m, name) || decode_prim_mesh(&r, m, meshes, nmeshes - 1, pflags))
+            goto fail;
+        Place *pl = &place[nplace++];
+        pl->placed = pflags & PF_PLACED;
+        if (pl->placed) {
+            pl->yaw = rd_angle(&r);
+            pl->pitch = rd_angle(&r);
+            pl->roll = rd_angle(&r);
+            double mx = rd_coord(&r, pflags & PF_RAW), my = rd_coord(&r, pflags & PF_RAW),
+                   mz = rd_coord(&r, pflags & PF_RAW);
+            pl->move = v3((float)mx, (float)my, (float)mz);
+            pl->scale = (float)pow(10, -3 + 6 * rd_u8(&r) / 255.0);
+        }
+        if (tl_mesh_finish(m)) {
+            mesh_free(m);
+            memset(m, 0, sizeof *m);
+            pl->placed = 0;
+        }
+    }
+    /* drop the empty meshes, keep the order (and the placements' order:
+     * they go to the objects that remain) */
     int kept = 0;
     for (int mi = 0; mi < nmeshes; mi++)
-        if (meshes[mi].nfaces)
+        if (meshes[mi].nfaces || meshes[mi].npoints || meshes[mi].nlines)
             meshes[kept++] = meshes[mi];
     char err[256];
     if (kept == 0 || scene_build(s, meshes, kept, err, sizeof err))

@@ -45,7 +45,32 @@
  *   coord: SO_RAW: f32 bits (not finite: 0); else i16 m, u8 e:
  *          m / 32768 * 2^(e % 64 - 24)
  * Objects stop at SC_MAX_OBJS and faces at SC_MAX_FACES (8 times that
- * with SC_GRID's 2 x 2 x 2 copies). */
+ * with SC_GRID's 2 x 2 x 2 copies).
+ *
+ * Then points and lines (an input that ends before this part has none,
+ * so inputs made before it decode as they did):
+ *   u8  style                     bits 0-2: point size - 1 (samples),
+ *                                 bits 3-5: line width - 1, bit 6: the
+ *                                 wireframe of the faces, bit 7: every
+ *                                 point drawn (no one-per-box reduction)
+ *   u8  prim meshes               v % (SC_MAX_PRIM_MESHES + 1), each a mesh
+ *                                 of its own after the others, one object;
+ *                                 bits 4-5: samples a pixel's side, 1 +
+ *                                 v % 3 (points on whole pixels when their
+ *                                 size is a multiple):
+ *     u8  pflags                  PF_PLACED PF_COPY PF_WIDE PF_RAW PF_CLOUD
+ *     coord x, y, z; u8 unit      as for objects
+ *     PF_COPY: u8 mesh            the vertices of that earlier mesh (v % its
+ *                                 count), bit for bit: points and lines on
+ *                                 faces' corners and edges
+ *     else: u8 vertices           1 + v % 30, deltas as for objects
+ *     PF_CLOUD: u8 n, u16 seed    16 (n + 1) more vertices on a coarse grid
+ *                                 in +-127 units (many share a sample box),
+ *                                 and every vertex is a point (no list)
+ *     else: u8 points             v % 64, each u8 vertex index (mod count)
+ *     u8  lines                   v % 8, each u8 corners (2 + v % 6) and
+ *                                 u8 vertex indices (mod count)
+ *     PF_PLACED: placement as for objects */
 
 #include <stddef.h>
 #include <stdint.h>
@@ -63,6 +88,10 @@ enum {
 #define SC_MAX_MESH_OBJS 4
 #define SC_MAX_OBJS      12
 #define SC_MAX_FACES     2048
+#define SC_MAX_PRIM_MESHES 3
+enum {
+    PF_PLACED = 1, PF_COPY = 2, PF_WIDE = 4, PF_RAW = 8, PF_CLOUD = 16
+};
 
 extern const float sc_aspects[7];
 extern const float sc_pan_scales[4];
@@ -71,5 +100,8 @@ extern const float sc_pan_scales[4];
  * *vp and *threads. Returns 0, or -1 when out of memory (s is then
  * empty). */
 int sc_decode(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *threads);
+/* The same, with the points' and lines' style. */
+int sc_decode_style(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *threads,
+                    PrimStyle *style);
 
 #endif

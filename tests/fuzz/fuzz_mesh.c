@@ -1,0 +1,137 @@
+/* fuzz_mesh.c: every native loader. The first byte picks the format and
+ * the load's options, the rest is the file:
+ *
+ *   bits 0-2   format: obj stl ply off xyz, 5-7 = told by the content
+ *   bit 3      lenient (skip what cannot be read) instead of strict
+ *   bit 4      --points: every vertex a point
+ *   bit 5      the wireframe
+ *   bits 6-7   point size and line width - 1 (samples)
+ *
+ * The bytes go through mesh_parse_buffer (no path: no other file is
+ * opened), the mesh's invariants are checked (every index in range,
+ * objects' runs within the arrays, vertex ranges holding what they use:
+ * abort otherwise), then scene_build, a small render through the
+ * pipeline in two shadings, and every algorithm against the z-buffer on
+ * it. A loader's message must name the input. */
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+#include "fuzz.h"
+#include "testlib.h"
+
+static const char *const formats[] = { "obj", "stl", "ply", "off", "xyz" };
+
+#define CHECK(cond)                                                                 \
+    do {                                                                            \
+        if (!(cond)) {                                                              \
+            fprintf(stderr, "fuzz_mesh: %s:%d: %s\n", __FILE__, __LINE__, #cond);   \
+            abort();                                                                \
+        }                                                                           \
+    } while (0)
+
+/* What every loader promises of a mesh it returns. */
+static void check_mesh(const Mesh *m)
+{
+    CHECK(m->nobjs >= 1 && m->objs);
+    CHECK(m->nfaces || m->npoints || m->nlines);
+    CHECK(m->face_start && m->face_start[0] == 0);
+    for (uint32_t f = 0; f < m->nfaces; f++)
+        CHECK(m->face_start[f + 1] >= m->face_start[f] + 3);
+    for (uint32_t c = 0; c < (m->nfaces ? m->face_start[m->nfaces] : 0); c++)
+        CHECK(m->corner[c] < m->nverts);
+    for (uint32_t f = 0; f < m->nfaces; f++)
+        CHECK(m->face_mat[f] < 0 || (uint32_t)m->face_mat[f] < m->nmats);
+    CHECK(m->point || m->npoints <= m->nverts);
+    for (uint32_t k = 0; m->point && k < m->npoints; k++)
+        CHECK(m->point[k] < m->nverts);
+    if (m->nlines) {
+        CHECK(m->line_start[0] == 0);
+        for (uint32_t l = 0; l < m->nlines; l++)
+            CHECK(m->line_start[l + 1] >= m->line_start[l] + 2);
+        for (uint32_t c = 0; c < m->line_start[m->nlines]; c++)
+            CHECK(m->line_corner[c] < m->nverts);
+    }
+    uint32_t f = 0, p = 0, l = 0;
+    for (uint32_t i = 0; i < m->nobjs; i++) {
+        const MeshObject *o = &m->objs[i];
+        /* objects own consecutive runs of each */
+        CHECK(o->face_first == f && o->point_first == p && o->line_first == l);
+        f += o->face_count;
+        p += o->point_count;
+        l += o->line_count;
+        CHECK(o->vert_min <= o->vert_max && (o->vert_max < m->nverts || m->nverts == 0));
+        for (uint32_t q = o->face_first; q < o->face_first + o->face_count; q++)
+            for (uint32_t c = m->face_start[q]; c < m->face_start[q + 1]; c++)
+                CHECK(m->corner[c] >= o->vert_min && m->corner[c] <= o->vert_max);
+        for (uint32_t k = o->point_first; k < o->point_first + o->point_count; k++) {
+            uint32_t v = m->point ? m->point[k] : k;
+            CHECK(v >= o->vert_min && v <= o->vert_max);
+        }
+        for (uint32_t q = o->line_first; q < o->line_first + o->line_count; q++)
+            for (uint32_t c = m->line_start[q]; c < m->line_start[q + 1]; c++)
+                CHECK(m->line_corner[c] >= o->vert_min && m->line_corner[c] <= o->vert_max);
+    }
+    CHECK(f == m->nfaces && p == m->npoints && l == m->nlines);
+    for (size_t i = 0; i < 3 * (size_t)m->nverts; i++)
+        CHECK(m->pos[i] - m->pos[i] == 0);      /* finite */
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static TlAgree bufs;    /* kept: see fuzz_diff.c */
+    if (size < 1)
+        return 0;
+    unsigned sel = data[0];
+    MeshLoadOpts opt = { (sel & 7) < 5 ? formats[sel & 7] : NULL, !(sel & 8) };
+    Mesh *m = calloc(1, sizeof *m);
+    char err[512];
+    if (!m)
+        return 0;
+    if (mesh_parse_buffer_ex(m, NULL, &opt, data + 1, size - 1, err, sizeof err)) {
+        CHECK(strncmp(err, "(input)", 7) == 0);
+        CHECK(m->pos == NULL && m->nverts == 0);
+        free(m);
+        return 0;
+    }
+    check_mesh(m);
+    if (sel & 16)
+        mesh_as_points(m);
+    Scene s;
+    if (scene_build(&s, m, 1, err, sizeof err)) {
+        mesh_free(m);
+        free(m);
+        return 0;
+    }
+    int samples = 1 + (int)(sel >> 6);
+    Pipeline p;
+    if (pipeline_init(&p, &s, hsr_find("zbuffer"), 1) == 0) {
+        p.point_size = samples;
+        p.line_width = samples;
+        p.wireframe = (sel & 32) != 0;
+        p.shade = SHADE_LAMBERT;
+        if (pipeline_render(&p, 32, 20, 2.0f, 0, 1) == 0) {
+            frame_empty_reason(&p);
+            p.shade = SHADE_DEPTH;
+            s.cam.persp = 1;
+            s.cam.zoom = 3;     /* the eye inside: the near plane cuts */
+            pipeline_render(&p, 32, 20, 2.0f, 1, 1);
+            frame_empty_reason(&p);
+        }
+        pipeline_free(&p);
+    }
+    scene_reset(&s);
+    bufs.style = (PrimStyle){ samples, samples, (sel & 32) != 0, 0, samples };
+    Viewport vp = { 40, 28, 1.0f, 0 };
+    char msg[512];
+    TlView v = { 0.4f, -0.3f, 0.1f, 0.4f, -0.3f, 0.1f, 1.2f, 0.05f, -0.05f, 0, 60 };
+    tl_set_view(&s, &v);
+    if (tl_agree(&bufs, &s, &vp, 1, msg, sizeof msg) > 0) {
+        fprintf(stderr, "fuzz_mesh: %s\n", msg);
+        abort();
+    }
+    scene_free(&s);
+    return 0;
+}
