@@ -179,7 +179,11 @@ typedef struct {
     double frame_ms;        /* last rendered frame, render + output */
 } DrawState;
 
-/* Draw the screen; render first when asked or when the size changed. */
+/* Why the loop ended (and what draw() can fail with). */
+enum { RUN_QUIT = 0, RUN_NO_MEMORY = -1, RUN_INPUT_ENDED = 1, RUN_OUTPUT_FAILED = 2 };
+
+/* Draw the screen; render first when asked or when the size changed.
+ * Returns 0, RUN_NO_MEMORY, or RUN_OUTPUT_FAILED (errno says why). */
 static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
 {
     int cols, rows;
@@ -187,9 +191,8 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     int full = (what & RE_CLEAR) != 0;
     if (cols < MIN_COLS || rows < MIN_ROWS) {
         term_message("too small");
-        term_update(full);
         d->small = 1;
-        return 0;
+        return term_update(full) ? RUN_OUTPUT_FAILED : 0;
     }
     if (d->small || cols != d->cols || rows != d->rows) {
         term_erase();
@@ -206,7 +209,7 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     int pr = a->pic_rows > 0 && a->pic_rows < rows - 1 ? a->pic_rows : rows - 1;
     double t0 = now_ms();
     if ((what & RE_RENDER) == RE_RENDER && render(a, pc, pr))
-        return -1;
+        return RUN_NO_MEMORY;
     term_draw_cells(&a->p.cells, 0);
     double t1 = now_ms();
     if ((what & RE_RENDER) == RE_RENDER)
@@ -218,7 +221,8 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
         const char *lines[HELP_LINES_MAX];
         term_draw_box(lines, app_help_layout(a, cols, rows, lines));
     }
-    term_update(full);
+    if (term_update(full))
+        return RUN_OUTPUT_FAILED;
     if ((what & RE_RENDER) == RE_RENDER)
         d->out_ms = now_ms() - t1;
     return 0;
@@ -231,14 +235,12 @@ static Reaction dispatch(App *a, const TermEvent *ev)
     case TE_RESIZE: return RE_RENDER;
     case TE_DRAG:   return app_drag(a, ev->button, ev->dx, ev->dy);
     case TE_WHEEL:  return app_wheel(a, ev->dy);
+    case TE_READY:  return RE_NONE;     /* the loop sends what waits */
     }
     return RE_NONE;
 }
 
 /* ==== The loop ==== */
-
-/* Why the loop ended. */
-enum { RUN_QUIT = 0, RUN_NO_MEMORY = -1, RUN_INPUT_ENDED = 1 };
 
 static int run(App *a, int fps)
 {
@@ -247,13 +249,24 @@ static int run(App *a, int fps)
     double period = 1000.0 / (fps > 0 ? fps : 30);
     double next = 0, last_spin = 0;
     for (;;) {
-        if (todo & RE_DRAW && draw(a, &d, todo, fps))
-            return RUN_NO_MEMORY;
-        todo = RE_NONE;
+        /* a frame goes only when the last one is through: on a slow
+         * link frames are dropped (the newest state drawn when the line
+         * is free), never queued */
+        if (todo & RE_DRAW && term_ready()) {
+            int rc = draw(a, &d, todo, fps);
+            if (rc)
+                return rc;
+            todo = RE_NONE;
+        }
         int timeout = -1;
         if (a->spin) {
             double now = now_ms();
             timeout = next > now ? (int)(next - now + 0.999) : 0;
+        }
+        if (todo & RE_DRAW) {
+            int pace = term_pace_ms();
+            if (timeout < 0 || pace < timeout)
+                timeout = pace;
         }
         TermEvent ev;
         int got = term_read(&ev, timeout);
@@ -319,32 +332,28 @@ int app_viewer(const Options *o, Scene *s)
         return 1;
     }
     char err[256];
+    /* an unknown TERM (or xterm-direct without its entry): a description
+     * we have does better than one frame */
+    const char *use = term_resolve(t);
+    if (use && strcmp(use, t))
+        fprintf(stderr, "zview: unknown terminal type '%s': using %s\n", t, use);
     TermConfig cfg = {
         .in = keys,
+        .termname = use,
         .color = o->color >= 0 ? (ColorDepth)o->color : color_from_env(),
         .mouse = 1,
         .signals = 1,
     };
-    /* COLORTERM=truecolor on a TERM without direct colour: curses can
-     * only send RGB through a *-direct description, so try the same
-     * family's (xterm-256color -> xterm-direct) when it is installed. */
-    char direct[64];
-    const char *dash = strchr(t, '-');
-    int rc_open = -1;
-    if (cfg.color == COLOR_TRUE && !strstr(t, "-direct") &&
-        snprintf(direct, sizeof direct, "%.*s-direct", dash ? (int)(dash - t) : 40, t) <
-            (int)sizeof direct) {
-        cfg.termname = direct;
-        rc_open = term_open(&cfg, err, sizeof err);
-        cfg.termname = NULL;
-    }
-    if (rc_open && term_open(&cfg, err, sizeof err)) {
+    if (!use || term_open(&cfg, err, sizeof err)) {
+        fprintf(stderr, "zview: %s: one frame instead\n",
+                use ? err : "no terminal description installed (not even xterm, vt100 or ansi)");
         pipeline_free(&a.p);
         if (tty)
             fclose(tty);
         return app_oneshot(o, s);
     }
     int rc = run(&a, o->fps);
+    int out_errno = errno;
     term_restore();
     pipeline_free(&a.p);
     if (tty)
@@ -355,6 +364,10 @@ int app_viewer(const Options *o, Scene *s)
     }
     if (rc == RUN_INPUT_ENDED) {
         fprintf(stderr, "zview: %s: the input ended (no more keys)\n", keys_name);
+        return 1;
+    }
+    if (rc == RUN_OUTPUT_FAILED) {
+        fprintf(stderr, "zview: the terminal: %s\n", strerror(out_errno));
         return 1;
     }
     return 0;
@@ -398,7 +411,7 @@ int app_bench_tty(const Options *o)
     if (opt.mode < 0)
         opt.mode = MODE_HALF;
     ColorDepth color = o->color >= 0 ? (ColorDepth)o->color : COLOR_256;
-    const char *termname = color == COLOR_TRUE ? "xterm-direct" : "xterm-256color";
+    const char *termname = "xterm-256color";    /* 24-bit colour needs no other entry */
     int rc = 1;
     App a;
     FILE *out = tmpfile(), *in = fopen("/dev/null", "r");
@@ -407,13 +420,7 @@ int app_bench_tty(const Options *o)
         goto done;
     }
     TermConfig cfg = { .out = out, .in = in, .termname = termname, .color = color };
-    int opened = term_open(&cfg, err, sizeof err) == 0;
-    if (!opened && color == COLOR_TRUE) {
-        /* no xterm-direct description installed: 256 colours it is */
-        cfg.termname = termname = "xterm-256color";
-        opened = term_open(&cfg, err, sizeof err) == 0;
-    }
-    if (!opened) {
+    if (term_open(&cfg, err, sizeof err)) {
         fprintf(stderr, "zview: %s: %s\n", termname, err);
         pipeline_free(&a.p);
         goto done;
@@ -437,7 +444,13 @@ int app_bench_tty(const Options *o)
         term_draw_cells(&a.p.cells, 0);
         status_text(&a, bar, sizeof bar, k ? render_ms[k - 1] + out_ms[k - 1] : 0, o->fps, cols);
         term_draw_bar(rows, bar);
-        term_update(0);
+        if (term_update(0)) {
+            int e = errno;
+            term_restore();
+            fprintf(stderr, "zview: the benchmark's file: %s\n", strerror(e));
+            pipeline_free(&a.p);
+            goto done;
+        }
         long now = file_bytes(out);
         out_ms[k] = now_ms() - t1;
         render_ms[k] = t1 - t0;
@@ -469,7 +482,7 @@ int app_bench_tty(const Options *o)
            TTY_FRAMES, first);
     out_printf(&rep, "bytes per frame: median %ld, mean %ld, max %ld\n", bytes[1 + TTY_FRAMES / 2],
            sum / TTY_FRAMES, bytes[TTY_FRAMES]);
-    out_printf(&rep, "frame time: median %.2f ms (render %.2f ms + curses output %.2f ms), max %.2f ms\n",
+    out_printf(&rep, "frame time: median %.2f ms (render %.2f ms + terminal output %.2f ms), max %.2f ms\n",
            frame[TTY_FRAMES / 2], rmed[TTY_FRAMES / 2], omed[TTY_FRAMES / 2],
            frame[TTY_FRAMES - 1]);
     if (out_flush(&rep)) {
