@@ -113,6 +113,8 @@ typedef struct {
     int ech;                    /* \e[nX erases n characters */
     int el;                     /* \e[K erases to the end of the line */
     int rel;                    /* \e[nA..D move relative */
+    int hpa, vpa;               /* \e[nG, \e[nd: to a column, to a row */
+    int lf;                     /* a line feed keeps the column (no ONLCR) */
     int am, xenl;               /* auto margins; the newline glitch (writing the
                                    last column leaves the cursor there) */
     char clear[32];             /* clears the screen, cursor home */

@@ -344,6 +344,8 @@ static void read_caps(VtCaps *c)
     c->el = cap_is("el", "\033[K");
     c->rel = cap_is("cuf", "\033[%p1%dC") && cap_is("cub", "\033[%p1%dD") &&
              cap_is("cud", "\033[%p1%dB") && cap_is("cuu", "\033[%p1%dA");
+    c->hpa = cap_is("hpa", "\033[%i%p1%dG");
+    c->vpa = cap_is("vpa", "\033[%i%p1%dd");
     c->am = flag("am");
     c->xenl = flag("xenl");
     const char *cl = tigetstr("clear");
@@ -451,6 +453,10 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     set_escdelay(25);
     define_key("\033[0n", KEY_STATUS_OK);
     define_key("\033[3n", KEY_STATUS_BAD);
+    /* curses has set the tty: without ONLCR a line feed only goes down
+     * (on a file, as the tty benchmark writes, as on a terminal) */
+    struct termios tio;
+    T.vt.caps.lf = tcgetattr(T.out_fd, &tio) != 0 || !(tio.c_oflag & OPOST) || !(tio.c_oflag & ONLCR);
     T.ask = isatty(T.out_fd);
     T.ack_wait = T.acks_seen = T.unanswered = 0;
     T.pace_ms = PACE_MIN_MS;

@@ -387,18 +387,40 @@ static inline int utf8_len(uint32_t c)
     return c < 0x80 ? 1 : c < 0x800 ? 2 : c < 0x10000 ? 3 : 4;
 }
 
-/* Write want's cell x of row y at the cursor (which is there), in the
- * look that costs the fewest bytes from the colours in force. */
-static void write_cell(Vt *v, int y, int x)
+/* The fewest bytes to write cell c from the colours of v. */
+static int cheapest(const Vt *v, const VtCell *c)
 {
-    size_t i = (size_t)y * v->cols + x;
-    const VtCell *c = &v->want[i];
     Rep r[3];
-    int n = reps(c, r), best = 0, best_cost = 1 << 30;
+    int n = reps(c, r), best = 1 << 30;
     char s[2 * SGR_COLOUR_MAX + 24];
     for (int k = 0; k < n; k++) {
         uint32_t nf, nb;
         int cost = sgr_build(v, r[k].fg, r[k].bg, c->attr, s, &nf, &nb) + utf8_len(r[k].ch);
+        best = cost < best ? cost : best;
+    }
+    return best;
+}
+
+/* Write want's cell x of row y at the cursor (which is there), in the
+ * look that costs the fewest bytes from the colours in force, counting
+ * what the colours it leaves cost the next cell: a space on a (bg a)
+ * and a full block of a (fg a) cost alike, but in a dither of a and b
+ * only one of them leaves both colours in force for what follows. */
+static void write_cell(Vt *v, int y, int x)
+{
+    size_t i = (size_t)y * v->cols + x;
+    const VtCell *c = &v->want[i], *next = x + 1 < v->cols ? c + 1 : NULL;
+    Rep r[3];
+    int n = reps(c, r), best = 0, best_cost = 1 << 30;
+    char s[2 * SGR_COLOUR_MAX + 24];
+    for (int k = 0; k < n; k++) {
+        Vt after = *v;
+        int cost = sgr_build(v, r[k].fg, r[k].bg, c->attr, s, &after.fg, &after.bg) + utf8_len(r[k].ch);
+        if (next && n > 1) {
+            after.attr = c->attr;
+            after.sgr_ok = 1;
+            cost += cheapest(&after, next);
+        }
         if (cost < best_cost) {
             best_cost = cost;
             best = k;
@@ -431,11 +453,35 @@ static int csi_n(char *p, unsigned n, char c)
     return (int)(q - p);
 }
 
-/* The shortest bytes moving the cursor to (y, x) into p. */
+/* Across a row from column c (known) to x: relative (BS for one to the
+ * left), or absolute (CHA). Returns the bytes (0: there already), or
+ * 99 when the terminal has no way. */
+static int across(const Vt *v, int c, int x, char *p)
+{
+    if (c == x)
+        return 0;
+    int dx = x - c;
+    char t[16];
+    int n = 99, k;
+    if (dx == -1) {
+        p[0] = '\b';
+        return 1;
+    }
+    if (v->caps.rel)
+        n = csi_n(p, (unsigned)(dx > 0 ? dx : -dx), dx > 0 ? 'C' : 'D');
+    if (v->caps.hpa && (k = csi_n(t, (unsigned)x + 1, 'G')) < n) {
+        memcpy(p, t, (size_t)k);
+        n = k;
+    }
+    return n;
+}
+
+/* The shortest bytes moving the cursor to (y, x) into p: the absolute
+ * move, or a vertical part (none, line feeds, CUD/CUU, VPA), with or
+ * without a carriage return, and then a horizontal part. */
 static int move_build(const Vt *v, int y, int x, char *p)
 {
-    /* absolute: "\e[y;xH", "\e[yH" for the first column, "\e[H" home */
-    char best[48], cand[48];
+    char best[48], cand[48], h[16];
     char *q = best;
     *q++ = '\033';
     *q++ = '[';
@@ -449,38 +495,41 @@ static int move_build(const Vt *v, int y, int x, char *p)
     int nb = (int)(q - best);
     if (v->cy >= 0) {
         int dy = y - v->cy;
-        /* from the first column: CR, then down by LFs or up/down by CSI */
-        int n = 0;
-        cand[n++] = '\r';
-        if (dy > 0 && dy <= 4) {
-            for (int k = 0; k < dy; k++)
-                cand[n++] = '\n';
-        } else if (dy && v->caps.rel) {
-            n += csi_n(cand + n, (unsigned)(dy > 0 ? dy : -dy), dy > 0 ? 'B' : 'A');
-        } else if (dy) {
-            n = 99;
-        }
-        if (x && v->caps.rel)
-            n += csi_n(cand + n, (unsigned)x, 'C');
-        else if (x)
-            n = 99;
-        if (n < nb) {
-            memcpy(best, cand, (size_t)n);
-            nb = n;
-        }
-        /* from where it is (not at a pending wrap): vertical, then across */
-        if (v->cx >= 0 && v->cx < v->cols && v->caps.rel) {
-            int dx = x - v->cx;
-            n = 0;
-            if (dy)
-                n += csi_n(cand + n, (unsigned)(dy > 0 ? dy : -dy), dy > 0 ? 'B' : 'A');
-            if (dx == -1)
-                cand[n++] = '\b';
-            else if (dx)
-                n += csi_n(cand + n, (unsigned)(dx > 0 ? dx : -dx), dx > 0 ? 'C' : 'D');
-            if (n < nb) {
-                memcpy(best, cand, (size_t)n);
-                nb = n;
+        /* a column is known unless the cursor waits at the margin */
+        int col_known = v->cx >= 0 && v->cx < v->cols;
+        for (int cr = 0; cr < 2; cr++) {
+            if (!cr && !col_known)
+                continue;
+            for (int way = 0; way < 4; way++) {
+                int n = 0;
+                if (cr)
+                    cand[n++] = '\r';
+                if (way == 0) {             /* on the row already */
+                    if (dy)
+                        continue;
+                } else if (way == 1) {      /* line feeds: down, same column */
+                    if (dy <= 0 || dy > 4 || !v->caps.lf)
+                        continue;
+                    for (int k = 0; k < dy; k++)
+                        cand[n++] = '\n';
+                } else if (way == 2) {      /* CUD / CUU */
+                    if (!dy || !v->caps.rel)
+                        continue;
+                    n += csi_n(cand + n, (unsigned)(dy > 0 ? dy : -dy), dy > 0 ? 'B' : 'A');
+                } else {                    /* VPA */
+                    if (!dy || !v->caps.vpa)
+                        continue;
+                    n += csi_n(cand + n, (unsigned)y + 1, 'd');
+                }
+                int k = across(v, cr ? 0 : v->cx, x, h);
+                if (k >= 99)
+                    continue;
+                memcpy(cand + n, h, (size_t)k);
+                n += k;
+                if (n < nb) {
+                    memcpy(best, cand, (size_t)n);
+                    nb = n;
+                }
             }
         }
     }
