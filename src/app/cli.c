@@ -20,7 +20,7 @@ void cli_usage(FILE *f)
 "\n"
 "Output (default: the interactive viewer; --print when stdout is no terminal):\n"
 "  -p, --print           write one frame to stdout as text, no curses\n"
-"  -o, --output FILE     write the image to FILE.png or FILE.ppm\n"
+"  -o, --output FILE     write the image to FILE.png or FILE.ppm, or the text to FILE.txt\n"
 "  -s, --size WxH        pixels for -o (default 640x480); cells for --print\n"
 "  --mode half|ascii|braille      text mode (default: half on UTF-8)\n"
 "  --color truecolor|256|16|8|none colours (default: from COLORTERM/TERM/NO_COLOR)\n"
@@ -31,6 +31,10 @@ void cli_usage(FILE *f)
 "  --ambient F           ambient light, 0 to 1 (default 0.22)\n"
 "  --samples N           samples per pixel, 1, 4, 9 or 16, averaged (default 4 for\n"
 "                        text and the viewer, 1 for -o)\n"
+"  --turntable N         N frames turning 360/N degrees each about the vertical, to\n"
+"                        -o PATTERN (one integer conversion: out-%03d.png, .ppm, .txt;\n"
+"                        frames numbered from 0) or with --print to stdout\n"
+"  --print-view          the viewer prints the command line of its last view on quitting\n"
 "  --info                print file statistics (with --algo: render statistics)\n"
 "  --dump-ids FILE       face-id buffer: W*H little-endian int32, -1 = background\n"
 "  --dump-screen FILE    screen-space polygons as OBJ text\n"
@@ -63,6 +67,32 @@ void cli_usage(FILE *f)
 "\n"
 "  -h, --help, -V, --version\n"
 "Exit status: 0 ok, 1 runtime error, 2 usage error.\n", f);
+}
+
+int frame_pattern_check(const char *pat)
+{
+    int n = 0;
+    for (const char *p = pat; *p; p++) {
+        if (*p != '%')
+            continue;
+        p++;
+        if (*p == '%')
+            continue;
+        /* flags, width, precision: then the conversion, an integer one */
+        while (*p && strchr("-+ #0", *p))
+            p++;
+        while (*p >= '0' && *p <= '9')
+            p++;
+        if (*p == '.') {
+            p++;
+            while (*p >= '0' && *p <= '9')
+                p++;
+        }
+        if (!*p || !strchr("diuxXo", *p))
+            return -1;
+        n++;
+    }
+    return n;
 }
 
 static int parse_float(const char *s, float *out)
@@ -142,7 +172,7 @@ enum {
     OPT_DUMP_IDS, OPT_DUMP_SCREEN, OPT_MODE, OPT_COLOR, OPT_SHADE, OPT_YAW, OPT_PITCH,
     OPT_ROLL, OPT_ZOOM, OPT_PAN, OPT_FIT_FROM, OPT_MOVE, OPT_TURN, OPT_SCALE, OPT_VIEWS,
     OPT_GRID, OPT_FPS, OPT_MAX_POLYS, OPT_SAMPLES, OPT_CREASE, OPT_LIGHT, OPT_AMBIENT, OPT_VIEW,
-    OPT_LAYOUT, OPT_EDGES, OPT_ORDER,
+    OPT_LAYOUT, OPT_EDGES, OPT_ORDER, OPT_PRINT_VIEW, OPT_TURNTABLE,
 };
 
 static const struct option long_opts[] = {
@@ -170,6 +200,8 @@ static const struct option long_opts[] = {
     { "layout", required_argument, NULL, OPT_LAYOUT },
     { "edges", no_argument, NULL, OPT_EDGES },
     { "order", required_argument, NULL, OPT_ORDER },
+    { "print-view", no_argument, NULL, OPT_PRINT_VIEW },
+    { "turntable", required_argument, NULL, OPT_TURNTABLE },
     { "yaw", required_argument, NULL, OPT_YAW },
     { "pitch", required_argument, NULL, OPT_PITCH },
     { "roll", required_argument, NULL, OPT_ROLL },
@@ -260,11 +292,13 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
         case OPT_JSON: o->json = 1; break;
         case OPT_CULL: o->cull = 1; break;
         case OPT_EDGES: o->edges = 1; break;
+        case OPT_PRINT_VIEW: o->print_view = 1; break;
         case OPT_ORTHO: o->persp = 0; break;
         case 'o': {
             size_t len = strlen(val);
-            if (len < 5 || (strcmp(val + len - 4, ".png") && strcmp(val + len - 4, ".ppm")))
-                BAD_VAL("the file must end in .png or .ppm");
+            if (len < 5 || (strcmp(val + len - 4, ".png") && strcmp(val + len - 4, ".ppm") &&
+                            strcmp(val + len - 4, ".txt")))
+                BAD_VAL("the file must end in .png, .ppm or .txt");
             o->out = val;
             break;
         }
@@ -368,6 +402,11 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
                 BAD_VAL("1 to 100");
             o->grid = (int)n;
             break;
+        case OPT_TURNTABLE:
+            if (parse_int(val, 1, 3600, &n))
+                BAD_VAL("1 to 3600 frames");
+            o->turntable = (int)n;
+            break;
         case OPT_FPS:
             if (parse_int(val, 1, 1000, &n))
                 BAD_VAL("1 to 1000");
@@ -407,6 +446,15 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
             return -1;
         }
         o->files[o->nfiles++] = argv[i];
+    }
+    if (o->turntable && !o->out && !o->print) {
+        snprintf(err, errlen, "--turntable needs -o PATTERN (e.g. out-%%03d.png) or --print");
+        return -1;
+    }
+    if (o->turntable && o->out && frame_pattern_check(o->out) != 1) {
+        snprintf(err, errlen, "--turntable: the file name '%s' needs exactly one integer conversion "
+                 "for the frame number (e.g. out-%%03d.png; %%%% for a %%)", o->out);
+        return -1;
     }
     if (o->algo && !o->bench && !hsr_find(o->algo)) {
         snprintf(err, errlen, "unknown algorithm '%s' (zbuffer, scanline, span, hzb, hzb-octree)", o->algo);

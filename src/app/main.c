@@ -76,7 +76,7 @@ int main(int argc, char **argv)
     }
     if (o.info)
         rc = app_info(&o, &scene);
-    else if (o.print || o.out || o.dump_ids || o.dump_screen || !isatty(STDOUT_FILENO))
+    else if (o.print || o.out || o.dump_ids || o.dump_screen || (!isatty(STDOUT_FILENO) && !o.print_view))
         rc = app_oneshot(&o, &scene);
     else
         rc = app_viewer(&o, &scene);

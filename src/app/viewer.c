@@ -39,6 +39,7 @@ static int locale_utf8(void)
 static int app_init(App *a, const Options *o, Scene *s)
 {
     memset(a, 0, sizeof *a);
+    a->opt = o;
     a->s = s;
     a->sel = -1;
     a->cull = o->cull;
@@ -79,16 +80,89 @@ static int render(App *a, int cols, int rows)
     return cells_from_image(&a->p.img, a->mode, term_color(), &a->p.cells);
 }
 
+/* ==== The view's command line ==== */
+
+ViewSettings app_view_settings(const App *a)
+{
+    ViewSettings v = {
+        .mode = a->mode,
+        .shade = a->p.shade,
+        .crease = a->p.crease,
+        .cull = a->cull,
+        .samples = a->p.samples,
+        .algo = a->p.algo->name,
+        .edges = a->p.edges,
+    };
+    return v;
+}
+
+int app_view_command(const App *a, char *buf, size_t len)
+{
+    ViewSettings v = app_view_settings(a);
+    return view_command(buf, len, a->opt, a->s, &v);
+}
+
+int app_command_layout(const App *a, int cols, char *buf, size_t len, const char **lines, int max)
+{
+    char cmd[CMD_MAX];
+    if (max < 2 || app_view_command(a, cmd, sizeof cmd)) {
+        snprintf(buf, len, "the command line is too long to show");
+        lines[0] = buf;
+        return 1;
+    }
+    int w = cols - 4 > 16 ? cols - 4 : 16;     /* the box's frame and margins */
+    size_t o = 0;
+    int n = 0;
+    int k = snprintf(buf, len, "command line of this view (any key closes)");
+    lines[n++] = buf;
+    o = (size_t)k + 1;
+    /* whole words while they fit, " \\" where the command goes on (a
+     * word longer than a line is cut: rare, a long path) */
+    const char *p = cmd;
+    while (*p && n < max && o + (size_t)w + 3 < len) {
+        int room = w - 2, take = (int)strlen(p);
+        if (take > w) {
+            take = room;
+            for (int i = room; i > 0; i--)
+                if (p[i] == ' ') {
+                    take = i;
+                    break;
+                }
+        }
+        int more = p[take] != 0;
+        k = snprintf(buf + o, len - o, "%.*s%s", take, p, more ? " \\" : "");
+        lines[n++] = buf + o;
+        o += (size_t)k + 1;
+        p += take;
+        while (*p == ' ')
+            p++;
+    }
+    return n;
+}
+
+/* The colour depth as the status bar names it. */
+static const char *depth_label(ColorDepth d)
+{
+    switch (d) {
+    case COLOR_TRUE: return "24bit";
+    case COLOR_256:  return "256";
+    case COLOR_16:   return "16";
+    case COLOR_8:    return "8";
+    default:         return "mono";
+    }
+}
+
 /* The status bar's fields, in the order shown. When the bar is wider
  * than the window, fields go by rank, lowest first: 1 frame time and
- * fps, 2 picture size, 3 display mode and shading, 4 view flags
- * (persp, cull, spin), 5 selection, 6 note. Rank 0 stays: the file,
- * the polygons, the algorithm and its time, and "? help"; in a window
- * still too narrow they take their brief forms ("drawn/faces", "?"), and
- * last of all the file name is shortened. README and the man page give
- * the same order. */
+ * fps, 2 picture size, 3 display mode, shading and colours, 4 view flags
+ * (persp, cull, spin), 5 selection. Rank 0 stays: the file, the
+ * polygons, the algorithm and its time, and "? help"; in a window still
+ * too narrow they take their brief forms ("drawn/faces", "?"), then the
+ * note goes (rank 6: it answers a key, so it outlasts the long forms),
+ * and last of all the file name is shortened. README and the man page
+ * give the same order. */
 #define BAR_FIELDS 10
-#define BAR_RANKS  6
+#define BAR_NOTE   6
 
 typedef struct {
     char text[96];
@@ -140,7 +214,7 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
     snprintf(f[2].brief, sizeof f[2].brief, "%u/%u", a->p.sp.npolys, s->nfaces);
     bar_field(&f[3], 0, "%s %.2fms", a->p.algo->name, a->p.hsr_ms);
     bar_field(&f[4], 1, "frame %.1fms %.0ffps", frame_ms, frame_ms > 0 ? 1000.0 / frame_ms : 0);
-    bar_field(&f[5], 3, "%s %s", mode_names[a->mode], shade_names[a->p.shade]);
+    bar_field(&f[5], 3, "%s %s %s", mode_names[a->mode], shade_names[a->p.shade], depth_label(term_color()));
     char spin[24] = "";
     if (a->spin)
         snprintf(spin, sizeof spin, "spin@%d", fps_cap);
@@ -148,10 +222,10 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
               s->cam.persp && (a->cull || a->spin) ? " " : "", a->cull ? "cull" : "",
               a->cull && a->spin ? " " : "", spin);
     bar_field(&f[7], 2, "%dx%dpx", a->p.img.w, a->p.img.h);
-    bar_field(&f[8], 6, "%s", a->note);
+    bar_field(&f[8], BAR_NOTE, "%s", a->note);
     bar_field(&f[9], 0, "? help");
     snprintf(f[9].brief, sizeof f[9].brief, "?");
-    for (int rank = 1; rank <= BAR_RANKS && bar_join(f, buf, len) > width; rank++)
+    for (int rank = 1; rank < BAR_NOTE && bar_join(f, buf, len) > width; rank++)
         for (int i = 0; i < BAR_FIELDS; i++)
             if (f[i].rank == rank)
                 f[i].rank = -1;
@@ -159,6 +233,8 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
         for (int i = 0; i < BAR_FIELDS; i++)
             if (f[i].brief[0])
                 memcpy(f[i].text, f[i].brief, sizeof f[i].brief);
+    if (bar_join(f, buf, len) > width)
+        f[8].rank = -1;
     int over = bar_join(f, buf, len) - width;
     int name_len = (int)strlen(f[0].text);
     if (over > 0 && name_len > 4) {
@@ -200,10 +276,10 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
         d->small = 0;
         d->cols = cols;
         d->rows = rows;
-    } else if (d->help && !a->help) {
+    } else if (d->help && !(a->help || a->cmd)) {
         term_erase();       /* the box may reach past a --size picture */
     }
-    d->help = a->help;
+    d->help = a->help || a->cmd;
     /* --size: that many cells, or fewer when the window is smaller */
     int pc = a->pic_cols > 0 && a->pic_cols < cols ? a->pic_cols : cols;
     int pr = a->pic_rows > 0 && a->pic_rows < rows - 1 ? a->pic_rows : rows - 1;
@@ -220,6 +296,11 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     if (a->help) {
         const char *lines[HELP_LINES_MAX];
         term_draw_box(lines, app_help_layout(a, cols, rows, lines));
+    } else if (a->cmd) {
+        const char *lines[HELP_LINES_MAX];
+        char buf[2 * CMD_MAX];
+        int n = app_command_layout(a, cols, buf, sizeof buf, lines, rows - 3 < HELP_LINES_MAX ? rows - 3 : HELP_LINES_MAX);
+        term_draw_box(lines, n);
     }
     if (term_update(full))
         return RUN_OUTPUT_FAILED;
@@ -311,24 +392,46 @@ static FILE *open_keys(FILE **opened, const char **name)
     return *opened;
 }
 
+/* No viewer after all: one frame as --print gives, or, when the view's
+ * command line was wanted on standard output, an error rather than a
+ * frame in its place. */
+static int no_viewer(const Options *o, Scene *s)
+{
+    if (o->print_view) {
+        fprintf(stderr, "zview: --print-view: no terminal to show the viewer on\n");
+        return 1;
+    }
+    return app_oneshot(o, s);
+}
+
 int app_viewer(const Options *o, Scene *s)
 {
     const char *t = getenv("TERM");
     if (!t || !*t || !strcmp(t, "dumb"))
-        return app_oneshot(o, s);
+        return no_viewer(o, s);
     FILE *tty;
     const char *keys_name;
     FILE *keys = open_keys(&tty, &keys_name);
     if (!keys) {
         fprintf(stderr, "zview: no terminal to read keys from (standard input is not one, "
-                        "/dev/tty: %s): one frame instead\n", strerror(errno));
-        return app_oneshot(o, s);
+                        "/dev/tty: %s)%s\n", strerror(errno), o->print_view ? "" : ": one frame instead");
+        return no_viewer(o, s);
+    }
+    /* the screen: standard output, or the terminal when --print-view
+     * keeps standard output for the command line */
+    FILE *screen = stdout, *screen_tty = NULL;
+    if (!isatty(STDOUT_FILENO) && !(screen = screen_tty = fopen("/dev/tty", "we"))) {
+        if (tty)
+            fclose(tty);
+        return no_viewer(o, s);
     }
     App a;
     if (app_init(&a, o, s)) {
         fprintf(stderr, "zview: out of memory\n");
         if (tty)
             fclose(tty);
+        if (screen_tty)
+            fclose(screen_tty);
         return 1;
     }
     char err[256];
@@ -338,6 +441,7 @@ int app_viewer(const Options *o, Scene *s)
     if (use && strcmp(use, t))
         fprintf(stderr, "zview: unknown terminal type '%s': using %s\n", t, use);
     TermConfig cfg = {
+        .out = screen,
         .in = keys,
         .termname = use,
         .color = o->color >= 0 ? (ColorDepth)o->color : color_from_env(),
@@ -345,19 +449,27 @@ int app_viewer(const Options *o, Scene *s)
         .signals = 1,
     };
     if (!use || term_open(&cfg, err, sizeof err)) {
-        fprintf(stderr, "zview: %s: one frame instead\n",
-                use ? err : "no terminal description installed (not even xterm, vt100 or ansi)");
+        fprintf(stderr, "zview: %s%s\n",
+                use ? err : "no terminal description installed (not even xterm, vt100 or ansi)",
+                o->print_view ? "" : ": one frame instead");
         pipeline_free(&a.p);
         if (tty)
             fclose(tty);
-        return app_oneshot(o, s);
+        if (screen_tty)
+            fclose(screen_tty);
+        return no_viewer(o, s);
     }
     int rc = run(&a, o->fps);
     int out_errno = errno;
     term_restore();
+    /* --print-view: the command line of the view as it was left */
+    char cmd[CMD_MAX];
+    int cmd_ok = o->print_view && rc == RUN_QUIT && app_view_command(&a, cmd, sizeof cmd) == 0;
     pipeline_free(&a.p);
     if (tty)
         fclose(tty);
+    if (screen_tty)
+        fclose(screen_tty);
     if (rc == RUN_NO_MEMORY) {
         fprintf(stderr, "zview: out of memory\n");
         return 1;
@@ -369,6 +481,19 @@ int app_viewer(const Options *o, Scene *s)
     if (rc == RUN_OUTPUT_FAILED) {
         fprintf(stderr, "zview: the terminal: %s\n", strerror(out_errno));
         return 1;
+    }
+    if (o->print_view && !cmd_ok) {
+        fprintf(stderr, "zview: the view's command line is too long to print\n");
+        return 1;
+    }
+    if (cmd_ok) {
+        Out out;
+        out_init(&out, stdout, "standard output");
+        out_printf(&out, "%s\n", cmd);
+        if (out_flush(&out)) {
+            fprintf(stderr, "zview: standard output: %s\n", out_error(&out));
+            return 1;
+        }
     }
     return 0;
 }
