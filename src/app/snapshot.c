@@ -165,6 +165,11 @@ Reaction app_snapshot(App *a)
         unlink(png);
         return RE_RENDER;
     }
-    note(a, "wrote %s %dx%d, .txt", png, w, h);
+    /* the name first: a narrow status bar cuts the note's end */
+    const char *slash = strrchr(png, '/');
+    if (slash)
+        note(a, "wrote %s %dx%d, .txt in %.*s", slash + 1, w, h, (int)(slash - png), png);
+    else
+        note(a, "wrote %s %dx%d, .txt", png, w, h);
     return RE_RENDER;     /* the pipeline holds the PNG's render now */
 }

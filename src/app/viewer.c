@@ -158,8 +158,8 @@ static const char *depth_label(ColorDepth d)
  * (persp, cull, spin), 5 selection. Rank 0 stays: the file, the
  * polygons, the algorithm and its time, and "? help"; in a window still
  * too narrow they take their brief forms ("drawn/faces", "?"), then the
- * note goes (rank 6: it answers a key, so it outlasts the long forms),
- * and last of all the file name is shortened. README and the man page
+ * note is cut at its end or goes (rank 6: it answers a key, so it
+ * outlasts the long forms), and last of all the file name is shortened. README and the man page
  * give the same order. */
 #define BAR_FIELDS 10
 #define BAR_NOTE   6
@@ -233,9 +233,18 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
         for (int i = 0; i < BAR_FIELDS; i++)
             if (f[i].brief[0])
                 memcpy(f[i].text, f[i].brief, sizeof f[i].brief);
-    if (bar_join(f, buf, len) > width)
+    /* the note is cut at its end to fit, and goes when little would be left */
+    int over = bar_join(f, buf, len) - width, note_len = (int)strlen(f[8].text);
+    if (over > 0 && note_len - over - 1 >= 12) {
+        int keep = note_len - over - 1;
+        while (keep > 0 && (f[8].text[keep] & 0xc0) == 0x80)
+            keep--;
+        f[8].text[keep] = '~';
+        f[8].text[keep + 1] = 0;
+    } else if (over > 0) {
         f[8].rank = -1;
-    int over = bar_join(f, buf, len) - width;
+    }
+    over = bar_join(f, buf, len) - width;
     int name_len = (int)strlen(f[0].text);
     if (over > 0 && name_len > 4) {
         int keep = name_len - over - 1 > 3 ? name_len - over - 1 : 3;
