@@ -7,39 +7,60 @@ PKGS    := ncursesw libpng
 PKG_CFLAGS := $(filter-out -D%,$(shell pkg-config --cflags $(PKGS) 2>/dev/null))
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -ltinfo -lpng16)
 
+# Optional: assimp for the long tail of formats (glTF, FBX, 3DS, ...).
+# On when pkg-config finds it; `make ASSIMP=0` builds without.
+ASSIMP  ?= $(shell pkg-config --exists assimp 2>/dev/null && echo 1 || echo 0)
+# The library is opened at run time (dlopen, by its soname), not linked:
+# see src/mesh/assimp.c.
+ifeq ($(ASSIMP),1)
+AI_SONAME := $(shell objdump -p $$(pkg-config --variable=libdir assimp)/libassimp.so 2>/dev/null | awk '/SONAME/ { print $$2 }')
+AI_CFLAGS := -DZV_ASSIMP $(if $(AI_SONAME),-DZV_ASSIMP_SONAME='"$(AI_SONAME)"') \
+             $(filter-out -D%,$(shell pkg-config --cflags assimp 2>/dev/null))
+AI_LIBS   := -ldl
+endif
+
 OPT     ?= -O2
 EXTRA_CFLAGS ?=
 CFLAGS  ?= $(OPT) -g
-CFLAGS  += $(EXTRA_CFLAGS) -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude $(PKG_CFLAGS) -MMD -MP -pthread
-LDLIBS  += $(PKG_LIBS) -lm -pthread
+CFLAGS  += $(EXTRA_CFLAGS) -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude $(PKG_CFLAGS) $(AI_CFLAGS) -MMD -MP -pthread
+LDLIBS  += $(PKG_LIBS) $(AI_LIBS) -lm -pthread
 
 BUILD   ?= build
 SRCS    := $(wildcard src/*/*.c)
+ifneq ($(ASSIMP),1)
+SRCS    := $(filter-out src/mesh/assimp.c,$(SRCS))
+endif
 LIBSRCS := $(filter-out src/app/main.c,$(SRCS))
 OBJS    := $(SRCS:%.c=$(BUILD)/%.o)
 LIBOBJS := $(LIBSRCS:%.c=$(BUILD)/%.o)
-TSRCS   := $(wildcard tests/test_*.c) tests/testlib.c
+TSRCS   := $(wildcard tests/test_*.c) tests/testlib.c tests/writers.c
 TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all test unit e2e asan run bench install clean assets test-models colour-error fuzz fuzz-run fuzz-seeds replay
+.PHONY: all test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-seeds replay
 
 all: $(BIN)
 
-$(BIN): $(OBJS)
-	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+# The build's configuration, rewritten only when it changes, so that
+# switching ASSIMP rebuilds what depends on it and relinks.
+CONFIG  := $(BUILD)/config
+$(shell mkdir -p $(BUILD); echo 'ASSIMP=$(ASSIMP)' | cmp -s - $(CONFIG) || echo 'ASSIMP=$(ASSIMP)' > $(CONFIG))
+$(BUILD)/src/mesh/format.o: $(CONFIG)
+
+$(BIN): $(OBJS) $(CONFIG)
+	$(CC) $(CFLAGS) -o $@ $(filter %.o,$^) $(LDLIBS)
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c -o $@ $<
 
-$(TESTBIN): $(LIBOBJS) $(TOBJS)
-	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS) -lcriterion
+$(TESTBIN): $(LIBOBJS) $(TOBJS) $(CONFIG)
+	$(CC) $(CFLAGS) -o $@ $(filter %.o,$^) $(LDLIBS) -lcriterion
 
 # The fuzz harnesses (tests/fuzz/) linked with a plain main() instead of
 # libFuzzer: they replay the seed and regression corpora in every build.
-FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c
+FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c tests/testlib.c
 FUZZ_DIFF_SRCS := tests/fuzz/fuzz_diff.c tests/fuzz/scenecode.c tests/testlib.c
 REPLAY_OBJS    := $(sort $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
 REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff
@@ -79,6 +100,10 @@ asan:
 	$(MAKE) BUILD=build-asan BIN=build-asan/zview \
 	    OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
 
+# The build without assimp, in its own folder (both must compile).
+noassimp:
+	$(MAKE) ASSIMP=0 BUILD=build-noassimp BIN=build-noassimp/zview
+
 run: $(BIN)
 	./$(BIN)
 
@@ -94,6 +119,10 @@ colour-error: $(BUILD)/colorerr
 $(BUILD)/colorerr: tools/colorerr.c $(LIBOBJS)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
+# Load speed and peak memory of every format (the README's table).
+bench-formats: $(BIN) $(TESTBIN)
+	ZVIEW=$(abspath $(BIN)) sh tools/bench-formats.sh
+
 # Regenerate the bundled models (they are committed; this is how they were made).
 assets: $(BUILD)/genassets
 	$(BUILD)/genassets assets
@@ -103,9 +132,12 @@ $(BUILD)/genassets: tools/genassets.c
 	$(CC) $(CFLAGS) -o $@ $< -lm
 
 install: $(BIN)
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/zview
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/zview \
+	    $(DESTDIR)$(PREFIX)/share/bash-completion/completions $(DESTDIR)$(PREFIX)/share/zsh/site-functions
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/zview
 	install -m 644 doc/zview.1 $(DESTDIR)$(PREFIX)/share/man/man1/zview.1
+	install -m 644 tools/completion/zview.bash $(DESTDIR)$(PREFIX)/share/bash-completion/completions/zview
+	install -m 644 tools/completion/_zview $(DESTDIR)$(PREFIX)/share/zsh/site-functions/_zview
 	install -m 644 assets/demo.obj assets/demo.mtl $(DESTDIR)$(PREFIX)/share/zview/
 
 # ==== Fuzzing: clang + libFuzzer (sh tools/deps.sh installs both) ====
@@ -153,14 +185,14 @@ $(FUZZ_BUILD)/fuzz-diff: $(FUZZ_LIBOBJS) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 # would drown its output; crash reports still get through.
 fuzz-run: fuzz
 	@mkdir -p $(FUZZ_BUILD)/corpus/obj $(FUZZ_BUILD)/corpus/diff $(FUZZ_BUILD)/artifacts/obj $(FUZZ_BUILD)/artifacts/diff
-	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -max_len=16384 -close_fd_mask=2 \
+	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
 	    -dict=tests/fuzz/obj.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/obj/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/obj tests/fuzz/seeds/obj tests/fuzz/regress/obj
-	nice $(FUZZ_BUILD)/fuzz-diff -max_total_time=$(SECONDS) -timeout=20 -max_len=8192 \
+	nice $(FUZZ_BUILD)/fuzz-diff -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=8192 \
 	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/diff/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/diff tests/fuzz/seeds/diff tests/fuzz/regress/diff
 
 clean:
-	rm -rf build build-asan $(FUZZ_BUILD) $(BIN)
+	rm -rf build build-asan build-noassimp $(FUZZ_BUILD) $(BIN)
 
 -include $(OBJS:.o=.d) $(TOBJS:.o=.d) $(REPLAY_OBJS:.o=.d) $(FUZZ_LIBOBJS:.o=.d) $(FUZZ_OBJS:.o=.d)

@@ -28,7 +28,12 @@ typedef struct {
     const char *files[MAX_FILES];
     int         nfiles;
     int         help, version, print, info, bench, bench_tty, json;
-    const char *out;            /* -o FILE.png|FILE.ppm */
+    const char *out;            /* -o FILE.png|FILE.ppm, "-" = standard output */
+    int         image_format;   /* --image-format: IMG_PNG, IMG_PPM, or IMG_AUTO (by name) */
+    const char *format;         /* --format: the model format, NULL = detect */
+    int         formats;        /* --formats: list them */
+    int         up;             /* --up: UpAxis */
+    int         flip;           /* --flip: reverse every face's winding */
     const char *dump_ids;
     const char *dump_screen;
     int         w, h;           /* --size (0 = not given) */
@@ -60,6 +65,8 @@ typedef struct {
     int         print_view;     /* --print-view: the view's command line on stdout when the viewer quits */
     int         turntable;      /* --turntable N: N frames turning 360/N degrees each (0 = off) */
 } Options;
+
+enum { IMG_AUTO, IMG_PNG, IMG_PPM };
 
 /* Parse argv. Returns 0, or -1 with a message in err (a usage error). */
 void cli_defaults(Options *o);

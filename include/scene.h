@@ -8,6 +8,14 @@
 #include "mesh.h"
 #include "vec.h"
 
+/* Which model axis points up on screen (--up, the viewer's U key): the
+ * model is turned by quarter turns so that it does, exactly (entries of
+ * 0 and +-1). Most scans and CAD files are z-up; the default is y. */
+typedef enum { UP_Y, UP_Z, UP_X, UP_NEG_Y, UP_NEG_Z, UP_NEG_X, UP_COUNT } UpAxis;
+
+const char *up_axis_name(int up);          /* "y", "z", "x", "-y", "-z", "-x" */
+int         up_axis_from_name(const char *s);   /* -1 if none */
+
 typedef struct {
     char       name[MESH_NAME_MAX];
     const Mesh *mesh;         /* geometry owner (several objects may share one) */
@@ -25,6 +33,7 @@ typedef struct {
     Vec3       home;          /* offset after a reset (grid copies, laid-out files sit apart) */
     float      scale;         /* uniform, 1 = as loaded */
     float      home_scale;    /* scale after a reset (a laid-out file's common size) */
+    int        up;            /* UpAxis: applied first, about the centre */
 } Object;
 
 typedef struct {
@@ -93,6 +102,9 @@ int  scene_make_grid(Scene *s, int n, char *err, size_t errlen);
 
 void scene_free(Scene *s);
 
+/* Turn every object so that its `up` axis points up, then fit. */
+void scene_set_up(Scene *s, int up);
+
 /* Reset the camera (and object placements), then fit. The light stays. */
 void scene_reset(Scene *s);
 /* Fit: centre the scene (its objects at home) as seen from the camera's
@@ -118,8 +130,8 @@ void scene_layout(Scene *s, LayoutKind kind, float yaw);
 /* The colour of the i-th object when it has none of its own. */
 void object_colour(int i, uint8_t rgb_out[3]);
 
-/* Object-to-world matrix: turn and scale about the object's centre, then
- * offset. */
+/* Object-to-world matrix: the up axis, turn and scale about the
+ * object's centre, then offset. */
 Mat4 object_matrix(const Object *o);
 /* World-to-view matrix (rotation + pan, before projection). */
 Mat4 camera_view(const Camera *c);

@@ -2,7 +2,9 @@
 # Install what zview needs to build and test, on Debian or Ubuntu.
 # Run as root (or through sudo). Safe to run again.
 set -e
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libcriterion-dev tmux"
+# libassimp-dev is optional (glTF, FBX, 3DS, ... through assimp; make
+# ASSIMP=0 builds without it)
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libcriterion-dev tmux libassimp-dev"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive

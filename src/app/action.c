@@ -251,6 +251,16 @@ static Reaction act_cull(App *a)
     return RE_RENDER;
 }
 
+/* The model's up axis, cycled y, z, x, -y, -z, -x (for every object),
+ * then fitted again: most scans and CAD files are z-up. */
+static Reaction act_up(App *a)
+{
+    int up = ((a->s->nobjs ? a->s->objs[0].up : 0) + 1) % UP_COUNT;
+    scene_set_up(a->s, up);
+    snprintf(a->note, sizeof a->note, "up: %s", up_axis_name(up));
+    return RE_RENDER;
+}
+
 static Reaction act_spin(App *a)
 {
     a->spin = !a->spin;
@@ -366,6 +376,7 @@ static const HelpEntry help[] = {
     { "[ ] { }", "light left right up down" },
     { "p", "ortho / perspective" },
     { "b", "back-face culling" },
+    { "U", "up axis (y z x -y -z -x)" },
     { "space", "auto-rotate" },
     { "C", "command line of the view" },
     { "P", "snapshot: PNG and text" },
@@ -479,6 +490,7 @@ static const Action keys[K_COUNT] = {
     ['v'] = act_shade,
     ['p'] = act_persp,
     ['b'] = act_cull,
+    ['U'] = act_up,
     [' '] = act_spin,
     ['?'] = act_help,
     [TK_CTRL_L] = act_redraw,

@@ -14,13 +14,23 @@
 void cli_usage(FILE *f)
 {
     fputs(
-"usage: zview [OPTIONS] [FILE.obj ...]\n"
+"usage: zview [OPTIONS] [FILE ...]\n"
 "A fast, exact 3D model viewer for the terminal. With no file, opens the\n"
 "bundled demo scene. Several files make one scene of several objects.\n"
+"FILE is a model in any format zview reads (--formats), told by its\n"
+"content; - reads one from standard input.\n"
+"\n"
+"Input:\n"
+"  --format NAME         read FILE as NAME (obj, stl, ply, off, or an assimp format)\n"
+"  --formats             list the formats this build reads\n"
+"  --up x|y|z|-x|-y|-z   the model's up axis (default y; scans and CAD are often z)\n"
+"  --flip                reverse every face's winding (inside out)\n"
 "\n"
 "Output (default: the interactive viewer; --print when stdout is no terminal):\n"
 "  -p, --print           write one frame to stdout as text, no curses\n"
-"  -o, --output FILE     write the image to FILE.png or FILE.ppm, or the text to FILE.txt\n"
+"  -o, --output FILE     write the image to FILE.png or FILE.ppm (- = stdout, PNG), or\n"
+"                        the text --print gives to FILE.txt\n"
+"  --image-format png|ppm  the image format for -o (default: by the name; - is PNG)\n"
 "  -s, --size WxH        pixels for -o (default 640x480); cells for --print\n"
 "  --mode half|ascii|braille      text mode (default: half on UTF-8)\n"
 "  --color truecolor|256|16|8|none colours (default: from COLORTERM/TERM/NO_COLOR)\n"
@@ -172,7 +182,8 @@ enum {
     OPT_DUMP_IDS, OPT_DUMP_SCREEN, OPT_MODE, OPT_COLOR, OPT_SHADE, OPT_YAW, OPT_PITCH,
     OPT_ROLL, OPT_ZOOM, OPT_PAN, OPT_FIT_FROM, OPT_MOVE, OPT_TURN, OPT_SCALE, OPT_VIEWS,
     OPT_GRID, OPT_FPS, OPT_MAX_POLYS, OPT_SAMPLES, OPT_CREASE, OPT_LIGHT, OPT_AMBIENT, OPT_VIEW,
-    OPT_LAYOUT, OPT_EDGES, OPT_ORDER, OPT_PRINT_VIEW, OPT_TURNTABLE,
+    OPT_LAYOUT, OPT_EDGES, OPT_ORDER, OPT_FORMAT, OPT_FORMATS, OPT_UP, OPT_FLIP, OPT_IMAGE_FORMAT,
+    OPT_PRINT_VIEW, OPT_TURNTABLE,
 };
 
 static const struct option long_opts[] = {
@@ -219,6 +230,11 @@ static const struct option long_opts[] = {
     { "crease", required_argument, NULL, OPT_CREASE },
     { "light", required_argument, NULL, OPT_LIGHT },
     { "ambient", required_argument, NULL, OPT_AMBIENT },
+    { "format", required_argument, NULL, OPT_FORMAT },
+    { "formats", no_argument, NULL, OPT_FORMATS },
+    { "up", required_argument, NULL, OPT_UP },
+    { "flip", no_argument, NULL, OPT_FLIP },
+    { "image-format", required_argument, NULL, OPT_IMAGE_FORMAT },
     { NULL, 0, NULL, 0 },
 };
 
@@ -294,14 +310,36 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
         case OPT_EDGES: o->edges = 1; break;
         case OPT_PRINT_VIEW: o->print_view = 1; break;
         case OPT_ORTHO: o->persp = 0; break;
-        case 'o': {
-            size_t len = strlen(val);
-            if (len < 5 || (strcmp(val + len - 4, ".png") && strcmp(val + len - 4, ".ppm") &&
-                            strcmp(val + len - 4, ".txt")))
-                BAD_VAL("the file must end in .png, .ppm or .txt");
+        case 'o':
+            /* the name is checked after the loop: --image-format may follow */
+            if (!*val)
+                BAD_VAL("a file name, or - for standard output");
             o->out = val;
             break;
-        }
+        case OPT_IMAGE_FORMAT:
+            if (!strcmp(val, "png"))
+                o->image_format = IMG_PNG;
+            else if (!strcmp(val, "ppm"))
+                o->image_format = IMG_PPM;
+            else
+                BAD_VAL("png or ppm");
+            break;
+        case OPT_FORMAT:
+            if (!mesh_format_valid(val)) {
+                char list[160];
+                mesh_formats_short(list, sizeof list);
+                snprintf(err, errlen, "bad value '%s' for %s (a model format: %s; see --formats)",
+                         val, name, list);
+                return -1;
+            }
+            o->format = val;
+            break;
+        case OPT_FORMATS: o->formats = 1; break;
+        case OPT_UP:
+            if ((o->up = up_axis_from_name(val)) < 0)
+                BAD_VAL("x, y, z, -x, -y or -z");
+            break;
+        case OPT_FLIP: o->flip = 1; break;
         case OPT_DUMP_IDS: o->dump_ids = val; break;
         case OPT_DUMP_SCREEN: o->dump_screen = val; break;
         case 's':
@@ -440,12 +478,31 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
         }
 #undef BAD_VAL
     }
+    int stdin_files = 0;
     for (int i = optind; i < argc; i++) {
         if (o->nfiles >= MAX_FILES) {
             snprintf(err, errlen, "too many files (at most %d)", MAX_FILES);
             return -1;
         }
+        if (strcmp(argv[i], "-") == 0 && stdin_files++) {
+            snprintf(err, errlen, "- (standard input) given twice");
+            return -1;
+        }
         o->files[o->nfiles++] = argv[i];
+    }
+    if (o->out) {
+        size_t len = strlen(o->out);
+        int ext = len >= 5 && (!strcmp(o->out + len - 4, ".png") || !strcmp(o->out + len - 4, ".ppm") ||
+                               !strcmp(o->out + len - 4, ".txt"));
+        if (!ext && !o->image_format && strcmp(o->out, "-")) {
+            snprintf(err, errlen, "bad value '%s' for -o (the file must end in .png, .ppm or .txt, "
+                                  "or give --image-format)", o->out);
+            return -1;
+        }
+        if (!strcmp(o->out, "-") && o->print) {
+            snprintf(err, errlen, "-o - and --print both write to standard output: choose one");
+            return -1;
+        }
     }
     if (o->turntable && !o->out && !o->print) {
         snprintf(err, errlen, "--turntable needs -o PATTERN (e.g. out-%%03d.png) or --print");

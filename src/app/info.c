@@ -18,7 +18,12 @@ static void print_mesh(Out *out, const Mesh *m)
         lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
     double mb = m->info.bytes / 1e6;
     out_printf(out, "file:       %s\n", m->path ? m->path : "?");
-    out_printf(out, "vertices:   %u\n", m->nverts);
+    out_printf(out, "format:     %s\n", m->info.format[0] ? m->info.format : "?");
+    if (m->info.corners_read)
+        out_printf(out, "vertices:   %u (merged from %llu corners)\n", m->nverts,
+               (unsigned long long)m->info.corners_read);
+    else
+        out_printf(out, "vertices:   %u\n", m->nverts);
     out_printf(out, "faces:      %u\n", m->nfaces);
     out_printf(out, "triangles:  %u\n", m->info.triangles);
     out_printf(out, "objects:    %u\n", m->nobjs);
@@ -26,13 +31,16 @@ static void print_mesh(Out *out, const Mesh *m)
     out_printf(out, "materials:  %u\n", m->nmats);
     out_printf(out, "texcoords:  %u   normals: %u   vertex colours: %s\n", m->info.texcoords,
            m->info.normals, m->rgb ? "yes" : "no");
+    if (m->info.points || m->info.lines)
+        printf("not drawn:  %u points, %u lines\n", m->info.points, m->info.lines);
     if (m->info.unknown)
         out_printf(out, "unknown:    %u statements skipped (first: '%s')\n", m->info.unknown,
                m->info.first_unknown);
     else
         out_printf(out, "unknown:    0\n");
-    out_printf(out, "load:       %.1f ms, %.1f MB, %.0f MB/s\n", m->info.load_ms, mb,
-           m->info.load_ms > 0 ? mb / (m->info.load_ms / 1e3) : 0.0);
+    out_printf(out, "load:       %.1f ms, %.1f MB, %.0f MB/s (cpu %.1f ms, %.0f MB/s)\n", m->info.load_ms, mb,
+           m->info.load_ms > 0 ? mb / (m->info.load_ms / 1e3) : 0.0, m->info.load_cpu_ms,
+           m->info.load_cpu_ms > 0 ? mb / (m->info.load_cpu_ms / 1e3) : 0.0);
 }
 
 /* The report so far went out, or a message says why not. */

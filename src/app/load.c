@@ -2,6 +2,7 @@
 
 #define _DEFAULT_SOURCE
 
+#include <fcntl.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -54,12 +55,26 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         snprintf(err, errlen, "out of memory");
         return -1;
     }
+    int from_stdin = 0;
     for (int i = 0; i < nfiles; i++) {
-        if (mesh_load(&meshes[i], files[i], err, errlen)) {
+        if (mesh_load_as(&meshes[i], files[i], o->format, err, errlen)) {
             for (int k = 0; k < i; k++)
                 mesh_free(&meshes[k]);
             free(meshes);
             return -1;
+        }
+        if (o->flip)
+            mesh_flip_winding(&meshes[i]);
+        from_stdin |= strcmp(files[i], "-") == 0;
+    }
+    /* The model came through standard input (`curl ... | zview -`): the
+     * viewer reads its keys from there, so give it the terminal back. */
+    if (from_stdin && !isatty(STDIN_FILENO)) {
+        int fd = open("/dev/tty", O_RDONLY | O_CLOEXEC);
+        if (fd >= 0) {
+            dup2(fd, STDIN_FILENO);
+            close(fd);
+            clearerr(stdin);
         }
     }
     if (scene_build(s, meshes, nfiles, err, errlen)) {
@@ -68,6 +83,8 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         free(meshes);
         return -1;
     }
+    if (o->up != UP_Y)
+        scene_set_up(s, o->up);
     /* the view: a named one, the picked one (asked for, or when no turn
      * is given at all), or just the turn given. Several files are laid
      * out across the picked view, whatever view is asked for, so that a

@@ -69,6 +69,10 @@ int main(int argc, char **argv)
         rc = app_bench(&o, NULL);   /* loads each model on its own */
         return rc ? rc : finish_stdout();
     }
+    if (o.formats) {
+        mesh_formats_print(stdout);
+        return finish_stdout();
+    }
     Scene scene;
     if (app_load_scene(&o, &scene, err, sizeof err)) {
         fprintf(stderr, "zview: %s\n", err);

@@ -1,5 +1,7 @@
 /* oneshot.c: --print, -o, --dump-ids, --dump-screen: one frame, no curses. */
 
+#define _DEFAULT_SOURCE
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -61,6 +63,54 @@ static int write_ids(const char *path, const FrameBufs *fb)
     return 0;
 }
 
+/* -o FILE or -o - (standard output): PNG or PPM by --image-format, else
+ * by the name (standard output: PNG). The writers take a path, so
+ * standard output gets the image through a temporary file, copied: that
+ * works for pipes and files alike (opening /dev/stdout again would
+ * truncate a file the shell opened for appending). */
+static int write_image(const Options *o, const char *path, const Image *img, char *err, size_t errlen)
+{
+    size_t n = strlen(path);
+    int to_stdout = !strcmp(path, "-");
+    int png = o->image_format ? o->image_format == IMG_PNG
+                              : to_stdout || (n >= 4 && !strcmp(path + n - 4, ".png"));
+    int (*writer)(const char *, const Image *, char *, size_t) = png ? write_png : write_ppm;
+    if (!to_stdout)
+        return writer(path, img, err, errlen);
+    if (isatty(STDOUT_FILENO)) {
+        snprintf(err, errlen, "-o -: standard output is a terminal (pipe the image on, e.g. "
+                              "| img2sixel)");
+        return -1;
+    }
+    const char *dir = getenv("TMPDIR");
+    char tmp[4096];
+    snprintf(tmp, sizeof tmp, "%s/zview-XXXXXX", dir && *dir ? dir : "/tmp");
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        snprintf(err, errlen, "-o -: cannot make a temporary file in %s", dir && *dir ? dir : "/tmp");
+        return -1;
+    }
+    close(fd);
+    int rc = writer(tmp, img, err, errlen);
+    FILE *f = rc ? NULL : fopen(tmp, "rb");
+    if (!rc && !f)
+        rc = -1;
+    if (f) {
+        char buf[65536];
+        size_t k;
+        while ((k = fread(buf, 1, sizeof buf, f)) > 0)
+            if (fwrite(buf, 1, k, stdout) != k)
+                break;
+        if (ferror(f) || fflush(stdout) != 0 || ferror(stdout)) {
+            snprintf(err, errlen, "-o -: cannot write to standard output");
+            rc = -1;
+        }
+        fclose(f);
+    }
+    unlink(tmp);
+    return rc;
+}
+
 static int ends_with(const char *s, const char *suffix)
 {
     size_t n = strlen(s), m = strlen(suffix);
@@ -84,11 +134,12 @@ static int render_text(const Options *o, Pipeline *p, ColorDepth *depth)
     return rc ? -1 : 0;
 }
 
-/* The image of the options into p->img (what -o writes). */
-static int render_image(const Options *o, Pipeline *p)
+/* The image of the options into p->img (what -o writes); shade_too 0:
+ * only the buffers (for the dumps). */
+static int render_image(const Options *o, Pipeline *p, int shade_too)
 {
     int w = o->w > 0 ? o->w : 640, h = o->h > 0 ? o->h : 480;
-    return pipeline_render(p, w, h, 1.0f, o->cull, 1);
+    return pipeline_render(p, w, h, 1.0f, o->cull, shade_too);
 }
 
 /* The text frame into a file. Returns 0, or -1 after a message. */
@@ -110,23 +161,29 @@ static int write_text(const char *path, const CellGrid *g, ColorDepth depth)
     return 0;
 }
 
+/* -o names a text file: FILE.txt, unless --image-format says otherwise. */
+static int text_file(const Options *o, const char *file)
+{
+    return file && !o->image_format && ends_with(file, ".txt");
+}
+
 /* One frame of the view as it stands to -o FILE (image or text) and/or
  * stdout (--print). Returns 0, or 1 after a message. */
 static int one_frame(const Options *o, Pipeline *p, const char *file)
 {
     char err[512];
     ColorDepth depth;
-    if (file && !ends_with(file, ".txt")) {
-        if (render_image(o, p)) {
+    if (file && !text_file(o, file)) {
+        if (render_image(o, p, 1)) {
             fprintf(stderr, "zview: out of memory\n");
             return 1;
         }
-        if ((ends_with(file, ".png") ? write_png : write_ppm)(file, &p->img, err, sizeof err)) {
+        if (write_image(o, file, &p->img, err, sizeof err)) {
             fprintf(stderr, "zview: %s\n", err);
             return 1;
         }
     }
-    int to_file = file && ends_with(file, ".txt");
+    int to_file = text_file(o, file);
     if (to_file || o->print) {
         if (render_text(o, p, &depth)) {
             fprintf(stderr, "zview: out of memory\n");
@@ -193,7 +250,7 @@ int app_oneshot(const Options *o, Scene *s)
         goto out;
     /* the dumps are of the last render: the image's, else the text's,
      * else one of their own at the image size */
-    if ((o->dump_ids || o->dump_screen) && !o->out && !text.print && render_image(o, &p)) {
+    if ((o->dump_ids || o->dump_screen) && !o->out && !text.print && render_image(o, &p, 0)) {
         fprintf(stderr, "zview: out of memory\n");
         rc = 1;
         goto out;

@@ -120,6 +120,12 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --samples %d", v->samples);
     if (v->algo && strcmp(v->algo, "zbuffer"))
         put(&o, " --algo %s", v->algo);
+    if (s->nobjs > 0 && s->objs[0].up != UP_Y)
+        put(&o, " --up %s", up_axis_name(s->objs[0].up));
+    if (opt->flip)
+        put(&o, " --flip");
+    if (opt->format)
+        put(&o, " --format %s", opt->format);
     if (opt->nfiles > 1 && opt->layout != LAYOUT_ROW)
         put(&o, " --layout %s", layout_names[opt->layout]);
     if (opt->grid > 1)

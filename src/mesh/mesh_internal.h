@@ -1,55 +1,226 @@
 #ifndef ZV_MESH_INTERNAL_H
 #define ZV_MESH_INTERNAL_H
-/* mesh internals shared by obj.c and mtl.c: the whole-file reader, the
- * number parser and the MTL loader. Not part of the public API. */
+/* mesh internals: the loader interface (one MeshLoader per format file)
+ * and the Mesh builder every loader fills its arrays through (build.c).
+ * Input, errors and numbers are in reader.h. Not part of the public API. */
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "mesh.h"
+#include "reader.h"
 
-/* ==== Whole-file input ==== */
+/* ==== Loaders ==== */
 
-/* A file's bytes, mapped (regular files) or read into the heap (pipes,
- * devices). The data is NOT NUL-terminated: always parse with `len`. */
+/* What a loader is given: the mesh to fill (zeroed), where messages go,
+ * and where the input came from. */
+typedef struct MeshCtx {
+    Mesh       *m;
+    MeshErr     err;       /* err.name: the input as messages name it */
+    MeshFile   *file;      /* for the paging window; NULL for a memory buffer */
+    const char *path;      /* the file on disk, against which files it names
+                              (mtllib, glTF buffers) resolve; NULL: open none */
+    const char *hint;      /* --format name or the file's extension (assimp) */
+} MeshCtx;
+
+enum { PROBE_NO = 0, PROBE_MAYBE = 1, PROBE_SURE = 2 };
+
+typedef struct MeshLoader {
+    const char *name;      /* --format name */
+    const char *exts;      /* extensions it is chosen by, blank-separated, lower case */
+    const char *what;      /* one line for --formats */
+    /* Look at the first n bytes of an input of `size` bytes (size is
+     * exact: a stream is read whole before probing). PROBE_SURE when the
+     * format's magic or header is there, PROBE_MAYBE when the bytes are
+     * plausible but prove nothing (text). NULL: chosen by name only. */
+    int  (*probe)(const char *head, size_t n, uint64_t size);
+    int  (*parse)(MeshCtx *c, const char *data, size_t len);
+    /* Optional: read the file itself (libraries that open files a model
+     * refers to); used instead of parse for a regular file. */
+    int  (*parse_path)(MeshCtx *c, const char *path);
+    int  text;             /* a text format: streams are read up to a NUL only */
+    int  needs_magic;      /* chosen by extension only when the probe agrees */
+} MeshLoader;
+
+extern const MeshLoader mesh_loader_obj, mesh_loader_stl, mesh_loader_ply, mesh_loader_off;
+#ifdef ZV_ASSIMP
+extern const MeshLoader mesh_loader_assimp;
+/* Can the library be opened (it is opened on first use)? */
+int  mesh_assimp_available(void);
+/* Does assimp read files of this extension (no dot, any case)? */
+int  mesh_assimp_has_ext(const char *ext);
+/* Call fn for each extension assimp reads, with its importer's name. */
+void mesh_assimp_list(void (*fn)(const char *ext, const char *what, void *ctx), void *ctx);
+const char *mesh_assimp_version(char *buf, size_t n);
+#endif
+
+/* ==== MTL (used by obj.c) ==== */
+
+/* Append the materials of MTL text to *mats (*nmats used of *cap, grown
+ * as needed). `name` is the file's name for warnings: bad lines are
+ * skipped with one warning per file. Returns 0, or -1 out of memory. */
+int  mesh_mtl_parse(const char *name, const char *data, size_t len, Material **mats,
+                    uint32_t *nmats, uint32_t *cap);
+
+/* ==== Building a Mesh ==== */
+
 typedef struct {
-    const char *data;
-    size_t      len;
-    void       *map;     /* mmap base, or NULL */
-    char       *heap;    /* malloc'd copy, or NULL */
-} MeshFile;
+    uint64_t *slot;        /* RGBA key << 32 | material index + 1; 0 = empty */
+    uint32_t  cap, used;   /* cap: a power of two, or 0 */
+} ColourIndex;
 
-/* Open and read `path`. On failure returns -1 and writes a message
- * without the path prefix ("cannot open: ...", "is a directory") into
- * msg. An empty file succeeds with len 0. */
-int  mesh_file_open(MeshFile *f, const char *path, char *msg, size_t msglen);
-void mesh_file_close(MeshFile *f);
+typedef struct {
+    Mesh       *m;
+    MeshErr    *e;
+    size_t      vcap;      /* vertices pos (and rgb) can hold */
+    size_t      fcap;      /* faces face_mat can hold; face_start holds fcap + 1 */
+    size_t      ccap;      /* corners */
+    size_t      ncorner;
+    size_t      ocap;
+    uint32_t    mcap;
+    ColourIndex colours;   /* face colours -> materials */
+    char        basename[MESH_NAME_MAX];
+} MeshBuild;
 
-/* ==== Numbers ==== */
+/* Zero m, name it (path copied; the default object is named after the
+ * file without folder or extension). -1 out of memory. */
+int  mb_start(MeshBuild *b, Mesh *m, MeshErr *e, const char *name);
+/* Room for at least this many more vertices, faces and corners, so that
+ * loaders that know their counts allocate once (exactly). */
+int  mb_reserve(MeshBuild *b, size_t verts, size_t faces, size_t corners);
+/* The same; exact = 0 for a guess (its pages are not faulted in ahead). */
+int  mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int exact);
+/* Start vertex colours: earlier vertices become white. */
+int  mb_want_rgb(MeshBuild *b);
+int  mb_grow_verts(MeshBuild *b);
+int  mb_grow_faces(MeshBuild *b);
+int  mb_grow_corners(MeshBuild *b);
+/* Room for n more corners. */
+int  mb_room_corners(MeshBuild *b, size_t n);
 
-enum {
-    MESH_NUM_OK = 0,
-    MESH_NUM_BAD,        /* not a number, or junk glued to it */
-    MESH_NUM_NONFINITE,  /* "nan", "inf", "infinity" (any case, signed) */
-    MESH_NUM_RANGE       /* finite text whose value overflows a float */
-};
+static inline int mb_vertex(MeshBuild *b, float x, float y, float z)
+{
+    Mesh *m = b->m;
+    if (m->nverts == b->vcap && mb_grow_verts(b))
+        return -1;
+    float *d = m->pos + 3 * (size_t)m->nverts;
+    d[0] = x;
+    d[1] = y;
+    d[2] = z;
+    if (m->rgb) {
+        float *c = m->rgb + 3 * (size_t)m->nverts;
+        c[0] = c[1] = c[2] = 1.0f;
+    }
+    m->nverts++;
+    return 0;
+}
 
-/* Parse one decimal float at *pp (sign, digits, '.', e/E exponent).
- * The number must be followed by the end, a space, a tab or a CR.
- * On success advances *pp past it. Never reads at or past `end`. */
-int  mesh_parse_float(const char **pp, const char *end, float *out);
+static inline int mb_corner(MeshBuild *b, uint32_t v)
+{
+    if (b->ncorner == b->ccap && mb_grow_corners(b))
+        return -1;
+    b->m->corner[b->ncorner++] = v;
+    return 0;
+}
 
-/* True if [p, end) holds a control byte other than tab and CR, which no
- * OBJ or MTL text line can carry. */
-int  mesh_has_binary(const char *p, const char *end);
+/* Close the face whose corners start at corner `first` (the corners
+ * added since). The caller checks it has at least 3. */
+static inline int mb_face_end(MeshBuild *b, size_t first, int32_t mat)
+{
+    Mesh *m = b->m;
+    if (m->nfaces == b->fcap && mb_grow_faces(b))
+        return -1;
+    m->face_start[m->nfaces] = (uint32_t)first;
+    m->face_mat[m->nfaces] = mat;
+    m->nfaces++;
+    m->info.triangles += (uint32_t)(b->ncorner - first - 2);
+    return 0;
+}
 
-/* ==== MTL ==== */
+/* Faces from here on belong to a new object (the current one is renamed
+ * instead when it has no faces yet). An empty name: the file's. */
+int  mb_object(MeshBuild *b, const char *name, size_t len);
+/* Append a material; returns its index or -1 out of memory. */
+int32_t mb_material(MeshBuild *b, const char *name, float r, float g, float bl, float alpha);
+/* The material of a face colour (8 bits a channel), made once per
+ * distinct colour and named "#rrggbb". -1 out of memory. */
+int32_t mb_colour(MeshBuild *b, uint8_t r, uint8_t g, uint8_t bl, uint8_t a);
+/* Finish: close faces and objects, vertex ranges, give back slack.
+ * Without faces: an error "no faces" unless points_ok (a point cloud:
+ * vertices kept, one object spanning them). Returns 0 or -1. */
+int  mb_finish(MeshBuild *b, int points_ok);
+/* Free what was built (the mesh is left empty). */
+void mb_abort(MeshBuild *b);
 
-/* Append the materials of the MTL file at `mtlpath` to *mats (array of
- * *cap entries, *nmats used; grown as needed). Returns 0 on success,
- * -1 if the file cannot be read (the caller warns). Malformed lines are
- * skipped with one warning per file on stderr. Out of memory: -2. */
-int  mesh_mtl_load(const char *mtlpath, Material **mats, uint32_t *nmats,
-                   uint32_t *cap);
+/* ==== Merging identical vertices ==== */
+
+/* Loaders of formats that repeat each corner's position (STL) merge
+ * equal positions, exact bit patterns, in one hash pass, so that the
+ * front end transforms each point once and the mesh is as small as an
+ * OBJ's. A slot holds 32 bits of the position's hash and its vertex
+ * index + 1 (0 = empty): 8 bytes, so the table stays small enough to
+ * live in cache, and a probe compares positions only when the hash
+ * bits agree, almost only for the vertex it is looking for, which was
+ * usually added recently (its position is still in cache too). */
+typedef struct {
+    uint64_t *slot;
+    uint32_t  mask;           /* capacity - 1, a power of two minus one */
+    uint32_t  used;
+} VertMerge;
+
+/* Room for about `expect` distinct vertices at most half full. */
+int  vm_init(VertMerge *vm, size_t expect);
+void vm_free(VertMerge *vm);
+int  vm_grow(VertMerge *vm, const float *pos);
+
+static inline uint64_t vm_hash(uint32_t x, uint32_t y, uint32_t z)
+{
+    uint64_t h = (uint64_t)x * 0x9E3779B97F4A7C15ull;
+    h ^= (uint64_t)y * 0xC2B2AE3D27D4EB4Full;
+    h ^= (uint64_t)z * 0x165667B19E3779F9ull;
+    h ^= h >> 29;
+    h *= 0xBF58476D1CE4E5B9ull;
+    return h ^ (h >> 32);
+}
+
+static inline void vm_prefetch(const VertMerge *vm, uint64_t h)
+{
+    __builtin_prefetch(&vm->slot[(uint32_t)(h >> 32) & vm->mask]);
+}
+
+/* The index of the vertex with these coordinate bits (h = vm_hash of
+ * them), appended to the mesh if new. Returns 0, -1 out of memory. */
+static inline __attribute__((always_inline)) int vm_add(VertMerge *vm, MeshBuild *b, const uint32_t bits[3], uint64_t h,
+                         uint32_t *idx)
+{
+    /* grown before the probe (not from inside it), so that this stays
+     * a loop the compiler can inline into the loaders' hot loops */
+    if ((vm->used + 1) * 2 > vm->mask + 1 && vm_grow(vm, b->m->pos))
+        return me_oom(b->e);
+    uint32_t tag = (uint32_t)h;
+    const float *pos = b->m->pos;
+    for (uint32_t i = (uint32_t)(h >> 32) & vm->mask;; i = (i + 1) & vm->mask) {
+        uint64_t s = vm->slot[i];
+        if (!s) {
+            float p[3];
+            memcpy(p, bits, sizeof p);
+            if (mb_vertex(b, p[0], p[1], p[2]))
+                return -1;
+            vm->slot[i] = (uint64_t)tag << 32 | b->m->nverts;
+            vm->used++;
+            *idx = b->m->nverts - 1;
+            return 0;
+        }
+        if ((uint32_t)(s >> 32) == tag && memcmp(pos + 3 * (size_t)((uint32_t)s - 1), bits, 12) == 0) {
+            *idx = (uint32_t)s - 1;
+            return 0;
+        }
+    }
+}
+
+/* Is this float's bit pattern a NaN or an infinity? */
+static inline int bits_nonfinite(uint32_t u) { return (u & 0x7f800000u) == 0x7f800000u; }
 
 #endif

@@ -1,7 +1,8 @@
-/* mtl.c: Wavefront MTL reader. Only what a flat-shaded viewer uses is
- * kept: the name, Kd (base colour) and opacity (d, or 1 - Tr). Every
- * other statement is skipped. A bad line is not fatal, since the model
- * still shows without it: it is skipped with one warning per file. */
+/* mtl.c: Wavefront MTL text (obj.c reads the file). Only what a
+ * flat-shaded viewer uses is kept: the name, Kd (base colour) and
+ * opacity (d, or 1 - Tr). Every other statement is skipped. A bad line
+ * is not fatal, since the model still shows without it: it is skipped
+ * with one warning per file. */
 #define _DEFAULT_SOURCE
 
 #include <stdio.h>
@@ -36,25 +37,15 @@ static int word_is(const char *k, size_t n, const char *w)
     return strlen(w) == n && memcmp(k, w, n) == 0;
 }
 
-int mesh_mtl_load(const char *mtlpath, Material **mats, uint32_t *nmats,
-                  uint32_t *cap)
+int mesh_mtl_parse(const char *name, const char *data, size_t len, Material **mats,
+                   uint32_t *nmats, uint32_t *cap)
 {
-    MeshFile f;
-    char msg[128];
-    if (mesh_file_open(&f, mtlpath, msg, sizeof msg))
-        return -1;
-
-    const char *p = f.data, *end = f.data + f.len;
     Material *cur = NULL;
     int have_d = 0, warned = 0;
-    uint32_t line = 0;
-    while (p < end) {
-        line++;
-        const char *nl = memchr(p, '\n', (size_t)(end - p));
-        const char *e = nl ? nl : end;
-        const char *next = nl ? nl + 1 : end;
-        const char *q = p;
-        p = next;
+    LineReader lr;
+    lr_init(&lr, data, len);
+    const char *q, *e;
+    while (lr_next(&lr, &q, &e)) {
         while (q < e && mtl_space(*q))
             q++;
         if (q >= e || *q == '#')
@@ -72,10 +63,8 @@ int mesh_mtl_load(const char *mtlpath, Material **mats, uint32_t *nmats,
             if (*nmats == *cap) {
                 uint32_t nc = *cap ? *cap * 2 : 8;
                 Material *nm = realloc(*mats, nc * sizeof *nm);
-                if (!nm) {
-                    mesh_file_close(&f);
-                    return -2;
-                }
+                if (!nm)
+                    return -1;
                 *mats = nm;
                 *cap = nc;
             }
@@ -134,12 +123,11 @@ int mesh_mtl_load(const char *mtlpath, Material **mats, uint32_t *nmats,
             }
         }
         if (bad && !warned) {
-            fprintf(stderr, "zview: warning: %s:%u: %s\n", mtlpath, line,
+            me_warn(name, lr.line, "%s",
                     mesh_has_binary(k, e) ? "binary or unreadable data"
                                           : "bad material statement, skipped");
             warned = 1;
         }
     }
-    mesh_file_close(&f);
     return 0;
 }

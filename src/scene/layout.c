@@ -26,19 +26,34 @@ int layout_from_name(const char *name)
     return -1;
 }
 
-/* The box of objects [a, b) at their home placement. */
+/* Object o at its home placement (as loaded and laid out, unturned). */
+static Object at_home(const Object *o)
+{
+    Object h = *o;
+    h.yaw = h.pitch = h.roll = 0;
+    h.offset = h.home;
+    h.scale = h.home_scale;
+    return h;
+}
+
+/* The world box of objects [a, b) at their home placement. */
 static void files_box(const Scene *s, int a, int b, Vec3 *lo_out, Vec3 *hi_out)
 {
     float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
     for (int i = a; i < b; i++) {
-        const Object *o = &s->objs[i];
-        if (!o->face_count)
+        Object h = at_home(&s->objs[i]);
+        if (!h.face_count)
             continue;
-        float c[3] = { o->centre.x + o->home.x, o->centre.y + o->home.y, o->centre.z + o->home.z };
-        float h[3] = { o->half.x * o->home_scale, o->half.y * o->home_scale, o->half.z * o->home_scale };
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fminf(lo[k], c[k] - h[k]);
-            hi[k] = fmaxf(hi[k], c[k] + h[k]);
+        Mat4 m = object_matrix(&h);
+        for (int k = 0; k < 8; k++) {
+            Vec3 p = m4_point(&m, v3(h.centre.x + (k & 1 ? h.half.x : -h.half.x),
+                                     h.centre.y + (k & 2 ? h.half.y : -h.half.y),
+                                     h.centre.z + (k & 4 ? h.half.z : -h.half.z)));
+            float q[3] = { p.x, p.y, p.z };
+            for (int c = 0; c < 3; c++) {
+                lo[c] = fminf(lo[c], q[c]);
+                hi[c] = fmaxf(hi[c], q[c]);
+            }
         }
     }
     if (lo[0] > hi[0])
@@ -75,10 +90,14 @@ void scene_layout(Scene *s, LayoutKind kind, float yaw)
                              v3_scale(up, -(float)cy * cell));
         for (int i = first; i < last; i++) {
             Object *o = &s->objs[i];
-            /* the object's centre moves with the file's scaling about mid */
-            Vec3 c = v3_add(o->centre, o->home);
+            /* the object's centre moves with the file's scaling about mid;
+             * its matrix puts the centre at (its image without offset) +
+             * offset, whatever the up axis */
+            Object h = at_home(o);
+            Mat4 m = object_matrix(&h);
+            Vec3 c = m4_point(&m, o->centre);
             Vec3 to = v3_add(target, v3_scale(v3_sub(c, mid), k));
-            o->home = v3_sub(to, o->centre);
+            o->home = v3_add(o->home, v3_sub(to, c));
             o->home_scale *= k;
             o->offset = o->home;
             o->scale = o->home_scale;

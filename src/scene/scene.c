@@ -325,12 +325,51 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
 
 /* ==== transforms and fitting ==== */
 
+/* The up-axis turns: rows of the 3x3 rotation taking model to world
+ * coordinates, each a quarter-turn (determinant +1, no mirror). */
+static const signed char up_rot[UP_COUNT][3][3] = {
+    [UP_Y] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } },
+    [UP_Z] = { { 1, 0, 0 }, { 0, 0, 1 }, { 0, -1, 0 } },      /* z -> up, y -> away */
+    [UP_X] = { { 0, -1, 0 }, { 1, 0, 0 }, { 0, 0, 1 } },      /* x -> up */
+    [UP_NEG_Y] = { { 1, 0, 0 }, { 0, -1, 0 }, { 0, 0, -1 } },
+    [UP_NEG_Z] = { { 1, 0, 0 }, { 0, 0, -1 }, { 0, 1, 0 } },
+    [UP_NEG_X] = { { 0, 1, 0 }, { -1, 0, 0 }, { 0, 0, 1 } },
+};
+static const char *const up_names[UP_COUNT] = { "y", "z", "x", "-y", "-z", "-x" };
+
+const char *up_axis_name(int up) { return up >= 0 && up < UP_COUNT ? up_names[up] : "?"; }
+
+int up_axis_from_name(const char *s)
+{
+    for (int i = 0; i < UP_COUNT; i++)
+        if (strcmp(s, up_names[i]) == 0 || (s[0] == '+' && strcmp(s + 1, up_names[i]) == 0))
+            return i;
+    return -1;
+}
+
+void scene_set_up(Scene *s, int up)
+{
+    for (int i = 0; i < s->nobjs; i++)
+        s->objs[i].up = up;
+    scene_fit(s);
+}
+
 Mat4 object_matrix(const Object *o)
 {
     Mat4 m = m4_translate(v3_scale(o->centre, -1));
+    Vec3 c = o->centre;
+    if (o->up > UP_Y && o->up < UP_COUNT) {
+        /* exact: products by 0 and +-1 (y up leaves the matrix alone) */
+        Mat4 u = m4_identity();
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                u.m[i][j] = up_rot[o->up][i][j];
+        m = m4_mul(u, m);
+        c = m4_dir(&u, c);
+    }
     m = m4_mul(m4_scale(o->scale), m);
     m = m4_mul(m4_rotate_ypr(o->yaw, o->pitch, o->roll), m);
-    return m4_mul(m4_translate(v3_add(o->centre, o->offset)), m);
+    return m4_mul(m4_translate(v3_add(c, o->offset)), m);
 }
 
 Mat4 camera_view(const Camera *c)

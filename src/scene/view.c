@@ -73,6 +73,8 @@ void scene_pick_view(const Scene *s, float *yaw_out, float *pitch_out)
         if (!o->mesh)
             continue;
         const float *pos = o->mesh->pos;
+        /* the views are of the world: the object's up axis turns its normals */
+        Mat4 om = object_matrix(o);
         for (uint32_t k = o->poly_first; k < o->poly_first + o->poly_count; k += stride) {
             /* Newell's vector: the normal times twice the area */
             float n[3] = { 0, 0, 0 };
@@ -84,8 +86,9 @@ void scene_pick_view(const Scene *s, float *yaw_out, float *pitch_out)
                 n[1] += (p[2] - q[2]) * (p[0] + q[0]);
                 n[2] += (p[0] - q[0]) * (p[1] + q[1]);
             }
+            Vec3 wn = m4_dir(&om, v3(n[0], n[1], n[2]));
             for (int c = 0; c < NCAND; c++) {
-                float f = n[0] * d[c].x + n[1] * d[c].y + n[2] * d[c].z;
+                float f = wn.x * d[c].x + wn.y * d[c].y + wn.z * d[c].z;
                 if (f > 0)
                     score[c] += f;
             }

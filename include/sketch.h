@@ -1,0 +1,47 @@
+#ifndef ZV_SKETCH_H
+#define ZV_SKETCH_H
+/* sketch: polygons drawn by hand on a canvas (zview --sketch), each new
+ * one nearer than the last, written as OBJ text the loader reads like
+ * any model. The viewer owns the keys and the mouse; this owns the
+ * drawing. Canvas coordinates: [-1, 1] x [-1, 1], x right, y up. */
+
+#include <stdint.h>
+#include <stdio.h>
+
+#define SKETCH_DZ 0.1f          /* depth between one polygon's plane and the next */
+
+typedef struct { float x, y; } SketchPt;
+
+typedef struct {
+    SketchPt *pts;              /* every corner, polygon by polygon, then the open one's */
+    uint32_t  npts, cap_pts;
+    uint32_t *start;            /* polygon p: pts[start[p] .. start[p + 1]); start[npolys]: the open one */
+    uint32_t  npolys, cap_start;
+    float    *tilt;             /* 2 per polygon: degrees about the vertical and the horizontal */
+    uint32_t  cap_tilt;
+    int       flipped;          /* depth order reversed: the first drawn is nearest */
+    int       sel;              /* polygon the tilt keys act on, -1 none */
+} Sketch;
+
+void     sketch_init(Sketch *k);
+void     sketch_free(Sketch *k);
+/* Add a corner to the open polygon; -1 off the canvas or out of memory. */
+int      sketch_add_point(Sketch *k, float x, float y);
+/* Close the open polygon (at least 3 corners; it becomes selected). */
+int      sketch_close(Sketch *k);
+uint32_t sketch_open_points(const Sketch *k);
+/* Take back the open polygon's last corner, else the last polygon. */
+int      sketch_undo(Sketch *k);
+void     sketch_clear(Sketch *k);
+/* Reverse the depth order of all polygons. */
+void     sketch_flip(Sketch *k);
+/* Tilt the selected polygon about its centre (clamped to +-75 degrees). */
+int      sketch_tilt(Sketch *k, float dx_deg, float dy_deg);
+void     sketch_select_next(Sketch *k);
+/* Depth (towards the viewer) of polygon p's plane at canvas point x, y. */
+float    sketch_depth_at(const Sketch *k, uint32_t p, float x, float y);
+/* The drawing as OBJ text: one `o` per polygon, coloured corners. */
+int      sketch_to_obj(const Sketch *k, FILE *f);
+char    *sketch_to_text(const Sketch *k, size_t *len_out);   /* malloc'd, NUL-terminated */
+
+#endif

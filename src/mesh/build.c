@@ -1,0 +1,435 @@
+/* build.c: filling a Mesh, for every loader: arrays that grow
+ * geometrically (or are allocated once when a format states its
+ * counts), objects, materials made from face colours, the final trim,
+ * and the merging of identical vertices. */
+#define _DEFAULT_SOURCE
+
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+
+#include "mesh_internal.h"
+
+/* Big arrays are written once, front to back, and first touches cost a
+ * page fault each (in a VM several microseconds: more than parsing the
+ * bytes that fill the page). So the aligned inside of a big array asks
+ * for huge pages (512 times fewer faults where the kernel has them) and,
+ * when its size is exact (counts read from a header), is faulted in by
+ * one call. Both are advice: nothing depends on them. */
+static void prefault(void *p, size_t bytes, int populate)
+{
+    const uintptr_t huge = (uintptr_t)2 << 20, page = 4096;
+    if (!p || bytes < huge)
+        return;
+    uintptr_t a = ((uintptr_t)p + huge - 1) & ~(huge - 1), e = ((uintptr_t)p + bytes) & ~(huge - 1);
+#ifdef MADV_HUGEPAGE
+    if (e > a)
+        madvise((void *)a, e - a, MADV_HUGEPAGE);
+#endif
+#ifdef MADV_POPULATE_WRITE
+    uintptr_t pa = ((uintptr_t)p + page - 1) & ~(page - 1), pe = ((uintptr_t)p + bytes) & ~(page - 1);
+    if (populate && pe > pa)
+        madvise((void *)pa, pe - pa, MADV_POPULATE_WRITE);
+#else
+    (void)populate;
+    (void)page;
+#endif
+}
+
+/* Grow *arr (elements of `elem` bytes, `*cap` of them) to hold `need`. */
+static int grow(void **arr, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap && *arr)
+        return 0;
+    size_t nc = *cap ? *cap : 256;
+    while (nc < need) {
+        if (nc > SIZE_MAX / 2 / elem)
+            return -1;
+        nc *= 2;
+    }
+    void *p = realloc(*arr, nc * elem);
+    if (!p)
+        return -1;
+    prefault(p, nc * elem, 0);
+    *arr = p;
+    *cap = nc;
+    return 0;
+}
+
+int mb_start(MeshBuild *b, Mesh *m, MeshErr *e, const char *name)
+{
+    memset(b, 0, sizeof *b);
+    memset(m, 0, sizeof *m);
+    b->m = m;
+    b->e = e;
+    /* The default object is named after the file, without folder or
+     * extension. */
+    const char *base = strrchr(name, '/');
+    base = base ? base + 1 : name;
+    const char *dot = strrchr(base, '.');
+    size_t bn = dot && dot > base ? (size_t)(dot - base) : strlen(base);
+    if (bn > MESH_NAME_MAX - 1)
+        bn = MESH_NAME_MAX - 1;
+    memcpy(b->basename, base, bn);
+    b->basename[bn] = '\0';
+
+    m->path = strdup(name);
+    if (!m->path || grow((void **)&m->objs, &b->ocap, 1, sizeof(MeshObject)))
+        return me_oom(e);
+    m->nobjs = 1;
+    memset(&m->objs[0], 0, sizeof m->objs[0]);
+    memcpy(m->objs[0].name, b->basename, sizeof b->basename);
+    return 0;
+}
+
+int mb_grow_verts(MeshBuild *b)
+{
+    Mesh *m = b->m;
+    if (m->nverts >= UINT32_MAX - 1)
+        return me_fail(b->e, "too many vertices");
+    size_t cap = b->vcap;
+    if (grow((void **)&m->pos, &cap, (size_t)m->nverts + 1, 3 * sizeof(float)))
+        return me_oom(b->e);
+    if (m->rgb) {
+        float *q = realloc(m->rgb, cap * 3 * sizeof(float));
+        if (!q)
+            return me_oom(b->e);
+        m->rgb = q;
+    }
+    b->vcap = cap;
+    return 0;
+}
+
+int mb_grow_faces(MeshBuild *b)
+{
+    Mesh *m = b->m;
+    if (m->nfaces >= UINT32_MAX - 1)
+        return me_fail(b->e, "too many faces");
+    size_t cap = b->fcap;
+    if (grow((void **)&m->face_mat, &cap, (size_t)m->nfaces + 1, sizeof(int32_t)))
+        return me_oom(b->e);
+    uint32_t *q = realloc(m->face_start, (cap + 1) * sizeof(uint32_t));
+    if (!q)
+        return me_oom(b->e);
+    m->face_start = q;
+    b->fcap = cap;
+    return 0;
+}
+
+int mb_room_corners(MeshBuild *b, size_t n)
+{
+    if (b->ncorner + n >= UINT32_MAX - 1)
+        return me_fail(b->e, "too many face corners");
+    if (grow((void **)&b->m->corner, &b->ccap, b->ncorner + n, sizeof(uint32_t)))
+        return me_oom(b->e);
+    return 0;
+}
+
+int mb_grow_corners(MeshBuild *b)
+{
+    return mb_room_corners(b, 1);
+}
+
+int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int exact)
+{
+    Mesh *m = b->m;
+    size_t nv = (size_t)m->nverts + verts, nf = (size_t)m->nfaces + faces, nc = b->ncorner + corners;
+    if (nv >= UINT32_MAX || nf >= UINT32_MAX || nc >= UINT32_MAX)
+        return me_fail(b->e, "too many vertices or faces (%zu, %zu)", nv, nf);
+    /* Exact sizes: a count read from a header is what the file holds. */
+    if (nv > b->vcap) {
+        float *p = realloc(m->pos, nv * 3 * sizeof(float));
+        if (!p)
+            return me_oom(b->e);
+        m->pos = p;
+        prefault(p, nv * 3 * sizeof(float), exact);
+        if (m->rgb) {
+            float *q = realloc(m->rgb, nv * 3 * sizeof(float));
+            if (!q)
+                return me_oom(b->e);
+            m->rgb = q;
+        }
+        b->vcap = nv;
+    }
+    if (nf > b->fcap || !m->face_start) {
+        int32_t *fm = realloc(m->face_mat, (nf ? nf : 1) * sizeof(int32_t));
+        if (!fm)
+            return me_oom(b->e);
+        m->face_mat = fm;
+        uint32_t *fs = realloc(m->face_start, (nf + 1) * sizeof(uint32_t));
+        if (!fs)
+            return me_oom(b->e);
+        m->face_start = fs;
+        prefault(fm, nf * sizeof(int32_t), exact);
+        prefault(fs, (nf + 1) * sizeof(uint32_t), exact);
+        b->fcap = nf;
+    }
+    if (nc > b->ccap) {
+        uint32_t *c = realloc(m->corner, nc * sizeof(uint32_t));
+        if (!c)
+            return me_oom(b->e);
+        m->corner = c;
+        prefault(c, nc * sizeof(uint32_t), exact);
+        b->ccap = nc;
+    }
+    return 0;
+}
+
+int mb_reserve(MeshBuild *b, size_t verts, size_t faces, size_t corners)
+{
+    return mb_reserve_ex(b, verts, faces, corners, 1);
+}
+
+int mb_want_rgb(MeshBuild *b)
+{
+    Mesh *m = b->m;
+    if (m->rgb)
+        return 0;
+    m->rgb = malloc((b->vcap ? b->vcap : 1) * 3 * sizeof(float));
+    if (!m->rgb)
+        return me_oom(b->e);
+    for (size_t i = 0; i < 3 * (size_t)m->nverts; i++)
+        m->rgb[i] = 1.0f;
+    return 0;
+}
+
+int mb_object(MeshBuild *b, const char *name, size_t len)
+{
+    Mesh *m = b->m;
+    MeshObject *cur = &m->objs[m->nobjs - 1];
+    if (cur->face_first != m->nfaces) {
+        if (m->nobjs == b->ocap &&
+            grow((void **)&m->objs, &b->ocap, (size_t)m->nobjs + 1, sizeof(MeshObject)))
+            return me_oom(b->e);
+        cur = &m->objs[m->nobjs++];
+    }
+    /* An object that got no faces is renamed rather than kept. */
+    memset(cur, 0, sizeof *cur);
+    cur->face_first = m->nfaces;
+    if (len > MESH_NAME_MAX - 1)
+        len = MESH_NAME_MAX - 1;
+    if (len) {
+        memcpy(cur->name, name, len);
+        cur->name[len] = '\0';
+    } else {
+        memcpy(cur->name, b->basename, sizeof cur->name);
+    }
+    return 0;
+}
+
+int32_t mb_material(MeshBuild *b, const char *name, float r, float g, float bl, float alpha)
+{
+    Mesh *m = b->m;
+    if (m->nmats >= INT32_MAX - 1) {
+        me_fail(b->e, "too many materials");
+        return -1;
+    }
+    if (m->nmats == b->mcap) {
+        uint32_t nc = b->mcap ? b->mcap * 2 : 8;
+        Material *nm = realloc(m->mats, nc * sizeof *nm);
+        if (!nm) {
+            me_oom(b->e);
+            return -1;
+        }
+        m->mats = nm;
+        b->mcap = nc;
+    }
+    Material *mt = &m->mats[m->nmats];
+    memset(mt, 0, sizeof *mt);
+    snprintf(mt->name, sizeof mt->name, "%s", name);
+    mt->kd[0] = r;
+    mt->kd[1] = g;
+    mt->kd[2] = bl;
+    mt->alpha = alpha;
+    return (int32_t)m->nmats++;
+}
+
+static uint32_t colour_hash(uint32_t k)
+{
+    k ^= k >> 16;
+    k *= 0x7feb352du;
+    k ^= k >> 15;
+    k *= 0x846ca68bu;
+    return k ^ (k >> 16);
+}
+
+int32_t mb_colour(MeshBuild *b, uint8_t r, uint8_t g, uint8_t bl, uint8_t a)
+{
+    ColourIndex *ci = &b->colours;
+    uint32_t key = (uint32_t)r << 24 | (uint32_t)g << 16 | (uint32_t)bl << 8 | a;
+    if ((ci->used + 1) * 2 > ci->cap) {
+        uint32_t nc = ci->cap ? ci->cap * 2 : 64;
+        uint64_t *ns = calloc(nc, sizeof *ns);
+        if (!ns) {
+            me_oom(b->e);
+            return -1;
+        }
+        for (uint32_t i = 0; i < ci->cap; i++) {
+            if (!ci->slot[i])
+                continue;
+            uint32_t j = colour_hash((uint32_t)(ci->slot[i] >> 32)) & (nc - 1);
+            while (ns[j])
+                j = (j + 1) & (nc - 1);
+            ns[j] = ci->slot[i];
+        }
+        free(ci->slot);
+        ci->slot = ns;
+        ci->cap = nc;
+    }
+    uint32_t mask = ci->cap - 1, i = colour_hash(key) & mask;
+    for (; ci->slot[i]; i = (i + 1) & mask)
+        if ((uint32_t)(ci->slot[i] >> 32) == key)
+            return (int32_t)(uint32_t)ci->slot[i] - 1;
+    char name[16];
+    snprintf(name, sizeof name, "#%02x%02x%02x", r, g, bl);
+    int32_t mi = mb_material(b, name, r / 255.0f, g / 255.0f, bl / 255.0f, a / 255.0f);
+    if (mi < 0)
+        return -1;
+    ci->slot[i] = (uint64_t)key << 32 | (uint32_t)(mi + 1);
+    ci->used++;
+    return mi;
+}
+
+int mb_finish(MeshBuild *b, int points_ok)
+{
+    Mesh *m = b->m;
+    free(b->colours.slot);
+    b->colours.slot = NULL;
+    b->colours.cap = b->colours.used = 0;
+    if (m->nfaces == 0 && !(points_ok && m->nverts)) {
+        if (m->info.bytes == 0)
+            return me_fail(b->e, "no faces (empty file)");
+        if (m->nverts)
+            return me_fail(b->e, "no faces (%u vertices)", m->nverts);
+        return me_fail(b->e, "no faces");
+    }
+    if (!m->face_start && !(m->face_start = malloc(sizeof(uint32_t))))
+        return me_oom(b->e);
+    m->face_start[m->nfaces] = (uint32_t)b->ncorner;
+
+    /* Close the objects; only the last can be empty (see mb_object). */
+    for (uint32_t i = 0; i < m->nobjs; i++) {
+        uint32_t next = i + 1 < m->nobjs ? m->objs[i + 1].face_first : m->nfaces;
+        m->objs[i].face_count = next - m->objs[i].face_first;
+    }
+    if (m->nobjs > 1 && m->objs[m->nobjs - 1].face_count == 0)
+        m->nobjs--;
+    for (uint32_t i = 0; i < m->nobjs; i++) {
+        MeshObject *o = &m->objs[i];
+        uint32_t lo = UINT32_MAX, hi = 0;
+        uint32_t c0 = m->face_start[o->face_first];
+        uint32_t c1 = m->face_start[o->face_first + o->face_count];
+        for (uint32_t c = c0; c < c1; c++) {
+            uint32_t v = m->corner[c];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+        if (m->nfaces == 0) {       /* a point cloud: the object spans it */
+            lo = 0;
+            hi = m->nverts - 1;
+        }
+        o->vert_min = lo;
+        o->vert_max = hi;
+    }
+
+    /* Give back the growth slack; a failed shrink keeps the old block. */
+    void *q;
+    size_t nv = m->nverts ? m->nverts : 1, nf = m->nfaces ? m->nfaces : 1;
+    if (m->pos && (q = realloc(m->pos, nv * 3 * sizeof(float))))
+        m->pos = q;
+    if (m->rgb && (q = realloc(m->rgb, nv * 3 * sizeof(float))))
+        m->rgb = q;
+    if (m->corner && (q = realloc(m->corner, (b->ncorner ? b->ncorner : 1) * sizeof(uint32_t))))
+        m->corner = q;
+    if ((q = realloc(m->face_start, ((size_t)m->nfaces + 1) * sizeof(uint32_t))))
+        m->face_start = q;
+    if (m->face_mat && (q = realloc(m->face_mat, nf * sizeof(int32_t))))
+        m->face_mat = q;
+    if (!m->face_mat && !(m->face_mat = calloc(1, sizeof(int32_t))))
+        return me_oom(b->e);
+    return 0;
+}
+
+void mb_abort(MeshBuild *b)
+{
+    free(b->colours.slot);
+    memset(&b->colours, 0, sizeof b->colours);
+    mesh_free(b->m);
+}
+
+void mesh_free(Mesh *m)
+{
+    if (!m)
+        return;
+    free(m->path);
+    free(m->pos);
+    free(m->rgb);
+    free(m->face_start);
+    free(m->corner);
+    free(m->face_mat);
+    free(m->mats);
+    free(m->objs);
+    memset(m, 0, sizeof *m);
+}
+
+void mesh_flip_winding(Mesh *m)
+{
+    if (!m->face_start || !m->corner)
+        return;
+    for (uint32_t f = 0; f < m->nfaces; f++) {
+        uint32_t *a = m->corner + m->face_start[f], *z = m->corner + m->face_start[f + 1] - 1;
+        for (; a < z; a++, z--) {
+            uint32_t t = *a;
+            *a = *z;
+            *z = t;
+        }
+    }
+}
+
+/* ==== Merging identical vertices ==== */
+
+int vm_init(VertMerge *vm, size_t expect)
+{
+    size_t cap = 1024;
+    while (cap < 2 * expect && cap < ((size_t)1 << 31))
+        cap *= 2;
+    vm->slot = calloc(cap, sizeof *vm->slot);
+    prefault(vm->slot, cap * sizeof *vm->slot, 1);
+    vm->mask = (uint32_t)(cap - 1);
+    vm->used = 0;
+    return vm->slot ? 0 : -1;
+}
+
+void vm_free(VertMerge *vm)
+{
+    free(vm->slot);
+    memset(vm, 0, sizeof *vm);
+}
+
+int vm_grow(VertMerge *vm, const float *pos)
+{
+    size_t cap = (size_t)vm->mask + 1;
+    if (cap >= ((size_t)1 << 31))
+        return -1;
+    size_t nc = cap * 2;
+    uint64_t *ns = calloc(nc, sizeof *ns);
+    if (!ns)
+        return -1;
+    for (size_t i = 0; i < cap; i++) {
+        uint64_t s = vm->slot[i];
+        if (!s)
+            continue;
+        uint32_t b[3];
+        memcpy(b, pos + 3 * (size_t)((uint32_t)s - 1), sizeof b);
+        size_t j = (uint32_t)(vm_hash(b[0], b[1], b[2]) >> 32) & (nc - 1);
+        while (ns[j])
+            j = (j + 1) & (nc - 1);
+        ns[j] = s;
+    }
+    free(vm->slot);
+    vm->slot = ns;
+    vm->mask = (uint32_t)(nc - 1);
+    return 0;
+}

@@ -1,0 +1,437 @@
+/* format.c: which loader reads an input. By content first (magic bytes,
+ * a header), by extension second; --format forces one. A file no loader
+ * accepts is named for what it looks like ("gzip data") in one line.
+ * The first bytes are read before anything else, so that a 2 GB file of
+ * zeros is refused without being paged in. */
+#define _DEFAULT_SOURCE
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+
+#include "mesh.h"
+#include "mesh_internal.h"
+
+static const MeshLoader *const natives[] = {
+    &mesh_loader_obj, &mesh_loader_stl, &mesh_loader_ply, &mesh_loader_off,
+};
+#define NNATIVE (sizeof natives / sizeof natives[0])
+
+/* Formats assimp reads that a short message names (the full list is
+ * zview --formats). */
+#define ASSIMP_SHORT "glb gltf fbx dae 3ds 3mf x3d blend ..."
+
+static double clock_ms(clockid_t id)
+{
+    struct timespec ts;
+    clock_gettime(id, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+static double now_ms(void) { return clock_ms(CLOCK_MONOTONIC); }
+/* The thread's own CPU time: what a load cost, whatever else shares the
+ * machine (wall time on a shared one also counts waiting). */
+static double cpu_ms(void) { return clock_ms(CLOCK_THREAD_CPUTIME_ID); }
+
+/* ==== What bytes are ==== */
+
+static int starts(const char *h, size_t n, const char *magic, size_t m)
+{
+    return n >= m && memcmp(h, magic, m) == 0;
+}
+
+/* Formats of no loader here, recognised only to be named. Returns NULL
+ * when nothing matches. */
+static const char *known_other(const char *h, size_t n)
+{
+    static const struct {
+        const char *magic;
+        size_t      len;
+        const char *what;
+    } tab[] = {
+        { "\x1f\x8b", 2, "gzip data" },
+        { "PK\x03\x04", 4, "zip archive" },
+        { "\x89PNG", 4, "PNG image" },
+        { "\xff\xd8\xff", 3, "JPEG image" },
+        { "GIF8", 4, "GIF image" },
+        { "%PDF", 4, "PDF document" },
+        { "\x7f" "ELF", 4, "ELF executable" },
+        { "BZh", 3, "bzip2 data" },
+        { "\xfd" "7zXZ\0", 6, "xz data" },
+        { "\x28\xb5\x2f\xfd", 4, "zstd data" },
+        { "7z\xbc\xaf\x27\x1c", 6, "7-zip archive" },
+        { "Rar!", 4, "RAR archive" },
+        { "glTF", 4, "glTF binary" },
+        { "Kaydara FBX Binary", 18, "FBX binary" },
+        { "BLENDER", 7, "Blender file" },
+    };
+    for (size_t i = 0; i < sizeof tab / sizeof tab[0]; i++)
+        if (starts(h, n, tab[i].magic, tab[i].len))
+            return tab[i].what;
+    return NULL;
+}
+
+static int has_nul(const char *h, size_t n) { return memchr(h, '\0', n) != NULL; }
+
+/* For the refusal: what the bytes look like. */
+static const char *describe(const char *h, size_t n)
+{
+    if (n == 0)
+        return "empty file";
+    const char *k = known_other(h, n);
+    if (k)
+        return k;
+    if (mesh_has_binary(h, h + n))
+        return "binary data";
+    const char *p = h;
+    while (p < h + n && mesh_is_ws(*p))
+        p++;
+    if (p < h + n && *p == '<')
+        return "XML or HTML text";
+    if (p < h + n && *p == '{')
+        return "JSON text";
+    return "text";
+}
+
+/* The extension of path's file name, lower case, without the dot. */
+static void extension(const char *path, char *ext, size_t n)
+{
+    ext[0] = '\0';
+    if (!path)
+        return;
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    const char *dot = strrchr(base, '.');
+    if (!dot || dot == base || strlen(dot + 1) >= n)
+        return;
+    size_t i = 0;
+    for (const char *p = dot + 1; *p; p++)
+        ext[i++] = (char)(*p >= 'A' && *p <= 'Z' ? *p + 32 : *p);
+    ext[i] = '\0';
+}
+
+static int in_list(const char *list, const char *word)
+{
+    size_t wl = strlen(word);
+    if (!wl)
+        return 0;
+    for (const char *p = list; *p;) {
+        while (*p == ' ')
+            p++;
+        const char *q = p;
+        while (*q && *q != ' ')
+            q++;
+        if ((size_t)(q - p) == wl && strncasecmp(p, word, wl) == 0)
+            return 1;
+        p = q;
+    }
+    return 0;
+}
+
+static const MeshLoader *native_by_name(const char *name)
+{
+    for (size_t i = 0; i < NNATIVE; i++)
+        if (strcasecmp(natives[i]->name, name) == 0)
+            return natives[i];
+    return NULL;
+}
+
+static const MeshLoader *native_by_ext(const char *ext)
+{
+    for (size_t i = 0; i < NNATIVE; i++)
+        if (in_list(natives[i]->exts, ext))
+            return natives[i];
+    return NULL;
+}
+
+/* ==== Format names ==== */
+
+int mesh_format_valid(const char *name)
+{
+    if (!name || !*name)
+        return 0;
+    if (native_by_name(name))
+        return 1;
+#ifdef ZV_ASSIMP
+    if ((strcasecmp(name, "assimp") == 0 && mesh_assimp_available()) || mesh_assimp_has_ext(name))
+        return 1;
+#endif
+    return 0;
+}
+
+void mesh_formats_short(char *buf, size_t n)
+{
+    size_t k = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < NNATIVE && k < n; i++)
+        k += (size_t)snprintf(buf + k, n - k, "%s%s", i ? " " : "", natives[i]->name);
+#ifdef ZV_ASSIMP
+    if (k < n && mesh_assimp_available())
+        snprintf(buf + k, n - k, " + assimp: " ASSIMP_SHORT);
+#endif
+}
+
+#ifdef ZV_ASSIMP
+typedef struct {
+    char ext[32], what[72];
+} ExtRow;
+
+typedef struct {
+    ExtRow *rows;
+    size_t  n, cap;
+} ExtList;
+
+static void collect(const char *ext, const char *what, void *ctx)
+{
+    ExtList *l = ctx;
+    if (native_by_ext(ext))
+        return;             /* read natively; --format assimp still forces assimp */
+    for (size_t i = 0; i < l->n; i++)
+        if (!strcmp(l->rows[i].ext, ext))
+            return;         /* several importers: the first is named */
+    if (l->n == l->cap) {
+        size_t nc = l->cap ? l->cap * 2 : 64;
+        ExtRow *r = realloc(l->rows, nc * sizeof *r);
+        if (!r)
+            return;
+        l->rows = r;
+        l->cap = nc;
+    }
+    snprintf(l->rows[l->n].ext, sizeof l->rows[0].ext, "%s", ext);
+    snprintf(l->rows[l->n].what, sizeof l->rows[0].what, "%s", what);
+    l->n++;
+}
+
+static int row_cmp(const void *a, const void *b)
+{
+    return strcmp(((const ExtRow *)a)->ext, ((const ExtRow *)b)->ext);
+}
+#endif
+
+void mesh_formats_print(FILE *f)
+{
+    for (size_t i = 0; i < NNATIVE; i++)
+        fprintf(f, "%-8s native  %s\n", natives[i]->name, natives[i]->what);
+#ifdef ZV_ASSIMP
+    char ver[32];
+    ExtList l = { 0 };
+    mesh_assimp_list(collect, &l);
+    qsort(l.rows, l.n, sizeof *l.rows, row_cmp);
+    mesh_assimp_version(ver, sizeof ver);
+    for (size_t i = 0; i < l.n; i++)
+        fprintf(f, "%-8s assimp  %s (assimp %s)\n", l.rows[i].ext, l.rows[i].what, ver);
+    free(l.rows);
+#endif
+}
+
+/* ==== Choosing the loader ==== */
+
+/* The loader for these bytes (head: the first n of `size`), or NULL
+ * with a description of them in *what. */
+static const MeshLoader *pick(const char *head, size_t n, uint64_t size, const char *ext,
+                              const char *forced, const char **what)
+{
+    *what = NULL;
+    if (forced) {
+        const MeshLoader *l = native_by_name(forced);
+#ifdef ZV_ASSIMP
+        if (!l)
+            l = &mesh_loader_assimp;   /* "assimp" or one of its extensions */
+#endif
+        return l;
+    }
+    /* 1. a format's own magic or header */
+    const MeshLoader *maybe = NULL;
+    for (size_t i = 0; i < NNATIVE; i++) {
+        int p = natives[i]->probe ? natives[i]->probe(head, n, size) : PROBE_NO;
+        if (p == PROBE_SURE)
+            return natives[i];
+        if (p == PROBE_MAYBE && !maybe)
+            maybe = natives[i];
+    }
+#ifdef ZV_ASSIMP
+    if (mesh_loader_assimp.probe(head, n, size) == PROBE_SURE)
+        return &mesh_loader_assimp;
+#endif
+    /* 2. bytes that are clearly something else (a zip is a 3MF when the
+     * name says so) */
+    const char *other = known_other(head, n);
+#ifdef ZV_ASSIMP
+    if (!native_by_ext(ext) && (!other || strcmp(other, "zip archive") == 0) &&
+        mesh_assimp_has_ext(ext))   /* last: this opens the library */
+        return &mesh_loader_assimp;
+#endif
+    if (other) {
+        *what = other;
+        return NULL;
+    }
+    /* 3. the extension; a text format is not given binary bytes, nor a
+     * format with a magic bytes without it */
+    const MeshLoader *l = native_by_ext(ext);
+    if (l && !(l->text && has_nul(head, n)) && !l->needs_magic)
+        return l;
+    /* 4. text that could be OBJ */
+    if (maybe)
+        return maybe;
+    *what = describe(head, n);
+    return NULL;
+}
+
+static int refuse(MeshErr *e, const char *what)
+{
+    char list[160];
+    mesh_formats_short(list, sizeof list);
+#ifndef ZV_ASSIMP
+    /* formats assimp would read: say why this build does not */
+    if (!strcmp(what, "glTF binary") || !strcmp(what, "FBX binary") || !strcmp(what, "Blender file"))
+        return me_fail(e, "not a model zview can read (%s: this build has no assimp; formats: %s)",
+                       what, list);
+#endif
+    return me_fail(e, "not a model zview can read (%s; formats: %s)", what, list);
+}
+
+/* Run the loader on bytes in memory. */
+static int run(const MeshLoader *l, MeshCtx *c, const char *data, size_t len)
+{
+    if (!l->parse)
+        return me_fail(&c->err, "%s cannot be read from memory", l->name);
+    int r = l->parse(c, data, len);
+    if (r)
+        mesh_free(c->m);
+    return r;
+}
+
+int mesh_parse_buffer(Mesh *m, const char *path, const char *format, const void *data,
+                      size_t len, char *err, size_t errlen)
+{
+    double t0 = now_ms(), c0 = cpu_ms();
+    char dummy[1];
+    if (!err || !errlen) {
+        err = dummy;
+        errlen = sizeof dummy;
+    }
+    err[0] = '\0';
+    memset(m, 0, sizeof *m);
+    if (!data)
+        len = 0;
+    MeshCtx c = { .m = m, .err = { path ? path : "(input)", err, errlen }, .path = path };
+    char ext[16];
+    extension(path, ext, sizeof ext);
+    c.hint = format ? format : ext;
+    if (format && !mesh_format_valid(format))
+        return me_fail(&c.err, "unknown format '%s'", format);
+    const char *what;
+    const MeshLoader *l = pick(data ? data : "", len < MESH_HEAD ? len : MESH_HEAD, len, ext,
+                               format, &what);
+    if (!l)
+        return refuse(&c.err, what);
+    int r = run(l, &c, data ? data : "", len);
+    if (r == 0) {
+        m->info.load_ms = now_ms() - t0;
+        m->info.load_cpu_ms = cpu_ms() - c0;
+    }
+    return r;
+}
+
+int mesh_parse(Mesh *m, const char *path, const char *text, size_t len, char *err,
+               size_t errlen)
+{
+    return mesh_parse_buffer(m, path, "obj", text, len, err, errlen);
+}
+
+/* How much of a stream to read, judged from its head: text stops at a
+ * NUL; what could be a binary STL (the only format without a magic)
+ * stops past the size its triangle count gives. */
+static void stream_limits(const MeshFile *f, const char *forced, MfLimits *lim)
+{
+    memset(lim, 0, sizeof *lim);
+    const char *h = f->head;
+    size_t n = f->nhead;
+    if (forced) {
+        const MeshLoader *l = native_by_name(forced);
+        lim->stop_at_nul = l && l->text;
+        return;
+    }
+    if (!has_nul(h, n)) {
+        /* text, or PLY whose binary body has not shown a NUL yet */
+        lim->stop_at_nul = !(n >= 3 && memcmp(h, "ply", 3) == 0) && !known_other(h, n);
+        return;
+    }
+    if (known_other(h, n) || (n >= 3 && memcmp(h, "ply", 3) == 0))
+        return;
+    if (n >= 84)
+        lim->max = 84 + 50 * (uint64_t)rd_u32le(h + 80) + 1;
+    else
+        lim->max = n + 1;
+}
+
+int mesh_load_as(Mesh *m, const char *path, const char *format, char *err, size_t errlen)
+{
+    double t0 = now_ms(), c0 = cpu_ms();
+    char dummy[1];
+    if (!err || !errlen) {
+        err = dummy;
+        errlen = sizeof dummy;
+    }
+    err[0] = '\0';
+    memset(m, 0, sizeof *m);
+    int is_stdin = strcmp(path, "-") == 0;
+    const char *name = is_stdin ? "stdin" : path;
+    MeshCtx c = { .m = m, .err = { name, err, errlen }, .path = path };
+    char ext[16];
+    extension(is_stdin ? NULL : path, ext, sizeof ext);
+    c.hint = format ? format : ext;
+    if (format && !mesh_format_valid(format))
+        return me_fail(&c.err, "unknown format '%s'", format);
+
+    MeshFile f;
+    char msg[256];
+    if (mf_open(&f, path, 0, msg, sizeof msg))
+        return me_fail(&c.err, "%s", msg);
+    if (!f.regular) {
+        /* a stream is read whole before it is judged: its size is part
+         * of what tells a binary STL */
+        MfLimits lim;
+        stream_limits(&f, format, &lim);
+        if (mf_load(&f, &lim, msg, sizeof msg)) {
+            mf_close(&f);
+            return me_fail(&c.err, "%s", msg);
+        }
+    }
+    const char *what;
+    const MeshLoader *l = pick(f.head, f.nhead, f.size, ext, format, &what);
+    if (!l) {
+        mf_close(&f);
+        return refuse(&c.err, what);
+    }
+    int r;
+    if (l->parse_path && f.regular) {
+        uint64_t size = f.size;
+        mf_close(&f);
+        r = l->parse_path(&c, path);
+        if (r)
+            mesh_free(m);
+        else
+            m->info.bytes = size;
+    } else {
+        if (f.regular && mf_load(&f, NULL, msg, sizeof msg)) {
+            mf_close(&f);
+            return me_fail(&c.err, "%s", msg);
+        }
+        c.file = &f;
+        r = run(l, &c, f.data, f.len);
+        mf_close(&f);
+    }
+    if (r == 0) {
+        m->info.load_ms = now_ms() - t0;
+        m->info.load_cpu_ms = cpu_ms() - c0;
+    }
+    return r;
+}
+
+int mesh_load(Mesh *m, const char *path, char *err, size_t errlen)
+{
+    return mesh_load_as(m, path, NULL, err, errlen);
+}

@@ -1,0 +1,491 @@
+/* reader.c: input, errors and number parsing for every loader (see
+ * reader.h). Numbers go through a hand-written parser because strtod
+ * per coordinate would dominate the load time of a large mesh. */
+#define _DEFAULT_SOURCE
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "reader.h"
+
+/* ==== Errors ==== */
+
+/* The message after its prefix ("name: ", "name:12: ", ...). */
+static int vtail(MeshErr *e, int k, const char *fmt, va_list ap)
+{
+    if (k >= 0 && (size_t)k < e->len)
+        vsnprintf(e->buf + k, e->len - (size_t)k, fmt, ap);
+    return -1;
+}
+
+int me_fail(MeshErr *e, const char *fmt, ...)
+{
+    if (!e->buf || !e->len)
+        return -1;
+    va_list ap;
+    va_start(ap, fmt);
+    vtail(e, snprintf(e->buf, e->len, "%s: ", e->name), fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+int me_fail_line(MeshErr *e, uint64_t line, const char *fmt, ...)
+{
+    if (!e->buf || !e->len)
+        return -1;
+    va_list ap;
+    va_start(ap, fmt);
+    vtail(e, snprintf(e->buf, e->len, "%s:%llu: ", e->name, (unsigned long long)line), fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+int me_fail_at(MeshErr *e, uint64_t byte, const char *fmt, ...)
+{
+    if (!e->buf || !e->len)
+        return -1;
+    va_list ap;
+    va_start(ap, fmt);
+    vtail(e, snprintf(e->buf, e->len, "%s: byte %llu: ", e->name, (unsigned long long)byte), fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+int me_oom(MeshErr *e)
+{
+    return me_fail(e, "out of memory");
+}
+
+void me_warn(const char *name, uint64_t line, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (line)
+        fprintf(stderr, "zview: warning: %s:%llu: %s\n", name, (unsigned long long)line, msg);
+    else
+        fprintf(stderr, "zview: warning: %s: %s\n", name, msg);
+}
+
+/* ==== Input ==== */
+
+static const char *kind_of(mode_t m)
+{
+    return S_ISFIFO(m) ? "a FIFO" : S_ISCHR(m) ? "a character device"
+         : S_ISBLK(m) ? "a block device" : S_ISSOCK(m) ? "a socket" : "not a file";
+}
+
+/* Read into the heap copy until it holds `want` bytes or the stream
+ * ends. Returns 0, or -1 with msg. */
+static int read_more(MeshFile *f, size_t want, int stop_at_nul, char *msg, size_t msglen)
+{
+    while (f->len < want) {
+        if (f->len == f->cap) {
+            size_t nc = f->cap ? f->cap * 2 : (size_t)1 << 16;
+            char *nb = realloc(f->heap, nc);
+            if (!nb) {
+                snprintf(msg, msglen, "out of memory");
+                return -1;
+            }
+            f->heap = nb;
+            f->cap = nc;
+        }
+        size_t room = f->cap - f->len;
+        if (room > want - f->len)
+            room = want - f->len;
+        ssize_t r = read(f->fd, f->heap + f->len, room);
+        if (r < 0) {
+            if (errno == EINTR)
+                continue;
+            snprintf(msg, msglen, "cannot read: %s", strerror(errno));
+            return -1;
+        }
+        if (r == 0)
+            break;
+        /* A NUL already makes a text file invalid: stop there, so that an
+         * endless binary stream ends in an error, not exhausted memory. */
+        const char *nul = stop_at_nul ? memchr(f->heap + f->len, '\0', (size_t)r) : NULL;
+        f->len += (size_t)r;
+        if (nul) {
+            f->len = (size_t)(nul - f->heap) + 1;
+            break;
+        }
+    }
+    f->data = f->heap ? f->heap : "";
+    f->size = f->len;
+    return 0;
+}
+
+int mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen)
+{
+    memset(f, 0, sizeof *f);
+    f->fd = -1;
+    f->data = f->head = "";
+    int fd;
+    if (strcmp(path, "-") == 0) {
+        fd = dup(STDIN_FILENO);   /* closing ours leaves standard input alone */
+    } else {
+        /* O_NONBLOCK: opening a FIFO for reading would wait for a writer;
+         * with it the type check below refuses it at once */
+        fd = open(path, O_RDONLY | O_CLOEXEC | (flags & MF_REGULAR_ONLY ? O_NONBLOCK : 0));
+    }
+    if (fd < 0) {
+        snprintf(msg, msglen, "cannot open: %s", strerror(errno));
+        return -1;
+    }
+    f->fd = fd;
+    struct stat st;
+    if (fstat(fd, &st) < 0) {
+        snprintf(msg, msglen, "cannot open: %s", strerror(errno));
+        mf_close(f);
+        return -1;
+    }
+    f->dev = (uint64_t)st.st_dev;
+    f->ino = (uint64_t)st.st_ino;
+    if (S_ISDIR(st.st_mode)) {
+        snprintf(msg, msglen, "is a directory");
+        mf_close(f);
+        return -1;
+    }
+    if (!S_ISREG(st.st_mode) && (flags & MF_REGULAR_ONLY)) {
+        snprintf(msg, msglen, "not a regular file (%s)", kind_of(st.st_mode));
+        mf_close(f);
+        return -1;
+    }
+    /* Standard input redirected from a file part-way through it (a
+     * script read some of it first) is read from where it stands, as a
+     * stream: a mapping would start at the file's beginning. */
+    if (S_ISREG(st.st_mode) && lseek(fd, 0, SEEK_CUR) == 0) {
+        f->regular = 1;
+        f->size = (uint64_t)st.st_size;
+        size_t want = f->size < MESH_HEAD ? (size_t)f->size : MESH_HEAD;
+        size_t got = 0;
+        while (got < want) {
+            ssize_t r = pread(fd, f->headbuf + got, want - got, (off_t)got);
+            if (r < 0 && errno == EINTR)
+                continue;
+            if (r < 0) {
+                snprintf(msg, msglen, "cannot read: %s", strerror(errno));
+                mf_close(f);
+                return -1;
+            }
+            if (r == 0)
+                break;
+            got += (size_t)r;
+        }
+        f->head = f->headbuf;
+        f->nhead = got;
+        return 0;
+    }
+    /* A stream: its first bytes start the heap copy (nothing can be read
+     * twice). A NUL in the head is kept: binary formats need it. */
+    if (read_more(f, MESH_HEAD, 0, msg, msglen)) {
+        mf_close(f);
+        return -1;
+    }
+    f->head = f->data;
+    f->nhead = f->len;
+    return 0;
+}
+
+int mf_load(MeshFile *f, const MfLimits *lim, char *msg, size_t msglen)
+{
+    uint64_t max = lim && lim->max ? lim->max : MESH_MAX_BYTES;
+    if (max > MESH_MAX_BYTES)
+        max = MESH_MAX_BYTES;
+    if (f->regular && f->fd >= 0) {
+        if (f->size > MESH_MAX_BYTES) {
+            snprintf(msg, msglen, "file too large (%llu bytes; at most %llu)",
+                     (unsigned long long)f->size, (unsigned long long)MESH_MAX_BYTES);
+            return -1;
+        }
+        if (f->size == 0) {
+            close(f->fd);
+            f->fd = -1;
+            return 0;
+        }
+        size_t len = (size_t)f->size;
+        /* No MAP_POPULATE: the window pages the file in as the parser
+         * goes, so a file rejected early is never read whole. */
+        void *map = mmap(NULL, len, PROT_READ, MAP_PRIVATE, f->fd, 0);
+        if (map != MAP_FAILED) {
+#ifdef MADV_SEQUENTIAL
+            madvise(map, len, MADV_SEQUENTIAL);
+#endif
+            close(f->fd);
+            f->fd = -1;
+            f->map = map;
+            f->data = map;
+            f->len = len;
+            mf_window(f, 0);
+            return 0;
+        }
+        /* Some file systems cannot map: read it like a stream. */
+        f->regular = 0;
+    }
+    if (f->fd < 0)
+        return 0;
+    if (lim && lim->stop_at_nul && memchr(f->data, '\0', f->len)) {
+        f->len = (size_t)((const char *)memchr(f->data, '\0', f->len) - f->data) + 1;
+    } else if (f->len < max) {
+        if (read_more(f, (size_t)max, lim && lim->stop_at_nul, msg, msglen))
+            return -1;
+        if (f->len == MESH_MAX_BYTES) {
+            char c;
+            if (read(f->fd, &c, 1) == 1) {
+                snprintf(msg, msglen, "input too large (more than %llu bytes)",
+                         (unsigned long long)MESH_MAX_BYTES);
+                return -1;
+            }
+        }
+    }
+    close(f->fd);
+    f->fd = -1;
+    f->head = f->data;
+    return 0;
+}
+
+void mf_window(MeshFile *f, size_t pos)
+{
+    if (!f->map)
+        return;
+    size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    size_t want = f->len - pos < MF_AHEAD ? f->len : pos + MF_AHEAD;
+    if (want > f->populated) {
+        size_t start = f->populated & ~(page - 1);
+        char *base = (char *)f->map;
+#ifdef MADV_POPULATE_READ
+        /* fault the pages in up front, in bulk (as MAP_POPULATE would) */
+        if (madvise(base + start, want - start, MADV_POPULATE_READ) != 0)
+#endif
+            madvise(base + start, want - start, MADV_WILLNEED);
+        f->populated = want;
+    }
+    if (pos > MF_KEEP_BEHIND) {
+        size_t rel = (pos - MF_KEEP_BEHIND) & ~(page - 1);
+        if (rel > f->released) {
+            /* a private read-only mapping: the pages come back from the
+             * file if ever touched again, so this only drops them */
+            madvise((char *)f->map + f->released, rel - f->released, MADV_DONTNEED);
+            f->released = rel;
+        }
+    }
+    f->mark = pos + MF_STEP;
+}
+
+void mf_close(MeshFile *f)
+{
+    if (f->map)
+        munmap(f->map, f->len);
+    free(f->heap);
+    if (f->fd >= 0)
+        close(f->fd);
+    memset(f, 0, sizeof *f);
+    f->fd = -1;
+    f->data = f->head = "";
+}
+
+/* ==== Numbers ==== */
+
+static const double pow10_tab[23] = {
+    1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+};
+
+int mesh_word_is(const char *p, const char *end, const char *w)
+{
+    for (; *w; w++, p++)
+        if (p >= end || (*p | 0x20) != *w)
+            return 0;
+    return p == end || mesh_is_ws(*p);
+}
+
+int mesh_parse_float(const char **pp, const char *end, float *out)
+{
+    const char *p = *pp;
+    int neg = 0;
+    if (p < end && (*p == '-' || *p == '+')) {
+        neg = *p == '-';
+        p++;
+    }
+    /* Up to 19 significant digits fit a uint64 exactly; later digits
+     * only move the decimal exponent. Leading zeros are not significant
+     * and do not use up the budget. */
+    uint64_t mant = 0;
+    int nd = 0, exp10 = 0, any = 0;
+    while (p < end && *p == '0') {
+        p++;
+        any = 1;
+    }
+    while (p < end && mesh_is_digit(*p)) {
+        if (nd < 19) {
+            mant = mant * 10 + (uint64_t)(*p - '0');
+            nd++;
+        } else {
+            exp10++;
+        }
+        p++;
+        any = 1;
+    }
+    if (p < end && *p == '.') {
+        p++;
+        if (nd == 0) {
+            while (p < end && *p == '0') {
+                p++;
+                exp10--;
+                any = 1;
+            }
+        }
+        while (p < end && mesh_is_digit(*p)) {
+            if (nd < 19) {
+                mant = mant * 10 + (uint64_t)(*p - '0');
+                nd++;
+                exp10--;
+            }
+            p++;
+            any = 1;
+        }
+    }
+    if (!any) {
+        /* Recognised only so that they can be refused by name. */
+        if (mesh_word_is(p, end, "nan") || mesh_word_is(p, end, "infinity") ||
+            mesh_word_is(p, end, "inf"))
+            return MESH_NUM_NONFINITE;
+        return MESH_NUM_BAD;
+    }
+    if (p < end && (*p | 0x20) == 'e') {
+        p++;
+        int eneg = 0;
+        if (p < end && (*p == '-' || *p == '+')) {
+            eneg = *p == '-';
+            p++;
+        }
+        if (p >= end || !mesh_is_digit(*p))
+            return MESH_NUM_BAD;
+        int ev = 0;
+        while (p < end && mesh_is_digit(*p)) {
+            if (ev < 100000)          /* far past any float; no overflow */
+                ev = ev * 10 + (*p - '0');
+            p++;
+        }
+        exp10 += eneg ? -ev : ev;
+    }
+    if (p < end && !mesh_is_ws(*p))
+        return MESH_NUM_BAD;
+
+    double v = (double)mant;
+    if (mant == 0 || exp10 < -400) {
+        v = 0.0;
+    } else if (exp10 > 400) {
+        return MESH_NUM_RANGE;
+    } else if (exp10 >= 0) {
+        /* Exact when exp10 <= 22 and mant < 2^53; otherwise a few
+         * roundings in double, still far below a float's ulp. */
+        while (exp10 > 22) {
+            v *= 1e22;
+            exp10 -= 22;
+        }
+        v *= pow10_tab[exp10];
+    } else {
+        while (exp10 < -22) {
+            v /= 1e22;
+            exp10 += 22;
+        }
+        v /= pow10_tab[-exp10];
+    }
+    /* Converting a double beyond FLT_MAX is undefined in C, so the
+     * rounding boundary (FLT_MAX + half an ulp) is tested in double. */
+    float f;
+    if (v >= 3.4028235677973366e38)
+        return MESH_NUM_RANGE;
+    f = v > 3.4028234663852886e38 ? 3.4028234663852886e38f : (float)v;
+    *out = neg ? -f : f;
+    *pp = p;
+    return MESH_NUM_OK;
+}
+
+int mesh_parse_int(const char **pp, const char *end, int64_t *out)
+{
+    const char *p = *pp;
+    int neg = 0;
+    if (p < end && (*p == '-' || *p == '+')) {
+        neg = *p == '-';
+        p++;
+    }
+    const char *d0 = p;
+    uint64_t v = 0;
+    int over = 0;
+    while (p < end && mesh_is_digit(*p)) {
+        unsigned d = (unsigned)(*p - '0');
+        if (v > (UINT64_C(0x7fffffffffffffff) - d) / 10)
+            over = 1;
+        else
+            v = v * 10 + d;
+        p++;
+    }
+    if (p == d0 || (p < end && !mesh_is_ws(*p)))
+        return MESH_NUM_BAD;
+    if (over)
+        return MESH_NUM_RANGE;
+    *out = neg ? -(int64_t)v : (int64_t)v;
+    *pp = p;
+    return MESH_NUM_OK;
+}
+
+int mesh_has_binary(const char *p, const char *end)
+{
+    for (; p < end; p++) {
+        unsigned char c = (unsigned char)*p;
+        if ((c < 0x20 && c != '\t' && c != '\r' && c != '\n') || c == 0x7f)
+            return 1;
+    }
+    return 0;
+}
+
+int mesh_tok_len(const char *p, const char *end)
+{
+    const char *q = p;
+    while (q < end && !mesh_is_ws(*q) && q - p < 40)
+        q++;
+    return (int)(q - p);
+}
+
+/* ==== Lines ==== */
+
+const char *lr_long_line(const char *p, const char *end, char eol)
+{
+    const size_t chunk = (size_t)64 << 10;
+    while (p < end) {
+        size_t n = (size_t)(end - p) < chunk ? (size_t)(end - p) : chunk;
+        const char *nl = memchr(p, eol, n), *nul = memchr(p, '\0', nl ? (size_t)(nl - p) : n);
+        if (nul)
+            return nul + 1 < end ? nul + 1 : NULL;   /* the line holds its NUL */
+        if (nl)
+            return nl;
+        p += n;
+    }
+    return NULL;
+}
+
+void lr_init(LineReader *lr, const char *data, size_t len)
+{
+    lr->p = data;
+    lr->end = data + len;
+    lr->line = 0;
+    lr->eol = '\n';
+    /* The first line end decides: a CR that no LF follows means an
+     * old-Mac file. Looking for the CR only before the first LF keeps
+     * this one pass over the first line. */
+    const char *nl = memchr(data, '\n', len);
+    const char *cr = memchr(data, '\r', nl ? (size_t)(nl - data) : len);
+    if (cr && (cr + 1 == lr->end || cr[1] != '\n'))
+        lr->eol = '\r';
+}

@@ -1,0 +1,117 @@
+#!/bin/sh
+# Model formats on the command line: every format opens in --print and
+# -o and prints the OBJ's picture, standard input (-), --format,
+# --formats, the one-line refusal, -o - and --image-format, --up, --flip.
+. "$(dirname "$0")/lib.sh"
+Z=$ZVIEW
+D=tests/data/formats
+P="--print --size 40x14 --mode ascii --color none"
+
+# shellcheck disable=SC2086
+"$Z" $P $D/house.obj >"$T/ref.txt" 2>"$T/err" </dev/null
+if [ -s "$T/ref.txt" ]; then ok "the OBJ prints"; else notok "the OBJ prints" "$(cat "$T/err")"; fi
+"$Z" --size 64x48 -o "$T/ref.png" $D/house.obj </dev/null
+
+has_assimp=0
+"$Z" --formats >"$T/formats" 2>&1
+grep -q '^glb ' "$T/formats" && has_assimp=1
+
+for f in house.stl house-ascii.stl house-le.ply house-be.ply house-ascii.ply house.off house.glb; do
+    if [ "$f" = house.glb ] && [ $has_assimp = 0 ]; then
+        expect_status "$f is refused without assimp" 1 "$Z" --print $D/$f
+        expect_err "$f: the refusal names glTF" "glTF binary"
+        continue
+    fi
+    # shellcheck disable=SC2086
+    "$Z" $P $D/$f >"$T/out.txt" 2>"$T/err" </dev/null
+    st=$?
+    if [ $st -eq 0 ] && cmp -s "$T/ref.txt" "$T/out.txt"; then ok "$f prints the OBJ's picture"; else
+        notok "$f prints the OBJ's picture" "status $st; $(head -c 200 "$T/err")"; fi
+    expect_status "$f -o png" 0 "$Z" --size 64x48 -o "$T/out.png" $D/$f
+    if cmp -s "$T/ref.png" "$T/out.png"; then ok "$f -o gives the OBJ's image"; else notok "$f -o gives the OBJ's image"; fi
+done
+
+# colours: the VisCAM roof and the COFF apex change the picture
+for f in house-viscam.stl house.coff; do
+    "$Z" --print --size 40x14 --mode half --color 256 $D/$f >"$T/c.txt" 2>"$T/err" </dev/null
+    "$Z" --print --size 40x14 --mode half --color 256 $D/house.obj >"$T/g.txt" 2>/dev/null </dev/null
+    if [ -s "$T/c.txt" ] && ! cmp -s "$T/c.txt" "$T/g.txt"; then ok "$f is drawn in its colours"; else
+        notok "$f is drawn in its colours" "$(head -c 200 "$T/err")"; fi
+done
+
+# standard input
+for f in house.stl house-le.ply house-ascii.stl house.off house.obj; do
+    # shellcheck disable=SC2086
+    cat $D/$f | "$Z" $P - >"$T/out.txt" 2>"$T/err"
+    if cmp -s "$T/ref.txt" "$T/out.txt"; then ok "cat $f | zview --print -"; else
+        notok "cat $f | zview --print -" "$(head -c 200 "$T/err")"; fi
+done
+# shellcheck disable=SC2086
+"$Z" $P - <$D/house-be.ply >"$T/out.txt" 2>"$T/err"
+if cmp -s "$T/ref.txt" "$T/out.txt"; then ok "zview - < file"; else notok "zview - < file" "$(cat "$T/err")"; fi
+sed 1d $D/house.off >"$T/bare"   # no OFF keyword: only --format can tell
+# shellcheck disable=SC2086
+cat "$T/bare" | "$Z" $P - >"$T/out.txt" 2>"$T/err"
+st=$?
+if [ $st -eq 1 ] && grep -q "stdin: not a model zview can read" "$T/err"; then ok "a keyword-less OFF on stdin is refused"; else
+    notok "a keyword-less OFF on stdin is refused" "status $st: $(cat "$T/err")"; fi
+# shellcheck disable=SC2086
+cat "$T/bare" | "$Z" $P --format off - >"$T/out.txt" 2>"$T/err"
+if cmp -s "$T/ref.txt" "$T/out.txt"; then ok "--format off - reads it"; else notok "--format off - reads it" "$(cat "$T/err")"; fi
+expect_status "- twice is a usage error" 2 "$Z" --print - -
+
+# --formats
+expect_status "--formats" 0 "$Z" --formats
+for n in obj stl ply off; do expect_out "--formats lists $n" "$n "; done
+if [ $has_assimp = 1 ]; then
+    for n in glb gltf fbx dae 3ds 3mf x3d; do expect_out "--formats lists $n (assimp)" "$n "; done
+fi
+expect_status "an unknown --format is a usage error" 2 "$Z" --format gzip --print $D/house.obj
+expect_err "the usage error lists the formats" "obj stl ply off"
+
+# files no loader accepts: one line, status 1
+printf '\037\213\010\000\000\000\000\000\000\003' >"$T/x.gz"
+expect_status "a gzip file is refused" 1 "$Z" --print "$T/x.gz"
+expect_err "the refusal says what it is" "x.gz: not a model zview can read (gzip data; formats: obj stl ply off"
+if [ "$(wc -l <"$T/err")" -eq 1 ]; then ok "the refusal is one line"; else notok "the refusal is one line" "$(cat "$T/err")"; fi
+head -c 4096 /dev/urandom >"$T/noise.stl"
+expect_status "noise named .stl fails cleanly" 1 "$Z" --print "$T/noise.stl"
+head -c 4096 /dev/urandom >"$T/noise.ply"
+expect_status "noise named .ply fails cleanly" 1 "$Z" --print "$T/noise.ply"
+expect_err "noise named .ply is refused as binary data" "binary data"
+
+# -o - and --image-format
+"$Z" --size 64x48 -o - $D/house.stl >"$T/stdout.png" 2>"$T/err" </dev/null
+if cmp -s "$T/ref.png" "$T/stdout.png"; then ok "-o - writes the PNG to stdout"; else notok "-o - writes the PNG to stdout" "$(cat "$T/err")"; fi
+"$Z" --size 64x48 --image-format ppm -o - $D/house.stl >"$T/stdout.ppm" 2>"$T/err" </dev/null
+if [ "$(head -c 2 "$T/stdout.ppm")" = P6 ] && [ "$(wc -c <"$T/stdout.ppm")" -eq $((13 + 64 * 48 * 3)) ]; then
+    ok "--image-format ppm -o - writes PPM"; else notok "--image-format ppm -o - writes PPM"; fi
+expect_status "--image-format with any name" 0 "$Z" --size 64x48 --image-format png -o "$T/image.bin" $D/house.stl
+if cmp -s "$T/ref.png" "$T/image.bin"; then ok "--image-format png writes PNG"; else notok "--image-format png writes PNG"; fi
+expect_status "-o without .png/.ppm or --image-format is a usage error" 2 "$Z" -o "$T/x.jpg" $D/house.obj
+expect_status "-o - with --print is a usage error" 2 "$Z" --print -o - $D/house.obj
+expect_status "a bad --image-format is a usage error" 2 "$Z" --image-format gif -o - $D/house.obj
+
+# --up and --flip
+# shellcheck disable=SC2086
+"$Z" $P --up y $D/house.stl >"$T/y.txt" 2>/dev/null
+# shellcheck disable=SC2086
+"$Z" $P --up z --view front $D/house.stl >"$T/z.txt" 2>/dev/null
+if cmp -s "$T/ref.txt" "$T/y.txt"; then ok "--up y is the default"; else notok "--up y is the default"; fi
+if ! cmp -s "$T/y.txt" "$T/z.txt"; then ok "--up z turns the model"; else notok "--up z turns the model"; fi
+# with z up, seen from the front, the roof's apex is the top of the
+# picture: its first drawn row is narrow
+first=$(grep -m1 '[^ ]' "$T/z.txt" | tr -d ' ' | wc -c)
+last=$(grep '[^ ]' "$T/z.txt" | tail -n 1 | tr -d ' ' | wc -c)
+if [ "$first" -lt "$last" ]; then ok "--up z puts the roof on top"; else notok "--up z puts the roof on top" "$(cat "$T/z.txt")"; fi
+expect_status "a bad --up is a usage error" 2 "$Z" --up w $D/house.obj
+# shellcheck disable=SC2086
+"$Z" $P --cull $D/house.obj >"$T/cull.txt" 2>/dev/null
+# shellcheck disable=SC2086
+"$Z" $P --cull --flip $D/house.obj >"$T/flip.txt" 2>/dev/null
+if ! cmp -s "$T/cull.txt" "$T/flip.txt"; then ok "--flip turns the faces inside out"; else notok "--flip turns the faces inside out"; fi
+
+# --info names the format
+"$Z" --info $D/house.stl >"$T/out" 2>"$T/err"
+expect_out "--info names the format" "format:     stl binary"
+expect_out "--info counts the merged corners" "vertices:   9 (merged from 42 corners)"

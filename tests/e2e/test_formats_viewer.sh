@@ -1,0 +1,74 @@
+#!/bin/sh
+# The viewer with models from other formats, under tmux: a model piped
+# into `zview -` (the viewer then reads its keys from the terminal), and
+# the U key cycling the up axis (the picture equals --print --up).
+. "$(dirname "$0")/lib.sh"
+Z=$ZVIEW
+D=tests/data/formats
+
+if ! command -v tmux >/dev/null 2>&1; then
+    echo "ok - # skip no tmux"
+    exit 0
+fi
+
+export LC_ALL=C.UTF-8 LANG=C.UTF-8
+SOCK=zvf-$$
+tm() { tmux -L "$SOCK" -f /dev/null "$@"; }
+cleanup() {
+    tm kill-server >/dev/null 2>&1
+    rm -f "${TMUX_TMPDIR:-/tmp}/tmux-$(id -u)/$SOCK"
+    rm -rf "$T"
+}
+trap cleanup EXIT
+trap 'exit 1' INT TERM HUP
+
+tm new-session -d -s zv -x 120 -y 20 -c "$ROOT" -e TERM=xterm-256color -e LANG=C.UTF-8 \
+    -e LC_ALL=C.UTF-8 -e NO_COLOR= -e COLORTERM= sh
+tm set-option -t zv remain-on-exit on >/dev/null
+
+cap() { tm capture-pane -p -t zv | sed 's/[[:space:]]*$//' >"$T/screen"; }
+wait_for() {
+    i=0
+    while [ $i -lt 200 ]; do
+        cap
+        grep -Eq -- "$1" "$T/screen" && return 0
+        sleep 0.05
+        i=$((i + 1))
+    done
+    return 1
+}
+# the picture once two captures 0.1 s apart agree
+settle() {
+    cap
+    cp "$T/screen" "$T/prev"
+    i=0
+    while [ $i -lt 100 ]; do
+        sleep 0.1
+        cap
+        cmp -s "$T/screen" "$T/prev" && break
+        cp "$T/screen" "$T/prev"
+        i=$((i + 1))
+    done
+    head -n 19 "$T/screen" >"$1"
+}
+
+# a binary STL through a pipe; keys still work
+tm send-keys -t zv "cat $D/house.stl | TERM=xterm-256color $Z --mode ascii --color none --view front -; echo zv-exit=\$?" Enter
+if wait_for 'faces 14 drawn'; then ok "cat house.stl | zview - opens the viewer"; else
+    notok "cat house.stl | zview - opens the viewer" "$(cat "$T/screen")"; fi
+settle "$T/y"
+"$Z" --print --mode ascii --color none --size 120x19 --view front $D/house.stl | sed 's/[[:space:]]*$//' >"$T/print-y"
+if cmp -s "$T/y" "$T/print-y"; then ok "the piped model's picture equals --print"; else
+    notok "the piped model's picture equals --print" "$(diff "$T/y" "$T/print-y" | head -5)"; fi
+
+tm send-keys -t zv U
+if wait_for 'up: z'; then ok "U cycles the up axis to z (and says so)"; else notok "U cycles the up axis to z (and says so)" "$(tail -n 1 "$T/screen")"; fi
+settle "$T/z"
+"$Z" --print --mode ascii --color none --size 120x19 --up z --view front $D/house.stl | sed 's/[[:space:]]*$//' >"$T/print-z"
+if cmp -s "$T/z" "$T/print-z"; then ok "after U the picture equals --print --up z"; else
+    notok "after U the picture equals --print --up z" "$(diff "$T/z" "$T/print-z" | head -5)"; fi
+
+tm send-keys -t zv '?'
+if wait_for 'up axis'; then ok "the help lists the up-axis key"; else notok "the help lists the up-axis key"; fi
+tm send-keys -t zv q q
+if wait_for '^zv-exit=0$'; then ok "the piped viewer quits with status 0"; else notok "the piped viewer quits with status 0" "$(tail -n 3 "$T/screen")"; fi

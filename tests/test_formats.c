@@ -1,0 +1,548 @@
+/* test_formats.c: choosing the loader (content first, extension second,
+ * --format), the one-line refusal, standard input, the hostile inputs
+ * of issue 7 (a self-naming mtllib, FIFOs, a 2 GB sparse file, a 2^63
+ * index, CR-only lines), and the same model in every format giving
+ * byte-identical face-id buffers (the bunny; the dragon in the "models"
+ * suite), and through assimp a GLB giving the same coverage. */
+#define _DEFAULT_SOURCE
+
+#include <criterion/criterion.h>
+#include <criterion/redirect.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "mesh.h"
+#include "app.h"
+#include "testlib.h"
+#include "writers.h"
+
+static Mesh M;
+static char E[512];
+static char dir[64];
+
+static void setup(void)
+{
+    snprintf(dir, sizeof dir, "/tmp/zview-formats-XXXXXX");
+    cr_assert_not_null(mkdtemp(dir));
+}
+
+static void teardown(void)
+{
+    mesh_free(&M);
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    if (system(cmd) != 0)
+        fprintf(stderr, "cannot remove %s\n", dir);
+}
+
+TestSuite(formats, .init = setup, .fini = teardown);
+
+static const char *tmp(const char *name)
+{
+    static char p[4][256];
+    static int k;
+    k = (k + 1) % 4;
+    snprintf(p[k], sizeof p[k], "%s/%s", dir, name);
+    return p[k];
+}
+
+static void save(const char *path, const void *data, size_t n)
+{
+    cr_assert_eq(w_save(path, data, n), 0, "cannot write %s", path);
+}
+
+/* Time limits of the hostile-input tests: the sanitizers' builds are
+ * several times slower (and poison the shadow of big reservations). */
+#if defined(__SANITIZE_ADDRESS__)
+#define SLOW 10
+#else
+#define SLOW 1
+#endif
+
+static double ms_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+static const char tri_obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+static const char tri_off[] = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+static const char tri_ply[] = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                              "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                              "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+static const char tri_stl[] = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                              "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+
+/* ==== Choosing the loader ==== */
+
+Test(formats, content_beats_the_extension)
+{
+    const struct {
+        const char *name, *data, *format;
+    } t[] = {
+        { "a.obj", tri_off, "off" },  { "a.stl", tri_ply, "ply ascii" }, { "a.ply", tri_stl, "stl ascii" },
+        { "a.off", tri_obj, "obj" },  { "noext", tri_off, "off" },       { "a.txt", tri_obj, "obj" },
+    };
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+        save(tmp(t[i].name), t[i].data, strlen(t[i].data));
+        cr_assert_eq(mesh_load(&M, tmp(t[i].name), E, sizeof E), 0, "%s: %s", t[i].name, E);
+        cr_assert_str_eq(M.info.format, t[i].format, "%s", t[i].name);
+        cr_assert_eq(M.nfaces, 1);
+        mesh_free(&M);
+    }
+}
+
+Test(formats, the_extension_when_content_cannot_tell)
+{
+    /* an OFF without its (optional) keyword reads as OFF by name only */
+    static const char bare[] = "3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    save(tmp("bare.off"), bare, sizeof bare - 1);
+    cr_assert_eq(mesh_load(&M, tmp("bare.off"), E, sizeof E), 0, "%s", E);
+    cr_assert_str_eq(M.info.format, "off");
+    mesh_free(&M);
+    save(tmp("bare.dat"), bare, sizeof bare - 1);
+    cr_assert_eq(mesh_load(&M, tmp("bare.dat"), E, sizeof E), -1);
+    cr_assert_not_null(strstr(E, "not a model zview can read (text; formats: obj stl ply off"), "%s", E);
+    /* --format forces it */
+    cr_assert_eq(mesh_load_as(&M, tmp("bare.dat"), "off", E, sizeof E), 0, "%s", E);
+    cr_assert_eq(M.nfaces, 1);
+}
+
+Test(formats, forcing_a_format_names_its_errors)
+{
+    save(tmp("t.obj"), tri_obj, strlen(tri_obj));
+    cr_assert_eq(mesh_load_as(&M, tmp("t.obj"), "ply", E, sizeof E), -1);
+    cr_assert_not_null(strstr(E, "t.obj:1: not a PLY file"), "%s", E);
+    cr_assert_eq(mesh_load_as(&M, tmp("t.obj"), "nope", E, sizeof E), -1);
+    cr_assert_not_null(strstr(E, "unknown format 'nope'"), "%s", E);
+    cr_assert(mesh_format_valid("obj") && mesh_format_valid("STL") && !mesh_format_valid("gz"));
+}
+
+Test(formats, not_a_model_in_one_line)
+{
+    const struct {
+        const char *name;
+        const char *data;
+        size_t n;
+        const char *what;
+    } t[] = {
+        { "x.gz", "\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03", 10, "gzip data" },
+        { "x.png", "\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16, "PNG image" },
+        { "x.obj", "\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16, "PNG image" },
+        { "x.zip", "PK\x03\x04\x14\0\0\0", 8, "zip archive" },
+        { "x.bin", "\0\0\0\0\x01\x02\x03", 7, "binary data" },
+        { "x.obj", "\0\0\0\0\x01\x02\x03", 7, "binary data" },
+        { "x.txt", "hello world\n", 12, "text" },
+        { "x", "", 0, "empty file" },
+    };
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+        save(tmp(t[i].name), t[i].data, t[i].n);
+        cr_assert_eq(mesh_load(&M, tmp(t[i].name), E, sizeof E), -1, "%s", t[i].name);
+        char want[160];
+        snprintf(want, sizeof want, "%s: not a model zview can read (%s; formats: obj stl ply off",
+                 tmp(t[i].name), t[i].what);
+        cr_assert_eq(strncmp(E, want, strlen(want)), 0, "'%s' is not '%s...'", E, want);
+        cr_assert_null(strchr(E, '\n'));
+    }
+    /* an empty .obj is still the OBJ loader's to refuse */
+    save(tmp("e.obj"), "", 0);
+    cr_assert_eq(mesh_load(&M, tmp("e.obj"), E, sizeof E), -1);
+    cr_assert_not_null(strstr(E, "e.obj: no faces (empty file)"), "%s", E);
+}
+
+/* ==== Standard input ==== */
+
+/* Load "-" with `data` written into standard input by a child. */
+static int load_stdin(const void *data, size_t n, const char *format)
+{
+    int p[2];
+    cr_assert_eq(pipe(p), 0);
+    pid_t pid = fork();
+    cr_assert_geq(pid, 0);
+    if (pid == 0) {
+        close(p[0]);
+        signal(SIGPIPE, SIG_DFL);
+        const char *c = data;
+        while (n) {
+            ssize_t w = write(p[1], c, n);
+            if (w <= 0)
+                _exit(0);
+            c += w;
+            n -= (size_t)w;
+        }
+        _exit(0);
+    }
+    close(p[1]);
+    int saved = dup(0);
+    dup2(p[0], 0);
+    close(p[0]);
+    int r = mesh_load_as(&M, "-", format, E, sizeof E);
+    dup2(saved, 0);
+    close(saved);
+    kill(pid, SIGKILL);
+    waitpid(pid, NULL, 0);
+    return r;
+}
+
+Test(formats, standard_input_every_native_format)
+{
+    const char *texts[] = { tri_obj, tri_off, tri_ply, tri_stl };
+    for (int i = 0; i < 4; i++) {
+        cr_assert_eq(load_stdin(texts[i], strlen(texts[i]), NULL), 0, "%s", E);
+        cr_assert_eq(M.nfaces, 1);
+        cr_assert_str_eq(M.path, "stdin");
+        mesh_free(&M);
+    }
+    /* binary STL: told by its size, which a stream shows only at its end */
+    cr_assert_eq(mesh_parse_buffer(&M, "t.obj", NULL, tri_obj, strlen(tri_obj), E, sizeof E), 0);
+    size_t ns, np;
+    char *stl = w_stl_binary(&M, &ns);
+    char *ply = w_ply_binary(&M, 0, &np);
+    mesh_free(&M);
+    cr_assert_eq(load_stdin(stl, ns, NULL), 0, "%s", E);
+    cr_assert_str_eq(M.info.format, "stl binary");
+    mesh_free(&M);
+    cr_assert_eq(load_stdin(ply, np, NULL), 0, "%s", E);
+    cr_assert_str_eq(M.info.format, "ply binary little endian");
+    mesh_free(&M);
+    /* and --format where content cannot tell */
+    static const char bare[] = "3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    cr_assert_eq(load_stdin(bare, sizeof bare - 1, NULL), -1);
+    cr_assert_eq(load_stdin(bare, sizeof bare - 1, "off"), 0, "%s", E);
+    free(stl);
+    free(ply);
+}
+
+Test(formats, standard_input_of_zeros_stops_early)
+{
+    /* 64 MB of zeros: refused after the first bytes, not read whole */
+    size_t n = (size_t)64 << 20;
+    char *z = calloc(1, n);
+    double t0 = ms_now();
+    cr_assert_eq(load_stdin(z, n, NULL), -1);
+    cr_assert_lt(ms_now() - t0, 3000 * SLOW);
+    cr_assert_not_null(strstr(E, "stdin: not a model zview can read (binary data"), "%s", E);
+    free(z);
+}
+
+/* ==== Hostile inputs (issue 7) ==== */
+
+Test(formats, mtllib_naming_itself_on_every_line)
+{
+    /* 20,000 lines naming the OBJ itself (and by another name): each
+     * file is read once, so this is linear (it took 21 s) */
+    const char *path = tmp("self.obj");
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "newmtl red\nKd 1 0 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n");
+    for (int i = 0; i < 20000; i++)
+        fprintf(f, i % 2 ? "mtllib self.obj\n" : "mtllib ./self.obj\n");
+    fclose(f);
+    double t0 = ms_now();
+    cr_assert_eq(mesh_load(&M, path, E, sizeof E), 0, "%s", E);
+    cr_assert_lt(ms_now() - t0, 2000 * SLOW, "took %.0f ms", ms_now() - t0);
+    cr_assert_eq(M.nmats, 1, "the library was read once");
+    cr_assert_eq(M.face_mat[0], 0);
+    cr_assert_eq(M.mats[0].kd[0], 1.0f);
+}
+
+/* Were the FIFO opened, this would wait for ever: alarm() ends the
+ * test's process then (not Criterion's .timeout, which leaks a little
+ * under LeakSanitizer when two tests with time limits run at once). */
+Test(formats, mtllib_naming_a_fifo_does_not_block, .init = cr_redirect_stderr)
+{
+    alarm(60);
+    char fifo[300], obj[300];
+    snprintf(fifo, sizeof fifo, "%s", tmp("pipe.mtl"));
+    snprintf(obj, sizeof obj, "%s", tmp("f.obj"));
+    cr_assert_eq(mkfifo(fifo, 0600), 0);
+    static const char s[] = "mtllib pipe.mtl\nmtllib /dev/stdin\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    save(obj, s, sizeof s - 1);
+    /* standard input a pipe too, which /dev/stdin would wait on */
+    int p[2];
+    cr_assert_eq(pipe(p), 0);
+    int saved = dup(0);
+    dup2(p[0], 0);
+    int r = mesh_load(&M, obj, E, sizeof E);
+    dup2(saved, 0);
+    close(saved);
+    close(p[0]);
+    close(p[1]);
+    cr_assert_eq(r, 0, "%s", E);
+    cr_assert_eq(M.nfaces, 1);
+    fflush(stderr);
+    char want[1024];
+    snprintf(want, sizeof want,
+             "zview: warning: %s:1: cannot open material library 'pipe.mtl' (not a regular file (a FIFO))\n"
+             "zview: warning: %s:2: cannot open material library '/dev/stdin' (not a regular file (a FIFO))\n",
+             obj, obj);
+    cr_assert_stderr_eq_str(want);
+}
+
+static long max_rss_kb(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return ru.ru_maxrss;
+}
+
+Test(formats, sparse_2gb_file_refused_without_paging_it_in)
+{
+    /* A 2 GB hole: refused from its first bytes, under whatever name. */
+    const char *names[] = { "big.obj", "big.stl", "big.ply", "big.off", "big" };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        const char *path = tmp(names[i]);
+        int fd = open(path, O_CREAT | O_WRONLY | O_TRUNC, 0600);
+        cr_assert_geq(fd, 0);
+        cr_assert_eq(ftruncate(fd, (off_t)2 << 30), 0);
+        close(fd);
+        long rss0 = max_rss_kb();
+        double t0 = ms_now();
+        cr_assert_eq(mesh_load(&M, path, E, sizeof E), -1, "%s", names[i]);
+        double ms = ms_now() - t0;
+        cr_assert_lt(ms, 1000 * SLOW, "%s: %.0f ms", names[i], ms);
+        cr_assert_lt(max_rss_kb() - rss0, 64 * 1024, "%s: %ld KB more resident", names[i],
+                     max_rss_kb() - rss0);
+        /* a binary STL has no magic: by its name it gets the STL's word */
+        const char *want = i == 1 ? "the header's count, 0 triangles, makes 84 bytes" : "binary data";
+        cr_assert_not_null(strstr(E, want), "%s: %s", names[i], E);
+        unlink(path);
+    }
+}
+
+Test(formats, obj_with_a_valid_start_then_zeros_reads_a_window_only)
+{
+    /* a real first line, then 1 GB of zeros: the error comes from the
+     * first window, not after paging in the whole file */
+    const char *path = tmp("late.obj");
+    int fd = open(path, O_CREAT | O_WRONLY | O_TRUNC, 0600);
+    cr_assert_geq(fd, 0);
+    for (int i = 0; i < 1024; i++)
+        cr_assert_eq(write(fd, "v 0 0 0\n", 8), 8);
+    cr_assert_eq(ftruncate(fd, (off_t)1 << 30), 0);
+    close(fd);
+    long rss0 = max_rss_kb();
+    double t0 = ms_now();
+    cr_assert_eq(mesh_load(&M, path, E, sizeof E), -1);
+    cr_assert_lt(ms_now() - t0, 1000 * SLOW);
+    cr_assert_lt(max_rss_kb() - rss0, 64 * 1024);
+    cr_assert_str_eq(E + strlen(path), ":1025: binary or unreadable data");
+    unlink(path);
+}
+
+Test(formats, huge_index_printed_whole)
+{
+    static const char s[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9223372036854775808\n";
+    cr_assert_eq(mesh_parse(&M, "t.obj", s, sizeof s - 1, E, sizeof E), -1);
+    cr_assert_str_eq(E, "t.obj:4: vertex index 9223372036854775808 out of range (3 vertices)");
+    static const char s2[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -123456789012345678901234567890\n";
+    cr_assert_eq(mesh_parse(&M, "t.obj", s2, sizeof s2 - 1, E, sizeof E), -1);
+    cr_assert_str_eq(E, "t.obj:4: vertex index -123456789012345678901234567890 out of range "
+                        "(3 vertices so far)");
+}
+
+Test(formats, cr_only_line_ends)
+{
+    static const char s[] = "# old Mac\rv 0 0 0\rv 1 0 0\rv 0 1 0\ro tri\rf 1 2 3\rf 1 2 4\r";
+    cr_assert_eq(mesh_parse(&M, "t.obj", s, sizeof s - 1, E, sizeof E), -1);
+    cr_assert_str_eq(E, "t.obj:7: vertex index 4 out of range (3 vertices)", "lines are counted");
+    cr_assert_eq(mesh_parse(&M, "t.obj", s, sizeof s - 9, E, sizeof E), 0, "%s", E);
+    cr_assert_eq(M.nfaces, 1);
+    cr_assert_str_eq(M.objs[0].name, "tri");
+}
+
+/* ==== The same model in every format ==== */
+
+typedef struct {
+    const char *name;
+    char *(*write)(const Mesh *, size_t *);
+    int be;
+} Writer;
+
+static char *ply_le(const Mesh *m, size_t *n) { return w_ply_binary(m, 0, n); }
+static char *ply_be(const Mesh *m, size_t *n) { return w_ply_binary(m, 1, n); }
+
+static const Writer writers[] = {
+    { "m.obj", w_obj, 0 },         { "m.stl", w_stl_binary, 0 }, { "m-ascii.stl", w_stl_ascii, 0 },
+    { "m-le.ply", ply_le, 0 },     { "m-be.ply", ply_be, 0 },    { "m-ascii.ply", w_ply_ascii, 0 },
+    { "m.off", w_off, 0 },
+};
+
+static void render_ids(Scene *s, int w, int h, uint32_t seed, int persp, FrameBufs *fb)
+{
+    tl_random_view(s, seed, persp);
+    ScreenPolys sp = { 0 };
+    HsrStats st;
+    cr_assert_eq(tl_render(s, &hsr_zbuffer, 1, w, h, 0, &sp, fb, &st), 0);
+    screen_free(&sp);
+}
+
+/* Load `src`, write it in every format, load each, and compare the
+ * face-id buffers of several views with the original's. */
+static void same_everywhere(const char *src, int nviews, int w, int h)
+{
+    Mesh m;
+    cr_assert_eq(mesh_load(&m, src, E, sizeof E), 0, "%s", E);
+    Scene ref;
+    cr_assert_eq(tl_scene_from_file(&ref, src), 0);
+    size_t npx = (size_t)w * h;
+    FrameBufs *want = calloc((size_t)nviews, sizeof *want);
+    for (int v = 0; v < nviews; v++)
+        render_ids(&ref, w, h, (uint32_t)v, v & 1, &want[v]);
+    scene_free(&ref);
+    for (size_t i = 0; i < sizeof writers / sizeof writers[0]; i++) {
+        size_t n;
+        char *buf = writers[i].write(&m, &n);
+        cr_assert_not_null(buf, "%s", writers[i].name);
+        const char *path = tmp(writers[i].name);
+        save(path, buf, n);
+        free(buf);
+        Scene s;
+        cr_assert_eq(tl_scene_from_file(&s, path), 0, "%s", writers[i].name);
+        cr_assert_eq(s.nfaces, m.nfaces);
+        for (int v = 0; v < nviews; v++) {
+            FrameBufs fb = { 0 };
+            render_ids(&s, w, h, (uint32_t)v, v & 1, &fb);
+            cr_assert_eq(memcmp(fb.ids, want[v].ids, npx * sizeof *fb.ids), 0,
+                         "%s: view %d: the face-id buffer differs from the OBJ's", writers[i].name, v);
+            fbuf_free(&fb);
+        }
+        scene_free(&s);
+        unlink(path);
+    }
+#ifdef ZV_ASSIMP
+    /* through assimp: the same coverage (assimp may order faces its way) */
+    size_t n;
+    char *glb = w_glb(&m, &n);
+    cr_assert_not_null(glb);
+    save(tmp("m.glb"), glb, n);
+    free(glb);
+    Scene s;
+    cr_assert_eq(tl_scene_from_file(&s, tmp("m.glb")), 0);
+    cr_assert_eq(s.nfaces, m.nfaces);
+    for (int v = 0; v < nviews; v++) {
+        FrameBufs fb = { 0 };
+        render_ids(&s, w, h, (uint32_t)v, v & 1, &fb);
+        size_t diff = 0;
+        for (size_t k = 0; k < npx; k++)
+            diff += (fb.ids[k] >= 0) != (want[v].ids[k] >= 0);
+        cr_assert_eq(diff, 0, "glb view %d: %zu pixels covered differently", v, diff);
+        fbuf_free(&fb);
+    }
+    scene_free(&s);
+#endif
+    for (int v = 0; v < nviews; v++)
+        fbuf_free(&want[v]);
+    free(want);
+    mesh_free(&m);
+}
+
+Test(formats, same_ids_in_every_format_knot)
+{
+    same_everywhere("assets/knot.obj", 4, 160, 120);
+}
+
+Test(formats, same_ids_in_every_format_bunny)
+{
+    const char *p = tl_shared_model("stanford-bunny.obj");
+    if (!p)
+        cr_skip_test("../shared/models/stanford-bunny.obj not found");
+    same_everywhere(p, 4, 320, 240);
+}
+
+/* The dragon, with `make test-models`. */
+Test(models, same_ids_in_every_format_dragon, .timeout = 3000)
+{
+    const char *p = getenv("ZV_MODELS") ? tl_shared_model("dragon.obj") : NULL;
+    if (!p)
+        cr_skip_test("set ZV_MODELS=1 with ../shared/models present (make test-models)");
+    setup();
+    same_everywhere(p, 2, 640, 480);
+    teardown();
+}
+
+/* ==== The command line's new options ==== */
+
+static int cli(Options *o, char *err, int n, const char **args)
+{
+    char *argv[16];
+    argv[0] = "zview";
+    for (int i = 0; i < n; i++)
+        argv[i + 1] = (char *)args[i];
+    argv[n + 1] = NULL;
+    return cli_parse(n + 1, argv, o, err, 256);
+}
+#define CLI(o, err, ...)                                                        \
+    cli(o, err, (int)(sizeof((const char *[]){ __VA_ARGS__ }) / sizeof(char *)), \
+        (const char *[]){ __VA_ARGS__ })
+
+Test(formats, cli_options)
+{
+    Options o;
+    char err[256];
+    cr_assert_eq(CLI(&o, err, "--format=stl", "--up", "-z", "--flip", "-"), 0, "%s", err);
+    cr_assert_str_eq(o.format, "stl");
+    cr_assert_eq(o.up, UP_NEG_Z);
+    cr_assert(o.flip);
+    cr_assert_str_eq(o.files[0], "-");
+    cr_assert_eq(CLI(&o, err, "m.obj"), 0);
+    cr_assert_eq(o.up, UP_Y);
+    cr_assert_null(o.format);
+    cr_assert_eq(CLI(&o, err, "--formats"), 0);
+    cr_assert(o.formats);
+    cr_assert_eq(CLI(&o, err, "-o", "-", "m.obj"), 0, "%s", err);
+    cr_assert_str_eq(o.out, "-");
+    cr_assert_eq(CLI(&o, err, "--image-format=ppm", "-oimage", "m.obj"), 0, "%s", err);
+    cr_assert_eq(o.image_format, IMG_PPM);
+
+    cr_assert_eq(CLI(&o, err, "--format", "zip", "m.obj"), -1);
+    cr_assert_not_null(strstr(err, "bad value 'zip' for --format"), "%s", err);
+    cr_assert_eq(CLI(&o, err, "--up", "w"), -1);
+    cr_assert_eq(CLI(&o, err, "-", "-"), -1);
+    cr_assert_not_null(strstr(err, "standard input) given twice"), "%s", err);
+    cr_assert_eq(CLI(&o, err, "-o", "image", "m.obj"), -1);
+    cr_assert_eq(CLI(&o, err, "-p", "-o", "-", "m.obj"), -1);
+    cr_assert_eq(CLI(&o, err, "--image-format", "gif"), -1);
+}
+
+/* Not a test: with ZV_FORMATS_OUT=DIR (tools/bench-formats.sh), write
+ * ZV_FORMATS_MODEL (default the dragon) into DIR in every format, for
+ * the README's load figures. */
+Test(models, write_formats, .timeout = 3000)
+{
+    const char *out = getenv("ZV_FORMATS_OUT");
+    const char *src = getenv("ZV_FORMATS_MODEL");
+    if (!src)
+        src = tl_shared_model("dragon.obj");
+    if (!out || !src)
+        cr_skip_test("set ZV_FORMATS_OUT=DIR (tools/bench-formats.sh)");
+    Mesh m;
+    cr_assert_eq(mesh_load(&m, src, E, sizeof E), 0, "%s", E);
+    const struct {
+        const char *name;
+        char *(*write)(const Mesh *, size_t *);
+    } t[] = {
+        { "model.obj", w_obj },         { "model.stl", w_stl_binary }, { "model-ascii.stl", w_stl_ascii },
+        { "model-le.ply", ply_le },     { "model-be.ply", ply_be },    { "model-ascii.ply", w_ply_ascii },
+        { "model.off", w_off },         { "model.glb", w_glb },
+    };
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+        size_t n;
+        char *buf = t[i].write(&m, &n);
+        cr_assert_not_null(buf, "%s", t[i].name);
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", out, t[i].name);
+        save(path, buf, n);
+        free(buf);
+    }
+    mesh_free(&m);
+}

@@ -1,0 +1,66 @@
+# bash completion for zview(1). Installed by `make install` as
+# $(PREFIX)/share/bash-completion/completions/zview.
+# Model formats come from `zview --formats`, so the list matches the
+# build (with or without assimp).
+
+_zview_formats()
+{
+    zview --formats 2>/dev/null | cut -d ' ' -f 1
+    printf '%s\n' coff noff   # more names of OFF files
+}
+
+_zview()
+{
+    local cur prev words cword split=false
+    if declare -F _init_completion >/dev/null 2>&1; then
+        _init_completion -s || return
+    else
+        cur=${COMP_WORDS[COMP_CWORD]}
+        prev=${COMP_WORDS[COMP_CWORD - 1]}
+        if [[ $cur == --*=* ]]; then
+            prev=${cur%%=*}
+            cur=${cur#*=}
+            split=true
+        fi
+    fi
+
+    case $prev in
+        --mode) COMPREPLY=($(compgen -W "half ascii braille" -- "$cur")); return ;;
+        --color | --colour) COMPREPLY=($(compgen -W "truecolor 256 16 none" -- "$cur")); return ;;
+        --shade) COMPREPLY=($(compgen -W "lambert depth id" -- "$cur")); return ;;
+        -a | --algo) COMPREPLY=($(compgen -W "zbuffer scanline span hzb hzb-octree all" -- "$cur")); return ;;
+        --up) COMPREPLY=($(compgen -W "y z x -y -z -x" -- "$cur")); return ;;
+        --image-format) COMPREPLY=($(compgen -W "png ppm" -- "$cur")); return ;;
+        --format) COMPREPLY=($(compgen -W "$(_zview_formats) assimp" -- "$cur")); return ;;
+        -o | --output | --dump-ids | --dump-screen)
+            COMPREPLY=($(compgen -f -- "$cur"))
+            return ;;
+        -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
+            --scale | --persp | --grid | --max-polys | --views | -j | --threads | --fps)
+            return ;;
+    esac
+    $split && return
+
+    if [[ $cur == -* && $cur != - ]]; then
+        COMPREPLY=($(compgen -W "--help --version --print --output --size --mode --color --shade
+            --info --dump-ids --dump-screen --algo --yaw --pitch --roll --zoom --pan --fit-from
+            --move --turn --scale --persp --ortho --cull --grid --max-polys --bench --bench-tty
+            --views --threads --json --fps --format --formats --up --flip --image-format" -- "$cur"))
+        [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
+        return
+    fi
+
+    # model files: folders, and files of the extensions this build reads
+    local IFS=$'\n' ext f
+    local exts=$(_zview_formats)
+    COMPREPLY=($(compgen -d -- "$cur"))
+    for f in $(compgen -f -- "$cur"); do
+        [[ -d $f ]] && continue
+        ext=${f##*.}
+        ext=${ext,,}
+        [[ $f == *.* ]] && grep -qxF -- "$ext" <<<"$exts" && COMPREPLY+=("$f")
+    done
+    compopt -o filenames 2>/dev/null
+}
+
+complete -F _zview zview
