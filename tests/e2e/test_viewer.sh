@@ -339,8 +339,9 @@ check "no alternate screen after q with stdin at its end" '[ "$(tm display -p -t
 
 start 80 24 assets/cube.obj '</dev/null'
 if wait_for 'faces 6 drawn'; then ok "stdin from /dev/null: the viewer shows the model"; else notok "stdin from /dev/null: the viewer shows the model" "$(cat "$T/screen")"; fi
+picture 23 >"$T/d0"
 tm send-keys -t zv Right
-wait_for 'faces 6 drawn 3' >/dev/null
+wait_change "$T/d0" 23 >/dev/null
 tm send-keys -t zv q
 if wait_for 'zv-exit=0'; then ok "stdin from /dev/null: keys work and q quits"; else notok "stdin from /dev/null: keys work and q quits" "$(cat "$T/screen")"; fi
 
@@ -408,7 +409,14 @@ for size in "110 34" "60 14"; do
     wait_for 'faces [0-9]+ drawn' >/dev/null
     set -- $size
     tm resize-window -t zv -x "$1" -y "$2"
-    wait_for "${1}x" >/dev/null
+    # the status bar on the new last line: the viewer has drawn at the new size
+    i=0
+    while [ $i -lt 200 ]; do
+        cap
+        status "$2" | grep -q 'faces' && break
+        sleep 0.05
+        i=$((i + 1))
+    done
     tm send-keys -t zv q
     wait_for 'zv-exit=0' >/dev/null
     check "quit after resizing to $1x$2 leaves no picture on the shell" '! grep -q "[▀▄]" "$T/screen"' "$(cat "$T/screen")"
@@ -531,8 +539,10 @@ if wait_for "half smooth 256"; then ok "v goes on to smooth shading"; else notok
 
 # ==== the view's command line: shown on C, printed by --print-view ====
 # the command shown gives the picture back
-tm send-keys -t zv 3 J
+tm send-keys -t zv 3
 wait_for 'view left' >/dev/null
+tm send-keys -t zv J
+wait_gone 'view left' >/dev/null
 wait_stable
 if [ -n "$PY" ]; then looks 29 >"$T/before"; fi
 tm send-keys -t zv C
