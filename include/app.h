@@ -68,6 +68,8 @@ typedef struct {
     int         wireframe;      /* --wireframe */
     int         points;         /* --points: every vertex a point, faces dropped */
     int         strict;         /* --strict: refuse a file with a statement it cannot read */
+    int         print_view;     /* --print-view: the view's command line on stdout when the viewer quits */
+    int         turntable;      /* --turntable N: N frames turning 360/N degrees each (0 = off) */
 } Options;
 
 #define POINT_SIZE_MAX 16       /* pixels: at 4 x 4 samples a pixel, PRIM_SIZE_MAX samples */
@@ -78,6 +80,10 @@ enum { IMG_AUTO, IMG_PNG, IMG_PPM };
 void cli_defaults(Options *o);
 int  cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen);
 void cli_usage(FILE *f);
+/* The integer conversions in a frame-file pattern (printf's %d, %03d,
+ * %i, %u, %x, %o with flags, width, precision; %% is a percent sign),
+ * or -1 when it has any other conversion. --turntable needs exactly 1. */
+int  frame_pattern_check(const char *pat);
 
 /* Load every file (or the demo scene when none) into a scene. Returns 0,
  * or -1 with "file:line: message" in err. */
@@ -143,6 +149,7 @@ typedef struct {
     int         cull;
     int         samples;        /* 0 = the default */
     const char *algo;           /* NULL = the default */
+    int         edges;          /* outlines (--edges) */
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

@@ -81,6 +81,27 @@ int   quant_pick(Quantizer *q, const uint8_t rgb[3], int x, int y);
 float quant_threshold(int x, int y);
 void  quant_rgb_to_oklab(const uint8_t rgb[3], float lab_out[3]);
 
+/* A colour as the terminal is told it: its default, a palette number, or
+ * 24-bit RGB. --print and the viewer both go through colour_key(), so
+ * the same cell at the same place gets the same colour in both. */
+#define CK_DEFAULT     0u
+#define CK_PAL(n)      (1u + (uint32_t)(n))                 /* palette 0..255 */
+#define CK_RGB_FLAG    0x1000000u
+#define CK_RGB(r, g, b) (CK_RGB_FLAG | (uint32_t)(r) << 16 | (uint32_t)(g) << 8 | (uint32_t)(b))
+
+/* The key for a cell colour (set = 0: the terminal's default) at pixel
+ * (x, y) under the quantizer's depth: exact RGB under truecolor, the
+ * dithered palette number under 256/16/8, the default without colour.
+ * A cell's foreground sits at pixel row 2 * row, its background at
+ * 2 * row + 1 (the half-block mode's two pixels). */
+uint32_t colour_key(Quantizer *q, const uint8_t rgb[3], int set, int x, int y);
+/* The SGR parameters selecting key k as foreground (bg = 0) or
+ * background, in their shortest form ("39", "31", "97", "38;5;200",
+ * "48;2;1;2;3"), written at p (at most SGR_COLOUR_MAX bytes, no NUL).
+ * Returns the end. */
+#define SGR_COLOUR_MAX 16
+char *sgr_colour(char *p, uint32_t k, int bg);
+
 /* The grid as text with ANSI SGR colours (none: plain text), each row
  * ending in a reset and "\n". Built in one buffer, written with one
  * fwrite, then flushed. Returns 0, or -1 on a write error (errno says

@@ -1,9 +1,11 @@
 #ifndef ZV_TTY_H
 #define ZV_TTY_H
-/* tty: the viewer's screen (src/present/term.c). Owns curses (only term.c includes it): start
- * and the one restore path (atexit, SIGINT/SIGTERM/SIGHUP, SIGTSTP and
- * back), colour pairs, drawing a cell grid and the status line, and
- * reading keys and mouse drags as plain events. */
+/* tty: the viewer's screen (src/present/term.c). Owns curses (only
+ * term.c includes it) for the terminal's modes and its input: start and
+ * the one restore path (atexit, SIGINT/SIGTERM/SIGHUP, SIGTSTP and back),
+ * reading keys and mouse drags as plain events. What is drawn (a cell
+ * grid, the status line, overlays) goes into a screen model (vt.c
+ * below) whose changes term_update() sends. */
 
 #include <stddef.h>
 #include <stdio.h>
@@ -26,6 +28,7 @@ typedef enum {
     TE_RESIZE,          /* the window changed size */
     TE_DRAG,            /* button 1 (left) or 3 (right) held, moved dx, dy cells */
     TE_WHEEL,           /* dy = -1 up (away from the user), +1 down */
+    TE_READY,           /* the terminal has taken the last frame: the next may go */
 } TermEventType;
 
 typedef struct {
@@ -43,9 +46,16 @@ typedef struct {
     int         signals;        /* restore on SIGINT/SIGTERM/SIGHUP, handle SIGTSTP */
 } TermConfig;
 
+/* The terminal description to use for name (NULL: $TERM): name itself
+ * when it is installed, else the first installed of xterm-256color,
+ * xterm, vt100 and ansi; NULL when none is. */
+const char *term_resolve(const char *name);
+
 /* Start curses. Returns 0, or -1 with a reason in err when the terminal
- * cannot be driven (unknown TERM, no cursor addressing): the caller falls
- * back to --print. The terminal is then untouched. */
+ * cannot be driven (unknown TERM, no ANSI cursor addressing): the caller
+ * falls back to --print. The terminal is then untouched. Colours: 24-bit
+ * when asked (cfg->color), else what is asked lowered to what the
+ * description has. */
 int  term_open(const TermConfig *cfg, char *err, size_t errlen);
 /* Leave curses and put the terminal back as it was. Idempotent; also
  * registered with atexit and called from the quit signals. */
@@ -66,13 +76,93 @@ void term_draw_box(const char *const *lines, int n);
 void term_message(const char *text);
 /* Blank the window (before a redraw at a new size). */
 void term_erase(void);
-/* Send the changes since the last update; everything when full (Ctrl-L). */
-void term_update(int full);
+/* Send the changes since the last update; everything when full (Ctrl-L).
+ * Returns 0, or -1 with errno when the terminal cannot be written. */
+int  term_update(int full);
+size_t term_last_bytes(void);           /* bytes the last update sent */
+/* Frame pacing (see vt_may_send): may a frame go now? If not, read
+ * input for at most term_pace_ms() and ask again; a TE_READY event comes
+ * when the terminal has taken the last frame. */
+int  term_ready(void);
+int  term_pace_ms(void);
 
 /* Wait up to timeout_ms (< 0: forever, 0: poll) for an event. Returns 1
  * with *ev filled, 0 when none came, -1 when the input has ended (a
  * hung-up terminal, a file at its end): no key will ever come, and
  * waiting again would return at once. */
 int  term_read(TermEvent *ev, int timeout_ms);
+
+/* ==== The screen model (vt.c) ====
+ * What the terminal should show (want) and what it shows (shown), cell
+ * by cell, and the bytes that take it from one to the other: only the
+ * cells that look different, in the shortest escapes. No curses here:
+ * term.c composes the picture, the status bar and the overlays into
+ * want and writes the bytes. */
+
+#define VT_REVERSE 1            /* VtCell.attr: reverse video (the status bar) */
+
+typedef struct {
+    uint32_t ch;                /* code point, one column wide */
+    uint32_t fg, bg;            /* colour keys (CK_*, present.h) */
+    uint8_t  attr;              /* VT_REVERSE or 0 */
+} VtCell;
+
+/* What the terminal can do beyond ANSI cursor addressing and SGR, from
+ * its terminfo description. */
+typedef struct {
+    int ech;                    /* \e[nX erases n characters */
+    int el;                     /* \e[K erases to the end of the line */
+    int rel;                    /* \e[nA..D move relative */
+    int hpa, vpa;               /* \e[nG, \e[nd: to a column, to a row */
+    int lf;                     /* a line feed keeps the column (no ONLCR) */
+    int am, xenl;               /* auto margins; the newline glitch (writing the
+                                   last column leaves the cursor there) */
+    char clear[32];             /* clears the screen, cursor home */
+} VtCaps;
+
+typedef struct {
+    int      cols, rows;
+    VtCell  *want, *shown;
+    int     *blank;             /* scratch: blank cells from each column on */
+    size_t   ncap;
+    int      valid;             /* shown is what the terminal shows */
+    VtCaps   caps;
+    char    *buf;               /* the bytes of the last vt_encode */
+    size_t   len, cap;
+    int      oom;
+    /* the terminal as the bytes so far leave it */
+    int      cy, cx;            /* cursor (cy < 0: unknown; cx == cols: wrap pending) */
+    uint32_t fg, bg;
+    uint8_t  attr;
+    int      sgr_ok;            /* fg, bg, attr known */
+} Vt;
+
+void vt_init(Vt *v, const VtCaps *caps);
+void vt_free(Vt *v);
+/* A new size: want blank, and the next encode repaints everything.
+ * Returns 0, or -1 out of memory. */
+int  vt_resize(Vt *v, int cols, int rows);
+void vt_clear(Vt *v);           /* want all blank */
+void vt_invalidate(Vt *v);      /* the terminal's content is unknown: repaint all */
+VtCell *vt_at(Vt *v, int y, int x);     /* a cell of want, NULL outside */
+/* UTF-8 text into row y from column x, at most maxw columns; characters
+ * that are not one column wide show as '?'. Returns the columns used. */
+int  vt_text(Vt *v, int y, int x, const char *s, int maxw, uint8_t attr);
+/* The bytes from shown to want into buf/len; shown is then want.
+ * Returns 0, or -1 out of memory. */
+int  vt_encode(Vt *v);
+/* Two cells that the terminal shows alike (an upper half block of a on
+ * b is a lower half block of b on a; a space on c is a full block of c). */
+int  vt_same_look(const VtCell *a, const VtCell *b);
+
+/* Frame pacing: may a new frame be sent while `queued` bytes still wait
+ * in the terminal's output queue, the line being writable or not, and an
+ * answer to the last frame's status request outstanding for waited_ms
+ * (waited_ms < 0: none outstanding)? A frame sent while the last one is
+ * still on its way only queues behind it: the viewer waits and renders
+ * the newest state instead. */
+int  vt_may_send(long queued, int writable, double waited_ms);
+#define VT_QUEUE_SLACK 256      /* bytes still queued that count as drained */
+#define VT_ACK_PATIENCE_MS 1000 /* an answer this late is taken as lost */
 
 #endif

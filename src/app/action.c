@@ -15,6 +15,7 @@
 #define DRAG_DEG   3.0f     /* per cell of a left drag */
 #define MOVE_FRAC  0.05f    /* of the scene radius (or fit radius) per key */
 #define SCALE_STEP 1.15f
+#define LIGHT_STEP 15.0f    /* degrees per [ ] { } */
 
 /* ==== Helpers ==== */
 
@@ -154,6 +155,88 @@ static Reaction act_shade(App *a)
     return RE_RENDER;
 }
 
+/* A named view (1-7) or the automatic one (8): the camera turned there
+ * and fitted, as --view NAME starts; objects keep their placements. */
+static Reaction look_from(App *a, float yaw, float pitch, const char *name)
+{
+    Camera *c = &a->s->cam;
+    c->yaw = remainderf(deg2rad(yaw), 2 * ZV_PI);
+    c->pitch = remainderf(deg2rad(pitch), 2 * ZV_PI);
+    c->roll = 0;
+    scene_fit(a->s);
+    snprintf(a->note, sizeof a->note, "view %s", name);
+    return RE_RENDER;
+}
+
+static Reaction set_view(App *a, int i)
+{
+    float y, p;
+    const char *name = view_name(i);
+    if (!name || view_from_name(name, &y, &p))
+        return RE_NONE;
+    return look_from(a, y, p, name);
+}
+
+static Reaction act_view1(App *a) { return set_view(a, 0); }
+static Reaction act_view2(App *a) { return set_view(a, 1); }
+static Reaction act_view3(App *a) { return set_view(a, 2); }
+static Reaction act_view4(App *a) { return set_view(a, 3); }
+static Reaction act_view5(App *a) { return set_view(a, 4); }
+static Reaction act_view6(App *a) { return set_view(a, 5); }
+static Reaction act_view7(App *a) { return set_view(a, 6); }
+
+static Reaction act_view_auto(App *a)
+{
+    float y, p;
+    scene_pick_view(a->s, &y, &p);
+    return look_from(a, y, p, "auto");
+}
+
+/* Turn the light (it stays fixed to the view): yaw wraps, pitch stops
+ * straight above or below. */
+static Reaction move_light(App *a, float dyaw, float dpitch)
+{
+    Light *l = &a->s->light;
+    float yaw = remainderf(l->yaw + dyaw, 360.0f);
+    float pitch = l->pitch + dpitch;
+    pitch = pitch > 90 ? 90 : pitch < -90 ? -90 : pitch;
+    light_set(l, yaw, pitch, l->ambient);
+    snprintf(a->note, sizeof a->note, "light %g,%g", l->yaw, l->pitch);
+    return RE_RENDER;
+}
+
+static Reaction act_light_left(App *a)  { return move_light(a, -LIGHT_STEP, 0); }
+static Reaction act_light_right(App *a) { return move_light(a, LIGHT_STEP, 0); }
+static Reaction act_light_up(App *a)    { return move_light(a, 0, LIGHT_STEP); }
+static Reaction act_light_down(App *a)  { return move_light(a, 0, -LIGHT_STEP); }
+
+static Reaction act_edges(App *a)
+{
+    a->p.edges = !a->p.edges;
+    snprintf(a->note, sizeof a->note, "edges %s", a->p.edges ? "on" : "off");
+    return RE_RENDER;
+}
+
+/* 1, 4, 9, 16 samples a pixel, round */
+static Reaction act_samples(App *a)
+{
+    int k = pipeline_samples_side(a->p.samples) % 4 + 1;
+    a->p.samples = k * k;
+    snprintf(a->note, sizeof a->note, "samples %d", a->p.samples);
+    return RE_RENDER;
+}
+
+static Reaction act_command(App *a)
+{
+    a->cmd = 1;
+    return RE_DRAW;
+}
+
+static Reaction act_snapshot(App *a)
+{
+    return app_snapshot(a);
+}
+
 static Reaction act_persp(App *a)
 {
     a->s->cam.persp = !a->s->cam.persp;
@@ -258,6 +341,10 @@ Reaction app_key(App *a, int key)
     a->note[0] = 0;
     if (a->help)
         return help_key(a, key);
+    if (a->cmd) {
+        a->cmd = 0;         /* like the help: the key that closes it does nothing else */
+        return RE_DRAW;
+    }
     int i = key >= 0 && key < K_SPECIAL ? key
           : key >= TK_UP && key <= TK_BTAB ? K_SPECIAL + (key - TK_UP) : -1;
     if (i < 0 || !keys[i])
@@ -303,15 +390,23 @@ static const HelpEntry help[] = {
     { "shift-Tab", "previous object" },
     { "N 0", "whole scene" },
     { "g G", "next / previous algorithm" },
+    { "1 2 3 4", "view front back left right" },
+    { "5 6 7", "view top bottom iso" },
+    { "8", "automatic view" },
     { "m", "display mode" },
     { "v", "shading" },
+    { "e", "outlines (edges)" },
+    { "S", "samples 1 4 9 16" },
+    { "[ ] { }", "light left right up down" },
     { "p", "ortho / perspective" },
     { "b", "back-face culling" },
     { "U", "up axis (y z x -y -z -x)" },
-    { "[ ]", "point size" },
-    { "{ }", "line width" },
+    { "< >", "point size" },
+    { "( )", "line width" },
     { "W", "wireframe" },
     { "space", "auto-rotate" },
+    { "C", "command line of the view" },
+    { "P", "snapshot: PNG and text" },
     { "Ctrl-L", "redraw" },
     { "q Esc", "quit" },
     { "left drag", "turn" },
@@ -409,13 +504,22 @@ static const Action keys[K_COUNT] = {
     [TK_TAB] = act_next_object, ['n'] = act_next_object,
     ['N'] = act_whole_scene, ['0'] = act_whole_scene,
     ['g'] = act_next_algo,   ['G'] = act_prev_algo,
+    ['1'] = act_view1,       ['2'] = act_view2,      ['3'] = act_view3,
+    ['4'] = act_view4,       ['5'] = act_view5,      ['6'] = act_view6,
+    ['7'] = act_view7,       ['8'] = act_view_auto,
+    ['['] = act_light_left,  [']'] = act_light_right,
+    ['{'] = act_light_up,    ['}'] = act_light_down,
+    ['e'] = act_edges,
+    ['S'] = act_samples,
+    ['C'] = act_command,
+    ['P'] = act_snapshot,
     ['m'] = act_mode,
     ['v'] = act_shade,
     ['p'] = act_persp,
     ['b'] = act_cull,
     ['U'] = act_up,
-    ['['] = act_point_smaller, [']'] = act_point_bigger,
-    ['{'] = act_line_thinner,  ['}'] = act_line_wider,
+    ['<'] = act_point_smaller, ['>'] = act_point_bigger,
+    ['('] = act_line_thinner,  [')'] = act_line_wider,
     ['W'] = act_wireframe,
     [' '] = act_spin,
     ['?'] = act_help,

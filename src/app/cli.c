@@ -31,7 +31,8 @@ void cli_usage(FILE *f)
 "\n"
 "Output (default: the interactive viewer; --print when stdout is no terminal):\n"
 "  -p, --print           write one frame to stdout as text, no curses\n"
-"  -o, --output FILE     write the image to FILE.png or FILE.ppm (- = stdout, PNG)\n"
+"  -o, --output FILE     write the image to FILE.png or FILE.ppm (- = stdout, PNG), or\n"
+"                        the text --print gives to FILE.txt\n"
 "  --image-format png|ppm  the image format for -o (default: by the name; - is PNG)\n"
 "  -s, --size WxH        pixels for -o (default 640x480); cells for --print\n"
 "  --mode half|ascii|braille      text mode (default: half on UTF-8)\n"
@@ -39,13 +40,17 @@ void cli_usage(FILE *f)
 "  --shade lambert|smooth|depth|id  shading (default lambert: flat per face)\n"
 "  --edges               outline silhouettes, creases and depth steps\n"
 "  --crease DEG          smooth shading and --edges: a sharper edge is a crease (default 60)\n"
-"  --point-size N        points as N x N pixel squares (1 to 16, default 1; [ ] in the viewer)\n"
-"  --line-width N        lines N pixels wide (1 to 16, default 1; { } in the viewer)\n"
+"  --point-size N        points as N x N pixel squares (1 to 16, default 1; < > in the viewer)\n"
+"  --line-width N        lines N pixels wide (1 to 16, default 1; ( ) in the viewer)\n"
 "  --wireframe           every edge of the faces as a line, hidden where faces hide it (W)\n"
 "  --light YAW,PITCH     light direction in degrees from the viewer (default -34,37)\n"
 "  --ambient F           ambient light, 0 to 1 (default 0.22)\n"
 "  --samples N           samples per pixel, 1, 4, 9 or 16, averaged (default 4 for\n"
 "                        text and the viewer, 1 for -o)\n"
+"  --turntable N         N frames turning 360/N degrees each about the vertical, to\n"
+"                        -o PATTERN (one integer conversion: out-%03d.png, .ppm, .txt;\n"
+"                        frames numbered from 0) or with --print to stdout\n"
+"  --print-view          the viewer prints the command line of its last view on quitting\n"
 "  --info                print file statistics (with --algo: render statistics)\n"
 "  --dump-ids FILE       face-id buffer: W*H little-endian int32, -1 = background\n"
 "  --dump-screen FILE    screen-space polygons as OBJ text\n"
@@ -78,6 +83,32 @@ void cli_usage(FILE *f)
 "\n"
 "  -h, --help, -V, --version\n"
 "Exit status: 0 ok, 1 runtime error, 2 usage error.\n", f);
+}
+
+int frame_pattern_check(const char *pat)
+{
+    int n = 0;
+    for (const char *p = pat; *p; p++) {
+        if (*p != '%')
+            continue;
+        p++;
+        if (*p == '%')
+            continue;
+        /* flags, width, precision: then the conversion, an integer one */
+        while (*p && strchr("-+ #0", *p))
+            p++;
+        while (*p >= '0' && *p <= '9')
+            p++;
+        if (*p == '.') {
+            p++;
+            while (*p >= '0' && *p <= '9')
+                p++;
+        }
+        if (!*p || !strchr("diuxXo", *p))
+            return -1;
+        n++;
+    }
+    return n;
 }
 
 static int parse_float(const char *s, float *out)
@@ -160,6 +191,7 @@ enum {
     OPT_LAYOUT, OPT_EDGES, OPT_ORDER, OPT_FORMAT, OPT_FORMATS, OPT_UP, OPT_FLIP, OPT_IMAGE_FORMAT,
     /* points, lines, lenient loading */
     OPT_POINT_SIZE, OPT_LINE_WIDTH, OPT_WIREFRAME, OPT_POINTS, OPT_STRICT,
+    OPT_PRINT_VIEW, OPT_TURNTABLE,
 };
 
 static const struct option long_opts[] = {
@@ -187,6 +219,8 @@ static const struct option long_opts[] = {
     { "layout", required_argument, NULL, OPT_LAYOUT },
     { "edges", no_argument, NULL, OPT_EDGES },
     { "order", required_argument, NULL, OPT_ORDER },
+    { "print-view", no_argument, NULL, OPT_PRINT_VIEW },
+    { "turntable", required_argument, NULL, OPT_TURNTABLE },
     { "yaw", required_argument, NULL, OPT_YAW },
     { "pitch", required_argument, NULL, OPT_PITCH },
     { "roll", required_argument, NULL, OPT_ROLL },
@@ -290,6 +324,7 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
         case OPT_JSON: o->json = 1; break;
         case OPT_CULL: o->cull = 1; break;
         case OPT_EDGES: o->edges = 1; break;
+        case OPT_PRINT_VIEW: o->print_view = 1; break;
         case OPT_ORTHO: o->persp = 0; break;
         case 'o':
             /* the name is checked after the loop: --image-format may follow */
@@ -421,6 +456,11 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
                 BAD_VAL("1 to 100");
             o->grid = (int)n;
             break;
+        case OPT_TURNTABLE:
+            if (parse_int(val, 1, 3600, &n))
+                BAD_VAL("1 to 3600 frames");
+            o->turntable = (int)n;
+            break;
         case OPT_FPS:
             if (parse_int(val, 1, 1000, &n))
                 BAD_VAL("1 to 1000");
@@ -482,9 +522,10 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
     }
     if (o->out) {
         size_t len = strlen(o->out);
-        int ext = len >= 5 && (!strcmp(o->out + len - 4, ".png") || !strcmp(o->out + len - 4, ".ppm"));
+        int ext = len >= 5 && (!strcmp(o->out + len - 4, ".png") || !strcmp(o->out + len - 4, ".ppm") ||
+                               !strcmp(o->out + len - 4, ".txt"));
         if (!ext && !o->image_format && strcmp(o->out, "-")) {
-            snprintf(err, errlen, "bad value '%s' for -o (the file must end in .png or .ppm, "
+            snprintf(err, errlen, "bad value '%s' for -o (the file must end in .png, .ppm or .txt, "
                                   "or give --image-format)", o->out);
             return -1;
         }
@@ -492,6 +533,15 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
             snprintf(err, errlen, "-o - and --print both write to standard output: choose one");
             return -1;
         }
+    }
+    if (o->turntable && !o->out && !o->print) {
+        snprintf(err, errlen, "--turntable needs -o PATTERN (e.g. out-%%03d.png) or --print");
+        return -1;
+    }
+    if (o->turntable && o->out && frame_pattern_check(o->out) != 1) {
+        snprintf(err, errlen, "--turntable: the file name '%s' needs exactly one integer conversion "
+                 "for the frame number (e.g. out-%%03d.png; %%%% for a %%)", o->out);
+        return -1;
     }
     if (o->algo && !o->bench && !hsr_find(o->algo)) {
         snprintf(err, errlen, "unknown algorithm '%s' (zbuffer, scanline, span, hzb, hzb-octree)", o->algo);

@@ -31,13 +31,18 @@ static void hold_closed_std_fds(void)
         }
 }
 
-/* Flush standard output; on failure say why (exit status 1). */
+/* Flush standard output; on failure say why (exit status 1). errno is
+ * cleared first: a text longer than stdio's buffer fails in the middle,
+ * and the errno of that write is the reason the flush then reports. */
 static int finish_stdout(void)
 {
     Out out;
     out_init(&out, stdout, "standard output");
+    int e = errno;
     if (out_flush(&out) == 0)
         return 0;
+    if (out.err == EIO && e)
+        out.err = e;
     fprintf(stderr, "zview: standard output: %s\n", out_error(&out));
     return 1;
 }
@@ -57,6 +62,7 @@ int main(int argc, char **argv)
         return 2;
     }
     if (o.help) {
+        errno = 0;
         cli_usage(stdout);
         return finish_stdout();
     }
@@ -80,7 +86,7 @@ int main(int argc, char **argv)
     }
     if (o.info)
         rc = app_info(&o, &scene);
-    else if (o.print || o.out || o.dump_ids || o.dump_screen || !isatty(STDOUT_FILENO))
+    else if (o.print || o.out || o.dump_ids || o.dump_screen || (!isatty(STDOUT_FILENO) && !o.print_view))
         rc = app_oneshot(&o, &scene);
     else
         rc = app_viewer(&o, &scene);

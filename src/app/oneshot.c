@@ -68,15 +68,15 @@ static int write_ids(const char *path, const FrameBufs *fb)
  * standard output gets the image through a temporary file, copied: that
  * works for pipes and files alike (opening /dev/stdout again would
  * truncate a file the shell opened for appending). */
-static int write_image(const Options *o, const Image *img, char *err, size_t errlen)
+static int write_image(const Options *o, const char *path, const Image *img, char *err, size_t errlen)
 {
-    size_t n = strlen(o->out);
-    int to_stdout = !strcmp(o->out, "-");
+    size_t n = strlen(path);
+    int to_stdout = !strcmp(path, "-");
     int png = o->image_format ? o->image_format == IMG_PNG
-                              : to_stdout || (n >= 4 && !strcmp(o->out + n - 4, ".png"));
+                              : to_stdout || (n >= 4 && !strcmp(path + n - 4, ".png"));
     int (*writer)(const char *, const Image *, char *, size_t) = png ? write_png : write_ppm;
     if (!to_stdout)
-        return writer(o->out, img, err, errlen);
+        return writer(path, img, err, errlen);
     if (isatty(STDOUT_FILENO)) {
         snprintf(err, errlen, "-o -: standard output is a terminal (pipe the image on, e.g. "
                               "| img2sixel)");
@@ -111,10 +111,125 @@ static int write_image(const Options *o, const Image *img, char *err, size_t err
     return rc;
 }
 
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    return n >= m && !strcmp(s + n - m, suffix);
+}
+
+/* The text frame of the options into p->cells (what --print shows).
+ * Returns 0, or -1 out of memory. */
+static int render_text(const Options *o, Pipeline *p, ColorDepth *depth)
+{
+    DisplayMode mode = o->mode >= 0 ? (DisplayMode)o->mode : mode_from_locale();
+    *depth = o->color >= 0 ? (ColorDepth)o->color : color_from_env();
+    int cols, rows, pw, ph;
+    print_size(o, &cols, &rows);
+    int samples = p->samples;
+    p->samples = o->samples > 0 ? o->samples : TEXT_SAMPLES;   /* as the viewer draws */
+    mode_cell_pixels(mode, &pw, &ph);
+    int rc = pipeline_render(p, cols * pw, rows * ph, mode_pixel_aspect(mode), o->cull, 1) ||
+             cells_from_image(&p->img, mode, *depth, &p->cells);
+    p->samples = samples;
+    return rc ? -1 : 0;
+}
+
+/* The image of the options into p->img (what -o writes); shade_too 0:
+ * only the buffers (for the dumps). */
+static int render_image(const Options *o, Pipeline *p, int shade_too)
+{
+    int w = o->w > 0 ? o->w : 640, h = o->h > 0 ? o->h : 480;
+    return pipeline_render(p, w, h, 1.0f, o->cull, shade_too);
+}
+
+/* The text frame into a file. Returns 0, or -1 after a message. */
+static int write_text(const char *path, const CellGrid *g, ColorDepth depth)
+{
+    FILE *f = fopen(path, "w");
+    if (!f || print_cells(f, g, depth)) {
+        fprintf(stderr, "zview: %s: %s\n", path, strerror(errno));
+        if (f)
+            fclose(f);
+        return -1;
+    }
+    Out out;
+    out_init(&out, f, path);
+    if (out_close(&out)) {
+        fprintf(stderr, "zview: %s: %s\n", path, out_error(&out));
+        return -1;
+    }
+    return 0;
+}
+
+/* -o names a text file: FILE.txt, unless --image-format says otherwise. */
+static int text_file(const Options *o, const char *file)
+{
+    return file && !o->image_format && ends_with(file, ".txt");
+}
+
+/* One frame of the view as it stands to -o FILE (image or text) and/or
+ * stdout (--print). Returns 0, or 1 after a message. */
+static int one_frame(const Options *o, Pipeline *p, const char *file)
+{
+    char err[512];
+    ColorDepth depth;
+    if (file && !text_file(o, file)) {
+        if (render_image(o, p, 1)) {
+            fprintf(stderr, "zview: out of memory\n");
+            return 1;
+        }
+        if (write_image(o, file, &p->img, err, sizeof err)) {
+            fprintf(stderr, "zview: %s\n", err);
+            return 1;
+        }
+    }
+    int to_file = text_file(o, file);
+    if (to_file || o->print) {
+        if (render_text(o, p, &depth)) {
+            fprintf(stderr, "zview: out of memory\n");
+            return 1;
+        }
+        if (to_file && write_text(file, &p->cells, depth))
+            return 1;
+        if (o->print && print_cells(stdout, &p->cells, depth)) {
+            fprintf(stderr, "zview: standard output: %s\n", strerror(errno));
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* --turntable N: frame k turned 360 k / N degrees about the vertical
+ * from the view given, as the viewer's auto-rotate turns (the fit stays
+ * the first frame's), written to the pattern with k in it. */
+static int turntable(const Options *o, Scene *s, Pipeline *p)
+{
+    float yaw0 = s->cam.yaw;
+    char path[4096];
+    for (int k = 0; k < o->turntable; k++) {
+        s->cam.yaw = yaw0 + deg2rad(360.0f * (float)k / (float)o->turntable);
+        const char *file = NULL;
+        if (o->out) {
+            /* the pattern has exactly one integer conversion (cli.c) */
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wformat-nonliteral"
+            int n = snprintf(path, sizeof path, o->out, k);
+#pragma GCC diagnostic pop
+            if (n < 0 || (size_t)n >= sizeof path) {
+                fprintf(stderr, "zview: %s: the file name is too long\n", o->out);
+                return 1;
+            }
+            file = path;
+        }
+        if (one_frame(o, p, file))
+            return 1;
+    }
+    return 0;
+}
+
 int app_oneshot(const Options *o, Scene *s)
 {
     const HsrAlgo *algo = hsr_find(o->algo ? o->algo : "zbuffer");
-    char err[512];
     Pipeline p;
     if (pipeline_init(&p, s, algo, o->threads)) {
         fprintf(stderr, "zview: out of memory\n");
@@ -122,40 +237,23 @@ int app_oneshot(const Options *o, Scene *s)
     }
     pipeline_apply_options(&p, o);     /* images: 1 sample unless asked, full resolution already */
     int rc = 0;
-    int text = o->print || (!o->out && !o->dump_ids && !o->dump_screen);
-    if (o->out || ((o->dump_ids || o->dump_screen) && !text)) {
-        int w = o->w > 0 ? o->w : 640, h = o->h > 0 ? o->h : 480;
-        if (pipeline_render(&p, w, h, 1.0f, o->cull, o->out != NULL)) {
-            fprintf(stderr, "zview: out of memory\n");
-            rc = 1;
-            goto out;
-        }
-        if (o->out) {
-            if (write_image(o, &p.img, err, sizeof err)) {
-                fprintf(stderr, "zview: %s\n", err);
-                rc = 1;
-                goto out;
-            }
-        }
+    if (o->turntable) {
+        rc = turntable(o, s, &p);
+        goto out;
     }
-    if (text) {
-        DisplayMode mode = o->mode >= 0 ? (DisplayMode)o->mode : mode_from_locale();
-        ColorDepth color = o->color >= 0 ? (ColorDepth)o->color : color_from_env();
-        int cols, rows, pw, ph;
-        print_size(o, &cols, &rows);
-        p.samples = o->samples > 0 ? o->samples : TEXT_SAMPLES;   /* as the viewer draws */
-        mode_cell_pixels(mode, &pw, &ph);
-        if (pipeline_render(&p, cols * pw, rows * ph, mode_pixel_aspect(mode), o->cull, 1) ||
-            cells_from_image(&p.img, mode, color, &p.cells)) {
-            fprintf(stderr, "zview: out of memory\n");
-            rc = 1;
-            goto out;
-        }
-        if (print_cells(stdout, &p.cells, color)) {
-            fprintf(stderr, "zview: standard output: %s\n", strerror(errno));
-            rc = 1;
-            goto out;
-        }
+    /* no output named: the text frame to stdout */
+    Options text = *o;
+    text.print = o->print || (!o->out && !o->dump_ids && !o->dump_screen);
+    if (o->out || text.print)
+        rc = one_frame(&text, &p, o->out);
+    if (rc)
+        goto out;
+    /* the dumps are of the last render: the image's, else the text's,
+     * else one of their own at the image size */
+    if ((o->dump_ids || o->dump_screen) && !o->out && !text.print && render_image(o, &p, 0)) {
+        fprintf(stderr, "zview: out of memory\n");
+        rc = 1;
+        goto out;
     }
     const char *why = frame_empty_reason(&p);     /* an empty picture says why */
     if (why)

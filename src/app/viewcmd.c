@@ -108,8 +108,10 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --mode %s", mode_names[v->mode]);
     if (v->shade != SHADE_LAMBERT)
         put(&o, " --shade %s", shade_names[v->shade]);
-    if (v->shade == SHADE_SMOOTH && v->crease != SHADE_CREASE_DEFAULT)
+    if ((v->shade == SHADE_SMOOTH || v->edges) && v->crease != SHADE_CREASE_DEFAULT)
         put(&o, " --crease %.9g", v->crease);
+    if (v->edges)
+        put(&o, " --edges");
     if (s->light.yaw != LIGHT_YAW || s->light.pitch != LIGHT_PITCH)
         put(&o, " --light %.9g,%.9g", s->light.yaw, s->light.pitch);
     if (s->light.ambient != LIGHT_AMBIENT)

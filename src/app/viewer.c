@@ -39,6 +39,7 @@ static int locale_utf8(void)
 static int app_init(App *a, const Options *o, Scene *s)
 {
     memset(a, 0, sizeof *a);
+    a->opt = o;
     a->s = s;
     a->sel = -1;
     a->cull = o->cull;
@@ -79,16 +80,89 @@ static int render(App *a, int cols, int rows)
     return cells_from_image(&a->p.img, a->mode, term_color(), &a->p.cells);
 }
 
+/* ==== The view's command line ==== */
+
+ViewSettings app_view_settings(const App *a)
+{
+    ViewSettings v = {
+        .mode = a->mode,
+        .shade = a->p.shade,
+        .crease = a->p.crease,
+        .cull = a->cull,
+        .samples = a->p.samples,
+        .algo = a->p.algo->name,
+        .edges = a->p.edges,
+    };
+    return v;
+}
+
+int app_view_command(const App *a, char *buf, size_t len)
+{
+    ViewSettings v = app_view_settings(a);
+    return view_command(buf, len, a->opt, a->s, &v);
+}
+
+int app_command_layout(const App *a, int cols, char *buf, size_t len, const char **lines, int max)
+{
+    char cmd[CMD_MAX];
+    if (max < 2 || app_view_command(a, cmd, sizeof cmd)) {
+        snprintf(buf, len, "the command line is too long to show");
+        lines[0] = buf;
+        return 1;
+    }
+    int w = cols - 4 > 16 ? cols - 4 : 16;     /* the box's frame and margins */
+    size_t o = 0;
+    int n = 0;
+    int k = snprintf(buf, len, "command line of this view (any key closes)");
+    lines[n++] = buf;
+    o = (size_t)k + 1;
+    /* whole words while they fit, " \\" where the command goes on (a
+     * word longer than a line is cut: rare, a long path) */
+    const char *p = cmd;
+    while (*p && n < max && o + (size_t)w + 3 < len) {
+        int room = w - 2, take = (int)strlen(p);
+        if (take > w) {
+            take = room;
+            for (int i = room; i > 0; i--)
+                if (p[i] == ' ') {
+                    take = i;
+                    break;
+                }
+        }
+        int more = p[take] != 0;
+        k = snprintf(buf + o, len - o, "%.*s%s", take, p, more ? " \\" : "");
+        lines[n++] = buf + o;
+        o += (size_t)k + 1;
+        p += take;
+        while (*p == ' ')
+            p++;
+    }
+    return n;
+}
+
+/* The colour depth as the status bar names it. */
+static const char *depth_label(ColorDepth d)
+{
+    switch (d) {
+    case COLOR_TRUE: return "24bit";
+    case COLOR_256:  return "256";
+    case COLOR_16:   return "16";
+    case COLOR_8:    return "8";
+    default:         return "mono";
+    }
+}
+
 /* The status bar's fields, in the order shown. When the bar is wider
  * than the window, fields go by rank, lowest first: 1 frame time and
- * fps, 2 picture size, 3 display mode and shading, 4 view flags
- * (persp, cull, spin), 5 selection, 6 note. Rank 0 stays: the file,
- * the polygons, the algorithm and its time, and "? help"; in a window
- * still too narrow they take their brief forms ("drawn/faces", "?"), and
- * last of all the file name is shortened. README and the man page give
- * the same order. */
+ * fps, 2 picture size, 3 display mode, shading and colours, 4 view flags
+ * (persp, cull, spin), 5 selection. Rank 0 stays: the file, the
+ * polygons, the algorithm and its time, and "? help"; in a window still
+ * too narrow they take their brief forms ("drawn/faces", "?"), then the
+ * note is cut at its end or goes (rank 6: it answers a key, so it
+ * outlasts the long forms), and last of all the file name is shortened. README and the man page
+ * give the same order. */
 #define BAR_FIELDS 10
-#define BAR_RANKS  6
+#define BAR_NOTE   6
 
 typedef struct {
     char text[96];
@@ -140,7 +214,7 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
     snprintf(f[2].brief, sizeof f[2].brief, "%u/%u", a->p.sp.npolys, s->nfaces);
     bar_field(&f[3], 0, "%s %.2fms", a->p.algo->name, a->p.hsr_ms);
     bar_field(&f[4], 1, "frame %.1fms %.0ffps", frame_ms, frame_ms > 0 ? 1000.0 / frame_ms : 0);
-    bar_field(&f[5], 3, "%s %s", mode_names[a->mode], shade_names[a->p.shade]);
+    bar_field(&f[5], 3, "%s %s %s", mode_names[a->mode], shade_names[a->p.shade], depth_label(term_color()));
     char spin[24] = "";
     if (a->spin)
         snprintf(spin, sizeof spin, "spin@%d", fps_cap);
@@ -148,10 +222,10 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
               s->cam.persp && (a->cull || a->spin) ? " " : "", a->cull ? "cull" : "",
               a->cull && a->spin ? " " : "", spin);
     bar_field(&f[7], 2, "%dx%dpx", a->p.img.w, a->p.img.h);
-    bar_field(&f[8], 6, "%s", a->note);
+    bar_field(&f[8], BAR_NOTE, "%s", a->note);
     bar_field(&f[9], 0, "? help");
     snprintf(f[9].brief, sizeof f[9].brief, "?");
-    for (int rank = 1; rank <= BAR_RANKS && bar_join(f, buf, len) > width; rank++)
+    for (int rank = 1; rank < BAR_NOTE && bar_join(f, buf, len) > width; rank++)
         for (int i = 0; i < BAR_FIELDS; i++)
             if (f[i].rank == rank)
                 f[i].rank = -1;
@@ -159,7 +233,18 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
         for (int i = 0; i < BAR_FIELDS; i++)
             if (f[i].brief[0])
                 memcpy(f[i].text, f[i].brief, sizeof f[i].brief);
-    int over = bar_join(f, buf, len) - width;
+    /* the note is cut at its end to fit, and goes when little would be left */
+    int over = bar_join(f, buf, len) - width, note_len = (int)strlen(f[8].text);
+    if (over > 0 && note_len - over - 1 >= 12) {
+        int keep = note_len - over - 1;
+        while (keep > 0 && (f[8].text[keep] & 0xc0) == 0x80)
+            keep--;
+        f[8].text[keep] = '~';
+        f[8].text[keep + 1] = 0;
+    } else if (over > 0) {
+        f[8].rank = -1;
+    }
+    over = bar_join(f, buf, len) - width;
     int name_len = (int)strlen(f[0].text);
     if (over > 0 && name_len > 4) {
         int keep = name_len - over - 1 > 3 ? name_len - over - 1 : 3;
@@ -179,7 +264,11 @@ typedef struct {
     double frame_ms;        /* last rendered frame, render + output */
 } DrawState;
 
-/* Draw the screen; render first when asked or when the size changed. */
+/* Why the loop ended (and what draw() can fail with). */
+enum { RUN_QUIT = 0, RUN_NO_MEMORY = -1, RUN_INPUT_ENDED = 1, RUN_OUTPUT_FAILED = 2 };
+
+/* Draw the screen; render first when asked or when the size changed.
+ * Returns 0, RUN_NO_MEMORY, or RUN_OUTPUT_FAILED (errno says why). */
 static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
 {
     int cols, rows;
@@ -187,9 +276,8 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     int full = (what & RE_CLEAR) != 0;
     if (cols < MIN_COLS || rows < MIN_ROWS) {
         term_message("too small");
-        term_update(full);
         d->small = 1;
-        return 0;
+        return term_update(full) ? RUN_OUTPUT_FAILED : 0;
     }
     if (d->small || cols != d->cols || rows != d->rows) {
         term_erase();
@@ -197,16 +285,16 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
         d->small = 0;
         d->cols = cols;
         d->rows = rows;
-    } else if (d->help && !a->help) {
+    } else if (d->help && !(a->help || a->cmd)) {
         term_erase();       /* the box may reach past a --size picture */
     }
-    d->help = a->help;
+    d->help = a->help || a->cmd;
     /* --size: that many cells, or fewer when the window is smaller */
     int pc = a->pic_cols > 0 && a->pic_cols < cols ? a->pic_cols : cols;
     int pr = a->pic_rows > 0 && a->pic_rows < rows - 1 ? a->pic_rows : rows - 1;
     double t0 = now_ms();
     if ((what & RE_RENDER) == RE_RENDER && render(a, pc, pr))
-        return -1;
+        return RUN_NO_MEMORY;
     term_draw_cells(&a->p.cells, 0);
     double t1 = now_ms();
     if ((what & RE_RENDER) == RE_RENDER)
@@ -217,8 +305,14 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     if (a->help) {
         const char *lines[HELP_LINES_MAX];
         term_draw_box(lines, app_help_layout(a, cols, rows, lines));
+    } else if (a->cmd) {
+        const char *lines[HELP_LINES_MAX];
+        char buf[2 * CMD_MAX];
+        int n = app_command_layout(a, cols, buf, sizeof buf, lines, rows - 3 < HELP_LINES_MAX ? rows - 3 : HELP_LINES_MAX);
+        term_draw_box(lines, n);
     }
-    term_update(full);
+    if (term_update(full))
+        return RUN_OUTPUT_FAILED;
     if ((what & RE_RENDER) == RE_RENDER)
         d->out_ms = now_ms() - t1;
     return 0;
@@ -231,14 +325,12 @@ static Reaction dispatch(App *a, const TermEvent *ev)
     case TE_RESIZE: return RE_RENDER;
     case TE_DRAG:   return app_drag(a, ev->button, ev->dx, ev->dy);
     case TE_WHEEL:  return app_wheel(a, ev->dy);
+    case TE_READY:  return RE_NONE;     /* the loop sends what waits */
     }
     return RE_NONE;
 }
 
 /* ==== The loop ==== */
-
-/* Why the loop ended. */
-enum { RUN_QUIT = 0, RUN_NO_MEMORY = -1, RUN_INPUT_ENDED = 1 };
 
 static int run(App *a, int fps)
 {
@@ -247,13 +339,24 @@ static int run(App *a, int fps)
     double period = 1000.0 / (fps > 0 ? fps : 30);
     double next = 0, last_spin = 0;
     for (;;) {
-        if (todo & RE_DRAW && draw(a, &d, todo, fps))
-            return RUN_NO_MEMORY;
-        todo = RE_NONE;
+        /* a frame goes only when the last one is through: on a slow
+         * link frames are dropped (the newest state drawn when the line
+         * is free), never queued */
+        if (todo & RE_DRAW && term_ready()) {
+            int rc = draw(a, &d, todo, fps);
+            if (rc)
+                return rc;
+            todo = RE_NONE;
+        }
         int timeout = -1;
         if (a->spin) {
             double now = now_ms();
             timeout = next > now ? (int)(next - now + 0.999) : 0;
+        }
+        if (todo & RE_DRAW) {
+            int pace = term_pace_ms();
+            if (timeout < 0 || pace < timeout)
+                timeout = pace;
         }
         TermEvent ev;
         int got = term_read(&ev, timeout);
@@ -298,57 +401,84 @@ static FILE *open_keys(FILE **opened, const char **name)
     return *opened;
 }
 
+/* No viewer after all: one frame as --print gives, or, when the view's
+ * command line was wanted on standard output, an error rather than a
+ * frame in its place. */
+static int no_viewer(const Options *o, Scene *s)
+{
+    if (o->print_view) {
+        fprintf(stderr, "zview: --print-view: no terminal to show the viewer on\n");
+        return 1;
+    }
+    return app_oneshot(o, s);
+}
+
 int app_viewer(const Options *o, Scene *s)
 {
     const char *t = getenv("TERM");
     if (!t || !*t || !strcmp(t, "dumb"))
-        return app_oneshot(o, s);
+        return no_viewer(o, s);
     FILE *tty;
     const char *keys_name;
     FILE *keys = open_keys(&tty, &keys_name);
     if (!keys) {
         fprintf(stderr, "zview: no terminal to read keys from (standard input is not one, "
-                        "/dev/tty: %s): one frame instead\n", strerror(errno));
-        return app_oneshot(o, s);
+                        "/dev/tty: %s)%s\n", strerror(errno), o->print_view ? "" : ": one frame instead");
+        return no_viewer(o, s);
+    }
+    /* the screen: standard output, or the terminal when --print-view
+     * keeps standard output for the command line */
+    FILE *screen = stdout, *screen_tty = NULL;
+    if (!isatty(STDOUT_FILENO) && !(screen = screen_tty = fopen("/dev/tty", "we"))) {
+        if (tty)
+            fclose(tty);
+        return no_viewer(o, s);
     }
     App a;
     if (app_init(&a, o, s)) {
         fprintf(stderr, "zview: out of memory\n");
         if (tty)
             fclose(tty);
+        if (screen_tty)
+            fclose(screen_tty);
         return 1;
     }
     char err[256];
+    /* an unknown TERM (or xterm-direct without its entry): a description
+     * we have does better than one frame */
+    const char *use = term_resolve(t);
+    if (use && strcmp(use, t))
+        fprintf(stderr, "zview: unknown terminal type '%s': using %s\n", t, use);
     TermConfig cfg = {
+        .out = screen,
         .in = keys,
+        .termname = use,
         .color = o->color >= 0 ? (ColorDepth)o->color : color_from_env(),
         .mouse = 1,
         .signals = 1,
     };
-    /* COLORTERM=truecolor on a TERM without direct colour: curses can
-     * only send RGB through a *-direct description, so try the same
-     * family's (xterm-256color -> xterm-direct) when it is installed. */
-    char direct[64];
-    const char *dash = strchr(t, '-');
-    int rc_open = -1;
-    if (cfg.color == COLOR_TRUE && !strstr(t, "-direct") &&
-        snprintf(direct, sizeof direct, "%.*s-direct", dash ? (int)(dash - t) : 40, t) <
-            (int)sizeof direct) {
-        cfg.termname = direct;
-        rc_open = term_open(&cfg, err, sizeof err);
-        cfg.termname = NULL;
-    }
-    if (rc_open && term_open(&cfg, err, sizeof err)) {
+    if (!use || term_open(&cfg, err, sizeof err)) {
+        fprintf(stderr, "zview: %s%s\n",
+                use ? err : "no terminal description installed (not even xterm, vt100 or ansi)",
+                o->print_view ? "" : ": one frame instead");
         pipeline_free(&a.p);
         if (tty)
             fclose(tty);
-        return app_oneshot(o, s);
+        if (screen_tty)
+            fclose(screen_tty);
+        return no_viewer(o, s);
     }
     int rc = run(&a, o->fps);
+    int out_errno = errno;
     term_restore();
+    /* --print-view: the command line of the view as it was left */
+    char cmd[CMD_MAX];
+    int cmd_ok = o->print_view && rc == RUN_QUIT && app_view_command(&a, cmd, sizeof cmd) == 0;
     pipeline_free(&a.p);
     if (tty)
         fclose(tty);
+    if (screen_tty)
+        fclose(screen_tty);
     if (rc == RUN_NO_MEMORY) {
         fprintf(stderr, "zview: out of memory\n");
         return 1;
@@ -356,6 +486,23 @@ int app_viewer(const Options *o, Scene *s)
     if (rc == RUN_INPUT_ENDED) {
         fprintf(stderr, "zview: %s: the input ended (no more keys)\n", keys_name);
         return 1;
+    }
+    if (rc == RUN_OUTPUT_FAILED) {
+        fprintf(stderr, "zview: the terminal: %s\n", strerror(out_errno));
+        return 1;
+    }
+    if (o->print_view && !cmd_ok) {
+        fprintf(stderr, "zview: the view's command line is too long to print\n");
+        return 1;
+    }
+    if (cmd_ok) {
+        Out out;
+        out_init(&out, stdout, "standard output");
+        out_printf(&out, "%s\n", cmd);
+        if (out_flush(&out)) {
+            fprintf(stderr, "zview: standard output: %s\n", out_error(&out));
+            return 1;
+        }
     }
     return 0;
 }
@@ -398,7 +545,7 @@ int app_bench_tty(const Options *o)
     if (opt.mode < 0)
         opt.mode = MODE_HALF;
     ColorDepth color = o->color >= 0 ? (ColorDepth)o->color : COLOR_256;
-    const char *termname = color == COLOR_TRUE ? "xterm-direct" : "xterm-256color";
+    const char *termname = "xterm-256color";    /* 24-bit colour needs no other entry */
     int rc = 1;
     App a;
     FILE *out = tmpfile(), *in = fopen("/dev/null", "r");
@@ -407,13 +554,7 @@ int app_bench_tty(const Options *o)
         goto done;
     }
     TermConfig cfg = { .out = out, .in = in, .termname = termname, .color = color };
-    int opened = term_open(&cfg, err, sizeof err) == 0;
-    if (!opened && color == COLOR_TRUE) {
-        /* no xterm-direct description installed: 256 colours it is */
-        cfg.termname = termname = "xterm-256color";
-        opened = term_open(&cfg, err, sizeof err) == 0;
-    }
-    if (!opened) {
+    if (term_open(&cfg, err, sizeof err)) {
         fprintf(stderr, "zview: %s: %s\n", termname, err);
         pipeline_free(&a.p);
         goto done;
@@ -437,7 +578,13 @@ int app_bench_tty(const Options *o)
         term_draw_cells(&a.p.cells, 0);
         status_text(&a, bar, sizeof bar, k ? render_ms[k - 1] + out_ms[k - 1] : 0, o->fps, cols);
         term_draw_bar(rows, bar);
-        term_update(0);
+        if (term_update(0)) {
+            int e = errno;
+            term_restore();
+            fprintf(stderr, "zview: the benchmark's file: %s\n", strerror(e));
+            pipeline_free(&a.p);
+            goto done;
+        }
         long now = file_bytes(out);
         out_ms[k] = now_ms() - t1;
         render_ms[k] = t1 - t0;
@@ -469,7 +616,7 @@ int app_bench_tty(const Options *o)
            TTY_FRAMES, first);
     out_printf(&rep, "bytes per frame: median %ld, mean %ld, max %ld\n", bytes[1 + TTY_FRAMES / 2],
            sum / TTY_FRAMES, bytes[TTY_FRAMES]);
-    out_printf(&rep, "frame time: median %.2f ms (render %.2f ms + curses output %.2f ms), max %.2f ms\n",
+    out_printf(&rep, "frame time: median %.2f ms (render %.2f ms + terminal output %.2f ms), max %.2f ms\n",
            frame[TTY_FRAMES / 2], rmed[TTY_FRAMES / 2], omed[TTY_FRAMES / 2],
            frame[TTY_FRAMES - 1]);
     if (out_flush(&rep)) {

@@ -17,8 +17,10 @@ typedef enum {
 /* The help overlay's lines: a title, then rows of one or more columns. */
 #define HELP_LINES_MAX 48
 #define HELP_LINE_MAX  160
+#define CMD_MAX        4096     /* a view's command line */
 
 typedef struct App {
+    const Options *opt;     /* the command line: files and layout, for view commands */
     Scene      *s;
     Pipeline    p;
     int         algo;       /* index into hsr_algos */
@@ -30,6 +32,7 @@ typedef struct App {
     int         help;       /* help overlay shown */
     int         help_top;   /* first help row shown (scrolled) */
     int         help_hidden; /* help rows that did not fit the window (0: all shown) */
+    int         cmd;        /* the view's command line shown (any key closes it) */
     int         pic_cols, pic_rows; /* --size: the picture's cells (0 = the window's) */
     char        name[96];   /* file name(s) for the status line */
     char        note[80];   /* a one-off note for the status line */
@@ -43,6 +46,22 @@ Reaction app_drag(App *a, int button, int dx, int dy);
 Reaction app_wheel(App *a, int dy);
 /* Turn the scene (or the selected object) about the vertical axis. */
 void     app_spin(App *a, float radians);
+
+/* The settings of the picture on screen, for view_command(). */
+ViewSettings app_view_settings(const App *a);
+/* The command line giving the view on screen back, into buf. Returns 0,
+ * or -1 when it does not fit. */
+int      app_view_command(const App *a, char *buf, size_t len);
+/* The view's command line wrapped to cols columns for the screen: a
+ * title, then lines that end in " \\" where the command goes on (pasted
+ * into a shell, it stays one command). Fills lines[] (at most max) with
+ * pointers into buf and returns how many. */
+int      app_command_layout(const App *a, int cols, char *buf, size_t len, const char **lines, int max);
+/* Snapshot (snapshot.c): the picture as a PNG and as the --print text,
+ * under the next free zview-<model>-NNN name in the current directory
+ * (or the model's when that cannot be written); the note says what was
+ * written. Returns what to redo. */
+Reaction app_snapshot(App *a);
 
 /* The help overlay laid out for a window of cols x rows (the status bar
  * included): a title and as many rows of keys as fit, in as few columns

@@ -16,17 +16,14 @@
 #define SGR_MAX  19
 #define CELL_MAX (2 * SGR_MAX + 4)
 
-#define KEY_DEFAULT (-1)
-
-/* A colour as the terminal sees it: a packed 24-bit RGB for truecolor,
- * else a palette number; KEY_DEFAULT when unset. */
-static inline long colour_key(Quantizer *q, const uint8_t rgb[3], int set, int x, int y)
+/* The colour key of a cell colour at pixel (x, y): see present.h. */
+uint32_t colour_key(Quantizer *q, const uint8_t rgb[3], int set, int x, int y)
 {
-    if (!set)
-        return KEY_DEFAULT;
+    if (!set || q->depth == COLOR_NONE)
+        return CK_DEFAULT;
     if (q->depth == COLOR_TRUE)
-        return ((long)rgb[0] << 16) | ((long)rgb[1] << 8) | rgb[2];
-    return quant_pick(q, rgb, x, y);
+        return CK_RGB(rgb[0], rgb[1], rgb[2]);
+    return CK_PAL(quant_pick(q, rgb, x, y));
 }
 
 static inline char *put_str(char *p, const char *s)
@@ -49,26 +46,32 @@ static inline char *put_uint(char *p, unsigned v)
     return p;
 }
 
+char *sgr_colour(char *p, uint32_t k, int bg)
+{
+    if (k == CK_DEFAULT)
+        return put_str(p, bg ? "49" : "39");
+    if (k & CK_RGB_FLAG) {
+        p = put_str(p, bg ? "48;2;" : "38;2;");
+        p = put_uint(p, k >> 16 & 0xff);
+        *p++ = ';';
+        p = put_uint(p, k >> 8 & 0xff);
+        *p++ = ';';
+        return put_uint(p, k & 0xff);
+    }
+    unsigned n = k - 1;
+    if (n < 8)                  /* the 8 colours: 30-37, 40-47 */
+        return put_uint(p, (bg ? 40 : 30) + n);
+    if (n < 16)                 /* their bright forms: 90-97, 100-107 */
+        return put_uint(p, (bg ? 100 : 90) + n - 8);
+    p = put_str(p, bg ? "48;5;" : "38;5;");
+    return put_uint(p, n);
+}
+
 /* The SGR selecting key k as foreground (bg = 0) or background (bg = 1). */
-static char *put_sgr(char *p, long k, int bg, ColorDepth c)
+static char *put_sgr(char *p, uint32_t k, int bg)
 {
     p = put_str(p, "\x1b[");
-    if (k == KEY_DEFAULT) {
-        p = put_uint(p, bg ? 49 : 39);
-    } else if (c == COLOR_TRUE) {
-        p = put_str(p, bg ? "48;2;" : "38;2;");
-        p = put_uint(p, (unsigned)(k >> 16) & 0xff);
-        *p++ = ';';
-        p = put_uint(p, (unsigned)(k >> 8) & 0xff);
-        *p++ = ';';
-        p = put_uint(p, (unsigned)k & 0xff);
-    } else if (c == COLOR_256) {
-        p = put_str(p, bg ? "48;5;" : "38;5;");
-        p = put_uint(p, (unsigned)k);
-    } else {
-        unsigned base = k < 8 ? (bg ? 40 : 30) : (bg ? 100 - 8 : 90 - 8);
-        p = put_uint(p, base + (unsigned)k);
-    }
+    p = sgr_colour(p, k, bg);
     *p++ = 'm';
     return p;
 }
@@ -111,19 +114,19 @@ char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out)
     for (int r = 0; r < g->rows; r++) {
         const Cell *cell = g->cells + (size_t)r * g->cols;
         /* Each row starts from the terminal's default colours. */
-        long fg = KEY_DEFAULT, bg = KEY_DEFAULT;
+        uint32_t fg = CK_DEFAULT, bg = CK_DEFAULT;
         int coloured = 0;
         for (int x = 0; x < g->cols; x++, cell++) {
             if (c != COLOR_NONE) {
-                long kf = colour_key(&q, cell->fg, cell->flags & CELL_FG, x, 2 * r);
-                long kb = colour_key(&q, cell->bg, cell->flags & CELL_BG, x, 2 * r + 1);
+                uint32_t kf = colour_key(&q, cell->fg, cell->flags & CELL_FG, x, 2 * r);
+                uint32_t kb = colour_key(&q, cell->bg, cell->flags & CELL_BG, x, 2 * r + 1);
                 if (kf != fg) {
-                    p = put_sgr(p, kf, 0, c);
+                    p = put_sgr(p, kf, 0);
                     fg = kf;
                     coloured = 1;
                 }
                 if (kb != bg) {
-                    p = put_sgr(p, kb, 1, c);
+                    p = put_sgr(p, kb, 1);
                     bg = kb;
                     coloured = 1;
                 }

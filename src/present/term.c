@@ -1,21 +1,23 @@
-/* term: the viewer's screen on ncursesw. The only file that includes
- * curses. Everything that changes the terminal's state goes through
- * term_open() and is undone by term_restore(), the one restore path:
- * called on quit, registered with atexit, and from the quit signals.
+/* term: the viewer's screen. The only file that includes curses, which
+ * here drives the terminal's modes (the alternate screen, keypad, the
+ * mouse, the tty settings) and decodes its input; every byte of the
+ * screen itself comes from the screen model (vt.c), which knows what the
+ * terminal shows and sends only what changed. So colours are SGR
+ * escapes of our own: 24-bit whenever COLORTERM or --color asks for it
+ * (no *-direct terminfo entry needed), and under 256/16/8 colours the
+ * very palette numbers --print writes (the same quantizer, dithered by
+ * position), so the screen equals --print.
  *
- * Colour pairs: under 256 colours every (fg, bg) pair of the cube and grey
- * ramp (plus the default colour) is defined once at start and indexed
- * directly, so a pair never changes meaning and curses only sends cells
- * that really changed. Under 16 colours likewise (17 x 17 pairs). Under
- * truecolor, or when the terminal has too few pairs, colours go through
- * a bounded set-associative cache of pairs (truecolor quantised to 6
- * bits a channel so that slowly shading faces keep their pair). */
+ * Everything that changes the terminal's state goes through term_open()
+ * and is undone by term_restore(), the one restore path: called on quit,
+ * registered with atexit, and from the quit signals. */
 
 #define _XOPEN_SOURCE 700
 #define _DEFAULT_SOURCE
 #define NCURSES_WIDECHAR 1
 
 #include <curses.h>
+#include <errno.h>
 #include <poll.h>
 #include <signal.h>
 #include <stdint.h>
@@ -23,6 +25,7 @@
 #include <string.h>
 #include <sys/ioctl.h>
 #include <termios.h>
+#include <time.h>
 #include <unistd.h>
 #include <wchar.h>
 
@@ -36,80 +39,115 @@ extern struct term *set_curterm(struct term *t);
 extern int del_curterm(struct term *t);
 extern int tputs(const char *str, int affcnt, int (*putc)(int));
 
-/* ==== State ==== */
-
-static SCREEN *scr;
-static FILE *scr_out;
-static int in_fd = -1;          /* where keys come from (ncurses keeps it private) */
-static volatile sig_atomic_t term_on;
-static int mouse_on;
-static int signals_on;
-static int atexit_done;
-static ColorDepth depth;
-
-typedef enum { PAIRS_NONE, PAIRS_16, PAIRS_256, PAIRS_CACHE } PairKind;
-static PairKind pair_kind;
-static int fold16;              /* 8-colour terminal: bright colours fold onto 0..7 */
-static int def_fg = -1, def_bg = -1;   /* the terminal's default colours, or white/black */
-
-/* Bounded pair cache: WAYS pairs per set, the least recently used
- * (by frame stamp) is redefined on a miss. Pair number = 1 + slot. */
-#define WAYS 8
-static uint64_t *cache_key;     /* (fg + 1) << 32 | (bg + 1), 0 = empty */
-static uint32_t *cache_stamp;
-static uint32_t  cache_sets;
-static uint32_t  frame_stamp;
-
-/* Under 256 colours a cell keeps the index it had last frame, or takes
- * its left neighbour's, when that colour is within STICKY (squared RGB
- * distance) of the nearest one: a slowly shading surface then keeps its
- * colours from frame to frame and along a row, and curses has fewer
- * cells and colour changes to send. prev256 holds fg | bg << 8 per cell
- * (0 = none). */
-#define STICKY 300
-static uint16_t *prev256;
-static int prev_cols, prev_rows;
-static uint8_t pal_rgb[256][3];
-
-static cchar_t *row_buf;        /* one row of cells for term_draw_cells */
-static size_t   row_cap;
-
-/* Mouse drag state: ncurses reports motion without the button. */
-static int drag_button, drag_x, drag_y;
-
-static struct sigaction old_int, old_term, old_hup, old_tstp;
-
 #define DRAG_ON  "\033[?1002h"
 #define DRAG_OFF "\033[?1002l"
+/* Device status request: the terminal answers "\e[0n" once it has
+ * handled every byte before it, which is how we know a frame arrived. */
+#define STATUS_ASK "\033[5n"
+#define KEY_STATUS_OK  0x7100   /* our key codes for the answers (above ncurses' own) */
+#define KEY_STATUS_BAD 0x7101
+#define ACK_GIVE_UP 8           /* unanswered requests before we stop asking */
+#define PACE_MIN_MS 4           /* first wait for a busy line; doubles up to */
+#define PACE_MAX_MS 100
 
-/* ==== Restore and signals ==== */
+/* Mouse reports that arrive together come out of ncurses as one KEY_MOUSE
+ * with several queued events: they are drained into a small queue. */
+#define MQ_MAX 16
 
-/* One byte to the terminal, now. */
+/* ==== State ====
+ * One terminal per process: curses has one too. The signal handlers
+ * read term_on, the crash bytes and the descriptors. */
+static struct {
+    SCREEN     *scr;
+    FILE       *out;
+    int         out_fd, in_fd;
+    WINDOW     *pad;            /* keys are read through a pad: it never refreshes */
+    int         mouse_on, signals_on, atexit_done;
+    ColorDepth  depth;
+    Quantizer   quant;
+    Vt          vt;
+    /* pacing: the answer to the last status request */
+    int         ask;            /* requests are sent (the output is a terminal) */
+    int         ack_wait;       /* a request is outstanding */
+    int         acks_seen;      /* the terminal has answered at least once */
+    int         unanswered;
+    double      ack_sent_ms;
+    int         pace_ms;
+    /* mouse */
+    int         drag_button, drag_x, drag_y;
+    TermEvent   mq[MQ_MAX];
+    int         mq_head, mq_len;
+    struct sigaction old_int, old_term, old_hup, old_tstp;
+    /* crashes: bytes prepared at open */
+    char        crash_reset[256];
+    size_t      crash_reset_len;
+    struct termios crash_tios;
+    int         crash_fd, crash_tios_ok;
+    struct sigaction old_crash[5];
+} T = { .out_fd = -1, .in_fd = -1, .crash_fd = -1 };
+
+static volatile sig_atomic_t term_on;
+static volatile sig_atomic_t repaint;   /* back from Ctrl-Z: paint everything */
+
+static const int crash_sigs[5] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT };
+
+static double mono_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+/* ==== Writing ==== */
+
+/* All of p to the terminal: a signal or a full non-blocking line only
+ * delays it. Returns 0, or -1 with errno. */
+static int send_all(const char *p, size_t n)
+{
+    while (n) {
+        ssize_t w = write(T.out_fd, p, n);
+        if (w > 0) {
+            p += w;
+            n -= (size_t)w;
+        } else if (w < 0 && errno == EINTR) {
+            continue;
+        } else if (w < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+            struct pollfd pf = { .fd = T.out_fd, .events = POLLOUT };
+            poll(&pf, 1, 1000);
+        } else {
+            if (w == 0)
+                errno = EIO;
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* One byte to the terminal, now (for tputs). */
 static int send_byte(int c)
 {
-    unsigned char b = (unsigned char)c;
-    return write(fileno(scr_out), &b, 1) == 1 ? c : EOF;
+    char b = (char)c;
+    return send_all(&b, 1) == 0 ? c : EOF;
 }
 
 /* Send a capability (or an escape of our own) to the terminal now.
- * Curses keeps its output in a buffer of its own that every update
- * empties, so between updates this lands in order. putp() would not: it
- * goes through stdio's stdout buffer, which nothing flushes until exit
- * (the drag reporting asked for at start reached the terminal only as
- * zview quit). */
+ * Curses keeps its output in a buffer of its own that its calls empty,
+ * so between them this lands in order. putp() would not: it goes through
+ * stdio's stdout buffer, which nothing flushes until exit. */
 static void send_cap(const char *cap)
 {
-    if (cap && cap != (const char *)-1 && scr_out)
+    if (cap && cap != (const char *)-1 && T.out_fd >= 0)
         tputs(cap, 1, send_byte);
 }
 
+/* ==== Restore and signals ==== */
+
 /* Blank the terminal before leaving curses: a terminal whose window grew
  * while in the alternate screen (tmux) keeps the part beyond the old size
- * when it switches back, and a terminal without one keeps everything.
- * Sent to the terminal, not drawn in stdscr: curses' copy of the screen
- * stays for a resume after Ctrl-Z. */
+ * when it switches back, and a terminal without one keeps everything. */
 static void blank_terminal(void)
 {
+    send_cap(tigetstr("sgr0"));
     send_cap(tigetstr("clear"));
 }
 
@@ -118,12 +156,19 @@ void term_restore(void)
     if (!term_on)
         return;
     term_on = 0;
-    if (mouse_on)
+    if (T.mouse_on)
         send_cap(DRAG_OFF);
     blank_terminal();
+    /* curses never drew, so it does not know where the cursor is: endwin
+     * moves it to the last line by an absolute move */
     endwin();           /* cursor back, alternate screen left, modes reset */
-    if (scr_out)
-        fflush(scr_out);
+    if (T.out)
+        fflush(T.out);
+    if (T.pad)
+        delwin(T.pad);
+    T.pad = NULL;
+    vt_free(&T.vt);
+    quant_free(&T.quant);
 }
 
 /* ==== Crashes ====
@@ -133,32 +178,25 @@ void term_restore(void)
  * prepared at open: the handler writes them, restores the termios, and
  * dies of the same signal with the default action. */
 
-static char crash_reset[256];
-static size_t crash_reset_len;
-static struct termios crash_tios;
-static int crash_fd = -1, crash_tios_ok;
-static struct sigaction old_crash[5];
-static const int crash_sigs[5] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT };
-
 static void crash_add(const char *cap)
 {
     if (!cap || cap == (const char *)-1)
         return;
     size_t n = strlen(cap);
-    if (crash_reset_len + n < sizeof crash_reset) {
-        memcpy(crash_reset + crash_reset_len, cap, n);
-        crash_reset_len += n;
+    if (T.crash_reset_len + n < sizeof T.crash_reset) {
+        memcpy(T.crash_reset + T.crash_reset_len, cap, n);
+        T.crash_reset_len += n;
     }
 }
 
 /* Undo our modes: only write(2) and tcsetattr(3), both signal-safe. */
 static void crash_write(void)
 {
-    if (term_on && crash_fd >= 0) {
-        ssize_t w = write(crash_fd, crash_reset, crash_reset_len);
+    if (term_on && T.crash_fd >= 0) {
+        ssize_t w = write(T.crash_fd, T.crash_reset, T.crash_reset_len);
         (void)w;
-        if (crash_tios_ok)
-            tcsetattr(crash_fd, TCSANOW, &crash_tios);
+        if (T.crash_tios_ok)
+            tcsetattr(T.crash_fd, TCSANOW, &T.crash_tios);
     }
 }
 
@@ -172,9 +210,9 @@ static void on_crash(int sig)
 
 static void crash_prepare(int fd)
 {
-    crash_fd = fd;
-    crash_tios_ok = tcgetattr(fd, &crash_tios) == 0;
-    crash_reset_len = 0;
+    T.crash_fd = fd;
+    T.crash_tios_ok = tcgetattr(fd, &T.crash_tios) == 0;
+    T.crash_reset_len = 0;
     crash_add(DRAG_OFF);
     crash_add("\033[?1006;1000l");   /* the mouse reporting ncurses turns on */
     crash_add(tigetstr("sgr0"));
@@ -187,24 +225,23 @@ static void crash_prepare(int fd)
     sigemptyset(&sa.sa_mask);
     sa.sa_handler = on_crash;
     for (int i = 0; i < 5; i++)
-        sigaction(crash_sigs[i], &sa, &old_crash[i]);
+        sigaction(crash_sigs[i], &sa, &T.old_crash[i]);
 }
 
 static void restore_handlers(void)
 {
-    if (!signals_on)
+    if (!T.signals_on)
         return;
-    signals_on = 0;
-    sigaction(SIGINT, &old_int, NULL);
-    sigaction(SIGTERM, &old_term, NULL);
-    sigaction(SIGHUP, &old_hup, NULL);
-    sigaction(SIGTSTP, &old_tstp, NULL);
+    T.signals_on = 0;
+    sigaction(SIGINT, &T.old_int, NULL);
+    sigaction(SIGTERM, &T.old_term, NULL);
+    sigaction(SIGHUP, &T.old_hup, NULL);
+    sigaction(SIGTSTP, &T.old_tstp, NULL);
 }
 
 /* Quit signals: put the terminal back with the async-signal-safe bytes
- * prepared at open (crash_write below; endwin() is not safe here), then
- * die of the same signal so the parent sees the real cause. */
-static void crash_write(void);
+ * prepared at open (endwin() is not safe here), then die of the same
+ * signal so the parent sees the real cause. */
 static void on_quit(int sig)
 {
     crash_write();
@@ -218,17 +255,18 @@ static void on_quit(int sig)
     _exit(128 + sig);
 }
 
-/* Ctrl-Z: leave curses (and drag reporting) before stopping, come back
- * with a full repaint on SIGCONT. */
+/* Ctrl-Z: leave curses (and drag reporting) before stopping; on SIGCONT
+ * curses sets its modes again, and the next read reports a repaint (the
+ * handler is installed without SA_RESTART, so a waiting read returns). */
 static void on_tstp(int sig)
 {
     int was_on = term_on;
     if (was_on) {
-        if (mouse_on)
+        if (T.mouse_on)
             send_cap(DRAG_OFF);
         blank_terminal();
         endwin();
-        fflush(scr_out);
+        fflush(T.out);
     }
     struct sigaction dfl, mine;
     memset(&dfl, 0, sizeof dfl);
@@ -242,10 +280,10 @@ static void on_tstp(int sig)
     sigprocmask(SIG_BLOCK, &set, NULL);
     sigaction(SIGTSTP, &mine, NULL);
     if (was_on && term_on) {
-        if (mouse_on)
+        if (T.mouse_on)
             send_cap(DRAG_ON);
-        clearok(curscr, TRUE);
-        doupdate();
+        doupdate();             /* curses' modes back (an empty screen) */
+        repaint = 1;
     }
 }
 
@@ -255,181 +293,96 @@ static void install_handlers(void)
     memset(&sa, 0, sizeof sa);
     sigemptyset(&sa.sa_mask);
     sa.sa_handler = on_quit;
-    sigaction(SIGINT, &sa, &old_int);
-    sigaction(SIGTERM, &sa, &old_term);
-    sigaction(SIGHUP, &sa, &old_hup);
+    sigaction(SIGINT, &sa, &T.old_int);
+    sigaction(SIGTERM, &sa, &T.old_term);
+    sigaction(SIGHUP, &sa, &T.old_hup);
     sa.sa_handler = on_tstp;
-    sa.sa_flags = SA_RESTART;
-    sigaction(SIGTSTP, &sa, &old_tstp);
-    signals_on = 1;
+    sigaction(SIGTSTP, &sa, &T.old_tstp);
+    T.signals_on = 1;
 }
 
-/* ==== Colour pairs ==== */
+/* ==== Terminal descriptions ==== */
 
-static int fg_or_default(int c) { return c < 0 ? def_fg : c; }
-static int bg_or_default(int c) { return c < 0 ? def_bg : c; }
-
-static int cache_init(int npairs)
+static int description_found(const char *name, int fd)
 {
-    if (npairs > 32768)
-        npairs = 32768;
-    cache_sets = (uint32_t)(npairs / WAYS);
-    if (cache_sets == 0)
-        return -1;
-    size_t n = (size_t)cache_sets * WAYS;
-    free(cache_key);
-    free(cache_stamp);
-    cache_key = calloc(n, sizeof *cache_key);
-    cache_stamp = calloc(n, sizeof *cache_stamp);
-    if (!cache_key || !cache_stamp) {
-        free(cache_key);
-        free(cache_stamp);
-        cache_key = NULL;
-        cache_stamp = NULL;
-        cache_sets = 0;
-        return -1;
-    }
-    return 0;
-}
-
-/* The pair showing colour numbers fg on bg (-1 = default). */
-static int cache_pair(int fg, int bg)
-{
-    if (fg < 0 && bg < 0)
+    int found = 0;
+    if (setupterm(name, fd, &found) != OK || found != 1)
         return 0;
-    uint64_t key = ((uint64_t)(uint32_t)(fg + 1) << 32) | (uint32_t)(bg + 1);
-    uint32_t set = (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> 40) % cache_sets;
-    uint32_t base = set * WAYS, victim = base;
-    for (uint32_t i = base; i < base + WAYS; i++) {
-        if (cache_key[i] == key) {
-            cache_stamp[i] = frame_stamp;
-            return (int)i + 1;
-        }
-        if (cache_key[i] == 0 || cache_stamp[i] < cache_stamp[victim])
-            victim = i;
-        if (cache_key[i] == 0)
-            break;
-    }
-    cache_key[victim] = key;
-    cache_stamp[victim] = frame_stamp;
-    init_extended_pair((int)victim + 1, fg_or_default(fg), bg_or_default(bg));
-    return (int)victim + 1;
+    del_curterm(set_curterm(NULL));
+    return 1;
 }
 
-static inline int dist2(const uint8_t a[3], const uint8_t b[3])
+const char *term_resolve(const char *name)
 {
-    int dr = a[0] - b[0], dg = a[1] - b[1], db = a[2] - b[2];
-    return dr * dr + dg * dg + db * db;
+    static const char *const fallbacks[] = { "xterm-256color", "xterm", "vt100", "ansi" };
+    if (!name)
+        name = getenv("TERM");
+    if (name && *name && description_found(name, -1))
+        return name;
+    for (size_t i = 0; i < sizeof fallbacks / sizeof fallbacks[0]; i++)
+        if (description_found(fallbacks[i], -1))
+            return fallbacks[i];
+    return NULL;
 }
 
-/* The 256-colour index for rgb, preferring the cell's previous index,
- * then its left neighbour's, when they are nearly as close. */
-static inline int pick256(const uint8_t rgb[3], int prev, int left)
+/* A capability is the ANSI form we write ourselves (padding aside). */
+static int cap_is(const char *name, const char *ansi)
 {
-    int best = palette_256(rgb);
-    if (best == prev || best == left)
-        return best;
-    int lim = dist2(rgb, pal_rgb[best]) + STICKY;
-    if (prev && dist2(rgb, pal_rgb[prev]) <= lim)
-        return prev;
-    if (left && dist2(rgb, pal_rgb[left]) <= lim)
-        return left;
-    return best;
+    const char *s = tigetstr(name);
+    return s && s != (const char *)-1 && strncmp(s, ansi, strlen(ansi)) == 0;
 }
 
-static inline int c16(const uint8_t rgb[3])
+static int flag(const char *name)
 {
-    if (!fold16)
-        return palette_16(rgb);
-    /* 8 colours: the nearest of those (folding bright grey onto black
-     * would lose every grey surface) */
-    int best = 0, bestd = 1 << 30;
-    for (int i = 0; i < 8; i++) {
-        int d = dist2(rgb, pal_rgb[i]);
-        if (d < bestd) {
-            bestd = d;
-            best = i;
-        }
-    }
-    return best;
+    return tigetflag(name) > 0;
 }
 
-/* Colour number of a cell colour under the depth in use (-1 = unset). */
-static inline int colour_number(const uint8_t rgb[3], int set)
+static void read_caps(VtCaps *c)
 {
-    if (!set)
-        return -1;
-    switch (depth) {
-    case COLOR_TRUE:
-        /* 6 bits a channel, widened back to 8 */
-        return ((rgb[0] & 0xfc) | rgb[0] >> 6) << 16 | ((rgb[1] & 0xfc) | rgb[1] >> 6) << 8 |
-               ((rgb[2] & 0xfc) | rgb[2] >> 6);
-    case COLOR_256: return palette_256(rgb);
-    case COLOR_16:  return c16(rgb);
-    default:        return -1;
-    }
-}
-
-static inline int cell_pair(const Cell *c)
-{
-    switch (pair_kind) {
-    case PAIRS_16: {
-        int f = c->flags & CELL_FG ? c16(c->fg) + 1 : 0;
-        int b = c->flags & CELL_BG ? c16(c->bg) + 1 : 0;
-        return f * 17 + b;
-    }
-    case PAIRS_CACHE:
-        return cache_pair(colour_number(c->fg, c->flags & CELL_FG),
-                          colour_number(c->bg, c->flags & CELL_BG));
-    default:
-        return 0;
-    }
-}
-
-static void colours_init(ColorDepth want)
-{
-    depth = COLOR_NONE;
-    pair_kind = PAIRS_NONE;
-    if (want == COLOR_NONE || !has_colors() || start_color() == ERR)
-        return;
-    if (use_default_colors() == ERR) {
-        def_fg = COLOR_WHITE;
-        def_bg = COLOR_BLACK;
-    }
-    int colors = COLORS, pairs = COLOR_PAIRS;
-    if (want == COLOR_TRUE && colors >= 0x1000000)
-        depth = COLOR_TRUE;
-    else if (want >= COLOR_256 && colors >= 256)
-        depth = COLOR_256;
-    else if (colors >= 8)
-        depth = COLOR_16;
+    memset(c, 0, sizeof *c);
+    c->ech = cap_is("ech", "\033[%p1%dX");
+    c->el = cap_is("el", "\033[K");
+    c->rel = cap_is("cuf", "\033[%p1%dC") && cap_is("cub", "\033[%p1%dD") &&
+             cap_is("cud", "\033[%p1%dB") && cap_is("cuu", "\033[%p1%dA");
+    c->hpa = cap_is("hpa", "\033[%i%p1%dG");
+    c->vpa = cap_is("vpa", "\033[%i%p1%dd");
+    c->am = flag("am");
+    c->xenl = flag("xenl");
+    const char *cl = tigetstr("clear");
+    /* padding ($<...>) means nothing to a terminal emulator: the plain form */
+    if (cl && cl != (const char *)-1 && strncmp(cl, "\033[H\033[2J", 7) == 0)
+        snprintf(c->clear, sizeof c->clear, "\033[H\033[2J");
     else
-        return;
-    fold16 = colors < 16;
-    for (int i = 0; i < 256; i++)
-        palette_256_rgb(i, pal_rgb[i]);
-    if (depth == COLOR_256 && pairs > 241 * 241) {
-        pair_kind = PAIRS_256;
-        for (int f = 0; f <= 240; f++)
-            for (int b = 0; b <= 240; b++)
-                if (f || b)
-                    init_extended_pair(f * 241 + b, fg_or_default(f ? f + 15 : -1),
-                                       bg_or_default(b ? b + 15 : -1));
-    } else if (depth == COLOR_16 && pairs > 17 * 17) {
-        pair_kind = PAIRS_16;
-        int top = fold16 ? 8 : 16;
-        for (int f = 0; f <= 16; f++)
-            for (int b = 0; b <= 16; b++)
-                if ((f || b) && f <= top && b <= top)
-                    init_extended_pair(f * 17 + b, fg_or_default(f - 1), bg_or_default(b - 1));
-    } else if (cache_init(pairs - 1) == 0) {
-        pair_kind = PAIRS_CACHE;
-    } else {
-        depth = COLOR_NONE;
-    }
+        snprintf(c->clear, sizeof c->clear, "\033[H\033[J");
+}
+
+/* The colours to use: what is asked, lowered to what the description
+ * has; except 24-bit, which a description can only tell through a
+ * *-direct entry that most servers lack, so it is taken as asked. */
+static ColorDepth pick_depth(ColorDepth want, int colors)
+{
+    if (want == COLOR_TRUE)
+        return COLOR_TRUE;
+    if (want >= COLOR_256 && colors >= 256)
+        return COLOR_256;
+    if (want >= COLOR_16 && colors >= 16)
+        return COLOR_16;
+    if (want >= COLOR_8 && colors >= 8)
+        return COLOR_8;
+    return COLOR_NONE;
 }
 
 /* ==== Start ==== */
+
+static void open_failed(SCREEN *s, const char *why, char *err, size_t errlen)
+{
+    if (s) {
+        endwin();
+        delscreen(s);
+    }
+    restore_handlers();
+    snprintf(err, errlen, "%s", why);
+}
 
 int term_open(const TermConfig *cfg, char *err, size_t errlen)
 {
@@ -438,6 +391,9 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
         return -1;
     }
     FILE *out = cfg->out ? cfg->out : stdout, *in = cfg->in ? cfg->in : stdin;
+    const char *name = cfg->termname ? cfg->termname : getenv("TERM");
+    char why[160];
+    snprintf(why, sizeof why, "unknown terminal type '%s'", name ? name : "");
     /* Our handlers go in first: ncurses then leaves SIGINT/SIGTERM/SIGTSTP
      * alone (it only catches signals still at their default) and keeps
      * SIGWINCH, which becomes KEY_RESIZE. */
@@ -446,63 +402,80 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     fflush(out);
     /* Look the terminal up first: newterm() leaks when it fails. */
     int found = 0;
-    if (setupterm(cfg->termname, fileno(out), &found) != OK || found != 1) {
-        restore_handlers();
-        snprintf(err, errlen, "unknown terminal type '%s'",
-                 cfg->termname ? cfg->termname : getenv("TERM") ? getenv("TERM") : "");
+    if (!name || setupterm(name, fileno(out), &found) != OK || found != 1) {
+        open_failed(NULL, why, err, errlen);
         return -1;
     }
     if (cfg->signals)
-        crash_prepare(fileno(out));   /* termios as the shell left it */
+        crash_prepare(fileno(out));   /* termios as the shell left it (newterm changes it) */
     del_curterm(set_curterm(NULL));
-    SCREEN *s = newterm(cfg->termname, out, in);
+    SCREEN *s = newterm(name, out, in);
     if (!s) {
-        restore_handlers();
-        snprintf(err, errlen, "unknown terminal type '%s'",
-                 cfg->termname ? cfg->termname : getenv("TERM") ? getenv("TERM") : "");
+        open_failed(NULL, why, err, errlen);
         return -1;
     }
     set_term(s);
-    const char *cup = tigetstr("cup");
-    if (!cup || cup == (const char *)-1) {
-        endwin();
-        delscreen(s);
-        restore_handlers();
-        snprintf(err, errlen, "the terminal cannot move the cursor");
+    /* the screen is written with ANSI cursor addressing */
+    if (!cap_is("cup", "\033[%i%p1%d;%p2%dH")) {
+        open_failed(s, "the terminal cannot move the cursor the ANSI way", err, errlen);
         return -1;
     }
-    scr = s;
-    scr_out = out;
-    in_fd = fileno(in);
+    WINDOW *pad = newpad(1, 1);
+    VtCaps caps;
+    read_caps(&caps);
+    ColorDepth depth = pick_depth(cfg->color, tigetnum("colors"));
+    if (!pad || quant_init(&T.quant, depth)) {
+        if (pad)
+            delwin(pad);
+        quant_free(&T.quant);
+        open_failed(s, "out of memory", err, errlen);
+        return -1;
+    }
+    T.scr = s;
+    T.out = out;
+    T.out_fd = fileno(out);
+    T.in_fd = fileno(in);
+    T.pad = pad;
+    T.depth = depth;
+    vt_init(&T.vt, &caps);
     term_on = 1;
-    if (!atexit_done) {
+    repaint = 0;
+    if (!T.atexit_done) {
         atexit(term_restore);
-        atexit_done = 1;
+        T.atexit_done = 1;
     }
     cbreak();
     noecho();
     nonl();
-    intrflush(stdscr, FALSE);
-    keypad(stdscr, TRUE);
-    leaveok(stdscr, TRUE);      /* no cursor moves back after each update */
+    intrflush(pad, FALSE);
+    keypad(pad, TRUE);          /* also enters the alternate screen */
     curs_set(0);
     set_escdelay(25);
-    colours_init(cfg->color);
-    mouse_on = 0;
-    drag_button = 0;
+    define_key("\033[0n", KEY_STATUS_OK);
+    define_key("\033[3n", KEY_STATUS_BAD);
+    /* curses has set the tty: without ONLCR a line feed only goes down
+     * (on a file, as the tty benchmark writes, as on a terminal) */
+    struct termios tio;
+    T.vt.caps.lf = tcgetattr(T.out_fd, &tio) != 0 || !(tio.c_oflag & OPOST) || !(tio.c_oflag & ONLCR);
+    T.ask = isatty(T.out_fd);
+    T.ack_wait = T.acks_seen = T.unanswered = 0;
+    T.pace_ms = PACE_MIN_MS;
+    T.mouse_on = 0;
+    T.drag_button = 0;
+    T.mq_len = 0;
     if (cfg->mouse) {
         mmask_t want = BUTTON1_PRESSED | BUTTON1_RELEASED | BUTTON3_PRESSED | BUTTON3_RELEASED |
                        BUTTON4_PRESSED | BUTTON5_PRESSED | REPORT_MOUSE_POSITION;
         if (mousemask(want, NULL) != 0) {
             mouseinterval(0);   /* presses and releases as they come, no clicks */
             send_cap(DRAG_ON);      /* ncurses never asks for drag reports itself */
-            mouse_on = 1;
+            T.mouse_on = 1;
         }
     }
     return 0;
 }
 
-ColorDepth term_color(void) { return depth; }
+ColorDepth term_color(void) { return T.depth; }
 
 void term_size(int *cols_out, int *rows_out)
 {
@@ -517,77 +490,52 @@ void term_set_size(int cols, int rows)
     resizeterm(rows, cols);
 }
 
-/* ==== Drawing ==== */
+/* ==== Drawing into the model ==== */
+
+/* The model follows the window's size; a new size repaints everything. */
+static int fit(void)
+{
+    int cols, rows;
+    term_size(&cols, &rows);
+    if (cols == T.vt.cols && rows == T.vt.rows && T.vt.want)
+        return 0;
+    return vt_resize(&T.vt, cols, rows);
+}
 
 void term_draw_cells(const CellGrid *g, int top)
 {
-    int H, W;
-    getmaxyx(stdscr, H, W);
-    frame_stamp++;
-    int cols = g->cols < W ? g->cols : W;
-    if (cols <= 0)
+    if (fit())
         return;
-    /* A row is built as cchar_t and copied in one call: much cheaper
-     * than adding cell by cell (no cursor, wrap or attribute logic). */
-    if ((size_t)cols > row_cap) {
-        cchar_t *nb = realloc(row_buf, (size_t)cols * sizeof *nb);
-        if (!nb)
-            return;
-        row_buf = nb;
-        row_cap = (size_t)cols;
-    }
-    if (pair_kind == PAIRS_256 && (g->cols != prev_cols || g->rows != prev_rows || !prev256)) {
-        free(prev256);
-        prev256 = calloc((size_t)g->cols * g->rows + 1, sizeof *prev256);
-        prev_cols = g->cols;
-        prev_rows = g->rows;
-    }
-    wchar_t wc[2] = { 0, 0 };
-    for (int r = 0; r < g->rows && top + r < H; r++) {
+    for (int r = 0; r < g->rows; r++) {
         const Cell *c = g->cells + (size_t)r * g->cols;
-        uint16_t *pv = prev256 ? prev256 + (size_t)r * g->cols : NULL;
-        int lf = 0, lb = 0;
-        for (int x = 0; x < cols; x++, c++) {
-            int pair;
-            if (pair_kind == PAIRS_256 && pv) {
-                int f = c->flags & CELL_FG ? pick256(c->fg, pv[x] & 0xff, lf) : 0;
-                int b = c->flags & CELL_BG ? pick256(c->bg, pv[x] >> 8, lb) : 0;
-                pv[x] = (uint16_t)(f | b << 8);
-                lf = f;
-                lb = b;
-                pair = (f ? f - 15 : 0) * 241 + (b ? b - 15 : 0);
-            } else {
-                pair = cell_pair(c);
-            }
-            wc[0] = (wchar_t)c->ch;
-            setcchar(&row_buf[x], wc, A_NORMAL, 0, &pair);
+        VtCell *d = vt_at(&T.vt, top + r, 0);
+        if (!d)
+            break;
+        int n = g->cols < T.vt.cols ? g->cols : T.vt.cols;
+        /* the same colour keys at the same pixels as --print */
+        for (int x = 0; x < n; x++, c++, d++) {
+            d->ch = c->ch;
+            d->fg = colour_key(&T.quant, c->fg, c->flags & CELL_FG, x, 2 * r);
+            d->bg = colour_key(&T.quant, c->bg, c->flags & CELL_BG, x, 2 * r + 1);
+            d->attr = 0;
         }
-        mvwadd_wchnstr(stdscr, top + r, 0, row_buf, cols);
     }
 }
 
 void term_draw_bar(int y, const char *text)
 {
-    int H, W;
-    getmaxyx(stdscr, H, W);
-    if (y < 0 || y >= H)
+    if (fit())
         return;
-    int pair = 0;
-    wattr_set(stdscr, A_REVERSE, 0, &pair);
-    wmove(stdscr, y, 0);
-    int n = (int)strlen(text);
-    if (n > W)
-        n = W;
-    waddnstr(stdscr, text, n);
-    for (int x = n; x < W; x++)
-        waddch(stdscr, ' ');    /* the bottom-right cell returns ERR but is written */
-    wattr_set(stdscr, A_NORMAL, 0, &pair);
+    int n = vt_text(&T.vt, y, 0, text, T.vt.cols, VT_REVERSE);
+    for (int x = n; x < T.vt.cols; x++)
+        vt_text(&T.vt, y, x, " ", 1, VT_REVERSE);
 }
 
 void term_draw_box(const char *const *lines, int n)
 {
-    int H, W;
-    getmaxyx(stdscr, H, W);
+    if (fit())
+        return;
+    int H = T.vt.rows, W = T.vt.cols;
     int w = 0;
     for (int i = 0; i < n; i++) {
         int len = (int)strlen(lines[i]);
@@ -599,62 +547,116 @@ void term_draw_box(const char *const *lines, int n)
         w = W;
     int h = n + 2 > H - 1 ? H - 1 : n + 2;
     int x0 = (W - w) / 2, y0 = (H - 1 - h) / 2;
-    int pair = 0;
-    wattr_set(stdscr, A_NORMAL, 0, &pair);
     for (int r = 0; r < h; r++) {
-        wmove(stdscr, y0 + r, x0);
         int edge = r == 0 || r == h - 1;
         const char *t = !edge && r - 1 < n ? lines[r - 1] : "";
         int len = (int)strlen(t);
         for (int x = 0; x < w; x++) {
-            char ch;
+            char ch[2] = { 0, 0 };
             if (edge)
-                ch = x == 0 || x == w - 1 ? '+' : '-';
+                ch[0] = x == 0 || x == w - 1 ? '+' : '-';
             else if (x == 0 || x == w - 1)
-                ch = '|';
+                ch[0] = '|';
             else
-                ch = x - 2 >= 0 && x - 2 < len ? t[x - 2] : ' ';
-            waddch(stdscr, (chtype)(unsigned char)ch);
+                ch[0] = x - 2 >= 0 && x - 2 < len ? t[x - 2] : ' ';
+            vt_text(&T.vt, y0 + r, x0 + x, ch, 1, 0);
         }
     }
 }
 
 void term_erase(void)
 {
-    werase(stdscr);
+    if (fit() == 0)
+        vt_clear(&T.vt);
 }
 
 void term_message(const char *text)
 {
-    int H, W;
-    getmaxyx(stdscr, H, W);
-    werase(stdscr);
+    if (fit())
+        return;
+    vt_clear(&T.vt);
     int n = (int)strlen(text);
-    if (n > W)
-        n = W;
-    mvwaddnstr(stdscr, H / 2, (W - n) / 2, text, n);
+    if (n > T.vt.cols)
+        n = T.vt.cols;
+    vt_text(&T.vt, T.vt.rows / 2, (T.vt.cols - n) / 2, text, n, 0);
 }
 
-void term_update(int full)
+/* ==== Sending ==== */
+
+int term_update(int full)
 {
+    if (fit()) {
+        errno = ENOMEM;
+        return -1;
+    }
     if (full)
-        clearok(curscr, TRUE);
-    wnoutrefresh(stdscr);
-    doupdate();
+        vt_invalidate(&T.vt);
+    if (vt_encode(&T.vt)) {
+        errno = ENOMEM;
+        return -1;
+    }
+    if (T.vt.len == 0)
+        return 0;
+    if (send_all(T.vt.buf, T.vt.len))
+        return -1;
+    /* ask for an answer once the frame is through, while the terminal
+     * answers at all */
+    if (T.ask && !T.ack_wait && (T.acks_seen || T.unanswered < ACK_GIVE_UP)) {
+        if (send_all(STATUS_ASK, sizeof STATUS_ASK - 1))
+            return -1;
+        T.ack_wait = 1;
+        T.ack_sent_ms = mono_ms();
+        T.unanswered++;
+    }
+    T.pace_ms = PACE_MIN_MS;
+    return 0;
+}
+
+size_t term_last_bytes(void)
+{
+    return T.vt.len;
+}
+
+int term_ready(void)
+{
+    int queued = 0;
+    if (ioctl(T.out_fd, TIOCOUTQ, &queued) != 0)
+        queued = 0;             /* not a terminal (the tty benchmark's file) */
+    struct pollfd pf = { .fd = T.out_fd, .events = POLLOUT };
+    int writable = poll(&pf, 1, 0) != 0;        /* an error: let the write report it */
+    double waited = T.ack_wait && T.acks_seen ? mono_ms() - T.ack_sent_ms : -1;
+    return vt_may_send(queued, writable, waited);
+}
+
+int term_pace_ms(void)
+{
+    if (T.ack_wait && T.acks_seen) {
+        /* the answer wakes the reader; this is the wait for a lost one */
+        double left = VT_ACK_PATIENCE_MS - (mono_ms() - T.ack_sent_ms);
+        return left > 0 ? (int)left + 1 : 0;
+    }
+    /* the line is busy: look again soon, less often the longer it is */
+    int ms = T.pace_ms;
+    T.pace_ms = ms * 2 < PACE_MAX_MS ? ms * 2 : PACE_MAX_MS;
+    return ms;
 }
 
 /* ==== Input ==== */
 
-/* Mouse reports that arrive together come out of ncurses as one KEY_MOUSE
- * with several queued events: they are drained into this queue. */
-#define MQ_MAX 16
-static TermEvent mq[MQ_MAX];
-static int mq_head, mq_len;
-
 static void mq_push(const TermEvent *ev)
 {
-    if (mq_len < MQ_MAX)
-        mq[(mq_head + mq_len++) % MQ_MAX] = *ev;
+    if (T.mq_len < MQ_MAX)
+        T.mq[(T.mq_head + T.mq_len++) % MQ_MAX] = *ev;
+}
+
+static int mq_pop(TermEvent *ev)
+{
+    if (!T.mq_len)
+        return 0;
+    *ev = T.mq[T.mq_head];
+    T.mq_head = (T.mq_head + 1) % MQ_MAX;
+    T.mq_len--;
+    return 1;
 }
 
 /* One mouse report -> an event; 0 for reports that only change state. */
@@ -668,33 +670,23 @@ static int mouse_event(const MEVENT *me, TermEvent *ev)
         return 1;
     }
     if (b & (BUTTON1_PRESSED | BUTTON3_PRESSED)) {
-        drag_button = b & BUTTON1_PRESSED ? 1 : 3;
-        drag_x = me->x;
-        drag_y = me->y;
+        T.drag_button = b & BUTTON1_PRESSED ? 1 : 3;
+        T.drag_x = me->x;
+        T.drag_y = me->y;
         return 0;
     }
     int release = (b & (BUTTON1_RELEASED | BUTTON3_RELEASED)) != 0;
-    if (!drag_button || !(release || (b & REPORT_MOUSE_POSITION)))
+    if (!T.drag_button || !(release || (b & REPORT_MOUSE_POSITION)))
         return 0;
     ev->type = TE_DRAG;
-    ev->button = drag_button;
-    ev->dx = me->x - drag_x;
-    ev->dy = me->y - drag_y;
-    drag_x = me->x;
-    drag_y = me->y;
+    ev->button = T.drag_button;
+    ev->dx = me->x - T.drag_x;
+    ev->dy = me->y - T.drag_y;
+    T.drag_x = me->x;
+    T.drag_y = me->y;
     if (release)
-        drag_button = 0;
+        T.drag_button = 0;
     return ev->dx || ev->dy;
-}
-
-static int mq_pop(TermEvent *ev)
-{
-    if (!mq_len)
-        return 0;
-    *ev = mq[mq_head];
-    mq_head = (mq_head + 1) % MQ_MAX;
-    mq_len--;
-    return 1;
 }
 
 static void mouse_drain(void)
@@ -712,24 +704,37 @@ static void mouse_drain(void)
  * polls readable with no byte waiting. */
 static int input_ended(void)
 {
-    struct pollfd p = { .fd = in_fd, .events = POLLIN };
-    if (in_fd < 0 || poll(&p, 1, 0) <= 0)
+    struct pollfd p = { .fd = T.in_fd, .events = POLLIN };
+    if (T.in_fd < 0 || poll(&p, 1, 0) <= 0)
         return 0;       /* nothing pending: a timeout or a signal */
     int n = 0;
-    if (ioctl(in_fd, FIONREAD, &n) == 0 && n > 0)
+    if (ioctl(T.in_fd, FIONREAD, &n) == 0 && n > 0)
         return 0;       /* a key came just after the timeout */
+    return 1;
+}
+
+/* A repaint after Ctrl-Z reads as a resize: everything is drawn again. */
+static int take_repaint(TermEvent *ev)
+{
+    if (!repaint)
+        return 0;
+    repaint = 0;
+    vt_invalidate(&T.vt);
+    ev->type = TE_RESIZE;
     return 1;
 }
 
 int term_read(TermEvent *ev, int timeout_ms)
 {
     memset(ev, 0, sizeof *ev);
-    if (mq_pop(ev))
+    if (mq_pop(ev) || take_repaint(ev))
         return 1;
-    wtimeout(stdscr, timeout_ms);
+    wtimeout(T.pad, timeout_ms);
     for (;;) {
         wint_t wc;
-        int r = wget_wch(stdscr, &wc);
+        int r = wget_wch(T.pad, &wc);
+        if (take_repaint(ev))
+            return 1;
         if (r == ERR)
             return input_ended() ? -1 : 0;
         if (r != KEY_CODE_YES) {
@@ -745,6 +750,14 @@ int term_read(TermEvent *ev, int timeout_ms)
         case KEY_RIGHT:  ev->key = TK_RIGHT; return 1;
         case KEY_BTAB:   ev->key = TK_BTAB; return 1;
         case KEY_RESIZE: ev->type = TE_RESIZE; return 1;
+        case KEY_STATUS_OK:
+        case KEY_STATUS_BAD:
+            /* the last frame is through: the next may go */
+            T.ack_wait = 0;
+            T.acks_seen = 1;
+            T.unanswered = 0;
+            ev->type = TE_READY;
+            return 1;
         case KEY_MOUSE:
             mouse_drain();
             if (mq_pop(ev))
@@ -754,5 +767,8 @@ int term_read(TermEvent *ev, int timeout_ms)
             break;      /* other function keys mean nothing here */
         }
         memset(ev, 0, sizeof *ev);
+        /* a key that means nothing does not end the wait early */
+        if (timeout_ms != 0)
+            wtimeout(T.pad, timeout_ms);
     }
 }

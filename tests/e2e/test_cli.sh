@@ -194,3 +194,50 @@ if [ -w /dev/full ]; then
 else
     echo "ok - # skip no /dev/full"
 fi
+
+# --turntable N: N frames a 360/N-degree turn apart, the number in the name
+expect_status "--turntable 4 -o pattern.png" 0 "$Z" --turntable 4 -o "$T/tt-%03d.png" --size 64x48 assets/knot.obj
+if [ -s "$T/tt-000.png" ] && [ -s "$T/tt-003.png" ] && [ ! -e "$T/tt-004.png" ]; then ok "--turntable 4 writes frames 000 to 003"; else
+    notok "--turntable 4 writes frames 000 to 003" "$(ls "$T")"; fi
+if command -v python3 >/dev/null 2>&1; then
+    bad=0
+    for k in 0 1 2 3; do
+        [ "$(python3 tests/e2e/pngsize.py "$T/tt-00$k.png")" = "64 48" ] || bad=1
+    done
+    if [ $bad -eq 0 ]; then ok "--turntable frames decode at the size asked"; else notok "--turntable frames decode at the size asked"; fi
+fi
+if ! cmp -s "$T/tt-000.png" "$T/tt-001.png" && ! cmp -s "$T/tt-001.png" "$T/tt-002.png"; then ok "--turntable frames differ"; else
+    notok "--turntable frames differ"; fi
+# text frames: frame k is the view turned 360k/N degrees, fitted as frame 0
+expect_status "--turntable 4 -o pattern.txt" 0 "$Z" --turntable 4 -o "$T/tt-%d.txt" --size 40x12 --color 256 --view front assets/knot.obj
+"$Z" --print --size 40x12 --color 256 --view front assets/knot.obj >"$T/f0"
+"$Z" --print --size 40x12 --color 256 --view front --yaw 90 --fit-from 0,0,0 assets/knot.obj >"$T/f1"
+if cmp -s "$T/tt-0.txt" "$T/f0" && cmp -s "$T/tt-1.txt" "$T/f1" && ! cmp -s "$T/tt-1.txt" "$T/tt-2.txt"; then
+    ok "--turntable text frames are the turned views --print gives"; else notok "--turntable text frames are the turned views --print gives"; fi
+"$Z" --turntable 3 --print --size 20x6 --color none assets/cube.obj >"$T/ttp"
+if [ "$(wc -l <"$T/ttp")" -eq 18 ]; then ok "--turntable --print writes the frames to stdout"; else notok "--turntable --print writes the frames to stdout" "$(wc -l <"$T/ttp") lines"; fi
+expect_status "--turntable: a pattern without a number is a usage error" 2 "$Z" --turntable 3 -o "$T/t.png" assets/cube.obj
+expect_err "the pattern's problem is named" "needs exactly one integer conversion"
+expect_status "--turntable: two numbers are a usage error" 2 "$Z" --turntable 3 -o "$T/t-%d-%d.png" assets/cube.obj
+expect_status "--turntable: %s is a usage error" 2 "$Z" --turntable 3 -o "$T/t-%s.png" assets/cube.obj
+expect_status "--turntable: %% and one number are fine" 0 "$Z" --turntable 2 -o "$T/t-%%-%02d.ppm" --size 8x6 assets/cube.obj
+if [ -s "$T/t-%-01.ppm" ]; then ok "%% is a percent sign in the name"; else notok "%% is a percent sign in the name" "$(ls "$T")"; fi
+expect_status "--turntable without an output is a usage error" 2 "$Z" --turntable 3 assets/cube.obj
+expect_status "--turntable 0 is a usage error" 2 "$Z" --turntable 0 -o "$T/t-%d.png" assets/cube.obj
+if [ -w /dev/full ]; then
+    ln -s /dev/full "$T/full-1.png"
+    "$Z" --turntable 3 -o "$T/full-%d.png" --size 16x12 assets/cube.obj >/dev/null 2>"$T/err" </dev/null
+    st=$?
+    if [ $st -eq 1 ] && grep -qx "zview: $T/full-1.png: No space left on device" "$T/err" && [ ! -e "$T/full-2.png" ]; then
+        ok "--turntable stops at the first frame that cannot be written"; else
+        notok "--turntable stops at the first frame that cannot be written" "status $st: $(cat "$T/err")"; fi
+fi
+# -o FILE.txt: the text --print gives
+expect_status "-o FILE.txt" 0 "$Z" -o "$T/one.txt" --size 30x8 --color 256 assets/torus.obj
+"$Z" --print --size 30x8 --color 256 assets/torus.obj >"$T/one-print"
+if cmp -s "$T/one.txt" "$T/one-print"; then ok "-o FILE.txt writes what --print does"; else notok "-o FILE.txt writes what --print does"; fi
+# --print-view with no terminal at all: an error, not a frame in the command's place
+echo | TERM=xterm-256color setsid -w "$Z" --print-view assets/cube.obj >"$T/out" 2>"$T/err"
+st=$?
+if [ $st -eq 1 ] && [ ! -s "$T/out" ] && grep -q "print-view" "$T/err"; then ok "--print-view without a terminal fails cleanly"; else
+    notok "--print-view without a terminal fails cleanly" "status $st: $(cat "$T/err")"; fi

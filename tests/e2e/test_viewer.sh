@@ -111,6 +111,23 @@ wait_gone() {
     return 1
 }
 check() { if eval "$2"; then ok "$1"; else notok "$1" "$3"; fi; }
+# looks ROWS: what the first ROWS rows of the pane look like, colours
+# included (looks.py: a half block of a on b is one of b on a)
+PY=$(command -v python3)
+looks() { tm capture-pane -p -e -N -t zv | head -n "$1" | python3 tests/e2e/looks.py; }
+# print_looks ARGS...: the same for a --print frame
+print_looks() { "$Z" --print "$@" | python3 tests/e2e/looks.py; }
+# wait_looks ROWS FILE: poll until the pane's looks equal FILE
+wait_looks() {
+    i=0
+    while [ $i -lt 200 ]; do
+        looks "$1" >"$T/looks"
+        cmp -s "$T/looks" "$2" && return 0
+        sleep 0.05
+        i=$((i + 1))
+    done
+    return 1
+}
 
 # ==== start-up, status bar, --print equality ====
 start 100 30 assets/torus.obj
@@ -122,9 +139,14 @@ check "algorithm named" 'echo "$bar" | grep -q "| zbuffer "' "$bar"
 check "picture size in pixels" 'echo "$bar" | grep -q "100x58px"' "$bar"
 picture 29 >"$T/p0"
 check "picture is not empty" '[ "$(tr -d " \n" <"$T/p0" | wc -c)" -gt 500 ]' "$(head -c 300 "$T/p0")"
-# glyphs only (colours stripped): --color none would shade with glyphs
-"$Z" --print --color 256 --size 100x29 assets/torus.obj | sed 's/\x1b\[[0-9;]*m//g; s/[[:space:]]*$//' >"$T/print"
-check "screen equals --print cell for cell" 'cmp -s "$T/p0" "$T/print"' "$(diff "$T/p0" "$T/print" | head -5)"
+# colours included: the viewer uses --print's quantizer, dithered alike
+if [ -n "$PY" ]; then
+    print_looks --color 256 --size 100x29 assets/torus.obj >"$T/print"
+    wait_looks 29 "$T/print"
+    check "screen equals --print cell for cell, colours included (256)" 'cmp -s "$T/looks" "$T/print"' "$(diff "$T/looks" "$T/print" | head -5)"
+else
+    echo "ok - # skip no python3: screen equals --print with colours"
+fi
 
 # ==== keys ====
 tm send-keys -t zv Right
@@ -213,18 +235,14 @@ if wait_for '\[all 6\]'; then ok "N selects the whole scene"; else notok "N sele
 start 100 30 assets/torus.obj
 wait_for 'faces [0-9]+ drawn' >/dev/null
 picture 29 >"$T/r0"
-"$Z" --print --color 256 --size 70x21 assets/torus.obj | sed 's/\x1b\[[0-9;]*m//g; s/[[:space:]]*$//' >"$T/print"
 tm resize-window -t zv -x 70 -y 22
 # the new picture is exactly what --print draws at the new size
-i=0
-while [ $i -lt 200 ]; do
-    cap
-    picture 21 | cmp -s - "$T/print" && break
-    sleep 0.05
-    i=$((i + 1))
-done
-picture 21 >"$T/r1"
-check "the picture follows a resize (equals --print at the new size)" 'cmp -s "$T/r1" "$T/print"' "$(diff "$T/r1" "$T/print" | head -5)"
+if [ -n "$PY" ]; then
+    print_looks --color 256 --size 70x21 assets/torus.obj >"$T/print"
+    wait_looks 21 "$T/print"
+    check "the picture follows a resize (equals --print at the new size)" 'cmp -s "$T/looks" "$T/print"' "$(diff "$T/looks" "$T/print" | head -5)"
+fi
+wait_for 'faces 12288' >/dev/null
 check "the status bar moves to the new last line" 'status 22 | grep -q "faces 12288"' "$(status 22)"
 tm resize-window -t zv -x 10 -y 3
 if wait_for 'too small'; then ok "a tiny window shows a short message"; else notok "a tiny window shows a short message" "$(cat "$T/screen")"; fi
@@ -281,9 +299,23 @@ check "cursor visible after Ctrl-C" '[ "$(tm display -p -t zv "#{cursor_flag}")"
 st=$?
 check "stdout not a terminal prints one frame" '[ $st -eq 0 ] && [ "$(wc -l <"$T/pipe")" -eq 12 ] && ! grep -q "$(printf "\033")" "$T/pipe"' "status $st"
 session xterm-256color 80 24
-tm send-keys -t zv "TERM=no-such-terminal $Z --color none assets/cube.obj; echo zv-exit=\$?" Enter
-if wait_for 'zv-exit=0'; then ok "an unknown TERM falls back to --print"; else notok "an unknown TERM falls back to --print" "$(cat "$T/screen")"; fi
-check "the fallback frame has the cube" 'grep -q "▀" "$T/screen"' "$(cat "$T/screen")"
+# an unknown TERM: a warning, and the viewer on a description we have
+tm send-keys -t zv "TERM=nonsense $Z assets/cube.obj 2>$T/warn; echo zv-exit=\$?" Enter
+if wait_for 'faces 6 drawn'; then ok "TERM=nonsense: the viewer runs"; else notok "TERM=nonsense: the viewer runs" "$(cat "$T/screen")"; fi
+check "TERM=nonsense: the picture is drawn" 'grep -q "[▀▄]" "$T/screen"' "$(cat "$T/screen")"
+tm send-keys -t zv q
+if wait_for 'zv-exit=0'; then ok "TERM=nonsense: q quits with status 0"; else notok "TERM=nonsense: q quits with status 0" "$(cat "$T/screen")"; fi
+check "TERM=nonsense: stderr warns and names the fallback" 'grep -qx "zview: unknown terminal type .nonsense.: using xterm-256color" "$T/warn"' "$(cat "$T/warn")"
+# xterm-direct without its entry (ncurses-term not installed) falls back too, in 24-bit colour
+if ! infocmp xterm-direct >/dev/null 2>&1; then
+    tm send-keys -t zv "clear; TERM=xterm-direct $Z assets/cube.obj 2>$T/warn; echo zv-exit=\$?" Enter
+    if wait_for 'faces 6 drawn'; then ok "TERM=xterm-direct without its entry: the viewer runs"; else
+        notok "TERM=xterm-direct without its entry: the viewer runs" "$(cat "$T/screen")"; fi
+    check "TERM=xterm-direct without its entry: 24-bit colours" 'tm capture-pane -p -e -t zv | grep -q "38;2;"' "$(tm capture-pane -p -e -t zv | head -c 300 | od -c | head)"
+    tm send-keys -t zv q
+    wait_for 'zv-exit=0' >/dev/null
+    check "TERM=xterm-direct without its entry: stderr warns" 'grep -q "unknown terminal type .xterm-direct.: using" "$T/warn"' "$(cat "$T/warn")"
+fi
 
 # ==== standard input not a terminal: keys come from the terminal ====
 # cpu_ticks PID: user + system time so far, in clock ticks
@@ -307,8 +339,9 @@ check "no alternate screen after q with stdin at its end" '[ "$(tm display -p -t
 
 start 80 24 assets/cube.obj '</dev/null'
 if wait_for 'faces 6 drawn'; then ok "stdin from /dev/null: the viewer shows the model"; else notok "stdin from /dev/null: the viewer shows the model" "$(cat "$T/screen")"; fi
+picture 23 >"$T/d0"
 tm send-keys -t zv Right
-wait_for 'faces 6 drawn 3' >/dev/null
+wait_change "$T/d0" 23 >/dev/null
 tm send-keys -t zv q
 if wait_for 'zv-exit=0'; then ok "stdin from /dev/null: keys work and q quits"; else notok "stdin from /dev/null: keys work and q quits" "$(cat "$T/screen")"; fi
 
@@ -341,7 +374,7 @@ tm send-keys -t zv '?'
 if wait_for 'more'; then ok "the help in a small window says there is more"; else notok "the help in a small window says there is more" "$(cat "$T/screen")"; fi
 check "the help box fits the small window (both frame lines show)" '[ "$(grep -c "^ *+---*+ *$" "$T/screen")" -eq 2 ] || [ "$(grep -c "+---*+" "$T/screen")" -eq 2 ]' "$(cat "$T/screen")"
 i=0
-while [ $i -lt 50 ] && ! grep -q 'right drag' "$T/screen"; do
+while [ $i -lt 150 ] && ! grep -q 'right drag' "$T/screen"; do
     tm send-keys -t zv j
     sleep 0.05
     cap
@@ -364,11 +397,11 @@ check "80 columns: the frame time went first" '! echo "$bar" | grep -q "fps"' "$
 tm resize-window -t zv -x 110 -y 24
 wait_for '110x46px' >/dev/null
 bar=$(status 24)
-check "110 columns: picture size and mode are back, the frame time is not" 'echo "$bar" | grep -q "half lambert | 110x46px | ? help" && ! echo "$bar" | grep -q fps' "$bar"
+check "110 columns: picture size and mode are back, the frame time is not" 'echo "$bar" | grep -q "half lambert 256 | 110x46px | ? help" && ! echo "$bar" | grep -q fps' "$bar"
 tm resize-window -t zv -x 140 -y 24
 wait_for 'fps' >/dev/null
 bar=$(status 24)
-check "140 columns: every field" 'echo "$bar" | grep -Eq "frame [0-9.]+ms [0-9]+fps \| half lambert \| 140x46px \| \? help"' "$bar"
+check "140 columns: every field" 'echo "$bar" | grep -Eq "frame [0-9.]+ms [0-9]+fps \| half lambert 256 \| 140x46px \| \? help"' "$bar"
 
 # ==== nothing left on the shell after quitting from a grown or shrunk window ====
 for size in "110 34" "60 14"; do
@@ -376,7 +409,14 @@ for size in "110 34" "60 14"; do
     wait_for 'faces [0-9]+ drawn' >/dev/null
     set -- $size
     tm resize-window -t zv -x "$1" -y "$2"
-    wait_for "${1}x" >/dev/null
+    # the status bar on the new last line: the viewer has drawn at the new size
+    i=0
+    while [ $i -lt 200 ]; do
+        cap
+        status "$2" | grep -q 'faces' && break
+        sleep 0.05
+        i=$((i + 1))
+    done
     tm send-keys -t zv q
     wait_for 'zv-exit=0' >/dev/null
     check "quit after resizing to $1x$2 leaves no picture on the shell" '! grep -q "[▀▄]" "$T/screen"' "$(cat "$T/screen")"
@@ -402,3 +442,170 @@ while [ $i -lt 200 ]; do
 done
 picture 7 >"$T/p7"
 check "--size bigger than the window: the window's size" 'cmp -s "$T/p7" "$T/print"' "$(diff "$T/p7" "$T/print" | head -5)"
+
+# ==== colours: 24-bit when asked, --print's palette numbers otherwise ====
+# run_in COLS ROWS ENV...: zview with extra environment (TERM included)
+# typed into a fresh pane; its arguments follow in $ARGS
+run_in() {
+    cols=$1; rows=$2; shift 2
+    session xterm-256color "$cols" "$rows"
+    rm -f "$T/pid"
+    tm send-keys -t zv "$* sh -c 'echo \$\$ >$T/pid; exec $Z $ARGS'; echo zv-exit=\$?" Enter
+}
+ARGS="assets/knot.obj"
+run_in 100 30 TERM=xterm-256color COLORTERM=truecolor
+wait_for 'faces [0-9]+ drawn' >/dev/null
+check "COLORTERM=truecolor on xterm-256color: 24-bit escapes" 'tm capture-pane -p -e -t zv | grep -q "38;2;[0-9]*;[0-9]*;[0-9]*m"' "$(tm capture-pane -p -e -t zv | head -c 300 | od -c | head -5)"
+check "the status bar says 24bit" 'status 30 | grep -q "half lambert 24bit"' "$(status 30)"
+if [ -n "$PY" ]; then
+    print_looks --color truecolor --size 100x29 assets/knot.obj >"$T/print"
+    wait_looks 29 "$T/print"
+    check "24-bit: the screen equals --print --color truecolor" 'cmp -s "$T/looks" "$T/print"' "$(diff "$T/looks" "$T/print" | head -5)"
+fi
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
+
+ARGS="--color truecolor assets/knot.obj"
+run_in 100 30 TERM=xterm-256color COLORTERM=
+wait_for 'faces [0-9]+ drawn' >/dev/null
+check "--color truecolor without COLORTERM: 24-bit escapes" 'tm capture-pane -p -e -t zv | grep -q "38;2;"'
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
+
+# TERM=xterm describes 8 colours: a grey cube stays grey (black and white dithered)
+ARGS="assets/cube.obj"
+run_in 100 30 TERM=xterm
+wait_for 'faces 6 drawn' >/dev/null
+check "TERM=xterm: the status bar says 8" 'status 30 | grep -q "half lambert 8 "' "$(status 30)"
+if [ -n "$PY" ]; then
+    tm capture-pane -p -e -N -t zv | head -n 29 | python3 tests/e2e/looks.py --colours >"$T/colours"
+    check "8 colours: a grey model is drawn in black and white only" '[ "$(cat "$T/colours")" = "0 7 B" ]' "colours: $(cat "$T/colours")"
+    print_looks --color 8 --size 100x29 assets/cube.obj >"$T/print"
+    wait_looks 29 "$T/print"
+    check "8 colours: the screen equals --print --color 8" 'cmp -s "$T/looks" "$T/print"' "$(diff "$T/looks" "$T/print" | head -5)"
+fi
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
+
+ARGS="--color 16 assets/knot.obj"
+run_in 100 30 TERM=xterm-256color
+wait_for 'faces [0-9]+ drawn' >/dev/null
+check "--color 16: the status bar says 16" 'status 30 | grep -q "half lambert 16 "' "$(status 30)"
+if [ -n "$PY" ]; then
+    print_looks --color 16 --size 100x29 assets/knot.obj >"$T/print"
+    wait_looks 29 "$T/print"
+    check "16 colours: the screen equals --print --color 16" 'cmp -s "$T/looks" "$T/print"' "$(diff "$T/looks" "$T/print" | head -5)"
+fi
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
+
+ARGS="--color none assets/cube.obj"
+run_in 100 30 TERM=xterm-256color
+wait_for 'faces 6 drawn' >/dev/null
+check "--color none: the status bar says mono" 'status 30 | grep -q "half lambert mono "' "$(status 30)"
+check "--color none: no colour escapes" '! tm capture-pane -p -e -t zv | head -n 29 | grep -q "\[[0-9;]*[34][0-9]"'
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
+
+# ==== keys: views, light, outlines, samples, shading ====
+# key_equals NAME KEY NOTE PRINT-ARGS: the key's note shows, and the
+# picture is then what --print draws with PRINT-ARGS
+key_equals() {
+    tm send-keys -t zv "$2"
+    if ! wait_for "$3"; then
+        notok "$1" "no note '$3': $(status 30)"
+        return
+    fi
+    if [ -z "$PY" ]; then ok "$1"; return; fi
+    # shellcheck disable=SC2086
+    print_looks --color 256 --size 100x29 $4 >"$T/print"
+    wait_looks 29 "$T/print"
+    check "$1" 'cmp -s "$T/looks" "$T/print"' "$(diff "$T/looks" "$T/print" | head -3)"
+}
+start 100 30 assets/knot.obj
+wait_for 'faces [0-9]+ drawn' >/dev/null
+key_equals "1 is the front view" 1 "view front" "--view front assets/knot.obj"
+key_equals "4 is the right view" 4 "view right" "--view right assets/knot.obj"
+key_equals "7 is the iso view" 7 "view iso" "--view iso assets/knot.obj"
+key_equals "8 is the automatic view" 8 "view auto" "assets/knot.obj"
+key_equals "] turns the light right" ']' "light -19,37" "--light -19,37 assets/knot.obj"
+key_equals "{ raises the light" '{' "light -19,52" "--light -19,52 assets/knot.obj"
+key_equals "e draws outlines" e "edges on" "--edges --light -19,52 assets/knot.obj"
+key_equals "S takes 9 samples" S "samples 9" "--samples 9 --edges --light -19,52 assets/knot.obj"
+tm send-keys -t zv e
+wait_for "edges off" >/dev/null
+tm send-keys -t zv v
+if wait_for "half smooth 256"; then ok "v goes on to smooth shading"; else notok "v goes on to smooth shading" "$(status 30)"; fi
+
+# ==== the view's command line: shown on C, printed by --print-view ====
+# the command shown gives the picture back
+tm send-keys -t zv 3
+wait_for 'view left' >/dev/null
+tm send-keys -t zv J
+wait_gone 'view left' >/dev/null
+wait_stable
+if [ -n "$PY" ]; then looks 29 >"$T/before"; fi
+tm send-keys -t zv C
+if wait_for 'command line of this view'; then ok "C shows the command line"; else notok "C shows the command line" "$(cat "$T/screen")"; fi
+# the box's lines, frame stripped, continuation lines joined
+sed -n 's/^ *| \(.*\) *| *$/\1/p' "$T/screen" | sed 's/[[:space:]]*$//' | sed -n '/^zview /,$p' |
+    sed -e ':a' -e '/ \\$/{N; s/ \\\n/ /; ba' -e '}' >"$T/cmd"
+check "the command is one line starting with zview" '[ "$(wc -l <"$T/cmd")" -eq 1 ] && grep -q "^zview --yaw " "$T/cmd"' "$(cat "$T/cmd")"
+check "the command has the view's settings" 'grep -q -- "--shade smooth" "$T/cmd" && grep -q -- "--samples 9" "$T/cmd" && grep -q -- "--light -19,52" "$T/cmd"' "$(cat "$T/cmd")"
+if [ -n "$PY" ]; then
+    sh -c "$(sed "s|^zview|\"$Z\" --print --size 100x29 --color 256|" "$T/cmd")" | python3 tests/e2e/looks.py >"$T/again"
+    check "the command shown gives the same picture" 'cmp -s "$T/before" "$T/again"' "$(diff "$T/before" "$T/again" | head -3)"
+fi
+tm send-keys -t zv q
+if wait_gone 'command line of this view' && ! grep -q 'zv-exit' "$T/screen"; then ok "a key closes the command line and does nothing else"; else
+    notok "a key closes the command line and does nothing else" "$(cat "$T/screen")"; fi
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
+
+# --print-view: standard output is kept for the command line, the viewer draws on the terminal
+session xterm-256color 100 30
+tm send-keys -t zv "TERM=xterm-256color $Z --print-view assets/torus.obj >$T/pv; echo zv-exit=\$?" Enter
+if wait_for 'faces [0-9]+ drawn'; then ok "--print-view with standard output in a file: the viewer shows"; else
+    notok "--print-view with standard output in a file: the viewer shows" "$(cat "$T/screen")"; fi
+tm send-keys -t zv 2 '['
+wait_for 'light -49,37' >/dev/null
+wait_stable
+if [ -n "$PY" ]; then looks 29 >"$T/before"; fi
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
+check "--print-view prints one command line" '[ "$(wc -l <"$T/pv")" -eq 1 ] && grep -q "^zview --yaw 180 --pitch 0 .*--light -49,37 .*-- assets/torus.obj$" "$T/pv"' "$(cat "$T/pv")"
+if [ -n "$PY" ]; then
+    sh -c "$(sed "s|^zview|\"$Z\" --print --size 100x29 --color 256|" "$T/pv")" | python3 tests/e2e/looks.py >"$T/again"
+    check "--print-view's command gives the last picture back" 'cmp -s "$T/before" "$T/again"' "$(diff "$T/before" "$T/again" | head -3)"
+fi
+
+# ==== snapshots ====
+mkdir -p "$T/snap" "$T/models"
+cp assets/cube.obj "$T/models/cube.obj"
+session xterm-256color 100 30
+tm send-keys -t zv "cd $T/snap && TERM=xterm-256color $Z $T/models/cube.obj; echo zv-exit=\$?" Enter
+wait_for 'faces 6 drawn' >/dev/null
+tm send-keys -t zv P
+if wait_for 'wrote zview-cube-001.png 800x464'; then ok "P: the status bar says what was written"; else notok "P: the status bar says what was written" "$(status 30)"; fi
+check "P: the PNG and the text exist" '[ -s "$T/snap/zview-cube-001.png" ] && [ -s "$T/snap/zview-cube-001.txt" ]' "$(ls "$T/snap")"
+if [ -n "$PY" ]; then
+    check "P: the PNG decodes, 8x16 pixels a cell" '[ "$(python3 tests/e2e/pngsize.py "$T/snap/zview-cube-001.png")" = "800 464" ]' "$(python3 tests/e2e/pngsize.py "$T/snap/zview-cube-001.png" 2>&1)"
+fi
+"$Z" --print --size 100x29 --color 256 "$T/models/cube.obj" >"$T/print"
+check "P: the text is the bytes --print gives" 'cmp -s "$T/snap/zview-cube-001.txt" "$T/print"'
+: >"$T/snap/zview-cube-003.txt"
+tm send-keys -t zv P
+wait_for 'wrote zview-cube-002' >/dev/null
+tm send-keys -t zv P
+if wait_for 'wrote zview-cube-004'; then ok "P: a number with either file taken is skipped"; else notok "P: a number with either file taken is skipped" "$(status 30)"; fi
+check "P: nothing is overwritten" '[ ! -s "$T/snap/zview-cube-003.txt" ] && [ ! -e "$T/snap/zview-cube-003.png" ]' "$(ls -l "$T/snap")"
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
+# a folder where no file can be made (/proc, even for root): next to the model
+tm send-keys -t zv "clear; cd /proc && TERM=xterm-256color $Z $T/models/cube.obj; echo zv-exit=\$?" Enter
+wait_for 'faces 6 drawn' >/dev/null
+tm send-keys -t zv P
+if wait_for "wrote zview-cube-001.png 800x464, .txt in"; then ok "P in an unwritable folder: next to the model"; else notok "P in an unwritable folder: next to the model" "$(status 30)"; fi
+check "P in an unwritable folder: both files next to the model" '[ -s "$T/models/zview-cube-001.png" ] && [ -s "$T/models/zview-cube-001.txt" ]' "$(ls "$T/models")"
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
