@@ -333,7 +333,7 @@ int sc_decode_style(const uint8_t *data, size_t size, Scene *s, Viewport *vp, in
     style->pixel = 1 + (int)(pb >> 4 & 3) % 3;
     for (int k = 0; k < nprim; k++) {
         Mesh *m = &meshes[nmeshes++];     /* counted first: fail frees it */
-        char name[16];
+        char name[24];
         snprintf(name, sizeof name, "prims%d", k);
         int pflags = (int)rd_u8(&r);
         if (tl_mesh_init(m, name) || decode_prim_mesh(&r, m, meshes, nmeshes - 1, pflags))
