@@ -38,7 +38,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points
+.PHONY: all test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order
 
 all: $(BIN)
 
@@ -138,6 +138,10 @@ bench-formats: $(BIN) $(TESTBIN)
 # The point-cloud figures: a 10M-point scan sampled from the dragon
 # (POINTS=N for another size), its load and frames (README: Points and
 # lines).
+# the face-order table of the README: hzb and hzb-octree under each --order
+bench-order: $(BIN)
+	ZVIEW=$(abspath $(BIN)) sh tools/bench-order.sh
+
 bench-points: $(BIN) $(BUILD)/mkcloud
 	ZVIEW=$(abspath $(BIN)) MKCLOUD=$(BUILD)/mkcloud sh tests/bench_points.sh
 

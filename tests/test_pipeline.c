@@ -415,3 +415,36 @@ Test(pipeline, front_to_back_helps_the_pyramid_most)
     cr_expect_lt(culled[ORDER_BACK], culled[ORDER_SHUFFLE], "back to front culls least");
     scene_free(&s);
 }
+
+/* Under a reordered list the octree still finds each object's few screen
+ * polygons (grouped by object) and draws a sparse object polygon by
+ * polygon, as in file order, instead of walking its whole tree: the same
+ * nodes are visited under every order, and the buffers are the z-buffer's. */
+Test(pipeline, octree_treats_sparse_objects_alike_under_every_order)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_file(&s, "assets/torus.obj"), 0);
+    char err[256];
+    cr_assert_eq(scene_make_grid(&s, 3, err, sizeof err), 0, "%s", err);
+    s.cam.yaw = 0.5f;
+    s.cam.pitch = 0.4f;
+    enum { W = 48, H = 36 };
+    Pipeline ref;
+    cr_assert_eq(pipeline_init(&ref, &s, hsr_find("zbuffer"), 1), 0);
+    cr_assert_eq(pipeline_render(&ref, W, H, 1.0f, 0, 0), 0);
+    uint64_t visited[ORDER_COUNT];
+    for (int ord = 0; ord < ORDER_COUNT; ord++) {
+        Pipeline p;
+        cr_assert_eq(pipeline_init(&p, &s, hsr_find("hzb-octree"), 1), 0);
+        p.order = (PolyOrder)ord;
+        cr_assert_eq(pipeline_render(&p, W, H, 1.0f, 0, 0), 0);
+        visited[ord] = p.st.nodes_visited;
+        cr_assert_eq(memcmp(p.fb.ids, ref.fb.ids, W * H * 4), 0, "under %s", order_names[ord]);
+        pipeline_free(&p);
+    }
+    for (int ord = 1; ord < ORDER_COUNT; ord++)
+        cr_expect_eq(visited[ord], visited[ORDER_FILE], "%s visits %llu nodes, file order %llu", order_names[ord],
+                     (unsigned long long)visited[ord], (unsigned long long)visited[ORDER_FILE]);
+    pipeline_free(&ref);
+    scene_free(&s);
+}

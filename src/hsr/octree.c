@@ -93,7 +93,8 @@ typedef struct {
     double   zfront;        /* view z of its box's nearest corner (larger is nearer) */
     int      obj;
     int      tree;          /* index of its loaded object's tree, -1 for none */
-    uint32_t sfirst, send;  /* its screen polygons, when known (flat) */
+    uint32_t sfirst, send;  /* its screen polygons: list positions, or of sidx when reordered */
+    const uint32_t *sidx;   /* NULL: the list is in face order */
     int      flat;          /* 1: few of its polygons reached the screen: no tree walk */
 } ObjView;
 
@@ -141,6 +142,12 @@ typedef struct {
     int        cap_views;
     NodeBound *bound;       /* per node of the object being walked */
     uint32_t   cap_bound;
+    /* a reordered list (--order): list positions grouped by object, each
+     * group in the list's order; NULL when the list is in face order */
+    uint32_t  *sidx;
+    uint32_t   cap_sidx;
+    uint32_t  *ostart;      /* nobjs + 1 group starts */
+    int        cap_ostart;
 } OctState;
 
 /* ==== building ==== */
@@ -584,6 +591,8 @@ static void oct_destroy(void *st)
     shared_free(&s->own);
     free(s->views);
     free(s->bound);
+    free(s->sidx);
+    free(s->ostart);
     free(s);
 }
 
@@ -671,7 +680,7 @@ static void walk_object(OctState *s, const OctTree *tr, const HsrInput *in, cons
          * the tree would mostly read their -1 in the map. Take its
          * screen polygons in order, each tested on its own. */
         for (uint32_t i = ov->sfirst; i < ov->send; i++)
-            hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, i, fb, y0, y1, st);
+            hzb_draw_poly(&s->hz.pyr, s->hz.zb, sp, ov->sidx ? ov->sidx[i] : i, fb, y0, y1, st);
         return;
     }
     const Object *o = &in->scene->objs[ov->obj];
@@ -753,6 +762,51 @@ static double object_front(const Mat4 *view, const Object *o)
     return z + fabs(m[0]) * o->half.x + fabs(m[1]) * o->half.y + fabs(m[2]) * o->half.z;
 }
 
+/* A reordered list (--order): each object's screen polygons gathered, in
+ * the list's order, by one counting sort over the objects. Without it the
+ * objects' runs are unknown, every object walks its whole tree (gathering
+ * bounds over every node), and a sparse one costs many times what its few
+ * polygons drawn one by one do: the octree's time would then measure this
+ * bookkeeping, not the order. Returns -1 out of memory (no groups). */
+static int group_by_object(OctState *s, const Scene *sc, const ScreenPolys *sp)
+{
+    if (!sc->face_obj)
+        return -1;
+    if (sp->npolys > s->cap_sidx) {
+        uint32_t *q = realloc(s->sidx, (size_t)sp->npolys * sizeof *q);
+        if (!q)
+            return -1;
+        s->sidx = q;
+        s->cap_sidx = sp->npolys;
+    }
+    if (sc->nobjs + 1 > s->cap_ostart) {
+        uint32_t *q = realloc(s->ostart, (size_t)(sc->nobjs + 1) * sizeof *q);
+        if (!q)
+            return -1;
+        s->ostart = q;
+        s->cap_ostart = sc->nobjs + 1;
+    }
+    uint32_t *start = s->ostart;
+    memset(start, 0, (size_t)(sc->nobjs + 1) * sizeof *start);
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        uint32_t f = (uint32_t)sp->polys[i].face;
+        if (f < sc->nfaces)
+            start[sc->face_obj[f] + 1]++;
+    }
+    for (int o = 0; o < sc->nobjs; o++)
+        start[o + 1] += start[o];
+    /* scatter with start[o] as the cursor: afterwards start[o] is the
+     * group's end, the next group's start; shifted back below */
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        uint32_t f = (uint32_t)sp->polys[i].face;
+        if (f < sc->nfaces)
+            s->sidx[start[sc->face_obj[f]]++] = i;
+    }
+    memmove(start + 1, start, (size_t)sc->nobjs * sizeof *start);
+    start[0] = 0;
+    return 0;
+}
+
 static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *stats)
 {
     OctState *s = st;
@@ -801,6 +855,7 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     int ordered = tr->lface_sorted && sp->face_sorted;
     for (int oi = 1; oi < sc->nobjs && ordered; oi++)
         ordered = sc->objs[oi].face_base >= sc->objs[oi - 1].face_base + (int32_t)sc->objs[oi - 1].face_count;
+    int grouped = !ordered && group_by_object(s, sc, sp) == 0;
     uint32_t run = 0;
     int nv = 0;
     for (int oi = 0; oi < sc->nobjs; oi++) {
@@ -811,6 +866,7 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
         ov->obj = oi;
         ov->tree = -1;
         ov->flat = 0;
+        ov->sidx = NULL;
         int b = oi % tr->nroots;
         const Object *base = &sc->objs[b];
         if (tr->roots[b] != NO_TREE && base->poly_first == o->poly_first &&
@@ -823,6 +879,11 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
         if (ordered) {
             ov->sfirst = run = first_face_at(sp, run, o->face_base);
             ov->send = run = first_face_at(sp, run, o->face_base + (int32_t)o->face_count);
+            ov->flat = (uint64_t)(ov->send - ov->sfirst) * FLAT_RATIO < o->poly_count;
+        } else if (grouped) {
+            ov->sidx = s->sidx;
+            ov->sfirst = s->ostart[oi];
+            ov->send = s->ostart[oi + 1];
             ov->flat = (uint64_t)(ov->send - ov->sfirst) * FLAT_RATIO < o->poly_count;
         }
         ov->zfront = object_front(&view, o);
