@@ -8,35 +8,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 
+#include "bigmem.h"
 #include "mesh_internal.h"
-
-/* Big arrays are written once, front to back, and first touches cost a
- * page fault each (in a VM several microseconds: more than parsing the
- * bytes that fill the page). So the aligned inside of a big array asks
- * for huge pages (512 times fewer faults where the kernel has them) and,
- * when its size is exact (counts read from a header), is faulted in by
- * one call. Both are advice: nothing depends on them. */
-static void prefault(void *p, size_t bytes, int populate)
-{
-    const uintptr_t huge = (uintptr_t)2 << 20, page = 4096;
-    if (!p || bytes < huge)
-        return;
-    uintptr_t a = ((uintptr_t)p + huge - 1) & ~(huge - 1), e = ((uintptr_t)p + bytes) & ~(huge - 1);
-#ifdef MADV_HUGEPAGE
-    if (e > a)
-        madvise((void *)a, e - a, MADV_HUGEPAGE);
-#endif
-#ifdef MADV_POPULATE_WRITE
-    uintptr_t pa = ((uintptr_t)p + page - 1) & ~(page - 1), pe = ((uintptr_t)p + bytes) & ~(page - 1);
-    if (populate && pe > pa)
-        madvise((void *)pa, pe - pa, MADV_POPULATE_WRITE);
-#else
-    (void)populate;
-    (void)page;
-#endif
-}
 
 /* Grow *arr (elements of `elem` bytes, `*cap` of them) to hold `need`. */
 static int grow(void **arr, size_t *cap, size_t need, size_t elem)
@@ -52,7 +26,7 @@ static int grow(void **arr, size_t *cap, size_t need, size_t elem)
     void *p = realloc(*arr, nc * elem);
     if (!p)
         return -1;
-    prefault(p, nc * elem, 0);
+    bigmem_advise(p, nc * elem, 0);
     *arr = p;
     *cap = nc;
     return 0;
@@ -176,7 +150,7 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
         if (!p)
             return me_oom(b->e);
         m->pos = p;
-        prefault(p, nv * 3 * sizeof(float), exact);
+        bigmem_advise(p, nv * 3 * sizeof(float), exact);
         b->vexact = exact;
         if (m->rgb) {
             float *q = realloc(m->rgb, nv * 3 * sizeof(float));
@@ -195,8 +169,8 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
         if (!fs)
             return me_oom(b->e);
         m->face_start = fs;
-        prefault(fm, nf * sizeof(int32_t), exact);
-        prefault(fs, (nf + 1) * sizeof(uint32_t), exact);
+        bigmem_advise(fm, nf * sizeof(int32_t), exact);
+        bigmem_advise(fs, (nf + 1) * sizeof(uint32_t), exact);
         b->fcap = nf;
     }
     if (nc > b->ccap) {
@@ -204,7 +178,7 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
         if (!c)
             return me_oom(b->e);
         m->corner = c;
-        prefault(c, nc * sizeof(uint32_t), exact);
+        bigmem_advise(c, nc * sizeof(uint32_t), exact);
         b->ccap = nc;
     }
     return 0;
@@ -225,7 +199,7 @@ int mb_want_rgb(MeshBuild *b)
         return me_oom(b->e);
     /* a point cloud's colours are as big as its positions: fault them in
      * at once too when the count is exact */
-    prefault(m->rgb, b->vcap * 3 * sizeof(float), b->vexact);
+    bigmem_advise(m->rgb, b->vcap * 3 * sizeof(float), b->vexact);
     for (size_t i = 0; i < 3 * (size_t)m->nverts; i++)
         m->rgb[i] = 1.0f;
     return 0;
@@ -522,7 +496,7 @@ int vm_init(VertMerge *vm, size_t expect)
     while (cap < 2 * expect && cap < ((size_t)1 << 31))
         cap *= 2;
     vm->slot = calloc(cap, sizeof *vm->slot);
-    prefault(vm->slot, cap * sizeof *vm->slot, 1);
+    bigmem_advise(vm->slot, cap * sizeof *vm->slot, 1);
     vm->mask = (uint32_t)(cap - 1);
     vm->used = 0;
     return vm->slot ? 0 : -1;
