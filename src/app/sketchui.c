@@ -164,7 +164,7 @@ static Reaction sk_undo(App *a)
         snprintf(a->note, sizeof a->note, "corner taken back");
         return RE_RENDER;
     }
-    snprintf(a->note, sizeof a->note, "polygon %u open again", a->sk.k.npolys + 1);
+    snprintf(a->note, sizeof a->note, "polygon %u taken back", a->sk.k.npolys + 1);
     return changed(a);
 }
 
