@@ -8,6 +8,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "scene.h"
+
 #define SKETCH_DZ 0.1f          /* depth between one polygon's plane and the next */
 
 typedef struct { float x, y; } SketchPt;
@@ -43,5 +45,31 @@ float    sketch_depth_at(const Sketch *k, uint32_t p, float x, float y);
 /* The drawing as OBJ text: one `o` per polygon, coloured corners. */
 int      sketch_to_obj(const Sketch *k, FILE *f);
 char    *sketch_to_text(const Sketch *k, size_t *len_out);   /* malloc'd, NUL-terminated */
+
+/* ==== The sketch on screen (sketchview.c) ====
+ * The canvas seen straight on, pinned to a w x h picture of pixel aspect
+ * `aspect` (pixel height / width): its centre at the picture's centre,
+ * its side SKETCH_FILL of the picture's shorter side, whatever is drawn.
+ * Pixel coordinates are continuous: pixel (i, j) covers [i, i+1) x [j, j+1),
+ * y down. */
+
+#define SKETCH_FILL 0.95f       /* of the shorter side: the corners stay clickable */
+
+/* Pixels per canvas unit across (the picture's x axis). */
+float    sketch_px_per_unit(int w, int h, float aspect);
+/* Picture point (px, py) -> canvas point; may lie off the canvas. */
+SketchPt sketch_canvas_at(int w, int h, float aspect, float px, float py);
+/* Canvas point -> picture point. */
+void     sketch_pixel_at(int w, int h, float aspect, SketchPt c, float *px_out, float *py_out);
+/* The drawing as a scene, through the OBJ text and the ordinary loader
+ * (an empty drawing: a scene with nothing in it). Returns 0, or -1 with
+ * a message in err. */
+int      sketch_scene(const Sketch *k, Scene *out, char *err, size_t errlen);
+/* Point s's camera at the canvas for a w x h picture: the front view,
+ * fitted as `zview --view front` fits the saved file, then zoomed and
+ * panned so the canvas lands where sketch_pixel_at() says. The view's
+ * command line (--zoom, --pan) then gives the same picture of the saved
+ * OBJ. */
+void     sketch_camera(Scene *s, int w, int h, float aspect);
 
 #endif

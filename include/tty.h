@@ -14,6 +14,8 @@
 /* Keys: characters are their code point; the rest sit above Unicode. */
 enum {
     TK_TAB = 9,
+    TK_ENTER = 10,      /* Return and the keypad's Enter, whatever the tty's CR/NL mapping */
+    TK_BACKSPACE = 127, /* whichever of ^H and DEL the terminal sends */
     TK_CTRL_L = 12,
     TK_ESC = 27,
     TK_UP = 0x110000,
@@ -29,6 +31,7 @@ typedef enum {
     TE_DRAG,            /* button 1 (left) or 3 (right) held, moved dx, dy cells */
     TE_WHEEL,           /* dy = -1 up (away from the user), +1 down */
     TE_READY,           /* the terminal has taken the last frame: the next may go */
+    TE_CLICK,           /* button 1 (left) or 3 (right) pressed on cell x, y (a drag may follow) */
 } TermEventType;
 
 typedef struct {
@@ -36,6 +39,7 @@ typedef struct {
     int key;            /* TE_KEY */
     int button;         /* TE_DRAG: 1 left, 3 right */
     int dx, dy;         /* TE_DRAG, TE_WHEEL */
+    int x, y;           /* TE_CLICK: the cell, from the window's top left */
 } TermEvent;
 
 typedef struct {

@@ -102,3 +102,20 @@ Test(cli, errors_name_the_option_and_the_limit)
     cr_assert_eq(PARSE(&o, err, "--print", "x.obj"), 0, "%s", err);
     cr_assert_eq(o.nfiles, 1);
 }
+
+Test(cli, sketch_is_for_the_viewer)
+{
+    Options o;
+    char err[256];
+    cr_assert_eq(PARSE(&o, err, "--sketch"), 0, "%s", err);
+    cr_expect(o.sketch);
+    cr_expect_eq(o.nfiles, 0);
+    cr_assert_eq(PARSE(&o, err, "--sketch", "--algo", "span", "--print-view", "m.obj"), 0, "%s", err);
+    cr_expect(o.sketch && o.print_view && o.nfiles == 1);
+    const char *clash[][2] = { { "--print", "--print" }, { "-ox.png", "-o" }, { "--info", "--info" },
+                               { "--bench", "--bench" }, { "--dump-ids=x", "--dump-ids" } };
+    for (int i = 0; i < 5; i++) {
+        cr_expect_eq(PARSE(&o, err, "--sketch", clash[i][0]), -1, "%s", clash[i][0]);
+        cr_expect(strstr(err, clash[i][1]) != NULL, "%s: %s", clash[i][0], err);
+    }
+}

@@ -285,6 +285,11 @@ static Reaction act_wireframe(App *a)
     return RE_RENDER;
 }
 
+static Reaction act_sketch(App *a)
+{
+    return sketch_mode_enter(a);
+}
+
 static Reaction act_spin(App *a)
 {
     a->spin = !a->spin;
@@ -345,6 +350,14 @@ Reaction app_key(App *a, int key)
         a->cmd = 0;         /* like the help: the key that closes it does nothing else */
         return RE_DRAW;
     }
+    if (a->sk.on) {
+        /* sketch mode's own keys, then the few of the viewer's it shares */
+        Reaction r = sketch_mode_key(a, key);
+        if (r != RE_NONE)
+            return r | RE_DRAW;
+        if (key <= 0 || key >= K_SPECIAL || !strchr(sketch_shared_keys, key))
+            return RE_NONE;
+    }
     int i = key >= 0 && key < K_SPECIAL ? key
           : key >= TK_UP && key <= TK_BTAB ? K_SPECIAL + (key - TK_UP) : -1;
     if (i < 0 || !keys[i])
@@ -374,11 +387,7 @@ void app_spin(App *a, float radians)
 
 /* ==== The help overlay ==== */
 
-typedef struct {
-    const char *keys, *what;
-} HelpEntry;
-
-static const HelpEntry help[] = {
+static const HelpEntry help_keys[] = {
     { "arrows h j k l", "turn (yaw, pitch)" },
     { "u o", "roll" },
     { "I J K L", "turn 15 degrees" },
@@ -407,18 +416,19 @@ static const HelpEntry help[] = {
     { "space", "auto-rotate" },
     { "C", "command line of the view" },
     { "P", "snapshot: PNG and text" },
+    { "D", "sketch: draw polygons" },
     { "Ctrl-L", "redraw" },
     { "q Esc", "quit" },
     { "left drag", "turn" },
     { "right drag", "move" },
 };
-#define HELP_N ((int)(sizeof help / sizeof help[0]))
+#define HELP_KEYS_N ((int)(sizeof help_keys / sizeof help_keys[0]))
 #define HELP_GAP 3          /* spaces between columns */
 #define HELP_MAX_COLUMNS 3
 
 /* Row r of the layout: ncols entries side by side (column-major), or in
  * the stacked form (ncols 0) the keys on even rows, the meaning below. */
-static void help_row(char *out, int r, int nrows, int ncols, int kw, int ew)
+static void help_row(const HelpEntry *help, int n, char *out, int r, int nrows, int ncols, int kw, int ew)
 {
     if (ncols == 0) {
         const HelpEntry *e = &help[r / 2];
@@ -429,7 +439,7 @@ static void help_row(char *out, int r, int nrows, int ncols, int kw, int ew)
     out[0] = 0;
     for (int c = 0; c < ncols; c++) {
         int k = c * nrows + r;
-        if (k >= HELP_N)
+        if (k >= n)
             break;
         len += snprintf(out + len, (size_t)(HELP_LINE_MAX - len), "%*s%-*s  %-*s", c ? HELP_GAP : 0, "",
                         kw, help[k].keys, ew - kw - 2, help[k].what);
@@ -442,8 +452,11 @@ static void help_row(char *out, int r, int nrows, int ncols, int kw, int ew)
 
 int app_help_layout(App *a, int cols, int rows, const char **lines)
 {
+    /* sketch mode has keys of its own */
+    const HelpEntry *help = a->sk.on ? sketch_help : help_keys;
+    const int nhelp = a->sk.on ? sketch_help_n : HELP_KEYS_N;
     int kw = 0, dw = 0;
-    for (int k = 0; k < HELP_N; k++) {
+    for (int k = 0; k < nhelp; k++) {
         int n = (int)strlen(help[k].keys), m = (int)strlen(help[k].what);
         kw = n > kw ? n : kw;
         dw = m > dw ? m : dw;
@@ -454,10 +467,10 @@ int app_help_layout(App *a, int cols, int rows, const char **lines)
     if (avail > HELP_LINES_MAX - 1)
         avail = HELP_LINES_MAX - 1;
     /* as few columns as show everything, else as many as fit across */
-    int ncols = 0, nrows = 2 * HELP_N;
+    int ncols = 0, nrows = 2 * nhelp;
     for (int c = 1; c <= HELP_MAX_COLUMNS && c * ew + (c - 1) * HELP_GAP <= inner; c++) {
         ncols = c;
-        nrows = (HELP_N + c - 1) / c;
+        nrows = (nhelp + c - 1) / c;
         if (nrows <= avail)
             break;
     }
@@ -467,7 +480,7 @@ int app_help_layout(App *a, int cols, int rows, const char **lines)
         a->help_top = a->help_hidden;
     if (a->help_top < 0)
         a->help_top = 0;
-    const char *title = "zview keys (any key closes this)";
+    const char *title = a->sk.on ? "zview sketch keys (any key closes this)" : "zview keys (any key closes this)";
     char more[HELP_LINE_MAX];
     if (a->help_hidden) {
         snprintf(more, sizeof more, "keys %d-%d of %d: Up/Down scroll, other keys close",
@@ -477,7 +490,7 @@ int app_help_layout(App *a, int cols, int rows, const char **lines)
     snprintf(a->help_text[0], HELP_LINE_MAX, "%s", title);
     lines[0] = a->help_text[0];
     for (int i = 0; i < shown; i++) {
-        help_row(a->help_text[1 + i], a->help_top + i, nrows, ncols, kw, ew);
+        help_row(help, nhelp, a->help_text[1 + i], a->help_top + i, nrows, ncols, kw, ew);
         lines[1 + i] = a->help_text[1 + i];
     }
     return 1 + shown;
@@ -521,6 +534,7 @@ static const Action keys[K_COUNT] = {
     ['<'] = act_point_smaller, ['>'] = act_point_bigger,
     ['('] = act_line_thinner,  [')'] = act_line_wider,
     ['W'] = act_wireframe,
+    ['D'] = act_sketch,
     [' '] = act_spin,
     ['?'] = act_help,
     [TK_CTRL_L] = act_redraw,

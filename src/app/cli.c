@@ -51,6 +51,9 @@ void cli_usage(FILE *f)
 "                        -o PATTERN (one integer conversion: out-%03d.png, .ppm, .txt;\n"
 "                        frames numbered from 0) or with --print to stdout\n"
 "  --print-view          the viewer prints the command line of its last view on quitting\n"
+"  --sketch              the viewer starts on an empty canvas: draw polygons with the\n"
+"                        mouse or the keys and watch the algorithms hide them (D in the\n"
+"                        viewer; a FILE given too is shown on leaving the canvas)\n"
 "  --info                print file statistics (with --algo: render statistics)\n"
 "  --dump-ids FILE       face-id buffer: W*H little-endian int32, -1 = background\n"
 "  --dump-screen FILE    screen-space polygons as OBJ text\n"
@@ -191,7 +194,7 @@ enum {
     OPT_LAYOUT, OPT_EDGES, OPT_ORDER, OPT_FORMAT, OPT_FORMATS, OPT_UP, OPT_FLIP, OPT_IMAGE_FORMAT,
     /* points, lines, lenient loading */
     OPT_POINT_SIZE, OPT_LINE_WIDTH, OPT_WIREFRAME, OPT_POINTS, OPT_STRICT,
-    OPT_PRINT_VIEW, OPT_TURNTABLE,
+    OPT_PRINT_VIEW, OPT_TURNTABLE, OPT_SKETCH,
 };
 
 static const struct option long_opts[] = {
@@ -221,6 +224,7 @@ static const struct option long_opts[] = {
     { "order", required_argument, NULL, OPT_ORDER },
     { "print-view", no_argument, NULL, OPT_PRINT_VIEW },
     { "turntable", required_argument, NULL, OPT_TURNTABLE },
+    { "sketch", no_argument, NULL, OPT_SKETCH },
     { "yaw", required_argument, NULL, OPT_YAW },
     { "pitch", required_argument, NULL, OPT_PITCH },
     { "roll", required_argument, NULL, OPT_ROLL },
@@ -325,6 +329,7 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
         case OPT_CULL: o->cull = 1; break;
         case OPT_EDGES: o->edges = 1; break;
         case OPT_PRINT_VIEW: o->print_view = 1; break;
+        case OPT_SKETCH: o->sketch = 1; break;
         case OPT_ORTHO: o->persp = 0; break;
         case 'o':
             /* the name is checked after the loop: --image-format may follow */
@@ -541,6 +546,14 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
     if (o->turntable && o->out && frame_pattern_check(o->out) != 1) {
         snprintf(err, errlen, "--turntable: the file name '%s' needs exactly one integer conversion "
                  "for the frame number (e.g. out-%%03d.png; %%%% for a %%)", o->out);
+        return -1;
+    }
+    if (o->sketch && (o->print || o->out || o->info || o->bench || o->bench_tty || o->turntable || o->dump_ids ||
+                      o->dump_screen)) {
+        snprintf(err, errlen, "--sketch draws in the viewer: it does not go with %s",
+                 o->print ? "--print" : o->out ? "-o" : o->info ? "--info" : o->bench ? "--bench"
+                 : o->bench_tty ? "--bench-tty" : o->turntable ? "--turntable" : o->dump_ids ? "--dump-ids"
+                 : "--dump-screen");
         return -1;
     }
     if (o->algo && !o->bench && !hsr_find(o->algo)) {

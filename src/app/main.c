@@ -80,13 +80,25 @@ int main(int argc, char **argv)
         return finish_stdout();
     }
     Scene scene;
+    if (o.sketch && o.nfiles == 0) {
+        /* nothing to load: the canvas is the scene (sketchui.c); this
+         * empty one holds the light it is drawn in */
+        if (scene_build(&scene, NULL, 0, err, sizeof err)) {
+            fprintf(stderr, "zview: %s\n", err);
+            return 1;
+        }
+        light_set(&scene.light, o.light[0], o.light[1], o.ambient);
+        rc = app_viewer(&o, &scene);
+        scene_free(&scene);
+        return rc ? rc : finish_stdout();
+    }
     if (app_load_scene(&o, &scene, err, sizeof err)) {
         fprintf(stderr, "zview: %s\n", err);
         return 1;
     }
     if (o.info)
         rc = app_info(&o, &scene);
-    else if (o.print || o.out || o.dump_ids || o.dump_screen || (!isatty(STDOUT_FILENO) && !o.print_view))
+    else if (o.print || o.out || o.dump_ids || o.dump_screen || (!isatty(STDOUT_FILENO) && !o.print_view && !o.sketch))
         rc = app_oneshot(&o, &scene);
     else
         rc = app_viewer(&o, &scene);

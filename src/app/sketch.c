@@ -87,8 +87,8 @@ int sketch_undo(Sketch *k)
     }
     if (k->npolys == 0)
         return -1;
-    /* reopen the last polygon without its last vertex: what undo of the
-     * close then of a vertex would give, in one step it is the polygon */
+    /* no open corners: the last polygon goes, corners and all (one
+     * step per polygon, not one per corner) */
     k->npolys--;
     k->npts = k->start[k->npolys];
     if (k->sel >= (int)k->npolys)

@@ -39,6 +39,7 @@ static int locale_utf8(void)
 static int app_init(App *a, const Options *o, Scene *s)
 {
     memset(a, 0, sizeof *a);
+    sketch_init(&a->sk.k);
     a->opt = o;
     a->s = s;
     a->sel = -1;
@@ -74,10 +75,15 @@ static int render(App *a, int cols, int rows)
 {
     int pw, ph;
     mode_cell_pixels(a->mode, &pw, &ph);
-    a->p.highlight = a->s->nobjs > 1 ? a->sel : -1;      /* the selection shows in the picture */
-    if (pipeline_render(&a->p, cols * pw, rows * ph, mode_pixel_aspect(a->mode), a->cull, 1))
+    if (a->sk.on && sketch_mode_frame(a, cols * pw, rows * ph, mode_pixel_aspect(a->mode)))
         return -1;
-    return cells_from_image(&a->p.img, a->mode, term_color(), &a->p.cells);
+    a->p.highlight = a->s->nobjs > 1 ? a->sel : -1;      /* the selection shows in the picture */
+    if (pipeline_render(&a->p, cols * pw, rows * ph, mode_pixel_aspect(a->mode), a->cull, 1) ||
+        cells_from_image(&a->p.img, a->mode, term_color(), &a->p.cells))
+        return -1;
+    if (a->sk.on)
+        sketch_mode_marks(a, &a->p.cells);
+    return 0;
 }
 
 /* ==== The view's command line ==== */
@@ -99,6 +105,17 @@ ViewSettings app_view_settings(const App *a)
 int app_view_command(const App *a, char *buf, size_t len)
 {
     ViewSettings v = app_view_settings(a);
+    if (a->sk.on) {
+        /* the drawing as written: the file opens with this very view */
+        const char *file = sketch_mode_file(a);
+        if (!file)
+            return -1;
+        Options o;
+        cli_defaults(&o);
+        o.files[0] = file;
+        o.nfiles = 1;
+        return view_command(buf, len, &o, a->s, &v);
+    }
     return view_command(buf, len, a->opt, a->s, &v);
 }
 
@@ -106,7 +123,8 @@ int app_command_layout(const App *a, int cols, char *buf, size_t len, const char
 {
     char cmd[CMD_MAX];
     if (max < 2 || app_view_command(a, cmd, sizeof cmd)) {
-        snprintf(buf, len, "the command line is too long to show");
+        snprintf(buf, len, a->sk.on && !sketch_mode_file(a) ? "write the sketch first (w): the command line opens the file"
+                                                             : "the command line is too long to show");
         lines[0] = buf;
         return 1;
     }
@@ -201,6 +219,10 @@ static int bar_join(const BarField *f, char *buf, size_t len)
 
 static void status_text(const App *a, char *buf, size_t len, double frame_ms, int fps_cap, int width)
 {
+    if (a->sk.on) {
+        sketch_mode_status(a, buf, len, width);
+        return;
+    }
     const Scene *s = a->s;
     BarField f[BAR_FIELDS];
     bar_field(&f[0], 0, "%s", a->name);
@@ -323,8 +345,9 @@ static Reaction dispatch(App *a, const TermEvent *ev)
     switch (ev->type) {
     case TE_KEY:    return app_key(a, ev->key);
     case TE_RESIZE: return RE_RENDER;
-    case TE_DRAG:   return app_drag(a, ev->button, ev->dx, ev->dy);
-    case TE_WHEEL:  return app_wheel(a, ev->dy);
+    case TE_DRAG:   return a->sk.on ? RE_NONE : app_drag(a, ev->button, ev->dx, ev->dy);
+    case TE_WHEEL:  return a->sk.on ? RE_NONE : app_wheel(a, ev->dy);
+    case TE_CLICK:  return a->sk.on && !a->help && !a->cmd ? sketch_mode_click(a, ev->button, ev->x, ev->y) : RE_NONE;
     case TE_READY:  return RE_NONE;     /* the loop sends what waits */
     }
     return RE_NONE;
@@ -406,6 +429,10 @@ static FILE *open_keys(FILE **opened, const char **name)
  * frame in its place. */
 static int no_viewer(const Options *o, Scene *s)
 {
+    if (o->sketch) {
+        fprintf(stderr, "zview: --sketch: no terminal to draw on\n");
+        return 1;
+    }
     if (o->print_view) {
         fprintf(stderr, "zview: --print-view: no terminal to show the viewer on\n");
         return 1;
@@ -468,13 +495,19 @@ int app_viewer(const Options *o, Scene *s)
             fclose(screen_tty);
         return no_viewer(o, s);
     }
+    if (o->sketch) {
+        a.sk.only = o->nfiles == 0;     /* no model to go back to */
+        sketch_mode_enter(&a);
+    }
     int rc = run(&a, o->fps);
     int out_errno = errno;
     term_restore();
     /* --print-view: the command line of the view as it was left */
     char cmd[CMD_MAX];
     int cmd_ok = o->print_view && rc == RUN_QUIT && app_view_command(&a, cmd, sizeof cmd) == 0;
-    pipeline_free(&a.p);
+    int unsaved = a.sk.on && !sketch_mode_file(&a);
+    pipeline_free(&a.p);        /* its runner first: it may read the sketch's scene */
+    sketch_mode_free(&a);
     if (tty)
         fclose(tty);
     if (screen_tty)
@@ -489,6 +522,10 @@ int app_viewer(const Options *o, Scene *s)
     }
     if (rc == RUN_OUTPUT_FAILED) {
         fprintf(stderr, "zview: the terminal: %s\n", strerror(out_errno));
+        return 1;
+    }
+    if (o->print_view && !cmd_ok && unsaved) {
+        fprintf(stderr, "zview: --print-view: the sketch on screen was not written (w): no file shows it\n");
         return 1;
     }
     if (o->print_view && !cmd_ok) {

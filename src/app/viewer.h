@@ -5,6 +5,7 @@
  * what the loop in viewer.c has to redo. */
 
 #include "app.h"
+#include "sketch.h"
 
 typedef enum {
     RE_NONE   = 0,
@@ -18,6 +19,23 @@ typedef enum {
 #define HELP_LINES_MAX 48
 #define HELP_LINE_MAX  160
 #define CMD_MAX        4096     /* a view's command line */
+
+/* Sketch mode (sketchui.c): polygons drawn on a canvas, which becomes
+ * the scene each time it changes. */
+typedef struct {
+    int     on;             /* drawing: the sketch's keys, the canvas shown */
+    int     only;           /* started with --sketch and no model: leaving quits */
+    Sketch  k;
+    Scene   scene;          /* the drawing as a scene (built while on) */
+    int     built;          /* scene holds a built scene */
+    int     dirty;          /* the drawing changed since scene was built */
+    Scene  *model;          /* the viewer's scene, given back on leaving */
+    int     cx, cy;         /* the keyboard cursor's cell in the picture */
+    int     cursor;         /* the cursor is shown (the arrows moved it last, not the mouse) */
+    int     w, h;           /* the picture in pixels at the last frame */
+    char    saved[32];      /* the file written last ("" none) */
+    int     saved_clean;    /* ... and the drawing is still what it holds */
+} SketchMode;
 
 typedef struct App {
     const Options *opt;     /* the command line: files and layout, for view commands */
@@ -37,6 +55,7 @@ typedef struct App {
     char        name[96];   /* file name(s) for the status line */
     char        note[80];   /* a one-off note for the status line */
     char        help_text[HELP_LINES_MAX][HELP_LINE_MAX];
+    SketchMode  sk;
 } App;
 
 /* The effect of a key (term.h codes), a drag of dx, dy cells with button
@@ -62,6 +81,36 @@ int      app_command_layout(const App *a, int cols, char *buf, size_t len, const
  * (or the model's when that cannot be written); the note says what was
  * written. Returns what to redo. */
 Reaction app_snapshot(App *a);
+
+/* ==== Sketch mode (sketchui.c) ==== */
+
+/* Enter sketch mode: the canvas becomes the scene (the drawing kept from
+ * the last time). Returns what to redo. */
+Reaction sketch_mode_enter(App *a);
+/* A key, and a press of button 1 or 3 on cell x, y, in sketch mode. */
+Reaction sketch_mode_key(App *a, int key);
+Reaction sketch_mode_click(App *a, int button, int x, int y);
+/* Before a frame of w x h pixels: the scene rebuilt when the drawing
+ * changed, the camera pinned to the canvas. Returns 0, or -1 with the
+ * reason in a->note. */
+int      sketch_mode_frame(App *a, int w, int h, float aspect);
+/* After it: the open polygon's corners and the cursor marked on the cells. */
+void     sketch_mode_marks(const App *a, CellGrid *g);
+/* The status bar in sketch mode, at most width columns. */
+void     sketch_mode_status(const App *a, char *buf, size_t len, int width);
+/* The file the view's command line names: the saved drawing, NULL when
+ * the drawing is not saved as it is. */
+const char *sketch_mode_file(const App *a);
+void     sketch_mode_free(App *a);
+
+/* A row of the help: keys and what they do. */
+typedef struct {
+    const char *keys, *what;
+} HelpEntry;
+extern const HelpEntry sketch_help[];
+/* The viewer's keys that keep their meaning in sketch mode. */
+extern const char sketch_shared_keys[];
+extern const int sketch_help_n;
 
 /* The help overlay laid out for a window of cols x rows (the status bar
  * included): a title and as many rows of keys as fit, in as few columns

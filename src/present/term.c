@@ -673,7 +673,12 @@ static int mouse_event(const MEVENT *me, TermEvent *ev)
         T.drag_button = b & BUTTON1_PRESSED ? 1 : 3;
         T.drag_x = me->x;
         T.drag_y = me->y;
-        return 0;
+        /* the press itself: the sketch places corners there */
+        ev->type = TE_CLICK;
+        ev->button = T.drag_button;
+        ev->x = me->x;
+        ev->y = me->y;
+        return 1;
     }
     int release = (b & (BUTTON1_RELEASED | BUTTON3_RELEASED)) != 0;
     if (!T.drag_button || !(release || (b & REPORT_MOUSE_POSITION)))
@@ -689,12 +694,19 @@ static int mouse_event(const MEVENT *me, TermEvent *ev)
     return ev->dx || ev->dy;
 }
 
+/* ncurses reads every report waiting before the first KEY_MOUSE, and
+ * getmouse() hands them back newest first (ncurses 6.4): take them all,
+ * then turn them into events oldest first, so that clicks come in the
+ * order they were made (the sketch's corners) and drags add up in order. */
 static void mouse_drain(void)
 {
-    MEVENT me;
+    MEVENT me[MQ_MAX];
+    int n = 0;
+    while (n < MQ_MAX && getmouse(&me[n]) == OK)
+        n++;
     TermEvent ev;
-    while (getmouse(&me) == OK)
-        if (mouse_event(&me, &ev))
+    while (n-- > 0)
+        if (mouse_event(&me[n], &ev))
             mq_push(&ev);
 }
 
@@ -739,7 +751,7 @@ int term_read(TermEvent *ev, int timeout_ms)
             return input_ended() ? -1 : 0;
         if (r != KEY_CODE_YES) {
             ev->type = TE_KEY;
-            ev->key = (int)wc;
+            ev->key = wc == '\r' ? TK_ENTER : wc == 8 ? TK_BACKSPACE : (int)wc;
             return 1;
         }
         ev->type = TE_KEY;
@@ -749,6 +761,8 @@ int term_read(TermEvent *ev, int timeout_ms)
         case KEY_LEFT:   ev->key = TK_LEFT; return 1;
         case KEY_RIGHT:  ev->key = TK_RIGHT; return 1;
         case KEY_BTAB:   ev->key = TK_BTAB; return 1;
+        case KEY_ENTER:  ev->key = TK_ENTER; return 1;
+        case KEY_BACKSPACE: ev->key = TK_BACKSPACE; return 1;
         case KEY_RESIZE: ev->type = TE_RESIZE; return 1;
         case KEY_STATUS_OK:
         case KEY_STATUS_BAD:

@@ -45,7 +45,7 @@ _zview()
         COMPREPLY=($(compgen -W "--help --version --print --output --size --mode --color --shade
             --info --dump-ids --dump-screen --algo --yaw --pitch --roll --zoom --pan --fit-from
             --move --turn --scale --persp --ortho --cull --grid --max-polys --bench --bench-tty
-            --views --threads --json --fps --format --formats --up --flip --image-format" -- "$cur"))
+            --views --threads --json --fps --format --formats --up --flip --image-format --sketch" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
     fi
