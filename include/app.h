@@ -125,6 +125,13 @@ typedef struct {
 
 int  pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads);
 int  pipeline_set_algo(Pipeline *p, const HsrAlgo *algo);
+/* The scene is about to change in place (objects added or removed):
+ * stop what reads it in the background (hzb-octree's tree builder) and
+ * drop what was built from it (the trees, smooth normals, colours), so
+ * that nothing stale or half-read outlives the change. Call before
+ * touching the scene. Returns 0, or -1 out of memory (no runner then:
+ * pipeline_set_algo again). */
+int  pipeline_scene_changing(Pipeline *p);
 /* The picture settings of the options: shading, crease, outlines, polygon
  * order, and samples when given (each output has its own default). */
 void pipeline_apply_options(Pipeline *p, const Options *o);
