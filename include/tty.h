@@ -21,6 +21,11 @@ enum {
     TK_LEFT,
     TK_RIGHT,
     TK_BTAB,            /* shift-Tab */
+    TK_DEL,             /* Delete */
+    TK_HOME,
+    TK_END,
+    TK_BACKSPACE,       /* the Backspace key when the terminal sends its keypad code */
+    TK_LAST = TK_BACKSPACE,
 };
 
 typedef enum {

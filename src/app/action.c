@@ -313,7 +313,7 @@ static Reaction act_quit(App *a)
 /* ==== Entry points ==== */
 
 #define K_SPECIAL 128   /* table index of TK_UP; the other specials follow */
-#define K_COUNT   (K_SPECIAL + (TK_BTAB - TK_UP) + 1)
+#define K_COUNT   (K_SPECIAL + (TK_LAST - TK_UP) + 1)
 
 typedef Reaction (*Action)(App *a);
 static const Action keys[K_COUNT];
@@ -346,7 +346,7 @@ Reaction app_key(App *a, int key)
         return RE_DRAW;
     }
     int i = key >= 0 && key < K_SPECIAL ? key
-          : key >= TK_UP && key <= TK_BTAB ? K_SPECIAL + (key - TK_UP) : -1;
+          : key >= TK_UP && key <= TK_LAST ? K_SPECIAL + (key - TK_UP) : -1;
     if (i < 0 || !keys[i])
         return RE_NONE;
     return keys[i](a) | RE_DRAW;

@@ -749,6 +749,10 @@ int term_read(TermEvent *ev, int timeout_ms)
         case KEY_LEFT:   ev->key = TK_LEFT; return 1;
         case KEY_RIGHT:  ev->key = TK_RIGHT; return 1;
         case KEY_BTAB:   ev->key = TK_BTAB; return 1;
+        case KEY_DC:     ev->key = TK_DEL; return 1;
+        case KEY_HOME:   ev->key = TK_HOME; return 1;
+        case KEY_END:    ev->key = TK_END; return 1;
+        case KEY_BACKSPACE: ev->key = TK_BACKSPACE; return 1;
         case KEY_RESIZE: ev->type = TE_RESIZE; return 1;
         case KEY_STATUS_OK:
         case KEY_STATUS_BAD:
