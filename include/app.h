@@ -148,6 +148,18 @@ int  pipeline_samples_side(int samples);
  * with the arrow keys"); NULL when something was drawn. */
 const char *frame_empty_reason(const Pipeline *p);
 
+/* report.c: what one rendered frame did, as --info --algo prints it and
+ * the viewer's info panel (i) shows it: lines of a label ("polygons:")
+ * and its text. out_ms is the time the frame took to reach the
+ * terminal (cells and output), < 0 when there is none (--info). */
+#define REPORT_LINES 8
+#define REPORT_TEXT  256
+typedef struct {
+    const char *label;
+    char        text[REPORT_TEXT];
+} ReportLine;
+int  frame_report(const Pipeline *p, double out_ms, ReportLine *lines, int max);
+
 /* The settings outside the scene that change the picture. */
 typedef struct {
     int         mode;           /* DisplayMode, -1 = not part of the view (images) */

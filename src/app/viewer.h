@@ -4,7 +4,10 @@
  * key table in action.c that changes it. Each action is tiny and returns
  * what the loop in viewer.c has to redo. */
 
+#include <pthread.h>
+
 #include "app.h"
+#include "prompt.h"
 
 typedef enum {
     RE_NONE   = 0,
@@ -19,8 +22,27 @@ typedef enum {
 #define HELP_LINE_MAX  160
 #define CMD_MAX        4096     /* a view's command line */
 
+/* loadjob.c: one file loaded on a thread of its own (the O key). */
+typedef struct LoadJob LoadJob;
+/* Start loading path as the options say (format, strict, flip, points);
+ * NULL with a message when no thread can be had. */
+LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t errlen);
+int      loadjob_done(LoadJob *j);          /* the thread has finished */
+/* Join the thread; 0 with the file's scene part in *part_out (the
+ * caller owns it), or -1 with the loader's message. Frees the job. */
+int      loadjob_finish(LoadJob *j, Scene *part_out, char *err, size_t errlen);
+/* The viewer quits mid-load: the thread finishes alone and frees the job. */
+void     loadjob_abandon(LoadJob *j);
+const char *loadjob_path(const LoadJob *j);
+/* "loading dragon.obj 42%", or a spinner, the seconds and the size when
+ * the format reports no progress; "building dragon.obj" after parsing. */
+void     loadjob_status(LoadJob *j, char *buf, size_t len);
+
 typedef struct App {
-    const Options *opt;     /* the command line: files and layout, for view commands */
+    const Options *opt;     /* the command line: files and layout, for view commands
+                               (points at live below: O, X and E change its files) */
+    Options     live;
+    char       *paths[MAX_FILES]; /* live's files, owned (NULL: not yet copied) */
     Scene      *s;
     Pipeline    p;
     int         algo;       /* index into hsr_algos */
@@ -35,7 +57,13 @@ typedef struct App {
     int         cmd;        /* the view's command line shown (any key closes it) */
     int         pic_cols, pic_rows; /* --size: the picture's cells (0 = the window's) */
     char        name[96];   /* file name(s) for the status line */
-    char        note[80];   /* a one-off note for the status line */
+    char        note[160];  /* a one-off note for the status line */
+    /* live editing of the scene (live.c) */
+    int         prompting;  /* the open prompt is in the status line */
+    Prompt      prompt;
+    LoadJob    *job;        /* a file loading in the background, or NULL */
+    int         info;       /* the info panel is shown */
+    const char *empty_why;  /* why the last frame covers no pixel, NULL when it covers some */
     char        help_text[HELP_LINES_MAX][HELP_LINE_MAX];
 } App;
 
@@ -62,6 +90,18 @@ int      app_command_layout(const App *a, int cols, char *buf, size_t len, const
  * (or the model's when that cannot be written); the note says what was
  * written. Returns what to redo. */
 Reaction app_snapshot(App *a);
+
+/* live.c: the scene edited while the viewer runs. */
+Reaction app_open_prompt(App *a);           /* O: ask for a file */
+Reaction app_prompt_key(App *a, int key);   /* a key while the prompt is up */
+Reaction app_load_poll(App *a);             /* a background load finished? join its part */
+Reaction app_remove_selected(App *a);       /* X, Delete */
+Reaction app_clear_scene(App *a);           /* E */
+/* The files of the command line copied so that they can change; the
+ * status line's name from them. */
+int      app_live_init(App *a, const Options *o);
+void     app_live_free(App *a);
+void     app_update_name(App *a);
 
 /* The help overlay laid out for a window of cols x rows (the status bar
  * included): a title and as many rows of keys as fit, in as few columns
