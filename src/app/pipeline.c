@@ -154,6 +154,8 @@ int pipeline_samples_side(int samples)
 
 int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int shade_too)
 {
+    if (!p->run.algo && hsr_runner_init(&p->run, p->algo, p->threads))
+        return -1;      /* pipeline_scene_changing found no memory for it */
     int k = pipeline_samples_side(p->samples);
     if ((long)w * k > SCREEN_MAX || (long)h * k > SCREEN_MAX)
         k = 1;          /* a huge image needs no supersampling */

@@ -63,6 +63,7 @@ typedef struct App {
     Prompt      prompt;
     LoadJob    *job;        /* a file loading in the background, or NULL */
     int         info;       /* the info panel is shown */
+    int         confirm;    /* E asked "empty the scene? y/n": the next key answers */
     const char *empty_why;  /* why the last frame covers no pixel, NULL when it covers some */
     char        help_text[HELP_LINES_MAX][HELP_LINE_MAX];
 } App;
@@ -102,6 +103,11 @@ Reaction app_clear_scene(App *a);           /* E */
 int      app_live_init(App *a, const Options *o);
 void     app_live_free(App *a);
 void     app_update_name(App *a);
+/* A loaded file's warnings (statements skipped, else the first) as the
+ * status line's note. */
+void     app_warning_note(App *a, const MeshInfo *info, const char *path);
+/* Set the status line's note (cut to its size). */
+void     app_note(App *a, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The help overlay laid out for a window of cols x rows (the status bar
  * included): a title and as many rows of keys as fit, in as few columns
