@@ -165,13 +165,16 @@ static const char *depth_label(ColorDepth d)
  * than the window, fields go by rank, lowest first: 1 frame time and
  * fps, 2 picture size, 3 display mode, shading and colours, 4 view flags
  * (persp, cull, spin), 5 selection. Rank 0 stays: the file, the
- * polygons, the algorithm and its time, and "? help"; in a window still
+ * polygons (points and lines too when there are some), the algorithm and
+ * its time, work going on in the background (a file loading, the octree
+ * building), and "? help"; in a window still
  * too narrow they take their brief forms ("drawn/faces", "?"), then the
  * note is cut at its end or goes (rank 6: it answers a key, so it
- * outlasts the long forms), and last of all the file name is shortened. README and the man page
+ * outlasts the long forms; without one, why the frame is empty), and last of all the file name is shortened. README and the man page
  * give the same order. */
 #define BAR_FIELDS 11
 #define BAR_NOTE   6
+enum { BUSY = 8, NOTE = 9, HELP = 10 };     /* the last fields' places */
 
 typedef struct {
     char text[96];
@@ -238,16 +241,16 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
               a->cull && a->spin ? " " : "", spin);
     bar_field(&f[7], 2, "%dx%dpx", a->p.img.w, a->p.img.h);
     /* a note answers a key; without one, why the frame is empty */
-    bar_field(&f[8], BAR_NOTE, "%s", a->note[0] ? a->note : a->empty_why ? a->empty_why : "");
-    bar_field(&f[9], 0, "? help");
-    snprintf(f[9].brief, sizeof f[9].brief, "?");
+    bar_field(&f[NOTE], BAR_NOTE, "%s", a->note[0] ? a->note : a->empty_why ? a->empty_why : "");
+    bar_field(&f[HELP], 0, "? help");
+    snprintf(f[HELP].brief, sizeof f[HELP].brief, "?");
     /* work going on in the background, so that nothing looks frozen */
     char busy[96] = "";
     if (a->job)
         loadjob_status(a->job, busy, sizeof busy);
     else if (a->p.st.building)
         snprintf(busy, sizeof busy, "building octree...");
-    bar_field(&f[10], 0, "%s", busy);
+    bar_field(&f[BUSY], 0, "%s", busy);
     for (int rank = 1; rank < BAR_NOTE && bar_join(f, buf, len) > width; rank++)
         for (int i = 0; i < BAR_FIELDS; i++)
             if (f[i].rank == rank)
@@ -257,15 +260,15 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
             if (f[i].brief[0])
                 memcpy(f[i].text, f[i].brief, sizeof f[i].brief);
     /* the note is cut at its end to fit, and goes when little would be left */
-    int over = bar_join(f, buf, len) - width, note_len = (int)strlen(f[8].text);
+    int over = bar_join(f, buf, len) - width, note_len = (int)strlen(f[NOTE].text);
     if (over > 0 && note_len - over - 1 >= 12) {
         int keep = note_len - over - 1;
-        while (keep > 0 && (f[8].text[keep] & 0xc0) == 0x80)
+        while (keep > 0 && (f[NOTE].text[keep] & 0xc0) == 0x80)
             keep--;
-        f[8].text[keep] = '~';
-        f[8].text[keep + 1] = 0;
+        f[NOTE].text[keep] = '~';
+        f[NOTE].text[keep + 1] = 0;
     } else if (over > 0) {
-        f[8].rank = -1;
+        f[NOTE].rank = -1;
     }
     over = bar_join(f, buf, len) - width;
     int name_len = (int)strlen(f[0].text);
