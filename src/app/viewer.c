@@ -318,7 +318,6 @@ static void draw_candidates(App *a, int cols, int rows)
     const Prompt *pr = &a->prompt;
     const char *names[256];
     int n = 0, wide = 0;
-    static const char none[] = "no file matches";
     char copy[PROMPT_LIST];
     snprintf(copy, sizeof copy, "%s", pr->list);
     for (char *s = copy, *e; s && *s && n < 256; s = e) {
@@ -340,7 +339,7 @@ static void draw_candidates(App *a, int cols, int rows)
     int nl = 0;
     snprintf(a->help_text[0], HELP_LINE_MAX, "%d match%s%s", pr->nlist, pr->nlist == 1 ? "" : "es",
              nrows * per < pr->nlist ? " (the first shown)" : "");
-    lines[nl++] = pr->nlist ? a->help_text[0] : none;
+    lines[nl++] = a->help_text[0];
     for (int r = 0; r < nrows && nl < HELP_LINES_MAX; r++, nl++) {
         char *t = a->help_text[nl];
         int len = 0;
