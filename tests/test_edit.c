@@ -213,8 +213,8 @@ Test(edit, hzb_octree_trees_follow_the_scene_through_edits)
  * 0 with 400 polygons, object 1 with 600) would be walked for the new
  * one (600 and 400), each object's tree reading the other's polygons.
  * The octree's last pass draws what no tree reached, so the picture
- * stays right even then: this checks that a scene edited in place gets
- * its own trees (by the generation: the pointer and counts are equal). */
+ * stays right even then; the walk shows it: its node counts are those of
+ * a fresh runner's trees only when the scene got trees of its own. */
 /* OBJ text of a strip of `tris` triangles across x0..x1 (y 0..1) at z. */
 static char *strip(int tris, float x0, float x1, float z)
 {
@@ -259,6 +259,14 @@ Test(edit, hzb_octree_trees_are_not_taken_for_a_scene_in_reused_memory)
     s.poly_lface = pl;
     s.gen = old.gen + 1;
     expect_octree_agrees(&oct, &ref, "the scene in the same memory");
+    /* the walk is the one of trees made for this scene: a fresh runner's */
+    Pipeline fresh;
+    cr_assert_eq(pipeline_init(&fresh, &s, hsr_find("hzb-octree"), 1), 0);
+    cr_assert_eq(pipeline_render(&fresh, 120, 90, 1.0f, 0, 0), 0);
+    cr_expect_eq(oct.st.nodes_visited, fresh.st.nodes_visited, "octree nodes visited: %llu, fresh trees %llu",
+                 (unsigned long long)oct.st.nodes_visited, (unsigned long long)fresh.st.nodes_visited);
+    cr_expect_eq(oct.st.polys_culled, fresh.st.polys_culled);
+    pipeline_free(&fresh);
     pipeline_free(&oct);
     pipeline_free(&ref);
     /* give each scene back what it owns */
