@@ -30,6 +30,12 @@ else
     echo "ok - # skip no python3: the picture after O"
 fi
 
+# the view's command line names the files the scene now holds
+tm send-keys -t zv C
+if wait_for '-- assets/torus.obj assets/knot.obj'; then ok "C names both files"; else notok "C names both files" "$(cat "$T/screen")"; fi
+tm send-keys -t zv C
+wait_gone 'command line of this view' >/dev/null
+
 # a second Tab lists the candidates; Esc leaves the scene alone
 tm send-keys -t zv O
 wait_for '^ open:$' >/dev/null
