@@ -21,6 +21,8 @@
 #define MIN_COLS 16
 #define MIN_ROWS 4
 #define SPIN_DEG_PER_S 40.0f
+#define INFO_BOX 104        /* the info panel's box is at most this wide */
+#define INFO_BESIDE_MIN (INFO_BOX + 60)     /* ... and sits beside a picture this much wider */
 #define BUSY_TICK_MS 100    /* a background load's progress, and a frame to see whether
                                hzb-octree's trees are ready, this often */
 
@@ -358,12 +360,13 @@ static void draw_candidates(App *a, int cols, int rows)
 }
 
 /* The info panel: the frame's numbers (report.c, as --info prints them)
- * in a box at the top right, each line wrapped after a comma to fit. */
+ * in a box at the top right (over the picture, or beside it in a window
+ * of INFO_BESIDE_MIN columns), each line wrapped after a comma to fit. */
 static void draw_info(App *a, int cols, int rows, double out_ms)
 {
     ReportLine rl[REPORT_LINES];
     int n = frame_report(&a->p, out_ms, rl, REPORT_LINES);
-    int inner = cols - 4 < 100 ? cols - 4 : 100;   /* the box's frame and margins */
+    int inner = cols - 4 < INFO_BOX - 4 ? cols - 4 : INFO_BOX - 4;    /* the box's frame and margins */
     if (inner < 20)
         return;
     const char *lines[HELP_LINES_MAX];
@@ -401,6 +404,7 @@ typedef struct {
     int    cols, rows;      /* window size last drawn (0 = none yet) */
     int    small;           /* last draw was the too-small message */
     int    help;            /* last draw showed the help */
+    int    pic_cols;        /* the picture's width last drawn */
     double out_ms;          /* last curses output time */
     double frame_ms;        /* last rendered frame, render + output */
 } DrawState;
@@ -433,6 +437,15 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     /* --size: that many cells, or fewer when the window is smaller */
     int pc = a->pic_cols > 0 && a->pic_cols < cols ? a->pic_cols : cols;
     int pr = a->pic_rows > 0 && a->pic_rows < rows - 1 ? a->pic_rows : rows - 1;
+    /* a wide window keeps the info panel beside the picture, not over it */
+    if (a->info && !a->help && !a->cmd && cols >= INFO_BESIDE_MIN && pc > cols - INFO_BOX)
+        pc = cols - INFO_BOX;
+    if (pc != d->pic_cols) {
+        if (d->pic_cols)
+            term_erase();
+        what |= RE_RENDER;
+        d->pic_cols = pc;
+    }
     double t0 = now_ms();
     if ((what & RE_RENDER) == RE_RENDER && render(a, pc, pr))
         return RUN_NO_MEMORY;
