@@ -296,8 +296,8 @@ static Reaction act_remove(App *a) { return app_remove_selected(a); }
 
 static Reaction act_clear(App *a)
 {
-    if (a->s->nobjs == 0 && !a->job)
-        return RE_NONE;
+    if (a->s->nobjs == 0)
+        return RE_NONE;     /* empty already (a file still loading comes in all the same) */
     a->confirm = 1;
     snprintf(a->note, sizeof a->note, "empty the scene (%d object%s)? y/n", a->s->nobjs,
              a->s->nobjs == 1 ? "" : "s");
