@@ -126,6 +126,13 @@ typedef struct {
 
 int  pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads);
 int  pipeline_set_algo(Pipeline *p, const HsrAlgo *algo);
+/* The scene is about to change in place (objects added or removed):
+ * stop what reads it in the background (hzb-octree's tree builder) and
+ * drop what was built from it (the trees, smooth normals, colours), so
+ * that nothing stale or half-read outlives the change. Call before
+ * touching the scene. Returns 0, or -1 out of memory (no runner then:
+ * pipeline_set_algo again). */
+int  pipeline_scene_changing(Pipeline *p);
 /* The picture settings of the options: shading, crease, outlines, polygon
  * order, and samples when given (each output has its own default). */
 void pipeline_apply_options(Pipeline *p, const Options *o);
@@ -141,6 +148,18 @@ int  pipeline_samples_side(int samples);
  * option that fixes it ("the model is edge-on: try --view iso or turn
  * with the arrow keys"); NULL when something was drawn. */
 const char *frame_empty_reason(const Pipeline *p);
+
+/* report.c: what one rendered frame did, as --info --algo prints it and
+ * the viewer's info panel (i) shows it: lines of a label ("polygons:")
+ * and its text. out_ms is the time the frame took to reach the
+ * terminal (cells and output), < 0 when there is none (--info). */
+#define REPORT_LINES 8
+#define REPORT_TEXT  256
+typedef struct {
+    const char *label;
+    char        text[REPORT_TEXT];
+} ReportLine;
+int  frame_report(const Pipeline *p, double out_ms, ReportLine *lines, int max);
 
 /* The settings outside the scene that change the picture. */
 typedef struct {

@@ -50,6 +50,12 @@ typedef struct {
      * the file is shown, and a warning names the count and the first. */
     uint32_t skipped;
     char     first_skipped[256];    /* "x.obj:12: vertex index 40 out of range ..." */
+    /* Warnings (the skipped statements' summary, a material library that
+     * cannot be opened, bytes after the end): how many, and the first as
+     * stderr would show it without "zview: warning: ", so that the viewer
+     * can show it where stderr cannot be seen. */
+    uint32_t warnings;
+    char     first_warning[256];
 } MeshInfo;
 
 typedef struct Mesh {
@@ -96,9 +102,21 @@ int  mesh_load_as(Mesh *m, const char *path, const char *format, char *err, size
  * stderr ("zview: warning: x.obj: 3 statements skipped (first: ...)"),
  * the count and first message also in info.skipped and
  * info.first_skipped. */
+/* How far a load has come, for a progress bar on another thread: bytes
+ * of the file parsed so far, of total (0: unknown). Written with atomic
+ * stores every few MB by the loading thread; read atomically. Formats
+ * read by a library (assimp) report nothing. */
 typedef struct {
-    const char *format;
-    int         strict;
+    uint64_t done, total;
+} MeshProgress;
+
+/* quiet keeps warnings off stderr (they are still counted in info, the
+ * first kept): the viewer loads while curses owns the terminal. */
+typedef struct {
+    const char   *format;
+    int           strict;
+    int           quiet;
+    MeshProgress *progress;     /* NULL: none */
 } MeshLoadOpts;
 
 int  mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, size_t errlen);

@@ -92,6 +92,9 @@ typedef struct Scene {
     /* Per global face, for shading. */
     float    *face_normal;    /* 3 * nfaces, object space, unit (Newell) */
     uint8_t  *face_rgb;       /* 3 * nfaces, base colour (Kd, vertex colours, or default) */
+    uint8_t  *face_own;       /* per face: 1 = its colour is its own (material, vertex
+                                 colours), 0 = its object's (recoloured when objects
+                                 come or go); NULL = all own */
     uint16_t *face_obj;       /* object index per face */
     uint32_t  nbase_objs;     /* objects loaded (before grid copies) */
     Camera    cam;
@@ -110,6 +113,11 @@ typedef struct Scene {
     uint32_t  nwire;          /* wireframe edges drawn, grid copies counted (0: not built) */
     int       wire_built;
     uint32_t  nprims;         /* npoints + nsegs + nwire: the ids after the faces' */
+    /* Bumped whenever objects are added or removed (edit.c) or copied
+     * (--grid): what is built from a scene and kept across frames (the
+     * octree, smooth normals) is keyed by it as well as by the pointer,
+     * which stays the same when the viewer edits its scene in place. */
+    uint32_t  gen;
 } Scene;
 
 /* What an id of the face-id buffer is. */
@@ -142,6 +150,26 @@ int  scene_wire_build(Scene *s, char *err, size_t errlen);
  * the scene's polygon lists and per-face arrays replace them.
  * Returns 0, or -1 with a message in err (out of memory). */
 int  scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen);
+
+/* edit.c: the viewer's open, remove and clear. Every one keeps the
+ * scene as scene_build would have made it from the files that remain:
+ * face ids in load order, objects without colours of their own coloured
+ * by their index, the wireframe to be built again; grid copies (--grid)
+ * are dropped (the caller makes them again). Placements, camera and
+ * light stay; the caller lays out and fits. gen is bumped.
+ *
+ * scene_add appends the objects of `part` (a scene built by scene_build
+ * from the new files alone, on any thread) after s's; part's meshes move
+ * into s and part is left empty. Returns 0, or -1 with a message (too
+ * many objects or faces, out of memory): s and part unchanged.
+ * scene_remove removes loaded object i (a file whose last object goes
+ * goes with it); -1 on a bad index or out of memory, s unchanged.
+ * scene_clear leaves no object (camera and light kept). */
+int  scene_add(Scene *s, Scene *part, char *err, size_t errlen);
+int  scene_remove(Scene *s, int i, char *err, size_t errlen);
+void scene_clear(Scene *s);
+/* The file (index into meshes) that object i comes from, -1 if none. */
+int  scene_object_file(const Scene *s, int i);
 
 /* Add copies of object 0..n-1 laid out as an N x N x N grid (for the deep
  * scene benchmark): the scene then has nobjs * N^3 objects. */

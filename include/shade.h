@@ -31,7 +31,8 @@ int  image_downsample(const Image *src, int k, Image *dst);
 
 /* Smooth shading's per-scene data (smooth.c), built on first use. */
 typedef struct {
-    const Scene *key;
+    const Scene *key;       /* built for this scene at this generation (Scene.gen: */
+    uint32_t  key_gen;      /* the viewer edits its scene in place) */
     uint32_t  key_npolys;
     float     crease;       /* degrees it was built for */
     float    *cnorm;        /* 3 per scene polygon corner: object-space unit normal */

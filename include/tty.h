@@ -23,6 +23,10 @@ enum {
     TK_LEFT,
     TK_RIGHT,
     TK_BTAB,            /* shift-Tab */
+    TK_DEL,             /* Delete */
+    TK_HOME,
+    TK_END,
+    TK_LAST = TK_END,
 };
 
 typedef enum {
@@ -76,6 +80,13 @@ void term_draw_cells(const CellGrid *g, int top);
 void term_draw_bar(int y, const char *text);
 /* A framed box of lines centred in the window (the help overlay). */
 void term_draw_box(const char *const *lines, int n);
+/* The same box with its top-left corner at column x, row y; x < 0: its
+ * right edge at the window's, y < 0: its bottom just above the status
+ * line (the info panel, the open prompt's candidates). */
+void term_draw_box_at(const char *const *lines, int n, int x, int y);
+/* Show a cursor at column x of row y: that cell out of reverse video
+ * (the status line's prompt; the terminal's own cursor stays hidden). */
+void term_bar_cursor(int y, int x);
 /* Blank the window and centre a short message (window too small). */
 void term_message(const char *text);
 /* Blank the window (before a redraw at a new size). */

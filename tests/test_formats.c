@@ -250,7 +250,7 @@ Test(formats, mtllib_naming_itself_on_every_line, .init = cr_redirect_stderr)
     double t0 = ms_now();
     /* as the command line loads it: newmtl and Kd are no OBJ
      * statements, skipped (strict would refuse the file) */
-    MeshLoadOpts lenient = { NULL, 0 };
+    MeshLoadOpts lenient = { .strict = 0 };
     cr_assert_eq(mesh_load_ex(&M, path, &lenient, E, sizeof E), 0, "%s", E);
     cr_assert_lt(ms_now() - t0, 2000 * SLOW, "took %.0f ms", ms_now() - t0);
     cr_assert_eq(M.info.skipped, 2);

@@ -392,7 +392,7 @@ Test(mesh, first_unknown_truncated, .init = cr_redirect_stderr)
     const char *s = "averyveryverylongkeywordthatgoesonandon 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     cr_assert_eq(parse(s), -1);
     cr_assert_eq(strncmp(E, "t.obj:1: unknown statement 'averyvery", 37), 0, "%s", E);
-    MeshLoadOpts lenient = { NULL, 0 };
+    MeshLoadOpts lenient = { .strict = 0 };
     cr_assert_eq(mesh_parse_buffer_ex(&M, "t.obj", &lenient, s, strlen(s), E, sizeof E), 0, "%s", E);
     cr_assert_eq(M.info.unknown, 1);
     cr_assert_eq(M.info.skipped, 1);

@@ -472,7 +472,7 @@ static void teardown(void) { mesh_free(&M); }
 
 static int lenient(const char *path, const char *text)
 {
-    MeshLoadOpts o = { NULL, 0 };
+    MeshLoadOpts o = { .strict = 0 };
     mesh_free(&M);
     return mesh_parse_buffer_ex(&M, path, &o, text, strlen(text), E, sizeof E);
 }
@@ -687,7 +687,7 @@ Test(load, lenient_ply_and_off_skip_bad_faces, .init = cr_redirect_stderr)
     bin[n++] = 3;
     memcpy(bin + n, f2, sizeof f2);
     n += (int)sizeof f2;
-    MeshLoadOpts o = { NULL, 0 };
+    MeshLoadOpts o = { .strict = 0 };
     mesh_free(&M);
     cr_assert_eq(mesh_parse_buffer_ex(&M, "b.ply", &o, bin, (size_t)n, E, sizeof E), 0, "%s", E);
     cr_assert_eq(M.nfaces, 1);

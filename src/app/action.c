@@ -107,12 +107,16 @@ static Reaction act_reset(App *a)
 
 static Reaction act_next_object(App *a)
 {
+    if (a->s->nobjs == 0)
+        return RE_NONE;
     a->sel = (a->sel + 1) % a->s->nobjs;
     return RE_DRAW;
 }
 
 static Reaction act_prev_object(App *a)
 {
+    if (a->s->nobjs == 0)
+        return RE_NONE;
     a->sel = a->sel <= 0 ? a->s->nobjs - 1 : a->sel - 1;
     return RE_DRAW;
 }
@@ -290,6 +294,28 @@ static Reaction act_sketch(App *a)
     return sketch_mode_enter(a);
 }
 
+/* The scene edited live (live.c): open, remove, empty. Emptying asks
+ * first: it cannot be undone but by opening the files again. */
+static Reaction act_open(App *a)   { return app_open_prompt(a); }
+static Reaction act_remove(App *a) { return app_remove_selected(a); }
+
+static Reaction act_clear(App *a)
+{
+    if (a->s->nobjs == 0)
+        return RE_NONE;     /* empty already (a file still loading comes in all the same) */
+    a->confirm = 1;
+    snprintf(a->note, sizeof a->note, "empty the scene (%d object%s)? y/n", a->s->nobjs,
+             a->s->nobjs == 1 ? "" : "s");
+    return RE_DRAW;
+}
+
+/* The info panel: the numbers of each frame (report.c), as --info prints them. */
+static Reaction act_info(App *a)
+{
+    a->info = !a->info;
+    return RE_DRAW;
+}
+
 static Reaction act_spin(App *a)
 {
     a->spin = !a->spin;
@@ -318,7 +344,7 @@ static Reaction act_quit(App *a)
 /* ==== Entry points ==== */
 
 #define K_SPECIAL 128   /* table index of TK_UP; the other specials follow */
-#define K_COUNT   (K_SPECIAL + (TK_BTAB - TK_UP) + 1)
+#define K_COUNT   (K_SPECIAL + (TK_LAST - TK_UP) + 1)
 
 typedef Reaction (*Action)(App *a);
 static const Action keys[K_COUNT];
@@ -344,6 +370,16 @@ static Reaction help_key(App *a, int key)
 Reaction app_key(App *a, int key)
 {
     a->note[0] = 0;
+    if (a->prompting)
+        return app_prompt_key(a, key);
+    if (a->confirm) {
+        /* the key that answers does nothing else */
+        a->confirm = 0;
+        if (key == 'y' || key == 'Y')
+            return app_clear_scene(a);
+        snprintf(a->note, sizeof a->note, "the scene stays");
+        return RE_DRAW;
+    }
     if (a->help)
         return help_key(a, key);
     if (a->cmd) {
@@ -359,7 +395,7 @@ Reaction app_key(App *a, int key)
             return RE_NONE;
     }
     int i = key >= 0 && key < K_SPECIAL ? key
-          : key >= TK_UP && key <= TK_BTAB ? K_SPECIAL + (key - TK_UP) : -1;
+          : key >= TK_UP && key <= TK_LAST ? K_SPECIAL + (key - TK_UP) : -1;
     if (i < 0 || !keys[i])
         return RE_NONE;
     return keys[i](a) | RE_DRAW;
@@ -414,6 +450,10 @@ static const HelpEntry help_keys[] = {
     { "( )", "line width" },
     { "W", "wireframe" },
     { "space", "auto-rotate" },
+    { "O", "open a file (Tab completes)" },
+    { "X Delete", "remove the selected object" },
+    { "E", "empty the scene (asks y/n)" },
+    { "i", "info panel: times, counts" },
     { "C", "command line of the view" },
     { "P", "snapshot: PNG and text" },
     { "D", "sketch: draw polygons" },
@@ -536,6 +576,10 @@ static const Action keys[K_COUNT] = {
     ['W'] = act_wireframe,
     ['D'] = act_sketch,
     [' '] = act_spin,
+    ['O'] = act_open,
+    ['X'] = act_remove,      [K_SPECIAL + (TK_DEL - TK_UP)] = act_remove,
+    ['E'] = act_clear,
+    ['i'] = act_info,
     ['?'] = act_help,
     [TK_CTRL_L] = act_redraw,
     ['q'] = act_quit,        [TK_ESC] = act_quit,

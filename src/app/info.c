@@ -90,29 +90,11 @@ int app_info(const Options *o, Scene *s)
         pipeline_free(&p);
         return 1;
     }
-    uint64_t covered = 0;
-    for (size_t i = 0; i < (size_t)w * h; i++)
-        covered += p.fb.ids[i] >= 0;
-    const HsrStats *st = &p.st;
-    out_printf(out, "\nrender:     %s, %dx%d pixels, %d thread%s\n", algo->name, w, h, p.threads,
-           p.threads > 1 ? "s" : "");
-    out_printf(out, "polygons:   %u in, %u back faces culled, %u cover no sample, %u to the algorithm\n",
-           p.sp.in_polys, p.sp.culled_back, p.sp.culled_empty, p.sp.npolys);
-    if (p.sp.points_in || p.sp.edges_in)
-        out_printf(out, "points:     %u on screen, %u squares after keeping the nearest per sample box; "
-                        "%u segments and edges, %u quads\n",
-                   p.sp.points_in, p.sp.points_drawn, p.sp.edges_in, p.sp.edges_drawn);
-    out_printf(out, "pyramid:    %llu polygons culled, %llu octree nodes visited, %llu culled\n",
-           (unsigned long long)st->polys_culled, (unsigned long long)st->nodes_visited,
-           (unsigned long long)st->nodes_culled);
-    out_printf(out, "pixels:     %llu written, %llu covered, overdraw %.2f\n",
-           (unsigned long long)st->pixels_written, (unsigned long long)covered,
-           covered ? (double)st->pixels_written / covered : 0.0);
-    out_printf(out, "time:       transform %.2f ms (points and lines %.2f), build %.2f ms, scan %.2f ms, shade %.2f ms\n",
-           p.project_ms, p.sp.prim_ms, st->build_ms, st->scan_ms, p.shade_ms);
-    const char *why = frame_empty_reason(&p);
-    if (why)
-        out_printf(out, "empty:      %s\n", why);
+    ReportLine lines[REPORT_LINES];
+    int n = frame_report(&p, -1, lines, REPORT_LINES);
+    out_printf(out, "\n");
+    for (int i = 0; i < n; i++)
+        out_printf(out, "%-12s%s\n", lines[i].label, lines[i].text);
     pipeline_free(&p);
     return report_ok(out) ? 0 : 1;
 }

@@ -41,7 +41,7 @@ static uint64_t scene_frame_bytes(const Scene *s, uint64_t copies, uint64_t poly
     uint64_t scene = verts * 3 * sizeof(float) +
                      (uint64_t)s->npolys * 2 * sizeof(uint32_t) +                /* start, lface */
                      (uint64_t)s->poly_start[s->npolys] * sizeof(uint32_t) +    /* corners */
-                     (uint64_t)s->nfaces * copies * (3 * sizeof(float) + 3 + sizeof(uint16_t)) +
+                     (uint64_t)s->nfaces * copies * (3 * sizeof(float) + 3 + 1 + sizeof(uint16_t)) +
                      (uint64_t)s->nobjs * copies * sizeof(Object);
     uint64_t frame = polys * (sizeof(ScreenPoly) + sizeof(int32_t) + ALGO_BYTES_PER_POLY) +
                      corners * sizeof(ScreenVert) * 65 / 64 +
@@ -121,6 +121,14 @@ int pipeline_set_algo(Pipeline *p, const HsrAlgo *algo)
     return hsr_runner_init(&p->run, algo, p->threads);
 }
 
+int pipeline_scene_changing(Pipeline *p)
+{
+    /* a fresh runner: the old one's shared state (trees, builder thread)
+     * is joined and freed with it */
+    shade_cache_free(&p->shade_cache);
+    return pipeline_set_algo(p, p->algo);
+}
+
 void pipeline_free(Pipeline *p)
 {
     if (p->algo)
@@ -146,6 +154,8 @@ int pipeline_samples_side(int samples)
 
 int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int shade_too)
 {
+    if (!p->run.algo && hsr_runner_init(&p->run, p->algo, p->threads))
+        return -1;      /* pipeline_scene_changing found no memory for it */
     int k = pipeline_samples_side(p->samples);
     if ((long)w * k > SCREEN_MAX || (long)h * k > SCREEN_MAX)
         k = 1;          /* a huge image needs no supersampling */

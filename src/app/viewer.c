@@ -21,14 +21,12 @@
 #define MIN_COLS 16
 #define MIN_ROWS 4
 #define SPIN_DEG_PER_S 40.0f
+#define INFO_BOX 104        /* the info panel's box is at most this wide */
+#define INFO_BESIDE_MIN (INFO_BOX + 60)     /* ... and sits beside a picture this much wider */
+#define BUSY_TICK_MS 100    /* a background load's progress, and a frame to see whether
+                               hzb-octree's trees are ready, this often */
 
 /* ==== Set-up ==== */
-
-static const char *base_name(const char *path)
-{
-    const char *s = strrchr(path, '/');
-    return s ? s + 1 : path;
-}
 
 static int locale_utf8(void)
 {
@@ -52,14 +50,22 @@ static int app_init(App *a, const Options *o, Scene *s)
     for (int i = 0; i < hsr_nalgos; i++)
         if (hsr_algos[i] == algo)
             a->algo = i;
-    if (o->nfiles == 0)
-        snprintf(a->name, sizeof a->name, "demo");
-    else if (o->nfiles == 1)
-        snprintf(a->name, sizeof a->name, "%s", base_name(o->files[0]));
-    else
-        snprintf(a->name, sizeof a->name, "%s +%d", base_name(o->files[0]), o->nfiles - 1);
-    if (pipeline_init(&a->p, s, algo, o->threads))
+    if (app_live_init(a, o)) {
+        app_live_free(a);
         return -1;
+    }
+    app_update_name(a);
+    /* a lenient load's warnings went to stderr, which the screen is
+     * about to cover: the first file's that had any shows in the bar */
+    for (int i = 0; i < s->nmeshes; i++)
+        if (s->meshes[i].info.warnings) {
+            app_warning_note(a, &s->meshes[i].info, s->meshes[i].path ? s->meshes[i].path : "?");
+            break;
+        }
+    if (pipeline_init(&a->p, s, algo, o->threads)) {
+        app_live_free(a);
+        return -1;
+    }
     a->p.samples = TEXT_SAMPLES;
     pipeline_apply_options(&a->p, o);
     a->pic_cols = o->w;     /* --size fixes the picture (0: the window's size) */
@@ -78,8 +84,16 @@ static int render(App *a, int cols, int rows)
     if (a->sk.on && sketch_mode_frame(a, cols * pw, rows * ph, mode_pixel_aspect(a->mode)))
         return -1;
     a->p.highlight = a->s->nobjs > 1 ? a->sel : -1;      /* the selection shows in the picture */
-    if (pipeline_render(&a->p, cols * pw, rows * ph, mode_pixel_aspect(a->mode), a->cull, 1) ||
-        cells_from_image(&a->p.img, a->mode, term_color(), &a->p.cells))
+    if (pipeline_render(&a->p, cols * pw, rows * ph, mode_pixel_aspect(a->mode), a->cull, 1))
+        return -1;
+    /* as --print says on stderr, the bar says why nothing shows (sketch
+     * mode's bar has its own words for an empty canvas) */
+    a->empty_why = a->sk.on ? NULL
+                 : a->s->nobjs == 0 ? "empty scene: O opens a file" : frame_empty_reason(&a->p);
+    double t0 = now_ms();
+    int rc = cells_from_image(&a->p.img, a->mode, term_color(), &a->p.cells);
+    a->p.cells_ms = now_ms() - t0;
+    if (rc)
         return -1;
     if (a->sk.on)
         sketch_mode_marks(a, &a->p.cells);
@@ -174,13 +188,16 @@ static const char *depth_label(ColorDepth d)
  * than the window, fields go by rank, lowest first: 1 frame time and
  * fps, 2 picture size, 3 display mode, shading and colours, 4 view flags
  * (persp, cull, spin), 5 selection. Rank 0 stays: the file, the
- * polygons, the algorithm and its time, and "? help"; in a window still
+ * polygons (points and lines too when there are some), the algorithm and
+ * its time, work going on in the background (a file loading, the octree
+ * building), and "? help"; in a window still
  * too narrow they take their brief forms ("drawn/faces", "?"), then the
  * note is cut at its end or goes (rank 6: it answers a key, so it
- * outlasts the long forms), and last of all the file name is shortened. README and the man page
+ * outlasts the long forms; without one, why the frame is empty), and last of all the file name is shortened. README and the man page
  * give the same order. */
-#define BAR_FIELDS 10
+#define BAR_FIELDS 11
 #define BAR_NOTE   6
+enum { BUSY = 8, NOTE = 9, HELP = 10 };     /* the last fields' places */
 
 typedef struct {
     char text[96];
@@ -232,7 +249,13 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
     else if (s->nobjs > 1)
         bar_field(&f[1], 5, "[all %d]", s->nobjs);
     f[1].glued = 1;
-    bar_field(&f[2], 0, "faces %u drawn %u", s->nfaces, a->p.sp.npolys);
+    /* points and lines beside the faces when the scene has them */
+    char prims[48] = "";
+    if (s->npoints)
+        snprintf(prims, sizeof prims, " points %u", s->npoints);
+    if (s->nlines)
+        snprintf(prims + strlen(prims), sizeof prims - strlen(prims), " lines %u", s->nlines);
+    bar_field(&f[2], 0, "faces %u%s drawn %u", s->nfaces, prims, a->p.sp.npolys);
     snprintf(f[2].brief, sizeof f[2].brief, "%u/%u", a->p.sp.npolys, s->nfaces);
     bar_field(&f[3], 0, "%s %.2fms", a->p.algo->name, a->p.hsr_ms);
     bar_field(&f[4], 1, "frame %.1fms %.0ffps", frame_ms, frame_ms > 0 ? 1000.0 / frame_ms : 0);
@@ -244,9 +267,17 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
               s->cam.persp && (a->cull || a->spin) ? " " : "", a->cull ? "cull" : "",
               a->cull && a->spin ? " " : "", spin);
     bar_field(&f[7], 2, "%dx%dpx", a->p.img.w, a->p.img.h);
-    bar_field(&f[8], BAR_NOTE, "%s", a->note);
-    bar_field(&f[9], 0, "? help");
-    snprintf(f[9].brief, sizeof f[9].brief, "?");
+    /* a note answers a key; without one, why the frame is empty */
+    bar_field(&f[NOTE], BAR_NOTE, "%s", a->note[0] ? a->note : a->empty_why ? a->empty_why : "");
+    bar_field(&f[HELP], 0, "? help");
+    snprintf(f[HELP].brief, sizeof f[HELP].brief, "?");
+    /* work going on in the background, so that nothing looks frozen */
+    char busy[96] = "";
+    if (a->job)
+        loadjob_status(a->job, busy, sizeof busy);
+    else if (a->p.st.building)
+        snprintf(busy, sizeof busy, "building octree...");
+    bar_field(&f[BUSY], 0, "%s", busy);
     for (int rank = 1; rank < BAR_NOTE && bar_join(f, buf, len) > width; rank++)
         for (int i = 0; i < BAR_FIELDS; i++)
             if (f[i].rank == rank)
@@ -256,15 +287,15 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
             if (f[i].brief[0])
                 memcpy(f[i].text, f[i].brief, sizeof f[i].brief);
     /* the note is cut at its end to fit, and goes when little would be left */
-    int over = bar_join(f, buf, len) - width, note_len = (int)strlen(f[8].text);
+    int over = bar_join(f, buf, len) - width, note_len = (int)strlen(f[NOTE].text);
     if (over > 0 && note_len - over - 1 >= 12) {
         int keep = note_len - over - 1;
-        while (keep > 0 && (f[8].text[keep] & 0xc0) == 0x80)
+        while (keep > 0 && (f[NOTE].text[keep] & 0xc0) == 0x80)
             keep--;
-        f[8].text[keep] = '~';
-        f[8].text[keep + 1] = 0;
+        f[NOTE].text[keep] = '~';
+        f[NOTE].text[keep + 1] = 0;
     } else if (over > 0) {
-        f[8].rank = -1;
+        f[NOTE].rank = -1;
     }
     over = bar_join(f, buf, len) - width;
     int name_len = (int)strlen(f[0].text);
@@ -278,10 +309,127 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
     }
 }
 
+/* ==== Overlays: the open prompt, its candidates, the info panel ==== */
+
+/* Columns of UTF-8 text (every character one column, as vt_text draws). */
+static int text_cols(const char *s, int bytes)
+{
+    int n = 0;
+    for (int i = 0; i < bytes && s[i]; i++)
+        n += (s[i] & 0xc0) != 0x80;
+    return n;
+}
+
+/* The prompt in the status line: its label and line, scrolled so that
+ * the cursor shows, the cursor out of reverse video. */
+static void draw_prompt(const Prompt *pr, int row, int cols)
+{
+    char bar[PROMPT_MAX + 64];
+    snprintf(bar, sizeof bar, " %s%s", pr->label, pr->buf);
+    int head = 1 + (int)strlen(pr->label);
+    int at = text_cols(bar, head + pr->cur);       /* the cursor's column */
+    const char *show = bar;
+    while (at > cols - 2 && *show) {
+        show++;                                     /* drop a character from the left */
+        while ((*show & 0xc0) == 0x80)
+            show++;
+        at--;
+    }
+    term_draw_bar(row, show);
+    term_bar_cursor(row, at);
+}
+
+/* A second Tab's candidates in columns in a box above the status line. */
+static void draw_candidates(App *a, int cols, int rows)
+{
+    const Prompt *pr = &a->prompt;
+    const char *names[256];
+    int n = 0, wide = 0;
+    char copy[PROMPT_LIST];
+    snprintf(copy, sizeof copy, "%s", pr->list);
+    for (char *s = copy, *e; s && *s && n < 256; s = e) {
+        e = strchr(s, '\n');
+        if (e)
+            *e++ = 0;
+        names[n++] = s;
+        int l = (int)strlen(s);
+        wide = l > wide ? l : wide;
+    }
+    if (n == 0)
+        return;
+    int inner = cols - 4 > 8 ? cols - 4 : 8, colw = wide + 2;
+    int per = inner / colw > 0 ? inner / colw : 1;
+    int nrows = (n + per - 1) / per, maxrows = rows / 2 - 3 > 1 ? rows / 2 - 3 : 1;
+    if (nrows > maxrows)
+        nrows = maxrows;
+    const char *lines[HELP_LINES_MAX];
+    int nl = 0;
+    snprintf(a->help_text[0], HELP_LINE_MAX, "%d match%s%s", pr->nlist, pr->nlist == 1 ? "" : "es",
+             nrows * per < pr->nlist ? " (the first shown)" : "");
+    lines[nl++] = a->help_text[0];
+    for (int r = 0; r < nrows && nl < HELP_LINES_MAX; r++, nl++) {
+        char *t = a->help_text[nl];
+        int len = 0;
+        t[0] = 0;
+        for (int c = 0; c < per; c++) {
+            int k = r * per + c;        /* row-major: names read across, as ls -x */
+            if (k >= n)
+                break;
+            len += snprintf(t + len, (size_t)(HELP_LINE_MAX - len), "%-*s", c + 1 < per ? colw : 0, names[k]);
+            if (len >= HELP_LINE_MAX)
+                break;
+        }
+        lines[nl] = t;
+    }
+    term_draw_box_at(lines, nl, 0, -1);
+}
+
+/* The info panel: the frame's numbers (report.c, as --info prints them)
+ * in a box at the top right (over the picture, or beside it in a window
+ * of INFO_BESIDE_MIN columns), each line wrapped after a comma to fit. */
+static void draw_info(App *a, int cols, int rows, double out_ms)
+{
+    ReportLine rl[REPORT_LINES];
+    int n = frame_report(&a->p, out_ms, rl, REPORT_LINES);
+    int inner = cols - 4 < INFO_BOX - 4 ? cols - 4 : INFO_BOX - 4;    /* the box's frame and margins */
+    if (inner < 20)
+        return;
+    const char *lines[HELP_LINES_MAX];
+    int nl = 0, maxl = rows - 3 < HELP_LINES_MAX ? rows - 3 : HELP_LINES_MAX;
+    snprintf(a->help_text[nl], HELP_LINE_MAX, "frame info (i closes)");
+    lines[nl] = a->help_text[nl];
+    nl++;
+    for (int i = 0; i < n && nl < maxl; i++) {
+        const char *t = rl[i].text;
+        int first = 1;
+        while (*t && nl < maxl) {
+            /* as much as fits, broken after a comma when it must be */
+            int room = inner - 12, len = (int)strlen(t), take = len;
+            if (len > room) {
+                take = room;
+                for (int k = room; k > 0; k--)
+                    if (t[k - 1] == ',') {
+                        take = k;
+                        break;
+                    }
+            }
+            snprintf(a->help_text[nl], HELP_LINE_MAX, "%-12s%.*s", first ? rl[i].label : "", take, t);
+            lines[nl] = a->help_text[nl];
+            nl++;
+            t += take;
+            while (*t == ' ')
+                t++;
+            first = 0;
+        }
+    }
+    term_draw_box_at(lines, nl, -1, 0);
+}
+
 typedef struct {
     int    cols, rows;      /* window size last drawn (0 = none yet) */
     int    small;           /* last draw was the too-small message */
     int    help;            /* last draw showed the help */
+    int    pic_cols;        /* the picture's width last drawn */
     double out_ms;          /* last curses output time */
     double frame_ms;        /* last rendered frame, render + output */
 } DrawState;
@@ -307,13 +455,22 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
         d->small = 0;
         d->cols = cols;
         d->rows = rows;
-    } else if (d->help && !(a->help || a->cmd)) {
+    } else if (d->help && !(a->help || a->cmd || a->info || a->prompting)) {
         term_erase();       /* the box may reach past a --size picture */
     }
-    d->help = a->help || a->cmd;
+    d->help = a->help || a->cmd || a->info || a->prompting;
     /* --size: that many cells, or fewer when the window is smaller */
     int pc = a->pic_cols > 0 && a->pic_cols < cols ? a->pic_cols : cols;
     int pr = a->pic_rows > 0 && a->pic_rows < rows - 1 ? a->pic_rows : rows - 1;
+    /* a wide window keeps the info panel beside the picture, not over it */
+    if (a->info && !a->help && !a->cmd && cols >= INFO_BESIDE_MIN && pc > cols - INFO_BOX)
+        pc = cols - INFO_BOX;
+    if (pc != d->pic_cols) {
+        if (d->pic_cols)
+            term_erase();
+        what |= RE_RENDER;
+        d->pic_cols = pc;
+    }
     double t0 = now_ms();
     if ((what & RE_RENDER) == RE_RENDER && render(a, pc, pr))
         return RUN_NO_MEMORY;
@@ -322,9 +479,17 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     if ((what & RE_RENDER) == RE_RENDER)
         d->frame_ms = (t1 - t0) + d->out_ms;
     char bar[512];
-    status_text(a, bar, sizeof bar, d->frame_ms, fps_cap, cols);
-    term_draw_bar(rows - 1, bar);
-    if (a->help) {
+    if (a->prompting) {
+        draw_prompt(&a->prompt, rows - 1, cols);
+    } else {
+        status_text(a, bar, sizeof bar, d->frame_ms, fps_cap, cols);
+        term_draw_bar(rows - 1, bar);
+    }
+    if (a->info && !a->help && !a->cmd)
+        draw_info(a, cols, rows, a->p.cells_ms + d->out_ms);
+    if (a->prompting && a->prompt.list[0]) {
+        draw_candidates(a, cols, rows);
+    } else if (a->help) {
         const char *lines[HELP_LINES_MAX];
         term_draw_box(lines, app_help_layout(a, cols, rows, lines));
     } else if (a->cmd) {
@@ -360,7 +525,7 @@ static int run(App *a, int fps)
     DrawState d = { 0 };
     Reaction todo = RE_RENDER;
     double period = 1000.0 / (fps > 0 ? fps : 30);
-    double next = 0, last_spin = 0;
+    double next = 0, last_spin = 0, tick = 0;
     for (;;) {
         /* a frame goes only when the last one is through: on a slow
          * link frames are dropped (the newest state drawn when the line
@@ -381,6 +546,14 @@ static int run(App *a, int fps)
             if (timeout < 0 || pace < timeout)
                 timeout = pace;
         }
+        /* work in the background: wake up to show how it goes */
+        int busy = a->job != NULL || a->p.st.building;
+        if (busy) {
+            double now = now_ms();
+            int t = tick > now ? (int)(tick - now + 0.999) : 0;
+            if (timeout < 0 || t < timeout)
+                timeout = t;
+        }
         TermEvent ev;
         int got = term_read(&ev, timeout);
         if (got > 0) {
@@ -396,6 +569,13 @@ static int run(App *a, int fps)
         }
         if (got < 0)
             return RUN_INPUT_ENDED;     /* no key will come: waiting would spin */
+        if (busy && now_ms() >= tick) {
+            /* a finished load joins the scene here, on this thread */
+            todo |= app_load_poll(a);
+            if (a->p.st.building)
+                todo |= RE_RENDER;
+            tick = now_ms() + BUSY_TICK_MS;
+        }
         if (a->spin) {
             double now = now_ms();
             if (now >= next) {
@@ -489,6 +669,7 @@ int app_viewer(const Options *o, Scene *s)
                 use ? err : "no terminal description installed (not even xterm, vt100 or ansi)",
                 o->print_view ? "" : ": one frame instead");
         pipeline_free(&a.p);
+        app_live_free(&a);
         if (tty)
             fclose(tty);
         if (screen_tty)
@@ -508,6 +689,7 @@ int app_viewer(const Options *o, Scene *s)
     int unsaved = a.sk.on && !sketch_mode_file(&a);
     pipeline_free(&a.p);        /* its runner first: it may read the sketch's scene */
     sketch_mode_free(&a);
+    app_live_free(&a);
     if (tty)
         fclose(tty);
     if (screen_tty)
@@ -594,6 +776,7 @@ int app_bench_tty(const Options *o)
     if (term_open(&cfg, err, sizeof err)) {
         fprintf(stderr, "zview: %s: %s\n", termname, err);
         pipeline_free(&a.p);
+        app_live_free(&a);
         goto done;
     }
     term_set_size(cols, rows + 1);
@@ -609,6 +792,7 @@ int app_bench_tty(const Options *o)
             term_restore();
             fprintf(stderr, "zview: out of memory\n");
             pipeline_free(&a.p);
+            app_live_free(&a);
             goto done;
         }
         double t1 = now_ms();
@@ -620,6 +804,7 @@ int app_bench_tty(const Options *o)
             term_restore();
             fprintf(stderr, "zview: the benchmark's file: %s\n", strerror(e));
             pipeline_free(&a.p);
+            app_live_free(&a);
             goto done;
         }
         long now = file_bytes(out);
@@ -659,9 +844,11 @@ int app_bench_tty(const Options *o)
     if (out_flush(&rep)) {
         fprintf(stderr, "zview: standard output: %s\n", out_error(&rep));
         pipeline_free(&a.p);
+        app_live_free(&a);
         goto done;
     }
     pipeline_free(&a.p);
+    app_live_free(&a);
     rc = 0;
 done:
     if (out)

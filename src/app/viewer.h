@@ -4,8 +4,11 @@
  * key table in action.c that changes it. Each action is tiny and returns
  * what the loop in viewer.c has to redo. */
 
+#include <pthread.h>
+
 #include "app.h"
 #include "sketch.h"
+#include "prompt.h"
 
 typedef enum {
     RE_NONE   = 0,
@@ -36,9 +39,27 @@ typedef struct {
     char    saved[32];      /* the file written last ("" none) */
     int     saved_clean;    /* ... and the drawing is still what it holds */
 } SketchMode;
+/* loadjob.c: one file loaded on a thread of its own (the O key). */
+typedef struct LoadJob LoadJob;
+/* Start loading path as the options say (format, strict, flip, points);
+ * NULL with a message when no thread can be had. */
+LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t errlen);
+int      loadjob_done(LoadJob *j);          /* the thread has finished */
+/* Join the thread; 0 with the file's scene part in *part_out (the
+ * caller owns it), or -1 with the loader's message. Frees the job. */
+int      loadjob_finish(LoadJob *j, Scene *part_out, char *err, size_t errlen);
+/* The viewer quits mid-load: the thread finishes alone and frees the job. */
+void     loadjob_abandon(LoadJob *j);
+const char *loadjob_path(const LoadJob *j);
+/* "loading dragon.obj 42%", or a spinner, the seconds and the size when
+ * the format reports no progress; "building dragon.obj" after parsing. */
+void     loadjob_status(LoadJob *j, char *buf, size_t len);
 
 typedef struct App {
-    const Options *opt;     /* the command line: files and layout, for view commands */
+    const Options *opt;     /* the command line: files and layout, for view commands
+                               (points at live below: O, X and E change its files) */
+    Options     live;
+    char       *paths[MAX_FILES]; /* live's files, owned (NULL: not yet copied) */
     Scene      *s;
     Pipeline    p;
     int         algo;       /* index into hsr_algos */
@@ -53,7 +74,14 @@ typedef struct App {
     int         cmd;        /* the view's command line shown (any key closes it) */
     int         pic_cols, pic_rows; /* --size: the picture's cells (0 = the window's) */
     char        name[96];   /* file name(s) for the status line */
-    char        note[80];   /* a one-off note for the status line */
+    char        note[160];  /* a one-off note for the status line */
+    /* live editing of the scene (live.c) */
+    int         prompting;  /* the open prompt is in the status line */
+    Prompt      prompt;
+    LoadJob    *job;        /* a file loading in the background, or NULL */
+    int         info;       /* the info panel is shown */
+    int         confirm;    /* E asked "empty the scene? y/n": the next key answers */
+    const char *empty_why;  /* why the last frame covers no pixel, NULL when it covers some */
     char        help_text[HELP_LINES_MAX][HELP_LINE_MAX];
     SketchMode  sk;
 } App;
@@ -111,6 +139,22 @@ extern const HelpEntry sketch_help[];
 /* The viewer's keys that keep their meaning in sketch mode. */
 extern const char sketch_shared_keys[];
 extern const int sketch_help_n;
+/* live.c: the scene edited while the viewer runs. */
+Reaction app_open_prompt(App *a);           /* O: ask for a file */
+Reaction app_prompt_key(App *a, int key);   /* a key while the prompt is up */
+Reaction app_load_poll(App *a);             /* a background load finished? join its part */
+Reaction app_remove_selected(App *a);       /* X, Delete */
+Reaction app_clear_scene(App *a);           /* E */
+/* The files of the command line copied so that they can change; the
+ * status line's name from them. */
+int      app_live_init(App *a, const Options *o);
+void     app_live_free(App *a);
+void     app_update_name(App *a);
+/* A loaded file's warnings (statements skipped, else the first) as the
+ * status line's note. */
+void     app_warning_note(App *a, const MeshInfo *info, const char *path);
+/* Set the status line's note (cut to its size). */
+void     app_note(App *a, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The help overlay laid out for a window of cols x rows (the status bar
  * included): a title and as many rows of keys as fit, in as few columns

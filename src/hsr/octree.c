@@ -1,8 +1,9 @@
 /* octree.c: the hierarchical z-buffer, complete mode: an object-space
  * octree walked front to back against the z-pyramid of hzb.h.
  *
- * Once per model (cached in the per-thread state, keyed by the Scene and
- * its polygon and object counts), the polygons of each loaded object are
+ * Once per model (cached in the runner's shared state, keyed by the
+ * Scene, its generation (Scene.gen: the viewer adds and removes objects
+ * in place) and its polygon and object counts), the polygons of each loaded object are
  * sorted into an octree over their mesh vertex positions: a node splits
  * its polygons by centroid into the octants about the middle of their
  * centroids' box, until a leaf holds at most LEAF_POLYS; a node's
@@ -101,6 +102,7 @@ typedef struct {
 /* The trees of every loaded object of one scene, built once. */
 typedef struct {
     const Scene *key;
+    uint32_t   key_gen;
     uint32_t   key_npolys;
     int        key_nobjs;
     const uint32_t *key_corner;
@@ -126,8 +128,11 @@ typedef struct {
     int        done;        /* ... and has ended: join it, take next */
     int        failed;      /* the last build ran out of memory: do not retry for that scene */
     const Scene *failed_key;
+    uint32_t   failed_gen;
     int        cancel;      /* tell the builder to stop (read atomically) */
     const Scene *build_key; /* the scene the builder builds for */
+    uint32_t   build_gen;   /* ... at this generation. The scene must not change while
+                               it builds (pipeline_scene_changing stops it first) */
     pthread_t  th;
     /* for this frame, set by frame_begin before the bands start */
     const OctTree *use;     /* the trees of this frame's scene, or NULL */
@@ -300,7 +305,7 @@ static void tree_free(OctTree *s)
 
 static int tree_is_for(const OctTree *t, const Scene *sc)
 {
-    return t && t->key == sc && t->key_npolys == sc->npolys && t->key_nobjs == sc->nobjs &&
+    return t && t->key == sc && t->key_gen == sc->gen && t->key_npolys == sc->npolys && t->key_nobjs == sc->nobjs &&
            t->key_corner == sc->poly_corner;
 }
 
@@ -309,6 +314,7 @@ static int tree_is_for(const OctTree *t, const Scene *sc)
 static int tree_build(OctTree *s, const Scene *sc)
 {
     s->key = sc;
+    s->key_gen = sc->gen;
     s->key_npolys = sc->npolys;
     s->key_nobjs = sc->nobjs;
     s->key_corner = sc->poly_corner;
@@ -403,6 +409,7 @@ static void *builder_main(void *arg)
     if (rc) {
         sh->failed = !__atomic_load_n(&sh->cancel, __ATOMIC_RELAXED);
         sh->failed_key = sh->build_key;
+        sh->failed_gen = sh->build_gen;
         tree_free(sh->next);
         sh->next = NULL;
     }
@@ -450,13 +457,13 @@ static void shared_frame_begin(OctShared *sh, const Scene *sc)
     pthread_mutex_lock(&sh->mu);
     int done = sh->done;
     pthread_mutex_unlock(&sh->mu);
-    if (sh->building && (done || sh->build_key != sc))
+    if (sh->building && (done || sh->build_key != sc || sh->build_gen != sc->gen))
         builder_join(sh, !done);     /* finished, or building for a scene gone by */
     if (tree_is_for(sh->cur, sc)) {
         sh->use = sh->cur;
         return;
     }
-    if (sh->building || (sh->failed && sh->failed_key == sc))
+    if (sh->building || (sh->failed && sh->failed_key == sc && sh->failed_gen == sc->gen))
         return;
     sh->failed = 0;
     OctTree *t = tree_new(sh, sc);
@@ -468,6 +475,7 @@ static void shared_frame_begin(OctShared *sh, const Scene *sc)
     if (sh->background && polys >= BACKGROUND_MIN) {
         sh->next = t;
         sh->build_key = sc;
+        sh->build_gen = sc->gen;
         sh->done = 0;
         if (pthread_create(&sh->th, NULL, builder_main, sh) == 0) {
             sh->building = 1;
@@ -479,6 +487,7 @@ static void shared_frame_begin(OctShared *sh, const Scene *sc)
         tree_free(t);
         sh->failed = 1;
         sh->failed_key = sc;
+        sh->failed_gen = sc->gen;
         return;
     }
     tree_free(sh->cur);

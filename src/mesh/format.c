@@ -297,14 +297,16 @@ static int refuse(MeshErr *e, const char *what)
 static void report_skipped(MeshCtx *c)
 {
     MeshErr *e = &c->err;
-    if (!e->skipped)
-        return;
-    c->m->info.skipped = e->skipped;
-    snprintf(c->m->info.first_skipped, sizeof c->m->info.first_skipped, "%s", e->first);
-    me_warn(e->name, 0, "%u statement%s skipped (first: %s)", e->skipped, e->skipped == 1 ? "" : "s",
-            e->first);
-    if (e->buf && e->len)
-        e->buf[0] = '\0';
+    if (e->skipped) {
+        c->m->info.skipped = e->skipped;
+        snprintf(c->m->info.first_skipped, sizeof c->m->info.first_skipped, "%s", e->first);
+        me_warn(e, NULL, 0, "%u statement%s skipped (first: %s)", e->skipped, e->skipped == 1 ? "" : "s",
+                e->first);
+        if (e->buf && e->len)
+            e->buf[0] = '\0';
+    }
+    c->m->info.warnings = e->warned;
+    snprintf(c->m->info.first_warning, sizeof c->m->info.first_warning, "%s", e->warning);
 }
 
 /* Run the loader on bytes in memory. */
@@ -323,7 +325,7 @@ static int run(const MeshLoader *l, MeshCtx *c, const char *data, size_t len)
 int mesh_parse_buffer(Mesh *m, const char *path, const char *format, const void *data,
                       size_t len, char *err, size_t errlen)
 {
-    MeshLoadOpts opt = { format, 1 };
+    MeshLoadOpts opt = { .format = format, .strict = 1 };
     return mesh_parse_buffer_ex(m, path, &opt, data, len, err, errlen);
 }
 
@@ -342,7 +344,7 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
     if (!data)
         len = 0;
     MeshCtx c = { .m = m, .err = { .name = path ? path : "(input)", .buf = err, .len = errlen,
-                                   .strict = opt ? opt->strict : 1 },
+                                   .strict = opt ? opt->strict : 1, .quiet = opt && opt->quiet },
                   .path = path };
     char ext[16];
     extension(path, ext, sizeof ext);
@@ -396,7 +398,7 @@ static void stream_limits(const MeshFile *f, const char *forced, MfLimits *lim)
 
 int mesh_load_as(Mesh *m, const char *path, const char *format, char *err, size_t errlen)
 {
-    MeshLoadOpts opt = { format, 1 };
+    MeshLoadOpts opt = { .format = format, .strict = 1 };
     return mesh_load_ex(m, path, &opt, err, errlen);
 }
 
@@ -413,7 +415,8 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
     memset(m, 0, sizeof *m);
     int is_stdin = strcmp(path, "-") == 0;
     const char *name = is_stdin ? "stdin" : path;
-    MeshCtx c = { .m = m, .err = { .name = name, .buf = err, .len = errlen, .strict = opt ? opt->strict : 1 },
+    MeshCtx c = { .m = m, .err = { .name = name, .buf = err, .len = errlen, .strict = opt ? opt->strict : 1,
+                                   .quiet = opt && opt->quiet },
                   .path = path };
     char ext[16];
     extension(is_stdin ? NULL : path, ext, sizeof ext);
@@ -425,6 +428,10 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
     char msg[256];
     if (mf_open(&f, path, 0, msg, sizeof msg))
         return me_fail(&c.err, "%s", msg);
+    if (opt && opt->progress) {
+        __atomic_store_n(&opt->progress->total, f.regular ? f.size : 0, __ATOMIC_RELAXED);
+        f.progress = &opt->progress->done;
+    }
     if (!f.regular) {
         /* a stream is read whole before it is judged: its size is part
          * of what tells a binary STL */

@@ -60,9 +60,9 @@ const char *mesh_assimp_version(char *buf, size_t n);
 /* ==== MTL (used by obj.c) ==== */
 
 /* Append the materials of MTL text to *mats (*nmats used of *cap, grown
- * as needed). `name` is the file's name for warnings: bad lines are
- * skipped with one warning per file. Returns 0, or -1 out of memory. */
-int  mesh_mtl_parse(const char *name, const char *data, size_t len, Material **mats,
+ * as needed). `name` is the file's name for warnings (given to e's
+ * me_warn): bad lines are skipped with one warning per file. Returns 0, or -1 out of memory. */
+int  mesh_mtl_parse(MeshErr *e, const char *name, const char *data, size_t len, Material **mats,
                     uint32_t *nmats, uint32_t *cap);
 
 /* ==== Building a Mesh ==== */

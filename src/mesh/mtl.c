@@ -37,7 +37,7 @@ static int word_is(const char *k, size_t n, const char *w)
     return strlen(w) == n && memcmp(k, w, n) == 0;
 }
 
-int mesh_mtl_parse(const char *name, const char *data, size_t len, Material **mats,
+int mesh_mtl_parse(MeshErr *err, const char *name, const char *data, size_t len, Material **mats,
                    uint32_t *nmats, uint32_t *cap)
 {
     Material *cur = NULL;
@@ -123,7 +123,7 @@ int mesh_mtl_parse(const char *name, const char *data, size_t len, Material **ma
             }
         }
         if (bad && !warned) {
-            me_warn(name, lr.line, "%s",
+            me_warn(err, name, lr.line, "%s",
                     mesh_has_binary(k, e) ? "binary or unreadable data"
                                           : "bad material statement, skipped");
             warned = 1;

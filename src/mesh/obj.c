@@ -589,7 +589,7 @@ static int load_library(Parser *ps, const char *name, size_t n)
     char msg[160];
     /* Regular files only: a FIFO or /dev/stdin would block for ever. */
     if (mf_open(&f, full, MF_REGULAR_ONLY, msg, sizeof msg)) {
-        me_warn(ps->e->name, ps->line, "cannot open material library '%.*s' (%s)", (int)n, name,
+        me_warn(ps->e, NULL, ps->line, "cannot open material library '%.*s' (%s)", (int)n, name,
                 msg);
         return 0;
     }
@@ -599,12 +599,12 @@ static int load_library(Parser *ps, const char *name, size_t n)
         return r < 0 ? fail_oom(ps) : 0;
     }
     if (mf_load(&f, NULL, msg, sizeof msg)) {
-        me_warn(ps->e->name, ps->line, "cannot read material library '%.*s' (%s)", (int)n, name,
+        me_warn(ps->e, NULL, ps->line, "cannot read material library '%.*s' (%s)", (int)n, name,
                 msg);
         mf_close(&f);
         return 0;
     }
-    r = mesh_mtl_parse(full, f.data, f.len, &ps->m->mats, &ps->m->nmats, &ps->b.mcap);
+    r = mesh_mtl_parse(ps->e, full, f.data, f.len, &ps->m->mats, &ps->m->nmats, &ps->b.mcap);
     mf_close(&f);
     if (r < 0)
         return fail_oom(ps);
@@ -770,7 +770,7 @@ static int resolve_materials(Parser *ps)
     for (uint32_t i = 0; i < ps->nuse; i++) {
         map[i] = name_find(&mi, m->mats, sizeof(Material), ps->uses[i].name);
         if (map[i] < 0 && ps->mtl_loaded)
-            me_warn(ps->e->name, ps->uses[i].line, "unknown material '%s'", ps->uses[i].name);
+            me_warn(ps->e, NULL, ps->uses[i].line, "unknown material '%s'", ps->uses[i].name);
     }
     for (uint32_t f = 0; f < m->nfaces; f++)
         if (m->face_mat[f] >= 0)
@@ -1021,7 +1021,7 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
     if (drop_unreadable(&ps) || resolve_materials(&ps) || mb_finish(&ps.b, !ps.saw_elements))
         goto fail;
     if (ps.undrawn)
-        me_warn(c->err.name, 0, "%u free-form statement%s (curves, surfaces) not drawn, first '%s'",
+        me_warn(&c->err, NULL, 0, "%u free-form statement%s (curves, surfaces) not drawn, first '%s'",
                 ps.undrawn, ps.undrawn == 1 ? "" : "s", ps.first_undrawn);
     parser_free(&ps);
     return 0;

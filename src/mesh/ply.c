@@ -919,7 +919,7 @@ static int ply_parse(MeshCtx *c, const char *data, size_t len)
                 break;
         }
         if (!ply.ended && txt_ws(&t))
-            me_warn(c->err.name, t.line, "data after the last element ignored");
+            me_warn(&c->err, NULL, t.line, "data after the last element ignored");
     } else {
         Bin bn = { (const unsigned char *)ply.body, (const unsigned char *)ply.end,
                    (const unsigned char *)data,
@@ -935,7 +935,7 @@ static int ply_parse(MeshCtx *c, const char *data, size_t len)
                 break;
         }
         if (!ply.ended && bn.p < bn.end)
-            me_warn(c->err.name, 0, "%zu bytes after the last element ignored",
+            me_warn(&c->err, NULL, 0, "%zu bytes after the last element ignored",
                     (size_t)(bn.end - bn.p));
     }
     /* Vertices of elements before the vertex element were not there

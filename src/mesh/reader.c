@@ -86,17 +86,26 @@ int me_skip(MeshErr *e, uint64_t at)
     return 0;
 }
 
-void me_warn(const char *name, uint64_t line, const char *fmt, ...)
+void me_warn(MeshErr *e, const char *name, uint64_t line, const char *fmt, ...)
 {
-    char msg[512];
+    char msg[512], full[800];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    if (!name)
+        name = e->name;
     if (line)
-        fprintf(stderr, "zview: warning: %s:%llu: %s\n", name, (unsigned long long)line, msg);
+        snprintf(full, sizeof full, "%s:%llu: %s", name, (unsigned long long)line, msg);
     else
-        fprintf(stderr, "zview: warning: %s: %s\n", name, msg);
+        snprintf(full, sizeof full, "%s: %s", name, msg);
+    if (!e->warned++) {
+        size_t n = strlen(full) < sizeof e->warning - 1 ? strlen(full) : sizeof e->warning - 1;
+        memcpy(e->warning, full, n);
+        e->warning[n] = '\0';
+    }
+    if (!e->quiet)
+        fprintf(stderr, "zview: warning: %s\n", full);
 }
 
 /* ==== Input ==== */
@@ -303,6 +312,8 @@ void mf_window(MeshFile *f, size_t pos)
         }
     }
     f->mark = pos + MF_STEP;
+    if (f->progress)
+        __atomic_store_n(f->progress, (uint64_t)pos, __ATOMIC_RELAXED);
 }
 
 void mf_close(MeshFile *f)

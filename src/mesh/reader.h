@@ -35,6 +35,10 @@ typedef struct {
     uint64_t    first_at;  /* line (text) or byte (binary) of the first, for ordering */
     char        first[256];/* its message, "path:line: msg" */
     char        msg[256];  /* the last message, whatever buf's size */
+    /* Warnings: on stderr unless quiet; counted, the first kept. */
+    int         quiet;
+    uint32_t    warned;
+    char        warning[256];
 } MeshErr;
 
 /* Each writes the message and returns -1, so `return me_fail(...)`. */
@@ -51,9 +55,11 @@ int me_fail_raw(MeshErr *e, const char *fmt, ...) __attribute__((format(printf, 
  * message when it is the earliest so far; under strict returns -1 and
  * leaves the message as the load's error. */
 int me_skip(MeshErr *e, uint64_t at);
-/* A warning on stderr: "zview: warning: name: msg" (line 0: none). */
-void me_warn(const char *name, uint64_t line, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
+/* A warning: "name:line: msg" (line 0: "name: msg"; name NULL: e's),
+ * counted and the first kept in e, and on stderr prefixed "zview:
+ * warning: " unless e->quiet. */
+void me_warn(MeshErr *e, const char *name, uint64_t line, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
 
 /* ==== Input ==== */
 
@@ -85,6 +91,7 @@ typedef struct MeshFile {
     /* the paging window (mapped files): [released, populated) is what
      * was asked in and not yet dropped; mf_progress moves it at `mark` */
     size_t      populated, released, mark;
+    uint64_t   *progress;  /* NULL, or bytes parsed so far (atomic stores, see MeshProgress) */
 } MeshFile;
 
 /* Open `path` ("-" = standard input) and read its first bytes into head

@@ -100,7 +100,7 @@ static int stl_binary(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
         return me_fail(&c->err, "the header's count, %u triangles, makes %llu bytes; the file has %zu",
                        n, (unsigned long long)need, len);
     if (need < len)
-        me_warn(c->err.name, 0, "%llu bytes after the last of %u triangles ignored",
+        me_warn(&c->err, NULL, 0, "%llu bytes after the last of %u triangles ignored",
                 (unsigned long long)(len - need), n);
     snprintf(m->info.format, sizeof m->info.format, "stl binary");
     if (n == 0)

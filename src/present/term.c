@@ -533,6 +533,21 @@ void term_draw_bar(int y, const char *text)
 
 void term_draw_box(const char *const *lines, int n)
 {
+    term_draw_box_at(lines, n, -2, -2);
+}
+
+void term_bar_cursor(int y, int x)
+{
+    if (fit())
+        return;
+    VtCell *c = vt_at(&T.vt, y, x);
+    if (c)
+        c->attr = 0;
+}
+
+/* x, y == -2: centred (term_draw_box) */
+void term_draw_box_at(const char *const *lines, int n, int bx, int by)
+{
     if (fit())
         return;
     int H = T.vt.rows, W = T.vt.cols;
@@ -546,7 +561,8 @@ void term_draw_box(const char *const *lines, int n)
     if (w > W)
         w = W;
     int h = n + 2 > H - 1 ? H - 1 : n + 2;
-    int x0 = (W - w) / 2, y0 = (H - 1 - h) / 2;
+    int x0 = bx == -2 ? (W - w) / 2 : bx < 0 ? W - w : bx;
+    int y0 = by == -2 ? (H - 1 - h) / 2 : by < 0 ? H - 1 - h : by;
     for (int r = 0; r < h; r++) {
         int edge = r == 0 || r == h - 1;
         const char *t = !edge && r - 1 < n ? lines[r - 1] : "";
@@ -762,6 +778,9 @@ int term_read(TermEvent *ev, int timeout_ms)
         case KEY_RIGHT:  ev->key = TK_RIGHT; return 1;
         case KEY_BTAB:   ev->key = TK_BTAB; return 1;
         case KEY_ENTER:  ev->key = TK_ENTER; return 1;
+        case KEY_DC:     ev->key = TK_DEL; return 1;
+        case KEY_HOME:   ev->key = TK_HOME; return 1;
+        case KEY_END:    ev->key = TK_END; return 1;
         case KEY_BACKSPACE: ev->key = TK_BACKSPACE; return 1;
         case KEY_RESIZE: ev->type = TE_RESIZE; return 1;
         case KEY_STATUS_OK:

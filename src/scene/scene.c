@@ -10,12 +10,13 @@
 
 #include "bigmem.h"
 #include "scene.h"
+#include "scene_internal.h"
 
 /* A face whose corners stray from its plane by more than this fraction
  * of its size is split into triangles. */
 #define PLANAR_TOL 1e-4
 
-static const uint8_t default_rgb[3] = { 204, 204, 196 };
+const uint8_t scene_default_rgb[3] = { 204, 204, 196 };
 
 /* ==== per-face geometry ==== */
 
@@ -104,7 +105,7 @@ static int face_base_rgb(const Mesh *m, uint32_t f, uint8_t out[3])
         }
         return 1;
     }
-    memcpy(out, default_rgb, 3);
+    memcpy(out, scene_default_rgb, 3);
     return 0;
 }
 
@@ -121,16 +122,14 @@ void scene_free(Scene *s)
     free(s->poly_lface);
     free(s->face_normal);
     free(s->face_rgb);
+    free(s->face_own);
     free(s->face_obj);
     free(s->seg_corner);
     free(s->wire);
     memset(s, 0, sizeof *s);
 }
 
-/* Number the points, segments and wireframe edges after the faces: every
- * object's points, then every object's segments, then every object's
- * edges. -1 when the ids would pass INT32_MAX. */
-static int number_prims(Scene *s)
+int scene_number_prims(Scene *s)
 {
     uint64_t id = s->nfaces, np = 0, ns = 0, nw = 0, nl = 0;
     for (int i = 0; i < s->nobjs; i++) {
@@ -283,9 +282,10 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     s->face_normal = malloc((nfaces ? nfaces : 1) * 3 * sizeof(float));
     s->face_rgb = malloc((nfaces ? nfaces : 1) * 3);
     s->face_obj = malloc((nfaces ? nfaces : 1) * sizeof(uint16_t));
+    s->face_own = malloc(nfaces ? nfaces : 1);
     uint8_t *planar = malloc(nfaces ? nfaces : 1);
     s->seg_corner = malloc((nsegs ? nsegs : 1) * sizeof *s->seg_corner);
-    if (!s->objs || !s->face_normal || !s->face_rgb || !s->face_obj || !planar || !s->seg_corner)
+    if (!s->objs || !s->face_normal || !s->face_rgb || !s->face_obj || !s->face_own || !planar || !s->seg_corner)
         goto oom;
     bigmem_advise(s->face_normal, nfaces * 3 * sizeof(float), 1);
     bigmem_advise(s->face_rgb, nfaces * 3, 1);
@@ -303,6 +303,7 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
                 s->face_normal[3 * gface + i] = len > 0 ? (float)(n[i] / len) : (i == 2);
             int own = face_base_rgb(m, f, &s->face_rgb[3 * gface]);
             planar[gface] = (uint8_t)(face_is_planar(m, f, n) | own << 1);
+            s->face_own[gface] = (uint8_t)own;
             uint32_t nc = m->face_start[f + 1] - m->face_start[f];
             if (planar[gface] & 1) {
                 npolys += 1;
@@ -414,7 +415,7 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     s->nbase_objs = oi;
     s->nfaces = gface;
     free(planar);
-    if (number_prims(s)) {
+    if (scene_number_prims(s)) {
         s->meshes = NULL;
         s->nmeshes = 0;
         scene_free(s);
@@ -466,7 +467,10 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
     uint16_t *fo = realloc(s->face_obj, nfaces * sizeof(uint16_t));
     if (fo)
         s->face_obj = fo;
-    if (!objs || !fn || !fc || !fo) {
+    uint8_t *own = s->face_own ? realloc(s->face_own, nfaces) : NULL;
+    if (own)
+        s->face_own = own;
+    if (!objs || !fn || !fc || !fo || (s->face_own && !own)) {
         snprintf(err, errlen, "--grid %d: out of memory", n);
         return -1;
     }
@@ -485,12 +489,15 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
         }
         memcpy(&s->face_normal[3 * c * nf], s->face_normal, 3 * (size_t)nf * sizeof(float));
         memcpy(&s->face_rgb[3 * c * nf], s->face_rgb, 3 * (size_t)nf);
+        if (s->face_own)
+            memcpy(&s->face_own[c * nf], s->face_own, nf);
         for (uint32_t f = 0; f < nf; f++)
             s->face_obj[c * nf + f] = (uint16_t)(s->face_obj[f] + c * nb);
     }
     s->nobjs = (int)nobjs;
     s->nfaces = (uint32_t)nfaces;
-    number_prims(s);        /* fits: checked above */
+    s->gen++;
+    scene_number_prims(s);        /* fits: checked above */
     scene_fit(s);
     return 0;
 }
@@ -699,7 +706,7 @@ int scene_wire_build(Scene *s, char *err, size_t errlen)
         return 0;
     int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
     /* an edge per polygon corner at most; the table at most half full */
-    uint64_t corners = s->poly_start[s->npolys], most = 0;
+    uint64_t corners = s->npolys ? s->poly_start[s->npolys] : 0, most = 0;
     for (int k = 0; k < nb; k++) {
         const Object *o = &s->objs[k];
         uint64_t c = s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
@@ -782,10 +789,10 @@ int scene_wire_build(Scene *s, char *err, size_t errlen)
         s->objs[k].wire_first = s->objs[k % nb].wire_first;
         s->objs[k].wire_count = s->objs[k % nb].wire_count;
     }
-    if (number_prims(s)) {
+    if (scene_number_prims(s)) {
         for (int k = 0; k < s->nobjs; k++)
             s->objs[k].wire_count = 0;
-        number_prims(s);
+        scene_number_prims(s);
         free(s->wire);
         s->wire = NULL;
         s->nwire_edges = 0;

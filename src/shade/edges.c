@@ -27,7 +27,7 @@
  * face split into triangles: they share its plane). */
 static int face_planes(const Scene *s, const ScreenPolys *sp, EdgeData *ed)
 {
-    if (ed->cap < s->nfaces) {
+    if (ed->cap < s->nfaces || !ed->face_sp) {
         int32_t *m = realloc(ed->face_sp, (size_t)(s->nfaces ? s->nfaces : 1) * sizeof *m);
         if (!m)
             return -1;

@@ -99,10 +99,11 @@ static int object_normals(SmoothData *sd, const Scene *s, const Object *o, float
 
 int smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg)
 {
-    if (sd->key == s && sd->key_npolys == s->npolys && sd->crease == crease_deg && sd->cnorm)
+    if (sd->key == s && sd->key_gen == s->gen && sd->key_npolys == s->npolys && sd->crease == crease_deg &&
+        sd->cnorm)
         return 0;
     smooth_free(sd);
-    uint32_t ncorners = s->poly_start[s->npolys];
+    uint32_t ncorners = s->npolys ? s->poly_start[s->npolys] : 0;
     sd->cnorm = malloc((size_t)(ncorners ? ncorners : 1) * 3 * sizeof(float));
     sd->face_poly = malloc(((size_t)s->nfaces + 1) * 2 * sizeof(uint32_t));
     if (!sd->cnorm || !sd->face_poly) {
@@ -133,6 +134,7 @@ int smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg)
         }
     }
     sd->key = s;
+    sd->key_gen = s->gen;
     sd->key_npolys = s->npolys;
     sd->crease = crease_deg;
     return 0;

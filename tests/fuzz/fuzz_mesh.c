@@ -85,7 +85,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (size < 1)
         return 0;
     unsigned sel = data[0];
-    MeshLoadOpts opt = { (sel & 7) < 5 ? formats[sel & 7] : NULL, !(sel & 8) };
+    MeshLoadOpts opt = { .format = (sel & 7) < 5 ? formats[sel & 7] : NULL, .strict = !(sel & 8) };
     Mesh *m = calloc(1, sizeof *m);
     char err[512];
     if (!m)

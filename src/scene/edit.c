@@ -1,0 +1,240 @@
+/* edit.c: objects added to and removed from a built scene (the viewer's
+ * O, X and E keys).
+ *
+ * A scene's per-object data lives in flat arrays indexed by global face
+ * id and scene polygon (scene.c), with objects referring to ranges and
+ * to their mesh by pointer. Both edits are one operation: compose a new
+ * scene from the objects kept of the old one followed by the objects of
+ * a new part, copying each object's ranges to where they now fall and
+ * moving the meshes still used into a new array. Everything is made
+ * before anything is freed, so a failure leaves both inputs as they
+ * were. The result is what scene_build would have made of the remaining
+ * files: ids in load order, objects without colours of their own
+ * coloured by their index (as a fresh load colours them). */
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene.h"
+#include "scene_internal.h"
+
+int scene_object_file(const Scene *s, int i)
+{
+    if (i < 0 || i >= s->nobjs || !s->objs[i].mesh || !s->meshes)
+        return -1;
+    ptrdiff_t f = s->objs[i].mesh - s->meshes;
+    return f >= 0 && f < s->nmeshes ? (int)f : -1;
+}
+
+/* One source of objects: a scene and which of its loaded objects to take
+ * (keep NULL: all). */
+typedef struct {
+    Scene         *s;
+    const uint8_t *keep;
+} Source;
+
+static int taken(const Source *src, int i)
+{
+    return !src->keep || src->keep[i];
+}
+
+/* Compose *out from the sources in order (see the top of the file).
+ * Returns 0, or -1 with a message; the sources are untouched either way
+ * (meshes are copied by value: the caller releases what moved). */
+static int compose(Scene *out, const Source *src, int nsrc, int *mesh_used[], char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    uint64_t nobjs = 0, nfaces = 0, npolys = 0, ncorners = 0, nsegs = 0, nmeshes = 0;
+    for (int k = 0; k < nsrc; k++) {
+        const Scene *s = src[k].s;
+        int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
+        for (int i = 0; i < s->nmeshes; i++)
+            mesh_used[k][i] = -1;
+        for (int i = 0; i < nb; i++) {
+            if (!taken(&src[k], i))
+                continue;
+            const Object *o = &s->objs[i];
+            nobjs++;
+            nfaces += o->face_count;
+            npolys += o->poly_count;
+            ncorners += s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
+            nsegs += o->seg_count;
+            int f = scene_object_file(s, i);
+            if (f >= 0 && mesh_used[k][f] < 0)
+                mesh_used[k][f] = (int)nmeshes++;
+        }
+    }
+    if (nobjs > 65535 || nfaces > INT32_MAX || nsegs > INT32_MAX || npolys > UINT32_MAX / 2 ||
+        ncorners > UINT32_MAX / 2) {
+        snprintf(err, errlen, "scene too large (%llu objects, %llu faces)", (unsigned long long)nobjs,
+                 (unsigned long long)nfaces);
+        return -1;
+    }
+    out->meshes = malloc((nmeshes ? nmeshes : 1) * sizeof *out->meshes);
+    out->objs = calloc(nobjs ? nobjs : 1, sizeof *out->objs);
+    out->face_normal = malloc((nfaces ? nfaces : 1) * 3 * sizeof(float));
+    out->face_rgb = malloc((nfaces ? nfaces : 1) * 3);
+    out->face_own = malloc(nfaces ? nfaces : 1);
+    out->face_obj = malloc((nfaces ? nfaces : 1) * sizeof(uint16_t));
+    out->poly_start = malloc((npolys + 1) * sizeof(uint32_t));
+    out->poly_corner = malloc((ncorners ? ncorners : 1) * sizeof(uint32_t));
+    out->poly_lface = malloc((npolys ? npolys : 1) * sizeof(uint32_t));
+    out->seg_corner = malloc((nsegs ? nsegs : 1) * sizeof(uint32_t));
+    if (!out->meshes || !out->objs || !out->face_normal || !out->face_rgb || !out->face_own || !out->face_obj ||
+        !out->poly_start || !out->poly_corner || !out->poly_lface || !out->seg_corner) {
+        free(out->meshes);
+        out->meshes = NULL;
+        scene_free(out);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    for (int k = 0; k < nsrc; k++)
+        for (int i = 0; i < src[k].s->nmeshes; i++)
+            if (mesh_used[k][i] >= 0)
+                out->meshes[mesh_used[k][i]] = src[k].s->meshes[i];
+    out->nmeshes = (int)nmeshes;
+    /* invariant: oi objects, fi faces, pi polygons, ci corners, si
+     * segments copied so far */
+    uint32_t oi = 0, fi = 0, pi = 0, ci = 0, si = 0;
+    for (int k = 0; k < nsrc; k++) {
+        const Scene *s = src[k].s;
+        int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
+        for (int i = 0; i < nb; i++) {
+            if (!taken(&src[k], i))
+                continue;
+            const Object *from = &s->objs[i];
+            Object *o = &out->objs[oi];
+            *o = *from;
+            int f = scene_object_file(s, i);
+            o->mesh = f >= 0 ? &out->meshes[mesh_used[k][f]] : NULL;
+            o->face_base = (int32_t)fi;
+            o->poly_first = pi;
+            o->seg_first = si;
+            o->wire_first = o->wire_count = 0;
+            uint32_t f0 = (uint32_t)from->face_base, nf = from->face_count;
+            memcpy(&out->face_normal[3 * (size_t)fi], &s->face_normal[3 * (size_t)f0], 3 * (size_t)nf * sizeof(float));
+            memcpy(&out->face_rgb[3 * (size_t)fi], &s->face_rgb[3 * (size_t)f0], 3 * (size_t)nf);
+            if (s->face_own)
+                memcpy(&out->face_own[fi], &s->face_own[f0], nf);
+            else
+                memset(&out->face_own[fi], 1, nf);
+            for (uint32_t q = 0; q < nf; q++)
+                out->face_obj[fi + q] = (uint16_t)oi;
+            uint32_t c0 = s->poly_start[from->poly_first];
+            for (uint32_t q = 0; q < from->poly_count; q++) {
+                uint32_t p = from->poly_first + q;
+                out->poly_start[pi + q] = ci + (s->poly_start[p] - c0);
+                out->poly_lface[pi + q] = s->poly_lface[p];
+            }
+            uint32_t nc = s->poly_start[from->poly_first + from->poly_count] - c0;
+            memcpy(&out->poly_corner[ci], &s->poly_corner[c0], (size_t)nc * sizeof(uint32_t));
+            memcpy(&out->seg_corner[si], &s->seg_corner[from->seg_first], (size_t)from->seg_count * sizeof(uint32_t));
+            fi += nf;
+            pi += from->poly_count;
+            ci += nc;
+            si += from->seg_count;
+            oi++;
+        }
+    }
+    out->poly_start[pi] = ci;
+    out->npolys = pi;
+    out->nobjs = (int)oi;
+    out->nbase_objs = oi;
+    out->nfaces = fi;
+    /* colours by index, as a load of these files colours them */
+    for (uint32_t g = 0; g < fi; g++)
+        if (!out->face_own[g]) {
+            if (oi > 1)
+                object_colour(out->face_obj[g], &out->face_rgb[3 * (size_t)g]);
+            else
+                memcpy(&out->face_rgb[3 * (size_t)g], scene_default_rgb, 3);
+        }
+    if (scene_number_prims(out)) {
+        free(out->meshes);
+        out->meshes = NULL;
+        out->nmeshes = 0;
+        scene_free(out);
+        snprintf(err, errlen, "scene too large (more than %d faces, points and segments)", INT32_MAX);
+        return -1;
+    }
+    out->cam = src[0].s->cam;
+    out->light = src[0].s->light;
+    out->gen = src[0].s->gen + 1;
+    return 0;
+}
+
+/* Free what the old scene held but its meshes that moved (used[i] >= 0). */
+static void release(Scene *s, const int *used)
+{
+    for (int i = 0; i < s->nmeshes; i++)
+        if (used[i] < 0)
+            mesh_free(&s->meshes[i]);
+    s->nmeshes = 0;
+    scene_free(s);
+}
+
+/* Run compose over one or two sources, then replace *s by the result. */
+static int edit(Scene *s, const uint8_t *keep, Scene *part, char *err, size_t errlen)
+{
+    int *used0 = malloc((size_t)(s->nmeshes ? s->nmeshes : 1) * sizeof(int));
+    int *used1 = malloc((size_t)(part && part->nmeshes ? part->nmeshes : 1) * sizeof(int));
+    int rc = -1;
+    if (!used0 || !used1) {
+        snprintf(err, errlen, "out of memory");
+        goto out;
+    }
+    Source src[2] = { { s, keep }, { part, NULL } };
+    int *used[2] = { used0, used1 };
+    Scene n;
+    if (compose(&n, src, part ? 2 : 1, used, err, errlen))
+        goto out;
+    release(s, used0);
+    if (part) {
+        release(part, used1);
+        memset(part, 0, sizeof *part);
+    }
+    *s = n;
+    rc = 0;
+out:
+    free(used0);
+    free(used1);
+    return rc;
+}
+
+int scene_add(Scene *s, Scene *part, char *err, size_t errlen)
+{
+    return edit(s, NULL, part, err, errlen);
+}
+
+int scene_remove(Scene *s, int i, char *err, size_t errlen)
+{
+    int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
+    if (i < 0 || i >= nb) {
+        snprintf(err, errlen, "no object %d", i + 1);
+        return -1;
+    }
+    uint8_t *keep = malloc((size_t)nb);
+    if (!keep) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    memset(keep, 1, (size_t)nb);
+    keep[i] = 0;
+    int rc = edit(s, keep, NULL, err, errlen);
+    free(keep);
+    return rc;
+}
+
+void scene_clear(Scene *s)
+{
+    Camera cam = s->cam;
+    Light light = s->light;
+    uint32_t gen = s->gen;
+    scene_free(s);
+    /* what scene_build makes of no file: a polygon list of none */
+    s->poly_start = calloc(1, sizeof *s->poly_start);
+    s->cam = cam;
+    s->light = light;
+    s->gen = gen + 1;
+}

@@ -1,0 +1,91 @@
+/* test_load.c: loading for the viewer's O key: the progress a load
+ * reports, warnings kept off stderr but counted, and the job that loads
+ * a file on a thread of its own. */
+
+#define _DEFAULT_SOURCE
+
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "../src/app/viewer.h"
+
+/* A big OBJ (a strip of triangles) in a temporary file; its path. */
+static void big_obj(char *path, size_t len, int tris)
+{
+    snprintf(path, len, "/tmp/zv-load-XXXXXX");
+    int fd = mkstemp(path);
+    cr_assert(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    cr_assert(f);
+    for (int i = 0; i <= tris / 2; i++)
+        fprintf(f, "v %d.000001 0.000001 0.000001\nv %d.000001 1.000001 0.000001\n", i, i);
+    for (int i = 0; i < tris / 2; i++)
+        fprintf(f, "f %d %d %d\nf %d %d %d\n", 2 * i + 1, 2 * i + 3, 2 * i + 2, 2 * i + 2, 2 * i + 3, 2 * i + 4);
+    fprintf(f, "f 1 2 999999999\n");        /* one statement skipped: a warning */
+    cr_assert_eq(fclose(f), 0);
+}
+
+Test(load, progress_and_quiet_warnings)
+{
+    char path[64], err[256];
+    big_obj(path, sizeof path, 200000);
+    struct stat st;
+    cr_assert_eq(stat(path, &st), 0);
+    MeshProgress prog = { 0, 0 };
+    MeshLoadOpts lo = { .strict = 0, .quiet = 1, .progress = &prog };
+    Mesh m;
+    cr_assert_eq(mesh_load_ex(&m, path, &lo, err, sizeof err), 0, "%s", err);
+    cr_expect_eq(prog.total, (uint64_t)st.st_size, "the total is the file's size");
+    cr_expect_geq(prog.done, (uint64_t)2 << 20, "progress came every few MB (%llu of %llu)",
+                  (unsigned long long)prog.done, (unsigned long long)prog.total);
+    cr_expect_leq(prog.done, prog.total);
+    cr_expect_eq(m.info.skipped, 1);
+    cr_expect_eq(m.info.warnings, 1, "the skipped statement's warning, counted");
+    cr_expect(strstr(m.info.first_warning, "1 statement skipped"), "%s", m.info.first_warning);
+    mesh_free(&m);
+    unlink(path);
+}
+
+/* Wait (bounded) for a job to finish. */
+static int wait_job(LoadJob *j)
+{
+    for (int i = 0; i < 2000; i++) {
+        if (loadjob_done(j))
+            return 1;
+        struct timespec ts = { 0, 5000000 };
+        nanosleep(&ts, NULL);
+    }
+    return 0;
+}
+
+Test(load, a_job_loads_a_file_on_its_own_thread)
+{
+    Options o;
+    cli_defaults(&o);
+    char err[256], status[96];
+    LoadJob *j = loadjob_start("assets/cube.obj", &o, err, sizeof err);
+    cr_assert(j, "%s", err);
+    loadjob_status(j, status, sizeof status);
+    cr_expect(strstr(status, "cube.obj"), "%s", status);
+    cr_assert(wait_job(j));
+    Scene part;
+    cr_assert_eq(loadjob_finish(j, &part, err, sizeof err), 0, "%s", err);
+    cr_expect_eq(part.nobjs, 1);
+    cr_expect_eq(part.nfaces, 6);
+    scene_free(&part);
+    /* a missing file: the loader's message */
+    j = loadjob_start("assets/no-such.obj", &o, err, sizeof err);
+    cr_assert(j, "%s", err);
+    cr_assert(wait_job(j));
+    cr_expect_eq(loadjob_finish(j, &part, err, sizeof err), -1);
+    cr_expect(strstr(err, "no-such.obj") && strstr(err, "cannot open"), "%s", err);
+    /* abandoned mid-load: the thread cleans up by itself */
+    j = loadjob_start("assets/knot.obj", &o, err, sizeof err);
+    cr_assert(j, "%s", err);
+    loadjob_abandon(j);
+}
