@@ -170,6 +170,9 @@ typedef struct {
     int         samples;        /* 0 = the default */
     const char *algo;           /* NULL = the default */
     int         edges;          /* outlines (--edges) */
+    int         wireframe;      /* --wireframe */
+    int         point_size;     /* pixels, 0 or 1 = the default */
+    int         line_width;     /* pixels, 0 or 1 = the default */
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

@@ -82,7 +82,7 @@ static void round_trip(int persp)
     s.objs[2].roll = -1.2f;
     s.objs[0].scale = s.objs[0].home_scale * 1.15f;
     light_set(&s.light, 20, 10, 0.3f);
-    ViewSettings v = { MODE_HALF, SHADE_SMOOTH, 45, 1, 9, "span", 1 };
+    ViewSettings v = { MODE_HALF, SHADE_SMOOTH, 45, 1, 9, "span", 1, 1, 3, 2 };
     char cmd[4096];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_assert(strncmp(cmd, "zview ", 6) == 0, "%s", cmd);
@@ -99,6 +99,9 @@ static void round_trip(int persp)
     cr_expect_eq(o2.samples, 9);
     cr_expect_str_eq(o2.algo, "span");
     cr_expect(o2.edges, "outlines");
+    cr_expect(o2.wireframe, "wireframe");
+    cr_expect_eq(o2.point_size, 3);
+    cr_expect_eq(o2.line_width, 2);
     cr_assert_eq(o2.nfiles, 2);
     Scene t;
     load(&o2, &t);
@@ -149,7 +152,7 @@ Test(viewcmd, defaults_are_left_out_and_odd_file_names_quoted)
     memset(&s, 0, sizeof s);
     s.cam.zoom = 1;
     light_set(&s.light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
-    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0 };
+    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0 };
     char cmd[512];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_expect_str_eq(cmd, "zview --yaw 0 --pitch 0 -- 'it'\\''s here.obj'");

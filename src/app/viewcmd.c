@@ -112,6 +112,14 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --crease %.9g", v->crease);
     if (v->edges)
         put(&o, " --edges");
+    if (v->wireframe)
+        put(&o, " --wireframe");
+    if (v->point_size > 1)
+        put(&o, " --point-size %d", v->point_size);
+    if (v->line_width > 1)
+        put(&o, " --line-width %d", v->line_width);
+    if (opt->points)
+        put(&o, " --points");
     if (s->light.yaw != LIGHT_YAW || s->light.pitch != LIGHT_PITCH)
         put(&o, " --light %.9g,%.9g", s->light.yaw, s->light.pitch);
     if (s->light.ambient != LIGHT_AMBIENT)

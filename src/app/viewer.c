@@ -112,6 +112,9 @@ ViewSettings app_view_settings(const App *a)
         .samples = a->p.samples,
         .algo = a->p.algo->name,
         .edges = a->p.edges,
+        .wireframe = a->p.wireframe,
+        .point_size = a->p.point_size,
+        .line_width = a->p.line_width,
     };
     return v;
 }
