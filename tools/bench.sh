@@ -6,7 +6,8 @@
 # first frame (first_ms: choosing the algorithm, its structures included);
 # cpu_ms is the process's CPU time per frame, which a shared machine's
 # other jobs do not inflate as they do the wall clock. Compare rows of one
-# run only. SKIP_FULL=1 stops after the targets.
+# run only. Single-thread rows run pinned to one core (see PIN below).
+# SKIP_FULL=1 stops after the targets.
 set -u
 ZV=${ZVIEW:-./zview}
 SUBDIV=${SUBDIV:-build/subdiv}
@@ -22,9 +23,20 @@ if [ -d "$S" ]; then
 fi
 echo "# machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), load $(cut -d' ' -f1-3 /proc/loadavg) at the start"
 
+# Single-thread runs are pinned to one core (BENCH_CPU, default 0), as
+# the figures of one thread should be; PIN= turns that off.
+PIN=${PIN-taskset -c ${BENCH_CPU:-0}}
+command -v taskset >/dev/null 2>&1 || PIN=
+pinned() {
+    case " $* " in
+    *" --threads 1 "*) $PIN "$@" ;;
+    *) "$@" ;;
+    esac
+}
+
 # One row of --bench --json as "frame_ms cpu_ms proj_ms hsr_ms shade_ms first_ms ready_ms".
 row() {
-    "$ZV" --bench --json --views "$VIEWS" "$@" | awk '
+    pinned "$ZV" --bench --json --views "$VIEWS" "$@" | awk '
         { for (i = 1; i <= NF; i++) { k = $i; gsub(/[":,{}]/, "", k); v = $(i + 1); gsub(/[",}]/, "", v); f[k] = v } }
         END { printf "%s %s %s %s %s %s %s\n", f["frame_median_ms"], f["cpu_median_ms"], f["project_median_ms"],
               f["median_ms"], f["shade_median_ms"], f["first_frame_ms"], f["ready_ms"] }'
@@ -80,18 +92,18 @@ for size in 240x120 1920x1080; do
     echo
     echo "## $size, 1 thread"
     # shellcheck disable=SC2086
-    "$ZV" --bench --algo all --threads 1 --views "$VIEWS" --size "$size" $models $big
+    $PIN "$ZV" --bench --algo all --threads 1 --views "$VIEWS" --size "$size" $models $big
 done
 if [ -f "$S/dragon.obj" ]; then
     echo
     echo "## threads: dragon 1920x1080, 1 and 2 threads"
-    "$ZV" --bench --algo all --threads 1 --views "$VIEWS" --size 1920x1080 "$S/dragon.obj"
+    $PIN "$ZV" --bench --algo all --threads 1 --views "$VIEWS" --size 1920x1080 "$S/dragon.obj"
     "$ZV" --bench --algo all --threads 2 --views "$VIEWS" --size 1920x1080 "$S/dragon.obj" | tail -n +2
 fi
 grid_model=assets/torus.obj
 [ -f "$S/bunny-5k.obj" ] && grid_model=$S/bunny-5k.obj
 echo
 echo "## deep scene: 5 x 5 x 5 copies of $(basename "$grid_model"), 1 thread"
-"$ZV" --bench --grid 5 --algo all --threads 1 --views "$VIEWS" --size 1920x1080 "$grid_model"
+$PIN "$ZV" --bench --grid 5 --algo all --threads 1 --views "$VIEWS" --size 1920x1080 "$grid_model"
 echo
 echo "# load $(cut -d' ' -f1-3 /proc/loadavg) at the end"
