@@ -720,10 +720,13 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
 #endif
     if (sp && sp->npolys <= n) {
         /* a frame's polygons are a subset of the faces' (split faces
-         * repeat a face): when they are most of them, every face of the
-         * objects in view, in order, costs less than theirs one by one */
+         * repeat a face): when they are a quarter of them or more, every
+         * face of the objects in view, in order, eight at a time, costs
+         * less than theirs one by one (measured: the dragon at 1920x1080
+         * with --cull, a third of its faces drawn, shades in 6 ms instead
+         * of 9) */
 #ifdef ZV_AVX2
-        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 2 >= nfaces)
+        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces)
             colour_objects_avx2(&fc);
         else
 #endif
