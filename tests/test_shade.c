@@ -358,3 +358,110 @@ Test(shade, downsample_lit_by_majority_coloured_by_lit_mean)
     image_free(&src);
     image_free(&dst);
 }
+
+/* ==== The eight-face Lambert loop against the face-by-face one ==== */
+
+static float rnd(uint32_t *seed)
+{
+    *seed = *seed * 1664525u + 1013904223u;
+    return (float)(*seed >> 8) / 16777216.0f;
+}
+
+/* lambert_face()'s formula, written out here: the reference. */
+static void lambert_ref(const Scene *s, int obj, uint32_t f, uint8_t out[3])
+{
+    Mat4 m = m4_mul(camera_view(&s->cam), object_matrix(&s->objs[obj]));
+    const float *n = s->face_normal + 3 * (size_t)f;
+    Vec3 v = v3(m.m[0][0] * n[0] + m.m[0][1] * n[1] + m.m[0][2] * n[2],
+                m.m[1][0] * n[0] + m.m[1][1] * n[1] + m.m[1][2] * n[2],
+                m.m[2][0] * n[0] + m.m[2][1] * n[1] + m.m[2][2] * n[2]);
+    v = v3_norm(v);
+    float amb = s->light.ambient;
+    float k = amb + (1.0f - amb) * fabsf(v3_dot(v, s->light.dir));
+    static const uint8_t grey[3] = { 200, 200, 200 };
+    const uint8_t *base = s->face_rgb ? s->face_rgb + 3 * (size_t)f : grey;
+    for (int c = 0; c < 3; c++) {
+        float x = (float)base[c] * k + 0.5f;
+        out[c] = x <= 0.0f ? 0 : x >= 255.0f ? 255 : (uint8_t)x;
+    }
+}
+
+/* Two objects of 1001 and 1002 faces (runs that end mid-block), random
+ * normals (zero, tiny, huge, non-unit, negative), turns, scales, light and
+ * ambient, base colours or none: the colours of every face pass (the
+ * polygons are most of the faces: object by object, eight at a time) and
+ * of the pixel pass (face by face) equal the reference, byte for byte. */
+Test(shade, lambert_eight_at_a_time_equals_face_by_face)
+{
+    static TestScene t;
+    const uint32_t na = 1001, nf = 2003;
+    uint32_t seed = 12345;
+    for (int round = 0; round < 12; round++) {
+        scene_init(&t, nf);
+        t.s.nobjs = 2;
+        t.obj[0].face_base = 0;
+        t.obj[0].face_count = na;
+        t.obj[1].face_base = (int32_t)na;
+        t.obj[1].face_count = nf - na;
+        for (int o = 0; o < 2; o++) {
+            t.obj[o].poly_count = 1;
+            t.obj[o].yaw = 6.3f * rnd(&seed);
+            t.obj[o].pitch = 6.3f * rnd(&seed);
+            t.obj[o].roll = 6.3f * rnd(&seed);
+            t.obj[o].scale = round % 3 == 0 ? 1e-3f + rnd(&seed) : 1 + 100 * rnd(&seed);
+        }
+        t.s.cam.yaw = 6.3f * rnd(&seed);
+        t.s.cam.pitch = 3 * rnd(&seed) - 1.5f;
+        light_set(&t.s.light, 360 * rnd(&seed) - 180, 180 * rnd(&seed) - 90, round == 1 ? 0 : round == 2 ? 1 : rnd(&seed));
+        for (uint32_t f = 0; f < nf; f++) {
+            t.fobj[f] = f >= na;
+            float sc = f % 7 == 0 ? 1e-20f : f % 7 == 1 ? 1e20f : 1;
+            for (int c = 0; c < 3; c++)
+                t.normal[3 * f + c] = f % 13 == 0 ? 0 : sc * (2 * rnd(&seed) - 1);
+            if (f % 17 == 3) {          /* axis-aligned: exact ties of the dot product */
+                t.normal[3 * f] = t.normal[3 * f + 1] = 0;
+                t.normal[3 * f + 2] = f % 2 ? 1 : -1;
+            }
+            for (int c = 0; c < 3; c++)
+                t.rgb[3 * f + c] = (uint8_t)(f % 11 == 0 ? 255 * (c & 1) : 256 * rnd(&seed));
+        }
+        if (round % 4 == 3)
+            t.s.face_rgb = NULL;
+        /* every face on screen once, and some background */
+        int w = 64, h = (int)(nf + w - 1) / w + 1;
+        int32_t *ids = malloc((size_t)w * h * sizeof *ids);
+        for (int i = 0; i < w * h; i++)
+            ids[i] = i < (int)nf && i % 29 != 5 ? i : -1;
+        FrameBufs fb;
+        frame_init(&fb, w, h, ids, NULL);
+        ScreenPolys sp = { 0 };
+        sp.polys = calloc(nf + 1, sizeof *sp.polys);
+        for (uint32_t f = 0; f < nf; f++)
+            sp.polys[f].face = (int32_t)f;
+        sp.npolys = nf;
+        Image a = { 0 }, b = { 0 };
+        ShadeCache ca = { 0 }, cb = { 0 };
+        ShadeSettings set = { .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 };
+        cr_assert_eq(shade_frame(&t.s, &sp, &fb, &set, &ca, &a), 0);
+        cr_assert_eq(shade_frame(&t.s, NULL, &fb, &set, &cb, &b), 0);
+        for (int i = 0; i < w * h; i++) {
+            uint8_t want[3] = { 0, 0, 0 };
+            if (ids[i] >= 0)
+                lambert_ref(&t.s, t.fobj[ids[i]], (uint32_t)ids[i], want);
+            for (int c = 0; c < 3; c++) {
+                cr_assert_eq(px(&a, i, c), want[c], "round %d face %d channel %d: %d, want %d", round, ids[i], c,
+                             px(&a, i, c), want[c]);
+                cr_assert_eq(px(&b, i, c), want[c], "round %d face %d channel %d (pixel pass)", round, ids[i], c);
+            }
+            cr_assert_eq(a.lit[i], ids[i] >= 0);
+            cr_assert_eq(b.lit[i], ids[i] >= 0);
+        }
+        free(sp.polys);
+        free(ids);
+        frame_done(&fb);
+        image_free(&a);
+        image_free(&b);
+        shade_cache_free(&ca);
+        shade_cache_free(&cb);
+    }
+}
