@@ -9,54 +9,22 @@
 . "$(dirname "$0")/lib.sh"
 Z=$ZVIEW
 
-if ! command -v tmux >/dev/null 2>&1 || ! command -v python3 >/dev/null 2>&1; then
-    echo "ok - # skip no tmux or no python3"
+if ! command -v python3 >/dev/null 2>&1; then
+    echo "ok - # skip no python3"
     exit 0
 fi
+. "$(dirname "$0")/tmux.sh"
 
-export LC_ALL=C.UTF-8 LANG=C.UTF-8
-# one server socket per session (see test_viewer.sh); the trap kills them all
-n=0
-SOCK=zs-$$-0
-tm() { tmux -L "$SOCK" -f /dev/null "$@"; }
-cleanup() {
-    k=0
-    while [ $k -le $n ]; do
-        tmux -L "zs-$$-$k" -f /dev/null kill-server >/dev/null 2>&1
-        rm -f "${TMUX_TMPDIR:-/tmp}/tmux-$(id -u)/zs-$$-$k"
-        k=$((k + 1))
-    done
-    rm -rf "$T"
-}
-trap cleanup EXIT
-trap 'exit 1' INT TERM HUP
-
-# session: a fresh server with a shell in a 100 x 30 pane, in $T/sk
-session() {
-    tm kill-server >/dev/null 2>&1
-    n=$((n + 1))
-    SOCK=zs-$$-$n
-    tm new-session -d -s zv -x 100 -y 30 -c "$T/sk" \
-        -e TERM=xterm-256color -e LANG=C.UTF-8 -e LC_ALL=C.UTF-8 -e NO_COLOR= -e COLORTERM= sh
-    tm set-option -t zv remain-on-exit on >/dev/null
-}
-# run ARGS...: zview ARGS (24-bit colour) in a fresh pane
+# run ARGS...: zview ARGS (24-bit colour) in a fresh 100 x 30 pane whose
+# shell works in $T/sk (where w writes)
 run() {
-    session
+    root=$ROOT
+    ROOT=$T/sk
+    session xterm-256color 100 30
+    ROOT=$root
     tm send-keys -t zv "TERM=xterm-256color $Z --color truecolor $*; echo zv-exit=\$?" Enter
 }
-cap() { tm capture-pane -p -t zv | sed 's/[[:space:]]*$//' >"$T/screen"; }
-# wait_for EXTENDED-REGEX: poll the pane (about 10 s at most) until it matches
-wait_for() {
-    i=0
-    while [ $i -lt 200 ]; do
-        cap
-        grep -Eq -- "$1" "$T/screen" && return 0
-        sleep 0.05
-        i=$((i + 1))
-    done
-    return 1
-}
+# the status bar: the pane's last line
 status() { sed -n 30p "$T/screen"; }
 # looks: the picture's 29 rows, what each cell looks like (looks.py)
 looks() { tm capture-pane -p -e -N -t zv | head -n 29 | python3 tests/e2e/looks.py; }
