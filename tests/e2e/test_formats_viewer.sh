@@ -6,37 +6,9 @@
 Z=$ZVIEW
 D=tests/data/formats
 
-if ! command -v tmux >/dev/null 2>&1; then
-    echo "ok - # skip no tmux"
-    exit 0
-fi
+. "$(dirname "$0")/tmux.sh"
+session xterm-256color 120 20
 
-export LC_ALL=C.UTF-8 LANG=C.UTF-8
-SOCK=zvf-$$
-tm() { tmux -L "$SOCK" -f /dev/null "$@"; }
-cleanup() {
-    tm kill-server >/dev/null 2>&1
-    rm -f "${TMUX_TMPDIR:-/tmp}/tmux-$(id -u)/$SOCK"
-    rm -rf "$T"
-}
-trap cleanup EXIT
-trap 'exit 1' INT TERM HUP
-
-tm new-session -d -s zv -x 120 -y 20 -c "$ROOT" -e TERM=xterm-256color -e LANG=C.UTF-8 \
-    -e LC_ALL=C.UTF-8 -e NO_COLOR= -e COLORTERM= sh
-tm set-option -t zv remain-on-exit on >/dev/null
-
-cap() { tm capture-pane -p -t zv | sed 's/[[:space:]]*$//' >"$T/screen"; }
-wait_for() {
-    i=0
-    while [ $i -lt 200 ]; do
-        cap
-        grep -Eq -- "$1" "$T/screen" && return 0
-        sleep 0.05
-        i=$((i + 1))
-    done
-    return 1
-}
 # the picture once two captures 0.1 s apart agree
 settle() {
     cap
