@@ -15,13 +15,17 @@ if ! command -v python3 >/dev/null 2>&1; then
 fi
 . "$(dirname "$0")/tmux.sh"
 
-# run ARGS...: zview ARGS (24-bit colour) in a fresh 100 x 30 pane whose
-# shell works in $T/sk (where w writes)
-run() {
+# sketch_session: a fresh 100 x 30 pane whose shell works in $T/sk (where
+# w writes)
+sketch_session() {
     root=$ROOT
     ROOT=$T/sk
     session xterm-256color 100 30
     ROOT=$root
+}
+# run ARGS...: zview ARGS (24-bit colour) in a sketch_session
+run() {
+    sketch_session
     tm send-keys -t zv "TERM=xterm-256color $Z --color truecolor $*; echo zv-exit=\$?" Enter
 }
 # the status bar: the pane's last line
@@ -57,7 +61,7 @@ mkdir -p "$T/sk"
 
 # ==== by mouse: two crossing squares ====
 # --print-view: the command line of the last view on standard output
-session
+sketch_session
 tm send-keys -t zv "TERM=xterm-256color $Z --color truecolor --sketch --print-view >$T/pv; echo zv-exit=\$?" Enter
 if wait_for '^ sketch \| 0 polygons \| 0 open'; then ok "--sketch opens an empty canvas"; else
     notok "--sketch opens an empty canvas" "$(cat "$T/screen")"; fi
