@@ -26,8 +26,12 @@ _zview()
 
     case $prev in
         --mode) COMPREPLY=($(compgen -W "half ascii braille" -- "$cur")); return ;;
-        --color | --colour) COMPREPLY=($(compgen -W "truecolor 256 16 none" -- "$cur")); return ;;
-        --shade) COMPREPLY=($(compgen -W "lambert depth id" -- "$cur")); return ;;
+        --color | --colour) COMPREPLY=($(compgen -W "truecolor 256 16 8 none" -- "$cur")); return ;;
+        --shade) COMPREPLY=($(compgen -W "lambert smooth depth id" -- "$cur")); return ;;
+        --view) COMPREPLY=($(compgen -W "front back left right top bottom iso" -- "$cur")); return ;;
+        --layout) COMPREPLY=($(compgen -W "row grid none" -- "$cur")); return ;;
+        --order) COMPREPLY=($(compgen -W "file front-to-back back-to-front shuffle" -- "$cur")); return ;;
+        --samples) COMPREPLY=($(compgen -W "1 4 9 16" -- "$cur")); return ;;
         -a | --algo) COMPREPLY=($(compgen -W "zbuffer scanline span hzb hzb-octree all" -- "$cur")); return ;;
         --up) COMPREPLY=($(compgen -W "y z x -y -z -x" -- "$cur")); return ;;
         --image-format) COMPREPLY=($(compgen -W "png ppm" -- "$cur")); return ;;
@@ -36,7 +40,8 @@ _zview()
             COMPREPLY=($(compgen -f -- "$cur"))
             return ;;
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
-            --scale | --persp | --grid | --max-polys | --views | -j | --threads | --fps)
+            --scale | --persp | --grid | --max-polys | --views | -j | --threads | --fps | --crease | \
+            --light | --ambient | --turntable | --point-size | --line-width)
             return ;;
     esac
     $split && return
@@ -45,7 +50,9 @@ _zview()
         COMPREPLY=($(compgen -W "--help --version --print --output --size --mode --color --shade
             --info --dump-ids --dump-screen --algo --yaw --pitch --roll --zoom --pan --fit-from
             --move --turn --scale --persp --ortho --cull --grid --max-polys --bench --bench-tty
-            --views --threads --json --fps --format --formats --up --flip --image-format --sketch" -- "$cur"))
+            --views --threads --json --fps --format --formats --up --flip --image-format --sketch
+            --samples --crease --light --ambient --view --layout --edges --order --print-view
+            --turntable --point-size --line-width --wireframe --points --strict" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
     fi
