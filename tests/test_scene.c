@@ -230,6 +230,27 @@ Test(scene, grid_copies_get_their_own_face_ids)
     scene_free(&s);
 }
 
+/* A scene with lines or points and no faces: the face arrays have no
+ * elements, and copying them must neither free them (realloc to 0 bytes
+ * does) nor fail; every copy's points and segments are there. */
+Test(scene, grid_copies_of_a_scene_without_faces)
+{
+    static const char *const texts[] = { "v 0 0 0\nv 1 1 0\nl 1 2\n", "v 0 0 0\n" };
+    for (int t = 0; t < 2; t++) {
+        Scene s;
+        char err[256];
+        cr_assert_eq(tl_scene_from_text(&s, "noface.obj", texts[t]), 0);
+        cr_assert_eq(s.nfaces, 0);
+        uint32_t np = s.npoints, nl = s.nprims;
+        cr_assert_eq(scene_make_grid(&s, 2, err, sizeof err), 0, "%s", err);
+        cr_assert_eq(s.nobjs, 8);
+        cr_assert_eq(s.nfaces, 0);
+        cr_assert_eq(s.npoints, 8 * np);
+        cr_assert_eq(s.nprims, 8 * nl);
+        scene_free(&s);
+    }
+}
+
 /* ==== first view ==== */
 
 Test(view, picks_the_long_side_of_a_long_model)

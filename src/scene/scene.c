@@ -455,19 +455,22 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
         snprintf(err, errlen, "--grid %d: too many objects or faces", n);
         return -1;
     }
-    Object *objs = realloc(s->objs, nobjs * sizeof *objs);
+    /* A scene of points or lines only has no faces: realloc(p, 0) would
+     * free the arrays (and return NULL), so every size is at least 1. */
+    size_t nf1 = nfaces ? (size_t)nfaces : 1;
+    Object *objs = realloc(s->objs, (nobjs ? nobjs : 1) * sizeof *objs);
     if (objs)
         s->objs = objs;
-    float *fn = realloc(s->face_normal, nfaces * 3 * sizeof(float));
+    float *fn = realloc(s->face_normal, nf1 * 3 * sizeof(float));
     if (fn)
         s->face_normal = fn;
-    uint8_t *fc = realloc(s->face_rgb, nfaces * 3);
+    uint8_t *fc = realloc(s->face_rgb, nf1 * 3);
     if (fc)
         s->face_rgb = fc;
-    uint16_t *fo = realloc(s->face_obj, nfaces * sizeof(uint16_t));
+    uint16_t *fo = realloc(s->face_obj, nf1 * sizeof(uint16_t));
     if (fo)
         s->face_obj = fo;
-    uint8_t *own = s->face_own ? realloc(s->face_own, nfaces) : NULL;
+    uint8_t *own = s->face_own ? realloc(s->face_own, nf1) : NULL;
     if (own)
         s->face_own = own;
     if (!objs || !fn || !fc || !fo || (s->face_own && !own)) {
