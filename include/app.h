@@ -93,6 +93,10 @@ int  app_load_scene(const Options *o, Scene *s, char *err, size_t errlen);
  * would have more than --max-polys polygons; the message gives the count
  * and an estimate of the memory. Called before the copies are made. */
 int  app_check_size(const Options *o, const Scene *s, char *err, size_t errlen);
+/* Refuse (-1, the reason in err) a --print, -o or dump frame that has
+ * more than SCREEN_MAX pixels on a side or more memory than is left,
+ * before anything is loaded. */
+int  app_check_output(const Options *o, char *err, size_t errlen);
 /* Path of the bundled demo scene (next to the binary or installed). */
 const char *app_demo_path(void);
 
@@ -144,6 +148,15 @@ void pipeline_free(Pipeline *p);
 int  pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int shade_too);
 /* The side k of the k x k samples a pixel gets for a sample count. */
 int  pipeline_samples_side(int samples);
+/* Memory of one w x h frame at `samples` samples per pixel (dropped to
+ * 1 as pipeline_render drops it) with `cells` text cells (0 for an
+ * image): the buffers, the shaded and averaged images, the cells. */
+uint64_t pipeline_frame_bytes(int w, int h, int samples, uint64_t cells);
+/* Refuse (-1, the reason in err, starting with `what`) a frame larger
+ * than SCREEN_MAX pixels on a side or whose memory is more than the
+ * process can still take; called before anything is loaded. */
+int  pipeline_check_frame(int w, int h, int samples, uint64_t cells, const char *what, char *err,
+                          size_t errlen);
 /* Why the last frame covers no pixel, as one line with the key or
  * option that fixes it ("the model is edge-on: try --view iso or turn
  * with the arrow keys"); NULL when something was drawn. */

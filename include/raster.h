@@ -161,4 +161,11 @@ int polywalk_row(PolyWalk *w, int32_t j, int32_t *xs);
 
 void polywalk_free(PolyWalk *w);
 
+/* Sort a row's m crossings ascending. Rows of ordinary polygons have a
+ * handful, where insertion sort is fastest; a polygon of thousands of
+ * corners can cross one row thousands of times (a comb, a face that
+ * lists the same corners over and over), where insertion sort is
+ * quadratic per row: beyond a few dozen, O(m log m). */
+void raster_sort_crossings(int32_t *xs, int m);
+
 #endif

@@ -118,6 +118,10 @@ typedef struct Scene {
      * octree, smooth normals) is keyed by it as well as by the pointer,
      * which stays the same when the viewer edits its scene in place. */
     uint32_t  gen;
+    /* The meshes' positions were multiplied by 2^-pos_exp when built (0
+     * but for coordinates past 2^120, whose rotations would overflow a
+     * float; a power of two keeps them exact): --info multiplies back. */
+    int       pos_exp;
 } Scene;
 
 /* What an id of the face-id buffer is. */

@@ -188,6 +188,44 @@ Test(coverage, random_polygons_match_the_rule)
     polys_free(&p);
 }
 
+/* Polygons of hundreds and thousands of corners cross a row hundreds of
+ * times (where the crossings are sorted some other way than by insertion
+ * and the edge tables likewise): every algorithm against the rule. */
+Test(coverage, many_corner_polygons_match_the_rule_in_every_algorithm)
+{
+    static const int corners[] = { 25, 26, 60, 400, 4000 };
+    Polys p;
+    polys_init(&p, 48, 40);
+    int w = p.sp.w, h = p.sp.h;
+    uint8_t *count = malloc((size_t)w * h);
+    for (size_t t = 0; t < sizeof corners / sizeof corners[0]; t++) {
+        polys_clear(&p);
+        int n = corners[t];
+        ScreenVert v[4096];
+        for (int k = 0; k < n; k++) {
+            v[k].x = rnd_coord(-6, 54);
+            v[k].y = rnd_coord(-6, 46);
+            v[k].z = 0;
+        }
+        cr_assert(polys_add(&p, v, n, 0, 0.5f));
+        long inside = 0;
+        for (int a = 0; a < hsr_nalgos; a++) {
+            coverage_count(&p, hsr_algos[a], count);
+            for (int j = 0; j < h; j++)
+                for (int i = 0; i < w; i++) {
+                    int want = brute_inside(v, n, i, j);
+                    inside += want;
+                    if (count[j * w + i] != want)
+                        cr_assert_fail("%s, %d corners: sample (%d,%d) covered %d, rule says %d",
+                                       hsr_algos[a]->name, n, i, j, count[j * w + i], want);
+                }
+        }
+        cr_assert_gt(inside, 0, "%d corners: the polygon covers nothing (a weak test)", n);
+    }
+    free(count);
+    polys_free(&p);
+}
+
 Test(coverage, subpixel_polygons)
 {
     Polys p;

@@ -251,6 +251,67 @@ Test(scene, grid_copies_of_a_scene_without_faces)
     }
 }
 
+/* A model with its coordinates scaled by a power of two is the same
+ * model: the fit scales with it, and every algorithm draws the same face
+ * ids at 2^0, 2^66 (where squares pass FLT_MAX) and 2^127 (where a turn's
+ * sums do), turned, in perspective and not. */
+static void knot_scaled(Scene *s, int e)
+{
+    Scene src;
+    cr_assert_eq(tl_scene_from_file(&src, "assets/knot.obj"), 0);
+    const Mesh *m0 = &src.meshes[0];
+    Mesh m;
+    cr_assert_eq(tl_mesh_init(&m, "scaled.obj"), 0);
+    for (uint32_t v = 0; v < m0->nverts; v++)
+        cr_assert_eq(tl_mesh_vertex(&m, ldexpf(m0->pos[3 * v], e), ldexpf(m0->pos[3 * v + 1], e),
+                                    ldexpf(m0->pos[3 * v + 2], e)), 0);
+    for (uint32_t p = 0; p < src.npolys; p++)
+        cr_assert_eq(tl_mesh_face(&m, &src.poly_corner[src.poly_start[p]], src.poly_start[p + 1] - src.poly_start[p]), 0);
+    cr_assert_eq(tl_mesh_finish(&m), 0);
+    scene_free(&src);
+    Mesh *one = malloc(sizeof *one);
+    *one = m;
+    char err[256];
+    cr_assert_eq(scene_build(s, one, 1, err, sizeof err), 0, "%s", err);
+}
+
+Test(scene, a_model_scaled_by_a_power_of_two_draws_the_same_up_to_float_max)
+{
+    static const int exps[] = { 66, 100, 127 };
+    for (int persp = 0; persp <= 1; persp++) {
+        Scene ref;
+        knot_scaled(&ref, 0);
+        TlView v = { .yaw = 0.7f, .pitch = 0.4f, .roll = 0.1f, .fit_yaw = 0.7f, .fit_pitch = 0.4f,
+                     .fit_roll = 0.1f, .zoom = 1, .persp = persp, .fov_deg = 50 };
+        tl_set_view(&ref, &v);
+        ScreenPolys sp = { 0 };
+        FrameBufs want = { 0 }, got = { 0 };
+        HsrStats st;
+        cr_assert_eq(tl_render(&ref, &hsr_zbuffer, 1, 96, 64, 0, &sp, &want, &st), 0);
+        long drawn = 0;
+        for (int i = 0; i < 96 * 64; i++)
+            drawn += want.ids[i] >= 0;
+        cr_assert_gt(drawn, 96 * 64 / 8, "the reference draws little (%ld pixels)", drawn);
+        for (size_t e = 0; e < sizeof exps / sizeof exps[0]; e++) {
+            Scene s;
+            knot_scaled(&s, exps[e]);
+            tl_set_view(&s, &v);
+            for (int a = 0; a < hsr_nalgos; a++) {
+                cr_assert_eq(tl_render(&s, hsr_algos[a], 2, 96, 64, 0, &sp, &got, &st), 0);
+                int fx, fy;
+                long n = tl_diff(&want, &got, &fx, &fy);
+                cr_assert_eq(n, 0, "2^%d %s persp=%d: %ld pixels differ, first (%d,%d)", exps[e],
+                             hsr_algos[a]->name, persp, n, fx, fy);
+            }
+            scene_free(&s);
+        }
+        fbuf_free(&want);
+        fbuf_free(&got);
+        screen_free(&sp);
+        scene_free(&ref);
+    }
+}
+
 /* ==== first view ==== */
 
 Test(view, picks_the_long_side_of_a_long_model)

@@ -157,18 +157,23 @@ static int parse_floats(const char *s, float *out, int n)
     return 0;
 }
 
+/* "WxH": -1 when it is not two numbers, -2 when one is 0 or more than
+ * SCREEN_MAX. */
 static int parse_size(const char *s, int *w, int *h)
 {
     char *end;
     const char *x = strpbrk(s, "xX");
     if (s[0] < '0' || s[0] > '9' || !x || x[1] < '0' || x[1] > '9')
         return -1;
+    errno = 0;
     long a = strtol(s, &end, 10);
     if (end != x)
         return -1;
     long b = strtol(x + 1, &end, 10);
-    if (*end || a < 1 || b < 1 || a > SCREEN_MAX || b > SCREEN_MAX)
+    if (*end)
         return -1;
+    if (errno || a < 1 || b < 1 || a > SCREEN_MAX || b > SCREEN_MAX)
+        return -2;
     *w = (int)a;
     *h = (int)b;
     return 0;
@@ -364,8 +369,12 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
         case OPT_DUMP_IDS: o->dump_ids = val; break;
         case OPT_DUMP_SCREEN: o->dump_screen = val; break;
         case 's':
-            if (parse_size(val, &o->w, &o->h))
-                BAD_VAL("expected WxH, e.g. 640x480");
+            switch (parse_size(val, &o->w, &o->h)) {
+            case -1: BAD_VAL("expected WxH, e.g. 640x480");
+            case -2:
+                snprintf(err, errlen, "--size %s: 1 to %d per side", val, SCREEN_MAX);
+                return -1;
+            }
             break;
         case OPT_MODE:
             if ((o->mode = mode_from_name(val)) < 0)

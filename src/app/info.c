@@ -1,11 +1,14 @@
 /* info.c: --info: what was loaded, and (with --algo) what a render did. */
 
 #include <float.h>
+#include <math.h>
 #include <stdio.h>
 
 #include "app.h"
 
-static void print_mesh(Out *out, const Mesh *m)
+/* pos_exp: the scene scaled the positions by 2^-pos_exp (scene.h); the
+ * bounds are given in the file's units. */
+static void print_mesh(Out *out, const Mesh *m, int pos_exp)
 {
     float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
     for (uint32_t v = 0; v < m->nverts; v++)
@@ -27,7 +30,9 @@ static void print_mesh(Out *out, const Mesh *m)
     out_printf(out, "faces:      %u\n", m->nfaces);
     out_printf(out, "triangles:  %u\n", m->info.triangles);
     out_printf(out, "objects:    %u\n", m->nobjs);
-    out_printf(out, "bounds:     %g %g %g .. %g %g %g\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    double u = ldexp(1, pos_exp);
+    out_printf(out, "bounds:     %g %g %g .. %g %g %g\n", lo[0] * u, lo[1] * u, lo[2] * u, hi[0] * u, hi[1] * u,
+               hi[2] * u);
     out_printf(out, "materials:  %u\n", m->nmats);
     out_printf(out, "texcoords:  %u   normals: %u   vertex colours: %s\n", m->info.texcoords,
            m->info.normals, m->rgb ? "yes" : "no");
@@ -64,7 +69,7 @@ int app_info(const Options *o, Scene *s)
     for (int i = 0; i < s->nmeshes; i++) {
         if (i)
             out_printf(out, "\n");
-        print_mesh(out, &s->meshes[i]);
+        print_mesh(out, &s->meshes[i], s->pos_exp);
     }
     uint64_t npolys = 0;   /* grid copies share their source's polygon lists */
     for (int k = 0; k < s->nobjs; k++)

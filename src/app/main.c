@@ -92,13 +92,19 @@ int main(int argc, char **argv)
         scene_free(&scene);
         return rc ? rc : finish_stdout();
     }
+    int oneshot = !o.info && (o.print || o.out || o.dump_ids || o.dump_screen ||
+                              (!isatty(STDOUT_FILENO) && !o.print_view && !o.sketch));
+    if (oneshot && app_check_output(&o, err, sizeof err)) {
+        fprintf(stderr, "zview: %s\n", err);
+        return 1;
+    }
     if (app_load_scene(&o, &scene, err, sizeof err)) {
         fprintf(stderr, "zview: %s\n", err);
         return 1;
     }
     if (o.info)
         rc = app_info(&o, &scene);
-    else if (o.print || o.out || o.dump_ids || o.dump_screen || (!isatty(STDOUT_FILENO) && !o.print_view && !o.sketch))
+    else if (oneshot)
         rc = app_oneshot(&o, &scene);
     else
         rc = app_viewer(&o, &scene);

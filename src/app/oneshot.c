@@ -227,6 +227,35 @@ static int turntable(const Options *o, Scene *s, Pipeline *p)
     return 0;
 }
 
+int app_check_output(const Options *o, char *err, size_t errlen)
+{
+    static const char *const mode_names[MODE_COUNT] = { "half", "ascii", "braille" };
+    char what[96];
+    int text = o->print || text_file(o, o->out) || (!o->out && !o->dump_ids && !o->dump_screen);
+    if (o->out && !text_file(o, o->out)) {
+        int w = o->w > 0 ? o->w : 640, h = o->h > 0 ? o->h : 480;
+        snprintf(what, sizeof what, "--size %dx%d", w, h);
+        if (pipeline_check_frame(w, h, o->samples > 0 ? o->samples : 1, 0, what, err, errlen))
+            return -1;
+    } else if (!text) {
+        int w = o->w > 0 ? o->w : 640, h = o->h > 0 ? o->h : 480;     /* the dumps alone */
+        snprintf(what, sizeof what, "--size %dx%d", w, h);
+        if (pipeline_check_frame(w, h, 1, 0, what, err, errlen))
+            return -1;
+    }
+    if (text) {
+        DisplayMode mode = o->mode >= 0 ? (DisplayMode)o->mode : mode_from_locale();
+        int cols, rows, pw, ph;
+        print_size(o, &cols, &rows);
+        mode_cell_pixels(mode, &pw, &ph);
+        snprintf(what, sizeof what, "--size %dx%d in %s mode", cols, rows, mode_names[mode]);
+        if (pipeline_check_frame(cols * pw, rows * ph, o->samples > 0 ? o->samples : TEXT_SAMPLES,
+                                 (uint64_t)cols * rows, what, err, errlen))
+            return -1;
+    }
+    return 0;
+}
+
 int app_oneshot(const Options *o, Scene *s)
 {
     const HsrAlgo *algo = hsr_find(o->algo ? o->algo : "zbuffer");

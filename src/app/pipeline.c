@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "sysmem.h"
 
 /* The hidden-surface algorithms' own tables per polygon (bucket keys,
  * sort order, records): a few words each, rounded up. */
@@ -76,6 +77,38 @@ int app_check_size(const Options *o, const Scene *s, char *err, size_t errlen)
              "the scene would have %s polygons and need about %s for itself and one frame "
              "(limit %s polygons; --max-polys raises it)",
              np, mem, lim);
+    return -1;
+}
+
+/* Bytes a text cell costs beyond its pixels: the cell and its share of
+ * the printed text (measured: about 14). */
+#define BYTES_PER_CELL (sizeof(Cell) + 6)
+
+uint64_t pipeline_frame_bytes(int w, int h, int samples, uint64_t cells)
+{
+    int k = pipeline_samples_side(samples);
+    if ((long)w * k > SCREEN_MAX || (long)h * k > SCREEN_MAX)
+        k = 1;                  /* as pipeline_render drops it */
+    uint64_t px = (uint64_t)w * h, ss = px * k * k;
+    /* the buffers and shaded image at the sampled size, the averaged
+     * image (RGBA) when supersampled, and the cells */
+    return ss * BYTES_PER_PIXEL + (k > 1 ? px * 4 : 0) + cells * BYTES_PER_CELL;
+}
+
+int pipeline_check_frame(int w, int h, int samples, uint64_t cells, const char *what, char *err,
+                         size_t errlen)
+{
+    if (w > SCREEN_MAX || h > SCREEN_MAX) {
+        snprintf(err, errlen, "%s: a picture of %dx%d pixels (at most %d per side)", what, w, h, SCREEN_MAX);
+        return -1;
+    }
+    uint64_t need = pipeline_frame_bytes(w, h, samples, cells), avail = sysmem_available();
+    if (need <= avail)
+        return 0;
+    char n[32], a[32];
+    sysmem_format(need, n, sizeof n);
+    sysmem_format(avail, a, sizeof a);
+    snprintf(err, errlen, "%s: a picture of %dx%d pixels needs about %s; %s available", what, w, h, n, a);
     return -1;
 }
 

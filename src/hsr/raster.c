@@ -26,6 +26,29 @@ int polywalk_begin(PolyWalk *w, const ScreenPolys *sp, uint32_t pi, int32_t star
     return w->n;
 }
 
+static int cmp_i32(const void *a, const void *b)
+{
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
+void raster_sort_crossings(int32_t *xs, int m)
+{
+    if (m > 24) {
+        qsort(xs, (size_t)m, sizeof *xs, cmp_i32);
+        return;
+    }
+    for (int i = 1; i < m; i++) {
+        int32_t x = xs[i];
+        int q = i;
+        while (q > 0 && xs[q - 1] > x) {
+            xs[q] = xs[q - 1];
+            q--;
+        }
+        xs[q] = x;
+    }
+}
+
 int polywalk_row(PolyWalk *w, int32_t j, int32_t *xs)
 {
     int m = 0;
@@ -33,16 +56,10 @@ int polywalk_row(PolyWalk *w, int32_t j, int32_t *xs)
         EdgeWalk *e = &w->e[k];
         if (j < e->row0 || j >= e->row1)
             continue;
-        /* insertion sort as we go: rows have few crossings */
-        int32_t x = e->xi;
-        int q = m++;
-        while (q > 0 && xs[q - 1] > x) {
-            xs[q] = xs[q - 1];
-            q--;
-        }
-        xs[q] = x;
+        xs[m++] = e->xi;
         edge_step(e);
     }
+    raster_sort_crossings(xs, m);
     return m;
 }
 

@@ -377,6 +377,33 @@ static uint64_t tri_row(ScanState *s, const ScreenVert *verts, int j, int32_t *i
 
 /* ==== general polygons (any corner count, concave, self-overlapping) ==== */
 
+static int cmp_edge_row0(const void *a, const void *b)
+{
+    int32_t x = ((const EdgeWalk *)a)->row0, y = ((const EdgeWalk *)b)->row0;
+    return (x > y) - (x < y);
+}
+
+/* The edge table of one polygon: its edges by the first row they count
+ * for. Insertion sort for the few edges of ordinary polygons, O(n log n)
+ * for a polygon of thousands of corners. Edges starting on the same row
+ * may land in any order: a row's crossings are sorted anyway. */
+static void sort_edges_by_row(EdgeWalk *e, uint32_t n)
+{
+    if (n > 24) {
+        qsort(e, n, sizeof *e, cmp_edge_row0);
+        return;
+    }
+    for (uint32_t i = 1; i < n; i++) {
+        EdgeWalk w = e[i];
+        uint32_t q = i;
+        while (q > 0 && e[q - 1].row0 > w.row0) {
+            e[q] = e[q - 1];
+            q--;
+        }
+        e[q] = w;
+    }
+}
+
 /* Take polygon pi from the polygon table at row j: set up its edges at
  * the first row each counts for and append it to the active list. */
 static int gon_start(ScanState *s, const ScreenPolys *sp, uint32_t pi, int j, int yend)
@@ -394,14 +421,9 @@ static int gon_start(ScanState *s, const ScreenPolys *sp, uint32_t pi, int j, in
         EdgeWalk w;
         if (!edge_setup(&w, &v[k], &v[k + 1 < nv ? k + 1 : 0], j) || w.row1 <= j)
             continue;
-        /* insertion by first counting row: the edge table of this polygon */
-        uint32_t q = n++;
-        while (q > 0 && e[q - 1].row0 > w.row0) {
-            e[q] = e[q - 1];
-            q--;
-        }
-        e[q] = w;
+        e[n++] = w;
     }
+    sort_edges_by_row(e, n);
     if (n < 2)
         return 0;
     s->gon[s->ngon++] = (ScanGon){ .p = p, .off = s->npool, .n = n, .yend = yend };
@@ -423,15 +445,9 @@ static uint64_t gon_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w
         int m = 0;
         uint32_t k = 0;
         /* active edges: the leading ones that have started */
-        for (; k < a.n && e[k].row0 <= j; k++) {
-            int32_t x = e[k].xi;
-            int q = m++;
-            while (q > 0 && xs[q - 1] > x) {
-                xs[q] = xs[q - 1];
-                q--;
-            }
-            xs[q] = x;
-        }
+        for (; k < a.n && e[k].row0 <= j; k++)
+            xs[m++] = e[k].xi;
+        raster_sort_crossings(xs, m);
         for (int i = 0; i + 1 < m; i += 2)
             written += span_pair(a.p, ids, dep, j, xs[i], xs[i + 1], w);
         if (j + 1 == a.yend)

@@ -254,8 +254,50 @@ static void object_bounds(Object *o, const MeshObject *mo, const uint32_t *face_
         o->centre = o->half = v3(0, 0, 0);
         return;
     }
-    o->centre = v3((lo[0] + hi[0]) * 0.5f, (lo[1] + hi[1]) * 0.5f, (lo[2] + hi[2]) * 0.5f);
-    o->half = v3((hi[0] - lo[0]) * 0.5f, (hi[1] - lo[1]) * 0.5f, (hi[2] - lo[2]) * 0.5f);
+    /* in double: lo + hi and hi - lo of finite floats can pass FLT_MAX */
+    o->centre = v3((float)(((double)lo[0] + hi[0]) * 0.5), (float)(((double)lo[1] + hi[1]) * 0.5),
+                   (float)(((double)lo[2] + hi[2]) * 0.5));
+    o->half = v3((float)(((double)hi[0] - lo[0]) * 0.5), (float)(((double)hi[1] - lo[1]) * 0.5),
+                 (float)(((double)hi[2] - lo[2]) * 0.5));
+}
+
+/* Coordinates beyond this turn a rotation's sums of products past
+ * FLT_MAX (a corner at 3e38 on every axis lies 5.2e38 from the origin). */
+#define HUGE_COORD 0x1p120f
+
+/* Scale every mesh's positions by 2^-k when any object reaches past
+ * HUGE_COORD: a power of two scales finite floats exactly, so the model
+ * keeps its shape, and the transforms stay finite. Returns k (0 for
+ * ordinary models, which are not touched). */
+static int shrink_huge_meshes(Scene *s, int take_over)
+{
+    float big = 0;
+    for (int i = 0; i < s->nobjs; i++) {
+        const Object *o = &s->objs[i];
+        big = fmaxf(big, fmaxf(fabsf(o->centre.x), fmaxf(fabsf(o->centre.y), fabsf(o->centre.z))) +
+                             fmaxf(o->half.x, fmaxf(o->half.y, o->half.z)));
+    }
+    if (!(big > HUGE_COORD))
+        return 0;
+    int k = 0;
+    while (big > HUGE_COORD) {
+        big *= 0x1p-8f;
+        k += 8;
+    }
+    float f = ldexpf(1, -k);
+    for (int mi = 0; mi < s->nmeshes; mi++) {
+        Mesh *m = &s->meshes[mi];
+        for (size_t v = 0; v < 3 * (size_t)m->nverts; v++)
+            m->pos[v] *= f;
+    }
+    int oi = 0;
+    for (int mi = 0; mi < s->nmeshes; mi++) {
+        const Mesh *m = &s->meshes[mi];
+        for (uint32_t j = 0; j < m->nobjs; j++, oi++)
+            object_bounds(&s->objs[oi], &m->objs[j], take_over ? s->poly_start : m->face_start,
+                          take_over ? s->poly_corner : m->corner);
+    }
+    return k;
 }
 
 int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
@@ -415,6 +457,7 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     s->nbase_objs = oi;
     s->nfaces = gface;
     free(planar);
+    s->pos_exp = shrink_huge_meshes(s, take_over);
     if (scene_number_prims(s)) {
         s->meshes = NULL;
         s->nmeshes = 0;
@@ -622,27 +665,33 @@ void scene_fit(Scene *s)
         c->fit_half = v3(1, 1, 1);
         return;
     }
-    /* view-space box centre back to world space (turn is a rotation) */
-    Vec3 vc = v3((lo[0] + hi[0]) * 0.5f, (lo[1] + hi[1]) * 0.5f, (lo[2] + hi[2]) * 0.5f);
+    /* view-space box centre back to world space (turn is a rotation);
+     * halves and centres in double: lo + hi and hi - lo of finite floats
+     * can pass FLT_MAX, their halves cannot */
+    Vec3 vc = v3((float)(((double)lo[0] + hi[0]) * 0.5), (float)(((double)lo[1] + hi[1]) * 0.5),
+                 (float)(((double)lo[2] + hi[2]) * 0.5));
     Mat4 back = turn;
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
             back.m[i][j] = turn.m[j][i];
     c->centre = m4_dir(&back, vc);
-    Vec3 h = v3((hi[0] - lo[0]) * 0.5f, (hi[1] - lo[1]) * 0.5f, (hi[2] - lo[2]) * 0.5f);
+    Vec3 h = v3((float)(((double)hi[0] - lo[0]) * 0.5), (float)(((double)hi[1] - lo[1]) * 0.5),
+                (float)(((double)hi[2] - lo[2]) * 0.5));
     float big = fmaxf(h.x, fmaxf(h.y, h.z));
     float tiny = big > 0 ? big * 1e-3f : 1;
     c->fit_half = v3(fmaxf(h.x, tiny), fmaxf(h.y, tiny), fmaxf(h.z, tiny));
-    /* radius: the world box's half diagonal, measured from the centre */
-    float r2 = 0;
+    /* radius: the world box's half diagonal, measured from the centre;
+     * in double, where the square of a coordinate of 1e20 still fits */
+    double r2 = 0;
     for (int k = 0; k < 8; k++) {
-        Vec3 p = v3(k & 1 ? whi[0] : wlo[0], k & 2 ? whi[1] : wlo[1], k & 4 ? whi[2] : wlo[2]);
-        Vec3 d = v3_sub(p, c->centre);
-        float q = v3_dot(d, d);
+        double d[3] = { (double)(k & 1 ? whi[0] : wlo[0]) - c->centre.x,
+                        (double)(k & 2 ? whi[1] : wlo[1]) - c->centre.y,
+                        (double)(k & 4 ? whi[2] : wlo[2]) - c->centre.z };
+        double q = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         if (q > r2)
             r2 = q;
     }
-    c->radius = r2 > 0 ? sqrtf(r2) : 1.0f;
+    c->radius = r2 > 0 ? (float)fmin(sqrt(r2), FLT_MAX) : 1.0f;
 }
 
 void scene_reset(Scene *s)

@@ -1,0 +1,41 @@
+#!/bin/sh
+# Hostile sizes and shapes (issue 16): what used to crash, overflow or take
+# quadratic time now draws or is refused in one line naming the limit.
+. "$(dirname "$0")/lib.sh"
+Z=$ZVIEW
+
+# a scene of lines (or one point) and no faces, copied by --grid
+printf 'v 0 0 0\nv 1 1 0\nl 1 2\n' >"$T/line.obj"
+expect_status "--grid 2 on a scene of lines and no faces draws" 0 "$Z" -p --grid 2 --size 20x6 "$T/line.obj"
+printf 'v 0 0 0\n' >"$T/point.obj"
+expect_status "--grid 2 on one point draws" 0 "$Z" -p --grid 2 --points --size 20x6 "$T/point.obj"
+
+# finite coordinates far past 1e20: fitted like any other model
+for e in 1e20 1e30 3e38; do
+    printf 'v 0 0 0\nv %s 0 0\nv 0 %s 0\nf 1 2 3\n' "$e" "$e" >"$T/big.obj"
+    expect_status "a triangle $e across is drawn" 0 "$Z" -p --size 20x6 --yaw 30 --pitch 20 "$T/big.obj"
+    if grep -q '▀\|▄\|█' "$T/out" && ! grep -q "nothing drawn" "$T/err"; then ok "... and covers pixels"
+    else notok "... and covers pixels" "$(head -c 200 "$T/err")"; fi
+done
+expect_status "--info gives its bounds in the file's units" 0 "$Z" --info "$T/big.obj"
+expect_out "... 3e38, not the scaled-down value" "bounds:     0 0 0 .. 3e+38 3e+38 0"
+
+# one face of 120,000 corners (a triangle listed 40,000 times): the
+# crossings of a row are many; hangs before (12.7 s at 80x24), so a
+# generous bound is no timing test
+awk 'BEGIN { print "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0"; printf "f"; for (i = 0; i < 40000; i++) printf " 1 2 4"; print "" }' >"$T/many.obj"
+for a in zbuffer scanline span hzb hzb-octree; do
+    expect_status "a 120,000-corner face with $a" 0 timeout 60 "$Z" -o "$T/many.png" --size 1280x720 -a "$a" "$T/many.obj"
+done
+
+# sizes: the limit is named, and a frame that cannot fit is refused before
+# anything is loaded
+expect_status "--size 16385x100 is a usage error" 2 "$Z" -p --size 16385x100 assets/cube.obj
+expect_err "... naming the limit" "--size 16385x100: 1 to 16384 per side"
+expect_status "-p with 32768 pixel rows is refused" 1 "$Z" -p --mode half --size 100x16384 assets/cube.obj
+expect_err "... naming the limit" "--size 100x16384 in half mode: a picture of 100x32768 pixels (at most 16384 per side)"
+expect_status "a frame bigger than the memory left is refused" 1 env ZV_MEM_AVAILABLE=100000000 "$Z" -o "$T/x.png" --size 4096x4096 assets/cube.obj
+expect_err "... with the estimate and what is available" "--size 4096x4096: a picture of 4096x4096 pixels needs about 201 MB; 100 MB available"
+if [ ! -e "$T/x.png" ]; then ok "... and nothing written"; else notok "... and nothing written"; fi
+expect_status "... and so is a text frame, before loading (a missing file is not reached)" 1 env ZV_MEM_AVAILABLE=100000000 "$Z" -p --mode half --size 2000x2000 "$T/no-such.obj"
+expect_err "... with the estimate" "in half mode: a picture of 2000x4000 pixels needs about"
