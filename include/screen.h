@@ -11,6 +11,7 @@
  * (i + 0.5, j + 0.5), i.e. at fixed-point (256 i + 128, 256 j + 128). */
 
 #include <stdint.h>
+#include <stdio.h>
 #include "scene.h"
 
 #define SUBPIX_BITS 8
@@ -179,8 +180,8 @@ typedef struct {
 int  screen_reorder(ScreenPolys *sp, PolyOrder order, uint32_t seed, ReorderScratch *rs);
 void reorder_free(ReorderScratch *rs);
 
-/* Write the polygons as OBJ text ("# zview screen W H", v x y z, f ... # id).
- * Returns 0, or -1 with errno set (open, write or close failed). */
-int  screen_dump_obj(const ScreenPolys *sp, const char *path);
+/* Write the polygons as OBJ text ("# zview screen W H", v x y z, f ... # id)
+ * to f, flushed. Returns 0, or -1 with errno set (a write failed). */
+int  screen_dump_obj(const ScreenPolys *sp, FILE *f);
 
 #endif

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "safefile.h"
 
 /* Cells for --print: --size, else the terminal's size, else 80x24. */
 static void print_size(const Options *o, int *cols, int *rows)
@@ -30,11 +31,25 @@ static void print_size(const Options *o, int *cols, int *rows)
     *rows = 24;
 }
 
+/* Flush and close a file written through out; it takes its name only
+ * when complete. Returns 0, or -1 after a message naming it. */
+static int close_written(SafeFile *sf, Out *out)
+{
+    out_flush(out);
+    errno = out->err;
+    if (safefile_close(sf, out->f, out->err != 0)) {
+        fprintf(stderr, "zview: %s: %s\n", out->name, strerror(errno ? errno : EIO));
+        return -1;
+    }
+    return 0;
+}
+
 /* The face ids as little-endian int32 on any host. Returns 0, or -1
  * after a message naming the file. */
 static int write_ids(const char *path, const FrameBufs *fb)
 {
-    FILE *f = fopen(path, "wb");
+    SafeFile sf;
+    FILE *f = safefile_open(&sf, path, "wb");
     if (!f) {
         fprintf(stderr, "zview: %s: %s\n", path, strerror(errno));
         return -1;
@@ -56,11 +71,7 @@ static int write_ids(const char *path, const FrameBufs *fb)
         }
     }
     out_write(&out, buf, k);
-    if (out_close(&out)) {
-        fprintf(stderr, "zview: %s: %s\n", path, out_error(&out));
-        return -1;
-    }
-    return 0;
+    return close_written(&sf, &out);
 }
 
 /* -o FILE or -o - (standard output): PNG or PPM by --image-format, else
@@ -111,6 +122,22 @@ static int write_image(const Options *o, const char *path, const Image *img, cha
     return rc;
 }
 
+/* --dump-screen: the screen polygons as OBJ text, whole or not at all. */
+static int dump_screen(const ScreenPolys *sp, const char *path)
+{
+    SafeFile sf;
+    FILE *f = safefile_open(&sf, path, "w");
+    if (!f) {
+        fprintf(stderr, "zview: %s: %s\n", path, strerror(errno));
+        return -1;
+    }
+    Out out;
+    out_init(&out, f, path);
+    if (screen_dump_obj(sp, f))
+        out.err = errno ? errno : EIO;
+    return close_written(&sf, &out);
+}
+
 static int ends_with(const char *s, const char *suffix)
 {
     size_t n = strlen(s), m = strlen(suffix);
@@ -145,20 +172,17 @@ static int render_image(const Options *o, Pipeline *p, int shade_too)
 /* The text frame into a file. Returns 0, or -1 after a message. */
 static int write_text(const char *path, const CellGrid *g, ColorDepth depth)
 {
-    FILE *f = fopen(path, "w");
-    if (!f || print_cells(f, g, depth)) {
+    SafeFile sf;
+    FILE *f = safefile_open(&sf, path, "w");
+    if (!f) {
         fprintf(stderr, "zview: %s: %s\n", path, strerror(errno));
-        if (f)
-            fclose(f);
         return -1;
     }
     Out out;
     out_init(&out, f, path);
-    if (out_close(&out)) {
-        fprintf(stderr, "zview: %s: %s\n", path, out_error(&out));
-        return -1;
-    }
-    return 0;
+    if (print_cells(f, g, depth))
+        out.err = errno ? errno : EIO;
+    return close_written(&sf, &out);
 }
 
 /* -o names a text file: FILE.txt, unless --image-format says otherwise. */
@@ -289,10 +313,8 @@ int app_oneshot(const Options *o, Scene *s)
         fprintf(stderr, "zview: nothing drawn: %s\n", why);
     if (o->dump_ids && write_ids(o->dump_ids, &p.fb))
         rc = 1;
-    if (o->dump_screen && screen_dump_obj(&p.sp, o->dump_screen)) {
-        fprintf(stderr, "zview: %s: %s\n", o->dump_screen, strerror(errno));
+    if (o->dump_screen && dump_screen(&p.sp, o->dump_screen))
         rc = 1;
-    }
 out:
     pipeline_free(&p);
     return rc;

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "present.h"
+#include "safefile.h"
 
 typedef struct {
     jmp_buf jmp;
@@ -56,7 +57,8 @@ int write_png(const char *path, const Image *im, char *err, size_t errlen)
         snprintf(err, errlen, "%s: empty image", path);
         return -1;
     }
-    FILE *f = fopen(path, "wb");
+    SafeFile sf;
+    FILE *f = safefile_open(&sf, path, "wb");
     if (!f) {
         snprintf(err, errlen, "%s: %s", path, strerror(errno));
         return -1;
@@ -72,13 +74,13 @@ int write_png(const char *path, const Image *im, char *err, size_t errlen)
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!png || !info) {
         png_destroy_write_struct(png ? &png : NULL, NULL);
-        fclose(f);
+        safefile_close(&sf, f, 1);
         snprintf(err, errlen, "%s: out of memory", path);
         return -1;
     }
     if (setjmp(e.jmp)) {
         png_destroy_write_struct(&png, &info);
-        fclose(f);
+        safefile_close(&sf, f, 1);
         snprintf(err, errlen, "%s: %s", path, e.msg);
         return -1;
     }
@@ -94,8 +96,10 @@ int write_png(const char *path, const Image *im, char *err, size_t errlen)
     /* A full disk shows up only when the buffered bytes are flushed. */
     Out out;
     out_init(&out, f, path);
-    if (out_close(&out)) {
-        snprintf(err, errlen, "%s: %s", path, out_error(&out));
+    out_flush(&out);
+    errno = out.err;
+    if (safefile_close(&sf, f, out.err != 0)) {
+        snprintf(err, errlen, "%s: %s", path, strerror(errno ? errno : EIO));
         return -1;
     }
     return 0;

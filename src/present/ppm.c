@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "present.h"
+#include "safefile.h"
 
 int write_ppm(const char *path, const Image *im, char *err, size_t errlen)
 {
@@ -12,7 +13,8 @@ int write_ppm(const char *path, const Image *im, char *err, size_t errlen)
         snprintf(err, errlen, "%s: empty image", path);
         return -1;
     }
-    FILE *f = fopen(path, "wb");
+    SafeFile sf;
+    FILE *f = safefile_open(&sf, path, "wb");
     if (!f) {
         snprintf(err, errlen, "%s: %s", path, strerror(errno));
         return -1;
@@ -22,8 +24,10 @@ int write_ppm(const char *path, const Image *im, char *err, size_t errlen)
     out_init(&out, f, path);
     out_printf(&out, "P6\n%d %d\n255\n", im->w, im->h);
     out_write(&out, im->rgb, n);
-    if (out_close(&out)) {
-        snprintf(err, errlen, "%s: %s", path, out_error(&out));
+    out_flush(&out);
+    errno = out.err;
+    if (safefile_close(&sf, f, out.err != 0)) {
+        snprintf(err, errlen, "%s: %s", path, strerror(errno ? errno : EIO));
         return -1;
     }
     return 0;

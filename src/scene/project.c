@@ -1640,11 +1640,8 @@ static void put(FILE *f, int *err, const char *fmt, ...)
 
 /* Every write is checked: a full disk must not pass for a short dump.
  * On failure errno is the first failure's. */
-int screen_dump_obj(const ScreenPolys *sp, const char *path)
+int screen_dump_obj(const ScreenPolys *sp, FILE *f)
 {
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return -1;
     int err = 0;
     put(f, &err, "# zview screen %d %d\n", sp->w, sp->h);
     for (uint32_t i = 0; i < sp->nverts && !err; i++)
@@ -1657,8 +1654,6 @@ int screen_dump_obj(const ScreenPolys *sp, const char *path)
         put(f, &err, " # %d\n", sp->polys[p].face);
     }
     if (!err && (fflush(f) != 0 || ferror(f)))
-        err = errno ? errno : EIO;
-    if (fclose(f) != 0 && !err)
         err = errno ? errno : EIO;
     errno = err;
     return err ? -1 : 0;

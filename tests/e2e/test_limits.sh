@@ -39,3 +39,27 @@ expect_err "... with the estimate and what is available" "--size 4096x4096: a pi
 if [ ! -e "$T/x.png" ]; then ok "... and nothing written"; else notok "... and nothing written"; fi
 expect_status "... and so is a text frame, before loading (a missing file is not reached)" 1 env ZV_MEM_AVAILABLE=100000000 "$Z" -p --mode half --size 2000x2000 "$T/no-such.obj"
 expect_err "... with the estimate" "in half mode: a picture of 2000x4000 pixels needs about"
+
+# a full disk (played by a 100 KB file-size limit, SIGXFSZ ignored so that
+# writes fail with EFBIG): every output fails naming the file, the old
+# file stays as it was, and no partial or temporary file is left
+full() { (ulimit -f 100; trap '' XFSZ; exec "$@"); }
+mkdir "$T/full"
+for out in x.png x.ppm x.txt; do
+    echo old >"$T/full/$out"
+    expect_status "-o $out on a full disk fails" 1 full "$Z" -o "$T/full/$out" --size 1024x1024 assets/knot.obj
+    expect_err "... naming the file" "$T/full/$out: File too large"
+    if [ "$(cat "$T/full/$out")" = old ]; then ok "... the old $out untouched"; else notok "... the old $out untouched"; fi
+done
+expect_status "--dump-ids on a full disk fails" 1 full "$Z" --dump-ids "$T/full/ids.bin" --size 1024x1024 assets/knot.obj
+expect_status "--dump-screen on a full disk fails" 1 full "$Z" --dump-screen "$T/full/s.obj" --size 1024x1024 assets/knot.obj
+expect_status "--turntable on a full disk fails" 1 full "$Z" --turntable 3 -o "$T/full/t-%d.ppm" --size 1024x1024 assets/knot.obj
+left=$(ls "$T/full" | tr '\n' ' ')
+if [ "$left" = "x.png x.ppm x.txt " ]; then ok "... no partial or temporary file left"; else notok "... no partial or temporary file left" "$left"; fi
+# the same outputs with room: written whole, a symlink keeps pointing at its file
+ln -s x.ppm "$T/full/link.ppm"
+expect_status "-o through a symlink" 0 "$Z" -o "$T/full/link.ppm" --size 64x64 assets/knot.obj
+if [ -L "$T/full/link.ppm" ] && head -c 2 "$T/full/x.ppm" | grep -q P6; then ok "... writes the file it names, the link stays"
+else notok "... writes the file it names, the link stays"; fi
+expect_status "-o /dev/null (not a regular file) is written as it is" 0 "$Z" -o /dev/null --image-format ppm --size 64x64 assets/knot.obj
+if [ -c /dev/null ]; then ok "... /dev/null is still a device"; else notok "... /dev/null is still a device"; fi
