@@ -124,6 +124,10 @@ typedef struct Scene {
     int       pos_exp;
 } Scene;
 
+/* What a message calls the files of meshes[0..n): "a.obj", "a.obj and
+ * b.stl", "a.obj and 4 more files". */
+void scene_files_text(const Mesh *meshes, int n, char *buf, size_t len);
+
 /* What an id of the face-id buffer is. */
 typedef enum { PRIM_NONE = -1, PRIM_FACE = 0, PRIM_POINT, PRIM_SEG, PRIM_WIRE } PrimKind;
 

@@ -54,14 +54,17 @@ static uint64_t scene_frame_bytes(const Scene *s, uint64_t copies, uint64_t poly
 int app_check_size(const Options *o, const Scene *s, char *err, size_t errlen)
 {
     uint64_t copies = o->grid > 1 ? (uint64_t)o->grid * o->grid * o->grid : 1;
-    uint64_t polys = 0, corners = 0;   /* grid copies project their source's polygons again */
+    /* grid copies project their source's polygons again; points and
+     * segments are drawn as polygons too (a square, a quad) */
+    uint64_t polys = 0, corners = 0, prims = 0;
     for (int k = 0; k < s->nobjs; k++) {
         const Object *ob = &s->objs[k];
         polys += ob->poly_count;
         corners += s->poly_start[ob->poly_first + ob->poly_count] - s->poly_start[ob->poly_first];
+        prims += (uint64_t)ob->point_count + ob->seg_count;
     }
-    polys *= copies;
-    corners *= copies;
+    polys = (polys + prims) * copies;
+    corners = (corners + 4 * prims) * copies;
     if (polys <= o->max_polys)
         return 0;
     uint64_t pixels = o->w > 0 ? (uint64_t)o->w * o->h : DEFAULT_PIXELS;
@@ -73,10 +76,12 @@ int app_check_size(const Options *o, const Scene *s, char *err, size_t errlen)
         snprintf(mem, sizeof mem, "%.1f GB", bytes / 1e9);
     else
         snprintf(mem, sizeof mem, "%.0f MB", bytes / 1e6);
+    char files[320];
+    scene_files_text(s->meshes, s->nmeshes, files, sizeof files);
     snprintf(err, errlen,
-             "the scene would have %s polygons and need about %s for itself and one frame "
-             "(limit %s polygons; --max-polys raises it)",
-             np, mem, lim);
+             "%s: the scene would have %s polygons, points and segments and need about %s for itself "
+             "and one frame (limit %s; --max-polys raises it)",
+             files, np, mem, lim);
     return -1;
 }
 

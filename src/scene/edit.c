@@ -67,8 +67,8 @@ static int compose(Scene *out, const Source *src, int nsrc, int *mesh_used[], ch
     }
     if (nobjs > 65535 || nfaces > INT32_MAX || nsegs > INT32_MAX || npolys > UINT32_MAX / 2 ||
         ncorners > UINT32_MAX / 2) {
-        snprintf(err, errlen, "scene too large (%llu objects, %llu faces)", (unsigned long long)nobjs,
-                 (unsigned long long)nfaces);
+        const Scene *last = src[nsrc - 1].s;    /* what is being added */
+        scene_too_large(last->meshes, last->nmeshes, nobjs, nfaces, err, errlen);
         return -1;
     }
     out->meshes = malloc((nmeshes ? nmeshes : 1) * sizeof *out->meshes);

@@ -300,6 +300,29 @@ static int shrink_huge_meshes(Scene *s, int take_over)
     return k;
 }
 
+void scene_files_text(const Mesh *meshes, int n, char *buf, size_t len)
+{
+    const char *first = n > 0 && meshes[0].path ? meshes[0].path : "the scene";
+    if (n <= 1)
+        snprintf(buf, len, "%s", first);
+    else if (n == 2)
+        snprintf(buf, len, "%s and %s", first, meshes[1].path ? meshes[1].path : "?");
+    else
+        snprintf(buf, len, "%s and %d more files", first, n - 1);
+}
+
+void scene_too_large(const Mesh *meshes, int n, uint64_t nobjs, uint64_t nfaces, char *err, size_t errlen)
+{
+    char files[320];
+    scene_files_text(meshes, n, files, sizeof files);
+    if (nobjs > 65535)
+        snprintf(err, errlen, "%s: too many objects for one scene (%llu; at most 65535)", files,
+                 (unsigned long long)nobjs);
+    else
+        snprintf(err, errlen, "%s: too large for one scene (%llu faces; at most %d faces, points and "
+                              "segments together)", files, (unsigned long long)nfaces, INT32_MAX);
+}
+
 int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
 {
     memset(s, 0, sizeof *s);
@@ -316,8 +339,7 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
             nsegs += m->line_start[m->nlines] - m->nlines;
     }
     if (nobjs > 65535 || nfaces > INT32_MAX || nsegs > INT32_MAX) {
-        snprintf(err, errlen, "scene too large (%llu objects, %llu faces)",
-                 (unsigned long long)nobjs, (unsigned long long)nfaces);
+        scene_too_large(meshes, nmeshes, nobjs, nfaces, err, errlen);
         return -1;
     }
     s->objs = calloc(nobjs ? nobjs : 1, sizeof *s->objs);
@@ -357,7 +379,10 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
         }
     }
     if (npolys > UINT32_MAX / 2 || ncorners > UINT32_MAX / 2) {
-        snprintf(err, errlen, "scene too large (%llu polygons)", (unsigned long long)npolys);
+        char files[320];
+        scene_files_text(meshes, nmeshes, files, sizeof files);
+        snprintf(err, errlen, "%s: too large for one scene (%llu triangles and polygons; at most %u)", files,
+                 (unsigned long long)npolys, UINT32_MAX / 2);
         free(planar);
         return -1;
     }
@@ -459,10 +484,10 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     free(planar);
     s->pos_exp = shrink_huge_meshes(s, take_over);
     if (scene_number_prims(s)) {
+        scene_too_large(meshes, nmeshes, 0, (uint64_t)INT32_MAX + 1, err, errlen);
         s->meshes = NULL;
         s->nmeshes = 0;
         scene_free(s);
-        snprintf(err, errlen, "scene too large (more than %d faces, points and segments)", INT32_MAX);
         return -1;
     }
     /* The scene keeps its own polygon lists and per-face data: the meshes'

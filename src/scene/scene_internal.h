@@ -13,4 +13,7 @@ extern const uint8_t scene_default_rgb[3];
  * edges. -1 when the ids would pass INT32_MAX. */
 int scene_number_prims(Scene *s);
 
+/* "scene too large" messages: the files, then what passes which limit. */
+void scene_too_large(const Mesh *meshes, int n, uint64_t nobjs, uint64_t nfaces, char *err, size_t errlen);
+
 #endif

@@ -138,7 +138,8 @@ if cmp -s "$T/vf" "$T/v0" && ! cmp -s "$T/vf" "$T/vauto"; then ok "--view front 
 expect_status "--grid 40 is refused" 1 "$Z" --print --grid 40 assets/torus.obj
 expect_err "the refusal gives the polygon count" "would have "
 expect_err "the refusal gives the memory estimate" "GB for itself and one frame"
-expect_err "the refusal gives the limit" "(limit 20,000,000 polygons; --max-polys raises it)"
+expect_err "the refusal gives the limit" "(limit 20,000,000; --max-polys raises it)"
+expect_err "the refusal names the file" "assets/torus.obj: the scene would have"
 # the limit is the exact polygon count, grid copies counted
 np=$("$Z" --info assets/torus.obj | sed -n 's/.* faces, \([0-9]*\) polygons.*/\1/p')
 expect_status "--max-polys lets a moderate grid through" 0 "$Z" --print --size 20x6 --grid 3 --max-polys $((np * 27)) assets/torus.obj

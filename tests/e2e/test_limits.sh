@@ -63,3 +63,12 @@ if [ -L "$T/full/link.ppm" ] && head -c 2 "$T/full/x.ppm" | grep -q P6; then ok 
 else notok "... writes the file it names, the link stays"; fi
 expect_status "-o /dev/null (not a regular file) is written as it is" 0 "$Z" -o /dev/null --image-format ppm --size 64x64 assets/knot.obj
 if [ -c /dev/null ]; then ok "... /dev/null is still a device"; else notok "... /dev/null is still a device"; fi
+
+# messages about limits name the file; points count toward --max-polys
+awk 'BEGIN { for (i = 0; i < 70000; i++) printf "o o%d\nv 0 0 %d\nv 1 0 %d\nv 0 1 %d\nf -3 -2 -1\n", i, i, i, i }' >"$T/objs.obj"
+expect_status "70,000 objects are refused" 1 "$Z" -p "$T/objs.obj"
+expect_err "... naming the file and the limit" "$T/objs.obj: too many objects for one scene (70000; at most 65535)"
+awk 'BEGIN { for (i = 0; i < 10; i++) printf "%d 0 0\n", i }' >"$T/ten.xyz"
+expect_status "a cloud of 10 points passes --max-polys 10" 0 "$Z" -p --size 20x6 --max-polys 10 "$T/ten.xyz"
+expect_status "... and not --max-polys 9: points count" 1 "$Z" -p --size 20x6 --max-polys 9 "$T/ten.xyz"
+expect_err "... naming the file" "$T/ten.xyz: the scene would have 10 polygons, points and segments"
