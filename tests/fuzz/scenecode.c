@@ -185,6 +185,19 @@ static int decode_object(Rd *r, Mesh *m, int oflags, uint32_t *faces_left)
         if (tl_mesh_face(m, corner, nc))
             return -1;
     }
+    if ((oflags & SO_BIG) && *faces_left > 0) {
+        uint32_t n = 25 + rd_u16(r) % 4000, st = rd_u16(r) * 2654435761u + 3;
+        uint32_t *c = malloc(n * sizeof *c);
+        if (!c)
+            return -1;
+        for (uint32_t k = 0; k < n; k++)
+            c[k] = v0 + xorshift(&st) % nv;
+        int rc = tl_mesh_face(m, c, n);
+        free(c);
+        (*faces_left)--;
+        if (rc)
+            return -1;
+    }
     return 0;
 }
 

@@ -40,6 +40,9 @@
  *                                 (SO_SHARE: mod all of the mesh's so far)
  *                                 (SO_GEN: the generated faces come first,
  *                                 then these)
+ *     SO_BIG: u16 n, u16 seed     one more face of 25 + n % 4000 corners,
+ *                                 each a vertex of the object's at random
+ *                                 (a row crosses it hundreds of times)
  *     SO_PLACED: i16 yaw, pitch, roll; coord x, y, z offset;
  *                u8 scale 10^(-3 + 6 v / 255)
  *   coord: SO_RAW: f32 bits (not finite: 0); else i16 m, u8 e:
@@ -82,7 +85,7 @@ enum {
     SC_PERSP = 1, SC_CULL = 2, SC_THREADS2 = 4, SC_REFIT = 8, SC_GRID = 16
 };
 enum {
-    SO_PLACED = 1, SO_SHARE = 2, SO_WIDE = 4, SO_RAW = 8, SO_GEN = 16
+    SO_PLACED = 1, SO_SHARE = 2, SO_WIDE = 4, SO_RAW = 8, SO_GEN = 16, SO_BIG = 32
 };
 #define SC_MAX_MESHES    3
 #define SC_MAX_MESH_OBJS 4
