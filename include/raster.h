@@ -11,7 +11,12 @@
  * exact integer quotient plus remainder (no float, no drift). A row's
  * crossings sorted as xi_0 <= xi_1 <= ... cover the columns
  * [xi_0, xi_1), [xi_2, xi_3), ...: the even-odd rule with half-open
- * intervals, which is the top-left rule. */
+ * intervals, which is the top-left rule.
+ *
+ * Crossings are the scanline walk of Bouknight (1970); the triangle test
+ * below is the edge function of J. Pineda, "A Parallel Algorithm for
+ * Polygon Rasterization", SIGGRAPH 1988, with the top-left tie rule.
+ */
 
 #include <stdint.h>
 #include "screen.h"

@@ -21,7 +21,12 @@
  *
  * It wins when many polygons are hidden behind earlier ones in scene
  * order (depth complexity, closed models seen with culling off); it costs
- * a small lookup per polygon and the lazy pyramid upkeep otherwise. */
+ * a small lookup per polygon and the lazy pyramid upkeep otherwise.
+ *
+ * Implements the z-pyramid of N. Greene, M. Kass and G. Miller,
+ * "Hierarchical Z-Buffer Visibility", SIGGRAPH 1993 (its simple mode:
+ * polygons tested against the pyramid in the order given).
+ */
 
 #include <math.h>
 #include <stdlib.h>

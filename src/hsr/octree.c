@@ -49,7 +49,14 @@
  * picture) and say so in HsrStats.building. A small scene (they take a
  * few milliseconds), or one thread (no thread may be started), builds
  * them before the first frame's bands. The builder is told to stop and
- * joined when the runner goes, or when a frame brings another scene. */
+ * joined when the runner goes, or when a frame brings another scene.
+ *
+ * Implements the complete mode of N. Greene, M. Kass and G. Miller,
+ * "Hierarchical Z-Buffer Visibility", SIGGRAPH 1993: object-space octree
+ * cubes tested against the z-pyramid front to back, a hidden cube
+ * culling all it holds. Octree subdivision as in D. Meagher, "Geometric
+ * Modeling Using Octree Encoding", CGIP 19(2), 1982.
+ */
 
 #include <limits.h>
 #include <math.h>

@@ -41,7 +41,15 @@
  * Depth is plane_row() then plane_at() (the SSE2 path performs the same
  * IEEE single operations in the same order) and samples compare (depth,
  * id) as hsr_wins() does, so the order polygons are visited in does not
- * matter and ids and depths are bit-identical to the z-buffer's. */
+ * matter and ids and depths are bit-identical to the z-buffer's.
+ *
+ * Implements the scanline approach of C. Wylie, G. Romney, D. Evans and
+ * A. Erdahl, "Half-tone Perspective Drawings by Computer", AFIPS FJCC
+ * 1967, and W. J. Bouknight, "A Procedure for Generation of
+ * Three-dimensional Half-toned Computer Graphics Presentations", CACM
+ * 13(9), 1970 (polygon and edge tables, an active list), with a depth
+ * row per scanline in place of their span comparisons.
+ */
 
 #include <math.h>
 #include <stdlib.h>

@@ -51,7 +51,13 @@
  *    a per-sample minimum with hsr_wins over the set, the z-buffer's own
  *    comparison. The split points are heuristics only: correctness rests
  *    on the leaf decisions above.
- * Cyclic overlap needs nothing special: decisions are per interval. */
+ * Cyclic overlap needs nothing special: decisions are per interval.
+ *
+ * Implements the interval scanline of G. S. Watkins, "A Real-Time
+ * Visible Surface Algorithm", PhD thesis, University of Utah, 1970:
+ * spans between edge crossings decided once each, with exact fallbacks
+ * where a span's winner is not provable (piercing, near-ties).
+ */
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,7 +1,14 @@
 /* zbuffer.c: the plain per-pixel z-buffer, the reference every other
  * algorithm is compared with. Each polygon is walked row by row with the
  * exact edge walkers of raster.h and its samples are depth-tested one by
- * one against the (depth, id) pair stored there. */
+ * one against the (depth, id) pair stored there.
+ *
+ * Implements the depth buffer of E. Catmull, "A Subdivision Algorithm
+ * for Computer Display of Curved Surfaces", PhD thesis, University of
+ * Utah, 1974 (found independently by W. Strasser the same year). The
+ * AVX2 triangle path steps the edge functions of J. Pineda, "A Parallel
+ * Algorithm for Polygon Rasterization", SIGGRAPH 1988.
+ */
 
 #include <math.h>
 #include <stdlib.h>

@@ -13,7 +13,14 @@
  * Choosing the pair is the costly part, so it is memoised per colour
  * rounded to 6 bits a channel (a 1 MB table filled lazily, kept across
  * frames); the share is computed exactly per pixel from a table of
- * linear values. Exact palette colours always map to themselves. */
+ * linear values. Exact palette colours always map to themselves.
+ *
+ * OKLab: B. Ottosson, "A perceptual color space for image processing",
+ * 2020 (bottosson.github.io/posts/oklab). Ordered dither: B. E. Bayer,
+ * "An optimum method for two-level rendition of continuous-tone
+ * pictures", IEEE International Conference on Communications, 1973. sRGB
+ * transfer: IEC 61966-2-1:1999.
+ */
 
 #include <math.h>
 #include <stdlib.h>

@@ -26,7 +26,12 @@
  * into windows of the output arrays and move down in order, so the output
  * is the same as one thread's. Every scratch buffer belongs to the
  * ScreenPolys being filled (ScreenWork), so the front end keeps no state
- * of its own between calls. */
+ * of its own between calls.
+ *
+ * Clipping against the near plane and the guard band is the reentrant
+ * polygon clipper of I. Sutherland and G. Hodgman, "Reentrant Polygon
+ * Clipping", CACM 17(1), 1974.
+ */
 
 #define _DEFAULT_SOURCE
 #include <errno.h>

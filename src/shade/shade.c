@@ -3,7 +3,11 @@
  * Lambert and id colours depend only on the face, so they are computed
  * once per visible face per frame and kept in a ShadeCache keyed by a
  * frame stamp; the per-pixel loop is then a lookup and a 3-byte copy.
- * Depth colours depend on the pixel and are computed per pixel. */
+ * Depth colours depend on the pixel and are computed per pixel.
+ *
+ * Diffuse light is Lambert's cosine law (J. H. Lambert, Photometria,
+ * 1760) plus an ambient share.
+ */
 
 #include <math.h>
 #include <stdlib.h>

@@ -13,7 +13,14 @@
  * the face's triangles (a fan over its corners); its barycentric weights
  * there blend the corner normals, which are then lit two-sided like the
  * flat shading. Nothing here decides visibility: the exact face-id
- * buffer does, so every algorithm still gives the same picture. */
+ * buffer does, so every algorithm still gives the same picture.
+ *
+ * Normals interpolated per pixel: B. T. Phong, "Illumination for
+ * Computer Generated Pictures", CACM 18(6), 1975 (the diffuse term only).
+ * Face normals by Newell's method, as given in I. Sutherland, R. Sproull
+ * and R. Schumacker, "A Characterization of Ten Hidden-Surface
+ * Algorithms", Computing Surveys 6(1), 1974.
+ */
 
 #include <math.h>
 #include <stdlib.h>
