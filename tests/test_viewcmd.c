@@ -117,10 +117,8 @@ static void round_trip(int persp)
     for (int i = 0; i < s.nobjs; i++) {
         const Object *p = &s.objs[i], *q = &t.objs[i];
         cr_expect(p->yaw == q->yaw && p->pitch == q->pitch && p->roll == q->roll, "object %d turn", i);
-        cr_expect(fabsf(p->offset.x - q->offset.x) <= 1e-6f * (1 + fabsf(p->offset.x)) &&
-                      fabsf(p->offset.y - q->offset.y) <= 1e-6f * (1 + fabsf(p->offset.y)),
-                  "object %d place", i);
-        cr_expect(fabsf(p->scale - q->scale) <= 1e-6f * p->scale, "object %d scale", i);
+        cr_expect(memcmp(&p->offset, &q->offset, sizeof p->offset) == 0, "object %d place: %s", i, cmd);
+        cr_expect(p->scale == q->scale, "object %d scale: %s", i, cmd);
     }
     int32_t *ia = malloc(160 * 96 * 4), *ib = malloc(160 * 96 * 4);
     render_ids(&s, 1, ia);
@@ -157,4 +155,27 @@ Test(viewcmd, defaults_are_left_out_and_odd_file_names_quoted)
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_expect_str_eq(cmd, "zview --yaw 0 --pitch 0 -- 'it'\\''s here.obj'");
     cr_expect_eq(view_command(cmd, 10, &o, &s, &v), -1, "too small a buffer is reported");
+}
+
+/* The shortest numbers that give the view back: a turn of -25 degrees is
+ * "-25", not "-25.0000019"; a zoom of 1.15 "1.15", not "1.14999998". */
+Test(viewcmd, numbers_are_the_shortest_that_come_back)
+{
+    Options o;
+    cli_defaults(&o);
+    o.files[0] = "m.obj";
+    o.nfiles = 1;
+    Scene s;
+    memset(&s, 0, sizeof s);
+    s.cam.yaw = deg2rad(-25);
+    s.cam.pitch = deg2rad(30);
+    s.cam.fit_yaw = s.cam.yaw;
+    s.cam.fit_pitch = s.cam.pitch;
+    s.cam.zoom = 1.15f;
+    s.cam.pan = v3(0.1f, -0.3f, 0);
+    light_set(&s.light, -34.5f, LIGHT_PITCH, 0.3f);
+    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0 };
+    char cmd[512];
+    cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
+    cr_expect_str_eq(cmd, "zview --yaw -25 --pitch 30 --zoom 1.15 --pan 0.1,-0.3 --light -34.5,37 --ambient 0.3 -- m.obj");
 }

@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "app.h"
@@ -73,33 +74,74 @@ static float deg(float rad)
     return d;
 }
 
+/* ==== the shortest number that gives the value back ====
+ * The options read a number as a double and keep it as a float. A float
+ * needs up to 9 significant digits to come back, but most values are
+ * reached by far fewer ("-25", not "-25.0000019"): the first precision
+ * whose text passes the check (what the option does with the number gives
+ * back the value) is printed. */
+
+typedef struct {
+    char s[32];
+} Num;
+
+typedef int (*NumCheck)(float parsed, const float *ctx);
+
+static int same(float x, const float *c) { return x == c[0]; }
+static int same_angle(float x, const float *c) { return deg2rad(x) == c[0]; }
+static int same_scaled(float x, const float *c) { return c[0] * x == c[1]; }    /* home_scale * F */
+static int same_moved(float x, const float *c) { return c[0] + x == c[1]; }     /* home + X */
+
+/* The shortest text, plain ("30", "0.125") or in exponent form ("1e-07")
+ * when that is shorter, that passes the check. v: a value that passes it
+ * at 9 significant digits (a float comes back). */
+static Num shortest(float v, NumCheck ok, const float *ctx)
+{
+    Num best, n;
+    snprintf(best.s, sizeof best.s, "%.9g", (double)v);
+    for (int form = 0; form < 2; form++)
+        for (int p = form; p <= 9; p++) {
+            if (form == 0 && fabsf(v) >= 1e9f)
+                break;
+            snprintf(n.s, sizeof n.s, form == 0 ? "%.*f" : "%.*g", p, (double)v);
+            if (strlen(n.s) < strlen(best.s) && ok((float)strtod(n.s, NULL), ctx))
+                best = n;
+        }
+    return best;
+}
+
+static Num num(float v) { return shortest(v, same, (const float[1]){ v }); }
+static Num angle(float rad) { return shortest(deg(rad), same_angle, (const float[1]){ rad }); }
+static Num scaled(float home, float v) { return shortest(v / home, same_scaled, (const float[2]){ home, v }); }
+static Num moved(float home, float v) { return shortest(v - home, same_moved, (const float[2]){ home, v }); }
+
 int view_command(char *buf, size_t len, const Options *opt, const Scene *s, const ViewSettings *v)
 {
     CmdBuf o = { buf, len, 0, 0 };
     const Camera *c = &s->cam;
     put(&o, "zview");
     /* the turn, and where it was fitted from when that differs */
-    put(&o, " --yaw %.9g --pitch %.9g", deg(c->yaw), deg(c->pitch));
+    put(&o, " --yaw %s --pitch %s", angle(c->yaw).s, angle(c->pitch).s);
     if (deg(c->roll) != 0)
-        put(&o, " --roll %.9g", deg(c->roll));
+        put(&o, " --roll %s", angle(c->roll).s);
     if (c->fit_yaw != c->yaw || c->fit_pitch != c->pitch || c->fit_roll != c->roll)
-        put(&o, " --fit-from %.9g,%.9g,%.9g", deg(c->fit_yaw), deg(c->fit_pitch), deg(c->fit_roll));
+        put(&o, " --fit-from %s,%s,%s", angle(c->fit_yaw).s, angle(c->fit_pitch).s, angle(c->fit_roll).s);
     if (c->zoom != 1)
-        put(&o, " --zoom %.9g", c->zoom);
+        put(&o, " --zoom %s", num(c->zoom).s);
     if (c->pan.x != 0 || c->pan.y != 0)
-        put(&o, " --pan %.9g,%.9g", c->pan.x, c->pan.y);
+        put(&o, " --pan %s,%s", num(c->pan.x).s, num(c->pan.y).s);
     if (c->persp)
-        put(&o, " --persp %.9g", c->fov_deg);
+        put(&o, " --persp %s", num(c->fov_deg).s);
     /* objects away from their home placement */
     for (uint32_t i = 0; i < s->nbase_objs && (int)i < s->nobjs; i++) {
         const Object *ob = &s->objs[i];
-        Vec3 d = v3_sub(ob->offset, ob->home);
-        if (d.x != 0 || d.y != 0 || d.z != 0)
-            put(&o, " --move %u:%.9g,%.9g,%.9g", i + 1, d.x, d.y, d.z);
+        Vec3 h = ob->home, at = ob->offset;
+        if (at.x != h.x || at.y != h.y || at.z != h.z)
+            put(&o, " --move %u:%s,%s,%s", i + 1, moved(h.x, at.x).s, moved(h.y, at.y).s, moved(h.z, at.z).s);
         if (ob->yaw != 0 || ob->pitch != 0 || ob->roll != 0)
-            put(&o, " --turn %u:%.9g,%.9g,%.9g", i + 1, deg(ob->yaw), deg(ob->pitch), deg(ob->roll));
+            put(&o, " --turn %u:%s,%s,%s", i + 1, angle(ob->yaw).s, angle(ob->pitch).s, angle(ob->roll).s);
         if (ob->scale != ob->home_scale)
-            put(&o, " --scale %u:%.9g", i + 1, ob->scale / ob->home_scale);
+            put(&o, " --scale %u:%s", i + 1, scaled(ob->home_scale, ob->scale).s);
     }
     /* the settings that change the picture */
     if (v->cull)
@@ -109,7 +151,7 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
     if (v->shade != SHADE_LAMBERT)
         put(&o, " --shade %s", shade_names[v->shade]);
     if ((v->shade == SHADE_SMOOTH || v->edges) && v->crease != SHADE_CREASE_DEFAULT)
-        put(&o, " --crease %.9g", v->crease);
+        put(&o, " --crease %s", num(v->crease).s);
     if (v->edges)
         put(&o, " --edges");
     if (v->wireframe)
@@ -121,9 +163,9 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
     if (opt->points)
         put(&o, " --points");
     if (s->light.yaw != LIGHT_YAW || s->light.pitch != LIGHT_PITCH)
-        put(&o, " --light %.9g,%.9g", s->light.yaw, s->light.pitch);
+        put(&o, " --light %s,%s", num(s->light.yaw).s, num(s->light.pitch).s);
     if (s->light.ambient != LIGHT_AMBIENT)
-        put(&o, " --ambient %.9g", s->light.ambient);
+        put(&o, " --ambient %s", num(s->light.ambient).s);
     if (v->samples > 0 && v->samples != TEXT_SAMPLES)
         put(&o, " --samples %d", v->samples);
     if (v->algo && strcmp(v->algo, "zbuffer"))
