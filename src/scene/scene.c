@@ -271,17 +271,18 @@ static void object_bounds(Object *o, const MeshObject *mo, const uint32_t *face_
  * ordinary models, which are not touched). */
 static int shrink_huge_meshes(Scene *s, int take_over)
 {
-    float big = 0;
+    /* in double: centre + half of finite floats can pass FLT_MAX */
+    double big = 0;
     for (int i = 0; i < s->nobjs; i++) {
         const Object *o = &s->objs[i];
-        big = fmaxf(big, fmaxf(fabsf(o->centre.x), fmaxf(fabsf(o->centre.y), fabsf(o->centre.z))) +
-                             fmaxf(o->half.x, fmaxf(o->half.y, o->half.z)));
+        big = fmax(big, fmax(fabs(o->centre.x), fmax(fabs(o->centre.y), fabs(o->centre.z))) +
+                            fmax(o->half.x, fmax(o->half.y, o->half.z)));
     }
     if (!(big > HUGE_COORD))
         return 0;
     int k = 0;
-    while (big > HUGE_COORD) {
-        big *= 0x1p-8f;
+    while (big > HUGE_COORD) {       /* at most 2 FLT_MAX: a few steps */
+        big *= 0x1p-8;
         k += 8;
     }
     float f = ldexpf(1, -k);
