@@ -240,6 +240,8 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
     size_t nv = (size_t)m->nverts + verts, nf = (size_t)m->nfaces + faces, nc = b->ncorner + corners;
     if (nv >= UINT32_MAX || nf >= UINT32_MAX || nc >= UINT32_MAX)
         return me_fail(b->e, "too many vertices or faces (%zu, %zu)", nv, nf);
+    if (over_memory(b, "mesh's arrays", (uint64_t)nv * (m->rgb ? 24 : 12) + (uint64_t)nf * 8 + (uint64_t)nc * 4))
+        return -1;
     /* Exact sizes: a count read from a header is what the file holds. */
     if (nv > b->vcap) {
         float *p = realloc(m->pos, nv * 3 * sizeof(float));

@@ -69,7 +69,7 @@ uint64_t mesh_ply_stream_max(const char *head, size_t n, int *ascii);
 
 /* Material libraries bigger than this are not read (a warning says
  * so): a real one is kilobytes, and a material takes 80 bytes. */
-#define MESH_MTL_MAX_BYTES ((uint64_t)256 << 20)
+#define MESH_MTL_MAX_BYTES ((uint64_t)256000000)
 
 /* Append the materials of MTL text to *mats (*nmats used of *cap, grown
  * as needed). `name` is the file's name for warnings (given to e's

@@ -578,12 +578,12 @@ static int ends_with_mtl(const char *p, const char *e)
 /* Libraries that could not be read warn by name up to this many. */
 #define MTL_WARN_LIBS 3
 
-/* Library `name` could not be read: a warning for the first few. 0. */
-static int lib_unread(Parser *ps, const char *name, size_t n, const char *what, const char *why)
+/* Library `name` could not be read: a warning for the first few, as
+ * "<before> 'name' <after>". Returns 0. */
+static int lib_unread(Parser *ps, const char *name, size_t n, const char *before, const char *after)
 {
     if (ps->lib_failed++ < MTL_WARN_LIBS)
-        me_warn(ps->e, NULL, ps->line, "%s '%.*s'%s%s%s", what, (int)n, name, why ? " (" : "",
-                why ? why : "", why ? ")" : "");
+        me_warn(ps->e, NULL, ps->line, "%s '%.*s' %s", before, (int)n, name, after);
     return 0;
 }
 
@@ -612,8 +612,11 @@ static int load_library(Parser *ps, const char *name, size_t n)
     MeshFile f;
     char msg[160];
     /* Regular files only: a FIFO or /dev/stdin would block for ever. */
-    if (mf_open(&f, full, MF_REGULAR_ONLY, msg, sizeof msg))
-        return lib_unread(ps, name, n, "cannot open material library", msg);
+    char why[200];
+    if (mf_open(&f, full, MF_REGULAR_ONLY, msg, sizeof msg)) {
+        snprintf(why, sizeof why, "(%s)", msg);
+        return lib_unread(ps, name, n, "cannot open material library", why);
+    }
     r = libset_add_file(&ps->libs, f.dev, f.ino);
     if (r <= 0) {
         mf_close(&f);
@@ -626,18 +629,19 @@ static int load_library(Parser *ps, const char *name, size_t n)
         char sz[32], most[32];
         mesh_bytes_str(f.size, sz, sizeof sz);
         mesh_bytes_str(MESH_MTL_MAX_BYTES, most, sizeof most);
-        snprintf(msg, sizeof msg, "%s; material libraries may have %s in all", sz, most);
+        snprintf(why, sizeof why, "too large, not read (%s; material libraries may have %s in all)", sz, most);
         mf_close(&f);
-        return lib_unread(ps, name, n, "material library too large", msg);
+        return lib_unread(ps, name, n, "material library", why);
     }
     if (mesh_has_binary(h, f.head + f.nhead)) {
         mf_close(&f);
-        return lib_unread(ps, name, n, "material library is binary data, not text", NULL);
+        return lib_unread(ps, name, n, "material library", "is binary data, not text: not read");
     }
     ps->lib_bytes += f.size;
     if (mf_load(&f, NULL, msg, sizeof msg)) {
         mf_close(&f);
-        return lib_unread(ps, name, n, "cannot read material library", msg);
+        snprintf(why, sizeof why, "(%s)", msg);
+        return lib_unread(ps, name, n, "cannot read material library", why);
     }
     uint32_t had = ps->m->nmats;
     r = mesh_mtl_parse(ps->e, full, &f, f.data, f.len, &ps->m->mats, &ps->m->nmats, &ps->b.mcap);
@@ -647,7 +651,7 @@ static int load_library(Parser *ps, const char *name, size_t n)
         return fail_oom(ps);
     if (changed) {
         ps->m->nmats = had;     /* what was read of it cannot be trusted */
-        return lib_unread(ps, name, n, "material library changed while reading", NULL);
+        return lib_unread(ps, name, n, "material library", "changed while reading: not used");
     }
     ps->mtl_loaded = 1;
     return 0;
