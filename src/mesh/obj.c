@@ -1070,10 +1070,14 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
     }
     if (drop_unreadable(&ps) || resolve_materials(&ps) || mb_finish(&ps.b, !ps.saw_elements))
         goto fail;
-    if (ps.lib_failed > MTL_WARN_LIBS)
-        me_warn(&c->err, NULL, 0, "%u more material librar%s could not be read (%u named)",
-                ps.lib_failed - MTL_WARN_LIBS, ps.lib_failed - MTL_WARN_LIBS == 1 ? "y" : "ies",
-                ps.libs.nnames);
+    if (ps.lib_failed > MTL_WARN_LIBS) {
+        char more[32], named[32];
+        mesh_count_str(ps.lib_failed - MTL_WARN_LIBS, more, sizeof more);
+        mesh_count_str(ps.libs.nnames, named, sizeof named);
+        me_warn(&c->err, NULL, 0, "%s more material librar%s could not be read (%s named%s)", more,
+                ps.lib_failed - MTL_WARN_LIBS == 1 ? "y" : "ies", named,
+                ps.lib_tries > MTL_MAX_LIBS ? "; only the first 1,024 are looked for" : "");
+    }
     if (ps.undrawn)
         me_warn(&c->err, NULL, 0, "%u free-form statement%s (curves, surfaces) not drawn, first '%s'",
                 ps.undrawn, ps.undrawn == 1 ? "" : "s", ps.first_undrawn);
