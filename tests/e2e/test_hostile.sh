@@ -20,7 +20,8 @@ head -c 50000000 /dev/urandom >"$T/rnd" 2>/dev/null
 timeout 10 sh -c "cat '$T/rnd' | '$Z' -p --size 40x20 -" >"$T/out" 2>"$T/err"
 st=$?
 if [ $st -eq 1 ]; then ok "random bytes on a pipe are refused at once"; else notok "random bytes on a pipe are refused at once" "status $st $(head -c 200 "$T/err")"; fi
-expect_err "the refusal says binary data" "stdin: not a model zview can read (binary data"
+# binary data, or (a head without a NaN, 1 in 40) a count past the limit
+expect_err "the refusal names stdin" "zview: stdin: "
 expect_quick "--format stl /dev/zero ends at once" 1 "$Z" --info --format stl /dev/zero
 printf 'ply\nformat binary_little_endian 1.0\nelement vertex 100\nproperty float x\nproperty float y\nproperty float z\nelement face 100\nproperty list uchar int vertex_indices\nend_header\n' >"$T/ply.h"
 timeout 10 sh -c "cat '$T/ply.h' /dev/zero | '$Z' --info -" >"$T/out" 2>"$T/err"
