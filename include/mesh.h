@@ -112,11 +112,21 @@ typedef struct {
 
 /* quiet keeps warnings off stderr (they are still counted in info, the
  * first kept): the viewer loads while curses owns the terminal. */
+/* max_polys and max_bytes bound what a load may build: counts a header
+ * states are checked before anything is allocated ("big.stl: 180,000,000
+ * triangles need about 9.1 GB; 7.2 GB available"), and arrays that grow
+ * stop at them. Faces and points count as polygons. */
 typedef struct {
     const char   *format;
     int           strict;
     int           quiet;
     MeshProgress *progress;     /* NULL: none */
+    uint64_t      max_polys;    /* 0: no limit (the app passes --max-polys) */
+    uint64_t      max_bytes;    /* memory a load may take; 0: what the machine has available */
+    /* for tests: called each time a mapped file's reading window moves,
+     * with the byte reached (a test truncates the file there) */
+    void        (*on_window)(void *arg, uint64_t pos);
+    void         *on_window_arg;
 } MeshLoadOpts;
 
 int  mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, size_t errlen);

@@ -99,6 +99,7 @@ LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t err
         j->size = (uint64_t)st.st_size;
     j->lo.format = o->format;
     j->lo.strict = o->strict;
+    j->lo.max_polys = o->max_polys;
     j->lo.quiet = 1;            /* curses owns the terminal: warnings go to the status bar */
     j->lo.progress = &j->prog;
     j->flip = o->flip;

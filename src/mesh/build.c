@@ -12,6 +12,78 @@
 #include "bigmem.h"
 #include "mesh_internal.h"
 
+/* ==== Bounds ==== */
+
+/* The memory a load may take (MeshErr.max_bytes, else the machine's). */
+static uint64_t budget(const MeshErr *e)
+{
+    return e->max_bytes ? e->max_bytes : mesh_mem_available();
+}
+
+int mb_afford(MeshBuild *b, uint64_t polys, uint64_t bytes, const char *what)
+{
+    MeshErr *e = b->e;
+    char lim[32], need[32], have[32];
+    if (e->max_polys && polys > e->max_polys) {
+        mesh_count_str(e->max_polys, lim, sizeof lim);
+        return me_fail(e, "%s, more than the limit of %s polygons (--max-polys raises it)", what, lim);
+    }
+    uint64_t avail = budget(e);
+    if (avail && bytes > avail) {
+        mesh_bytes_str(bytes, need, sizeof need);
+        mesh_bytes_str(avail, have, sizeof have);
+        return me_fail(e, "%s need about %s; %s available", what, need, have);
+    }
+    return 0;
+}
+
+uint64_t mb_estimate(uint64_t verts, int rgb, uint64_t faces, uint64_t corners, uint64_t points)
+{
+    /* mesh: position (and colour), face start and material, corners;
+     * scene: a face's normal (12), colour (3), object (2), flags (2), a
+     * point's screen entry (16) */
+    return verts * (rgb ? 24 : 12) + faces * (8 + 19) + corners * 4 + points * 16;
+}
+
+int mb_afford_counts(MeshBuild *b, uint64_t verts, int rgb, uint64_t faces)
+{
+    char v[32], f[32], what[96];
+    mesh_count_str(verts, v, sizeof v);
+    mesh_count_str(faces, f, sizeof f);
+    if (faces)
+        snprintf(what, sizeof what, "%s vertices and %s faces", v, f);
+    else
+        snprintf(what, sizeof what, "%s points", v);
+    uint64_t points = faces ? 0 : verts;
+    return mb_afford(b, faces + points, mb_estimate(verts, rgb, faces, 3 * faces, points), what);
+}
+
+/* Faces and points so far pass the polygon limit: the growing formats
+ * (OBJ, ASCII STL, XYZ) stop there instead of at the end. */
+static int over_polys(MeshBuild *b, uint64_t polys)
+{
+    char lim[32];
+    if (!b->e->max_polys || polys <= b->e->max_polys)
+        return 0;
+    mesh_count_str(b->e->max_polys, lim, sizeof lim);
+    return me_fail(b->e, "more than the limit of %s polygons (faces and points; --max-polys raises it)",
+                   lim);
+}
+
+/* An array about to grow to `bytes`: more than the load may take is
+ * refused by name, before the allocation (the machine might grant it
+ * and then run out). */
+static int over_memory(MeshBuild *b, const char *what, uint64_t bytes)
+{
+    char need[32], have[32];
+    uint64_t avail = budget(b->e);
+    if (!avail || bytes <= avail)
+        return 0;
+    mesh_bytes_str(bytes, need, sizeof need);
+    mesh_bytes_str(avail, have, sizeof have);
+    return me_fail(b->e, "the %s need more than %s; %s available", what, need, have);
+}
+
 /* Grow *arr (elements of `elem` bytes, `*cap` of them) to hold `need`. */
 static int grow(void **arr, size_t *cap, size_t need, size_t elem)
 {
@@ -58,11 +130,25 @@ int mb_start(MeshBuild *b, Mesh *m, MeshErr *e, const char *name)
     return 0;
 }
 
+/* The capacity grow() would give an array of `cap` for `need`. */
+static size_t next_cap(size_t cap, size_t need)
+{
+    size_t nc = cap ? cap : 256;
+    while (nc < need && nc < SIZE_MAX / 4)
+        nc *= 2;
+    return nc;
+}
+
 int mb_grow_verts(MeshBuild *b)
 {
     Mesh *m = b->m;
     if (m->nverts >= UINT32_MAX - 1)
         return me_fail(b->e, "too many vertices");
+    /* vertices alone are a point cloud: each a point */
+    if (m->nfaces == 0 && m->npoints == 0 && m->nlines == 0 && over_polys(b, (uint64_t)m->nverts + 1))
+        return -1;
+    if (over_memory(b, "vertices", (uint64_t)next_cap(b->vcap, (size_t)m->nverts + 1) * (m->rgb ? 24 : 12)))
+        return -1;
     size_t cap = b->vcap;
     if (grow((void **)&m->pos, &cap, (size_t)m->nverts + 1, 3 * sizeof(float)))
         return me_oom(b->e);
@@ -81,6 +167,9 @@ int mb_grow_faces(MeshBuild *b)
     Mesh *m = b->m;
     if (m->nfaces >= UINT32_MAX - 1)
         return me_fail(b->e, "too many faces");
+    if (over_polys(b, (uint64_t)m->nfaces + m->npoints + 1) ||
+        over_memory(b, "faces", (uint64_t)next_cap(b->fcap, (size_t)m->nfaces + 1) * 8))
+        return -1;
     size_t cap = b->fcap;
     if (grow((void **)&m->face_mat, &cap, (size_t)m->nfaces + 1, sizeof(int32_t)))
         return me_oom(b->e);
@@ -96,6 +185,8 @@ int mb_room_corners(MeshBuild *b, size_t n)
 {
     if (b->ncorner + n >= UINT32_MAX - 1)
         return me_fail(b->e, "too many face corners");
+    if (b->ncorner + n > b->ccap && over_memory(b, "face corners", (uint64_t)next_cap(b->ccap, b->ncorner + n) * 4))
+        return -1;
     if (grow((void **)&b->m->corner, &b->ccap, b->ncorner + n, sizeof(uint32_t)))
         return me_oom(b->e);
     return 0;
@@ -111,6 +202,9 @@ int mb_grow_points(MeshBuild *b)
     Mesh *m = b->m;
     if (m->npoints >= UINT32_MAX - 1)
         return me_fail(b->e, "too many points");
+    if (over_polys(b, (uint64_t)m->nfaces + m->npoints + 1) ||
+        over_memory(b, "points", (uint64_t)next_cap(b->pcap, (size_t)m->npoints + 1) * 4))
+        return -1;
     if (grow((void **)&m->point, &b->pcap, (size_t)m->npoints + 1, sizeof(uint32_t)))
         return me_oom(b->e);
     return 0;
@@ -133,6 +227,8 @@ int mb_grow_line_corners(MeshBuild *b)
 {
     if (b->nlcorner >= UINT32_MAX - 1)
         return me_fail(b->e, "too many line corners");
+    if (over_memory(b, "line corners", (uint64_t)next_cap(b->lccap, b->nlcorner + 1) * 4))
+        return -1;
     if (grow((void **)&b->m->line_corner, &b->lccap, b->nlcorner + 1, sizeof(uint32_t)))
         return me_oom(b->e);
     return 0;
@@ -144,6 +240,8 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
     size_t nv = (size_t)m->nverts + verts, nf = (size_t)m->nfaces + faces, nc = b->ncorner + corners;
     if (nv >= UINT32_MAX || nf >= UINT32_MAX || nc >= UINT32_MAX)
         return me_fail(b->e, "too many vertices or faces (%zu, %zu)", nv, nf);
+    if (over_memory(b, "mesh's arrays", (uint64_t)nv * (m->rgb ? 24 : 12) + (uint64_t)nf * 8 + (uint64_t)nc * 4))
+        return -1;
     /* Exact sizes: a count read from a header is what the file holds. */
     if (nv > b->vcap) {
         float *p = realloc(m->pos, nv * 3 * sizeof(float));
@@ -321,6 +419,8 @@ int mb_finish(MeshBuild *b, int cloud_ok)
         m->nobjs = 1;
         m->objs[0].face_first = m->objs[0].line_first = m->objs[0].point_first = 0;
     }
+    if (over_polys(b, (uint64_t)m->nfaces + m->npoints))
+        return -1;
     if (m->nfaces == 0 && m->npoints == 0 && m->nlines == 0) {
         /* nothing to show: when statements were skipped, the first is why */
         if (e->skipped) {

@@ -344,7 +344,8 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
     if (!data)
         len = 0;
     MeshCtx c = { .m = m, .err = { .name = path ? path : "(input)", .buf = err, .len = errlen,
-                                   .strict = opt ? opt->strict : 1, .quiet = opt && opt->quiet },
+                                   .strict = opt ? opt->strict : 1, .quiet = opt && opt->quiet,
+                                   .max_polys = opt ? opt->max_polys : 0, .max_bytes = opt ? opt->max_bytes : 0 },
                   .path = path };
     char ext[16];
     extension(path, ext, sizeof ext);
@@ -370,30 +371,84 @@ int mesh_parse(Mesh *m, const char *path, const char *text, size_t len, char *er
     return mesh_parse_buffer(m, path, "obj", text, len, err, errlen);
 }
 
-/* How much of a stream to read, judged from its head: text stops at a
- * NUL; what could be a binary STL (the only format without a magic)
- * stops past the size its triangle count gives. */
-static void stream_limits(const MeshFile *f, const char *forced, MfLimits *lim)
+/* A stream's head that could be a binary STL (the only format without
+ * a magic): a refusal written into msg (0 to read it), and the size its
+ * triangle count gives, and a byte more, in *max. Streams are decided
+ * from their first kilobytes: the triangles there must have finite
+ * coordinates (a binary STL with any other is refused anyway; random
+ * bytes hold a NaN or an infinity every 256 floats), and the count must
+ * fit the limits. */
+static int stl_stream(const MeshFile *f, const MeshErr *e, uint64_t mem, uint64_t *max, char *msg,
+                      size_t msglen)
+{
+    const char *h = f->head;
+    size_t n = f->nhead;
+    if (n < 84) {
+        *max = n + 1;
+        return 0;
+    }
+    uint32_t tris = rd_u32le(h + 80);
+    *max = 84 + 50 * (uint64_t)tris + 1;
+    for (size_t t = 84; t + 50 <= n; t += 50)
+        for (int k = 0; k < 12; k++)
+            if (bits_nonfinite(rd_u32le(h + t + 4 * k))) {
+                snprintf(msg, msglen, "not a model zview can read (binary data; not a binary STL, whose "
+                         "numbers would be finite: byte %zu)", t + 4 * (size_t)k);
+                return -1;
+            }
+    char cnt[32], lim[32];
+    mesh_count_str(tris, cnt, sizeof cnt);
+    if (e->max_polys && tris > e->max_polys) {
+        mesh_count_str(e->max_polys, lim, sizeof lim);
+        snprintf(msg, msglen, "a binary STL of %s triangles, more than the limit of %s polygons "
+                 "(--max-polys raises it)", cnt, lim);
+        return -1;
+    }
+    if (mem && *max > mem) {
+        char need[32], have[32];
+        mesh_bytes_str(*max, need, sizeof need);
+        mesh_bytes_str(mem, have, sizeof have);
+        snprintf(msg, msglen, "a binary STL of %s triangles needs a stream of %s held in memory; %s "
+                 "available for it", cnt, need, have);
+        return -1;
+    }
+    return 0;
+}
+
+/* How much of a stream to read, judged from its head, or a refusal in
+ * msg (-1). Text stops at a NUL; a PLY header bounds its body; a binary
+ * STL stops past the size its triangle count gives; and no stream holds
+ * more than half the memory the load may take (the mesh needs the rest). */
+static int stream_limits(const MeshFile *f, const MeshErr *e, const char *forced, MfLimits *lim,
+                         char *msg, size_t msglen)
 {
     memset(lim, 0, sizeof *lim);
     const char *h = f->head;
-    size_t n = f->nhead;
+    size_t n = f->nhead, bom = mesh_bom_len(h, n);
+    uint64_t avail = e->max_bytes ? e->max_bytes : mesh_mem_available();
+    lim->mem = avail / 2;
+    const MeshLoader *l = forced ? native_by_name(forced) : NULL;
+    int ply = forced ? l == &mesh_loader_ply : n - bom >= 3 && memcmp(h + bom, "ply", 3) == 0;
+    if (ply) {
+        int ascii = 0;
+        lim->max = mesh_ply_stream_max(h, n, &ascii);
+        lim->stop_at_nul = ascii;
+        return 0;
+    }
     if (forced) {
-        const MeshLoader *l = native_by_name(forced);
+        /* a forced STL is binary unless its head reads as ASCII */
+        if (l == &mesh_loader_stl && mesh_loader_stl.probe(h, n, UINT64_MAX) != PROBE_SURE)
+            return stl_stream(f, e, lim->mem, &lim->max, msg, msglen);
         lim->stop_at_nul = l && l->text;
-        return;
+        return 0;
     }
     if (!has_nul(h, n)) {
-        /* text, or PLY whose binary body has not shown a NUL yet */
-        lim->stop_at_nul = !(n >= 3 && memcmp(h, "ply", 3) == 0) && !known_other(h, n);
-        return;
+        lim->stop_at_nul = !known_other(h, n);   /* text */
+        return 0;
     }
-    if (known_other(h, n) || (n >= 3 && memcmp(h, "ply", 3) == 0))
-        return;
-    if (n >= 84)
-        lim->max = 84 + 50 * (uint64_t)rd_u32le(h + 80) + 1;
-    else
-        lim->max = n + 1;
+    if (known_other(h, n))
+        return 0;
+    return stl_stream(f, e, lim->mem, &lim->max, msg, msglen);
 }
 
 int mesh_load_as(Mesh *m, const char *path, const char *format, char *err, size_t errlen)
@@ -416,7 +471,8 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
     int is_stdin = strcmp(path, "-") == 0;
     const char *name = is_stdin ? "stdin" : path;
     MeshCtx c = { .m = m, .err = { .name = name, .buf = err, .len = errlen, .strict = opt ? opt->strict : 1,
-                                   .quiet = opt && opt->quiet },
+                                   .quiet = opt && opt->quiet, .max_polys = opt ? opt->max_polys : 0,
+                                   .max_bytes = opt ? opt->max_bytes : 0 },
                   .path = path };
     char ext[16];
     extension(is_stdin ? NULL : path, ext, sizeof ext);
@@ -432,11 +488,18 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
         __atomic_store_n(&opt->progress->total, f.regular ? f.size : 0, __ATOMIC_RELAXED);
         f.progress = &opt->progress->done;
     }
+    if (opt) {
+        f.on_window = opt->on_window;
+        f.on_window_arg = opt->on_window_arg;
+    }
     if (!f.regular) {
-        /* a stream is read whole before it is judged: its size is part
-         * of what tells a binary STL */
+        /* a stream is read whole before it is judged (its size is part
+         * of what tells a binary STL), within what its head allows */
         MfLimits lim;
-        stream_limits(&f, format, &lim);
+        if (stream_limits(&f, &c.err, format, &lim, msg, sizeof msg)) {
+            mf_close(&f);
+            return me_fail(&c.err, "%s", msg);
+        }
         if (mf_load(&f, &lim, msg, sizeof msg)) {
             mf_close(&f);
             return me_fail(&c.err, "%s", msg);
@@ -465,7 +528,14 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
             return me_fail(&c.err, "%s", msg);
         }
         c.file = &f;
+        f.mute = &c.err.quiet;
         r = run(l, &c, f.data, f.len);
+        if (mf_changed(&f)) {
+            /* whatever the parser made of it is not the file */
+            if (r == 0)
+                mesh_free(m);
+            r = me_fail(&c.err, "changed while reading");
+        }
         mf_close(&f);
     }
     if (r == 0) {

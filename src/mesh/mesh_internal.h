@@ -57,13 +57,28 @@ void mesh_assimp_list(void (*fn)(const char *ext, const char *what, void *ctx), 
 const char *mesh_assimp_version(char *buf, size_t n);
 #endif
 
+/* ==== PLY streams (used by format.c) ==== */
+
+/* From a PLY stream's head: how many bytes the file can have at most
+ * (its header and the largest body the header allows, and a byte more;
+ * 0, no bound, when the head does not hold the whole header), and
+ * whether it is ascii (then only text: a NUL ends the stream). */
+uint64_t mesh_ply_stream_max(const char *head, size_t n, int *ascii);
+
 /* ==== MTL (used by obj.c) ==== */
+
+/* Material libraries bigger than this are not read (a warning says
+ * so): a real one is kilobytes, and a material takes 80 bytes. */
+#define MESH_MTL_MAX_BYTES ((uint64_t)256000000)
 
 /* Append the materials of MTL text to *mats (*nmats used of *cap, grown
  * as needed). `name` is the file's name for warnings (given to e's
- * me_warn): bad lines are skipped with one warning per file. Returns 0, or -1 out of memory. */
-int  mesh_mtl_parse(MeshErr *e, const char *name, const char *data, size_t len, Material **mats,
-                    uint32_t *nmats, uint32_t *cap);
+ * me_warn): bad lines are skipped with one warning per file, and
+ * binary data (a NUL or another control byte) ends the reading with a
+ * warning. file: the paging window, or NULL for memory. Returns 0, or
+ * -1 out of memory. */
+int  mesh_mtl_parse(MeshErr *e, const char *name, MeshFile *file, const char *data, size_t len,
+                    Material **mats, uint32_t *nmats, uint32_t *cap);
 
 /* ==== Building a Mesh ==== */
 
@@ -98,6 +113,18 @@ int  mb_start(MeshBuild *b, Mesh *m, MeshErr *e, const char *name);
 int  mb_reserve(MeshBuild *b, size_t verts, size_t faces, size_t corners);
 /* The same; exact = 0 for a guess (its pages are not faulted in ahead). */
 int  mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int exact);
+/* Before allocating for counts a header states: refuse them when the
+ * polygons (faces and points) pass the limit, or `bytes` (the estimate
+ * of the mesh and the scene built from it) pass the memory the load may
+ * take: "what need about 9.1 GB; 7.2 GB available", what being the
+ * counts as the message names them ("180,000,000 triangles"). */
+int  mb_afford(MeshBuild *b, uint64_t polys, uint64_t bytes, const char *what);
+/* The estimate for counts from a header: the mesh's arrays and what the
+ * scene adds a face (its normal, colour, object) or a point. */
+uint64_t mb_estimate(uint64_t verts, int rgb, uint64_t faces, uint64_t corners, uint64_t points);
+/* mb_afford for a header's vertex and face counts (a file without faces
+ * is a point cloud: its vertices are points). */
+int  mb_afford_counts(MeshBuild *b, uint64_t verts, int rgb, uint64_t faces);
 /* Start vertex colours: earlier vertices become white. */
 int  mb_want_rgb(MeshBuild *b);
 int  mb_grow_verts(MeshBuild *b);

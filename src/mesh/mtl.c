@@ -37,13 +37,14 @@ static int word_is(const char *k, size_t n, const char *w)
     return strlen(w) == n && memcmp(k, w, n) == 0;
 }
 
-int mesh_mtl_parse(MeshErr *err, const char *name, const char *data, size_t len, Material **mats,
-                   uint32_t *nmats, uint32_t *cap)
+int mesh_mtl_parse(MeshErr *err, const char *name, MeshFile *file, const char *data, size_t len,
+                   Material **mats, uint32_t *nmats, uint32_t *cap)
 {
     Material *cur = NULL;
     int have_d = 0, warned = 0;
     LineReader lr;
-    lr_init(&lr, data, len);
+    size_t bom = mesh_bom_len(data, len);
+    lr_init(&lr, data + bom, len - bom, file);
     const char *q, *e;
     while (lr_next(&lr, &q, &e)) {
         while (q < e && mtl_space(*q))
@@ -58,7 +59,9 @@ int mesh_mtl_parse(MeshErr *err, const char *name, const char *data, size_t len,
         float v[3];
 
         if (bad) {
-            /* fall through to the warning */
+            /* no text goes on past binary data: the rest is not read */
+            me_warn(err, name, lr.line, "binary data: the rest of the material library is not read");
+            break;
         } else if (word_is(k, kn, "newmtl")) {
             if (*nmats == *cap) {
                 uint32_t nc = *cap ? *cap * 2 : 8;
@@ -123,9 +126,7 @@ int mesh_mtl_parse(MeshErr *err, const char *name, const char *data, size_t len,
             }
         }
         if (bad && !warned) {
-            me_warn(err, name, lr.line, "%s",
-                    mesh_has_binary(k, e) ? "binary or unreadable data"
-                                          : "bad material statement, skipped");
+            me_warn(err, name, lr.line, "bad material statement, skipped");
             warned = 1;
         }
     }

@@ -215,6 +215,12 @@ typedef struct {
     NameIndex   use_index;
     int         mtl_loaded;      /* some mtllib opened: unknown names warn */
     LibSet      libs;
+    /* Material libraries that could not be read: the first few warn by
+     * name, the rest are counted into one warning at the end (a file can
+     * name 50,000 missing ones). Opening them is bounded too. */
+    uint32_t    lib_tries;       /* libraries looked for */
+    uint32_t    lib_failed;      /* ... that could not be read */
+    uint64_t    lib_bytes;       /* bytes of libraries read */
 
     /* Positive indices may point past the vertices read so far; they
      * are checked once the whole file is read, against the largest.
@@ -567,6 +573,20 @@ static int ends_with_mtl(const char *p, const char *e)
            (e[-2] | 0x20) == 't' && (e[-1] | 0x20) == 'l';
 }
 
+/* Material libraries one OBJ may name: more are not read. */
+#define MTL_MAX_LIBS 1024
+/* Libraries that could not be read warn by name up to this many. */
+#define MTL_WARN_LIBS 3
+
+/* Library `name` could not be read: a warning for the first few, as
+ * "<before> 'name' <after>". Returns 0. */
+static int lib_unread(Parser *ps, const char *name, size_t n, const char *before, const char *after)
+{
+    if (ps->lib_failed++ < MTL_WARN_LIBS)
+        me_warn(ps->e, NULL, ps->line, "%s '%.*s' %s", before, (int)n, name, after);
+    return 0;
+}
+
 static int load_library(Parser *ps, const char *name, size_t n)
 {
     if (!ps->path)
@@ -585,29 +605,54 @@ static int load_library(Parser *ps, const char *name, size_t n)
     int r = libset_add_name(&ps->libs, full);
     if (r <= 0)
         return r < 0 ? fail_oom(ps) : 0;
+    if (++ps->lib_tries > MTL_MAX_LIBS) {
+        ps->lib_failed++;
+        return 0;
+    }
     MeshFile f;
     char msg[160];
     /* Regular files only: a FIFO or /dev/stdin would block for ever. */
+    char why[200];
     if (mf_open(&f, full, MF_REGULAR_ONLY, msg, sizeof msg)) {
-        me_warn(ps->e, NULL, ps->line, "cannot open material library '%.*s' (%s)", (int)n, name,
-                msg);
-        return 0;
+        snprintf(why, sizeof why, "(%s)", msg);
+        return lib_unread(ps, name, n, "cannot open material library", why);
     }
     r = libset_add_file(&ps->libs, f.dev, f.ino);
     if (r <= 0) {
         mf_close(&f);
         return r < 0 ? fail_oom(ps) : 0;
     }
-    if (mf_load(&f, NULL, msg, sizeof msg)) {
-        me_warn(ps->e, NULL, ps->line, "cannot read material library '%.*s' (%s)", (int)n, name,
-                msg);
+    /* the bounds and the first look of a model: a big or binary file is
+     * refused before it is read */
+    const char *h = f.head + mesh_bom_len(f.head, f.nhead);
+    if (f.size + ps->lib_bytes > MESH_MTL_MAX_BYTES) {
+        char sz[32], most[32];
+        mesh_bytes_str(f.size, sz, sizeof sz);
+        mesh_bytes_str(MESH_MTL_MAX_BYTES, most, sizeof most);
+        snprintf(why, sizeof why, "too large, not read (%s; material libraries may have %s in all)", sz, most);
         mf_close(&f);
-        return 0;
+        return lib_unread(ps, name, n, "material library", why);
     }
-    r = mesh_mtl_parse(ps->e, full, f.data, f.len, &ps->m->mats, &ps->m->nmats, &ps->b.mcap);
+    if (mesh_has_binary(h, f.head + f.nhead)) {
+        mf_close(&f);
+        return lib_unread(ps, name, n, "material library", "is binary data, not text: not read");
+    }
+    ps->lib_bytes += f.size;
+    if (mf_load(&f, NULL, msg, sizeof msg)) {
+        mf_close(&f);
+        snprintf(why, sizeof why, "(%s)", msg);
+        return lib_unread(ps, name, n, "cannot read material library", why);
+    }
+    uint32_t had = ps->m->nmats;
+    r = mesh_mtl_parse(ps->e, full, &f, f.data, f.len, &ps->m->mats, &ps->m->nmats, &ps->b.mcap);
+    int changed = mf_changed(&f);
     mf_close(&f);
     if (r < 0)
         return fail_oom(ps);
+    if (changed) {
+        ps->m->nmats = had;     /* what was read of it cannot be trusted */
+        return lib_unread(ps, name, n, "material library", "changed while reading: not used");
+    }
     ps->mtl_loaded = 1;
     return 0;
 }
@@ -990,10 +1035,9 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
     if (len >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0)   /* UTF-8 BOM */
         p += 3;
     LineReader lr;
-    lr_init(&lr, p, (size_t)(end - p));
+    lr_init(&lr, p, (size_t)(end - p), c->file);
     const char *ls, *le;
     while (lr_next(&lr, &ls, &le)) {
-        mf_progress(c->file, ls);
         ps.line = lr.line;
         if (le > ls && le[-1] == '\\') {
             /* Continuation: join the physical lines, backslash replaced
@@ -1016,10 +1060,24 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
                 goto fail;
         } else if (statement(&ps, ls, le)) {
             goto fail;
+        } else if (le > ls && le[-1] == '\0') {
+            /* a NUL (the line ends with the run of them): no text goes
+             * on past binary data, so the rest is not read */
+            me_warn(&c->err, NULL, lr.line, "binary data: the rest of the file (%llu bytes) is not read",
+                    (unsigned long long)(end - le));
+            break;
         }
     }
     if (drop_unreadable(&ps) || resolve_materials(&ps) || mb_finish(&ps.b, !ps.saw_elements))
         goto fail;
+    if (ps.lib_failed > MTL_WARN_LIBS) {
+        char more[32], named[32];
+        mesh_count_str(ps.lib_failed - MTL_WARN_LIBS, more, sizeof more);
+        mesh_count_str(ps.libs.nnames, named, sizeof named);
+        me_warn(&c->err, NULL, 0, "%s more material librar%s could not be read (%s named%s)", more,
+                ps.lib_failed - MTL_WARN_LIBS == 1 ? "y" : "ies", named,
+                ps.lib_tries > MTL_MAX_LIBS ? "; only the first 1,024 are looked for" : "");
+    }
     if (ps.undrawn)
         me_warn(&c->err, NULL, 0, "%u free-form statement%s (curves, surfaces) not drawn, first '%s'",
                 ps.undrawn, ps.undrawn == 1 ? "" : "s", ps.first_undrawn);

@@ -67,6 +67,9 @@ static int off_probe(const char *head, size_t n, uint64_t size)
     (void)size;
     const char *w, *we;
     OffKind k;
+    size_t bom = mesh_bom_len(head, n);
+    head += bom;
+    n -= bom;
     if (mesh_has_binary(head, head + n) || !first_word(head, n, &w, &we))
         return PROBE_NO;
     return off_keyword(w, we, &k) ? PROBE_SURE : PROBE_NO;
@@ -84,7 +87,6 @@ typedef struct {
 static int next_line(Off *o)
 {
     while (lr_next(&o->lr, &o->ls, &o->le)) {
-        mf_progress(o->c->file, o->ls);
         const char *h = memchr(o->ls, '#', (size_t)(o->le - o->ls));
         if (h)
             o->le = h;
@@ -156,7 +158,8 @@ static int off_parse(MeshCtx *c, const char *data, size_t len)
     m->info.bytes = len;
     snprintf(m->info.format, sizeof m->info.format, "off");
     Off o = { .c = c, .e = &c->err, .b = &b };
-    lr_init(&o.lr, data, len);
+    size_t bom = mesh_bom_len(data, len);
+    lr_init(&o.lr, data + bom, len - bom, c->file);
     OffKind k = { 0 };
     int64_t cnt[3] = { 0, 0, 0 };
     int ncnt = 0;
@@ -229,7 +232,7 @@ static int off_parse(MeshCtx *c, const char *data, size_t len)
         goto fail;
     }
     uint32_t nv = (uint32_t)cnt[0], nf = (uint32_t)cnt[1];
-    if (mb_reserve(&b, nv, nf, 3 * (size_t)nf))
+    if (mb_afford_counts(&b, nv, k.c, nf) || mb_reserve(&b, nv, nf, 3 * (size_t)nf))
         goto fail;
     if (k.c && mb_want_rgb(&b))
         goto fail;

@@ -118,10 +118,13 @@ static int parse_header(Ply *ply, const char *data, size_t len)
 {
     MeshErr *e = ply->e;
     LineReader lr;
-    lr_init(&lr, data, len);
+    lr_init(&lr, data, len, ply->c->file);
     const char *ls, *le;
     if (!lr_next(&lr, &ls, &le) || !eq(ls, le, "ply"))
         return me_fail_line(e, 1, "not a PLY file (the first line is not 'ply')");
+    /* the header's lines end as its first does: a lone CR there means
+     * that a binary body may start with a LF byte after end_header's CR */
+    int cr_only = le < lr.end && *le == '\r' && (le + 1 == lr.end || le[1] != '\n');
     int have_format = 0;
     PlyElem *cur = NULL;
     for (;;) {
@@ -136,7 +139,7 @@ static int parse_header(Ply *ply, const char *data, size_t len)
         if (eq(ks, ke, "comment") || eq(ks, ke, "obj_info"))
             continue;
         if (eq(ks, ke, "end_header")) {
-            ply->body = lr.p;
+            ply->body = cr_only && le < lr.end && *le == '\r' ? le + 1 : lr.p;
             ply->body_line = lr.line + 1;
             break;
         }
@@ -420,9 +423,9 @@ static int bin_vertices(Ply *ply, PlyElem *el, Bin *bn)
         float lut[256];
         for (int k = 0; rgb8 && k < 256; k++)
             lut[k] = colour_of(k, T_U8);
+        MeshFile *file = ply->c->file;
         for (uint32_t i = 0; i < n; i++, r += rs) {
-            if ((i & 0xffff) == 0)
-                mf_progress(ply->c->file, (const char *)r);
+            mf_need(file, r, r + rs);
             if (fast) {
                 uint32_t u[3] = { ld32(r + px->offset, swap), ld32(r + py->offset, swap),
                                   ld32(r + pz->offset, swap) };
@@ -453,10 +456,12 @@ static int bin_vertices(Ply *ply, PlyElem *el, Bin *bn)
     } else {
         /* Lists in the vertex element (rare): property by property. */
         const unsigned char *r = bn->p;
+        MeshFile *file = ply->c->file;
         for (uint32_t i = 0; i < n; i++) {
             float v[3] = { 0, 0, 0 }, c3[3] = { 1, 1, 1 };
             for (uint32_t k = 0; k < el->nprops; k++) {
                 const PlyProp *pr = &el->props[k];
+                mf_need(file, r, r + (bn->end - r < 8 ? bn->end - r : 8));
                 if (pr->count_type != T_NONE) {
                     if ((size_t)(bn->end - r) < type_size[pr->count_type])
                         return me_fail_at(ply->e, (uint64_t)(r - bn->base), "file ends inside vertex %u", i + 1);
@@ -527,9 +532,8 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
     uint64_t nv = ply->nverts;
     /* The common layout: the index list alone, no colours. */
     const PlyProp *only = el->nprops == 1 ? &el->props[0] : NULL;
+    MeshFile *file = ply->c->file;
     for (uint32_t i = 0; i < n; i++) {
-        if ((i & 0xffff) == 0)
-            mf_progress(ply->c->file, (const char *)r);
         size_t first = b->ncorner;
         float c3[3] = { 1, 1, 1 };
         /* a face that cannot be read whole but whose size is known is
@@ -537,6 +541,7 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
         int skip = 0;
         if (only) {
             unsigned cs = type_size[only->count_type], is = type_size[only->type];
+            mf_need(file, r, r + ((size_t)(end - r) < 8 ? (size_t)(end - r) : 8));
             if ((size_t)(end - r) < cs) {
                 me_fail_at(ply->e, (uint64_t)(r - bn->base), "file ends inside face %u", i + 1);
                 return ended_early(ply);
@@ -552,6 +557,7 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
                 return ended_early(ply);
             }
             const unsigned char *fe = r + (size_t)cnt * is;
+            mf_need(file, r, fe);
             if (cnt < 3) {
                 me_fail_at(ply->e, (uint64_t)(r - cs - bn->base), "face %u has %lld vertices (at least 3)",
                            i + 1, (long long)cnt);
@@ -597,6 +603,7 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
             uint64_t at = 0;
             for (uint32_t k = 0; k < el->nprops; k++) {
                 const PlyProp *pr = &el->props[k];
+                mf_need(file, r, r + ((size_t)(end - r) < 8 ? (size_t)(end - r) : 8));
                 if (pr->count_type != T_NONE) {
                     unsigned cs = type_size[pr->count_type], is = type_size[pr->type];
                     if ((size_t)(end - r) < cs) {
@@ -616,6 +623,7 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
                         return ended_early(ply);
                     }
                     const unsigned char *le = r + (size_t)cnt * is;
+                    mf_need(file, r, le);
                     if (pr->role != R_INDICES || skip) {
                         r = le;
                         continue;
@@ -673,16 +681,16 @@ static int bin_faces(Ply *ply, PlyElem *el, Bin *bn)
 static int bin_skip(Ply *ply, PlyElem *el, Bin *bn)
 {
     if (!el->has_list) {
-        /* counts were checked against the size */
+        /* counts were checked against the size (the bytes are not read) */
         bn->p += el->count * el->fixed;
         return 0;
     }
     const unsigned char *r = bn->p;
+    MeshFile *file = ply->c->file;
     for (uint64_t i = 0; i < el->count; i++) {
-        if ((i & 0xffff) == 0)
-            mf_progress(ply->c->file, (const char *)r);
         for (uint32_t k = 0; k < el->nprops; k++) {
             const PlyProp *pr = &el->props[k];
+            mf_need(file, r, r + ((size_t)(bn->end - r) < 8 ? (size_t)(bn->end - r) : 8));
             if (pr->count_type == T_NONE) {
                 if ((size_t)(bn->end - r) < type_size[pr->type])
                     goto short_;
@@ -707,28 +715,53 @@ short_:
 
 /* ==== ASCII ==== */
 
+/* The ascii body. end is where reading may go without asking the
+ * paging window (the file's end, or the window's); a token is read only
+ * with TXT_ROOM bytes in after it, so one longer than that is refused. */
 typedef struct {
-    const char *p, *end;
+    const char *p, *end, *real_end;
     uint64_t    line;
+    MeshFile   *file;
 } Txt;
+
+#define TXT_ROOM ((size_t)1 << 20)
+
+static inline void txt_room(Txt *t)
+{
+    if ((size_t)(t->end - t->p) < TXT_ROOM && t->end < t->real_end) {
+        size_t room = (size_t)(t->real_end - t->p) < TXT_ROOM ? (size_t)(t->real_end - t->p) : TXT_ROOM;
+        mf_need(t->file, t->p, t->p + room);
+        t->end = mf_limit(t->file, t->real_end);
+    }
+}
 
 /* Skip white space, counting lines (LF, CRLF or CR). 0 at the end. */
 static inline int txt_ws(Txt *t)
 {
-    const char *p = t->p, *end = t->end;
-    while (p < end && mesh_is_ws(*p)) {
-        if (*p == '\n' || (*p == '\r' && (p + 1 == end || p[1] != '\n')))
-            t->line++;
-        p++;
+    for (;;) {
+        txt_room(t);
+        const char *p = t->p, *end = t->end;
+        while (p < end && mesh_is_ws(*p)) {
+            if (*p == '\n' || (*p == '\r' && (p + 1 == t->real_end || p[1] != '\n')))
+                t->line++;
+            p++;
+        }
+        t->p = p;
+        if (p < end || end == t->real_end)
+            return p < end;
     }
-    t->p = p;
-    return p < end;
+}
+
+/* A token that ran into the window's end is longer than TXT_ROOM. */
+static inline int txt_cut(const Txt *t)
+{
+    return t->p == t->end && t->end < t->real_end;
 }
 
 static int txt_bad(Ply *ply, Txt *t, int code, const char *what, const char *elname)
 {
     const char *p = t->p;
-    if (p >= t->end)
+    if (p >= t->real_end)
         return me_fail_line(ply->e, t->line, "file ends inside element '%s' (a %s missing)", elname, what);
     const char *le = p;
     while (le < t->end && *le != '\n' && *le != '\r')
@@ -756,6 +789,8 @@ static inline int txt_num(Ply *ply, Txt *t, PlyType type, double *out, const cha
         r = mesh_parse_int(&t->p, t->end, &v);
         *out = (double)v;
     }
+    if (!r && txt_cut(t))
+        r = MESH_NUM_BAD;
     return r ? txt_bad(ply, t, r, type >= T_F32 ? "number" : "integer", elname) : 0;
 }
 
@@ -763,14 +798,21 @@ static inline int txt_int(Ply *ply, Txt *t, int64_t *out, const char *elname)
 {
     txt_ws(t);
     int r = mesh_parse_int(&t->p, t->end, out);
+    if (!r && txt_cut(t))
+        r = MESH_NUM_BAD;
     return r ? txt_bad(ply, t, r, "integer", elname) : 0;
 }
 
 /* The rest of a face's line (ascii records are a line each). */
 static void txt_skip_line(Txt *t)
 {
-    while (t->p < t->end && *t->p != '\n' && *t->p != '\r')
-        t->p++;
+    for (;;) {
+        txt_room(t);
+        while (t->p < t->end && *t->p != '\n' && *t->p != '\r')
+            t->p++;
+        if (t->p < t->end || t->end == t->real_end)
+            break;
+    }
 }
 
 /* A number of a face could not be read (the message is written): at
@@ -781,7 +823,7 @@ static void txt_skip_line(Txt *t)
         if (!face)                                                          \
             return -1;                                                      \
         b->ncorner = first;                                                 \
-        if (t->p >= t->end)                                                 \
+        if (t->p >= t->real_end)                                                \
             return ended_early(ply);                                        \
         if (me_skip(ply->e, t->line))                                       \
             return -1;                                                      \
@@ -800,7 +842,6 @@ static int txt_element(Ply *ply, PlyElem *el, Txt *t)
     if (vertex && coloured && mb_want_rgb(b))
         return -1;
     for (uint64_t i = 0; i < el->count; i++) {
-        mf_progress(ply->c->file, t->p);
         float v[3] = { 0, 0, 0 }, c3[3] = { 1, 1, 1 };
         size_t first = b->ncorner;
         /* a face that cannot be used but can be read past is skipped
@@ -815,7 +856,7 @@ static int txt_element(Ply *ply, PlyElem *el, Txt *t)
                 uint64_t line = t->line;
                 if (txt_int(ply, t, &cnt, el->name))
                     FACE_UNREADABLE();
-                if (cnt < 0 || (uint64_t)cnt > (uint64_t)(t->end - t->p) / 2 + 1)
+                if (cnt < 0 || (uint64_t)cnt > (uint64_t)(t->real_end - t->p) / 2 + 1)
                     return me_fail_line(ply->e, line, "bad list count %lld", (long long)cnt);
                 if (pr->role == R_INDICES && cnt < 3 && !skip) {
                     me_fail_line(ply->e, line, "face has %lld vertices (at least 3)", (long long)cnt);
@@ -876,11 +917,55 @@ static int txt_element(Ply *ply, PlyElem *el, Txt *t)
     return 0;
 }
 
+/* ==== Streams ==== */
+
+/* a + b, and a * b, stopping at a bound far past any stream */
+#define PLY_HUGE ((uint64_t)1 << 62)
+static uint64_t sat_add(uint64_t a, uint64_t b) { return a + b < PLY_HUGE ? a + b : PLY_HUGE; }
+static uint64_t sat_mul(uint64_t a, uint64_t b)
+{
+    return a && b > PLY_HUGE / a ? PLY_HUGE : a * b < PLY_HUGE ? a * b : PLY_HUGE;
+}
+
+uint64_t mesh_ply_stream_max(const char *head, size_t n, int *ascii)
+{
+    static const uint64_t list_max[] = { 127, 255, 32767, 65535, 2147483647u, 4294967295u };
+    MeshCtx c = { .err = { .name = "(stream)" } };
+    Ply ply = { .c = &c, .e = &c.err, .data = head, .end = head + n };
+    size_t bom = mesh_bom_len(head, n);
+    uint64_t max = 0;
+    *ascii = 0;
+    if (parse_header(&ply, head + bom, n - bom) == 0) {
+        *ascii = ply.fmt == FMT_ASCII;
+        /* binary: the largest record each element's types allow (ascii
+         * numbers have no length: only the NUL bounds those) */
+        max = *ascii ? 0 : (uint64_t)(ply.body - head) + 1;
+        for (uint32_t i = 0; i < ply.nel && max; i++) {
+            uint64_t rec = 0;
+            for (uint32_t k = 0; k < ply.el[i].nprops; k++) {
+                const PlyProp *pr = &ply.el[i].props[k];
+                rec = pr->count_type == T_NONE
+                          ? sat_add(rec, type_size[pr->type])
+                          : sat_add(rec, sat_add(type_size[pr->count_type],
+                                                 sat_mul(list_max[pr->count_type], type_size[pr->type])));
+            }
+            max = sat_add(max, sat_mul(ply.el[i].count, rec));
+        }
+    }
+    for (uint32_t i = 0; i < ply.nel; i++)
+        free(ply.el[i].props);
+    free(ply.el);
+    return max >= PLY_HUGE ? 0 : max;
+}
+
 /* ==== The loader ==== */
 
 static int ply_probe(const char *head, size_t n, uint64_t size)
 {
     (void)size;
+    size_t bom = mesh_bom_len(head, n);
+    head += bom;
+    n -= bom;
     if (n >= 4 && memcmp(head, "ply", 3) == 0 && (head[3] == '\n' || head[3] == '\r'))
         return PROBE_SURE;
     return PROBE_NO;
@@ -895,20 +980,26 @@ static int ply_parse(MeshCtx *c, const char *data, size_t len)
     m->info.bytes = len;
     Ply ply = { .c = c, .e = &c->err, .b = &b, .data = data, .end = data + len };
     int r = -1;
-    if (parse_header(&ply, data, len) || check_counts(&ply))
+    size_t bom = mesh_bom_len(data, len);
+    if (parse_header(&ply, data + bom, len - bom) || check_counts(&ply))
         goto out;
     static const char *const fmt_name[] = { "ply ascii", "ply binary little endian",
                                             "ply binary big endian" };
     snprintf(m->info.format, sizeof m->info.format, "%s", fmt_name[ply.fmt]);
-    /* Allocate once: the counts are known and were checked. */
+    /* Allocate once: the counts are known and were checked against the
+     * size, and now against the limits. */
     uint64_t nfaces = 0;
-    for (uint32_t i = 0; i < ply.nel; i++)
+    int rgb = 0;
+    for (uint32_t i = 0; i < ply.nel; i++) {
         if (ply.el[i].kind == EL_FACE)
             nfaces = ply.el[i].count;
-    if (mb_reserve(&b, ply.nverts, nfaces, 3 * nfaces))
+        for (uint32_t k = 0; ply.el[i].kind == EL_VERTEX && k < ply.el[i].nprops; k++)
+            rgb |= ply.el[i].props[k].role >= R_RED && ply.el[i].props[k].role <= R_BLUE;
+    }
+    if (mb_afford_counts(&b, ply.nverts, rgb, nfaces) || mb_reserve(&b, ply.nverts, nfaces, 3 * nfaces))
         goto out;
     if (ply.fmt == FMT_ASCII) {
-        Txt t = { ply.body, ply.end, ply.body_line };
+        Txt t = { ply.body, mf_limit(c->file, ply.end), ply.end, ply.body_line, c->file };
         for (uint32_t i = 0; i < ply.nel; i++) {
             PlyElem *el = &ply.el[i];
             if (el->nprops == 0)

@@ -10,6 +10,7 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <sys/sysinfo.h>
 #include <unistd.h>
 
 #include "reader.h"
@@ -183,6 +184,7 @@ int mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen)
     }
     f->dev = (uint64_t)st.st_dev;
     f->ino = (uint64_t)st.st_ino;
+    f->mtime_ns = (int64_t)st.st_mtim.tv_sec * 1000000000 + st.st_mtim.tv_nsec;
     if (S_ISDIR(st.st_mode)) {
         snprintf(msg, msglen, "is a directory");
         mf_close(f);
@@ -229,12 +231,44 @@ int mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen)
     return 0;
 }
 
+/* Huge pages, the unit the window is copied in by. */
+#define MF_HUGE ((size_t)2 << 20)
+
+/* Map a regular file for mf_window: read-only, at an address aligned to
+ * MF_HUGE, so that the window's copies (anonymous memory laid over the
+ * mapping) can be huge pages: a 4 KB page each costs a fault, which in
+ * a VM costs more than copying the page. */
+static int map_file(MeshFile *f)
+{
+    size_t len = (size_t)f->size;
+    char *area = mmap(NULL, len + MF_HUGE, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (area == MAP_FAILED)
+        return -1;
+    char *at = (char *)(((uintptr_t)area + MF_HUGE - 1) & ~(uintptr_t)(MF_HUGE - 1));
+    void *map = mmap(at, len, PROT_READ, MAP_PRIVATE | MAP_FIXED, f->fd, 0);
+    if (map == MAP_FAILED) {
+        munmap(area, len + MF_HUGE);
+        return -1;
+    }
+    /* give back the reserve around it */
+    size_t page = (size_t)sysconf(_SC_PAGESIZE), tail = (len + page - 1) & ~(page - 1);
+    if (at > area)
+        munmap(area, (size_t)(at - area));
+    if (area + len + MF_HUGE > at + tail)
+        munmap(at + tail, (size_t)(area + len + MF_HUGE - (at + tail)));
+    f->map = map;
+    f->data = map;
+    f->len = len;
+    mf_window(f, 0, 0);
+    return 0;
+}
+
 int mf_load(MeshFile *f, const MfLimits *lim, char *msg, size_t msglen)
 {
     uint64_t max = lim && lim->max ? lim->max : MESH_MAX_BYTES;
     if (max > MESH_MAX_BYTES)
         max = MESH_MAX_BYTES;
-    if (f->regular && f->fd >= 0) {
+    if (f->regular && f->fd >= 0 && !f->map) {
         if (f->size > MESH_MAX_BYTES) {
             snprintf(msg, msglen, "file too large (%llu bytes; at most %llu)",
                      (unsigned long long)f->size, (unsigned long long)MESH_MAX_BYTES);
@@ -245,40 +279,38 @@ int mf_load(MeshFile *f, const MfLimits *lim, char *msg, size_t msglen)
             f->fd = -1;
             return 0;
         }
-        size_t len = (size_t)f->size;
         /* No MAP_POPULATE: the window pages the file in as the parser
          * goes, so a file rejected early is never read whole. */
-        void *map = mmap(NULL, len, PROT_READ, MAP_PRIVATE, f->fd, 0);
-        if (map != MAP_FAILED) {
-#ifdef MADV_SEQUENTIAL
-            madvise(map, len, MADV_SEQUENTIAL);
-#endif
-            close(f->fd);
-            f->fd = -1;
-            f->map = map;
-            f->data = map;
-            f->len = len;
-            mf_window(f, 0);
+        if (map_file(f) == 0)
             return 0;
-        }
         /* Some file systems cannot map: read it like a stream. */
         f->regular = 0;
     }
-    if (f->fd < 0)
+    if (f->fd < 0 || f->map)
         return 0;
+    /* a stream holds its bytes in memory: no more than memory has */
+    uint64_t mem = lim ? lim->mem : 0;
+    uint64_t cap = mem && mem < max ? mem : max;
+    int nul = 0;
     if (lim && lim->stop_at_nul && memchr(f->data, '\0', f->len)) {
         f->len = (size_t)((const char *)memchr(f->data, '\0', f->len) - f->data) + 1;
-    } else if (f->len < max) {
-        if (read_more(f, (size_t)max, lim && lim->stop_at_nul, msg, msglen))
+        nul = 1;
+    } else if (f->len < cap) {
+        if (read_more(f, (size_t)cap, lim && lim->stop_at_nul, msg, msglen))
             return -1;
-        if (f->len == MESH_MAX_BYTES) {
-            char c;
-            if (read(f->fd, &c, 1) == 1) {
-                snprintf(msg, msglen, "input too large (more than %llu bytes)",
-                         (unsigned long long)MESH_MAX_BYTES);
-                return -1;
-            }
-        }
+        nul = lim && lim->stop_at_nul && f->len && f->data[f->len - 1] == '\0';
+    }
+    /* full: an error when the stream goes on past a limit of ours (a
+     * format's own bound, lim->max, lets the loader see the byte more) */
+    char c;
+    if (!nul && f->len >= cap && (cap < max || max == MESH_MAX_BYTES) && read(f->fd, &c, 1) == 1) {
+        char have[32];
+        mesh_bytes_str(cap, have, sizeof have);
+        if (cap < max)
+            snprintf(msg, msglen, "input too large for the memory available (more than %s)", have);
+        else
+            snprintf(msg, msglen, "input too large (more than %llu bytes)", (unsigned long long)MESH_MAX_BYTES);
+        return -1;
     }
     close(f->fd);
     f->fd = -1;
@@ -286,34 +318,91 @@ int mf_load(MeshFile *f, const MfLimits *lim, char *msg, size_t msglen)
     return 0;
 }
 
-void mf_window(MeshFile *f, size_t pos)
+/* The file ended before `from` could be copied in: what is left of the
+ * mapping becomes zeros of the process's own (a parser reads those and
+ * ends; the load then fails as changed), never the file's missing pages. */
+static void lost_file(MeshFile *f, size_t from)
+{
+    size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    size_t start = from & ~(page - 1);
+    size_t stop = (f->len + page - 1) & ~(page - 1);
+    f->changed = 1;
+    if (f->mute)
+        *f->mute = 1;
+    if (stop > start)
+        mmap((char *)f->map + start, stop - start, PROT_READ | PROT_WRITE,
+             MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED | MAP_NORESERVE, -1, 0);
+    f->populated = f->len;
+}
+
+/* Copy [start, stop) of the file into memory of the process's own,
+ * laid over the mapping there (huge pages where the kernel has them).
+ * A file that ends early fails (-1; the rest of the range is zeros)
+ * where touching the file's pages would have raised SIGBUS. */
+static int copy_in(MeshFile *f, size_t start, size_t stop)
+{
+    char *base = (char *)f->map;
+    if (mmap(base + start, stop - start, PROT_READ | PROT_WRITE,
+             MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED | MAP_NORESERVE, -1, 0) == MAP_FAILED)
+        return -1;
+#ifdef MADV_HUGEPAGE
+    madvise(base + start, stop - start, MADV_HUGEPAGE);
+#endif
+    size_t want = (stop < f->len ? stop : f->len) - start;
+    for (size_t at = 0; at < want;) {
+        ssize_t r = pread(f->fd, base + start + at, want - at, (off_t)(start + at));
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            return -1;
+        at += (size_t)r;
+    }
+    return 0;
+}
+
+void mf_window(MeshFile *f, size_t keep, size_t upto)
 {
     if (!f->map)
         return;
     size_t page = (size_t)sysconf(_SC_PAGESIZE);
-    size_t want = f->len - pos < MF_AHEAD ? f->len : pos + MF_AHEAD;
-    if (want > f->populated) {
-        size_t start = f->populated & ~(page - 1);
-        char *base = (char *)f->map;
-#ifdef MADV_POPULATE_READ
-        /* fault the pages in up front, in bulk (as MAP_POPULATE would) */
-        if (madvise(base + start, want - start, MADV_POPULATE_READ) != 0)
-#endif
-            madvise(base + start, want - start, MADV_WILLNEED);
-        f->populated = want;
+    size_t want = f->len - upto < MF_AHEAD ? f->len : upto + MF_AHEAD;
+    if (want > f->populated && !f->changed) {
+        /* in huge pages: the window's start and end stay aligned */
+        size_t start = f->populated;
+        size_t stop = (want + MF_HUGE - 1) & ~(MF_HUGE - 1);
+        if (stop > ((f->len + page - 1) & ~(page - 1)))
+            stop = (f->len + page - 1) & ~(page - 1);
+        if (copy_in(f, start, stop))
+            lost_file(f, start);
+        else
+            f->populated = stop < f->len ? stop : f->len;
     }
-    if (pos > MF_KEEP_BEHIND) {
-        size_t rel = (pos - MF_KEEP_BEHIND) & ~(page - 1);
-        if (rel > f->released) {
-            /* a private read-only mapping: the pages come back from the
-             * file if ever touched again, so this only drops them */
+    if (keep > MF_KEEP_BEHIND) {
+        size_t rel = (keep - MF_KEEP_BEHIND) & ~(page - 1);
+        if (rel > f->released && !f->changed) {
+            /* the copies go; the pages would come back from the file if
+             * ever touched again, which no parser does */
             madvise((char *)f->map + f->released, rel - f->released, MADV_DONTNEED);
             f->released = rel;
         }
     }
-    f->mark = pos + MF_STEP;
+    f->mark = keep + MF_STEP;
     if (f->progress)
-        __atomic_store_n(f->progress, (uint64_t)pos, __ATOMIC_RELAXED);
+        __atomic_store_n(f->progress, (uint64_t)keep, __ATOMIC_RELAXED);
+    if (f->on_window)
+        f->on_window(f->on_window_arg, keep);
+}
+
+int mf_changed(MeshFile *f)
+{
+    struct stat st;
+    if (!f->map || f->fd < 0)
+        return f->changed;
+    if (fstat(f->fd, &st) == 0 &&
+        ((uint64_t)st.st_size != f->size ||
+         (int64_t)st.st_mtim.tv_sec * 1000000000 + st.st_mtim.tv_nsec != f->mtime_ns))
+        f->changed = 1;
+    return f->changed;
 }
 
 void mf_close(MeshFile *f)
@@ -326,6 +415,80 @@ void mf_close(MeshFile *f)
     memset(f, 0, sizeof *f);
     f->fd = -1;
     f->data = f->head = "";
+}
+
+/* ==== Memory ==== */
+
+/* A "Key:   123 kB" line of /proc/meminfo, in bytes; 0 if absent. */
+static uint64_t meminfo_kb(const char *text, const char *key)
+{
+    const char *p = strstr(text, key);
+    if (!p)
+        return 0;
+    p += strlen(key);
+    while (*p == ' ' || *p == ':' || *p == '\t')
+        p++;
+    return strtoull(p, NULL, 10) * 1024;
+}
+
+/* One small file's text into buf (NUL-terminated); 0 or -1. */
+static int read_small(const char *path, char *buf, size_t n)
+{
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return -1;
+    ssize_t r = read(fd, buf, n - 1);
+    close(fd);
+    if (r < 0)
+        return -1;
+    buf[r] = '\0';
+    return 0;
+}
+
+uint64_t mesh_mem_available(void)
+{
+    char buf[4096];
+    uint64_t avail = 0;
+    if (read_small("/proc/meminfo", buf, sizeof buf) == 0)
+        avail = meminfo_kb(buf, "MemAvailable");
+    if (!avail) {
+        struct sysinfo si;
+        if (sysinfo(&si) == 0)
+            avail = ((uint64_t)si.freeram + si.bufferram) * si.mem_unit;
+    }
+    /* a container's limit (cgroup v2) can be far below the machine's */
+    char lim[64], cur[64];
+    if (read_small("/sys/fs/cgroup/memory.max", lim, sizeof lim) == 0 && lim[0] >= '0' && lim[0] <= '9' &&
+        read_small("/sys/fs/cgroup/memory.current", cur, sizeof cur) == 0) {
+        uint64_t l = strtoull(lim, NULL, 10), c = strtoull(cur, NULL, 10);
+        uint64_t left = l > c ? l - c : 0;
+        if (!avail || left < avail)
+            avail = left;
+    }
+    return avail;
+}
+
+void mesh_bytes_str(uint64_t bytes, char *buf, size_t n)
+{
+    if (bytes >= 1000000000)
+        snprintf(buf, n, "%.1f GB", bytes / 1e9);
+    else if (bytes >= 1000000)
+        snprintf(buf, n, "%.0f MB", bytes / 1e6);
+    else
+        snprintf(buf, n, "%.0f KB", bytes / 1e3);
+}
+
+void mesh_count_str(uint64_t v, char *buf, size_t len)
+{
+    char d[32];
+    int nd = snprintf(d, sizeof d, "%llu", (unsigned long long)v);
+    size_t k = 0;
+    for (int i = 0; i < nd && k + 1 < len; i++) {
+        if (i && (nd - i) % 3 == 0 && k + 2 < len)
+            buf[k++] = ',';
+        buf[k++] = d[i];
+    }
+    buf[k] = '\0';
 }
 
 /* ==== Numbers ==== */
@@ -495,32 +658,29 @@ int mesh_tok_len(const char *p, const char *end)
 
 /* ==== Lines ==== */
 
-const char *lr_long_line(const char *p, const char *end, char eol)
+const char *lr_long_line(LineReader *lr, const char *ls, const char *from)
 {
-    const size_t chunk = (size_t)64 << 10;
-    while (p < end) {
-        size_t n = (size_t)(end - p) < chunk ? (size_t)(end - p) : chunk;
-        const char *nl = memchr(p, eol, n), *nul = memchr(p, '\0', nl ? (size_t)(nl - p) : n);
-        if (nul)
-            return nul + 1 < end ? nul + 1 : NULL;   /* the line holds its NUL */
-        if (nl)
-            return nl;
-        p += n;
+    const char *end = lr->end;
+    for (;;) {
+        const char *lim = mf_limit(lr->file, end);
+        const char *q = lr_stop(from, lim);
+        /* done when all is in, or at a stop whose next byte is in or
+         * does not matter (only a CR looks at the next) */
+        if (lim >= end || q + 1 < lim || (q < lim && *q != '\r'))
+            return q;
+        /* the window ends first: move it on, keeping the line */
+        size_t more = (size_t)(end - lim) < 2 * MF_STEP ? (size_t)(end - lim) : 2 * MF_STEP;
+        mf_need(lr->file, ls, lim + more);
+        if (mf_limit(lr->file, end) <= lim)
+            return q;       /* cannot happen: the window always moves */
+        from = q;           /* a CR on the last byte is looked at again */
     }
-    return NULL;
 }
 
-void lr_init(LineReader *lr, const char *data, size_t len)
+void lr_init(LineReader *lr, const char *data, size_t len, MeshFile *file)
 {
     lr->p = data;
     lr->end = data + len;
     lr->line = 0;
-    lr->eol = '\n';
-    /* The first line end decides: a CR that no LF follows means an
-     * old-Mac file. Looking for the CR only before the first LF keeps
-     * this one pass over the first line. */
-    const char *nl = memchr(data, '\n', len);
-    const char *cr = memchr(data, '\r', nl ? (size_t)(nl - data) : len);
-    if (cr && (cr + 1 == lr->end || cr[1] != '\n'))
-        lr->eol = '\r';
+    lr->file = file;
 }

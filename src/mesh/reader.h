@@ -19,6 +19,9 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 /* ==== Errors ==== */
 
@@ -39,6 +42,11 @@ typedef struct {
     int         quiet;
     uint32_t    warned;
     char        warning[256];
+    /* The load's bounds (MeshLoadOpts): a count or an array past them is
+     * refused with a message, like any bad input. 0: none / ask the
+     * machine (mesh_mem_available). */
+    uint64_t    max_polys;
+    uint64_t    max_bytes;
 } MeshErr;
 
 /* Each writes the message and returns -1, so `return me_fail(...)`. */
@@ -74,7 +82,17 @@ enum {
 };
 
 /* A file's bytes, mapped (regular files) or read into the heap (pipes,
- * devices, standard input). The data is NOT NUL-terminated. */
+ * devices, standard input). The data is NOT NUL-terminated.
+ *
+ * A mapped file is never read where the file itself backs the mapping:
+ * a file truncated under a mapping raises SIGBUS on the next touch of a
+ * page past its new end, and that would kill the process (the viewer
+ * loads on a thread). So the window a parser reads is first copied into
+ * the mapping's private pages (MADV_POPULATE_WRITE, or pread), a step
+ * that fails with an error instead of a signal; a file found shorter
+ * gets zeros for the rest, the parser ends on them, and the load fails
+ * "changed while reading" (mf_changed, which also compares the size and
+ * modification time at the end). */
 typedef struct MeshFile {
     const char *data;      /* after mf_load: the whole input */
     size_t      len;
@@ -82,16 +100,25 @@ typedef struct MeshFile {
     size_t      nhead;
     uint64_t    size;      /* a regular file's size; a stream's bytes read so far */
     int         regular;
-    int         fd;        /* -1 once loaded or closed */
+    int         fd;        /* -1 once closed; a mapped file keeps it for mf_changed */
     uint64_t    dev, ino;  /* identity, to load a file once */
+    int64_t     mtime_ns;  /* modification time at mf_open */
+    int         changed;   /* the file was found shorter than at mf_open */
+    int        *mute;      /* NULL, or set to 1 then: what the parser says of the
+                              zeros it then reads is not to be shown (MeshErr.quiet) */
     char        headbuf[MESH_HEAD];
     void       *map;       /* mmap base, or NULL */
     char       *heap;      /* stream bytes, or NULL */
     size_t      cap;
     /* the paging window (mapped files): [released, populated) is what
-     * was asked in and not yet dropped; mf_progress moves it at `mark` */
+     * was copied in and not yet dropped (populated: whole pages, at most
+     * len); mf_progress moves it at `mark` */
     size_t      populated, released, mark;
     uint64_t   *progress;  /* NULL, or bytes parsed so far (atomic stores, see MeshProgress) */
+    /* for tests: called each time the window has moved, with the byte
+     * the parser reported (a test truncates the file there) */
+    void      (*on_window)(void *arg, uint64_t pos);
+    void       *on_window_arg;
 } MeshFile;
 
 /* Open `path` ("-" = standard input) and read its first bytes into head
@@ -105,28 +132,57 @@ int  mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen)
 typedef struct {
     int      stop_at_nul;  /* text: a NUL already makes it invalid */
     uint64_t max;          /* stop after this many bytes (0 = MESH_MAX_BYTES) */
+    uint64_t mem;          /* what memory allows a stream to hold (0 = no limit but max) */
 } MfLimits;
 
 /* Make the whole input available in data/len: map a regular file (the
- * first window paged in), or read the rest of a stream. -1 with msg on
+ * first window copied in), or read the rest of a stream. -1 with msg on
  * failure ("file too large", "cannot read: ..."). */
 int  mf_load(MeshFile *f, const MfLimits *lim, char *msg, size_t msglen);
 void mf_close(MeshFile *f);
+/* After a parse: did the mapped file change while it was read (found
+ * shorter, or its size or modification time differ from mf_open's)? */
+int  mf_changed(MeshFile *f);
 
 /* The paging window: a loader reports how far it has read, every few
- * MB; what lies ahead is paged in, and what lies well behind is dropped
+ * MB; what lies ahead is copied in, and what lies well behind is dropped
  * from this process (the page cache keeps it), so a big file costs a
  * window of memory, not its size. A loader must not look back more than
- * MF_KEEP_BEHIND bytes from the last position it reported. */
+ * MF_KEEP_BEHIND bytes from the last position it reported, nor read
+ * more than MF_AHEAD - MF_STEP bytes past it: a longer read (a record or
+ * a line longer than that) asks with mf_need first. */
 #define MF_AHEAD       ((size_t)8 << 20)
 #define MF_KEEP_BEHIND ((size_t)1 << 20)
 #define MF_STEP        ((size_t)2 << 20)
-void mf_window(MeshFile *f, size_t pos);
+/* Keep [keep - MF_KEEP_BEHIND, upto + MF_AHEAD) in. */
+void mf_window(MeshFile *f, size_t keep, size_t upto);
 static inline void mf_progress(MeshFile *f, const char *p)
 {
     if (f && f->map && (size_t)(p - f->data) >= f->mark)
-        mf_window(f, (size_t)(p - f->data));
+        mf_window(f, (size_t)(p - f->data), (size_t)(p - f->data));
 }
+/* Before reading [keep, upto): make it safe to read, without dropping
+ * anything from keep on (a long line or record). */
+static inline void mf_need(MeshFile *f, const void *keep, const void *upto)
+{
+    if (f && f->map && (size_t)((const char *)upto - f->data) > f->populated)
+        mf_window(f, (size_t)((const char *)keep - f->data), (size_t)((const char *)upto - f->data));
+}
+/* Where reading must stop until mf_need is asked (the end for memory). */
+static inline const char *mf_limit(const MeshFile *f, const char *end)
+{
+    return f && f->map && f->data + f->populated < end ? f->data + f->populated : end;
+}
+
+/* What memory this process can still take: MemAvailable (or sysinfo's
+ * free and buffer memory), and less when a cgroup limit says so. 0 when
+ * nothing can tell. */
+uint64_t mesh_mem_available(void);
+
+/* A byte count for messages: "9.1 GB", "350 MB", "12 KB". */
+void mesh_bytes_str(uint64_t bytes, char *buf, size_t n);
+/* A count with thousands separators: "180,000,000". */
+void mesh_count_str(uint64_t n, char *buf, size_t len);
 
 /* ==== Text ==== */
 
@@ -166,46 +222,98 @@ int  mesh_word_is(const char *p, const char *end, const char *w);
 /* The token at p (up to white space), at most 40 bytes, for messages. */
 int  mesh_tok_len(const char *p, const char *end);
 
-/* Lines: LF and CRLF, and old-Mac CR-only files (decided by the first
- * line end in the file: a CR not followed by LF). In CR files a CRLF
- * also ends one line. Lines are numbered from 1. */
+/* The UTF-8 byte-order mark some editors put first: 3, or 0. */
+static inline size_t mesh_bom_len(const char *p, size_t n)
+{
+    return n >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+}
+
+/* Lines end at LF, CRLF or a lone CR, in any mix (files pass through
+ * editors and tools of both worlds). Lines are numbered from 1. A NUL,
+ * which no text line holds, ends a line too, the line holding it and
+ * the run of NULs after it: a file of zeros past a valid start is not
+ * searched to its end for a line end, and is one bad line, not one a
+ * byte. Reading a mapped file, the reader keeps the window (MeshFile)
+ * on the line it returns, however long. */
 typedef struct {
     const char *p, *end;
     uint64_t    line;      /* number of the line last returned */
-    char        eol;       /* '\n' or '\r' */
+    MeshFile   *file;      /* the paging window; NULL for memory */
 } LineReader;
 
-void lr_init(LineReader *lr, const char *data, size_t len);
-/* Where the line at p ends, when it is longer than a first look: it
- * ends at its line end, or just after a NUL (no text line holds one, and
- * a file of zeros past a valid start must not be read to its end to find
- * a line end it does not have). */
-const char *lr_long_line(const char *p, const char *end, char eol);
+void lr_init(LineReader *lr, const char *data, size_t len, MeshFile *file);
 
-#define LR_LOOK 4096
+/* The first '\n', '\r' or NUL in [p, end), or end: sixteen bytes at a
+ * time with SSE2 (every x86-64 has it), else eight (a line of an OBJ is
+ * some 30 bytes; this is the loaders' inner loop). Never reads at or
+ * past end. */
+static inline const char *lr_stop(const char *p, const char *end)
+{
+#ifdef __SSE2__
+    const __m128i lf = _mm_set1_epi8('\n'), cr = _mm_set1_epi8('\r'), nul = _mm_setzero_si128();
+    while (end - p >= 16) {
+        __m128i v = _mm_loadu_si128((const __m128i *)(const void *)p);
+        __m128i hit = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(v, lf), _mm_cmpeq_epi8(v, cr)),
+                                   _mm_cmpeq_epi8(v, nul));
+        unsigned mask = (unsigned)_mm_movemask_epi8(hit);
+        if (mask)
+            return p + __builtin_ctz(mask);
+        p += 16;
+    }
+#endif
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    const uint64_t ones = 0x0101010101010101ull, highs = 0x8080808080808080ull;
+    while (end - p >= 8) {
+        uint64_t w;
+        memcpy(&w, p, 8);
+        uint64_t lf8 = w ^ (ones * '\n'), cr8 = w ^ (ones * '\r');
+        /* a byte is flagged when it is zero; below the first flag the
+         * test is exact, so the lowest flag is the first stop */
+        uint64_t z = ((w - ones) & ~w) | ((lf8 - ones) & ~lf8) | ((cr8 - ones) & ~cr8);
+        z &= highs;
+        if (z)
+            return p + (__builtin_ctzll(z) >> 3);
+        p += 8;
+    }
+#endif
+    while (p < end && *p != '\n' && *p != '\r' && *p != '\0')
+        p++;
+    return p;
+}
 
-/* The next line [*ls, *le) without its line end (a trailing CR of CRLF
- * is stripped). Returns 0 at the end of the input. */
-static inline int lr_next(LineReader *lr, const char **ls, const char **le)
+/* The stop of a line that reaches the window's end (lr_next's slow
+ * path): the window is moved on, keeping the line, until a stop. */
+const char *lr_long_line(LineReader *lr, const char *ls, const char *from);
+
+/* The next line [*ls, *le) without its line end. Returns 0 at the end
+ * of the input. */
+static inline __attribute__((always_inline)) int lr_next(LineReader *lr, const char **ls, const char **le)
 {
     const char *p = lr->p, *end = lr->end;
     if (p >= end)
         return 0;
     lr->line++;
-    size_t look = (size_t)(end - p) < LR_LOOK ? (size_t)(end - p) : LR_LOOK;
-    const char *nl = memchr(p, lr->eol, look);
-    if (!nl && look < (size_t)(end - p))
-        nl = lr_long_line(p, end, lr->eol);
-    const char *e = nl ? nl : end;
+    mf_progress(lr->file, p);
+    const char *lim = mf_limit(lr->file, end);
+    const char *q = lr_stop(p, lim);
+    /* the byte after a CR decides CRLF: it must be in too */
+    if (lim < end && q + 1 >= lim)
+        q = lr_long_line(lr, p, q);
     *ls = p;
-    lr->p = nl ? nl + 1 : end;
-    if (lr->eol == '\n') {
-        if (e > p && e[-1] == '\r')
-            e--;
-    } else if (lr->p < end && *lr->p == '\n') {
-        lr->p++;
+    *le = q;
+    if (q >= end)
+        lr->p = end;
+    else if (*q == '\n')
+        lr->p = q + 1;
+    else if (*q == '\r')
+        lr->p = q + 1 < end && q[1] == '\n' ? q + 2 : q + 1;
+    else {
+        /* a NUL: it and the NULs after it (those in the window) are this line's */
+        lim = mf_limit(lr->file, end);
+        while (q < lim && *q == '\0')
+            q++;
+        *le = lr->p = q;
     }
-    *le = e;
     return 1;
 }
 

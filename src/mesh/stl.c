@@ -31,6 +31,7 @@
 /* "solid" at the start (after blanks), as a word. */
 static const char *after_solid(const char *p, const char *end)
 {
+    p += mesh_bom_len(p, (size_t)(end - p));
     while (p < end && mesh_is_ws(*p))
         p++;
     if (!mesh_word_is(p, end, "solid"))
@@ -112,8 +113,13 @@ static int stl_binary(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
     if (magics && (part_mat = mb_colour(b, part[0], part[1], part[2], 255)) < 0)
         return -1;
 
-    /* Closed meshes have about n / 2 vertices; more grows the array. */
-    if (mb_reserve(b, n / 2 + 1024, n, 3 * (size_t)n))
+    /* Closed meshes have about n / 2 vertices (more grows the array),
+     * merged through a table of 16 bytes a vertex */
+    char what[48];
+    mesh_count_str(n, what, sizeof what);
+    strcat(what, " triangles");
+    if (mb_afford(b, n, mb_estimate(n / 2, 0, n, 3 * (uint64_t)n, 0) + 8 * (uint64_t)n, what) ||
+        mb_reserve(b, n / 2 + 1024, n, 3 * (size_t)n))
         return -1;
     VertMerge vm;
     if (vm_init(&vm, n / 2 + 1024))
@@ -234,14 +240,14 @@ static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
         return me_oom(e);
 
     LineReader lr;
-    lr_init(&lr, data, len);
+    size_t bom = mesh_bom_len(data, len);
+    lr_init(&lr, data + bom, len - bom, c->file);
     const char *ls, *le;
     int in_solid = 0, in_facet = 0, in_loop = 0;
     uint64_t facet_line = 0;
     Pending cur = { 0 }, prev = { 0 };
     int r = -1;
     while (lr_next(&lr, &ls, &le)) {
-        mf_progress(c->file, ls);
         const char *p = ls;
         while (p < le && mesh_is_blank(*p))
             p++;

@@ -95,13 +95,11 @@ static int xyz_parse(MeshCtx *c, const char *data, size_t len)
     if (len >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0)
         p += 3;
     LineReader lr;
-    lr_init(&lr, p, (size_t)(end - p));
+    lr_init(&lr, p, (size_t)(end - p), c->file);
     const char *ls, *le;
     int first = 1, colours = 0;
     float cmin = INFINITY, cmax = -INFINITY;
     while (lr_next(&lr, &ls, &le)) {
-        if ((lr.line & 0xfff) == 0)
-            mf_progress(c->file, ls);
         if (is_comment(ls, le))
             continue;
         float v[XYZ_MAX_COLS];
@@ -126,6 +124,12 @@ static int xyz_parse(MeshCtx *c, const char *data, size_t len)
                 me_fail_line(e, lr.line, "a point needs x y z, got %d number%s", n, n == 1 ? "" : "s");
             if (me_skip(e, lr.line))
                 goto fail;
+            if (le > ls && le[-1] == '\0') {
+                /* no text goes on past a NUL: the rest is not read */
+                me_warn(e, NULL, lr.line, "binary data: the rest of the file (%llu bytes) is not read",
+                        (unsigned long long)(end - le));
+                break;
+            }
             continue;
         }
         if (mb_vertex(&b, v[0], v[1], v[2]))
@@ -183,7 +187,7 @@ static int xyz_probe(const char *head, size_t n, uint64_t size)
     if (!n || mesh_has_binary(head, head + n))
         return PROBE_NO;
     LineReader lr;
-    lr_init(&lr, head, n);
+    lr_init(&lr, head, n, NULL);
     const char *ls, *le;
     int seen = 0, cols = 0;
     while (lr_next(&lr, &ls, &le)) {
