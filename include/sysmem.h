@@ -10,8 +10,9 @@
 
 /* Bytes the process can still allocate: the kernel's MemAvailable (free
  * memory plus reclaimable cache), lowered by RLIMIT_AS and RLIMIT_DATA
- * when they are set. ZV_MEM_AVAILABLE (bytes) overrides it, so that tests
- * can play a small machine. UINT64_MAX when nothing is known. */
+ * when they are set and by what a cgroup v2 memory limit leaves.
+ * ZV_MEM_AVAILABLE (bytes) overrides it, so that tests can play a small
+ * machine. UINT64_MAX when nothing is known. */
 uint64_t sysmem_available(void);
 
 /* "4.3 GB", "180 MB", "12 KB": a byte count for messages. */

@@ -17,7 +17,7 @@
 /* The memory a load may take (MeshErr.max_bytes, else the machine's). */
 static uint64_t budget(const MeshErr *e)
 {
-    return e->max_bytes ? e->max_bytes : mesh_mem_available();
+    return e->max_bytes ? e->max_bytes : sysmem_available();
 }
 
 int mb_afford(MeshBuild *b, uint64_t polys, uint64_t bytes, const char *what)
@@ -30,8 +30,8 @@ int mb_afford(MeshBuild *b, uint64_t polys, uint64_t bytes, const char *what)
     }
     uint64_t avail = budget(e);
     if (avail && bytes > avail) {
-        mesh_bytes_str(bytes, need, sizeof need);
-        mesh_bytes_str(avail, have, sizeof have);
+        sysmem_format(bytes, need, sizeof need);
+        sysmem_format(avail, have, sizeof have);
         return me_fail(e, "%s need about %s; %s available", what, need, have);
     }
     return 0;
@@ -79,8 +79,8 @@ static int over_memory(MeshBuild *b, const char *what, uint64_t bytes)
     uint64_t avail = budget(b->e);
     if (!avail || bytes <= avail)
         return 0;
-    mesh_bytes_str(bytes, need, sizeof need);
-    mesh_bytes_str(avail, have, sizeof have);
+    sysmem_format(bytes, need, sizeof need);
+    sysmem_format(avail, have, sizeof have);
     return me_fail(b->e, "the %s need more than %s; %s available", what, need, have);
 }
 

@@ -406,8 +406,8 @@ static int stl_stream(const MeshFile *f, const MeshErr *e, uint64_t mem, uint64_
     }
     if (mem && *max > mem) {
         char need[32], have[32];
-        mesh_bytes_str(*max, need, sizeof need);
-        mesh_bytes_str(mem, have, sizeof have);
+        sysmem_format(*max, need, sizeof need);
+        sysmem_format(mem, have, sizeof have);
         snprintf(msg, msglen, "a binary STL of %s triangles needs a stream of %s held in memory; %s "
                  "available for it", cnt, need, have);
         return -1;
@@ -425,7 +425,7 @@ static int stream_limits(const MeshFile *f, const MeshErr *e, const char *forced
     memset(lim, 0, sizeof *lim);
     const char *h = f->head;
     size_t n = f->nhead, bom = mesh_bom_len(h, n);
-    uint64_t avail = e->max_bytes ? e->max_bytes : mesh_mem_available();
+    uint64_t avail = e->max_bytes ? e->max_bytes : sysmem_available();
     lim->mem = avail / 2;
     const MeshLoader *l = forced ? native_by_name(forced) : NULL;
     int ply = forced ? l == &mesh_loader_ply : n - bom >= 3 && memcmp(h + bom, "ply", 3) == 0;

@@ -627,8 +627,8 @@ static int load_library(Parser *ps, const char *name, size_t n)
     const char *h = f.head + mesh_bom_len(f.head, f.nhead);
     if (f.size + ps->lib_bytes > MESH_MTL_MAX_BYTES) {
         char sz[32], most[32];
-        mesh_bytes_str(f.size, sz, sizeof sz);
-        mesh_bytes_str(MESH_MTL_MAX_BYTES, most, sizeof most);
+        sysmem_format(f.size, sz, sizeof sz);
+        sysmem_format(MESH_MTL_MAX_BYTES, most, sizeof most);
         snprintf(why, sizeof why, "too large, not read (%s; material libraries may have %s in all)", sz, most);
         mf_close(&f);
         return lib_unread(ps, name, n, "material library", why);

@@ -10,7 +10,6 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
-#include <sys/sysinfo.h>
 #include <unistd.h>
 
 #include "reader.h"
@@ -305,7 +304,7 @@ int mf_load(MeshFile *f, const MfLimits *lim, char *msg, size_t msglen)
     char c;
     if (!nul && f->len >= cap && (cap < max || max == MESH_MAX_BYTES) && read(f->fd, &c, 1) == 1) {
         char have[32];
-        mesh_bytes_str(cap, have, sizeof have);
+        sysmem_format(cap, have, sizeof have);
         if (cap < max)
             snprintf(msg, msglen, "input too large for the memory available (more than %s)", have);
         else
@@ -417,66 +416,6 @@ void mf_close(MeshFile *f)
     f->data = f->head = "";
 }
 
-/* ==== Memory ==== */
-
-/* A "Key:   123 kB" line of /proc/meminfo, in bytes; 0 if absent. */
-static uint64_t meminfo_kb(const char *text, const char *key)
-{
-    const char *p = strstr(text, key);
-    if (!p)
-        return 0;
-    p += strlen(key);
-    while (*p == ' ' || *p == ':' || *p == '\t')
-        p++;
-    return strtoull(p, NULL, 10) * 1024;
-}
-
-/* One small file's text into buf (NUL-terminated); 0 or -1. */
-static int read_small(const char *path, char *buf, size_t n)
-{
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-        return -1;
-    ssize_t r = read(fd, buf, n - 1);
-    close(fd);
-    if (r < 0)
-        return -1;
-    buf[r] = '\0';
-    return 0;
-}
-
-uint64_t mesh_mem_available(void)
-{
-    char buf[4096];
-    uint64_t avail = 0;
-    if (read_small("/proc/meminfo", buf, sizeof buf) == 0)
-        avail = meminfo_kb(buf, "MemAvailable");
-    if (!avail) {
-        struct sysinfo si;
-        if (sysinfo(&si) == 0)
-            avail = ((uint64_t)si.freeram + si.bufferram) * si.mem_unit;
-    }
-    /* a container's limit (cgroup v2) can be far below the machine's */
-    char lim[64], cur[64];
-    if (read_small("/sys/fs/cgroup/memory.max", lim, sizeof lim) == 0 && lim[0] >= '0' && lim[0] <= '9' &&
-        read_small("/sys/fs/cgroup/memory.current", cur, sizeof cur) == 0) {
-        uint64_t l = strtoull(lim, NULL, 10), c = strtoull(cur, NULL, 10);
-        uint64_t left = l > c ? l - c : 0;
-        if (!avail || left < avail)
-            avail = left;
-    }
-    return avail;
-}
-
-void mesh_bytes_str(uint64_t bytes, char *buf, size_t n)
-{
-    if (bytes >= 1000000000)
-        snprintf(buf, n, "%.1f GB", bytes / 1e9);
-    else if (bytes >= 1000000)
-        snprintf(buf, n, "%.0f MB", bytes / 1e6);
-    else
-        snprintf(buf, n, "%.0f KB", bytes / 1e3);
-}
 
 void mesh_count_str(uint64_t v, char *buf, size_t len)
 {

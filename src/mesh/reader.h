@@ -15,6 +15,7 @@
  * fuzz harness can call them on a memory buffer. Not part of the public
  * API. */
 
+#include "sysmem.h"
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -44,7 +45,7 @@ typedef struct {
     char        warning[256];
     /* The load's bounds (MeshLoadOpts): a count or an array past them is
      * refused with a message, like any bad input. 0: none / ask the
-     * machine (mesh_mem_available). */
+     * machine (sysmem_available). */
     uint64_t    max_polys;
     uint64_t    max_bytes;
 } MeshErr;
@@ -174,13 +175,6 @@ static inline const char *mf_limit(const MeshFile *f, const char *end)
     return f && f->map && f->data + f->populated < end ? f->data + f->populated : end;
 }
 
-/* What memory this process can still take: MemAvailable (or sysinfo's
- * free and buffer memory), and less when a cgroup limit says so. 0 when
- * nothing can tell. */
-uint64_t mesh_mem_available(void);
-
-/* A byte count for messages: "9.1 GB", "350 MB", "12 KB". */
-void mesh_bytes_str(uint64_t bytes, char *buf, size_t n);
 /* A count with thousands separators: "180,000,000". */
 void mesh_count_str(uint64_t n, char *buf, size_t len);
 

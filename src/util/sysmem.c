@@ -6,27 +6,59 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/sysinfo.h>
 
 #include "sysmem.h"
 
-/* MemAvailable from /proc/meminfo in bytes, UINT64_MAX when unreadable
- * (not Linux, /proc not mounted). */
+/* MemAvailable from /proc/meminfo in bytes; else sysinfo's free and
+ * buffer memory (kernels before 3.14, /proc not mounted); UINT64_MAX
+ * when neither tells. */
 static uint64_t meminfo_available(void)
 {
     FILE *f = fopen("/proc/meminfo", "re");
-    if (!f)
-        return UINT64_MAX;
-    char line[256];
     uint64_t kb = UINT64_MAX;
-    while (fgets(line, sizeof line, f)) {
-        unsigned long long v;
-        if (sscanf(line, "MemAvailable: %llu kB", &v) == 1) {
-            kb = v;
-            break;
+    if (f) {
+        char line[256];
+        while (fgets(line, sizeof line, f)) {
+            unsigned long long v;
+            if (sscanf(line, "MemAvailable: %llu kB", &v) == 1) {
+                kb = v;
+                break;
+            }
         }
+        fclose(f);
     }
+    if (kb != UINT64_MAX)
+        return kb * 1024;
+    struct sysinfo si;
+    if (sysinfo(&si) == 0 && si.freeram)
+        return ((uint64_t)si.freeram + si.bufferram) * si.mem_unit;
+    return UINT64_MAX;
+}
+
+/* One number from a small file (a cgroup's); -1 when absent or "max". */
+static int read_number(const char *path, uint64_t *out)
+{
+    FILE *f = fopen(path, "re");
+    if (!f)
+        return -1;
+    unsigned long long v;
+    int ok = fscanf(f, "%llu", &v) == 1;
     fclose(f);
-    return kb == UINT64_MAX ? UINT64_MAX : kb * 1024;
+    if (!ok)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+/* What a cgroup v2 memory limit leaves (a container's limit can be far
+ * below the machine's memory); UINT64_MAX when there is none. */
+static uint64_t cgroup_left(void)
+{
+    uint64_t lim, cur;
+    if (read_number("/sys/fs/cgroup/memory.max", &lim) || read_number("/sys/fs/cgroup/memory.current", &cur))
+        return UINT64_MAX;
+    return lim > cur ? lim - cur : 0;
 }
 
 static uint64_t min_u64(uint64_t a, uint64_t b) { return a < b ? a : b; }
@@ -40,7 +72,7 @@ uint64_t sysmem_available(void)
         if (!*end)
             return v;
     }
-    uint64_t avail = meminfo_available();
+    uint64_t avail = min_u64(meminfo_available(), cgroup_left());
     /* an address-space or data limit (ulimit -v, a container's setting)
      * ends allocation before the machine's memory does; what is already
      * mapped counts against it, so this is an upper bound */
