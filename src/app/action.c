@@ -469,7 +469,7 @@ static const HelpEntry help_keys[] = {
     { "P", "snapshot: PNG and text" },
     { "D", "sketch: draw polygons" },
     { "Ctrl-L", "redraw" },
-    { "q Esc", "quit (Esc: cancel a load first)" },
+    { "q Esc", "quit (Esc: stop a load)" },
     { "left drag", "turn" },
     { "right drag", "move" },
 };
