@@ -219,9 +219,12 @@ static int out_pump(void)
     return 0;
 }
 
-/* Forget what waits (leaving, or a full repaint follows). */
+/* Forget what waits (leaving, or a full repaint follows). A status
+ * request still in it was never sent whole: no answer is waited for. */
 static void out_drop(void)
 {
+    if (out_pending())
+        T.ack_wait = 0;
     T.ob_off = T.ob_len = 0;
 }
 
@@ -676,7 +679,10 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     T.ack_wait = T.acks_seen = T.unanswered = 0;
     T.pace_ms = PACE_MIN_MS;
     T.mouse_on = 0;
-    if (cfg->mouse) {
+    /* as curses decides: a description with a mouse key (kmous) is of a
+     * terminal that reports the xterm way */
+    const char *kmous = tigetstr("kmous");
+    if (cfg->mouse && kmous && kmous != (const char *)-1 && *kmous) {
         fflush(out);            /* after curses' own modes */
         send_cap(MOUSE_ON);
         T.mouse_on = 1;
@@ -923,8 +929,9 @@ static int parsed(TermEvent *ev)
     return 1;
 }
 
-/* Read what the input has (poll said so) into the parser. */
-static void read_input(void)
+/* Read what the input has (poll said so, with these revents) into the
+ * parser. */
+static void read_input(short revents)
 {
     unsigned char buf[512];
     size_t room = sizeof T.kp.b - T.kp.len;
@@ -939,8 +946,11 @@ static void read_input(void)
             kp_quiet(&T.kp);
         kp_push(&T.kp, buf, (size_t)r);
         T.last_in_ms = now;
-    } else if (r == 0 || (errno != EINTR && errno != EAGAIN && errno != EWOULDBLOCK)) {
-        T.in_ended = 1;         /* end of file, or a hung-up terminal (EIO) */
+    } else if (r == 0 || (errno != EINTR && errno != EAGAIN && errno != EWOULDBLOCK) ||
+               (revents & (POLLERR | POLLNVAL))) {
+        /* end of file, a hung-up terminal (EIO), or an input in error
+         * that has nothing to read: polling it again would spin */
+        T.in_ended = 1;
     }
 }
 
@@ -990,7 +1000,7 @@ static int wait_io(int ms)
             return 1;
     }
     if (pf[0].revents)
-        read_input();
+        read_input(pf[0].revents);
     return 0;
 }
 
