@@ -127,11 +127,15 @@ Test(keys, a_lone_esc_is_esc_once_the_input_is_quiet)
     EXPECT_KEYS("Esc, then q later", "\033", TK_ESC);
 }
 
-Test(keys, esc_and_a_character_is_alt_and_means_nothing)
+/* Esc typed just before a key arrives with it (tmux joins the two when
+ * they come within its escape-time): both are read, as curses did. */
+Test(keys, esc_and_a_character_are_esc_then_the_key)
 {
-    EXPECT_NONE("Alt-q", "\033q");
-    EXPECT_KEYS("Alt-q then q", "\033qq", 'q');
-    EXPECT_NONE("Alt-Up as rxvt sends it", "\033\033[A");
+    EXPECT_KEYS("Esc q", "\033q", TK_ESC, 'q');
+    EXPECT_KEYS("Esc X (not a string start)", "\033Xj", TK_ESC, 'X', 'j');
+    EXPECT_KEYS("Esc Return", "\033\r", TK_ESC, TK_ENTER);
+    EXPECT_KEYS("Esc and a UTF-8 character", "\033\xc3\xa9", TK_ESC, 0xe9);
+    EXPECT_NONE("Alt-Up as rxvt sends it: a sequence, dropped whole", "\033\033[A");
     EXPECT_NONE("Alt-Home as rxvt sends it", "\033\033[7~");
 }
 

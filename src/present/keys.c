@@ -7,9 +7,10 @@
  *
  * Anything else a terminal may send is dropped whole: focus events,
  * reports nobody asked for, keys without a meaning here, strings (OSC,
- * DCS, APC, PM, SOS), and the content of a bracketed paste. Reading such
- * a sequence as its Esc followed by text would quit the viewer (Esc) and
- * then act on the text as keys.
+ * DCS), and the content of a bracketed paste. Reading such a sequence as
+ * its Esc followed by text would quit the viewer (Esc) and then act on
+ * the text as keys. ESC and a plain character is no such sequence: it is
+ * Esc typed just before the key (or the key with Alt), read as both.
  *
  * The grammar is ECMA-48's: CSI is ESC [, then parameter bytes 0x30-0x3f,
  * intermediate bytes 0x20-0x2f and one final byte 0x40-0x7e; SS3 is ESC O
@@ -346,8 +347,11 @@ static int escape(KeyParser *p, TermEvent *ev, size_t *used)
         return csi(p, 2, ev, used);
     case 'O':
         return ss3(p, 2, ev, used);
-    case ']': case 'P': case '_': case '^': case 'X':
-        p->string = 1;          /* OSC, DCS, APC, PM, SOS: dropped to their end */
+    case ']': case 'P':
+        /* OSC and DCS, the strings a terminal answers queries with (a
+         * colour, a capability): dropped to their end. APC, PM and SOS
+         * never come unasked; ESC and _ ^ X are read as Esc and a key. */
+        p->string = 1;
         *used = 2;
         return R_DROP;
     case ESC:
@@ -362,11 +366,13 @@ static int escape(KeyParser *p, TermEvent *ev, size_t *used)
         *used = 1;
         return key(ev, TK_ESC);
     default:
-        /* ESC and a character: the character with Alt (or Meta), which
-         * means nothing here. An ESC before a non-ASCII character only
-         * is dropped: the character is still read. */
-        *used = b[1] < 0x80 ? 2 : 1;
-        return R_DROP;
+        /* ESC and a character: no sequence a terminal sends but Alt (or
+         * Meta) with the key, and what Esc typed just before the key
+         * looks like when both arrive together (tmux joins them when
+         * they come within its escape-time, 500 ms by default): read as
+         * Esc, then the key, as curses did */
+        *used = 1;
+        return key(ev, TK_ESC);
     }
 }
 
