@@ -219,3 +219,42 @@ Test(term, a_waiting_frame_goes_out_while_keys_are_read, .timeout = 60)
     pty_close(&p);
     free(cells);
 }
+
+/* Quitting right after a frame: the terminal's answer to the status
+ * request that followed it is read, not left for the shell to show as
+ * "^[[0n" on its command line. */
+Test(term, the_last_answer_is_not_left_for_the_shell, .timeout = 30)
+{
+    Pty p;
+    pty_open(&p, 40, 10, 0);
+    Cell cells[40 * 9];
+    for (int i = 0; i < 40 * 9; i++)
+        cells[i] = (Cell){ .ch = 'a' + i % 26 };
+    CellGrid g = { .cols = 40, .rows = 9, .cells = cells, .cap = 40 * 9 };
+    static char buf[1 << 16];
+    term_draw_cells(&g, 0);
+    cr_assert_eq(term_update(0), 0);
+    drain(p.m, buf, sizeof buf);
+    cr_assert_eq(write(p.m, "\033[0n", 4), 4);      /* a terminal that answers */
+    TermEvent ev;
+    cr_assert_eq(term_read(&ev, 2000), 1);
+    cr_assert_eq(ev.type, TE_READY);
+    cells[0].ch = 'Z';
+    term_draw_cells(&g, 0);
+    cr_assert_eq(term_update(0), 0);
+    size_t n = drain(p.m, buf, sizeof buf);
+    cr_assert(has(buf, n, "\033[5n"), "a status request follows the frame");
+    cr_assert_eq(write(p.m, "\033[0n", 4), 4);      /* its answer, not read before the quit */
+    term_restore();
+    /* the shell's canonical mode counts only whole lines as readable */
+    struct termios t;
+    cr_assert_eq(tcgetattr(p.s, &t), 0);
+    t.c_lflag &= ~(tcflag_t)ICANON;
+    cr_assert_eq(tcsetattr(p.s, TCSANOW, &t), 0);
+    int left = -1;
+    cr_assert_eq(ioctl(p.s, FIONREAD, &left), 0);
+    cr_expect_eq(left, 0, "%d bytes of the answer left for the shell", left);
+    fclose(p.out);
+    fclose(p.in);
+    close(p.m);
+}

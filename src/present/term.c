@@ -62,6 +62,7 @@ extern int tputs(const char *str, int affcnt, int (*putc)(int));
  * handled every byte before it, which is how we know a frame arrived. */
 #define STATUS_ASK "\033[5n"
 #define ACK_GIVE_UP 8           /* unanswered requests before we stop asking */
+#define LAST_ANSWER_MS 250      /* on quit, the wait for the answer still to come */
 #define PACE_MIN_MS 4           /* first wait for a busy line; doubles up to */
 #define PACE_MAX_MS 100
 
@@ -277,12 +278,15 @@ static void close_wake(void)
     }
 }
 
+static void take_last_answer(void);
+
 void term_restore(void)
 {
     if (!term_on)
         return;
     term_on = 0;
     drop_queued_output();
+    take_last_answer();
     if (T.mouse_on)
         send_cap(MOUSE_OFF);
     blank_terminal();
@@ -1002,6 +1006,29 @@ static int wait_io(int ms)
     if (pf[0].revents)
         read_input(pf[0].revents);
     return 0;
+}
+
+/* Leaving with a status request answered by a terminal that answers:
+ * its answer, left unread, would be typed into the shell ("^[[0n"). It
+ * is read here, waiting a moment for it (keys typed meanwhile were for
+ * the viewer, which is leaving). */
+static void take_last_answer(void)
+{
+    if (!T.ack_wait || !T.acks_seen || T.in_ended)
+        return;
+    double until = mono_ms() + LAST_ANSWER_MS;
+    TermEvent ev;
+    while (T.ack_wait && !T.in_ended) {
+        while (T.ack_wait && parsed(&ev)) {
+        }
+        double left = until - mono_ms();
+        if (!T.ack_wait || left <= 0)
+            break;
+        struct pollfd pf = { .fd = T.in_fd, .events = POLLIN };
+        if (poll(&pf, 1, (int)ceil(left)) <= 0)
+            break;
+        read_input(pf.revents);
+    }
 }
 
 int term_read(TermEvent *ev, int timeout_ms)
