@@ -26,7 +26,10 @@ enum {
     TK_DEL,             /* Delete */
     TK_HOME,
     TK_END,
-    TK_LAST = TK_END,
+    TK_INS,             /* Insert */
+    TK_PGUP,            /* Page Up */
+    TK_PGDN,            /* Page Down */
+    TK_LAST = TK_PGDN,
 };
 
 typedef enum {
@@ -34,7 +37,8 @@ typedef enum {
     TE_RESIZE,          /* the window changed size */
     TE_DRAG,            /* button 1 (left) or 3 (right) held, moved dx, dy cells */
     TE_WHEEL,           /* dy = -1 up (away from the user), +1 down */
-    TE_READY,           /* the terminal has taken the last frame: the next may go */
+    TE_READY,           /* the terminal has taken the last frame: the next may go
+                           (from the key parser: the answer to a status request) */
     TE_CLICK,           /* button 1 (left) or 3 (right) pressed on cell x, y (a drag may follow) */
 } TermEventType;
 
@@ -106,6 +110,41 @@ int  term_pace_ms(void);
  * hung-up terminal, a file at its end): no key will ever come, and
  * waiting again would return at once. */
 int  term_read(TermEvent *ev, int timeout_ms);
+
+/* ==== The key parser (keys.c) ====
+ * The terminal's input bytes -> TermEvents (keys, mouse, the answer to a
+ * status request); every sequence it does not know is dropped whole. No
+ * I/O: term.c pushes what it reads and says how long the input has been
+ * quiet, which is how a lone Esc is told from the start of a sequence. */
+
+#define KP_ESC_MS  25           /* an unfinished sequence this long quiet is decided: a lone ESC is Esc */
+#define KP_IDLE_MS 1000         /* a paste or string still open after this much quiet has ended */
+
+typedef struct {
+    unsigned char b[1024];      /* bytes pushed, not yet parsed */
+    size_t   len;
+    int      utf8;              /* decode UTF-8; else a byte is its own code point */
+    int      paste;             /* inside a bracketed paste: dropped to its end */
+    int      string;            /* inside an OSC/DCS/APC/PM/SOS string: dropped to its end */
+    int      skip;              /* inside an overlong CSI sequence: dropped to its final byte */
+    int      drag_button;       /* the mouse button held (1 left, 3 right), 0 none */
+    int      drag_x, drag_y;    /* the cell the drag reached */
+} KeyParser;
+
+void   kp_init(KeyParser *p, int utf8);
+/* Append input; returns how many bytes fit (the rest must wait). */
+size_t kp_push(KeyParser *p, const void *bytes, size_t n);
+/* The next event in what was pushed: 1 with *ev, or 0 when nothing is
+ * complete. quiet_ms: how long the input has been quiet (0 when bytes
+ * just came); an unfinished sequence is decided once it reaches
+ * kp_wait_ms(). */
+int    kp_next(KeyParser *p, TermEvent *ev, double quiet_ms);
+/* The quiet after which kp_next decides what is left (ms), -1 when it
+ * waits for nothing. */
+int    kp_wait_ms(const KeyParser *p);
+/* The input was quiet for KP_IDLE_MS before new bytes: a paste or
+ * string still open has lost its end, and what comes now is keys. */
+void   kp_quiet(KeyParser *p);
 
 /* ==== The screen model (vt.c) ====
  * What the terminal should show (want) and what it shows (shown), cell

@@ -1,11 +1,19 @@
 /* Tests of the viewer's logic without a terminal: the keys' effects on
- * the view, the command line shown for a view, and the frame-file
- * patterns of --turntable. */
+ * the view, the command line shown for a view, the frame-file patterns
+ * of --turntable, and loads in the background (O) that wait or are
+ * refused. */
 
+#define _DEFAULT_SOURCE          /* mkdtemp */
 #include <criterion/criterion.h>
+#include <errno.h>
+#include <fcntl.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "../src/app/viewer.h"
 #include "tty.h"
@@ -154,4 +162,127 @@ Test(viewer, frame_patterns)
     cr_expect_eq(frame_pattern_check("%n.png"), -1);
     cr_expect_eq(frame_pattern_check("%1$d.png"), -1);
     cr_expect_eq(frame_pattern_check("end%"), -1);
+}
+
+/* ==== Loads in the background ==== */
+
+/* A FIFO in a fresh folder; *dir_out to remove after. */
+static void make_fifo(char *dir_out, size_t dlen, char *fifo_out, size_t flen)
+{
+    snprintf(dir_out, dlen, "/tmp/zv-fifo-XXXXXX");
+    cr_assert_not_null(mkdtemp(dir_out));
+    snprintf(fifo_out, flen, "%s/pipe.obj", dir_out);
+    cr_assert_eq(mkfifo(fifo_out, 0600), 0);
+}
+
+/* The FIFO has a reader: a writer's non-blocking open succeeds (ENXIO
+ * when nobody reads it). Waits up to 2 s for `want`. */
+static int fifo_read_by_someone(const char *fifo, int want)
+{
+    for (int k = 0; k < 200; k++) {
+        int fd = open(fifo, O_WRONLY | O_NONBLOCK);
+        int has = fd >= 0;
+        if (fd >= 0)
+            close(fd);
+        if (has == want)
+            return has;
+        struct timespec ts = { 0, 10 * 1000 * 1000 };
+        nanosleep(&ts, NULL);
+    }
+    return !want;
+}
+
+Test(viewer, esc_cancels_a_load_waiting_on_a_fifo_then_quits)
+{
+    char dir[64], fifo[128], err[256];
+    make_fifo(dir, sizeof dir, fifo, sizeof fifo);
+    app.job = loadjob_start(fifo, &opt, err, sizeof err);
+    cr_assert_not_null(app.job, "%s", err);
+    cr_expect(fifo_read_by_someone(fifo, 1), "the load waits on the FIFO (not in open)");
+    cr_expect(!loadjob_done(app.job), "no writer: still waiting");
+    char st[128];
+    loadjob_status(app.job, st, sizeof st);
+    cr_expect(strstr(st, "waiting for a writer to pipe.obj"), "status: %s", st);
+    cr_expect(strstr(st, "Esc cancels"), "status: %s", st);
+    Reaction r = app_key(&app, TK_ESC);
+    cr_expect_eq(r & RE_QUIT, 0, "Esc with a load going cancels it, it does not quit");
+    cr_expect_null(app.job);
+    cr_expect(strstr(app.note, "cancelled loading pipe.obj"), "note: %s", app.note);
+    cr_expect(!fifo_read_by_someone(fifo, 0), "the cancelled load let go of the FIFO");
+    cr_expect_neq(app_key(&app, TK_ESC) & RE_QUIT, 0, "Esc again quits");
+    unlink(fifo);
+    rmdir(dir);
+}
+
+Test(viewer, a_fifo_loads_once_its_writer_comes, .timeout = 30)
+{
+    char dir[64], fifo[128], err[256];
+    make_fifo(dir, sizeof dir, fifo, sizeof fifo);
+    LoadJob *j = loadjob_start(fifo, &opt, err, sizeof err);
+    cr_assert_not_null(j, "%s", err);
+    int fd = open(fifo, O_WRONLY);     /* waits for the job's reader */
+    cr_assert(fd >= 0);
+    static const char obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+    cr_assert_eq(write(fd, obj, sizeof obj - 1), (ssize_t)(sizeof obj - 1));
+    close(fd);
+    for (int k = 0; k < 500 && !loadjob_done(j); k++) {
+        struct timespec ts = { 0, 10 * 1000 * 1000 };
+        nanosleep(&ts, NULL);
+    }
+    cr_assert(loadjob_done(j), "the load ends with its writer");
+    Scene part;
+    cr_assert_eq(loadjob_finish(j, &part, err, sizeof err), 0, "%s", err);
+    cr_expect_eq(part.nfaces, 2);
+    scene_free(&part);
+    unlink(fifo);
+    rmdir(dir);
+}
+
+Test(viewer, devices_and_standard_input_are_refused_at_once)
+{
+    char err[256];
+    static const char *const devs[] = { "/dev/urandom", "/dev/zero", "/dev/null" };
+    for (int i = 0; i < 3; i++) {
+        err[0] = 0;
+        LoadJob *j = loadjob_start(devs[i], &opt, err, sizeof err);
+        cr_expect_null(j, "%s is loaded", devs[i]);
+        if (j)
+            loadjob_abandon(j);
+        cr_expect(strstr(err, "not a file (a character device)"), "%s: %s", devs[i], err);
+    }
+    err[0] = 0;
+    cr_expect_null(loadjob_start("-", &opt, err, sizeof err));
+    cr_expect(strstr(err, "standard input"), "-: %s", err);
+}
+
+/* ==== The help overlay's scrolling ==== */
+
+Test(viewer, page_keys_home_and_end_scroll_a_help_that_does_not_fit)
+{
+    const char *lines[HELP_LINES_MAX];
+    app_key(&app, '?');
+    cr_assert(app.help);
+    app_help_layout(&app, 40, 12, lines);       /* a small window: the help does not fit */
+    cr_assert_gt(app.help_hidden, 0);
+    cr_assert_gt(app.help_page, 2);
+    cr_expect_eq(app_key(&app, TK_PGDN), RE_DRAW);
+    cr_expect_eq(app.help_top, app.help_page - 1, "a page down, one row kept");
+    app_key(&app, TK_END);
+    cr_expect_eq(app.help_top, app.help_hidden, "End: the last rows");
+    app_key(&app, TK_PGDN);
+    cr_expect_eq(app.help_top, app.help_hidden, "no further than the end");
+    app_key(&app, TK_PGUP);
+    cr_expect_eq(app.help_top, app.help_hidden - (app.help_page - 1));
+    app_key(&app, TK_HOME);
+    cr_expect_eq(app.help_top, 0, "Home: the first rows");
+    cr_expect(app.help, "the scroll keys keep the help open");
+    app_key(&app, TK_INS);
+    cr_expect(!app.help, "another key closes it");
+}
+
+Test(viewer, the_editing_keys_do_not_quit)
+{
+    static const int keys[] = { TK_HOME, TK_END, TK_INS, TK_PGUP, TK_PGDN };
+    for (int i = 0; i < 5; i++)
+        cr_expect_eq(app_key(&app, keys[i]) & RE_QUIT, 0, "key %d", i);
 }

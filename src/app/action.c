@@ -341,6 +341,13 @@ static Reaction act_quit(App *a)
     return RE_QUIT;
 }
 
+/* Esc quits, unless a file is loading: then it cancels that first (a
+ * load stuck on a FIFO nobody writes to, or one that is too slow). */
+static Reaction act_escape(App *a)
+{
+    return a->job ? app_cancel_load(a) : RE_QUIT;
+}
+
 /* ==== Entry points ==== */
 
 #define K_SPECIAL 128   /* table index of TK_UP; the other specials follow */
@@ -350,17 +357,21 @@ typedef Reaction (*Action)(App *a);
 static const Action keys[K_COUNT];
 
 /* A key while the help is shown: it scrolls the help when the help does
- * not fit, else it closes the help and does nothing more (a `q` that
- * closes the help does not also quit). */
+ * not fit (Up/Down a row, Page Up/Down a page, Home/End to either end),
+ * else it closes the help and does nothing more (a `q` that closes the
+ * help does not also quit). */
 static Reaction help_key(App *a, int key)
 {
-    if (a->help_hidden > 0 && (key == TK_UP || key == 'k')) {
-        if (a->help_top > 0)
-            a->help_top--;
-        return RE_DRAW;
-    }
-    if (a->help_hidden > 0 && (key == TK_DOWN || key == 'j')) {
-        a->help_top++;      /* clamped by the next layout */
+    int page = a->help_page > 1 ? a->help_page - 1 : 1;     /* a row of the last page stays */
+    int by = key == TK_UP || key == 'k' ? -1 : key == TK_DOWN || key == 'j' ? 1
+           : key == TK_PGUP ? -page : key == TK_PGDN ? page
+           : key == TK_HOME ? -a->help_hidden : key == TK_END ? a->help_hidden : 0;
+    if (a->help_hidden > 0 && by) {
+        a->help_top += by;
+        if (a->help_top < 0)
+            a->help_top = 0;
+        if (a->help_top > a->help_hidden)
+            a->help_top = a->help_hidden;
         return RE_DRAW;
     }
     a->help = 0;
@@ -458,7 +469,7 @@ static const HelpEntry help_keys[] = {
     { "P", "snapshot: PNG and text" },
     { "D", "sketch: draw polygons" },
     { "Ctrl-L", "redraw" },
-    { "q Esc", "quit" },
+    { "q Esc", "quit (Esc: stop a load)" },
     { "left drag", "turn" },
     { "right drag", "move" },
 };
@@ -516,6 +527,7 @@ int app_help_layout(App *a, int cols, int rows, const char **lines)
     }
     int shown = nrows < avail ? nrows : avail > 0 ? avail : 0;
     a->help_hidden = nrows - shown;
+    a->help_page = shown;
     if (a->help_top > a->help_hidden)
         a->help_top = a->help_hidden;
     if (a->help_top < 0)
@@ -582,5 +594,5 @@ static const Action keys[K_COUNT] = {
     ['i'] = act_info,
     ['?'] = act_help,
     [TK_CTRL_L] = act_redraw,
-    ['q'] = act_quit,        [TK_ESC] = act_quit,
+    ['q'] = act_quit,        [TK_ESC] = act_escape,
 };

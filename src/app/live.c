@@ -175,7 +175,7 @@ static int relayout(App *a, char *err, size_t errlen)
 Reaction app_open_prompt(App *a)
 {
     if (a->job) {
-        app_note(a, "still loading %s", base_name(loadjob_path(a->job)));
+        app_note(a, "still loading %s (Esc cancels)", base_name(loadjob_path(a->job)));
         return RE_DRAW;
     }
     a->prompting = 1;
@@ -203,6 +203,16 @@ Reaction app_prompt_key(App *a, int key)
     a->job = loadjob_start(path, a->opt, err, sizeof err);
     if (!a->job)
         app_note(a, "%s: %s", base_name(path), err);
+    return RE_DRAW;
+}
+
+Reaction app_cancel_load(App *a)
+{
+    if (!a->job)
+        return RE_NONE;
+    app_note(a, "cancelled loading %s", base_name(loadjob_path(a->job)));
+    loadjob_abandon(a->job);    /* the thread ends alone; the scene is as it was */
+    a->job = NULL;
     return RE_DRAW;
 }
 

@@ -48,7 +48,9 @@ int      loadjob_done(LoadJob *j);          /* the thread has finished */
 /* Join the thread; 0 with the file's scene part in *part_out (the
  * caller owns it), or -1 with the loader's message. Frees the job. */
 int      loadjob_finish(LoadJob *j, Scene *part_out, char *err, size_t errlen);
-/* The viewer quits mid-load: the thread finishes alone and frees the job. */
+/* Esc, or the viewer quits mid-load: the thread finishes alone (at once
+ * when it waits for a FIFO's writer, else after the step it is in) and
+ * frees the job. */
 void     loadjob_abandon(LoadJob *j);
 const char *loadjob_path(const LoadJob *j);
 /* "loading dragon.obj 42%", or a spinner, the seconds and the size when
@@ -71,6 +73,7 @@ typedef struct App {
     int         help;       /* help overlay shown */
     int         help_top;   /* first help row shown (scrolled) */
     int         help_hidden; /* help rows that did not fit the window (0: all shown) */
+    int         help_page;  /* help rows shown: what Page Up/Down scroll by */
     int         cmd;        /* the view's command line shown (any key closes it) */
     int         pic_cols, pic_rows; /* --size: the picture's cells (0 = the window's) */
     char        name[96];   /* file name(s) for the status line */
@@ -143,6 +146,7 @@ extern const int sketch_help_n;
 Reaction app_open_prompt(App *a);           /* O: ask for a file */
 Reaction app_prompt_key(App *a, int key);   /* a key while the prompt is up */
 Reaction app_load_poll(App *a);             /* a background load finished? join its part */
+Reaction app_cancel_load(App *a);           /* Esc while loading: drop the load, note it */
 Reaction app_remove_selected(App *a);       /* X, Delete */
 Reaction app_clear_scene(App *a);           /* E */
 /* The files of the command line copied so that they can change; the

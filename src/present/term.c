@@ -1,9 +1,19 @@
 /* term: the viewer's screen. The only file that includes curses, which
  * here drives the terminal's modes (the alternate screen, keypad, the
- * mouse, the tty settings) and decodes its input; every byte of the
- * screen itself comes from the screen model (vt.c), which knows what the
- * terminal shows and sends only what changed. So colours are SGR
- * escapes of our own: 24-bit whenever COLORTERM or --color asks for it
+ * tty settings) and nothing else. Every byte of the screen comes from
+ * the screen model (vt.c), which knows what the terminal shows and sends
+ * only what changed; every byte of input goes through our key parser
+ * (keys.c), which knows every form of the keys terminals send and drops
+ * what it does not know whole (curses read an unknown sequence as Esc,
+ * which quits, followed by keys).
+ *
+ * A frame never blocks the keys: it is written only as fast as the
+ * terminal takes it, the rest kept here and sent while waiting for
+ * input, so that on a slow link q still quits at once; no frame is sent
+ * while the last one is still on its way (the viewer draws the newest
+ * state when the line is free).
+ *
+ * Colours are SGR escapes of our own: 24-bit whenever COLORTERM or --color asks for it
  * (no *-direct terminfo entry needed), and under 256/16/8 colours the
  * very palette numbers --print writes (the same quantizer, dithered by
  * position), so the screen equals --print.
@@ -18,6 +28,9 @@
 
 #include <curses.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <langinfo.h>
+#include <math.h>
 #include <poll.h>
 #include <signal.h>
 #include <stdint.h>
@@ -27,7 +40,6 @@
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
-#include <wchar.h>
 
 #include "tty.h"
 
@@ -39,20 +51,20 @@ extern struct term *set_curterm(struct term *t);
 extern int del_curterm(struct term *t);
 extern int tputs(const char *str, int affcnt, int (*putc)(int));
 
-#define DRAG_ON  "\033[?1002h"
-#define DRAG_OFF "\033[?1002l"
+/* The mouse: presses, releases and motion while a button is held (1002),
+ * reported in the SGR form (1006), which has no limit on the column; a
+ * terminal without SGR sends the X10 form, which the parser reads too.
+ * Set by us, not by curses: its resume from Ctrl-Z would set its own
+ * click-only mode (1000) over ours. */
+#define MOUSE_ON  "\033[?1002h\033[?1006h"
+#define MOUSE_OFF "\033[?1006l\033[?1002l\033[?1000l"
 /* Device status request: the terminal answers "\e[0n" once it has
  * handled every byte before it, which is how we know a frame arrived. */
 #define STATUS_ASK "\033[5n"
-#define KEY_STATUS_OK  0x7100   /* our key codes for the answers (above ncurses' own) */
-#define KEY_STATUS_BAD 0x7101
 #define ACK_GIVE_UP 8           /* unanswered requests before we stop asking */
+#define LAST_ANSWER_MS 250      /* on quit, the wait for the answer still to come */
 #define PACE_MIN_MS 4           /* first wait for a busy line; doubles up to */
 #define PACE_MAX_MS 100
-
-/* Mouse reports that arrive together come out of ncurses as one KEY_MOUSE
- * with several queued events: they are drained into a small queue. */
-#define MQ_MAX 16
 
 /* ==== State ====
  * One terminal per process: curses has one too. The signal handlers
@@ -61,11 +73,23 @@ static struct {
     SCREEN     *scr;
     FILE       *out;
     int         out_fd, in_fd;
-    WINDOW     *pad;            /* keys are read through a pad: it never refreshes */
+    int         out_flags;      /* the output's file status flags (-1 unknown): O_NONBLOCK
+                                   is added only around our own writes, see write_now */
+    WINDOW     *pad;            /* sets the keypad mode; never refreshed */
     int         mouse_on, signals_on, atexit_done;
+    int         cols, rows;     /* the window */
     ColorDepth  depth;
     Quantizer   quant;
     Vt          vt;
+    /* output the terminal has not taken yet: ob[ob_off, ob_len) */
+    char       *ob;
+    size_t      ob_off, ob_len, ob_cap;
+    int         out_errno;      /* a write failed (sticky): the next update says so */
+    /* input */
+    KeyParser   kp;
+    double      last_in_ms;     /* when bytes last came: the parser's quiet */
+    int         in_ended;       /* the input is at its end (a hung-up terminal) */
+    int         wake[2];        /* a pipe the signal handlers write to, waking the reader */
     /* pacing: the answer to the last status request */
     int         ask;            /* requests are sent (the output is a terminal) */
     int         ack_wait;       /* a request is outstanding */
@@ -73,21 +97,18 @@ static struct {
     int         unanswered;
     double      ack_sent_ms;
     int         pace_ms;
-    /* mouse */
-    int         drag_button, drag_x, drag_y;
-    TermEvent   mq[MQ_MAX];
-    int         mq_head, mq_len;
-    struct sigaction old_int, old_term, old_hup, old_tstp;
+    struct sigaction old_int, old_term, old_hup, old_tstp, old_winch;
     /* crashes: bytes prepared at open */
     char        crash_reset[256];
     size_t      crash_reset_len;
     struct termios crash_tios;
     int         crash_fd, crash_tios_ok;
     struct sigaction old_crash[5];
-} T = { .out_fd = -1, .in_fd = -1, .crash_fd = -1 };
+} T = { .out_fd = -1, .in_fd = -1, .out_flags = -1, .crash_fd = -1, .wake = { -1, -1 } };
 
 static volatile sig_atomic_t term_on;
 static volatile sig_atomic_t repaint;   /* back from Ctrl-Z: paint everything */
+static volatile sig_atomic_t resized;     /* the window changed size */
 
 static const int crash_sigs[5] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT };
 
@@ -123,6 +144,91 @@ static int send_all(const char *p, size_t n)
     return 0;
 }
 
+/* One write that never waits: O_NONBLOCK on the output only for the
+ * call. The flag belongs to the open file description, which the shell
+ * shares (and often standard input with it): left set, the shell's reads
+ * would fail. Our signal handlers put the flags back should one come in
+ * between. Returns what write(2) does. */
+static ssize_t write_now(const char *p, size_t n)
+{
+    if (T.out_flags < 0 || (T.out_flags & O_NONBLOCK))
+        return write(T.out_fd, p, n);
+    if (fcntl(T.out_fd, F_SETFL, T.out_flags | O_NONBLOCK) != 0)
+        return write(T.out_fd, p, n);
+    ssize_t w = write(T.out_fd, p, n);
+    int e = errno;
+    fcntl(T.out_fd, F_SETFL, T.out_flags);
+    errno = e;
+    return w;
+}
+
+/* Signal handlers: the output's flags as they were (async-signal-safe). */
+static void flags_back(void)
+{
+    if (T.out_flags >= 0 && T.out_fd >= 0)
+        fcntl(T.out_fd, F_SETFL, T.out_flags);
+}
+
+static int out_pending(void)
+{
+    return T.ob_off < T.ob_len;
+}
+
+/* Queue bytes behind what waits. Returns 0, or -1 out of memory. */
+static int out_add(const char *p, size_t n)
+{
+    if (T.ob_len + n > T.ob_cap) {
+        size_t cap = T.ob_cap ? T.ob_cap : 4096;
+        while (cap < T.ob_len + n)
+            cap *= 2;
+        char *b = realloc(T.ob, cap);
+        if (!b)
+            return -1;
+        T.ob = b;
+        T.ob_cap = cap;
+    }
+    memcpy(T.ob + T.ob_len, p, n);
+    T.ob_len += n;
+    return 0;
+}
+
+/* Write what waits, as much as the terminal takes now. Returns 0 (done
+ * or the line full), or -1 with errno when the terminal cannot be
+ * written. */
+static int out_pump(void)
+{
+    while (out_pending()) {
+        ssize_t w = write_now(T.ob + T.ob_off, T.ob_len - T.ob_off);
+        if (w > 0) {
+            T.ob_off += (size_t)w;
+        } else if (w < 0 && errno == EINTR) {
+            continue;
+        } else if (w < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+            return 0;
+        } else {
+            if (w == 0)
+                errno = EIO;
+            return -1;
+        }
+    }
+    if (T.ob_len) {
+        T.ob_off = T.ob_len = 0;
+        /* the status request went last: its answer is timed from now */
+        if (T.ack_wait)
+            T.ack_sent_ms = mono_ms();
+    }
+    return 0;
+}
+
+/* Forget what waits (leaving, or a full repaint follows). A status
+ * request still in it was never sent whole: no answer is waited for. */
+static void out_drop(void)
+{
+    if (out_pending())
+        T.ack_wait = 0;
+    T.ob_off = T.ob_len = 0;
+}
+
 /* One byte to the terminal, now (for tputs). */
 static int send_byte(int c)
 {
@@ -151,22 +257,53 @@ static void blank_terminal(void)
     send_cap(tigetstr("clear"));
 }
 
+/* Frames still queued for a slow link would hold the reset up (and
+ * the user's shell) for as long as they take to drain: they are
+ * discarded, here and in the kernel, before the terminal is put back.
+ * A sequence cut short is ended by the ESC that starts the reset. */
+static void drop_queued_output(void)
+{
+    out_drop();
+    if (T.out_fd >= 0 && isatty(T.out_fd))
+        tcflush(T.out_fd, TCOFLUSH);
+}
+
+static void close_wake(void)
+{
+    for (int i = 0; i < 2; i++) {
+        int fd = T.wake[i];
+        T.wake[i] = -1;
+        if (fd >= 0)
+            close(fd);
+    }
+}
+
+static void take_last_answer(void);
+
 void term_restore(void)
 {
     if (!term_on)
         return;
     term_on = 0;
+    drop_queued_output();
+    take_last_answer();
     if (T.mouse_on)
-        send_cap(DRAG_OFF);
+        send_cap(MOUSE_OFF);
     blank_terminal();
     /* curses never drew, so it does not know where the cursor is: endwin
      * moves it to the last line by an absolute move */
     endwin();           /* cursor back, alternate screen left, modes reset */
     if (T.out)
         fflush(T.out);
+    if (T.signals_on)
+        sigaction(SIGWINCH, &T.old_winch, NULL);  /* before its pipe closes */
+    close_wake();
     if (T.pad)
         delwin(T.pad);
     T.pad = NULL;
+    free(T.ob);
+    T.ob = NULL;
+    T.ob_cap = 0;
     vt_free(&T.vt);
     quant_free(&T.quant);
 }
@@ -189,10 +326,14 @@ static void crash_add(const char *cap)
     }
 }
 
-/* Undo our modes: only write(2) and tcsetattr(3), both signal-safe. */
+/* Undo our modes: only fcntl(2), tcflush(3), write(2) and tcsetattr(3),
+ * all async-signal-safe. Queued frames are dropped first, as on a quit. */
 static void crash_write(void)
 {
     if (term_on && T.crash_fd >= 0) {
+        flags_back();
+        if (isatty(T.crash_fd))
+            tcflush(T.crash_fd, TCOFLUSH);
         ssize_t w = write(T.crash_fd, T.crash_reset, T.crash_reset_len);
         (void)w;
         if (T.crash_tios_ok)
@@ -213,8 +354,7 @@ static void crash_prepare(int fd)
     T.crash_fd = fd;
     T.crash_tios_ok = tcgetattr(fd, &T.crash_tios) == 0;
     T.crash_reset_len = 0;
-    crash_add(DRAG_OFF);
-    crash_add("\033[?1006;1000l");   /* the mouse reporting ncurses turns on */
+    crash_add(MOUSE_OFF);
     crash_add(tigetstr("sgr0"));
     crash_add(tigetstr("cnorm"));
     crash_add(tigetstr("clear"));    /* as term_restore: nothing left behind */
@@ -237,6 +377,25 @@ static void restore_handlers(void)
     sigaction(SIGTERM, &T.old_term, NULL);
     sigaction(SIGHUP, &T.old_hup, NULL);
     sigaction(SIGTSTP, &T.old_tstp, NULL);
+    sigaction(SIGWINCH, &T.old_winch, NULL);
+}
+
+/* Wake a reader waiting in poll: a handler may run on any thread (the
+ * loader's, the renderer's), where the signal interrupts no poll. */
+static void wake_reader(void)
+{
+    int fd = T.wake[1];
+    if (fd >= 0) {
+        ssize_t w = write(fd, "w", 1);
+        (void)w;                /* full: the reader is already woken */
+    }
+}
+
+static void on_winch(int sig)
+{
+    (void)sig;
+    resized = 1;
+    wake_reader();
 }
 
 /* Quit signals: put the terminal back with the async-signal-safe bytes
@@ -255,15 +414,19 @@ static void on_quit(int sig)
     _exit(128 + sig);
 }
 
-/* Ctrl-Z: leave curses (and drag reporting) before stopping; on SIGCONT
- * curses sets its modes again, and the next read reports a repaint (the
- * handler is installed without SA_RESTART, so a waiting read returns). */
+/* Ctrl-Z: leave curses (and the mouse modes) before stopping; on SIGCONT
+ * curses sets its modes again, we set ours after them (its resume would
+ * otherwise leave the mouse reporting clicks only), and the reader is
+ * woken to repaint everything. */
 static void on_tstp(int sig)
 {
     int was_on = term_on;
     if (was_on) {
+        flags_back();
+        if (isatty(T.out_fd))
+            tcflush(T.out_fd, TCOFLUSH);        /* the shell need not wait for a frame */
         if (T.mouse_on)
-            send_cap(DRAG_OFF);
+            send_cap(MOUSE_OFF);
         blank_terminal();
         endwin();
         fflush(T.out);
@@ -280,10 +443,16 @@ static void on_tstp(int sig)
     sigprocmask(SIG_BLOCK, &set, NULL);
     sigaction(SIGTSTP, &mine, NULL);
     if (was_on && term_on) {
-        if (T.mouse_on)
-            send_cap(DRAG_ON);
         doupdate();             /* curses' modes back (an empty screen) */
+        /* curses sets the keypad mode again only in its own reads,
+         * which keys.c does instead */
+        send_cap(tigetstr("smkx"));
+        if (T.mouse_on)
+            send_cap(MOUSE_ON);
+        if (T.out)
+            fflush(T.out);
         repaint = 1;
+        wake_reader();
     }
 }
 
@@ -298,6 +467,8 @@ static void install_handlers(void)
     sigaction(SIGHUP, &sa, &T.old_hup);
     sa.sa_handler = on_tstp;
     sigaction(SIGTSTP, &sa, &T.old_tstp);
+    sa.sa_handler = on_winch;
+    sigaction(SIGWINCH, &sa, &T.old_winch);
     T.signals_on = 1;
 }
 
@@ -374,6 +545,43 @@ static ColorDepth pick_depth(ColorDepth want, int colors)
 
 /* ==== Start ==== */
 
+static int locale_utf8(void)
+{
+    const char *cs = nl_langinfo(CODESET);
+    return cs && (!strcmp(cs, "UTF-8") || !strcmp(cs, "utf-8") || !strcmp(cs, "UTF8"));
+}
+
+/* The self-pipe the signal handlers wake the reader with: both ends
+ * non-blocking (a handler must never wait), neither inherited. */
+static int open_wake(void)
+{
+    if (pipe(T.wake) != 0) {
+        T.wake[0] = T.wake[1] = -1;
+        return -1;
+    }
+    for (int i = 0; i < 2; i++) {
+        fcntl(T.wake[i], F_SETFL, fcntl(T.wake[i], F_GETFL) | O_NONBLOCK);
+        fcntl(T.wake[i], F_SETFD, FD_CLOEXEC);
+    }
+    return 0;
+}
+
+/* The window's size from the terminal; curses' idea of it (from
+ * terminfo or LINES/COLUMNS) when the output is no terminal. Curses is
+ * told too: endwin moves the cursor to what it thinks is the last line. */
+static void read_size(void)
+{
+    struct winsize ws;
+    if (ioctl(T.out_fd, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0 && ws.ws_row > 0) {
+        T.cols = ws.ws_col;
+        T.rows = ws.ws_row;
+        if (T.cols != COLS || T.rows != LINES)
+            resizeterm(T.rows, T.cols);
+    } else {
+        getmaxyx(stdscr, T.rows, T.cols);
+    }
+}
+
 static void open_failed(SCREEN *s, const char *why, char *err, size_t errlen)
 {
     if (s) {
@@ -431,15 +639,29 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
         open_failed(s, "out of memory", err, errlen);
         return -1;
     }
+    if (open_wake()) {
+        delwin(pad);
+        quant_free(&T.quant);
+        open_failed(s, "cannot make a pipe", err, errlen);
+        return -1;
+    }
     T.scr = s;
     T.out = out;
     T.out_fd = fileno(out);
     T.in_fd = fileno(in);
+    T.out_flags = fcntl(T.out_fd, F_GETFL);
     T.pad = pad;
     T.depth = depth;
     vt_init(&T.vt, &caps);
+    T.ob = NULL;
+    T.ob_off = T.ob_len = T.ob_cap = 0;
+    T.out_errno = 0;
+    kp_init(&T.kp, locale_utf8());
+    T.last_in_ms = mono_ms();
+    T.in_ended = 0;
+    read_size();
     term_on = 1;
-    repaint = 0;
+    repaint = resized = 0;
     if (!T.atexit_done) {
         atexit(term_restore);
         T.atexit_done = 1;
@@ -448,11 +670,11 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     noecho();
     nonl();
     intrflush(pad, FALSE);
-    keypad(pad, TRUE);          /* also enters the alternate screen */
+    /* curses never reads a key (keys.c does), but its keypad mode is the
+     * one terminals expect of full-screen programs; this also enters the
+     * alternate screen */
+    keypad(pad, TRUE);
     curs_set(0);
-    set_escdelay(25);
-    define_key("\033[0n", KEY_STATUS_OK);
-    define_key("\033[3n", KEY_STATUS_BAD);
     /* curses has set the tty: without ONLCR a line feed only goes down
      * (on a file, as the tty benchmark writes, as on a terminal) */
     struct termios tio;
@@ -461,16 +683,13 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     T.ack_wait = T.acks_seen = T.unanswered = 0;
     T.pace_ms = PACE_MIN_MS;
     T.mouse_on = 0;
-    T.drag_button = 0;
-    T.mq_len = 0;
-    if (cfg->mouse) {
-        mmask_t want = BUTTON1_PRESSED | BUTTON1_RELEASED | BUTTON3_PRESSED | BUTTON3_RELEASED |
-                       BUTTON4_PRESSED | BUTTON5_PRESSED | REPORT_MOUSE_POSITION;
-        if (mousemask(want, NULL) != 0) {
-            mouseinterval(0);   /* presses and releases as they come, no clicks */
-            send_cap(DRAG_ON);      /* ncurses never asks for drag reports itself */
-            T.mouse_on = 1;
-        }
+    /* as curses decides: a description with a mouse key (kmous) is of a
+     * terminal that reports the xterm way */
+    const char *kmous = tigetstr("kmous");
+    if (cfg->mouse && kmous && kmous != (const char *)-1 && *kmous) {
+        fflush(out);            /* after curses' own modes */
+        send_cap(MOUSE_ON);
+        T.mouse_on = 1;
     }
     return 0;
 }
@@ -479,14 +698,14 @@ ColorDepth term_color(void) { return T.depth; }
 
 void term_size(int *cols_out, int *rows_out)
 {
-    int r, c;
-    getmaxyx(stdscr, r, c);
-    *cols_out = c;
-    *rows_out = r;
+    *cols_out = T.cols;
+    *rows_out = T.rows;
 }
 
 void term_set_size(int cols, int rows)
 {
+    T.cols = cols;
+    T.rows = rows;
     resizeterm(rows, cols);
 }
 
@@ -599,8 +818,15 @@ void term_message(const char *text)
 
 /* ==== Sending ==== */
 
+/* The frame joins what waits (nothing, when the caller asked
+ * term_ready() first) and goes as far as the terminal takes it now; the
+ * rest goes while term_read() waits for keys. */
 int term_update(int full)
 {
+    if (T.out_errno) {
+        errno = T.out_errno;
+        return -1;
+    }
     if (fit()) {
         errno = ENOMEM;
         return -1;
@@ -613,18 +839,25 @@ int term_update(int full)
     }
     if (T.vt.len == 0)
         return 0;
-    if (send_all(T.vt.buf, T.vt.len))
+    if (out_add(T.vt.buf, T.vt.len)) {
+        vt_invalidate(&T.vt);   /* the model took the frame as shown: it is not */
+        errno = ENOMEM;
         return -1;
+    }
     /* ask for an answer once the frame is through, while the terminal
      * answers at all */
-    if (T.ask && !T.ack_wait && (T.acks_seen || T.unanswered < ACK_GIVE_UP)) {
-        if (send_all(STATUS_ASK, sizeof STATUS_ASK - 1))
-            return -1;
+    if (T.ask && !T.ack_wait && (T.acks_seen || T.unanswered < ACK_GIVE_UP) &&
+        out_add(STATUS_ASK, sizeof STATUS_ASK - 1) == 0) {
         T.ack_wait = 1;
-        T.ack_sent_ms = mono_ms();
+        T.ack_sent_ms = mono_ms();      /* again when it has gone (out_pump) */
         T.unanswered++;
     }
     T.pace_ms = PACE_MIN_MS;
+    if (out_pump()) {
+        T.out_errno = errno;
+        out_drop();
+        return -1;
+    }
     return 0;
 }
 
@@ -635,6 +868,10 @@ size_t term_last_bytes(void)
 
 int term_ready(void)
 {
+    if (T.out_errno)
+        return 1;               /* the next update reports it */
+    if (out_pending())
+        return 0;               /* the last frame is still being written */
     int queued = 0;
     if (ioctl(T.out_fd, TIOCOUTQ, &queued) != 0)
         queued = 0;             /* not a terminal (the tty benchmark's file) */
@@ -646,6 +883,8 @@ int term_ready(void)
 
 int term_pace_ms(void)
 {
+    if (out_pending())
+        return PACE_MAX_MS;     /* term_read writes it and says when it is through */
     if (T.ack_wait && T.acks_seen) {
         /* the answer wakes the reader; this is the wait for a lost one */
         double left = VT_ACK_PATIENCE_MS - (mono_ms() - T.ack_sent_ms);
@@ -659,149 +898,158 @@ int term_pace_ms(void)
 
 /* ==== Input ==== */
 
-static void mq_push(const TermEvent *ev)
+/* Back from Ctrl-Z, or a new window size: everything is drawn again, as
+ * after a resize. */
+static int take_signals(TermEvent *ev)
 {
-    if (T.mq_len < MQ_MAX)
-        T.mq[(T.mq_head + T.mq_len++) % MQ_MAX] = *ev;
-}
-
-static int mq_pop(TermEvent *ev)
-{
-    if (!T.mq_len)
+    if (!repaint && !resized)
         return 0;
-    *ev = T.mq[T.mq_head];
-    T.mq_head = (T.mq_head + 1) % MQ_MAX;
-    T.mq_len--;
-    return 1;
-}
-
-/* One mouse report -> an event; 0 for reports that only change state. */
-static int mouse_event(const MEVENT *me, TermEvent *ev)
-{
-    mmask_t b = me->bstate;
-    memset(ev, 0, sizeof *ev);
-    if (b & (BUTTON4_PRESSED | BUTTON5_PRESSED)) {
-        ev->type = TE_WHEEL;
-        ev->dy = b & BUTTON4_PRESSED ? -1 : 1;
-        return 1;
+    if (resized) {
+        resized = 0;
+        read_size();
     }
-    if (b & (BUTTON1_PRESSED | BUTTON3_PRESSED)) {
-        T.drag_button = b & BUTTON1_PRESSED ? 1 : 3;
-        T.drag_x = me->x;
-        T.drag_y = me->y;
-        /* the press itself: the sketch places corners there */
-        ev->type = TE_CLICK;
-        ev->button = T.drag_button;
-        ev->x = me->x;
-        ev->y = me->y;
-        return 1;
+    if (repaint) {
+        repaint = 0;
+        out_drop();             /* the screen was left: what waited is moot */
+        vt_invalidate(&T.vt);
     }
-    int release = (b & (BUTTON1_RELEASED | BUTTON3_RELEASED)) != 0;
-    if (!T.drag_button || !(release || (b & REPORT_MOUSE_POSITION)))
-        return 0;
-    ev->type = TE_DRAG;
-    ev->button = T.drag_button;
-    ev->dx = me->x - T.drag_x;
-    ev->dy = me->y - T.drag_y;
-    T.drag_x = me->x;
-    T.drag_y = me->y;
-    if (release)
-        T.drag_button = 0;
-    return ev->dx || ev->dy;
-}
-
-/* ncurses reads every report waiting before the first KEY_MOUSE, and
- * getmouse() hands them back newest first (ncurses 6.4): take them all,
- * then turn them into events oldest first, so that clicks come in the
- * order they were made (the sketch's corners) and drags add up in order. */
-static void mouse_drain(void)
-{
-    MEVENT me[MQ_MAX];
-    int n = 0;
-    while (n < MQ_MAX && getmouse(&me[n]) == OK)
-        n++;
-    TermEvent ev;
-    while (n-- > 0)
-        if (mouse_event(&me[n], &ev))
-            mq_push(&ev);
-}
-
-/* wget_wch gave ERR: a timeout, a signal, or the end of the input (a
- * hung-up terminal, a file or pipe at its end), where every read returns
- * at once and waiting again would spin. The end shows as input that
- * polls readable with no byte waiting. */
-static int input_ended(void)
-{
-    struct pollfd p = { .fd = T.in_fd, .events = POLLIN };
-    if (T.in_fd < 0 || poll(&p, 1, 0) <= 0)
-        return 0;       /* nothing pending: a timeout or a signal */
-    int n = 0;
-    if (ioctl(T.in_fd, FIONREAD, &n) == 0 && n > 0)
-        return 0;       /* a key came just after the timeout */
-    return 1;
-}
-
-/* A repaint after Ctrl-Z reads as a resize: everything is drawn again. */
-static int take_repaint(TermEvent *ev)
-{
-    if (!repaint)
-        return 0;
-    repaint = 0;
-    vt_invalidate(&T.vt);
     ev->type = TE_RESIZE;
     return 1;
 }
 
+/* The next event the parser has; the input's end decides what is left
+ * unfinished at once. */
+static int parsed(TermEvent *ev)
+{
+    double quiet = T.in_ended ? 1e12 : mono_ms() - T.last_in_ms;
+    if (!kp_next(&T.kp, ev, quiet))
+        return 0;
+    if (ev->type == TE_READY) {
+        /* the answer to a status request: the last frame is through */
+        T.ack_wait = 0;
+        T.acks_seen = 1;
+        T.unanswered = 0;
+    }
+    return 1;
+}
+
+/* Read what the input has (poll said so, with these revents) into the
+ * parser. */
+static void read_input(short revents)
+{
+    unsigned char buf[512];
+    size_t room = sizeof T.kp.b - T.kp.len;
+    if (room > sizeof buf)
+        room = sizeof buf;
+    if (room == 0)
+        return;                 /* cannot be: the parser keeps at most one unfinished sequence */
+    ssize_t r = read(T.in_fd, buf, room);
+    if (r > 0) {
+        double now = mono_ms();
+        if (now - T.last_in_ms >= KP_IDLE_MS)
+            kp_quiet(&T.kp);
+        kp_push(&T.kp, buf, (size_t)r);
+        T.last_in_ms = now;
+    } else if (r == 0 || (errno != EINTR && errno != EAGAIN && errno != EWOULDBLOCK) ||
+               (revents & (POLLERR | POLLNVAL))) {
+        /* end of file, a hung-up terminal (EIO), or an input in error
+         * that has nothing to read: polling it again would spin */
+        T.in_ended = 1;
+    }
+}
+
+static void drain_wake(void)
+{
+    char buf[64];
+    while (T.wake[0] >= 0 && read(T.wake[0], buf, sizeof buf) > 0) {
+    }
+}
+
+/* How long to wait for input: until the caller's deadline (< 0: none),
+ * or less when the parser decides something after a quiet. */
+static int wait_ms(double until)
+{
+    double now = mono_ms();
+    double w = until < 0 ? -1 : until > now ? until - now : 0;
+    int kw = kp_wait_ms(&T.kp);
+    if (kw >= 0) {
+        double left = kw - (now - T.last_in_ms);
+        left = left > 0 ? left : 0;
+        if (w < 0 || left < w)
+            w = left;
+    }
+    return w < 0 ? -1 : (int)ceil(w);
+}
+
+/* Wait up to ms for input, a signal, or room for what waits to go out;
+ * read and write what can be. Returns 1 when the output went through. */
+static int wait_io(int ms)
+{
+    int pending = out_pending();
+    struct pollfd pf[3] = {
+        { .fd = T.in_fd, .events = POLLIN },
+        { .fd = T.wake[0], .events = POLLIN },
+        { .fd = pending ? T.out_fd : -1, .events = POLLOUT },
+    };
+    if (poll(pf, 3, ms) <= 0)
+        return 0;               /* a timeout, or a signal (the caller looks) */
+    if (pf[1].revents)
+        drain_wake();
+    if (pf[2].revents) {
+        if (out_pump()) {
+            T.out_errno = errno;        /* the next update reports it */
+            out_drop();                 /* and no more waiting to write */
+        }
+        if (!out_pending())
+            return 1;
+    }
+    if (pf[0].revents)
+        read_input(pf[0].revents);
+    return 0;
+}
+
+/* Leaving with a status request answered by a terminal that answers:
+ * its answer, left unread, would be typed into the shell ("^[[0n"). It
+ * is read here, waiting a moment for it (keys typed meanwhile were for
+ * the viewer, which is leaving). */
+static void take_last_answer(void)
+{
+    if (!T.ack_wait || !T.acks_seen || T.in_ended)
+        return;
+    double until = mono_ms() + LAST_ANSWER_MS;
+    TermEvent ev;
+    while (T.ack_wait && !T.in_ended) {
+        while (T.ack_wait && parsed(&ev)) {
+        }
+        double left = until - mono_ms();
+        if (!T.ack_wait || left <= 0)
+            break;
+        struct pollfd pf = { .fd = T.in_fd, .events = POLLIN };
+        if (poll(&pf, 1, (int)ceil(left)) <= 0)
+            break;
+        read_input(pf.revents);
+    }
+}
+
 int term_read(TermEvent *ev, int timeout_ms)
 {
-    memset(ev, 0, sizeof *ev);
-    if (mq_pop(ev) || take_repaint(ev))
-        return 1;
-    wtimeout(T.pad, timeout_ms);
+    double until = timeout_ms < 0 ? -1 : mono_ms() + timeout_ms;
     for (;;) {
-        wint_t wc;
-        int r = wget_wch(T.pad, &wc);
-        if (take_repaint(ev))
-            return 1;
-        if (r == ERR)
-            return input_ended() ? -1 : 0;
-        if (r != KEY_CODE_YES) {
-            ev->type = TE_KEY;
-            ev->key = wc == '\r' ? TK_ENTER : wc == 8 ? TK_BACKSPACE : (int)wc;
-            return 1;
-        }
-        ev->type = TE_KEY;
-        switch (wc) {
-        case KEY_UP:     ev->key = TK_UP; return 1;
-        case KEY_DOWN:   ev->key = TK_DOWN; return 1;
-        case KEY_LEFT:   ev->key = TK_LEFT; return 1;
-        case KEY_RIGHT:  ev->key = TK_RIGHT; return 1;
-        case KEY_BTAB:   ev->key = TK_BTAB; return 1;
-        case KEY_ENTER:  ev->key = TK_ENTER; return 1;
-        case KEY_DC:     ev->key = TK_DEL; return 1;
-        case KEY_HOME:   ev->key = TK_HOME; return 1;
-        case KEY_END:    ev->key = TK_END; return 1;
-        case KEY_BACKSPACE: ev->key = TK_BACKSPACE; return 1;
-        case KEY_RESIZE: ev->type = TE_RESIZE; return 1;
-        case KEY_STATUS_OK:
-        case KEY_STATUS_BAD:
-            /* the last frame is through: the next may go */
-            T.ack_wait = 0;
-            T.acks_seen = 1;
-            T.unanswered = 0;
-            ev->type = TE_READY;
-            return 1;
-        case KEY_MOUSE:
-            mouse_drain();
-            if (mq_pop(ev))
-                return 1;
-            break;
-        default:
-            break;      /* other function keys mean nothing here */
-        }
         memset(ev, 0, sizeof *ev);
-        /* a key that means nothing does not end the wait early */
-        if (timeout_ms != 0)
-            wtimeout(T.pad, timeout_ms);
+        if (take_signals(ev) || parsed(ev))
+            return 1;
+        if (T.in_ended)
+            return -1;
+        int ms = wait_ms(until);
+        if (wait_io(ms)) {
+            ev->type = TE_READY;        /* the frame is written: the next may go */
+            return 1;
+        }
+        if (until >= 0 && mono_ms() >= until) {
+            memset(ev, 0, sizeof *ev);
+            if (take_signals(ev) || parsed(ev))
+                return 1;
+            return T.in_ended ? -1 : 0;
+        }
     }
 }

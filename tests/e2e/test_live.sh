@@ -104,6 +104,42 @@ if wait_for "faces $knot drawn" && wait_for 'removed cube'; then ok "Delete remo
 tm send-keys -t zv q
 wait_for 'zv-exit=0' >/dev/null || notok "q quits after the edits" "$(tail -3 "$T/screen")"
 
+# ==== loads that wait: a FIFO (Esc cancels), devices refused ====
+start 100 30 assets/cube.obj
+wait_for 'faces 6 drawn' >/dev/null
+mkfifo "$T/pipe.obj"
+tm send-keys -t zv O
+wait_for '^ open:$' >/dev/null
+tm send-keys -t zv -l "$T/pipe.obj"
+tm send-keys -t zv Enter
+if wait_for 'waiting for a writer to pipe\.obj'; then ok "O on a FIFO waits for its writer (the status line says so)"; else
+    notok "O on a FIFO waits for its writer (the status line says so)" "$(status 30)"; fi
+tm send-keys -t zv Escape
+if wait_for 'cancelled loading pipe\.obj' && wait_gone 'waiting for a writer'; then ok "Esc cancels the load"; else
+    notok "Esc cancels the load" "$(status 30)"; fi
+check "... and does not quit" '! grep -q "zv-exit" "$T/screen"' "$(tail -3 "$T/screen")"
+# nothing holds the FIFO open any more: a writer's open waits for a reader
+timeout 1 sh -c 'exec 3>"$1"' sh "$T/pipe.obj"
+check "the cancelled load let go of the FIFO" '[ $? -eq 124 ]'
+tm send-keys -t zv O
+if wait_for '^ open:$'; then ok "O again after the cancel (no \"still loading\")"; else notok "O again after the cancel (no \"still loading\")" "$(status 30)"; fi
+tm send-keys -t zv -l "$T/pipe.obj"
+tm send-keys -t zv Enter
+wait_for 'waiting for a writer to pipe\.obj' >/dev/null
+timeout 10 sh -c 'cat assets/knot.obj >"$1"' sh "$T/pipe.obj"
+if wait_for "faces $((knot + 6)) drawn" && wait_for "opened pipe\\.obj: $knot faces"; then ok "a FIFO's writer comes: its model joins the scene"; else
+    notok "a FIFO's writer comes: its model joins the scene" "$(status 30)"; fi
+for dev in /dev/urandom /dev/zero; do
+    tm send-keys -t zv O
+    wait_for '^ open:$' >/dev/null
+    tm send-keys -t zv -l "$dev"
+    tm send-keys -t zv Enter
+    name=${dev#/dev/}
+    if wait_for "$name: not a file \\(a character device\\)"; then ok "O $dev is refused at once"; else notok "O $dev is refused at once" "$(status 30)"; fi
+done
+tm send-keys -t zv Escape
+if wait_for 'zv-exit=0'; then ok "Esc quits when nothing loads"; else notok "Esc quits when nothing loads" "$(tail -3 "$T/screen")"; fi
+
 # ==== hzb-octree across edits: trees of the scene before are never used ====
 start 100 30 --view front --algo hzb-octree assets/torus.obj
 wait_for "faces $torus drawn" >/dev/null

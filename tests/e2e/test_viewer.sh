@@ -172,6 +172,83 @@ if prompt_back; then ok "the shell prompt is back after Ctrl-C"; else notok "the
 check "no alternate screen after Ctrl-C" '[ "$(tm display -p -t zv "#{alternate_on}")" = 0 ]'
 check "cursor visible after Ctrl-C" '[ "$(tm display -p -t zv "#{cursor_flag}")" = 1 ]'
 
+# ==== Ctrl-Z and fg: every mode the viewer set comes back ====
+# the modes as tmux sees them: alternate screen, cursor hidden, mouse
+# drags reported (1002, not just clicks: 1000) in the SGR form, keypad
+modes() { tm display -p -t zv 'alt=#{alternate_on} cursor=#{cursor_flag} click=#{mouse_standard_flag} drag=#{mouse_button_flag} sgr=#{mouse_sgr_flag} keypad=#{keypad_cursor_flag}'; }
+start 80 24 assets/cube.obj
+wait_for 'faces 6 drawn' >/dev/null
+before=$(modes)
+check "the viewer's modes: drags reported" '[ "$before" = "alt=1 cursor=0 click=0 drag=1 sgr=1 keypad=1" ]' "$before"
+tm send-keys -t zv C-z
+wait_gone 'faces 6 drawn' >/dev/null
+stopped=$(modes)
+check "Ctrl-Z leaves every mode" '[ "$stopped" = "alt=0 cursor=1 click=0 drag=0 sgr=0 keypad=0" ]' "$stopped"
+tm send-keys -t zv fg Enter
+if wait_for 'faces 6 drawn'; then ok "fg draws the viewer again"; else notok "fg draws the viewer again" "$(cat "$T/screen")"; fi
+after=$(modes)
+check "after fg the modes are the viewer's again (drags, not clicks only)" '[ "$after" = "$before" ]' "before: $before, after: $after"
+picture 23 >"$T/z0"
+tm send-keys -t zv -l "$(printf '\033[<0;30;10M\033[<32;40;10M\033[<0;40;10m')"
+if wait_change "$T/z0" 23; then ok "after fg a drag turns the model"; else notok "after fg a drag turns the model"; fi
+pid=$(cat "$T/pid")
+tm send-keys -t zv q
+# the shell went on with its command line when the job stopped: watch
+# the process, and the shell's prompt
+i=0
+while kill -0 "$pid" 2>/dev/null && [ $i -lt 200 ]; do sleep 0.05; i=$((i + 1)); done
+if ! kill -0 "$pid" 2>/dev/null && prompt_back; then ok "q quits after fg"; else notok "q quits after fg" "$(tail -3 "$T/screen")"; fi
+check "no mouse reporting left after q" '[ "$(modes)" = "alt=0 cursor=1 click=0 drag=0 sgr=0 keypad=0" ]' "$(modes)"
+
+# ==== what terminals send besides keys: never read as Esc (which quits) ====
+start 80 24 --mode ascii assets/cube.obj
+wait_for 'faces 6 drawn' >/dev/null
+# focus in and out, a bracketed paste holding a q, an unasked-for
+# any-motion mouse report, a mode report, F5, and every form of End,
+# Home, Insert, Page Up/Down (Delete has a meaning: it removes)
+tm send-keys -t zv -H 1b 5b 49 1b 5b 4f
+tm send-keys -t zv -l "$(printf '\033[200~q\033[201~\033[<35;10;10M\033[?1002;1$y\033[15~')"
+tm send-keys -t zv -H 1b 5b 46 1b 4f 46 1b 5b 34 7e 1b 5b 38 7e 1b 5b 31 3b 35 46
+tm send-keys -t zv -H 1b 5b 48 1b 4f 48 1b 5b 31 7e 1b 5b 37 7e 1b 5b 32 7e 1b 5b 35 7e 1b 5b 36 7e 1b 5b 36 3b 32 7e
+sleep 0.3
+tm send-keys -t zv f
+if wait_for 'faces 6 drawn' && ! grep -q 'zv-exit' "$T/screen"; then ok "focus events, a paste, reports and the editing keys do not quit"; else
+    notok "focus events, a paste, reports and the editing keys do not quit" "$(tail -3 "$T/screen")"; fi
+# the open prompt: Home and End as tmux and screen send them move the cursor
+tm send-keys -t zv O
+wait_for '^ open:$' >/dev/null
+tm send-keys -t zv -l abc
+tm send-keys -t zv -H 1b 5b 31 7e
+tm send-keys -t zv x
+tm send-keys -t zv -H 1b 5b 34 7e
+tm send-keys -t zv y
+tm send-keys -t zv -H 1b 5b 48
+tm send-keys -t zv 1
+tm send-keys -t zv -H 1b 4f 46
+tm send-keys -t zv 2
+if wait_for '^ open: 1xabcy2$'; then ok "Home and End in every form move the prompt's cursor"; else notok "Home and End in every form move the prompt's cursor" "$(status 24)"; fi
+tm send-keys -t zv -H 1b 5b 49
+tm send-keys -t zv -l "$(printf '\033[200~zz\033[201~')"
+sleep 0.2
+if wait_for '^ open: 1xabcy2$'; then ok "a focus event or a paste does not cancel the prompt"; else notok "a focus event or a paste does not cancel the prompt" "$(status 24)"; fi
+tm send-keys -t zv Escape
+if wait_gone '^ open:' && wait_for 'faces 6 drawn'; then ok "Esc still cancels the prompt"; else notok "Esc still cancels the prompt" "$(status 24)"; fi
+tm send-keys -t zv Escape
+if wait_for 'zv-exit=0'; then ok "a lone Esc still quits"; else notok "a lone Esc still quits" "$(tail -3 "$T/screen")"; fi
+
+# ==== a slow link: q quits at once, however much of a frame waits ====
+# a 200 x 60 window in 24-bit colour, its other side read at 2 kB/s and
+# 200 B/s (a frame of the torus is some 100 kB: 50 s and 500 s of link)
+if [ -n "$PY" ]; then
+    for rate in 2000 200; do
+        res=$(TERM=xterm-256color python3 tests/e2e/slowpty.py $rate 1 5 200 60 -- "$Z" --color 24bit assets/torus.obj)
+        check "q quits within 5 s on a link read at $rate B/s, the terminal reset" \
+            'echo "$res" | grep -q "^quit after .*reset seen"' "$res"
+    done
+else
+    echo "ok - # skip no python3: the slow link"
+fi
+
 # ==== not a terminal / unknown terminal: behave like --print ====
 "$Z" assets/cube.obj --size 40x12 --color none >"$T/pipe" 2>"$T/err" </dev/null
 st=$?
