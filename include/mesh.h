@@ -127,6 +127,10 @@ typedef struct {
      * with the byte reached (a test truncates the file there) */
     void        (*on_window)(void *arg, uint64_t pos);
     void         *on_window_arg;
+    /* NULL, or a flag another thread sets (atomically) when the load is no
+     * longer wanted: a mapped file's load then stops within a few MB and
+     * fails "cancelled" (the viewer's Esc). Streams read on. */
+    const int    *cancel;
 } MeshLoadOpts;
 
 int  mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, size_t errlen);

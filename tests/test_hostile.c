@@ -126,6 +126,44 @@ Test(hostile, a_file_truncated_while_read_fails_changed_and_nothing_else, .init 
     cr_expect_stderr_eq_str("", "nothing else is said");
 }
 
+/* The viewer's Esc: another thread sets MeshLoadOpts.cancel. Set here
+ * when the window passes 4 MB of a 30 MB file: the load stops within a
+ * window's length and fails "cancelled", not "changed", reading no more. */
+typedef struct {
+    int      flag;
+    uint64_t last;
+} Stop;
+
+static void stop_at_4mb(void *arg, uint64_t pos)
+{
+    Stop *st = arg;
+    st->last = pos;
+    if (pos >= (uint64_t)4 << 20)
+        __atomic_store_n(&st->flag, 1, __ATOMIC_RELAXED);
+}
+
+Test(hostile, a_cancelled_load_stops_reading, .init = cr_redirect_stderr)
+{
+    char path[128];
+    at("big.obj", path, sizeof path);
+    big_obj(path, 600000);
+    struct stat st;
+    cr_assert_eq(stat(path, &st), 0);
+    Stop stop = { 0, 0 };
+    MeshProgress prog = { 0, 0 };
+    MeshLoadOpts o = { .on_window = stop_at_4mb, .on_window_arg = &stop, .cancel = &stop.flag,
+                       .progress = &prog };
+    cr_assert_eq(load(path, &o), -1);
+    char want[192];
+    snprintf(want, sizeof want, "%s: cancelled", path);
+    cr_expect_str_eq(E, want);
+    cr_expect_null(M.pos);
+    cr_expect_lt(stop.last, (uint64_t)st.st_size / 2, "read on to %llu of %lld bytes",
+                 (unsigned long long)stop.last, (long long)st.st_size);
+    fflush(stderr);
+    cr_expect_stderr_eq_str("", "nothing else is said");
+}
+
 Test(hostile, each_format_survives_a_truncation)
 {
     /* binary STL, binary PLY and XYZ go through other loops than OBJ's */

@@ -41,6 +41,8 @@ struct LoadJob {
     int          phase;         /* JOB_*, under mu */
     int          abandoned;     /* under mu: the thread frees the job */
     int          cancelled;     /* under mu: the viewer no longer wants it */
+    int          stop;          /* the same, stored atomically for the loader
+                                   (MeshLoadOpts.cancel): it stops reading */
     int          cancel[2];     /* a byte in cancel[1] wakes a thread waiting on a FIFO */
     int          fifo;          /* the path is a FIFO: read here */
     char         path[4096];
@@ -282,6 +284,7 @@ LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t err
     j->lo.max_polys = o->max_polys;
     j->lo.quiet = 1;            /* curses owns the terminal: warnings go to the status bar */
     j->lo.progress = &j->prog;
+    j->lo.cancel = &j->stop;
     j->flip = o->flip;
     j->points = o->points;
     j->t0 = now_ms();
@@ -323,6 +326,7 @@ void loadjob_abandon(LoadJob *j)
     int done = j->phase == JOB_DONE;
     j->abandoned = !done;
     j->cancelled = 1;
+    __atomic_store_n(&j->stop, 1, __ATOMIC_RELAXED);
     if (!done && j->cancel[1] >= 0) {
         /* under the lock: once it is released the thread may free the job */
         ssize_t w = write(j->cancel[1], "c", 1);

@@ -491,6 +491,7 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
     if (opt) {
         f.on_window = opt->on_window;
         f.on_window_arg = opt->on_window_arg;
+        f.cancel = opt->cancel;
     }
     if (!f.regular) {
         /* a stream is read whole before it is judged (its size is part
@@ -530,7 +531,11 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
         c.file = &f;
         f.mute = &c.err.quiet;
         r = run(l, &c, f.data, f.len);
-        if (mf_changed(&f)) {
+        if (f.cancelled) {
+            if (r == 0)
+                mesh_free(m);
+            r = me_fail(&c.err, "cancelled");
+        } else if (mf_changed(&f)) {
             /* whatever the parser made of it is not the file */
             if (r == 0)
                 mesh_free(m);

@@ -365,6 +365,11 @@ void mf_window(MeshFile *f, size_t keep, size_t upto)
         return;
     size_t page = (size_t)sysconf(_SC_PAGESIZE);
     size_t want = f->len - upto < MF_AHEAD ? f->len : upto + MF_AHEAD;
+    if (f->cancel && !f->changed && __atomic_load_n(f->cancel, __ATOMIC_RELAXED)) {
+        /* as if the file ended here: the parser reads zeros and stops */
+        f->cancelled = 1;
+        lost_file(f, f->populated);
+    }
     if (want > f->populated && !f->changed) {
         /* in huge pages: the window's start and end stay aligned */
         size_t start = f->populated;

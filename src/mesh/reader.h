@@ -120,6 +120,9 @@ typedef struct MeshFile {
      * the parser reported (a test truncates the file there) */
     void      (*on_window)(void *arg, uint64_t pos);
     void       *on_window_arg;
+    const int  *cancel;    /* NULL, or nonzero (read atomically) when the load is
+                              no longer wanted: the rest reads as zeros */
+    int         cancelled; /* cancel was seen */
 } MeshFile;
 
 /* Open `path` ("-" = standard input) and read its first bytes into head
