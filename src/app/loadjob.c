@@ -21,13 +21,13 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "thread.h"
 #include "viewer.h"
 
 /* A FIFO's content is held in memory for the parser: at most this much. */
@@ -236,17 +236,12 @@ static int loadable(const char *path, struct stat *st, char *err, size_t errlen)
     return -1;
 }
 
-/* Start the thread with every signal blocked: a signal for the process
- * (Ctrl-Z, a resize) goes to the viewer's thread, whose handlers touch
- * the terminal. */
+/* Start the thread with every signal blocked (thread.h): a signal for
+ * the process (Ctrl-Z, a resize) goes to the viewer's thread, whose
+ * handlers touch the terminal. */
 static int start_thread(LoadJob *j)
 {
-    sigset_t all, old;
-    sigfillset(&all);
-    pthread_sigmask(SIG_SETMASK, &all, &old);
-    int rc = pthread_create(&j->th, NULL, job_main, j);
-    pthread_sigmask(SIG_SETMASK, &old, NULL);
-    return rc;
+    return thread_start(&j->th, job_main, j);
 }
 
 LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t errlen)

@@ -64,6 +64,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "thread.h"
 #include "hsr.h"
 #include "hzb.h"
 #include "scene.h"
@@ -484,7 +485,7 @@ static void shared_frame_begin(OctShared *sh, const Scene *sc)
         sh->build_key = sc;
         sh->build_gen = sc->gen;
         sh->done = 0;
-        if (pthread_create(&sh->th, NULL, builder_main, sh) == 0) {
+        if (thread_start(&sh->th, builder_main, sh) == 0) {
             sh->building = 1;
             return;
         }

@@ -14,6 +14,7 @@
 #include <pthread.h>
 #include <stdlib.h>
 
+#include "thread.h"
 #include "pool.h"
 
 #define POOL_MAX 64
@@ -88,7 +89,7 @@ Pool *pool_create(int helpers)
     for (int i = 0; i < helpers; i++) {
         p->helper[i].pool = p;
         p->helper[i].idx = i + 1;
-        if (pthread_create(&p->th[i], NULL, helper_main, &p->helper[i]) != 0)
+        if (thread_start(&p->th[i], helper_main, &p->helper[i]) != 0)
             break;
         p->nth = i + 1;
     }

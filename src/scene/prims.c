@@ -49,6 +49,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "thread.h"
 #include "grow.h"
 #include "hsr.h"
 #include "raster.h"
@@ -469,7 +470,7 @@ static int points_reduced(ScreenPolys *sp, const Scene *s, const PProj *pj, cons
                              (uint32_t)((uint64_t)s->npoints * (uint32_t)(i + 1) / (uint32_t)t), 0 };
     }
     for (int i = 1; i < t; i++)
-        started[i] = pthread_create(&th[i], NULL, points_thread, &job[i]) == 0;
+        started[i] = thread_start(&th[i], points_thread, &job[i]) == 0;
     points_reduce(&job[0]);
     uint64_t *box = w->box[0];
     for (int i = 1; i < t; i++) {
