@@ -111,6 +111,4 @@ static inline int hsr_wins(float z, int32_t id, float zb, int32_t idb)
     return z < zb || (z == zb && (uint32_t)id < (uint32_t)idb);
 }
 
-double now_ms(void);
-
 #endif

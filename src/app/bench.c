@@ -11,21 +11,13 @@
 #include <string.h>
 #include <time.h>
 
+#include "clock.h"
 #include "app.h"
 
 #define MAX_VIEWS 4096
 /* Frames the benchmark waits at most for an algorithm's structures
  * built in the background (first_ms then says how long that took). */
 #define READY_FRAMES 1000
-
-/* CPU time of the whole process (every thread), ms: unlike the wall
- * clock it does not count the time other jobs of a shared machine take. */
-static double cpu_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -136,14 +128,14 @@ static int bench_model(Out *out, const Options *o, const char *file, const AlgoL
         uint64_t culled = 0, given = 0, written = 0, covered = 0;
         for (int k = 0; k < views; k++) {
             set_view(&s, o, k, views);
-            double t1 = now_ms(), c1 = cpu_ms();
+            double t1 = now_ms(), c1 = process_cpu_ms();
             if (pipeline_render(&p, w, h, 1.0f, o->cull, 1)) {
                 fprintf(stderr, "zview: out of memory\n");
                 rc = 1;
                 break;
             }
             frame[k] = now_ms() - t1;
-            cpu[k] = cpu_ms() - c1;
+            cpu[k] = process_cpu_ms() - c1;
             hsr[k] = p.hsr_ms;
             proj[k] = p.project_ms;
             shade[k] = p.shade_ms;

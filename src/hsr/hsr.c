@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "clock.h"
 #include "hsr.h"
 #include "pool.h"
 
@@ -23,13 +24,6 @@ const HsrAlgo *hsr_find(const char *name)
         if (strcmp(hsr_algos[i]->name, name) == 0)
             return hsr_algos[i];
     return NULL;
-}
-
-double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
 /* ==== frame buffers ==== */

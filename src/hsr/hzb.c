@@ -32,6 +32,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
 #include "hsr.h"
 #include "hzb.h"
 #include "raster.h"

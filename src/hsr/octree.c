@@ -64,6 +64,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
 #include "thread.h"
 #include "hsr.h"
 #include "hzb.h"

@@ -59,6 +59,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "clock.h"
 #include "raster.h"
 #include "grow.h"
 #include "hsr.h"

@@ -67,6 +67,8 @@
 #include <emmintrin.h>
 #endif
 
+#include "grow.h"
+#include "clock.h"
 #include "raster.h"
 #include "hsr.h"
 #include "span.h"
@@ -174,19 +176,13 @@ uint64_t span_fallback_samples(const void *st)
     return ((const SpanState *)st)->fallback;
 }
 
-/* Grow *p to hold n elements of size sz (never shrinks). */
+/* grow_array for this file's int counts (never shrinks). */
 static int grow(void **p, int *cap, int n, size_t sz)
 {
-    if (n <= *cap)
-        return 0;
-    int c = *cap ? *cap : 64;
-    while (c < n)
-        c *= 2;
-    void *q = realloc(*p, (size_t)c * sz);
-    if (!q)
+    uint32_t c = (uint32_t)*cap;
+    if (n > INT32_MAX / 2 || grow_array(p, &c, (uint32_t)n, sz))
         return -1;
-    *p = q;
-    *cap = c;
+    *cap = c > INT32_MAX ? INT32_MAX : (int)c;
     return 0;
 }
 

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "bigmem.h"
 #include "mesh_internal.h"
 
@@ -84,23 +85,15 @@ static int over_memory(MeshBuild *b, const char *what, uint64_t bytes)
     return me_fail(b->e, "the %s need more than %s; %s available", what, need, have);
 }
 
-/* Grow *arr (elements of `elem` bytes, `*cap` of them) to hold `need`. */
+/* Grow *arr (elements of `elem` bytes, `*cap` of them) to hold `need`,
+ * asking for huge pages when it moved (a mesh's arrays are big). */
 static int grow(void **arr, size_t *cap, size_t need, size_t elem)
 {
-    if (need <= *cap && *arr)
-        return 0;
-    size_t nc = *cap ? *cap : 256;
-    while (nc < need) {
-        if (nc > SIZE_MAX / 2 / elem)
-            return -1;
-        nc *= 2;
-    }
-    void *p = realloc(*arr, nc * elem);
-    if (!p)
+    size_t before = *cap;
+    if (grow_size(arr, cap, need, elem))
         return -1;
-    bigmem_advise(p, nc * elem, 0);
-    *arr = p;
-    *cap = nc;
+    if (*cap != before)
+        bigmem_advise(*arr, *cap * elem, 0);
     return 0;
 }
 
@@ -130,7 +123,7 @@ int mb_start(MeshBuild *b, Mesh *m, MeshErr *e, const char *name)
     return 0;
 }
 
-/* The capacity grow() would give an array of `cap` for `need`. */
+/* The capacity grow_size() would give an array of `cap` for `need`. */
 static size_t next_cap(size_t cap, size_t need)
 {
     size_t nc = cap ? cap : 256;

@@ -11,6 +11,7 @@
 #include <strings.h>
 #include <time.h>
 
+#include "clock.h"
 #include "mesh.h"
 #include "mesh_internal.h"
 
@@ -22,18 +23,6 @@ static const MeshLoader *const natives[] = {
 /* Formats assimp reads that a short message names (the full list is
  * zview --formats). */
 #define ASSIMP_SHORT "glb gltf fbx dae 3ds 3mf x3d blend ..."
-
-static double clock_ms(clockid_t id)
-{
-    struct timespec ts;
-    clock_gettime(id, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
-static double now_ms(void) { return clock_ms(CLOCK_MONOTONIC); }
-/* The thread's own CPU time: what a load cost, whatever else shares the
- * machine (wall time on a shared one also counts waiting). */
-static double cpu_ms(void) { return clock_ms(CLOCK_THREAD_CPUTIME_ID); }
 
 /* ==== What bytes are ==== */
 
@@ -333,7 +322,7 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
                          size_t len, char *err, size_t errlen)
 {
     const char *format = opt ? opt->format : NULL;
-    double t0 = now_ms(), c0 = cpu_ms();
+    double t0 = now_ms(), c0 = thread_cpu_ms();
     char dummy[1];
     if (!err || !errlen) {
         err = dummy;
@@ -360,7 +349,7 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
     int r = run(l, &c, data ? data : "", len);
     if (r == 0) {
         m->info.load_ms = now_ms() - t0;
-        m->info.load_cpu_ms = cpu_ms() - c0;
+        m->info.load_cpu_ms = thread_cpu_ms() - c0;
     }
     return r;
 }
@@ -460,7 +449,7 @@ int mesh_load_as(Mesh *m, const char *path, const char *format, char *err, size_
 int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, size_t errlen)
 {
     const char *format = opt ? opt->format : NULL;
-    double t0 = now_ms(), c0 = cpu_ms();
+    double t0 = now_ms(), c0 = thread_cpu_ms();
     char dummy[1];
     if (!err || !errlen) {
         err = dummy;
@@ -545,7 +534,7 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
     }
     if (r == 0) {
         m->info.load_ms = now_ms() - t0;
-        m->info.load_cpu_ms = cpu_ms() - c0;
+        m->info.load_cpu_ms = thread_cpu_ms() - c0;
     }
     return r;
 }

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "mesh.h"
 #include "mesh_internal.h"
 
@@ -259,23 +260,6 @@ static int fail(Parser *ps, const char *fmt, ...)
 
 static int fail_oom(Parser *ps) { return me_oom(ps->e); }
 
-/* Grow *arr (elements of `elem` bytes, `*cap` of them) to hold `need`. */
-static int grow(void **arr, size_t *cap, size_t need, size_t elem)
-{
-    size_t nc = *cap ? *cap : 256;
-    while (nc < need) {
-        if (nc > SIZE_MAX / 2 / elem)
-            return -1;
-        nc *= 2;
-    }
-    void *p = realloc(*arr, nc * elem);
-    if (!p)
-        return -1;
-    *arr = p;
-    *cap = nc;
-    return 0;
-}
-
 static int fail_number(Parser *ps, int code, const char *ls, const char *p,
                        const char *e)
 {
@@ -471,7 +455,7 @@ static int note_forward(Parser *ps, uint64_t fwd, uint32_t point_first)
         return 0;           /* the first bad one fails the load at the end */
     if (ps->nfwd == ps->fwdcap) {
         size_t cap = ps->fwdcap;
-        if (grow((void **)&ps->fwd, &cap, (size_t)ps->nfwd + 1, sizeof *ps->fwd))
+        if (grow_size((void **)&ps->fwd, &cap, (size_t)ps->nfwd + 1, sizeof *ps->fwd))
             return fail_oom(ps);
         ps->fwdcap = (uint32_t)cap;
     }
@@ -552,7 +536,7 @@ static int use_material(Parser *ps, const char *p, const char *e)
     if (i < 0) {
         if (ps->nuse == ps->usecap) {
             size_t cap = ps->usecap;
-            if (grow((void **)&ps->uses, &cap, (size_t)ps->nuse + 1, sizeof(UseName)))
+            if (grow_size((void **)&ps->uses, &cap, (size_t)ps->nuse + 1, sizeof(UseName)))
                 return fail_oom(ps);
             ps->usecap = (uint32_t)cap;
         }
@@ -785,7 +769,7 @@ static int scratch_put(Parser *ps, size_t *n, const char *p, size_t len)
     if (len == 0)
         return 0;
     if (*n + len > ps->scap &&
-        grow((void **)&ps->scratch, &ps->scap, *n + len, 1))
+        grow_size((void **)&ps->scratch, &ps->scap, *n + len, 1))
         return fail_oom(ps);
     memcpy(ps->scratch + *n, p, len);
     *n += len;
@@ -865,7 +849,7 @@ static int statement(Parser *ps, const char *ls, const char *e)
     if (ps->stmt_vertex) {
         if (ps->nbad == ps->badcap) {
             size_t cap = ps->badcap;
-            if (grow((void **)&ps->bad_vert, &cap, (size_t)ps->nbad + 1, sizeof *ps->bad_vert))
+            if (grow_size((void **)&ps->bad_vert, &cap, (size_t)ps->nbad + 1, sizeof *ps->bad_vert))
                 return fail_oom(ps);
             ps->badcap = (uint32_t)cap;
         }

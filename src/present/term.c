@@ -41,6 +41,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "tty.h"
 
 /* From ncurses' <term.h>, which is not included: its capability macros
@@ -111,13 +112,6 @@ static volatile sig_atomic_t repaint;   /* back from Ctrl-Z: paint everything */
 static volatile sig_atomic_t resized;     /* the window changed size */
 
 static const int crash_sigs[5] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT };
-
-static double mono_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
 
 /* ==== Writing ==== */
 
@@ -215,7 +209,7 @@ static int out_pump(void)
         T.ob_off = T.ob_len = 0;
         /* the status request went last: its answer is timed from now */
         if (T.ack_wait)
-            T.ack_sent_ms = mono_ms();
+            T.ack_sent_ms = now_ms();
     }
     return 0;
 }
@@ -657,7 +651,7 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     T.ob_off = T.ob_len = T.ob_cap = 0;
     T.out_errno = 0;
     kp_init(&T.kp, locale_utf8());
-    T.last_in_ms = mono_ms();
+    T.last_in_ms = now_ms();
     T.in_ended = 0;
     read_size();
     term_on = 1;
@@ -849,7 +843,7 @@ int term_update(int full)
     if (T.ask && !T.ack_wait && (T.acks_seen || T.unanswered < ACK_GIVE_UP) &&
         out_add(STATUS_ASK, sizeof STATUS_ASK - 1) == 0) {
         T.ack_wait = 1;
-        T.ack_sent_ms = mono_ms();      /* again when it has gone (out_pump) */
+        T.ack_sent_ms = now_ms();      /* again when it has gone (out_pump) */
         T.unanswered++;
     }
     T.pace_ms = PACE_MIN_MS;
@@ -877,7 +871,7 @@ int term_ready(void)
         queued = 0;             /* not a terminal (the tty benchmark's file) */
     struct pollfd pf = { .fd = T.out_fd, .events = POLLOUT };
     int writable = poll(&pf, 1, 0) != 0;        /* an error: let the write report it */
-    double waited = T.ack_wait && T.acks_seen ? mono_ms() - T.ack_sent_ms : -1;
+    double waited = T.ack_wait && T.acks_seen ? now_ms() - T.ack_sent_ms : -1;
     return vt_may_send(queued, writable, waited);
 }
 
@@ -887,7 +881,7 @@ int term_pace_ms(void)
         return PACE_MAX_MS;     /* term_read writes it and says when it is through */
     if (T.ack_wait && T.acks_seen) {
         /* the answer wakes the reader; this is the wait for a lost one */
-        double left = VT_ACK_PATIENCE_MS - (mono_ms() - T.ack_sent_ms);
+        double left = VT_ACK_PATIENCE_MS - (now_ms() - T.ack_sent_ms);
         return left > 0 ? (int)left + 1 : 0;
     }
     /* the line is busy: look again soon, less often the longer it is */
@@ -921,7 +915,7 @@ static int take_signals(TermEvent *ev)
  * unfinished at once. */
 static int parsed(TermEvent *ev)
 {
-    double quiet = T.in_ended ? 1e12 : mono_ms() - T.last_in_ms;
+    double quiet = T.in_ended ? 1e12 : now_ms() - T.last_in_ms;
     if (!kp_next(&T.kp, ev, quiet))
         return 0;
     if (ev->type == TE_READY) {
@@ -945,7 +939,7 @@ static void read_input(short revents)
         return;                 /* cannot be: the parser keeps at most one unfinished sequence */
     ssize_t r = read(T.in_fd, buf, room);
     if (r > 0) {
-        double now = mono_ms();
+        double now = now_ms();
         if (now - T.last_in_ms >= KP_IDLE_MS)
             kp_quiet(&T.kp);
         kp_push(&T.kp, buf, (size_t)r);
@@ -969,7 +963,7 @@ static void drain_wake(void)
  * or less when the parser decides something after a quiet. */
 static int wait_ms(double until)
 {
-    double now = mono_ms();
+    double now = now_ms();
     double w = until < 0 ? -1 : until > now ? until - now : 0;
     int kw = kp_wait_ms(&T.kp);
     if (kw >= 0) {
@@ -1016,12 +1010,12 @@ static void take_last_answer(void)
 {
     if (!T.ack_wait || !T.acks_seen || T.in_ended)
         return;
-    double until = mono_ms() + LAST_ANSWER_MS;
+    double until = now_ms() + LAST_ANSWER_MS;
     TermEvent ev;
     while (T.ack_wait && !T.in_ended) {
         while (T.ack_wait && parsed(&ev)) {
         }
-        double left = until - mono_ms();
+        double left = until - now_ms();
         if (!T.ack_wait || left <= 0)
             break;
         struct pollfd pf = { .fd = T.in_fd, .events = POLLIN };
@@ -1033,7 +1027,7 @@ static void take_last_answer(void)
 
 int term_read(TermEvent *ev, int timeout_ms)
 {
-    double until = timeout_ms < 0 ? -1 : mono_ms() + timeout_ms;
+    double until = timeout_ms < 0 ? -1 : now_ms() + timeout_ms;
     for (;;) {
         memset(ev, 0, sizeof *ev);
         if (take_signals(ev) || parsed(ev))
@@ -1045,7 +1039,7 @@ int term_read(TermEvent *ev, int timeout_ms)
             ev->type = TE_READY;        /* the frame is written: the next may go */
             return 1;
         }
-        if (until >= 0 && mono_ms() >= until) {
+        if (until >= 0 && now_ms() >= until) {
             memset(ev, 0, sizeof *ev);
             if (take_signals(ev) || parsed(ev))
                 return 1;

@@ -49,6 +49,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "clock.h"
 #include "thread.h"
 #include "grow.h"
 #include "hsr.h"

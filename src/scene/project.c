@@ -53,6 +53,7 @@
 #define AVX2_FN __attribute__((target("avx2")))
 #endif
 
+#include "clock.h"
 #include "hsr.h"
 #include "grow.h"
 #include "pool.h"
