@@ -30,7 +30,7 @@ SRCS    := $(wildcard src/*/*.c)
 ifneq ($(ASSIMP),1)
 SRCS    := $(filter-out src/mesh/assimp.c,$(SRCS))
 endif
-LIBSRCS := $(filter-out src/app/main.c,$(SRCS))
+LIBSRCS := $(filter-out src/main/main.c,$(SRCS))
 OBJS    := $(SRCS:%.c=$(BUILD)/%.o)
 LIBOBJS := $(LIBSRCS:%.c=$(BUILD)/%.o)
 TSRCS   := $(wildcard tests/test_*.c) tests/testlib.c tests/writers.c

@@ -1,9 +1,10 @@
 #ifndef ZV_APP_H
 #define ZV_APP_H
-/* app: the command line, and the pipeline that ties the stages together
- * (scene -> screen polygons -> hidden surfaces -> shading -> cells). The
- * one-shot outputs, the benchmark and the viewer all render through
- * pipeline_render(). */
+/* app: what the two front doors (oneshot/ and viewer/) share: the
+ * options, loading the files they name into a scene, and the pipeline
+ * that ties the stages together (scene -> screen polygons -> hidden
+ * surfaces -> shading -> cells). The one-shot outputs, the benchmark and
+ * the viewer all render through pipeline_render(). */
 
 #include "hsr.h"
 #include "present.h"
@@ -93,10 +94,6 @@ int  app_load_scene(const Options *o, Scene *s, char *err, size_t errlen);
  * would have more than --max-polys polygons; the message gives the count
  * and an estimate of the memory. Called before the copies are made. */
 int  app_check_size(const Options *o, const Scene *s, char *err, size_t errlen);
-/* Refuse (-1, the reason in err) a --print, -o or dump frame that has
- * more than SCREEN_MAX pixels on a side or more memory than is left,
- * before anything is loaded. */
-int  app_check_output(const Options *o, char *err, size_t errlen);
 /* Path of the bundled demo scene (next to the binary or installed). */
 const char *app_demo_path(void);
 
@@ -192,13 +189,6 @@ typedef struct {
  * the scene's camera and placements, the settings v) into buf. Returns
  * 0, or -1 when buf is too small. */
 int  view_command(char *buf, size_t len, const Options *o, const Scene *s, const ViewSettings *v);
-
-/* The modes main() dispatches to; each returns the exit status. */
-int  app_info(const Options *o, Scene *s);
-int  app_bench(const Options *o, Scene *s);
-int  app_oneshot(const Options *o, Scene *s);
-int  app_viewer(const Options *o, Scene *s);   /* falls back to app_oneshot */
-int  app_bench_tty(const Options *o);          /* bytes per frame of a scripted rotation */
 
 int  default_threads(void);
 

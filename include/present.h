@@ -8,7 +8,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
-#include "shade.h"
+#include "image.h"
 
 typedef enum { MODE_HALF = 0, MODE_ASCII, MODE_BRAILLE, MODE_COUNT } DisplayMode;
 typedef enum { COLOR_NONE = 0, COLOR_8, COLOR_16, COLOR_256, COLOR_TRUE } ColorDepth;

@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "hsr.h"
+#include "image.h"
 #include "scene.h"
 #include "screen.h"
 
@@ -13,21 +14,6 @@ typedef enum { SHADE_LAMBERT = 0, SHADE_SMOOTH, SHADE_DEPTH, SHADE_ID, SHADE_COU
 
 extern const char *const shade_names[SHADE_COUNT];
 int shade_from_name(const char *name);          /* -1 if unknown */
-
-typedef struct {
-    int      w, h;
-    uint8_t *rgb;       /* 3 * w * h, rows from the top */
-    uint8_t *lit;       /* w * h: 1 where a face was drawn, 0 = background */
-    size_t   cap;       /* pixels allocated */
-} Image;
-
-int  image_resize(Image *im, int w, int h);
-void image_free(Image *im);
-/* Supersampling's last step: each k x k block of src becomes one pixel
- * of dst ((src->w / k) x (src->h / k)), lit when at least half of its
- * samples are, coloured by the mean of its lit samples (the background's
- * colour is the terminal's, unknown here, so it is not mixed in). */
-int  image_downsample(const Image *src, int k, Image *dst);
 
 /* Smooth shading's per-scene data (smooth.c), built on first use. */
 typedef struct {

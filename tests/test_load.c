@@ -12,7 +12,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../src/app/viewer.h"
+#include "../src/viewer/viewer_app.h"
 
 /* A big OBJ (a strip of triangles) in a temporary file; its path. */
 static void big_obj(char *path, size_t len, int tris)

@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "../src/app/prompt.h"
+#include "../src/viewer/prompt.h"
 #include "tty.h"
 
 static void type(Prompt *p, const char *s)

@@ -10,7 +10,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../src/app/viewer.h"
+#include "../src/viewer/viewer_app.h"
 #include "tty.h"
 
 static Options opt;

@@ -15,7 +15,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../src/app/viewer.h"
+#include "../src/viewer/viewer_app.h"
 #include "tty.h"
 
 static Options opt;

@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "viewer.h"
+#include "viewer_app.h"
 
 void app_note(App *a, const char *fmt, ...)
 {

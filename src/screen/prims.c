@@ -52,7 +52,6 @@
 #include "clock.h"
 #include "thread.h"
 #include "grow.h"
-#include "hsr.h"
 #include "raster.h"
 #include "screen.h"
 

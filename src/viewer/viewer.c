@@ -17,7 +17,7 @@
 
 #include "clock.h"
 #include "tty.h"
-#include "viewer.h"
+#include "viewer_app.h"
 
 #define MIN_COLS 16
 #define MIN_ROWS 4

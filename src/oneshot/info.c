@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "app.h"
+#include "oneshot.h"
 
 /* pos_exp: the scene scaled the positions by 2^-pos_exp (scene.h); the
  * bounds are given in the file's units. */

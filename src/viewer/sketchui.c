@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #include "tty.h"
-#include "viewer.h"
+#include "viewer_app.h"
 
 #define TILT_STEP 15.0f         /* degrees per t T y Y */
 #define SAVE_MAX  999           /* sketch-001.obj .. sketch-999.obj */

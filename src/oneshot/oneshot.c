@@ -9,7 +9,7 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
-#include "app.h"
+#include "oneshot.h"
 #include "safefile.h"
 
 /* Cells for --print: --size, else the terminal's size, else 80x24. */

@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #include "tty.h"
-#include "viewer.h"
+#include "viewer_app.h"
 
 #define SNAP_CELL_W   8         /* PNG pixels per cell */
 #define SNAP_CELL_H   16

@@ -6,7 +6,8 @@
 
 #include <pthread.h>
 
-#include "app.h"
+#include "oneshot.h"
+#include "viewer.h"
 #include "sketch.h"
 #include "prompt.h"
 

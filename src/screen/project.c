@@ -54,7 +54,6 @@
 #endif
 
 #include "clock.h"
-#include "hsr.h"
 #include "grow.h"
 #include "pool.h"
 #include "raster.h"

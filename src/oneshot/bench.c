@@ -12,7 +12,7 @@
 #include <time.h>
 
 #include "clock.h"
-#include "app.h"
+#include "oneshot.h"
 
 #define MAX_VIEWS 4096
 /* Frames the benchmark waits at most for an algorithm's structures
@@ -185,8 +185,6 @@ static int bench_model(Out *out, const Options *o, const char *file, const AlgoL
 int app_bench(const Options *o, Scene *s)
 {
     (void)s;   /* models are loaded one at a time */
-    if (o->bench_tty)
-        return app_bench_tty(o);
     AlgoList al;
     if (parse_algos(o->algo, &al))
         return 2;

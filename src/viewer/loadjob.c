@@ -29,7 +29,7 @@
 
 #include "clock.h"
 #include "thread.h"
-#include "viewer.h"
+#include "viewer_app.h"
 
 /* A FIFO's content is held in memory for the parser: at most this much. */
 #define FIFO_MAX ((size_t)1 << 30)

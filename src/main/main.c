@@ -11,7 +11,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "app.h"
+#include "oneshot.h"
+#include "viewer.h"
 
 /* A standard descriptor the shell left closed (`>&-`) would be taken by
  * the next open(): the model file, or the PNG, would become "standard
@@ -72,7 +73,8 @@ int main(int argc, char **argv)
     }
     int rc;
     if (o.bench || o.bench_tty) {
-        rc = app_bench(&o, NULL);   /* loads each model on its own */
+        /* each model loaded on its own; --bench-tty drives the viewer */
+        rc = o.bench_tty ? app_bench_tty(&o) : app_bench(&o, NULL);
         return rc ? rc : finish_stdout();
     }
     if (o.formats) {

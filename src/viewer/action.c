@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "tty.h"
-#include "viewer.h"
+#include "viewer_app.h"
 
 #define STEP_DEG   5.0f     /* arrows, hjkl, u/o */
 #define COARSE_DEG 15.0f    /* IJKL */

@@ -1,0 +1,19 @@
+#ifndef ZV_ONESHOT_H
+#define ZV_ONESHOT_H
+/* oneshot: the front door without a terminal: --print, -o, the dumps,
+ * --turntable, --info and --bench. Each returns the exit status. */
+
+#include "app.h"
+
+/* --info: what was loaded, and (with --algo) what a render did. */
+int  app_info(const Options *o, Scene *s);
+/* --bench: the benchmark table (each model loaded on its own; s unused). */
+int  app_bench(const Options *o, Scene *s);
+/* --print, -o FILE, --dump-ids, --dump-screen, --turntable. */
+int  app_oneshot(const Options *o, Scene *s);
+/* Refuse (-1, the reason in err) a --print, -o or dump frame that has
+ * more than SCREEN_MAX pixels on a side or more memory than is left,
+ * before anything is loaded. */
+int  app_check_output(const Options *o, char *err, size_t errlen);
+
+#endif

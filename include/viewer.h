@@ -1,0 +1,15 @@
+#ifndef ZV_VIEWER_H
+#define ZV_VIEWER_H
+/* viewer: the interactive front door: the model on the terminal, turned,
+ * moved and scaled by keys and the mouse; files opened and removed while
+ * it runs; sketch mode. Its insides are in src/viewer/viewer_app.h. */
+
+#include "app.h"
+
+/* The viewer on the terminal; without one, the one-shot output
+ * (app_oneshot). Returns the exit status. */
+int  app_viewer(const Options *o, Scene *s);
+/* --bench-tty: the bytes per frame of a scripted rotation. */
+int  app_bench_tty(const Options *o);
+
+#endif
