@@ -286,3 +286,34 @@ Test(viewer, the_editing_keys_do_not_quit)
     for (int i = 0; i < 5; i++)
         cr_expect_eq(app_key(&app, keys[i]) & RE_QUIT, 0, "key %d", i);
 }
+
+/* The modes stack in one order: the open prompt over E's question over
+ * the help over the command line over sketch mode over the viewer; the
+ * one on top takes the key, whatever else is on. */
+Test(viewer, the_mode_on_top_takes_the_key)
+{
+    cr_expect_eq(viewer_mode(&app), VM_VIEW);
+    app.cmd = 1;
+    cr_expect_eq(viewer_mode(&app), VM_COMMAND);
+    app.help = 1;
+    cr_expect_eq(viewer_mode(&app), VM_HELP);
+    app.confirm = 1;
+    cr_expect_eq(viewer_mode(&app), VM_CONFIRM);
+    /* n answers the question (and nothing under it sees the key) */
+    float yaw = scene.cam.yaw;
+    app_key(&app, 'n');
+    cr_expect(!app.confirm, "the question is answered");
+    cr_expect(app.help && app.cmd, "the modes under it stay");
+    cr_expect_str_eq(app.note, "the scene stays");
+    /* then the help takes keys: l does not turn the model */
+    cr_expect_eq(viewer_mode(&app), VM_HELP);
+    app_key(&app, 'l');
+    cr_expect_eq(scene.cam.yaw, yaw);
+    app.help = 0;
+    app.cmd = 0;
+    cr_expect_eq(viewer_mode(&app), VM_VIEW);
+    app_key(&app, 'l');
+    cr_expect_neq(scene.cam.yaw, yaw, "with nothing on top, l turns");
+    cr_expect(viewer_mode_boxed(VM_HELP) && viewer_mode_boxed(VM_COMMAND) && !viewer_mode_boxed(VM_PROMPT) &&
+              !viewer_mode_boxed(VM_SKETCH));
+}

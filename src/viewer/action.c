@@ -381,29 +381,32 @@ static Reaction help_key(App *a, int key)
 Reaction app_key(App *a, int key)
 {
     a->note[0] = 0;
-    if (a->prompting)
+    switch (viewer_mode(a)) {
+    case VM_PROMPT:
         return app_prompt_key(a, key);
-    if (a->confirm) {
+    case VM_CONFIRM:
         /* the key that answers does nothing else */
         a->confirm = 0;
         if (key == 'y' || key == 'Y')
             return app_clear_scene(a);
         snprintf(a->note, sizeof a->note, "the scene stays");
         return RE_DRAW;
-    }
-    if (a->help)
+    case VM_HELP:
         return help_key(a, key);
-    if (a->cmd) {
+    case VM_COMMAND:
         a->cmd = 0;         /* like the help: the key that closes it does nothing else */
         return RE_DRAW;
-    }
-    if (a->sk.on) {
+    case VM_SKETCH: {
         /* sketch mode's own keys, then the few of the viewer's it shares */
         Reaction r = sketch_mode_key(a, key);
         if (r != RE_NONE)
             return r | RE_DRAW;
         if (key <= 0 || key >= K_SPECIAL || !strchr(sketch_shared_keys, key))
             return RE_NONE;
+        break;
+    }
+    case VM_VIEW:
+        break;
     }
     int i = key >= 0 && key < K_SPECIAL ? key
           : key >= TK_UP && key <= TK_LAST ? K_SPECIAL + (key - TK_UP) : -1;

@@ -441,6 +441,29 @@ typedef struct {
 /* Why the loop ended (and what draw() can fail with). */
 enum { RUN_QUIT = 0, RUN_NO_MEMORY = -1, RUN_INPUT_ENDED = 1, RUN_OUTPUT_FAILED = 2 };
 
+/* What the mode on top draws over the picture: the prompt's candidates,
+ * or a box (help, the command line). */
+static void draw_overlay(App *a, ViewerMode m, int cols, int rows)
+{
+    const char *lines[HELP_LINES_MAX];
+    char buf[2 * CMD_MAX];
+    switch (m) {
+    case VM_PROMPT:
+        if (a->prompt.list[0])
+            draw_candidates(a, cols, rows);
+        break;
+    case VM_HELP:
+        term_draw_box(lines, app_help_layout(a, cols, rows, lines));
+        break;
+    case VM_COMMAND:
+        term_draw_box(lines, app_command_layout(a, cols, buf, sizeof buf, lines,
+                                                rows - 3 < HELP_LINES_MAX ? rows - 3 : HELP_LINES_MAX));
+        break;
+    default:
+        break;
+    }
+}
+
 /* Draw the screen; render first when asked or when the size changed.
  * Returns 0, RUN_NO_MEMORY, or RUN_OUTPUT_FAILED (errno says why). */
 static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
@@ -459,15 +482,17 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
         d->small = 0;
         d->cols = cols;
         d->rows = rows;
-    } else if (d->help && !(a->help || a->cmd || a->info || a->prompting)) {
-        term_erase();       /* the box may reach past a --size picture */
     }
-    d->help = a->help || a->cmd || a->info || a->prompting;
+    ViewerMode m = viewer_mode(a);
+    int over = viewer_mode_boxed(m) || m == VM_PROMPT || a->info;     /* drawn past the picture */
+    if (d->help && !over)
+        term_erase();       /* the box may reach past a --size picture */
+    d->help = over;
     /* --size: that many cells, or fewer when the window is smaller */
     int pc = a->pic_cols > 0 && a->pic_cols < cols ? a->pic_cols : cols;
     int pr = a->pic_rows > 0 && a->pic_rows < rows - 1 ? a->pic_rows : rows - 1;
     /* a wide window keeps the info panel beside the picture, not over it */
-    if (a->info && !a->help && !a->cmd && cols >= INFO_BESIDE_MIN && pc > cols - INFO_BOX)
+    if (a->info && !viewer_mode_boxed(m) && cols >= INFO_BESIDE_MIN && pc > cols - INFO_BOX)
         pc = cols - INFO_BOX;
     if (pc != d->pic_cols) {
         if (d->pic_cols)
@@ -483,25 +508,15 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     if ((what & RE_RENDER) == RE_RENDER)
         d->frame_ms = (t1 - t0) + d->out_ms;
     char bar[512];
-    if (a->prompting) {
+    if (m == VM_PROMPT) {
         draw_prompt(&a->prompt, rows - 1, cols);
     } else {
         status_text(a, bar, sizeof bar, d->frame_ms, fps_cap, cols);
         term_draw_bar(rows - 1, bar);
     }
-    if (a->info && !a->help && !a->cmd)
+    if (a->info && !viewer_mode_boxed(m))
         draw_info(a, cols, rows, a->p.cells_ms + d->out_ms);
-    if (a->prompting && a->prompt.list[0]) {
-        draw_candidates(a, cols, rows);
-    } else if (a->help) {
-        const char *lines[HELP_LINES_MAX];
-        term_draw_box(lines, app_help_layout(a, cols, rows, lines));
-    } else if (a->cmd) {
-        const char *lines[HELP_LINES_MAX];
-        char buf[2 * CMD_MAX];
-        int n = app_command_layout(a, cols, buf, sizeof buf, lines, rows - 3 < HELP_LINES_MAX ? rows - 3 : HELP_LINES_MAX);
-        term_draw_box(lines, n);
-    }
+    draw_overlay(a, m, cols, rows);
     if (term_update(full))
         return RUN_OUTPUT_FAILED;
     if ((what & RE_RENDER) == RE_RENDER)
@@ -514,9 +529,13 @@ static Reaction dispatch(App *a, const TermEvent *ev)
     switch (ev->type) {
     case TE_KEY:    return app_key(a, ev->key);
     case TE_RESIZE: return RE_RENDER;
+    /* the pointer turns and moves the model under any box, but not under
+     * sketch mode, whose canvas stays put; a click draws only when sketch
+     * mode is on top */
     case TE_DRAG:   return a->sk.on ? RE_NONE : app_drag(a, ev->button, ev->dx, ev->dy);
     case TE_WHEEL:  return a->sk.on ? RE_NONE : app_wheel(a, ev->dy);
-    case TE_CLICK:  return a->sk.on && !a->help && !a->cmd ? sketch_mode_click(a, ev->button, ev->x, ev->y) : RE_NONE;
+    case TE_CLICK:
+        return viewer_mode(a) == VM_SKETCH ? sketch_mode_click(a, ev->button, ev->x, ev->y) : RE_NONE;
     case TE_READY:  return RE_NONE;     /* the loop sends what waits */
     }
     return RE_NONE;

@@ -90,6 +90,32 @@ typedef struct App {
     SketchMode  sk;
 } App;
 
+/* The viewer's modes, from the one on top. The first that is on takes
+ * every key (and a click), and decides what is drawn over the picture:
+ * the open prompt (its line and candidates), the y/n question of E, the
+ * help box, the view's command line box, sketch mode (its marks and its
+ * own keys, some of the viewer's shared), or the plain viewer. The info
+ * panel is not a mode: it stays beside or under whatever is on top,
+ * hidden only by a box. app_key, draw and dispatch all ask this one
+ * function, so the order is written once. */
+typedef enum { VM_PROMPT, VM_CONFIRM, VM_HELP, VM_COMMAND, VM_SKETCH, VM_VIEW } ViewerMode;
+
+static inline ViewerMode viewer_mode(const App *a)
+{
+    return a->prompting ? VM_PROMPT
+         : a->confirm   ? VM_CONFIRM
+         : a->help      ? VM_HELP
+         : a->cmd       ? VM_COMMAND
+         : a->sk.on     ? VM_SKETCH
+                        : VM_VIEW;
+}
+
+/* A box (help, command line) covers the picture and the info panel. */
+static inline int viewer_mode_boxed(ViewerMode m)
+{
+    return m == VM_HELP || m == VM_COMMAND;
+}
+
 /* The effect of a key (term.h codes), a drag of dx, dy cells with button
  * 1 (left: turn) or 3 (right: move), or a wheel step (dy < 0: up). */
 Reaction app_key(App *a, int key);
