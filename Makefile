@@ -21,8 +21,14 @@ endif
 
 OPT     ?= -O2
 EXTRA_CFLAGS ?=
+# -ffp-contract=off: no fused multiply-add where the source has a multiply
+# then an add. The SIMD paths (SSE2/AVX2, no FMA) and the scalar
+# reference must round every operation alike to give the same bits, and
+# the exactness tests compare them byte for byte; a compiler free to fuse
+# would round the scalar path differently on CPUs with FMA.
+COMMON_CFLAGS := -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude $(PKG_CFLAGS) -MMD -MP -pthread
 CFLAGS  ?= $(OPT) -g
-CFLAGS  += $(EXTRA_CFLAGS) -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude $(PKG_CFLAGS) $(AI_CFLAGS) -MMD -MP -pthread
+CFLAGS  += $(EXTRA_CFLAGS) $(COMMON_CFLAGS) $(AI_CFLAGS)
 LDLIBS  += $(PKG_LIBS) $(AI_LIBS) -lm -pthread
 
 BUILD   ?= build
@@ -38,9 +44,36 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order
+.PHONY: all help test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order
 
 all: $(BIN)
+
+# make help: the targets, what each is for, and how long it takes here.
+help:
+	@echo 'Build and run'
+	@echo '  make               ./zview (warning-free with -Wall -Wextra; EXTRA_CFLAGS=-Werror in CI)'
+	@echo '  make run           build, then open the bundled demo scene'
+	@echo '  make install       to $$(PREFIX) (default /usr/local), with the man page and completions'
+	@echo '  make noassimp      the build without assimp, in build-noassimp/'
+	@echo 'Tests'
+	@echo '  make test          every test: unit (Criterion), fuzz replays, end-to-end (about 1 minute)'
+	@echo '  make unit          the unit tests alone; make e2e the end-to-end ones alone'
+	@echo '  make asan          make test under AddressSanitizer + UBSan, in build-asan/ (about 3 minutes)'
+	@echo '  make test-models   every algorithm against the z-buffer on ../shared/models'
+	@echo '  make replay        every input that ever failed, through the normal build'
+	@echo 'Fuzzing (clang + libFuzzer: sh tools/deps.sh installs them)'
+	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh'
+	@echo '  make fuzz-run SECONDS=N   run each for N seconds; failures go to build-fuzz/artifacts/'
+	@echo '  make fuzz-seeds    rewrite the differential fuzzer seed scenes'
+	@echo 'Benchmarks (never timed tests: compare medians and ratios within one run)'
+	@echo '  make bench         the speed table (tools/bench.sh), single-thread rows pinned to a core'
+	@echo '  make bench-formats load speed and peak memory of every format'
+	@echo '  make bench-points  a 10M-point scan: load and frames'
+	@echo '  make bench-order   hzb and hzb-octree under each --order'
+	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
+	@echo 'Other'
+	@echo '  make assets        regenerate the bundled models (they are committed)'
+	@echo '  make clean         remove every build folder'
 
 # The build's configuration, rewritten only when it changes, so that
 # switching ASSIMP rebuilds what depends on it and relinks.
@@ -143,9 +176,9 @@ bench-order: $(BIN)
 	ZVIEW=$(abspath $(BIN)) sh tools/bench-order.sh
 
 bench-points: $(BIN) $(BUILD)/mkcloud
-	ZVIEW=$(abspath $(BIN)) MKCLOUD=$(BUILD)/mkcloud sh tests/bench_points.sh
+	ZVIEW=$(abspath $(BIN)) MKCLOUD=$(BUILD)/mkcloud sh tools/bench-points.sh
 
-$(BUILD)/mkcloud: tests/mkcloud.c $(LIBOBJS)
+$(BUILD)/mkcloud: tools/mkcloud.c $(LIBOBJS)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 # Regenerate the bundled models (they are committed; this is how they were made).
@@ -174,8 +207,7 @@ install: $(BIN)
 FUZZ_CC     ?= clang
 FUZZ_BUILD  := build-fuzz
 FUZZ_SAN    := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-FUZZ_CFLAGS := -O1 -g $(EXTRA_CFLAGS) -std=c11 -Wall -Wextra -ffp-contract=off -Iinclude -Itests \
-               $(PKG_CFLAGS) -MMD -MP -pthread $(FUZZ_SAN)
+FUZZ_CFLAGS := -O1 -g $(EXTRA_CFLAGS) $(COMMON_CFLAGS) -Itests $(FUZZ_SAN)
 FUZZ_LIBOBJS := $(LIBSRCS:%.c=$(FUZZ_BUILD)/%.o)
 FUZZ_OBJS   := $(sort $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o) \
                       $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o))
