@@ -13,7 +13,7 @@
  *                               a scanner sweeps a surface
  *   mkcloud MODEL OUT.ply 0     the model's vertices, no colour
  *
- * Built and run by make bench-points (tests/bench_points.sh). */
+ * Built and run by make bench-points (tools/bench-points.sh). */
 
 #include <math.h>
 #include <stdio.h>
