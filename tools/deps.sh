@@ -4,7 +4,7 @@
 set -e
 # libassimp-dev is optional (glTF, FBX, 3DS, ... through assimp; make
 # ASSIMP=0 builds without it)
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libcriterion-dev tmux libassimp-dev"
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev libcriterion-dev tmux libassimp-dev"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive

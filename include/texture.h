@@ -1,0 +1,56 @@
+#ifndef ZV_TEXTURE_H
+#define ZV_TEXTURE_H
+/* texture: a model's base-colour images. Decoded (PNG through libpng,
+ * JPEG through libjpeg-turbo), mipmapped in linear light, and sampled
+ * with a filter as wide as a sample's footprint, so that a 4096 x 4096
+ * texture on a terminal-sized picture neither aliases nor shimmers as
+ * the model turns. Knows nothing of meshes, screens or terminals.
+ *
+ * Texture coordinates: u across the image from its left edge, v down
+ * from its first (top) row, 1 = the image's far side; what lies outside
+ * [0, 1] is wrapped by the texture's wrap mode. (OBJ's v runs up: its
+ * loader turns it over.) Colours are sRGB bytes in memory and linear
+ * light when sampled. */
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define TEX_MAX_SIDE   16384        /* larger images are refused */
+#define TEX_MAX_LEVELS 15           /* 1 + log2(TEX_MAX_SIDE) */
+
+typedef enum { TEX_REPEAT = 0, TEX_CLAMP, TEX_MIRROR } TexWrap;
+
+typedef struct {
+    int      w, h;                  /* level 0 */
+    int      levels;                /* level k is max(1, w >> k) x max(1, h >> k) */
+    int      lw[TEX_MAX_LEVELS], lh[TEX_MAX_LEVELS];
+    size_t   off[TEX_MAX_LEVELS];   /* level k's first texel */
+    uint8_t *rgba;                  /* every level, 4 bytes a texel, sRGB (alpha kept, unused) */
+    TexWrap  wrap_u, wrap_v;
+} Texture;
+
+/* Decode a PNG or JPEG image held in memory (told by its first bytes)
+ * and build its mipmaps. name is what messages call it. Returns 0, or -1
+ * with "name: reason" in err and *t empty. max_bytes: refuse an image
+ * whose texels and mipmaps would take more (0: no bound of the caller's). */
+int  texture_decode(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
+                    char *err, size_t errlen);
+/* The same from a file. */
+int  texture_load_file(Texture *t, const char *path, uint64_t max_bytes, char *err, size_t errlen);
+void texture_free(Texture *t);
+/* Bytes the texels of every level take. */
+size_t texture_bytes(const Texture *t);
+/* Bytes a w x h image's texels and mipmaps take (4/3 of level 0). */
+uint64_t texture_bytes_for(int w, int h);
+
+/* The colour at (u, v) in linear light, out[0..2]. lod: log2 of how many
+ * level-0 texels the sample's footprint spans along its longer side; at
+ * or below 0 the image is magnified (bilinear on level 0), above it the
+ * two nearest levels are blended (trilinear). */
+void texture_sample(const Texture *t, float u, float v, float lod, float out[3]);
+
+/* sRGB transfer (IEC 61966-2-1): a byte to linear light, and back. */
+float   srgb_to_linear(uint8_t v);
+uint8_t linear_to_srgb(float v);
+
+#endif

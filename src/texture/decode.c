@@ -1,0 +1,238 @@
+/* decode.c: PNG (libpng's simplified API) and JPEG (libjpeg-turbo) images
+ * into RGBA texels, told apart by their first bytes; then mipmapped
+ * (mip.c). Sizes are checked before anything big is allocated. */
+
+#include <errno.h>
+#include <png.h>
+#include <setjmp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+/* jpeglib.h needs FILE and size_t declared first */
+#include <jpeglib.h>
+
+#include "sysmem.h"
+#include "texture.h"
+#include "texture_internal.h"
+
+/* ==== size checks ==== */
+
+uint64_t texture_bytes_for(int w, int h)
+{
+    uint64_t n = 0;
+    for (;;) {
+        n += (uint64_t)w * (uint64_t)h * 4;
+        if (w == 1 && h == 1)
+            return n;
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+    }
+}
+
+/* Refuse a w x h image before decoding it: too big a side, or more
+ * memory than the caller allows or the machine has. */
+static int check_size(int w, int h, const char *name, uint64_t max_bytes, char *err, size_t errlen)
+{
+    if (w < 1 || h < 1 || w > TEX_MAX_SIDE || h > TEX_MAX_SIDE) {
+        snprintf(err, errlen, "%s: a %dx%d image (1 to %d per side)", name, w, h, TEX_MAX_SIDE);
+        return -1;
+    }
+    uint64_t need = texture_bytes_for(w, h), avail = sysmem_available();
+    if (max_bytes && max_bytes < avail)
+        avail = max_bytes;
+    if (need > avail) {
+        char n[32], a[32];
+        sysmem_format(need, n, sizeof n);
+        sysmem_format(avail, a, sizeof a);
+        snprintf(err, errlen, "%s: a %dx%d image needs about %s; %s available", name, w, h, n, a);
+        return -1;
+    }
+    return 0;
+}
+
+/* Level 0's texels for a w x h image, with room for every level. */
+static uint8_t *alloc_levels(Texture *t, int w, int h)
+{
+    memset(t, 0, sizeof *t);
+    t->rgba = malloc(texture_bytes_for(w, h));
+    if (!t->rgba)
+        return NULL;
+    t->w = w;
+    t->h = h;
+    return t->rgba;
+}
+
+/* ==== PNG ==== */
+
+static int decode_png(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
+                      char *err, size_t errlen)
+{
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_memory(&img, data, len)) {
+        snprintf(err, errlen, "%s: %s", name, img.message);
+        return -1;
+    }
+    if (check_size((int)(img.width > INT32_MAX ? 0 : img.width), (int)(img.height > INT32_MAX ? 0 : img.height),
+                   name, max_bytes, err, errlen)) {
+        png_image_free(&img);
+        return -1;
+    }
+    /* 8-bit sRGB RGBA whatever the file holds (palette, grey, 16 bits,
+     * a gAMA chunk): libpng converts */
+    img.format = PNG_FORMAT_RGBA;
+    uint8_t *px = alloc_levels(t, (int)img.width, (int)img.height);
+    if (!px) {
+        png_image_free(&img);
+        snprintf(err, errlen, "%s: out of memory", name);
+        return -1;
+    }
+    if (!png_image_finish_read(&img, NULL, px, 0, NULL)) {
+        snprintf(err, errlen, "%s: %s", name, img.message);
+        texture_free(t);
+        return -1;
+    }
+    return 0;
+}
+
+/* ==== JPEG ==== */
+
+typedef struct {
+    struct jpeg_error_mgr mgr;      /* first: libjpeg's pointer is to it */
+    jmp_buf               jmp;
+    char                  msg[JMSG_LENGTH_MAX];
+} JpegErr;
+
+static void jpeg_on_error(j_common_ptr c)
+{
+    JpegErr *e = (JpegErr *)c->err;
+    c->err->format_message(c, e->msg);
+    longjmp(e->jmp, 1);
+}
+
+/* Warnings (a truncated file, bad data the decoder gets past) are not
+ * written to stderr: the image shows what could be read. */
+static void jpeg_quiet(j_common_ptr c, int level)
+{
+    (void)c;
+    (void)level;
+}
+
+static int decode_jpeg(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
+                       char *err, size_t errlen)
+{
+    struct jpeg_decompress_struct c;
+    JpegErr e;
+    memset(t, 0, sizeof *t);
+    c.err = jpeg_std_error(&e.mgr);
+    e.mgr.error_exit = jpeg_on_error;
+    e.mgr.emit_message = jpeg_quiet;
+    e.msg[0] = 0;
+    /* t is written after setjmp only through its pointer: what it holds
+     * when libjpeg gives up is freed below */
+    if (setjmp(e.jmp)) {
+        jpeg_destroy_decompress(&c);
+        texture_free(t);
+        snprintf(err, errlen, "%s: %s", name, e.msg[0] ? e.msg : "not a JPEG image zview can read");
+        return -1;
+    }
+    jpeg_create_decompress(&c);
+    jpeg_mem_src(&c, data, (unsigned long)len);
+    jpeg_read_header(&c, TRUE);
+    if (check_size((int)c.image_width, (int)c.image_height, name, max_bytes, err, errlen)) {
+        jpeg_destroy_decompress(&c);
+        return -1;
+    }
+    c.out_color_space = JCS_EXT_RGBA;       /* libjpeg-turbo: grey and CMYK converted too */
+    jpeg_start_decompress(&c);
+    uint8_t *px = alloc_levels(t, (int)c.output_width, (int)c.output_height);
+    if (!px) {
+        jpeg_destroy_decompress(&c);
+        snprintf(err, errlen, "%s: out of memory", name);
+        return -1;
+    }
+    while (c.output_scanline < c.output_height) {
+        JSAMPROW row = px + (size_t)c.output_scanline * (size_t)t->w * 4;
+        jpeg_read_scanlines(&c, &row, 1);
+    }
+    jpeg_finish_decompress(&c);
+    jpeg_destroy_decompress(&c);
+    return 0;
+}
+
+/* ==== the front door ==== */
+
+int texture_decode(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
+                   char *err, size_t errlen)
+{
+    const uint8_t *b = data;
+    int rc;
+    memset(t, 0, sizeof *t);
+    if (len >= 8 && memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0)
+        rc = decode_png(t, data, len, name, max_bytes, err, errlen);
+    else if (len >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF)
+        rc = decode_jpeg(t, data, len, name, max_bytes, err, errlen);
+    else {
+        snprintf(err, errlen, "%s: not a PNG or JPEG image", name);
+        return -1;
+    }
+    if (rc)
+        return -1;
+    texture_build_levels(t);
+    return 0;
+}
+
+int texture_load_file(Texture *t, const char *path, uint64_t max_bytes, char *err, size_t errlen)
+{
+    memset(t, 0, sizeof *t);
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        return -1;
+    }
+    /* compressed images are far smaller than their texels: a file larger
+     * than the texels of the biggest image allowed is not one */
+    uint64_t cap = texture_bytes_for(TEX_MAX_SIDE, TEX_MAX_SIDE);
+    size_t n = 0, have = 0;
+    uint8_t *buf = NULL;
+    for (;;) {
+        if (n == have) {
+            size_t more = have ? have * 2 : 1 << 16;
+            uint8_t *nb = more > cap ? NULL : realloc(buf, more);
+            if (!nb) {
+                free(buf);
+                fclose(f);
+                snprintf(err, errlen, "%s: %s", path, more > cap ? "too large for an image" : "out of memory");
+                return -1;
+            }
+            buf = nb;
+            have = more;
+        }
+        size_t r = fread(buf + n, 1, have - n, f);
+        n += r;
+        if (r == 0)
+            break;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        free(buf);
+        snprintf(err, errlen, "%s: read error", path);
+        return -1;
+    }
+    int rc = texture_decode(t, buf, n, path, max_bytes, err, errlen);
+    free(buf);
+    return rc;
+}
+
+void texture_free(Texture *t)
+{
+    free(t->rgba);
+    memset(t, 0, sizeof *t);
+}
+
+size_t texture_bytes(const Texture *t)
+{
+    return t->rgba ? (size_t)texture_bytes_for(t->w, t->h) : 0;
+}
