@@ -12,6 +12,8 @@
 #include <string.h>
 
 #include "app.h"
+#include "tty.h"
+#include "../src/viewer/viewer_app.h"
 
 /* ==== Reading the files ==== */
 
@@ -510,4 +512,82 @@ Test(options, the_view_command_writes_the_options_marked_for_it)
     for (int i = 0; i < cli_noptions; i++)
         cr_expect(!(cli_options[i].traits & OPT_VIEWCMD) || seen[i],
                   "--%s is marked OPT_VIEWCMD but the view command does not write it", cli_options[i].name);
+}
+
+/* ==== The key tables ==== */
+
+/* Names of keys in any case ("space", "Space"), but a letter as it is:
+ * g and G are two keys. */
+static int same_word_nocase(const char *a, const char *b)
+{
+    if (!a[0] || !a[1] || !b[0] || !b[1])
+        return !strcmp(a, b);
+    for (; *a && *b; a++, b++)
+        if (tolower((unsigned char)*a) != tolower((unsigned char)*b))
+            return 0;
+    return *a == *b;
+}
+
+/* Whether the words of text (split at blanks and commas) hold name, in
+ * any case; "arrows" stands for the four arrow keys. */
+static int names_key(const char *text, int key)
+{
+    char buf[1024], nb[8];
+    const char *name = key_name(key, nb, sizeof nb);
+    int arrow = key == TK_LEFT || key == TK_RIGHT || key == TK_UP || key == TK_DOWN;
+    snprintf(buf, sizeof buf, "%s", text);
+    char *save = NULL;
+    for (char *w = strtok_r(buf, " \t,", &save); w; w = strtok_r(NULL, " \t,", &save))
+        if (same_word_nocase(w, name) || (arrow && same_word_nocase(w, "arrows")))
+            return 1;
+    return 0;
+}
+
+static void rows_name_their_keys(const KeyRow *rows, int n, const char *table)
+{
+    for (int r = 0; r < n; r++)
+        for (const KeyBind *b = rows[r].bind; b < rows[r].bind + KEY_ROW_BINDS && b->key; b++) {
+            char nb[8];
+            cr_expect(names_key(rows[r].keys, b->key), "%s: the help row '%s' does not name %s", table,
+                      rows[r].keys, key_name(b->key, nb, sizeof nb));
+            cr_expect_eq(key_find(rows, n, b->key), b, "%s: %s is bound twice", table,
+                         key_name(b->key, nb, sizeof nb));
+        }
+}
+
+Test(keytable, each_help_row_names_its_keys_once)
+{
+    rows_name_their_keys(app_keys, app_keys_n, "action.c");
+    rows_name_their_keys(sketch_keys, sketch_keys_n, "sketchui.c");
+    /* sketch mode passes a key on only to a key the viewer has */
+    for (int r = 0; r < sketch_keys_n; r++)
+        for (const KeyBind *b = sketch_keys[r].bind; b < sketch_keys[r].bind + KEY_ROW_BINDS && b->key; b++)
+            cr_expect(b->act || key_find(app_keys, app_keys_n, b->key), "sketch mode passes on a key the viewer lacks");
+}
+
+/* Every key of a table has a .TP entry naming it in the man page's
+ * section sh. */
+static void man_lists_keys(const char *man, const char *sh, const KeyRow *rows, int n)
+{
+    ManEntry *e = calloc(MAN_MAX, sizeof *e);
+    int ne = man_entries(man, sh, e, MAN_MAX);
+    cr_assert_gt(ne, 10, "the man page's %s read as %d entries", sh, ne);
+    for (int r = 0; r < n; r++)
+        for (const KeyBind *b = rows[r].bind; b < rows[r].bind + KEY_ROW_BINDS && b->key; b++) {
+            int k = 0;
+            while (k < ne && !names_key(e[k].tag + 3, b->key))     /* past the .B / .BR */
+                k++;
+            char nb[8];
+            cr_expect_lt(k, ne, "doc/zview.1 does not list the key %s in %s (%s: %s)", key_name(b->key, nb, sizeof nb),
+                         sh, rows[r].keys, rows[r].what);
+        }
+    free(e);
+}
+
+Test(keytable, the_man_page_lists_every_key)
+{
+    char *man = slurp("doc/zview.1");
+    man_lists_keys(man, "KEYS", app_keys, app_keys_n);
+    man_lists_keys(man, "SKETCH", sketch_keys, sketch_keys_n);
+    free(man);
 }
