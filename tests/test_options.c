@@ -591,3 +591,34 @@ Test(keytable, the_man_page_lists_every_key)
     man_lists_keys(man, "SKETCH", sketch_keys, sketch_keys_n);
     free(man);
 }
+
+/* The README's short list of keys names keys the viewer has. */
+Test(keytable, the_readme_names_only_keys_that_exist)
+{
+    char *readme = slurp("README.md");
+    const char *sec = strstr(readme, "\n## Keys");
+    cr_assert_not_null(sec, "README.md has no Keys section");
+    const char *end = strstr(sec + 1, "\n## ");
+    int named = 0;
+    for (const char *p = sec; p && p < end; p = strchr(p + 1, '\n')) {
+        if (strncmp(p, "\n| ", 3) || !strncmp(p, "\n| key", 6) || !strncmp(p, "\n|---", 5))
+            continue;
+        const char *cell_end = strchr(p + 3, '|');
+        for (const char *b = strchr(p + 3, '`'); b && b < cell_end; b = strchr(b + 1, '`')) {
+            const char *e = strchr(b + 1, '`');
+            char word[16];
+            snprintf(word, sizeof word, "%.*s", (int)(e - b - 1), b + 1);
+            int found = 0;
+            for (int r = 0; r < app_keys_n && !found; r++)
+                for (const KeyBind *k = app_keys[r].bind; k < app_keys[r].bind + KEY_ROW_BINDS && k->key; k++) {
+                    char nb[8];
+                    found |= same_word_nocase(word, key_name(k->key, nb, sizeof nb));
+                }
+            cr_expect(found, "README.md's Keys name `%s`, which the viewer does not bind", word);
+            named++;
+            b = e;
+        }
+    }
+    cr_expect_gt(named, 10, "README.md's Keys name %d keys", named);
+    free(readme);
+}
