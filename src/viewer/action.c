@@ -1,7 +1,8 @@
-/* action: the viewer's key table. Each key indexes a tiny action that
- * changes the view and returns what to redo (viewer.h). Turns, moves and
- * scaling apply to the selected object, or to the whole scene (the
- * camera) when none is selected. */
+/* action: the viewer's key table. Each row of it is a line of the ? help
+ * and the keys it names, each bound to a tiny action that changes the
+ * view and returns what to redo (viewer_app.h). Turns, moves and scaling
+ * apply to the selected object, or to the whole scene (the camera) when
+ * none is selected. */
 
 #include <math.h>
 #include <stdio.h>

@@ -1,8 +1,9 @@
-#ifndef ZV_VIEWER_H
-#define ZV_VIEWER_H
-/* viewer (private to src/app): the interactive viewer's state, and the
- * key table in action.c that changes it. Each action is tiny and returns
- * what the loop in viewer.c has to redo. */
+#ifndef ZV_VIEWER_APP_H
+#define ZV_VIEWER_APP_H
+/* viewer_app (private to src/viewer): the interactive viewer's state, and
+ * the key table in action.c that changes it. Each action is tiny and
+ * returns what the loop in viewer.c has to redo. (The guard is not
+ * include/viewer.h's, so that a file can include both.) */
 
 #include <pthread.h>
 
