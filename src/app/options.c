@@ -269,31 +269,133 @@ static int set_ortho(Options *o, const OptCall *c)
     return 0;
 }
 
-static int set_algo(Options *o, const OptCall *c)      { o->algo = c->val; return 0; }
-static int set_dump_ids(Options *o, const OptCall *c)  { o->dump_ids = c->val; return 0; }
-static int set_dump_screen(Options *o, const OptCall *c) { o->dump_screen = c->val; return 0; }
-static int set_up(Options *o, const OptCall *c)    { return set_name(&o->up, c, up_axis_from_name, "x, y, z, -x, -y or -z"); }
-static int set_mode(Options *o, const OptCall *c)  { return set_name(&o->mode, c, mode_from_name, "half, ascii or braille"); }
-static int set_color(Options *o, const OptCall *c) { return set_name(&o->color, c, color_from_name, "truecolor, 256, 16, 8 or none"); }
-static int set_shade(Options *o, const OptCall *c) { return set_name(&o->shade, c, shade_from_name, "lambert, smooth, depth or id"); }
-static int set_order(Options *o, const OptCall *c) { return set_name(&o->order, c, order_from_name, "file, front-to-back, back-to-front or shuffle"); }
-static int set_layout(Options *o, const OptCall *c) { return set_name(&o->layout, c, layout_from_name, "row, grid or none"); }
-static int set_yaw(Options *o, const OptCall *c)   { return set_turn_angle(&o->yaw, o, c); }
-static int set_pitch(Options *o, const OptCall *c) { return set_turn_angle(&o->pitch, o, c); }
-static int set_roll(Options *o, const OptCall *c)  { return set_turn_angle(&o->roll, o, c); }
-static int set_zoom(Options *o, const OptCall *c)  { return set_float(&o->zoom, c, 1e-3f, 1e3f, "from 0.001 to 1000"); }
-static int set_crease(Options *o, const OptCall *c) { return set_float(&o->crease, c, 0, 180, "degrees from 0 to 180"); }
-static int set_ambient(Options *o, const OptCall *c) { return set_float(&o->ambient, c, 0, 1, "from 0 to 1"); }
-static int set_move(Options *o, const OptCall *c)  { return add_place(o, c, PLACE_MOVE); }
-static int set_turn(Options *o, const OptCall *c)  { return add_place(o, c, PLACE_TURN); }
-static int set_scale(Options *o, const OptCall *c) { return add_place(o, c, PLACE_SCALE); }
-static int set_views(Options *o, const OptCall *c) { return set_int(&o->views, c, 1, 100000, "1 to 100000"); }
-static int set_threads(Options *o, const OptCall *c) { return set_int(&o->threads, c, 1, 64, "1 to 64"); }
-static int set_grid(Options *o, const OptCall *c)  { return set_int(&o->grid, c, 1, 100, "1 to 100"); }
-static int set_turntable(Options *o, const OptCall *c) { return set_int(&o->turntable, c, 1, 3600, "1 to 3600 frames"); }
-static int set_fps(Options *o, const OptCall *c)   { return set_int(&o->fps, c, 1, 1000, "1 to 1000"); }
-static int set_point_size(Options *o, const OptCall *c) { return set_int(&o->point_size, c, 1, POINT_SIZE_MAX, "pixels, 1 to 16"); }
-static int set_line_width(Options *o, const OptCall *c) { return set_int(&o->line_width, c, 1, POINT_SIZE_MAX, "pixels, 1 to 16"); }
+static int set_algo(Options *o, const OptCall *c)
+{
+    o->algo = c->val;
+    return 0;
+}
+
+static int set_dump_ids(Options *o, const OptCall *c)
+{
+    o->dump_ids = c->val;
+    return 0;
+}
+
+static int set_dump_screen(Options *o, const OptCall *c)
+{
+    o->dump_screen = c->val;
+    return 0;
+}
+
+static int set_up(Options *o, const OptCall *c)
+{
+    return set_name(&o->up, c, up_axis_from_name, "x, y, z, -x, -y or -z");
+}
+
+static int set_mode(Options *o, const OptCall *c)
+{
+    return set_name(&o->mode, c, mode_from_name, "half, ascii or braille");
+}
+
+static int set_color(Options *o, const OptCall *c)
+{
+    return set_name(&o->color, c, color_from_name, "truecolor, 256, 16, 8 or none");
+}
+
+static int set_shade(Options *o, const OptCall *c)
+{
+    return set_name(&o->shade, c, shade_from_name, "lambert, smooth, depth or id");
+}
+
+static int set_order(Options *o, const OptCall *c)
+{
+    return set_name(&o->order, c, order_from_name, "file, front-to-back, back-to-front or shuffle");
+}
+
+static int set_layout(Options *o, const OptCall *c)
+{
+    return set_name(&o->layout, c, layout_from_name, "row, grid or none");
+}
+
+static int set_yaw(Options *o, const OptCall *c)
+{
+    return set_turn_angle(&o->yaw, o, c);
+}
+
+static int set_pitch(Options *o, const OptCall *c)
+{
+    return set_turn_angle(&o->pitch, o, c);
+}
+
+static int set_roll(Options *o, const OptCall *c)
+{
+    return set_turn_angle(&o->roll, o, c);
+}
+
+static int set_zoom(Options *o, const OptCall *c)
+{
+    return set_float(&o->zoom, c, 1e-3f, 1e3f, "from 0.001 to 1000");
+}
+
+static int set_crease(Options *o, const OptCall *c)
+{
+    return set_float(&o->crease, c, 0, 180, "degrees from 0 to 180");
+}
+
+static int set_ambient(Options *o, const OptCall *c)
+{
+    return set_float(&o->ambient, c, 0, 1, "from 0 to 1");
+}
+
+static int set_move(Options *o, const OptCall *c)
+{
+    return add_place(o, c, PLACE_MOVE);
+}
+
+static int set_turn(Options *o, const OptCall *c)
+{
+    return add_place(o, c, PLACE_TURN);
+}
+
+static int set_scale(Options *o, const OptCall *c)
+{
+    return add_place(o, c, PLACE_SCALE);
+}
+
+static int set_views(Options *o, const OptCall *c)
+{
+    return set_int(&o->views, c, 1, 100000, "1 to 100000");
+}
+
+static int set_threads(Options *o, const OptCall *c)
+{
+    return set_int(&o->threads, c, 1, 64, "1 to 64");
+}
+
+static int set_grid(Options *o, const OptCall *c)
+{
+    return set_int(&o->grid, c, 1, 100, "1 to 100");
+}
+
+static int set_turntable(Options *o, const OptCall *c)
+{
+    return set_int(&o->turntable, c, 1, 3600, "1 to 3600 frames");
+}
+
+static int set_fps(Options *o, const OptCall *c)
+{
+    return set_int(&o->fps, c, 1, 1000, "1 to 1000");
+}
+
+static int set_point_size(Options *o, const OptCall *c)
+{
+    return set_int(&o->point_size, c, 1, POINT_SIZE_MAX, "pixels, 1 to 16");
+}
+
+static int set_line_width(Options *o, const OptCall *c)
+{
+    return set_int(&o->line_width, c, 1, POINT_SIZE_MAX, "pixels, 1 to 16");
+}
 
 /* ==== The table ==== */
 
