@@ -1,8 +1,10 @@
 /* test_options.c: the option table (src/app/options.c) against every
  * place an option is written down: --help, the man page, the bash and
- * zsh completions, the README and the view command. Each test names
- * the option and the file that lags, so a new option cannot be half
- * documented, and a removed one cannot linger in the docs. */
+ * zsh completions, the docs and the view command; and the key tables
+ * (src/viewer/action.c, sketchui.c) against the ? help's labels, the
+ * man page and the README. Each test names the option or key and the
+ * file that lags, so a new one cannot be half documented, and a removed
+ * one cannot linger in the docs. */
 
 #define _POSIX_C_SOURCE 200809L   /* strtok_r */
 #include <criterion/criterion.h>
