@@ -159,6 +159,7 @@ $(BUILD)/subdiv: tools/subdiv.c
 # the perceptual quantizer (README: Colour).
 COLORERR_MODELS ?= assets/demo.obj assets/knot.obj $(wildcard ../shared/models/spot.obj ../shared/models/cornell_box.obj ../shared/models/stanford-bunny.obj)
 colour-error: $(BUILD)/colorerr
+	@sh tools/stamp.sh "make colour-error"
 	$(BUILD)/colorerr $(COLORERR_MODELS)
 
 $(BUILD)/colorerr: tools/colorerr.c $(LIBOBJS)

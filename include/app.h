@@ -78,6 +78,52 @@ typedef struct {
 
 enum { IMG_AUTO, IMG_PNG, IMG_PPM };
 
+/* ==== The option table (options.c) ====
+ * Each option is written once, in cli_options[]: getopt's table, the
+ * --help text and the parsing come from it, and tests/test_options.c
+ * checks the man page, the completion files, the README and the view
+ * command against it. */
+typedef enum {
+    OPTSEC_GENERAL, OPTSEC_INPUT, OPTSEC_OUTPUT, OPTSEC_VIEW, OPTSEC_BENCH, OPTSEC_COUNT
+} OptSection;
+
+enum {
+    OPT_ALIAS   = 1 << 0,       /* another spelling (--colour): not listed in --help or the man page */
+    OPT_VIEWCMD = 1 << 1,       /* the view command (C, --print-view) writes it when it is not the default */
+};
+
+/* One option's value as the setter sees it: the value, the option as
+ * the user wrote it (--size or -s) and where a message goes. */
+typedef struct {
+    const char *val;
+    const char *name;
+    char       *err;
+    size_t      errlen;
+} OptCall;
+
+typedef struct {
+    const char *name;           /* the long name, without the dashes */
+    char        letter;         /* the short option, 0 = none */
+    const char *arg;            /* the value's name in --help (WxH, N); NULL: the values, or no value */
+    const char *values;         /* the words the value can be, space-separated, NULL = any */
+    OptSection  section;        /* the man page's subsection, --help's heading */
+    const char *help;           /* --help's text, lines split by '\n'; NULL for an alias */
+    /* takes the value into Options: 0, or -1 with the message in c->err;
+     * NULL: a flag (no value) that sets the int at `flag` to 1 */
+    int       (*set)(Options *o, const OptCall *c);
+    size_t      flag;           /* offsetof(Options, field) of a flag */
+    unsigned    traits;         /* OPT_ALIAS, OPT_VIEWCMD */
+} OptSpec;
+
+#define CLI_OPTIONS_MAX 96      /* bounds getopt's table, built on the stack */
+extern const OptSpec cli_options[];
+extern const int     cli_noptions;
+extern const char *const cli_section_names[OPTSEC_COUNT];
+/* The option of that long name, NULL when there is none. */
+const OptSpec *cli_option(const char *name);
+/* Whether the option takes a value: one that does names it or its words. */
+static inline int opt_has_value(const OptSpec *s) { return s->arg || s->values; }
+
 /* Parse argv. Returns 0, or -1 with a message in err (a usage error). */
 void cli_defaults(Options *o);
 int  cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen);

@@ -21,6 +21,7 @@ ZV_FORMATS_OUT=$T ZV_FORMATS_MODEL=$MODEL build/zview-tests --filter 'models/wri
 ln -sf "$MODEL" "$T/original.obj"
 median() { sort -n | awk '{ a[NR] = $1 } END { print a[int((NR + 1) / 2)] }'; }
 best() { sort -n | head -n 1; }
+sh "$ROOT/tools/stamp.sh" "make bench-formats (tools/bench-formats.sh $MODEL), RUNS=$RUNS runs"
 printf '| format | file MB | load ms, median (best) | MB/s, median (best) | load CPU ms, median (MB/s) | peak RSS MB, median |\n'
 printf '|---|---:|---:|---:|---:|---:|\n'
 for f in original.obj model.obj model.stl model-ascii.stl model-le.ply model-be.ply model-ascii.ply model.off model.glb; do

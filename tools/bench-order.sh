@@ -13,6 +13,8 @@ S=../shared/models
 VIEWS=${VIEWS:-8}
 SIZE=${SIZE:-1920x1080}
 
+sh "$(dirname "$0")/stamp.sh" "make bench-order (tools/bench-order.sh), VIEWS=$VIEWS views at $SIZE"
+
 # "culled_pct hsr_median_ms" of one --bench --json run
 cell() {
     "$ZV" --bench --json --views "$VIEWS" --threads 1 --size "$SIZE" "$@" | awk '

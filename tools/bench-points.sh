@@ -13,6 +13,7 @@ MODEL=${MODEL:-../shared/models/dragon.obj}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 [ -r "$MODEL" ] || { echo "bench-points: $MODEL not found" >&2; exit 1; }
+sh "$(dirname "$0")/../tools/stamp.sh" "make bench-points (tests/bench_points.sh), POINTS=$N"
 "$MK" "$MODEL" "$T/scan.ply" "$N" || exit 1
 echo "== $(ls -l "$T/scan.ply" | awk '{ printf "%.1f MB", $5 / 1e6 }'), $N points"
 echo "== load (--info), 5 runs"

@@ -21,7 +21,7 @@ if [ -d "$S" ]; then
         [ -f "$S/$m" ] && big="$big $S/$m"
     done
 fi
-echo "# machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), load $(cut -d' ' -f1-3 /proc/loadavg) at the start"
+sh "$(dirname "$0")/stamp.sh" "make bench (tools/bench.sh), VIEWS=$VIEWS views"
 
 # Single-thread runs are pinned to one core (BENCH_CPU, default 0), as
 # the figures of one thread should be; PIN= turns that off.

@@ -3,8 +3,10 @@
 # Run as root (or through sudo). Safe to run again.
 set -e
 # libassimp-dev is optional (glTF, FBX, 3DS, ... through assimp; make
-# ASSIMP=0 builds without it)
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev libcriterion-dev tmux libassimp-dev"
+# ASSIMP=0 builds without it); tmux and python3 drive the end-to-end tests
+# (the viewer in a pane, the slow-terminal and picture checks); libjpeg-dev
+# and libpng-dev decode textures
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev libcriterion-dev tmux python3 libassimp-dev"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive

@@ -1,7 +1,8 @@
-/* action: the viewer's key table. Each key indexes a tiny action that
- * changes the view and returns what to redo (viewer.h). Turns, moves and
- * scaling apply to the selected object, or to the whole scene (the
- * camera) when none is selected. */
+/* action: the viewer's key table. Each row of it is a line of the ? help
+ * and the keys it names, each bound to a tiny action that changes the
+ * view and returns what to redo (viewer_app.h). Turns, moves and scaling
+ * apply to the selected object, or to the whole scene (the camera) when
+ * none is selected. */
 
 #include <math.h>
 #include <stdio.h>
@@ -350,11 +351,31 @@ static Reaction act_escape(App *a)
 
 /* ==== Entry points ==== */
 
-#define K_SPECIAL 128   /* table index of TK_UP; the other specials follow */
-#define K_COUNT   (K_SPECIAL + (TK_LAST - TK_UP) + 1)
+const KeyBind *key_find(const KeyRow *rows, int n, int key)
+{
+    /* a few dozen rows, searched once a key press */
+    for (int r = 0; r < n; r++)
+        for (const KeyBind *b = rows[r].bind; b < rows[r].bind + KEY_ROW_BINDS && b->key; b++)
+            if (b->key == key)
+                return b;
+    return NULL;
+}
 
-typedef Reaction (*Action)(App *a);
-static const Action keys[K_COUNT];
+const char *key_name(int key, char *buf, size_t len)
+{
+    static const struct { int key; const char *name; } names[] = {
+        { TK_LEFT, "Left" }, { TK_RIGHT, "Right" }, { TK_UP, "Up" }, { TK_DOWN, "Down" },
+        { TK_BTAB, "Shift-Tab" }, { TK_DEL, "Delete" }, { TK_HOME, "Home" }, { TK_END, "End" },
+        { TK_INS, "Insert" }, { TK_PGUP, "Page Up" }, { TK_PGDN, "Page Down" }, { TK_TAB, "Tab" },
+        { TK_ENTER, "Enter" }, { TK_BACKSPACE, "Backspace" }, { TK_CTRL_L, "Ctrl-L" }, { TK_ESC, "Esc" },
+        { ' ', "Space" },
+    };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (names[i].key == key)
+            return names[i].name;
+    snprintf(buf, len, "%c", key > ' ' && key < 127 ? key : '?');
+    return buf;
+}
 
 /* A key while the help is shown: it scrolls the help when the help does
  * not fit (Up/Down a row, Page Up/Down a page, Home/End to either end),
@@ -398,21 +419,21 @@ Reaction app_key(App *a, int key)
         return RE_DRAW;
     case VM_SKETCH: {
         /* sketch mode's own keys, then the few of the viewer's it shares */
-        Reaction r = sketch_mode_key(a, key);
+        const KeyBind *b = key_find(sketch_keys, sketch_keys_n, key);
+        Reaction r = b && b->act ? b->act(a) : RE_NONE;
         if (r != RE_NONE)
             return r | RE_DRAW;
-        if (key <= 0 || key >= K_SPECIAL || !strchr(sketch_shared_keys, key))
+        if (!b || b->act)
             return RE_NONE;
         break;
     }
     case VM_VIEW:
         break;
     }
-    int i = key >= 0 && key < K_SPECIAL ? key
-          : key >= TK_UP && key <= TK_LAST ? K_SPECIAL + (key - TK_UP) : -1;
-    if (i < 0 || !keys[i])
+    const KeyBind *b = key_find(app_keys, app_keys_n, key);
+    if (!b)
         return RE_NONE;
-    return keys[i](a) | RE_DRAW;
+    return b->act(a) | RE_DRAW;
 }
 
 Reaction app_drag(App *a, int button, int dx, int dy)
@@ -437,55 +458,15 @@ void app_spin(App *a, float radians)
 
 /* ==== The help overlay ==== */
 
-static const HelpEntry help_keys[] = {
-    { "arrows h j k l", "turn (yaw, pitch)" },
-    { "u o", "roll" },
-    { "I J K L", "turn 15 degrees" },
-    { "w a s d", "move" },
-    { "+ - z c wheel", "scale" },
-    { "f", "fit to view" },
-    { "r x", "reset" },
-    { "Tab n", "next object" },
-    { "shift-Tab", "previous object" },
-    { "N 0", "whole scene" },
-    { "g G", "next / previous algorithm" },
-    { "1 2 3 4", "view front back left right" },
-    { "5 6 7", "view top bottom iso" },
-    { "8", "automatic view" },
-    { "m", "display mode" },
-    { "v", "shading" },
-    { "e", "outlines (edges)" },
-    { "S", "samples 1 4 9 16" },
-    { "[ ] { }", "light left right up down" },
-    { "p", "ortho / perspective" },
-    { "b", "back-face culling" },
-    { "U", "up axis (y z x -y -z -x)" },
-    { "< >", "point size" },
-    { "( )", "line width" },
-    { "W", "wireframe" },
-    { "space", "auto-rotate" },
-    { "O", "open a file (Tab completes)" },
-    { "X Delete", "remove the selected object" },
-    { "E", "empty the scene (asks y/n)" },
-    { "i", "info panel: times, counts" },
-    { "C", "command line of the view" },
-    { "P", "snapshot: PNG and text" },
-    { "D", "sketch: draw polygons" },
-    { "Ctrl-L", "redraw" },
-    { "q Esc", "quit (Esc: stop a load)" },
-    { "left drag", "turn" },
-    { "right drag", "move" },
-};
-#define HELP_KEYS_N ((int)(sizeof help_keys / sizeof help_keys[0]))
 #define HELP_GAP 3          /* spaces between columns */
 #define HELP_MAX_COLUMNS 3
 
 /* Row r of the layout: ncols entries side by side (column-major), or in
  * the stacked form (ncols 0) the keys on even rows, the meaning below. */
-static void help_row(const HelpEntry *help, int n, char *out, int r, int nrows, int ncols, int kw, int ew)
+static void help_row(const KeyRow *help, int n, char *out, int r, int nrows, int ncols, int kw, int ew)
 {
     if (ncols == 0) {
-        const HelpEntry *e = &help[r / 2];
+        const KeyRow *e = &help[r / 2];
         snprintf(out, HELP_LINE_MAX, r % 2 ? "  %s" : "%s", r % 2 ? e->what : e->keys);
         return;
     }
@@ -507,8 +488,8 @@ static void help_row(const HelpEntry *help, int n, char *out, int r, int nrows, 
 int app_help_layout(App *a, int cols, int rows, const char **lines)
 {
     /* sketch mode has keys of its own */
-    const HelpEntry *help = a->sk.on ? sketch_help : help_keys;
-    const int nhelp = a->sk.on ? sketch_help_n : HELP_KEYS_N;
+    const KeyRow *help = a->sk.on ? sketch_keys : app_keys;
+    const int nhelp = a->sk.on ? sketch_keys_n : app_keys_n;
     int kw = 0, dw = 0;
     for (int k = 0; k < nhelp; k++) {
         int n = (int)strlen(help[k].keys), m = (int)strlen(help[k].what);
@@ -551,51 +532,53 @@ int app_help_layout(App *a, int cols, int rows, const char **lines)
     return 1 + shown;
 }
 
-/* The key table. */
-static const Action keys[K_COUNT] = {
-    [K_SPECIAL + (TK_LEFT - TK_UP)] = act_yaw_left,
-    [K_SPECIAL + (TK_RIGHT - TK_UP)] = act_yaw_right,
-    [K_SPECIAL + (TK_UP - TK_UP)] = act_pitch_up,
-    [K_SPECIAL + (TK_DOWN - TK_UP)] = act_pitch_down,
-    [K_SPECIAL + (TK_BTAB - TK_UP)] = act_prev_object,
-    ['h'] = act_yaw_left,    ['l'] = act_yaw_right,
-    ['k'] = act_pitch_up,    ['j'] = act_pitch_down,
-    ['u'] = act_roll_left,   ['o'] = act_roll_right,
-    ['J'] = act_big_left,    ['L'] = act_big_right,
-    ['I'] = act_big_up,      ['K'] = act_big_down,
-    ['a'] = act_move_left,   ['d'] = act_move_right,
-    ['w'] = act_move_up,     ['s'] = act_move_down,
-    ['+'] = act_bigger,      ['='] = act_bigger,     ['z'] = act_bigger,
-    ['-'] = act_smaller,     ['_'] = act_smaller,    ['c'] = act_smaller,
-    ['f'] = act_fit,
-    ['r'] = act_reset,       ['x'] = act_reset,
-    [TK_TAB] = act_next_object, ['n'] = act_next_object,
-    ['N'] = act_whole_scene, ['0'] = act_whole_scene,
-    ['g'] = act_next_algo,   ['G'] = act_prev_algo,
-    ['1'] = act_view1,       ['2'] = act_view2,      ['3'] = act_view3,
-    ['4'] = act_view4,       ['5'] = act_view5,      ['6'] = act_view6,
-    ['7'] = act_view7,       ['8'] = act_view_auto,
-    ['['] = act_light_left,  [']'] = act_light_right,
-    ['{'] = act_light_up,    ['}'] = act_light_down,
-    ['e'] = act_edges,
-    ['S'] = act_samples,
-    ['C'] = act_command,
-    ['P'] = act_snapshot,
-    ['m'] = act_mode,
-    ['v'] = act_shade,
-    ['p'] = act_persp,
-    ['b'] = act_cull,
-    ['U'] = act_up,
-    ['<'] = act_point_smaller, ['>'] = act_point_bigger,
-    ['('] = act_line_thinner,  [')'] = act_line_wider,
-    ['W'] = act_wireframe,
-    ['D'] = act_sketch,
-    [' '] = act_spin,
-    ['O'] = act_open,
-    ['X'] = act_remove,      [K_SPECIAL + (TK_DEL - TK_UP)] = act_remove,
-    ['E'] = act_clear,
-    ['i'] = act_info,
-    ['?'] = act_help,
-    [TK_CTRL_L] = act_redraw,
-    ['q'] = act_quit,        [TK_ESC] = act_escape,
+/* The key table, which is also the ? help, a row a line. */
+const KeyRow app_keys[] = {
+    { "arrows h j k l", "turn (yaw, pitch)",
+      { { TK_LEFT, act_yaw_left }, { 'h', act_yaw_left }, { TK_RIGHT, act_yaw_right }, { 'l', act_yaw_right },
+        { TK_UP, act_pitch_up }, { 'k', act_pitch_up }, { TK_DOWN, act_pitch_down }, { 'j', act_pitch_down } } },
+    { "u o", "roll", { { 'u', act_roll_left }, { 'o', act_roll_right } } },
+    { "I J K L", "turn 15 degrees",
+      { { 'J', act_big_left }, { 'L', act_big_right }, { 'I', act_big_up }, { 'K', act_big_down } } },
+    { "w a s d", "move",
+      { { 'a', act_move_left }, { 'd', act_move_right }, { 'w', act_move_up }, { 's', act_move_down } } },
+    { "+ = z - _ c wheel", "scale",
+      { { '+', act_bigger }, { '=', act_bigger }, { 'z', act_bigger },
+        { '-', act_smaller }, { '_', act_smaller }, { 'c', act_smaller } } },
+    { "f", "fit to view", { { 'f', act_fit } } },
+    { "r x", "reset", { { 'r', act_reset }, { 'x', act_reset } } },
+    { "Tab n", "next object", { { TK_TAB, act_next_object }, { 'n', act_next_object } } },
+    { "shift-Tab", "previous object", { { TK_BTAB, act_prev_object } } },
+    { "N 0", "whole scene", { { 'N', act_whole_scene }, { '0', act_whole_scene } } },
+    { "g G", "next / previous algorithm", { { 'g', act_next_algo }, { 'G', act_prev_algo } } },
+    { "1 2 3 4", "view front back left right",
+      { { '1', act_view1 }, { '2', act_view2 }, { '3', act_view3 }, { '4', act_view4 } } },
+    { "5 6 7", "view top bottom iso", { { '5', act_view5 }, { '6', act_view6 }, { '7', act_view7 } } },
+    { "8", "automatic view", { { '8', act_view_auto } } },
+    { "m", "display mode", { { 'm', act_mode } } },
+    { "v", "shading", { { 'v', act_shade } } },
+    { "e", "outlines (edges)", { { 'e', act_edges } } },
+    { "S", "samples 1 4 9 16", { { 'S', act_samples } } },
+    { "[ ] { }", "light left right up down",
+      { { '[', act_light_left }, { ']', act_light_right }, { '{', act_light_up }, { '}', act_light_down } } },
+    { "p", "ortho / perspective", { { 'p', act_persp } } },
+    { "b", "back-face culling", { { 'b', act_cull } } },
+    { "U", "up axis (y z x -y -z -x)", { { 'U', act_up } } },
+    { "< >", "point size", { { '<', act_point_smaller }, { '>', act_point_bigger } } },
+    { "( )", "line width", { { '(', act_line_thinner }, { ')', act_line_wider } } },
+    { "W", "wireframe", { { 'W', act_wireframe } } },
+    { "space", "auto-rotate", { { ' ', act_spin } } },
+    { "O", "open a file (Tab completes)", { { 'O', act_open } } },
+    { "X Delete", "remove the selected object", { { 'X', act_remove }, { TK_DEL, act_remove } } },
+    { "E", "empty the scene (asks y/n)", { { 'E', act_clear } } },
+    { "i", "info panel: times, counts", { { 'i', act_info } } },
+    { "C", "command line of the view", { { 'C', act_command } } },
+    { "P", "snapshot: PNG and text", { { 'P', act_snapshot } } },
+    { "D", "sketch: draw polygons", { { 'D', act_sketch } } },
+    { "?", "this help", { { '?', act_help } } },
+    { "Ctrl-L", "redraw", { { TK_CTRL_L, act_redraw } } },
+    { "q Esc", "quit (Esc: stop a load)", { { 'q', act_quit }, { TK_ESC, act_escape } } },
+    { "left drag", "turn", { { 0, NULL } } },
+    { "right drag", "move", { { 0, NULL } } },
 };
+const int app_keys_n = (int)(sizeof app_keys / sizeof app_keys[0]);

@@ -318,6 +318,10 @@ int loadjob_finish(LoadJob *j, Scene *part_out, char *err, size_t errlen)
 
 void loadjob_abandon(LoadJob *j)
 {
+    /* read before the lock is released: an abandoned job's thread frees
+     * the job as soon as it sees the flag, so j->th may be gone by the
+     * time it is detached below */
+    pthread_t th = j->th;
     pthread_mutex_lock(&j->mu);
     int done = j->phase == JOB_DONE;
     j->abandoned = !done;
@@ -330,10 +334,10 @@ void loadjob_abandon(LoadJob *j)
     }
     pthread_mutex_unlock(&j->mu);
     if (done) {
-        pthread_join(j->th, NULL);
+        pthread_join(th, NULL);
         job_free(j);
     } else {
-        pthread_detach(j->th);
+        pthread_detach(th);
     }
 }
 

@@ -1,6 +1,6 @@
 #ifndef ZV_PROMPT_H
 #define ZV_PROMPT_H
-/* prompt (private to src/app): the viewer's one-line prompt in the
+/* prompt (private to src/viewer): the viewer's one-line prompt in the
  * status line (O asks for a file), and the path completion its Tab
  * does. Pure logic on plain structs: keys in, the line and what to show
  * out; nothing here draws. */

@@ -396,53 +396,28 @@ void sketch_mode_free(App *a)
     a->sk.built = 0;
 }
 
-/* Keys of the viewer that work in sketch mode too (action.c passes them on). */
-const char sketch_shared_keys[] = "gGmveSC?q\x0c";
-
-Reaction sketch_mode_key(App *a, int key)
-{
-    switch (key) {
-    case TK_LEFT:  return sk_left(a);
-    case TK_RIGHT: return sk_right(a);
-    case TK_UP:    return sk_up(a);
-    case TK_DOWN:  return sk_down(a);
-    case ' ':      return sk_add(a);
-    case TK_ENTER: return sk_close(a);
-    case TK_TAB:   return sk_flip(a);
-    case 't':      return sk_tilt_right(a);
-    case 'T':      return sk_tilt_left(a);
-    case 'y':      return sk_tilt_up(a);
-    case 'Y':      return sk_tilt_down(a);
-    case 'n':      return sk_next(a);
-    case 'u':
-    case TK_BACKSPACE: return sk_undo(a);
-    case 'c':      return sk_clear(a);
-    case 'w':      return sk_write(a);
-    case 'D':      return sk_toggle(a);
-    case TK_ESC:   return sk_leave(a);
-    default:       return RE_NONE;
-    }
-}
-
-/* The help in sketch mode. */
-const HelpEntry sketch_help[] = {
-    { "left click", "add a corner there" },
-    { "arrows", "move the cursor" },
-    { "space", "add a corner at the cursor" },
-    { "right click Enter", "close the polygon" },
-    { "Tab", "flip the depth order" },
-    { "t T", "tilt about the vertical" },
-    { "y Y", "tilt about the horizontal" },
-    { "n", "select the next polygon" },
-    { "u Backspace", "undo a corner or polygon" },
-    { "c", "clear all" },
-    { "w", "write sketch-NNN.obj" },
-    { "g G", "next / previous algorithm" },
-    { "m v", "display mode, shading" },
-    { "e S", "outlines, samples" },
-    { "C", "command line (after w)" },
-    { "D Esc", "back to the model (Esc: quit if none)" },
-    { "Ctrl-L", "redraw" },
-    { "q", "quit" },
+/* The key table of sketch mode, which is also its help. A key bound to
+ * NULL keeps the viewer's meaning (action.c passes it on). */
+const KeyRow sketch_keys[] = {
+    { "left click", "add a corner there", { { 0, NULL } } },
+    { "arrows", "move the cursor",
+      { { TK_LEFT, sk_left }, { TK_RIGHT, sk_right }, { TK_UP, sk_up }, { TK_DOWN, sk_down } } },
+    { "space", "add a corner at the cursor", { { ' ', sk_add } } },
+    { "right click Enter", "close the polygon", { { TK_ENTER, sk_close } } },
+    { "Tab", "flip the depth order", { { TK_TAB, sk_flip } } },
+    { "t T", "tilt about the vertical", { { 't', sk_tilt_right }, { 'T', sk_tilt_left } } },
+    { "y Y", "tilt about the horizontal", { { 'y', sk_tilt_up }, { 'Y', sk_tilt_down } } },
+    { "n", "select the next polygon", { { 'n', sk_next } } },
+    { "u Backspace", "undo a corner or polygon", { { 'u', sk_undo }, { TK_BACKSPACE, sk_undo } } },
+    { "c", "clear all", { { 'c', sk_clear } } },
+    { "w", "write sketch-NNN.obj", { { 'w', sk_write } } },
+    { "g G", "next / previous algorithm", { { 'g', NULL }, { 'G', NULL } } },
+    { "m v", "display mode, shading", { { 'm', NULL }, { 'v', NULL } } },
+    { "e S", "outlines, samples", { { 'e', NULL }, { 'S', NULL } } },
+    { "C", "command line (after w)", { { 'C', NULL } } },
+    { "D Esc", "back to the model (Esc: quit if none)", { { 'D', sk_toggle }, { TK_ESC, sk_leave } } },
+    { "?", "this help", { { '?', NULL } } },
+    { "Ctrl-L", "redraw", { { TK_CTRL_L, NULL } } },
+    { "q", "quit", { { 'q', NULL } } },
 };
-const int sketch_help_n = (int)(sizeof sketch_help / sizeof sketch_help[0]);
+const int sketch_keys_n = (int)(sizeof sketch_keys / sizeof sketch_keys[0]);

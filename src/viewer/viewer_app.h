@@ -1,8 +1,9 @@
-#ifndef ZV_VIEWER_H
-#define ZV_VIEWER_H
-/* viewer (private to src/app): the interactive viewer's state, and the
- * key table in action.c that changes it. Each action is tiny and returns
- * what the loop in viewer.c has to redo. */
+#ifndef ZV_VIEWER_APP_H
+#define ZV_VIEWER_APP_H
+/* viewer_app (private to src/viewer): the interactive viewer's state, and
+ * the key table in action.c that changes it. Each action is tiny and
+ * returns what the loop in viewer.c has to redo. (The guard is not
+ * include/viewer.h's, so that a file can include both.) */
 
 #include <pthread.h>
 
@@ -145,8 +146,7 @@ Reaction app_snapshot(App *a);
 /* Enter sketch mode: the canvas becomes the scene (the drawing kept from
  * the last time). Returns what to redo. */
 Reaction sketch_mode_enter(App *a);
-/* A key, and a press of button 1 or 3 on cell x, y, in sketch mode. */
-Reaction sketch_mode_key(App *a, int key);
+/* A press of button 1 or 3 on cell x, y, in sketch mode (its keys: sketch_keys). */
 Reaction sketch_mode_click(App *a, int button, int x, int y);
 /* Before a frame of w x h pixels: the scene rebuilt when the drawing
  * changed, the camera pinned to the canvas. Returns 0, or -1 with the
@@ -161,14 +161,32 @@ void     sketch_mode_status(const App *a, char *buf, size_t len, int width);
 const char *sketch_mode_file(const App *a);
 void     sketch_mode_free(App *a);
 
-/* A row of the help: keys and what they do. */
+/* ==== Key tables: the viewer's (action.c) and sketch mode's (sketchui.c) ====
+ * A row is one line of the ? help (the keys as it names them, what they
+ * do) and the keys it stands for, each with its action: the help is
+ * drawn from the rows, so no key is bound and left out of it.
+ * tests/test_options.c checks that each row's label names its keys and
+ * that the man page lists every key. */
+typedef Reaction (*KeyAction)(App *a);
 typedef struct {
-    const char *keys, *what;
-} HelpEntry;
-extern const HelpEntry sketch_help[];
-/* The viewer's keys that keep their meaning in sketch mode. */
-extern const char sketch_shared_keys[];
-extern const int sketch_help_n;
+    int       key;          /* a character or a TK_* code */
+    KeyAction act;          /* NULL in sketch mode's table: the viewer's action for the key */
+} KeyBind;
+#define KEY_ROW_BINDS 8
+typedef struct {
+    const char *keys;       /* as the help names them: "arrows h j k l" */
+    const char *what;       /* "turn (yaw, pitch)" */
+    KeyBind     bind[KEY_ROW_BINDS];    /* ended by key 0; none for the mouse's rows */
+} KeyRow;
+extern const KeyRow app_keys[];
+extern const int    app_keys_n;
+extern const KeyRow sketch_keys[];
+extern const int    sketch_keys_n;
+/* The binding of key in rows[0..n), NULL when there is none. */
+const KeyBind *key_find(const KeyRow *rows, int n, int key);
+/* The key's name as the help and the man page write it: "Left",
+ * "Shift-Tab", "Ctrl-L", "Space", or the character ("q"). */
+const char *key_name(int key, char *buf, size_t len);
 /* live.c: the scene edited while the viewer runs. */
 Reaction app_open_prompt(App *a);           /* O: ask for a file */
 Reaction app_prompt_key(App *a, int key);   /* a key while the prompt is up */

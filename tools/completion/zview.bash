@@ -1,7 +1,8 @@
 # bash completion for zview(1). Installed by `make install` as
 # $(PREFIX)/share/bash-completion/completions/zview.
 # Model formats come from `zview --formats`, so the list matches the
-# build (with or without assimp).
+# build (with or without assimp). tests/test_options.c checks the options
+# and their words against the option table (src/app/options.c).
 
 _zview_formats()
 {
@@ -28,7 +29,7 @@ _zview()
         --mode) COMPREPLY=($(compgen -W "half ascii braille" -- "$cur")); return ;;
         --color | --colour) COMPREPLY=($(compgen -W "truecolor 256 16 8 none" -- "$cur")); return ;;
         --shade) COMPREPLY=($(compgen -W "lambert smooth depth id" -- "$cur")); return ;;
-        --view) COMPREPLY=($(compgen -W "front back left right top bottom iso" -- "$cur")); return ;;
+        --view) COMPREPLY=($(compgen -W "auto front back left right top bottom iso" -- "$cur")); return ;;
         --layout) COMPREPLY=($(compgen -W "row grid none" -- "$cur")); return ;;
         --order) COMPREPLY=($(compgen -W "file front-to-back back-to-front shuffle" -- "$cur")); return ;;
         --samples) COMPREPLY=($(compgen -W "1 4 9 16" -- "$cur")); return ;;

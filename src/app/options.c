@@ -1,0 +1,535 @@
+/* options.c: the option table. Every option of zview is written once,
+ * here: its long and short names, the name of its value, the words the
+ * value can be, its line in --help, the section of the man page it sits
+ * in, whether the view command writes it back, and what it does to
+ * Options. cli.c builds getopt's table and the usage text from this one;
+ * tests/test_options.c fails when the man page, a completion file, the
+ * README or the view command disagrees with it. A new option is one row
+ * here (and a setter when it takes a value), then the man page and the
+ * two completion files, which the test names when they lag. */
+
+#include <errno.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+
+/* ==== Reading values ==== */
+
+/* The message every bad value gets: the value, the option as written,
+ * and what it should have been. Returns -1 for the setter to pass on. */
+static int bad(const OptCall *c, const char *what)
+{
+    snprintf(c->err, c->errlen, "bad value '%s' for %s (%s)", c->val, c->name, what);
+    return -1;
+}
+
+static int parse_float(const char *s, float *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end || errno || !isfinite(v) || fabs(v) > 1e9)
+        return -1;
+    *out = (float)v;
+    return 0;
+}
+
+static int parse_int(const char *s, long lo, long hi, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || errno || v < lo || v > hi)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+/* "a,b,c": exactly n finite numbers of at most 1e9 in size. */
+static int parse_floats(const char *s, float *out, int n)
+{
+    char buf[256];
+    if (strlen(s) >= sizeof buf)
+        return -1;
+    strcpy(buf, s);
+    char *p = buf;
+    for (int k = 0; k < n; k++) {
+        char *comma = strchr(p, ',');
+        if ((comma != NULL) != (k + 1 < n))
+            return -1;
+        if (comma)
+            *comma = 0;
+        if (parse_float(p, &out[k]))
+            return -1;
+        p = comma + 1;
+    }
+    return 0;
+}
+
+/* "WxH": -1 when it is not two numbers, -2 when one is 0 or more than
+ * SCREEN_MAX. */
+static int parse_size(const char *s, int *w, int *h)
+{
+    char *end;
+    const char *x = strpbrk(s, "xX");
+    if (s[0] < '0' || s[0] > '9' || !x || x[1] < '0' || x[1] > '9')
+        return -1;
+    errno = 0;
+    long a = strtol(s, &end, 10);
+    if (end != x)
+        return -1;
+    long b = strtol(x + 1, &end, 10);
+    if (*end)
+        return -1;
+    if (errno || a < 1 || b < 1 || a > SCREEN_MAX || b > SCREEN_MAX)
+        return -2;
+    *w = (int)a;
+    *h = (int)b;
+    return 0;
+}
+
+/* "I:v1,v2,..." for --move, --turn, --scale. */
+static int parse_place(const char *s, int n, Placement *pl)
+{
+    char *end;
+    errno = 0;
+    long i = strtol(s, &end, 10);
+    if (end == s || *end != ':' || errno || i < 1 || i > 65535)
+        return -1;
+    pl->obj = (int)i - 1;
+    return parse_floats(end + 1, pl->v, n);
+}
+
+/* An integer in [lo, hi] into *dst. */
+static int set_int(int *dst, const OptCall *c, long lo, long hi, const char *what)
+{
+    long n;
+    if (parse_int(c->val, lo, hi, &n))
+        return bad(c, what);
+    *dst = (int)n;
+    return 0;
+}
+
+/* A number in [lo, hi] into *dst. */
+static int set_float(float *dst, const OptCall *c, float lo, float hi, const char *what)
+{
+    if (parse_float(c->val, dst) || !(*dst >= lo && *dst <= hi))
+        return bad(c, what);
+    return 0;
+}
+
+/* A name that from_name knows (it returns -1 for the others) into *dst. */
+static int set_name(int *dst, const OptCall *c, int (*from_name)(const char *), const char *what)
+{
+    if ((*dst = from_name(c->val)) < 0)
+        return bad(c, what);
+    return 0;
+}
+
+/* ==== Setters: one per option that takes a value ==== */
+
+static int set_output(Options *o, const OptCall *c)
+{
+    /* the name is checked after the loop: --image-format may follow */
+    if (!*c->val)
+        return bad(c, "a file name, or - for standard output");
+    o->out = c->val;
+    return 0;
+}
+
+static int set_image_format(Options *o, const OptCall *c)
+{
+    if (!strcmp(c->val, "png"))
+        o->image_format = IMG_PNG;
+    else if (!strcmp(c->val, "ppm"))
+        o->image_format = IMG_PPM;
+    else
+        return bad(c, "png or ppm");
+    return 0;
+}
+
+static int set_format(Options *o, const OptCall *c)
+{
+    if (!mesh_format_valid(c->val)) {
+        char list[160];
+        mesh_formats_short(list, sizeof list);
+        snprintf(c->err, c->errlen, "bad value '%s' for %s (a model format: %s; see --formats)", c->val,
+                 c->name, list);
+        return -1;
+    }
+    o->format = c->val;
+    return 0;
+}
+
+static int set_size(Options *o, const OptCall *c)
+{
+    switch (parse_size(c->val, &o->w, &o->h)) {
+    case -1:
+        return bad(c, "expected WxH, e.g. 640x480");
+    case -2:
+        snprintf(c->err, c->errlen, "--size %s: 1 to %d per side", c->val, SCREEN_MAX);
+        return -1;
+    }
+    return 0;
+}
+
+static int set_view(Options *o, const OptCall *c)
+{
+    float y, p;
+    if (strcmp(c->val, "auto") && view_from_name(c->val, &y, &p))
+        return bad(c, "front, back, left, right, top, bottom, iso or auto");
+    o->view = c->val;
+    return 0;
+}
+
+/* --yaw, --pitch, --roll: given alone they replace the automatic view. */
+static int set_turn_angle(float *dst, Options *o, const OptCall *c)
+{
+    if (parse_float(c->val, dst))
+        return bad(c, "degrees, at most 1e9 in size");
+    o->turned = 1;
+    return 0;
+}
+
+static int set_pan(Options *o, const OptCall *c)
+{
+    if (parse_floats(c->val, o->pan, 2) || fabsf(o->pan[0]) > 1e4f || fabsf(o->pan[1]) > 1e4f)
+        return bad(c, "X,Y, each at most 10000 in size");
+    return 0;
+}
+
+static int set_fit_from(Options *o, const OptCall *c)
+{
+    if (parse_floats(c->val, o->fit_from, 3))
+        return bad(c, "YAW,PITCH,ROLL in degrees");
+    o->has_fit_from = 1;
+    return 0;
+}
+
+/* --move, --turn, --scale: each adds a placement, in the order given. */
+static int add_place(Options *o, const OptCall *c, PlaceKind kind)
+{
+    if (o->nplace >= MAX_PLACE) {
+        snprintf(c->err, c->errlen, "too many --move, --turn and --scale (at most %d)", MAX_PLACE);
+        return -1;
+    }
+    Placement *pl = &o->place[o->nplace];
+    pl->kind = kind;
+    if (kind == PLACE_MOVE && parse_place(c->val, 3, pl))
+        return bad(c, "I:X,Y,Z with I the object's number from 1");
+    if (kind == PLACE_TURN && parse_place(c->val, 3, pl))
+        return bad(c, "I:YAW,PITCH,ROLL with I the object's number from 1");
+    if (kind == PLACE_SCALE && (parse_place(c->val, 1, pl) || !(pl->v[0] >= 1e-3f && pl->v[0] <= 1e3f)))
+        return bad(c, "I:F with I the object's number from 1 and F from 0.001 to 1000");
+    o->nplace++;
+    return 0;
+}
+
+static int set_persp(Options *o, const OptCall *c)
+{
+    if (parse_float(c->val, &o->fov) || o->fov <= 1 || o->fov >= 179)
+        return bad(c, "a field of view in degrees, 1 < FOV < 179");
+    o->persp = 1;
+    return 0;
+}
+
+static int set_samples(Options *o, const OptCall *c)
+{
+    long n;
+    if (parse_int(c->val, 1, 16, &n) || (n != 1 && n != 4 && n != 9 && n != 16))
+        return bad(c, "1, 4, 9 or 16");
+    o->samples = (int)n;
+    return 0;
+}
+
+static int set_max_polys(Options *o, const OptCall *c)
+{
+    long n;
+    if (parse_int(c->val, 1, 2000000000L, &n))
+        return bad(c, "1 to 2000000000");
+    o->max_polys = (uint64_t)n;
+    return 0;
+}
+
+static int set_light(Options *o, const OptCall *c)
+{
+    if (parse_floats(c->val, o->light, 2))
+        return bad(c, "YAW,PITCH in degrees");
+    return 0;
+}
+
+static int set_ortho(Options *o, const OptCall *c)
+{
+    (void)c;
+    o->persp = 0;
+    return 0;
+}
+
+static int set_algo(Options *o, const OptCall *c)
+{
+    o->algo = c->val;
+    return 0;
+}
+
+static int set_dump_ids(Options *o, const OptCall *c)
+{
+    o->dump_ids = c->val;
+    return 0;
+}
+
+static int set_dump_screen(Options *o, const OptCall *c)
+{
+    o->dump_screen = c->val;
+    return 0;
+}
+
+static int set_up(Options *o, const OptCall *c)
+{
+    return set_name(&o->up, c, up_axis_from_name, "x, y, z, -x, -y or -z");
+}
+
+static int set_mode(Options *o, const OptCall *c)
+{
+    return set_name(&o->mode, c, mode_from_name, "half, ascii or braille");
+}
+
+static int set_color(Options *o, const OptCall *c)
+{
+    return set_name(&o->color, c, color_from_name, "truecolor, 256, 16, 8 or none");
+}
+
+static int set_shade(Options *o, const OptCall *c)
+{
+    return set_name(&o->shade, c, shade_from_name, "lambert, smooth, depth or id");
+}
+
+static int set_order(Options *o, const OptCall *c)
+{
+    return set_name(&o->order, c, order_from_name, "file, front-to-back, back-to-front or shuffle");
+}
+
+static int set_layout(Options *o, const OptCall *c)
+{
+    return set_name(&o->layout, c, layout_from_name, "row, grid or none");
+}
+
+static int set_yaw(Options *o, const OptCall *c)
+{
+    return set_turn_angle(&o->yaw, o, c);
+}
+
+static int set_pitch(Options *o, const OptCall *c)
+{
+    return set_turn_angle(&o->pitch, o, c);
+}
+
+static int set_roll(Options *o, const OptCall *c)
+{
+    return set_turn_angle(&o->roll, o, c);
+}
+
+static int set_zoom(Options *o, const OptCall *c)
+{
+    return set_float(&o->zoom, c, 1e-3f, 1e3f, "from 0.001 to 1000");
+}
+
+static int set_crease(Options *o, const OptCall *c)
+{
+    return set_float(&o->crease, c, 0, 180, "degrees from 0 to 180");
+}
+
+static int set_ambient(Options *o, const OptCall *c)
+{
+    return set_float(&o->ambient, c, 0, 1, "from 0 to 1");
+}
+
+static int set_move(Options *o, const OptCall *c)
+{
+    return add_place(o, c, PLACE_MOVE);
+}
+
+static int set_turn(Options *o, const OptCall *c)
+{
+    return add_place(o, c, PLACE_TURN);
+}
+
+static int set_scale(Options *o, const OptCall *c)
+{
+    return add_place(o, c, PLACE_SCALE);
+}
+
+static int set_views(Options *o, const OptCall *c)
+{
+    return set_int(&o->views, c, 1, 100000, "1 to 100000");
+}
+
+static int set_threads(Options *o, const OptCall *c)
+{
+    return set_int(&o->threads, c, 1, 64, "1 to 64");
+}
+
+static int set_grid(Options *o, const OptCall *c)
+{
+    return set_int(&o->grid, c, 1, 100, "1 to 100");
+}
+
+static int set_turntable(Options *o, const OptCall *c)
+{
+    return set_int(&o->turntable, c, 1, 3600, "1 to 3600 frames");
+}
+
+static int set_fps(Options *o, const OptCall *c)
+{
+    return set_int(&o->fps, c, 1, 1000, "1 to 1000");
+}
+
+static int set_point_size(Options *o, const OptCall *c)
+{
+    return set_int(&o->point_size, c, 1, POINT_SIZE_MAX, "pixels, 1 to 16");
+}
+
+static int set_line_width(Options *o, const OptCall *c)
+{
+    return set_int(&o->line_width, c, 1, POINT_SIZE_MAX, "pixels, 1 to 16");
+}
+
+/* ==== The table ==== */
+
+const char *const cli_section_names[OPTSEC_COUNT] = {
+    [OPTSEC_GENERAL] = "General",
+    [OPTSEC_INPUT] = "Input",
+    [OPTSEC_OUTPUT] = "Output",
+    [OPTSEC_VIEW] = "View",
+    [OPTSEC_BENCH] = "Benchmark and performance",
+};
+
+/* A flag: no value, sets the int field F of Options to 1. */
+#define FLAG(F) .flag = offsetof(Options, F)
+
+/* In man page order within each section. Help lines are at most 56
+ * columns, so that --help fits 80 (test_options checks). */
+const OptSpec cli_options[] = {
+    /* ---- General ---- */
+    { "help", 'h', NULL, NULL, OPTSEC_GENERAL, "print this summary of the options and exit", NULL, FLAG(help), 0 },
+    { "version", 'V', NULL, NULL, OPTSEC_GENERAL, "print the version and exit", NULL, FLAG(version), 0 },
+    { "formats", 0, NULL, NULL, OPTSEC_GENERAL, "list the formats this build reads and exit", NULL, FLAG(formats), 0 },
+    /* ---- Input ---- */
+    { "format", 0, "NAME", NULL, OPTSEC_INPUT,
+      "read FILE as NAME (obj, stl, ply, off, xyz, or an\nassimp format; see --formats)", set_format, 0, OPT_VIEWCMD },
+    { "up", 0, NULL, "y z x -y -z -x", OPTSEC_INPUT,
+      "the model's up axis (default y; scans and CAD\nfiles are often z)", set_up, 0, OPT_VIEWCMD },
+    { "flip", 0, NULL, NULL, OPTSEC_INPUT, "reverse every face's winding (inside out)", NULL, FLAG(flip), OPT_VIEWCMD },
+    { "strict", 0, NULL, NULL, OPTSEC_INPUT,
+      "refuse a file with a statement zview cannot read\n(default: skip those, show the rest, warn once)",
+      NULL, FLAG(strict), 0 },
+    { "points", 0, NULL, NULL, OPTSEC_INPUT, "every vertex as a point, the faces left out", NULL, FLAG(points),
+      OPT_VIEWCMD },
+    /* ---- Output ---- */
+    { "print", 'p', NULL, NULL, OPTSEC_OUTPUT, "write one frame to stdout as text, no curses", NULL, FLAG(print), 0 },
+    { "output", 'o', "FILE", NULL, OPTSEC_OUTPUT,
+      "write the image to FILE.png or FILE.ppm (- is\nstdout, PNG), or the text --print gives to FILE.txt",
+      set_output, 0, 0 },
+    { "image-format", 0, NULL, "png ppm", OPTSEC_OUTPUT, "the image format for -o (default: by the name)",
+      set_image_format, 0, 0 },
+    { "turntable", 0, "N", NULL, OPTSEC_OUTPUT,
+      "N frames turning 360/N degrees each about the\nvertical, to -o PATTERN (one integer conversion:\n"
+      "out-%03d.png; frames from 0) or with --print",
+      set_turntable, 0, 0 },
+    { "print-view", 0, NULL, NULL, OPTSEC_OUTPUT, "the viewer prints the command line of its last\nview on quitting",
+      NULL, FLAG(print_view), 0 },
+    { "sketch", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "the viewer starts on an empty canvas: draw polygons\nand watch the algorithms hide them (D in the viewer)",
+      NULL, FLAG(sketch), 0 },
+    { "size", 's', "WxH", NULL, OPTSEC_OUTPUT, "pixels for -o (default 640x480); cells for --print\nand the viewer",
+      set_size, 0, 0 },
+    { "mode", 0, NULL, "half ascii braille", OPTSEC_OUTPUT, "text mode (default: half on UTF-8, else ascii)",
+      set_mode, 0, OPT_VIEWCMD },
+    { "color", 0, NULL, "truecolor 256 16 8 none", OPTSEC_OUTPUT,
+      "colours (default: from COLORTERM, TERM, NO_COLOR)", set_color, 0, 0 },
+    { "colour", 0, NULL, "truecolor 256 16 8 none", OPTSEC_OUTPUT, NULL, set_color, 0, OPT_ALIAS },
+    { "edges", 0, NULL, NULL, OPTSEC_OUTPUT, "outline silhouettes, creases and depth steps", NULL, FLAG(edges),
+      OPT_VIEWCMD },
+    { "point-size", 0, "N", NULL, OPTSEC_OUTPUT, "points as N x N pixel squares (1 to 16, default 1)",
+      set_point_size, 0, OPT_VIEWCMD },
+    { "line-width", 0, "N", NULL, OPTSEC_OUTPUT, "lines N pixels wide (1 to 16, default 1)", set_line_width, 0,
+      OPT_VIEWCMD },
+    { "wireframe", 0, NULL, NULL, OPTSEC_OUTPUT, "every edge of the faces as a line, hidden where\nfaces hide it",
+      NULL, FLAG(wireframe), OPT_VIEWCMD },
+    { "crease", 0, "DEG", NULL, OPTSEC_OUTPUT,
+      "smooth shading and --edges: a sharper edge is a\ncrease (default 60)", set_crease, 0, OPT_VIEWCMD },
+    { "light", 0, "YAW,PITCH", NULL, OPTSEC_OUTPUT, "the light's direction in degrees from the view\n(default -34,37)",
+      set_light, 0, OPT_VIEWCMD },
+    { "ambient", 0, "F", NULL, OPTSEC_OUTPUT, "ambient light, 0 to 1 (default 0.22)", set_ambient, 0, OPT_VIEWCMD },
+    { "samples", 0, "N", "1 4 9 16", OPTSEC_OUTPUT,
+      "samples per pixel, 1, 4, 9 or 16, averaged (default\n4 for text and the viewer, 1 for -o)", set_samples, 0,
+      OPT_VIEWCMD },
+    { "shade", 0, NULL, "lambert smooth depth id", OPTSEC_OUTPUT, "shading (default lambert: flat per face)",
+      set_shade, 0, OPT_VIEWCMD },
+    { "info", 0, NULL, NULL, OPTSEC_OUTPUT, "print file statistics (with --algo: render ones)", NULL, FLAG(info),
+      0 },
+    { "dump-ids", 0, "FILE", NULL, OPTSEC_OUTPUT, "face-id buffer: W*H little-endian int32, -1 = none",
+      set_dump_ids, 0, 0 },
+    { "dump-screen", 0, "FILE", NULL, OPTSEC_OUTPUT, "screen-space polygons as OBJ text", set_dump_screen, 0, 0 },
+    /* ---- View ---- */
+    { "algo", 'a', "NAME", "zbuffer scanline span hzb hzb-octree all", OPTSEC_VIEW,
+      "zbuffer (default), scanline, span, hzb, hzb-octree;\nwith --bench also all, or a list a,b", set_algo, 0,
+      OPT_VIEWCMD },
+    { "view", 0, "NAME", "auto front back left right top bottom iso", OPTSEC_VIEW,
+      "front, back, left, right, top, bottom, iso, or auto\n(the default: the three-quarter view that sees most)",
+      set_view, 0, 0 },
+    { "yaw", 0, "DEG", NULL, OPTSEC_VIEW, "turn the scene about the vertical (on top of --view)", set_yaw, 0,
+      OPT_VIEWCMD },
+    { "pitch", 0, "DEG", NULL, OPTSEC_VIEW, "turn the scene about the horizontal", set_pitch, 0, OPT_VIEWCMD },
+    { "roll", 0, "DEG", NULL, OPTSEC_VIEW, "turn the scene about the view direction", set_roll, 0, OPT_VIEWCMD },
+    { "zoom", 0, "F", NULL, OPTSEC_VIEW, "scale (1 = fit to 90% of the view; 0.001 to 1000)", set_zoom, 0,
+      OPT_VIEWCMD },
+    { "pan", 0, "X,Y", NULL, OPTSEC_VIEW, "move the view right and up (fractions of the\nscene's radius)", set_pan,
+      0, OPT_VIEWCMD },
+    { "fit-from", 0, "YAW,PITCH,ROLL", NULL, OPTSEC_VIEW, "the turn the view was fitted at (default: the turn)",
+      set_fit_from, 0, OPT_VIEWCMD },
+    { "move", 0, "I:X,Y,Z", NULL, OPTSEC_VIEW, "move object I (1 = the first) in world units", set_move, 0,
+      OPT_VIEWCMD },
+    { "turn", 0, "I:YAW,PITCH,ROLL", NULL, OPTSEC_VIEW, "turn object I about its centre (degrees)", set_turn, 0,
+      OPT_VIEWCMD },
+    { "scale", 0, "I:F", NULL, OPTSEC_VIEW, "scale object I about its centre", set_scale, 0, OPT_VIEWCMD },
+    { "persp", 0, "FOV", NULL, OPTSEC_VIEW, "perspective, FOV degrees of vertical field of view", set_persp, 0,
+      OPT_VIEWCMD },
+    { "ortho", 0, NULL, NULL, OPTSEC_VIEW, "orthographic (the default)", set_ortho, 0, 0 },
+    { "cull", 0, NULL, NULL, OPTSEC_VIEW, "back-face culling (off by default)", NULL, FLAG(cull), OPT_VIEWCMD },
+    { "layout", 0, NULL, "row grid none", OPTSEC_VIEW,
+      "several files side by side at a common size (row,\nthe default; grid), or where their coordinates put\n"
+      "them (none)",
+      set_layout, 0, OPT_VIEWCMD },
+    { "grid", 0, "N", NULL, OPTSEC_VIEW, "N x N x N copies of the scene (a deep scene)", set_grid, 0,
+      OPT_VIEWCMD },
+    { "order", 0, NULL, "file front-to-back back-to-front shuffle", OPTSEC_VIEW,
+      "the order polygons reach the algorithm (same picture)", set_order, 0, 0 },
+    { "max-polys", 0, "N", NULL, OPTSEC_VIEW, "refuse scenes of more polygons (default 20000000)", set_max_polys, 0,
+      0 },
+    /* ---- Benchmark and performance ---- */
+    { "bench", 0, NULL, NULL, OPTSEC_BENCH, "time the algorithms (all, or --algo) on views of\neach file", NULL,
+      FLAG(bench), 0 },
+    { "bench-tty", 0, NULL, NULL, OPTSEC_BENCH, "bytes written per frame for a scripted rotation", NULL,
+      FLAG(bench_tty), 0 },
+    { "views", 0, "N", NULL, OPTSEC_BENCH, "with --bench: views per model (default 8)", set_views, 0, 0 },
+    { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench: JSON instead of a table", NULL, FLAG(json), 0 },
+    { "threads", 'j', "N", NULL, OPTSEC_BENCH, "threads for every stage (default: all cores)", set_threads, 0, 0 },
+    { "fps", 0, "N", NULL, OPTSEC_BENCH, "auto-rotate frame cap in the viewer (default 30)", set_fps, 0, 0 },
+};
+
+const int cli_noptions = (int)(sizeof cli_options / sizeof cli_options[0]);
+
+_Static_assert(sizeof cli_options / sizeof cli_options[0] <= CLI_OPTIONS_MAX,
+               "CLI_OPTIONS_MAX bounds getopt's table in cli_parse");
+
+const OptSpec *cli_option(const char *name)
+{
+    for (int i = 0; i < cli_noptions; i++)
+        if (!strcmp(cli_options[i].name, name))
+            return &cli_options[i];
+    return NULL;
+}

@@ -1,0 +1,133 @@
+#!/bin/sh
+# The documents against the program, so that they cannot drift again:
+# - a text capture (a ```text block of README.md, CONTRIBUTING.md or
+#   doc/*.md whose first line is "$ zview ARGS") equals what zview ARGS
+#   prints, line for line (trailing blanks aside); captures use --print,
+#   --size and --color none, so that they are the same on every machine;
+# - the example commands of the ```sh blocks whose model files are in
+#   assets/ run with status 0 (standard output is no terminal, so a
+#   viewer example prints one frame);
+# - the README's layout map names every file under src/ and include/,
+#   and no file that is not there.
+. "$(dirname "$0")/lib.sh"
+Z=${ZVIEW:-$ROOT/zview}
+DOCS="README.md CONTRIBUTING.md doc/design.md doc/benchmarks.md"
+
+# ==== Text captures ====
+
+# Split each capture of a document into $T/cap-N.cmd (the arguments)
+# and $T/cap-N.want (the lines after the command), N from $2.
+split_captures() {
+    awk -v dir="$T" -v n="$2" '
+        /^```text$/ { intext = 1; first = 1; next }
+        /^```/ && intext { if (cap) close(want); intext = 0; cap = 0; next }
+        intext && first {
+            first = 0
+            if (substr($0, 1, 8) == "$ zview ") {
+                cap = 1; n++
+                want = dir "/cap-" n ".want"
+                print substr($0, 9) > (dir "/cap-" n ".cmd")
+                close(dir "/cap-" n ".cmd")
+                printf "" > want
+            }
+            next
+        }
+        cap { print > want }
+        END { print n > (dir "/ncap") }' "$1"
+}
+
+ncap=0
+for doc in $DOCS; do
+    [ -f "$doc" ] || continue
+    first=$ncap
+    split_captures "$doc" "$ncap"
+    ncap=$(cat "$T/ncap")
+    k=$first
+    while [ "$k" -lt "$ncap" ]; do
+        k=$((k + 1))
+        args=$(cat "$T/cap-$k.cmd")
+        name="$doc: zview $args"
+        fixed=0
+        case " $args " in *" --print "*) fixed=$((fixed + 1)) ;; esac
+        case " $args " in *" --size "*) fixed=$((fixed + 1)) ;; esac
+        case " $args " in *" --color none "*) fixed=$((fixed + 1)) ;; esac
+        if [ "$fixed" -ne 3 ]; then
+            notok "$name" "a capture needs --print, --size and --color none, to be the same everywhere"
+            continue
+        fi
+        set -f
+        # shellcheck disable=SC2086
+        "$Z" $args >"$T/got" 2>"$T/err" </dev/null
+        rc=$?
+        set +f
+        sed 's/[[:space:]]*$//' "$T/got" >"$T/got.s"
+        sed 's/[[:space:]]*$//' "$T/cap-$k.want" >"$T/want.s"
+        if [ "$rc" -ne 0 ]; then
+            notok "$name" "status $rc: $(head -c 200 "$T/err")"
+        elif cmp -s "$T/got.s" "$T/want.s"; then
+            ok "$name"
+        else
+            notok "$name" "the capture differs from the output (- doc, + zview): $(diff "$T/want.s" "$T/got.s" | head -n 6 | tr '\n' '|')"
+        fi
+    done
+done
+if [ "$ncap" -ge 3 ]; then ok "the documents hold $ncap text captures"; else notok "the documents hold $ncap text captures, not 3 or more"; fi
+
+# ==== Example commands ====
+
+# Every line of a ```sh block that runs zview, its comment dropped.
+awk_examples() {
+    awk '/^```sh$/ { insh = 1; next } /^```/ { insh = 0; next }
+         insh && ($1 == "zview" || $1 == "./zview") { sub(/[ \t][ \t]+#.*$/, ""); print }' "$@"
+}
+
+mkdir "$T/run"
+ln -s "$ROOT/assets" "$T/run/assets"
+nex=0
+# shellcheck disable=SC2086
+awk_examples $(for d in $DOCS; do [ -f "$d" ] && echo "$d"; done) >"$T/examples"
+while IFS= read -r line; do
+    case "$line" in
+    *'|'* | *'$'* | *'<'* | *'>'* | *';'* | *'&'* | *'['* | *'('*) continue ;;   # pipes and shell: illustrations
+    *--sketch* | *--print-view* | *--bench*) continue ;;                        # a terminal, or minutes
+    esac
+    set -f
+    # shellcheck disable=SC2086
+    set -- $line
+    set +f
+    shift
+    missing=
+    for w in "$@"; do
+        case "$w" in
+        *.obj | *.stl | *.ply | *.off | *.xyz | *.glb) [ -e "$ROOT/$w" ] || missing=$w ;;
+        esac
+    done
+    [ -n "$missing" ] && continue          # a model of the reader's own
+    nex=$((nex + 1))
+    (cd "$T/run" && timeout 120 "$Z" "$@" >"$T/out" 2>"$T/err" </dev/null)
+    rc=$?
+    if [ "$rc" -eq 0 ]; then ok "example: $line"; else notok "example: $line" "status $rc: $(head -c 200 "$T/err")"; fi
+done <"$T/examples"
+if [ "$nex" -ge 4 ]; then ok "$nex example commands ran"; else notok "only $nex example commands ran, not 4 or more"; fi
+
+# ==== The layout map ====
+
+# The map is the first ```text block after the line that names this test.
+awk '/tests\/e2e\/test_docs.sh/ { seen = 1 }
+     seen && /^```text$/ { inmap = 1; next }
+     inmap && /^```/ { exit }
+     inmap {
+         dir = substr($0, 1, 15); sub(/ +$/, "", dir)
+         if (dir != "") cur = dir
+         n = split(substr($0, 16), w, " ")
+         for (i = 1; i <= n && w[i] ~ /^[A-Za-z0-9_]+\.[ch]$/; i++) print cur w[i]
+     }' README.md | sort >"$T/map"
+find src include -name '*.[ch]' | sort >"$T/tree"
+if [ ! -s "$T/map" ]; then
+    notok "the README has a layout map" "no \`\`\`text block after the line naming tests/e2e/test_docs.sh"
+else
+    missing=$(comm -13 "$T/map" "$T/tree" | tr '\n' ' ')
+    extra=$(comm -23 "$T/map" "$T/tree" | tr '\n' ' ')
+    if [ -z "$missing" ]; then ok "the layout map names every file under src/ and include/"; else notok "the layout map names every file under src/ and include/" "missing: $missing"; fi
+    if [ -z "$extra" ]; then ok "the layout map names only files that exist"; else notok "the layout map names only files that exist" "not in the tree: $extra"; fi
+fi
