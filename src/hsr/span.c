@@ -67,6 +67,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "check.h"
 #include "grow.h"
 #include "clock.h"
 #include "raster.h"
@@ -372,8 +373,20 @@ static inline int decide_two(const SpanState *s, int32_t *ids, float *dep, int x
     return 1;
 }
 
+/* Does [xa, xb) lie in the sample box of every polygon covering it?
+ * The slots' depth bounds (slot_take) hold over the box only, so the
+ * separation test below is sound only inside it. */
+static ZV_CHECK_FN int in_boxes(const SpanState *s, int xa, int xb)
+{
+    for (int k = 0; k < s->in_n; k++)
+        if (xa < s->in[k].p->x0 || xb > s->in[k].p->x1)
+            return 0;
+    return 1;
+}
+
 static inline void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
 {
+    ZV_ASSERT(in_boxes(s, xa, xb));
     int n = s->in_n;
     if (n == 0) {
         fill_bg(s, ids, dep, xa, xb);
@@ -703,6 +716,9 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
         for (int k = 0; k < total; k++) {
             int x = m[k].key;
             int32_t ei = m[k].edge;
+            /* sorted by column: each [cur, x) has one covering set, and
+             * the row's intervals tile it, every sample written once */
+            ZV_ASSERT(x >= cur);
             if (x > cur) {
                 emit(s, ids, dep, cur, x);
                 cur = x;
@@ -726,6 +742,9 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
                 edge_free(s, ei);
             }
         }
+        /* every polygon's crossings of the row pair up (even-odd): past
+         * the last one none is in, and the next row starts from none */
+        ZV_ASSERT(s->in_n == 0);
         if (cur < w)
             emit(s, ids, dep, cur, w);
         s->nxt = s->act;

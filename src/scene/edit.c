@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check.h"
 #include "scene.h"
 #include "scene_internal.h"
 
@@ -177,6 +178,9 @@ static int compose(Scene *out, const Source *src, int nsrc, int *mesh_used[], ch
             copy_object(out, s, i, f >= 0 ? &out->meshes[mesh_used[k][f]] : NULL, &at);
         }
     }
+    /* what was copied is what compose_count counted, which sized out */
+    ZV_ASSERT(at.oi == n.nobjs && at.fi == n.nfaces && at.pi == n.npolys && at.ci == n.ncorners &&
+              at.si == n.nsegs);
     out->poly_start[at.pi] = at.ci;
     out->npolys = at.pi;
     out->nobjs = (int)at.oi;

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "bigmem.h"
+#include "check.h"
 #include "scene.h"
 #include "scene_internal.h"
 
@@ -547,6 +548,10 @@ static void build_objects(Scene *s, const Mesh *meshes, int nmeshes, const Scene
         }
         gface += m->nfaces;
     }
+    /* The fill wrote exactly what face_data counted: the arrays were
+     * sized by those counts, and the sentinel below closes the last
+     * polygon at the last corner. */
+    ZV_ASSERT(at.pi == c->npolys && (c->take_over || at.ci == c->ncorners) && at.si == c->nsegs);
     if (!c->take_over)
         s->poly_start[at.pi] = at.ci;
     s->npolys = at.pi;
