@@ -205,7 +205,7 @@ static inline int mb_line_corner(MeshBuild *b, uint32_t v)
 static inline int mb_line_end(MeshBuild *b, size_t first)
 {
     Mesh *m = b->m;
-    /* at least one segment: prims.c makes nlines' corners - 1 of them */
+    /* a polyline of k corners is k - 1 segments (scene.c): at least one */
     ZV_ASSERT(first <= b->nlcorner && b->nlcorner - first >= 2);
     if (m->nlines == b->lcap && mb_grow_lines(b))
         return -1;

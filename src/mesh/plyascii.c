@@ -120,7 +120,7 @@ static void txt_skip_line(Txt *t)
             return -1;                                                      \
         b->ncorner = first;                                                 \
         if (t->p >= t->real_end)                                            \
-            return ply_ended_early(ply);                                        \
+            return ply_ended_early(ply);                                    \
         if (me_skip(ply->e, t->line))                                       \
             return -1;                                                      \
         txt_skip_line(t);                                                   \
