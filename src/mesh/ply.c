@@ -9,7 +9,10 @@
  * skipped by its size. Every element's count is checked against the
  * bytes after the header before anything is allocated. A file with
  * vertices and no faces is a point cloud: every vertex a point (with its
- * colour), and no per-point array. */
+ * colour), and no per-point array.
+ *
+ * This file reads the header and is the loader; the bodies are read by
+ * plybin.c and plyascii.c (ply.h is what the three share). */
 #define _DEFAULT_SOURCE
 
 #include <stdio.h>
