@@ -288,7 +288,9 @@ static int face_of_list(Ply *ply, const PlyProp *only, Bin *bn, const unsigned c
     uint64_t at = (uint64_t)(r - cs - bn->base);
     if (cnt < 0)
         return me_fail_at(ply->e, at, "face %u has %lld vertices (at least 3)", i + 1, (long long)cnt);
-    if ((uint64_t)cnt > (uint64_t)(end - r) / is) {
+    /* cnt * is > bytes left is cnt > (bytes left) / is without a
+     * division a face (cnt < 2^32 and is <= 8: no overflow) */
+    if ((uint64_t)cnt * is > (uint64_t)(end - r)) {
         me_fail_at(ply->e, at, "face %u of %lld vertices goes past the end of the file", i + 1,
                    (long long)cnt);
         return ply_ended_early(ply) ? -1 : FACE_ENDED;
@@ -400,20 +402,37 @@ static int face_of_props(Ply *ply, const PlyElem *el, Bin *bn, const unsigned ch
     return me_skip(ply->e, f->at) ? -1 : FACE_SKIP;
 }
 
-/* The face element: each face read, then closed with its colour's
- * material. 0 or -1 (0 too when the file ends inside a face: ply->ended
- * is then set). */
-static int bin_faces(Ply *ply, const PlyElem *el, Bin *bn)
+/* The faces of the common layout, the index list alone (no colours):
+ * each face read and closed. 0 or -1 (0 too when the file ends inside a
+ * face: ply->ended is then set). */
+static int bin_faces_list(Ply *ply, const PlyElem *el, Bin *bn)
+{
+    MeshBuild *b = ply->b;
+    uint32_t n = (uint32_t)el->count;
+    const unsigned char *r = bn->p;
+    for (uint32_t i = 0; i < n; i++) {
+        size_t first = b->ncorner;
+        int res = face_of_list(ply, &el->props[0], bn, &r, i);
+        if (res < 0 || (res == FACE_READ && mb_face_end(b, first, -1)))
+            return -1;
+        if (res == FACE_ENDED)
+            return 0;
+    }
+    bn->p = r;
+    return 0;
+}
+
+/* The faces of any other layout, property by property, each closed with
+ * its colour's material. As bin_faces_list. */
+static int bin_faces_props(Ply *ply, const PlyElem *el, Bin *bn)
 {
     MeshBuild *b = ply->b;
     uint32_t n = (uint32_t)el->count;
     int coloured = ply_coloured(el);
-    /* The common layout: the index list alone, no colours. */
-    const PlyProp *only = el->nprops == 1 ? &el->props[0] : NULL;
     const unsigned char *r = bn->p;
     for (uint32_t i = 0; i < n; i++) {
         FaceRec f = { .first = b->ncorner, .c3 = { 1, 1, 1 } };
-        int res = only ? face_of_list(ply, only, bn, &r, i) : face_of_props(ply, el, bn, &r, i, &f);
+        int res = face_of_props(ply, el, bn, &r, i, &f);
         if (res < 0)
             return -1;
         if (res == FACE_ENDED)
@@ -479,7 +498,7 @@ int ply_read_binary(Ply *ply, const char *data)
     for (uint32_t i = 0; i < ply->nel; i++) {
         const PlyElem *el = &ply->el[i];
         int r = el->kind == EL_VERTEX ? bin_vertices(ply, el, &bn)
-              : el->kind == EL_FACE   ? bin_faces(ply, el, &bn)
+              : el->kind == EL_FACE   ? (el->nprops == 1 ? bin_faces_list : bin_faces_props)(ply, el, &bn)
                                       : bin_skip(ply, el, &bn);
         if (r)
             return -1;
