@@ -135,10 +135,11 @@ test-models: $(TESTBIN)
 e2e: $(BIN)
 	ZVIEW=$(abspath $(BIN)) sh tests/e2e/run.sh
 
-# Sanitized build in its own folder, same tests.
+# Sanitized build in its own folder, same tests, with the invariants
+# on (-DZV_CHECKS turns ZV_ASSERT on: include/check.h).
 asan:
 	$(MAKE) BUILD=build-asan BIN=build-asan/zview \
-	    OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
+	    OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -DZV_CHECKS" test
 
 # The build without assimp, in its own folder (both must compile).
 noassimp:
@@ -214,6 +215,9 @@ FUZZ_OBJS   := $(sort $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.
                       $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o))
 SECONDS     ?= 60
 FUZZ_FLAGS  ?=
+# the invariants (ZV_ASSERT, include/check.h) are on here as in make asan:
+# a fuzz input that breaks one stops where it broke
+FUZZ_CFLAGS += -DZV_CHECKS
 
 fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff $(FUZZ_BUILD)/fuzz-mesh
 

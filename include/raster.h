@@ -19,6 +19,7 @@
  */
 
 #include <stdint.h>
+#include "check.h"
 #include "screen.h"
 
 typedef struct {
@@ -36,6 +37,11 @@ typedef struct {
  * times faster than a 64-bit idiv, and just as exact. */
 static inline int64_t floordiv64_rem(int64_t n, int64_t d, int64_t *rem_out)
 {
+    /* Past 2^52 the operands are no longer exact in a double, the
+     * quotient can be off by many, and the one-step fix-ups below would
+     * take that many steps. The front end's guard band keeps every
+     * fixed-point coordinate, so every walker's numerator, well inside. */
+    ZV_ASSERT(d > 0 && n < ((int64_t)1 << 52) && n > -((int64_t)1 << 52));
     int64_t q = (int64_t)((double)n / (double)d);
     int64_t r = n - q * d;
     while (r < 0) {

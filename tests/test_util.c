@@ -4,6 +4,7 @@
 #define _DEFAULT_SOURCE
 
 #include <criterion/criterion.h>
+#include <criterion/redirect.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "check.h"
 #include "safefile.h"
 #include "sysmem.h"
 #include "thread.h"
@@ -112,3 +114,21 @@ Test(util, a_safe_file_writes_a_device_as_it_is)
     struct stat st;
     cr_expect(stat("/dev/null", &st) == 0 && S_ISCHR(st.st_mode));
 }
+
+/* ZV_ASSERT is on exactly in the checked builds (make asan, the
+ * fuzzers): there it evaluates its condition once; elsewhere not at all. */
+Test(util, invariants_are_evaluated_only_in_checked_builds)
+{
+    int evaluated = 0;
+    ZV_ASSERT(++evaluated == 1);
+    cr_assert_eq(evaluated, ZV_CHECKS_ON, "ZV_ASSERT evaluated its condition %d times", evaluated);
+}
+
+#ifdef ZV_CHECKS
+/* and a broken one stops the program (abort, which a crash handler sees) */
+Test(util, a_broken_invariant_aborts, .signal = SIGABRT, .init = cr_redirect_stderr)
+{
+    volatile int zero = 0;
+    ZV_ASSERT(zero == 1);
+}
+#endif

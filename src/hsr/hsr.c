@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "check.h"
 #include "clock.h"
 #include "hsr.h"
 #include "pool.h"
@@ -168,8 +169,44 @@ static void split_bands(HsrRunner *pool, const ScreenPolys *sp, int h, int n, in
         band[t++] = h;
 }
 
+/* Rows 0 = band[0] <= band[1] <= ... <= band[n] = h: every row in
+ * exactly one band. Each band writes every pixel of its rows and only
+ * those (HsrAlgo.render), so this is what makes the bands together
+ * write the whole image once, with no two threads on one row. */
+static ZV_CHECK_FN int bands_tile(const int *band, int n, int h)
+{
+    if (band[0] != 0 || band[n] != h)
+        return 0;
+    for (int t = 0; t < n; t++)
+        if (band[t] > band[t + 1])
+            return 0;
+    return 1;
+}
+
+/* What the front end promises every algorithm of each polygon: 3
+ * corners or more, in order and in the vertex array (polys[npolys].first
+ * the sentinel), and a sample box [x0, x1) x [y0, y1) inside the image
+ * and not empty (polygons that cover no sample were dropped). The
+ * algorithms index rows and columns by these boxes unclamped (table
+ * buckets, band tests, pyramid tiles), so a box outside the image would
+ * write outside the buffers, and an empty one would mean a polygon let
+ * through that covers nothing. */
+static ZV_CHECK_FN int polys_in_image(const ScreenPolys *sp)
+{
+    if (sp->npolys && sp->polys[sp->npolys].first > sp->nverts)
+        return 0;
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        const ScreenPoly *p = &sp->polys[i];
+        if (p[1].first < p->first + 3 || p->x0 < 0 || p->x0 >= p->x1 || p->x1 > sp->w || p->y0 < 0 ||
+            p->y0 >= p->y1 || p->y1 > sp->h)
+            return 0;
+    }
+    return 1;
+}
+
 int hsr_run(HsrRunner *r, const HsrInput *in, FrameBufs *fb, HsrStats *stats)
 {
+    ZV_ASSERT(polys_in_image(in->sp));
     double t0 = now_ms();
     memset(stats, 0, sizeof *stats);
     if (fbuf_resize(fb, in->sp->w, in->sp->h))
@@ -190,6 +227,7 @@ int hsr_run(HsrRunner *r, const HsrInput *in, FrameBufs *fb, HsrStats *stats)
     r->in = in;
     r->fb = fb;
     split_bands(r, in->sp, h, r->nthreads, r->band);
+    ZV_ASSERT(bands_tile(r->band, r->nthreads, h));
     pool_run(r->pool, r->nthreads, run_band, r);
     for (int t = 0; t < r->nthreads; t++)
         stats_add(stats, &r->st[t]);

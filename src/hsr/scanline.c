@@ -59,6 +59,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "check.h"
 #include "clock.h"
 #include "raster.h"
 #include "grow.h"
@@ -216,6 +217,13 @@ static inline uint32_t span_simd(float pa, int32_t px0, int32_t face, int32_t *r
 static inline uint32_t span_test(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
                                  int j, int xa, int xb, int w)
 {
+    /* tri_start and tri_row clamp a triangle's crossings only when its
+     * sample box touches a side of the image: the exact walk stays in
+     * the box (its crossings lie between its corners), so inside the
+     * image no clamp is needed. A span past the row would write into
+     * the next one. (A triangle's plane copy carries the box's corner
+     * only, hence x0 and y0 alone.) */
+    ZV_ASSERT(j >= p->y0 && xa >= p->x0 && xa < xb && xb <= w);
     float zr = plane_row(p, j);
 #ifdef __SSE2__
     return span_simd(p->a, p->x0, p->face, ids, dep, zr, xa, xb, w);
@@ -456,6 +464,9 @@ static uint64_t gon_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w
         /* active edges: the leading ones that have started */
         for (; k < a.n && e[k].row0 <= j; k++)
             xs[m++] = e[k].xi;
+        /* the active edges are exactly those counting for row j: their
+         * crossings pair up (even-odd), as polywalk_row's do */
+        ZV_ASSERT((m & 1) == 0);
         raster_sort_crossings(xs, m);
         for (int i = 0; i + 1 < m; i += 2)
             written += span_pair(a.p, ids, dep, j, xs[i], xs[i + 1], w);

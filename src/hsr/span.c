@@ -67,6 +67,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "check.h"
 #include "grow.h"
 #include "clock.h"
 #include "raster.h"
@@ -372,8 +373,20 @@ static inline int decide_two(const SpanState *s, int32_t *ids, float *dep, int x
     return 1;
 }
 
+/* Does [xa, xb) lie in the sample box of every polygon covering it?
+ * The slots' depth bounds (slot_take) hold over the box only, so the
+ * separation test below is sound only inside it. */
+static ZV_CHECK_FN int in_boxes(const SpanState *s, int xa, int xb)
+{
+    for (int k = 0; k < s->in_n; k++)
+        if (xa < s->in[k].p->x0 || xb > s->in[k].p->x1)
+            return 0;
+    return 1;
+}
+
 static inline void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
 {
+    ZV_ASSERT(in_boxes(s, xa, xb));
     int n = s->in_n;
     if (n == 0) {
         fill_bg(s, ids, dep, xa, xb);
@@ -620,6 +633,115 @@ static int build_table(SpanState *s, const ScreenPolys *sp, int y0, int y1, uint
 
 /* ==== the scan ==== */
 
+/* The row's entering crossings (sorted) merged into the active ones
+ * (sorted): *m_out the row's crossings in column order, *total their
+ * count (the active list itself when none enter, which may be no array
+ * at all on an empty row). -1 out of memory. */
+static int merge_fresh(SpanState *s, const Cross **m_out, int *total)
+{
+    int na = s->act_n, nf = s->fresh_n;
+    *total = na + nf;
+    if (*total > s->act_cap) {
+        int cap = s->act_cap, c2 = cap, c3 = cap;
+        if (grow((void **)&s->act, &cap, *total, sizeof *s->act) ||
+            grow((void **)&s->nxt, &c2, *total, sizeof *s->nxt) ||
+            grow((void **)&s->mrg, &c3, *total, sizeof *s->mrg))
+            return -1;
+        s->act_cap = cap;
+    }
+    const Cross *act = s->act, *fresh = s->fresh;
+    *m_out = act;
+    if (nf == 0)
+        return 0;
+    /* few entering among many active: copy runs of active ones */
+    Cross *mrg = s->mrg;
+    int ia = 0, k = 0;
+    for (int f = 0; f < nf; f++) {
+        int32_t key = fresh[f].key;
+        int a0 = ia;
+        while (ia < na && act[ia].key <= key)
+            ia++;
+        memcpy(mrg + k, act + a0, (size_t)(ia - a0) * sizeof *mrg);
+        k += ia - a0;
+        mrg[k++] = fresh[f];
+    }
+    memcpy(mrg + k, act + ia, (size_t)(na - ia) * sizeof *mrg);
+    *m_out = mrg;
+    return 0;
+}
+
+/* Row j: one pass over its crossings m[0 .. total), left to right, each
+ * interval between two decided and written; the edges that go on are
+ * stepped into the next row's list, kept sorted. -1 out of memory. */
+static int row_pass(SpanState *s, int32_t *ids, float *dep, int j, int32_t w, const Cross *m, int total)
+{
+    Cross *nxt = s->nxt;
+    SpanEdge *edges = s->edges;
+    int nb = 0, cur = 0;
+    for (int k = 0; k < total; k++) {
+        int x = m[k].key;
+        int32_t ei = m[k].edge;
+        /* sorted by column: each [cur, x) has one covering set, and the
+         * row's intervals tile it, every sample written once */
+        ZV_ASSERT(x >= cur);
+        if (x > cur) {
+            emit(s, ids, dep, cur, x);
+            cur = x;
+        }
+        SpanEdge *e = &edges[ei];
+        if (toggle(s, e->slot, j))
+            return -1;
+        if (e->e.row1 > j + 1) {
+            edge_step(&e->e);
+            /* keep sorted: the order changes little from row to row */
+            int32_t kx = clamp_col(e->e.xi, w);
+            int q = nb++;
+            while (q > 0 && nxt[q - 1].key > kx) {
+                nxt[q] = nxt[q - 1];
+                q--;
+            }
+            nxt[q].key = kx;
+            nxt[q].edge = ei;
+        } else {
+            slot_release(s, e->slot);
+            edge_free(s, ei);
+        }
+    }
+    /* every polygon's crossings of the row pair up (even-odd): past the
+     * last one none is in, and the next row starts from none */
+    ZV_ASSERT(s->in_n == 0);
+    if (cur < w)
+        emit(s, ids, dep, cur, w);
+    s->nxt = s->act;
+    s->act = nxt;
+    s->act_n = nb;
+    return 0;
+}
+
+/* Row j's entering crossings: the polygons whose first row it is, set
+ * up (fetching a few ahead), and the edges pending for it. -1 out of
+ * memory. */
+static int enter_row(SpanState *s, const ScreenPolys *sp, int j, int y0, int y1, int32_t w)
+{
+    int r = j - y0;
+    s->fresh_n = 0;
+    for (uint32_t k = s->row_start[r]; k < s->row_start[r + 1]; k++) {
+        /* the table holds indices: fetch a few polygons ahead */
+        if (k + 8 < s->row_start[r + 1]) {
+            const ScreenPoly *ahead = &sp->polys[s->recs[k + 8].pi];
+            __builtin_prefetch(ahead);
+            __builtin_prefetch(&sp->verts[ahead->first]);
+        }
+        if (activate(s, sp, &s->recs[k], j, y0, y1, w))
+            return -1;
+    }
+    for (int32_t q = s->pend_head[r]; q >= 0; q = s->edges[q].next)
+        if (fresh_push(s, clamp_col(s->edges[q].e.xi, w), q))
+            return -1;
+    sort_fresh(s);
+    return 0;
+}
+
 static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *stats)
 {
     SpanState *s = st;
@@ -649,88 +771,11 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
     stats->polys_in += npolys;
 
     for (int j = y0; j < y1; j++) {
-        int r = j - y0;
-        int32_t *ids = fb->ids + (size_t)j * w;
-        float *dep = fb->depth + (size_t)j * w;
-        /* crossings entering at this row */
-        s->fresh_n = 0;
-        for (uint32_t k = s->row_start[r]; k < s->row_start[r + 1]; k++) {
-            /* the table holds indices: fetch a few polygons ahead */
-            if (k + 8 < s->row_start[r + 1]) {
-                const ScreenPoly *ahead = &sp->polys[s->recs[k + 8].pi];
-                __builtin_prefetch(ahead);
-                __builtin_prefetch(&sp->verts[ahead->first]);
-            }
-            if (activate(s, sp, &s->recs[k], j, y0, y1, w))
-                goto oom;
-        }
-        for (int32_t q = s->pend_head[r]; q >= 0; q = s->edges[q].next)
-            if (fresh_push(s, clamp_col(s->edges[q].e.xi, w), q))
-                goto oom;
-        sort_fresh(s);
-        int na = s->act_n, nf = s->fresh_n, total = na + nf;
-        if (total > s->act_cap) {
-            int cap = s->act_cap, c2 = cap, c3 = cap;
-            if (grow((void **)&s->act, &cap, total, sizeof *s->act) ||
-                grow((void **)&s->nxt, &c2, total, sizeof *s->nxt) ||
-                grow((void **)&s->mrg, &c3, total, sizeof *s->mrg))
-                goto oom;
-            s->act_cap = cap;
-        }
-        /* merge the entering crossings into the active ones */
-        const Cross *act = s->act, *fresh = s->fresh;
-        Cross *mrg = s->mrg;
-        const Cross *m = act;
-        if (nf > 0) {
-            /* few entering among many active: copy runs of active ones */
-            int ia = 0, k = 0;
-            for (int f = 0; f < nf; f++) {
-                int32_t key = fresh[f].key;
-                int a0 = ia;
-                while (ia < na && act[ia].key <= key)
-                    ia++;
-                memcpy(mrg + k, act + a0, (size_t)(ia - a0) * sizeof *mrg);
-                k += ia - a0;
-                mrg[k++] = fresh[f];
-            }
-            memcpy(mrg + k, act + ia, (size_t)(na - ia) * sizeof *mrg);
-            m = mrg;
-        }
-        /* one pass over the row's crossings, left to right */
-        Cross *nxt = s->nxt;
-        SpanEdge *edges = s->edges;
-        int nb = 0, cur = 0;
-        for (int k = 0; k < total; k++) {
-            int x = m[k].key;
-            int32_t ei = m[k].edge;
-            if (x > cur) {
-                emit(s, ids, dep, cur, x);
-                cur = x;
-            }
-            SpanEdge *e = &edges[ei];
-            if (toggle(s, e->slot, j))
-                goto oom;
-            if (e->e.row1 > j + 1) {
-                edge_step(&e->e);
-                /* keep sorted: the order changes little from row to row */
-                int32_t kx = clamp_col(e->e.xi, w);
-                int q = nb++;
-                while (q > 0 && nxt[q - 1].key > kx) {
-                    nxt[q] = nxt[q - 1];
-                    q--;
-                }
-                nxt[q].key = kx;
-                nxt[q].edge = ei;
-            } else {
-                slot_release(s, e->slot);
-                edge_free(s, ei);
-            }
-        }
-        if (cur < w)
-            emit(s, ids, dep, cur, w);
-        s->nxt = s->act;
-        s->act = nxt;
-        s->act_n = nb;
+        int total;
+        const Cross *m;
+        if (enter_row(s, sp, j, y0, y1, w) || merge_fresh(s, &m, &total) ||
+            row_pass(s, fb->ids + (size_t)j * w, fb->depth + (size_t)j * w, j, w, m, total))
+            goto oom;
     }
     stats->pixels_written += s->covered;
     return;

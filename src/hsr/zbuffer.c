@@ -24,6 +24,7 @@
 #define AVX2_FN __attribute__((target("avx2")))
 #endif
 
+#include "check.h"
 #include "raster.h"
 #include "hsr.h"
 #include "zbuffer.h"
@@ -74,6 +75,12 @@ void fbuf_clear_rows(FrameBufs *fb, int y0, int y1)
 /* Depth-test samples [xa, xb) of row j. Returns samples written. */
 static inline uint64_t span_test(const ScreenPoly *p, FrameBufs *fb, int j, int xa, int xb)
 {
+    /* The exact walk never leaves the sample box the front end gave the
+     * polygon (its crossings lie between its corners): the plane is
+     * referenced to that box, and hzb's and span's depth bounds are
+     * taken over it, so a span outside it would be a sample no bound
+     * accounted for. */
+    ZV_ASSERT(j >= p->y0 && j < p->y1 && xa >= p->x0 && xa < xb && xb <= p->x1);
     int32_t *ids = fb->ids + (size_t)j * fb->w;
     float *dep = fb->depth + (size_t)j * fb->w;
     float zr = plane_row(p, j);

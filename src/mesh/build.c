@@ -395,44 +395,38 @@ int32_t mb_colour(MeshBuild *b, uint8_t r, uint8_t g, uint8_t bl, uint8_t a)
     return mi;
 }
 
-int mb_finish(MeshBuild *b, int cloud_ok)
+/* Vertices alone (a PLY or OFF without faces, an OBJ of `v` lines): a
+ * point cloud. No index array: point i is vertex i. */
+static void make_cloud(MeshBuild *b)
 {
     Mesh *m = b->m;
-    MeshErr *e = b->e;
-    free(b->colours.slot);
-    b->colours.slot = NULL;
-    b->colours.cap = b->colours.used = 0;
-    if (cloud_ok && m->nfaces == 0 && m->npoints == 0 && m->nlines == 0 && m->nverts) {
-        /* Vertices alone: a point cloud (a PLY or OFF without faces, an
-         * OBJ of `v` lines). No index array: point i is vertex i. */
-        free(m->point);
-        m->point = NULL;
-        b->pcap = 0;
-        m->npoints = m->nverts;
-        m->nobjs = 1;
-        m->objs[0].face_first = m->objs[0].line_first = m->objs[0].point_first = 0;
-    }
-    if (over_polys(b, (uint64_t)m->nfaces + m->npoints))
-        return -1;
-    if (m->nfaces == 0 && m->npoints == 0 && m->nlines == 0) {
-        /* nothing to show: when statements were skipped, the first is why */
-        if (e->skipped) {
-            char first[sizeof e->first];
-            memcpy(first, e->first, sizeof first);
-            return me_fail_raw(e, "%s (%u statement%s skipped, nothing left to show)", first, e->skipped,
-                               e->skipped == 1 ? "" : "s");
-        }
-        if (m->info.bytes == 0)
-            return me_fail(e, "no faces (empty file)");
-        return me_fail(e, "no faces");
-    }
-    if (!m->face_start && !(m->face_start = malloc(sizeof(uint32_t))))
-        return me_oom(e);
-    m->face_start[m->nfaces] = (uint32_t)b->ncorner;
-    if (m->nlines)
-        m->line_start[m->nlines] = (uint32_t)b->nlcorner;
+    free(m->point);
+    m->point = NULL;
+    b->pcap = 0;
+    m->npoints = m->nverts;
+    m->nobjs = 1;
+    m->objs[0].face_first = m->objs[0].line_first = m->objs[0].point_first = 0;
+}
 
-    /* Close the objects; only the last can be empty (see mb_object). */
+/* Nothing to show: when statements were skipped, the first is why. */
+static int nothing_to_show(MeshBuild *b)
+{
+    MeshErr *e = b->e;
+    if (e->skipped) {
+        char first[sizeof e->first];
+        memcpy(first, e->first, sizeof first);
+        return me_fail_raw(e, "%s (%u statement%s skipped, nothing left to show)", first, e->skipped,
+                           e->skipped == 1 ? "" : "s");
+    }
+    if (b->m->info.bytes == 0)
+        return me_fail(e, "no faces (empty file)");
+    return me_fail(e, "no faces");
+}
+
+/* Each object's counts from where the next one starts; only the last
+ * can be empty (see mb_object), and an empty last one goes. */
+static void close_objects(Mesh *m)
+{
     for (uint32_t i = 0; i < m->nobjs; i++) {
         MeshObject *o = &m->objs[i];
         int last = i + 1 == m->nobjs;
@@ -445,41 +439,49 @@ int mb_finish(MeshBuild *b, int cloud_ok)
         if (o->face_count == 0 && o->point_count == 0 && o->line_count == 0)
             m->nobjs--;
     }
-    for (uint32_t i = 0; i < m->nobjs; i++) {
-        MeshObject *o = &m->objs[i];
-        uint32_t lo = UINT32_MAX, hi = 0;
-        uint32_t c0 = m->face_start[o->face_first];
-        uint32_t c1 = m->face_start[o->face_first + o->face_count];
-        for (uint32_t c = c0; c < c1; c++) {
-            uint32_t v = m->corner[c];
-            lo = v < lo ? v : lo;
-            hi = v > hi ? v : hi;
-        }
-        if (o->point_count && !m->point) {
-            /* a cloud: its points are a run of vertices */
-            lo = o->point_first < lo ? o->point_first : lo;
-            hi = o->point_first + o->point_count - 1 > hi ? o->point_first + o->point_count - 1 : hi;
-        }
-        for (uint32_t k = o->point_first; k < o->point_first + o->point_count && m->point; k++) {
-            uint32_t v = m->point[k];
-            lo = v < lo ? v : lo;
-            hi = v > hi ? v : hi;
-        }
-        if (o->line_count) {
-            uint32_t l0 = m->line_start[o->line_first], l1 = m->line_start[o->line_first + o->line_count];
-            for (uint32_t c = l0; c < l1; c++) {
-                uint32_t v = m->line_corner[c];
-                lo = v < lo ? v : lo;
-                hi = v > hi ? v : hi;
-            }
-        }
-        if (lo > hi)        /* an empty first object */
-            lo = hi = 0;
-        o->vert_min = lo;
-        o->vert_max = hi;
-    }
+}
 
-    /* Give back the growth slack; a failed shrink keeps the old block. */
+static inline void range_add(uint32_t v, uint32_t *lo, uint32_t *hi)
+{
+    *lo = v < *lo ? v : *lo;
+    *hi = v > *hi ? v : *hi;
+}
+
+/* The vertex index range object o's faces, points and lines use. */
+static void object_range(const Mesh *m, MeshObject *o)
+{
+    uint32_t lo = UINT32_MAX, hi = 0;
+    uint32_t c0 = m->face_start[o->face_first];
+    uint32_t c1 = m->face_start[o->face_first + o->face_count];
+    for (uint32_t c = c0; c < c1; c++)
+        range_add(m->corner[c], &lo, &hi);
+    if (o->point_count && !m->point) {
+        /* a cloud: its points are a run of vertices */
+        range_add(o->point_first, &lo, &hi);
+        range_add(o->point_first + o->point_count - 1, &lo, &hi);
+    }
+    for (uint32_t k = o->point_first; k < o->point_first + o->point_count && m->point; k++)
+        range_add(m->point[k], &lo, &hi);
+    if (o->line_count) {
+        uint32_t l0 = m->line_start[o->line_first], l1 = m->line_start[o->line_first + o->line_count];
+        for (uint32_t c = l0; c < l1; c++)
+            range_add(m->line_corner[c], &lo, &hi);
+    }
+    /* Every index a loader stored is a vertex: the scene, the front end
+     * and the shading index pos[] and rgb[] with them unchecked. The
+     * loaders check each index (OBJ's forward ones at the end); this is
+     * where the last of them has been dropped. */
+    ZV_ASSERT(lo > hi || hi < m->nverts);
+    if (lo > hi)        /* an empty first object */
+        lo = hi = 0;
+    o->vert_min = lo;
+    o->vert_max = hi;
+}
+
+/* Give back the growth slack; a failed shrink keeps the old block. */
+static void give_back_slack(MeshBuild *b)
+{
+    Mesh *m = b->m;
     void *q;
     size_t nv = m->nverts ? m->nverts : 1, nf = m->nfaces ? m->nfaces : 1;
     if (m->pos && (q = realloc(m->pos, nv * 3 * sizeof(float))))
@@ -498,6 +500,32 @@ int mb_finish(MeshBuild *b, int cloud_ok)
         m->line_start = q;
     if (m->line_corner && (q = realloc(m->line_corner, (b->nlcorner ? b->nlcorner : 1) * sizeof(uint32_t))))
         m->line_corner = q;
+}
+
+int mb_finish(MeshBuild *b, int cloud_ok)
+{
+    Mesh *m = b->m;
+    MeshErr *e = b->e;
+    free(b->colours.slot);
+    b->colours.slot = NULL;
+    b->colours.cap = b->colours.used = 0;
+    if (cloud_ok && m->nfaces == 0 && m->npoints == 0 && m->nlines == 0 && m->nverts)
+        make_cloud(b);
+    if (over_polys(b, (uint64_t)m->nfaces + m->npoints))
+        return -1;
+    if (m->nfaces == 0 && m->npoints == 0 && m->nlines == 0)
+        return nothing_to_show(b);
+    if (!m->face_start && !(m->face_start = malloc(sizeof(uint32_t))))
+        return me_oom(e);
+    /* the sentinel closes the last face, which has 3 corners or more */
+    ZV_ASSERT(m->nfaces == 0 || (size_t)m->face_start[m->nfaces - 1] + 3 <= b->ncorner);
+    m->face_start[m->nfaces] = (uint32_t)b->ncorner;
+    if (m->nlines)
+        m->line_start[m->nlines] = (uint32_t)b->nlcorner;
+    close_objects(m);
+    for (uint32_t i = 0; i < m->nobjs; i++)
+        object_range(m, &m->objs[i]);
+    give_back_slack(b);
     if (!m->face_mat && !(m->face_mat = calloc(1, sizeof(int32_t))))
         return me_oom(e);
     return 0;

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check.h"
 #include "mesh.h"
 #include "reader.h"
 
@@ -163,6 +164,11 @@ static inline int mb_corner(MeshBuild *b, uint32_t v)
 static inline int mb_face_end(MeshBuild *b, size_t first, int32_t mat)
 {
     Mesh *m = b->m;
+    /* A face's corners are the run since the previous face ended, at
+     * least 3: face_start must rise by 3 or more a face, or the scene
+     * would make polygons of fewer corners (or of another face's). */
+    ZV_ASSERT(first <= b->ncorner && b->ncorner - first >= 3 &&
+              (m->nfaces == 0 || first >= (size_t)m->face_start[m->nfaces - 1] + 3));
     if (m->nfaces == b->fcap && mb_grow_faces(b))
         return -1;
     m->face_start[m->nfaces] = (uint32_t)first;
@@ -199,6 +205,8 @@ static inline int mb_line_corner(MeshBuild *b, uint32_t v)
 static inline int mb_line_end(MeshBuild *b, size_t first)
 {
     Mesh *m = b->m;
+    /* a polyline of k corners is k - 1 segments (scene.c): at least one */
+    ZV_ASSERT(first <= b->nlcorner && b->nlcorner - first >= 2);
     if (m->nlines == b->lcap && mb_grow_lines(b))
         return -1;
     m->line_start[m->nlines++] = (uint32_t)first;

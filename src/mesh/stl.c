@@ -226,29 +226,158 @@ static int pend_flush(Pending *pd, VertMerge *vm, MeshBuild *b)
     return mb_face_end(b, first, -1);
 }
 
-static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
-{
-    Mesh *m = c->m;
-    MeshErr *e = &c->err;
-    snprintf(m->info.format, sizeof m->info.format, "stl ascii");
-    /* About 250 bytes a triangle; a guess only (arrays grow past it). */
-    size_t guess = len / 250 + 64;
-    if (mb_reserve_ex(b, guess / 2, guess, 3 * guess, 0))
-        return -1;
-    VertMerge vm;
-    if (vm_init(&vm, guess / 2))
-        return me_oom(e);
+/* An ASCII STL being read: the line reader, where the statements are
+ * (solid > facet > outer loop), and the facets waiting to be merged. */
+typedef struct {
+    MeshErr    *e;
+    MeshBuild  *b;
+    LineReader  lr;
+    const char *ls, *le;   /* the current line */
+    VertMerge   vm;
+    int         in_facet, in_loop;
+    uint64_t    facet_line;
+    Pending     cur, prev; /* the facet being read; the one before, to merge */
+} StlText;
 
-    LineReader lr;
-    size_t bom = mesh_bom_len(data, len);
-    lr_init(&lr, data + bom, len - bom, c->file);
-    const char *ls, *le;
-    int in_solid = 0, in_facet = 0, in_loop = 0;
-    uint64_t facet_line = 0;
-    Pending cur = { 0 }, prev = { 0 };
-    int r = -1;
-    while (lr_next(&lr, &ls, &le)) {
-        const char *p = ls;
+/* The message for a vertex's number t that did not parse (nr). */
+static int bad_coord(StlText *s, int nr, const char *t, int i)
+{
+    MeshErr *e = s->e;
+    int tl = mesh_tok_len(t, s->le);
+    if (mesh_has_binary(s->ls, s->le))
+        return me_fail_line(e, s->lr.line, "binary or unreadable data");
+    if (nr == MESH_NUM_NONFINITE)
+        return me_fail_line(e, s->lr.line, "NaN or infinite number '%.*s'", tl, t);
+    if (nr == MESH_NUM_RANGE)
+        return me_fail_line(e, s->lr.line, "number out of range '%.*s'", tl, t);
+    if (t >= s->le)
+        return me_fail_line(e, s->lr.line, "vertex needs x y z, got %d number%s", i,
+                            i == 1 ? "" : "s");
+    return me_fail_line(e, s->lr.line, "malformed number '%.*s'", tl, t);
+}
+
+/* "vertex x y z" (the keyword read up to p): the corner's bits join the
+ * current facet. 0 or -1. */
+static int st_vertex(StlText *s, const char *p)
+{
+    const char *le = s->le;
+    if (!s->in_facet)
+        return me_fail_line(s->e, s->lr.line, "vertex outside a facet");
+    uint32_t bits[3];
+    for (int i = 0; i < 3; i++) {
+        while (p < le && mesh_is_blank(*p))
+            p++;
+        float f;
+        const char *t = p;
+        int nr = p < le ? mesh_parse_float(&p, le, &f) : MESH_NUM_BAD;
+        if (nr)
+            return bad_coord(s, nr, t, i);
+        memcpy(&bits[i], &f, 4);
+    }
+    while (p < le && mesh_is_blank(*p))
+        p++;
+    if (p < le)
+        return me_fail_line(s->e, s->lr.line, "vertex has more than x y z ('%.*s')",
+                            mesh_tok_len(p, le), p);
+    if (pend_add(&s->cur, bits))
+        return me_oom(s->e);
+    s->b->m->info.corners_read++;
+    return 0;
+}
+
+/* "facet [normal ...]": a facet starts. 0 or -1. */
+static int st_facet(StlText *s, const char *p)
+{
+    if (s->in_facet)
+        return me_fail_line(s->e, s->lr.line, "facet inside a facet (endfacet missing before)");
+    /* The normal is not needed (faces get theirs from the corners): the
+     * rest of the line is only checked for bytes no text has. */
+    if (mesh_has_binary(p, s->le))
+        return me_fail_line(s->e, s->lr.line, "binary or unreadable data");
+    s->in_facet = 1;
+    s->facet_line = s->lr.line;
+    s->cur.n = 0;
+    return 0;
+}
+
+/* "endfacet": the facet's merge slots are prefetched, the facet before
+ * it merged, and this one waits for the next. 0 or -1. */
+static int st_endfacet(StlText *s)
+{
+    if (!s->in_facet)
+        return me_fail_line(s->e, s->lr.line, "endfacet without a facet");
+    if (s->cur.n < 3)
+        return me_fail_line(s->e, s->facet_line, "facet has fewer than 3 vertices (%zu)",
+                            s->cur.n);
+    for (size_t k = 0; k < s->cur.n; k++) {
+        const uint32_t *q = s->cur.bits + 3 * k;
+        vm_prefetch(&s->vm, vm_hash(q[0], q[1], q[2]));
+    }
+    if (pend_flush(&s->prev, &s->vm, s->b))
+        return -1;
+    Pending t = s->prev;
+    s->prev = s->cur;
+    s->cur = t;
+    s->in_facet = s->in_loop = 0;
+    return 0;
+}
+
+/* "solid [name]": each solid of the file is an object, named as it
+ * says. 0 or -1. */
+static int st_solid(StlText *s, const char *p)
+{
+    const char *le = s->le;
+    if (s->in_facet)
+        return me_fail_line(s->e, s->lr.line, "solid inside a facet");
+    while (p < le && mesh_is_blank(*p))
+        p++;
+    const char *ne = le;
+    while (ne > p && mesh_is_blank(ne[-1]))
+        ne--;
+    if (mesh_has_binary(p, ne))
+        return me_fail_line(s->e, s->lr.line, "binary or unreadable data");
+    return pend_flush(&s->prev, &s->vm, s->b) || mb_object(s->b, p, (size_t)(ne - p)) ? -1 : 0;
+}
+
+/* One statement, keyword [k, p). 0 or -1. */
+static int st_statement(StlText *s, const char *k, const char *p)
+{
+    const char *le = s->le;
+    size_t kn = (size_t)(p - k);
+    /* By frequency: vertex, then the facet's other lines. */
+    if (kn == 6 && mesh_word_is(k, le, "vertex"))
+        return st_vertex(s, p);
+    if (kn == 5 && mesh_word_is(k, le, "facet"))
+        return st_facet(s, p);
+    if (kn == 5 && mesh_word_is(k, le, "outer")) {
+        if (!s->in_facet || s->in_loop)
+            return me_fail_line(s->e, s->lr.line, "'outer loop' outside a facet");
+        s->in_loop = 1;
+        return 0;
+    }
+    if (kn == 7 && mesh_word_is(k, le, "endloop")) {
+        s->in_loop = 0;
+        return 0;
+    }
+    if (kn == 8 && mesh_word_is(k, le, "endfacet"))
+        return st_endfacet(s);
+    if (kn == 5 && mesh_word_is(k, le, "solid"))
+        return st_solid(s, p);
+    /* a missing final endsolid is common and harmless: endsolid only
+     * checks it closes no facet */
+    if (kn == 8 && mesh_word_is(k, le, "endsolid"))
+        return s->in_facet ? me_fail_line(s->e, s->lr.line, "endsolid inside a facet") : 0;
+    if (mesh_has_binary(s->ls, le))
+        return me_fail_line(s->e, s->lr.line, "binary or unreadable data");
+    return me_fail_line(s->e, s->lr.line, "unknown statement '%.*s' (expected facet, vertex, ...)",
+                        mesh_tok_len(k, le), k);
+}
+
+/* The statements line by line, then the last facet merged. 0 or -1. */
+static int st_lines(StlText *s)
+{
+    while (lr_next(&s->lr, &s->ls, &s->le)) {
+        const char *p = s->ls, *le = s->le;
         while (p < le && mesh_is_blank(*p))
             p++;
         if (p >= le)
@@ -256,136 +385,30 @@ static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
         const char *k = p;
         while (p < le && !mesh_is_blank(*p))
             p++;
-        size_t kn = (size_t)(p - k);
-        /* By frequency: vertex, then the facet's other lines. */
-        if (kn == 6 && mesh_word_is(k, le, "vertex")) {
-            if (!in_facet) {
-                me_fail_line(e, lr.line, "vertex outside a facet");
-                goto out;
-            }
-            uint32_t bits[3];
-            for (int i = 0; i < 3; i++) {
-                while (p < le && mesh_is_blank(*p))
-                    p++;
-                float f;
-                const char *t = p;
-                int nr = p < le ? mesh_parse_float(&p, le, &f) : MESH_NUM_BAD;
-                if (nr) {
-                    int tl = mesh_tok_len(t, le);
-                    if (mesh_has_binary(ls, le))
-                        me_fail_line(e, lr.line, "binary or unreadable data");
-                    else if (nr == MESH_NUM_NONFINITE)
-                        me_fail_line(e, lr.line, "NaN or infinite number '%.*s'", tl, t);
-                    else if (nr == MESH_NUM_RANGE)
-                        me_fail_line(e, lr.line, "number out of range '%.*s'", tl, t);
-                    else if (t >= le)
-                        me_fail_line(e, lr.line, "vertex needs x y z, got %d number%s", i,
-                                     i == 1 ? "" : "s");
-                    else
-                        me_fail_line(e, lr.line, "malformed number '%.*s'", tl, t);
-                    goto out;
-                }
-                memcpy(&bits[i], &f, 4);
-            }
-            while (p < le && mesh_is_blank(*p))
-                p++;
-            if (p < le) {
-                me_fail_line(e, lr.line, "vertex has more than x y z ('%.*s')",
-                             mesh_tok_len(p, le), p);
-                goto out;
-            }
-            if (pend_add(&cur, bits)) {
-                me_oom(e);
-                goto out;
-            }
-            m->info.corners_read++;
-        } else if (kn == 5 && mesh_word_is(k, le, "facet")) {
-            if (in_facet) {
-                me_fail_line(e, lr.line, "facet inside a facet (endfacet missing before)");
-                goto out;
-            }
-            /* The normal is not needed (faces get theirs from the
-             * corners): the rest of the line is only checked for bytes
-             * no text has. */
-            if (mesh_has_binary(p, le)) {
-                me_fail_line(e, lr.line, "binary or unreadable data");
-                goto out;
-            }
-            in_facet = 1;
-            facet_line = lr.line;
-            cur.n = 0;
-        } else if (kn == 5 && mesh_word_is(k, le, "outer")) {
-            if (!in_facet || in_loop) {
-                me_fail_line(e, lr.line, "'outer loop' outside a facet");
-                goto out;
-            }
-            in_loop = 1;
-        } else if (kn == 7 && mesh_word_is(k, le, "endloop")) {
-            in_loop = 0;
-        } else if (kn == 8 && mesh_word_is(k, le, "endfacet")) {
-            if (!in_facet) {
-                me_fail_line(e, lr.line, "endfacet without a facet");
-                goto out;
-            }
-            if (cur.n < 3) {
-                me_fail_line(e, facet_line, "facet has fewer than 3 vertices (%zu)", cur.n);
-                goto out;
-            }
-            for (size_t k = 0; k < cur.n; k++) {
-                const uint32_t *q = cur.bits + 3 * k;
-                vm_prefetch(&vm, vm_hash(q[0], q[1], q[2]));
-            }
-            if (pend_flush(&prev, &vm, b))
-                goto out;
-            Pending t = prev;
-            prev = cur;
-            cur = t;
-            in_facet = in_loop = 0;
-        } else if (kn == 5 && mesh_word_is(k, le, "solid")) {
-            if (in_facet) {
-                me_fail_line(e, lr.line, "solid inside a facet");
-                goto out;
-            }
-            /* Each solid of the file is an object, named as it says. */
-            while (p < le && mesh_is_blank(*p))
-                p++;
-            const char *ne = le;
-            while (ne > p && mesh_is_blank(ne[-1]))
-                ne--;
-            if (mesh_has_binary(p, ne)) {
-                me_fail_line(e, lr.line, "binary or unreadable data");
-                goto out;
-            }
-            if (pend_flush(&prev, &vm, b) || mb_object(b, p, (size_t)(ne - p)))
-                goto out;
-            in_solid = 1;
-        } else if (kn == 8 && mesh_word_is(k, le, "endsolid")) {
-            if (in_facet) {
-                me_fail_line(e, lr.line, "endsolid inside a facet");
-                goto out;
-            }
-            in_solid = 0;
-        } else {
-            if (mesh_has_binary(ls, le))
-                me_fail_line(e, lr.line, "binary or unreadable data");
-            else
-                me_fail_line(e, lr.line, "unknown statement '%.*s' (expected facet, vertex, ...)",
-                             mesh_tok_len(k, le), k);
-            goto out;
-        }
+        if (st_statement(s, k, p))
+            return -1;
     }
-    (void)in_solid;   /* a missing final endsolid is common and harmless */
-    if (in_facet) {
-        me_fail_line(e, facet_line, "file ends inside this facet");
-        goto out;
-    }
-    if (pend_flush(&prev, &vm, b))
-        goto out;
-    r = 0;
-out:
-    free(cur.bits);
-    free(prev.bits);
-    vm_free(&vm);
+    if (s->in_facet)
+        return me_fail_line(s->e, s->facet_line, "file ends inside this facet");
+    return pend_flush(&s->prev, &s->vm, s->b);
+}
+
+static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
+{
+    snprintf(c->m->info.format, sizeof c->m->info.format, "stl ascii");
+    /* About 250 bytes a triangle; a guess only (arrays grow past it). */
+    size_t guess = len / 250 + 64;
+    if (mb_reserve_ex(b, guess / 2, guess, 3 * guess, 0))
+        return -1;
+    StlText s = { .e = &c->err, .b = b };
+    if (vm_init(&s.vm, guess / 2))
+        return me_oom(&c->err);
+    size_t bom = mesh_bom_len(data, len);
+    lr_init(&s.lr, data + bom, len - bom, c->file);
+    int r = st_lines(&s);
+    free(s.cur.bits);
+    free(s.prev.bits);
+    vm_free(&s.vm);
     return r;
 }
 

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check.h"
 #include "scene.h"
 #include "scene_internal.h"
 
@@ -39,13 +40,17 @@ static int taken(const Source *src, int i)
     return !src->keep || src->keep[i];
 }
 
-/* Compose *out from the sources in order (see the top of the file).
- * Returns 0, or -1 with a message; the sources are untouched either way
- * (meshes are copied by value: the caller releases what moved). */
-static int compose(Scene *out, const Source *src, int nsrc, int *mesh_used[], char *err, size_t errlen)
+/* What the composed scene holds. */
+typedef struct {
+    uint64_t nobjs, nfaces, npolys, ncorners, nsegs, nmeshes;
+} ComposeCounts;
+
+/* Count what the sources give, numbering the meshes still used in
+ * mesh_used (-1: not used). -1 with a message when the result passes a
+ * scene's limits. */
+static int compose_count(const Source *src, int nsrc, int *mesh_used[], ComposeCounts *n, char *err,
+                         size_t errlen)
 {
-    memset(out, 0, sizeof *out);
-    uint64_t nobjs = 0, nfaces = 0, npolys = 0, ncorners = 0, nsegs = 0, nmeshes = 0;
     for (int k = 0; k < nsrc; k++) {
         const Scene *s = src[k].s;
         int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
@@ -55,37 +60,103 @@ static int compose(Scene *out, const Source *src, int nsrc, int *mesh_used[], ch
             if (!taken(&src[k], i))
                 continue;
             const Object *o = &s->objs[i];
-            nobjs++;
-            nfaces += o->face_count;
-            npolys += o->poly_count;
-            ncorners += s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
-            nsegs += o->seg_count;
+            n->nobjs++;
+            n->nfaces += o->face_count;
+            n->npolys += o->poly_count;
+            n->ncorners += s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
+            n->nsegs += o->seg_count;
             int f = scene_object_file(s, i);
             if (f >= 0 && mesh_used[k][f] < 0)
-                mesh_used[k][f] = (int)nmeshes++;
+                mesh_used[k][f] = (int)n->nmeshes++;
         }
     }
-    if (nobjs > 65535 || nfaces > INT32_MAX || nsegs > INT32_MAX || npolys > UINT32_MAX / 2 ||
-        ncorners > UINT32_MAX / 2) {
+    if (n->nobjs > 65535 || n->nfaces > INT32_MAX || n->nsegs > INT32_MAX ||
+        n->npolys > UINT32_MAX / 2 || n->ncorners > UINT32_MAX / 2) {
         const Scene *last = src[nsrc - 1].s;    /* what is being added */
-        scene_too_large(last->meshes, last->nmeshes, nobjs, nfaces, err, errlen);
+        scene_too_large(last->meshes, last->nmeshes, n->nobjs, n->nfaces, err, errlen);
         return -1;
     }
-    out->meshes = malloc((nmeshes ? nmeshes : 1) * sizeof *out->meshes);
-    out->objs = calloc(nobjs ? nobjs : 1, sizeof *out->objs);
+    return 0;
+}
+
+/* out's arrays for n. -1 out of memory (out left empty). */
+static int compose_alloc(Scene *out, const ComposeCounts *n)
+{
+    uint64_t nfaces = n->nfaces, npolys = n->npolys;
+    out->meshes = malloc((n->nmeshes ? n->nmeshes : 1) * sizeof *out->meshes);
+    out->objs = calloc(n->nobjs ? n->nobjs : 1, sizeof *out->objs);
     out->face_normal = malloc((nfaces ? nfaces : 1) * 3 * sizeof(float));
     out->face_rgb = malloc((nfaces ? nfaces : 1) * 3);
     out->face_own = malloc(nfaces ? nfaces : 1);
     out->face_obj = malloc((nfaces ? nfaces : 1) * sizeof(uint16_t));
     out->poly_start = malloc((npolys + 1) * sizeof(uint32_t));
-    out->poly_corner = malloc((ncorners ? ncorners : 1) * sizeof(uint32_t));
+    out->poly_corner = malloc((n->ncorners ? n->ncorners : 1) * sizeof(uint32_t));
     out->poly_lface = malloc((npolys ? npolys : 1) * sizeof(uint32_t));
-    out->seg_corner = malloc((nsegs ? nsegs : 1) * sizeof(uint32_t));
+    out->seg_corner = malloc((n->nsegs ? n->nsegs : 1) * sizeof(uint32_t));
     if (!out->meshes || !out->objs || !out->face_normal || !out->face_rgb || !out->face_own || !out->face_obj ||
         !out->poly_start || !out->poly_corner || !out->poly_lface || !out->seg_corner) {
         free(out->meshes);
         out->meshes = NULL;
         scene_free(out);
+        return -1;
+    }
+    return 0;
+}
+
+/* Where the composed scene's lists have been written to. */
+typedef struct {
+    uint32_t oi, fi, pi, ci, si;   /* objects, faces, polygons, corners, segments */
+} ComposePos;
+
+/* Copy object i of s (whose mesh is now out's mesh `mesh`, or none) to
+ * the end of out: the object, its faces' data, its polygons (offsets
+ * moved to where its corners now start) and its segments. */
+static void copy_object(Scene *out, const Scene *s, int i, Mesh *mesh, ComposePos *at)
+{
+    const Object *from = &s->objs[i];
+    Object *o = &out->objs[at->oi];
+    *o = *from;
+    o->mesh = mesh;
+    o->face_base = (int32_t)at->fi;
+    o->poly_first = at->pi;
+    o->seg_first = at->si;
+    o->wire_first = o->wire_count = 0;
+    uint32_t fi = at->fi, pi = at->pi, ci = at->ci;
+    uint32_t f0 = (uint32_t)from->face_base, nf = from->face_count;
+    memcpy(&out->face_normal[3 * (size_t)fi], &s->face_normal[3 * (size_t)f0], 3 * (size_t)nf * sizeof(float));
+    memcpy(&out->face_rgb[3 * (size_t)fi], &s->face_rgb[3 * (size_t)f0], 3 * (size_t)nf);
+    if (s->face_own)
+        memcpy(&out->face_own[fi], &s->face_own[f0], nf);
+    else
+        memset(&out->face_own[fi], 1, nf);
+    for (uint32_t q = 0; q < nf; q++)
+        out->face_obj[fi + q] = (uint16_t)at->oi;
+    uint32_t c0 = s->poly_start[from->poly_first];
+    for (uint32_t q = 0; q < from->poly_count; q++) {
+        uint32_t p = from->poly_first + q;
+        out->poly_start[pi + q] = ci + (s->poly_start[p] - c0);
+        out->poly_lface[pi + q] = s->poly_lface[p];
+    }
+    uint32_t nc = s->poly_start[from->poly_first + from->poly_count] - c0;
+    memcpy(&out->poly_corner[ci], &s->poly_corner[c0], (size_t)nc * sizeof(uint32_t));
+    memcpy(&out->seg_corner[at->si], &s->seg_corner[from->seg_first], (size_t)from->seg_count * sizeof(uint32_t));
+    at->fi += nf;
+    at->pi += from->poly_count;
+    at->ci += nc;
+    at->si += from->seg_count;
+    at->oi++;
+}
+
+/* Compose *out from the sources in order (see the top of the file).
+ * Returns 0, or -1 with a message; the sources are untouched either way
+ * (meshes are copied by value: the caller releases what moved). */
+static int compose(Scene *out, const Source *src, int nsrc, int *mesh_used[], char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    ComposeCounts n = { 0 };
+    if (compose_count(src, nsrc, mesh_used, &n, err, errlen))
+        return -1;
+    if (compose_alloc(out, &n)) {
         snprintf(err, errlen, "out of memory");
         return -1;
     }
@@ -93,59 +164,32 @@ static int compose(Scene *out, const Source *src, int nsrc, int *mesh_used[], ch
         for (int i = 0; i < src[k].s->nmeshes; i++)
             if (mesh_used[k][i] >= 0)
                 out->meshes[mesh_used[k][i]] = src[k].s->meshes[i];
-    out->nmeshes = (int)nmeshes;
-    /* invariant: oi objects, fi faces, pi polygons, ci corners, si
+    out->nmeshes = (int)n.nmeshes;
+    /* invariant: at counts the objects, faces, polygons, corners and
      * segments copied so far */
-    uint32_t oi = 0, fi = 0, pi = 0, ci = 0, si = 0;
+    ComposePos at = { 0, 0, 0, 0, 0 };
     for (int k = 0; k < nsrc; k++) {
         const Scene *s = src[k].s;
         int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
         for (int i = 0; i < nb; i++) {
             if (!taken(&src[k], i))
                 continue;
-            const Object *from = &s->objs[i];
-            Object *o = &out->objs[oi];
-            *o = *from;
             int f = scene_object_file(s, i);
-            o->mesh = f >= 0 ? &out->meshes[mesh_used[k][f]] : NULL;
-            o->face_base = (int32_t)fi;
-            o->poly_first = pi;
-            o->seg_first = si;
-            o->wire_first = o->wire_count = 0;
-            uint32_t f0 = (uint32_t)from->face_base, nf = from->face_count;
-            memcpy(&out->face_normal[3 * (size_t)fi], &s->face_normal[3 * (size_t)f0], 3 * (size_t)nf * sizeof(float));
-            memcpy(&out->face_rgb[3 * (size_t)fi], &s->face_rgb[3 * (size_t)f0], 3 * (size_t)nf);
-            if (s->face_own)
-                memcpy(&out->face_own[fi], &s->face_own[f0], nf);
-            else
-                memset(&out->face_own[fi], 1, nf);
-            for (uint32_t q = 0; q < nf; q++)
-                out->face_obj[fi + q] = (uint16_t)oi;
-            uint32_t c0 = s->poly_start[from->poly_first];
-            for (uint32_t q = 0; q < from->poly_count; q++) {
-                uint32_t p = from->poly_first + q;
-                out->poly_start[pi + q] = ci + (s->poly_start[p] - c0);
-                out->poly_lface[pi + q] = s->poly_lface[p];
-            }
-            uint32_t nc = s->poly_start[from->poly_first + from->poly_count] - c0;
-            memcpy(&out->poly_corner[ci], &s->poly_corner[c0], (size_t)nc * sizeof(uint32_t));
-            memcpy(&out->seg_corner[si], &s->seg_corner[from->seg_first], (size_t)from->seg_count * sizeof(uint32_t));
-            fi += nf;
-            pi += from->poly_count;
-            ci += nc;
-            si += from->seg_count;
-            oi++;
+            copy_object(out, s, i, f >= 0 ? &out->meshes[mesh_used[k][f]] : NULL, &at);
         }
     }
-    out->poly_start[pi] = ci;
-    out->npolys = pi;
-    out->nobjs = (int)oi;
-    out->nbase_objs = oi;
-    out->nfaces = fi;
+    /* what was copied is what compose_count counted, which sized out */
+    ZV_ASSERT(at.oi == n.nobjs && at.fi == n.nfaces && at.pi == n.npolys && at.ci == n.ncorners &&
+              at.si == n.nsegs);
+    out->poly_start[at.pi] = at.ci;
+    out->npolys = at.pi;
+    out->nobjs = (int)at.oi;
+    out->nbase_objs = at.oi;
+    out->nfaces = at.fi;
     /* colours by index, as a load of these files colours them */
-    for (uint32_t g = 0; g < fi; g++)
+    for (uint32_t g = 0; g < at.fi; g++)
         if (!out->face_own[g]) {
-            if (oi > 1)
+            if (at.oi > 1)
                 object_colour(out->face_obj[g], &out->face_rgb[3 * (size_t)g]);
             else
                 memcpy(&out->face_rgb[3 * (size_t)g], scene_default_rgb, 3);

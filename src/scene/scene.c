@@ -1,5 +1,5 @@
 /* scene.c: meshes -> objects, the polygon list, per-face shading data,
- * and fitting the camera to the scene. */
+ * and fitting the camera to the scene (the wireframe's edges: wire.c). */
 
 #include <float.h>
 #include <math.h>
@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "bigmem.h"
+#include "check.h"
 #include "scene.h"
 #include "scene_internal.h"
 
@@ -324,40 +325,63 @@ void scene_too_large(const Mesh *meshes, int n, uint64_t nobjs, uint64_t nfaces,
                               "segments together)", files, (unsigned long long)nfaces, INT32_MAX);
 }
 
-int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
-{
-    memset(s, 0, sizeof *s);
-    s->meshes = meshes;
-    s->nmeshes = nmeshes;
+/* What scene_build works out before it writes the polygon lists. */
+typedef struct {
+    uint64_t nobjs, nfaces, nsegs;   /* over every mesh */
+    uint64_t npolys, ncorners;       /* after splitting non-planar faces */
+    /* per face: bit 0 planar (kept whole), bit 1 a colour of its own */
+    uint8_t *planar;
+    int      take_over;              /* the polygon lists are the mesh's face lists */
+} SceneCounts;
 
-    /* Count objects, faces, segments, and polygons/corners after splitting. */
-    uint64_t nobjs = 0, nfaces = 0, npolys = 0, ncorners = 0, nsegs = 0;
+/* Objects, faces and segments over every mesh; -1 with the message
+ * when they pass what a scene's ids and indices can hold. */
+static int count_meshes(const Mesh *meshes, int nmeshes, SceneCounts *c, char *err, size_t errlen)
+{
     for (int mi = 0; mi < nmeshes; mi++) {
         const Mesh *m = &meshes[mi];
-        nobjs += m->nobjs;
-        nfaces += m->nfaces;
+        c->nobjs += m->nobjs;
+        c->nfaces += m->nfaces;
         if (m->nlines)
-            nsegs += m->line_start[m->nlines] - m->nlines;
+            c->nsegs += m->line_start[m->nlines] - m->nlines;
     }
-    if (nobjs > 65535 || nfaces > INT32_MAX || nsegs > INT32_MAX) {
-        scene_too_large(meshes, nmeshes, nobjs, nfaces, err, errlen);
+    if (c->nobjs > 65535 || c->nfaces > INT32_MAX || c->nsegs > INT32_MAX) {
+        scene_too_large(meshes, nmeshes, c->nobjs, c->nfaces, err, errlen);
         return -1;
     }
-    s->objs = calloc(nobjs ? nobjs : 1, sizeof *s->objs);
+    return 0;
+}
+
+/* The per-object and per-face arrays (and c->planar). -1 out of memory. */
+static int alloc_face_arrays(Scene *s, SceneCounts *c)
+{
+    uint64_t nfaces = c->nfaces;
+    s->objs = calloc(c->nobjs ? c->nobjs : 1, sizeof *s->objs);
     s->face_normal = malloc((nfaces ? nfaces : 1) * 3 * sizeof(float));
     s->face_rgb = malloc((nfaces ? nfaces : 1) * 3);
     s->face_obj = malloc((nfaces ? nfaces : 1) * sizeof(uint16_t));
     s->face_own = malloc(nfaces ? nfaces : 1);
-    uint8_t *planar = malloc(nfaces ? nfaces : 1);
-    s->seg_corner = malloc((nsegs ? nsegs : 1) * sizeof *s->seg_corner);
-    if (!s->objs || !s->face_normal || !s->face_rgb || !s->face_obj || !s->face_own || !planar || !s->seg_corner)
-        goto oom;
+    c->planar = malloc(nfaces ? nfaces : 1);
+    s->seg_corner = malloc((c->nsegs ? c->nsegs : 1) * sizeof *s->seg_corner);
+    if (!s->objs || !s->face_normal || !s->face_rgb || !s->face_obj || !s->face_own || !c->planar ||
+        !s->seg_corner)
+        return -1;
     bigmem_advise(s->face_normal, nfaces * 3 * sizeof(float), 1);
     bigmem_advise(s->face_rgb, nfaces * 3, 1);
     bigmem_advise(s->face_obj, nfaces * sizeof(uint16_t), 1);
-    bigmem_advise(planar, nfaces, 1);
+    bigmem_advise(c->planar, nfaces, 1);
+    return 0;
+}
 
+/* Each face's unit normal, colour and whether it stays whole, and the
+ * polygons and corners that makes; -1 with the message when they pass
+ * what 32-bit offsets hold. */
+static int face_data(Scene *s, const Mesh *meshes, int nmeshes, SceneCounts *c, char *err,
+                     size_t errlen)
+{
     uint32_t gface = 0;
+    uint64_t npolys = 0, ncorners = 0;
+    uint8_t *planar = c->planar;
     for (int mi = 0; mi < nmeshes; mi++) {
         const Mesh *m = &meshes[mi];
         for (uint32_t f = 0; f < m->nfaces; f++, gface++) {
@@ -379,30 +403,44 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
             }
         }
     }
+    c->npolys = npolys;
+    c->ncorners = ncorners;
     if (npolys > UINT32_MAX / 2 || ncorners > UINT32_MAX / 2) {
         char files[320];
         scene_files_text(meshes, nmeshes, files, sizeof files);
         snprintf(err, errlen, "%s: too large for one scene (%llu triangles and polygons; at most %u)", files,
                  (unsigned long long)npolys, UINT32_MAX / 2);
-        free(planar);
         return -1;
     }
-    /* One mesh whose faces all stay whole polygons (every triangle mesh),
-     * its objects' faces in order: the polygon lists are the mesh's face
-     * lists. Take them over instead of copying into fresh arrays: on a
-     * 5M-triangle model that is 80 MB not written and 20k page faults not
-     * taken before the first picture. */
-    int take_over = nmeshes == 1 && meshes[0].nfaces && meshes[0].face_start && meshes[0].corner &&
-                    npolys == meshes[0].nfaces && ncorners == meshes[0].face_start[meshes[0].nfaces];
-    if (take_over) {
-        uint32_t next = 0;
-        for (uint32_t k = 0; k < meshes[0].nobjs && take_over; k++) {
-            take_over = meshes[0].objs[k].face_first == next;
-            next += meshes[0].objs[k].face_count;
-        }
-        take_over = take_over && next == meshes[0].nfaces;
+    return 0;
+}
+
+/* One mesh whose faces all stay whole polygons (every triangle mesh),
+ * its objects' faces in order: the polygon lists are the mesh's face
+ * lists. Taking them over instead of copying into fresh arrays, on a
+ * 5M-triangle model, leaves 80 MB unwritten and 20k page faults not
+ * taken before the first picture. */
+static int can_take_over(const Mesh *meshes, int nmeshes, const SceneCounts *c)
+{
+    if (!(nmeshes == 1 && meshes[0].nfaces && meshes[0].face_start && meshes[0].corner &&
+          c->npolys == meshes[0].nfaces && c->ncorners == meshes[0].face_start[meshes[0].nfaces]))
+        return 0;
+    uint32_t next = 0;
+    for (uint32_t k = 0; k < meshes[0].nobjs; k++) {
+        if (meshes[0].objs[k].face_first != next)
+            return 0;
+        next += meshes[0].objs[k].face_count;
     }
-    if (take_over) {
+    return next == meshes[0].nfaces;
+}
+
+/* The polygon lists: taken over from the mesh, or allocated to be
+ * written. -1 out of memory. */
+static int alloc_polys(Scene *s, Mesh *meshes, int nmeshes, SceneCounts *c)
+{
+    uint64_t npolys = c->npolys, ncorners = c->ncorners;
+    c->take_over = can_take_over(meshes, nmeshes, c);
+    if (c->take_over) {
         s->poly_start = meshes[0].face_start;
         s->poly_corner = meshes[0].corner;
         meshes[0].face_start = meshes[0].corner = NULL;
@@ -412,87 +450,120 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     }
     s->poly_lface = malloc((npolys ? npolys : 1) * sizeof(uint32_t));
     if (!s->poly_start || !s->poly_corner || !s->poly_lface)
-        goto oom;
+        return -1;
     bigmem_advise(s->poly_lface, npolys * sizeof(uint32_t), 1);
-    if (!take_over) {
+    if (!c->take_over) {
         bigmem_advise(s->poly_start, (npolys + 1) * sizeof(uint32_t), 1);
         bigmem_advise(s->poly_corner, ncorners * sizeof(uint32_t), 1);
     }
+    return 0;
+}
 
-    uint32_t pi = 0, ci = 0, oi = 0, si = 0;
-    gface = 0;
+/* Where the polygon and segment lists have been written to. */
+typedef struct {
+    uint32_t pi, ci, si;   /* polygons, corners, segments */
+} ScenePos;
+
+/* Object oi from mesh object mo (faces from global face gface on): its
+ * fields, its segments (each polyline's corners but the last), its
+ * bounds. */
+static void object_from_mesh(Scene *s, const Mesh *m, const MeshObject *mo, uint32_t oi, uint32_t gface,
+                             const SceneCounts *c, ScenePos *at)
+{
+    Object *o = &s->objs[oi];
+    memcpy(o->name, mo->name, sizeof o->name);
+    o->name[sizeof o->name - 1] = 0;
+    o->mesh = m;
+    o->face_first = mo->face_first;
+    o->face_count = mo->face_count;
+    o->vert_min = mo->vert_min;
+    o->vert_max = mo->vert_max;
+    o->face_base = (int32_t)(gface + mo->face_first);
+    o->poly_first = at->pi;
+    o->scale = o->home_scale = 1;
+    o->point_first = mo->point_first;
+    o->point_count = mo->point_count;
+    o->line_count = mo->line_count;
+    uint32_t si = at->si;
+    o->seg_first = si;
+    for (uint32_t l = mo->line_first; l < mo->line_first + mo->line_count; l++)
+        for (uint32_t c2 = m->line_start[l]; c2 + 1 < m->line_start[l + 1]; c2++)
+            s->seg_corner[si++] = c2;
+    o->seg_count = si - o->seg_first;
+    at->si = si;
+    object_bounds(o, mo, c->take_over ? s->poly_start : m->face_start,
+                  c->take_over ? s->poly_corner : m->corner);
+}
+
+/* Object oi's faces: their object, their colour when they have none of
+ * their own and the scene has several objects, and their polygons (a
+ * planar face whole, any other as a fan of triangles; taken over: only
+ * each polygon's face). */
+static void object_polys(Scene *s, const Mesh *m, const MeshObject *mo, uint32_t oi, uint32_t gface,
+                         const SceneCounts *c, ScenePos *at)
+{
+    const uint8_t *planar = c->planar;
+    int take_over = c->take_over;
+    uint32_t pi = at->pi, ci = at->ci;
+    for (uint32_t f = mo->face_first; f < mo->face_first + mo->face_count; f++) {
+        uint32_t g = gface + f;
+        s->face_obj[g] = (uint16_t)oi;
+        if (!(planar[g] & 2) && c->nobjs > 1)
+            object_colour((int)oi, &s->face_rgb[3 * (size_t)g]);
+        if (take_over) {
+            s->poly_lface[pi++] = f - mo->face_first;
+            continue;
+        }
+        uint32_t a = m->face_start[f], b = m->face_start[f + 1];
+        if (planar[g] & 1) {
+            s->poly_start[pi] = ci;
+            s->poly_lface[pi++] = f - mo->face_first;
+            for (uint32_t k = a; k < b; k++)
+                s->poly_corner[ci++] = m->corner[k];
+        } else {
+            for (uint32_t k = a + 1; k + 1 < b; k++) {
+                s->poly_start[pi] = ci;
+                s->poly_lface[pi++] = f - mo->face_first;
+                s->poly_corner[ci++] = m->corner[a];
+                s->poly_corner[ci++] = m->corner[k];
+                s->poly_corner[ci++] = m->corner[k + 1];
+            }
+        }
+    }
+    at->pi = pi;
+    at->ci = ci;
+}
+
+/* Every mesh's objects into the scene's, with their polygons. */
+static void build_objects(Scene *s, const Mesh *meshes, int nmeshes, const SceneCounts *c)
+{
+    ScenePos at = { 0, 0, 0 };
+    uint32_t oi = 0, gface = 0;
     for (int mi = 0; mi < nmeshes; mi++) {
         const Mesh *m = &meshes[mi];
         for (uint32_t k = 0; k < m->nobjs; k++, oi++) {
-            const MeshObject *mo = &m->objs[k];
-            Object *o = &s->objs[oi];
-            memcpy(o->name, mo->name, sizeof o->name);
-            o->name[sizeof o->name - 1] = 0;
-            o->mesh = m;
-            o->face_first = mo->face_first;
-            o->face_count = mo->face_count;
-            o->vert_min = mo->vert_min;
-            o->vert_max = mo->vert_max;
-            o->face_base = (int32_t)(gface + mo->face_first);
-            o->poly_first = pi;
-            o->scale = o->home_scale = 1;
-            o->point_first = mo->point_first;
-            o->point_count = mo->point_count;
-            o->line_count = mo->line_count;
-            /* each polyline's segments: its corners but the last */
-            o->seg_first = si;
-            for (uint32_t l = mo->line_first; l < mo->line_first + mo->line_count; l++)
-                for (uint32_t c = m->line_start[l]; c + 1 < m->line_start[l + 1]; c++)
-                    s->seg_corner[si++] = c;
-            o->seg_count = si - o->seg_first;
-            object_bounds(o, mo, take_over ? s->poly_start : m->face_start, take_over ? s->poly_corner : m->corner);
-            for (uint32_t f = mo->face_first; f < mo->face_first + mo->face_count; f++) {
-                uint32_t g = gface + f;
-                s->face_obj[g] = (uint16_t)oi;
-                /* objects without colours of their own get distinct ones */
-                if (!(planar[g] & 2) && nobjs > 1)
-                    object_colour((int)oi, &s->face_rgb[3 * (size_t)g]);
-                if (take_over) {
-                    s->poly_lface[pi++] = f - mo->face_first;
-                    continue;
-                }
-                uint32_t a = m->face_start[f], b = m->face_start[f + 1];
-                if (planar[g] & 1) {
-                    s->poly_start[pi] = ci;
-                    s->poly_lface[pi++] = f - mo->face_first;
-                    for (uint32_t c = a; c < b; c++)
-                        s->poly_corner[ci++] = m->corner[c];
-                } else {
-                    for (uint32_t c = a + 1; c + 1 < b; c++) {
-                        s->poly_start[pi] = ci;
-                        s->poly_lface[pi++] = f - mo->face_first;
-                        s->poly_corner[ci++] = m->corner[a];
-                        s->poly_corner[ci++] = m->corner[c];
-                        s->poly_corner[ci++] = m->corner[c + 1];
-                    }
-                }
-            }
-            o->poly_count = pi - o->poly_first;
+            object_from_mesh(s, m, &m->objs[k], oi, gface, c, &at);
+            object_polys(s, m, &m->objs[k], oi, gface, c, &at);
+            s->objs[oi].poly_count = at.pi - s->objs[oi].poly_first;
         }
         gface += m->nfaces;
     }
-    if (!take_over)
-        s->poly_start[pi] = ci;
-    s->npolys = pi;
+    /* The fill wrote exactly what face_data counted: the arrays were
+     * sized by those counts, and the sentinel below closes the last
+     * polygon at the last corner. */
+    ZV_ASSERT(at.pi == c->npolys && (c->take_over || at.ci == c->ncorners) && at.si == c->nsegs);
+    if (!c->take_over)
+        s->poly_start[at.pi] = at.ci;
+    s->npolys = at.pi;
     s->nobjs = (int)oi;
     s->nbase_objs = oi;
     s->nfaces = gface;
-    free(planar);
-    s->pos_exp = shrink_huge_meshes(s, take_over);
-    if (scene_number_prims(s)) {
-        scene_too_large(meshes, nmeshes, 0, (uint64_t)INT32_MAX + 1, err, errlen);
-        s->meshes = NULL;
-        s->nmeshes = 0;
-        scene_free(s);
-        return -1;
-    }
-    /* The scene keeps its own polygon lists and per-face data: the meshes'
-     * face arrays are no longer needed (a third of a big model's memory). */
+}
+
+/* The scene keeps its own polygon lists and per-face data: the meshes'
+ * face arrays are no longer needed (a third of a big model's memory). */
+static void release_mesh_faces(Mesh *meshes, int nmeshes)
+{
     for (int mi = 0; mi < nmeshes; mi++) {
         Mesh *m = &meshes[mi];
         free(m->face_start);
@@ -501,16 +572,39 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
         m->face_start = m->corner = NULL;
         m->face_mat = NULL;
     }
+}
+
+int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
+{
+    memset(s, 0, sizeof *s);
+    s->meshes = meshes;
+    s->nmeshes = nmeshes;
+    SceneCounts c = { 0 };
+    if (count_meshes(meshes, nmeshes, &c, err, errlen))
+        return -1;
+    int oom = alloc_face_arrays(s, &c);
+    if (oom || face_data(s, meshes, nmeshes, &c, err, errlen) || (oom = alloc_polys(s, meshes, nmeshes, &c)))
+        goto fail;
+    build_objects(s, meshes, nmeshes, &c);
+    free(c.planar);
+    c.planar = NULL;
+    s->pos_exp = shrink_huge_meshes(s, c.take_over);
+    if (scene_number_prims(s)) {
+        scene_too_large(meshes, nmeshes, 0, (uint64_t)INT32_MAX + 1, err, errlen);
+        goto fail;
+    }
+    release_mesh_faces(meshes, nmeshes);
     light_set(&s->light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
     scene_reset(s);
     return 0;
 
-oom:
-    free(planar);
+fail:
+    free(c.planar);
     s->meshes = NULL;   /* the caller still owns them on failure */
     s->nmeshes = 0;
     scene_free(s);
-    snprintf(err, errlen, "out of memory building the scene");
+    if (oom)
+        snprintf(err, errlen, "out of memory building the scene");
     return -1;
 }
 
@@ -743,140 +837,4 @@ void light_set(Light *l, float yaw_deg, float pitch_deg, float ambient)
     l->pitch = pitch_deg;
     l->dir = v3(cosf(p) * sinf(y), sinf(p), cosf(p) * cosf(y));
     l->ambient = ambient < 0 ? 0 : ambient > 1 ? 1 : ambient;
-}
-
-/* ==== the wireframe ==== */
-
-/* A hash of an edge's two vertex indices (the smaller first). */
-static inline uint32_t edge_hash(uint32_t a, uint32_t b)
-{
-    uint64_t h = ((uint64_t)a << 32 | b) * 0x9E3779B97F4A7C15ull;
-    return (uint32_t)(h >> 32);
-}
-
-/* Add edge (a, b) to the table unless there (slots hold an edge's two
- * vertices and the stamp of the object they were added for: another
- * stamp is an empty slot, so the table is not cleared between objects). */
-static int edge_add(uint64_t *key, uint32_t *stamp, uint32_t mask, uint32_t st, uint32_t a, uint32_t b)
-{
-    if (a == b)
-        return 0;       /* a degenerate edge draws nothing */
-    if (a > b) {
-        uint32_t t = a;
-        a = b;
-        b = t;
-    }
-    uint64_t k = (uint64_t)a << 32 | b;
-    for (uint32_t i = edge_hash(a, b) & mask;; i = (i + 1) & mask) {
-        if (stamp[i] != st) {
-            stamp[i] = st;
-            key[i] = k;
-            return 1;
-        }
-        if (key[i] == k)
-            return 0;
-    }
-}
-
-int scene_wire_build(Scene *s, char *err, size_t errlen)
-{
-    if (s->wire_built)
-        return 0;
-    int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
-    /* an edge per polygon corner at most; the table at most half full */
-    uint64_t corners = s->npolys ? s->poly_start[s->npolys] : 0, most = 0;
-    for (int k = 0; k < nb; k++) {
-        const Object *o = &s->objs[k];
-        uint64_t c = s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
-        most = c > most ? c : most;
-    }
-    uint64_t cap = 64;
-    while (cap < 2 * most)
-        cap *= 2;
-    if (corners > INT32_MAX || cap > ((uint64_t)1 << 31)) {
-        snprintf(err, errlen, "--wireframe: too many edges (%llu corners)", (unsigned long long)corners);
-        return -1;
-    }
-    uint32_t *wire = malloc((corners ? corners : 1) * 2 * sizeof *wire);
-    uint64_t *key = malloc(cap * sizeof *key);
-    uint32_t *stamp = calloc(cap, sizeof *stamp);
-    if (!wire || !key || !stamp) {
-        free(wire);
-        free(key);
-        free(stamp);
-        snprintf(err, errlen, "--wireframe: out of memory");
-        return -1;
-    }
-    uint32_t mask = (uint32_t)(cap - 1), n = 0;
-    for (int k = 0; k < nb; k++) {
-        Object *o = &s->objs[k];
-        o->wire_first = n;
-        uint32_t p = o->poly_first, pe = o->poly_first + o->poly_count;
-        while (p < pe) {
-            /* a face's polygons: one when it is kept whole, else a fan
-             * (c0, ck, ck+1) whose diagonals are no edges of the face:
-             * its outline is c0, each fan triangle's second corner, and
-             * the last one's third */
-            uint32_t q = p + 1;
-            while (q < pe && s->poly_lface[q] == s->poly_lface[p])
-                q++;
-            const uint32_t *pc = s->poly_corner;
-            uint32_t prev, first;
-            if (q - p == 1) {
-                uint32_t c0 = s->poly_start[p], c1 = s->poly_start[p + 1];
-                first = prev = pc[c0];
-                for (uint32_t c = c0 + 1; c < c1; c++) {
-                    if (edge_add(key, stamp, mask, (uint32_t)k + 1, prev, pc[c])) {
-                        wire[2 * n] = prev;
-                        wire[2 * n + 1] = pc[c];
-                        n++;
-                    }
-                    prev = pc[c];
-                }
-            } else {
-                first = prev = pc[s->poly_start[p]];
-                for (uint32_t t = p; t < q; t++) {
-                    uint32_t c0 = s->poly_start[t];
-                    uint32_t next[2] = { pc[c0 + 1], pc[c0 + 2] };
-                    for (int j = 0; j < (t + 1 == q ? 2 : 1); j++) {
-                        if (edge_add(key, stamp, mask, (uint32_t)k + 1, prev, next[j])) {
-                            wire[2 * n] = prev;
-                            wire[2 * n + 1] = next[j];
-                            n++;
-                        }
-                        prev = next[j];
-                    }
-                }
-            }
-            if (edge_add(key, stamp, mask, (uint32_t)k + 1, prev, first)) {
-                wire[2 * n] = prev;
-                wire[2 * n + 1] = first;
-                n++;
-            }
-            p = q;
-        }
-        o->wire_count = n - o->wire_first;
-    }
-    free(key);
-    free(stamp);
-    uint32_t *w = realloc(wire, (n ? n : 1) * 2 * sizeof *wire);
-    s->wire = w ? w : wire;
-    s->nwire_edges = n;
-    /* grid copies draw their source's edges */
-    for (int k = nb; k < s->nobjs; k++) {
-        s->objs[k].wire_first = s->objs[k % nb].wire_first;
-        s->objs[k].wire_count = s->objs[k % nb].wire_count;
-    }
-    if (scene_number_prims(s)) {
-        for (int k = 0; k < s->nobjs; k++)
-            s->objs[k].wire_count = 0;
-        scene_number_prims(s);
-        free(s->wire);
-        s->wire = NULL;
-        s->nwire_edges = 0;
-        snprintf(err, errlen, "--wireframe: more than %d faces and edges", INT32_MAX);
-        return -1;
-    }
-    s->wire_built = 1;
-    return 0;
 }

@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 
+#include "check.h"
 #include "raster.h"
 
 int polywalk_begin(PolyWalk *w, const ScreenPolys *sp, uint32_t pi, int32_t start_row)
@@ -17,6 +18,7 @@ int polywalk_begin(PolyWalk *w, const ScreenPolys *sp, uint32_t pi, int32_t star
         w->cap = (int)n * 2;
     }
     const ScreenVert *v = &sp->verts[p->first];
+    ZV_ASSERT(n >= 3);     /* the front end's polygons have 3 corners or more */
     w->n = 0;
     for (uint32_t k = 0; k < n; k++) {
         EdgeWalk *e = &w->e[w->n];
@@ -59,6 +61,11 @@ int polywalk_row(PolyWalk *w, int32_t j, int32_t *xs)
         xs[m++] = e->xi;
         edge_step(e);
     }
+    /* A closed polygon crosses every row centre an even number of times
+     * under the half-open rule: crossings pair up into the even-odd
+     * rule's intervals, and an odd count would mean an edge lost or
+     * walked on the wrong row. */
+    ZV_ASSERT((m & 1) == 0);
     raster_sort_crossings(xs, m);
     return m;
 }
