@@ -232,6 +232,36 @@ Test(hostile, a_file_rewritten_while_read_is_changed_too)
     mf_close(&f);
 }
 
+/* A file whose change shows only at the end (its time, not its size): the
+ * load fails "changed while reading" and nothing else, not even the
+ * summary of a statement the parser skipped in what it read. */
+static void touch_at_end(void *arg, uint64_t pos)
+{
+    const char *path = arg;
+    (void)pos;
+    struct stat st;
+    cr_assert_eq(stat(path, &st), 0);
+    struct timespec t[2] = { { 0, UTIME_OMIT }, { st.st_mtim.tv_sec + 5, 0 } };
+    cr_assert_eq(utimensat(AT_FDCWD, path, t, 0), 0);
+}
+
+Test(hostile, a_change_seen_at_the_end_says_only_that, .init = cr_redirect_stderr)
+{
+    char path[128];
+    at("late.obj", path, sizeof path);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n", f);
+    cr_assert_eq(fclose(f), 0);
+    MeshLoadOpts o = { .on_window = touch_at_end, .on_window_arg = path };
+    cr_assert_eq(load(path, &o), -1);
+    char want[192];
+    snprintf(want, sizeof want, "%s: changed while reading", path);
+    cr_expect_str_eq(E, want);
+    fflush(stderr);
+    cr_expect_stderr_eq_str("", "the skipped face is not reported");
+}
+
 /* ==== Material libraries ==== */
 
 static const char mtl_obj[] = "mtllib z.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";

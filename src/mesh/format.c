@@ -298,7 +298,9 @@ static void report_skipped(MeshCtx *c)
     snprintf(c->m->info.first_warning, sizeof c->m->info.first_warning, "%s", e->warning);
 }
 
-/* Run the loader on bytes in memory. */
+/* Run the loader on bytes in memory. The summary of what was skipped is
+ * the caller's to report (report_skipped), once it knows the bytes were
+ * the file's: a file that changed while read says only that. */
 static int run(const MeshLoader *l, MeshCtx *c, const char *data, size_t len)
 {
     if (!l->parse)
@@ -306,8 +308,6 @@ static int run(const MeshLoader *l, MeshCtx *c, const char *data, size_t len)
     int r = l->parse(c, data, len);
     if (r)
         mesh_free(c->m);
-    else
-        report_skipped(c);
     return r;
 }
 
@@ -347,6 +347,8 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
     if (!l)
         return refuse(&c.err, what);
     int r = run(l, &c, data ? data : "", len);
+    if (r == 0)
+        report_skipped(&c);
     if (r == 0) {
         m->info.load_ms = now_ms() - t0;
         m->info.load_cpu_ms = thread_cpu_ms() - c0;
@@ -529,6 +531,8 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
             if (r == 0)
                 mesh_free(m);
             r = me_fail(&c.err, "changed while reading");
+        } else if (r == 0) {
+            report_skipped(&c);
         }
         mf_close(&f);
     }
