@@ -42,10 +42,11 @@ extern const HsrAlgo hsr_zbuffer;
 
 /* ==== the pyramid ==== */
 
-int hzb_pyr_begin(HzbPyramid *p, FrameBufs *fb, int y0, int y1)
+int hzb_pyr_begin(HzbPyramid *p, FrameBufs *fb, int y0, int y1, int simd)
 {
     fbuf_clear_rows(fb, y0, y1);
     int w = fb->w, h = y1 - y0;
+    p->simd = simd;
     p->w = w;
     p->y0 = y0;
     p->h = h;
@@ -129,8 +130,8 @@ static float block_max(const HzbPyramid *p, int tx, int ty)
     const int S = 1 << HZB_FIRST;
     int sx = tx * S, sy = ty * S, ey = sy + S < p->h ? sy + S : p->h;
     const float *row = p->d0 + (size_t)sy * p->w;
-#ifdef __SSE2__
-    if (sx + S <= p->w) {
+#ifdef ZV_SSE2
+    if (p->simd >= SIMD_SSE2 && sx + S <= p->w) {
         __m128 v = _mm_loadu_ps(row + sx);
         for (int j = sy; j < ey; j++, row += p->w)
             for (int x = sx; x < sx + S; x += 4)
@@ -186,7 +187,7 @@ void hzb_draw_poly(HzbPyramid *p, void *zstate, const ScreenPolys *sp, uint32_t 
         stats->polys_culled++;
         return;
     }
-    uint64_t n = zbuffer_draw_poly(zstate, sp, pi, fb, ya, yb);
+    uint64_t n = zbuffer_draw_poly(zstate, p->simd, sp, pi, fb, ya, yb);
     if (n) {
         stats->pixels_written += n;
         hzb_pyr_mark(p, q->x0, q->x1, ya, yb);
@@ -231,7 +232,7 @@ static void hzb_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     HzbBase *s = st;
     const ScreenPolys *sp = in->sp;
     double t0 = now_ms();
-    hzb_pyr_begin(&s->pyr, fb, y0, y1);
+    hzb_pyr_begin(&s->pyr, fb, y0, y1, simd_use(in->simd));
     stats->build_ms += now_ms() - t0;
     for (uint32_t i = 0; i < sp->npolys; i++) {
         const ScreenPoly *q = &sp->polys[i];

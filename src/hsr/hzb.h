@@ -23,11 +23,9 @@
  * update, and it is paid only where large boxes are tested. */
 
 #include <stdint.h>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
 
 #include "hsr.h"
+#include "simd.h"
 
 #define HZB_MAX_LEVELS 32
 #ifndef HZB_FIRST
@@ -45,12 +43,15 @@ typedef struct {
     uint8_t *dirty;                 /* 1: tex may be above the max of its children */
     size_t   cap;
     float   *d0;                    /* level 0: fb->depth at row y0 (stride w) */
+    int      simd;                  /* the frame's SimdLevel, resolved (simd_use): for the
+                                       maxima here and the z-buffer's drawing */
 } HzbPyramid;
 
 /* Size the pyramid for rows [y0, y1) of fb and reset it, clearing those
- * rows of fb (ids -1, depth +inf). Returns -1 on out of memory (then
- * nothing is culled). */
-int  hzb_pyr_begin(HzbPyramid *p, FrameBufs *fb, int y0, int y1);
+ * rows of fb (ids -1, depth +inf); its loops and the polygons drawn
+ * through it run at SIMD level simd (simd_use(HsrInput.simd)). Returns -1
+ * on out of memory (then nothing is culled). */
+int  hzb_pyr_begin(HzbPyramid *p, FrameBufs *fb, int y0, int y1, int simd);
 void hzb_pyr_free(HzbPyramid *p);
 
 /* Depths in [x0, x1) x [ya, yb) (image rows, inside the band) may have
@@ -76,8 +77,8 @@ static inline int hzb_texel_hides(HzbPyramid *p, int k, int tx, int ty, float z)
 static inline int hzb_fine_hides(const HzbPyramid *p, int x0, int x1, int by0, int by1, float z)
 {
     const float *row = p->d0 + (size_t)by0 * p->w;
-#ifdef __SSE2__
-    if (p->w >= 4) {
+#ifdef ZV_SSE2
+    if (p->simd >= SIMD_SSE2 && p->w >= 4) {
         /* 4-wide loads from xa on, and one at xb, cover [x0, x1) inside the row */
         int xa = x0 < p->w - 4 ? x0 : p->w - 4, xb = x1 - 4 > 0 ? x1 - 4 : 0;
         const __m128 vz = _mm_set1_ps(z);

@@ -69,10 +69,8 @@
 #include "hsr.h"
 #include "hzb.h"
 #include "scene.h"
+#include "simd.h"
 #include "zbuffer.h"
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
 
 
 #define LEAF_POLYS  128     /* a node with more polygons is split */
@@ -125,6 +123,7 @@ typedef struct {
     int        nroots;
     int        lface_sorted;    /* each object's polygons are in face order */
     const int *cancel;      /* while building: stop when this becomes nonzero */
+    int        simd;        /* the SimdLevel it is built at (the same tree at every level) */
 } OctTree;
 
 /* Shared by the bands of one runner: the current trees and the builder. */
@@ -196,7 +195,65 @@ typedef struct {
     float    *cen2;         /* scratch of the same size */
     uint32_t *ord2;         /* scratch for order[] */
     uint8_t  *oct;          /* each polygon's octant in its node */
+    int       simd;         /* the SimdLevel of the octant loop */
 } BuildWork;
+
+/* The octant of each of count centroids about mid (bit a set: above mid
+ * on axis a), the octants' counts (cnt, zeroed by the caller) and the
+ * boxes of their centroids (clo, chi; +inf/-inf for an empty octant).
+ * Minima and maxima are taken as
+ * min(box, c) = box < c ? box : c and max likewise, the operand order
+ * of the SSE2 instructions, so both loops give the same bits (a -0
+ * against a +0 included). */
+static void split_scalar(const float *cen, uint8_t *oct, uint32_t count, const float mid[3], uint32_t cnt[8],
+                         float clo[8][3], float chi[8][3])
+{
+    for (int o = 0; o < 8; o++)
+        for (int a = 0; a < 3; a++) {
+            clo[o][a] = INFINITY;
+            chi[o][a] = -INFINITY;
+        }
+    for (uint32_t i = 0; i < count; i++) {
+        const float *c = cen + 3 * (size_t)i;
+        int o = (c[0] > mid[0]) | (c[1] > mid[1]) << 1 | (c[2] > mid[2]) << 2;
+        oct[i] = (uint8_t)o;
+        cnt[o]++;
+        for (int a = 0; a < 3; a++) {
+            clo[o][a] = clo[o][a] < c[a] ? clo[o][a] : c[a];
+            chi[o][a] = chi[o][a] > c[a] ? chi[o][a] : c[a];
+        }
+    }
+}
+
+#ifdef ZV_SSE2
+/* split_scalar four floats a load (the scratch has one to spare at its
+ * end): the octant from one compare, the child's box by min and max. */
+static void split_sse2(const float *cen, uint8_t *oct, uint32_t count, const float mid[3], uint32_t cnt[8],
+                       float clo[8][3], float chi[8][3])
+{
+    __m128 vlo[8], vhi[8];
+    const __m128 vmid = _mm_setr_ps(mid[0], mid[1], mid[2], 0);
+    for (int o = 0; o < 8; o++) {
+        vlo[o] = _mm_set1_ps(INFINITY);
+        vhi[o] = _mm_set1_ps(-INFINITY);
+    }
+    for (uint32_t i = 0; i < count; i++) {
+        __m128 c = _mm_loadu_ps(cen + 3 * (size_t)i);
+        int o = _mm_movemask_ps(_mm_cmpgt_ps(c, vmid)) & 7;
+        oct[i] = (uint8_t)o;
+        cnt[o]++;
+        vlo[o] = _mm_min_ps(vlo[o], c);
+        vhi[o] = _mm_max_ps(vhi[o], c);
+    }
+    for (int o = 0; o < 8; o++) {
+        float l[4], h[4];
+        _mm_storeu_ps(l, vlo[o]);
+        _mm_storeu_ps(h, vhi[o]);
+        memcpy(clo[o], l, sizeof clo[o]);
+        memcpy(chi[o], h, sizeof chi[o]);
+    }
+}
+#endif
 
 /* Fill node ni over order[first .. first + count) (polygon indices local
  * to the object, ascending; w->cen[first ..] their centroids, within the
@@ -220,49 +277,14 @@ static int build_node(OctTree *s, BuildWork *w, uint32_t ni, uint32_t first, uin
         mid[a] = 0.5f * (lo[a] + hi[a]);
     uint32_t cnt[8] = { 0 };
     float clo[8][3], chi[8][3];
-    for (int o = 0; o < 8; o++)
-        for (int a = 0; a < 3; a++) {
-            clo[o][a] = INFINITY;
-            chi[o][a] = -INFINITY;
-        }
     const float *cen = w->cen + 3 * (size_t)first;
     uint8_t *oct = w->oct + first;
-#ifdef __SSE2__
-    /* four floats a load (the scratch has one to spare at its end): the
-     * octant from one compare, the child's box by min and max */
-    __m128 vlo[8], vhi[8];
-    const __m128 vmid = _mm_setr_ps(mid[0], mid[1], mid[2], 0);
-    for (int o = 0; o < 8; o++) {
-        vlo[o] = _mm_set1_ps(INFINITY);
-        vhi[o] = _mm_set1_ps(-INFINITY);
-    }
-    for (uint32_t i = 0; i < count; i++) {
-        __m128 c = _mm_loadu_ps(cen + 3 * (size_t)i);
-        int o = _mm_movemask_ps(_mm_cmpgt_ps(c, vmid)) & 7;
-        oct[i] = (uint8_t)o;
-        cnt[o]++;
-        vlo[o] = _mm_min_ps(vlo[o], c);
-        vhi[o] = _mm_max_ps(vhi[o], c);
-    }
-    for (int o = 0; o < 8; o++) {
-        float l[4], h[4];
-        _mm_storeu_ps(l, vlo[o]);
-        _mm_storeu_ps(h, vhi[o]);
-        memcpy(clo[o], l, sizeof clo[o]);
-        memcpy(chi[o], h, sizeof chi[o]);
-    }
-#else
-    for (uint32_t i = 0; i < count; i++) {
-        const float *c = cen + 3 * (size_t)i;
-        int o = (c[0] > mid[0]) | (c[1] > mid[1]) << 1 | (c[2] > mid[2]) << 2;
-        oct[i] = (uint8_t)o;
-        cnt[o]++;
-        for (int a = 0; a < 3; a++) {
-            clo[o][a] = c[a] < clo[o][a] ? c[a] : clo[o][a];
-            chi[o][a] = c[a] > chi[o][a] ? c[a] : chi[o][a];
-        }
-    }
+#ifdef ZV_SSE2
+    if (w->simd >= SIMD_SSE2)
+        split_sse2(cen, oct, count, mid, cnt, clo, chi);
+    else
 #endif
+        split_scalar(cen, oct, count, mid, cnt, clo, chi);
     int used = 0;
     for (int o = 0; o < 8; o++)
         used += cnt[o] > 0;
@@ -345,6 +367,7 @@ static int tree_build(OctTree *s, const Scene *sc)
     w.cen2 = malloc((tot * 3 + 1) * sizeof(float));
     w.ord2 = malloc(tot * sizeof(uint32_t));
     w.oct = malloc(tot);
+    w.simd = s->simd;
     int rc = -1;
     if (!s->roots || !s->node_end || !s->base || !s->order || !s->leaf || !w.cen || !w.cen2 || !w.ord2 || !w.oct)
         goto out;
@@ -445,20 +468,21 @@ static void builder_join(OctShared *sh, int cancel)
     }
 }
 
-static OctTree *tree_new(OctShared *sh, const Scene *sc)
+static OctTree *tree_new(OctShared *sh, const Scene *sc, int simd)
 {
     OctTree *t = calloc(1, sizeof *t);
     if (t) {
         t->key = sc;
         t->cancel = &sh->cancel;
+        t->simd = simd;
     }
     return t;
 }
 
 /* Before a frame's bands start (one thread): take finished trees, start
- * (or, on one thread, do) the build this frame's scene needs, and set
- * sh->use. */
-static void shared_frame_begin(OctShared *sh, const Scene *sc)
+ * (or, on one thread, do) the build this frame's scene needs, at the
+ * frame's SIMD level, and set sh->use. */
+static void shared_frame_begin(OctShared *sh, const Scene *sc, int simd)
 {
     sh->use = NULL;
     if (!sc || sc->nobjs == 0)
@@ -475,7 +499,7 @@ static void shared_frame_begin(OctShared *sh, const Scene *sc)
     if (sh->building || (sh->failed && sh->failed_key == sc && sh->failed_gen == sc->gen))
         return;
     sh->failed = 0;
-    OctTree *t = tree_new(sh, sc);
+    OctTree *t = tree_new(sh, sc, simd);
     if (!t)
         return;
     uint64_t polys = 0;
@@ -637,7 +661,7 @@ static void oct_share(void *st, void *sh)
 
 static void oct_frame_begin(void *p, const HsrInput *in)
 {
-    shared_frame_begin(p, in->scene);
+    shared_frame_begin(p, in->scene, simd_use(in->simd));
 }
 
 /* Every polygon of object oi, in order: the fallback when it has no tree. */
@@ -831,12 +855,13 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     const Scene *sc = in->scene;
     const ScreenPolys *sp = in->sp;
     double t0 = now_ms();
-    hzb_pyr_begin(&s->hz.pyr, fb, y0, y1);
+    int simd = simd_use(in->simd);
+    hzb_pyr_begin(&s->hz.pyr, fb, y0, y1, simd);
     OctShared *sh = s->shared;
     if (!sh) {
         /* rendered without a runner (a band on its own): trees of its own */
         sh = &s->own;
-        shared_frame_begin(sh, sc);
+        shared_frame_begin(sh, sc, simd);
     }
     const OctTree *tr = sh->use;
     stats->build_ms += now_ms() - t0;

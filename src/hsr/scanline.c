@@ -55,14 +55,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
-
 #include "clock.h"
 #include "raster.h"
 #include "grow.h"
 #include "hsr.h"
+#include "simd.h"
 
 /* An active triangle: e[0] is its left edge, e[1] its right one (the
  * long edge on one side, the short edge counting now on the other), a
@@ -112,6 +109,7 @@ typedef struct {
     uint32_t  xs_cap;
     float    *inf;              /* a row of +inf: the background depth */
     uint32_t  inf_cap;
+    int       simd;             /* this frame's SimdLevel, resolved (simd_use) */
 } ScanState;
 
 #define KEY_NONE    0xFFFFu     /* key: polygon outside the band */
@@ -163,7 +161,7 @@ static inline uint32_t span_scalar(const ScreenPoly *p, int32_t *restrict ids, f
     return n;
 }
 
-#ifdef __SSE2__
+#ifdef ZV_SSE2
 
 /* Four samples at a time. Bit-identical to span_scalar(): the packed
  * instructions are the same IEEE single operations as the scalar ones
@@ -174,7 +172,7 @@ static inline uint32_t span_scalar(const ScreenPoly *p, int32_t *restrict ids, f
  * xb as long as it stays inside the row (this band's own memory). */
 static const uint8_t popcount4[16] = { 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4 };
 
-static inline uint32_t span_simd(float pa, int32_t px0, int32_t face, int32_t *restrict ids,
+static inline uint32_t span_sse2(float pa, int32_t px0, int32_t face, int32_t *restrict ids,
                           float *restrict dep, float zr, int xa, int xb, int w)
 {
     uint32_t n = 0;
@@ -212,27 +210,28 @@ static inline uint32_t span_simd(float pa, int32_t px0, int32_t face, int32_t *r
 }
 #endif
 
-/* Depth-test samples [xa, xb) of row j, xa < xb. */
-static inline uint32_t span_test(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
+/* Depth-test samples [xa, xb) of row j, xa < xb, at SIMD level simd. */
+static inline uint32_t span_test(int simd, const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
                                  int j, int xa, int xb, int w)
 {
     float zr = plane_row(p, j);
-#ifdef __SSE2__
-    return span_simd(p->a, p->x0, p->face, ids, dep, zr, xa, xb, w);
-#else
+#ifdef ZV_SSE2
+    if (simd >= SIMD_SSE2)
+        return span_sse2(p->a, p->x0, p->face, ids, dep, zr, xa, xb, w);
+#endif
+    (void)simd;
     (void)w;
     return span_scalar(p, ids, dep, zr, xa, xb);
-#endif
 }
 
 /* The span between two crossings, clamped to the row. */
-static inline uint32_t span_pair(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
+static inline uint32_t span_pair(int simd, const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
                                  int j, int32_t x0, int32_t x1, int32_t w)
 {
     int32_t xa = x0 < x1 ? x0 : x1, xb = x0 < x1 ? x1 : x0;
     xa = clamp_col(xa, w);
     xb = clamp_col(xb, w);
-    return xa < xb ? span_test(p, ids, dep, j, xa, xb, w) : 0;
+    return xa < xb ? span_test(simd, p, ids, dep, j, xa, xb, w) : 0;
 }
 
 /* ==== triangles ==== */
@@ -327,7 +326,7 @@ static inline uint32_t tri_start(ScanState *s, const ScreenPolys *sp, const Scre
             xa = clamp_col(xa, w);
             xb = clamp_col(xb, w);
         }
-        return xa < xb ? span_test(p, ids, dep, j, xa, xb, w) : 0;
+        return xa < xb ? span_test(s->simd, p, ids, dep, j, xa, xb, w) : 0;
     }
     ScanTri *a = &s->tri[s->ntri++];
     (void)edge_setup(&a->e[!side], &t, &b, j);
@@ -363,7 +362,7 @@ static uint64_t tri_row(ScanState *s, const ScreenVert *verts, int j, int32_t *i
         }
         if (xa < xb) {
             ScreenPoly p = tri_plane(a);
-            n += span_test(&p, ids, dep, j, xa, xb, w);
+            n += span_test(s->simd, &p, ids, dep, j, xa, xb, w);
         }
         if (j + 1 == a->yend) {
             *a = s->tri[--s->ntri];
@@ -458,7 +457,7 @@ static uint64_t gon_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w
             xs[m++] = e[k].xi;
         raster_sort_crossings(xs, m);
         for (int i = 0; i + 1 < m; i += 2)
-            written += span_pair(a.p, ids, dep, j, xs[i], xs[i + 1], w);
+            written += span_pair(s->simd, a.p, ids, dep, j, xs[i], xs[i + 1], w);
         if (j + 1 == a.yend)
             continue;
         /* step the active edges, keep the unfinished ones and the ones
@@ -537,6 +536,7 @@ static void scan_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
         return;
     double t0 = now_ms();
     uint64_t polys = 0, written = 0;
+    s->simd = simd_use(in->simd);
     int ok = build_table(s, sp, y0, y1, &polys) == 0;
     if (s->inf_cap < (uint32_t)w && grow_array((void **)&s->inf, &s->inf_cap, (uint32_t)w, sizeof *s->inf) == 0)
         for (uint32_t i = 0; i < s->inf_cap; i++)

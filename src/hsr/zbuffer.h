@@ -8,8 +8,10 @@
 void fbuf_clear_rows(FrameBufs *fb, int y0, int y1);
 
 /* Depth-test polygon pi into rows [y0, y1) of fb (state from the z-buffer's
- * create()). Returns the samples written. */
-uint64_t zbuffer_draw_poly(void *zstate, const ScreenPolys *sp, uint32_t pi,
+ * create()) at SIMD level simd (a SimdLevel the caller resolved with
+ * simd_use: every level writes the same bytes). Returns the samples
+ * written. */
+uint64_t zbuffer_draw_poly(void *zstate, int simd, const ScreenPolys *sp, uint32_t pi,
                            FrameBufs *fb, int y0, int y1);
 
 #endif

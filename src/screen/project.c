@@ -42,22 +42,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-/* AVX2 kernels are compiled with a target attribute and chosen at run
- * time, so the build itself stays baseline x86-64 (or any other CPU). */
-#if defined(__SSE2__) && (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-#define ZV_AVX2 1
-#include <immintrin.h>
-#define AVX2_FN __attribute__((target("avx2")))
-#endif
-
 #include "clock.h"
 #include "grow.h"
 #include "pool.h"
 #include "raster.h"
 #include "screen.h"
+#include "simd.h"
 
 /* Vertices farther than this outside the image (pixels) are clipped, so
  * that fixed-point values stay below 2^23 and edge products fit int64. */
@@ -115,24 +105,9 @@ struct ScreenWork {
     KeepLut lut;
     ClipBuf clip[SCREEN_MAX_THREADS];   /* [0] the caller's, [i] helper i's */
     int     ncpus;                      /* cores online, read once */
-    int     best;                       /* the best SIMD level this CPU runs */
     Pool   *pool;                       /* helpers, made on first need */
     int     pool_want;                  /* helpers it was made for */
 };
-
-static int simd_best(void)
-{
-#ifdef ZV_AVX2
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2"))
-        return SCREEN_SIMD_AVX2;
-#endif
-#ifdef __SSE2__
-    return SCREEN_SIMD_SSE2;
-#else
-    return SCREEN_SIMD_C;
-#endif
-}
 
 static ScreenWork *work_get(ScreenPolys *sp)
 {
@@ -141,7 +116,6 @@ static ScreenWork *work_get(ScreenPolys *sp)
         if (sp->work) {
             long c = sysconf(_SC_NPROCESSORS_ONLN);
             sp->work->ncpus = c < 1 ? 1 : c > SCREEN_MAX_THREADS ? SCREEN_MAX_THREADS : (int)c;
-            sp->work->best = simd_best();
             KeepLut *l = &sp->work->lut;
             for (unsigned m = 0; m < 256; m++) {
                 unsigned n = 0;
@@ -181,13 +155,6 @@ void screen_free(ScreenPolys *sp)
     memset(sp, 0, sizeof *sp);
     sp->threads = threads;
     sp->simd = simd;
-}
-
-/* The level the caller asked for, or the best below it this CPU runs. */
-static int simd_level(const ScreenPolys *sp, const ScreenWork *w)
-{
-    int want = sp->simd > 0 ? sp->simd : w->best;
-    return want < w->best ? want : w->best;
 }
 
 /* ==== projection parameters ==== */
@@ -309,7 +276,7 @@ static inline void vert_one(const VertJob *j, uint32_t i)
                               : (uint16_t)sample_ceil(x) | (uint32_t)(uint16_t)sample_ceil(y) << 16;
 }
 
-#ifdef __SSE2__
+#ifdef ZV_SSE2
 /* x, y, z of four vertices from 12 consecutive floats. */
 static inline void load4_xyz(const float *p, __m128 *x, __m128 *y, __m128 *z)
 {
@@ -431,7 +398,7 @@ typedef struct {
     __m256d cx, cy, fx, fy, dbias, dscale, eye, n, dk, one, gx0, gx1, gy0, gy1, sub, half, tmin, tmax;
 } Avx2Proj;
 
-AVX2_FN static inline __m128i snap4_avx2(const Avx2Proj *c, __m256d v)
+ZV_AVX2_FN static inline __m128i snap4_avx2(const Avx2Proj *c, __m256d v)
 {
     __m256d t = _mm256_add_pd(_mm256_mul_pd(v, c->sub), c->half);
     t = _mm256_min_pd(_mm256_max_pd(t, c->tmin), c->tmax);
@@ -439,7 +406,7 @@ AVX2_FN static inline __m128i snap4_avx2(const Avx2Proj *c, __m256d v)
 }
 
 /* proj_point(), in_guard() and snap() on four points, stored with store4. */
-AVX2_FN static inline void proj4_avx2(const VertJob *j, const Avx2Proj *c, int persp, uint32_t at, __m128 hx,
+ZV_AVX2_FN static inline void proj4_avx2(const VertJob *j, const Avx2Proj *c, int persp, uint32_t at, __m128 hx,
                                       __m128 hy, __m128 hz)
 {
     __m256d x = _mm256_cvtps_pd(hx), y = _mm256_cvtps_pd(hy), z = _mm256_cvtps_pd(hz);
@@ -467,7 +434,7 @@ AVX2_FN static inline void proj4_avx2(const VertJob *j, const Avx2Proj *c, int p
     store4(j, at, ix, iy, _mm256_cvtpd_ps(sz), okm);
 }
 
-AVX2_FN static inline void verts_avx2_loop(const VertJob *j, const Avx2Proj *c, int persp, uint32_t a, uint32_t b)
+ZV_AVX2_FN static inline void verts_avx2_loop(const VertJob *j, const Avx2Proj *c, int persp, uint32_t a, uint32_t b)
 {
     for (uint32_t i = a; i < b; i += 8) {
         /* vertices 0-3 in the low lanes, 4-7 in the high ones: the
@@ -495,7 +462,7 @@ AVX2_FN static inline void verts_avx2_loop(const VertJob *j, const Avx2Proj *c, 
     }
 }
 
-AVX2_FN static void verts_avx2(const VertJob *j, uint32_t a, uint32_t b)
+ZV_AVX2_FN static void verts_avx2(const VertJob *j, uint32_t a, uint32_t b)
 {
     const Proj *pj = j->pj;
     Avx2Proj c;
@@ -534,13 +501,13 @@ AVX2_FN static void verts_avx2(const VertJob *j, uint32_t a, uint32_t b)
 static void verts_range(const VertJob *j, uint32_t a, uint32_t b)
 {
 #ifdef ZV_AVX2
-    if (j->simd >= SCREEN_SIMD_AVX2) {
+    if (j->simd >= SIMD_AVX2) {
         verts_avx2(j, a, b);
         return;
     }
 #endif
-#ifdef __SSE2__
-    if (j->simd >= SCREEN_SIMD_SSE2) {
+#ifdef ZV_SSE2
+    if (j->simd >= SIMD_SSE2) {
         verts_sse2(j, a, b);
         return;
     }
@@ -604,7 +571,7 @@ static uint32_t screen_tris_c(const uint32_t *corner, uint32_t a, uint32_t n, co
  * in-lane shuffles of load4_xyz (triangles 0-3 in the low lanes, 4-7 in
  * the high ones), each corner's sample indices fetched by one gather, and
  * tri_keeps() on the x and y halves side by side (16-bit lanes). */
-AVX2_FN static uint32_t screen_tris_avx2(const uint32_t *corner, uint32_t n, const uint32_t *idx, uint32_t vmin,
+ZV_AVX2_FN static uint32_t screen_tris_avx2(const uint32_t *corner, uint32_t n, const uint32_t *idx, uint32_t vmin,
                                          int32_t w, int32_t h, uint32_t *keep, const KeepLut *lut)
 {
     const __m256i vm = _mm256_set1_epi32((int32_t)vmin), zero = _mm256_setzero_si256();
@@ -647,7 +614,7 @@ AVX2_FN static uint32_t screen_tris_avx2(const uint32_t *corner, uint32_t n, con
 /* One edge a -> b of eight triangles at the sample, all relative to it:
  * e = dx (0 - ay) - dy (0 - ax), covered where e > 0, or e == 0 on a top
  * or left edge (dy < 0, or dy == 0 and dx > 0): edge_covers(). */
-AVX2_FN static inline __m256i edge8(__m256i ax, __m256i ay, __m256i bx, __m256i by)
+ZV_AVX2_FN static inline __m256i edge8(__m256i ax, __m256i ay, __m256i bx, __m256i by)
 {
     const __m256i zero = _mm256_setzero_si256();
     __m256i dx = _mm256_sub_epi32(bx, ax), dy = _mm256_sub_epi32(by, ay);
@@ -666,7 +633,7 @@ AVX2_FN static inline __m256i edge8(__m256i ax, __m256i ay, __m256i bx, __m256i 
  * it. The others, and triangles with a corner to clip or a bigger box,
  * stay for finish_tri. Returns the new count; keep[] is compacted in
  * place (a store never passes the entries still to be read). */
-AVX2_FN static uint32_t sift_tiny_avx2(const uint32_t *corner, const ScreenVert *sv, uint32_t vmin, int cull,
+ZV_AVX2_FN static uint32_t sift_tiny_avx2(const uint32_t *corner, const ScreenVert *sv, uint32_t vmin, int cull,
                                        uint32_t *keep, uint32_t nk, const KeepLut *lut, uint32_t *empty,
                                        uint32_t *back)
 {
@@ -735,7 +702,7 @@ static uint32_t screen_tris(int simd, const uint32_t *corner, uint32_t n, const 
                             int32_t w, int32_t h, uint32_t *keep, const KeepLut *lut)
 {
 #ifdef ZV_AVX2
-    if (simd >= SCREEN_SIMD_AVX2)
+    if (simd >= SIMD_AVX2)
         return screen_tris_avx2(corner, n, idx, vmin, w, h, keep, lut);
 #endif
     (void)simd;
@@ -1114,7 +1081,7 @@ enum { FIN_KEPT, FIN_EMPTY, FIN_BACK };
 
 /* edge_covers() in four 64-bit lanes: e = dx (py - ay) - dy (px - ax) > 0,
  * or == 0 on a top or left edge (tl). Every factor fits 32 bits. */
-AVX2_FN static inline __m256i edge4_covers(__m256i ax, __m256i ay, __m256i dx, __m256i dy, __m256i tl, __m256i px,
+ZV_AVX2_FN static inline __m256i edge4_covers(__m256i ax, __m256i ay, __m256i dx, __m256i dy, __m256i tl, __m256i px,
                                            __m256i py)
 {
     __m256i e = _mm256_sub_epi64(_mm256_mul_epi32(dx, _mm256_sub_epi64(py, ay)),
@@ -1129,7 +1096,7 @@ typedef struct {
     int     state[4];
 } Finish4;
 
-AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *const v[4][3], Finish4 *f)
+ZV_AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *const v[4][3], Finish4 *f)
 {
     __m128i X[3], Y[3];
     __m128 Z[3];
@@ -1249,7 +1216,7 @@ AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *const 
  * keep[i], corners c0 + 3 keep[i], instance inst + keep[i]), four at a
  * time through finish_tris4, in order; those with a corner to clip go
  * through emit_poly. */
-AVX2_FN static int emit_tris_avx2(RangeJob *j, uint32_t k, uint32_t c0, uint32_t inst, const uint32_t *keep,
+ZV_AVX2_FN static int emit_tris_avx2(RangeJob *j, uint32_t k, uint32_t c0, uint32_t inst, const uint32_t *keep,
                                   uint32_t nk)
 {
     ScreenPolys *sp = j->out;
@@ -1337,7 +1304,7 @@ static int project_range(RangeJob *j)
             nk = screen_tris(j->simd, s->poly_corner + c0, n, idx, vmin, sp->w, sp->h, keep, j->lut);
             empty += n - nk;
 #ifdef ZV_AVX2
-            if (j->simd >= SCREEN_SIMD_AVX2)
+            if (j->simd >= SIMD_AVX2)
                 nk = sift_tiny_avx2(s->poly_corner + c0, j->vs->sv, vmin, sp->cull, keep, nk, j->lut, &empty,
                                     &sp->culled_back);
 #endif
@@ -1356,7 +1323,7 @@ static int project_range(RangeJob *j)
             empty += n - nk;
         }
 #ifdef ZV_AVX2
-        if (tris && j->simd >= SCREEN_SIMD_AVX2) {
+        if (tris && j->simd >= SIMD_AVX2) {
             int rv = emit_tris_avx2(j, k, c0, inst, keep, nk);
             if (rv) {
                 sp->culled_empty += empty;
@@ -1576,7 +1543,7 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
     if (!w)
         return -1;
     Scratch *sc = &w->sc;
-    int simd = simd_level(sp, w);
+    int simd = simd_use(sp->simd);
     Proj pj = { 0 };
     proj_setup(&pj, s, vp);
     frame_begin(sp, vp, &pj);
