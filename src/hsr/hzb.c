@@ -124,7 +124,9 @@ void hzb_pyr_mark(HzbPyramid *p, int x0, int x1, int ya, int yb)
     }
 }
 
-/* Max of the pixels under texel (tx, ty) of level HZB_FIRST. */
+/* Max of the pixels under texel (tx, ty) of level HZB_FIRST: the same
+ * pixels at every level, so the same maximum (up to the sign of a zero,
+ * and -0 == +0 in every test). */
 static float block_max(const HzbPyramid *p, int tx, int ty)
 {
     const int S = 1 << HZB_FIRST;
