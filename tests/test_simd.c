@@ -24,6 +24,7 @@
 
 /* ==== which level runs ==== */
 
+#ifdef ZV_AVX2
 /* Does /proc/cpuinfo list the flag? The kernel's view of the CPU: a
  * reference that does not come from simd.c. -1 when it cannot be read. */
 static int cpuinfo_has(const char *flag)
@@ -42,6 +43,7 @@ static int cpuinfo_has(const char *flag)
     fclose(f);
     return found;
 }
+#endif
 
 Test(simd, the_best_level_is_the_cpus_and_the_builds)
 {
