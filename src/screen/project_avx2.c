@@ -387,7 +387,7 @@ FIN_INLINE int tris4_plane(const __m128i X[3], const __m128i Y[3], const __m128 
     return _mm256_movemask_pd(flat);
 }
 
-ZV_AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *const v[4][3], Finish4 *f)
+ZV_AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *v[4][3], Finish4 *f)
 {
     __m128i X[3], Y[3];
     __m128 Z[3];

@@ -344,7 +344,9 @@ static inline const uint8_t *face_colour(FaceColours *fc, int32_t id)
     return c;
 }
 
-/* The normal matrix of object obj, from its direct-mapped slot. */
+#ifdef ZV_AVX2
+/* The normal matrix of object obj, from its direct-mapped slot (for the
+ * eight-face loop: the scalar code finds it face by face). */
 static inline const NormalMat *object_nmat(FaceColours *fc, int obj)
 {
     NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
@@ -352,6 +354,7 @@ static inline const NormalMat *object_nmat(FaceColours *fc, int obj)
         normal_mat(fc->s, &fc->view, obj, nm);
     return nm;
 }
+#endif
 
 /* Distance (in pixels) the pixel pre-pass fetches ahead. */
 #define PIXEL_AHEAD 24
