@@ -1,7 +1,10 @@
 /* zbuffer.c: the plain per-pixel z-buffer, the reference every other
  * algorithm is compared with. Each polygon is walked row by row with the
  * exact edge walkers of raster.h and its samples are depth-tested one by
- * one against the (depth, id) pair stored there.
+ * one against the (depth, id) pair stored there. At the frame's SIMD
+ * level (HsrInput.simd, simd.h) spans are tested four samples at a time
+ * (SSE2) and small triangles eight at a time by edge functions (AVX2);
+ * both write the scalar loop's bytes.
  *
  * Implements the depth buffer of E. Catmull, "A Subdivision Algorithm
  * for Computer Display of Curved Surfaces", PhD thesis, University of

@@ -3,7 +3,10 @@
  * Lambert and id colours depend only on the face, so they are computed
  * once per visible face per frame and kept in a ShadeCache keyed by a
  * frame stamp; the per-pixel loop is then a lookup and a 3-byte copy.
- * Depth colours depend on the pixel and are computed per pixel.
+ * Depth colours depend on the pixel and are computed per pixel. At the
+ * frame's SIMD level AVX2 (ShadeSettings.simd, simd.h) faces are
+ * coloured and pixels copied eight at a time, with the scalar loops'
+ * bytes.
  *
  * Diffuse light is Lambert's cosine law (J. H. Lambert, Photometria,
  * 1760) plus an ambient share.
