@@ -189,7 +189,7 @@ void hzb_draw_poly(HzbPyramid *p, void *zstate, const ScreenPolys *sp, uint32_t 
         stats->polys_culled++;
         return;
     }
-    uint64_t n = zbuffer_draw_poly(zstate, p->simd, sp, pi, fb, ya, yb);
+    uint64_t n = zbuffer_draw_poly(zstate, sp, pi, fb, ya, yb);
     if (n) {
         stats->pixels_written += n;
         hzb_pyr_mark(p, q->x0, q->x1, ya, yb);
@@ -202,6 +202,12 @@ int hzb_base_init(HzbBase *b)
 {
     b->zb = hsr_zbuffer.create();
     return b->zb ? 0 : -1;
+}
+
+int hzb_base_begin(HzbBase *b, FrameBufs *fb, int y0, int y1, int simd)
+{
+    zbuffer_begin(b->zb, simd);
+    return hzb_pyr_begin(&b->pyr, fb, y0, y1, simd);
 }
 
 void hzb_base_free(HzbBase *b)
@@ -234,7 +240,7 @@ static void hzb_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     HzbBase *s = st;
     const ScreenPolys *sp = in->sp;
     double t0 = now_ms();
-    hzb_pyr_begin(&s->pyr, fb, y0, y1, simd_use(in->simd));
+    hzb_base_begin(s, fb, y0, y1, simd_use(in->simd));
     stats->build_ms += now_ms() - t0;
     for (uint32_t i = 0; i < sp->npolys; i++) {
         const ScreenPoly *q = &sp->polys[i];

@@ -43,14 +43,14 @@ typedef struct {
     uint8_t *dirty;                 /* 1: tex may be above the max of its children */
     size_t   cap;
     float   *d0;                    /* level 0: fb->depth at row y0 (stride w) */
-    int      simd;                  /* the frame's SimdLevel, resolved (simd_use): for the
-                                       maxima here and the z-buffer's drawing */
+    int      simd;                  /* the frame's SimdLevel, resolved (simd_use), for
+                                       the maxima and the fine test */
 } HzbPyramid;
 
 /* Size the pyramid for rows [y0, y1) of fb and reset it, clearing those
- * rows of fb (ids -1, depth +inf); its loops and the polygons drawn
- * through it run at SIMD level simd (simd_use(HsrInput.simd)). Returns -1
- * on out of memory (then nothing is culled). */
+ * rows of fb (ids -1, depth +inf); its loops run at SIMD level simd
+ * (simd_use(HsrInput.simd)). Returns -1 on out of memory (then nothing
+ * is culled). */
 int  hzb_pyr_begin(HzbPyramid *p, FrameBufs *fb, int y0, int y1, int simd);
 void hzb_pyr_free(HzbPyramid *p);
 
@@ -159,6 +159,9 @@ typedef struct {
 } HzbBase;
 
 int  hzb_base_init(HzbBase *b);     /* 0, or -1 on out of memory */
+/* A frame's band: the pyramid begun (hzb_pyr_begin) and the z-buffer's
+ * state set to the frame's SIMD level; hzb_pyr_begin's result. */
+int  hzb_base_begin(HzbBase *b, FrameBufs *fb, int y0, int y1, int simd);
 void hzb_base_free(HzbBase *b);
 
 /* The per-polygon step both algorithms share: clip polygon pi's box to

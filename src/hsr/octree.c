@@ -421,7 +421,7 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     const ScreenPolys *sp = in->sp;
     double t0 = now_ms();
     int simd = simd_use(in->simd);
-    hzb_pyr_begin(&s->hz.pyr, fb, y0, y1, simd);
+    hzb_base_begin(&s->hz, fb, y0, y1, simd);
     OctShared *sh = s->shared;
     if (!sh) {
         /* rendered without a runner (a band on its own): trees of its own */

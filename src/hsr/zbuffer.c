@@ -26,11 +26,19 @@ typedef struct {
     PolyWalk walk;          /* general polygons */
     int32_t *xs;            /* crossings of one row */
     int      xs_cap;
+    int      simd;          /* the frame's SimdLevel, resolved: set where a frame
+                               starts (zb_render, zbuffer_begin), so that the
+                               per-polygon calls carry no extra argument */
 } ZState;
 
 static void *zb_create(void)
 {
     return calloc(1, sizeof(ZState));
+}
+
+void zbuffer_begin(void *st, int simd)
+{
+    ((ZState *)st)->simd = simd;
 }
 
 static void zb_destroy(void *st)
@@ -606,8 +614,9 @@ static uint64_t draw_polygon(ZState *z, int simd, const ScreenPolys *sp, uint32_
     return n;
 }
 
-uint64_t zbuffer_draw_poly(void *st, int simd, const ScreenPolys *sp, uint32_t pi, FrameBufs *fb, int y0, int y1)
+uint64_t zbuffer_draw_poly(void *st, const ScreenPolys *sp, uint32_t pi, FrameBufs *fb, int y0, int y1)
 {
+    int simd = ((const ZState *)st)->simd;
     const ScreenPoly *p = &sp->polys[pi];
     int ya = p->y0 > y0 ? p->y0 : y0, yb = p->y1 < y1 ? p->y1 : y1;
     if (ya >= yb)
@@ -620,7 +629,7 @@ uint64_t zbuffer_draw_poly(void *st, int simd, const ScreenPolys *sp, uint32_t p
 static void zb_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *stats)
 {
     const ScreenPolys *sp = in->sp;
-    int simd = simd_use(in->simd);
+    zbuffer_begin(st, simd_use(in->simd));
     fbuf_clear_rows(fb, y0, y1);
     uint64_t written = 0, polys = 0;
     for (uint32_t i = 0; i < sp->npolys; i++) {
@@ -628,7 +637,7 @@ static void zb_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y
         if (p->y1 <= y0 || p->y0 >= y1)
             continue;
         polys++;
-        written += zbuffer_draw_poly(st, simd, sp, i, fb, y0, y1);
+        written += zbuffer_draw_poly(st, sp, i, fb, y0, y1);
     }
     stats->polys_in += polys;
     stats->pixels_written += written;

@@ -350,10 +350,11 @@ FIN_INLINE int tris4_hits(const __m256i xl[3], const __m256i yl[3], __m256i area
     return _mm256_movemask_pd(_mm256_castsi256_pd(hit));
 }
 
-/* store_poly()'s plane and zmin of the four, in double, into f; the mask
- * of the lanes with no area (nz == 0). */
+/* store_poly()'s plane and zmin of the four, in double, into f (bw, bh:
+ * the boxes' width and height); the mask of the lanes with no area
+ * (nz == 0). */
 FIN_INLINE int tris4_plane(const __m128i X[3], const __m128i Y[3], const __m128 Z[3], const __m128i box[4],
-                           Finish4 *f)
+                           __m128i bw, __m128i bh, Finish4 *f)
 {
     const __m256d inv = _mm256_set1_pd(1.0 / SUBPIX);
     __m256d Xd[3], Yd[3], Zd[3];
@@ -373,10 +374,9 @@ FIN_INLINE int tris4_plane(const __m128i X[3], const __m128i Y[3], const __m128 
     __m256d zc = _mm256_add_pd(
         _mm256_add_pd(Zd[0], _mm256_mul_pd(a, _mm256_sub_pd(_mm256_add_pd(_mm256_cvtepi32_pd(box[0]), half), Xd[0]))),
         _mm256_mul_pd(b, _mm256_sub_pd(_mm256_add_pd(_mm256_cvtepi32_pd(box[2]), half), Yd[0])));
-    __m256d bw = _mm256_cvtepi32_pd(_mm_sub_epi32(box[1], box[0]));
-    __m256d bh = _mm256_cvtepi32_pd(_mm_sub_epi32(box[3], box[2]));
-    __m256d mag = _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, zc), _mm256_mul_pd(_mm256_andnot_pd(sign, a), bw)),
-                                _mm256_mul_pd(_mm256_andnot_pd(sign, b), bh));
+    __m256d mag = _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, zc),
+                                              _mm256_mul_pd(_mm256_andnot_pd(sign, a), _mm256_cvtepi32_pd(bw))),
+                                _mm256_mul_pd(_mm256_andnot_pd(sign, b), _mm256_cvtepi32_pd(bh)));
     __m256d lo = _mm256_min_pd(Zd[2], _mm256_min_pd(Zd[0], Zd[1]));     /* min_pd(p, q) is p < q ? p : q */
     __m256d zmin = _mm256_sub_pd(lo, _mm256_mul_pd(_mm256_add_pd(_mm256_andnot_pd(sign, lo), mag),
                                                    _mm256_set1_pd(1.0 / (1 << 20))));
@@ -391,24 +391,26 @@ ZV_AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *v[4
 {
     __m128i X[3], Y[3];
     __m128 Z[3];
-    __m256i xl[3], yl[3];
     for (int k = 0; k < 3; k++) {
         X[k] = _mm_setr_epi32(v[0][k]->x, v[1][k]->x, v[2][k]->x, v[3][k]->x);
         Y[k] = _mm_setr_epi32(v[0][k]->y, v[1][k]->y, v[2][k]->y, v[3][k]->y);
         Z[k] = _mm_setr_ps(v[0][k]->z, v[1][k]->z, v[2][k]->z, v[3][k]->z);
-        xl[k] = _mm256_cvtepi32_epi64(X[k]);
-        yl[k] = _mm256_cvtepi32_epi64(Y[k]);
     }
     __m128i box[4];
     tris4_box(sp, X, Y, box);
     __m128i bw = _mm_sub_epi32(box[1], box[0]), bh = _mm_sub_epi32(box[3], box[2]);
     __m128i empty = _mm_or_si128(_mm_cmpgt_epi32(_mm_set1_epi32(1), bw), _mm_cmpgt_epi32(_mm_set1_epi32(1), bh));
+    __m256i xl[3], yl[3];
+    for (int k = 0; k < 3; k++) {
+        xl[k] = _mm256_cvtepi32_epi64(X[k]);
+        yl[k] = _mm256_cvtepi32_epi64(Y[k]);
+    }
     __m256i area2 = tris4_area2(xl, yl);
     __m256i back = _mm256_cmpgt_epi64(area2, _mm256_set1_epi64x(-1));     /* area2 >= 0 */
     __m128i nsamp = _mm_mullo_epi32(bw, bh);
     int mt = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(_mm_set1_epi32(5), nsamp)));
     int hits = mt ? tris4_hits(xl, yl, area2, box[0], box[2], bw, nsamp) : 0;
-    int mf = tris4_plane(X, Y, Z, box, f);
+    int mf = tris4_plane(X, Y, Z, box, bw, bh, f);
     _mm_storeu_si128((__m128i *)f->x0, box[0]);
     _mm_storeu_si128((__m128i *)f->x1, box[1]);
     _mm_storeu_si128((__m128i *)f->y0, box[2]);
