@@ -210,9 +210,26 @@ static inline uint32_t span_sse2(float pa, int32_t px0, int32_t face, int32_t *r
 }
 #endif
 
-/* Depth-test samples [xa, xb) of row j, xa < xb, at SIMD level simd. */
-static inline uint32_t span_test(int simd, const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
-                                 int j, int xa, int xb, int w)
+/* span_scalar() as a call of its own: the scalar level's spans, kept out
+ * of span_test() so that it stays as small as the SSE2 loop alone. It
+ * takes the three fields it reads, as span_sse2() does: a pointer would
+ * make the callers build the whole plane in memory. */
+static __attribute__((noinline)) uint32_t span_scalar_call(float pa, int32_t px0, int32_t face,
+                                                           int32_t *restrict ids, float *restrict dep, float zr,
+                                                           int xa, int xb)
+{
+    ScreenPoly p;
+    p.a = pa;
+    p.x0 = px0;
+    p.face = face;
+    return span_scalar(&p, ids, dep, zr, xa, xb);
+}
+
+/* Depth-test samples [xa, xb) of row j, xa < xb, at SIMD level simd.
+ * Inlined into each caller, as it was before there was a choice (as a
+ * call it costs the scanline some 5% more instructions). */
+static inline __attribute__((always_inline)) uint32_t span_test(int simd, const ScreenPoly *p, int32_t *restrict ids,
+                                                                float *restrict dep, int j, int xa, int xb, int w)
 {
     float zr = plane_row(p, j);
 #ifdef ZV_SSE2
@@ -221,7 +238,7 @@ static inline uint32_t span_test(int simd, const ScreenPoly *p, int32_t *restric
 #endif
     (void)simd;
     (void)w;
-    return span_scalar(p, ids, dep, zr, xa, xb);
+    return span_scalar_call(p->a, p->x0, p->face, ids, dep, zr, xa, xb);
 }
 
 /* The span between two crossings, clamped to the row. */
@@ -353,6 +370,7 @@ static uint64_t tri_row(ScanState *s, const ScreenVert *verts, int j, int32_t *i
 {
     uint64_t n = 0;
     uint32_t k = 0;
+    const int simd = s->simd;   /* a local: the stores to ids could alias s */
     while (k < s->ntri) {
         ScanTri *a = &s->tri[k];
         int32_t xa = a->e[0].xi, xb = a->e[1].xi;
@@ -362,7 +380,7 @@ static uint64_t tri_row(ScanState *s, const ScreenVert *verts, int j, int32_t *i
         }
         if (xa < xb) {
             ScreenPoly p = tri_plane(a);
-            n += span_test(s->simd, &p, ids, dep, j, xa, xb, w);
+            n += span_test(simd, &p, ids, dep, j, xa, xb, w);
         }
         if (j + 1 == a->yend) {
             *a = s->tri[--s->ntri];
@@ -447,6 +465,7 @@ static uint64_t gon_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w
     uint64_t written = 0;
     uint32_t gout = 0, eout = 0;
     int32_t *xs = s->xs;
+    const int simd = s->simd;   /* a local: the stores to ids could alias s */
     for (uint32_t g = 0; g < s->ngon; g++) {
         ScanGon a = s->gon[g];
         EdgeWalk *e = &s->pool[a.off];
@@ -457,7 +476,7 @@ static uint64_t gon_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w
             xs[m++] = e[k].xi;
         raster_sort_crossings(xs, m);
         for (int i = 0; i + 1 < m; i += 2)
-            written += span_pair(s->simd, a.p, ids, dep, j, xs[i], xs[i + 1], w);
+            written += span_pair(simd, a.p, ids, dep, j, xs[i], xs[i + 1], w);
         if (j + 1 == a.yend)
             continue;
         /* step the active edges, keep the unfinished ones and the ones

@@ -192,7 +192,9 @@ static void fill_bg(const SpanState *s, int32_t *ids, float *dep, int xa, int xb
     memcpy(dep + xa, s->inf_row, (size_t)(xb - xa) * sizeof *dep);
 }
 
-static void fill_poly(int simd, int32_t *ids, float *dep, const InPoly *q, int xa, int xb)
+/* Samples [xa, xb) to polygon q (s: for the frame's SIMD level, read only
+ * for a run long enough to use it: most are a few samples). */
+static void fill_poly(int32_t *ids, float *dep, const InPoly *q, int xa, int xb, const SpanState *s)
 {
     ScreenPoly p = *q->p;       /* a local copy: stores cannot alias it */
     float zr = q->zrow;
@@ -201,7 +203,7 @@ static void fill_poly(int simd, int32_t *ids, float *dep, const InPoly *q, int x
 #ifdef ZV_SSE2
     /* plane_at() four samples at a time: the same IEEE operations
      * (convert, multiply, add; no fused multiply-add), so the same bits */
-    if (simd >= SIMD_SSE2 && xb - xa >= 8) {
+    if (xb - xa >= 8 && s->simd >= SIMD_SSE2) {
         const __m128 va = _mm_set1_ps(p.a), vzr = _mm_set1_ps(zr);
         const __m128i vid = _mm_set1_epi32(face), four = _mm_set1_epi32(4);
         int k0 = xa - p.x0;
@@ -213,7 +215,7 @@ static void fill_poly(int simd, int32_t *ids, float *dep, const InPoly *q, int x
         }
     }
 #else
-    (void)simd;
+    (void)s;
 #endif
     for (; i < xb; i++) {
         ids[i] = face;
@@ -297,7 +299,7 @@ static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int 
                 safe_b = 0;
         }
         if (safe_a && safe_b) {
-            fill_poly(s->simd, ids, dep, &in[wa], xa, xb);
+            fill_poly(ids, dep, &in[wa], xa, xb, s);
             return;
         }
         if ((!safe_a && !safe_b) || xb - xa <= SPAN_MIN_SPLIT) {
@@ -364,9 +366,9 @@ static inline int decide_two(const SpanState *s, int32_t *ids, float *dep, int x
     float mag = maxf(maxf(maxf(fabsf(ua), fabsf(ub)), maxf(fabsf(va), fabsf(vb))), maxf(pu, pv));
     float t = mag * (1.0f / (1 << 19)) + 1e-30f;
     if (va - ua > t && vb - ub > t)
-        fill_poly(s->simd, ids, dep, u, xa, xb);
+        fill_poly(ids, dep, u, xa, xb, s);
     else if (ua - va > t && ub - vb > t)
-        fill_poly(s->simd, ids, dep, v, xa, xb);
+        fill_poly(ids, dep, v, xa, xb, s);
     else
         return 0;
     return 1;
@@ -381,7 +383,7 @@ static inline void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
     }
     s->covered += (uint64_t)(xb - xa);
     if (n == 1 && s->in[0].ok) {
-        fill_poly(s->simd, ids, dep, &s->in[0], xa, xb);
+        fill_poly(ids, dep, &s->in[0], xa, xb, s);
         return;
     }
     /* one polygon's whole depth range before every other's: it wins
@@ -395,7 +397,7 @@ static inline void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
     for (int k = 0; k < n && sep; k++)
         sep = k == best || in[best].hi < in[k].lo;
     if (sep)
-        fill_poly(s->simd, ids, dep, &in[best], xa, xb);
+        fill_poly(ids, dep, &in[best], xa, xb, s);
     else if (xb - xa == 1)
         decide_sample(s, ids, dep, xa);
     else if (n != 2 || !decide_two(s, ids, dep, xa, xb))
