@@ -114,10 +114,10 @@ noassimp:
 # SIMD compiled out (include/simd.h), in its own folder: the scalar
 # fallbacks must compile, and the unit tests pass on them alone (the
 # binary first: some of them run it).
-NOSIMD := $(MAKE) BUILD=build-nosimd BIN=build-nosimd/zview EXTRA_CFLAGS="$(EXTRA_CFLAGS) -DZV_NO_SIMD"
+NOSIMD := BUILD=build-nosimd BIN=build-nosimd/zview EXTRA_CFLAGS="$(EXTRA_CFLAGS) -DZV_NO_SIMD"
 nosimd:
-	$(NOSIMD) all
-	$(NOSIMD) unit
+	$(MAKE) $(NOSIMD) all
+	$(MAKE) $(NOSIMD) unit
 
 run: $(BIN)
 	./$(BIN)
