@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order
+.PHONY: all help test unit e2e asan run bench bench-formats install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order
 
 all: $(BIN)
 
@@ -144,6 +144,14 @@ asan:
 # The build without assimp, in its own folder (both must compile).
 noassimp:
 	$(MAKE) ASSIMP=0 BUILD=build-noassimp BIN=build-noassimp/zview
+
+# SIMD compiled out (include/simd.h), in its own folder: the scalar
+# fallbacks must compile, and the unit tests pass on them alone (the
+# binary first: some of them run it).
+NOSIMD := BUILD=build-nosimd BIN=build-nosimd/zview EXTRA_CFLAGS="$(EXTRA_CFLAGS) -DZV_NO_SIMD"
+nosimd:
+	$(MAKE) $(NOSIMD) all
+	$(MAKE) $(NOSIMD) unit
 
 run: $(BIN)
 	./$(BIN)
@@ -266,6 +274,6 @@ fuzz-run-mesh: $(FUZZ_BUILD)/fuzz-mesh
 	    $(FUZZ_BUILD)/corpus/mesh tests/fuzz/seeds/mesh tests/fuzz/regress/mesh
 
 clean:
-	rm -rf build build-asan build-noassimp $(FUZZ_BUILD) $(BIN)
+	rm -rf build build-asan build-noassimp build-nosimd $(FUZZ_BUILD) $(BIN)
 
 -include $(OBJS:.o=.d) $(TOBJS:.o=.d) $(REPLAY_OBJS:.o=.d) $(FUZZ_LIBOBJS:.o=.d) $(FUZZ_OBJS:.o=.d)

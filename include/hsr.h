@@ -51,6 +51,8 @@ typedef struct {
     const ScreenPolys *sp;
     const struct Scene *scene;    /* for object-space structures (octree) */
     const Viewport *vp;
+    int simd;                     /* a SimdLevel (simd.h): SIMD_AUTO (0) = the level in use,
+                                     else at most that one (the same bytes at every level) */
 } HsrInput;
 
 /* One hidden-surface algorithm. An algorithm renders bands of rows

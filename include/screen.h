@@ -41,18 +41,13 @@ typedef struct {
     float    zmin;      /* smallest vertex depth (hierarchical tests) */
 } ScreenPoly;
 
-/* The front end's loops at each level of SIMD give the same bits; the
- * level is chosen at run time (AVX2 when the CPU has it). */
-#define SCREEN_SIMD_C    1      /* plain C */
-#define SCREEN_SIMD_SSE2 2      /* the x86-64 baseline */
-#define SCREEN_SIMD_AVX2 3
-
 typedef struct {
     /* set by the caller, kept across frames */
     int         threads;        /* threads the front end may use: 1 = the caller
                                    alone, 0 = one per core (at most SCREEN_MAX_THREADS) */
-    int         simd;           /* 0 = the best level this CPU runs, else at most
-                                   SCREEN_SIMD_*: the tests compare the levels */
+    int         simd;           /* a SimdLevel (simd.h) for the vertex, screening and
+                                   point loops: SIMD_AUTO (0) = the level in use, else at
+                                   most that one (every level gives the same bits) */
     /* set by screen_project */
     int         w, h;
     float       pixel_aspect;   /* pixel height / width (2 for terminal cells) */

@@ -57,6 +57,7 @@ typedef struct {
     int       highlight;    /* object drawn highlighted (the viewer's selection), -1 none */
     int       edges;        /* draw outlines: silhouettes, creases, depth steps */
     int       wire;         /* the wireframe is drawn: faces dimmed under its edges */
+    int       simd;         /* a SimdLevel (simd.h): SIMD_AUTO (0) = the level in use */
 } ShadeSettings;
 
 int  shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,

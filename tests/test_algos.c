@@ -26,7 +26,7 @@ static int compare_all(Scene *s, int w, int h, int cull, const char *what)
     ScreenPolys sp = { 0 };
     Viewport vp = { w, h, 1.0f, cull };
     cr_assert_eq(screen_project(&sp, s, &vp), 0);
-    HsrInput in = { &sp, s, &vp };
+    HsrInput in = { .sp = &sp, .scene = s, .vp = &vp };
     FrameBufs ref = { 0 }, fb = { 0 };
     HsrStats st;
     HsrRunner r;
@@ -280,7 +280,7 @@ Test(depth, piercing_boundary_follows_the_planes)
         only.polys = tmp;
         only.npolys = 1;
         Viewport vp = { 200, 160, 1, 0 };
-        HsrInput in = { &only, &s, &vp };
+        HsrInput in = { .sp = &only, .scene = &s, .vp = &vp };
         HsrRunner r;
         hsr_runner_init(&r, &hsr_zbuffer, 1);
         hsr_run(&r, &in, &one[k], &st);

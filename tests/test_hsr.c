@@ -115,7 +115,7 @@ static void coverage_count(Polys *p, const HsrAlgo *algo, uint8_t *count)
         HsrRunner r;
         cr_assert_eq(hsr_runner_init(&r, algo, 1), 0);
         Viewport vp = { w, h, 1, 0 };
-        HsrInput in = { &one, NULL, &vp };
+        HsrInput in = { .sp = &one, .scene = NULL, .vp = &vp };
         HsrStats st;
         cr_assert_eq(hsr_run(&r, &in, &fb, &st), 0);
         for (int i = 0; i < w * h; i++)
@@ -488,7 +488,7 @@ static char *wavy_obj(int n)
 
 static void render_with(HsrRunner *r, Scene *s, ScreenPolys *sp, const Viewport *vp, FrameBufs *fb, HsrStats *st)
 {
-    HsrInput in = { sp, s, vp };
+    HsrInput in = { .sp = sp, .scene = s, .vp = vp };
     cr_assert_eq(hsr_run(r, &in, fb, st), 0);
 }
 

@@ -181,7 +181,7 @@ Test(prims, octree_finds_points_and_lines_reordered)
         PrimStyle st = { 2, 1, 1, 0, 0 };
         cr_assert_eq(tl_project(&sp, &s, &vp, &st, &w), 0);
         cr_assert_eq(screen_reorder(&sp, (PolyOrder)order, 3, &rs), 0);
-        HsrInput in = { &sp, &s, &vp };
+        HsrInput in = { .sp = &sp, .scene = &s, .vp = &vp };
         FrameBufs ref = { 0 }, fb = { 0 };
         HsrStats st2;
         HsrRunner r;
@@ -243,7 +243,8 @@ Test(prims, one_square_per_box_gives_the_buffers_of_every_point)
         cr_assert_lt(kept.points_drawn, kept.points_in / 2, "view %u: %u of %u kept", seed, kept.points_drawn,
                      kept.points_in);
         for (int a = 0; a < hsr_nalgos; a++) {
-            HsrInput ia = { &all, &s, &vp }, ik = { &kept, &s, &vp };
+            HsrInput ia = { .sp = &all, .scene = &s, .vp = &vp };
+            HsrInput ik = { .sp = &kept, .scene = &s, .vp = &vp };
             HsrRunner r;
             cr_assert_eq(hsr_runner_init(&r, &hsr_zbuffer, 1), 0);
             cr_assert_eq(hsr_run(&r, &ia, &ref, &hs), 0);
@@ -321,7 +322,7 @@ Test(prims, a_point_covers_size_by_size_samples)
         Viewport vp = { 41, 31, 1.0f, 0 };
         PrimStyle st = { size, 1, 0, 0, 0 };
         cr_assert_eq(tl_project(&sp, &s, &vp, &st, &w), 0);
-        HsrInput in = { &sp, &s, &vp };
+        HsrInput in = { .sp = &sp, .scene = &s, .vp = &vp };
         HsrRunner r;
         cr_assert_eq(hsr_runner_init(&r, &hsr_zbuffer, 1), 0);
         cr_assert_eq(hsr_run(&r, &in, &fb, &hs), 0);
@@ -404,7 +405,7 @@ Test(prims, a_wireframe_edge_wins_against_its_own_face)
     Viewport vp = { 120, 90, 1.0f, 0 };
     PrimStyle st = { 1, 1, 1, 0, 0 };
     cr_assert_eq(tl_project(&sp, &s, &vp, &st, &w), 0);
-    HsrInput in = { &sp, &s, &vp };
+    HsrInput in = { .sp = &sp, .scene = &s, .vp = &vp };
     HsrRunner r;
     cr_assert_eq(hsr_runner_init(&r, &hsr_zbuffer, 1), 0);
     cr_assert_eq(hsr_run(&r, &in, &fb, &hs), 0);

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "testlib.h"
+#include "simd.h"
 
 static const char *cube_obj =
     "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
@@ -497,7 +498,7 @@ Test(scene, simd_levels_give_the_same_polygons)
     static const float zooms[] = { 1.0f, 0.04f, 3.5f, 40.0f };
     ScreenPolys ref = { 0 }, sp = { 0 };
     ref.threads = 1;
-    ref.simd = SCREEN_SIMD_C;
+    ref.simd = SIMD_SCALAR;
     int cases = 0;
     for (uint32_t seed = 0; seed < 6; seed++)
         for (int zi = 0; zi < 4; zi++)
@@ -506,7 +507,7 @@ Test(scene, simd_levels_give_the_same_polygons)
                 s.cam.zoom = zooms[zi];
                 Viewport vp = { sizes[si][0], sizes[si][1], si == 1 ? 2.0f : 1.0f, (int)(seed % 3 == 0) };
                 cr_assert_eq(screen_project(&ref, &s, &vp), 0);
-                for (int level = SCREEN_SIMD_SSE2; level <= SCREEN_SIMD_AVX2; level++)
+                for (int level = SIMD_SSE2; level <= SIMD_AVX2; level++)
                     for (int th = 1; th <= 2; th++) {
                         sp.simd = level;
                         sp.threads = th;
@@ -552,7 +553,7 @@ Test(scene, simd_levels_agree_where_samples_touch_edges)
     free(text);
     ScreenPolys ref = { 0 }, sp = { 0 };
     ref.threads = sp.threads = 1;
-    ref.simd = SCREEN_SIMD_C;
+    ref.simd = SIMD_SCALAR;
     for (int cull = 0; cull < 2; cull++)
         for (int shift = 0; shift < 4; shift++) {
             s.cam.persp = 0;
@@ -565,7 +566,7 @@ Test(scene, simd_levels_agree_where_samples_touch_edges)
             Viewport vp = { 64, 64, 1.0f, cull };
             cr_assert_eq(screen_project(&ref, &s, &vp), 0);
             cr_assert_gt(ref.culled_empty, 100, "tiny triangles that miss their sample");
-            for (int level = SCREEN_SIMD_SSE2; level <= SCREEN_SIMD_AVX2; level++) {
+            for (int level = SIMD_SSE2; level <= SIMD_AVX2; level++) {
                 sp.simd = level;
                 cr_assert_eq(screen_project(&sp, &s, &vp), 0);
                 cr_assert_eq(sp.culled_back, ref.culled_back);

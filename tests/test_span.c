@@ -113,7 +113,7 @@ static float rnd_f(float lo, float hi)
 static void render_bands(const HsrAlgo *algo, void *st, const ScreenPolys *sp, FrameBufs *fb, int nb)
 {
     Viewport vp = { sp->w, sp->h, 1.0f, 0 };
-    HsrInput in = { sp, NULL, &vp };
+    HsrInput in = { .sp = sp, .scene = NULL, .vp = &vp };
     cr_assert_eq(fbuf_resize(fb, sp->w, sp->h), 0);
     for (int k = 0; k < nb; k++) {
         HsrStats st_ = { 0 };

@@ -99,7 +99,7 @@ int tl_render(Scene *s, const HsrAlgo *algo, int threads, int w, int h, int cull
     HsrRunner r;
     if (hsr_runner_init(&r, algo, threads))
         return -1;
-    HsrInput in = { sp, s, &vp };
+    HsrInput in = { .sp = sp, .scene = s, .vp = &vp };
     int rc = hsr_run(&r, &in, fb, st);
     hsr_runner_free(&r);
     return rc;
@@ -317,7 +317,7 @@ static int render_poisoned(const HsrAlgo *algo, int threads, const HsrInput *in,
 
 long tl_agree(TlAgree *a, Scene *s, const Viewport *vp, int threads, char *msg, size_t msglen)
 {
-    HsrInput in = { &a->sp, s, vp };
+    HsrInput in = { .sp = &a->sp, .scene = s, .vp = vp };
     snprintf(msg, msglen, "out of memory");
     if (tl_project(&a->sp, s, vp, &a->style, &a->prims) || render_poisoned(&hsr_zbuffer, 1, &in, &a->ref))
         return -1;

@@ -7,6 +7,7 @@
 
 #include "clock.h"
 #include "app.h"
+#include "simd.h"
 #include "sysmem.h"
 
 /* The hidden-surface algorithms' own tables per polygon (bucket keys,
@@ -202,6 +203,10 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     p->vp.h = h * k;
     p->vp.pixel_aspect = pixel_aspect;
     p->vp.cull = cull;
+    /* one SIMD level for the whole frame (ZV_SIMD read here), passed to
+     * every stage */
+    int simd = simd_level();
+    p->sp.simd = simd;
     double t0 = now_ms();
     if (screen_project(&p->sp, p->scene, &p->vp))
         return -1;
@@ -217,7 +222,7 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     if (screen_prims(&p->sp, p->scene, &style, &p->prims))
         return -1;
     double t1 = now_ms();
-    HsrInput in = { .sp = &p->sp, .scene = p->scene, .vp = &p->vp };
+    HsrInput in = { .sp = &p->sp, .scene = p->scene, .vp = &p->vp, .simd = simd };
     if (hsr_run(&p->run, &in, &p->fb, &p->st))
         return -1;
     double t2 = now_ms();
@@ -225,7 +230,7 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     p->hsr_ms = t2 - t1;
     p->shade_ms = 0;
     if (shade_too) {
-        ShadeSettings set = { p->shade, p->crease, p->highlight, p->edges, p->wireframe };
+        ShadeSettings set = { p->shade, p->crease, p->highlight, p->edges, p->wireframe, simd };
         if (k == 1 ? shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img)
                    : shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img_ss) ||
                          image_downsample(&p->img_ss, k, &p->img))

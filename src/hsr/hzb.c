@@ -42,10 +42,11 @@ extern const HsrAlgo hsr_zbuffer;
 
 /* ==== the pyramid ==== */
 
-int hzb_pyr_begin(HzbPyramid *p, FrameBufs *fb, int y0, int y1)
+int hzb_pyr_begin(HzbPyramid *p, FrameBufs *fb, int y0, int y1, int simd)
 {
     fbuf_clear_rows(fb, y0, y1);
     int w = fb->w, h = y1 - y0;
+    p->simd = simd;
     p->w = w;
     p->y0 = y0;
     p->h = h;
@@ -123,14 +124,16 @@ void hzb_pyr_mark(HzbPyramid *p, int x0, int x1, int ya, int yb)
     }
 }
 
-/* Max of the pixels under texel (tx, ty) of level HZB_FIRST. */
+/* Max of the pixels under texel (tx, ty) of level HZB_FIRST: the same
+ * pixels at every level, so the same maximum (up to the sign of a zero,
+ * and -0 == +0 in every test). */
 static float block_max(const HzbPyramid *p, int tx, int ty)
 {
     const int S = 1 << HZB_FIRST;
     int sx = tx * S, sy = ty * S, ey = sy + S < p->h ? sy + S : p->h;
     const float *row = p->d0 + (size_t)sy * p->w;
-#ifdef __SSE2__
-    if (sx + S <= p->w) {
+#ifdef ZV_SSE2
+    if (p->simd >= SIMD_SSE2 && sx + S <= p->w) {
         __m128 v = _mm_loadu_ps(row + sx);
         for (int j = sy; j < ey; j++, row += p->w)
             for (int x = sx; x < sx + S; x += 4)
@@ -201,6 +204,12 @@ int hzb_base_init(HzbBase *b)
     return b->zb ? 0 : -1;
 }
 
+int hzb_base_begin(HzbBase *b, FrameBufs *fb, int y0, int y1, int simd)
+{
+    zbuffer_begin(b->zb, simd);
+    return hzb_pyr_begin(&b->pyr, fb, y0, y1, simd);
+}
+
 void hzb_base_free(HzbBase *b)
 {
     if (b->zb)
@@ -231,7 +240,7 @@ static void hzb_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     HzbBase *s = st;
     const ScreenPolys *sp = in->sp;
     double t0 = now_ms();
-    hzb_pyr_begin(&s->pyr, fb, y0, y1);
+    hzb_base_begin(s, fb, y0, y1, simd_use(in->simd));
     stats->build_ms += now_ms() - t0;
     for (uint32_t i = 0; i < sp->npolys; i++) {
         const ScreenPoly *q = &sp->polys[i];

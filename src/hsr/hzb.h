@@ -23,11 +23,9 @@
  * update, and it is paid only where large boxes are tested. */
 
 #include <stdint.h>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
 
 #include "hsr.h"
+#include "simd.h"
 
 #define HZB_MAX_LEVELS 32
 #ifndef HZB_FIRST
@@ -45,12 +43,15 @@ typedef struct {
     uint8_t *dirty;                 /* 1: tex may be above the max of its children */
     size_t   cap;
     float   *d0;                    /* level 0: fb->depth at row y0 (stride w) */
+    int      simd;                  /* the frame's SimdLevel, resolved (simd_use), for
+                                       the maxima and the fine test */
 } HzbPyramid;
 
 /* Size the pyramid for rows [y0, y1) of fb and reset it, clearing those
- * rows of fb (ids -1, depth +inf). Returns -1 on out of memory (then
- * nothing is culled). */
-int  hzb_pyr_begin(HzbPyramid *p, FrameBufs *fb, int y0, int y1);
+ * rows of fb (ids -1, depth +inf); its loops run at SIMD level simd
+ * (simd_use(HsrInput.simd)). Returns -1 on out of memory (then nothing
+ * is culled). */
+int  hzb_pyr_begin(HzbPyramid *p, FrameBufs *fb, int y0, int y1, int simd);
 void hzb_pyr_free(HzbPyramid *p);
 
 /* Depths in [x0, x1) x [ya, yb) (image rows, inside the band) may have
@@ -71,15 +72,25 @@ static inline int hzb_texel_hides(HzbPyramid *p, int k, int tx, int ty, float z)
 }
 
 /* Level 0: is every pixel of [x0, x1) x band rows [by0, by1] (at most
- * HZB_FINE a side) nearer than z? Reads a few pixels around the box too,
- * which can only make the answer more cautious. */
+ * HZB_FINE a side) nearer than z? Rows at least 4 wide are read in
+ * groups of four, from xa on and one at xb, which cover [x0, x1) inside
+ * the row; the few pixels around the box they read too can only make
+ * the answer more cautious. The SSE2 loop and the scalar one read the
+ * same pixels, so every level culls the same polygons (and counts the
+ * same in HsrStats). */
 static inline int hzb_fine_hides(const HzbPyramid *p, int x0, int x1, int by0, int by1, float z)
 {
     const float *row = p->d0 + (size_t)by0 * p->w;
-#ifdef __SSE2__
-    if (p->w >= 4) {
-        /* 4-wide loads from xa on, and one at xb, cover [x0, x1) inside the row */
-        int xa = x0 < p->w - 4 ? x0 : p->w - 4, xb = x1 - 4 > 0 ? x1 - 4 : 0;
+    if (p->w < 4) {
+        for (int j = by0; j <= by1; j++, row += p->w)
+            for (int i = x0; i < x1; i++)
+                if (!(z > row[i]))
+                    return 0;
+        return 1;
+    }
+    int xa = x0 < p->w - 4 ? x0 : p->w - 4, xb = x1 - 4 > 0 ? x1 - 4 : 0;
+#ifdef ZV_SSE2
+    if (p->simd >= SIMD_SSE2) {
         const __m128 vz = _mm_set1_ps(z);
         for (int j = by0; j <= by1; j++, row += p->w) {
             __m128 m = _mm_loadu_ps(row + xb);
@@ -93,10 +104,15 @@ static inline int hzb_fine_hides(const HzbPyramid *p, int x0, int x1, int by0, i
         return 1;
     }
 #endif
-    for (int j = by0; j <= by1; j++, row += p->w)
-        for (int i = x0; i < x1; i++)
-            if (!(z > row[i]))
+    for (int j = by0; j <= by1; j++, row += p->w) {
+        for (int k = 0; k < 4; k++)
+            if (!(z > row[xb + k]))
                 return 0;
+        for (int x = xa; x < xb; x += 4)
+            for (int k = 0; k < 4; k++)
+                if (!(z > row[x + k]))
+                    return 0;
+    }
     return 1;
 }
 
@@ -143,6 +159,9 @@ typedef struct {
 } HzbBase;
 
 int  hzb_base_init(HzbBase *b);     /* 0, or -1 on out of memory */
+/* A frame's band: the pyramid begun (hzb_pyr_begin) and the z-buffer's
+ * state set to the frame's SIMD level; hzb_pyr_begin's result. */
+int  hzb_base_begin(HzbBase *b, FrameBufs *fb, int y0, int y1, int simd);
 void hzb_base_free(HzbBase *b);
 
 /* The per-polygon step both algorithms share: clip polygon pi's box to

@@ -1,10 +1,11 @@
 /* octree.c: the hierarchical z-buffer, complete mode: an object-space
  * octree walked front to back against the z-pyramid of hzb.h.
  *
- * Once per model (cached in the runner's shared state, keyed by the
- * Scene, its generation (Scene.gen: the viewer adds and removes objects
- * in place) and its polygon and object counts), the polygons of each loaded object are
- * sorted into an octree over their mesh vertex positions: a node splits
+ * Once per model (octree_build.c; cached in the runner's shared state,
+ * keyed by the Scene, its generation (Scene.gen: the viewer adds and
+ * removes objects in place) and its polygon and object counts), the
+ * polygons of each loaded object are sorted into an octree over their
+ * mesh vertex positions: a node splits
  * its polygons by centroid into the octants about the middle of their
  * centroids' box, until a leaf holds at most LEAF_POLYS; a node's
  * polygons are one contiguous run of a flat index array, and every
@@ -58,38 +59,20 @@
  * Modeling Using Octree Encoding", CGIP 19(2), 1982.
  */
 
-#include <limits.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "clock.h"
-#include "thread.h"
 #include "hsr.h"
 #include "hzb.h"
-#include "scene.h"
+#include "octree.h"
+#include "simd.h"
 #include "zbuffer.h"
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
 
-
-#define LEAF_POLYS  128     /* a node with more polygons is split */
-#define MAX_DEPTH   20      /* and never deeper than this */
 #define FLAT_RATIO  4       /* draw objects flat when under 1/4 of their polygons are on screen */
 #define CHUNK       64      /* polygons fetched ahead together */
 #define STACK_MAX   (MAX_DEPTH * 7 + 16)
-#define NO_TREE     UINT32_MAX
-/* Scenes of fewer polygons (loaded objects) build their trees right away,
- * in a few milliseconds, even with threads to spare. */
-#define BACKGROUND_MIN 65536
-
-typedef struct {
-    uint32_t first, count;  /* its polygons (whole subtree): order[first .. first + count) */
-    uint32_t child;         /* first child, children contiguous and after it; 0 = leaf */
-    uint32_t nchild;
-} OctNode;
 
 /* A node's bound in this band, gathered from its screen polygons. */
 typedef struct {
@@ -108,45 +91,6 @@ typedef struct {
     int      flat;          /* 1: few of its polygons reached the screen: no tree walk */
 } ObjView;
 
-/* The trees of every loaded object of one scene, built once. */
-typedef struct {
-    const Scene *key;
-    uint32_t   key_gen;
-    uint32_t   key_npolys;
-    int        key_nobjs;
-    const uint32_t *key_corner;
-    OctNode   *nodes;
-    uint32_t   nnodes, cap_nodes;
-    uint32_t  *order;       /* polygon index within its object, per node run */
-    uint32_t  *leaf;        /* per polygon (tree's base + index within object): its leaf */
-    uint32_t  *roots;       /* per loaded object: its first node, NO_TREE if none */
-    uint32_t  *node_end;    /* per loaded object: one past its last node */
-    uint32_t  *base;        /* per loaded object: its polygons' start in order[] and leaf[] */
-    int        nroots;
-    int        lface_sorted;    /* each object's polygons are in face order */
-    const int *cancel;      /* while building: stop when this becomes nonzero */
-} OctTree;
-
-/* Shared by the bands of one runner: the current trees and the builder. */
-typedef struct {
-    pthread_mutex_t mu;
-    int        background;  /* build on a thread of its own (more than one thread) */
-    OctTree   *cur;         /* the trees frames use, NULL before the first */
-    OctTree   *next;        /* being built by the builder thread */
-    int        building;    /* the builder thread runs (or has ended, not yet joined) */
-    int        done;        /* ... and has ended: join it, take next */
-    int        failed;      /* the last build ran out of memory: do not retry for that scene */
-    const Scene *failed_key;
-    uint32_t   failed_gen;
-    int        cancel;      /* tell the builder to stop (read atomically) */
-    const Scene *build_key; /* the scene the builder builds for */
-    uint32_t   build_gen;   /* ... at this generation. The scene must not change while
-                               it builds (pipeline_scene_changing stops it first) */
-    pthread_t  th;
-    /* for this frame, set by frame_begin before the bands start */
-    const OctTree *use;     /* the trees of this frame's scene, or NULL */
-} OctShared;
-
 /* Per band. */
 typedef struct {
     HzbBase    hz;          /* the z-buffer's state and the pyramid */
@@ -163,361 +107,6 @@ typedef struct {
     uint32_t  *ostart;      /* nobjs + 1 group starts */
     int        cap_ostart;
 } OctState;
-
-/* ==== building ==== */
-
-static int new_nodes(OctTree *s, uint32_t n, uint32_t *first_out)
-{
-    if (s->nnodes + n > s->cap_nodes) {
-        uint32_t cap = s->cap_nodes ? s->cap_nodes : 256;
-        while (cap < s->nnodes + n)
-            cap *= 2;
-        OctNode *q = realloc(s->nodes, (size_t)cap * sizeof *q);
-        if (!q)
-            return -1;
-        s->nodes = q;
-        s->cap_nodes = cap;
-    }
-    *first_out = s->nnodes;
-    memset(&s->nodes[s->nnodes], 0, n * sizeof *s->nodes);
-    s->nnodes += n;
-    return 0;
-}
-
-static int cancelled(const OctTree *s)
-{
-    return s->cancel && __atomic_load_n(s->cancel, __ATOMIC_RELAXED);
-}
-
-/* Build scratch: the centroids travel with the polygons they belong to,
- * so each pass over a node reads them in order. */
-typedef struct {
-    float    *cen;          /* 3 per polygon, in order[] order */
-    float    *cen2;         /* scratch of the same size */
-    uint32_t *ord2;         /* scratch for order[] */
-    uint8_t  *oct;          /* each polygon's octant in its node */
-} BuildWork;
-
-/* Fill node ni over order[first .. first + count) (polygon indices local
- * to the object, ascending; w->cen[first ..] their centroids, within the
- * box lo..hi) and split it when large: about the middle of the box, by a
- * stable counting sort that also finds each child's box. Stable, so every
- * node's run stays ascending: a leaf reads the screen polygons in order. */
-static int build_node(OctTree *s, BuildWork *w, uint32_t ni, uint32_t first, uint32_t count, const float lo[3],
-                      const float hi[3], int depth)
-{
-    OctNode *n = &s->nodes[ni];
-    n->first = first;
-    n->count = count;
-    n->child = 0;
-    n->nchild = 0;
-    if (count <= LEAF_POLYS || depth >= MAX_DEPTH)
-        return 0;
-    if (cancelled(s))
-        return -1;
-    float mid[3];
-    for (int a = 0; a < 3; a++)
-        mid[a] = 0.5f * (lo[a] + hi[a]);
-    uint32_t cnt[8] = { 0 };
-    float clo[8][3], chi[8][3];
-    for (int o = 0; o < 8; o++)
-        for (int a = 0; a < 3; a++) {
-            clo[o][a] = INFINITY;
-            chi[o][a] = -INFINITY;
-        }
-    const float *cen = w->cen + 3 * (size_t)first;
-    uint8_t *oct = w->oct + first;
-#ifdef __SSE2__
-    /* four floats a load (the scratch has one to spare at its end): the
-     * octant from one compare, the child's box by min and max */
-    __m128 vlo[8], vhi[8];
-    const __m128 vmid = _mm_setr_ps(mid[0], mid[1], mid[2], 0);
-    for (int o = 0; o < 8; o++) {
-        vlo[o] = _mm_set1_ps(INFINITY);
-        vhi[o] = _mm_set1_ps(-INFINITY);
-    }
-    for (uint32_t i = 0; i < count; i++) {
-        __m128 c = _mm_loadu_ps(cen + 3 * (size_t)i);
-        int o = _mm_movemask_ps(_mm_cmpgt_ps(c, vmid)) & 7;
-        oct[i] = (uint8_t)o;
-        cnt[o]++;
-        vlo[o] = _mm_min_ps(vlo[o], c);
-        vhi[o] = _mm_max_ps(vhi[o], c);
-    }
-    for (int o = 0; o < 8; o++) {
-        float l[4], h[4];
-        _mm_storeu_ps(l, vlo[o]);
-        _mm_storeu_ps(h, vhi[o]);
-        memcpy(clo[o], l, sizeof clo[o]);
-        memcpy(chi[o], h, sizeof chi[o]);
-    }
-#else
-    for (uint32_t i = 0; i < count; i++) {
-        const float *c = cen + 3 * (size_t)i;
-        int o = (c[0] > mid[0]) | (c[1] > mid[1]) << 1 | (c[2] > mid[2]) << 2;
-        oct[i] = (uint8_t)o;
-        cnt[o]++;
-        for (int a = 0; a < 3; a++) {
-            clo[o][a] = c[a] < clo[o][a] ? c[a] : clo[o][a];
-            chi[o][a] = c[a] > chi[o][a] ? c[a] : chi[o][a];
-        }
-    }
-#endif
-    int used = 0;
-    for (int o = 0; o < 8; o++)
-        used += cnt[o] > 0;
-    if (used < 2)           /* all centroids on one side: nothing to split */
-        return 0;
-    uint32_t start[8], acc = 0;
-    for (int o = 0; o < 8; o++) {
-        start[o] = acc;
-        acc += cnt[o];
-    }
-    uint32_t *ord = s->order + first, *ord2 = w->ord2 + first;
-    float *cen2 = w->cen2 + 3 * (size_t)first;
-    for (uint32_t i = 0; i < count; i++) {
-        uint32_t at = start[oct[i]]++;
-        ord2[at] = ord[i];
-        memcpy(cen2 + 3 * (size_t)at, cen + 3 * (size_t)i, 3 * sizeof(float));
-    }
-    memcpy(ord, ord2, count * sizeof *ord);
-    memcpy(w->cen + 3 * (size_t)first, cen2, 3 * (size_t)count * sizeof(float));
-    uint32_t kids;
-    if (new_nodes(s, (uint32_t)used, &kids))
-        return -1;
-    s->nodes[ni].child = kids;
-    s->nodes[ni].nchild = (uint32_t)used;
-    uint32_t at = first, k = 0;
-    for (int o = 0; o < 8; o++) {
-        if (!cnt[o])
-            continue;
-        if (build_node(s, w, kids + k, at, cnt[o], clo[o], chi[o], depth + 1))
-            return -1;
-        at += cnt[o];
-        k++;
-    }
-    return 0;
-}
-
-static void tree_free(OctTree *s)
-{
-    if (!s)
-        return;
-    free(s->nodes);
-    free(s->order);
-    free(s->leaf);
-    free(s->roots);
-    free(s->node_end);
-    free(s->base);
-    free(s);
-}
-
-static int tree_is_for(const OctTree *t, const Scene *sc)
-{
-    return t && t->key == sc && t->key_gen == sc->gen && t->key_npolys == sc->npolys && t->key_nobjs == sc->nobjs &&
-           t->key_corner == sc->poly_corner;
-}
-
-/* Build the trees of every loaded object of the scene into s (zeroed but
- * for cancel). Returns 0, or -1 (out of memory, or cancelled). */
-static int tree_build(OctTree *s, const Scene *sc)
-{
-    s->key = sc;
-    s->key_gen = sc->gen;
-    s->key_npolys = sc->npolys;
-    s->key_nobjs = sc->nobjs;
-    s->key_corner = sc->poly_corner;
-    int nb = (int)sc->nbase_objs;
-    if (nb <= 0 || nb > sc->nobjs)
-        nb = sc->nobjs;
-    uint64_t total = 0;
-    for (int k = 0; k < nb; k++)
-        total += sc->objs[k].poly_count;
-    size_t nbs = (size_t)(nb > 0 ? nb : 1), tot = (size_t)(total > 0 ? total : 1);
-    s->roots = malloc(nbs * sizeof *s->roots);
-    s->node_end = malloc(nbs * sizeof *s->node_end);
-    s->base = malloc(nbs * sizeof *s->base);
-    s->order = malloc(tot * sizeof *s->order);
-    s->leaf = malloc(tot * sizeof *s->leaf);
-    BuildWork w;
-    /* indexed like order[]: every loaded object's polygons */
-    w.cen = malloc((tot * 3 + 1) * sizeof(float));     /* + 1: 4-float loads */
-    w.cen2 = malloc((tot * 3 + 1) * sizeof(float));
-    w.ord2 = malloc(tot * sizeof(uint32_t));
-    w.oct = malloc(tot);
-    int rc = -1;
-    if (!s->roots || !s->node_end || !s->base || !s->order || !s->leaf || !w.cen || !w.cen2 || !w.ord2 || !w.oct)
-        goto out;
-    s->nroots = nb;
-    /* the flat walk finds an object's screen polygons by face id */
-    s->lface_sorted = 1;
-    for (int k = 0; k < nb; k++) {
-        const Object *o = &sc->objs[k];
-        for (uint32_t i = 1; i < o->poly_count; i++)
-            if (sc->poly_lface[o->poly_first + i] < sc->poly_lface[o->poly_first + i - 1])
-                s->lface_sorted = 0;
-    }
-    uint32_t at = 0;
-    for (int k = 0; k < nb; k++) {
-        const Object *o = &sc->objs[k];
-        s->roots[k] = NO_TREE;
-        s->base[k] = at;
-        if (!o->poly_count || !o->mesh)
-            continue;
-        const float *pos = o->mesh->pos;
-        float lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-        for (uint32_t i = 0; i < o->poly_count; i++) {
-            uint32_t pk = o->poly_first + i;
-            /* summed in locals: a store to w.cen could alias pos */
-            float c[3] = { 0, 0, 0 };
-            uint32_t c0 = sc->poly_start[pk], c1 = sc->poly_start[pk + 1];
-            for (uint32_t q = c0; q < c1; q++) {
-                const float *v = &pos[3 * (size_t)sc->poly_corner[q]];
-                c[0] += v[0];
-                c[1] += v[1];
-                c[2] += v[2];
-            }
-            float inv = c1 > c0 ? 1.0f / (float)(c1 - c0) : 0;
-            for (int a = 0; a < 3; a++) {
-                c[a] *= inv;
-                lo[a] = c[a] < lo[a] ? c[a] : lo[a];
-                hi[a] = c[a] > hi[a] ? c[a] : hi[a];
-            }
-            memcpy(&w.cen[3 * ((size_t)at + i)], c, sizeof c);
-            s->order[at + i] = i;
-        }
-        uint32_t root;
-        if (cancelled(s) || new_nodes(s, 1, &root) || build_node(s, &w, root, at, o->poly_count, lo, hi, 0))
-            goto out;
-        s->roots[k] = root;
-        s->node_end[k] = s->nnodes;
-        /* each polygon's leaf, for gathering the bounds in polygon order */
-        for (uint32_t n = root; n < s->nnodes; n++)
-            if (!s->nodes[n].nchild)
-                for (uint32_t i = 0; i < s->nodes[n].count; i++)
-                    s->leaf[at + s->order[s->nodes[n].first + i] ] = n;
-        at += o->poly_count;
-    }
-    rc = 0;
-out:
-    free(w.cen);
-    free(w.cen2);
-    free(w.ord2);
-    free(w.oct);
-    return rc;
-}
-
-/* ==== the shared trees: built once, in the background or not ==== */
-
-static void *builder_main(void *arg)
-{
-    OctShared *sh = arg;
-    /* next and its scene stay as they are until this thread is joined */
-    int rc = tree_build(sh->next, sh->build_key);
-    pthread_mutex_lock(&sh->mu);
-    if (rc) {
-        sh->failed = !__atomic_load_n(&sh->cancel, __ATOMIC_RELAXED);
-        sh->failed_key = sh->build_key;
-        sh->failed_gen = sh->build_gen;
-        tree_free(sh->next);
-        sh->next = NULL;
-    }
-    sh->done = 1;
-    pthread_mutex_unlock(&sh->mu);
-    return NULL;
-}
-
-/* Wait for the builder (told to stop first when cancel), and take what
- * it built. Called with sh->mu not held, from one thread. */
-static void builder_join(OctShared *sh, int cancel)
-{
-    if (!sh->building)
-        return;
-    if (cancel)
-        __atomic_store_n(&sh->cancel, 1, __ATOMIC_RELAXED);
-    pthread_join(sh->th, NULL);
-    sh->building = sh->done = 0;
-    __atomic_store_n(&sh->cancel, 0, __ATOMIC_RELAXED);
-    if (sh->next) {
-        tree_free(sh->cur);
-        sh->cur = sh->next;
-        sh->next = NULL;
-    }
-}
-
-static OctTree *tree_new(OctShared *sh, const Scene *sc)
-{
-    OctTree *t = calloc(1, sizeof *t);
-    if (t) {
-        t->key = sc;
-        t->cancel = &sh->cancel;
-    }
-    return t;
-}
-
-/* Before a frame's bands start (one thread): take finished trees, start
- * (or, on one thread, do) the build this frame's scene needs, and set
- * sh->use. */
-static void shared_frame_begin(OctShared *sh, const Scene *sc)
-{
-    sh->use = NULL;
-    if (!sc || sc->nobjs == 0)
-        return;
-    pthread_mutex_lock(&sh->mu);
-    int done = sh->done;
-    pthread_mutex_unlock(&sh->mu);
-    if (sh->building && (done || sh->build_key != sc || sh->build_gen != sc->gen))
-        builder_join(sh, !done);     /* finished, or building for a scene gone by */
-    if (tree_is_for(sh->cur, sc)) {
-        sh->use = sh->cur;
-        return;
-    }
-    if (sh->building || (sh->failed && sh->failed_key == sc && sh->failed_gen == sc->gen))
-        return;
-    sh->failed = 0;
-    OctTree *t = tree_new(sh, sc);
-    if (!t)
-        return;
-    uint64_t polys = 0;
-    for (int k = 0; k < (int)sc->nbase_objs && k < sc->nobjs; k++)
-        polys += sc->objs[k].poly_count;
-    if (sh->background && polys >= BACKGROUND_MIN) {
-        sh->next = t;
-        sh->build_key = sc;
-        sh->build_gen = sc->gen;
-        sh->done = 0;
-        if (thread_start(&sh->th, builder_main, sh) == 0) {
-            sh->building = 1;
-            return;
-        }
-        sh->next = NULL;        /* no thread to be had: build it here */
-    }
-    if (tree_build(t, sc)) {
-        tree_free(t);
-        sh->failed = 1;
-        sh->failed_key = sc;
-        sh->failed_gen = sc->gen;
-        return;
-    }
-    tree_free(sh->cur);
-    sh->cur = t;
-    sh->use = t;
-}
-
-static void shared_init(OctShared *sh, int background)
-{
-    memset(sh, 0, sizeof *sh);
-    pthread_mutex_init(&sh->mu, NULL);
-    sh->background = background;
-}
-
-static void shared_free(OctShared *sh)
-{
-    builder_join(sh, 1);
-    tree_free(sh->cur);
-    tree_free(sh->next);
-    pthread_mutex_destroy(&sh->mu);
-}
 
 /* ==== the bounds of one object's nodes in a band ==== */
 
@@ -596,7 +185,7 @@ static void *oct_create(void)
         return NULL;
     }
     if (s)
-        shared_init(&s->own, 0);
+        octree_shared_init(&s->own, 0);
     return s;
 }
 
@@ -606,7 +195,7 @@ static void oct_destroy(void *st)
     if (!s)
         return;
     hzb_base_free(&s->hz);
-    shared_free(&s->own);
+    octree_shared_free(&s->own);
     free(s->views);
     free(s->bound);
     free(s->sidx);
@@ -618,7 +207,7 @@ static void *oct_create_shared(int nthreads)
 {
     OctShared *sh = malloc(sizeof *sh);
     if (sh)
-        shared_init(sh, nthreads > 1);
+        octree_shared_init(sh, nthreads > 1);
     return sh;
 }
 
@@ -626,7 +215,7 @@ static void oct_destroy_shared(void *p)
 {
     if (!p)
         return;
-    shared_free(p);
+    octree_shared_free(p);
     free(p);
 }
 
@@ -637,7 +226,7 @@ static void oct_share(void *st, void *sh)
 
 static void oct_frame_begin(void *p, const HsrInput *in)
 {
-    shared_frame_begin(p, in->scene);
+    octree_shared_frame_begin(p, in->scene, simd_use(in->simd));
 }
 
 /* Every polygon of object oi, in order: the fallback when it has no tree. */
@@ -831,12 +420,13 @@ static void oct_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int 
     const Scene *sc = in->scene;
     const ScreenPolys *sp = in->sp;
     double t0 = now_ms();
-    hzb_pyr_begin(&s->hz.pyr, fb, y0, y1);
+    int simd = simd_use(in->simd);
+    hzb_base_begin(&s->hz, fb, y0, y1, simd);
     OctShared *sh = s->shared;
     if (!sh) {
         /* rendered without a runner (a band on its own): trees of its own */
         sh = &s->own;
-        shared_frame_begin(sh, sc);
+        octree_shared_frame_begin(sh, sc, simd);
     }
     const OctTree *tr = sh->use;
     stats->build_ms += now_ms() - t0;
@@ -928,3 +518,4 @@ const HsrAlgo hsr_hzb_octree = {
     .share = oct_share,
     .frame_begin = oct_frame_begin,
 };
+

@@ -55,15 +55,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
-
 #include "check.h"
 #include "clock.h"
 #include "raster.h"
 #include "grow.h"
 #include "hsr.h"
+#include "simd.h"
 
 /* An active triangle: e[0] is its left edge, e[1] its right one (the
  * long edge on one side, the short edge counting now on the other), a
@@ -113,6 +110,7 @@ typedef struct {
     uint32_t  xs_cap;
     float    *inf;              /* a row of +inf: the background depth */
     uint32_t  inf_cap;
+    int       simd;             /* this frame's SimdLevel, resolved (simd_use) */
 } ScanState;
 
 #define KEY_NONE    0xFFFFu     /* key: polygon outside the band */
@@ -164,7 +162,7 @@ static inline uint32_t span_scalar(const ScreenPoly *p, int32_t *restrict ids, f
     return n;
 }
 
-#ifdef __SSE2__
+#ifdef ZV_SSE2
 
 /* Four samples at a time. Bit-identical to span_scalar(): the packed
  * instructions are the same IEEE single operations as the scalar ones
@@ -175,7 +173,7 @@ static inline uint32_t span_scalar(const ScreenPoly *p, int32_t *restrict ids, f
  * xb as long as it stays inside the row (this band's own memory). */
 static const uint8_t popcount4[16] = { 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4 };
 
-static inline uint32_t span_simd(float pa, int32_t px0, int32_t face, int32_t *restrict ids,
+static inline uint32_t span_sse2(float pa, int32_t px0, int32_t face, int32_t *restrict ids,
                           float *restrict dep, float zr, int xa, int xb, int w)
 {
     uint32_t n = 0;
@@ -213,9 +211,26 @@ static inline uint32_t span_simd(float pa, int32_t px0, int32_t face, int32_t *r
 }
 #endif
 
-/* Depth-test samples [xa, xb) of row j, xa < xb. */
-static inline uint32_t span_test(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
-                                 int j, int xa, int xb, int w)
+/* span_scalar() as a call of its own: the scalar level's spans, kept out
+ * of span_test() so that it stays as small as the SSE2 loop alone. It
+ * takes the three fields it reads, as span_sse2() does: a pointer would
+ * make the callers build the whole plane in memory. */
+static __attribute__((noinline)) uint32_t span_scalar_call(float pa, int32_t px0, int32_t face,
+                                                           int32_t *restrict ids, float *restrict dep, float zr,
+                                                           int xa, int xb)
+{
+    ScreenPoly p;
+    p.a = pa;
+    p.x0 = px0;
+    p.face = face;
+    return span_scalar(&p, ids, dep, zr, xa, xb);
+}
+
+/* Depth-test samples [xa, xb) of row j, xa < xb, at SIMD level simd.
+ * Inlined into each caller, as it was before there was a choice (as a
+ * call it costs the scanline some 5% more instructions). */
+static inline __attribute__((always_inline)) uint32_t span_test(int simd, const ScreenPoly *p, int32_t *restrict ids,
+                                                                float *restrict dep, int j, int xa, int xb, int w)
 {
     /* tri_start and tri_row clamp a triangle's crossings only when its
      * sample box touches a side of the image: the exact walk stays in
@@ -225,22 +240,23 @@ static inline uint32_t span_test(const ScreenPoly *p, int32_t *restrict ids, flo
      * only, hence x0 and y0 alone.) */
     ZV_ASSERT(j >= p->y0 && xa >= p->x0 && xa < xb && xb <= w);
     float zr = plane_row(p, j);
-#ifdef __SSE2__
-    return span_simd(p->a, p->x0, p->face, ids, dep, zr, xa, xb, w);
-#else
-    (void)w;
-    return span_scalar(p, ids, dep, zr, xa, xb);
+#ifdef ZV_SSE2
+    if (simd >= SIMD_SSE2)
+        return span_sse2(p->a, p->x0, p->face, ids, dep, zr, xa, xb, w);
 #endif
+    (void)simd;
+    (void)w;
+    return span_scalar_call(p->a, p->x0, p->face, ids, dep, zr, xa, xb);
 }
 
 /* The span between two crossings, clamped to the row. */
-static inline uint32_t span_pair(const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
+static inline uint32_t span_pair(int simd, const ScreenPoly *p, int32_t *restrict ids, float *restrict dep,
                                  int j, int32_t x0, int32_t x1, int32_t w)
 {
     int32_t xa = x0 < x1 ? x0 : x1, xb = x0 < x1 ? x1 : x0;
     xa = clamp_col(xa, w);
     xb = clamp_col(xb, w);
-    return xa < xb ? span_test(p, ids, dep, j, xa, xb, w) : 0;
+    return xa < xb ? span_test(simd, p, ids, dep, j, xa, xb, w) : 0;
 }
 
 /* ==== triangles ==== */
@@ -335,7 +351,7 @@ static inline uint32_t tri_start(ScanState *s, const ScreenPolys *sp, const Scre
             xa = clamp_col(xa, w);
             xb = clamp_col(xb, w);
         }
-        return xa < xb ? span_test(p, ids, dep, j, xa, xb, w) : 0;
+        return xa < xb ? span_test(s->simd, p, ids, dep, j, xa, xb, w) : 0;
     }
     ScanTri *a = &s->tri[s->ntri++];
     (void)edge_setup(&a->e[!side], &t, &b, j);
@@ -362,6 +378,7 @@ static uint64_t tri_row(ScanState *s, const ScreenVert *verts, int j, int32_t *i
 {
     uint64_t n = 0;
     uint32_t k = 0;
+    const int simd = s->simd;   /* a local: the stores to ids could alias s */
     while (k < s->ntri) {
         ScanTri *a = &s->tri[k];
         int32_t xa = a->e[0].xi, xb = a->e[1].xi;
@@ -371,7 +388,7 @@ static uint64_t tri_row(ScanState *s, const ScreenVert *verts, int j, int32_t *i
         }
         if (xa < xb) {
             ScreenPoly p = tri_plane(a);
-            n += span_test(&p, ids, dep, j, xa, xb, w);
+            n += span_test(simd, &p, ids, dep, j, xa, xb, w);
         }
         if (j + 1 == a->yend) {
             *a = s->tri[--s->ntri];
@@ -456,6 +473,7 @@ static uint64_t gon_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w
     uint64_t written = 0;
     uint32_t gout = 0, eout = 0;
     int32_t *xs = s->xs;
+    const int simd = s->simd;   /* a local: the stores to ids could alias s */
     for (uint32_t g = 0; g < s->ngon; g++) {
         ScanGon a = s->gon[g];
         EdgeWalk *e = &s->pool[a.off];
@@ -469,7 +487,7 @@ static uint64_t gon_row(ScanState *s, int j, int32_t *ids, float *dep, int32_t w
         ZV_ASSERT((m & 1) == 0);
         raster_sort_crossings(xs, m);
         for (int i = 0; i + 1 < m; i += 2)
-            written += span_pair(a.p, ids, dep, j, xs[i], xs[i + 1], w);
+            written += span_pair(simd, a.p, ids, dep, j, xs[i], xs[i + 1], w);
         if (j + 1 == a.yend)
             continue;
         /* step the active edges, keep the unfinished ones and the ones
@@ -548,6 +566,7 @@ static void scan_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
         return;
     double t0 = now_ms();
     uint64_t polys = 0, written = 0;
+    s->simd = simd_use(in->simd);
     int ok = build_table(s, sp, y0, y1, &polys) == 0;
     if (s->inf_cap < (uint32_t)w && grow_array((void **)&s->inf, &s->inf_cap, (uint32_t)w, sizeof *s->inf) == 0)
         for (uint32_t i = 0; i < s->inf_cap; i++)

@@ -63,15 +63,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
-
 #include "check.h"
 #include "grow.h"
 #include "clock.h"
 #include "raster.h"
 #include "hsr.h"
+#include "simd.h"
 #include "span.h"
 #include "zbuffer.h"
 
@@ -145,6 +142,7 @@ typedef struct {
     /* per-sample decisions taken on intervals of 2+ samples (analysis) */
     uint64_t  fallback;
     uint64_t  covered;
+    int       simd;             /* this frame's SimdLevel, resolved (simd_use) */
 } SpanState;
 
 static void *span_create(void)
@@ -195,16 +193,18 @@ static void fill_bg(const SpanState *s, int32_t *ids, float *dep, int xa, int xb
     memcpy(dep + xa, s->inf_row, (size_t)(xb - xa) * sizeof *dep);
 }
 
-static void fill_poly(int32_t *ids, float *dep, const InPoly *q, int xa, int xb)
+/* Samples [xa, xb) to polygon q (s: for the frame's SIMD level, read only
+ * for a run long enough to use it: most are a few samples). */
+static void fill_poly(int32_t *ids, float *dep, const InPoly *q, int xa, int xb, const SpanState *s)
 {
     ScreenPoly p = *q->p;       /* a local copy: stores cannot alias it */
     float zr = q->zrow;
     int32_t face = q->face;
     int i = xa;
-#ifdef __SSE2__
+#ifdef ZV_SSE2
     /* plane_at() four samples at a time: the same IEEE operations
      * (convert, multiply, add; no fused multiply-add), so the same bits */
-    if (xb - xa >= 8) {
+    if (xb - xa >= 8 && s->simd >= SIMD_SSE2) {
         const __m128 va = _mm_set1_ps(p.a), vzr = _mm_set1_ps(zr);
         const __m128i vid = _mm_set1_epi32(face), four = _mm_set1_epi32(4);
         int k0 = xa - p.x0;
@@ -215,6 +215,8 @@ static void fill_poly(int32_t *ids, float *dep, const InPoly *q, int xa, int xb)
             vk = _mm_add_epi32(vk, four);
         }
     }
+#else
+    (void)s;
 #endif
     for (; i < xb; i++) {
         ids[i] = face;
@@ -298,7 +300,7 @@ static void resolve(SpanState *s, int32_t *ids, float *dep, int xa, int xb, int 
                 safe_b = 0;
         }
         if (safe_a && safe_b) {
-            fill_poly(ids, dep, &in[wa], xa, xb);
+            fill_poly(ids, dep, &in[wa], xa, xb, s);
             return;
         }
         if ((!safe_a && !safe_b) || xb - xa <= SPAN_MIN_SPLIT) {
@@ -365,9 +367,9 @@ static inline int decide_two(const SpanState *s, int32_t *ids, float *dep, int x
     float mag = maxf(maxf(maxf(fabsf(ua), fabsf(ub)), maxf(fabsf(va), fabsf(vb))), maxf(pu, pv));
     float t = mag * (1.0f / (1 << 19)) + 1e-30f;
     if (va - ua > t && vb - ub > t)
-        fill_poly(ids, dep, u, xa, xb);
+        fill_poly(ids, dep, u, xa, xb, s);
     else if (ua - va > t && ub - vb > t)
-        fill_poly(ids, dep, v, xa, xb);
+        fill_poly(ids, dep, v, xa, xb, s);
     else
         return 0;
     return 1;
@@ -394,7 +396,7 @@ static inline void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
     }
     s->covered += (uint64_t)(xb - xa);
     if (n == 1 && s->in[0].ok) {
-        fill_poly(ids, dep, &s->in[0], xa, xb);
+        fill_poly(ids, dep, &s->in[0], xa, xb, s);
         return;
     }
     /* one polygon's whole depth range before every other's: it wins
@@ -408,7 +410,7 @@ static inline void emit(SpanState *s, int32_t *ids, float *dep, int xa, int xb)
     for (int k = 0; k < n && sep; k++)
         sep = k == best || in[best].hi < in[k].lo;
     if (sep)
-        fill_poly(ids, dep, &in[best], xa, xb);
+        fill_poly(ids, dep, &in[best], xa, xb, s);
     else if (xb - xa == 1)
         decide_sample(s, ids, dep, xa);
     else if (n != 2 || !decide_two(s, ids, dep, xa, xb))
@@ -756,6 +758,7 @@ static void span_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int
     s->slots_n = 0;
     s->slots_free = -1;
     s->covered = 0;
+    s->simd = simd_use(in->simd);
     if (w > s->inf_cap) {
         float *r = realloc(s->inf_row, (size_t)w * sizeof *r);
         if (!r)

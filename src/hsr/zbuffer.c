@@ -1,7 +1,10 @@
 /* zbuffer.c: the plain per-pixel z-buffer, the reference every other
  * algorithm is compared with. Each polygon is walked row by row with the
  * exact edge walkers of raster.h and its samples are depth-tested one by
- * one against the (depth, id) pair stored there.
+ * one against the (depth, id) pair stored there. At the frame's SIMD
+ * level (HsrInput.simd, simd.h) spans are tested four samples at a time
+ * (SSE2) and small triangles eight at a time by edge functions (AVX2);
+ * both write the scalar loop's bytes.
  *
  * Implements the depth buffer of E. Catmull, "A Subdivision Algorithm
  * for Computer Display of Curved Surfaces", PhD thesis, University of
@@ -13,39 +16,30 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
-/* The AVX2 rasterizer is compiled with a target attribute and chosen at
- * run time: the build stays baseline. */
-#if defined(__SSE2__) && (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-#define ZV_AVX2 1
-#include <immintrin.h>
-#define AVX2_FN __attribute__((target("avx2")))
-#endif
 
 #include "check.h"
 #include "raster.h"
 #include "hsr.h"
+#include "simd.h"
 #include "zbuffer.h"
 
 typedef struct {
     PolyWalk walk;          /* general polygons */
     int32_t *xs;            /* crossings of one row */
     int      xs_cap;
-    int      avx2;          /* the CPU runs the AVX2 rasterizer */
+    int      simd;          /* the frame's SimdLevel, resolved: set where a frame
+                               starts (zb_render, zbuffer_begin), so that the
+                               per-polygon calls carry no extra argument */
 } ZState;
 
 static void *zb_create(void)
 {
-    ZState *z = calloc(1, sizeof(ZState));
-#ifdef ZV_AVX2
-    if (z) {
-        __builtin_cpu_init();
-        z->avx2 = __builtin_cpu_supports("avx2") != 0;
-    }
-#endif
-    return z;
+    return calloc(1, sizeof(ZState));
+}
+
+void zbuffer_begin(void *st, int simd)
+{
+    ((ZState *)st)->simd = simd;
 }
 
 static void zb_destroy(void *st)
@@ -61,7 +55,8 @@ void fbuf_clear_rows(FrameBufs *fb, int y0, int y1)
     size_t a = (size_t)y0 * fb->w, b = (size_t)y1 * fb->w;
     memset(fb->ids + a, 0xff, (b - a) * sizeof *fb->ids);   /* -1 */
     size_t i = a;
-#ifdef __SSE2__
+    /* the same stores at every level: no SimdLevel to pass */
+#ifdef ZV_SSE2
     const __m128 inf = _mm_set1_ps(INFINITY);
     for (; i < b && (i & 3); i++)
         fb->depth[i] = INFINITY;
@@ -73,7 +68,7 @@ void fbuf_clear_rows(FrameBufs *fb, int y0, int y1)
 }
 
 /* Depth-test samples [xa, xb) of row j. Returns samples written. */
-static inline uint64_t span_test(const ScreenPoly *p, FrameBufs *fb, int j, int xa, int xb)
+static inline uint64_t span_test(int simd, const ScreenPoly *p, FrameBufs *fb, int j, int xa, int xb)
 {
     /* The exact walk never leaves the sample box the front end gave the
      * polygon (its crossings lie between its corners): the plane is
@@ -87,11 +82,11 @@ static inline uint64_t span_test(const ScreenPoly *p, FrameBufs *fb, int j, int 
     int32_t id = p->face;
     uint64_t n = 0;
     int i = xa;
-#ifdef __SSE2__
+#ifdef ZV_SSE2
     /* Four samples at a time: the same IEEE operations as plane_at()
      * (a convert, a multiply, an add), so bit-equal depths; the (depth,
      * id) comparison of hsr_wins() without branches. */
-    if (xb - xa >= 4) {
+    if (simd >= SIMD_SSE2 && xb - xa >= 4) {
         const __m128 va = _mm_set1_ps(p->a), vzr = _mm_set1_ps(zr);
         const __m128i vid = _mm_set1_epi32(id);
         const __m128i bias = _mm_set1_epi32(INT32_MIN);
@@ -117,6 +112,8 @@ static inline uint64_t span_test(const ScreenPoly *p, FrameBufs *fb, int j, int 
             n += (uint64_t)((0x4332322132212110ULL >> (4 * mask)) & 15);   /* popcount of 4 bits */
         }
     }
+#else
+    (void)simd;
 #endif
     for (; i < xb; i++) {
         float z = plane_at(p, zr, i);
@@ -186,7 +183,8 @@ typedef struct {
 /* Set up the edges of triangle v at sample (x0, ya) for lanes that sit
  * at column x0 + (l % wl), row ya + (l / wl), stepping rows by 8 / wl a
  * block (wl = 8: a block steps columns instead, by 8). 0: no area. */
-AVX2_FN static inline __attribute__((always_inline)) int edges8_setup(Edges8 *t, const ScreenVert *v, int32_t x0, int32_t ya, int wl)
+ZV_AVX2_FN static inline __attribute__((always_inline)) int
+edges8_setup(Edges8 *t, const ScreenVert *v, int32_t x0, int32_t ya, int wl)
 {
     int32_t ox = 256 * x0 + 128, oy = 256 * ya + 128;
     int32_t ax = v[0].x - ox, ay = v[0].y - oy, bx = v[1].x - ox, by = v[1].y - oy, cx = v[2].x - ox,
@@ -226,7 +224,7 @@ AVX2_FN static inline __attribute__((always_inline)) int edges8_setup(Edges8 *t,
     return 1;
 }
 
-AVX2_FN static inline __m256i edges8_in(const Edges8 *t, __m256i e0, __m256i e1, __m256i e2)
+ZV_AVX2_FN static inline __m256i edges8_in(const Edges8 *t, __m256i e0, __m256i e1, __m256i e2)
 {
     return _mm256_and_si256(_mm256_and_si256(_mm256_cmpgt_epi32(e0, t->lim[0]), _mm256_cmpgt_epi32(e1, t->lim[1])),
                             _mm256_cmpgt_epi32(e2, t->lim[2]));
@@ -236,18 +234,18 @@ AVX2_FN static inline __m256i edges8_in(const Edges8 *t, __m256i e0, __m256i e1,
  * low and high halves of a vector; and the low pair of v stored at p.
  * 64-bit moves through the unaligned integer intrinsics: the pairs sit
  * at any 4-byte boundary. */
-AVX2_FN static inline __m128i load2x2(const void *p, const void *q)
+ZV_AVX2_FN static inline __m128i load2x2(const void *p, const void *q)
 {
     return _mm_unpacklo_epi64(_mm_loadl_epi64((const __m128i *)p), _mm_loadl_epi64((const __m128i *)q));
 }
 
-AVX2_FN static inline void store2(void *p, __m128i v)
+ZV_AVX2_FN static inline void store2(void *p, __m128i v)
 {
     _mm_storel_epi64((__m128i *)p, v);
 }
 
 /* hsr_wins() of (z, id) against (zb, ib), eight lanes, within in. */
-AVX2_FN static inline __m256i wins8(__m256 z, __m256i vidb, __m256 zb, __m256i ib, __m256i in)
+ZV_AVX2_FN static inline __m256i wins8(__m256 z, __m256i vidb, __m256 zb, __m256i ib, __m256i in)
 {
     const __m256i bias = _mm256_set1_epi32(INT32_MIN);
     __m256i lt = _mm256_castps_si256(_mm256_cmp_ps(z, zb, _CMP_LT_OQ));
@@ -262,7 +260,7 @@ AVX2_FN static inline __m256i wins8(__m256 z, __m256i vidb, __m256 zb, __m256i i
  * add; hsr_wins() on (depth, id)), eight wide. Blocks reaching past the
  * image's right edge finish one sample at a time. Returns the samples
  * written. */
-AVX2_FN static uint64_t draw_tri_rows8(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+ZV_AVX2_FN static uint64_t draw_tri_rows8(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
     Edges8 t;
     if (!edges8_setup(&t, v, p->x0, ya, 8))
@@ -323,7 +321,7 @@ AVX2_FN static uint64_t draw_tri_rows8(const ScreenVert *v, const ScreenPoly *p,
  * wholly inside the image's width: 8 / wl rows a block, lane l at column
  * x0 + l % wl of row j + l / wl. Rows past yb are neither read nor
  * written (they may belong to another band, or lie past the image). */
-AVX2_FN static inline __attribute__((always_inline)) uint64_t
+ZV_AVX2_FN static inline __attribute__((always_inline)) uint64_t
 draw_tri_narrow(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb, const int wl)
 {
     Edges8 t;
@@ -412,7 +410,7 @@ draw_tri_narrow(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya,
  * each lane's edge functions straight from its sample's offset (the
  * products stay within 2^31 at these sizes), then one depth test. Rows
  * past yb are neither read nor written. */
-AVX2_FN static inline __attribute__((always_inline)) uint64_t
+ZV_AVX2_FN static inline __attribute__((always_inline)) uint64_t
 draw_tri_block(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb, const int wl)
 {
     int32_t x0 = p->x0, ox = 256 * x0 + 128, oy = 256 * ya + 128;
@@ -511,30 +509,30 @@ draw_tri_block(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, 
     return (uint64_t)__builtin_popcount((unsigned)mask);
 }
 
-AVX2_FN static uint64_t draw_tri_block2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+ZV_AVX2_FN static uint64_t draw_tri_block2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
     return draw_tri_block(v, p, fb, ya, yb, 2);
 }
 
-AVX2_FN static uint64_t draw_tri_block4(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+ZV_AVX2_FN static uint64_t draw_tri_block4(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
     return draw_tri_block(v, p, fb, ya, yb, 4);
 }
 
 /* draw_tri_narrow made once for each width, so that the lane layout is
  * known to the compiler. */
-AVX2_FN static uint64_t draw_tri_narrow2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+ZV_AVX2_FN static uint64_t draw_tri_narrow2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
     return draw_tri_narrow(v, p, fb, ya, yb, 2);
 }
 
-AVX2_FN static uint64_t draw_tri_narrow4(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+ZV_AVX2_FN static uint64_t draw_tri_narrow4(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
     return draw_tri_narrow(v, p, fb, ya, yb, 4);
 }
 
 /* The AVX2 path for triangle v: the narrowest layout its box fits. */
-AVX2_FN static uint64_t draw_triangle_avx2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+ZV_AVX2_FN static uint64_t draw_triangle_avx2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
     int bw = p->x1 - p->x0, bh = yb - ya;
     if (bw <= 2 && bh <= 4 && p->x0 + 2 <= fb->w)
@@ -550,12 +548,11 @@ AVX2_FN static uint64_t draw_triangle_avx2(const ScreenVert *v, const ScreenPoly
 #endif
 
 /* A triangle: sorted by y, the long edge against the two short ones. */
-static uint64_t draw_triangle(const ZState *zs, const ScreenPolys *sp, const ScreenPoly *p, FrameBufs *fb, int ya,
-                              int yb)
+static uint64_t draw_triangle(int simd, const ScreenPolys *sp, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
     const ScreenVert *v = &sp->verts[p->first];
 #ifdef ZV_AVX2
-    if (zs->avx2) {
+    if (simd >= SIMD_AVX2) {
         int32_t xlo = v[0].x < v[1].x ? v[0].x : v[1].x, xhi = v[0].x < v[1].x ? v[1].x : v[0].x;
         int32_t ylo = v[0].y < v[1].y ? v[0].y : v[1].y, yhi = v[0].y < v[1].y ? v[1].y : v[0].y;
         xlo = v[2].x < xlo ? v[2].x : xlo;
@@ -565,8 +562,6 @@ static uint64_t draw_triangle(const ZState *zs, const ScreenPolys *sp, const Scr
         if (xhi - xlo <= AVX2_SPAN * SUBPIX && yhi - ylo <= AVX2_SPAN * SUBPIX)
             return draw_triangle_avx2(v, p, fb, ya, yb);
     }
-#else
-    (void)zs;
 #endif
     if ((p->x1 - p->x0) * (yb - ya) <= SMALL_BOX)
         return draw_small_triangle(v, p, fb, ya, yb);
@@ -593,7 +588,7 @@ static uint64_t draw_triangle(const ZState *zs, const ScreenPolys *sp, const Scr
             xa = clamp_col(xa, w);
             xb = clamp_col(xb, w);
             if (xa < xb)
-                n += span_test(p, fb, j, xa, xb);
+                n += span_test(simd, p, fb, j, xa, xb);
             edge_step(&lg);
             edge_step(&sh);
         }
@@ -601,7 +596,7 @@ static uint64_t draw_triangle(const ZState *zs, const ScreenPolys *sp, const Scr
     return n;
 }
 
-static uint64_t draw_polygon(ZState *z, const ScreenPolys *sp, uint32_t pi, FrameBufs *fb, int ya, int yb)
+static uint64_t draw_polygon(ZState *z, int simd, const ScreenPolys *sp, uint32_t pi, FrameBufs *fb, int ya, int yb)
 {
     const ScreenPoly *p = &sp->polys[pi];
     int ne = polywalk_begin(&z->walk, sp, pi, ya);
@@ -620,7 +615,7 @@ static uint64_t draw_polygon(ZState *z, const ScreenPolys *sp, uint32_t pi, Fram
         for (int k = 0; k + 1 < m; k += 2) {
             int32_t xa = clamp_col(z->xs[k], fb->w), xb = clamp_col(z->xs[k + 1], fb->w);
             if (xa < xb)
-                n += span_test(p, fb, j, xa, xb);
+                n += span_test(simd, p, fb, j, xa, xb);
         }
     }
     return n;
@@ -628,18 +623,20 @@ static uint64_t draw_polygon(ZState *z, const ScreenPolys *sp, uint32_t pi, Fram
 
 uint64_t zbuffer_draw_poly(void *st, const ScreenPolys *sp, uint32_t pi, FrameBufs *fb, int y0, int y1)
 {
+    int simd = ((const ZState *)st)->simd;
     const ScreenPoly *p = &sp->polys[pi];
     int ya = p->y0 > y0 ? p->y0 : y0, yb = p->y1 < y1 ? p->y1 : y1;
     if (ya >= yb)
         return 0;
     if (screen_poly_nverts(sp, pi) == 3)
-        return draw_triangle(st, sp, p, fb, ya, yb);
-    return draw_polygon(st, sp, pi, fb, ya, yb);
+        return draw_triangle(simd, sp, p, fb, ya, yb);
+    return draw_polygon(st, simd, sp, pi, fb, ya, yb);
 }
 
 static void zb_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y1, HsrStats *stats)
 {
     const ScreenPolys *sp = in->sp;
+    zbuffer_begin(st, simd_use(in->simd));
     fbuf_clear_rows(fb, y0, y1);
     uint64_t written = 0, polys = 0;
     for (uint32_t i = 0; i < sp->npolys; i++) {

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "oneshot.h"
+#include "simd.h"
 #include "viewer.h"
 
 /* A standard descriptor the shell left closed (`>&-`) would be taken by
@@ -58,6 +59,9 @@ int main(int argc, char **argv)
      * and go back to the system when freed: a fixed threshold keeps glibc
      * from raising it after the first free and keeping freed scratch. */
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
+    /* a ZV_SIMD the frames cannot honour is said once, before anything
+     * (the viewer's screen) covers standard error */
+    simd_warn(stderr);
     if (cli_parse(argc, argv, &o, err, sizeof err)) {
         fprintf(stderr, "zview: %s\n", err);
         return 2;

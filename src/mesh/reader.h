@@ -20,9 +20,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
+#include "simd.h"
 
 /* ==== Errors ==== */
 
@@ -243,10 +241,11 @@ void lr_init(LineReader *lr, const char *data, size_t len, MeshFile *file);
 /* The first '\n', '\r' or NUL in [p, end), or end: sixteen bytes at a
  * time with SSE2 (every x86-64 has it), else eight (a line of an OBJ is
  * some 30 bytes; this is the loaders' inner loop). Never reads at or
- * past end. */
+ * past end. Chosen when compiled (ZV_SSE2), not by the frame's level:
+ * loading has no frame, and make nosimd tests the eight-byte loop. */
 static inline const char *lr_stop(const char *p, const char *end)
 {
-#ifdef __SSE2__
+#ifdef ZV_SSE2
     const __m128i lf = _mm_set1_epi8('\n'), cr = _mm_set1_epi8('\r'), nul = _mm_setzero_si128();
     while (end - p >= 16) {
         __m128i v = _mm_loadu_si128((const __m128i *)(const void *)p);

@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "oneshot.h"
+#include "simd.h"
 
 /* pos_exp: the scene scaled the positions by 2^-pos_exp (scene.h); the
  * bounds are given in the file's units. */
@@ -78,6 +79,7 @@ int app_info(const Options *o, Scene *s)
            s->nobjs, s->nfaces, (unsigned long long)npolys);
     if (s->npoints || s->nlines)
         out_printf(out, "            %u points, %u lines (%u segments)\n", s->npoints, s->nlines, s->nsegs);
+    out_printf(out, "simd:       %s\n", simd_name(simd_level()));
     if (!report_ok(out))
         return 1;
     if (!o->algo)

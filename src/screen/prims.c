@@ -45,15 +45,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
-
 #include "clock.h"
 #include "thread.h"
 #include "grow.h"
 #include "raster.h"
 #include "screen.h"
+#include "simd.h"
 
 /* Points worth a helper thread each (below it, starting one costs more). */
 #define POINTS_PER_THREAD (1u << 18)
@@ -250,7 +247,7 @@ static inline __attribute__((always_inline)) int point_box(const PointMap *pm, c
     return *i0 < pm->w && *i0 + size > 0 && *j0 < pm->h && *j0 + size > 0;
 }
 
-#ifdef __SSE2__
+#ifdef ZV_SSE2
 /* point_box for four consecutive points at p (12 floats), in SSE2: the
  * same operations in the same order as point_box (so the same bits:
  * -ffp-contract=off, no fused multiply-add), four lanes at a time; the
@@ -347,6 +344,7 @@ typedef struct {
     int          size, align;
     uint32_t     g0, g1;    /* global point numbers this job takes */
     uint32_t     in;        /* points that reached a box */
+    int          simd;      /* the frame's SimdLevel, resolved (simd_use) */
 } PointJob;
 
 /* Keep the least key per box over points g0 .. g1 (numbered over all
@@ -375,9 +373,9 @@ static void points_reduce(PointJob *j)
             uint32_t cell[CHUNK];
             uint64_t keys[CHUNK];
             uint32_t g = g0;
-#ifdef __SSE2__
+#ifdef ZV_SSE2
             /* a cloud (consecutive vertices): four at a time */
-            for (; !pt && g + 4 <= g1; g += 4) {
+            for (; !pt && j->simd >= SIMD_SSE2 && g + 4 <= g1; g += 4) {
                 uint32_t k = g - a;
                 int32_t i4[4], j4[4];
                 float z4[4];
@@ -461,13 +459,14 @@ static int points_reduced(ScreenPolys *sp, const Scene *s, const PProj *pj, cons
     PointJob job[SCREEN_MAX_THREADS];
     pthread_t th[SCREEN_MAX_THREADS];
     int started[SCREEN_MAX_THREADS] = { 0 };
+    int simd = simd_use(sp->simd);
     for (int i = 0; i < t; i++) {
         if (grow_array((void **)&w->box[i], &w->cap[i], (uint32_t)nbox, sizeof *w->box[i]))
             return -1;
         memset(w->box[i], 0xff, nbox * sizeof *w->box[i]);
         job[i] = (PointJob){ s, pj, *view, w->box[i], gw, gh, size, align,
                              (uint32_t)((uint64_t)s->npoints * (uint32_t)i / (uint32_t)t),
-                             (uint32_t)((uint64_t)s->npoints * (uint32_t)(i + 1) / (uint32_t)t), 0 };
+                             (uint32_t)((uint64_t)s->npoints * (uint32_t)(i + 1) / (uint32_t)t), 0, simd };
     }
     for (int i = 1; i < t; i++)
         started[i] = thread_start(&th[i], points_thread, &job[i]) == 0;

@@ -3,7 +3,10 @@
  * Lambert and id colours depend only on the face, so they are computed
  * once per visible face per frame and kept in a ShadeCache keyed by a
  * frame stamp; the per-pixel loop is then a lookup and a 3-byte copy.
- * Depth colours depend on the pixel and are computed per pixel.
+ * Depth colours depend on the pixel and are computed per pixel. At the
+ * frame's SIMD level AVX2 (ShadeSettings.simd, simd.h) faces are
+ * coloured and pixels copied eight at a time, with the scalar loops'
+ * bytes.
  *
  * Diffuse light is Lambert's cosine law (J. H. Lambert, Photometria,
  * 1760) plus an ambient share.
@@ -13,14 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "shade.h"
-
-/* The AVX2 pixel loop is compiled with a target attribute and chosen at
- * run time: the build stays baseline. */
-#if defined(__SSE2__) && (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-#define ZV_AVX2 1
-#include <immintrin.h>
-#define AVX2_FN __attribute__((target("avx2")))
-#endif
+#include "simd.h"
 
 /* ==== Names ==== */
 
@@ -216,8 +212,8 @@ static void highlight_object(const Scene *s, const FrameBufs *fb, int obj, Image
     }
 }
 
-static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode,
-                      float crease, ShadeCache *cache, Image *out);
+static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,
+                      ShadeCache *cache, Image *out);
 
 static inline uint8_t unit_u8(float c)
 {
@@ -351,7 +347,9 @@ static inline const uint8_t *face_colour(FaceColours *fc, int32_t id)
     return c;
 }
 
-/* The normal matrix of object obj, from its direct-mapped slot. */
+#ifdef ZV_AVX2
+/* The normal matrix of object obj, from its direct-mapped slot (for the
+ * eight-face loop: the scalar code finds it face by face). */
 static inline const NormalMat *object_nmat(FaceColours *fc, int obj)
 {
     NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
@@ -359,6 +357,7 @@ static inline const NormalMat *object_nmat(FaceColours *fc, int obj)
         normal_mat(fc->s, &fc->view, obj, nm);
     return nm;
 }
+#endif
 
 /* Distance (in pixels) the pixel pre-pass fetches ahead. */
 #define PIXEL_AHEAD 24
@@ -401,7 +400,7 @@ static void colour_pixels(FaceColours *fc, const int32_t *ids, size_t n)
  * ambient mix, base * k + 0.5 clamped and truncated), so the same bytes;
  * the faces' stamps made current. A whole object's faces in a row read
  * their normals and base colours in order, with no gathers. */
-AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, uint32_t f0, uint32_t f1)
+ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, uint32_t f0, uint32_t f1)
 {
     const Scene *s = fc->s;
     __m256 m[3][3];
@@ -488,7 +487,7 @@ AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, uint
 /* Every face of every object with polygons in the frame, object by
  * object, eight at a time: cheaper than face by face over the polygons
  * when most faces have one on screen (a dense mesh at a large size). */
-AVX2_FN static void colour_objects_avx2(FaceColours *fc)
+ZV_AVX2_FN static void colour_objects_avx2(FaceColours *fc)
 {
     const Scene *s = fc->s;
     for (int o = 0; o < s->nobjs; o++) {
@@ -565,7 +564,7 @@ static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t 
  * to 24 bytes, and the lit bytes from the same mask. Stops short of the
  * end (the second 16-byte store ends 4 bytes past the eighth pixel, in
  * the tenth); returns where the caller's plain loop takes over. */
-AVX2_FN static size_t shade_pixels_avx2(FaceColours *fc, const int32_t *ids, size_t n, uint8_t *rgb, uint8_t *lit)
+ZV_AVX2_FN static size_t shade_pixels_avx2(FaceColours *fc, const int32_t *ids, size_t n, uint8_t *rgb, uint8_t *lit)
 {
     const __m256i bias = _mm256_set1_epi32(INT32_MIN);
     const __m256i nf = _mm256_xor_si256(_mm256_set1_epi32((int32_t)fc->s->nfaces), bias);
@@ -612,7 +611,7 @@ int shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, cons
 {
     if (image_resize(out, fb->w, fb->h) != 0)
         return -1;
-    if (shade_mode(s, sp, fb, set->mode, set->crease, cache, out))
+    if (shade_mode(s, sp, fb, set, cache, out))
         return -1;
     shade_prims(s, fb, set, out);
     if (set->highlight >= 0 && set->highlight < s->nobjs)
@@ -622,16 +621,17 @@ int shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, cons
     return 0;
 }
 
-static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode,
-                      float crease, ShadeCache *cache, Image *out)
+static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,
+                      ShadeCache *cache, Image *out)
 {
     uint32_t nfaces = s->nfaces;
+    ShadeMode mode = set->mode;
     if (mode == SHADE_DEPTH) {
         shade_depth(fb, nfaces + s->nprims, out);
         return 0;
     }
     if (mode == SHADE_SMOOTH) {
-        if (smooth_prepare(&cache->smooth, s, crease))
+        if (smooth_prepare(&cache->smooth, s, set->crease))
             return -1;
         return shade_smooth(s, sp, fb, &cache->smooth, default_grey, out);
     }
@@ -648,11 +648,9 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
      * they are no more than the pixels (measured: the bunny at 1920x1080
      * shades in half the time this way), else the faces the pixels show,
      * fetched ahead (a huge mesh in a small picture). */
-#ifdef ZV_AVX2
-    __builtin_cpu_init();
-    int avx2 = __builtin_cpu_supports("avx2");
-#else
-    int avx2 = 0;
+    int avx2 = simd_use(set->simd) >= SIMD_AVX2;
+#ifndef ZV_AVX2
+    (void)avx2;             /* no eight-lane loops in this build */
 #endif
     if (sp && sp->npolys <= n) {
         /* a frame's polygons are a subset of the faces' (split faces

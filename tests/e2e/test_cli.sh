@@ -75,6 +75,27 @@ expect_out "info speed" "MB/s"
 expect_status "--info --algo" 0 "$Z" --info --algo zbuffer --size 64x48 assets/cube.obj
 expect_out "info render stats" "overdraw"
 
+# ZV_SIMD (include/simd.h): --info names the level in use; a level that
+# cannot run is said once, naming the variable and the level used; every
+# level draws the same picture, with every algorithm
+expect_status "ZV_SIMD=scalar" 0 env ZV_SIMD=scalar "$Z" --info assets/cube.obj
+expect_out "... --info names the level" "simd:       scalar"
+if [ -s "$T/err" ]; then notok "... and nothing is said" "$(head -c 300 "$T/err")"; else ok "... and nothing is said"; fi
+expect_status "an unknown ZV_SIMD still runs" 0 env ZV_SIMD=avx9 "$Z" --info assets/cube.obj
+expect_err "... with a warning naming it" "ZV_SIMD=avx9"
+used=$(sed -n 's/^simd: *//p' "$T/out")
+expect_err "... and the level --info names" "using $used"
+if [ "$(wc -l <"$T/err")" -eq 1 ]; then ok "... once"; else notok "... once" "$(cat "$T/err")"; fi
+same=1
+for algo in zbuffer scanline span hzb hzb-octree; do
+    for level in scalar sse2 avx2; do
+        ZV_SIMD=$level "$Z" --algo $algo --size 96x64 --samples 4 --yaw 30 --pitch 20 -o "$T/$level.ppm" assets/demo.obj 2>"$T/err" ||
+            same=0
+        cmp -s "$T/scalar.ppm" "$T/$level.ppm" || { same=0; notok "ZV_SIMD=$level, $algo: the scalar picture"; }
+    done
+done
+[ $same = 1 ] && ok "every ZV_SIMD level draws the scalar picture, with every algorithm"
+
 # --print: the committed frames, and stdout that is not a terminal
 for f in tests/expected/*.txt; do
     args=$(head -n 1 "$f" | sed 's/^# args: //')

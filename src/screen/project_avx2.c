@@ -1,0 +1,495 @@
+/* project_avx2.c: the front end's loops eight lanes wide, compiled for
+ * AVX2 (ZV_AVX2_FN) in a baseline build and run when the frame's level
+ * is SIMD_AVX2: the vertex loop of pass 1, the screening of a chunk of
+ * triangles by gathers, the second screening of triangles whose box is
+ * one sample, and finish_tri() four triangles at a time. Each performs
+ * the scalar code's operations (project.h, polys.c) in its order, so
+ * the polygons, counts and map are the scalar ones bit for bit.
+ *
+ * The edge functions are those of J. Pineda, "A Parallel Algorithm for
+ * Polygon Rasterization", SIGGRAPH 1988, with the top-left tie rule. */
+
+#include "project.h"
+
+#ifdef ZV_AVX2
+
+/* The AVX2 loop: the same operations eight floats and four doubles wide;
+ * floor by rounding (exact) instead of the truncation fix-up. Every
+ * constant is broadcast once, before the loop: the vector stores may
+ * alias anything, so the compiler would otherwise load them again on
+ * every step. */
+typedef struct {
+    __m256  m[3][4];
+    __m256d cx, cy, fx, fy, dbias, dscale, eye, n, dk, one, gx0, gx1, gy0, gy1, sub, half, tmin, tmax;
+} Avx2Proj;
+
+ZV_AVX2_FN static inline __m128i snap4_avx2(const Avx2Proj *c, __m256d v)
+{
+    __m256d t = _mm256_add_pd(_mm256_mul_pd(v, c->sub), c->half);
+    t = _mm256_min_pd(_mm256_max_pd(t, c->tmin), c->tmax);
+    return _mm256_cvttpd_epi32(_mm256_round_pd(t, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+}
+
+/* proj_point(), in_guard() and snap() on four points, stored with store4. */
+ZV_AVX2_FN static inline void proj4_avx2(const VertJob *j, const Avx2Proj *c, int persp, uint32_t at, __m128 hx,
+                                         __m128 hy, __m128 hz)
+{
+    __m256d x = _mm256_cvtps_pd(hx), y = _mm256_cvtps_pd(hy), z = _mm256_cvtps_pd(hz);
+    __m256d sx, sy, sz, ok;
+    if (!persp) {
+        sx = _mm256_add_pd(c->cx, _mm256_mul_pd(c->fx, x));
+        sy = _mm256_sub_pd(c->cy, _mm256_mul_pd(c->fy, y));
+        sz = _mm256_sub_pd(c->dbias, _mm256_mul_pd(c->dscale, z));
+        ok = _mm256_and_pd(_mm256_cmp_pd(sx, c->gx0, _CMP_GE_OQ), _mm256_cmp_pd(sx, c->gx1, _CMP_LE_OQ));
+    } else {
+        __m256d ze = _mm256_sub_pd(c->eye, z);
+        sx = _mm256_add_pd(c->cx, _mm256_div_pd(_mm256_mul_pd(c->fx, x), ze));
+        sy = _mm256_sub_pd(c->cy, _mm256_div_pd(_mm256_mul_pd(c->fy, y), ze));
+        sz = _mm256_mul_pd(c->dk, _mm256_sub_pd(c->one, _mm256_div_pd(c->n, ze)));
+        ok = _mm256_and_pd(_mm256_cmp_pd(ze, c->n, _CMP_GE_OQ),
+                           _mm256_and_pd(_mm256_cmp_pd(sx, c->gx0, _CMP_GE_OQ), _mm256_cmp_pd(sx, c->gx1, _CMP_LE_OQ)));
+    }
+    ok = _mm256_and_pd(ok, _mm256_and_pd(_mm256_cmp_pd(sy, c->gy0, _CMP_GE_OQ), _mm256_cmp_pd(sy, c->gy1, _CMP_LE_OQ)));
+    /* the four 64-bit masks as four 32-bit ones */
+    __m128i okm = _mm256_castsi256_si128(
+        _mm256_permutevar8x32_epi32(_mm256_castpd_si256(ok), _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7)));
+    const __m128i out = _mm_set1_epi32(VERT_OUT);
+    __m128i ix = _mm_blendv_epi8(out, snap4_avx2(c, sx), okm);
+    __m128i iy = _mm_blendv_epi8(out, snap4_avx2(c, sy), okm);
+    store4(j, at, ix, iy, _mm256_cvtpd_ps(sz), okm);
+}
+
+ZV_AVX2_FN static inline void verts_avx2_loop(const VertJob *j, const Avx2Proj *c, int persp, uint32_t a, uint32_t b)
+{
+    for (uint32_t i = a; i < b; i += 8) {
+        /* vertices 0-3 in the low lanes, 4-7 in the high ones: the
+         * in-lane shuffles of load4_xyz (project_sse2.c) then work on
+         * both at once */
+        const float *p = j->pos + 3 * (size_t)i;
+        __m256 va = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p)), _mm_loadu_ps(p + 12), 1);
+        __m256 vb = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4)), _mm_loadu_ps(p + 16), 1);
+        __m256 vc = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 8)), _mm_loadu_ps(p + 20), 1);
+        __m256 t = _mm256_shuffle_ps(vb, vc, _MM_SHUFFLE(2, 1, 3, 2));
+        __m256 u = _mm256_shuffle_ps(va, vb, _MM_SHUFFLE(1, 0, 2, 1));
+        __m256 x = _mm256_shuffle_ps(va, t, _MM_SHUFFLE(2, 0, 3, 0));
+        __m256 y = _mm256_shuffle_ps(u, t, _MM_SHUFFLE(3, 1, 2, 0));
+        __m256 z = _mm256_shuffle_ps(u, vc, _MM_SHUFFLE(3, 0, 3, 1));
+        __m256 q[3];
+        for (int r = 0; r < 3; r++) {
+            /* m4_point's row r: ((m0 x + m1 y) + m2 z) + m3 in float */
+            __m256 s = _mm256_add_ps(_mm256_mul_ps(c->m[r][0], x), _mm256_mul_ps(c->m[r][1], y));
+            s = _mm256_add_ps(s, _mm256_mul_ps(c->m[r][2], z));
+            q[r] = _mm256_add_ps(s, c->m[r][3]);
+        }
+        proj4_avx2(j, c, persp, i, _mm256_castps256_ps128(q[0]), _mm256_castps256_ps128(q[1]),
+                   _mm256_castps256_ps128(q[2]));
+        proj4_avx2(j, c, persp, i + 4, _mm256_extractf128_ps(q[0], 1), _mm256_extractf128_ps(q[1], 1),
+                   _mm256_extractf128_ps(q[2], 1));
+    }
+}
+
+/* project.h */
+ZV_AVX2_FN void project_verts_avx2(const VertJob *j, uint32_t a, uint32_t b)
+{
+    const Proj *pj = j->pj;
+    Avx2Proj c;
+    for (int r = 0; r < 3; r++)
+        for (int k = 0; k < 4; k++)
+            c.m[r][k] = _mm256_set1_ps(j->mv.m[r][k]);
+    c.cx = _mm256_set1_pd(pj->cx);
+    c.cy = _mm256_set1_pd(pj->cy);
+    c.fx = _mm256_set1_pd(pj->fx);
+    c.fy = _mm256_set1_pd(pj->fy);
+    c.dbias = _mm256_set1_pd(pj->dbias);
+    c.dscale = _mm256_set1_pd(pj->dscale);
+    c.eye = _mm256_set1_pd(pj->eye);
+    c.n = _mm256_set1_pd(pj->n);
+    c.dk = _mm256_set1_pd(pj->dk);
+    c.one = _mm256_set1_pd(1.0);
+    c.gx0 = _mm256_set1_pd(pj->gx0);
+    c.gx1 = _mm256_set1_pd(pj->gx1);
+    c.gy0 = _mm256_set1_pd(pj->gy0);
+    c.gy1 = _mm256_set1_pd(pj->gy1);
+    c.sub = _mm256_set1_pd((double)SUBPIX);
+    c.half = _mm256_set1_pd(0.5);
+    c.tmin = _mm256_set1_pd(-1073741824.0);
+    c.tmax = _mm256_set1_pd(1073741824.0);
+    /* whole groups of eight, stopping short of b (store4's spill) */
+    uint32_t e = b - a > 8 ? a + (b - a - 1) / 8 * 8 : a;
+    if (pj->persp)
+        verts_avx2_loop(j, &c, 1, a, e);
+    else
+        verts_avx2_loop(j, &c, 0, a, e);
+    for (uint32_t i = e; i < b; i++)
+        vert_one(j, i);
+}
+
+/* Eight triangles a step: their 24 corner indices deinterleaved with the
+ * in-lane shuffles of load4_xyz (project_sse2.c; triangles 0-3 in the low
+ * lanes, 4-7 in the high ones), each corner's sample indices fetched by
+ * one gather, and tri_keeps() on the x and y halves side by side (16-bit
+ * lanes). */
+ZV_AVX2_FN uint32_t project_screen_tris_avx2(const uint32_t *corner, uint32_t n, const uint32_t *idx, uint32_t vmin,
+                                             int32_t w, int32_t h, uint32_t *keep, const KeepLut *lut)
+{
+    const __m256i vm = _mm256_set1_epi32((int32_t)vmin), zero = _mm256_setzero_si256();
+    const __m256i ones = _mm256_set1_epi32(-1), out = _mm256_set1_epi32((int32_t)0x80008000u);
+    const __m256i lim = _mm256_set1_epi32((int32_t)((uint32_t)h << 16 | (uint32_t)w));
+    const int *base = (const int *)idx;
+    uint32_t nk = 0, i = 0;
+    for (; i + 8 <= n; i += 8) {
+        const float *c = (const float *)(corner + 3 * (size_t)i);  /* indices as float bit patterns, untouched */
+        __m256 va = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(c)), _mm_loadu_ps(c + 12), 1);
+        __m256 vb = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(c + 4)), _mm_loadu_ps(c + 16), 1);
+        __m256 vc = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(c + 8)), _mm_loadu_ps(c + 20), 1);
+        __m256 t = _mm256_shuffle_ps(vb, vc, _MM_SHUFFLE(2, 1, 3, 2));
+        __m256 u = _mm256_shuffle_ps(va, vb, _MM_SHUFFLE(1, 0, 2, 1));
+        __m256i c0 = _mm256_sub_epi32(_mm256_castps_si256(_mm256_shuffle_ps(va, t, _MM_SHUFFLE(2, 0, 3, 0))), vm);
+        __m256i c1 = _mm256_sub_epi32(_mm256_castps_si256(_mm256_shuffle_ps(u, t, _MM_SHUFFLE(3, 1, 2, 0))), vm);
+        __m256i c2 = _mm256_sub_epi32(_mm256_castps_si256(_mm256_shuffle_ps(u, vc, _MM_SHUFFLE(3, 0, 3, 1))), vm);
+        __m256i g0 = _mm256_i32gather_epi32(base, c0, 4);
+        __m256i g1 = _mm256_i32gather_epi32(base, c1, 4);
+        __m256i g2 = _mm256_i32gather_epi32(base, c2, 4);
+        __m256i mn = _mm256_min_epi16(_mm256_min_epi16(g0, g1), g2);
+        __m256i mx = _mm256_max_epi16(_mm256_max_epi16(g0, g1), g2);
+        __m256i ok = _mm256_and_si256(_mm256_cmpgt_epi16(mx, mn),
+                                      _mm256_and_si256(_mm256_cmpgt_epi16(mx, zero), _mm256_cmpgt_epi16(lim, mn)));
+        ok = _mm256_or_si256(_mm256_cmpeq_epi32(ok, ones), _mm256_cmpeq_epi32(mn, out));
+        unsigned m = (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(ok));
+        /* append the kept ones without a branch (most steps keep none at
+         * small sizes, most of them at large ones): their lane numbers
+         * packed to the front by a table, all eight stored, the count
+         * advanced by the kept ones */
+        __m256i lanes = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128((long long)lut->lanes[m]));
+        _mm256_storeu_si256((__m256i *)(keep + nk), _mm256_add_epi32(_mm256_set1_epi32((int32_t)i), lanes));
+        nk += lut->count[m];
+    }
+    return project_screen_tris(corner, i, n, idx, vmin, w, h, keep, nk);
+}
+
+/* One edge a -> b of eight triangles at the sample, all relative to it:
+ * e = dx (0 - ay) - dy (0 - ax), covered where e > 0, or e == 0 on a top
+ * or left edge (dy < 0, or dy == 0 and dx > 0): edge_covers(). */
+ZV_AVX2_FN static inline __m256i edge8(__m256i ax, __m256i ay, __m256i bx, __m256i by)
+{
+    const __m256i zero = _mm256_setzero_si256();
+    __m256i dx = _mm256_sub_epi32(bx, ax), dy = _mm256_sub_epi32(by, ay);
+    __m256i e = _mm256_sub_epi32(_mm256_mullo_epi32(dy, ax), _mm256_mullo_epi32(dx, ay));
+    __m256i tl = _mm256_or_si256(_mm256_cmpgt_epi32(zero, dy),
+                                 _mm256_and_si256(_mm256_cmpeq_epi32(dy, zero), _mm256_cmpgt_epi32(dx, zero)));
+    return _mm256_or_si256(_mm256_cmpgt_epi32(e, zero), _mm256_and_si256(_mm256_cmpeq_epi32(e, zero), tl));
+}
+
+/* Second screening of the kept triangles keep[0 .. nk) (corners at
+ * corner[3 keep[i] ..], points sv[corner - vmin]), eight at a time: a
+ * triangle whose sample box is a single sample has its corners within
+ * 256 of that sample's centre, so relative to it finish_tri()'s tests
+ * fit 32-bit lanes exactly: back-facing when culling (culled_back, as
+ * finish_tri counts it), else missing its sample (culled_empty) drops
+ * it. The others, and triangles with a corner to clip or a bigger box,
+ * stay for finish_tri. Returns the new count; keep[] is compacted in
+ * place (a store never passes the entries still to be read). */
+ZV_AVX2_FN uint32_t project_sift_tiny_avx2(const uint32_t *corner, const ScreenVert *sv, uint32_t vmin, int cull,
+                                           uint32_t *keep, uint32_t nk, const KeepLut *lut, uint32_t *empty,
+                                           uint32_t *back)
+{
+    const __m256i vm = _mm256_set1_epi32((int32_t)vmin), one = _mm256_set1_epi32(1);
+    const __m256i k127 = _mm256_set1_epi32(127), k128 = _mm256_set1_epi32(128);
+    const __m256i out = _mm256_set1_epi32(VERT_OUT), zero = _mm256_setzero_si256();
+    const __m256i vcull = _mm256_set1_epi32(cull ? -1 : 0);
+    const int *cb = (const int *)corner, *pb = (const int *)sv;
+    uint32_t n = 0, i = 0;
+    for (; i + 8 <= nk; i += 8) {
+        __m256i t = _mm256_loadu_si256((const __m256i *)(keep + i));
+        __m256i c3 = _mm256_add_epi32(_mm256_add_epi32(t, t), t);
+        __m256i x[3], y[3];
+        for (int k = 0; k < 3; k++) {
+            __m256i v = _mm256_sub_epi32(_mm256_i32gather_epi32(cb + k, c3, 4), vm);
+            __m256i v3 = _mm256_add_epi32(_mm256_add_epi32(v, v), v);      /* 3 ints a point */
+            x[k] = _mm256_i32gather_epi32(pb, v3, 4);
+            y[k] = _mm256_i32gather_epi32(pb + 1, v3, 4);
+        }
+        __m256i xmn = _mm256_min_epi32(_mm256_min_epi32(x[0], x[1]), x[2]);
+        __m256i xmx = _mm256_max_epi32(_mm256_max_epi32(x[0], x[1]), x[2]);
+        __m256i ymn = _mm256_min_epi32(_mm256_min_epi32(y[0], y[1]), y[2]);
+        __m256i ymx = _mm256_max_epi32(_mm256_max_epi32(y[0], y[1]), y[2]);
+        __m256i sx0 = _mm256_srai_epi32(_mm256_add_epi32(xmn, k127), SUBPIX_BITS);
+        __m256i sy0 = _mm256_srai_epi32(_mm256_add_epi32(ymn, k127), SUBPIX_BITS);
+        __m256i sx1 = _mm256_srai_epi32(_mm256_add_epi32(xmx, k127), SUBPIX_BITS);
+        __m256i sy1 = _mm256_srai_epi32(_mm256_add_epi32(ymx, k127), SUBPIX_BITS);
+        /* one sample, no corner to clip (the first screening put the
+         * box on screen, so clamping leaves it as it is) */
+        __m256i tiny = _mm256_andnot_si256(_mm256_cmpeq_epi32(xmn, out),
+                                           _mm256_and_si256(_mm256_cmpeq_epi32(sx1, _mm256_add_epi32(sx0, one)),
+                                                            _mm256_cmpeq_epi32(sy1, _mm256_add_epi32(sy0, one))));
+        __m256i px = _mm256_add_epi32(_mm256_slli_epi32(sx0, SUBPIX_BITS), k128);
+        __m256i py = _mm256_add_epi32(_mm256_slli_epi32(sy0, SUBPIX_BITS), k128);
+        __m256i ax = _mm256_sub_epi32(x[0], px), ay = _mm256_sub_epi32(y[0], py);
+        __m256i bx = _mm256_sub_epi32(x[1], px), by = _mm256_sub_epi32(y[1], py);
+        __m256i cx = _mm256_sub_epi32(x[2], px), cy = _mm256_sub_epi32(y[2], py);
+        /* twice the signed area (finish_tri's area2; translation moves it not) */
+        __m256i area2 = _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(bx, ax), _mm256_sub_epi32(cy, ay)),
+                                         _mm256_mullo_epi32(_mm256_sub_epi32(by, ay), _mm256_sub_epi32(cx, ax)));
+        __m256i faces_away = _mm256_and_si256(vcull, _mm256_cmpgt_epi32(_mm256_add_epi32(area2, one), zero));
+        __m256i neg = _mm256_cmpgt_epi32(zero, area2);      /* walk b and c the other way round */
+        __m256i bx2 = _mm256_blendv_epi8(bx, cx, neg), by2 = _mm256_blendv_epi8(by, cy, neg);
+        __m256i cx2 = _mm256_blendv_epi8(cx, bx, neg), cy2 = _mm256_blendv_epi8(cy, by, neg);
+        __m256i hit = _mm256_andnot_si256(_mm256_cmpeq_epi32(area2, zero), edge8(ax, ay, bx2, by2));
+        hit = _mm256_and_si256(hit, _mm256_and_si256(edge8(bx2, by2, cx2, cy2), edge8(cx2, cy2, ax, ay)));
+        __m256i gone_back = _mm256_and_si256(tiny, faces_away);
+        __m256i gone_empty = _mm256_andnot_si256(faces_away, _mm256_andnot_si256(hit, tiny));
+        unsigned mb = (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(gone_back));
+        unsigned me = (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(gone_empty));
+        unsigned m = ~(mb | me) & 0xff;
+        *back += lut->count[mb];
+        *empty += lut->count[me];
+        __m256i lanes = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128((long long)lut->lanes[m]));
+        _mm256_storeu_si256((__m256i *)(keep + n), _mm256_permutevar8x32_epi32(t, lanes));
+        n += lut->count[m];
+    }
+    for (; i < nk; i++)
+        keep[n++] = keep[i];
+    return n;
+}
+
+/* Four triangles' finish_tri(), lane by lane the same operations: the
+ * sample box in 32-bit lanes, twice the signed area and, for a box of at
+ * most four samples, tri_hits_box()'s edge functions in 64-bit ones
+ * (exact products), the plane in double. A lane's state: kept (its box,
+ * plane and zmin filled in), or dropped as empty or as facing away. */
+enum { FIN_KEPT, FIN_EMPTY, FIN_BACK };
+
+/* edge_covers() in four 64-bit lanes: e = dx (py - ay) - dy (px - ax) > 0,
+ * or == 0 on a top or left edge (tl). Every factor fits 32 bits. */
+ZV_AVX2_FN static inline __m256i edge4_covers(__m256i ax, __m256i ay, __m256i dx, __m256i dy, __m256i tl, __m256i px,
+                                              __m256i py)
+{
+    __m256i e = _mm256_sub_epi64(_mm256_mul_epi32(dx, _mm256_sub_epi64(py, ay)),
+                                 _mm256_mul_epi32(dy, _mm256_sub_epi64(px, ax)));
+    const __m256i zero = _mm256_setzero_si256();
+    return _mm256_or_si256(_mm256_cmpgt_epi64(e, zero), _mm256_and_si256(_mm256_cmpeq_epi64(e, zero), tl));
+}
+
+typedef struct {
+    int32_t x0[4], x1[4], y0[4], y1[4];
+    float   a[4], b[4], zc[4], zmin[4];
+    int     state[4];
+} Finish4;
+
+/* The pieces of finish_tris4, inlined into it. */
+#define FIN_INLINE ZV_AVX2_FN static inline __attribute__((always_inline))
+
+/* sample_box() of four triangles: box[0..3] = x0, x1, y0, y1, clamped to
+ * the screen. */
+FIN_INLINE void tris4_box(const ScreenPolys *sp, const __m128i X[3], const __m128i Y[3], __m128i box[4])
+{
+    const __m128i k127 = _mm_set1_epi32(127), zero = _mm_setzero_si128();
+    __m128i x0 = _mm_srai_epi32(_mm_add_epi32(_mm_min_epi32(_mm_min_epi32(X[0], X[1]), X[2]), k127), SUBPIX_BITS);
+    __m128i x1 = _mm_srai_epi32(_mm_add_epi32(_mm_max_epi32(_mm_max_epi32(X[0], X[1]), X[2]), k127), SUBPIX_BITS);
+    __m128i y0 = _mm_srai_epi32(_mm_add_epi32(_mm_min_epi32(_mm_min_epi32(Y[0], Y[1]), Y[2]), k127), SUBPIX_BITS);
+    __m128i y1 = _mm_srai_epi32(_mm_add_epi32(_mm_max_epi32(_mm_max_epi32(Y[0], Y[1]), Y[2]), k127), SUBPIX_BITS);
+    box[0] = _mm_max_epi32(x0, zero);
+    box[1] = _mm_min_epi32(x1, _mm_set1_epi32(sp->w));
+    box[2] = _mm_max_epi32(y0, zero);
+    box[3] = _mm_min_epi32(y1, _mm_set1_epi32(sp->h));
+}
+
+/* Twice the signed area, (x0 y1 - x1 y0) + (x1 y2 - x2 y1) + (x2 y0 - x0 y2),
+ * in 64-bit lanes (xl, yl: the corners widened). */
+FIN_INLINE __m256i tris4_area2(const __m256i xl[3], const __m256i yl[3])
+{
+    __m256i area2 = _mm256_setzero_si256();
+    for (int k = 0; k < 3; k++) {
+        int m = k == 2 ? 0 : k + 1;
+        area2 = _mm256_add_epi64(area2,
+                                 _mm256_sub_epi64(_mm256_mul_epi32(xl[k], yl[m]), _mm256_mul_epi32(xl[m], yl[k])));
+    }
+    return area2;
+}
+
+/* tri_hits_box() of the four: b and c swapped where the area is
+ * negative, then the box's samples (nsamp, at most four where it
+ * matters) against the three edges. The mask of the lanes that cover
+ * one of them. */
+FIN_INLINE int tris4_hits(const __m256i xl[3], const __m256i yl[3], __m256i area2, __m128i x0, __m128i y0,
+                          __m128i bw, __m128i nsamp)
+{
+    const __m256i zero4 = _mm256_setzero_si256();
+    __m256i neg = _mm256_cmpgt_epi64(zero4, area2);
+    __m256i ex[3] = { xl[0], _mm256_blendv_epi8(xl[1], xl[2], neg), _mm256_blendv_epi8(xl[2], xl[1], neg) };
+    __m256i ey[3] = { yl[0], _mm256_blendv_epi8(yl[1], yl[2], neg), _mm256_blendv_epi8(yl[2], yl[1], neg) };
+    __m256i dx[3], dy[3], tl[3];
+    for (int k = 0; k < 3; k++) {
+        int m = k == 2 ? 0 : k + 1;
+        dx[k] = _mm256_sub_epi64(ex[m], ex[k]);
+        dy[k] = _mm256_sub_epi64(ey[m], ey[k]);
+        tl[k] = _mm256_or_si256(_mm256_cmpgt_epi64(zero4, dy[k]),
+                                _mm256_and_si256(_mm256_cmpeq_epi64(dy[k], zero4), _mm256_cmpgt_epi64(dx[k], zero4)));
+    }
+    __m256i hit = zero4;
+    for (int smp = 0; smp < 4; smp++) {
+        /* sample smp of each lane's box, row by row: row = how many
+         * whole box widths fit in smp, col = what is left */
+        __m128i vs = _mm_set1_epi32(smp), bw1 = _mm_max_epi32(bw, _mm_set1_epi32(1));
+        __m128i row = _mm_setzero_si128(), lim = bw1;
+        for (int r = 1; r < 4; r++) {
+            row = _mm_sub_epi32(row, _mm_cmpgt_epi32(_mm_add_epi32(vs, _mm_set1_epi32(1)), lim));
+            lim = _mm_add_epi32(lim, bw1);
+        }
+        __m128i col = _mm_sub_epi32(vs, _mm_mullo_epi32(row, bw1));
+        __m128i ok32 = _mm_cmpgt_epi32(nsamp, vs);
+        __m128i px32 = _mm_add_epi32(_mm_slli_epi32(_mm_add_epi32(x0, col), SUBPIX_BITS), _mm_set1_epi32(128));
+        __m128i py32 = _mm_add_epi32(_mm_slli_epi32(_mm_add_epi32(y0, row), SUBPIX_BITS), _mm_set1_epi32(128));
+        __m256i vx = _mm256_cvtepi32_epi64(px32), vy = _mm256_cvtepi32_epi64(py32);
+        __m256i in = _mm256_cvtepi32_epi64(ok32);
+        for (int k = 0; k < 3; k++)
+            in = _mm256_and_si256(in, edge4_covers(ex[k], ey[k], dx[k], dy[k], tl[k], vx, vy));
+        hit = _mm256_or_si256(hit, in);
+    }
+    hit = _mm256_andnot_si256(_mm256_cmpeq_epi64(area2, zero4), hit);
+    return _mm256_movemask_pd(_mm256_castsi256_pd(hit));
+}
+
+/* store_poly()'s plane and zmin of the four, in double, into f (bw, bh:
+ * the boxes' width and height); the mask of the lanes with no area
+ * (nz == 0). */
+FIN_INLINE int tris4_plane(const __m128i X[3], const __m128i Y[3], const __m128 Z[3], const __m128i box[4],
+                           __m128i bw, __m128i bh, Finish4 *f)
+{
+    const __m256d inv = _mm256_set1_pd(1.0 / SUBPIX);
+    __m256d Xd[3], Yd[3], Zd[3];
+    for (int k = 0; k < 3; k++) {
+        Xd[k] = _mm256_mul_pd(_mm256_cvtepi32_pd(X[k]), inv);
+        Yd[k] = _mm256_mul_pd(_mm256_cvtepi32_pd(Y[k]), inv);
+        Zd[k] = _mm256_cvtps_pd(Z[k]);
+    }
+    __m256d x1d = _mm256_sub_pd(Xd[1], Xd[0]), y1d = _mm256_sub_pd(Yd[1], Yd[0]), z1d = _mm256_sub_pd(Zd[1], Zd[0]);
+    __m256d x2d = _mm256_sub_pd(Xd[2], Xd[0]), y2d = _mm256_sub_pd(Yd[2], Yd[0]), z2d = _mm256_sub_pd(Zd[2], Zd[0]);
+    __m256d nx = _mm256_sub_pd(_mm256_mul_pd(y1d, z2d), _mm256_mul_pd(z1d, y2d));
+    __m256d ny = _mm256_sub_pd(_mm256_mul_pd(z1d, x2d), _mm256_mul_pd(x1d, z2d));
+    __m256d nz = _mm256_sub_pd(_mm256_mul_pd(x1d, y2d), _mm256_mul_pd(y1d, x2d));
+    __m256d flat = _mm256_cmp_pd(nz, _mm256_setzero_pd(), _CMP_EQ_OQ);
+    const __m256d sign = _mm256_set1_pd(-0.0), half = _mm256_set1_pd(0.5);
+    __m256d a = _mm256_div_pd(_mm256_xor_pd(nx, sign), nz), b = _mm256_div_pd(_mm256_xor_pd(ny, sign), nz);
+    __m256d zc = _mm256_add_pd(
+        _mm256_add_pd(Zd[0], _mm256_mul_pd(a, _mm256_sub_pd(_mm256_add_pd(_mm256_cvtepi32_pd(box[0]), half), Xd[0]))),
+        _mm256_mul_pd(b, _mm256_sub_pd(_mm256_add_pd(_mm256_cvtepi32_pd(box[2]), half), Yd[0])));
+    __m256d mag = _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, zc),
+                                              _mm256_mul_pd(_mm256_andnot_pd(sign, a), _mm256_cvtepi32_pd(bw))),
+                                _mm256_mul_pd(_mm256_andnot_pd(sign, b), _mm256_cvtepi32_pd(bh)));
+    __m256d lo = _mm256_min_pd(Zd[2], _mm256_min_pd(Zd[0], Zd[1]));     /* min_pd(p, q) is p < q ? p : q */
+    __m256d zmin = _mm256_sub_pd(lo, _mm256_mul_pd(_mm256_add_pd(_mm256_andnot_pd(sign, lo), mag),
+                                                   _mm256_set1_pd(1.0 / (1 << 20))));
+    _mm_storeu_ps(f->a, _mm256_cvtpd_ps(a));
+    _mm_storeu_ps(f->b, _mm256_cvtpd_ps(b));
+    _mm_storeu_ps(f->zc, _mm256_cvtpd_ps(zc));
+    _mm_storeu_ps(f->zmin, _mm256_cvtpd_ps(zmin));
+    return _mm256_movemask_pd(flat);
+}
+
+ZV_AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *v[4][3], Finish4 *f)
+{
+    __m128i X[3], Y[3];
+    __m128 Z[3];
+    for (int k = 0; k < 3; k++) {
+        X[k] = _mm_setr_epi32(v[0][k]->x, v[1][k]->x, v[2][k]->x, v[3][k]->x);
+        Y[k] = _mm_setr_epi32(v[0][k]->y, v[1][k]->y, v[2][k]->y, v[3][k]->y);
+        Z[k] = _mm_setr_ps(v[0][k]->z, v[1][k]->z, v[2][k]->z, v[3][k]->z);
+    }
+    __m128i box[4];
+    tris4_box(sp, X, Y, box);
+    __m128i bw = _mm_sub_epi32(box[1], box[0]), bh = _mm_sub_epi32(box[3], box[2]);
+    __m128i empty = _mm_or_si128(_mm_cmpgt_epi32(_mm_set1_epi32(1), bw), _mm_cmpgt_epi32(_mm_set1_epi32(1), bh));
+    __m256i xl[3], yl[3];
+    for (int k = 0; k < 3; k++) {
+        xl[k] = _mm256_cvtepi32_epi64(X[k]);
+        yl[k] = _mm256_cvtepi32_epi64(Y[k]);
+    }
+    __m256i area2 = tris4_area2(xl, yl);
+    __m256i back = _mm256_cmpgt_epi64(area2, _mm256_set1_epi64x(-1));     /* area2 >= 0 */
+    __m128i nsamp = _mm_mullo_epi32(bw, bh);
+    int mt = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(_mm_set1_epi32(5), nsamp)));
+    int hits = mt ? tris4_hits(xl, yl, area2, box[0], box[2], bw, nsamp) : 0;
+    int mf = tris4_plane(X, Y, Z, box, bw, bh, f);
+    _mm_storeu_si128((__m128i *)f->x0, box[0]);
+    _mm_storeu_si128((__m128i *)f->x1, box[1]);
+    _mm_storeu_si128((__m128i *)f->y0, box[2]);
+    _mm_storeu_si128((__m128i *)f->y1, box[3]);
+    int me = _mm_movemask_ps(_mm_castsi128_ps(empty)), mb = _mm256_movemask_pd(_mm256_castsi256_pd(back));
+    for (int l = 0; l < 4; l++)
+        f->state[l] = me >> l & 1 ? FIN_EMPTY
+                    : sp->cull && (mb >> l & 1) ? FIN_BACK
+                    : (mt >> l & 1) && !(hits >> l & 1) ? FIN_EMPTY
+                    : mf >> l & 1 ? FIN_EMPTY : FIN_KEPT;
+}
+
+/* The kept triangles keep[0 .. nk) of a chunk of triangles (polygon k +
+ * keep[i], corners c0 + 3 keep[i], instance inst + keep[i]), four at a
+ * time through finish_tris4, in order; those with a corner to clip go
+ * through project_emit_poly. */
+ZV_AVX2_FN int project_emit_tris_avx2(RangeJob *j, uint32_t k, uint32_t c0, uint32_t inst, const uint32_t *keep,
+                                      uint32_t nk)
+{
+    ScreenPolys *sp = j->out;
+    const ScreenVert *sv = j->vs->sv;
+    const uint32_t *corner = j->s->poly_corner, vmin = j->o->vert_min;
+    uint32_t i = 0;
+    for (; i + 4 <= nk; i += 4) {
+        int rv = vert_room(j, sp->nverts + 4 * 11);
+        if (rv)
+            return rv;
+        const ScreenVert *v[4][3];
+        int out[4];
+        for (int l = 0; l < 4; l++) {
+            const uint32_t *c = corner + c0 + 3 * keep[i + l];
+            v[l][0] = &sv[c[0] - vmin];
+            v[l][1] = &sv[c[1] - vmin];
+            v[l][2] = &sv[c[2] - vmin];
+            out[l] = (v[l][0]->x == VERT_OUT) | (v[l][1]->x == VERT_OUT) | (v[l][2]->x == VERT_OUT);
+        }
+        Finish4 f;
+        finish_tris4(sp, v, &f);
+        for (int l = 0; l < 4; l++) {
+            uint32_t q = keep[i + l];
+            if (out[l]) {
+                rv = project_emit_poly(j, k + q, c0 + 3 * q, c0 + 3 * q + 3, inst + q);
+                if (rv)
+                    return rv;
+                continue;
+            }
+            if (f.state[l] == FIN_EMPTY) {
+                sp->culled_empty++;
+                continue;
+            }
+            if (f.state[l] == FIN_BACK) {
+                sp->culled_back++;
+                continue;
+            }
+            ScreenVert *dst = &sp->verts[sp->nverts];
+            dst[0] = *v[l][0];
+            dst[1] = *v[l][1];
+            dst[2] = *v[l][2];
+            ScreenPoly *p = &sp->polys[sp->npolys++];
+            p->first = sp->nverts;
+            sp->nverts += 3;
+            p->x0 = f.x0[l];
+            p->x1 = f.x1[l];
+            p->y0 = f.y0[l];
+            p->y1 = f.y1[l];
+            p->a = f.a[l];
+            p->b = f.b[l];
+            p->zc = f.zc[l];
+            p->zmin = f.zmin[l];
+            kept_poly(j, k + q, inst + q);
+        }
+    }
+    for (; i < nk; i++) {
+        uint32_t q = keep[i];
+        int rv = project_emit_poly(j, k + q, c0 + 3 * q, c0 + 3 * q + 3, inst + q);
+        if (rv)
+            return rv;
+    }
+    return 0;
+}
+
+#endif

@@ -1,0 +1,523 @@
+/* test_simd: the one SIMD switch (simd.h). Which level runs and how
+ * ZV_SIMD forces one; then every SIMD path against the scalar reference,
+ * byte for byte, on every bundled model (every .obj in assets/) from random
+ * views: the front end's polygons, the points' squares, each
+ * hidden-surface algorithm's buffers (the z-buffer's AVX2 triangles and
+ * SSE2 spans; the SSE2 spans of scanline and span; hzb's pyramid; the
+ * octree's build) and the shaded pixels. Built with -DZV_NO_SIMD (make
+ * nosimd) every level is the scalar one and the comparisons hold
+ * trivially; the first tests then check that nothing else is offered. */
+
+#define _DEFAULT_SOURCE         /* setenv, unsetenv */
+
+#include <criterion/criterion.h>
+#include <glob.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hsr.h"
+#include "shade.h"
+#include "simd.h"
+#include "testlib.h"
+
+/* ==== which level runs ==== */
+
+#ifdef ZV_AVX2
+/* Does /proc/cpuinfo list the flag? The kernel's view of the CPU: a
+ * reference that does not come from simd.c. -1 when it cannot be read. */
+static int cpuinfo_has(const char *flag)
+{
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f)
+        return -1;
+    char line[8192];
+    int found = 0;
+    while (!found && fgets(line, sizeof line, f))
+        if (strncmp(line, "flags", 5) == 0) {
+            for (char *t = strtok(line, " \t\n"); t && !found; t = strtok(NULL, " \t\n"))
+                found = strcmp(t, flag) == 0;
+            break;      /* every core lists the same flags */
+        }
+    fclose(f);
+    return found;
+}
+#endif
+
+Test(simd, the_best_level_is_the_cpus_and_the_builds)
+{
+    unsetenv("ZV_SIMD");
+#if defined(ZV_AVX2)
+    int avx2 = cpuinfo_has("avx2");
+    if (avx2 < 0)
+        cr_skip_test("no /proc/cpuinfo to check against");
+    cr_assert_eq(simd_best(), avx2 ? SIMD_AVX2 : SIMD_SSE2, "best %s, /proc/cpuinfo avx2: %d",
+                 simd_name(simd_best()), avx2);
+#elif defined(ZV_SSE2)
+    cr_assert_eq(simd_best(), SIMD_SSE2);
+#else
+    cr_assert_eq(simd_best(), SIMD_SCALAR, "a -DZV_NO_SIMD build offers %s", simd_name(simd_best()));
+#endif
+    cr_assert_eq(simd_level(), simd_best(), "no ZV_SIMD: the best level");
+    cr_assert_eq(simd_use(SIMD_AUTO), simd_best());
+    cr_assert_eq(simd_use(SIMD_SCALAR), SIMD_SCALAR, "scalar runs everywhere");
+    cr_assert_eq(simd_use(SIMD_AVX2), simd_best(), "a level above the best is the best");
+    cr_assert_str_eq(simd_name(SIMD_SCALAR), "scalar");
+    cr_assert_str_eq(simd_name(SIMD_SSE2), "sse2");
+    cr_assert_str_eq(simd_name(SIMD_AVX2), "avx2");
+}
+
+/* simd_warn's output for the current environment, and whether it warned. */
+static int warn_text(char *buf, size_t len)
+{
+    FILE *f = tmpfile();
+    cr_assert(f);
+    int warned = simd_warn(f);
+    rewind(f);
+    size_t n = fread(buf, 1, len - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    return warned;
+}
+
+Test(simd, zv_simd_forces_a_level_and_warns_when_it_cannot)
+{
+    char text[256];
+    SimdLevel best = simd_best();
+    for (int l = SIMD_SCALAR; l < SIMD_LEVELS; l++) {
+        cr_assert_eq(setenv("ZV_SIMD", simd_name(l), 1), 0);
+        SimdLevel want = l <= (int)best ? (SimdLevel)l : best;
+        cr_assert_eq(simd_level(), want, "ZV_SIMD=%s runs %s", simd_name(l), simd_name(simd_level()));
+        cr_assert_eq(simd_use(SIMD_AUTO), want);
+        cr_assert_eq(simd_use(SIMD_SCALAR), SIMD_SCALAR, "a stage's own setting wins over ZV_SIMD");
+        int warned = warn_text(text, sizeof text);
+        if (l <= (int)best) {
+            cr_assert_eq(warned, 0, "ZV_SIMD=%s: '%s'", simd_name(l), text);
+            cr_assert_str_empty(text);
+            continue;
+        }
+        /* a level this CPU or build lacks: one line, naming the variable
+         * and the level used instead */
+        char want_text[64];
+        snprintf(want_text, sizeof want_text, "using %s\n", simd_name(best));
+        cr_assert_eq(warned, 1);
+        cr_assert(strstr(text, "ZV_SIMD=") != NULL, "'%s'", text);
+        cr_assert(strstr(text, want_text) != NULL, "'%s'", text);
+        cr_assert_eq(strchr(text, '\n'), text + strlen(text) - 1, "one line: '%s'", text);
+    }
+    cr_assert_eq(setenv("ZV_SIMD", "avx512", 1), 0);
+    cr_assert_eq(simd_level(), best, "an unknown level: the best");
+    cr_assert_eq(warn_text(text, sizeof text), 1);
+    cr_assert(strstr(text, "ZV_SIMD=avx512") != NULL, "'%s'", text);
+    cr_assert(strstr(text, simd_name(best)) != NULL, "'%s'", text);
+    cr_assert_eq(setenv("ZV_SIMD", "", 1), 0);
+    cr_assert_eq(simd_level(), best, "empty: as unset");
+    cr_assert_eq(warn_text(text, sizeof text), 0, "'%s'", text);
+}
+
+/* ==== the bundled models from random views ==== */
+
+#define VIEWS 8
+
+static const int sizes[][2] = { { 160, 96 }, { 331, 199 }, { 64, 48 } };
+
+/* One case: a model seen from one view. */
+typedef struct {
+    Scene      *s;
+    const char *name;
+    Viewport    vp;
+    uint32_t    seed;
+} Case;
+
+/* A wavy grid of triangles whose every face comes twice, the copies in
+ * the reverse order: each sample of a copy ties in depth with the
+ * original, bit for bit, and the lower face id must win at every level
+ * (the bundled models have next to no exact ties). */
+static char *twice_obj(int n)
+{
+    size_t cap = (size_t)(n + 1) * (n + 1) * 48 + (size_t)n * n * 2 * 2 * 40 + 64, len = 0;
+    char *t = malloc(cap);
+    cr_assert(t);
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            len += (size_t)snprintf(t + len, cap - len, "v %d %d %.4f\n", i, j, 0.7 * sin(0.9 * i) * cos(0.6 * j));
+    for (int copy = 0; copy < 2; copy++)
+        for (int q = 0; q < 2 * n * n; q++) {
+            int c = copy ? 2 * n * n - 1 - q : q, cell = c / 2, i = cell % n, j = cell / n;
+            int a = j * (n + 1) + i + 1, b = a + 1, d = a + n + 1, e = d + 1;
+            len += (size_t)(c & 1 ? snprintf(t + len, cap - len, "f %d %d %d\n", b, e, d)
+                                  : snprintf(t + len, cap - len, "f %d %d %d\n", a, b, d));
+        }
+    return t;
+}
+
+/* A grid of points, each twice (the second copy of the grid after the
+ * first): drawn as squares (every point its own), the copies are flat
+ * polygons at exactly the same depth, where a test of the hierarchical
+ * z-buffer that culled on equal depths would drop the lower id. */
+static void points_twice(Scene *s, int n)
+{
+    Mesh *m = calloc(1, sizeof *m);
+    cr_assert(m);
+    cr_assert_eq(tl_mesh_init(m, "points twice"), 0);
+    for (int copy = 0; copy < 2; copy++)
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++)
+                cr_assert_eq(tl_mesh_vertex(m, (float)i, (float)j, (float)(0.5 * sin(0.7 * i + 0.3 * j))), 0);
+    cr_assert_eq(tl_mesh_finish(m), 0);
+    char err[256];
+    cr_assert_eq(scene_build(s, m, 1, err, sizeof err), 0, "%s", err);
+}
+
+/* check on one model from VIEWS random views (odd sizes, pixel aspect 1
+ * and 2, culling on and off, perspective half the time with the near
+ * plane cutting now and then). */
+static void each_view(Scene *s, const char *name, void (*check)(const Case *c, void *arg), void *arg)
+{
+    for (uint32_t seed = 0; seed < VIEWS; seed++) {
+        tl_random_view(s, seed, (int)(seed & 1));
+        const int *sz = sizes[seed % 3];
+        Case c = { s, name, { sz[0], sz[1], seed % 4 == 1 ? 2.0f : 1.0f, seed % 3 == 0 }, seed };
+        check(&c, arg);
+    }
+}
+
+/* Calls check on every bundled model, on the grid of faces twice and on
+ * the points twice, from VIEWS random views each. Returns the cases. */
+static int each_case(void (*check)(const Case *c, void *arg), void *arg)
+{
+    glob_t g;
+    cr_assert_eq(glob("assets/*.obj", 0, NULL, &g), 0, "no assets/*.obj (run from the source tree)");
+    cr_assert_geq(g.gl_pathc, 5, "the bundled models");
+    for (size_t k = 0; k < g.gl_pathc; k++) {
+        Scene s;
+        cr_assert_eq(tl_scene_from_file(&s, g.gl_pathv[k]), 0, "%s", g.gl_pathv[k]);
+        each_view(&s, g.gl_pathv[k], check, arg);
+        scene_free(&s);
+    }
+    Scene s;
+    char *text = twice_obj(24);
+    cr_assert_eq(tl_scene_from_text(&s, "twice", text), 0);
+    free(text);
+    each_view(&s, "every face twice", check, arg);
+    scene_free(&s);
+    points_twice(&s, 40);
+    each_view(&s, "points twice", check, arg);
+    scene_free(&s);
+    int cases = (int)(g.gl_pathc + 2) * VIEWS;
+    globfree(&g);
+    return cases;
+}
+
+/* The levels compared with the scalar one: every level above it this
+ * CPU and build run (simd_use would quietly run a lower one). */
+static int top_level(void)
+{
+    return (int)simd_best();
+}
+
+/* ==== the front end ==== */
+
+static void expect_same_screen(const ScreenPolys *ref, const ScreenPolys *sp, const Case *c, int level)
+{
+    const char *lv = simd_name(level);
+    cr_assert_eq(sp->npolys, ref->npolys, "%s view %u at %s: %u polygons, scalar %u", c->name, c->seed, lv,
+                 sp->npolys, ref->npolys);
+    cr_assert_eq(sp->nverts, ref->nverts, "%s view %u at %s: corners", c->name, c->seed, lv);
+    cr_assert_eq(sp->nmap, ref->nmap);
+    cr_assert_eq(sp->in_polys, ref->in_polys);
+    cr_assert_eq(sp->culled_back, ref->culled_back, "%s view %u at %s", c->name, c->seed, lv);
+    cr_assert_eq(sp->culled_empty, ref->culled_empty, "%s view %u at %s", c->name, c->seed, lv);
+    cr_assert_eq(memcmp(sp->verts, ref->verts, ref->nverts * sizeof *ref->verts), 0, "%s view %u at %s: corners",
+                 c->name, c->seed, lv);
+    cr_assert_eq(memcmp(sp->polys, ref->polys, ref->npolys * sizeof *ref->polys), 0,
+                 "%s view %u at %s: polygons", c->name, c->seed, lv);
+    cr_assert_eq(sp->polys[sp->npolys].first, ref->polys[ref->npolys].first, "the sentinel");
+    cr_assert_eq(memcmp(sp->map, ref->map, ref->nmap * sizeof *ref->map), 0, "%s view %u at %s: map", c->name,
+                 c->seed, lv);
+}
+
+static void front_end_case(const Case *c, void *arg)
+{
+    int *drawn = arg;
+    ScreenPolys ref = { 0 };
+    ref.threads = 1;
+    ref.simd = SIMD_SCALAR;
+    cr_assert_eq(screen_project(&ref, c->s, &c->vp), 0);
+    *drawn += ref.npolys > 0;
+    for (int level = SIMD_SSE2; level <= top_level(); level++)
+        for (int th = 1; th <= 2; th++) {
+            ScreenPolys sp = { 0 };
+            sp.threads = th;
+            sp.simd = level;
+            cr_assert_eq(screen_project(&sp, c->s, &c->vp), 0);
+            expect_same_screen(&ref, &sp, c, level);
+            screen_free(&sp);
+        }
+    screen_free(&ref);
+}
+
+Test(simd, front_end_levels_give_the_same_polygons)
+{
+    int drawn = 0;
+    int cases = each_case(front_end_case, &drawn);
+    cr_assert_gt(drawn, cases / 2, "most views show something (%d of %d)", drawn, cases);
+}
+
+/* ==== points ==== */
+
+/* The model's vertices as a cloud (consecutive vertices, no index
+ * array: the SSE2 loop's case), seen as the model was. */
+static void cloud_of(const Scene *from, Scene *cloud)
+{
+    Mesh *m = calloc(1, sizeof *m);
+    cr_assert(m);
+    cr_assert_eq(tl_mesh_init(m, "cloud"), 0);
+    for (int k = 0; k < from->nmeshes; k++) {
+        const Mesh *src = &from->meshes[k];
+        for (uint32_t v = 0; v < src->nverts; v++)
+            cr_assert_eq(tl_mesh_vertex(m, src->pos[3 * v], src->pos[3 * v + 1], src->pos[3 * v + 2]), 0);
+    }
+    cr_assert_eq(tl_mesh_finish(m), 0);
+    char err[256];
+    cr_assert_eq(scene_build(cloud, m, 1, err, sizeof err), 0, "%s", err);
+}
+
+static void points_case(const Case *c, void *arg)
+{
+    int *squares = arg;
+    Scene cloud;
+    cloud_of(c->s, &cloud);
+    tl_random_view(&cloud, c->seed, (int)(c->seed & 1));
+    /* a point per sample, a bigger square, squares of whole pixels of 2 x 2 samples */
+    static const PrimStyle styles[] = { { 1, 1, 0, 0, 1 }, { 3, 1, 0, 0, 1 }, { 4, 2, 0, 0, 2 } };
+    for (int k = 0; k < 3; k++) {
+        ScreenPolys ref = { 0 };
+        PrimWork *rw = NULL;
+        ref.threads = 1;
+        ref.simd = SIMD_SCALAR;
+        cr_assert_eq(tl_project(&ref, &cloud, &c->vp, &styles[k], &rw), 0);
+        *squares += (int)ref.points_drawn;
+        for (int level = SIMD_SSE2; level <= top_level(); level++) {
+            ScreenPolys sp = { 0 };
+            PrimWork *w = NULL;
+            sp.threads = 1;
+            sp.simd = level;
+            cr_assert_eq(tl_project(&sp, &cloud, &c->vp, &styles[k], &w), 0);
+            cr_assert_eq(sp.points_in, ref.points_in, "%s view %u style %d at %s", c->name, c->seed, k,
+                         simd_name(level));
+            cr_assert_eq(sp.points_drawn, ref.points_drawn);
+            expect_same_screen(&ref, &sp, c, level);
+            screen_free(&sp);
+            prims_free(&w);
+        }
+        screen_free(&ref);
+        prims_free(&rw);
+    }
+    scene_free(&cloud);
+}
+
+Test(simd, point_levels_give_the_same_squares)
+{
+    int squares = 0;
+    each_case(points_case, &squares);
+    cr_assert_gt(squares, 1000, "the clouds drew squares");
+}
+
+/* ==== hidden surfaces ==== */
+
+/* Render sp with algo at one level on `threads` threads, into fb (its
+ * statistics into *st). A fresh runner, so that state kept across frames
+ * (the octree's trees) is made at this level too. */
+static void render_at(const HsrAlgo *algo, int threads, int level, const Case *c, const ScreenPolys *sp,
+                      FrameBufs *fb, HsrStats *st)
+{
+    HsrRunner r;
+    cr_assert_eq(hsr_runner_init(&r, algo, threads), 0);
+    HsrInput in = { .sp = sp, .scene = c->s, .vp = &c->vp, .simd = level };
+    cr_assert_eq(fbuf_resize(fb, sp->w, sp->h), 0);
+    memset(st, 0, sizeof *st);
+    cr_assert_eq(hsr_run(&r, &in, fb, st), 0);
+    hsr_runner_free(&r);
+}
+
+/* The counts of a frame are the same at every level too: the levels
+ * test, cull and write the same (hzb's fine test reads the same pixels
+ * at each; the octree is the same tree), so a level that built another
+ * tree shows here even where the picture cannot. */
+static void expect_same_counts(const HsrStats *ref, const HsrStats *st, const Case *c, const char *algo, int level,
+                               int th)
+{
+    cr_assert_eq(st->polys_in, ref->polys_in, "%s view %u: %s at %s on %d thread(s)", c->name, c->seed, algo,
+                 simd_name(level), th);
+    cr_assert_eq(st->polys_culled, ref->polys_culled, "%s view %u: %s at %s on %d thread(s): culled %llu, scalar "
+                 "%llu", c->name, c->seed, algo, simd_name(level), th, (unsigned long long)st->polys_culled,
+                 (unsigned long long)ref->polys_culled);
+    cr_assert_eq(st->nodes_visited, ref->nodes_visited, "%s view %u: %s at %s on %d thread(s): octree nodes",
+                 c->name, c->seed, algo, simd_name(level), th);
+    cr_assert_eq(st->nodes_culled, ref->nodes_culled);
+    cr_assert_eq(st->pixels_written, ref->pixels_written, "%s view %u: %s at %s on %d thread(s): samples written",
+                 c->name, c->seed, algo, simd_name(level), th);
+}
+
+/* The case's polygons as the pipeline makes them: faces, then points as
+ * squares of 2 x 2 samples, every point its own (no two of the points
+ * twice merged), at the scalar level; in the order given (--order: a
+ * shuffle puts a copy before its original now and then). */
+static void project_case(const Case *c, PolyOrder order, ScreenPolys *sp)
+{
+    static const PrimStyle every_point = { 2, 1, 0, 1, 1 };
+    PrimWork *w = NULL;
+    ReorderScratch rs = { 0 };
+    sp->threads = 1;
+    sp->simd = SIMD_SCALAR;
+    cr_assert_eq(tl_project(sp, c->s, &c->vp, &every_point, &w), 0);
+    if (order != ORDER_FILE)
+        cr_assert_eq(screen_reorder(sp, order, c->seed, &rs), 0);
+    prims_free(&w);
+    reorder_free(&rs);
+}
+
+typedef struct {
+    const HsrAlgo *algo;
+    long           covered;     /* samples covered over every case */
+} AlgoArg;
+
+static void algo_order(AlgoArg *a, const Case *c, PolyOrder order)
+{
+    ScreenPolys sp = { 0 };
+    project_case(c, order, &sp);
+    /* the reference: the plain z-buffer's scalar loops */
+    FrameBufs ref = { 0 }, fb = { 0 };
+    HsrStats ref_st, st, own[3];
+    render_at(&hsr_zbuffer, 1, SIMD_SCALAR, c, &sp, &ref, &ref_st);
+    for (size_t i = 0; i < (size_t)ref.w * ref.h; i++)
+        a->covered += ref.ids[i] >= 0;
+    for (int level = SIMD_SCALAR; level <= top_level(); level++)
+        for (int th = 1; th <= 2; th++) {
+            render_at(a->algo, th, level, c, &sp, &fb, &st);
+            if (level == SIMD_SCALAR)
+                own[th] = st;
+            else
+                expect_same_counts(&own[th], &st, c, a->algo->name, level, th);
+            int fx, fy;
+            long d = tl_diff(&ref, &fb, &fx, &fy);
+            cr_assert_eq(d, 0, "%s view %u (%dx%d cull %d, %s order): %s at %s on %d thread(s) differs from "
+                               "the scalar z-buffer in %ld pixels, first (%d,%d)",
+                         c->name, c->seed, c->vp.w, c->vp.h, c->vp.cull, order_names[order], a->algo->name,
+                         simd_name(level), th, d, fx, fy);
+        }
+    fbuf_free(&ref);
+    fbuf_free(&fb);
+    screen_free(&sp);
+}
+
+static void algo_case(const Case *c, void *arg)
+{
+    algo_order(arg, c, ORDER_FILE);
+    algo_order(arg, c, ORDER_SHUFFLE);
+}
+
+static void algo_levels_agree(const char *name)
+{
+    AlgoArg a = { hsr_find(name), 0 };
+    cr_assert(a.algo, "%s", name);
+    each_case(algo_case, &a);
+    cr_assert_gt(a.covered, 10000, "the views covered samples");
+}
+
+Test(simd, zbuffer_levels_give_the_same_buffers)
+{
+    algo_levels_agree("zbuffer");
+}
+
+Test(simd, scanline_levels_give_the_same_buffers)
+{
+    algo_levels_agree("scanline");
+}
+
+Test(simd, span_levels_give_the_same_buffers)
+{
+    algo_levels_agree("span");
+}
+
+Test(simd, hzb_levels_give_the_same_buffers)
+{
+    algo_levels_agree("hzb");
+}
+
+Test(simd, hzb_octree_levels_give_the_same_buffers)
+{
+    algo_levels_agree("hzb-octree");
+}
+
+/* ==== shading ==== */
+
+static void expect_same_image(const Image *ref, const Image *img, const Case *c, const char *what, int level)
+{
+    size_t n = (size_t)ref->w * ref->h;
+    cr_assert_eq(img->w, ref->w);
+    cr_assert_eq(img->h, ref->h);
+    for (size_t i = 0; i < n; i++) {
+        cr_assert_eq(memcmp(img->rgb + 3 * i, ref->rgb + 3 * i, 3), 0,
+                     "%s view %u, %s at %s: pixel %zu is %d %d %d, scalar %d %d %d", c->name, c->seed, what,
+                     simd_name(level), i, img->rgb[3 * i], img->rgb[3 * i + 1], img->rgb[3 * i + 2],
+                     ref->rgb[3 * i], ref->rgb[3 * i + 1], ref->rgb[3 * i + 2]);
+        cr_assert_eq(img->lit[i], ref->lit[i], "%s view %u, %s at %s: pixel %zu lit", c->name, c->seed, what,
+                     simd_name(level), i);
+    }
+}
+
+/* Shade the frame at one level, twice with one cache (the second frame
+ * finds colours of the first) and, where the mode needs no projection,
+ * once without the polygons (the per-pixel colour pass; smooth shading
+ * reads the projection, so it shades the frame a third time). */
+static void shade_at(const Case *c, const ScreenPolys *sp, const FrameBufs *fb, ShadeMode mode, int level,
+                     Image out[3])
+{
+    ShadeCache cache = { 0 };
+    ShadeSettings set = { .mode = mode, .crease = SHADE_CREASE_DEFAULT, .highlight = -1, .simd = level };
+    cr_assert_eq(shade_frame(c->s, sp, fb, &set, &cache, &out[0]), 0);
+    cr_assert_eq(shade_frame(c->s, sp, fb, &set, &cache, &out[1]), 0);
+    cr_assert_eq(shade_frame(c->s, mode == SHADE_SMOOTH ? sp : NULL, fb, &set, &cache, &out[2]), 0);
+    shade_cache_free(&cache);
+}
+
+static void shade_case(const Case *c, void *arg)
+{
+    long *lit = arg;
+    ScreenPolys sp = { 0 };
+    FrameBufs fb = { 0 };
+    project_case(c, ORDER_FILE, &sp);
+    HsrStats st;
+    render_at(&hsr_zbuffer, 1, SIMD_SCALAR, c, &sp, &fb, &st);
+    static const char *const pass[3] = { "first frame", "second frame", "pixel pass" };
+    for (int mode = 0; mode < SHADE_COUNT; mode++) {
+        Image ref[3] = { { 0 } }, img[3] = { { 0 } };
+        shade_at(c, &sp, &fb, (ShadeMode)mode, SIMD_SCALAR, ref);
+        for (size_t i = 0; i < (size_t)fb.w * fb.h; i++)
+            *lit += ref[0].lit[i];
+        for (int level = SIMD_SSE2; level <= top_level(); level++) {
+            shade_at(c, &sp, &fb, (ShadeMode)mode, level, img);
+            for (int k = 0; k < 3; k++) {
+                char what[64];
+                snprintf(what, sizeof what, "%s shading, %s", shade_names[mode], pass[k]);
+                expect_same_image(&ref[k], &img[k], c, what, level);
+            }
+        }
+        for (int k = 0; k < 3; k++) {
+            image_free(&ref[k]);
+            image_free(&img[k]);
+        }
+    }
+    fbuf_free(&fb);
+    screen_free(&sp);
+}
+
+Test(simd, shading_levels_give_the_same_pixels)
+{
+    long lit = 0;
+    each_case(shade_case, &lit);
+    cr_assert_gt(lit, 10000, "the views lit pixels");
+}
