@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "mesh.h"
+#include "testlib.h"
 
 static Mesh M;
 static char E[512];
@@ -412,14 +413,27 @@ Test(stl, ascii_errors)
     expect_err("solid x\nfacet normal 0 0 1\x01\n", "binary or unreadable");
 }
 
-Test(stl, ascii_every_prefix_never_crashes)
+Test(stl, ascii_every_prefix_loads_or_is_refused_by_name)
 {
+    /* each prefix either loads a mesh that keeps every loader promise
+     * (at most the file's two triangles), or is refused with a message
+     * naming the file and nothing left behind */
     size_t n = strlen(ascii2);
-    for (size_t k = 0; k < n; k++) {
+    int loaded = 0, refused = 0;
+    for (size_t k = 0; k <= n; k++) {
         int r = parse_fmt("t.stl", "stl", ascii2, k);
+        const char *broken = tl_load_broken(r, &M, E, "t.stl");
+        cr_assert_null(broken, "the first %zu bytes: '%s' does not hold (status %d, '%s')", k, broken, r, E);
+        if (r == 0)
+            cr_assert_leq(M.nfaces, 2);
+        if (k == n)
+            cr_assert(r == 0 && M.nfaces == 2, "the whole file: %s", E);
+        loaded += r == 0;
+        refused += r != 0;
         mesh_free(&M);
-        (void)r;
     }
+    cr_assert_gt(refused, 0);
+    cr_assert_gt(loaded, 0);
 }
 
 /* ==== Detection ==== */
