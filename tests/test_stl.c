@@ -294,6 +294,23 @@ Test(stl, trailing_bytes_warn, .init = cr_redirect_stderr)
     free(b.b);
 }
 
+Test(stl, a_count_short_by_a_whole_triangle_is_refused, .init = cr_redirect_stderr)
+{
+    /* 84 + 50 n bytes hold n triangles: a header that says 1 over 2
+     * triangles' bytes is wrong, not trailing junk; 49 bytes more than
+     * the count still are junk (a warning, the triangle kept) */
+    Buf b = square("", 0, 0);
+    b.b[80] = 1;
+    cr_assert_eq(parse_fmt("t.stl", "stl", b.b, b.n), -1, "loaded %u faces", M.nfaces);
+    cr_assert_str_eq(E, "t.stl: the header's count, 1 triangles, makes 134 bytes; the file has 184");
+    cr_assert_null(M.pos);
+    cr_assert_eq(parse_fmt("t.stl", "stl", b.b, b.n - 1), 0, "%s", E);
+    cr_assert_eq(M.nfaces, 1);
+    fflush(stderr);
+    cr_assert_stderr_eq_str("zview: warning: t.stl: 49 bytes after the last of 1 triangles ignored\n");
+    free(b.b);
+}
+
 Test(stl, every_prefix_fails_cleanly)
 {
     Buf b = square("", 0x8000 | 7, 0);
