@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order
+.PHONY: all help test unit e2e mutate asan run bench bench-formats install clean assets test-models noassimp colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order
 
 all: $(BIN)
 
@@ -62,6 +62,7 @@ help:
 	@echo '  make asan          make test under AddressSanitizer + UBSan, in build-asan/ (about 3 minutes)'
 	@echo '  make test-models   every algorithm against the z-buffer on ../shared/models'
 	@echo '  make replay        every input that ever failed, through the normal build'
+	@echo '  make mutate        each mutant of tests/mutants.txt must fail make test (long: about 45 minutes)'
 	@echo 'Fuzzing (clang + libFuzzer: sh tools/deps.sh installs them)'
 	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh'
 	@echo '  make fuzz-run SECONDS=N   run each for N seconds; failures go to build-fuzz/artifacts/'
@@ -139,6 +140,15 @@ unit: $(TESTBIN)
 # and the loaders on them (the unit suite "models").
 test-models: $(TESTBIN)
 	ZV_MODELS=1 sh tests/unit.sh $(TESTBIN) --jobs 2 --filter 'models/*'
+
+# Mutation testing: each mutant of tests/mutants.txt (a small meaningful
+# change to src/) applied alone to a copy of the tree, then make test in
+# the copy; prints what killed each and the kill rate, and fails when one
+# survives (a test we lack). Long (a mutant takes 10 s to 3 minutes), so
+# not part of make test, which only checks that every mutant still applies.
+# MUTANTS="a b" runs only those; see tools/mutate.sh for the rest.
+mutate:
+	sh tools/mutate.sh tests/mutants.txt
 
 e2e: $(BIN)
 	ZVIEW=$(abspath $(BIN)) sh tests/e2e/run.sh
