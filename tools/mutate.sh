@@ -1,9 +1,9 @@
 #!/bin/sh
-# mutate.sh [--check] [LIST]: mutation testing (make mutate). Each mutant of LIST
-# (default tests/mutants.txt; the format is described at its top) is
-# applied alone to a copy of the tree, never to this one, and `make test`
-# runs in the copy; a mutant the tests do not notice survives, and is a
-# test we lack. Prints what killed each mutant and the kill rate; exits 1
+# mutate.sh [--check] [LIST]: mutation testing (make mutate). Each
+# mutant of LIST (default tests/mutants.txt; the format is described at
+# its top) is applied alone to a copy of the tree, never to this one, and
+# `make test` runs in the copy; a mutant the tests do not notice
+# survives, and is a test we lack. Prints what killed each mutant and the kill rate; exits 1
 # when one survives, 2 when a mutant is stale (its text not found exactly
 # once) or does not build, or when the unmutated copy fails its tests.
 # --check only checks that every mutant still applies (make test does).
@@ -79,68 +79,6 @@ first_from() {
         cur == n && index($0, "from:") == 1 { v = substr($0, 6); sub(/^[ \t]+/, "", v); print v; exit }' "$list"
 }
 
-all=$(awk '/^name:/ { print $2 }' "$list")
-dups=$(echo "$all" | sort | uniq -d)
-[ -z "$dups" ] || { echo "mutate: names used twice in $list: $dups" >&2; exit 2; }
-names=${MUTANTS:-$all}
-
-# ==== every mutant checked before the long run ====
-work=$(mktemp -d "${TMPDIR:-/tmp}/zview-mutate.XXXXXX") || exit 2
-trap 'rm -rf "$work"' EXIT
-trap 'exit 130' INT TERM HUP
-tmpf=$work/mutated
-src=$here
-if [ -n "$MUTATE_REV" ]; then
-    src=$work/rev
-    mkdir -p "$src"
-    git archive "$MUTATE_REV" | tar -C "$src" -xf - || exit 2
-fi
-bad=0
-for m in $names; do
-    f=$(field "$m" file)
-    if ! echo "$all" | grep -qx -- "$m"; then
-        echo "mutate: $m: no such mutant in $list" >&2
-        bad=1
-    elif [ -z "$f" ] || [ ! -f "$src/$f" ]; then
-        echo "mutate: $m: no file '$f'" >&2
-        bad=1
-    elif [ -z "$(field "$m" why)" ]; then
-        echo "mutate: $m: no why: (what a user would see if it went in)" >&2
-        bad=1
-    elif ! n=$(mutate "$m" "$src/$f" 2>&1 >"$tmpf"); then
-        where=$(cd "$src" && grep -rlF -- "$(first_from "$m")" src include 2>/dev/null | tr '\n' ' ')
-        echo "mutate: $m: its text occurs ${n:-0} times in $f, not once (its first line is in: ${where:-no file})" >&2
-        bad=1
-    elif cmp -s "$tmpf" "$src/$f"; then
-        echo "mutate: $m: changes nothing" >&2
-        bad=1
-    fi
-done
-[ $bad = 0 ] || exit 2
-if [ $check = 1 ]; then
-    echo "mutate: all $(echo "$names" | wc -w) mutants apply"
-    exit 0
-fi
-
-# ==== the copy ====
-copy=$work/tree
-mkdir -p "$copy" "$MUTATE_LOGS"
-if [ "$src" = "$here" ]; then
-    # the working files, committed or not (what a make test here would test)
-    git ls-files -z --cached --others --exclude-standard |
-        tar --null --ignore-failed-read -T - -cf - 2>/dev/null | tar -C "$copy" -xf - || exit 2
-else
-    (cd "$src" && tar -cf - .) | tar -C "$copy" -xf - || exit 2
-fi
-
-echo "mutate: the unmutated copy first ($MUTATE_CMD in $copy)"
-t0=$(date +%s)
-if ! (cd "$copy" && sh -c "$MUTATE_CMD") >"$MUTATE_LOGS/baseline.log" 2>&1; then
-    echo "mutate: $MUTATE_CMD fails without any mutant: see $MUTATE_LOGS/baseline.log" >&2
-    exit 2
-fi
-echo "mutate: baseline green in $(($(date +%s) - t0)) s"
-
 # killer LOG: the first test a log names as failed (a unit test, an
 # end-to-end check, a fuzz harness), else make's last word
 killer() {
@@ -150,47 +88,115 @@ killer() {
     done
 }
 
-# ==== one mutant at a time ====
-killed=0
-total=0
-survivors=
-broken=
-for m in $names; do
-    f=$(field "$m" file)
-    log=$MUTATE_LOGS/$m.log
-    cp "$copy/$f" "$work/orig"
-    mutate "$m" "$work/orig" >"$copy/$f"
-    t0=$(date +%s)
-    # built first, so that a mutant that does not compile is told apart
-    if ! make -C "$copy" -j2 all build/zview-tests >"$log" 2>&1; then
-        echo "BROKEN   $m: does not build (see $log)"
-        broken="$broken $m"
-        cp "$work/orig" "$copy/$f"
-        continue
-    fi
-    (cd "$copy" && exec timeout "$MUTATE_TIMEOUT" sh -c "$MUTATE_CMD") >>"$log" 2>&1
-    rc=$?
-    # the original back (a newer time stamp: the next build recompiles it)
-    cp "$work/orig" "$copy/$f"
-    total=$((total + 1))
-    secs=$(($(date +%s) - t0))
-    if [ $rc -eq 0 ]; then
-        echo "SURVIVED $m ($secs s): $(field "$m" why)"
-        survivors="$survivors $m"
-    else
-        killed=$((killed + 1))
-        if [ $rc -eq 124 ]; then
-            by="the suite ran past $MUTATE_TIMEOUT s"
-        else
-            by=$(killer "$log")
-        fi
-        echo "killed   $m ($secs s) by ${by:-make test failing (see $log)}"
-    fi
-done
+# The run, read whole before it starts: a shell reads a script as it
+# goes, and this one runs for most of an hour while the tree is edited.
+main() {
+    all=$(awk '/^name:/ { print $2 }' "$list")
+    dups=$(echo "$all" | sort | uniq -d)
+    [ -z "$dups" ] || { echo "mutate: names used twice in $list: $dups" >&2; exit 2; }
+    names=${MUTANTS:-$all}
 
-pct=0
-[ $total -gt 0 ] && pct=$((100 * killed / total))
-echo "mutate: $killed of $total mutants killed ($pct%)"
-[ -z "$survivors" ] || echo "mutate: survived:$survivors (each is a test we lack; logs in $MUTATE_LOGS)"
-[ -z "$broken" ] || { echo "mutate: do not build:$broken" >&2; exit 2; }
-[ -z "$survivors" ]
+    # ==== every mutant checked before the long run ====
+    work=$(mktemp -d "${TMPDIR:-/tmp}/zview-mutate.XXXXXX") || exit 2
+    trap 'rm -rf "$work"' EXIT
+    trap 'exit 130' INT TERM HUP
+    tmpf=$work/mutated
+    src=$here
+    if [ -n "$MUTATE_REV" ]; then
+        src=$work/rev
+        mkdir -p "$src"
+        git archive "$MUTATE_REV" | tar -C "$src" -xf - || exit 2
+    fi
+    bad=0
+    for m in $names; do
+        f=$(field "$m" file)
+        if ! echo "$all" | grep -qx -- "$m"; then
+            echo "mutate: $m: no such mutant in $list" >&2
+            bad=1
+        elif [ -z "$f" ] || [ ! -f "$src/$f" ]; then
+            echo "mutate: $m: no file '$f'" >&2
+            bad=1
+        elif [ -z "$(field "$m" why)" ]; then
+            echo "mutate: $m: no why: (what a user would see if it went in)" >&2
+            bad=1
+        elif ! n=$(mutate "$m" "$src/$f" 2>&1 >"$tmpf"); then
+            where=$(cd "$src" && grep -rlF -- "$(first_from "$m")" src include 2>/dev/null | tr '\n' ' ')
+            echo "mutate: $m: its text occurs ${n:-0} times in $f, not once (its first line is in: ${where:-no file})" >&2
+            bad=1
+        elif cmp -s "$tmpf" "$src/$f"; then
+            echo "mutate: $m: changes nothing" >&2
+            bad=1
+        fi
+    done
+    [ $bad = 0 ] || exit 2
+    if [ $check = 1 ]; then
+        echo "mutate: all $(echo "$names" | wc -w) mutants apply"
+        exit 0
+    fi
+
+    # ==== the copy ====
+    copy=$work/tree
+    mkdir -p "$copy" "$MUTATE_LOGS"
+    if [ "$src" = "$here" ]; then
+        # the working files, committed or not (what a make test here would test)
+        git ls-files -z --cached --others --exclude-standard |
+            tar --null --ignore-failed-read -T - -cf - 2>/dev/null | tar -C "$copy" -xf - || exit 2
+    else
+        (cd "$src" && tar -cf - .) | tar -C "$copy" -xf - || exit 2
+    fi
+
+    echo "mutate: the unmutated copy first ($MUTATE_CMD in $copy)"
+    t0=$(date +%s)
+    if ! (cd "$copy" && sh -c "$MUTATE_CMD") >"$MUTATE_LOGS/baseline.log" 2>&1; then
+        echo "mutate: $MUTATE_CMD fails without any mutant: see $MUTATE_LOGS/baseline.log" >&2
+        exit 2
+    fi
+    echo "mutate: baseline green in $(($(date +%s) - t0)) s"
+
+    # ==== one mutant at a time ====
+    killed=0
+    total=0
+    survivors=
+    broken=
+    for m in $names; do
+        f=$(field "$m" file)
+        log=$MUTATE_LOGS/$m.log
+        cp "$copy/$f" "$work/orig"
+        mutate "$m" "$work/orig" >"$copy/$f"
+        t0=$(date +%s)
+        # built first, so that a mutant that does not compile is told apart
+        if ! make -C "$copy" -j2 all build/zview-tests >"$log" 2>&1; then
+            echo "BROKEN   $m: does not build (see $log)"
+            broken="$broken $m"
+            cp "$work/orig" "$copy/$f"
+            continue
+        fi
+        (cd "$copy" && exec timeout "$MUTATE_TIMEOUT" sh -c "$MUTATE_CMD") >>"$log" 2>&1
+        rc=$?
+        # the original back (a newer time stamp: the next build recompiles it)
+        cp "$work/orig" "$copy/$f"
+        total=$((total + 1))
+        secs=$(($(date +%s) - t0))
+        if [ $rc -eq 0 ]; then
+            echo "SURVIVED $m ($secs s): $(field "$m" why)"
+            survivors="$survivors $m"
+        else
+            killed=$((killed + 1))
+            if [ $rc -eq 124 ]; then
+                by="the suite ran past $MUTATE_TIMEOUT s"
+            else
+                by=$(killer "$log")
+            fi
+            echo "killed   $m ($secs s) by ${by:-make test failing (see $log)}"
+        fi
+    done
+
+    pct=0
+    [ $total -gt 0 ] && pct=$((100 * killed / total))
+    echo "mutate: $killed of $total mutants killed ($pct%)"
+    [ -z "$survivors" ] || echo "mutate: survived:$survivors (each is a test we lack; logs in $MUTATE_LOGS)"
+    [ -z "$broken" ] || { echo "mutate: do not build:$broken" >&2; exit 2; }
+    [ -z "$survivors" ]
+}
+
+main "$@"; exit $?
