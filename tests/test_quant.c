@@ -232,6 +232,42 @@ Test(quant, dithered_blocks_come_closer_than_the_nearest_colour)
     }
 }
 
+Test(quant, sixteen_colours_search_every_pair)
+{
+    /* Dark green, olive and teal: under 16 colours the nearest entry to
+     * each (in the reference OKLab) is the mid grey 8, yet black and the
+     * entry of their own hue mix to within a hair of them. Every pair is
+     * searched, so their 8x8 blocks come that close and never use the
+     * grey. */
+    static const uint8_t colours[3][3] = { { 0, 102, 0 }, { 102, 102, 0 }, { 0, 102, 102 } };
+    Quantizer q;
+    cr_assert_eq(quant_init(&q, COLOR_16), 0);
+    for (int c = 0; c < 3; c++) {
+        float want[3], got[3], best = INFINITY;
+        int nearest = -1;
+        srgb_to_oklab_ref(colours[c], want);
+        for (int i = 0; i < 16; i++) {
+            uint8_t p[3];
+            float lab[3];
+            palette_rgb(COLOR_16, i, p);
+            srgb_to_oklab_ref(p, lab);
+            if (lab_dist(lab, want) < best) {
+                best = lab_dist(lab, want);
+                nearest = i;
+            }
+        }
+        cr_assert_eq(nearest, 8, "colour %d: the nearest entry is %d, not the grey", c, nearest);
+        block_mean_lab(&q, COLOR_16, colours[c], got);
+        cr_expect_lt(lab_dist(got, want), 0.005f, "rgb %d %d %d: the block is %.4f away (the grey %.4f)",
+                     colours[c][0], colours[c][1], colours[c][2], (double)lab_dist(got, want), (double)best);
+        for (int y = 0; y < 8; y++)
+            for (int x = 0; x < 8; x++)
+                cr_expect_neq(quant_pick(&q, colours[c], x, y), 8, "rgb %d %d %d at (%d,%d): the grey",
+                              colours[c][0], colours[c][1], colours[c][2], x, y);
+    }
+    quant_free(&q);
+}
+
 Test(quant, dither_depends_on_position_only)
 {
     Quantizer a, b;
