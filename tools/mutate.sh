@@ -96,6 +96,7 @@ main() {
     dups=$(echo "$all" | sort | uniq -d)
     [ -z "$dups" ] || { echo "mutate: names used twice in $list: $dups" >&2; exit 2; }
     names=${MUTANTS:-$all}
+    unset MUTANTS           # not for the make test of a copy
 
     # ==== every mutant checked before the long run ====
     work=$(mktemp -d "${TMPDIR:-/tmp}/zview-mutate.XXXXXX") || exit 2
