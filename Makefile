@@ -62,7 +62,7 @@ help:
 	@echo '  make asan          make test under AddressSanitizer + UBSan, in build-asan/ (about 3 minutes)'
 	@echo '  make test-models   every algorithm against the z-buffer on ../shared/models'
 	@echo '  make replay        every input that ever failed, through the normal build'
-	@echo '  make mutate        each mutant of tests/mutants.txt must fail make test (long: about 45 minutes)'
+	@echo '  make mutate        each mutant of tests/mutants.txt must fail make test (about 15 minutes)'
 	@echo 'Fuzzing (clang + libFuzzer: sh tools/deps.sh installs them)'
 	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh'
 	@echo '  make fuzz-run SECONDS=N   run each for N seconds; failures go to build-fuzz/artifacts/'
@@ -144,7 +144,8 @@ test-models: $(TESTBIN)
 # Mutation testing: each mutant of tests/mutants.txt (a small meaningful
 # change to src/) applied alone to a copy of the tree, then make test in
 # the copy; prints what killed each and the kill rate, and fails when one
-# survives (a test we lack). Long (a mutant takes 10 s to 3 minutes), so
+# survives (a test we lack). Long (a baseline make test, then 10 to 70 s a
+# mutant, a whole make test for a survivor: about 15 minutes), so
 # not part of make test, which only checks that every mutant still applies.
 # MUTANTS="a b" runs only those; see tools/mutate.sh for the rest.
 mutate:
