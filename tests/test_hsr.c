@@ -391,6 +391,87 @@ Test(coverage, polygons_outside_the_image_are_clamped)
     polys_free(&p);
 }
 
+/* ==== exact ties: equal depths go to the lower id, whatever the order ==== */
+
+/* Flat polygons drawn in every order: face 5 over the whole image, faces
+ * 2 and 7 one 38 x 38 pixel rectangle (the hierarchical z-buffer tests
+ * boxes that size on its pyramid's texels), face 1 a 6 x 6 square (tested
+ * on the depth buffer itself), all at one depth; and face 9, the same
+ * rectangle farther away. A polygon that ties everywhere it covers must
+ * still win where its id is lower. 9 after 5 is culled on the pyramid,
+ * whose texels it leaves clean and equal to the tie's depth; 7 after 5
+ * loses every tie and writes nothing: either way a 2 that follows meets
+ * texels its depth merely equals. The reference is the rule itself: at
+ * each sample the least (depth, id) among the polygons covering it (by
+ * the brute-force coverage above). */
+Test(depth, coincident_flat_polygons_in_every_order)
+{
+    enum { W = 64, H = 48, N = 5 };
+    static const ScreenVert full[4] = { { -256, -256, 0 }, { 65 * 256, -256, 0 }, { 65 * 256, 49 * 256, 0 },
+                                        { -256, 49 * 256, 0 } };
+    static const ScreenVert rect[4] = { { 2 * 256, 2 * 256, 0 }, { 40 * 256, 2 * 256, 0 },
+                                        { 40 * 256, 40 * 256, 0 }, { 2 * 256, 40 * 256, 0 } };
+    static const ScreenVert small[4] = { { 45 * 256, 10 * 256, 0 }, { 51 * 256, 10 * 256, 0 },
+                                         { 51 * 256, 16 * 256, 0 }, { 45 * 256, 16 * 256, 0 } };
+    const ScreenVert *shape[N] = { full, rect, small, rect, rect };
+    const int face[N] = { 5, 2, 1, 7, 9 };
+    const float depth[N] = { 0.25f, 0.25f, 0.25f, 0.25f, 0.5f };
+    int32_t want[W * H];
+    int seen[10] = { 0 };
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            int best = -1;
+            for (int k = 0; k < N; k++)
+                if (brute_inside(shape[k], 4, i, j) &&
+                    (best < 0 || depth[k] < depth[best] || (depth[k] == depth[best] && face[k] < face[best])))
+                    best = k;
+            cr_assert_geq(best, 0);
+            want[j * W + i] = face[best];
+            seen[face[best]]++;
+        }
+    cr_assert_eq(seen[1], 36);
+    cr_assert_eq(seen[2], 38 * 38);
+    cr_assert_eq(seen[5], W * H - 36 - 38 * 38);
+    Polys p;
+    polys_init(&p, W, H);
+    int orders = 0;
+    /* every order: the N-digit base-N numbers whose digits all differ */
+    for (int code = 0; code < 5 * 5 * 5 * 5 * 5; code++) {
+        int ord[N], used = 0;
+        for (int k = 0, c = code; k < N; k++, c /= N) {
+            ord[k] = c % N;
+            used |= 1 << ord[k];
+        }
+        if (used != (1 << N) - 1)
+            continue;
+        orders++;
+        polys_clear(&p);
+        for (int k = 0; k < N; k++)
+            cr_assert(polys_add(&p, shape[ord[k]], 4, face[ord[k]], depth[ord[k]]));
+        for (int a = 0; a < hsr_nalgos; a++)
+            for (int threads = 1; threads <= 2; threads++) {
+                FrameBufs fb = { 0 };
+                HsrRunner r;
+                HsrStats st;
+                Viewport vp = { W, H, 1, 0 };
+                HsrInput in = { &p.sp, NULL, &vp };
+                cr_assert_eq(hsr_runner_init(&r, hsr_algos[a], threads), 0);
+                cr_assert_eq(hsr_run(&r, &in, &fb, &st), 0);
+                hsr_runner_free(&r);
+                for (int s = 0; s < W * H; s++)
+                    if (fb.ids[s] != want[s] || fb.depth[s] != 0.25f)
+                        cr_assert_fail("%s, %d threads, drawn %d %d %d %d %d: sample (%d,%d) has id %d depth %g, "
+                                       "the least (depth, id) covering it is id %d at 0.25",
+                                       hsr_algos[a]->name, threads, face[ord[0]], face[ord[1]], face[ord[2]],
+                                       face[ord[3]], face[ord[4]], s % W, s / W, fb.ids[s], (double)fb.depth[s],
+                                       want[s]);
+                fbuf_free(&fb);
+            }
+    }
+    cr_assert_eq(orders, 120);
+    polys_free(&p);
+}
+
 /* ==== every algorithm obeys the same coverage rule ==== */
 
 Test(coverage, every_algorithm_covers_like_the_reference)

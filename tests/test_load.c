@@ -89,3 +89,33 @@ Test(load, a_job_loads_a_file_on_its_own_thread)
     cr_assert(j, "%s", err);
     loadjob_abandon(j);
 }
+
+/* The viewer's O loads as the command line does: --strict refuses a
+ * file with a statement it cannot read (the message names file and
+ * line), where the default shows the rest. */
+Test(load, a_job_obeys_strict)
+{
+    char path[] = "/tmp/zv-strict-XXXXXX", err[256];
+    int fd = mkstemp(path);
+    cr_assert(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    cr_assert(f);
+    fputs("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 2 9\n", f);
+    cr_assert_eq(fclose(f), 0);
+    Options o;
+    cli_defaults(&o);
+    Scene part;
+    LoadJob *j = loadjob_start(path, &o, err, sizeof err);
+    cr_assert(j, "%s", err);
+    cr_assert(wait_job(j));
+    cr_assert_eq(loadjob_finish(j, &part, err, sizeof err), 0, "lenient: %s", err);
+    cr_expect_eq(part.nfaces, 1, "the good face is shown");
+    scene_free(&part);
+    o.strict = 1;
+    j = loadjob_start(path, &o, err, sizeof err);
+    cr_assert(j, "%s", err);
+    cr_assert(wait_job(j));
+    cr_assert_eq(loadjob_finish(j, &part, err, sizeof err), -1, "--strict: the file is refused");
+    cr_expect(strstr(err, ":6: vertex index 9 out of range"), "%s", err);
+    unlink(path);
+}

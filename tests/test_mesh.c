@@ -626,7 +626,8 @@ Test(mesh, free_is_idempotent)
     cr_assert_eq(M.nfaces, 0);
 }
 
-/* ==== Shared models (skipped when ../shared/models is absent) ==== */
+/* ==== Shared models (suite "models": make test-models, which CI runs
+ * when ../shared/models is there) ==== */
 
 static void need_models(const char *file)
 {
@@ -644,7 +645,7 @@ static void load_model(const char *file)
     cr_assert_eq(mesh_load(&M, p, E, sizeof E), 0, "%s", E);
 }
 
-Test(mesh, model_cube)
+Test(models, mesh_cube, .fini = teardown)
 {
     load_model("cube.obj");
     cr_assert_eq(M.nverts, 8);
@@ -659,7 +660,7 @@ Test(mesh, model_cube)
     cr_assert_eq(M.pos[0], -0.5f);
 }
 
-Test(mesh, model_negative_indices)
+Test(models, mesh_negative_indices, .fini = teardown)
 {
     load_model("negative-indices.obj");
     cr_assert_eq(M.nverts, 24);
@@ -672,7 +673,7 @@ Test(mesh, model_negative_indices)
         expect_corners(f, (uint32_t[]){4 * f, 4 * f + 1, 4 * f + 2, 4 * f + 3}, 4);
 }
 
-Test(mesh, model_cornell_box)
+Test(models, mesh_cornell_box, .fini = teardown)
 {
     load_model("cornell_box.obj");
     cr_assert_eq(M.nverts, 76);
@@ -728,7 +729,7 @@ static float *face_keys(const Mesh *m)
     return k;
 }
 
-Test(mesh, model_bunny_relative_matches_absolute)
+Test(models, mesh_bunny_relative_matches_absolute, .fini = teardown)
 {
     Mesh a;
     load_model("bunny-5k-relative.obj");
@@ -748,7 +749,7 @@ Test(mesh, model_bunny_relative_matches_absolute)
     mesh_free(&a);
 }
 
-Test(mesh, model_dragon_counts)
+Test(models, mesh_dragon_counts, .fini = teardown)
 {
     load_model("dragon.obj");
     cr_assert_eq(M.nverts, 437645);

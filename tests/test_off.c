@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "mesh.h"
+#include "testlib.h"
 
 static Mesh M;
 static char E[512];
@@ -144,16 +145,31 @@ Test(off, errors)
     expect_err("OFF\n99999999999999999999 1 0\n", "bad count '99999999999999999999'");
 }
 
-Test(off, every_prefix_never_crashes)
+Test(off, every_prefix_loads_or_is_refused_by_name)
 {
+    /* each prefix of a good file either loads a mesh that keeps every
+     * loader promise, or is refused with a message naming the file and
+     * nothing left behind; the whole file loads what it says */
     const char *s = "COFF\n# c\n4 2 0\n0 0 0 255 0 0 255\n1 0 0 1 1 1 1\n1 1 0 0 0 0 0\n0 1 0 9 9 9 9\n"
                     "3 0 1 3 1 0 0\n4 0 1 2 3\n";
     size_t n = strlen(s);
-    for (size_t k = 0; k < n; k++) {
+    int loaded = 0, refused = 0;
+    for (size_t k = 0; k <= n; k++) {
         char *buf = malloc(k ? k : 1);
         memcpy(buf, s, k);
-        mesh_parse_buffer(&M, "t.off", "off", buf, k, E, sizeof E);
+        int r = mesh_parse_buffer(&M, "t.off", "off", buf, k, E, sizeof E);
+        const char *broken = tl_load_broken(r, &M, E, "t.off");
+        cr_assert_null(broken, "the first %zu bytes: '%s' does not hold (status %d, '%s')", k, broken, r, E);
+        if (k == n) {
+            cr_assert_eq(r, 0, "%s", E);
+            cr_assert_eq(M.nverts, 4);
+            cr_assert_eq(M.nfaces, 2);
+        }
+        loaded += r == 0;
+        refused += r != 0;
         mesh_free(&M);
         free(buf);
     }
+    cr_assert_gt(refused, 0);
+    cr_assert_gt(loaded, 0);
 }

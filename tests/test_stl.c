@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "mesh.h"
+#include "testlib.h"
 
 static Mesh M;
 static char E[512];
@@ -293,6 +294,23 @@ Test(stl, trailing_bytes_warn, .init = cr_redirect_stderr)
     free(b.b);
 }
 
+Test(stl, a_count_short_by_a_whole_triangle_is_refused, .init = cr_redirect_stderr)
+{
+    /* 84 + 50 n bytes hold n triangles: a header that says 1 over 2
+     * triangles' bytes is wrong, not trailing junk; 49 bytes more than
+     * the count still are junk (a warning, the triangle kept) */
+    Buf b = square("", 0, 0);
+    b.b[80] = 1;
+    cr_assert_eq(parse_fmt("t.stl", "stl", b.b, b.n), -1, "loaded %u faces", M.nfaces);
+    cr_assert_str_eq(E, "t.stl: the header's count, 1 triangles, makes 134 bytes; the file has 184");
+    cr_assert_null(M.pos);
+    cr_assert_eq(parse_fmt("t.stl", "stl", b.b, b.n - 1), 0, "%s", E);
+    cr_assert_eq(M.nfaces, 1);
+    fflush(stderr);
+    cr_assert_stderr_eq_str("zview: warning: t.stl: 49 bytes after the last of 1 triangles ignored\n");
+    free(b.b);
+}
+
 Test(stl, every_prefix_fails_cleanly)
 {
     Buf b = square("", 0x8000 | 7, 0);
@@ -412,14 +430,27 @@ Test(stl, ascii_errors)
     expect_err("solid x\nfacet normal 0 0 1\x01\n", "binary or unreadable");
 }
 
-Test(stl, ascii_every_prefix_never_crashes)
+Test(stl, ascii_every_prefix_loads_or_is_refused_by_name)
 {
+    /* each prefix either loads a mesh that keeps every loader promise
+     * (at most the file's two triangles), or is refused with a message
+     * naming the file and nothing left behind */
     size_t n = strlen(ascii2);
-    for (size_t k = 0; k < n; k++) {
+    int loaded = 0, refused = 0;
+    for (size_t k = 0; k <= n; k++) {
         int r = parse_fmt("t.stl", "stl", ascii2, k);
+        const char *broken = tl_load_broken(r, &M, E, "t.stl");
+        cr_assert_null(broken, "the first %zu bytes: '%s' does not hold (status %d, '%s')", k, broken, r, E);
+        if (r == 0)
+            cr_assert_leq(M.nfaces, 2);
+        if (k == n)
+            cr_assert(r == 0 && M.nfaces == 2, "the whole file: %s", E);
+        loaded += r == 0;
+        refused += r != 0;
         mesh_free(&M);
-        (void)r;
     }
+    cr_assert_gt(refused, 0);
+    cr_assert_gt(loaded, 0);
 }
 
 /* ==== Detection ==== */

@@ -359,3 +359,69 @@ const char *tl_shared_model(const char *name)
     snprintf(path, sizeof path, "../shared/models/%s", name);
     return access(path, R_OK) == 0 ? path : NULL;
 }
+
+/* ==== what every loader promises ==== */
+
+#define PROMISE(cond)           \
+    do {                        \
+        if (!(cond))            \
+            return #cond;       \
+    } while (0)
+
+const char *tl_mesh_broken(const Mesh *m)
+{
+    PROMISE(m->nobjs >= 1 && m->objs);
+    PROMISE(m->nfaces || m->npoints || m->nlines);
+    PROMISE(m->face_start && m->face_start[0] == 0);
+    for (uint32_t f = 0; f < m->nfaces; f++)
+        PROMISE(m->face_start[f + 1] >= m->face_start[f] + 3);
+    for (uint32_t c = 0; c < (m->nfaces ? m->face_start[m->nfaces] : 0); c++)
+        PROMISE(m->corner[c] < m->nverts);
+    for (uint32_t f = 0; f < m->nfaces; f++)
+        PROMISE(m->face_mat[f] < 0 || (uint32_t)m->face_mat[f] < m->nmats);
+    PROMISE(m->point || m->npoints <= m->nverts);
+    for (uint32_t k = 0; m->point && k < m->npoints; k++)
+        PROMISE(m->point[k] < m->nverts);
+    if (m->nlines) {
+        PROMISE(m->line_start[0] == 0);
+        for (uint32_t l = 0; l < m->nlines; l++)
+            PROMISE(m->line_start[l + 1] >= m->line_start[l] + 2);
+        for (uint32_t c = 0; c < m->line_start[m->nlines]; c++)
+            PROMISE(m->line_corner[c] < m->nverts);
+    }
+    uint32_t f = 0, p = 0, l = 0;
+    for (uint32_t i = 0; i < m->nobjs; i++) {
+        const MeshObject *o = &m->objs[i];
+        /* objects own consecutive runs of each */
+        PROMISE(o->face_first == f && o->point_first == p && o->line_first == l);
+        f += o->face_count;
+        p += o->point_count;
+        l += o->line_count;
+        PROMISE(o->vert_min <= o->vert_max && (o->vert_max < m->nverts || m->nverts == 0));
+        for (uint32_t q = o->face_first; q < o->face_first + o->face_count; q++)
+            for (uint32_t c = m->face_start[q]; c < m->face_start[q + 1]; c++)
+                PROMISE(m->corner[c] >= o->vert_min && m->corner[c] <= o->vert_max);
+        for (uint32_t k = o->point_first; k < o->point_first + o->point_count; k++) {
+            uint32_t v = m->point ? m->point[k] : k;
+            PROMISE(v >= o->vert_min && v <= o->vert_max);
+        }
+        for (uint32_t q = o->line_first; q < o->line_first + o->line_count; q++)
+            for (uint32_t c = m->line_start[q]; c < m->line_start[q + 1]; c++)
+                PROMISE(m->line_corner[c] >= o->vert_min && m->line_corner[c] <= o->vert_max);
+    }
+    PROMISE(f == m->nfaces && p == m->npoints && l == m->nlines);
+    for (size_t i = 0; i < 3 * (size_t)m->nverts; i++)
+        PROMISE(m->pos[i] - m->pos[i] == 0);      /* finite */
+    return NULL;
+}
+
+const char *tl_load_broken(int rc, const Mesh *m, const char *err, const char *name)
+{
+    if (rc == 0)
+        return tl_mesh_broken(m);
+    PROMISE(rc == -1);
+    PROMISE(strncmp(err, name, strlen(name)) == 0);   /* the message names the input */
+    PROMISE(strlen(err) > strlen(name) + 2);          /* and says something */
+    PROMISE(m->pos == NULL && m->nverts == 0 && m->nfaces == 0);  /* nothing left behind */
+    return NULL;
+}

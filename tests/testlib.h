@@ -83,6 +83,17 @@ int  tl_project(ScreenPolys *sp, Scene *s, const Viewport *vp, const PrimStyle *
 long tl_agree(TlAgree *a, Scene *s, const Viewport *vp, int threads, char *msg, size_t msglen);
 void tl_agree_free(TlAgree *a);
 
+/* What every loader promises of a mesh it returns (every index in range,
+ * objects' runs within the arrays, vertex ranges holding what they use,
+ * finite positions): NULL when m keeps them all, else the first promise
+ * broken, as C text. */
+const char *tl_mesh_broken(const Mesh *m);
+
+/* The same for a load's whole result: rc 0 and a mesh that keeps the
+ * promises, or rc -1, a message that starts with the input's name, and
+ * an empty mesh. */
+const char *tl_load_broken(int rc, const Mesh *m, const char *err, const char *name);
+
 /* Path to ../shared/models/NAME if that folder exists, else NULL. */
 const char *tl_shared_model(const char *name);
 

@@ -17,7 +17,7 @@ Z=${ZVIEW:-$ROOT/zview}
 T=${ZV_FORMATS_OUT:-$(mktemp -d)}
 mkdir -p "$T"
 cd "$ROOT"
-ZV_FORMATS_OUT=$T ZV_FORMATS_MODEL=$MODEL build/zview-tests --filter 'models/write_formats' >/dev/null 2>&1
+ZV_FORMATS_OUT=$T ZV_FORMATS_MODEL=$MODEL build/zview-tests --filter 'tools/write_formats' >/dev/null 2>&1
 ln -sf "$MODEL" "$T/original.obj"
 median() { sort -n | awk '{ a[NR] = $1 } END { print a[int((NR + 1) / 2)] }'; }
 best() { sort -n | head -n 1; }

@@ -2,10 +2,12 @@
 # Install what zview needs to build and test, on Debian or Ubuntu.
 # Run as root (or through sudo). Safe to run again.
 set -e
-# libassimp-dev is optional (glTF, FBX, 3DS, ... through assimp; make
-# ASSIMP=0 builds without it); tmux and python3 drive the end-to-end tests
-# (the viewer in a pane, the slow-terminal and picture checks); libjpeg-dev
-# and libpng-dev decode textures
+# libassimp-dev is optional for the build (glTF, FBX, 3DS, ... through
+# assimp; make ASSIMP=0 builds without it), not for the tests: make test
+# fails on the checks a missing tool makes it skip (tests/skips.sh).
+# tmux drives the viewer's end-to-end tests; python3 reads colours out of
+# their screens (tests/e2e/looks.py), decodes PNG sizes and plays a slow
+# terminal link (slowpty.py). libpng-dev and libjpeg-dev decode textures.
 PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev libcriterion-dev tmux python3 libassimp-dev"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo

@@ -55,10 +55,23 @@ expect_status "-o with another extension is a usage error" 2 "$Z" assets/cube.ob
 # face ids and screen polygons
 expect_status "--dump-ids" 0 "$Z" assets/cube.obj --size 40x30 --dump-ids "$T/ids" -o "$T/x.ppm"
 if [ "$(wc -c <"$T/ids")" -eq $((40 * 30 * 4)) ]; then ok "dump-ids is W*H int32"; else notok "dump-ids is W*H int32" "$(wc -c <"$T/ids")"; fi
-# corner pixel is background (-1 = ff ff ff ff), the centre is a face (0..5)
+# corner pixel is background (-1 = ff ff ff ff)
 if [ "$(head -c 4 "$T/ids" | od -An -tx1 | tr -d ' \n')" = "ffffffff" ]; then ok "background id is -1"; else notok "background id is -1"; fi
-centre=$(od -An -t d4 -j $(((15 * 40 + 20) * 4)) -N 4 "$T/ids" | tr -d ' ')
-if [ "$centre" -ge 0 ] && [ "$centre" -le 5 ]; then ok "centre pixel is a cube face"; else notok "centre pixel is a cube face" "id $centre"; fi
+# each named view looks at one face of the cube: the centre pixel is the
+# face whose 4 corners all lie on that side (front: z = +0.5, left:
+# x = -0.5, top: y = +0.5, ...), its id counted from 0 in the file
+for v in front:3:+ back:3:- left:1:- right:1:+ top:2:+ bottom:2:-; do
+    name=${v%%:*}; axis=$(echo "$v" | cut -d: -f2); sign=${v##*:}
+    want=$(awk -v a="$axis" -v s="$sign" '
+        /^v / { n++; c[n] = $(a + 1) + 0 }
+        /^f / { f++; all = 1
+                for (i = 2; i <= NF; i++) { k = $i + 0; if (s == "+" ? c[k] <= 0 : c[k] >= 0) all = 0 }
+                if (all) print f - 1 }' assets/cube.obj)
+    "$Z" assets/cube.obj --size 40x30 --view "$name" --dump-ids "$T/ids" -o "$T/x.ppm" 2>"$T/err"
+    centre=$(od -An -t d4 -j $(((15 * 40 + 20) * 4)) -N 4 "$T/ids" | tr -d ' ')
+    if [ -n "$want" ] && [ "$centre" = "$want" ]; then ok "--view $name: the centre pixel is face $want"; else
+        notok "--view $name: the centre pixel is face ${want:-?}" "id $centre"; fi
+done
 expect_status "--dump-screen" 0 "$Z" assets/cube.obj --size 40x30 --yaw 30 --pitch 20 --dump-screen "$T/s.obj" -o "$T/x.ppm"
 if [ "$(head -n 1 "$T/s.obj")" = "# zview screen 40 30" ]; then ok "dump-screen header"; else notok "dump-screen header" "$(head -n 1 "$T/s.obj")"; fi
 nf=$(grep -c '^f .* # [0-5]$' "$T/s.obj")
@@ -214,14 +227,14 @@ if [ -w /dev/full ]; then
     if [ "$(head -c 2 "$T/c.ppm")" = P6 ] && [ "$(wc -c <"$T/c.ppm")" -eq $((11 + 36)) ]; then ok "-o with stdout closed writes only the file"; else
         notok "-o with stdout closed writes only the file" "$(head -c 40 "$T/c.ppm" | od -c | head -3)"; fi
 else
-    echo "ok - # skip no /dev/full"
+    skip "writes to a full device fail with the reason" "no /dev/full"
 fi
 
 # --turntable N: N frames a 360/N-degree turn apart, the number in the name
 expect_status "--turntable 4 -o pattern.png" 0 "$Z" --turntable 4 -o "$T/tt-%03d.png" --size 64x48 assets/knot.obj
 if [ -s "$T/tt-000.png" ] && [ -s "$T/tt-003.png" ] && [ ! -e "$T/tt-004.png" ]; then ok "--turntable 4 writes frames 000 to 003"; else
     notok "--turntable 4 writes frames 000 to 003" "$(ls "$T")"; fi
-if command -v python3 >/dev/null 2>&1; then
+if need_python "--turntable frames decode at the size asked"; then
     bad=0
     for k in 0 1 2 3; do
         [ "$(python3 tests/e2e/pngsize.py "$T/tt-00$k.png")" = "64 48" ] || bad=1

@@ -9,10 +9,8 @@
 . "$(dirname "$0")/lib.sh"
 Z=$ZVIEW
 
-if ! command -v python3 >/dev/null 2>&1; then
-    echo "ok - # skip no python3"
-    exit 0
-fi
+# every check reads the pane's colours through looks.py
+need_python "every check of sketch mode" || exit 0
 . "$(dirname "$0")/tmux.sh"
 
 # sketch_session: a fresh 100 x 30 pane whose shell works in $T/sk (where

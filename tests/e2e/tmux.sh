@@ -6,7 +6,7 @@
 Z=$ZVIEW
 
 if ! command -v tmux >/dev/null 2>&1; then
-    echo "ok - # skip no tmux"
+    skip "every check of the viewer under tmux" "no tmux"
     exit 0
 fi
 
@@ -110,8 +110,8 @@ wait_gone() {
 }
 check() { if eval "$2"; then ok "$1"; else notok "$1" "$3"; fi; }
 # looks ROWS: what the first ROWS rows of the pane look like, colours
-# included (looks.py: a half block of a on b is one of b on a)
-PY=$(command -v python3)
+# included (looks.py: a half block of a on b is one of b on a); the
+# checks that use it start with need_python (lib.sh)
 looks() { tm capture-pane -p -e -N -t zv | head -n "$1" | python3 tests/e2e/looks.py; }
 # print_looks ARGS...: the same for a --print frame
 print_looks() { "$Z" --print "$@" | python3 tests/e2e/looks.py; }

@@ -39,53 +39,6 @@ static const char *const formats[] = { "obj", "stl", "ply", "off", "xyz" };
         }                                                                           \
     } while (0)
 
-/* What every loader promises of a mesh it returns. */
-static void check_mesh(const Mesh *m)
-{
-    CHECK(m->nobjs >= 1 && m->objs);
-    CHECK(m->nfaces || m->npoints || m->nlines);
-    CHECK(m->face_start && m->face_start[0] == 0);
-    for (uint32_t f = 0; f < m->nfaces; f++)
-        CHECK(m->face_start[f + 1] >= m->face_start[f] + 3);
-    for (uint32_t c = 0; c < (m->nfaces ? m->face_start[m->nfaces] : 0); c++)
-        CHECK(m->corner[c] < m->nverts);
-    for (uint32_t f = 0; f < m->nfaces; f++)
-        CHECK(m->face_mat[f] < 0 || (uint32_t)m->face_mat[f] < m->nmats);
-    CHECK(m->point || m->npoints <= m->nverts);
-    for (uint32_t k = 0; m->point && k < m->npoints; k++)
-        CHECK(m->point[k] < m->nverts);
-    if (m->nlines) {
-        CHECK(m->line_start[0] == 0);
-        for (uint32_t l = 0; l < m->nlines; l++)
-            CHECK(m->line_start[l + 1] >= m->line_start[l] + 2);
-        for (uint32_t c = 0; c < m->line_start[m->nlines]; c++)
-            CHECK(m->line_corner[c] < m->nverts);
-    }
-    uint32_t f = 0, p = 0, l = 0;
-    for (uint32_t i = 0; i < m->nobjs; i++) {
-        const MeshObject *o = &m->objs[i];
-        /* objects own consecutive runs of each */
-        CHECK(o->face_first == f && o->point_first == p && o->line_first == l);
-        f += o->face_count;
-        p += o->point_count;
-        l += o->line_count;
-        CHECK(o->vert_min <= o->vert_max && (o->vert_max < m->nverts || m->nverts == 0));
-        for (uint32_t q = o->face_first; q < o->face_first + o->face_count; q++)
-            for (uint32_t c = m->face_start[q]; c < m->face_start[q + 1]; c++)
-                CHECK(m->corner[c] >= o->vert_min && m->corner[c] <= o->vert_max);
-        for (uint32_t k = o->point_first; k < o->point_first + o->point_count; k++) {
-            uint32_t v = m->point ? m->point[k] : k;
-            CHECK(v >= o->vert_min && v <= o->vert_max);
-        }
-        for (uint32_t q = o->line_first; q < o->line_first + o->line_count; q++)
-            for (uint32_t c = m->line_start[q]; c < m->line_start[q + 1]; c++)
-                CHECK(m->line_corner[c] >= o->vert_min && m->line_corner[c] <= o->vert_max);
-    }
-    CHECK(f == m->nfaces && p == m->npoints && l == m->nlines);
-    for (size_t i = 0; i < 3 * (size_t)m->nverts; i++)
-        CHECK(m->pos[i] - m->pos[i] == 0);      /* finite */
-}
-
 typedef struct {
     int            fd;
     const uint8_t *p;
@@ -154,7 +107,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         free(m);
         return 0;
     }
-    check_mesh(m);
+    const char *broken = tl_mesh_broken(m);
+    if (broken) {
+        fprintf(stderr, "fuzz_mesh: the mesh breaks '%s'\n", broken);
+        abort();
+    }
     if (sel & 16)
         mesh_as_points(m);
     Scene s;
