@@ -185,12 +185,12 @@ $(BUILD)/subdiv: tools/subdiv.c
 
 # How far 256/16/8-colour pictures are from truecolor, before and after
 # the perceptual quantizer (README: Colour).
-COLORERR_MODELS ?= assets/demo.obj assets/knot.obj $(wildcard ../shared/models/spot.obj ../shared/models/cornell_box.obj ../shared/models/stanford-bunny.obj)
-colour-error: $(BUILD)/colorerr
+COLOURERR_MODELS ?= assets/demo.obj assets/knot.obj $(wildcard ../shared/models/spot.obj ../shared/models/cornell_box.obj ../shared/models/stanford-bunny.obj)
+colour-error: $(BUILD)/colourerr
 	@sh tools/stamp.sh "make colour-error"
-	$(BUILD)/colorerr $(COLORERR_MODELS)
+	$(BUILD)/colourerr $(COLOURERR_MODELS)
 
-$(BUILD)/colorerr: tools/colorerr.c $(LIBOBJS)
+$(BUILD)/colourerr: tools/colourerr.c $(LIBOBJS)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 # Load speed and peak memory of every format (the README's table).

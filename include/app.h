@@ -39,7 +39,7 @@ typedef struct {
     const char *dump_screen;
     int         w, h;           /* --size (0 = not given) */
     int         mode;           /* DisplayMode, -1 = from the locale */
-    int         color;          /* ColorDepth, -1 = from the environment */
+    int         colour;          /* ColourDepth, -1 = from the environment */
     int         shade;          /* ShadeMode */
     const char *algo;           /* name, "all", or a comma list (bench) */
     const char *view;           /* --view name, "auto", or NULL */

@@ -11,17 +11,17 @@
 #include "image.h"
 
 typedef enum { MODE_HALF = 0, MODE_ASCII, MODE_BRAILLE, MODE_COUNT } DisplayMode;
-typedef enum { COLOR_NONE = 0, COLOR_8, COLOR_16, COLOR_256, COLOR_TRUE } ColorDepth;
+typedef enum { COLOUR_NONE = 0, COLOUR_8, COLOUR_16, COLOUR_256, COLOUR_TRUE } ColourDepth;
 
 extern const char *const mode_names[MODE_COUNT];
 int mode_from_name(const char *name);           /* -1 if unknown */
-int color_from_name(const char *name);          /* -1 if unknown */
-const char *color_name(ColorDepth c);
+int colour_from_name(const char *name);          /* -1 if unknown */
+const char *colour_name(ColourDepth c);
 
 /* Default colour depth from the environment: NO_COLOR -> none;
- * COLORTERM truecolor/24bit or TERM *-direct -> true; TERM *256color* ->
+ * COLORTERM truecolor/24bit or TERM *-direct -> true; TERM *256colour* ->
  * 256; other TERM -> 16; TERM unset or dumb -> none. */
-ColorDepth color_from_env(void);
+ColourDepth colour_from_env(void);
 /* Default display mode: half on a UTF-8 locale, else ascii. Call after
  * setlocale(LC_ALL, ""). */
 DisplayMode mode_from_locale(void);
@@ -47,13 +47,13 @@ void  mode_cell_pixels(DisplayMode m, int *px_w, int *px_h);
 float mode_pixel_aspect(DisplayMode m);
 
 /* Image of (cols * px_w) x (rows * px_h) pixels -> cells. Under
- * COLOR_NONE the shading goes into the glyphs (dithered blocks and dots). */
-int  cells_from_image(const Image *im, DisplayMode m, ColorDepth depth, CellGrid *out);
+ * COLOUR_NONE the shading goes into the glyphs (dithered blocks and dots). */
+int  cells_from_image(const Image *im, DisplayMode m, ColourDepth depth, CellGrid *out);
 void cells_free(CellGrid *g);
 
 /* The xterm palette (the first 16 at xterm's defaults). */
 void palette_256_rgb(int idx, uint8_t rgb_out[3]);
-void palette_rgb(ColorDepth depth, int idx, uint8_t rgb_out[3]);
+void palette_rgb(ColourDepth depth, int idx, uint8_t rgb_out[3]);
 /* Plain nearest palette index in RGB (kept to measure against). */
 int  palette_256(const uint8_t rgb[3]);         /* 16..255, nearest of cube + greys */
 int  palette_16(const uint8_t rgb[3]);          /* 0..15, nearest ANSI colour */
@@ -63,7 +63,7 @@ int  palette_16(const uint8_t rgb[3]);          /* 0..15, nearest ANSI colour */
  * mixes towards the wanted colour. Keep one across frames: it memoises
  * the pairs (a lazily filled 1 MB table). */
 typedef struct {
-    ColorDepth depth;
+    ColourDepth depth;
     int        n;               /* palette entries searched */
     uint8_t    num[240];        /* their palette numbers */
     float      plin[240][3];    /* their linear RGB */
@@ -72,7 +72,7 @@ typedef struct {
     uint32_t  *lut;             /* pair per colour rounded to 6 bits a channel */
 } Quantizer;
 
-int   quant_init(Quantizer *q, ColorDepth depth);   /* 0, or -1 out of memory */
+int   quant_init(Quantizer *q, ColourDepth depth);   /* 0, or -1 out of memory */
 void  quant_free(Quantizer *q);
 /* The palette number to show for rgb at pixel (x, y); -1 under
  * truecolor or no colour. */
@@ -106,9 +106,9 @@ char *sgr_colour(char *p, uint32_t k, int bg);
  * ending in a reset and "\n". Built in one buffer, written with one
  * fwrite, then flushed. Returns 0, or -1 on a write error (errno says
  * which) or out of memory (ENOMEM). */
-int  print_cells(FILE *f, const CellGrid *g, ColorDepth c);
+int  print_cells(FILE *f, const CellGrid *g, ColourDepth c);
 /* Same bytes into a malloc'd buffer (*len_out), for tests. */
-char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out);
+char *print_cells_to_string(const CellGrid *g, ColourDepth c, size_t *len_out);
 
 /* Checked output: every write of a report or a file goes through one of
  * these. The first failure is kept (its errno); later calls then write

@@ -53,27 +53,27 @@ typedef struct {
 typedef struct {
     FILE       *out, *in;       /* NULL: stdout, stdin */
     const char *termname;       /* NULL: $TERM */
-    ColorDepth  color;          /* wanted; lowered to what the terminal has */
+    ColourDepth  colour;          /* wanted; lowered to what the terminal has */
     int         mouse;          /* report clicks, drags and the wheel */
     int         signals;        /* restore on SIGINT/SIGTERM/SIGHUP, handle SIGTSTP */
 } TermConfig;
 
 /* The terminal description to use for name (NULL: $TERM): name itself
- * when it is installed, else the first installed of xterm-256color,
+ * when it is installed, else the first installed of xterm-256colour,
  * xterm, vt100 and ansi; NULL when none is. */
 const char *term_resolve(const char *name);
 
 /* Start curses. Returns 0, or -1 with a reason in err when the terminal
  * cannot be driven (unknown TERM, no ANSI cursor addressing): the caller
  * falls back to --print. The terminal is then untouched. Colours: 24-bit
- * when asked (cfg->color), else what is asked lowered to what the
+ * when asked (cfg->colour), else what is asked lowered to what the
  * description has. */
 int  term_open(const TermConfig *cfg, char *err, size_t errlen);
 /* Leave curses and put the terminal back as it was. Idempotent; also
  * registered with atexit and called from the quit signals. */
 void term_restore(void);
 
-ColorDepth term_color(void);            /* the depth actually used */
+ColourDepth term_colour(void);            /* the depth actually used */
 void term_size(int *cols_out, int *rows_out);
 /* Pretend the window is cols x rows (the tty benchmark writes to a file). */
 void term_set_size(int cols, int rows);

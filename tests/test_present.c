@@ -90,7 +90,7 @@ Test(present, half_blocks)
     img_set(&im, 1, 1, 0, 200, 0);          /* only the bottom lit */
     img_set(&im, 3, 0, 9, 8, 7);            /* only the top lit */
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_HALF, COLOR_TRUE, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_HALF, COLOUR_TRUE, &g), 0);
     cr_assert_eq(g.cols, 4);
     cr_assert_eq(g.rows, 1);
 
@@ -119,7 +119,7 @@ Test(present, half_odd_height_pads_with_background)
     img_init(&im, 1, 3);
     img_set(&im, 0, 2, 1, 2, 3);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_HALF, COLOR_TRUE, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_HALF, COLOUR_TRUE, &g), 0);
     cr_assert_eq(g.rows, 2);
     cr_expect_eq(g.cells[0].ch, (uint32_t)' ');
     cr_expect_eq(g.cells[1].ch, 0x2580u);
@@ -140,7 +140,7 @@ Test(present, ascii_ramp)
     img_set(&im, 2, 0, 60, 60, 60);
     img_set(&im, 3, 0, 160, 160, 160);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_ASCII, COLOR_TRUE, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_ASCII, COLOUR_TRUE, &g), 0);
     cr_assert_eq(g.cols, 5);
     cr_assert_eq(g.rows, 1);
     cr_expect_eq(g.cells[0].ch, (uint32_t)'@');
@@ -174,7 +174,7 @@ static uint32_t braille_of(const int lit[4][2])
             if (lit[y][x])
                 img_set(&im, x, y, 10, 20, 30);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_BRAILLE, COLOR_TRUE, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_BRAILLE, COLOUR_TRUE, &g), 0);
     cr_assert_eq(g.cols, 1);
     cr_assert_eq(g.rows, 1);
     uint32_t ch = g.cells[0].ch;
@@ -213,7 +213,7 @@ Test(present, braille_colour_is_mean_of_lit_dots)
     img_set(&im, 1, 3, 200, 30, 1);
     img_set(&im, 0, 2, 0, 90, 2);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_BRAILLE, COLOR_TRUE, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_BRAILLE, COLOUR_TRUE, &g), 0);
     cr_assert_eq(g.cols, 2);
     cr_assert_eq(g.rows, 1);
     cr_expect_eq(g.cells[0].ch, 0x2800u + 0x01 + 0x80 + 0x04);
@@ -239,7 +239,7 @@ static CellGrid two_rows(Cell *store)
     return g;
 }
 
-static void expect_print(const CellGrid *g, ColorDepth c, const char *want)
+static void expect_print(const CellGrid *g, ColourDepth c, const char *want)
 {
     size_t len = 0;
     char *s = print_cells_to_string(g, c, &len);
@@ -252,13 +252,13 @@ Test(present, print_each_depth)
 {
     Cell st[4];
     CellGrid g = two_rows(st);
-    expect_print(&g, COLOR_TRUE,
+    expect_print(&g, COLOUR_TRUE,
                  "\x1b[38;2;255;0;0m\x1b[48;2;0;0;255m\xe2\x96\x80\xe2\x96\x80\x1b[0m\n x\n");
-    expect_print(&g, COLOR_256,
+    expect_print(&g, COLOUR_256,
                  "\x1b[38;5;196m\x1b[48;5;21m\xe2\x96\x80\xe2\x96\x80\x1b[0m\n x\n");
-    expect_print(&g, COLOR_16,
+    expect_print(&g, COLOUR_16,
                  "\x1b[91m\x1b[44m\xe2\x96\x80\xe2\x96\x80\x1b[0m\n x\n");
-    expect_print(&g, COLOR_NONE, "\xe2\x96\x80\xe2\x96\x80\n x\n");
+    expect_print(&g, COLOUR_NONE, "\xe2\x96\x80\xe2\x96\x80\n x\n");
 }
 
 Test(present, print_changes_only)
@@ -270,17 +270,17 @@ Test(present, print_changes_only)
         cell(0x2847, 0, 255, 0, 0, 0, 0, CELL_FG),
     };
     CellGrid g = { .cols = 4, .rows = 1, .cells = st, .cap = 4 };
-    expect_print(&g, COLOR_TRUE,
+    expect_print(&g, COLOUR_TRUE,
                  "\x1b[38;2;255;0;0ma\x1b[38;2;0;255;0mb\x1b[39m \x1b[38;2;0;255;0m\xe2\xa1\x87\x1b[0m\n");
     /* 256: two reds one index apart in RGB but the same index: one escape. */
     st[1] = cell('b', 250, 5, 5, 0, 0, 0, CELL_FG);
-    expect_print(&g, COLOR_256,
+    expect_print(&g, COLOUR_256,
                  "\x1b[38;5;196mab\x1b[39m \x1b[38;5;46m\xe2\xa1\x87\x1b[0m\n");
     /* 16: dim colours use 30-37. */
     st[0] = cell('a', 205, 0, 0, 0, 0, 0, CELL_FG);
     st[1] = cell('b', 0, 0, 0, 0, 205, 205, CELL_FG | CELL_BG);
     st[3] = cell('c', 255, 255, 255, 0, 0, 0, CELL_FG);
-    expect_print(&g, COLOR_16,
+    expect_print(&g, COLOUR_16,
                  "\x1b[31ma\x1b[30m\x1b[46mb\x1b[39m\x1b[49m \x1b[97mc\x1b[0m\n");
 }
 
@@ -290,14 +290,14 @@ Test(present, print_cells_writes_the_same_bytes)
     CellGrid g = two_rows(st);
     FILE *f = tmpfile();
     cr_assert_not_null(f);
-    cr_assert_eq(print_cells(f, &g, COLOR_TRUE), 0);
+    cr_assert_eq(print_cells(f, &g, COLOUR_TRUE), 0);
     long n = ftell(f);
     rewind(f);
     char buf[256];
     size_t got = fread(buf, 1, sizeof buf, f);
     fclose(f);
     size_t len;
-    char *s = print_cells_to_string(&g, COLOR_TRUE, &len);
+    char *s = print_cells_to_string(&g, COLOUR_TRUE, &len);
     cr_assert_eq((size_t)n, len);
     cr_assert_eq(got, len);
     cr_expect_eq(memcmp(buf, s, len), 0);
@@ -378,38 +378,38 @@ Test(present, names)
     cr_expect_str_eq(mode_names[MODE_ASCII], "ascii");
     cr_expect_str_eq(mode_names[MODE_BRAILLE], "braille");
     cr_expect_eq(mode_from_name("sixel"), -1);
-    cr_expect_eq(color_from_name("none"), COLOR_NONE);
-    cr_expect_eq(color_from_name("16"), COLOR_16);
-    cr_expect_eq(color_from_name("256"), COLOR_256);
-    cr_expect_eq(color_from_name("truecolor"), COLOR_TRUE);
-    cr_expect_eq(color_from_name("17"), -1);
-    cr_expect_eq(color_from_name(NULL), -1);
-    for (int c = COLOR_NONE; c <= COLOR_TRUE; c++)
-        cr_expect_eq(color_from_name(color_name((ColorDepth)c)), c);
+    cr_expect_eq(colour_from_name("none"), COLOUR_NONE);
+    cr_expect_eq(colour_from_name("16"), COLOUR_16);
+    cr_expect_eq(colour_from_name("256"), COLOUR_256);
+    cr_expect_eq(colour_from_name("truecolor"), COLOUR_TRUE);
+    cr_expect_eq(colour_from_name("17"), -1);
+    cr_expect_eq(colour_from_name(NULL), -1);
+    for (int c = COLOUR_NONE; c <= COLOUR_TRUE; c++)
+        cr_expect_eq(colour_from_name(colour_name((ColourDepth)c)), c);
 }
 
-static ColorDepth env_case(const char *no_color, const char *colorterm, const char *term)
+static ColourDepth env_case(const char *no_colour, const char *colourterm, const char *term)
 {
-    if (no_color) setenv("NO_COLOR", no_color, 1); else unsetenv("NO_COLOR");
-    if (colorterm) setenv("COLORTERM", colorterm, 1); else unsetenv("COLORTERM");
+    if (no_colour) setenv("NO_COLOR", no_colour, 1); else unsetenv("NO_COLOR");
+    if (colourterm) setenv("COLORTERM", colourterm, 1); else unsetenv("COLORTERM");
     if (term) setenv("TERM", term, 1); else unsetenv("TERM");
-    return color_from_env();
+    return colour_from_env();
 }
 
-Test(present, color_from_env)
+Test(present, colour_from_env)
 {
-    cr_expect_eq(env_case("1", "truecolor", "xterm-256color"), COLOR_NONE);
-    cr_expect_eq(env_case("", NULL, "xterm-256color"), COLOR_256, "empty NO_COLOR is ignored");
-    cr_expect_eq(env_case(NULL, "truecolor", "xterm"), COLOR_TRUE);
-    cr_expect_eq(env_case(NULL, "24bit", "screen"), COLOR_TRUE);
-    cr_expect_eq(env_case(NULL, NULL, "xterm-direct"), COLOR_TRUE);
-    cr_expect_eq(env_case(NULL, NULL, "xterm-256color"), COLOR_256);
-    cr_expect_eq(env_case(NULL, "yes", "screen-256color"), COLOR_256);
-    cr_expect_eq(env_case(NULL, NULL, "xterm"), COLOR_16);
-    cr_expect_eq(env_case(NULL, NULL, "linux"), COLOR_16);
-    cr_expect_eq(env_case(NULL, NULL, "dumb"), COLOR_NONE);
-    cr_expect_eq(env_case(NULL, NULL, ""), COLOR_NONE);
-    cr_expect_eq(env_case(NULL, NULL, NULL), COLOR_NONE);
+    cr_expect_eq(env_case("1", "truecolor", "xterm-256color"), COLOUR_NONE);
+    cr_expect_eq(env_case("", NULL, "xterm-256color"), COLOUR_256, "empty NO_COLOR is ignored");
+    cr_expect_eq(env_case(NULL, "truecolor", "xterm"), COLOUR_TRUE);
+    cr_expect_eq(env_case(NULL, "24bit", "screen"), COLOUR_TRUE);
+    cr_expect_eq(env_case(NULL, NULL, "xterm-direct"), COLOUR_TRUE);
+    cr_expect_eq(env_case(NULL, NULL, "xterm-256color"), COLOUR_256);
+    cr_expect_eq(env_case(NULL, "yes", "screen-256color"), COLOUR_256);
+    cr_expect_eq(env_case(NULL, NULL, "xterm"), COLOUR_16);
+    cr_expect_eq(env_case(NULL, NULL, "linux"), COLOUR_16);
+    cr_expect_eq(env_case(NULL, NULL, "dumb"), COLOUR_NONE);
+    cr_expect_eq(env_case(NULL, NULL, ""), COLOUR_NONE);
+    cr_expect_eq(env_case(NULL, NULL, NULL), COLOUR_NONE);
 }
 
 Test(present, mode_from_locale)
@@ -542,7 +542,7 @@ Test(present, print_cells_reports_a_full_device)
     Cell st[4];
     CellGrid g = two_rows(st);
     errno = 0;
-    cr_expect_eq(print_cells(f, &g, COLOR_256), -1);
+    cr_expect_eq(print_cells(f, &g, COLOUR_256), -1);
     cr_expect_eq(errno, ENOSPC);
     fclose(f);
 }
@@ -556,7 +556,7 @@ Test(present, term_read_reports_the_end_of_input)
     FILE *out = tmpfile(), *in = fopen("/dev/null", "r");
     cr_assert(out && in);
     char err[128];
-    TermConfig cfg = { .out = out, .in = in, .termname = "xterm-256color", .color = COLOR_256 };
+    TermConfig cfg = { .out = out, .in = in, .termname = "xterm-256color", .colour = COLOUR_256 };
     if (term_open(&cfg, err, sizeof err))
         cr_skip_test("no xterm-256color description: %s", err);
     TermEvent ev;

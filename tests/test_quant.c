@@ -64,7 +64,7 @@ static float lab_dist(const float a[3], const float b[3])
 
 /* The OKLab colour of the linear-light average of an 8x8 dithered block
  * of rgb (the whole Bayer period: what the eye sees from afar). */
-static void block_mean_lab(Quantizer *q, ColorDepth d, const uint8_t rgb[3], float lab_out[3])
+static void block_mean_lab(Quantizer *q, ColourDepth d, const uint8_t rgb[3], float lab_out[3])
 {
     double acc[3] = { 0 };
     for (int y = 0; y < 8; y++)
@@ -159,18 +159,18 @@ Test(quant, thresholds_are_bayers_matrix)
 
 Test(quant, palette_colours_map_to_themselves_everywhere)
 {
-    static const ColorDepth depths[] = { COLOR_256, COLOR_16, COLOR_8 };
+    static const ColourDepth depths[] = { COLOUR_256, COLOUR_16, COLOUR_8 };
     for (int k = 0; k < 3; k++) {
-        ColorDepth d = depths[k];
+        ColourDepth d = depths[k];
         Quantizer q;
         cr_assert_eq(quant_init(&q, d), 0);
-        int first = d == COLOR_256 ? 16 : 0, last = d == COLOR_256 ? 255 : d == COLOR_16 ? 15 : 7;
+        int first = d == COLOUR_256 ? 16 : 0, last = d == COLOUR_256 ? 255 : d == COLOUR_16 ? 15 : 7;
         for (int i = first; i <= last; i++) {
             uint8_t c[3];
             palette_rgb(d, i, c);
             for (int y = 0; y < 8; y++)
                 for (int x = 0; x < 8; x++)
-                    cr_assert_eq(quant_pick(&q, c, x, y), i, "%s: entry %d at (%d,%d) -> %d", color_name(d), i,
+                    cr_assert_eq(quant_pick(&q, c, x, y), i, "%s: entry %d at (%d,%d) -> %d", colour_name(d), i,
                                  x, y, quant_pick(&q, c, x, y));
         }
         quant_free(&q);
@@ -181,7 +181,7 @@ Test(quant, greys_stay_grey_under_8_and_16_colours)
 {
     /* The nearest entry to a mid grey may be a colour; the dither must
      * use neutral entries only (0 black, 7 and 15 greys/white, 8 grey). */
-    static const ColorDepth depths[] = { COLOR_16, COLOR_8 };
+    static const ColourDepth depths[] = { COLOUR_16, COLOUR_8 };
     for (int k = 0; k < 2; k++) {
         Quantizer q;
         cr_assert_eq(quant_init(&q, depths[k]), 0);
@@ -191,7 +191,7 @@ Test(quant, greys_stay_grey_under_8_and_16_colours)
                 for (int x = 0; x < 8; x++) {
                     int i = quant_pick(&q, c, x, y);
                     cr_assert(i == 0 || i == 7 || i == 8 || i == 15, "%s: grey %d -> colour %d",
-                              color_name(depths[k]), v, i);
+                              colour_name(depths[k]), v, i);
                 }
         }
         quant_free(&q);
@@ -203,9 +203,9 @@ Test(quant, dithered_blocks_come_closer_than_the_nearest_colour)
     /* Over a lattice of colours, the average of an 8x8 dithered block is
      * nearer (in OKLab) to the wanted colour than the plain nearest
      * palette colour in RGB, on average, at every depth. */
-    static const ColorDepth depths[] = { COLOR_256, COLOR_16, COLOR_8 };
+    static const ColourDepth depths[] = { COLOUR_256, COLOUR_16, COLOUR_8 };
     for (int k = 0; k < 3; k++) {
-        ColorDepth d = depths[k];
+        ColourDepth d = depths[k];
         Quantizer q;
         cr_assert_eq(quant_init(&q, d), 0);
         double before = 0, after = 0;
@@ -216,8 +216,8 @@ Test(quant, dithered_blocks_come_closer_than_the_nearest_colour)
                     uint8_t c[3] = { (uint8_t)r, (uint8_t)g, (uint8_t)b }, p[3];
                     float want[3], got[3], near[3];
                     srgb_to_oklab_ref(c, want);
-                    int old = d == COLOR_256 ? palette_256(c) : palette_16(c);
-                    if (d == COLOR_8 && old > 7)
+                    int old = d == COLOUR_256 ? palette_256(c) : palette_16(c);
+                    if (d == COLOUR_8 && old > 7)
                         old -= 8;   /* the plain map folded onto the first 8 */
                     palette_rgb(d, old, p);
                     srgb_to_oklab_ref(p, near);
@@ -226,7 +226,7 @@ Test(quant, dithered_blocks_come_closer_than_the_nearest_colour)
                     after += lab_dist(want, got);
                     n++;
                 }
-        cr_expect_lt(after, 0.8 * before, "%s: dithered mean error %.4f, nearest %.4f", color_name(d),
+        cr_expect_lt(after, 0.8 * before, "%s: dithered mean error %.4f, nearest %.4f", colour_name(d),
                      after / n, before / n);
         quant_free(&q);
     }
@@ -241,7 +241,7 @@ Test(quant, sixteen_colours_search_every_pair)
      * grey. */
     static const uint8_t colours[3][3] = { { 0, 102, 0 }, { 102, 102, 0 }, { 0, 102, 102 } };
     Quantizer q;
-    cr_assert_eq(quant_init(&q, COLOR_16), 0);
+    cr_assert_eq(quant_init(&q, COLOUR_16), 0);
     for (int c = 0; c < 3; c++) {
         float want[3], got[3], best = INFINITY;
         int nearest = -1;
@@ -249,7 +249,7 @@ Test(quant, sixteen_colours_search_every_pair)
         for (int i = 0; i < 16; i++) {
             uint8_t p[3];
             float lab[3];
-            palette_rgb(COLOR_16, i, p);
+            palette_rgb(COLOUR_16, i, p);
             srgb_to_oklab_ref(p, lab);
             if (lab_dist(lab, want) < best) {
                 best = lab_dist(lab, want);
@@ -257,7 +257,7 @@ Test(quant, sixteen_colours_search_every_pair)
             }
         }
         cr_assert_eq(nearest, 8, "colour %d: the nearest entry is %d, not the grey", c, nearest);
-        block_mean_lab(&q, COLOR_16, colours[c], got);
+        block_mean_lab(&q, COLOUR_16, colours[c], got);
         cr_expect_lt(lab_dist(got, want), 0.005f, "rgb %d %d %d: the block is %.4f away (the grey %.4f)",
                      colours[c][0], colours[c][1], colours[c][2], (double)lab_dist(got, want), (double)best);
         for (int y = 0; y < 8; y++)
@@ -271,8 +271,8 @@ Test(quant, sixteen_colours_search_every_pair)
 Test(quant, dither_depends_on_position_only)
 {
     Quantizer a, b;
-    cr_assert_eq(quant_init(&a, COLOR_256), 0);
-    cr_assert_eq(quant_init(&b, COLOR_256), 0);
+    cr_assert_eq(quant_init(&a, COLOUR_256), 0);
+    cr_assert_eq(quant_init(&b, COLOUR_256), 0);
     uint8_t c[3] = { 200, 120, 40 }, other[3] = { 10, 200, 90 };
     /* b sees another colour first: memoising must not change answers */
     quant_pick(&b, other, 3, 3);
@@ -293,10 +293,10 @@ Test(quant, no_palette_under_truecolor_or_none)
 {
     Quantizer q;
     uint8_t c[3] = { 1, 2, 3 };
-    cr_assert_eq(quant_init(&q, COLOR_TRUE), 0);
+    cr_assert_eq(quant_init(&q, COLOUR_TRUE), 0);
     cr_expect_eq(quant_pick(&q, c, 0, 0), -1);
     quant_free(&q);
-    cr_assert_eq(quant_init(&q, COLOR_NONE), 0);
+    cr_assert_eq(quant_init(&q, COLOUR_NONE), 0);
     cr_expect_eq(quant_pick(&q, c, 0, 0), -1);
     quant_free(&q);
 }
@@ -332,7 +332,7 @@ static void check_mono_ramp(DisplayMode m, int (*on)(const Cell *))
     Image im;
     ramp_image(&im, 64, 32);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, m, COLOR_NONE, &g), 0);
+    cr_assert_eq(cells_from_image(&im, m, COLOUR_NONE, &g), 0);
     /* pixels drawn in the dark and the light quarter */
     int dark = 0, light = 0, glyphs[4] = { 0 };
     for (int r = 0; r < g.rows; r++)
@@ -374,7 +374,7 @@ Test(quant, half_blocks_without_colour_put_each_pixel_in_its_half)
     static const uint8_t lit[6] = { 1, 0, 1, /* top row */ 0, 1, 1 };
     memcpy(im.lit, lit, 6);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_HALF, COLOR_NONE, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_HALF, COLOUR_NONE, &g), 0);
     cr_assert_eq(g.cols, 3);
     cr_assert_eq(g.rows, 1);
     cr_expect_eq(g.cells[0].ch, 0x2580u, "top pixel only: U+2580, not U+%04X", (unsigned)g.cells[0].ch);
@@ -390,7 +390,7 @@ Test(quant, colour_keeps_every_lit_pixel)
     Image im;
     ramp_image(&im, 16, 8);
     CellGrid g = { 0 };
-    cr_assert_eq(cells_from_image(&im, MODE_HALF, COLOR_256, &g), 0);
+    cr_assert_eq(cells_from_image(&im, MODE_HALF, COLOUR_256, &g), 0);
     for (size_t i = 0; i < (size_t)g.cols * g.rows; i++)
         cr_expect_eq(g.cells[i].ch, 0x2580u);
     cells_free(&g);

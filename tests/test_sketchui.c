@@ -162,13 +162,13 @@ Test(sketchui, arrows_move_the_cursor_and_marks_show_it)
         app_key(&app, TK_LEFT);
     app_key(&app, ' ');
     frame();
-    cr_assert_eq(cells_from_image(&app.p.img, app.mode, COLOR_TRUE, &app.p.cells), 0);
+    cr_assert_eq(cells_from_image(&app.p.img, app.mode, COLOUR_TRUE, &app.p.cells), 0);
     sketch_mode_marks(&app, &app.p.cells);
     const Cell *row = &app.p.cells.cells[(cy - 1) * COLS];
     cr_expect_eq(row[39].ch, '+', "the cursor over its corner");
     app_key(&app, TK_LEFT);
     app_key(&app, TK_LEFT);
-    cr_assert_eq(cells_from_image(&app.p.img, app.mode, COLOR_TRUE, &app.p.cells), 0);
+    cr_assert_eq(cells_from_image(&app.p.img, app.mode, COLOUR_TRUE, &app.p.cells), 0);
     sketch_mode_marks(&app, &app.p.cells);
     cr_expect_eq(row[39].ch, 'o', "the open corner");
     cr_expect_eq(row[38].ch, '.', "the side on to the cursor");

@@ -37,7 +37,7 @@ static void pty_open(Pty *p, int cols, int rows, int mouse)
     p->in = fdopen(dup(p->s), "r");
     cr_assert(p->out && p->in);
     char err[128];
-    TermConfig cfg = { .out = p->out, .in = p->in, .termname = "xterm-256color", .color = COLOR_TRUE,
+    TermConfig cfg = { .out = p->out, .in = p->in, .termname = "xterm-256color", .colour = COLOUR_TRUE,
                        .mouse = mouse };
     if (term_open(&cfg, err, sizeof err))
         cr_skip_test("no xterm-256color description: %s", err);

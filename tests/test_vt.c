@@ -460,7 +460,7 @@ Test(vt, frames_wait_on_a_stalled_pty, .timeout = 60)
     FILE *out = fdopen(s, "w"), *in = fdopen(dup(s), "r");
     cr_assert(out && in);
     char err[128];
-    TermConfig cfg = { .out = out, .in = in, .termname = "xterm-256color", .color = COLOR_TRUE };
+    TermConfig cfg = { .out = out, .in = in, .termname = "xterm-256color", .colour = COLOUR_TRUE };
     if (term_open(&cfg, err, sizeof err))
         cr_skip_test("no xterm-256color description: %s", err);
     /* small frames (one cell changes: a write never outgrows the room

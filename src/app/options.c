@@ -297,9 +297,9 @@ static int set_mode(Options *o, const OptCall *c)
     return set_name(&o->mode, c, mode_from_name, "half, ascii or braille");
 }
 
-static int set_color(Options *o, const OptCall *c)
+static int set_colour(Options *o, const OptCall *c)
 {
-    return set_name(&o->color, c, color_from_name, "truecolor, 256, 16, 8 or none");
+    return set_name(&o->colour, c, colour_from_name, "truecolor, 256, 16, 8 or none");
 }
 
 static int set_shade(Options *o, const OptCall *c)
@@ -449,8 +449,8 @@ const OptSpec cli_options[] = {
     { "mode", 0, NULL, "half ascii braille", OPTSEC_OUTPUT, "text mode (default: half on UTF-8, else ascii)",
       set_mode, 0, OPT_VIEWCMD },
     { "color", 0, NULL, "truecolor 256 16 8 none", OPTSEC_OUTPUT,
-      "colours (default: from COLORTERM, TERM, NO_COLOR)", set_color, 0, 0 },
-    { "colour", 0, NULL, "truecolor 256 16 8 none", OPTSEC_OUTPUT, NULL, set_color, 0, OPT_ALIAS },
+      "colours (default: from COLORTERM, TERM, NO_COLOR)", set_colour, 0, 0 },
+    { "colour", 0, NULL, "truecolor 256 16 8 none", OPTSEC_OUTPUT, NULL, set_colour, 0, OPT_ALIAS },
     { "edges", 0, NULL, NULL, OPTSEC_OUTPUT, "outline silhouettes, creases and depth steps", NULL, FLAG(edges),
       OPT_VIEWCMD },
     { "point-size", 0, "N", NULL, OPTSEC_OUTPUT, "points as N x N pixel squares (1 to 16, default 1)",

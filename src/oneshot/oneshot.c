@@ -146,10 +146,10 @@ static int ends_with(const char *s, const char *suffix)
 
 /* The text frame of the options into p->cells (what --print shows).
  * Returns 0, or -1 out of memory. */
-static int render_text(const Options *o, Pipeline *p, ColorDepth *depth)
+static int render_text(const Options *o, Pipeline *p, ColourDepth *depth)
 {
     DisplayMode mode = o->mode >= 0 ? (DisplayMode)o->mode : mode_from_locale();
-    *depth = o->color >= 0 ? (ColorDepth)o->color : color_from_env();
+    *depth = o->colour >= 0 ? (ColourDepth)o->colour : colour_from_env();
     int cols, rows, pw, ph;
     print_size(o, &cols, &rows);
     int samples = p->samples;
@@ -170,7 +170,7 @@ static int render_image(const Options *o, Pipeline *p, int shade_too)
 }
 
 /* The text frame into a file. Returns 0, or -1 after a message. */
-static int write_text(const char *path, const CellGrid *g, ColorDepth depth)
+static int write_text(const char *path, const CellGrid *g, ColourDepth depth)
 {
     SafeFile sf;
     FILE *f = safefile_open(&sf, path, "w");
@@ -196,7 +196,7 @@ static int text_file(const Options *o, const char *file)
 static int one_frame(const Options *o, Pipeline *p, const char *file)
 {
     char err[512];
-    ColorDepth depth;
+    ColourDepth depth;
     if (file && !text_file(o, file)) {
         if (render_image(o, p, 1)) {
             fprintf(stderr, "zview: out of memory\n");

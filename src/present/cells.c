@@ -9,7 +9,7 @@
  * Pixels past the image edge (an image that is not a whole number of
  * cells) count as background.
  *
- * Without colour (COLOR_NONE) the colours are lost on the way out, so the
+ * Without colour (COLOUR_NONE) the colours are lost on the way out, so the
  * shading goes into the glyphs instead: half blocks and braille dots are
  * set per pixel by an ordered dither of the pixel's lightness (kept above
  * a floor, so that dark faces still show the silhouette); the ascii ramp
@@ -221,7 +221,7 @@ static void cells_braille(const Image *im, CellGrid *g, int mono)
     }
 }
 
-int cells_from_image(const Image *im, DisplayMode m, ColorDepth depth, CellGrid *out)
+int cells_from_image(const Image *im, DisplayMode m, ColourDepth depth, CellGrid *out)
 {
     int pw, ph;
     if ((unsigned)m >= MODE_COUNT || im->w < 0 || im->h < 0)
@@ -230,7 +230,7 @@ int cells_from_image(const Image *im, DisplayMode m, ColorDepth depth, CellGrid 
     int cols = (im->w + pw - 1) / pw, rows = (im->h + ph - 1) / ph;
     if (grid_resize(out, cols, rows) != 0)
         return -1;
-    int mono = depth == COLOR_NONE;
+    int mono = depth == COLOUR_NONE;
     switch (m) {
     case MODE_HALF:    (mono ? cells_half_mono : cells_half)(im, out); break;
     case MODE_ASCII:   cells_ascii(im, out); break;

@@ -11,7 +11,7 @@
 
 const char *const mode_names[MODE_COUNT] = { "half", "ascii", "braille" };
 
-static const char *const color_names[] = { "none", "8", "16", "256", "truecolor" };
+static const char *const colour_names[] = { "none", "8", "16", "256", "truecolor" };
 
 int mode_from_name(const char *name)
 {
@@ -23,22 +23,22 @@ int mode_from_name(const char *name)
     return -1;
 }
 
-int color_from_name(const char *name)
+int colour_from_name(const char *name)
 {
     if (!name)
         return -1;
-    for (int i = 0; i <= COLOR_TRUE; i++)
-        if (strcmp(name, color_names[i]) == 0)
+    for (int i = 0; i <= COLOUR_TRUE; i++)
+        if (strcmp(name, colour_names[i]) == 0)
             return i;
     /* The spellings COLORTERM uses are accepted too. */
     if (strcmp(name, "24bit") == 0 || strcmp(name, "true") == 0)
-        return COLOR_TRUE;
+        return COLOUR_TRUE;
     return -1;
 }
 
-const char *color_name(ColorDepth c)
+const char *colour_name(ColourDepth c)
 {
-    return (unsigned)c <= COLOR_TRUE ? color_names[c] : "?";
+    return (unsigned)c <= COLOUR_TRUE ? colour_names[c] : "?";
 }
 
 static int ends_with(const char *s, const char *suffix)
@@ -47,23 +47,23 @@ static int ends_with(const char *s, const char *suffix)
     return n >= m && strcmp(s + n - m, suffix) == 0;
 }
 
-ColorDepth color_from_env(void)
+ColourDepth colour_from_env(void)
 {
-    /* https://no-color.org: present and non-empty disables colour. */
+    /* https://no-colour.org: present and non-empty disables colour. */
     const char *no = getenv("NO_COLOR");
     if (no && *no)
-        return COLOR_NONE;
+        return COLOUR_NONE;
     const char *ct = getenv("COLORTERM");
     if (ct && (strcmp(ct, "truecolor") == 0 || strcmp(ct, "24bit") == 0))
-        return COLOR_TRUE;
+        return COLOUR_TRUE;
     const char *term = getenv("TERM");
     if (term && ends_with(term, "-direct"))
-        return COLOR_TRUE;
+        return COLOUR_TRUE;
     if (term && strstr(term, "256color"))
-        return COLOR_256;
+        return COLOUR_256;
     if (!term || !*term || strcmp(term, "dumb") == 0)
-        return COLOR_NONE;
-    return COLOR_16;
+        return COLOUR_NONE;
+    return COLOUR_16;
 }
 
 DisplayMode mode_from_locale(void)

@@ -56,10 +56,10 @@ int palette_16(const uint8_t rgb[3])
     return best;
 }
 
-void palette_rgb(ColorDepth depth, int idx, uint8_t rgb_out[3])
+void palette_rgb(ColourDepth depth, int idx, uint8_t rgb_out[3])
 {
     /* 8 and 16 colours are the first entries of the same table */
-    if (depth != COLOR_256 && idx >= 16)
+    if (depth != COLOUR_256 && idx >= 16)
         idx = 15;
     palette_256_rgb(idx, rgb_out);
 }

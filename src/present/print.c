@@ -19,9 +19,9 @@
 /* The colour key of a cell colour at pixel (x, y): see present.h. */
 uint32_t colour_key(Quantizer *q, const uint8_t rgb[3], int set, int x, int y)
 {
-    if (!set || q->depth == COLOR_NONE)
+    if (!set || q->depth == COLOUR_NONE)
         return CK_DEFAULT;
-    if (q->depth == COLOR_TRUE)
+    if (q->depth == COLOUR_TRUE)
         return CK_RGB(rgb[0], rgb[1], rgb[2]);
     return CK_PAL(quant_pick(q, rgb, x, y));
 }
@@ -98,7 +98,7 @@ static inline char *put_utf8(char *p, uint32_t cp)
     return p;
 }
 
-char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out)
+char *print_cells_to_string(const CellGrid *g, ColourDepth c, size_t *len_out)
 {
     size_t ncells = (size_t)g->cols * (size_t)g->rows;
     size_t cap = ncells * CELL_MAX + (size_t)g->rows * 5 + 1;
@@ -117,7 +117,7 @@ char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out)
         uint32_t fg = CK_DEFAULT, bg = CK_DEFAULT;
         int coloured = 0;
         for (int x = 0; x < g->cols; x++, cell++) {
-            if (c != COLOR_NONE) {
+            if (c != COLOUR_NONE) {
                 uint32_t kf = colour_key(&q, cell->fg, cell->flags & CELL_FG, x, 2 * r);
                 uint32_t kb = colour_key(&q, cell->bg, cell->flags & CELL_BG, x, 2 * r + 1);
                 if (kf != fg) {
@@ -144,7 +144,7 @@ char *print_cells_to_string(const CellGrid *g, ColorDepth c, size_t *len_out)
     return buf;
 }
 
-int print_cells(FILE *f, const CellGrid *g, ColorDepth c)
+int print_cells(FILE *f, const CellGrid *g, ColourDepth c)
 {
     size_t len;
     char *buf = print_cells_to_string(g, c, &len);

@@ -70,7 +70,7 @@ void quant_rgb_to_oklab(const uint8_t rgb[3], float lab_out[3])
     linear_to_oklab(lin, lab_out);
 }
 
-int quant_init(Quantizer *q, ColorDepth depth)
+int quant_init(Quantizer *q, ColourDepth depth)
 {
     memset(q, 0, sizeof *q);
     q->depth = depth;
@@ -78,8 +78,8 @@ int quant_init(Quantizer *q, ColorDepth depth)
         q->lin[v] = srgb_to_linear(v);
     /* the palette searched: under 256 colours the cube and the greys
      * (the first 16 are themable, their real colour unknown) */
-    int first = depth == COLOR_256 ? 16 : 0;
-    int last = depth == COLOR_256 ? 255 : depth == COLOR_16 ? 15 : depth == COLOR_8 ? 7 : -1;
+    int first = depth == COLOUR_256 ? 16 : 0;
+    int last = depth == COLOUR_256 ? 255 : depth == COLOUR_16 ? 15 : depth == COLOUR_8 ? 7 : -1;
     for (int i = first; i <= last; i++) {
         uint8_t rgb[3];
         palette_rgb(depth, i, rgb);

@@ -79,7 +79,7 @@ static struct {
     WINDOW     *pad;            /* sets the keypad mode; never refreshed */
     int         mouse_on, signals_on, atexit_done;
     int         cols, rows;     /* the window */
-    ColorDepth  depth;
+    ColourDepth  depth;
     Quantizer   quant;
     Vt          vt;
     /* output the terminal has not taken yet: ob[ob_off, ob_len) */
@@ -524,17 +524,17 @@ static void read_caps(VtCaps *c)
 /* The colours to use: what is asked, lowered to what the description
  * has; except 24-bit, which a description can only tell through a
  * *-direct entry that most servers lack, so it is taken as asked. */
-static ColorDepth pick_depth(ColorDepth want, int colors)
+static ColourDepth pick_depth(ColourDepth want, int colours)
 {
-    if (want == COLOR_TRUE)
-        return COLOR_TRUE;
-    if (want >= COLOR_256 && colors >= 256)
-        return COLOR_256;
-    if (want >= COLOR_16 && colors >= 16)
-        return COLOR_16;
-    if (want >= COLOR_8 && colors >= 8)
-        return COLOR_8;
-    return COLOR_NONE;
+    if (want == COLOUR_TRUE)
+        return COLOUR_TRUE;
+    if (want >= COLOUR_256 && colours >= 256)
+        return COLOUR_256;
+    if (want >= COLOUR_16 && colours >= 16)
+        return COLOUR_16;
+    if (want >= COLOUR_8 && colours >= 8)
+        return COLOUR_8;
+    return COLOUR_NONE;
 }
 
 /* ==== Start ==== */
@@ -625,7 +625,7 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     WINDOW *pad = newpad(1, 1);
     VtCaps caps;
     read_caps(&caps);
-    ColorDepth depth = pick_depth(cfg->color, tigetnum("colors"));
+    ColourDepth depth = pick_depth(cfg->colour, tigetnum("colors"));
     if (!pad || quant_init(&T.quant, depth)) {
         if (pad)
             delwin(pad);
@@ -688,7 +688,7 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     return 0;
 }
 
-ColorDepth term_color(void) { return T.depth; }
+ColourDepth term_colour(void) { return T.depth; }
 
 void term_size(int *cols_out, int *rows_out)
 {

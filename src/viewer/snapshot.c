@@ -83,7 +83,7 @@ static int claim(const char *dir, const char *stem, char *png, char *txt, size_t
 }
 
 /* The text frame into fd (closed). Returns 0, or -1 with errno. */
-static int write_text(int fd, const CellGrid *g, ColorDepth depth)
+static int write_text(int fd, const CellGrid *g, ColourDepth depth)
 {
     size_t len;
     char *s = print_cells_to_string(g, depth, &len);
@@ -147,7 +147,7 @@ Reaction app_snapshot(App *a)
         note(a, "snapshot failed: %s: %s", dir, strerror(errno));
         return RE_DRAW;
     }
-    if (write_text(fd, g, term_color())) {
+    if (write_text(fd, g, term_colour())) {
         note(a, "snapshot failed: %s: %s", txt, strerror(errno));
         unlink(txt);
         unlink(png);

@@ -92,7 +92,7 @@ static int render(App *a, int cols, int rows)
     a->empty_why = a->sk.on ? NULL
                  : a->s->nobjs == 0 ? "empty scene: O opens a file" : frame_empty_reason(&a->p);
     double t0 = now_ms();
-    int rc = cells_from_image(&a->p.img, a->mode, term_color(), &a->p.cells);
+    int rc = cells_from_image(&a->p.img, a->mode, term_colour(), &a->p.cells);
     a->p.cells_ms = now_ms() - t0;
     if (rc)
         return -1;
@@ -177,13 +177,13 @@ int app_command_layout(const App *a, int cols, char *buf, size_t len, const char
 }
 
 /* The colour depth as the status bar names it. */
-static const char *depth_label(ColorDepth d)
+static const char *depth_label(ColourDepth d)
 {
     switch (d) {
-    case COLOR_TRUE: return "24bit";
-    case COLOR_256:  return "256";
-    case COLOR_16:   return "16";
-    case COLOR_8:    return "8";
+    case COLOUR_TRUE: return "24bit";
+    case COLOUR_256:  return "256";
+    case COLOUR_16:   return "16";
+    case COLOUR_8:    return "8";
     default:         return "mono";
     }
 }
@@ -263,7 +263,7 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
     snprintf(f[2].brief, sizeof f[2].brief, "%u/%u", a->p.sp.npolys, s->nfaces);
     bar_field(&f[3], 0, "%s %.2fms", a->p.algo->name, a->p.hsr_ms);
     bar_field(&f[4], 1, "frame %.1fms %.0ffps", frame_ms, frame_ms > 0 ? 1000.0 / frame_ms : 0);
-    bar_field(&f[5], 3, "%s %s %s", mode_names[a->mode], shade_names[a->p.shade], depth_label(term_color()));
+    bar_field(&f[5], 3, "%s %s %s", mode_names[a->mode], shade_names[a->p.shade], depth_label(term_colour()));
     char spin[24] = "";
     if (a->spin)
         snprintf(spin, sizeof spin, "spin@%d", fps_cap);
@@ -683,7 +683,7 @@ int app_viewer(const Options *o, Scene *s)
         .out = screen,
         .in = keys,
         .termname = use,
-        .color = o->color >= 0 ? (ColorDepth)o->color : color_from_env(),
+        .colour = o->colour >= 0 ? (ColourDepth)o->colour : colour_from_env(),
         .mouse = 1,
         .signals = 1,
     };
@@ -786,7 +786,7 @@ int app_bench_tty(const Options *o)
     Options opt = *o;
     if (opt.mode < 0)
         opt.mode = MODE_HALF;
-    ColorDepth color = o->color >= 0 ? (ColorDepth)o->color : COLOR_256;
+    ColourDepth colour = o->colour >= 0 ? (ColourDepth)o->colour : COLOUR_256;
     const char *termname = "xterm-256color";    /* 24-bit colour needs no other entry */
     int rc = 1;
     App a;
@@ -795,7 +795,7 @@ int app_bench_tty(const Options *o)
         fprintf(stderr, "zview: cannot set up the benchmark\n");
         goto done;
     }
-    TermConfig cfg = { .out = out, .in = in, .termname = termname, .color = color };
+    TermConfig cfg = { .out = out, .in = in, .termname = termname, .colour = colour };
     if (term_open(&cfg, err, sizeof err)) {
         fprintf(stderr, "zview: %s: %s\n", termname, err);
         pipeline_free(&a.p);
@@ -837,7 +837,7 @@ int app_bench_tty(const Options *o)
         before = now;
     }
     term_restore();
-    ColorDepth used = term_color();
+    ColourDepth used = term_colour();
     /* frame 0 paints the whole screen; the turn is frames 1.. */
     long sum = 0, first = bytes[0];
     double frame[TTY_FRAMES];
@@ -855,7 +855,7 @@ int app_bench_tty(const Options *o)
     Out rep;
     out_init(&rep, stdout, "standard output");
     out_printf(&rep, "bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s\n",
-           a.name, cols, rows, mode_names[a.mode], color_name(used), termname, a.p.algo->name,
+           a.name, cols, rows, mode_names[a.mode], colour_name(used), termname, a.p.algo->name,
            a.p.threads, a.p.threads == 1 ? "" : "s");
     out_printf(&rep, "turn of %d frames at 5 degrees a frame; first frame (full paint) %ld bytes\n",
            TTY_FRAMES, first);

@@ -124,14 +124,14 @@ static void render_all(Scene *s)
 {
     static const struct {
         DisplayMode mode;
-        ColorDepth  color;
+        ColourDepth  colour;
         ShadeMode   shade;
         int         cull, persp;
     } runs[] = {
-        { MODE_HALF, COLOR_256, SHADE_LAMBERT, 0, 0 },
-        { MODE_ASCII, COLOR_16, SHADE_DEPTH, 1, 0 },
-        { MODE_BRAILLE, COLOR_TRUE, SHADE_ID, 0, 1 },
-        { MODE_HALF, COLOR_NONE, SHADE_LAMBERT, 1, 1 },
+        { MODE_HALF, COLOUR_256, SHADE_LAMBERT, 0, 0 },
+        { MODE_ASCII, COLOUR_16, SHADE_DEPTH, 1, 0 },
+        { MODE_BRAILLE, COLOUR_TRUE, SHADE_ID, 0, 1 },
+        { MODE_HALF, COLOUR_NONE, SHADE_LAMBERT, 1, 1 },
     };
     Pipeline p;
     if (pipeline_init(&p, s, hsr_find("zbuffer"), 1))
@@ -146,9 +146,9 @@ static void render_all(Scene *s)
         p.shade = runs[k].shade;
         mode_cell_pixels(runs[k].mode, &pw, &ph);
         if (pipeline_render(&p, 40 * pw, 20 * ph, mode_pixel_aspect(runs[k].mode), runs[k].cull, 1) ||
-            cells_from_image(&p.img, runs[k].mode, runs[k].color, &p.cells))
+            cells_from_image(&p.img, runs[k].mode, runs[k].colour, &p.cells))
             break;
-        print_cells(work.null, &p.cells, runs[k].color);
+        print_cells(work.null, &p.cells, runs[k].colour);
     }
     pipeline_free(&p);
 }

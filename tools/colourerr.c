@@ -1,8 +1,8 @@
-/* colorerr: how far a 256-, 16- or 8-colour picture is from the
+/* colourerr: how far a 256-, 16- or 8-colour picture is from the
  * truecolor one, before (plain nearest palette colour in RGB) and after
  * (quant.c: nearest in OKLab, ordered dithering).
  *
- *   build/colorerr [-s WxH] [-o DIR] model.obj ...
+ *   build/colourerr [-s WxH] [-o DIR] model.obj ...
  *
  * For each model, a three-quarter view is shaded at WxH pixels (default
  * 160x96, a terminal's worth of half blocks). Two errors are printed, in
@@ -108,7 +108,7 @@ int main(int argc, char **argv)
             dir = argv[a + 1];
             continue;
         }
-        fprintf(stderr, "usage: colorerr [-s WxH] [-o DIR] model ...\n");
+        fprintf(stderr, "usage: colourerr [-s WxH] [-o DIR] model ...\n");
         return 2;
     }
     printf("%-22s %6s  %-14s %-14s\n", "model", "colours", "before pixel/seen", "after pixel/seen");
@@ -122,18 +122,18 @@ int main(int argc, char **argv)
         Scene s;
         char err[512];
         if (app_load_scene(&o, &s, err, sizeof err)) {
-            fprintf(stderr, "colorerr: %s\n", err);
+            fprintf(stderr, "colourerr: %s\n", err);
             return 1;
         }
         Pipeline p;
         if (pipeline_init(&p, &s, hsr_find("zbuffer"), 1) || pipeline_render(&p, w, h, 1.0f, 0, 1)) {
-            fprintf(stderr, "colorerr: out of memory\n");
+            fprintf(stderr, "colourerr: out of memory\n");
             return 1;
         }
         const Image *t = &p.img;
         uint8_t *before = malloc((size_t)w * h * 3), *after = malloc((size_t)w * h * 3);
         const char *base = strrchr(argv[a], '/') ? strrchr(argv[a], '/') + 1 : argv[a];
-        for (ColorDepth d = COLOR_256; d >= COLOR_8; d--) {
+        for (ColourDepth d = COLOUR_256; d >= COLOUR_8; d--) {
             Quantizer q;
             if (!before || !after || quant_init(&q, d))
                 return 1;
@@ -141,7 +141,7 @@ int main(int argc, char **argv)
                 for (int x = 0; x < w; x++) {
                     size_t i = (size_t)y * w + x;
                     const uint8_t *c = t->rgb + 3 * i;
-                    int old = d == COLOR_256 ? palette_256(c) : nearest_rgb(c, 0, d == COLOR_16 ? 15 : 7);
+                    int old = d == COLOUR_256 ? palette_256(c) : nearest_rgb(c, 0, d == COLOUR_16 ? 15 : 7);
                     palette_256_rgb(old, before + 3 * i);
                     palette_256_rgb(quant_pick(&q, c, x, y), after + 3 * i);
                 }
@@ -149,15 +149,15 @@ int main(int argc, char **argv)
             double bp, bs, ap, as;
             errors(t, before, &bp, &bs);
             errors(t, after, &ap, &as);
-            printf("%-22s %6s  %6.2f / %-6.2f %6.2f / %-6.2f\n", base, color_name(d), bp, bs, ap, as);
+            printf("%-22s %6s  %6.2f / %-6.2f %6.2f / %-6.2f\n", base, colour_name(d), bp, bs, ap, as);
             if (dir) {
                 char path[1024];
                 Image im = *t;
                 im.rgb = before;
-                snprintf(path, sizeof path, "%s/%s-%s-before.png", dir, base, color_name(d));
+                snprintf(path, sizeof path, "%s/%s-%s-before.png", dir, base, colour_name(d));
                 write_png(path, &im, err, sizeof err);
                 im.rgb = after;
-                snprintf(path, sizeof path, "%s/%s-%s-after.png", dir, base, color_name(d));
+                snprintf(path, sizeof path, "%s/%s-%s-after.png", dir, base, colour_name(d));
                 write_png(path, &im, err, sizeof err);
             }
         }
