@@ -42,6 +42,8 @@
 #include <unistd.h>
 
 #include "clock.h"
+#include "outq.h"
+#include "termcaps.h"
 #include "tty.h"
 
 /* From ncurses' <term.h>, which is not included: its capability macros
@@ -73,18 +75,14 @@ extern int tputs(const char *str, int affcnt, int (*putc)(int));
 static struct {
     SCREEN     *scr;
     FILE       *out;
-    int         out_fd, in_fd;
-    int         out_flags;      /* the output's file status flags (-1 unknown): O_NONBLOCK
-                                   is added only around our own writes, see write_now */
+    OutQueue    q;              /* the output: its descriptor, flags and what waits */
+    int         in_fd;
     WINDOW     *pad;            /* sets the keypad mode; never refreshed */
     int         mouse_on, signals_on, atexit_done;
     int         cols, rows;     /* the window */
     ColourDepth  depth;
     Quantizer   quant;
     Vt          vt;
-    /* output the terminal has not taken yet: ob[ob_off, ob_len) */
-    char       *ob;
-    size_t      ob_off, ob_len, ob_cap;
     int         out_errno;      /* a write failed (sticky): the next update says so */
     /* input */
     KeyParser   kp;
@@ -105,7 +103,7 @@ static struct {
     struct termios crash_tios;
     int         crash_fd, crash_tios_ok;
     struct sigaction old_crash[5];
-} T = { .out_fd = -1, .in_fd = -1, .out_flags = -1, .crash_fd = -1, .wake = { -1, -1 } };
+} T = { .q = { .fd = -1, .flags = -1 }, .in_fd = -1, .crash_fd = -1, .wake = { -1, -1 } };
 
 static volatile sig_atomic_t term_on;
 static volatile sig_atomic_t repaint;   /* back from Ctrl-Z: paint everything */
@@ -113,104 +111,37 @@ static volatile sig_atomic_t resized;     /* the window changed size */
 
 static const int crash_sigs[5] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT };
 
-/* ==== Writing ==== */
+/* ==== Writing ==== (the queue itself: outq.c) */
 
-/* All of p to the terminal: a signal or a full non-blocking line only
- * delays it. Returns 0, or -1 with errno. */
 static int send_all(const char *p, size_t n)
 {
-    while (n) {
-        ssize_t w = write(T.out_fd, p, n);
-        if (w > 0) {
-            p += w;
-            n -= (size_t)w;
-        } else if (w < 0 && errno == EINTR) {
-            continue;
-        } else if (w < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
-            struct pollfd pf = { .fd = T.out_fd, .events = POLLOUT };
-            poll(&pf, 1, 1000);
-        } else {
-            if (w == 0)
-                errno = EIO;
-            return -1;
-        }
-    }
-    return 0;
+    return outq_send_all(&T.q, p, n);
 }
 
-/* One write that never waits: O_NONBLOCK on the output only for the
- * call. The flag belongs to the open file description, which the shell
- * shares (and often standard input with it): left set, the shell's reads
- * would fail. Our signal handlers put the flags back should one come in
- * between. Returns what write(2) does. */
-static ssize_t write_now(const char *p, size_t n)
-{
-    if (T.out_flags < 0 || (T.out_flags & O_NONBLOCK))
-        return write(T.out_fd, p, n);
-    if (fcntl(T.out_fd, F_SETFL, T.out_flags | O_NONBLOCK) != 0)
-        return write(T.out_fd, p, n);
-    ssize_t w = write(T.out_fd, p, n);
-    int e = errno;
-    fcntl(T.out_fd, F_SETFL, T.out_flags);
-    errno = e;
-    return w;
-}
-
-/* Signal handlers: the output's flags as they were (async-signal-safe). */
 static void flags_back(void)
 {
-    if (T.out_flags >= 0 && T.out_fd >= 0)
-        fcntl(T.out_fd, F_SETFL, T.out_flags);
+    outq_flags_back(&T.q);
 }
 
 static int out_pending(void)
 {
-    return T.ob_off < T.ob_len;
+    return outq_pending(&T.q);
 }
 
-/* Queue bytes behind what waits. Returns 0, or -1 out of memory. */
 static int out_add(const char *p, size_t n)
 {
-    if (T.ob_len + n > T.ob_cap) {
-        size_t cap = T.ob_cap ? T.ob_cap : 4096;
-        while (cap < T.ob_len + n)
-            cap *= 2;
-        char *b = realloc(T.ob, cap);
-        if (!b)
-            return -1;
-        T.ob = b;
-        T.ob_cap = cap;
-    }
-    memcpy(T.ob + T.ob_len, p, n);
-    T.ob_len += n;
-    return 0;
+    return outq_add(&T.q, p, n);
 }
 
-/* Write what waits, as much as the terminal takes now. Returns 0 (done
- * or the line full), or -1 with errno when the terminal cannot be
- * written. */
+/* Write what waits; once it has all gone, the status request that went
+ * last is timed from then. */
 static int out_pump(void)
 {
-    while (out_pending()) {
-        ssize_t w = write_now(T.ob + T.ob_off, T.ob_len - T.ob_off);
-        if (w > 0) {
-            T.ob_off += (size_t)w;
-        } else if (w < 0 && errno == EINTR) {
-            continue;
-        } else if (w < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
-            return 0;
-        } else {
-            if (w == 0)
-                errno = EIO;
-            return -1;
-        }
-    }
-    if (T.ob_len) {
-        T.ob_off = T.ob_len = 0;
-        /* the status request went last: its answer is timed from now */
-        if (T.ack_wait)
-            T.ack_sent_ms = now_ms();
-    }
+    int emptied;
+    if (outq_pump(&T.q, &emptied))
+        return -1;
+    if (emptied && T.ack_wait)
+        T.ack_sent_ms = now_ms();
     return 0;
 }
 
@@ -220,7 +151,7 @@ static void out_drop(void)
 {
     if (out_pending())
         T.ack_wait = 0;
-    T.ob_off = T.ob_len = 0;
+    outq_drop(&T.q);
 }
 
 /* One byte to the terminal, now (for tputs). */
@@ -236,7 +167,7 @@ static int send_byte(int c)
  * stdio's stdout buffer, which nothing flushes until exit. */
 static void send_cap(const char *cap)
 {
-    if (cap && cap != (const char *)-1 && T.out_fd >= 0)
+    if (cap && cap != (const char *)-1 && T.q.fd >= 0)
         tputs(cap, 1, send_byte);
 }
 
@@ -258,8 +189,8 @@ static void blank_terminal(void)
 static void drop_queued_output(void)
 {
     out_drop();
-    if (T.out_fd >= 0 && isatty(T.out_fd))
-        tcflush(T.out_fd, TCOFLUSH);
+    if (T.q.fd >= 0 && isatty(T.q.fd))
+        tcflush(T.q.fd, TCOFLUSH);
 }
 
 static void close_wake(void)
@@ -295,9 +226,7 @@ void term_restore(void)
     if (T.pad)
         delwin(T.pad);
     T.pad = NULL;
-    free(T.ob);
-    T.ob = NULL;
-    T.ob_cap = 0;
+    outq_free(&T.q);
     vt_free(&T.vt);
     quant_free(&T.quant);
 }
@@ -417,8 +346,8 @@ static void on_tstp(int sig)
     int was_on = term_on;
     if (was_on) {
         flags_back();
-        if (isatty(T.out_fd))
-            tcflush(T.out_fd, TCOFLUSH);        /* the shell need not wait for a frame */
+        if (isatty(T.q.fd))
+            tcflush(T.q.fd, TCOFLUSH);        /* the shell need not wait for a frame */
         if (T.mouse_on)
             send_cap(MOUSE_OFF);
         blank_terminal();
@@ -466,77 +395,6 @@ static void install_handlers(void)
     T.signals_on = 1;
 }
 
-/* ==== Terminal descriptions ==== */
-
-static int description_found(const char *name, int fd)
-{
-    int found = 0;
-    if (setupterm(name, fd, &found) != OK || found != 1)
-        return 0;
-    del_curterm(set_curterm(NULL));
-    return 1;
-}
-
-const char *term_resolve(const char *name)
-{
-    static const char *const fallbacks[] = { "xterm-256color", "xterm", "vt100", "ansi" };
-    if (!name)
-        name = getenv("TERM");
-    if (name && *name && description_found(name, -1))
-        return name;
-    for (size_t i = 0; i < sizeof fallbacks / sizeof fallbacks[0]; i++)
-        if (description_found(fallbacks[i], -1))
-            return fallbacks[i];
-    return NULL;
-}
-
-/* A capability is the ANSI form we write ourselves (padding aside). */
-static int cap_is(const char *name, const char *ansi)
-{
-    const char *s = tigetstr(name);
-    return s && s != (const char *)-1 && strncmp(s, ansi, strlen(ansi)) == 0;
-}
-
-static int flag(const char *name)
-{
-    return tigetflag(name) > 0;
-}
-
-static void read_caps(VtCaps *c)
-{
-    memset(c, 0, sizeof *c);
-    c->ech = cap_is("ech", "\033[%p1%dX");
-    c->el = cap_is("el", "\033[K");
-    c->rel = cap_is("cuf", "\033[%p1%dC") && cap_is("cub", "\033[%p1%dD") &&
-             cap_is("cud", "\033[%p1%dB") && cap_is("cuu", "\033[%p1%dA");
-    c->hpa = cap_is("hpa", "\033[%i%p1%dG");
-    c->vpa = cap_is("vpa", "\033[%i%p1%dd");
-    c->am = flag("am");
-    c->xenl = flag("xenl");
-    const char *cl = tigetstr("clear");
-    /* padding ($<...>) means nothing to a terminal emulator: the plain form */
-    if (cl && cl != (const char *)-1 && strncmp(cl, "\033[H\033[2J", 7) == 0)
-        snprintf(c->clear, sizeof c->clear, "\033[H\033[2J");
-    else
-        snprintf(c->clear, sizeof c->clear, "\033[H\033[J");
-}
-
-/* The colours to use: what is asked, lowered to what the description
- * has; except 24-bit, which a description can only tell through a
- * *-direct entry that most servers lack, so it is taken as asked. */
-static ColourDepth pick_depth(ColourDepth want, int colours)
-{
-    if (want == COLOUR_TRUE)
-        return COLOUR_TRUE;
-    if (want >= COLOUR_256 && colours >= 256)
-        return COLOUR_256;
-    if (want >= COLOUR_16 && colours >= 16)
-        return COLOUR_16;
-    if (want >= COLOUR_8 && colours >= 8)
-        return COLOUR_8;
-    return COLOUR_NONE;
-}
-
 /* ==== Start ==== */
 
 static int locale_utf8(void)
@@ -566,7 +424,7 @@ static int open_wake(void)
 static void read_size(void)
 {
     struct winsize ws;
-    if (ioctl(T.out_fd, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0 && ws.ws_row > 0) {
+    if (ioctl(T.q.fd, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0 && ws.ws_row > 0) {
         T.cols = ws.ws_col;
         T.rows = ws.ws_row;
         if (T.cols != COLS || T.rows != LINES)
@@ -618,14 +476,14 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     }
     set_term(s);
     /* the screen is written with ANSI cursor addressing */
-    if (!cap_is("cup", "\033[%i%p1%d;%p2%dH")) {
+    if (!termcaps_is("cup", "\033[%i%p1%d;%p2%dH")) {
         open_failed(s, "the terminal cannot move the cursor the ANSI way", err, errlen);
         return -1;
     }
     WINDOW *pad = newpad(1, 1);
     VtCaps caps;
-    read_caps(&caps);
-    ColourDepth depth = pick_depth(cfg->colour, tigetnum("colors"));
+    termcaps_read(&caps);
+    ColourDepth depth = termcaps_depth(cfg->colour, tigetnum("colors"));
     if (!pad || quant_init(&T.quant, depth)) {
         if (pad)
             delwin(pad);
@@ -641,14 +499,14 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     }
     T.scr = s;
     T.out = out;
-    T.out_fd = fileno(out);
+    T.q.fd = fileno(out);
     T.in_fd = fileno(in);
-    T.out_flags = fcntl(T.out_fd, F_GETFL);
+    T.q.flags = fcntl(T.q.fd, F_GETFL);
     T.pad = pad;
     T.depth = depth;
     vt_init(&T.vt, &caps);
-    T.ob = NULL;
-    T.ob_off = T.ob_len = T.ob_cap = 0;
+    T.q.buf = NULL;
+    T.q.off = T.q.len = T.q.cap = 0;
     T.out_errno = 0;
     kp_init(&T.kp, locale_utf8());
     T.last_in_ms = now_ms();
@@ -672,8 +530,8 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     /* curses has set the tty: without ONLCR a line feed only goes down
      * (on a file, as the tty benchmark writes, as on a terminal) */
     struct termios tio;
-    T.vt.caps.lf = tcgetattr(T.out_fd, &tio) != 0 || !(tio.c_oflag & OPOST) || !(tio.c_oflag & ONLCR);
-    T.ask = isatty(T.out_fd);
+    T.vt.caps.lf = tcgetattr(T.q.fd, &tio) != 0 || !(tio.c_oflag & OPOST) || !(tio.c_oflag & ONLCR);
+    T.ask = isatty(T.q.fd);
     T.ack_wait = T.acks_seen = T.unanswered = 0;
     T.pace_ms = PACE_MIN_MS;
     T.mouse_on = 0;
@@ -867,9 +725,9 @@ int term_ready(void)
     if (out_pending())
         return 0;               /* the last frame is still being written */
     int queued = 0;
-    if (ioctl(T.out_fd, TIOCOUTQ, &queued) != 0)
+    if (ioctl(T.q.fd, TIOCOUTQ, &queued) != 0)
         queued = 0;             /* not a terminal (the tty benchmark's file) */
-    struct pollfd pf = { .fd = T.out_fd, .events = POLLOUT };
+    struct pollfd pf = { .fd = T.q.fd, .events = POLLOUT };
     int writable = poll(&pf, 1, 0) != 0;        /* an error: let the write report it */
     double waited = T.ack_wait && T.acks_seen ? now_ms() - T.ack_sent_ms : -1;
     return vt_may_send(queued, writable, waited);
@@ -983,7 +841,7 @@ static int wait_io(int ms)
     struct pollfd pf[3] = {
         { .fd = T.in_fd, .events = POLLIN },
         { .fd = T.wake[0], .events = POLLIN },
-        { .fd = pending ? T.out_fd : -1, .events = POLLOUT },
+        { .fd = pending ? T.q.fd : -1, .events = POLLOUT },
     };
     if (poll(pf, 3, ms) <= 0)
         return 0;               /* a timeout, or a signal (the caller looks) */
