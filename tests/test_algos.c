@@ -363,7 +363,7 @@ Test(depth, exact_ties_in_a_scene_under_every_order)
             /* past ORDER_SHUFFLE: more shuffles, other seeds */
             PolyOrder po = order < ORDER_COUNT ? (PolyOrder)order : ORDER_SHUFFLE;
             cr_assert_eq(screen_reorder(&sp, po, (uint32_t)order, &rs), 0);
-            HsrInput in = { &sp, &s, &vp };
+            HsrInput in = { .sp = &sp, .scene = &s, .vp = &vp };
             for (int a = 0; a < hsr_nalgos; a++)
                 for (int threads = 1; threads <= 2; threads++) {
                     HsrRunner r;
