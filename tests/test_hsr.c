@@ -454,7 +454,7 @@ Test(depth, coincident_flat_polygons_in_every_order)
                 HsrRunner r;
                 HsrStats st;
                 Viewport vp = { W, H, 1, 0 };
-                HsrInput in = { &p.sp, NULL, &vp };
+                HsrInput in = { .sp = &p.sp, .vp = &vp };
                 cr_assert_eq(hsr_runner_init(&r, hsr_algos[a], threads), 0);
                 cr_assert_eq(hsr_run(&r, &in, &fb, &st), 0);
                 hsr_runner_free(&r);
