@@ -153,7 +153,7 @@ Test(viewcmd, defaults_are_left_out_and_odd_file_names_quoted)
     ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0 };
     char cmd[512];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
-    cr_expect_str_eq(cmd, "zview --yaw 0 --pitch 0 -- 'it'\\''s here.obj'");
+    cr_expect_str_eq(cmd, "zview 'it'\\''s here.obj' --yaw 0 --pitch 0");
     cr_expect_eq(view_command(cmd, 10, &o, &s, &v), -1, "too small a buffer is reported");
 }
 
@@ -177,5 +177,35 @@ Test(viewcmd, numbers_are_the_shortest_that_come_back)
     ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0 };
     char cmd[512];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
-    cr_expect_str_eq(cmd, "zview --yaw -25 --pitch 30 --zoom 1.15 --pan 0.1,-0.3 --light -34.5,37 --ambient 0.3 -- m.obj");
+    cr_expect_str_eq(cmd, "zview m.obj --yaw -25 --pitch 30 --zoom 1.15 --pan 0.1,-0.3 --light -34.5,37 --ambient 0.3");
+}
+
+/* A file whose name starts with '-' comes first as ./-name, so that no
+ * option parser takes it for an option and options can follow it. */
+Test(viewcmd, files_come_first_and_a_dash_name_is_a_path)
+{
+    Options o;
+    cli_defaults(&o);
+    o.files[0] = "-odd.obj";
+    o.files[1] = "-";
+    o.nfiles = 2;
+    Scene s;
+    memset(&s, 0, sizeof s);
+    s.cam.zoom = 1;
+    light_set(&s.light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
+    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0 };
+    char cmd[512];
+    cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
+    cr_expect_str_eq(cmd, "zview ./-odd.obj - --yaw 0 --pitch 0");
+    /* parsed back, with an option appended */
+    strcat(cmd, " -o out.png");
+    char *argv[16];
+    int argc = split(cmd, argv, 16);
+    Options o2;
+    char err[256];
+    cr_assert_eq(cli_parse(argc, argv, &o2, err, sizeof err), 0, "%s", err);
+    cr_expect_eq(o2.nfiles, 2);
+    cr_expect_str_eq(o2.files[0], "./-odd.obj");
+    cr_expect_str_eq(o2.files[1], "-");
+    cr_expect_str_eq(o2.out, "out.png");
 }

@@ -55,6 +55,14 @@ static void put_word(CmdBuf *o, const char *w)
     put(o, "'");
 }
 
+static void put_file(CmdBuf *o, const char *path)
+{
+    char buf[4096 + 3];
+    if (path[0] == '-' && path[1] && snprintf(buf, sizeof buf, "./%s", path) < (int)sizeof buf)
+        path = buf;
+    put_word(o, path);
+}
+
 /* Degrees that the command line turns back into exactly these radians
  * (deg2rad of the printed value), so the view comes back to the bit. */
 static float deg(float rad)
@@ -120,6 +128,12 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
     CmdBuf o = { buf, len, 0, 0 };
     const Camera *c = &s->cam;
     put(&o, "zview");
+    /* the files first, so that options can be appended to the line
+     * ($cmd -o out.png); a name that starts with '-' is written ./-x,
+     * which no option parser takes for an option ("-" alone stays:
+     * standard input) */
+    for (int i = 0; i < opt->nfiles; i++)
+        put_file(&o, opt->files[i]);
     /* the turn, and where it was fitted from when that differs */
     put(&o, " --yaw %s --pitch %s", angle(c->yaw).s, angle(c->pitch).s);
     if (deg(c->roll) != 0)
@@ -180,9 +194,5 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --layout %s", layout_names[opt->layout]);
     if (opt->grid > 1)
         put(&o, " --grid %d", opt->grid);
-    if (opt->nfiles > 0)
-        put(&o, " --");
-    for (int i = 0; i < opt->nfiles; i++)
-        put_word(&o, opt->files[i]);
     return o.full ? -1 : 0;
 }

@@ -107,13 +107,18 @@ static int write_image(const Options *o, const char *path, const Image *img, cha
     if (!rc && !f)
         rc = -1;
     if (f) {
+        /* the first failure's errno is the reason: stdio's buffering
+         * shows a full device only at a later write or the flush */
+        Out out;
+        out_init(&out, stdout, "standard output");
         char buf[65536];
         size_t k;
-        while ((k = fread(buf, 1, sizeof buf, f)) > 0)
-            if (fwrite(buf, 1, k, stdout) != k)
-                break;
-        if (ferror(f) || fflush(stdout) != 0 || ferror(stdout)) {
-            snprintf(err, errlen, "-o -: cannot write to standard output");
+        while ((k = fread(buf, 1, sizeof buf, f)) > 0 && out_write(&out, buf, k) == 0)
+            ;
+        int read_failed = ferror(f);
+        if (out_flush(&out) || read_failed) {
+            snprintf(err, errlen, "-o -: cannot write to standard output: %s",
+                     read_failed && !out.err ? "cannot read back the image" : out_error(&out));
             rc = -1;
         }
         fclose(f);
@@ -244,6 +249,14 @@ static int turntable(const Options *o, Scene *s, Pipeline *p)
                 return 1;
             }
             file = path;
+        }
+        /* frames on standard output each start at the top left (cursor
+         * home, the first on a cleared screen): `cat` plays them back in
+         * place in a terminal, where run together they would scroll by
+         * as one long picture */
+        if (o->print && fputs(k ? "\033[H" : "\033[H\033[2J", stdout) == EOF) {
+            fprintf(stderr, "zview: standard output: %s\n", strerror(errno));
+            return 1;
         }
         if (one_frame(o, p, file))
             return 1;

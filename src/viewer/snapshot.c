@@ -31,6 +31,8 @@
 static void model_stem(const App *a, char *buf, size_t len)
 {
     const char *path = a->opt->nfiles ? a->opt->files[0] : "demo";
+    if (strcmp(path, "-") == 0)
+        path = "stdin";         /* a model from standard input */
     const char *base = strrchr(path, '/');
     base = base ? base + 1 : path;
     const char *dot = strrchr(base, '.');
@@ -42,6 +44,8 @@ static void model_stem(const App *a, char *buf, size_t len)
 static void model_dir(const App *a, char *buf, size_t len)
 {
     const char *path = a->opt->nfiles ? a->opt->files[0] : app_demo_path();
+    if (strcmp(path, "-") == 0)
+        path = "./-";           /* standard input: the current folder */
     const char *slash = strrchr(path, '/');
     if (!slash)
         snprintf(buf, len, ".");
@@ -135,6 +139,10 @@ Reaction app_snapshot(App *a)
     const CellGrid *g = &a->p.cells;
     if (g->cols <= 0 || g->rows <= 0) {
         note(a, "snapshot: no picture yet");
+        return RE_DRAW;
+    }
+    if (a->s->nfaces == 0 && a->s->nprims == 0) {
+        note(a, "snapshot: the scene is empty, nothing to save");
         return RE_DRAW;
     }
     char stem[128], dir[1024], png[1200], txt[1200];

@@ -30,7 +30,7 @@ fi
 
 # the view's command line names the files the scene now holds
 tm send-keys -t zv C
-if wait_for '-- assets/torus.obj assets/knot.obj'; then ok "C names both files"; else notok "C names both files" "$(cat "$T/screen")"; fi
+if wait_for 'zview assets/torus.obj assets/knot.obj '; then ok "C names both files"; else notok "C names both files" "$(cat "$T/screen")"; fi
 tm send-keys -t zv C
 wait_gone 'command line of this view' >/dev/null
 

@@ -1,0 +1,48 @@
+#!/bin/sh
+# What a newcomer meets at the command line and in the viewer (issue 20):
+# the words zview says, view commands that take more options, frames that
+# play back, snapshots with names that say what they are.
+. "$(dirname "$0")/lib.sh"
+. "$(dirname "$0")/tmux.sh"
+
+# -o - on a full device says why
+"$Z" -o - --size 8x8 assets/cube.obj >/dev/full 2>"$T/err"
+st=$?
+check "-o - on a full device fails" '[ $st -eq 1 ]' "status $st"
+expect_err "... and says why" "-o -: cannot write to standard output: No space left on device"
+
+# --turntable --print: every frame starts at the top left (the first on a
+# cleared screen), so cat plays them in place
+"$Z" --turntable 3 --print --size 12x5 --color none assets/cube.obj >"$T/frames"
+n=$(grep -o "$(printf '\033')\[H" "$T/frames" | wc -l)
+check "--turntable --print: each of 3 frames homes the cursor" '[ "$n" -eq 3 ]' "$n"
+check "... the first clears the screen first" '[ "$(head -c 7 "$T/frames" | od -An -c | tr -d " ")" = "033[H033[2J" ]' "$(head -c 7 "$T/frames" | od -An -c)"
+
+# the view command: the files first, so that an option appended works
+start 100 30 --print-view assets/knot.obj
+wait_for 'faces [0-9]+ drawn' >/dev/null
+tm send-keys -t zv l q
+wait_for 'zv-exit=0' >/dev/null
+cap
+cmd=$(grep '^zview ' "$T/screen" | head -1)
+check "--print-view starts with the file" 'echo "$cmd" | grep -q "^zview assets/knot.obj --yaw "' "$cmd"
+sh -c "$(echo "$cmd" | sed "s|^zview|\"$Z\"|") -o $T/appended.png --size 64x48" 2>"$T/err"
+check "... and an option appended to it is taken as an option" '[ -s "$T/appended.png" ] && [ ! -s "$T/err" ]' "$(cat "$T/err")"
+
+# snapshots: a model from standard input is named stdin; an empty scene
+# has nothing to save
+mkdir -p "$T/snap"
+session xterm-256color 100 30
+tm send-keys -t zv "cd $T/snap && TERM=xterm-256color $Z - < $ROOT/assets/cube.obj; echo zv-exit=\$?" Enter
+wait_for 'faces 6 drawn' >/dev/null
+tm send-keys -t zv P
+if wait_for 'wrote zview-stdin-001.png'; then ok "P of a model from standard input: zview-stdin-001"; else notok "P of a model from standard input: zview-stdin-001" "$(status 30)"; fi
+tm send-keys -t zv E
+wait_for 'y/n' >/dev/null
+tm send-keys -t zv y
+sleep 0.3
+tm send-keys -t zv P
+if wait_for 'the scene is empty, nothing to save'; then ok "P on an emptied scene says there is nothing to save"; else notok "P on an emptied scene says there is nothing to save" "$(status 30)"; fi
+check "... and writes nothing" '[ ! -e "$T/snap/zview-stdin-002.png" ]' "$(ls "$T/snap")"
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
