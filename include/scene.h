@@ -33,6 +33,12 @@ typedef struct {
     Vec3       home;          /* offset after a reset (grid copies, laid-out files sit apart) */
     float      scale;         /* uniform, 1 = as loaded */
     float      home_scale;    /* scale after a reset (a laid-out file's common size) */
+    /* The placement the model opened with (--move, --turn, --scale), which
+     * a reset goes back to: relative to home, so that it survives the
+     * layout moving home; zero for objects opened later (open_scale 0
+     * stands for 1). */
+    Vec3       open_move;
+    float      open_yaw, open_pitch, open_roll, open_scale;
     int        up;            /* UpAxis: applied first, about the centre */
     /* Points, line segments and wireframe edges (screen-aligned squares
      * and quads made each frame by prims.c): ids past every face's, in
@@ -188,8 +194,13 @@ void scene_free(Scene *s);
 /* Turn every object so that its `up` axis points up, then fit. */
 void scene_set_up(Scene *s, int up);
 
-/* Reset the camera (and object placements), then fit. The light stays. */
+/* Reset the camera and put the objects back where the model opened
+ * (Object.open_*), then fit. The light stays. */
 void scene_reset(Scene *s);
+/* The view of camera c (its turn, the turn it was fitted at, zoom, pan)
+ * on s as it is now: fitted at c's fit turn, then turned, zoomed and
+ * panned as c. The projection stays s's. */
+void scene_view_like(Scene *s, const Camera *c);
 /* Fit: centre the scene (its objects at home) as seen from the camera's
  * current turn and set its view-space extents, which the projection
  * scales to about 90% of the viewport (pan and zoom are reset). */

@@ -334,3 +334,28 @@ Test(viewer, the_mode_on_top_takes_the_key)
     cr_expect(viewer_mode_boxed(VM_HELP) && viewer_mode_boxed(VM_COMMAND) && !viewer_mode_boxed(VM_PROMPT) &&
               !viewer_mode_boxed(VM_SKETCH));
 }
+
+/* r goes back to the view the model opened with (the automatic view or
+ * what the command line asked), objects where they opened: not to a
+ * plain view from the front. */
+Test(viewer, r_goes_back_to_the_opening_view)
+{
+    scene.cam.yaw = 0.7f;
+    scene.cam.pitch = 0.3f;
+    scene.cam.zoom = 1.3f;
+    scene.cam.pan = v3(0.1f, 0, 0);
+    scene.objs[0].open_yaw = scene.objs[0].yaw = 0.25f;
+    app.opening = scene.cam;
+    Camera want = scene.cam;
+    app_key(&app, 'l');
+    app_key(&app, 'j');
+    app_key(&app, '+');
+    cr_assert(scene.cam.yaw != want.yaw || scene.cam.pitch != want.pitch, "the keys turned");
+    app_key(&app, 'r');
+    cr_expect_eq(scene.cam.yaw, want.yaw);
+    cr_expect_eq(scene.cam.pitch, want.pitch);
+    cr_expect_eq(scene.cam.zoom, want.zoom);
+    cr_expect_eq(scene.cam.pan.x, want.pan.x);
+    cr_expect_eq(memcmp(&scene.cam.centre, &want.centre, sizeof want.centre), 0, "fitted as it opened");
+    cr_expect_eq(scene.objs[0].yaw, 0.25f, "the object turned as it opened");
+}

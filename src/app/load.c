@@ -127,6 +127,15 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         } else
             ob->scale = ob->home_scale * pl->v[0];
     }
+    /* what a reset (r in the viewer) goes back to */
+    for (int k = 0; k < s->nobjs; k++) {
+        Object *ob = &s->objs[k];
+        ob->open_move = v3_sub(ob->offset, ob->home);
+        ob->open_yaw = ob->yaw;
+        ob->open_pitch = ob->pitch;
+        ob->open_roll = ob->roll;
+        ob->open_scale = ob->home_scale != 0 ? ob->scale / ob->home_scale : 1;
+    }
     light_set(&s->light, o->light[0], o->light[1], o->ambient);
     s->cam.persp = o->persp;
     s->cam.fov_deg = o->fov;

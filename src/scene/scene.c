@@ -818,9 +818,11 @@ void scene_reset(Scene *s)
 {
     for (int i = 0; i < s->nobjs; i++) {
         Object *o = &s->objs[i];
-        o->yaw = o->pitch = o->roll = 0;
-        o->scale = o->home_scale;
-        o->offset = o->home;
+        o->yaw = o->open_yaw;
+        o->pitch = o->open_pitch;
+        o->roll = o->open_roll;
+        o->scale = o->home_scale * (o->open_scale != 0 ? o->open_scale : 1);
+        o->offset = v3_add(o->home, o->open_move);
     }
     int persp = s->cam.persp;
     float fov = s->cam.fov_deg > 0 ? s->cam.fov_deg : 50;
@@ -828,6 +830,19 @@ void scene_reset(Scene *s)
     s->cam.persp = persp;
     s->cam.fov_deg = fov;
     scene_fit(s);
+}
+
+void scene_view_like(Scene *s, const Camera *c)
+{
+    s->cam.yaw = c->fit_yaw;
+    s->cam.pitch = c->fit_pitch;
+    s->cam.roll = c->fit_roll;
+    scene_fit(s);
+    s->cam.yaw = c->yaw;
+    s->cam.pitch = c->pitch;
+    s->cam.roll = c->roll;
+    s->cam.zoom = c->zoom;
+    s->cam.pan = c->pan;
 }
 
 void light_set(Light *l, float yaw_deg, float pitch_deg, float ambient)

@@ -100,9 +100,12 @@ static Reaction act_fit(App *a)
     return RE_RENDER;
 }
 
+/* Back to the view the model opened with, objects where they opened. */
 static Reaction act_reset(App *a)
 {
     scene_reset(a->s);
+    if (a->opening.zoom > 0)        /* set when the viewer started */
+        scene_view_like(a->s, &a->opening);
     return RE_RENDER;
 }
 
@@ -546,7 +549,7 @@ const KeyRow app_keys[] = {
       { { '+', act_bigger }, { '=', act_bigger }, { 'z', act_bigger },
         { '-', act_smaller }, { '_', act_smaller }, { 'c', act_smaller } } },
     { "f", "fit to view", { { 'f', act_fit } } },
-    { "r x", "reset", { { 'r', act_reset }, { 'x', act_reset } } },
+    { "r x", "back to the opening view", { { 'r', act_reset }, { 'x', act_reset } } },
     { "Tab n", "next object", { { TK_TAB, act_next_object }, { 'n', act_next_object } } },
     { "shift-Tab", "previous object", { { TK_BTAB, act_prev_object } } },
     { "N 0", "whole scene", { { 'N', act_whole_scene }, { '0', act_whole_scene } } },

@@ -41,6 +41,7 @@ static int app_init(App *a, const Options *o, Scene *s)
     sketch_init(&a->sk.k);
     a->opt = o;
     a->s = s;
+    a->opening = s->cam;        /* what r goes back to */
     a->sel = -1;
     a->cull = o->cull;
     a->utf8 = locale_utf8();
@@ -646,8 +647,14 @@ static int no_viewer(const Options *o, Scene *s)
 int app_viewer(const Options *o, Scene *s)
 {
     const char *t = getenv("TERM");
-    if (!t || !*t || !strcmp(t, "dumb"))
+    if (!t || !*t || !strcmp(t, "dumb")) {
+        /* a terminal that cannot move its cursor (an editor's shell, a
+         * CI log): say so, and what shows a picture there */
+        fprintf(stderr, "zview: TERM=%s cannot show the viewer (it needs a terminal that moves its "
+                        "cursor: set TERM, e.g. TERM=xterm-256color)%s\n",
+                t ? t : "", o->print_view || o->sketch ? "" : "; one frame instead, as --print gives");
         return no_viewer(o, s);
+    }
     FILE *tty;
     const char *keys_name;
     FILE *keys = open_keys(&tty, &keys_name);

@@ -65,6 +65,8 @@ typedef struct App {
     Options     live;
     char       *paths[MAX_FILES]; /* live's files, owned (NULL: not yet copied) */
     Scene      *s;
+    Camera      opening;    /* the view the model opened with (the automatic one or the
+                               command line's): r goes back to it */
     Pipeline    p;
     int         algo;       /* index into hsr_algos */
     DisplayMode mode;

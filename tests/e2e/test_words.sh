@@ -46,3 +46,14 @@ if wait_for 'the scene is empty, nothing to save'; then ok "P on an emptied scen
 check "... and writes nothing" '[ ! -e "$T/snap/zview-stdin-002.png" ]' "$(ls "$T/snap")"
 tm send-keys -t zv q
 wait_for 'zv-exit=0' >/dev/null
+
+# TERM=dumb or no TERM at all: say the viewer cannot run there and what to
+# do, then the one frame --print gives (on the terminal itself: a frame
+# to a file or pipe never tries the viewer)
+for term in dumb ""; do
+    session xterm-256color 100 30
+    tm send-keys -t zv "clear; TERM='$term' $Z --size 30x8 assets/cube.obj 2>$T/dumb.err; echo zv-exit=\$?" Enter
+    wait_for 'zv-exit=' >/dev/null
+    check "TERM='$term': one frame on the terminal, status 0" 'grep -q "zv-exit=0" "$T/screen" && grep -q "▀" "$T/screen"' "$(tail -3 "$T/screen")"
+    check "... and stderr says why there is no viewer and what to set" 'grep -q "TERM=$term cannot show the viewer .*TERM=xterm-256color" "$T/dumb.err"' "$(cat "$T/dumb.err")"
+done
