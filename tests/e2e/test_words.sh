@@ -53,7 +53,7 @@ wait_for 'zv-exit=0' >/dev/null
 for term in dumb ""; do
     session xterm-256color 100 30
     tm send-keys -t zv "clear; TERM='$term' $Z --size 30x8 assets/cube.obj 2>$T/dumb.err; echo zv-exit=\$?" Enter
-    wait_for 'zv-exit=' >/dev/null
+    wait_for 'zv-exit=[0-9]' >/dev/null
     check "TERM='$term': one frame on the terminal, status 0" 'grep -q "zv-exit=0" "$T/screen" && grep -q "▀" "$T/screen"' "$(tail -3 "$T/screen")"
     check "... and stderr says why there is no viewer and what to set" 'grep -q "TERM=$term cannot show the viewer .*TERM=xterm-256color" "$T/dumb.err"' "$(cat "$T/dumb.err")"
 done
