@@ -154,12 +154,16 @@ static Reaction act_mode(App *a)
         return RE_DRAW;
     }
     a->mode = (DisplayMode)((a->mode + 1) % MODE_COUNT);
+    /* every key that changes a setting says so: at 80 columns the
+     * bar's own field for it is one of the first to go */
+    snprintf(a->note, sizeof a->note, "mode: %s", mode_names[a->mode]);
     return RE_RENDER;
 }
 
 static Reaction act_shade(App *a)
 {
     a->p.shade = (ShadeMode)((a->p.shade + 1) % SHADE_COUNT);
+    snprintf(a->note, sizeof a->note, "shading: %s", shade_names[a->p.shade]);
     return RE_RENDER;
 }
 
@@ -250,12 +254,14 @@ static Reaction act_persp(App *a)
     a->s->cam.persp = !a->s->cam.persp;
     if (a->s->cam.fov_deg <= 1)
         a->s->cam.fov_deg = 50;
+    snprintf(a->note, sizeof a->note, "%s", a->s->cam.persp ? "perspective" : "orthographic");
     return RE_RENDER;
 }
 
 static Reaction act_cull(App *a)
 {
     a->cull = !a->cull;
+    snprintf(a->note, sizeof a->note, "back faces %s", a->cull ? "culled" : "drawn");
     return RE_RENDER;
 }
 
@@ -323,6 +329,7 @@ static Reaction act_info(App *a)
 static Reaction act_spin(App *a)
 {
     a->spin = !a->spin;
+    snprintf(a->note, sizeof a->note, "turntable %s", a->spin ? "on" : "off");
     return RE_DRAW;
 }
 

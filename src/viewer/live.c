@@ -282,8 +282,15 @@ Reaction app_load_poll(App *a)
     int rc = loadjob_finish(a->job, &part, err, sizeof err);
     a->job = NULL;
     if (rc) {
-        /* the loader's message names the file; the scene is unchanged */
-        app_note(a, "%s", err);
+        /* the loader's message names the file by the path it was given,
+         * which a narrow bar would cut before the reason: the short name
+         * instead (the scene is unchanged) */
+        size_t n = strlen(path);
+        const char *why = strncmp(err, path, n) == 0 && err[n] == ':' ? err + n : NULL;
+        if (why)
+            app_note(a, "%s%s", base_name(path), why);
+        else
+            app_note(a, "%s", err);
         return RE_DRAW;
     }
     Reaction r = add_part(a, &part, path);

@@ -197,9 +197,10 @@ static const char *depth_label(ColourDepth d)
  * its time, work going on in the background (a file loading, the octree
  * building), and "? help"; in a window still
  * too narrow they take their brief forms ("drawn/faces", "?"), then the
- * note is cut at its end or goes (rank 6: it answers a key, so it
- * outlasts the long forms; without one, why the frame is empty), and last of all the file name is shortened. README and the man page
- * give the same order. */
+ * file name is cut to a dozen columns, then the note is cut at its end or
+ * goes (rank 6: it answers a key, so it outlasts everything else but the
+ * name's last columns; without one, why the frame is empty), and last of
+ * all the file name is cut further. The man page gives the same order. */
 #define BAR_FIELDS 11
 #define BAR_NOTE   6
 enum { BUSY = 8, NOTE = 9, HELP = 10 };     /* the last fields' places */
@@ -237,6 +238,21 @@ static int bar_join(const BarField *f, char *buf, size_t len)
         o += (size_t)k;
     }
     return (int)o;
+}
+
+/* Cut the file name (field 0) until the bar fits, keeping at least
+ * `keep_min` bytes and marking the cut with '~'. */
+static void shorten_name(BarField *f, char *buf, size_t len, int width, int keep_min)
+{
+    int over = bar_join(f, buf, len) - width;
+    int name_len = (int)strlen(f[0].text);
+    if (over <= 0 || name_len <= keep_min + 1)
+        return;
+    int keep = name_len - over - 1 > keep_min ? name_len - over - 1 : keep_min;
+    while (keep > 3 && (f[0].text[keep] & 0xc0) == 0x80)
+        keep--;         /* not inside a UTF-8 character */
+    f[0].text[keep] = '~';      /* ASCII: the locale may not be UTF-8 */
+    f[0].text[keep + 1] = 0;
 }
 
 static void status_text(const App *a, char *buf, size_t len, double frame_ms, int fps_cap, int width)
@@ -291,7 +307,10 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
         for (int i = 0; i < BAR_FIELDS; i++)
             if (f[i].brief[0])
                 memcpy(f[i].text, f[i].brief, sizeof f[i].brief);
-    /* the note is cut at its end to fit, and goes when little would be left */
+    /* a note outranks the rest while it shows: the file name gives way
+     * first (to a dozen columns), then the note is cut at its end, and
+     * goes when little would be left; the name last of all */
+    shorten_name(f, buf, len, width, 12);
     int over = bar_join(f, buf, len) - width, note_len = (int)strlen(f[NOTE].text);
     if (over > 0 && note_len - over - 1 >= 12) {
         int keep = note_len - over - 1;
@@ -302,16 +321,8 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
     } else if (over > 0) {
         f[NOTE].rank = -1;
     }
-    over = bar_join(f, buf, len) - width;
-    int name_len = (int)strlen(f[0].text);
-    if (over > 0 && name_len > 4) {
-        int keep = name_len - over - 1 > 3 ? name_len - over - 1 : 3;
-        while (keep > 3 && (f[0].text[keep] & 0xc0) == 0x80)
-            keep--;         /* not inside a UTF-8 character */
-        f[0].text[keep] = '~';      /* ASCII: the locale may not be UTF-8 */
-        f[0].text[keep + 1] = 0;
-        bar_join(f, buf, len);
-    }
+    shorten_name(f, buf, len, width, 3);
+    bar_join(f, buf, len);
 }
 
 /* ==== Overlays: the open prompt, its candidates, the info panel ==== */

@@ -50,11 +50,11 @@ for algo in span hzb hzb-octree; do
 done
 check "half mode draws half blocks" 'grep -q "▀" "$T/p1"'
 tm send-keys -t zv m
-if wait_for '\| ascii '; then ok "m switches to ascii"; else notok "m switches to ascii" "$(status 30)"; fi
+if wait_for '(\| |mode: )ascii '; then ok "m switches to ascii"; else notok "m switches to ascii" "$(status 30)"; fi
 picture 29 >"$T/p3"
 check "ascii mode uses other characters" '! grep -q "[▀▄]" "$T/p3" && grep -q "[.:=+*#%@-]" "$T/p3"' "$(head -c 300 "$T/p3")"
 tm send-keys -t zv m
-if wait_for '\| braille '; then
+if wait_for '(\| |mode: )braille '; then
     picture 29 >"$T/p4"
     check "braille mode draws braille dots" 'grep -q "⣿" "$T/p4" && ! grep -q "[▀▄]" "$T/p4"' "$(head -c 300 "$T/p4")"
 else

@@ -57,3 +57,24 @@ for term in dumb ""; do
     check "TERM='$term': one frame on the terminal, status 0" 'grep -q "zv-exit=0" "$T/screen" && grep -q "▀" "$T/screen"' "$(tail -3 "$T/screen")"
     check "... and stderr says why there is no viewer and what to set" 'grep -q "TERM=$term cannot show the viewer .*TERM=xterm-256color" "$T/dumb.err"' "$(cat "$T/dumb.err")"
 done
+
+# at 80 columns: every key that changes a setting says so, and a note
+# outranks a long file name while it shows
+long="$T/a-model-with-a-rather-long-file-name-as-exporters-write-them.obj"
+cp assets/cube.obj "$long"
+start 80 24 "$long"
+wait_for 'faces 6' >/dev/null
+tm send-keys -t zv v
+if wait_for 'shading: smooth'; then ok "80 columns: v says the shading"; else notok "80 columns: v says the shading" "$(status 24)"; fi
+check "... and the file name gave way to it, marked" 'status 24 | grep -q "^ a-model-with[-a-z]*~ | "' "$(status 24)"
+tm send-keys -t zv m
+if wait_for 'mode: ascii'; then ok "80 columns: m says the mode"; else notok "80 columns: m says the mode" "$(status 24)"; fi
+tm send-keys -t zv b
+if wait_for 'back faces culled'; then ok "80 columns: b says culling"; else notok "80 columns: b says culling" "$(status 24)"; fi
+# a file that cannot be opened: its short name and the reason, not the
+# cut-off start of a long path
+printf 'v 0 0 0\nf 1 2 3\n' >"$T/broken-model.obj"
+tm send-keys -t zv O "$T/broken-model.obj" Enter
+if wait_for 'broken-model.obj:2: '; then ok "a failed O names the file by its short name, the reason after"; else notok "a failed O names the file by its short name, the reason after" "$(status 24)"; fi
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
