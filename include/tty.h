@@ -29,7 +29,11 @@ enum {
     TK_INS,             /* Insert */
     TK_PGUP,            /* Page Up */
     TK_PGDN,            /* Page Down */
-    TK_LAST = TK_PGDN,
+    TK_SUP,             /* the arrows with Shift */
+    TK_SDOWN,
+    TK_SLEFT,
+    TK_SRIGHT,
+    TK_LAST = TK_SRIGHT,
 };
 
 typedef enum {

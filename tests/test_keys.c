@@ -145,7 +145,10 @@ Test(keys, arrows_in_every_mode)
 {
     EXPECT_KEYS("normal mode", "\033[A\033[B\033[C\033[D", TK_UP, TK_DOWN, TK_RIGHT, TK_LEFT);
     EXPECT_KEYS("application mode", "\033OA\033OB\033OC\033OD", TK_UP, TK_DOWN, TK_RIGHT, TK_LEFT);
-    EXPECT_KEYS("with Ctrl and Shift", "\033[1;5A\033[1;2D", TK_UP, TK_LEFT);
+    EXPECT_KEYS("with Ctrl or Alt", "\033[1;5A\033[1;3B", TK_UP, TK_DOWN);
+    EXPECT_KEYS("with Shift (xterm)", "\033[1;2A\033[1;2B\033[1;2C\033[1;2D", TK_SUP, TK_SDOWN, TK_SRIGHT, TK_SLEFT);
+    EXPECT_KEYS("with Shift and Ctrl", "\033[1;6D", TK_SLEFT);
+    EXPECT_KEYS("with Shift (rxvt)", "\033[a\033[b\033[c\033[d", TK_SUP, TK_SDOWN, TK_SRIGHT, TK_SLEFT);
     EXPECT_KEYS("shift-Tab", "\033[Z", TK_BTAB);
 }
 

@@ -537,10 +537,12 @@ static int names_key(const char *text, int key)
     char buf[1024], nb[8];
     const char *name = key_name(key, nb, sizeof nb);
     int arrow = key == TK_LEFT || key == TK_RIGHT || key == TK_UP || key == TK_DOWN;
+    int shift_arrow = key == TK_SLEFT || key == TK_SRIGHT || key == TK_SUP || key == TK_SDOWN;
     snprintf(buf, sizeof buf, "%s", text);
     char *save = NULL;
     for (char *w = strtok_r(buf, " \t,", &save); w; w = strtok_r(NULL, " \t,", &save))
-        if (same_word_nocase(w, name) || (arrow && same_word_nocase(w, "arrows")))
+        if (same_word_nocase(w, name) || (arrow && same_word_nocase(w, "arrows"))
+            || (shift_arrow && same_word_nocase(w, "Shift-arrows")))
             return 1;
     return 0;
 }

@@ -201,8 +201,8 @@ static int tilde(KeyParser *p, int code, TermEvent *ev)
     }
 }
 
-/* A whole CSI sequence. Modifiers (the second parameter) are ignored:
- * Ctrl-Home is Home. */
+/* A whole CSI sequence. Of the modifiers (the second parameter) only
+ * Shift on an arrow counts; the rest are ignored: Ctrl-Home is Home. */
 static int csi_meaning(KeyParser *p, const Seq *q, TermEvent *ev)
 {
     if (q->inter)
@@ -211,11 +211,18 @@ static int csi_meaning(KeyParser *p, const Seq *q, TermEvent *ev)
         return mouse(p, q->v[0], q->v[1] - 1, q->v[2] - 1, q->final == 'm', ev);
     if (q->priv)
         return R_DROP;
+    /* the arrows with Shift: xterm's modifier parameter (ESC [ 1 ; 2 A,
+     * Shift in bit 0 of the value less one), or rxvt's lower-case finals */
+    int shift = q->n >= 2 && q->v[1] >= 2 && ((q->v[1] - 1) & 1);
     switch (q->final) {
-    case 'A': return key(ev, TK_UP);
-    case 'B': return key(ev, TK_DOWN);
-    case 'C': return key(ev, TK_RIGHT);
-    case 'D': return key(ev, TK_LEFT);
+    case 'A': return key(ev, shift ? TK_SUP : TK_UP);
+    case 'B': return key(ev, shift ? TK_SDOWN : TK_DOWN);
+    case 'C': return key(ev, shift ? TK_SRIGHT : TK_RIGHT);
+    case 'D': return key(ev, shift ? TK_SLEFT : TK_LEFT);
+    case 'a': return q->n == 0 ? key(ev, TK_SUP) : R_DROP;
+    case 'b': return q->n == 0 ? key(ev, TK_SDOWN) : R_DROP;
+    case 'c': return q->n == 0 ? key(ev, TK_SRIGHT) : R_DROP;
+    case 'd': return q->n == 0 ? key(ev, TK_SLEFT) : R_DROP;
     case 'H': return key(ev, TK_HOME);
     case 'F': return key(ev, TK_END);
     case 'Z': return key(ev, TK_BTAB);

@@ -375,6 +375,7 @@ const char *key_name(int key, char *buf, size_t len)
 {
     static const struct { int key; const char *name; } names[] = {
         { TK_LEFT, "Left" }, { TK_RIGHT, "Right" }, { TK_UP, "Up" }, { TK_DOWN, "Down" },
+        { TK_SLEFT, "Shift-Left" }, { TK_SRIGHT, "Shift-Right" }, { TK_SUP, "Shift-Up" }, { TK_SDOWN, "Shift-Down" },
         { TK_BTAB, "Shift-Tab" }, { TK_DEL, "Delete" }, { TK_HOME, "Home" }, { TK_END, "End" },
         { TK_INS, "Insert" }, { TK_PGUP, "Page Up" }, { TK_PGDN, "Page Down" }, { TK_TAB, "Tab" },
         { TK_ENTER, "Enter" }, { TK_BACKSPACE, "Backspace" }, { TK_CTRL_L, "Ctrl-L" }, { TK_ESC, "Esc" },
@@ -548,8 +549,9 @@ const KeyRow app_keys[] = {
       { { TK_LEFT, act_yaw_left }, { 'h', act_yaw_left }, { TK_RIGHT, act_yaw_right }, { 'l', act_yaw_right },
         { TK_UP, act_pitch_up }, { 'k', act_pitch_up }, { TK_DOWN, act_pitch_down }, { 'j', act_pitch_down } } },
     { "u o", "roll", { { 'u', act_roll_left }, { 'o', act_roll_right } } },
-    { "I J K L", "turn 15 degrees",
-      { { 'J', act_big_left }, { 'L', act_big_right }, { 'I', act_big_up }, { 'K', act_big_down } } },
+    { "I J K L Shift-arrows", "turn 15 degrees",
+      { { 'J', act_big_left }, { 'L', act_big_right }, { 'I', act_big_up }, { 'K', act_big_down },
+        { TK_SLEFT, act_big_left }, { TK_SRIGHT, act_big_right }, { TK_SUP, act_big_up }, { TK_SDOWN, act_big_down } } },
     { "w a s d", "move",
       { { 'a', act_move_left }, { 'd', act_move_right }, { 'w', act_move_up }, { 's', act_move_down } } },
     { "+ = z - _ c wheel", "scale",
