@@ -33,7 +33,7 @@ typedef struct {
     int         image_format;   /* --image-format: IMG_PNG, IMG_PPM, or IMG_AUTO (by name) */
     const char *format;         /* --format: the model format, NULL = detect */
     int         formats;        /* --formats: list them */
-    int         up;             /* --up: UpAxis */
+    int         up;             /* --up: UpAxis, -1 = as each file's format says (MeshInfo.up) */
     int         flip;           /* --flip: reverse every face's winding */
     const char *dump_ids;
     const char *dump_screen;

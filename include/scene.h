@@ -8,11 +8,10 @@
 #include "mesh.h"
 #include "vec.h"
 
-/* Which model axis points up on screen (--up, the viewer's U key): the
- * model is turned by quarter turns so that it does, exactly (entries of
- * 0 and +-1). Most scans and CAD files are z-up; the default is y. */
-typedef enum { UP_Y, UP_Z, UP_X, UP_NEG_Y, UP_NEG_Z, UP_NEG_X, UP_COUNT } UpAxis;
-
+/* Which model axis points up (UpAxis, mesh.h): each object is turned by
+ * quarter turns so that it does, exactly (entries of 0 and +-1). It
+ * starts as its file says (MeshInfo.up); --up and the viewer's U key set
+ * one for every object. */
 const char *up_axis_name(int up);          /* "y", "z", "x", "-y", "-z", "-x" */
 int         up_axis_from_name(const char *s);   /* -1 if none */
 
@@ -187,6 +186,10 @@ void scene_free(Scene *s);
 
 /* Turn every object so that its `up` axis points up, then fit. */
 void scene_set_up(Scene *s, int up);
+/* The up axis set for every object (scene_set_up) when it is not what
+ * their files say (MeshInfo.up), else -1: what --up must say to give the
+ * scene back. */
+int  scene_up_forced(const Scene *s);
 
 /* Reset the camera (and object placements), then fit. The light stays. */
 void scene_reset(Scene *s);

@@ -86,8 +86,8 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         free(meshes);
         return -1;
     }
-    if (o->up != UP_Y)
-        scene_set_up(s, o->up);
+    if (o->up >= 0)
+        scene_set_up(s, o->up);    /* else each object stands as its file says */
     /* the view: a named one, the picked one (asked for, or when no turn
      * is given at all), or just the turn given. Several files are laid
      * out across the picked view, whatever view is asked for, so that a

@@ -54,6 +54,24 @@ static void print_mesh(Out *out, const Mesh *m, int pos_exp)
            m->info.load_cpu_ms > 0 ? mb / (m->info.load_cpu_ms / 1e3) : 0.0);
 }
 
+/* Which axis of mesh i's model points up, and why: as its format says,
+ * or as --up set it. */
+static void print_up(Out *out, const Options *o, const Scene *s, int i)
+{
+    const Mesh *m = &s->meshes[i];
+    int up = m->info.up;
+    for (int k = 0; k < s->nobjs; k++)
+        if (s->objs[k].mesh == m) {
+            up = s->objs[k].up;
+            break;
+        }
+    if (o->up >= 0)
+        out_printf(out, "up:         %s (--up)\n", up_axis_name(up));
+    else
+        out_printf(out, "up:         %s (%s)\n", up_axis_name(up),
+                   m->info.up_why[0] ? m->info.up_why : "the default");
+}
+
 /* The report so far went out, or a message says why not. */
 static int report_ok(Out *out)
 {
@@ -71,6 +89,7 @@ int app_info(const Options *o, Scene *s)
         if (i)
             out_printf(out, "\n");
         print_mesh(out, &s->meshes[i], s->pos_exp);
+        print_up(out, o, s, i);
     }
     uint64_t npolys = 0;   /* grid copies share their source's polygon lists */
     for (int k = 0; k < s->nobjs; k++)

@@ -241,7 +241,11 @@ static Reaction add_part(App *a, Scene *part, const char *path)
     /* what to show of the file once the part is gone into the scene */
     MeshInfo info = part->nmeshes ? part->meshes[0].info : (MeshInfo){ 0 };
     uint32_t faces = part->nfaces, points = part->npoints, segs = part->nsegs;
-    int up = s->nobjs ? s->objs[0].up : o->up;
+    /* an up axis set for every object (--up, U) holds for the new file
+     * too; else it stands as its format says */
+    int up = scene_up_forced(s);
+    if (up < 0)
+        up = o->up;
     int first = (int)s->nbase_objs;
     if (name_the_demo(a) || add_path(a, path)) {
         app_note(a, "out of memory");
@@ -254,7 +258,8 @@ static Reaction add_part(App *a, Scene *part, const char *path)
         return RE_RENDER;
     }
     for (int i = first; i < s->nobjs; i++)
-        s->objs[i].up = up;
+        if (up >= 0)
+            s->objs[i].up = up;
     if (relayout(a, err, sizeof err))
         app_note(a, "%s", err);
     else if (info.warnings)
