@@ -154,9 +154,9 @@ static int relayout(App *a, char *err, size_t errlen)
         o->home = o->offset = v3(0, 0, 0);
         o->home_scale = o->scale = 1;
     }
-    float py, pp;
-    scene_pick_view(s, &py, &pp);
-    scene_layout(s, (LayoutKind)a->opt->layout, deg2rad(py));
+    FirstView pick;
+    app_first_view(s, a->opt->threads, &pick);
+    scene_layout(s, (LayoutKind)a->opt->layout, deg2rad(pick.yaw));
     for (int i = 0; i < nb; i++) {
         Object *o = &s->objs[i];
         o->offset = v3_add(o->home, moved[i]);
