@@ -116,7 +116,7 @@ static void print_first_view(Out *out, const FirstView *fv)
         out_printf(out, "front:      %s (more of the faces face it: lean %.3f, weight %.2f)\n", dir,
                    fv->front.lean, fv->front.weight);
     else
-        out_printf(out, "front:      %s (nothing says: the plain front view's side, by a little)\n", dir);
+        out_printf(out, "front:      %s (nothing says: the plain front view's side)\n", dir);
 }
 
 int app_info(const Options *o, Scene *s, const FirstView *fv)
