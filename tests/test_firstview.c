@@ -221,6 +221,24 @@ Test(firstview, a_long_model_from_its_long_side)
     scene_free(&s);
 }
 
+/* A panel 4 wide, 3 tall and 0.2 thick, facing +z: a level view sees
+ * all of its face, a three-quarter view 0.78 of it; the level views'
+ * handicap keeps the three-quarter view for a solid. */
+Test(firstview, a_flat_solid_gets_a_three_quarter_view)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "panel.obj",
+                                    "v -2 -1.5 -0.1\nv 2 -1.5 -0.1\nv 2 1.5 -0.1\nv -2 1.5 -0.1\n"
+                                    "v -2 -1.5 0.1\nv 2 -1.5 0.1\nv 2 1.5 0.1\nv -2 1.5 0.1\n"
+                                    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n"),
+                 0);
+    FirstView fv;
+    app_first_view(&s, 1, &fv);
+    cr_expect_eq(fv.pitch, 25, "from above, not level: yaw %g pitch %g", fv.yaw, fv.pitch);
+    cr_expect(fabsf(fv.yaw) <= 30.5f, "at its face: yaw %g", fv.yaw);
+    scene_free(&s);
+}
+
 Test(firstview, an_inside_out_model_is_seen_as_a_solid)
 {
     char text[512];

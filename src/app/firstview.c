@@ -12,15 +12,16 @@
  * the shell (the Cornell box's green wall, hiding both blocks), or faces
  * wound the wrong way. A view scores
  *
- *     (front pixels - back pixels) / all pixels
+ *     (front pixels - back pixels) x the world area of a pixel
+ *       / the largest area any candidate draws
  *       x front_factor (1.3 straight at a sure front, 0.7 behind it)
  *       x 0.75 for a level view,
  *
  * and the best wins (the first of equals, in the order above). The
- * first term is how much of the picture shows the model's outside: a
- * long model is seen from its side, an open box through its opening (no
- * back faces there), a solid from wherever it fills the frame. The
- * front factor (scene/view.c: the format's forward axis, else the side
+ * first term is how much of the model's outside the view shows, in world
+ * units (each picture is fitted to its own view, so pixels alone would
+ * favour a compact outline): a long model is seen from its side, an open
+ * box through its opening (no back faces there). The front factor (scene/view.c: the format's forward axis, else the side
  * more of the faces face) decides between a solid's front and back,
  * whose outlines are mirror images; the level views' handicap keeps the
  * three-quarter views for solids, a level view winning only where it
@@ -30,12 +31,12 @@
  * from the front.
  *
  * Huge scenes are scored on a stand-in (FV_STANDIN_POLYS polygons or
- * more): their vertices merged on a grid of FV_GRID cells a side
+ * more, standin.c): their vertices merged on a grid of 64 cells a side
  * (vertex clustering), which keeps the shape and the way its faces face
- * at these few pixels, at a fraction of the cost. */
+ * at these few pixels, at a fraction of the cost (the dragon: 12 ms, 65
+ * ms rendered whole, the same choice). */
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
