@@ -137,7 +137,7 @@ int  frame_pattern_check(const char *pat);
  * Candidate views rendered small and scored by what they see (the rule
  * is in firstview.c's opening comment). */
 #define FV_VIEWS 12                 /* candidate views */
-#define FV_STANDIN_POLYS 100000     /* polygons from which a stand-in is rendered instead */
+#define FV_STANDIN_POLYS 100000     /* polygons, points and segments from which a stand-in is rendered */
 
 typedef struct {
     float      yaw, pitch;          /* degrees: the view chosen */
@@ -149,6 +149,7 @@ typedef struct {
     int        rendered;            /* candidates rendered (0: no memory; the geometry alone chose) */
     int        standin;             /* a stand-in was rendered (the scene is huge) */
     uint32_t   polys;               /* polygons rendered a view */
+    uint32_t   prims;               /* points and segments rendered a view */
     double     ms;                  /* the time it took */
 } FirstView;
 
@@ -158,9 +159,9 @@ typedef struct {
 int   app_first_view(Scene *s, int threads, FirstView *out);
 /* Candidate i's yaw (returned) and pitch (degrees). */
 float app_view_candidate(int i, float *pitch_out);
-/* A stand-in for a scene of FV_STANDIN_POLYS polygons or more (vertex
- * clustering, standin.c), built into *out; -1 when the scene is small
- * enough to render itself, has points or lines, or out of memory. */
+/* A stand-in for a scene of FV_STANDIN_POLYS polygons, points and
+ * segments or more (vertex clustering, standin.c), built into *out; -1
+ * when the scene is small enough to render itself, or out of memory. */
 int   app_standin(const Scene *s, Scene *out);
 
 /* Load every file (or the demo scene when none) into a scene. Returns 0,

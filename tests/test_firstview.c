@@ -328,6 +328,39 @@ Test(firstview, a_huge_scene_is_scored_on_a_stand_in)
     scene_free(&s);
 }
 
+/* 120,000 points on the faces of a bar 8 long, 1 across. */
+Test(firstview, a_huge_cloud_is_scored_on_a_stand_in)
+{
+    const int n = 120000;
+    size_t cap = (size_t)n * 40 + 64, at = 0;
+    char *text = malloc(cap);
+    cr_assert_not_null(text);
+    uint32_t r = 12345;
+    for (int i = 0; i < n; i++) {
+        float u[3];
+        for (int k = 0; k < 3; k++) {
+            r = r * 1664525u + 1013904223u;
+            u[k] = (float)(r >> 8) / (1 << 24) - 0.5f;
+        }
+        u[1 + i % 2] = i % 4 < 2 ? -0.5f : 0.5f;     /* onto one of the four long faces */
+        at += (size_t)snprintf(text + at, cap - at, "v %g %g %g\n", 8 * u[0], u[1], u[2]);
+    }
+    at += (size_t)snprintf(text + at, cap - at, "p");
+    for (int i = 0; i < n && at + 16 < cap; i++)
+        at += (size_t)snprintf(text + at, cap - at, " %d", i + 1);
+    snprintf(text + at, cap - at, "\n");
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "cloud.obj", text), 0);
+    free(text);
+    cr_assert_eq(s.npoints, (uint32_t)n);
+    FirstView fv;
+    app_first_view(&s, 1, &fv);
+    cr_expect(fv.standin, "a stand-in was rendered");
+    cr_expect_lt(fv.prims, (uint32_t)n / 4, "of far fewer points: %u", fv.prims);
+    cr_expect(fabsf(fv.yaw) <= 30.5f || fabsf(fv.yaw) >= 149.5f, "from its long side: yaw %g", fv.yaw);
+    scene_free(&s);
+}
+
 Test(firstview, a_small_scene_needs_no_stand_in)
 {
     Scene s, st;

@@ -30,8 +30,8 @@
  * front and back swap. Points and lines have no side and count as seen
  * from the front.
  *
- * Huge scenes are scored on a stand-in (FV_STANDIN_POLYS polygons or
- * more, standin.c): their vertices merged on a grid of 64 cells a side
+ * Huge scenes are scored on a stand-in (FV_STANDIN_POLYS polygons,
+ * points and segments or more, standin.c): their vertices merged on a grid of 64 cells a side
  * (vertex clustering), which keeps the shape and the way its faces face
  * at these few pixels, at a fraction of the cost (the dragon: 12 ms, 65
  * ms rendered whole, the same choice). */
@@ -176,6 +176,7 @@ int app_first_view(Scene *s, int threads, FirstView *out)
     }
     free(om);
     out->polys = r->npolys;
+    out->prims = r->npoints + r->nsegs;
     out->standin = r != s;
     if (r != s)
         scene_free(&standin);

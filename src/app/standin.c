@@ -5,7 +5,8 @@
  * approximations for rendering complex scenes", 1993): the world box of
  * the scene is cut into a grid of STANDIN_GRID cells along its longest
  * side, the vertices in a cell become one at their mean, and a triangle
- * whose corners fall in fewer than three cells goes. What remains keeps
+ * whose corners fall in fewer than three cells goes (so does a segment
+ * within one cell; points become one a cell). What remains keeps
  * the model's shape to a cell and each face's winding, so a picture of
  * 64 x 48 pixels of it shows what the model's would, at a fraction of
  * the polygons (the 871,414 triangles of the Stanford dragon become
@@ -73,7 +74,7 @@ static void world_box(const Scene *s, Vec3 *lo, Vec3 *hi)
     *hi = v3(-INFINITY, -INFINITY, -INFINITY);
     for (uint32_t i = 0; i < s->nbase_objs && (int)i < s->nobjs; i++) {
         const Object *o = &s->objs[i];
-        if (!o->poly_count)
+        if (!o->poly_count && !o->point_count && !o->seg_count)
             continue;
         Mat4 m = object_matrix(o);
         for (int k = 0; k < 8; k++) {
@@ -88,34 +89,38 @@ static void world_box(const Scene *s, Vec3 *lo, Vec3 *hi)
 
 /* ==== The stand-in ==== */
 
+/* A growing array of vertex (cluster) indices. */
 typedef struct {
-    Cells     cells;
-    uint32_t *vmap;         /* per vertex of the object being walked: its cluster */
-    uint32_t *tri;          /* 3 clusters per triangle */
-    size_t    ntri, cap;
-} Build;
+    uint32_t *v;
+    size_t    n, cap;
+} Idx;
 
-static int add_tri(Build *b, uint32_t a, uint32_t c, uint32_t d)
+static int idx_push(Idx *a, const uint32_t *v, size_t k)
 {
-    if (a == c || c == d || a == d)
-        return 0;               /* collapsed into a line or a point */
-    if (b->ntri == b->cap) {
-        size_t nc = b->cap ? 2 * b->cap : 65536;
-        uint32_t *t = realloc(b->tri, 3 * nc * sizeof *t);
-        if (!t)
+    if (a->n + k > a->cap) {
+        size_t nc = a->cap ? 2 * a->cap : 65536;
+        uint32_t *g = realloc(a->v, nc * sizeof *g);
+        if (!g)
             return -1;
-        b->tri = t;
-        b->cap = nc;
+        a->v = g;
+        a->cap = nc;
     }
-    uint32_t *t = &b->tri[3 * b->ntri++];
-    t[0] = a;
-    t[1] = c;
-    t[2] = d;
+    memcpy(&a->v[a->n], v, k * sizeof *v);
+    a->n += k;
     return 0;
 }
 
-/* Object o's vertices into clusters, then its polygons (as fans). */
-static int add_object(Build *b, const Scene *s, const Object *o, Vec3 lo, float inv_cell)
+typedef struct {
+    Cells     cells;
+    uint32_t *vmap;         /* per vertex of the object being walked: its cluster */
+    uint8_t  *has_point;    /* per cluster: a point is there already */
+    Idx       tri;          /* 3 clusters per triangle */
+    Idx       pt;           /* 1 per point */
+    Idx       seg;          /* 2 per segment */
+} Build;
+
+/* Object o's vertices into clusters (at their world positions). */
+static void add_verts(Build *b, const Object *o, Vec3 lo, float inv_cell)
 {
     Mat4 m = object_matrix(o);
     const float *pos = o->mesh->pos;
@@ -132,57 +137,90 @@ static int add_object(Build *b, const Scene *s, const Object *o, Vec3 lo, float 
         sum[2] += w.z;
         b->cells.count[k]++;
     }
+}
+
+/* Object o's polygons (as fans), points and segments, on its clusters:
+ * what collapsed to a line or a point goes, points one to a cluster. */
+static int add_prims(Build *b, const Scene *s, const Object *o)
+{
+    const uint32_t *vm = b->vmap, v0 = o->vert_min;
     for (uint32_t p = o->poly_first; p < o->poly_first + o->poly_count; p++) {
         uint32_t c0 = s->poly_start[p], c1 = s->poly_start[p + 1];
-        uint32_t a = b->vmap[s->poly_corner[c0] - o->vert_min];
-        for (uint32_t c = c0 + 1; c + 1 < c1; c++)
-            if (add_tri(b, a, b->vmap[s->poly_corner[c] - o->vert_min],
-                        b->vmap[s->poly_corner[c + 1] - o->vert_min]))
+        for (uint32_t c = c0 + 1; c + 1 < c1; c++) {
+            uint32_t t[3] = { vm[s->poly_corner[c0] - v0], vm[s->poly_corner[c] - v0],
+                              vm[s->poly_corner[c + 1] - v0] };
+            if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2] && idx_push(&b->tri, t, 3))
                 return -1;
+        }
+    }
+    for (uint32_t k = 0; k < o->point_count; k++) {
+        uint32_t c = vm[object_point_vert(o, k) - v0];
+        if (!b->has_point[c] && idx_push(&b->pt, &c, 1))
+            return -1;
+        b->has_point[c] = 1;
+    }
+    for (uint32_t k = 0; k < o->seg_count; k++) {
+        uint32_t v[2];
+        scene_edge_verts(s, o, PRIM_SEG, k, v);
+        uint32_t e[2] = { vm[v[0] - v0], vm[v[1] - v0] };
+        if (e[0] != e[1] && idx_push(&b->seg, e, 2))
+            return -1;
     }
     return 0;
 }
 
-/* The clusters and triangles as a one-object mesh (arrays taken over). */
+/* The clusters, triangles, points and segments (each a polyline of two
+ * corners) as a one-object mesh; arrays are taken over. */
 static int to_mesh(Build *b, Mesh *m)
 {
     memset(m, 0, sizeof *m);
-    uint32_t n = b->cells.n;
+    uint32_t n = b->cells.n, nt = (uint32_t)(b->tri.n / 3), ns = (uint32_t)(b->seg.n / 2);
     m->path = strdup("stand-in");
     m->pos = malloc(3 * (size_t)(n ? n : 1) * sizeof *m->pos);
-    m->face_start = malloc((b->ntri + 1) * sizeof *m->face_start);
+    m->face_start = malloc(((size_t)nt + 1) * sizeof *m->face_start);
+    m->line_start = ns ? malloc(((size_t)ns + 1) * sizeof *m->line_start) : NULL;
     m->objs = calloc(1, sizeof *m->objs);
-    if (!m->path || !m->pos || !m->face_start || !m->objs)
+    if (!m->path || !m->pos || !m->face_start || (ns && !m->line_start) || !m->objs)
         return -1;
     for (uint32_t k = 0; k < n; k++)
         for (int j = 0; j < 3; j++)
             m->pos[3 * (size_t)k + j] = (float)(b->cells.sum[3 * (size_t)k + j] / b->cells.count[k]);
     m->nverts = n;
-    for (size_t f = 0; f <= b->ntri; f++)
-        m->face_start[f] = (uint32_t)(3 * f);
-    m->corner = b->tri;
-    b->tri = NULL;
-    m->nfaces = (uint32_t)b->ntri;
+    for (uint32_t f = 0; f <= nt; f++)
+        m->face_start[f] = 3 * f;
+    for (uint32_t l = 0; ns && l <= ns; l++)
+        m->line_start[l] = 2 * l;
+    m->corner = b->tri.v;
+    m->point = b->pt.v;
+    m->line_corner = b->seg.v;
+    b->tri.v = b->pt.v = b->seg.v = NULL;
+    m->nfaces = nt;
+    m->npoints = (uint32_t)b->pt.n;
+    m->nlines = ns;
     m->nobjs = 1;
-    snprintf(m->objs[0].name, sizeof m->objs[0].name, "stand-in");
-    m->objs[0].face_count = m->nfaces;
-    m->objs[0].vert_max = n ? n - 1 : 0;
-    m->info.triangles = m->nfaces;
+    MeshObject *o = &m->objs[0];
+    snprintf(o->name, sizeof o->name, "stand-in");
+    o->face_count = nt;
+    o->point_count = m->npoints;
+    o->line_count = ns;
+    o->vert_max = n ? n - 1 : 0;
+    m->info.triangles = nt;
     m->info.front = -1;
     return 0;
 }
 
 int app_standin(const Scene *s, Scene *out)
 {
-    uint64_t polys = 0;
+    uint64_t prims = 0;
     uint32_t span = 0;
     for (uint32_t i = 0; i < s->nbase_objs && (int)i < s->nobjs; i++) {
-        polys += s->objs[i].poly_count;
-        if (s->objs[i].poly_count && s->objs[i].vert_max - s->objs[i].vert_min + 1 > span)
-            span = s->objs[i].vert_max - s->objs[i].vert_min + 1;
+        const Object *o = &s->objs[i];
+        prims += (uint64_t)o->poly_count + o->point_count + o->seg_count;
+        if (o->mesh && o->vert_max - o->vert_min + 1 > span)
+            span = o->vert_max - o->vert_min + 1;
     }
-    if (polys < FV_STANDIN_POLYS || s->npoints || s->nsegs)
-        return -1;      /* small enough to render as it is (or points and lines, kept whole) */
+    if (prims < FV_STANDIN_POLYS)
+        return -1;      /* small enough to render as it is */
     Vec3 lo, hi;
     world_box(s, &lo, &hi);
     float side = fmaxf(hi.x - lo.x, fmaxf(hi.y - lo.y, hi.z - lo.z));
@@ -192,13 +230,18 @@ int app_standin(const Scene *s, Scene *out)
     Mesh *m = calloc(1, sizeof *m);
     int rc = -1;
     b.vmap = malloc((size_t)span * sizeof *b.vmap);
-    if (!m || !b.vmap || cluster_init(&b.cells))
+    b.has_point = calloc(STANDIN_CELLS, 1);
+    if (!m || !b.vmap || !b.has_point || cluster_init(&b.cells))
         goto out;
-    for (uint32_t i = 0; i < s->nbase_objs && (int)i < s->nobjs; i++)
-        if (s->objs[i].poly_count && s->objs[i].mesh &&
-            add_object(&b, s, &s->objs[i], lo, STANDIN_GRID / side))
+    for (uint32_t i = 0; i < s->nbase_objs && (int)i < s->nobjs; i++) {
+        const Object *o = &s->objs[i];
+        if (!o->mesh || (!o->poly_count && !o->point_count && !o->seg_count))
+            continue;
+        add_verts(&b, o, lo, STANDIN_GRID / side);
+        if (add_prims(&b, s, o))
             goto out;
-    if (b.ntri == 0 || to_mesh(&b, m))
+    }
+    if ((b.tri.n == 0 && b.pt.n == 0 && b.seg.n == 0) || to_mesh(&b, m))
         goto out;
     char err[160];
     rc = scene_build(out, m, 1, err, sizeof err);
@@ -209,8 +252,11 @@ out:
         mesh_free(m);
         free(m);
     }
-    free(b.tri);
+    free(b.tri.v);
+    free(b.pt.v);
+    free(b.seg.v);
     free(b.vmap);
+    free(b.has_point);
     cluster_free(&b.cells);
     return rc;
 }

@@ -104,8 +104,13 @@ static void print_first_view(Out *out, const FirstView *fv)
                    fv->yaw, fv->pitch);
         return;
     }
-    out_printf(out, "auto view:  yaw %g, pitch %g: %d views of %u polygons%s scored in %.1f ms\n", fv->yaw,
-               fv->pitch, fv->rendered, fv->polys, fv->standin ? " (a stand-in)" : "", fv->ms);
+    char what[64];
+    if (fv->prims)
+        snprintf(what, sizeof what, "%u polygons, %u points and segments", fv->polys, fv->prims);
+    else
+        snprintf(what, sizeof what, "%u polygons", fv->polys);
+    out_printf(out, "auto view:  yaw %g, pitch %g: %d views of %s%s scored in %.1f ms\n", fv->yaw, fv->pitch,
+               fv->rendered, what, fv->standin ? " (a stand-in)" : "", fv->ms);
     out_printf(out, "            its picture: %.0f%% faces seen from the front, %.0f%% from behind%s\n",
                100 * fv->seen, 100 * fv->back, fv->inside_out ? " (the model is inside out: swapped)" : "");
     char dir[32];
