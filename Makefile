@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate asan run bench bench-formats install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order
+.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order
 
 all: $(BIN)
 
@@ -70,6 +70,7 @@ help:
 	@echo 'Benchmarks (never timed tests: compare medians and ratios within one run)'
 	@echo '  make bench         the speed table (tools/bench.sh), single-thread rows pinned to a core'
 	@echo '  make bench-formats load speed and peak memory of every format'
+	@echo '  make views         doc/views.md: the first view of 29 models (../shared/models, assimp-testmodels)'
 	@echo '  make bench-points  a 10M-point scan: load and frames'
 	@echo '  make bench-order   hzb and hzb-octree under each --order'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
@@ -196,6 +197,11 @@ $(BUILD)/colourerr: tools/colourerr.c $(LIBOBJS)
 # Load speed and peak memory of every format (the README's table).
 bench-formats: $(BIN) $(TESTBIN)
 	ZVIEW=$(abspath $(BIN)) sh tools/bench-formats.sh
+
+# doc/views.md: the automatic first view of models of ../shared/models
+# and assimp-testmodels, with what each choice measured
+views: $(BIN)
+	ZVIEW=$(abspath $(BIN)) sh tools/views.sh
 
 # The point-cloud figures: a 10M-point scan sampled from the dragon
 # (POINTS=N for another size), its load and frames (README: Points and

@@ -33,7 +33,7 @@ typedef struct {
     int         image_format;   /* --image-format: IMG_PNG, IMG_PPM, or IMG_AUTO (by name) */
     const char *format;         /* --format: the model format, NULL = detect */
     int         formats;        /* --formats: list them */
-    int         up;             /* --up: UpAxis */
+    int         up;             /* --up: UpAxis, -1 = as each file's format says (MeshInfo.up) */
     int         flip;           /* --flip: reverse every face's winding */
     const char *dump_ids;
     const char *dump_screen;
@@ -133,9 +133,42 @@ void cli_usage(FILE *f);
  * or -1 when it has any other conversion. --turntable needs exactly 1. */
 int  frame_pattern_check(const char *pat);
 
+/* ==== The first view (firstview.c, standin.c) ====
+ * Candidate views rendered small and scored by what they see (the rule
+ * is in firstview.c's opening comment). */
+#define FV_VIEWS 12                 /* candidate views */
+#define FV_STANDIN_POLYS 100000     /* polygons, points and segments from which a stand-in is rendered */
+
+typedef struct {
+    float      yaw, pitch;          /* degrees: the view chosen */
+    float      seen, back;          /* of its picture: the shares of faces seen from the front, from behind */
+    float      score[FV_VIEWS];     /* every candidate's score */
+    int        chosen;              /* its candidate */
+    int        inside_out;          /* every face was seen from behind: the sides were swapped */
+    SceneFront front;               /* where the model's front was taken to face */
+    int        rendered;            /* candidates rendered (0: no memory; the geometry alone chose) */
+    int        standin;             /* a stand-in was rendered (the scene is huge) */
+    uint32_t   polys;               /* polygons rendered a view */
+    uint32_t   prims;               /* points and segments rendered a view */
+    double     ms;                  /* the time it took */
+} FirstView;
+
+/* Choose the first view of the scene's loaded objects (threads: for the
+ * renders, 0 = one per core). The scene's camera is left as it was.
+ * Always gives a view (without memory to render, scene_pick_view's). */
+int   app_first_view(Scene *s, int threads, FirstView *out);
+/* Candidate i's yaw (returned) and pitch (degrees). */
+float app_view_candidate(int i, float *pitch_out);
+/* A stand-in for a scene of FV_STANDIN_POLYS polygons, points and
+ * segments or more (vertex clustering, standin.c), built into *out; -1
+ * when the scene is small enough to render itself, or out of memory. */
+int   app_standin(const Scene *s, Scene *out);
+
 /* Load every file (or the demo scene when none) into a scene. Returns 0,
- * or -1 with "file:line: message" in err. */
+ * or -1 with "file:line: message" in err. app_load_scene_ex also gives
+ * the automatic first view's choice (fv NULL: not wanted). */
 int  app_load_scene(const Options *o, Scene *s, char *err, size_t errlen);
+int  app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size_t errlen);
 /* Refuse (-1, the reason in err) a scene that, with its --grid copies,
  * would have more than --max-polys polygons; the message gives the count
  * and an estimate of the memory. Called before the copies are made. */

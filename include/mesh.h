@@ -18,6 +18,12 @@
 
 #define MESH_NAME_MAX 64
 
+/* An axis of the model's coordinates: which one points up (--up, the
+ * viewer's U key, what a file's format says) or which way its front
+ * faces. The scene turns the model by quarter turns so that the up axis
+ * points up, exactly (scene.h). */
+typedef enum { UP_Y, UP_Z, UP_X, UP_NEG_Y, UP_NEG_Z, UP_NEG_X, UP_COUNT } UpAxis;
+
 typedef struct {
     char  name[MESH_NAME_MAX];
     float kd[3];        /* diffuse (base) colour, linear 0..1 */
@@ -56,6 +62,13 @@ typedef struct {
      * can show it where stderr cannot be seen. */
     uint32_t warnings;
     char     first_warning[256];
+    /* How the model stands, where its format says: the axis that points
+     * up (UP_Y when the format does not say), the axis its front faces
+     * (an UpAxis; -1 when the format has no forward axis), and why, for
+     * --info ("STL: the 3D-printing convention"). */
+    int      up;
+    int      front;
+    char     up_why[96];
 } MeshInfo;
 
 typedef struct Mesh {

@@ -5,8 +5,9 @@
 
 #include "app.h"
 
-/* --info: what was loaded, and (with --algo) what a render did. */
-int  app_info(const Options *o, Scene *s);
+/* --info: what was loaded, how the first view was chosen (fv, from
+ * app_load_scene_ex), and (with --algo) what a render did. */
+int  app_info(const Options *o, Scene *s, const FirstView *fv);
 /* --bench: the benchmark table (each model loaded on its own; s unused). */
 int  app_bench(const Options *o, Scene *s);
 /* --print, -o FILE, --dump-ids, --dump-screen, --turntable. */

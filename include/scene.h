@@ -8,11 +8,10 @@
 #include "mesh.h"
 #include "vec.h"
 
-/* Which model axis points up on screen (--up, the viewer's U key): the
- * model is turned by quarter turns so that it does, exactly (entries of
- * 0 and +-1). Most scans and CAD files are z-up; the default is y. */
-typedef enum { UP_Y, UP_Z, UP_X, UP_NEG_Y, UP_NEG_Z, UP_NEG_X, UP_COUNT } UpAxis;
-
+/* Which model axis points up (UpAxis, mesh.h): each object is turned by
+ * quarter turns so that it does, exactly (entries of 0 and +-1). It
+ * starts as its file says (MeshInfo.up); --up and the viewer's U key set
+ * one for every object. */
 const char *up_axis_name(int up);          /* "y", "z", "x", "-y", "-z", "-x" */
 int         up_axis_from_name(const char *s);   /* -1 if none */
 
@@ -193,6 +192,10 @@ void scene_free(Scene *s);
 
 /* Turn every object so that its `up` axis points up, then fit. */
 void scene_set_up(Scene *s, int up);
+/* The up axis set for every object (scene_set_up) when it is not what
+ * their files say (MeshInfo.up), else -1: what --up must say to give the
+ * scene back. */
+int  scene_up_forced(const Scene *s);
 
 /* Reset the camera and put the objects back where the model opened
  * (Object.open_*), then fit. The light stays. */
@@ -210,8 +213,29 @@ void scene_fit(Scene *s);
  * yaw and pitch in degrees; -1 for an unknown name. */
 int  view_from_name(const char *name, float *yaw_out, float *pitch_out);
 const char *view_name(int i);           /* the i-th name, NULL past the end */
-/* A useful first view of the loaded objects: the three-quarter view from
- * above that sees the most surface facing it (yaw and pitch, degrees). */
+/* The direction from the model towards a viewer looking from yaw and
+ * pitch (degrees): the inverse turn of (0, 0, 1). */
+Vec3 view_dir(float yaw_deg, float pitch_deg);
+
+/* Which way the loaded objects' front faces in the world (view.c's
+ * opening comment): the format's forward axis, else the way more of the
+ * faces point, else +z. */
+typedef enum { FRONT_NONE, FRONT_FORMAT, FRONT_FACES } FrontFrom;
+typedef struct {
+    Vec3      dir;              /* unit and horizontal (y = 0) */
+    float     weight;           /* 0..1: how sure (the format: 1) */
+    float     lean;             /* the faces' lean towards dir: |sum of unit normals| / faces */
+    FrontFrom from;
+} SceneFront;
+void  scene_front(const Scene *s, SceneFront *out);
+/* How much a view from yaw and pitch (degrees) is preferred for facing
+ * the front: 1 + 0.3 * weight * the cosine of the horizontal angle
+ * between the view's direction and the front (1.3 straight at a sure
+ * front, 0.7 from behind it). */
+float front_factor(const SceneFront *f, float yaw_deg, float pitch_deg);
+/* A first view from the geometry alone, without rendering: of eight
+ * three-quarter views from above, the one that sees the most surface
+ * facing it, times front_factor (yaw and pitch, degrees). */
 void scene_pick_view(const Scene *s, float *yaw_out, float *pitch_out);
 
 /* layout.c: several files side by side (row, grid) at a common size,

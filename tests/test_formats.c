@@ -9,6 +9,7 @@
 #include <criterion/criterion.h>
 #include <criterion/redirect.h>
 #include <fcntl.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -413,6 +414,8 @@ static void same_everywhere(const char *src, int nviews, int w, int h)
         Scene s;
         cr_assert_eq(tl_scene_from_file(&s, path), 0, "%s", writers[i].name);
         cr_assert_eq(s.nfaces, m.nfaces);
+        /* the geometry alone: an STL stands z-up (test_formats' stance tests) */
+        scene_set_up(&s, UP_Y);
         for (int v = 0; v < nviews; v++) {
             FrameBufs fb = { 0 };
             render_ids(&s, w, h, (uint32_t)v, v & 1, &fb);
@@ -488,6 +491,172 @@ Test(models, same_ids_in_every_format_dragon, .timeout = 3000)
     teardown();
 }
 
+/* ==== How a model stands (issue 18) ==== */
+
+/* A box 1 wide (x), 2 deep (y) and 3 tall (z), in triangles (what STL
+ * holds) wound CCW from outside. */
+static const char tall_z_box[] =
+    "v 0 0 0\nv 1 0 0\nv 1 2 0\nv 0 2 0\nv 0 0 3\nv 1 0 3\nv 1 2 3\nv 0 2 3\n"
+    "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+    "f 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n";
+
+/* The world's half extents as the plain front view sees them (x right,
+ * y up, z towards the viewer): scene_build fits at no turn. */
+static Vec3 stood(const Scene *s)
+{
+    return s->cam.fit_half;
+}
+
+Test(formats, stl_stands_z_up)
+{
+    Mesh m;
+    cr_assert_eq(mesh_parse(&m, "box.obj", tall_z_box, sizeof tall_z_box - 1, E, sizeof E), 0, "%s", E);
+    cr_expect_eq(m.info.up, UP_Y, "OBJ says nothing: y");
+    cr_expect_eq(m.info.front, -1, "and has no front");
+    cr_expect_str_eq(m.info.up_why, "obj: the format does not say");
+    char *(*const writers_stl[2])(const Mesh *, size_t *) = { w_stl_binary, w_stl_ascii };
+    for (int k = 0; k < 2; k++) {
+        size_t n;
+        char *buf = writers_stl[k](&m, &n);
+        cr_assert_not_null(buf);
+        const char *path = tmp(k ? "box-ascii.stl" : "box.stl");
+        save(path, buf, n);
+        free(buf);
+        Scene sc;
+        cr_assert_eq(tl_scene_from_file(&sc, path), 0);
+        const MeshInfo *in = &sc.meshes[0].info;
+        cr_expect_eq(in->up, UP_Z, "%s", path);
+        cr_expect_eq(in->front, -1);
+        cr_expect_str_eq(in->up_why, "STL: the 3D-printing convention");
+        cr_expect_eq(sc.objs[0].up, UP_Z, "the object stands as its file says");
+        Vec3 h = stood(&sc);
+        cr_expect_float_eq(h.y, 1.5f, 1e-5, "%s: 3 tall, standing: half height %g", path, h.y);
+        cr_expect_float_eq(h.z, 1.0f, 1e-5, "2 deep: half depth %g", h.z);
+        scene_free(&sc);
+    }
+    mesh_free(&m);
+}
+
+#ifdef ZV_ASSIMP
+Test(formats, gltf_is_y_up_and_faces_z)
+{
+    Mesh m;
+    cr_assert_eq(mesh_parse(&m, "box.obj", tall_z_box, sizeof tall_z_box - 1, E, sizeof E), 0, "%s", E);
+    size_t n;
+    char *glb = w_glb(&m, &n);
+    cr_assert_not_null(glb);
+    save(tmp("box.glb"), glb, n);
+    free(glb);
+    mesh_free(&m);
+    Scene sc;
+    cr_assert_eq(tl_scene_from_file(&sc, tmp("box.glb")), 0);
+    const MeshInfo *in = &sc.meshes[0].info;
+    cr_expect_eq(in->up, UP_Y);
+    cr_expect_eq(in->front, UP_Z, "glTF's front faces +z");
+    cr_expect_str_eq(in->up_why, "glTF: y-up by its specification, the front towards +z");
+    cr_expect_float_eq(stood(&sc).z, 1.5f, 1e-5, "not turned: the 3 along z stays along z");
+    scene_free(&sc);
+}
+
+/* A COLLADA document of one triangle reaching 3 along its up axis. */
+static char *collada_doc(const char *up_axis)
+{
+    static char doc[2048];
+    snprintf(doc, sizeof doc,
+             "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+             "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+             "<asset><unit name=\"meter\" meter=\"1\"/>%s%s%s</asset>\n"
+             "<library_geometries><geometry id=\"g\" name=\"g\"><mesh>\n"
+             "<source id=\"p\"><float_array id=\"pa\" count=\"9\">0 0 0 1 0 0 0 0 3</float_array>\n"
+             "<technique_common><accessor source=\"#pa\" count=\"3\" stride=\"3\">\n"
+             "<param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/>"
+             "<param name=\"Z\" type=\"float\"/></accessor></technique_common></source>\n"
+             "<vertices id=\"v\"><input semantic=\"POSITION\" source=\"#p\"/></vertices>\n"
+             "<triangles count=\"1\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/><p>0 1 2</p>"
+             "</triangles>\n</mesh></geometry></library_geometries>\n"
+             "<library_visual_scenes><visual_scene id=\"s\"><node id=\"n\" name=\"n\">"
+             "<instance_geometry url=\"#g\"/></node></visual_scene></library_visual_scenes>\n"
+             "<scene><instance_visual_scene url=\"#s\"/></scene>\n</COLLADA>\n",
+             up_axis ? "<up_axis>" : "", up_axis ? up_axis : "", up_axis ? "</up_axis>" : "");
+    return doc;
+}
+
+static float max_coord(const Mesh *m, int axis)
+{
+    float v = -INFINITY;
+    for (uint32_t i = 0; i < m->nverts; i++)
+        v = fmaxf(v, m->pos[3 * i + axis]);
+    return v;
+}
+
+/* assimp turns a Z_UP document upright itself (on the root node): the
+ * model arrives y-up and is not turned a second time. */
+Test(formats, collada_up_axis_is_applied_once)
+{
+    const char *doc = collada_doc("Z_UP");
+    save(tmp("z.dae"), doc, strlen(doc));
+    Scene sc;
+    cr_assert_eq(tl_scene_from_file(&sc, tmp("z.dae")), 0);
+    const Mesh *m = &sc.meshes[0];
+    cr_expect_float_eq(max_coord(m, 1), 3.0f, 1e-6, "assimp turned z to y: top %g", max_coord(m, 1));
+    cr_expect_eq(m->info.up, UP_Y, "so it stands y-up");
+    cr_expect_eq(sc.objs[0].up, UP_Y, "not turned again");
+    cr_expect_str_eq(m->info.up_why, "COLLADA: up_axis Z_UP, turned upright by assimp");
+    scene_free(&sc);
+    /* from memory too (standard input), and the other spellings */
+    Mesh mm;
+    cr_assert_eq(mesh_parse_buffer(&mm, NULL, "dae", doc, strlen(doc), E, sizeof E), 0, "%s", E);
+    cr_expect_str_eq(mm.info.up_why, "COLLADA: up_axis Z_UP, turned upright by assimp");
+    mesh_free(&mm);
+    doc = collada_doc("Y_UP");
+    cr_assert_eq(mesh_parse_buffer(&mm, NULL, "dae", doc, strlen(doc), E, sizeof E), 0, "%s", E);
+    cr_expect_str_eq(mm.info.up_why, "COLLADA: up_axis Y_UP");
+    cr_expect_float_eq(max_coord(&mm, 2), 3.0f, 1e-6, "Y_UP: left as it is");
+    mesh_free(&mm);
+    doc = collada_doc(NULL);
+    cr_assert_eq(mesh_parse_buffer(&mm, NULL, "dae", doc, strlen(doc), E, sizeof E), 0, "%s", E);
+    cr_expect_str_eq(mm.info.up_why, "COLLADA: no up_axis, so Y_UP");
+    mesh_free(&mm);
+}
+
+/* Files of Debian's assimp-testmodels (tools/deps.sh installs it). */
+#define AI_MODELS "/usr/share/assimp/models/"
+
+typedef struct {
+    const char *file;
+    int         up, front;
+    const char *why;
+} Stance;
+
+Test(formats, stance_of_the_test_models)
+{
+    static const Stance want[] = {
+        { "FBX/embedded_ascii/box.FBX", UP_Z, UP_NEG_Y, "FBX: UpAxis +z, FrontAxis -y" },
+        { "FBX/spider.fbx", UP_Y, UP_Z, "FBX: UpAxis +y, FrontAxis +z" },
+        { "3MF/box.3mf", UP_Z, -1, "3MF: z-up by its specification" },
+        { "AMF/test1.amf", UP_Z, -1, "AMF: z-up by its specification" },
+        { "BLEND/HUMAN.blend", UP_Z, UP_NEG_Y, "Blender: z-up, the front towards -y" },
+        { "Q3D/E-AT-AT.q3o", UP_Z, -1, "Quick3D: z-up, as its files are written" },
+        { "COB/dwarf.cob", UP_Z, -1, "trueSpace: z-up" },
+        { "SMD/holy_grailref.smd", UP_Z, -1, "SMD: z-up, as in Valve's engines" },
+        { "Collada/lights.dae", UP_Y, -1, "COLLADA: up_axis Z_UP, turned upright by assimp" },
+        { "3DS/fels.3ds", UP_Y, -1, "3ds (assimp): the format does not say" },
+    };
+    if (access(AI_MODELS, R_OK) != 0)
+        cr_skip_test("no " AI_MODELS ": install assimp-testmodels (sh tools/deps.sh)");
+    for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
+        char path[256];
+        snprintf(path, sizeof path, AI_MODELS "%s", want[i].file);
+        Mesh m;
+        cr_assert_eq(mesh_load(&m, path, E, sizeof E), 0, "%s", E);
+        cr_expect_eq(m.info.up, want[i].up, "%s: up %d", want[i].file, m.info.up);
+        cr_expect_eq(m.info.front, want[i].front, "%s: front %d", want[i].file, m.info.front);
+        cr_expect_str_eq(m.info.up_why, want[i].why, "%s", want[i].file);
+        mesh_free(&m);
+    }
+}
+#endif
+
 /* ==== The command line's new options ==== */
 
 static int cli(Options *o, char *err, int n, const char **args)
@@ -513,7 +682,7 @@ Test(formats, cli_options)
     cr_assert(o.flip);
     cr_assert_str_eq(o.files[0], "-");
     cr_assert_eq(CLI(&o, err, "m.obj"), 0);
-    cr_assert_eq(o.up, UP_Y);
+    cr_assert_eq(o.up, -1, "by default each file stands as its format says");
     cr_assert_null(o.format);
     cr_assert_eq(CLI(&o, err, "--formats"), 0);
     cr_assert(o.formats);

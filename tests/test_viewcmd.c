@@ -1,11 +1,16 @@
 /* test_viewcmd.c: the command line written for a view gives that view
  * back: parsed and loaded, the same camera, placements and picture. */
 
+#define _DEFAULT_SOURCE          /* mkstemps */
+
 #include <criterion/criterion.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "app.h"
+#include "writers.h"
 
 /* Split a command line as a POSIX shell would for our quoting: plain
  * words and '...' (with '\'' for a quote). Returns argc. */
@@ -208,4 +213,60 @@ Test(viewcmd, files_come_first_and_a_dash_name_is_a_path)
     cr_expect_str_eq(o2.files[0], "./-odd.obj");
     cr_expect_str_eq(o2.files[1], "-");
     cr_expect_str_eq(o2.out, "out.png");
+}
+
+/* The view command of a scene, parsed and loaded again. */
+static void reload(const Options *o, Scene *s, Scene *t, char *cmd, size_t len)
+{
+    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0 };
+    cr_assert_eq(view_command(cmd, len, o, s, &v), 0);
+    char line[4096], *argv[64];
+    snprintf(line, sizeof line, "%s", cmd);
+    int argc = split(line, argv, 64);
+    Options o2;
+    char err[256];
+    cr_assert_eq(cli_parse(argc, argv, &o2, err, sizeof err), 0, "%s: %s", err, cmd);
+    load(&o2, t);
+}
+
+/* Files stand as their formats say (an STL z-up, an OBJ y-up) with no
+ * --up written; an axis set for all (U, --up) is written and comes back. */
+Test(viewcmd, up_axes_come_back)
+{
+    Mesh m;
+    char err[256];
+    cr_assert_eq(mesh_load(&m, "assets/knot.obj", err, sizeof err), 0, "%s", err);
+    size_t n;
+    char *stl = w_stl_binary(&m, &n);
+    mesh_free(&m);
+    char path[] = "/tmp/zview-viewcmd-XXXXXX.stl";
+    int fd = mkstemps(path, 4);
+    cr_assert_geq(fd, 0);
+    close(fd);
+    cr_assert_eq(w_save(path, stl, n), 0);
+    free(stl);
+    Options o;
+    cli_defaults(&o);
+    o.files[0] = path;
+    o.files[1] = "assets/torus.obj";
+    o.nfiles = 2;
+    Scene s, t;
+    load(&o, &s);
+    cr_assert_eq(s.objs[0].up, UP_Z, "the STL stands z-up");
+    cr_assert_eq(s.objs[s.nobjs - 1].up, UP_Y, "the OBJ y-up");
+    char cmd[4096];
+    reload(&o, &s, &t, cmd, sizeof cmd);
+    cr_expect_null(strstr(cmd, "--up"), "each file's own axis needs no --up: %s", cmd);
+    for (int i = 0; i < s.nobjs; i++)
+        cr_expect_eq(t.objs[i].up, s.objs[i].up, "object %d: %s", i, cmd);
+    cr_expect(memcmp(&s.cam.fit_half, &t.cam.fit_half, sizeof s.cam.fit_half) == 0, "the same fit: %s", cmd);
+    scene_free(&t);
+    scene_set_up(&s, UP_X);
+    reload(&o, &s, &t, cmd, sizeof cmd);
+    cr_expect_neq(strstr(cmd, " --up x "), NULL, "an axis set for all is written: %s", cmd);
+    for (int i = 0; i < t.nobjs; i++)
+        cr_expect_eq(t.objs[i].up, UP_X, "object %d: %s", i, cmd);
+    scene_free(&t);
+    scene_free(&s);
+    unlink(path);
 }

@@ -63,11 +63,11 @@ Test(viewer, number_keys_are_the_named_views)
         cr_expect_eq(scene.cam.fit_yaw, scene.cam.yaw);
         cr_expect(strstr(app.note, doc[i]) != NULL, "key %d: note '%s'", i + 1, app.note);
     }
-    float y, p;
-    scene_pick_view(&scene, &y, &p);
+    FirstView fv;
+    app_first_view(&scene, 1, &fv);
     app_key(&app, '8');
-    cr_expect_float_eq(scene.cam.yaw, remainderf(deg2rad(y), 2 * ZV_PI), 1e-6);
-    cr_expect_float_eq(scene.cam.pitch, deg2rad(p), 1e-6);
+    cr_expect_float_eq(scene.cam.yaw, remainderf(deg2rad(fv.yaw), 2 * ZV_PI), 1e-6);
+    cr_expect_float_eq(scene.cam.pitch, deg2rad(fv.pitch), 1e-6);
 }
 
 Test(viewer, bracket_keys_turn_the_light)

@@ -42,6 +42,11 @@ const char *app_demo_path(void)
 
 int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
 {
+    return app_load_scene_ex(o, s, NULL, err, errlen);
+}
+
+int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size_t errlen)
+{
     const char *demo[1];
     const char *const *files = o->files;
     int nfiles = o->nfiles;
@@ -86,14 +91,17 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
         free(meshes);
         return -1;
     }
-    if (o->up != UP_Y)
-        scene_set_up(s, o->up);
+    if (o->up >= 0)
+        scene_set_up(s, o->up);    /* else each object stands as its file says */
     /* the view: a named one, the picked one (asked for, or when no turn
      * is given at all), or just the turn given. Several files are laid
      * out across the picked view, whatever view is asked for, so that a
      * view's command line (viewcmd.c) finds them where they were. */
-    float py, pp, vy = 0, vp = 0;
-    scene_pick_view(s, &py, &pp);
+    FirstView pick;
+    app_first_view(s, o->threads, &pick);
+    if (fv)
+        *fv = pick;
+    float py = pick.yaw, pp = pick.pitch, vy = 0, vp = 0;
     if (o->view && strcmp(o->view, "auto"))
         view_from_name(o->view, &vy, &vp);
     else if (o->view || !o->turned) {

@@ -421,7 +421,7 @@ const OptSpec cli_options[] = {
     { "format", 0, "NAME", NULL, OPTSEC_INPUT,
       "read FILE as NAME (obj, stl, ply, off, xyz, or an\nassimp format; see --formats)", set_format, 0, OPT_VIEWCMD },
     { "up", 0, NULL, "y z x -y -z -x", OPTSEC_INPUT,
-      "the model's up axis (default y; scans and CAD\nfiles are often z)", set_up, 0, OPT_VIEWCMD },
+      "the model's up axis (default: as the file's\nformat says: z for STL, 3MF, Blender, ...; else y)", set_up, 0, OPT_VIEWCMD },
     { "flip", 0, NULL, NULL, OPTSEC_INPUT, "reverse every face's winding (inside out)", NULL, FLAG(flip), OPT_VIEWCMD },
     { "strict", 0, NULL, NULL, OPTSEC_INPUT,
       "refuse a file with a statement zview cannot read\n(default: skip those, show the rest, warn once)",

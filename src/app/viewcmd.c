@@ -184,8 +184,11 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --samples %d", v->samples);
     if (v->algo && strcmp(v->algo, "zbuffer"))
         put(&o, " --algo %s", v->algo);
-    if (s->nobjs > 0 && s->objs[0].up != UP_Y)
-        put(&o, " --up %s", up_axis_name(s->objs[0].up));
+    /* the files' own up axes come back by themselves; one set for all
+     * (--up, U) is written */
+    int up = scene_up_forced(s);
+    if (up >= 0)
+        put(&o, " --up %s", up_axis_name(up));
     if (opt->flip)
         put(&o, " --flip");
     if (opt->format)

@@ -104,12 +104,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "zview: %s\n", err);
         return 1;
     }
-    if (app_load_scene(&o, &scene, err, sizeof err)) {
+    FirstView fv;
+    if (app_load_scene_ex(&o, &scene, &fv, err, sizeof err)) {
         fprintf(stderr, "zview: %s\n", err);
         return 1;
     }
     if (o.info)
-        rc = app_info(&o, &scene);
+        rc = app_info(&o, &scene, &fv);
     else if (oneshot)
         rc = app_oneshot(&o, &scene);
     else

@@ -261,6 +261,145 @@ static int walk(Walk *w, const struct aiNode *n, const struct aiMatrix4x4 *paren
     return 0;
 }
 
+/* ==== How the model stands ====
+ * Where a format fixes its axes, the model's up axis (and its front, for
+ * the first view) come from the format; assimp hands coordinates over as
+ * the file has them, but for COLLADA, whose <up_axis> it applies to the
+ * root node itself (so the model arrives y-up, and is not turned again
+ * here), and FBX, whose axes it leaves in the scene's metadata. The
+ * importer is named by the scene's metadata, whatever the extension. */
+
+typedef struct {
+    const char *importer;       /* start of assimp's importer name */
+    int         up, front;      /* UpAxis values; front -1: none */
+    const char *why;
+} AiStance;
+
+static const AiStance ai_stances[] = {
+    { "glTF", UP_Y, UP_Z, "glTF: y-up by its specification, the front towards +z" },
+    { "3mf", UP_Z, -1, "3MF: z-up by its specification" },
+    { "Additive manufacturing", UP_Z, -1, "AMF: z-up by its specification" },
+    { "Blender", UP_Z, UP_NEG_Y, "Blender: z-up, the front towards -y" },
+    { "Stereolithography", UP_Z, -1, "STL: the 3D-printing convention" },
+    { "TrueSpace", UP_Z, -1, "trueSpace: z-up" },
+    { "Quick3D", UP_Z, -1, "Quick3D: z-up, as its files are written" },
+    { "Valve SMD", UP_Z, -1, "SMD: z-up, as in Valve's engines" },
+};
+
+/* A metadata entry of the scene by key, NULL if none. */
+static const struct aiMetadataEntry *ai_meta(const struct aiScene *sc, const char *key)
+{
+    const struct aiMetadata *md = sc->mMetaData;
+    if (!md || !md->mKeys || !md->mValues)
+        return NULL;
+    for (unsigned i = 0; i < md->mNumProperties; i++)
+        if (strcmp(md->mKeys[i].data, key) == 0 && md->mValues[i].mData)
+            return &md->mValues[i];
+    return NULL;
+}
+
+static int ai_meta_int(const struct aiScene *sc, const char *key, int *out)
+{
+    const struct aiMetadataEntry *e = ai_meta(sc, key);
+    if (!e || e->mType != AI_INT32)
+        return 0;
+    memcpy(out, e->mData, sizeof *out);
+    return 1;
+}
+
+/* FBX's axis (0 x, 1 y, 2 z) and sign as an UpAxis, -1 if invalid. */
+static int fbx_axis(int axis, int sign)
+{
+    static const int pos[3] = { UP_X, UP_Y, UP_Z }, neg[3] = { UP_NEG_X, UP_NEG_Y, UP_NEG_Z };
+    if (axis < 0 || axis > 2 || (sign != 1 && sign != -1))
+        return -1;
+    return sign > 0 ? pos[axis] : neg[axis];
+}
+
+static void fbx_stance(MeshInfo *in, const struct aiScene *sc)
+{
+    static const char *const names[UP_COUNT] = { "+y", "+z", "+x", "-y", "-z", "-x" };
+    int axis, sign = 1, up = -1, front = -1;
+    if (ai_meta_int(sc, "UpAxis", &axis) && ai_meta_int(sc, "UpAxisSign", &sign))
+        up = fbx_axis(axis, sign);
+    if (ai_meta_int(sc, "FrontAxis", &axis) && ai_meta_int(sc, "FrontAxisSign", &sign))
+        front = fbx_axis(axis, sign);
+    if (up < 0) {
+        snprintf(in->up_why, sizeof in->up_why, "FBX: no UpAxis in the file");
+        return;
+    }
+    in->up = up;
+    in->front = front == up || front == (up + 3) % UP_COUNT ? -1 : front;
+    snprintf(in->up_why, sizeof in->up_why, "FBX: UpAxis %s%s%s", names[up], in->front >= 0 ? ", FrontAxis " : "",
+             in->front >= 0 ? names[in->front] : "");
+}
+
+/* COLLADA's <up_axis> (X_UP, Y_UP, Z_UP) from the head of the document,
+ * where its <asset> is; "" when it is not there (Y_UP is the default). */
+static void collada_up_axis(const char *h, size_t n, char out[8])
+{
+    static const char tag[] = "<up_axis>";
+    out[0] = 0;
+    for (size_t i = 0; i + sizeof tag - 1 + 4 <= n; i++) {
+        if (memcmp(h + i, tag, sizeof tag - 1))
+            continue;
+        const char *v = h + i + sizeof tag - 1;
+        size_t k = 0;
+        while (v + k < h + n && k < 7 && (v[k] == '_' || (v[k] >= 'A' && v[k] <= 'Z')))
+            k++;
+        memcpy(out, v, k);
+        out[k] = 0;
+        return;
+    }
+}
+
+#define COLLADA_HEAD 65536
+
+/* data: the file in memory, or NULL to read the head of c->path. */
+static void collada_stance(MeshCtx *c, const char *data, size_t len)
+{
+    MeshInfo *in = &c->m->info;
+    char axis[8] = "";
+    if (data)
+        collada_up_axis(data, len < COLLADA_HEAD ? len : COLLADA_HEAD, axis);
+    else if (c->path) {
+        char *buf = malloc(COLLADA_HEAD);
+        FILE *f = buf ? fopen(c->path, "rb") : NULL;
+        if (f) {
+            collada_up_axis(buf, fread(buf, 1, COLLADA_HEAD, f), axis);
+            fclose(f);
+        }
+        free(buf);
+    }
+    in->up = UP_Y;
+    in->front = -1;
+    if (axis[0] && strcmp(axis, "Y_UP"))
+        snprintf(in->up_why, sizeof in->up_why, "COLLADA: up_axis %s, turned upright by assimp", axis);
+    else if (axis[0])
+        snprintf(in->up_why, sizeof in->up_why, "COLLADA: up_axis %s", axis);
+    else
+        snprintf(in->up_why, sizeof in->up_why, "COLLADA: no up_axis, so Y_UP");
+}
+
+static void ai_stance(MeshCtx *c, const struct aiScene *sc, const char *data, size_t len)
+{
+    const struct aiMetadataEntry *e = ai_meta(sc, "SourceAsset_Format");
+    const char *imp = e && e->mType == AI_AISTRING ? ((const struct aiString *)e->mData)->data : "";
+    MeshInfo *in = &c->m->info;
+    if (strncmp(imp, "Autodesk FBX", 12) == 0)
+        return fbx_stance(in, sc);
+    if (strncmp(imp, "Collada", 7) == 0)
+        return collada_stance(c, data, len);
+    for (size_t i = 0; i < sizeof ai_stances / sizeof ai_stances[0]; i++)
+        if (strncmp(imp, ai_stances[i].importer, strlen(ai_stances[i].importer)) == 0) {
+            in->up = ai_stances[i].up;
+            in->front = ai_stances[i].front;
+            snprintf(in->up_why, sizeof in->up_why, "%s", ai_stances[i].why);
+            return;
+        }
+    /* the rest: as every format that does not say (format.c) */
+}
+
 /* assimp's message, first line only. */
 static int import_failed(MeshCtx *c)
 {
@@ -315,6 +454,8 @@ static int ai_parse_path(MeshCtx *c, const char *path)
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);
+    if (r == 0)
+        ai_stance(c, sc, NULL, 0);
     ai()->aiReleaseImport(sc);
     return r;
 }
@@ -331,8 +472,10 @@ static int ai_parse(MeshCtx *c, const char *data, size_t len)
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);
-    if (r == 0)
+    if (r == 0) {
         c->m->info.bytes = len;
+        ai_stance(c, sc, data, len);
+    }
     ai()->aiReleaseImport(sc);
     return r;
 }
@@ -353,6 +496,8 @@ static int ai_probe(const char *h, size_t n, uint64_t size)
     if (n >= 8 && memcmp(h, "glTF", 4) == 0 && rd_u32le(h + 4) == 2)
         return PROBE_SURE;
     if (n >= 18 && memcmp(h, "Kaydara FBX Binary", 18) == 0)
+        return PROBE_SURE;
+    if (n >= 7 && memcmp(h, "BLENDER", 7) == 0)
         return PROBE_SURE;
     size_t i = 0;
     while (i < n && mesh_is_ws(h[i]))

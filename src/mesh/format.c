@@ -281,6 +281,19 @@ static int refuse(MeshErr *e, const char *what)
     return me_fail(e, "not a model zview can read (%s; formats: %s)", what, list);
 }
 
+/* A loader whose format says how its models stand (STL, glTF, ...)
+ * fills MeshInfo's up, front and up_why; every other format says
+ * nothing, and the model stands y-up (the usual default) with no front. */
+static void default_stance(Mesh *m, const MeshLoader *l)
+{
+    if (m->info.up_why[0])
+        return;
+    m->info.up = UP_Y;
+    m->info.front = -1;
+    snprintf(m->info.up_why, sizeof m->info.up_why, "%.40s: the format does not say",
+             m->info.format[0] ? m->info.format : l->name);
+}
+
 /* A load that skipped statements says so once, and keeps the count and
  * the first for the status bar and --info. */
 static void report_skipped(MeshCtx *c)
@@ -347,8 +360,10 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
     if (!l)
         return refuse(&c.err, what);
     int r = run(l, &c, data ? data : "", len);
-    if (r == 0)
+    if (r == 0) {
         report_skipped(&c);
+        default_stance(m, l);
+    }
     if (r == 0) {
         m->info.load_ms = now_ms() - t0;
         m->info.load_cpu_ms = thread_cpu_ms() - c0;
@@ -537,6 +552,7 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
         mf_close(&f);
     }
     if (r == 0) {
+        default_stance(m, l);
         m->info.load_ms = now_ms() - t0;
         m->info.load_cpu_ms = thread_cpu_ms() - c0;
     }

@@ -10,7 +10,11 @@
  * SolidView (attribute bit 15 set = a valid 5:5:5 colour, red in the
  * high bits) and Materialise Magics (a "COLOR=" part colour in the
  * header; bit 15 clear = the face's own colour, red in the low bits).
- * Each distinct colour becomes one material. */
+ * Each distinct colour becomes one material.
+ *
+ * STL says nothing of axes, but 3D printing, its main use, builds along
+ * z: slicers and printers take z as up, and so does zview (--up
+ * overrides it for a file exported y-up). */
 #define _DEFAULT_SOURCE
 
 #include <stdio.h>
@@ -63,6 +67,14 @@ static int stl_probe(const char *head, size_t n, uint64_t size)
     return p && !mesh_has_binary(head, head + n) ? PROBE_MAYBE : PROBE_NO;
 }
 
+/* z up, the 3D-printing convention (see the top); no front. */
+static void stl_stance(Mesh *m)
+{
+    m->info.up = UP_Z;
+    m->info.front = -1;
+    snprintf(m->info.up_why, sizeof m->info.up_why, "STL: the 3D-printing convention");
+}
+
 /* ==== Binary ==== */
 
 /* Materialise's part colour: "COLOR=" and 4 bytes R G B A in the header. */
@@ -104,6 +116,7 @@ static int stl_binary(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
         me_warn(&c->err, NULL, 0, "%llu bytes after the last of %u triangles ignored",
                 (unsigned long long)(len - need), n);
     snprintf(m->info.format, sizeof m->info.format, "stl binary");
+    stl_stance(m);
     if (n == 0)
         return me_fail(&c->err, "no faces (a binary STL of 0 triangles)");
 
@@ -396,6 +409,7 @@ static int st_lines(StlText *s)
 static int stl_ascii(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
 {
     snprintf(c->m->info.format, sizeof c->m->info.format, "stl ascii");
+    stl_stance(c->m);
     /* About 250 bytes a triangle; a guess only (arrays grow past it). */
     size_t guess = len / 250 + 64;
     if (mb_reserve_ex(b, guess / 2, guess, 3 * guess, 0))

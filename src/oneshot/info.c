@@ -54,6 +54,24 @@ static void print_mesh(Out *out, const Mesh *m, int pos_exp)
            m->info.load_cpu_ms > 0 ? mb / (m->info.load_cpu_ms / 1e3) : 0.0);
 }
 
+/* Which axis of mesh i's model points up, and why: as its format says,
+ * or as --up set it. */
+static void print_up(Out *out, const Options *o, const Scene *s, int i)
+{
+    const Mesh *m = &s->meshes[i];
+    int up = m->info.up;
+    for (int k = 0; k < s->nobjs; k++)
+        if (s->objs[k].mesh == m) {
+            up = s->objs[k].up;
+            break;
+        }
+    if (o->up >= 0)
+        out_printf(out, "up:         %s (--up)\n", up_axis_name(up));
+    else
+        out_printf(out, "up:         %s (%s)\n", up_axis_name(up),
+                   m->info.up_why[0] ? m->info.up_why : "the default");
+}
+
 /* The report so far went out, or a message says why not. */
 static int report_ok(Out *out)
 {
@@ -63,7 +81,50 @@ static int report_ok(Out *out)
     return 0;
 }
 
-int app_info(const Options *o, Scene *s)
+/* The front as a direction: an axis when it is one ("-z"), else the
+ * yaw that looks straight at it. */
+static void front_text(const SceneFront *f, char *buf, size_t len)
+{
+    static const struct { float x, z; const char *name; } axes[] = {
+        { 0, 1, "+z" }, { 0, -1, "-z" }, { 1, 0, "+x" }, { -1, 0, "-x" },
+    };
+    for (size_t i = 0; i < sizeof axes / sizeof axes[0]; i++)
+        if (fabsf(f->dir.x - axes[i].x) < 0.035f && fabsf(f->dir.z - axes[i].z) < 0.035f) {  /* 2 degrees */
+            snprintf(buf, len, "%s", axes[i].name);
+            return;
+        }
+    snprintf(buf, len, "yaw %.0f", atan2f(-f->dir.x, f->dir.z) * (180 / ZV_PI));
+}
+
+/* How the automatic first view was chosen (firstview.c). */
+static void print_first_view(Out *out, const FirstView *fv)
+{
+    if (!fv->rendered) {
+        out_printf(out, "auto view:  yaw %g, pitch %g (from the geometry alone: no memory to render)\n",
+                   fv->yaw, fv->pitch);
+        return;
+    }
+    char what[64];
+    if (fv->prims)
+        snprintf(what, sizeof what, "%u polygons, %u points and segments", fv->polys, fv->prims);
+    else
+        snprintf(what, sizeof what, "%u polygons", fv->polys);
+    out_printf(out, "auto view:  yaw %g, pitch %g: %d views of %s%s scored in %.1f ms\n", fv->yaw, fv->pitch,
+               fv->rendered, what, fv->standin ? " (a stand-in)" : "", fv->ms);
+    out_printf(out, "            its picture: %.0f%% faces seen from the front, %.0f%% from behind%s\n",
+               100 * fv->seen, 100 * fv->back, fv->inside_out ? " (the model is inside out: swapped)" : "");
+    char dir[32];
+    front_text(&fv->front, dir, sizeof dir);
+    if (fv->front.from == FRONT_FORMAT)
+        out_printf(out, "front:      %s (the format's forward axis)\n", dir);
+    else if (fv->front.from == FRONT_FACES)
+        out_printf(out, "front:      %s (more of the faces face it: lean %.3f, weight %.2f)\n", dir,
+                   fv->front.lean, fv->front.weight);
+    else
+        out_printf(out, "front:      %s (nothing says: the plain front view's side)\n", dir);
+}
+
+int app_info(const Options *o, Scene *s, const FirstView *fv)
 {
     Out outs, *out = &outs;
     out_init(out, stdout, "standard output");
@@ -71,6 +132,7 @@ int app_info(const Options *o, Scene *s)
         if (i)
             out_printf(out, "\n");
         print_mesh(out, &s->meshes[i], s->pos_exp);
+        print_up(out, o, s, i);
     }
     uint64_t npolys = 0;   /* grid copies share their source's polygon lists */
     for (int k = 0; k < s->nobjs; k++)
@@ -79,6 +141,8 @@ int app_info(const Options *o, Scene *s)
            s->nobjs, s->nfaces, (unsigned long long)npolys);
     if (s->npoints || s->nlines)
         out_printf(out, "            %u points, %u lines (%u segments)\n", s->npoints, s->nlines, s->nsegs);
+    if (fv)
+        print_first_view(out, fv);
     out_printf(out, "simd:       %s\n", simd_name(simd_level()));
     if (!report_ok(out))
         return 1;

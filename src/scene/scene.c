@@ -481,6 +481,7 @@ static void object_from_mesh(Scene *s, const Mesh *m, const MeshObject *mo, uint
     o->face_base = (int32_t)(gface + mo->face_first);
     o->poly_first = at->pi;
     o->scale = o->home_scale = 1;
+    o->up = m->info.up > UP_Y && m->info.up < UP_COUNT ? m->info.up : UP_Y;   /* as its file stands */
     o->point_first = mo->point_first;
     o->point_count = mo->point_count;
     o->line_count = mo->line_count;
@@ -697,6 +698,17 @@ void scene_set_up(Scene *s, int up)
     for (int i = 0; i < s->nobjs; i++)
         s->objs[i].up = up;
     scene_fit(s);
+}
+
+int scene_up_forced(const Scene *s)
+{
+    for (int i = 0; i < s->nobjs; i++) {
+        const Object *o = &s->objs[i];
+        int own = o->mesh && o->mesh->info.up > UP_Y && o->mesh->info.up < UP_COUNT ? o->mesh->info.up : UP_Y;
+        if (o->up != own)
+            return s->objs[0].up;
+    }
+    return -1;
 }
 
 Mat4 object_matrix(const Object *o)

@@ -199,9 +199,9 @@ static Reaction act_view7(App *a) { return set_view(a, 6); }
 
 static Reaction act_view_auto(App *a)
 {
-    float y, p;
-    scene_pick_view(a->s, &y, &p);
-    return look_from(a, y, p, "auto");
+    FirstView pick;
+    app_first_view(a->s, a->opt->threads, &pick);
+    return look_from(a, pick.yaw, pick.pitch, "auto");
 }
 
 /* Turn the light (it stays fixed to the view): yaw wraps, pitch stops

@@ -154,9 +154,9 @@ static int relayout(App *a, char *err, size_t errlen)
         o->home = o->offset = v3(0, 0, 0);
         o->home_scale = o->scale = 1;
     }
-    float py, pp;
-    scene_pick_view(s, &py, &pp);
-    scene_layout(s, (LayoutKind)a->opt->layout, deg2rad(py));
+    FirstView pick;
+    app_first_view(s, a->opt->threads, &pick);
+    scene_layout(s, (LayoutKind)a->opt->layout, deg2rad(pick.yaw));
     for (int i = 0; i < nb; i++) {
         Object *o = &s->objs[i];
         o->offset = v3_add(o->home, moved[i]);
@@ -241,7 +241,11 @@ static Reaction add_part(App *a, Scene *part, const char *path)
     /* what to show of the file once the part is gone into the scene */
     MeshInfo info = part->nmeshes ? part->meshes[0].info : (MeshInfo){ 0 };
     uint32_t faces = part->nfaces, points = part->npoints, segs = part->nsegs;
-    int up = s->nobjs ? s->objs[0].up : o->up;
+    /* an up axis set for every object (--up, U) holds for the new file
+     * too; else it stands as its format says */
+    int up = scene_up_forced(s);
+    if (up < 0)
+        up = o->up;
     int first = (int)s->nbase_objs;
     if (name_the_demo(a) || add_path(a, path)) {
         app_note(a, "out of memory");
@@ -254,7 +258,8 @@ static Reaction add_part(App *a, Scene *part, const char *path)
         return RE_RENDER;
     }
     for (int i = first; i < s->nobjs; i++)
-        s->objs[i].up = up;
+        if (up >= 0)
+            s->objs[i].up = up;
     if (relayout(a, err, sizeof err))
         app_note(a, "%s", err);
     else if (info.warnings)

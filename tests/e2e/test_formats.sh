@@ -11,6 +11,13 @@ P="--print --size 40x14 --mode ascii --color none"
 "$Z" $P $D/house.obj >"$T/ref.txt" 2>"$T/err" </dev/null
 if [ -s "$T/ref.txt" ]; then ok "the OBJ prints"; else notok "the OBJ prints" "$(cat "$T/err")"; fi
 "$Z" --size 64x48 -o "$T/ref.png" $D/house.obj </dev/null
+# an STL stands z-up (the 3D-printing convention): its picture is the
+# OBJ's with --up z
+# shellcheck disable=SC2086
+"$Z" $P --up z $D/house.obj >"$T/refz.txt" 2>"$T/err" </dev/null
+"$Z" --size 64x48 -o "$T/refz.png" --up z $D/house.obj </dev/null
+# ref NAME: the reference picture for file NAME (.txt or .png)
+ref() { case "$1" in *.stl) echo "$T/refz.$2" ;; *) echo "$T/ref.$2" ;; esac; }
 
 has_assimp=0
 "$Z" --formats >"$T/formats" 2>&1
@@ -26,10 +33,10 @@ for f in house.stl house-ascii.stl house-le.ply house-be.ply house-ascii.ply hou
     # shellcheck disable=SC2086
     "$Z" $P $D/$f >"$T/out.txt" 2>"$T/err" </dev/null
     st=$?
-    if [ $st -eq 0 ] && cmp -s "$T/ref.txt" "$T/out.txt"; then ok "$f prints the OBJ's picture"; else
+    if [ $st -eq 0 ] && cmp -s "$(ref $f txt)" "$T/out.txt"; then ok "$f prints the OBJ's picture"; else
         notok "$f prints the OBJ's picture" "status $st; $(head -c 200 "$T/err")"; fi
     expect_status "$f -o png" 0 "$Z" --size 64x48 -o "$T/out.png" $D/$f
-    if cmp -s "$T/ref.png" "$T/out.png"; then ok "$f -o gives the OBJ's image"; else notok "$f -o gives the OBJ's image"; fi
+    if cmp -s "$(ref $f png)" "$T/out.png"; then ok "$f -o gives the OBJ's image"; else notok "$f -o gives the OBJ's image"; fi
 done
 
 # colours: the VisCAM roof and the COFF apex change the picture
@@ -44,7 +51,7 @@ done
 for f in house.stl house-le.ply house-ascii.stl house.off house.obj; do
     # shellcheck disable=SC2086
     cat $D/$f | "$Z" $P - >"$T/out.txt" 2>"$T/err"
-    if cmp -s "$T/ref.txt" "$T/out.txt"; then ok "cat $f | zview --print -"; else
+    if cmp -s "$(ref $f txt)" "$T/out.txt"; then ok "cat $f | zview --print -"; else
         notok "cat $f | zview --print -" "$(head -c 200 "$T/err")"; fi
 done
 # shellcheck disable=SC2086
@@ -85,12 +92,12 @@ expect_err "noise named .ply is refused as binary data" "binary data"
 
 # -o - and --image-format
 "$Z" --size 64x48 -o - $D/house.stl >"$T/stdout.png" 2>"$T/err" </dev/null
-if cmp -s "$T/ref.png" "$T/stdout.png"; then ok "-o - writes the PNG to stdout"; else notok "-o - writes the PNG to stdout" "$(cat "$T/err")"; fi
+if cmp -s "$T/refz.png" "$T/stdout.png"; then ok "-o - writes the PNG to stdout"; else notok "-o - writes the PNG to stdout" "$(cat "$T/err")"; fi
 "$Z" --size 64x48 --image-format ppm -o - $D/house.stl >"$T/stdout.ppm" 2>"$T/err" </dev/null
 if [ "$(head -c 2 "$T/stdout.ppm")" = P6 ] && [ "$(wc -c <"$T/stdout.ppm")" -eq $((13 + 64 * 48 * 3)) ]; then
     ok "--image-format ppm -o - writes PPM"; else notok "--image-format ppm -o - writes PPM"; fi
 expect_status "--image-format with any name" 0 "$Z" --size 64x48 --image-format png -o "$T/image.bin" $D/house.stl
-if cmp -s "$T/ref.png" "$T/image.bin"; then ok "--image-format png writes PNG"; else notok "--image-format png writes PNG"; fi
+if cmp -s "$T/refz.png" "$T/image.bin"; then ok "--image-format png writes PNG"; else notok "--image-format png writes PNG"; fi
 expect_status "-o without .png/.ppm or --image-format is a usage error" 2 "$Z" -o "$T/x.jpg" $D/house.obj
 expect_status "-o - with --print is a usage error" 2 "$Z" --print -o - $D/house.obj
 expect_status "a bad --image-format is a usage error" 2 "$Z" --image-format gif -o - $D/house.obj
@@ -100,8 +107,11 @@ expect_status "a bad --image-format is a usage error" 2 "$Z" --image-format gif 
 "$Z" $P --up y $D/house.stl >"$T/y.txt" 2>/dev/null
 # shellcheck disable=SC2086
 "$Z" $P --up z --view front $D/house.stl >"$T/z.txt" 2>/dev/null
-if cmp -s "$T/ref.txt" "$T/y.txt"; then ok "--up y is the default"; else notok "--up y is the default"; fi
+# shellcheck disable=SC2086
+"$Z" $P --view front $D/house.stl >"$T/stl.txt" 2>/dev/null
+if cmp -s "$T/ref.txt" "$T/y.txt"; then ok "--up y overrides the STL's z"; else notok "--up y overrides the STL's z"; fi
 if ! cmp -s "$T/y.txt" "$T/z.txt"; then ok "--up z turns the model"; else notok "--up z turns the model"; fi
+if cmp -s "$T/stl.txt" "$T/z.txt"; then ok "an STL stands z-up without --up"; else notok "an STL stands z-up without --up"; fi
 # with z up, seen from the front, the roof's apex is the top of the
 # picture: its first drawn row is narrow
 first=$(grep -m1 '[^ ]' "$T/z.txt" | tr -d ' ' | wc -c)
@@ -114,7 +124,12 @@ expect_status "a bad --up is a usage error" 2 "$Z" --up w $D/house.obj
 "$Z" $P --cull --flip $D/house.obj >"$T/flip.txt" 2>/dev/null
 if ! cmp -s "$T/cull.txt" "$T/flip.txt"; then ok "--flip turns the faces inside out"; else notok "--flip turns the faces inside out"; fi
 
-# --info names the format
+# --info names the format, and the up axis and why
 "$Z" --info $D/house.stl >"$T/out" 2>"$T/err"
 expect_out "--info names the format" "format:     stl binary"
 expect_out "--info counts the merged corners" "vertices:   9 (merged from 42 corners)"
+expect_out "--info says why the STL is z-up" "up:         z (STL: the 3D-printing convention)"
+"$Z" --info --up y $D/house.stl >"$T/out" 2>"$T/err"
+expect_out "--info says when --up set the axis" "up:         y (--up)"
+"$Z" --info $D/house.obj >"$T/out" 2>"$T/err"
+expect_out "--info: an OBJ says nothing" "up:         y (obj: the format does not say)"

@@ -33,12 +33,15 @@ settle "$T/y"
 if cmp -s "$T/y" "$T/print-y"; then ok "the piped model's picture equals --print"; else
     notok "the piped model's picture equals --print" "$(diff "$T/y" "$T/print-y" | head -5)"; fi
 
+# an STL stands z-up: U goes on to x
 tm send-keys -t zv U
-if wait_for 'up: z'; then ok "U cycles the up axis to z (and says so)"; else notok "U cycles the up axis to z (and says so)" "$(tail -n 1 "$T/screen")"; fi
-settle "$T/z"
-"$Z" --print --mode ascii --color none --size 120x19 --up z --view front $D/house.stl | sed 's/[[:space:]]*$//' >"$T/print-z"
-if cmp -s "$T/z" "$T/print-z"; then ok "after U the picture equals --print --up z"; else
-    notok "after U the picture equals --print --up z" "$(diff "$T/z" "$T/print-z" | head -5)"; fi
+if wait_for 'up: x'; then ok "U cycles the STL's up axis from z to x (and says so)"; else
+    notok "U cycles the STL's up axis from z to x (and says so)" "$(tail -n 1 "$T/screen")"; fi
+settle "$T/x"
+"$Z" --print --mode ascii --color none --size 120x19 --up x --view front $D/house.stl | sed 's/[[:space:]]*$//' >"$T/print-x"
+if cmp -s "$T/x" "$T/print-x"; then ok "after U the picture equals --print --up x"; else
+    notok "after U the picture equals --print --up x" "$(diff "$T/x" "$T/print-x" | head -5)"; fi
+if ! cmp -s "$T/x" "$T/y"; then ok "U turned the model"; else notok "U turned the model"; fi
 
 tm send-keys -t zv '?'
 if wait_for 'up axis'; then ok "the help lists the up-axis key"; else notok "the help lists the up-axis key"; fi
