@@ -33,10 +33,11 @@ material nearblack "0.02 0.02 0.02"
 px() { python3 tests/e2e/ppm.py "$@"; }
 ge() { python3 -c "import sys; sys.exit(0 if float('$1') >= float('$2') else 1)"; }
 check() { if eval "$2"; then ok "$1"; else notok "$1" "$3"; fi; }
-# drawn FILE: the drawn pixels of an image: n, distinct, minl, maxl, top
-drawn() { set -- $(px "$1" drawn); n=$1 distinct=$2 minl=$3 maxl=$4 top=$5; stats="$*"; }
-# sgr FILE [R,G,B]: the colours of a text frame but that one: n, minl, maxl
-sgr() { set -- $(px "$1" sgr $2); n=$1 minl=$2 maxl=$3; stats="$*"; }
+# drawn FILE: the drawn pixels of an image: npx, distinct, minl, maxl, top
+# (not n: tmux.sh counts its servers in n)
+drawn() { set -- $(px "$1" drawn); npx=$1 distinct=$2 minl=$3 maxl=$4 top=$5; stats="$*"; }
+# sgr FILE [R,G,B]: the colours of a text frame but that one: npx, minl, maxl
+sgr() { set -- $(px "$1" sgr $2); npx=$1 minl=$2 maxl=$3; stats="$*"; }
 
 # ==== -o ====
 for m in navy nearblack; do
@@ -44,7 +45,7 @@ for m in navy nearblack; do
     drawn "$T/off.ppm"
     asis=$top
     check "-o $m, --contrast 0: one colour, exactly the material's, under the minimum ($stats)" \
-        '[ "$n" -gt 300 ] && [ "$distinct" = 1 ] && ! ge "$minl" 0.2' "$stats"
+        '[ "$npx" -gt 300 ] && [ "$distinct" = 1 ] && ! ge "$minl" 0.2' "$stats"
     "$Z" -o "$T/on.ppm" --size 64x48 --bg black --ambient 1 "$T/$m.obj"
     drawn "$T/on.ppm"
     check "-o $m on --bg black: lifted to the minimum, one colour still ($stats)" \
@@ -75,14 +76,14 @@ check "--turntable: every frame keeps the first frame's background" \
 # ==== --print ====
 "$Z" --print --color truecolor --size 40x16 --bg white assets/torus.obj >"$T/w.txt" </dev/null
 sgr "$T/w.txt" 255,255,255
-check "--print --bg white: the model's colours no lighter than 0.8 ($stats)" '[ "$n" -gt 50 ] && ! ge "$maxl" 0.8001' "$stats"
+check "--print --bg white: the model's colours no lighter than 0.8 ($stats)" '[ "$npx" -gt 50 ] && ! ge "$maxl" 0.8001' "$stats"
 check "--print --bg white: the background painted in every row" \
     '[ "$(grep -c "48;2;255;255;255m" "$T/w.txt")" -eq 16 ]' "$(grep -c "48;2;255;255;255m" "$T/w.txt")"
 "$Z" --print --color truecolor --size 40x16 assets/torus.obj >"$T/d.txt" </dev/null
 check "--print without --bg: nothing painted (the terminal's own background)" '! grep -q "48;2;0;0;0m" "$T/d.txt"'
 "$Z" --print --color truecolor --size 40x16 "$T/navy.obj" >"$T/n.txt" </dev/null
 sgr "$T/n.txt"
-check "--print of navy, no terminal to ask: kept 0.2 from black ($stats)" '[ "$n" -gt 20 ] && ge "$minl" 0.1999' "$stats"
+check "--print of navy, no terminal to ask: kept 0.2 from black ($stats)" '[ "$npx" -gt 20 ] && ge "$minl" 0.1999' "$stats"
 COLORFGBG='0;15' "$Z" --print --color truecolor --size 40x16 assets/torus.obj >"$T/e.txt" </dev/null
 sgr "$T/e.txt"
 check "--print with COLORFGBG=0;15 (a white background): no colour lighter than 0.8 ($stats)" '! ge "$maxl" 0.8001' "$stats"
@@ -116,7 +117,7 @@ for bg in none white; do
     check "viewer on a $bg pane: no byte of an answer on the screen" no_answer_shown "$(head -5 "$T/screen")"
     colours
     if [ $bg = white ]; then
-        check "viewer on a white pane: nothing drawn lighter than 0.8 ($stats)" '[ "$n" -gt 50 ] && ! ge "$maxl" 0.8001' "$stats"
+        check "viewer on a white pane: nothing drawn lighter than 0.8 ($stats)" '[ "$npx" -gt 50 ] && ! ge "$maxl" 0.8001' "$stats"
         tm send-keys -t zv i
         wait_for 'background:' >/dev/null
         check "viewer on a white pane: the info panel names the terminal's answer" \
@@ -141,7 +142,7 @@ for bg in none white; do
     wait_for '^pr-exit=0' >/dev/null || notok "--print on a $bg pane ends" "$(tail -3 "$T/screen")"
     colours
     if [ $bg = white ]; then
-        check "--print on a white pane: nothing lighter than 0.8 ($stats)" '[ "$n" -gt 30 ] && ! ge "$maxl" 0.8001' "$stats"
+        check "--print on a white pane: nothing lighter than 0.8 ($stats)" '[ "$npx" -gt 30 ] && ! ge "$maxl" 0.8001' "$stats"
     else
         check "--print on a pane that does not answer: the light faces kept ($stats)" 'ge "$maxl" 0.82' "$stats"
     fi
