@@ -70,6 +70,9 @@ void  backdrop_describe(const Backdrop *b, char *buf, size_t len);
  * its top. A pixel already far enough keeps its bytes. */
 
 #define CONTRAST_SLOTS 4096     /* colours remembered (direct-mapped) */
+#define CONTRAST_CELL_BITS 3    /* the fast test's cubes: 8 x 8 x 8 colours */
+#define CONTRAST_CELL  (1 << CONTRAST_CELL_BITS)
+#define CONTRAST_CELLS (1 << 3 * (8 - CONTRAST_CELL_BITS))
 
 /* The rule for one background and minimum, and the colours it has
  * moved (kept across frames: a frame mostly repeats its colours). */
@@ -79,6 +82,7 @@ typedef struct {
     float     floor_up, ceil_down;  /* the least lightness above, the most below */
     int       up, down;         /* the background has room above, below */
     float     keep_lo3, keep_hi3;   /* the fast test's thresholds, cubed (see contrast.c) */
+    uint8_t  *kept;             /* CONTRAST_CELLS bits: the cubes of colours the fast test keeps whole */
     uint32_t *slot;             /* CONTRAST_SLOTS: input rgb | 1 << 24, 0 = empty */
     uint32_t *value;            /* the rgb it became */
 } Contrast;

@@ -75,6 +75,36 @@ static float cube_giving_at_most(float lo)
 
 /* ==== The rule ==== */
 
+/* The fast test (above) of one colour: its l and m both at or past the
+ * band's far threshold on the side given. */
+static inline int past_band(const Contrast *c, const uint8_t p[3], int up)
+{
+    float lin[3];
+    linear(p, lin);
+    float l = 0.4122214708f * lin[0] + 0.5363325363f * lin[1] + 0.0514459929f * lin[2];
+    float m = 0.2119034982f * lin[0] + 0.6806995451f * lin[1] + 0.1073969566f * lin[2];
+    return up ? l >= c->keep_hi3 && m >= c->keep_hi3 : l <= c->keep_lo3 && m <= c->keep_lo3;
+}
+
+/* The cubes of CONTRAST_CELL^3 colours that keep their bytes whole: l
+ * and m grow with every channel, so a cube is past the band above when
+ * its darkest corner is, below when its lightest corner is. Per pixel,
+ * one bit then stands for the fast test. */
+static void mark_kept_cells(Contrast *c)
+{
+    const int k = CONTRAST_CELL, side = 256 / CONTRAST_CELL;
+    memset(c->kept, 0, CONTRAST_CELLS / 8);
+    for (int r = 0; r < side; r++)
+        for (int g = 0; g < side; g++)
+            for (int b = 0; b < side; b++) {
+                uint8_t dark[3] = { (uint8_t)(r * k), (uint8_t)(g * k), (uint8_t)(b * k) };
+                uint8_t light[3] = { (uint8_t)(r * k + k - 1), (uint8_t)(g * k + k - 1), (uint8_t)(b * k + k - 1) };
+                uint32_t cell = (uint32_t)((r * side + g) * side + b);
+                if ((c->up && past_band(c, dark, 1)) || (c->down && past_band(c, light, 0)))
+                    c->kept[cell >> 3] |= (uint8_t)(1u << (cell & 7));
+            }
+}
+
 int contrast_prepare(Contrast *c, const Backdrop *b, float min)
 {
     float bg = backdrop_lightness(b->rgb);
@@ -83,7 +113,8 @@ int contrast_prepare(Contrast *c, const Backdrop *b, float min)
     if (!c->slot) {
         c->slot = calloc(CONTRAST_SLOTS, sizeof *c->slot);
         c->value = malloc(CONTRAST_SLOTS * sizeof *c->value);
-        if (!c->slot || !c->value) {
+        c->kept = malloc(CONTRAST_CELLS / 8);
+        if (!c->slot || !c->value || !c->kept) {
             contrast_free(c);
             return -1;
         }
@@ -101,6 +132,7 @@ int contrast_prepare(Contrast *c, const Backdrop *b, float min)
     c->lo = c->down ? fmaxf(c->ceil_down - CONTRAST_KNEE, 0.0f) : -1.0f;
     c->keep_hi3 = c->up ? cube_giving_at_least(c->hi) : INFINITY;
     c->keep_lo3 = c->down ? cube_giving_at_most(c->lo) : -1.0f;
+    mark_kept_cells(c);
     return 0;
 }
 
@@ -108,6 +140,7 @@ void contrast_free(Contrast *c)
 {
     free(c->slot);
     free(c->value);
+    free(c->kept);
     memset(c, 0, sizeof *c);
 }
 
@@ -195,14 +228,13 @@ void contrast_colour(Contrast *c, const uint8_t rgb[3], uint8_t out[3])
     nudge(c, goes_up(c, L), out);
 }
 
-/* Whether the fast test proves a colour is kept as it is. */
+/* Whether the fast test proves a colour is kept as it is: its cube's
+ * bit. */
 static inline int surely_kept(const Contrast *c, const uint8_t p[3])
 {
-    float lin[3];
-    linear(p, lin);
-    float l = 0.4122214708f * lin[0] + 0.5363325363f * lin[1] + 0.0514459929f * lin[2];
-    float m = 0.2119034982f * lin[0] + 0.6806995451f * lin[1] + 0.1073969566f * lin[2];
-    return (l >= c->keep_hi3 && m >= c->keep_hi3) || (l <= c->keep_lo3 && m <= c->keep_lo3);
+    const int shift = CONTRAST_CELL_BITS, bits = 8 - CONTRAST_CELL_BITS;
+    uint32_t cell = (uint32_t)(p[0] >> shift) << (2 * bits) | (uint32_t)(p[1] >> shift) << bits | (uint32_t)(p[2] >> shift);
+    return c->kept[cell >> 3] >> (cell & 7) & 1;
 }
 
 /* The colour key (24-bit rgb) of a pixel. */
@@ -236,18 +268,28 @@ int contrast_apply(Contrast *c, const Backdrop *b, float min, Image *im)
         return 0;
     size_t n = (size_t)im->w * (size_t)im->h;
     uint32_t last_in = 0xffffffffu, last_out = 0;
-    for (size_t i = 0; i < n; i++) {
-        if (!im->lit[i])
+    for (size_t i0 = 0; i0 < n; i0 += 8) {
+        size_t i1 = n - i0 < 8 ? n : i0 + 8;
+        uint64_t any = 0;
+        if (i1 - i0 == 8)
+            memcpy(&any, im->lit + i0, 8);  /* eight of the background at once (most of a big picture) */
+        if (i1 - i0 == 8 && !any)
             continue;
-        uint8_t *p = im->rgb + 3 * i;
-        uint32_t key = key_of(p);
-        if (key != last_in) {   /* neighbours mostly share a colour (a face's) */
-            last_in = key;
-            last_out = moved_key(c, p, key);
+        for (size_t i = i0; i < i1; i++) {
+            if (!im->lit[i])
+                continue;
+            uint8_t *p = im->rgb + 3 * i;
+            uint32_t key = key_of(p);
+            if (key != last_in) {   /* neighbours mostly share a colour (a face's) */
+                last_in = key;
+                last_out = moved_key(c, p, key);
+            }
+            if (last_out == key)
+                continue;
+            p[0] = (uint8_t)(last_out >> 16);
+            p[1] = (uint8_t)(last_out >> 8);
+            p[2] = (uint8_t)last_out;
         }
-        p[0] = (uint8_t)(last_out >> 16);
-        p[1] = (uint8_t)(last_out >> 8);
-        p[2] = (uint8_t)last_out;
     }
     return 0;
 }
