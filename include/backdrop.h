@@ -14,14 +14,14 @@
 
 /* The least OKLab lightness difference between a drawn pixel and the
  * background (L runs from 0, black, to 1, white): 0.2 is the distance
- * from black of an sRGB grey of 26, the faintest that still reads as a
- * shape on black; ConcavePolygon.dae's navy lies at 0.17 today. */
+ * from black of an sRGB grey of 22, faint but a shape on black;
+ * ConcavePolygon.dae's navy lies at 0.17. */
 #define CONTRAST_DEFAULT 0.2f
 #define CONTRAST_MAX     0.4f   /* keeps room on one side of any background */
 /* The lightnesses squeezed to make room: within CONTRAST_KNEE beyond the
  * minimum pixels move less the farther out they are, and beyond it they
  * keep their colour exactly (the ambient side of a light grey model on
- * black, L 0.29, moves by 0.03). */
+ * black, L 0.29, moves by 0.03: sRGB grey 44 becomes 52). */
 #define CONTRAST_KNEE    0.15f
 /* A side of the background with less lightness than this beyond the
  * minimum takes no pixels: on near-black every pixel goes lighter. */
