@@ -185,7 +185,7 @@ void termbg_scan(BgScan *s, const unsigned char *b, size_t n);
 int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, uint8_t rgb_out[3], double *waited_ms_out);
 /* The same on the controlling terminal (/dev/tty) for --print, put in a
  * mode without echo for the question and back; not from a job in the
- * background. Returns 1 with rgb_out, else 0. */
+ * background, nor on TERM=dumb (or none). Returns 1 with rgb_out, else 0. */
 int  termbg_ask_tty(int wait_ms, uint8_t rgb_out[3]);
 
 /* ==== The screen model (vt.c) ====

@@ -24,6 +24,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
+#include <stdlib.h>
 #include <string.h>
 #include <termios.h>
 #include <unistd.h>
@@ -213,6 +214,10 @@ int termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, uint8_t rgb_ou
 
 int termbg_ask_tty(int wait_ms, uint8_t rgb_out[3])
 {
+    /* a terminal that says it knows no escapes would show the question */
+    const char *term = getenv("TERM");
+    if (!term || !*term || !strcmp(term, "dumb"))
+        return 0;
     int fd = open("/dev/tty", O_RDWR | O_NOCTTY | O_CLOEXEC);
     if (fd < 0)
         return 0;

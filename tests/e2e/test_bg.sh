@@ -150,3 +150,12 @@ for bg in none white; do
     check "--print on a $bg pane: no answer on the screen or typed into the shell" \
         'no_answer_shown && grep -q "^back-in-42$" "$T/screen"' "$(tail -4 "$T/screen")"
 done
+
+# TERM=dumb says the terminal knows no escapes: not even asked (the pane
+# would answer white)
+session xterm-256color 60 20
+tm set-option -g window-style 'bg=#ffffff' >/dev/null
+tm send-keys -t zv "TERM=dumb $Z --print --color truecolor --size 40x12 assets/torus.obj; echo pr-exit=\$?" Enter
+wait_for '^pr-exit=0' >/dev/null || notok "--print on TERM=dumb ends" "$(tail -3 "$T/screen")"
+colours
+check "--print on TERM=dumb: the terminal not asked, the light faces kept ($stats)" 'ge "$maxl" 0.82' "$stats"
