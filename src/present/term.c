@@ -538,6 +538,7 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     /* its background, before the first frame; the answers go through the
      * key parser, which drops them */
     fflush(out);
+    T.bg_wait_ms = 0;
     T.bg_known = cfg->ask_bg && T.ask && isatty(T.in_fd) &&
                  termbg_ask(T.q.fd, T.in_fd, TERMBG_WAIT_MS, &T.kp, T.bg, &T.bg_wait_ms);
     T.ack_wait = T.acks_seen = T.unanswered = 0;
