@@ -6,6 +6,7 @@
  * surfaces -> shading -> cells). The one-shot outputs, the benchmark and
  * the viewer all render through pipeline_render(). */
 
+#include "backdrop.h"
 #include "hsr.h"
 #include "present.h"
 #include "scene.h"
@@ -72,6 +73,10 @@ typedef struct {
     int         print_view;     /* --print-view: the view's command line on stdout when the viewer quits */
     int         turntable;      /* --turntable N: N frames turning 360/N degrees each (0 = off) */
     int         sketch;         /* --sketch: the viewer starts drawing polygons on an empty canvas */
+    /* the background (backdrop.h) */
+    const char *bg;             /* --bg COLOR as written, NULL = default (the terminal's; images: picked) */
+    uint8_t     bg_rgb[3];      /* --bg's colour */
+    float       contrast;       /* --contrast: least OKLab L from the background, 0 = colours as given */
 } Options;
 
 #define POINT_SIZE_MAX 16       /* pixels: at 4 x 4 samples a pixel, PRIM_SIZE_MAX samples */
@@ -202,6 +207,12 @@ typedef struct {
     int          line_width;    /* pixels */
     int          wireframe;     /* every face edge as a line (the scene's wire is built on first use) */
     PrimWork    *prims;
+    /* the background and the contrast rule (backdrop.h), applied to img
+     * once a backdrop is set */
+    Backdrop     bd;
+    int          has_bd;        /* bd is set: pipeline_render applies the rule */
+    float        contrast;      /* the least OKLab L from it, 0 = colours as given */
+    Contrast     rule;
 } Pipeline;
 
 int  pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads);
@@ -222,6 +233,14 @@ void pipeline_free(Pipeline *p);
  * image then averaged down to w x h in img (fb holds the full-size
  * buffers: the exact render at the higher resolution). */
 int  pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int shade_too);
+/* The picture is seen on b: from now on pipeline_render keeps what it
+ * draws p->contrast away from it (and the -o image is painted with it). */
+void pipeline_set_backdrop(Pipeline *p, const Backdrop *b);
+/* The backdrop of a text picture (the viewer, --print): --bg's colour,
+ * painted; else the terminal's own, not painted, its colour as asked
+ * (asked: the answer to the colour query, NULL when none came), else
+ * from COLORFGBG, else taken for black. */
+Backdrop pipeline_text_backdrop(const Options *o, const uint8_t *asked);
 /* The side k of the k x k samples a pixel gets for a sample count. */
 int  pipeline_samples_side(int samples);
 /* Memory of one w x h frame at `samples` samples per pixel (dropped to

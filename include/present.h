@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include "backdrop.h"
 #include "image.h"
 
 typedef enum { MODE_HALF = 0, MODE_ASCII, MODE_BRAILLE, MODE_COUNT } DisplayMode;
@@ -25,6 +26,10 @@ ColourDepth colour_from_env(void);
 /* Default display mode: half on a UTF-8 locale, else ascii. Call after
  * setlocale(LC_ALL, ""). */
 DisplayMode mode_from_locale(void);
+/* The terminal's background from COLORFGBG ("15;0": palette colour 0,
+ * as rxvt and konsole set it) into rgb_out (xterm's palette). Returns
+ * 0, or -1 when it is unset or says nothing. */
+int bg_from_env(uint8_t rgb_out[3]);
 
 #define CELL_FG 1       /* fg colour set (else terminal default) */
 #define CELL_BG 2       /* bg colour set (else terminal default) */
@@ -49,6 +54,10 @@ float mode_pixel_aspect(DisplayMode m);
 /* Image of (cols * px_w) x (rows * px_h) pixels -> cells. Under
  * COLOUR_NONE the shading goes into the glyphs (dithered blocks and dots). */
 int  cells_from_image(const Image *im, DisplayMode m, ColourDepth depth, CellGrid *out);
+/* The same for a picture seen on bd (NULL: a dark terminal's own
+ * background): on a light one the glyphs carry darkness (cells.c), and
+ * a painted one fills the background of every cell. */
+int  cells_from_image_on(const Image *im, DisplayMode m, ColourDepth depth, const Backdrop *bd, CellGrid *out);
 void cells_free(CellGrid *g);
 
 /* The xterm palette (the first 16 at xterm's defaults). */

@@ -60,6 +60,7 @@ typedef struct {
     ColourDepth  colour;          /* wanted; lowered to what the terminal has */
     int         mouse;          /* report clicks, drags and the wheel */
     int         signals;        /* restore on SIGINT/SIGTERM/SIGHUP, handle SIGTSTP */
+    int         ask_bg;         /* ask the terminal for its background (termbg.c) */
 } TermConfig;
 
 /* The terminal description to use for name (NULL: $TERM): name itself
@@ -78,6 +79,10 @@ int  term_open(const TermConfig *cfg, char *err, size_t errlen);
 void term_restore(void);
 
 ColourDepth term_colour(void);            /* the depth actually used */
+/* The terminal's background as it answered at open: 1 with rgb_out, 0
+ * when it did not (or was not asked); waited_ms_out (may be NULL): how
+ * long the question took. */
+int  term_background(uint8_t rgb_out[3], double *waited_ms_out);
 void term_size(int *cols_out, int *rows_out);
 /* Pretend the window is cols x rows (the tty benchmark writes to a file). */
 void term_set_size(int cols, int rows);
@@ -150,6 +155,43 @@ int    kp_wait_ms(const KeyParser *p);
  * string still open has lost its end, and what comes now is keys. */
 void   kp_quiet(KeyParser *p);
 
+/* ==== The terminal's background (termbg.c) ====
+ * The colour query (OSC 11) and the device-attributes request after it,
+ * whose answer says that no other is coming. */
+
+#define TERMBG_WAIT_MS  200     /* a terminal that answers neither (none known) costs this once */
+#define TERMBG_BODY_MAX 63      /* a string's bytes kept: "11;rgba:ffff/ffff/ffff/ffff" fits */
+
+/* "rgb:RRRR/GGGG/BBBB" (1 to 4 hex digits a channel) or rgba: with an
+ * alpha after, as terminals answer -> rgb_out. Returns 0, or -1. */
+int  termbg_parse_colour(const char *spec, uint8_t rgb_out[3]);
+
+/* The answers found in the input, byte by byte (any split). */
+typedef struct {
+    int      state;
+    char     body[TERMBG_BODY_MAX + 1];
+    size_t   len;
+    int      csi_private;       /* the CSI sequence began with '?' */
+    int      got_bg;            /* an OSC 11 answer with a colour came: bg */
+    uint8_t  bg[3];
+    int      got_da;            /* the attributes' answer came: no other will */
+} BgScan;
+
+void termbg_scan_init(BgScan *s);
+void termbg_scan(BgScan *s, const unsigned char *b, size_t n);
+
+/* Ask the terminal on out_fd, read its answers from in_fd until the
+ * attributes' answer or wait_ms; every byte read goes on to kp (NULL:
+ * dropped), so the key parser sees the keys typed meanwhile and drops
+ * the answers. The input must not echo (the viewer's curses mode).
+ * Returns 1 with rgb_out when the terminal said its background, else 0;
+ * waited_ms_out (may be NULL): how long it took. */
+int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, uint8_t rgb_out[3], double *waited_ms_out);
+/* The same on the controlling terminal (/dev/tty) for --print, put in a
+ * mode without echo for the question and back; not from a job in the
+ * background, nor on TERM=dumb (or none). Returns 1 with rgb_out, else 0. */
+int  termbg_ask_tty(int wait_ms, uint8_t rgb_out[3]);
+
 /* ==== The screen model (vt.c) ====
  * What the terminal should show (want) and what it shows (shown), cell
  * by cell, and the bytes that take it from one to the other: only the
@@ -206,6 +248,8 @@ VtCell *vt_at(Vt *v, int y, int x);     /* a cell of want, NULL outside */
 /* UTF-8 text into row y from column x, at most maxw columns; characters
  * that are not one column wide show as '?'. Returns the columns used. */
 int  vt_text(Vt *v, int y, int x, const char *s, int maxw, uint8_t attr);
+/* A framed box of lines into want (term_draw_box_at says where). */
+void vt_box(Vt *v, const char *const *lines, int n, int bx, int by);
 /* The bytes from shown to want into buf/len; shown is then want.
  * Returns 0, or -1 out of memory. */
 int  vt_encode(Vt *v);

@@ -483,6 +483,8 @@ Test(options, the_view_command_writes_the_options_marked_for_it)
     o.format = "obj";
     o.layout = LAYOUT_GRID;
     o.grid = 2;
+    o.bg = "white";
+    o.contrast = 0.3f;
     s.cam.persp = 1;
     s.cam.fov_deg = 40;
     s.cam.yaw = 0.5f;

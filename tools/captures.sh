@@ -8,6 +8,7 @@ set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 cd "$ROOT"
 Z=${ZVIEW:-$ROOT/zview}
+unset COLORFGBG     # the captures are of a dark terminal's picture, wherever they are made
 [ $# -gt 0 ] || set -- README.md CONTRIBUTING.md doc/design.md doc/benchmarks.md
 for doc in "$@"; do
     [ -f "$doc" ] || continue

@@ -125,6 +125,7 @@ void cli_defaults(Options *o)
     o->point_size = 1;
     o->line_width = 1;
     o->up = -1;
+    o->contrast = CONTRAST_DEFAULT;
 }
 
 /* getopt's tables from the option table: a long option with a letter

@@ -397,6 +397,26 @@ static int set_line_width(Options *o, const OptCall *c)
     return set_int(&o->line_width, c, 1, POINT_SIZE_MAX, "pixels, 1 to 16");
 }
 
+static int set_bg(Options *o, const OptCall *c)
+{
+    if (!strcmp(c->val, "default")) {
+        o->bg = NULL;
+        return 0;
+    }
+    if (backdrop_parse(c->val, o->bg_rgb)) {
+        snprintf(c->err, c->errlen, "bad value '%s' for %s (default, #rrggbb, #rgb or a name: %s)", c->val, c->name,
+                 backdrop_names);
+        return -1;
+    }
+    o->bg = c->val;
+    return 0;
+}
+
+static int set_contrast(Options *o, const OptCall *c)
+{
+    return set_float(&o->contrast, c, 0, CONTRAST_MAX, "an OKLab lightness from 0 (off) to 0.4");
+}
+
 /* ==== The table ==== */
 
 const char *const cli_section_names[OPTSEC_COUNT] = {
@@ -451,6 +471,13 @@ const OptSpec cli_options[] = {
     { "color", 0, NULL, "truecolor 256 16 8 none", OPTSEC_OUTPUT,
       "colours (default: from COLORTERM, TERM, NO_COLOR)", set_colour, 0, 0 },
     { "colour", 0, NULL, "truecolor 256 16 8 none", OPTSEC_OUTPUT, NULL, set_colour, 0, OPT_ALIAS },
+    { "bg", 0, "COLOR", "default black white grey", OPTSEC_OUTPUT,
+      "the background: default (the terminal's own; for\n-o black, or white behind a dark model), a name\n"
+      "or #rrggbb (painted)",
+      set_bg, 0, OPT_VIEWCMD },
+    { "contrast", 0, "L", NULL, OPTSEC_OUTPUT,
+      "keep drawn pixels L (OKLab lightness) from the\nbackground (default 0.2; 0: colours as given)",
+      set_contrast, 0, OPT_VIEWCMD },
     { "edges", 0, NULL, NULL, OPTSEC_OUTPUT, "outline silhouettes, creases and depth steps", NULL, FLAG(edges),
       OPT_VIEWCMD },
     { "point-size", 0, "N", NULL, OPTSEC_OUTPUT, "points as N x N pixel squares (1 to 16, default 1)",

@@ -137,6 +137,7 @@ int pipeline_init(Pipeline *p, Scene *s, const HsrAlgo *algo, int threads)
     p->highlight = -1;
     p->point_size = 1;
     p->line_width = 1;
+    p->contrast = CONTRAST_DEFAULT;
     return pipeline_set_algo(p, algo);
 }
 
@@ -151,6 +152,29 @@ void pipeline_apply_options(Pipeline *p, const Options *o)
     p->point_size = o->point_size > 0 ? o->point_size : 1;
     p->line_width = o->line_width > 0 ? o->line_width : 1;
     p->wireframe = o->wireframe;
+    p->contrast = o->contrast;
+}
+
+void pipeline_set_backdrop(Pipeline *p, const Backdrop *b)
+{
+    p->bd = *b;
+    p->has_bd = 1;
+}
+
+Backdrop pipeline_text_backdrop(const Options *o, const uint8_t *asked)
+{
+    Backdrop b = { { 0, 0, 0 }, 0, BD_ASSUMED };
+    if (o->bg) {
+        memcpy(b.rgb, o->bg_rgb, 3);
+        b.paint = 1;
+        b.source = BD_GIVEN;
+    } else if (asked) {
+        memcpy(b.rgb, asked, 3);
+        b.source = BD_ASKED;
+    } else if (bg_from_env(b.rgb) == 0) {
+        b.source = BD_ENV;
+    }
+    return b;
 }
 
 int pipeline_set_algo(Pipeline *p, const HsrAlgo *algo)
@@ -181,6 +205,7 @@ void pipeline_free(Pipeline *p)
     shade_cache_free(&p->shade_cache);
     cells_free(&p->cells);
     prims_free(&p->prims);
+    contrast_free(&p->rule);
     memset(p, 0, sizeof *p);
 }
 
@@ -234,6 +259,9 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
         if (k == 1 ? shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img)
                    : shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img_ss) ||
                          image_downsample(&p->img_ss, k, &p->img))
+            return -1;
+        /* on the final pixels, so that what is shown keeps the minimum */
+        if (p->has_bd && contrast_apply(&p->rule, &p->bd, p->contrast, &p->img))
             return -1;
         p->shade_ms = now_ms() - t2;
     }

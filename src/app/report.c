@@ -42,6 +42,14 @@ int frame_report(const Pipeline *p, double out_ms, ReportLine *lines, int max)
     else
         LINE("time:", "transform %.2f ms (points and lines %.2f), build %.2f ms, scan %.2f ms, shade %.2f ms",
              p->project_ms, p->sp.prim_ms, st->build_ms, st->scan_ms, p->shade_ms);
+    if (p->has_bd) {
+        char bd[96];
+        backdrop_describe(&p->bd, bd, sizeof bd);
+        if (p->contrast > 0)
+            LINE("background:", "%s, drawn pixels kept %.2g from its lightness", bd, (double)p->contrast);
+        else
+            LINE("background:", "%s, colours as given", bd);
+    }
     const char *why = frame_empty_reason(p);
     if (why)
         LINE("empty:", "%s", why);

@@ -180,6 +180,12 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --light %s,%s", num(s->light.yaw).s, num(s->light.pitch).s);
     if (s->light.ambient != LIGHT_AMBIENT)
         put(&o, " --ambient %s", num(s->light.ambient).s);
+    if (opt->bg) {
+        put(&o, " --bg");
+        put_word(&o, opt->bg);      /* #rrggbb: quoted, # starts a comment in a shell */
+    }
+    if (opt->contrast != CONTRAST_DEFAULT)
+        put(&o, " --contrast %s", num(opt->contrast).s);
     if (v->samples > 0 && v->samples != TEXT_SAMPLES)
         put(&o, " --samples %d", v->samples);
     if (v->algo && strcmp(v->algo, "zbuffer"))

@@ -1,4 +1,9 @@
-/* oneshot.c: --print, -o, --dump-ids, --dump-screen: one frame, no curses. */
+/* oneshot.c: --print, -o, --dump-ids, --dump-screen: one frame, no curses.
+ *
+ * The backgrounds (backdrop.h): text is seen on the terminal's own, as
+ * the terminal answers the colour query when --print writes to one;
+ * an image is painted with --bg's colour, or black, or white behind a
+ * dark model (picked on the first frame, kept for a turntable's). */
 
 #define _DEFAULT_SOURCE
 
@@ -11,6 +16,13 @@
 
 #include "oneshot.h"
 #include "safefile.h"
+#include "tty.h"
+
+/* The two backgrounds of a run, found once. */
+typedef struct {
+    Backdrop image, text;
+    int      image_known, text_known;
+} Backdrops;
 
 /* Cells for --print: --size, else the terminal's size, else 80x24. */
 static void print_size(const Options *o, int *cols, int *rows)
@@ -149,9 +161,22 @@ static int ends_with(const char *s, const char *suffix)
     return n >= m && !strcmp(s + n - m, suffix);
 }
 
+/* The text's background: --bg, else the terminal's when --print shows
+ * the picture on one that says, else COLORFGBG's or black. */
+static const Backdrop *text_backdrop(const Options *o, Backdrops *b)
+{
+    if (!b->text_known) {
+        uint8_t asked[3];
+        int told = !o->bg && o->print && isatty(STDOUT_FILENO) && termbg_ask_tty(TERMBG_WAIT_MS, asked);
+        b->text = pipeline_text_backdrop(o, told ? asked : NULL);
+        b->text_known = 1;
+    }
+    return &b->text;
+}
+
 /* The text frame of the options into p->cells (what --print shows).
  * Returns 0, or -1 out of memory. */
-static int render_text(const Options *o, Pipeline *p, ColourDepth *depth)
+static int render_text(const Options *o, Pipeline *p, Backdrops *b, ColourDepth *depth)
 {
     DisplayMode mode = o->mode >= 0 ? (DisplayMode)o->mode : mode_from_locale();
     *depth = o->colour >= 0 ? (ColourDepth)o->colour : colour_from_env();
@@ -160,8 +185,9 @@ static int render_text(const Options *o, Pipeline *p, ColourDepth *depth)
     int samples = p->samples;
     p->samples = o->samples > 0 ? o->samples : TEXT_SAMPLES;   /* as the viewer draws */
     mode_cell_pixels(mode, &pw, &ph);
+    pipeline_set_backdrop(p, text_backdrop(o, b));
     int rc = pipeline_render(p, cols * pw, rows * ph, mode_pixel_aspect(mode), o->cull, 1) ||
-             cells_from_image(&p->img, mode, *depth, &p->cells);
+             cells_from_image_on(&p->img, mode, *depth, &p->bd, &p->cells);
     p->samples = samples;
     return rc ? -1 : 0;
 }
@@ -172,6 +198,31 @@ static int render_image(const Options *o, Pipeline *p, int shade_too)
 {
     int w = o->w > 0 ? o->w : 640, h = o->h > 0 ? o->h : 480;
     return pipeline_render(p, w, h, 1.0f, o->cull, shade_too);
+}
+
+/* The image of the options on its background, painted: --bg's, or the
+ * one picked for the first frame (rendered as given, then kept visible
+ * on what was picked). Returns 0, or -1 out of memory. */
+static int render_painted(const Options *o, Pipeline *p, Backdrops *b)
+{
+    if (!b->image_known && o->bg) {
+        b->image = pipeline_text_backdrop(o, NULL);     /* --bg's colour, painted */
+        b->image_known = 1;
+    }
+    p->has_bd = b->image_known;
+    if (b->image_known)
+        pipeline_set_backdrop(p, &b->image);
+    if (render_image(o, p, 1))
+        return -1;
+    if (!b->image_known) {
+        b->image = backdrop_pick(&p->img, p->contrast > 0 ? p->contrast : CONTRAST_DEFAULT);
+        b->image_known = 1;
+        pipeline_set_backdrop(p, &b->image);
+        if (contrast_apply(&p->rule, &b->image, p->contrast, &p->img))
+            return -1;
+    }
+    backdrop_paint(&p->img, &b->image);
+    return 0;
 }
 
 /* The text frame into a file. Returns 0, or -1 after a message. */
@@ -198,12 +249,12 @@ static int text_file(const Options *o, const char *file)
 
 /* One frame of the view as it stands to -o FILE (image or text) and/or
  * stdout (--print). Returns 0, or 1 after a message. */
-static int one_frame(const Options *o, Pipeline *p, const char *file)
+static int one_frame(const Options *o, Pipeline *p, Backdrops *b, const char *file)
 {
     char err[512];
     ColourDepth depth;
     if (file && !text_file(o, file)) {
-        if (render_image(o, p, 1)) {
+        if (render_painted(o, p, b)) {
             fprintf(stderr, "zview: out of memory\n");
             return 1;
         }
@@ -214,7 +265,7 @@ static int one_frame(const Options *o, Pipeline *p, const char *file)
     }
     int to_file = text_file(o, file);
     if (to_file || o->print) {
-        if (render_text(o, p, &depth)) {
+        if (render_text(o, p, b, &depth)) {
             fprintf(stderr, "zview: out of memory\n");
             return 1;
         }
@@ -231,7 +282,7 @@ static int one_frame(const Options *o, Pipeline *p, const char *file)
 /* --turntable N: frame k turned 360 k / N degrees about the vertical
  * from the view given, as the viewer's auto-rotate turns (the fit stays
  * the first frame's), written to the pattern with k in it. */
-static int turntable(const Options *o, Scene *s, Pipeline *p)
+static int turntable(const Options *o, Scene *s, Pipeline *p, Backdrops *b)
 {
     float yaw0 = s->cam.yaw;
     char path[4096];
@@ -258,7 +309,7 @@ static int turntable(const Options *o, Scene *s, Pipeline *p)
             fprintf(stderr, "zview: standard output: %s\n", strerror(errno));
             return 1;
         }
-        if (one_frame(o, p, file))
+        if (one_frame(o, p, b, file))
             return 1;
     }
     return 0;
@@ -303,15 +354,16 @@ int app_oneshot(const Options *o, Scene *s)
     }
     pipeline_apply_options(&p, o);     /* images: 1 sample unless asked, full resolution already */
     int rc = 0;
+    Backdrops b = { .image_known = 0, .text_known = 0 };
     if (o->turntable) {
-        rc = turntable(o, s, &p);
+        rc = turntable(o, s, &p, &b);
         goto out;
     }
     /* no output named: the text frame to stdout */
     Options text = *o;
     text.print = o->print || (!o->out && !o->dump_ids && !o->dump_screen);
     if (o->out || text.print)
-        rc = one_frame(&text, &p, o->out);
+        rc = one_frame(&text, &p, &b, o->out);
     if (rc)
         goto out;
     /* the dumps are of the last render: the image's, else the text's,

@@ -13,10 +13,17 @@
  * shading goes into the glyphs instead: half blocks and braille dots are
  * set per pixel by an ordered dither of the pixel's lightness (kept above
  * a floor, so that dark faces still show the silhouette); the ascii ramp
- * already carries it. */
+ * already carries it.
+ *
+ * On a light background (backdrop.h) ink is darker than the paper: the
+ * glyphs then carry darkness, not lightness (a dark face gets the dense
+ * ramp glyph and the most dots), as a dark terminal shows a light face
+ * most. A background that is painted (--bg COLOR) fills every cell's
+ * background the model leaves. */
 
 #include <stdlib.h>
 #include <string.h>
+#include "backdrop.h"
 #include "present.h"
 
 #define CH_UPPER_HALF 0x2580u
@@ -102,25 +109,33 @@ static inline float luma(const uint8_t *p)
     return (float)(54u * p[0] + 183u * p[1] + 19u * p[2]) / (256.0f * 255.0f);
 }
 
+/* How much ink a pixel wants, 0..1: its lightness, or on a light
+ * background its darkness. */
+static inline float ink(const uint8_t *p, int light)
+{
+    float v = luma(p);
+    return light ? 1 - v : v;
+}
+
 /* Without colour: is pixel i at (x, y) drawn (a dithered share of its
- * lightness)? */
-static inline int mono_on(const Image *im, size_t i, int x, int y)
+ * ink)? */
+static inline int mono_on(const Image *im, size_t i, int x, int y, int light)
 {
     if (!im->lit[i])
         return 0;
-    float v = MONO_FLOOR + (1 - MONO_FLOOR) * luma(im->rgb + 3 * i);
+    float v = MONO_FLOOR + (1 - MONO_FLOOR) * ink(im->rgb + 3 * i, light);
     return v > quant_threshold(x, y);
 }
 
-static void cells_half_mono(const Image *im, CellGrid *g)
+static void cells_half_mono(const Image *im, CellGrid *g, int light)
 {
     int w = im->w, h = im->h;
     for (int r = 0; r < g->rows; r++) {
         Cell *c = g->cells + (size_t)r * g->cols;
         for (int x = 0; x < w; x++, c++) {
             int yt = 2 * r, yb = 2 * r + 1;
-            int t = mono_on(im, (size_t)yt * w + x, x, yt);
-            int b = yb < h && mono_on(im, (size_t)yb * w + x, x, yb);
+            int t = mono_on(im, (size_t)yt * w + x, x, yt, light);
+            int b = yb < h && mono_on(im, (size_t)yb * w + x, x, yb, light);
             set_empty(c);
             if (t || b)
                 c->ch = t && b ? CH_FULL_BLOCK : t ? CH_UPPER_HALF : CH_LOWER_HALF;
@@ -164,7 +179,7 @@ static void cells_half(const Image *im, CellGrid *g)
     }
 }
 
-static void cells_ascii(const Image *im, CellGrid *g)
+static void cells_ascii(const Image *im, CellGrid *g, int light)
 {
     size_t n = (size_t)im->w * (size_t)im->h;
     for (size_t i = 0; i < n; i++) {
@@ -176,6 +191,8 @@ static void cells_ascii(const Image *im, CellGrid *g)
         const uint8_t *p = im->rgb + 3 * i;
         /* Rec. 709 luma in 8.8 fixed point (weights sum to 256). */
         unsigned lum = (54u * p[0] + 183u * p[1] + 19u * p[2]) >> 8;
+        if (light)
+            lum = 255 - lum;
         c->ch = (uint32_t)(unsigned char)ascii_ramp[1 + lum * (RAMP_LEN - 1) / 256];
         set_fg(c, p);
         c->bg[0] = c->bg[1] = c->bg[2] = 0;
@@ -183,7 +200,7 @@ static void cells_ascii(const Image *im, CellGrid *g)
     }
 }
 
-static void cells_braille(const Image *im, CellGrid *g, int mono)
+static void cells_braille(const Image *im, CellGrid *g, int mono, int light)
 {
     int w = im->w, h = im->h;
     for (int r = 0; r < g->rows; r++) {
@@ -197,7 +214,7 @@ static void cells_braille(const Image *im, CellGrid *g, int mono)
                 for (int dx = 0; dx < 2; dx++) {
                     int x = 2 * col + dx;
                     size_t i = (size_t)y * w + x;
-                    if (x >= w || !im->lit[i] || (mono && !mono_on(im, i, x, y)))
+                    if (x >= w || !im->lit[i] || (mono && !mono_on(im, i, x, y, light)))
                         continue;
                     const uint8_t *p = im->rgb + 3 * i;
                     bits |= braille_bit[dy][dx];
@@ -221,7 +238,25 @@ static void cells_braille(const Image *im, CellGrid *g, int mono)
     }
 }
 
+/* The painted background behind every cell whose own is the terminal's. */
+static void paint_cells(CellGrid *g, const uint8_t rgb[3])
+{
+    size_t n = (size_t)g->cols * (size_t)g->rows;
+    for (size_t i = 0; i < n; i++) {
+        Cell *c = g->cells + i;
+        if (c->flags & CELL_BG)
+            continue;
+        memcpy(c->bg, rgb, 3);
+        c->flags |= CELL_BG;
+    }
+}
+
 int cells_from_image(const Image *im, DisplayMode m, ColourDepth depth, CellGrid *out)
+{
+    return cells_from_image_on(im, m, depth, NULL, out);
+}
+
+int cells_from_image_on(const Image *im, DisplayMode m, ColourDepth depth, const Backdrop *bd, CellGrid *out)
 {
     int pw, ph;
     if ((unsigned)m >= MODE_COUNT || im->w < 0 || im->h < 0)
@@ -230,12 +265,19 @@ int cells_from_image(const Image *im, DisplayMode m, ColourDepth depth, CellGrid
     int cols = (im->w + pw - 1) / pw, rows = (im->h + ph - 1) / ph;
     if (grid_resize(out, cols, rows) != 0)
         return -1;
-    int mono = depth == COLOUR_NONE;
+    int mono = depth == COLOUR_NONE, light = backdrop_is_light(bd);
     switch (m) {
-    case MODE_HALF:    (mono ? cells_half_mono : cells_half)(im, out); break;
-    case MODE_ASCII:   cells_ascii(im, out); break;
-    case MODE_BRAILLE: cells_braille(im, out, mono); break;
+    case MODE_HALF:
+        if (mono)
+            cells_half_mono(im, out, light);
+        else
+            cells_half(im, out);
+        break;
+    case MODE_ASCII:   cells_ascii(im, out, light); break;
+    case MODE_BRAILLE: cells_braille(im, out, mono, light); break;
     default:           return -1;
     }
+    if (bd && bd->paint && !mono)
+        paint_cells(out, bd->rgb);     /* without colour there is nothing to paint with */
     return 0;
 }

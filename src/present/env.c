@@ -1,6 +1,6 @@
 /* env: option names of the presenters and defaults from the environment
  * (colour depth from NO_COLOR / COLORTERM / TERM, display mode from the
- * locale's character set). */
+ * locale's character set, the background from COLORFGBG). */
 
 #define _XOPEN_SOURCE 700       /* nl_langinfo */
 #include <langinfo.h>
@@ -72,4 +72,20 @@ DisplayMode mode_from_locale(void)
     if (cs && (strcasecmp(cs, "UTF-8") == 0 || strcasecmp(cs, "UTF8") == 0))
         return MODE_HALF;
     return MODE_ASCII;
+}
+
+int bg_from_env(uint8_t rgb_out[3])
+{
+    /* "fg;bg" or "fg;default;bg" (rxvt, konsole): the last field is the
+     * background's palette number; "default" says nothing */
+    const char *v = getenv("COLORFGBG");
+    const char *last = v ? strrchr(v, ';') : NULL;
+    if (!last || !last[1])
+        return -1;
+    char *end;
+    long n = strtol(last + 1, &end, 10);
+    if (*end || end == last + 1 || n < 0 || n > 15)
+        return -1;
+    palette_rgb(COLOUR_16, (int)n, rgb_out);
+    return 0;
 }

@@ -96,6 +96,9 @@ static struct {
     int         unanswered;
     double      ack_sent_ms;
     int         pace_ms;
+    int         bg_known;       /* the terminal told its background (termbg.c) */
+    uint8_t     bg[3];
+    double      bg_wait_ms;     /* how long the question took */
     struct sigaction old_int, old_term, old_hup, old_tstp, old_winch;
     /* crashes: bytes prepared at open */
     char        crash_reset[256];
@@ -532,6 +535,12 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     struct termios tio;
     T.vt.caps.lf = tcgetattr(T.q.fd, &tio) != 0 || !(tio.c_oflag & OPOST) || !(tio.c_oflag & ONLCR);
     T.ask = isatty(T.q.fd);
+    /* its background, before the first frame; the answers go through the
+     * key parser, which drops them */
+    fflush(out);
+    T.bg_wait_ms = 0;
+    T.bg_known = cfg->ask_bg && T.ask && isatty(T.in_fd) &&
+                 termbg_ask(T.q.fd, T.in_fd, TERMBG_WAIT_MS, &T.kp, T.bg, &T.bg_wait_ms);
     T.ack_wait = T.acks_seen = T.unanswered = 0;
     T.pace_ms = PACE_MIN_MS;
     T.mouse_on = 0;
@@ -547,6 +556,15 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
 }
 
 ColourDepth term_colour(void) { return T.depth; }
+
+int term_background(uint8_t rgb_out[3], double *waited_ms_out)
+{
+    if (waited_ms_out)
+        *waited_ms_out = T.bg_wait_ms;
+    if (T.bg_known)
+        memcpy(rgb_out, T.bg, 3);
+    return T.bg_known;
+}
 
 void term_size(int *cols_out, int *rows_out)
 {
@@ -616,39 +634,10 @@ void term_bar_cursor(int y, int x)
         c->attr = 0;
 }
 
-/* x, y == -2: centred (term_draw_box) */
 void term_draw_box_at(const char *const *lines, int n, int bx, int by)
 {
-    if (fit())
-        return;
-    int H = T.vt.rows, W = T.vt.cols;
-    int w = 0;
-    for (int i = 0; i < n; i++) {
-        int len = (int)strlen(lines[i]);
-        if (len > w)
-            w = len;
-    }
-    w += 4;
-    if (w > W)
-        w = W;
-    int h = n + 2 > H - 1 ? H - 1 : n + 2;
-    int x0 = bx == -2 ? (W - w) / 2 : bx < 0 ? W - w : bx;
-    int y0 = by == -2 ? (H - 1 - h) / 2 : by < 0 ? H - 1 - h : by;
-    for (int r = 0; r < h; r++) {
-        int edge = r == 0 || r == h - 1;
-        const char *t = !edge && r - 1 < n ? lines[r - 1] : "";
-        int len = (int)strlen(t);
-        for (int x = 0; x < w; x++) {
-            char ch[2] = { 0, 0 };
-            if (edge)
-                ch[0] = x == 0 || x == w - 1 ? '+' : '-';
-            else if (x == 0 || x == w - 1)
-                ch[0] = '|';
-            else
-                ch[0] = x - 2 >= 0 && x - 2 < len ? t[x - 2] : ' ';
-            vt_text(&T.vt, y0 + r, x0 + x, ch, 1, 0);
-        }
-    }
+    if (fit() == 0)
+        vt_box(&T.vt, lines, n, bx, by);
 }
 
 void term_erase(void)

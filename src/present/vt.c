@@ -193,6 +193,40 @@ int vt_text(Vt *v, int y, int x, const char *s, int maxw, uint8_t attr)
     return used;
 }
 
+/* x, y == -2: centred; x < 0: against the right edge, y < 0: just above
+ * the last row (tty.h: term_draw_box_at) */
+void vt_box(Vt *v, const char *const *lines, int n, int bx, int by)
+{
+    int H = v->rows, W = v->cols;
+    int w = 0;
+    for (int i = 0; i < n; i++) {
+        int len = (int)strlen(lines[i]);
+        if (len > w)
+            w = len;
+    }
+    w += 4;
+    if (w > W)
+        w = W;
+    int h = n + 2 > H - 1 ? H - 1 : n + 2;
+    int x0 = bx == -2 ? (W - w) / 2 : bx < 0 ? W - w : bx;
+    int y0 = by == -2 ? (H - 1 - h) / 2 : by < 0 ? H - 1 - h : by;
+    for (int r = 0; r < h; r++) {
+        int edge = r == 0 || r == h - 1;
+        const char *t = !edge && r - 1 < n ? lines[r - 1] : "";
+        int len = (int)strlen(t);
+        for (int x = 0; x < w; x++) {
+            char ch[2] = { 0, 0 };
+            if (edge)
+                ch[0] = x == 0 || x == w - 1 ? '+' : '-';
+            else if (x == 0 || x == w - 1)
+                ch[0] = '|';
+            else
+                ch[0] = x - 2 >= 0 && x - 2 < len ? t[x - 2] : ' ';
+            vt_text(v, y0 + r, x0 + x, ch, 1, 0);
+        }
+    }
+}
+
 /* ==== Output buffer ==== */
 
 static int need(Vt *v, size_t n)

@@ -2,7 +2,8 @@
  * twice: as the text --print gives (the same bytes: the cells on screen
  * in the colours in use), and as a PNG of 8 x 16 pixels a cell (the text
  * picture's shape, cells being twice as tall as wide), rendered with 2 x 2
- * samples a pixel. Names are zview-<model>-NNN.png / .txt with the first
+ * samples a pixel, on the background the picture was kept visible on
+ * (--bg, the terminal's, or black). Names are zview-<model>-NNN.png / .txt with the first
  * number for which neither exists, claimed with O_EXCL so nothing is ever
  * overwritten, in the current directory or, when files cannot be made
  * there, next to the model. */
@@ -167,6 +168,8 @@ Reaction app_snapshot(App *a)
     char err[512];
     int bad = pipeline_render(&a->p, w, h, 1.0f, a->cull, 1);
     a->p.samples = samples;
+    if (!bad)
+        backdrop_paint(&a->p.img, &a->p.bd);    /* the background the screen shows (or is taken to) */
     if (bad || write_png(png, &a->p.img, err, sizeof err)) {
         note(a, "snapshot failed: %s", bad ? "out of memory" : err);
         unlink(txt);

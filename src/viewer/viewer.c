@@ -93,7 +93,7 @@ static int render(App *a, int cols, int rows)
     a->empty_why = a->sk.on ? NULL
                  : a->s->nobjs == 0 ? "empty scene: O opens a file" : frame_empty_reason(&a->p);
     double t0 = now_ms();
-    int rc = cells_from_image(&a->p.img, a->mode, term_colour(), &a->p.cells);
+    int rc = cells_from_image_on(&a->p.img, a->mode, term_colour(), &a->p.bd, &a->p.cells);
     a->p.cells_ms = now_ms() - t0;
     if (rc)
         return -1;
@@ -704,6 +704,7 @@ int app_viewer(const Options *o, Scene *s)
         .colour = o->colour >= 0 ? (ColourDepth)o->colour : colour_from_env(),
         .mouse = 1,
         .signals = 1,
+        .ask_bg = !o->bg,       /* --bg given: nothing to ask */
     };
     if (!use || term_open(&cfg, err, sizeof err)) {
         fprintf(stderr, "zview: %s%s\n",
@@ -717,6 +718,10 @@ int app_viewer(const Options *o, Scene *s)
             fclose(screen_tty);
         return no_viewer(o, s);
     }
+    /* the picture is kept visible on the terminal's background */
+    uint8_t asked[3];
+    Backdrop bd = pipeline_text_backdrop(o, term_background(asked, NULL) ? asked : NULL);
+    pipeline_set_backdrop(&a.p, &bd);
     if (o->sketch) {
         a.sk.only = o->nfiles == 0;     /* no model to go back to */
         sketch_mode_enter(&a);
@@ -821,6 +826,8 @@ int app_bench_tty(const Options *o)
         goto done;
     }
     term_set_size(cols, rows + 1);
+    Backdrop bd = pipeline_text_backdrop(o, NULL);      /* as the viewer's, no terminal to ask */
+    pipeline_set_backdrop(&a.p, &bd);
     long bytes[TTY_FRAMES + 1];
     double render_ms[TTY_FRAMES + 1], out_ms[TTY_FRAMES + 1];
     long before = file_bytes(out);

@@ -35,7 +35,7 @@ session() {
     n=$((n + 1))
     SOCK=zv-$$-$n
     tm new-session -d -s zv -x "$2" -y "$3" -c "$ROOT" \
-        -e TERM="$1" -e LANG=C.UTF-8 -e LC_ALL=C.UTF-8 -e NO_COLOR= -e COLORTERM= sh
+        -e TERM="$1" -e LANG=C.UTF-8 -e LC_ALL=C.UTF-8 -e NO_COLOR= -e COLORTERM= -e COLORFGBG= sh
     tm set-option -t zv remain-on-exit on >/dev/null
 }
 

@@ -36,13 +36,14 @@ _zview()
         -a | --algo) COMPREPLY=($(compgen -W "zbuffer scanline span hzb hzb-octree all" -- "$cur")); return ;;
         --up) COMPREPLY=($(compgen -W "y z x -y -z -x" -- "$cur")); return ;;
         --image-format) COMPREPLY=($(compgen -W "png ppm" -- "$cur")); return ;;
+        --bg) COMPREPLY=($(compgen -W "default black white grey" -- "$cur")); return ;;
         --format) COMPREPLY=($(compgen -W "$(_zview_formats) assimp" -- "$cur")); return ;;
         -o | --output | --dump-ids | --dump-screen)
             COMPREPLY=($(compgen -f -- "$cur"))
             return ;;
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
             --scale | --persp | --grid | --max-polys | --views | -j | --threads | --fps | --crease | \
-            --light | --ambient | --turntable | --point-size | --line-width)
+            --light | --ambient | --turntable | --point-size | --line-width | --contrast)
             return ;;
     esac
     $split && return
@@ -53,7 +54,7 @@ _zview()
             --move --turn --scale --persp --ortho --cull --grid --max-polys --bench --bench-tty
             --views --threads --json --fps --format --formats --up --flip --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
-            --turntable --point-size --line-width --wireframe --points --strict" -- "$cur"))
+            --turntable --point-size --line-width --wireframe --points --strict --bg --contrast" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
     fi

@@ -1,0 +1,246 @@
+/* Tests of the background query (termbg.c): the answer's colour forms,
+ * the answers found in any split of the input, and the question asked of
+ * a fake terminal on a pty that answers, answers only the attributes (as
+ * tmux does when it does not know the colour), or says nothing: the
+ * colour when there is one, a wait of one round trip (or the timeout,
+ * for silence), no byte of an answer on the screen, and the keys typed
+ * meanwhile kept as keys. */
+
+#define _GNU_SOURCE         /* memmem */
+#include <criterion/criterion.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include "clock.h"
+#include "tty.h"
+
+/* ==== The colour forms ==== */
+
+Test(termbg, colour_forms)
+{
+    uint8_t c[3];
+    cr_assert_eq(termbg_parse_colour("rgb:ffff/ffff/ffff", c), 0);
+    cr_expect(c[0] == 255 && c[1] == 255 && c[2] == 255);
+    cr_assert_eq(termbg_parse_colour("rgb:0000/8080/ffff", c), 0);
+    cr_expect(c[0] == 0 && c[1] == 128 && c[2] == 255, "got %d,%d,%d", c[0], c[1], c[2]);
+    cr_assert_eq(termbg_parse_colour("rgb:ff/80/0", c), 0);     /* digits per channel may differ */
+    cr_expect(c[0] == 255 && c[1] == 128 && c[2] == 0, "got %d,%d,%d", c[0], c[1], c[2]);
+    cr_assert_eq(termbg_parse_colour("rgb:f/8/0", c), 0);       /* one digit: 8 of 15 */
+    cr_expect(c[0] == 255 && c[1] == 136 && c[2] == 0, "got %d,%d,%d", c[0], c[1], c[2]);
+    cr_assert_eq(termbg_parse_colour("rgb:fff/800/000", c), 0); /* three digits: 0x800 of 0xfff */
+    cr_expect(c[0] == 255 && c[1] == 128 && c[2] == 0, "got %d,%d,%d", c[0], c[1], c[2]);
+    cr_assert_eq(termbg_parse_colour("rgba:2828/2828/2828/ffff", c), 0);   /* rxvt's, with alpha */
+    cr_expect(c[0] == 40 && c[1] == 40 && c[2] == 40, "got %d,%d,%d", c[0], c[1], c[2]);
+    static const char *const bad[] = { "rgb:ffff/ffff", "rgb:fffff/0/0", "rgb:gg/00/00", "#ffffff", "rgb:/0/0",
+                                       "rgb:0/0/0/0", "rgba:0/0/0", "rgb:0/0/", "", "rgb:0/0/0 " };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
+        cr_expect_eq(termbg_parse_colour(bad[i], c), -1, "'%s' parsed", bad[i]);
+}
+
+/* ==== Finding the answers ==== */
+
+static BgScan scan_all(const char *input, size_t piece)
+{
+    BgScan s;
+    termbg_scan_init(&s);
+    size_t n = strlen(input);
+    for (size_t i = 0; i < n; i += piece)
+        termbg_scan(&s, (const unsigned char *)input + i, i + piece <= n ? piece : n - i);
+    return s;
+}
+
+Test(termbg, answers_in_any_split)
+{
+    static const char *const ends[] = { "\033\\", "\007" };       /* ST and BEL */
+    for (int e = 0; e < 2; e++)
+        for (size_t piece = 1; piece <= 8; piece++) {
+            char in[128];
+            snprintf(in, sizeof in, "q\033[A\033]11;rgb:fafa/f4f4/eded%s\033[?62;22c", ends[e]);
+            BgScan s = scan_all(in, piece);
+            cr_expect(s.got_bg && s.got_da, "end %d, pieces of %zu: bg %d, da %d", e, piece, s.got_bg, s.got_da);
+            cr_expect(s.bg[0] == 250 && s.bg[1] == 244 && s.bg[2] == 237);
+        }
+}
+
+Test(termbg, other_answers_are_not_the_background)
+{
+    /* the foreground's answer (OSC 10), a cursor report, a plain DA
+     * request echoed back, a cancelled string */
+    BgScan s = scan_all("\033]10;rgb:ffff/ffff/ffff\033\\\033[12;40R\033[c\033]11;rgb:0/0/0\030", 1);
+    cr_expect(!s.got_bg, "an answer that is not OSC 11 taken for the background");
+    cr_expect(!s.got_da, "a CSI without '?' taken for the attributes' answer");
+    s = scan_all("\033[?1;2c", 3);
+    cr_expect(s.got_da && !s.got_bg, "tmux's answer when it does not know the colour");
+}
+
+/* ==== Asking a fake terminal ==== */
+
+typedef enum { ANSWER_BOTH, ANSWER_DA, SILENT } Reply;
+
+typedef struct {
+    int     m;              /* the pty's master: the terminal's side */
+    Reply   reply;
+    char    seen[256];      /* what the program wrote, as the terminal read it */
+    size_t  nseen;
+} FakeTerm;
+
+/* Read what the program sends; after its question, type "x" and answer
+ * as told. Stops at the attributes request (or after a second). */
+static void *fake_terminal(void *arg)
+{
+    FakeTerm *t = arg;
+    double until = now_ms() + 1000;
+    while (now_ms() < until && !memmem(t->seen, t->nseen, "\033[c", 3)) {
+        struct pollfd pf = { .fd = t->m, .events = POLLIN };
+        if (poll(&pf, 1, 50) <= 0)
+            continue;
+        ssize_t r = read(t->m, t->seen + t->nseen, sizeof t->seen - 1 - t->nseen);
+        if (r > 0)
+            t->nseen += (size_t)r;
+    }
+    const char *answer = t->reply == ANSWER_BOTH ? "x\033]11;rgb:ffff/ffff/ffff\033\\\033[?1;2c"
+                       : t->reply == ANSWER_DA   ? "x\033[?1;2c"
+                                                 : "x";
+    ssize_t w = write(t->m, answer, strlen(answer));
+    (void)w;
+    return NULL;
+}
+
+typedef struct {
+    int m, s;
+    FILE *out, *in;
+} Pty;
+
+static void pty_make(Pty *p)
+{
+    p->m = posix_openpt(O_RDWR | O_NOCTTY);
+    cr_assert(p->m >= 0);
+    cr_assert_eq(grantpt(p->m), 0);
+    cr_assert_eq(unlockpt(p->m), 0);
+    p->s = open(ptsname(p->m), O_RDWR | O_NOCTTY);
+    cr_assert(p->s >= 0);
+    struct winsize ws = { .ws_row = 24, .ws_col = 80 };
+    ioctl(p->s, TIOCSWINSZ, &ws);
+    p->out = fdopen(p->s, "w");
+    p->in = fdopen(dup(p->s), "r");
+    cr_assert(p->out && p->in);
+}
+
+/* Everything the terminal's side can read within 100 ms. */
+static size_t drain(int m, char *buf, size_t cap)
+{
+    size_t n = 0;
+    for (;;) {
+        struct pollfd pf = { .fd = m, .events = POLLIN };
+        if (poll(&pf, 1, 100) <= 0 || n >= cap)
+            break;
+        ssize_t r = read(m, buf + n, cap - n);
+        if (r <= 0)
+            break;
+        n += (size_t)r;
+    }
+    return n;
+}
+
+typedef struct {
+    int    told;
+    uint8_t rgb[3];
+    double waited_ms;
+    char   screen[8192];    /* what reached the terminal after the question */
+    size_t nscreen;
+    int    keys[8];         /* the events term_read gave afterwards: keys (-1: another event) */
+    int    nkeys;
+} Outcome;
+
+/* The viewer's terminal opened on a pty whose other side replies as
+ * told; then the events that follow. */
+static Outcome open_and_ask(Reply reply)
+{
+    Pty p;
+    pty_make(&p);
+    FakeTerm t = { .m = p.m, .reply = reply };
+    pthread_t th;
+    cr_assert_eq(pthread_create(&th, NULL, fake_terminal, &t), 0);
+    char err[128];
+    TermConfig cfg = { .out = p.out, .in = p.in, .termname = "xterm-256color", .colour = COLOUR_TRUE,
+                       .ask_bg = 1 };
+    int opened = term_open(&cfg, err, sizeof err);
+    pthread_join(th, NULL);
+    if (opened)
+        cr_skip_test("no xterm-256color description: %s", err);
+    cr_assert(memmem(t.seen, t.nseen, "\033]11;?", 6), "the question was not asked");
+    Outcome o = { 0 };
+    o.told = term_background(o.rgb, &o.waited_ms);
+    /* the answers read by the parser, the keys left: nothing but x */
+    TermEvent ev;
+    while (o.nkeys < 8 && term_read(&ev, 120) == 1)
+        o.keys[o.nkeys++] = ev.type == TE_KEY ? ev.key : -1;
+    o.nscreen = drain(p.m, o.screen, sizeof o.screen - 1);
+    term_restore();
+    fclose(p.out);
+    fclose(p.in);
+    close(p.m);
+    return o;
+}
+
+/* No byte of an answer came back to the screen (the input does not echo). */
+static void expect_nothing_echoed(const Outcome *o)
+{
+    cr_expect_null(memmem(o->screen, o->nscreen, "rgb:", 4), "the answer was echoed to the screen");
+    cr_expect_null(memmem(o->screen, o->nscreen, "?1;2c", 5), "the attributes' answer was echoed");
+}
+
+static void expect_only_x(const Outcome *o)
+{
+    cr_expect_eq(o->nkeys, 1, "%d events after the question, wanted the one key typed", o->nkeys);
+    cr_expect_eq(o->nkeys ? o->keys[0] : 0, 'x', "the key typed during the question");
+}
+
+Test(termbg, a_terminal_that_answers, .timeout = 30)
+{
+    Outcome o = open_and_ask(ANSWER_BOTH);
+    cr_expect(o.told, "the answer was not read");
+    cr_expect(o.rgb[0] == 255 && o.rgb[1] == 255 && o.rgb[2] == 255);
+    cr_expect_lt(o.waited_ms, 100, "an answering terminal kept us %.1f ms", o.waited_ms);
+    expect_nothing_echoed(&o);
+    expect_only_x(&o);
+}
+
+Test(termbg, a_terminal_that_answers_only_the_attributes, .timeout = 30)
+{
+    Outcome o = open_and_ask(ANSWER_DA);
+    cr_expect(!o.told);
+    cr_expect_lt(o.waited_ms, 100, "the attributes' answer did not end the wait (%.1f ms)", o.waited_ms);
+    expect_nothing_echoed(&o);
+    expect_only_x(&o);
+}
+
+Test(termbg, a_silent_terminal_costs_the_timeout_once, .timeout = 30)
+{
+    Outcome o = open_and_ask(SILENT);
+    cr_expect(!o.told);
+    cr_expect(o.waited_ms >= TERMBG_WAIT_MS - 5 && o.waited_ms < TERMBG_WAIT_MS + 150,
+              "a silent terminal kept us %.1f ms (timeout %d)", o.waited_ms, TERMBG_WAIT_MS);
+    expect_only_x(&o);
+}
+
+Test(termbg, an_answer_after_the_wait_is_dropped_whole, .timeout = 30)
+{
+    /* the parser alone: a late answer among keys gives the keys only */
+    KeyParser kp;
+    kp_init(&kp, 1);
+    const char late[] = "a\033]11;rgb:ffff/ffff/ffff\033\\\033[?62;22cb";
+    kp_push(&kp, late, sizeof late - 1);
+    TermEvent ev;
+    int keys[8], n = 0;
+    while (n < 8 && kp_next(&kp, &ev, 1000))
+        keys[n++] = ev.type == TE_KEY ? ev.key : -1;
+    cr_expect_eq(n, 2, "%d events from a late answer between two keys", n);
+    cr_expect(n == 2 && keys[0] == 'a' && keys[1] == 'b');
+}
