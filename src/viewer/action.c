@@ -530,7 +530,7 @@ int app_help_layout(App *a, int cols, int rows, const char **lines)
     const char *title = a->sk.on ? "zview sketch keys (any key closes this)" : "zview keys (any key closes this)";
     char more[HELP_LINE_MAX];
     if (a->help_hidden) {
-        snprintf(more, sizeof more, "keys %d-%d of %d: Up/Down scroll, other keys close",
+        snprintf(more, sizeof more, "zview keys %d-%d of %d: Up/Down scroll, other keys close",
                  a->help_top + 1, a->help_top + shown, nrows);
         title = (int)strlen(more) <= inner ? more : inner >= 18 ? "Up/Down: more keys" : "Up/Down: more";
     }
@@ -549,9 +549,10 @@ const KeyRow app_keys[] = {
       { { TK_LEFT, act_yaw_left }, { 'h', act_yaw_left }, { TK_RIGHT, act_yaw_right }, { 'l', act_yaw_right },
         { TK_UP, act_pitch_up }, { 'k', act_pitch_up }, { TK_DOWN, act_pitch_down }, { 'j', act_pitch_down } } },
     { "u o", "roll", { { 'u', act_roll_left }, { 'o', act_roll_right } } },
-    { "I J K L Shift-arrows", "turn 15 degrees",
-      { { 'J', act_big_left }, { 'L', act_big_right }, { 'I', act_big_up }, { 'K', act_big_down },
-        { TK_SLEFT, act_big_left }, { TK_SRIGHT, act_big_right }, { TK_SUP, act_big_up }, { TK_SDOWN, act_big_down } } },
+    { "I J K L", "turn 15 degrees",
+      { { 'J', act_big_left }, { 'L', act_big_right }, { 'I', act_big_up }, { 'K', act_big_down } } },
+    { "Shift-arrows", "turn 15 degrees",
+      { { TK_SLEFT, act_big_left }, { TK_SRIGHT, act_big_right }, { TK_SUP, act_big_up }, { TK_SDOWN, act_big_down } } },
     { "w a s d", "move",
       { { 'a', act_move_left }, { 'd', act_move_right }, { 'w', act_move_up }, { 's', act_move_down } } },
     { "+ = z - _ c wheel", "scale",
