@@ -72,6 +72,7 @@ typedef struct {
     int         print_view;     /* --print-view: the view's command line on stdout when the viewer quits */
     int         turntable;      /* --turntable N: N frames turning 360/N degrees each (0 = off) */
     int         sketch;         /* --sketch: the viewer starts drawing polygons on an empty canvas */
+    int         no_textures;    /* --no-textures: faces in their base colours (t in the viewer) */
 } Options;
 
 #define POINT_SIZE_MAX 16       /* pixels: at 4 x 4 samples a pixel, PRIM_SIZE_MAX samples */
@@ -168,6 +169,7 @@ typedef struct {
     int          point_size;    /* pixels a side (times the samples' side in samples) */
     int          line_width;    /* pixels */
     int          wireframe;     /* every face edge as a line (the scene's wire is built on first use) */
+    int          no_textures;   /* textured faces in their one colour */
     PrimWork    *prims;
 } Pipeline;
 
@@ -229,6 +231,7 @@ typedef struct {
     int         wireframe;      /* --wireframe */
     int         point_size;     /* pixels, 0 or 1 = the default */
     int         line_width;     /* pixels, 0 or 1 = the default */
+    int         no_textures;    /* textures hidden (--no-textures, t) */
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

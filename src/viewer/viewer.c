@@ -116,6 +116,7 @@ ViewSettings app_view_settings(const App *a)
         .wireframe = a->p.wireframe,
         .point_size = a->p.point_size,
         .line_width = a->p.line_width,
+        .no_textures = a->p.no_textures,
     };
     return v;
 }
