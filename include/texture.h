@@ -1,7 +1,7 @@
 #ifndef ZV_TEXTURE_H
 #define ZV_TEXTURE_H
 /* texture: a model's base-colour images. Decoded (PNG through libpng,
- * JPEG through libjpeg-turbo), mipmapped in linear light, and sampled
+ * JPEG through libjpeg-turbo, TGA here), mipmapped in linear light, and sampled
  * with a filter as wide as a sample's footprint, so that a 4096 x 4096
  * texture on a terminal-sized picture neither aliases nor shimmers as
  * the model turns. Knows nothing of meshes, screens or terminals.

@@ -207,6 +207,10 @@ int32_t mb_texture(MeshBuild *b, const char *name, const char *path, const void 
  * rgba, 4 bytes a texel, sRGB. */
 int32_t mb_texture_rgba(MeshBuild *b, const char *name, const uint8_t *rgba, int w, int h, TexWrap wrap_u,
                         TexWrap wrap_v, int *oom);
+/* A texture that cannot be had (why says so): listed as failed, with
+ * the warning. */
+int32_t mb_texture_missing(MeshBuild *b, const char *name, const char *why, TexWrap wrap_u, TexWrap wrap_v,
+                           int *oom);
 /* A material's texture fields, none set. */
 void mb_material_no_texture(Material *mt);
 /* Free the textures and texture coordinates of m. */

@@ -293,6 +293,25 @@ int32_t mb_texture_rgba(MeshBuild *b, const char *name, const uint8_t *rgba, int
     return (int32_t)(t - b->m->tex);
 }
 
+int32_t mb_texture_missing(MeshBuild *b, const char *name, const char *why, TexWrap wrap_u, TexWrap wrap_v,
+                           int *oom)
+{
+    *oom = 0;
+    if (b->e->no_textures)
+        return -1;
+    int32_t i = find_texture(b->m, name, wrap_u, wrap_v);
+    if (i >= 0)
+        return i;
+    MeshTexture *t = new_texture(b, name, wrap_u, wrap_v);
+    if (!t) {
+        *oom = 1;
+        me_oom(b->e);
+        return -1;
+    }
+    texture_failed(b, name, why);
+    return (int32_t)(t - b->m->tex);
+}
+
 /* ==== Reading them back ==== */
 
 const Texture *mesh_material_texture(const Mesh *m, int32_t mat)

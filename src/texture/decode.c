@@ -1,6 +1,7 @@
 /* decode.c: PNG (libpng's simplified API) and JPEG (libjpeg-turbo) images
- * into RGBA texels, told apart by their first bytes; then mipmapped
- * (mip.c). Sizes are checked before anything big is allocated. */
+ * into RGBA texels, told apart by their first bytes (TGA, which has no
+ * magic, when its header makes sense: tga.c); then mipmapped (mip.c).
+ * Sizes are checked before anything big is allocated. */
 
 #include <errno.h>
 #include <png.h>
@@ -29,9 +30,7 @@ uint64_t texture_bytes_for(int w, int h)
     }
 }
 
-/* Refuse a w x h image before decoding it: too big a side, or more
- * memory than the caller allows or the machine has. */
-static int check_size(int w, int h, const char *name, uint64_t max_bytes, char *err, size_t errlen)
+int texture_check_size(int w, int h, const char *name, uint64_t max_bytes, char *err, size_t errlen)
 {
     if (w < 1 || h < 1 || w > TEX_MAX_SIDE || h > TEX_MAX_SIDE) {
         snprintf(err, errlen, "%s: a %dx%d image (1 to %d per side)", name, w, h, TEX_MAX_SIDE);
@@ -50,8 +49,7 @@ static int check_size(int w, int h, const char *name, uint64_t max_bytes, char *
     return 0;
 }
 
-/* Level 0's texels for a w x h image, with room for every level. */
-static uint8_t *alloc_levels(Texture *t, int w, int h)
+uint8_t *texture_alloc_levels(Texture *t, int w, int h)
 {
     memset(t, 0, sizeof *t);
     t->rgba = malloc(texture_bytes_for(w, h));
@@ -74,7 +72,7 @@ static int decode_png(Texture *t, const void *data, size_t len, const char *name
         snprintf(err, errlen, "%s: %s", name, img.message);
         return -1;
     }
-    if (check_size((int)(img.width > INT32_MAX ? 0 : img.width), (int)(img.height > INT32_MAX ? 0 : img.height),
+    if (texture_check_size((int)(img.width > INT32_MAX ? 0 : img.width), (int)(img.height > INT32_MAX ? 0 : img.height),
                    name, max_bytes, err, errlen)) {
         png_image_free(&img);
         return -1;
@@ -82,7 +80,7 @@ static int decode_png(Texture *t, const void *data, size_t len, const char *name
     /* 8-bit sRGB RGBA whatever the file holds (palette, grey, 16 bits,
      * a gAMA chunk): libpng converts */
     img.format = PNG_FORMAT_RGBA;
-    uint8_t *px = alloc_levels(t, (int)img.width, (int)img.height);
+    uint8_t *px = texture_alloc_levels(t, (int)img.width, (int)img.height);
     if (!px) {
         png_image_free(&img);
         snprintf(err, errlen, "%s: out of memory", name);
@@ -144,13 +142,13 @@ static int decode_jpeg(Texture *t, const void *data, size_t len, const char *nam
     c.scale_num = 1;
     c.scale_denom = (unsigned)denom;
     jpeg_calc_output_dimensions(&c);
-    if (check_size((int)c.output_width, (int)c.output_height, name, max_bytes, err, errlen)) {
+    if (texture_check_size((int)c.output_width, (int)c.output_height, name, max_bytes, err, errlen)) {
         jpeg_destroy_decompress(&c);
         return -1;
     }
     c.out_color_space = JCS_EXT_RGBA;       /* libjpeg-turbo: grey and CMYK converted too */
     jpeg_start_decompress(&c);
-    uint8_t *px = alloc_levels(t, (int)c.output_width, (int)c.output_height);
+    uint8_t *px = texture_alloc_levels(t, (int)c.output_width, (int)c.output_height);
     if (!px) {
         jpeg_destroy_decompress(&c);
         snprintf(err, errlen, "%s: out of memory", name);
@@ -173,6 +171,8 @@ static int is_jpeg(const uint8_t *b, size_t len) { return len >= 3 && b[0] == 0x
 int texture_peek(const void *data, size_t len, int *w_out, int *h_out)
 {
     *w_out = *h_out = 0;
+    if (!is_png(data, len) && !is_jpeg(data, len))
+        return texture_tga_probe(data, len, w_out, h_out);
     if (is_png(data, len)) {
         png_image img;
         memset(&img, 0, sizeof img);
@@ -244,8 +244,10 @@ int texture_decode_fit(Texture *t, const void *data, size_t len, const char *nam
         halve -= j;
         if (halved_out)
             *halved_out = j;
+    } else if (texture_tga_probe(data, len, &w, &h) == 0) {
+        rc = texture_decode_tga(t, data, len, name, max_bytes, err, errlen);
     } else {
-        snprintf(err, errlen, "%s: not a PNG or JPEG image", name);
+        snprintf(err, errlen, "%s: not a PNG, JPEG or TGA image", name);
         return -1;
     }
     if (rc)
@@ -265,9 +267,9 @@ int texture_from_rgba(Texture *t, const uint8_t *rgba, int w, int h, const char 
                       char *err, size_t errlen)
 {
     memset(t, 0, sizeof *t);
-    if (check_size(w, h, name, max_bytes, err, errlen))
+    if (texture_check_size(w, h, name, max_bytes, err, errlen))
         return -1;
-    uint8_t *px = alloc_levels(t, w, h);
+    uint8_t *px = texture_alloc_levels(t, w, h);
     if (!px) {
         snprintf(err, errlen, "%s: out of memory", name);
         return -1;
