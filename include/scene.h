@@ -151,6 +151,14 @@ typedef struct Scene {
     int       pos_exp;
 } Scene;
 
+/* The textures of every mesh: how many, how many could not be read,
+ * how many wait to be decoded, and the bytes of those decoded. */
+typedef struct {
+    uint32_t count, failed, pending;
+    uint64_t bytes;
+} TextureCount;
+void scene_texture_count(const Scene *s, TextureCount *out);
+
 /* What a message calls the files of meshes[0..n): "a.obj", "a.obj and
  * b.stl", "a.obj and 4 more files". */
 void scene_files_text(const Mesh *meshes, int n, char *buf, size_t len);

@@ -42,6 +42,12 @@ int frame_report(const Pipeline *p, double out_ms, ReportLine *lines, int max)
     else
         LINE("time:", "transform %.2f ms (points and lines %.2f), build %.2f ms, scan %.2f ms, shade %.2f ms",
              p->project_ms, p->sp.prim_ms, st->build_ms, st->scan_ms, p->shade_ms);
+    TextureCount tc;
+    scene_texture_count(p->scene, &tc);
+    if (tc.count)
+        LINE("textures:", "%u, %.1f MB of texels%s%s%s%s", tc.count, tc.bytes / 1e6,
+             tc.failed ? ", " : "", tc.failed ? "some could not be read" : "", tc.pending ? ", decoding" : "",
+             p->no_textures ? "; hidden (t shows them)" : "");
     const char *why = frame_empty_reason(p);
     if (why)
         LINE("empty:", "%s", why);

@@ -154,6 +154,20 @@ int surf_want_uv(const Scene *s)
     return s->nsurf > 0;
 }
 
+void scene_texture_count(const Scene *s, TextureCount *out)
+{
+    memset(out, 0, sizeof *out);
+    for (int i = 0; i < s->nmeshes; i++) {
+        const Mesh *m = &s->meshes[i];
+        out->count += m->ntex;
+        out->bytes += mesh_texture_bytes(m);
+        for (uint32_t k = 0; k < m->ntex; k++) {
+            out->failed += m->tex[k].state == MTEX_FAILED;
+            out->pending += m->tex[k].state == MTEX_PENDING;
+        }
+    }
+}
+
 void surf_corner_uv(const Mesh *m, uint32_t k, float *out)
 {
     uint32_t i = !m->uv ? MESH_NO_UV : m->corner_uv ? m->corner_uv[k] : m->corner[k];

@@ -123,7 +123,11 @@ static int changing(App *a)
 
 void app_warning_note(App *a, const MeshInfo *info, const char *path)
 {
-    if (info->skipped)
+    /* a texture that failed first: the picture looks wrong without a word */
+    if (info->tex_failed)
+        app_note(a, "%s: %u texture%s could not be read (first: %s)", base_name(path), info->tex_failed,
+                 info->tex_failed == 1 ? "" : "s", info->first_tex_failed);
+    else if (info->skipped)
         app_note(a, "%s: %u statement%s skipped (first: %s)", base_name(path), info->skipped,
                  info->skipped == 1 ? "" : "s", info->first_skipped);
     else if (info->warnings)
