@@ -7,8 +7,10 @@ set -e
 # fails on the checks a missing tool makes it skip (tests/skips.sh).
 # tmux drives the viewer's end-to-end tests; python3 reads colours out of
 # their screens (tests/e2e/looks.py), decodes PNG sizes and plays a slow
-# terminal link (slowpty.py). libpng-dev and libjpeg-dev decode textures.
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev libcriterion-dev tmux python3 libassimp-dev"
+# terminal link (slowpty.py). libpng-dev and libjpeg-dev decode textures;
+# assimp-testmodels holds the textured models the texture tests load
+# (tests/test_surface.c: glTF, GLB, data: URIs, COLLADA, OBJ).
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev libcriterion-dev tmux python3 libassimp-dev assimp-testmodels"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive
