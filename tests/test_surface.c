@@ -450,6 +450,7 @@ static void assimp_model(const char *rel, uint32_t ntex)
     scene_free(&s);
 }
 
+#ifdef ZV_ASSIMP
 Test(surface, assimp_textures_external_embedded_glb_data_uri)
 {
     assimp_model("glTF2/BoxTextured-glTF/BoxTextured.gltf", 1);           /* a PNG beside it */
@@ -457,9 +458,14 @@ Test(surface, assimp_textures_external_embedded_glb_data_uri)
     assimp_model("glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf", 1);  /* a data: URI */
 }
 
-Test(surface, assimp_textures_collada_tga_and_obj_jpeg)
+Test(surface, assimp_textures_collada_tga)
 {
     assimp_model("Collada/duck.dae", 1);        /* a TGA beside it */
+}
+#endif
+
+Test(surface, obj_jpeg_textures_of_the_spider)
+{
     assimp_model("OBJ/spider.obj", 4);          /* map_Kd JPEG images, read natively */
 }
 
