@@ -133,7 +133,7 @@ Test(texture, what_is_not_an_image_is_refused_by_name)
     Texture t;
     char err[256];
     cr_expect_eq(texture_decode(&t, "GIF89a....", 10, "x.gif", 0, err, sizeof err), -1);
-    cr_expect_str_eq(err, "x.gif: not a PNG or JPEG image");
+    cr_expect_str_eq(err, "x.gif: not a PNG, JPEG or TGA image");
     cr_expect_null(t.rgba);
     /* a PNG cut short, and a JPEG cut short */
     uint8_t px[64 * 64 * 4];
