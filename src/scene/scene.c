@@ -457,8 +457,11 @@ static int alloc_polys(Scene *s, Mesh *meshes, int nmeshes, SceneCounts *c)
     s->poly_lface = malloc((npolys ? npolys : 1) * sizeof(uint32_t));
     if (!s->poly_start || !s->poly_corner || !s->poly_lface)
         return -1;
-    if (surf_want_uv(s) && !(s->poly_uv = malloc((ncorners ? ncorners : 1) * 2 * sizeof(float))))
-        return -1;
+    if (surf_want_uv(s)) {
+        if (!(s->poly_uv = malloc((ncorners ? ncorners : 1) * 2 * sizeof(float))))
+            return -1;
+        bigmem_advise(s->poly_uv, ncorners * 2 * sizeof(float), 1);
+    }
     bigmem_advise(s->poly_lface, npolys * sizeof(uint32_t), 1);
     if (!c->take_over) {
         bigmem_advise(s->poly_start, (npolys + 1) * sizeof(uint32_t), 1);

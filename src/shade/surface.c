@@ -35,6 +35,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bigmem.h"
 #include "shade.h"
 
 /* ==== Set-up of a face ==== */
@@ -373,6 +374,7 @@ int surf_frame_begin(SurfFrame *f, const Scene *s, const ScreenPolys *sp, const 
         sc->face_poly = malloc(((size_t)s->nfaces + 1) * 2 * sizeof(uint32_t));
         if (!sc->face_poly)
             return -1;
+        bigmem_advise(sc->face_poly, ((size_t)s->nfaces + 1) * 2 * sizeof(uint32_t), 1);
         shade_face_polys(s, sc->face_poly);
         sc->key = s;
         sc->key_gen = s->gen;
@@ -453,46 +455,61 @@ static void shade_box(SurfFrame *f, InstCache *ic, const FrameBufs *fb, int32_t 
     }
 }
 
-/* Polygons ahead the pass fetches a face's corner lists for, and (a
- * shorter way ahead, once those are in) the positions they point at. */
-#define SURF_FAR   48
-#define SURF_AHEAD 16
+/* Setting a face up reads a chain of arrays, each index from the one
+ * before: its polygon run (face_poly), the run's first corner
+ * (poly_start), the corners' vertices (poly_corner) and texture
+ * coordinates, the vertices' positions. The faces drawn are a sparse
+ * subset of the mesh's, so each link is a cache miss of its own. The
+ * pass fetches them ahead in stages, SURF_STEP polygons apart, each
+ * stage reading only what the one before fetched. */
+#define SURF_STEP 8
 
-/* The lists face id's set-up reads, in face order. */
-static void prefetch_lists(const SurfFrame *f, int32_t id)
+/* The scene polygon run of face id (its loaded object's face). */
+static inline const uint32_t *face_run(const SurfFrame *f, int32_t id)
+{
+    const Scene *s = f->s;
+    int inst = s->face_obj ? s->face_obj[id] : 0, base = inst % f->nb;
+    uint32_t bface = (uint32_t)(s->objs[base].face_base + (id - s->objs[inst].face_base));
+    return &f->sc->face_poly[2 * (size_t)bface];
+}
+
+/* Stage k (4: furthest) of the fetch of face id: k = 4 only fetches,
+ * every other stage reads what the stage before fetched. */
+static void prefetch_stage(const SurfFrame *f, int32_t id, int k)
 {
     const Scene *s = f->s;
     if (id < 0 || (uint32_t)id >= s->nfaces)
         return;
-    int inst = s->face_obj ? s->face_obj[id] : 0, base = inst % f->nb;
-    uint32_t bface = (uint32_t)(s->objs[base].face_base + (id - s->objs[inst].face_base));
-    const uint32_t *fp = &f->sc->face_poly[2 * (size_t)bface];
-    __builtin_prefetch(fp);
-    __builtin_prefetch(&s->face_normal[3 * (size_t)id]);
-    __builtin_prefetch(&s->face_surf[id + 16]);
-}
-
-/* Fetch what setting face id up reads: its corners' positions, texture
- * coordinates and normal. The corner lists are read in order (faces
- * come in order); the positions they point at are scattered over the
- * vertex array, a cache miss each when they are not fetched ahead. */
-static void prefetch_face(const SurfFrame *f, int32_t id)
-{
-    const Scene *s = f->s;
-    if (id < 0 || (uint32_t)id >= s->nfaces || s->face_surf[id] == SURF_PLAIN)
+    if (k == 4) {
+        __builtin_prefetch(&s->face_surf[id]);
+        if (s->face_obj)
+            __builtin_prefetch(&s->face_obj[id]);
+        __builtin_prefetch(&s->face_normal[3 * (size_t)id]);
         return;
-    int inst = s->face_obj ? s->face_obj[id] : 0, base = inst % f->nb;
-    uint32_t bface = (uint32_t)(s->objs[base].face_base + (id - s->objs[inst].face_base));
-    const uint32_t *fp = &f->sc->face_poly[2 * (size_t)bface];
+    }
+    if (s->face_surf[id] == SURF_PLAIN)
+        return;
+    const uint32_t *fp = face_run(f, id);
+    if (k == 3) {
+        __builtin_prefetch(fp);
+        return;
+    }
     if (!fp[1])
         return;
-    const float *pos = s->objs[base].mesh->pos;
-    uint32_t c0 = s->poly_start[fp[0]], c1 = s->poly_start[fp[0] + 1];
-    for (uint32_t c = c0; c < c1 && c < c0 + 4; c++)
+    if (k == 2) {
+        __builtin_prefetch(&s->poly_start[fp[0]]);
+        return;
+    }
+    uint32_t c0 = s->poly_start[fp[0]];
+    if (k == 1) {
+        __builtin_prefetch(&s->poly_corner[c0]);
+        if (s->poly_uv)
+            __builtin_prefetch(&s->poly_uv[2 * (size_t)c0]);
+        return;
+    }
+    const float *pos = s->objs[(s->face_obj ? s->face_obj[id] : 0) % f->nb].mesh->pos;
+    for (uint32_t c = c0; c < c0 + 3; c++)
         __builtin_prefetch(&pos[3 * (size_t)s->poly_corner[c]]);
-    if (s->poly_uv)
-        __builtin_prefetch(&s->poly_uv[2 * (size_t)c0]);
-    __builtin_prefetch(&s->face_normal[3 * (size_t)id]);
 }
 
 void shade_surfaces_flat(SurfFrame *f, const FrameBufs *fb, Image *out)
@@ -508,10 +525,9 @@ void shade_surfaces_flat(SurfFrame *f, const FrameBufs *fb, Image *out)
     InstCache ic = { -1, m4_identity() };
     /* points and lines (after the faces) have ids past the faces' */
     for (uint32_t i = 0; i < sp->npolys; i++) {
-        if (i + SURF_FAR < sp->npolys)
-            prefetch_lists(f, sp->polys[i + SURF_FAR].face);
-        if (i + SURF_AHEAD < sp->npolys)
-            prefetch_face(f, sp->polys[i + SURF_AHEAD].face);
+        for (int k = 0; k < 5; k++)
+            if (i + (uint32_t)(k + 1) * SURF_STEP < sp->npolys)
+                prefetch_stage(f, sp->polys[i + (uint32_t)(k + 1) * SURF_STEP].face, k);
         const ScreenPoly *p = &sp->polys[i];
         int32_t id = p->face;
         if (id < 0 || (uint32_t)id >= s->nfaces || s->face_surf[id] == SURF_PLAIN)

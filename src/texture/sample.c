@@ -23,6 +23,14 @@ static inline int wrap_index(int i, int n, TexWrap m)
     return r < 0 ? r + n : r;
 }
 
+/* floorf for |x| < 2^31 without a call into libm (SSE2 has no rounding
+ * instruction): truncation, one down for negatives with a fraction. */
+static inline int floor_int(float x)
+{
+    int i = (int)x;
+    return (float)i > x ? i - 1 : i;
+}
+
 /* Keep coordinates where int conversion is defined and the period still
  * resolves texels (floats past 2^23 have no fraction left anyway). */
 static inline float tame(float x)
@@ -37,16 +45,17 @@ static inline float tame(float x)
  * division: a repeated coordinate is brought into [0, 1] first, where
  * the texel before the first is the last; a clamped one cannot lie far
  * out. Mirror goes through wrap_index. */
-static inline float texel_pair(float c, int n, TexWrap m, int *a, int *b)
+static inline __attribute__((always_inline)) float texel_pair(float c, int n, TexWrap m, int *a, int *b)
 {
     c = tame(c);
     if (m == TEX_REPEAT)
-        c -= floorf(c);
+        c -= (float)floor_int(c);
     else if (m == TEX_CLAMP)
         c = c < -1 ? -1 : c > 2 ? 2 : c;
     /* texel centres at (i + 0.5) / n */
-    float x = c * (float)n - 0.5f, f0 = floorf(x);
-    int i = (int)f0;
+    float x = c * (float)n - 0.5f;
+    int i = floor_int(x);
+    float f0 = (float)i;
     if (m == TEX_REPEAT) {
         /* i in [-1, n - 1] (c may round up to 1: then n - 1 and 0) */
         *a = i < 0 ? i + n : i;
