@@ -73,7 +73,14 @@ typedef struct {
     int         turntable;      /* --turntable N: N frames turning 360/N degrees each (0 = off) */
     int         sketch;         /* --sketch: the viewer starts drawing polygons on an empty canvas */
     int         no_textures;    /* --no-textures: faces in their base colours (t in the viewer) */
+    /* not options: how the front door wants textures loaded */
+    int         tex_defer;      /* the viewer: images longer than this a side decode after the first picture */
+    int         tex_skip;       /* one picture without textures: no image is opened */
 } Options;
+
+/* The viewer decodes images longer than this a side on a thread of its
+ * own, after the first picture (a 4096 x 4096 JPEG takes about 0.2 s). */
+#define TEX_DEFER_SIDE 2048
 
 #define POINT_SIZE_MAX 16       /* pixels: at 4 x 4 samples a pixel, PRIM_SIZE_MAX samples */
 

@@ -489,3 +489,50 @@ Test(surface, every_algorithm_draws_the_same_ids_on_a_textured_scene)
     tl_agree_free(&a);
     scene_free(&s);
 }
+
+/* ==== big images after the first picture ==== */
+
+#include "../src/viewer/viewer_app.h"
+
+Test(surface, a_big_texture_waits_for_its_thread_and_then_shows)
+{
+    make_tmpdir();
+    write_png_file("big.png", 16, 16, half_lr);
+    write_text("lib.mtl", "newmtl m\nKd 1 1 1\nmap_Kd big.png\n");
+    write_text("q.obj", quad_obj);
+    Scene s;
+    Options o;
+    cli_defaults(&o);
+    char path[256], err[512];
+    snprintf(path, sizeof path, "%s/q.obj", tmpdir);
+    o.files[0] = path;
+    o.nfiles = 1;
+    o.view = "front";
+    o.light[0] = o.light[1] = 0;
+    o.ambient = 1;
+    o.tex_defer = 8;                /* "big": longer than 8 texels a side */
+    cr_assert_eq(app_load_scene(&o, &s, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(s.meshes[0].ntex, 1);
+    cr_expect_eq(s.meshes[0].tex[0].state, MTEX_PENDING, "left for later");
+    /* the first picture: the base colour, white */
+    Pipeline p;
+    render(&p, &s, 100, 100, SHADE_LAMBERT);
+    cr_expect(px_at(&p, 30, 50)[0] == 255 && px_at(&p, 70, 50)[0] == 255, "before: %d %d", px_at(&p, 30, 50)[0],
+              px_at(&p, 70, 50)[0]);
+    TexJob *job = texjob_start(&s);
+    cr_assert_not_null(job);
+    char note[256] = "";
+    int put = 0;
+    for (int i = 0; i < 2000 && job; i++) {
+        put |= texjob_poll(&job, &s, note, sizeof note);
+        usleep(1000);
+    }
+    cr_assert_null(job, "the job ends");
+    cr_expect(put && s.meshes[0].tex[0].state == MTEX_OK, "installed: %s", note);
+    cr_assert_eq(pipeline_render(&p, 100, 100, 1.0f, 0, 1), 0);
+    const uint8_t *l = px_at(&p, 30, 50), *r = px_at(&p, 70, 50);
+    cr_expect(abs(l[0] - 30) <= 4 && abs(r[0] - 220) <= 4, "after: left %d, right %d", l[0], r[0]);
+    pipeline_free(&p);
+    scene_free(&s);
+    rm_tmpdir();
+}

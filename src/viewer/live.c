@@ -60,6 +60,8 @@ void app_live_free(App *a)
         loadjob_abandon(a->job);
         a->job = NULL;
     }
+    texjob_abandon(a->tex);
+    a->tex = NULL;
 }
 
 void app_update_name(App *a)
@@ -292,6 +294,8 @@ Reaction app_load_poll(App *a)
     }
     Reaction r = add_part(a, &part, path);
     scene_free(&part);          /* empty when it went into the scene */
+    if (!a->tex)
+        a->tex = texjob_start(a->s);
     return r;
 }
 
