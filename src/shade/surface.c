@@ -58,6 +58,7 @@ struct SurfSetup {
     float    fac[3];            /* base colour times the texture, linear */
     float    tw, th;            /* level 0's size: texture units to texels */
     float    klin;              /* the face's flat light, as a factor on linear light */
+    float    lod;               /* orthographic, one triangle: the footprint's level, one for the face */
     TriSetup tri[SURF_TRI];
 };
 
@@ -196,6 +197,30 @@ static int face_tris(const Scene *s, const uint32_t *fp, uint32_t tris[][3], int
     return n;
 }
 
+/* log2 of x > 0 from its bits, to within 0.09: the level's fraction
+ * only blends two neighbouring levels. */
+static inline float fast_log2(float x)
+{
+    uint32_t u;
+    memcpy(&u, &x, sizeof u);
+    float e = (float)((int)(u >> 23) - 127);
+    u = (u & 0x7fffffu) | 0x3f800000u;
+    float m;
+    memcpy(&m, &u, sizeof m);
+    return e + (m - 1.0f);
+}
+
+/* Orthographic, the level of a triangle's footprint is one for all of
+ * it: the coordinates' derivatives are constant (sum m_i is). */
+static float tri_lod(const SurfSetup *st, const TriSetup *b)
+{
+    float l = b->c[0] + b->c[1] + b->c[2], inv = l != 0 ? 1.0f / l : 0;
+    float ux = b->au * inv * st->tw, vx = b->av * inv * st->th;
+    float uy = b->bu * inv * st->tw, vy = b->bv * inv * st->th;
+    float fx = ux * ux + vx * vx, fy = uy * uy + vy * vy, f2 = fx > fy ? fx : fy;
+    return f2 > 1 && isfinite(f2) ? 0.5f * fast_log2(f2) : 0;
+}
+
 /* ==== Per frame ==== */
 
 /* The kind of colour face id shows this frame. */
@@ -256,20 +281,10 @@ static const SurfSetup *face_setup(SurfFrame *f, InstCache *ic, int32_t id)
         tri_setup(f, &s->objs[base], st, &ic->fwd, tris[i], &st->tri[i]);
     if (n == 0)
         st->kind = SURF_PLAIN;      /* no polygon: nothing to interpolate over */
+    st->lod = 0;
+    if (st->ntri == 1 && st->tex && !f->sp->persp)
+        st->lod = tri_lod(st, &st->tri[0]);
     return st->kind == SURF_PLAIN ? NULL : st;
-}
-
-/* log2 of x > 0 from its bits, to within 0.09: the level's fraction
- * only blends two neighbouring levels. */
-static inline float fast_log2(float x)
-{
-    uint32_t u;
-    memcpy(&u, &x, sizeof u);
-    float e = (float)((int)(u >> 23) - 127);
-    u = (u & 0x7fffffu) | 0x3f800000u;
-    float m;
-    memcpy(&m, &u, sizeof m);
-    return e + (m - 1.0f);
 }
 
 /* The colour at (X, Y) from the best triangle of t[0..n). */
@@ -334,6 +349,24 @@ static void eval_tris(const SurfSetup *st, const TriSetup *t, int n, float X, fl
 static void eval_face(SurfFrame *f, InstCache *ic, const SurfSetup *st, int32_t id, float X, float Y,
                       float out[3])
 {
+    if (st->ntri == 1 && st->tex && !f->sp->persp) {
+        /* nearly every sample: inside its one triangle, seen flat on */
+        const TriSetup *t = &st->tri[0];
+        float m0 = t->a[0] * X + t->b[0] * Y + t->c[0];
+        float m1 = t->a[1] * X + t->b[1] * Y + t->c[1];
+        float m2 = t->a[2] * X + t->b[2] * Y + t->c[2];
+        float l = m0 + m1 + m2;
+        if (m0 * l >= 0 && m1 * l >= 0 && m2 * l >= 0 && l != 0) {
+            float inv = 1.0f / l;
+            float u = (m0 * t->at[0][0] + m1 * t->at[1][0] + m2 * t->at[2][0]) * inv;
+            float v = (m0 * t->at[0][1] + m1 * t->at[1][1] + m2 * t->at[2][1]) * inv;
+            texture_sample(st->tex, u, v, st->lod, out);
+            out[0] *= st->fac[0];
+            out[1] *= st->fac[1];
+            out[2] *= st->fac[2];
+            return;
+        }
+    }
     if (st->ntri) {
         eval_tris(st, st->tri, st->ntri, X, Y, out);
         return;
@@ -519,7 +552,9 @@ void shade_surfaces_flat(SurfFrame *f, const FrameBufs *fb, Image *out)
      * data (its corners, their positions and texture coordinates) is
      * read in order, where the samples would visit the faces scattered,
      * a cache miss or several each (the dragon in a small picture: a
-     * third of the shading time). */
+     * third of the shading time). Even where faces are big (the bunny
+     * at 1920x1080) this beats a pass sample by sample with the set-ups
+     * looked up again (measured: 33 against 38 ms of CPU a frame). */
     const Scene *s = f->s;
     const ScreenPolys *sp = f->sp;
     InstCache ic = { -1, m4_identity() };
