@@ -486,6 +486,8 @@ const OptSpec cli_options[] = {
       OPT_VIEWCMD },
     { "wireframe", 0, NULL, NULL, OPTSEC_OUTPUT, "every edge of the faces as a line, hidden where\nfaces hide it",
       NULL, FLAG(wireframe), OPT_VIEWCMD },
+    { "no-textures", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "faces in their base colours, textures not drawn\n(t in the viewer)", NULL, FLAG(no_textures), OPT_VIEWCMD },
     { "crease", 0, "DEG", NULL, OPTSEC_OUTPUT,
       "smooth shading and --edges: a sharper edge is a\ncrease (default 60)", set_crease, 0, OPT_VIEWCMD },
     { "light", 0, "YAW,PITCH", NULL, OPTSEC_OUTPUT, "the light's direction in degrees from the view\n(default -34,37)",

@@ -104,6 +104,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "zview: %s\n", err);
         return 1;
     }
+    if (oneshot)
+        o.tex_skip = o.no_textures;
+    else if (!o.info)
+        o.tex_defer = TEX_DEFER_SIDE;
     FirstView fv;
     if (app_load_scene_ex(&o, &scene, &fv, err, sizeof err)) {
         fprintf(stderr, "zview: %s\n", err);
