@@ -56,6 +56,10 @@ typedef struct {
      * can show it where stderr cannot be seen. */
     uint32_t warnings;
     char     first_warning[256];
+    /* The length unit the format states, "" when it states none (OBJ,
+     * STL, PLY, OFF): "m" for glTF, "mm" for 3MF and AMF (their
+     * default). --check names it beside the sizes. */
+    char     unit[8];
 } MeshInfo;
 
 typedef struct Mesh {
