@@ -72,6 +72,7 @@ typedef struct {
     int         print_view;     /* --print-view: the view's command line on stdout when the viewer quits */
     int         turntable;      /* --turntable N: N frames turning 360/N degrees each (0 = off) */
     int         sketch;         /* --sketch: the viewer starts drawing polygons on an empty canvas */
+    int         check;          /* --check: is each model right (a report, exit status 3 on problems) */
 } Options;
 
 #define POINT_SIZE_MAX 16       /* pixels: at 4 x 4 samples a pixel, PRIM_SIZE_MAX samples */

@@ -48,10 +48,10 @@ typedef struct {
     uint32_t degenerate_faces;      /* zero area */
     uint32_t duplicate_faces;       /* faces on the same points as an earlier one */
     uint32_t unused_vertices;       /* vertices no face, point or line uses */
-    uint64_t self_intersections;    /* pairs of faces that cross (-1 = not tested) */
+    uint64_t self_intersections;    /* pairs of faces that cross */
     int      intersections_tested;  /* self_intersections counted (CheckOpts.intersections) */
     int      closed;                /* has faces, and no boundary edge */
-    int      watertight;            /* closed, edge-manifold and orientable */
+    int      watertight;            /* closed and edge-manifold */
     int      inside_out;            /* closed, and its volume (winding made to agree) is negative */
     int      has_volume;            /* volume and centre of mass mean something: closed and orientable */
     double   area;                  /* file units squared */
@@ -105,9 +105,15 @@ void meshcheck_free(MeshCheck *mc);
  * parts and unused vertices are not problems. */
 int  meshcheck_sound(const CheckCounts *c);
 
-/* The problems in words, most serious first, ", " between them
- * ("1 hole (4 boundary edges), 12 flipped faces"), or "sound"; cut to
- * fit n bytes. Returns the number of problems. */
+/* The problems in words, most serious first ("1 hole (4 boundary
+ * edges)", "12 flipped faces"), at most max into item; returns how many
+ * there are (0: sound). */
+#define CHECK_PROBLEM_LEN  64
+#define CHECK_PROBLEMS_MAX 10       /* there are no more kinds */
+int  meshcheck_problems(const CheckCounts *c, char (*item)[CHECK_PROBLEM_LEN], int max);
+
+/* The same on one line, ", " between them, or "sound"; cut to fit n
+ * bytes. Returns the number of problems. */
 int  meshcheck_verdict(const CheckCounts *c, char *buf, size_t n);
 
 #endif

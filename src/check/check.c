@@ -331,58 +331,65 @@ int meshcheck_sound(const CheckCounts *c)
 }
 
 typedef struct {
-    char  *buf;
-    size_t n, len;
-    int    count;
-} Words;
+    char (*item)[CHECK_PROBLEM_LEN];
+    int   max, n;
+} Problems;
 
-/* One more problem, after a comma; what does not fit is cut. */
-static void say(Words *w, const char *text)
+static void say(Problems *p, const char *text)
 {
-    int k = snprintf(w->buf + w->len, w->n - w->len, "%s%s", w->count ? ", " : "", text);
-    if (k > 0)
-        w->len = w->len + (size_t)k < w->n ? w->len + (size_t)k : w->n - 1;
-    w->count++;
+    if (p->n < p->max)
+        snprintf(p->item[p->n], CHECK_PROBLEM_LEN, "%s", text);
+    p->n++;
 }
 
-static void say_n(Words *w, unsigned long long n, const char *one, const char *many)
+static void say_n(Problems *p, unsigned long long n, const char *one, const char *many)
 {
-    char t[96];
+    char t[CHECK_PROBLEM_LEN];
     snprintf(t, sizeof t, "%llu %s", n, n == 1 ? one : many);
-    say(w, t);
+    say(p, t);
+}
+
+int meshcheck_problems(const CheckCounts *c, char (*item)[CHECK_PROBLEM_LEN], int max)
+{
+    Problems p = { item, max, 0 };
+    if (c->faces == 0)
+        say(&p, "no faces");
+    if (c->boundary_edges) {
+        char t[CHECK_PROBLEM_LEN];
+        snprintf(t, sizeof t, "%u hole%s (%u boundary edge%s)", c->holes, c->holes == 1 ? "" : "s",
+                 c->boundary_edges, c->boundary_edges == 1 ? "" : "s");
+        say(&p, t);
+    }
+    if (c->nonmanifold_edges)
+        say_n(&p, c->nonmanifold_edges, "non-manifold edge", "non-manifold edges");
+    if (c->nonmanifold_vertices)
+        say_n(&p, c->nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices");
+    if (c->nonorientable)
+        say_n(&p, c->nonorientable, "non-orientable part", "non-orientable parts");
+    if (c->inconsistent_faces)
+        say_n(&p, c->inconsistent_faces, "flipped face", "flipped faces");
+    if (c->inside_out)
+        say(&p, "inside out");
+    if (c->degenerate_faces)
+        say_n(&p, c->degenerate_faces, "degenerate face", "degenerate faces");
+    if (c->duplicate_faces)
+        say_n(&p, c->duplicate_faces, "duplicate face", "duplicate faces");
+    if (c->self_intersections)
+        say_n(&p, c->self_intersections, "intersecting face pair", "intersecting face pairs");
+    return p.n;
 }
 
 int meshcheck_verdict(const CheckCounts *c, char *buf, size_t n)
 {
-    Words w = { buf, n, 0, 0 };
+    char item[CHECK_PROBLEMS_MAX][CHECK_PROBLEM_LEN];
+    int k = meshcheck_problems(c, item, CHECK_PROBLEMS_MAX);
     if (!n)
-        return 0;
-    buf[0] = 0;
-    if (c->faces == 0)
-        say(&w, "no faces");
-    if (c->boundary_edges) {
-        char t[96];
-        snprintf(t, sizeof t, "%u hole%s (%u boundary edge%s)", c->holes, c->holes == 1 ? "" : "s",
-                 c->boundary_edges, c->boundary_edges == 1 ? "" : "s");
-        say(&w, t);
+        return k;
+    snprintf(buf, n, "%s", k ? "" : "sound");
+    size_t len = strlen(buf);
+    for (int i = 0; i < k && len + 1 < n; i++) {
+        int w = snprintf(buf + len, n - len, "%s%s", i ? ", " : "", item[i]);
+        len = w > 0 && len + (size_t)w < n ? len + (size_t)w : n - 1;
     }
-    if (c->nonmanifold_edges)
-        say_n(&w, c->nonmanifold_edges, "non-manifold edge", "non-manifold edges");
-    if (c->nonmanifold_vertices)
-        say_n(&w, c->nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices");
-    if (c->nonorientable)
-        say_n(&w, c->nonorientable, "non-orientable part", "non-orientable parts");
-    if (c->inconsistent_faces)
-        say_n(&w, c->inconsistent_faces, "flipped face", "flipped faces");
-    if (c->inside_out)
-        say(&w, "inside out");
-    if (c->degenerate_faces)
-        say_n(&w, c->degenerate_faces, "degenerate face", "degenerate faces");
-    if (c->duplicate_faces)
-        say_n(&w, c->duplicate_faces, "duplicate face", "duplicate faces");
-    if (c->self_intersections)
-        say_n(&w, c->self_intersections, "intersecting face pair", "intersecting face pairs");
-    if (!w.count)
-        snprintf(buf, n, "sound");
-    return w.count;
+    return k;
 }
