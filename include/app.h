@@ -81,6 +81,7 @@ typedef struct {
     /* not options: how the front door wants textures loaded */
     int         tex_defer;      /* the viewer: images longer than this a side decode after the first picture */
     int         tex_skip;       /* one picture without textures: no image is opened */
+    int         check;          /* --check: is each model right (a report, exit status 3 on problems) */
 } Options;
 
 /* The viewer decodes images longer than this a side on a thread of its

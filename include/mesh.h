@@ -104,6 +104,10 @@ typedef struct {
      * show their base colour. The first one's message. */
     uint32_t tex_failed;
     char     first_tex_failed[256];
+    /* The length unit the format states, "" when it states none (OBJ,
+     * STL, PLY, OFF): "m" for glTF, "mm" for 3MF and AMF (their
+     * default). --check names it beside the sizes. */
+    char     unit[8];
 } MeshInfo;
 
 typedef struct Mesh {

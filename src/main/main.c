@@ -85,6 +85,11 @@ int main(int argc, char **argv)
         mesh_formats_print(stdout);
         return finish_stdout();
     }
+    if (o.check) {
+        /* each file loaded and checked on its own; the picture, if asked, inside */
+        rc = app_check(&o);
+        return rc == 1 ? rc : finish_stdout() ? 1 : rc;
+    }
     Scene scene;
     if (o.sketch && o.nfiles == 0) {
         /* nothing to load: the canvas is the scene (sketchui.c); this

@@ -588,6 +588,13 @@ static int from_scene(MeshCtx *c, const struct aiScene *sc)
     if (mb_start(&w.b, m, &c->err, c->err.name))
         return -1;
     snprintf(m->info.format, sizeof m->info.format, "%.20s (assimp)", c->hint && *c->hint ? c->hint : "?");
+    /* the unit the format states: glTF is in metres; 3MF and AMF are in
+     * millimetres unless the file names another unit, which the import
+     * does not pass on (so the default is what is named) */
+    if (c->hint && (!strcmp(c->hint, "gltf") || !strcmp(c->hint, "glb")))
+        snprintf(m->info.unit, sizeof m->info.unit, "m");
+    else if (c->hint && (!strcmp(c->hint, "3mf") || !strcmp(c->hint, "amf")))
+        snprintf(m->info.unit, sizeof m->info.unit, "mm");
     int r = -1;
     w.matmap = malloc((sc->mNumMaterials ? sc->mNumMaterials : 1) * sizeof *w.matmap);
     if (!w.matmap) {
