@@ -77,7 +77,16 @@ typedef struct {
     const char *bg;             /* --bg COLOR as written, NULL = default (the terminal's; images: picked) */
     uint8_t     bg_rgb[3];      /* --bg's colour */
     float       contrast;       /* --contrast: least OKLab L from the background, 0 = colours as given */
+    int         no_textures;    /* --no-textures: faces in their base colours (t in the viewer) */
+    /* not options: how the front door wants textures loaded */
+    int         tex_defer;      /* the viewer: images longer than this a side decode after the first picture */
+    int         tex_skip;       /* one picture without textures: no image is opened */
+    int         check;          /* --check: is each model right (a report, exit status 3 on problems) */
 } Options;
+
+/* The viewer decodes images longer than this a side on a thread of its
+ * own, after the first picture (a 4096 x 4096 JPEG takes about 0.2 s). */
+#define TEX_DEFER_SIDE 2048
 
 #define POINT_SIZE_MAX 16       /* pixels: at 4 x 4 samples a pixel, PRIM_SIZE_MAX samples */
 
@@ -206,6 +215,7 @@ typedef struct {
     int          point_size;    /* pixels a side (times the samples' side in samples) */
     int          line_width;    /* pixels */
     int          wireframe;     /* every face edge as a line (the scene's wire is built on first use) */
+    int          no_textures;   /* textured faces in their one colour */
     PrimWork    *prims;
     /* the background and the contrast rule (backdrop.h), applied to img
      * once a backdrop is set */
@@ -281,6 +291,7 @@ typedef struct {
     int         wireframe;      /* --wireframe */
     int         point_size;     /* pixels, 0 or 1 = the default */
     int         line_width;     /* pixels, 0 or 1 = the default */
+    int         no_textures;    /* textures hidden (--no-textures, t) */
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

@@ -16,6 +16,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "texture.h"
+
 #define MESH_NAME_MAX 64
 
 /* An axis of the model's coordinates: which one points up (--up, the
@@ -28,7 +30,36 @@ typedef struct {
     char  name[MESH_NAME_MAX];
     float kd[3];        /* diffuse (base) colour, linear 0..1 */
     float alpha;        /* `d`, or 1 - `Tr`; 1 = opaque */
+    /* The base-colour texture (MTL map_Kd, glTF baseColorTexture): an
+     * index into Mesh.tex, -1 = none. It multiplies kd. Texture
+     * coordinates are transformed first: uv * tex_scale + tex_off (MTL
+     * -s and -o, KHR_texture_transform). */
+    int32_t tex;
+    float   tex_off[2], tex_scale[2];
 } Material;
+
+/* A texture a model names. Decoded while loading (img), or, when it is
+ * big and the load was asked to defer such (MeshLoadOpts.tex_defer_side),
+ * left pending with its source for mesh_texture_decode on another
+ * thread: the picture does not wait for a 16k x 16k image. */
+typedef enum { MTEX_OK = 0, MTEX_FAILED, MTEX_PENDING } MeshTexState;
+
+typedef struct {
+    char        *name;      /* as the model names it: a path, "*0" (embedded), "data:" URI (shortened) */
+    MeshTexState state;
+    Texture      img;       /* the texels when MTEX_OK */
+    int          src_w, src_h;  /* the image's own size (0: unknown) */
+    int          halved;    /* img is the image halved this many times (to TEX_FIT_SIDE) */
+    /* MTEX_PENDING: where the image is, a file or a copy of its bytes */
+    char        *path;
+    void        *data;
+    size_t       len;
+} MeshTexture;
+
+/* Images are decoded to at most this many texels a side (halved until
+ * they fit): more detail than a picture of 4096 samples can show is not
+ * kept, and 16k x 16k texels would take 1.4 GB. */
+#define TEX_FIT_SIDE 4096
 
 typedef struct {
     char     name[MESH_NAME_MAX]; /* from `o`, else the file's base name */
@@ -69,6 +100,14 @@ typedef struct {
     int      up;
     int      front;
     char     up_why[96];
+    /* Textures that could not be read (each also a warning): faces then
+     * show their base colour. The first one's message. */
+    uint32_t tex_failed;
+    char     first_tex_failed[256];
+    /* The length unit the format states, "" when it states none (OBJ,
+     * STL, PLY, OFF): "m" for glTF, "mm" for 3MF and AMF (their
+     * default). --check names it beside the sizes. */
+    char     unit[8];
 } MeshInfo;
 
 typedef struct Mesh {
@@ -94,8 +133,31 @@ typedef struct Mesh {
     uint32_t   nlines;
     uint32_t  *line_start;  /* nlines + 1 offsets into line_corner */
     uint32_t  *line_corner; /* vertex index per polyline corner */
+    /* Texture coordinates (u right, v down the image: texture.h), 2 per
+     * entry; NULL when the file has none. corner_uv gives each face
+     * corner's entry (MESH_NO_UV: none); corner_uv NULL with uv set: one
+     * entry per vertex, the corner's vertex (PLY, assimp). */
+    float     *uv;
+    uint32_t   nuv;
+    uint32_t  *corner_uv;
+    MeshTexture *tex;       /* the textures materials name */
+    uint32_t   ntex;
     MeshInfo   info;
 } Mesh;
+
+#define MESH_NO_UV UINT32_MAX
+
+/* The decoded texture of material mat, or NULL (none, failed, pending). */
+const Texture *mesh_material_texture(const Mesh *m, int32_t mat);
+/* Decode a pending texture (on any thread: it touches only *out and
+ * reads t's source). 0, or -1 with "name: reason" in err. */
+int  mesh_texture_decode(const MeshTexture *t, uint64_t max_bytes, Texture *out, int *halved_out, char *err,
+                         size_t errlen);
+/* Put what mesh_texture_decode made in place (rc its result): the
+ * source is freed, the state becomes MTEX_OK or MTEX_FAILED. */
+void mesh_texture_install(MeshTexture *t, int rc, Texture *img, int halved);
+/* Bytes of every decoded texture of m. */
+uint64_t mesh_texture_bytes(const Mesh *m);
 
 /* Load `path` into *m (zeroed first); "-" reads standard input. The
  * format is told by content first (magic bytes, header), by extension
@@ -144,6 +206,11 @@ typedef struct {
      * longer wanted: a mapped file's load then stops within a few MB and
      * fails "cancelled" (the viewer's Esc). Streams read on. */
     const int    *cancel;
+    /* Textures with a side longer than this (> 0) are left pending
+     * (MeshTexture): the viewer decodes them on a thread of its own after
+     * the first picture. 0: every texture is decoded while loading. */
+    int           tex_defer_side;
+    int           no_textures;  /* --no-textures: no image is even opened */
 } MeshLoadOpts;
 
 int  mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, size_t errlen);

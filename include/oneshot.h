@@ -1,7 +1,8 @@
 #ifndef ZV_ONESHOT_H
 #define ZV_ONESHOT_H
 /* oneshot: the front door without a terminal: --print, -o, the dumps,
- * --turntable, --info and --bench. Each returns the exit status. */
+ * --turntable, --info, --check and --bench. Each returns the exit
+ * status. */
 
 #include "app.h"
 
@@ -12,6 +13,10 @@ int  app_info(const Options *o, Scene *s, const FirstView *fv);
 int  app_bench(const Options *o, Scene *s);
 /* --print, -o FILE, --dump-ids, --dump-screen, --turntable. */
 int  app_oneshot(const Options *o, Scene *s);
+/* --check: each file loaded and checked on its own, the picture first
+ * when --print or -o asks for one, then the report (--json: JSON).
+ * Returns 0 sound, 3 problems found, 1 a file not read. */
+int  app_check(const Options *o);
 /* Refuse (-1, the reason in err) a --print, -o or dump frame that has
  * more than SCREEN_MAX pixels on a side or more memory than is left,
  * before anything is loaded. */

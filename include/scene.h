@@ -80,6 +80,22 @@ typedef struct {
  * stays fixed to the view when the scene turns, and a reset keeps it. */
 void light_set(Light *l, float yaw_deg, float pitch_deg, float ambient);
 
+/* A textured surface: a mesh's material with a base-colour texture.
+ * Faces refer to it through Scene.face_surf. */
+typedef struct {
+    const MeshTexture *tex;   /* its mesh's texture (decoded when tex->state is MTEX_OK) */
+    float factor[3];          /* the base colour it multiplies, linear light */
+    float off[2], scale[2];   /* texture coordinates used: uv * scale + off */
+} SceneSurf;
+
+/* What a face's colour comes from (Scene.face_surf). */
+enum {
+    SURF_PLAIN = 0,           /* its face_rgb, one colour */
+    SURF_VCOLOUR = 1,         /* its corners' colours, interpolated across it */
+    SURF_TEX0 = 2,            /* 2 + k: textured as surf[k] says */
+};
+#define SCENE_SURF_MAX 65000  /* surfaces a scene holds (face_surf is 16 bits) */
+
 typedef struct Scene {
     Mesh     *meshes;         /* owned */
     int       nmeshes;
@@ -101,6 +117,17 @@ typedef struct Scene {
                                  colours), 0 = its object's (recoloured when objects
                                  come or go); NULL = all own */
     uint16_t *face_obj;       /* object index per face */
+    /* Colours that vary across a face (texture, vertex colours): per
+     * global face its SURF_* (NULL: every face plain), the textured
+     * surfaces, and per scene polygon corner (as poly_corner) its
+     * texture coordinate (NULL: no face is textured). face_rgb stays
+     * the face's one colour: the texture's mean times its base colour
+     * (the base colour alone when the texture failed), the mean of its
+     * corners' colours. */
+    uint16_t *face_surf;
+    SceneSurf *surf;
+    uint32_t  nsurf;
+    float    *poly_uv;        /* 2 per polygon corner: u, v */
     uint32_t  nbase_objs;     /* objects loaded (before grid copies) */
     Camera    cam;
     Light     light;
@@ -128,6 +155,14 @@ typedef struct Scene {
      * float; a power of two keeps them exact): --info multiplies back. */
     int       pos_exp;
 } Scene;
+
+/* The textures of every mesh: how many, how many could not be read,
+ * how many wait to be decoded, and the bytes of those decoded. */
+typedef struct {
+    uint32_t count, failed, pending;
+    uint64_t bytes;
+} TextureCount;
+void scene_texture_count(const Scene *s, TextureCount *out);
 
 /* What a message calls the files of meshes[0..n): "a.obj", "a.obj and
  * b.stl", "a.obj and 4 more files". */

@@ -9,6 +9,7 @@
 #include "image.h"
 #include "scene.h"
 #include "screen.h"
+#include "texture.h"
 
 typedef enum { SHADE_LAMBERT = 0, SHADE_SMOOTH, SHADE_DEPTH, SHADE_ID, SHADE_COUNT } ShadeMode;
 
@@ -31,6 +32,21 @@ typedef struct {
     uint32_t  cap;
 } EdgeData;
 
+/* Textured and vertex-coloured faces' data (surface.c): per scene, each
+ * face's polygons; per frame, the set-up of the faces met, in a small
+ * table of SURF_SLOTS slots by face id (neighbouring samples mostly
+ * show the same faces), and the sRGB encoding table. */
+#define SURF_SLOTS 512
+typedef struct SurfSetup SurfSetup;
+typedef struct {
+    const Scene *key;       /* face_poly built for this scene at this generation */
+    uint32_t  key_gen, key_npolys;
+    uint32_t *face_poly;    /* 2 per face: first scene polygon, count */
+    SurfSetup *slot;        /* SURF_SLOTS */
+    uint32_t  frame;        /* stamps the slots of this frame */
+    SrgbEnc  *enc;
+} SurfCache;
+
 /* Per-face colour cache, reused across frames (grows to the face count). */
 typedef struct {
     uint32_t *stamp;    /* frame stamp per face: colour below is current */
@@ -38,6 +54,7 @@ typedef struct {
     uint32_t  cap, frame;
     SmoothData smooth;
     EdgeData   edges;
+    SurfCache  surf;
 } ShadeCache;
 
 #define SHADE_CREASE_DEFAULT 60.0f  /* degrees: sharper edges stay sharp under smooth */
@@ -58,6 +75,7 @@ typedef struct {
     int       edges;        /* draw outlines: silhouettes, creases, depth steps */
     int       wire;         /* the wireframe is drawn: faces dimmed under its edges */
     int       simd;         /* a SimdLevel (simd.h): SIMD_AUTO (0) = the level in use */
+    int       no_textures;  /* textured faces show their one colour (--no-textures, the t key) */
 } ShadeSettings;
 
 int  shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,
@@ -68,11 +86,42 @@ int  shade_edges(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, flo
                  Image *out);
 void edges_free(EdgeData *ed);
 
+/* surface.c: colours that vary across a face (Scene.face_surf), per
+ * sample, perspective-correct, in linear light. A frame's view of them: */
+typedef struct {
+    const Scene       *s;
+    const ScreenPolys *sp;
+    SurfCache         *sc;
+    int                no_tex;
+    int                nb;          /* loaded objects (grid copies share their polygons) */
+    Mat4               view;
+} SurfFrame;
+
+/* Start a frame: 0 with f ready, 1 when the scene has no such face (f
+ * unused), -1 out of memory. */
+int  surf_frame_begin(SurfFrame *f, const Scene *s, const ScreenPolys *sp, const ShadeSettings *set,
+                      SurfCache *sc);
+/* The colour of face id at sample (x, y) before light, linear, into
+ * out; 0 when the face's colour does not vary (its face_rgb is right). */
+int  surf_colour(SurfFrame *f, int32_t id, int x, int y, float out[3]);
+/* Light k (the fraction Lambert gives an untextured face's bytes) as a
+ * factor on linear light: a white texture lit by k shows as a white
+ * material does. */
+float surf_light(float k);
+/* Lambert shading's pass: every sample of such a face, lit as its face
+ * is (the face's light stays one, the colour varies). */
+void shade_surfaces_flat(SurfFrame *f, const FrameBufs *fb, Image *out);
+void surf_cache_free(SurfCache *sc);
+
 /* smooth.c */
 int  smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg);
 void smooth_free(SmoothData *sd);
+/* sf: the frame's varying colours, NULL when there are none */
 int  shade_smooth(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, SmoothData *sd,
-                  const uint8_t *face_rgb_default, Image *out);
+                  const uint8_t *face_rgb_default, SurfFrame *sf, Image *out);
+/* Each face's run of scene polygons (2 per face: first, count; face_poly
+ * holds 2 (nfaces + 1)); grid copies' faces are left 0, 0. */
+void shade_face_polys(const Scene *s, uint32_t *face_poly);
 
 /* prims.c's points, segments and wireframe edges are not lit: a point
  * or segment takes its vertices' colours (PLY, XYZ, OBJ `v x y z r g

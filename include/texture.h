@@ -1,7 +1,7 @@
 #ifndef ZV_TEXTURE_H
 #define ZV_TEXTURE_H
 /* texture: a model's base-colour images. Decoded (PNG through libpng,
- * JPEG through libjpeg-turbo), mipmapped in linear light, and sampled
+ * JPEG through libjpeg-turbo, TGA here), mipmapped in linear light, and sampled
  * with a filter as wide as a sample's footprint, so that a 4096 x 4096
  * texture on a terminal-sized picture neither aliases nor shimmers as
  * the model turns. Knows nothing of meshes, screens or terminals.
@@ -35,8 +35,24 @@ typedef struct {
  * whose texels and mipmaps would take more (0: no bound of the caller's). */
 int  texture_decode(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
                     char *err, size_t errlen);
+/* Texels already decoded (rgba: w x h, 4 bytes a texel, sRGB), copied
+ * and mipmapped; the same checks and result. */
+int  texture_from_rgba(Texture *t, const uint8_t *rgba, int w, int h, const char *name, uint64_t max_bytes,
+                       char *err, size_t errlen);
 /* The same from a file. */
 int  texture_load_file(Texture *t, const char *path, uint64_t max_bytes, char *err, size_t errlen);
+
+/* The size of a PNG or JPEG image from its header alone (nothing is
+ * decoded): 0, or -1 when the bytes are not one. */
+int  texture_peek(const void *data, size_t len, int *w_out, int *h_out);
+/* texture_decode, but an image with a side longer than max_side (> 0)
+ * is halved until it fits: JPEG decoded at a reduced scale (libjpeg's
+ * scale_denom, which skips most of the work), PNG decoded whole and its
+ * first levels dropped. *halved_out: how many times (may be NULL). A
+ * picture has no use for more texels than it has samples, and a 16k x
+ * 16k image's texels would take 1.4 GB. */
+int  texture_decode_fit(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
+                        int max_side, int *halved_out, char *err, size_t errlen);
 void texture_free(Texture *t);
 /* Bytes the texels of every level take. */
 size_t texture_bytes(const Texture *t);
@@ -52,5 +68,23 @@ void texture_sample(const Texture *t, float u, float v, float lod, float out[3])
 /* sRGB transfer (IEC 61966-2-1): a byte to linear light, and back. */
 float   srgb_to_linear(uint8_t v);
 uint8_t linear_to_srgb(float v);
+/* The decoding table itself (256 entries), for loops that inline it. */
+const float *srgb_table(void);
+
+/* Encoding by table, for per-sample loops (linear_to_srgb's power costs
+ * more than a whole texture lookup): SRGB_ENC_SIZE steps over [0, 1],
+ * a value takes the byte of the nearest step, within one of linear_to_srgb's. The
+ * caller owns the table (made once by srgb_enc_init). */
+#define SRGB_ENC_SIZE 4096
+typedef struct {
+    uint8_t b[SRGB_ENC_SIZE + 1];
+} SrgbEnc;
+void srgb_enc_init(SrgbEnc *e);
+static inline uint8_t srgb_enc(const SrgbEnc *e, float v)
+{
+    /* NaN and negatives to 0, past 1 to 255 */
+    float x = v > 0 ? (v < 1 ? v : 1) : 0;
+    return e->b[(int)(x * (float)SRGB_ENC_SIZE + 0.5f)];
+}
 
 #endif

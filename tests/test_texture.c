@@ -133,7 +133,7 @@ Test(texture, what_is_not_an_image_is_refused_by_name)
     Texture t;
     char err[256];
     cr_expect_eq(texture_decode(&t, "GIF89a....", 10, "x.gif", 0, err, sizeof err), -1);
-    cr_expect_str_eq(err, "x.gif: not a PNG or JPEG image");
+    cr_expect_str_eq(err, "x.gif: not a PNG, JPEG or TGA image");
     cr_expect_null(t.rgba);
     /* a PNG cut short, and a JPEG cut short */
     uint8_t px[64 * 64 * 4];
@@ -255,4 +255,25 @@ Test(texture, bilinear_between_texel_centres_and_the_wrap_modes)
     texture_sample(&t, 3e30f, NAN, 0, c);
     cr_expect(c[0] >= 0 && c[0] <= 1);
     texture_free(&t);
+}
+
+Test(texture, mipmap_bytes_are_the_encoding_of_the_average_exactly)
+{
+    /* level 1 of a 2 x 1 image of bytes a and b is linear_to_srgb of the
+     * mean of their linear values (the table mip.c encodes with must give
+     * the power's very bytes), and within one of the formula's */
+    for (int a = 0; a < 256; a += 5)
+        for (int b = 0; b < 256; b += 3) {
+            uint8_t px[8] = { (uint8_t)a, (uint8_t)a, (uint8_t)a, 255, (uint8_t)b, (uint8_t)b, (uint8_t)b, 255 };
+            Texture t;
+            char err[128];
+            cr_assert_eq(texture_from_rgba(&t, px, 2, 1, "pair", 0, err, sizeof err), 0, "%s", err);
+            float la = srgb_to_linear((uint8_t)a), lb = srgb_to_linear((uint8_t)b);
+            int got = t.rgba[4 * t.off[1]];
+            cr_expect_eq(got, linear_to_srgb(0.25f * (la + lb + la + lb)), "bytes %d and %d", a, b);
+            double m = 0.5 * (iec_linear(a) + iec_linear(b));
+            double c = m <= 0.0031308 ? m * 12.92 : 1.055 * pow(m, 1 / 2.4) - 0.055;
+            cr_expect(abs(got - (int)floor(c * 255 + 0.5)) <= 1, "bytes %d and %d: %d", a, b, got);
+            texture_free(&t);
+        }
 }

@@ -74,7 +74,7 @@ void cli_usage(FILE *f)
             if (cli_options[i].section == (OptSection)sec && !(cli_options[i].traits & OPT_ALIAS))
                 usage_option(f, &cli_options[i]);
     }
-    fputs("\nExit status: 0 ok, 1 runtime error, 2 usage error.\n"
+    fputs("\nExit status: 0 ok, 1 runtime error, 2 usage error, 3 --check found problems.\n"
           "Every option and key in full: man zview (doc/zview.1 in the source).\n", f);
 }
 
@@ -225,6 +225,29 @@ static int take_files(int argc, char **argv, Options *o, char *err, size_t errle
     return 0;
 }
 
+/* --check: files, no other mode, and with --json nothing else on
+ * standard output. */
+static int check_with(const Options *o, char *err, size_t errlen)
+{
+    const char *other = o->info ? "--info" : o->bench ? "--bench" : o->bench_tty ? "--bench-tty"
+                      : o->sketch ? "--sketch" : o->turntable ? "--turntable" : o->points ? "--points"
+                      : o->dump_ids ? "--dump-ids" : o->dump_screen ? "--dump-screen" : NULL;
+    if (other) {
+        snprintf(err, errlen, "--check does not go with %s", other);
+        return -1;
+    }
+    if (o->nfiles == 0) {
+        snprintf(err, errlen, "--check needs the files to check");
+        return -1;
+    }
+    if (o->json && (o->print || (o->out && !strcmp(o->out, "-")))) {
+        snprintf(err, errlen, "--check --json writes one JSON document to standard output: the picture "
+                              "would go into it (use -o FILE)");
+        return -1;
+    }
+    return 0;
+}
+
 /* What a single option cannot see: the options that go together or not. */
 static int check_combinations(const Options *o, char *err, size_t errlen)
 {
@@ -259,6 +282,8 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
                  : "--dump-screen");
         return -1;
     }
+    if (o->check && check_with(o, err, errlen))
+        return -1;
     if (o->algo && !o->bench && !hsr_find(o->algo)) {
         snprintf(err, errlen, "unknown algorithm '%s' (zbuffer, scanline, span, hzb, hzb-octree)", o->algo);
         return -1;

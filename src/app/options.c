@@ -486,6 +486,8 @@ const OptSpec cli_options[] = {
       OPT_VIEWCMD },
     { "wireframe", 0, NULL, NULL, OPTSEC_OUTPUT, "every edge of the faces as a line, hidden where\nfaces hide it",
       NULL, FLAG(wireframe), OPT_VIEWCMD },
+    { "no-textures", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "faces in their base colours, textures not drawn\n(t in the viewer)", NULL, FLAG(no_textures), OPT_VIEWCMD },
     { "crease", 0, "DEG", NULL, OPTSEC_OUTPUT,
       "smooth shading and --edges: a sharper edge is a\ncrease (default 60)", set_crease, 0, OPT_VIEWCMD },
     { "light", 0, "YAW,PITCH", NULL, OPTSEC_OUTPUT, "the light's direction in degrees from the view\n(default -34,37)",
@@ -498,6 +500,10 @@ const OptSpec cli_options[] = {
       set_shade, 0, OPT_VIEWCMD },
     { "info", 0, NULL, NULL, OPTSEC_OUTPUT, "print file statistics (with --algo: render ones)", NULL, FLAG(info),
       0 },
+    { "check", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "is each model right: holes, flipped, non-manifold\nand crossing faces, parts, size, volume (exit 3\n"
+      "on problems); with --print or -o the picture too",
+      NULL, FLAG(check), 0 },
     { "dump-ids", 0, "FILE", NULL, OPTSEC_OUTPUT, "face-id buffer: W*H little-endian int32, -1 = none",
       set_dump_ids, 0, 0 },
     { "dump-screen", 0, "FILE", NULL, OPTSEC_OUTPUT, "screen-space polygons as OBJ text", set_dump_screen, 0, 0 },
@@ -543,7 +549,7 @@ const OptSpec cli_options[] = {
     { "bench-tty", 0, NULL, NULL, OPTSEC_BENCH, "bytes written per frame for a scripted rotation", NULL,
       FLAG(bench_tty), 0 },
     { "views", 0, "N", NULL, OPTSEC_BENCH, "with --bench: views per model (default 8)", set_views, 0, 0 },
-    { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench: JSON instead of a table", NULL, FLAG(json), 0 },
+    { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench or --check: JSON instead of text", NULL, FLAG(json), 0 },
     { "threads", 'j', "N", NULL, OPTSEC_BENCH, "threads for every stage (default: all cores)", set_threads, 0, 0 },
     { "fps", 0, "N", NULL, OPTSEC_BENCH, "auto-rotate frame cap in the viewer (default 30)", set_fps, 0, 0 },
 };

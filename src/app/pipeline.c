@@ -153,6 +153,7 @@ void pipeline_apply_options(Pipeline *p, const Options *o)
     p->line_width = o->line_width > 0 ? o->line_width : 1;
     p->wireframe = o->wireframe;
     p->contrast = o->contrast;
+    p->no_textures = o->no_textures;
 }
 
 void pipeline_set_backdrop(Pipeline *p, const Backdrop *b)
@@ -255,7 +256,7 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     p->hsr_ms = t2 - t1;
     p->shade_ms = 0;
     if (shade_too) {
-        ShadeSettings set = { p->shade, p->crease, p->highlight, p->edges, p->wireframe, simd };
+        ShadeSettings set = { p->shade, p->crease, p->highlight, p->edges, p->wireframe, simd, p->no_textures };
         if (k == 1 ? shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img)
                    : shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img_ss) ||
                          image_downsample(&p->img_ss, k, &p->img))

@@ -50,6 +50,12 @@ int frame_report(const Pipeline *p, double out_ms, ReportLine *lines, int max)
         else
             LINE("background:", "%s, colours as given", bd);
     }
+    TextureCount tc;
+    scene_texture_count(p->scene, &tc);
+    if (tc.count)
+        LINE("textures:", "%u, %.1f MB of texels%s%s%s%s", tc.count, tc.bytes / 1e6,
+             tc.failed ? ", " : "", tc.failed ? "some could not be read" : "", tc.pending ? ", decoding" : "",
+             p->no_textures ? "; hidden (t shows them)" : "");
     const char *why = frame_empty_reason(p);
     if (why)
         LINE("empty:", "%s", why);

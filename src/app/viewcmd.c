@@ -170,6 +170,8 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --edges");
     if (v->wireframe)
         put(&o, " --wireframe");
+    if (v->no_textures)
+        put(&o, " --no-textures");
     if (v->point_size > 1)
         put(&o, " --point-size %d", v->point_size);
     if (v->line_width > 1)

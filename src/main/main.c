@@ -85,6 +85,11 @@ int main(int argc, char **argv)
         mesh_formats_print(stdout);
         return finish_stdout();
     }
+    if (o.check) {
+        /* each file loaded and checked on its own; the picture, if asked, inside */
+        rc = app_check(&o);
+        return rc == 1 ? rc : finish_stdout() ? 1 : rc;
+    }
     Scene scene;
     if (o.sketch && o.nfiles == 0) {
         /* nothing to load: the canvas is the scene (sketchui.c); this
@@ -104,6 +109,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "zview: %s\n", err);
         return 1;
     }
+    if (oneshot)
+        o.tex_skip = o.no_textures;
+    else if (!o.info)
+        o.tex_defer = TEX_DEFER_SIDE;
     FirstView fv;
     if (app_load_scene_ex(&o, &scene, &fv, err, sizeof err)) {
         fprintf(stderr, "zview: %s\n", err);

@@ -9,7 +9,12 @@
  * them. A material's base colour (glTF's baseColorFactor, else the
  * diffuse colour) becomes the faces' material; a mesh with vertex
  * colours gets them, multiplied by that base colour as glTF says, and
- * no material (a material would hide them). Points (glTF POINTS) and
+ * no material (a material would hide them), unless the material has a
+ * base-colour texture (glTF baseColorTexture, else the diffuse one) and
+ * the mesh texture coordinates: then the texture. Its image is a file
+ * beside the model, or one the file holds (GLB, data: URIs, embedded
+ * images: assimp lists them in mTextures, named "*N", compressed or as
+ * texels). Points (glTF POINTS) and
  * segments (LINES, LINE_STRIP, LINE_LOOP: assimp gives each segment as
  * a face of two indices) are kept as the mesh's points and lines.
  *
@@ -44,7 +49,7 @@
     X(aiImportFile) X(aiImportFileFromMemory) X(aiReleaseImport) X(aiGetErrorString)   \
     X(aiIsExtensionSupported) X(aiGetImportFormatCount) X(aiGetImportFormatDescription) \
     X(aiGetVersionMajor) X(aiGetVersionMinor) X(aiGetVersionPatch) X(aiGetMaterialColor) \
-    X(aiGetMaterialFloatArray) X(aiGetMaterialString) X(aiIdentityMatrix4)
+    X(aiGetMaterialFloatArray) X(aiGetMaterialString) X(aiIdentityMatrix4) X(aiGetMaterialTexture)
 
 typedef struct {
 #define AI_FIELD(f) __typeof__(f) *f;
@@ -98,6 +103,7 @@ typedef struct {
     const struct aiScene *sc;
     int32_t              *matmap;   /* assimp material -> ours, -2 = not made yet */
     unsigned              depth;
+    int                   uv;       /* per-vertex texture coordinates kept */
 } Walk;
 
 static float clamp01(float v) { return v < 0 ? 0 : v > 1 ? 1 : v; }
@@ -118,6 +124,143 @@ static struct aiColor4D base_colour(const struct aiMaterial *mat)
     return c;
 }
 
+/* ==== Textures ==== */
+
+static TexWrap wrap_of(enum aiTextureMapMode m)
+{
+    return m == aiTextureMapMode_Clamp || m == aiTextureMapMode_Decal ? TEX_CLAMP
+           : m == aiTextureMapMode_Mirror                              ? TEX_MIRROR
+                                                                       : TEX_REPEAT;
+}
+
+/* The embedded image a texture path names: "*N", or (assimp 5) the
+ * file name an embedded image was stored under. */
+static const struct aiTexture *embedded(const struct aiScene *sc, const char *path)
+{
+    if (path[0] == '*') {
+        char *end;
+        unsigned long n = strtoul(path + 1, &end, 10);
+        return *end == 0 && n < sc->mNumTextures ? sc->mTextures[n] : NULL;
+    }
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    for (unsigned i = 0; i < sc->mNumTextures; i++) {
+        const char *f = sc->mTextures[i]->mFilename.data, *fb = strrchr(f, '/');
+        fb = fb ? fb + 1 : f;
+        if (*fb && strcmp(fb, base) == 0)
+            return sc->mTextures[i];
+    }
+    return NULL;
+}
+
+/* An embedded image: compressed bytes (mHeight 0), or texels in
+ * assimp's B G R A order. */
+static int32_t embedded_texture(Walk *w, const struct aiTexture *t, const char *name, TexWrap wu, TexWrap wv,
+                                int *oom)
+{
+    if (t->mHeight == 0)
+        return mb_texture(&w->b, name, NULL, t->pcData, t->mWidth, wu, wv, oom);
+    if (t->mWidth > TEX_MAX_SIDE || t->mHeight > TEX_MAX_SIDE)
+        return mb_texture_missing(&w->b, name, "an image of more than 16384 texels a side", wu, wv, oom);
+    size_t n = (size_t)t->mWidth * t->mHeight;
+    uint8_t *rgba = malloc(n * 4);
+    if (!rgba) {
+        *oom = 1;
+        me_oom(&w->c->err);
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++) {
+        rgba[4 * i] = t->pcData[i].r;
+        rgba[4 * i + 1] = t->pcData[i].g;
+        rgba[4 * i + 2] = t->pcData[i].b;
+        rgba[4 * i + 3] = t->pcData[i].a;
+    }
+    int32_t k = mb_texture_rgba(&w->b, name, rgba, (int)t->mWidth, (int)t->mHeight, wu, wv, oom);
+    free(rgba);
+    return k;
+}
+
+/* A path as a model writes it, as a file: '\\' as '/' (Windows),
+ * %XX decoded (glTF URIs), relative to the model's folder. NULL out of
+ * memory. */
+static char *texture_file(const char *model, const char *p)
+{
+    const char *slash = model ? strrchr(model, '/') : NULL;
+    size_t dl = (*p != '/' && slash) ? (size_t)(slash - model) + 1 : 0, n = strlen(p);
+    char *out = malloc(dl + n + 1);
+    if (!out)
+        return NULL;
+    memcpy(out, model, dl);
+    size_t o = dl;
+    for (size_t i = 0; i < n; i++) {
+        unsigned hex;
+        if (p[i] == '%' && i + 2 < n && sscanf(p + i + 1, "%2x", &hex) == 1 && hex) {
+            out[o++] = (char)hex;
+            i += 2;
+        } else {
+            out[o++] = p[i] == '\\' ? '/' : p[i];
+        }
+    }
+    out[o] = 0;
+    return out;
+}
+
+/* The base-colour texture of assimp material mat into mt (mt->tex -1
+ * when it has none or none can be had). -1 out of memory. */
+static int material_texture(Walk *w, const struct aiMaterial *mat, Material *mt)
+{
+    struct aiString path;
+    enum aiTextureMapMode mode[3] = { aiTextureMapMode_Wrap, aiTextureMapMode_Wrap, aiTextureMapMode_Wrap };
+    enum aiTextureType type = aiTextureType_BASE_COLOR;
+    if (ai()->aiGetMaterialTexture(mat, type, 0, &path, NULL, NULL, NULL, NULL, mode, NULL) != aiReturn_SUCCESS) {
+        type = aiTextureType_DIFFUSE;
+        mode[0] = mode[1] = aiTextureMapMode_Wrap;
+        if (ai()->aiGetMaterialTexture(mat, type, 0, &path, NULL, NULL, NULL, NULL, mode, NULL) != aiReturn_SUCCESS)
+            return 0;
+    }
+    if (!path.length)
+        return 0;
+    TexWrap wu = wrap_of(mode[0]), wv = wrap_of(mode[1]);
+    int oom = 0;
+    const struct aiTexture *emb = embedded(w->sc, path.data);
+    if (emb) {
+        char name[300];
+        const char *model = w->c->err.name, *base = strrchr(model, '/');
+        snprintf(name, sizeof name, "%.150s %.100s", base ? base + 1 : model, path.data);
+        mt->tex = embedded_texture(w, emb, name, wu, wv, &oom);
+    } else if (strncmp(path.data, "data:", 5) == 0 || !w->c->path) {
+        /* a data: URI assimp did not decode, or a model read from memory:
+         * nothing to open */
+        char name[80];
+        snprintf(name, sizeof name, "%.60s%s", path.data, path.length > 60 ? "..." : "");
+        mt->tex = mb_texture_missing(&w->b, name, w->c->path ? "not an image zview can read" : "no file to read it from",
+                                     wu, wv, &oom);
+    } else {
+        char *file = texture_file(w->c->path, path.data);
+        if (!file)
+            return me_oom(&w->c->err);
+        mt->tex = mb_texture(&w->b, file, file, NULL, 0, wu, wv, &oom);
+        free(file);
+    }
+    if (oom)
+        return -1;
+    /* KHR_texture_transform and the like; assimp's v runs up, ours down */
+    float tr[5];
+    unsigned int n = 5;
+    if (ai()->aiGetMaterialFloatArray(mat, _AI_MATKEY_UVTRANSFORM_BASE, type, 0, tr, &n) == aiReturn_SUCCESS &&
+        n >= 4) {
+        mt->tex_scale[0] = tr[2];
+        mt->tex_scale[1] = tr[3];
+        mt->tex_off[0] = tr[0];
+        mt->tex_off[1] = 1.0f - tr[3] - tr[1];
+    } else {
+        mt->tex_off[1] = 0;     /* the flip is done on the coordinates themselves */
+    }
+    return 0;
+}
+
+/* ==== Materials ==== */
+
 static int32_t material(Walk *w, unsigned i)
 {
     if (i >= w->sc->mNumMaterials)
@@ -137,9 +280,23 @@ static int32_t material(Walk *w, unsigned i)
     if (!named)
         snprintf(name.data, sizeof name.data, "material %u", i);
     int32_t k = mb_material(&w->b, name.data, clamp01(c.r), clamp01(c.g), clamp01(c.b), clamp01(c.a));
-    if (k >= 0)
-        w->matmap[i] = k;
-    return k < 0 ? -3 : k;
+    if (k < 0 || material_texture(w, mat, &w->b.m->mats[k]))
+        return -3;
+    return w->matmap[i] = k;
+}
+
+/* Does assimp material i have a base-colour texture? */
+static int textured(const Walk *w, unsigned i)
+{
+    struct aiString path;
+    if (i >= w->sc->mNumMaterials)
+        return 0;
+    const struct aiMaterial *mat = w->sc->mMaterials[i];
+    return !w->c->err.no_textures &&
+           (ai()->aiGetMaterialTexture(mat, aiTextureType_BASE_COLOR, 0, &path, NULL, NULL, NULL, NULL, NULL,
+                                       NULL) == aiReturn_SUCCESS ||
+            ai()->aiGetMaterialTexture(mat, aiTextureType_DIFFUSE, 0, &path, NULL, NULL, NULL, NULL, NULL, NULL) ==
+                aiReturn_SUCCESS);
 }
 
 /* One mesh instance: its vertices through the node's transform, then
@@ -152,10 +309,18 @@ static int add_mesh(Walk *w, const struct aiMesh *am, const struct aiMatrix4x4 *
         return me_fail(e, "too many vertices");
     uint32_t base = m->nverts;
     const struct aiColor4D *vc = am->mColors[0];
+    const struct aiVector3D *tc = am->mTextureCoords[0];
     struct aiColor4D bc = { 1, 1, 1, 1 };
     if (am->mMaterialIndex < w->sc->mNumMaterials)
         bc = base_colour(w->sc->mMaterials[am->mMaterialIndex]);
+    /* a texture wins over vertex colours */
+    if (!tc || !textured(w, am->mMaterialIndex))
+        tc = NULL;
+    else
+        vc = NULL;
     if (vc && mb_want_rgb(&w->b))
+        return -1;
+    if (tc && mb_want_vertex_uv(&w->b))
         return -1;
     for (unsigned v = 0; v < am->mNumVertices; v++) {
         struct aiVector3D p = am->mVertices[v];
@@ -173,6 +338,12 @@ static int add_mesh(Walk *w, const struct aiMesh *am, const struct aiMatrix4x4 *
             return me_fail(e, "NaN or infinite coordinate (mesh '%s', vertex %u)", am->mName.data, v + 1);
         if (mb_vertex(&w->b, x, y, z))
             return -1;
+        if (w->b.uv_per_vertex) {
+            /* assimp's v runs up the image, ours down */
+            float *d = m->uv + 2 * (size_t)(m->nverts - 1);
+            d[0] = tc ? tc[v].x : 0;
+            d[1] = tc ? 1.0f - tc[v].y : 0;
+        }
         if (vc) {
             float *d = m->rgb + 3 * (size_t)(m->nverts - 1);
             d[0] = clamp01(vc[v].r * bc.r);
@@ -417,6 +588,13 @@ static int from_scene(MeshCtx *c, const struct aiScene *sc)
     if (mb_start(&w.b, m, &c->err, c->err.name))
         return -1;
     snprintf(m->info.format, sizeof m->info.format, "%.20s (assimp)", c->hint && *c->hint ? c->hint : "?");
+    /* the unit the format states: glTF is in metres; 3MF and AMF are in
+     * millimetres unless the file names another unit, which the import
+     * does not pass on (so the default is what is named) */
+    if (c->hint && (!strcmp(c->hint, "gltf") || !strcmp(c->hint, "glb")))
+        snprintf(m->info.unit, sizeof m->info.unit, "m");
+    else if (c->hint && (!strcmp(c->hint, "3mf") || !strcmp(c->hint, "amf")))
+        snprintf(m->info.unit, sizeof m->info.unit, "mm");
     int r = -1;
     w.matmap = malloc((sc->mNumMaterials ? sc->mNumMaterials : 1) * sizeof *w.matmap);
     if (!w.matmap) {

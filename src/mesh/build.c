@@ -132,6 +132,34 @@ static size_t next_cap(size_t cap, size_t need)
     return nc;
 }
 
+/* Per-vertex texture coordinates for cap vertices (new ones 0, 0). */
+static int grow_uv(MeshBuild *b, size_t cap)
+{
+    Mesh *m = b->m;
+    if (cap <= b->uvcap)
+        return 0;
+    float *q = realloc(m->uv, cap * 2 * sizeof(float));
+    if (!q)
+        return me_oom(b->e);
+    memset(q + 2 * b->uvcap, 0, (cap - b->uvcap) * 2 * sizeof(float));
+    m->uv = q;
+    b->uvcap = cap;
+    return 0;
+}
+
+/* The per-corner texture coordinate indices as long as corner[]. */
+static int grow_corner_uv(MeshBuild *b)
+{
+    Mesh *m = b->m;
+    if (!m->corner_uv)
+        return 0;
+    uint32_t *q = realloc(m->corner_uv, (b->ccap ? b->ccap : 1) * sizeof *q);
+    if (!q)
+        return me_oom(b->e);
+    m->corner_uv = q;
+    return 0;
+}
+
 int mb_grow_verts(MeshBuild *b)
 {
     Mesh *m = b->m;
@@ -151,6 +179,8 @@ int mb_grow_verts(MeshBuild *b)
             return me_oom(b->e);
         m->rgb = q;
     }
+    if (b->uv_per_vertex && grow_uv(b, cap))
+        return -1;
     b->vcap = cap;
     return 0;
 }
@@ -182,7 +212,7 @@ int mb_room_corners(MeshBuild *b, size_t n)
         return -1;
     if (grow((void **)&b->m->corner, &b->ccap, b->ncorner + n, sizeof(uint32_t)))
         return me_oom(b->e);
-    return 0;
+    return grow_corner_uv(b);
 }
 
 int mb_grow_corners(MeshBuild *b)
@@ -249,6 +279,8 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
                 return me_oom(b->e);
             m->rgb = q;
         }
+        if (b->uv_per_vertex && grow_uv(b, nv))
+            return -1;
         b->vcap = nv;
     }
     if (nf > b->fcap || !m->face_start) {
@@ -271,6 +303,8 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
         m->corner = c;
         bigmem_advise(c, nc * sizeof(uint32_t), exact);
         b->ccap = nc;
+        if (grow_corner_uv(b))
+            return -1;
     }
     return 0;
 }
@@ -341,6 +375,7 @@ int32_t mb_material(MeshBuild *b, const char *name, float r, float g, float bl, 
     }
     Material *mt = &m->mats[m->nmats];
     memset(mt, 0, sizeof *mt);
+    mb_material_no_texture(mt);
     snprintf(mt->name, sizeof mt->name, "%s", name);
     mt->kd[0] = r;
     mt->kd[1] = g;
@@ -500,6 +535,35 @@ static void give_back_slack(MeshBuild *b)
         m->line_start = q;
     if (m->line_corner && (q = realloc(m->line_corner, (b->nlcorner ? b->nlcorner : 1) * sizeof(uint32_t))))
         m->line_corner = q;
+    if (m->corner_uv && (q = realloc(m->corner_uv, (b->ncorner ? b->ncorner : 1) * sizeof(uint32_t))))
+        m->corner_uv = q;
+    if (m->uv && (q = realloc(m->uv, (m->nuv ? m->nuv : 1) * 2 * sizeof(float))))
+        m->uv = q;
+}
+
+/* Texture coordinates checked: per vertex, one entry each; per corner,
+ * an index past the entries (OBJ's forward vt references, known only
+ * now) means none. Without a textured material they are dropped: no
+ * face would use them. */
+static void finish_uv(MeshBuild *b)
+{
+    Mesh *m = b->m;
+    if (b->uv_per_vertex)
+        m->nuv = m->nverts;
+    if (m->corner_uv)
+        for (size_t c = 0; c < b->ncorner; c++)
+            if (m->corner_uv[c] >= m->nuv)
+                m->corner_uv[c] = MESH_NO_UV;
+    int textured = 0;
+    for (uint32_t i = 0; i < m->nmats; i++)
+        textured |= m->mats[i].tex >= 0;
+    if (!textured || (!m->corner_uv && !b->uv_per_vertex)) {
+        free(m->uv);
+        free(m->corner_uv);
+        m->uv = NULL;
+        m->corner_uv = NULL;
+        m->nuv = 0;
+    }
 }
 
 int mb_finish(MeshBuild *b, int cloud_ok)
@@ -525,6 +589,7 @@ int mb_finish(MeshBuild *b, int cloud_ok)
     close_objects(m);
     for (uint32_t i = 0; i < m->nobjs; i++)
         object_range(m, &m->objs[i]);
+    finish_uv(b);
     give_back_slack(b);
     if (!m->face_mat && !(m->face_mat = calloc(1, sizeof(int32_t))))
         return me_oom(e);
@@ -553,12 +618,19 @@ void mesh_free(Mesh *m)
     free(m->point);
     free(m->line_start);
     free(m->line_corner);
+    mesh_free_textures(m);
     memset(m, 0, sizeof *m);
 }
 
 void mesh_as_points(Mesh *m)
 {
-    /* the vertices stay; every vertex is a point of one object */
+    /* the vertices stay; every vertex is a point of one object (points
+     * are not textured) */
+    free(m->corner_uv);
+    free(m->uv);
+    m->corner_uv = NULL;
+    m->uv = NULL;
+    m->nuv = 0;
     free(m->face_start);
     free(m->corner);
     free(m->face_mat);
@@ -605,6 +677,15 @@ void mesh_flip_winding(Mesh *m)
             uint32_t t = *a;
             *a = *z;
             *z = t;
+        }
+        if (m->corner_uv) {
+            a = m->corner_uv + m->face_start[f];
+            z = m->corner_uv + m->face_start[f + 1] - 1;
+            for (; a < z; a++, z--) {
+                uint32_t t = *a;
+                *a = *z;
+                *z = t;
+            }
         }
     }
 }

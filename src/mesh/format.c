@@ -347,7 +347,9 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
         len = 0;
     MeshCtx c = { .m = m, .err = { .name = path ? path : "(input)", .buf = err, .len = errlen,
                                    .strict = opt ? opt->strict : 1, .quiet = opt && opt->quiet,
-                                   .max_polys = opt ? opt->max_polys : 0, .max_bytes = opt ? opt->max_bytes : 0 },
+                                   .max_polys = opt ? opt->max_polys : 0, .max_bytes = opt ? opt->max_bytes : 0,
+                                   .tex_defer_side = opt ? opt->tex_defer_side : 0,
+                                   .no_textures = opt && opt->no_textures },
                   .path = path };
     char ext[16];
     extension(path, ext, sizeof ext);
@@ -478,7 +480,9 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
     const char *name = is_stdin ? "stdin" : path;
     MeshCtx c = { .m = m, .err = { .name = name, .buf = err, .len = errlen, .strict = opt ? opt->strict : 1,
                                    .quiet = opt && opt->quiet, .max_polys = opt ? opt->max_polys : 0,
-                                   .max_bytes = opt ? opt->max_bytes : 0 },
+                                   .max_bytes = opt ? opt->max_bytes : 0,
+                                   .tex_defer_side = opt ? opt->tex_defer_side : 0,
+                                   .no_textures = opt && opt->no_textures },
                   .path = path };
     char ext[16];
     extension(is_stdin ? NULL : path, ext, sizeof ext);

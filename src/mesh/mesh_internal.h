@@ -72,14 +72,15 @@ uint64_t mesh_ply_stream_max(const char *head, size_t n, int *ascii);
  * so): a real one is kilobytes, and a material takes 80 bytes. */
 #define MESH_MTL_MAX_BYTES ((uint64_t)256000000)
 
-/* Append the materials of MTL text to *mats (*nmats used of *cap, grown
- * as needed). `name` is the file's name for warnings (given to e's
- * me_warn): bad lines are skipped with one warning per file, and
- * binary data (a NUL or another control byte) ends the reading with a
- * warning. file: the paging window, or NULL for memory. Returns 0, or
- * -1 out of memory. */
-int  mesh_mtl_parse(MeshErr *e, const char *name, MeshFile *file, const char *data, size_t len,
-                    Material **mats, uint32_t *nmats, uint32_t *cap);
+struct MeshBuild;
+/* Append the materials of MTL text to the mesh b builds (its mats,
+ * grown as needed), with the textures they name (map_Kd, a path
+ * relative to the library's folder). `name` is the file's path, for
+ * warnings (given to b's me_warn) and for those textures: bad lines are
+ * skipped with one warning per file, and binary data (a NUL or another
+ * control byte) ends the reading with a warning. file: the paging
+ * window, or NULL for memory. Returns 0, or -1 out of memory. */
+int  mesh_mtl_parse(struct MeshBuild *b, const char *name, MeshFile *file, const char *data, size_t len);
 
 /* ==== Building a Mesh ==== */
 
@@ -88,7 +89,7 @@ typedef struct {
     uint32_t  cap, used;   /* cap: a power of two, or 0 */
 } ColourIndex;
 
-typedef struct {
+typedef struct MeshBuild {
     Mesh       *m;
     MeshErr    *e;
     size_t      vcap;      /* vertices pos (and rgb) can hold */
@@ -102,6 +103,9 @@ typedef struct {
     size_t      nlcorner;
     size_t      ocap;
     uint32_t    mcap;
+    size_t      uvcap;     /* texture coordinates uv can hold (per vertex: vcap) */
+    int         uv_per_vertex; /* uv has an entry per vertex (PLY, assimp), else per corner_uv */
+    uint32_t    tcap;      /* textures tex can hold */
     ColourIndex colours;   /* face colours -> materials */
     char        basename[MESH_NAME_MAX];
 } MeshBuild;
@@ -177,6 +181,40 @@ static inline int mb_face_end(MeshBuild *b, size_t first, int32_t mat)
     m->info.triangles += (uint32_t)(b->ncorner - first - 2);
     return 0;
 }
+
+/* ==== Texture coordinates and textures (meshtex.c) ==== */
+
+/* Append a texture coordinate (OBJ vt; v already turned to run down). */
+int  mb_uv(MeshBuild *b, float u, float v);
+/* The texture coordinate entry of the corner just added (MESH_NO_UV:
+ * none); the per-corner array is made on first use, earlier corners
+ * getting none. */
+int  mb_corner_uv(MeshBuild *b, uint32_t uvi);
+/* Texture coordinates per vertex from here on (the array grows with the
+ * vertices; earlier ones get 0, 0): the caller writes uv[2 v], uv[2 v + 1]
+ * after each mb_vertex. */
+int  mb_want_vertex_uv(MeshBuild *b);
+/* A texture the model names, decoded now or left pending (MeshErr's
+ * tex_defer_side), once per name and wrap mode: its index in Mesh.tex,
+ * or -1 when none is to be had (--no-textures) or out of memory (*oom
+ * set). name: what messages call it; the bytes come from the file at
+ * path, or from data (copied when kept). A texture that cannot be read
+ * warns once, naming it, and stays in the list as failed (its faces
+ * show their base colour). */
+int32_t mb_texture(MeshBuild *b, const char *name, const char *path, const void *data, size_t len,
+                   TexWrap wrap_u, TexWrap wrap_v, int *oom);
+/* The same for texels already decoded (assimp's uncompressed ones):
+ * rgba, 4 bytes a texel, sRGB. */
+int32_t mb_texture_rgba(MeshBuild *b, const char *name, const uint8_t *rgba, int w, int h, TexWrap wrap_u,
+                        TexWrap wrap_v, int *oom);
+/* A texture that cannot be had (why says so): listed as failed, with
+ * the warning. */
+int32_t mb_texture_missing(MeshBuild *b, const char *name, const char *why, TexWrap wrap_u, TexWrap wrap_v,
+                           int *oom);
+/* A material's texture fields, none set. */
+void mb_material_no_texture(Material *mt);
+/* Free the textures and texture coordinates of m. */
+void mesh_free_textures(Mesh *m);
 
 int  mb_grow_points(MeshBuild *b);
 int  mb_grow_lines(MeshBuild *b);

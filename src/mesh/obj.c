@@ -90,7 +90,31 @@ static int parse_vertex(Parser *ps, const char *ls, const char *p, const char *e
     return 0;
 }
 
-/* vt and vn: counted, and their numbers checked, but not stored. */
+/* vt u [v [w]]: kept, v turned to run down the image (texture.h). */
+static int parse_texcoord(Parser *ps, const char *ls, const char *p, const char *e)
+{
+    float t[3] = { 0, 0, 0 };
+    int n = 0;
+    for (;;) {
+        while (p < e && is_space(*p))
+            p++;
+        if (p >= e || *p == '#')
+            break;
+        float f;
+        int r = mesh_parse_float(&p, e, &f);
+        if (r)
+            return fail_number(ps, r, ls, p, e);
+        if (n < 3)
+            t[n] = f;
+        n++;
+    }
+    if (n < 1 || n > 3)
+        return obj_fail(ps, "texture coordinate has %d number%s, expected 1 to 3", n, n == 1 ? "" : "s");
+    ps->m->info.texcoords++;
+    return mb_uv(&ps->b, t[0], 1.0f - t[1]);
+}
+
+/* vn: counted, and its numbers checked, but not stored. */
 static int check_numbers(Parser *ps, const char *what, int lo, int hi,
                          const char *ls, const char *p, const char *e)
 {
@@ -172,10 +196,8 @@ static int parse_line(Parser *ps, const char *ls, const char *e)
         ps->saw_elements = 1;
     if (kw_is(k, kn, "f"))
         return obj_face(ps, ls, p, e);
-    if (kw_is(k, kn, "vt")) {
-        ps->m->info.texcoords++;
-        return check_numbers(ps, "texture coordinate", 1, 3, ls, p, e);
-    }
+    if (kw_is(k, kn, "vt"))
+        return parse_texcoord(ps, ls, p, e);
     if (kw_is(k, kn, "vn")) {
         ps->m->info.normals++;
         return check_numbers(ps, "normal", 3, 3, ls, p, e);

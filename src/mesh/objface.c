@@ -28,12 +28,33 @@ static int skip_int(const char **pp, const char *e)
     return 1;
 }
 
+/* A corner's vt index (at *pp, syntax checked by skip_int) as a 0-based
+ * texture coordinate entry: negative ones count back from the last vt
+ * read; one that does not resolve (0, too far back) is none, since the
+ * face still shows without it. Positive ones past the entries so far
+ * are checked when the file has been read (mb_finish). */
+static uint32_t corner_texcoord(const Parser *ps, const char *p, const char *q)
+{
+    int neg = *p == '-';
+    if (*p == '-' || *p == '+')
+        p++;
+    uint64_t val = 0;
+    for (; p < q && val < ((uint64_t)1 << 40); p++)
+        val = val * 10 + (uint64_t)(*p - '0');
+    uint32_t nuv = ps->m->nuv;
+    if (val == 0 || (neg && val > nuv) || (!neg && val >= UINT32_MAX))
+        return MESH_NO_UV;
+    return neg ? nuv - (uint32_t)val : (uint32_t)(val - 1);
+}
+
 /* The next corner of an f, l or p statement at *pp (v, v/vt, v/vt/vn
  * or v//vn), resolved to a 0-based vertex index. Returns 1 with *idx
  * set, 0 at the end of the statement, -1 on a bad corner. A positive
- * index past the vertices so far raises *fwd (checked at the end). */
+ * index past the vertices so far raises *fwd (checked at the end).
+ * uvi (NULL: not wanted) gets the corner's texture coordinate entry,
+ * MESH_NO_UV when it names none. */
 static int read_corner(Parser *ps, const char *what, const char *ls, const char **pp, const char *e,
-                       uint32_t *idx, uint64_t *fwd)
+                       uint32_t *idx, uint64_t *fwd, uint32_t *uvi)
 {
     Mesh *m = ps->m;
     const char *p = *pp;
@@ -56,10 +77,16 @@ static int read_corner(Parser *ps, const char *what, const char *ls, const char 
     }
     const char *d1 = p;
     int ok = p > d0;
+    if (uvi)
+        *uvi = MESH_NO_UV;
     if (ok && p < e && *p == '/') {
         p++;
-        if (p < e && *p != '/' && !is_space(*p))
+        const char *t0 = p;
+        if (p < e && *p != '/' && !is_space(*p)) {
             ok = skip_int(&p, e);          /* vt */
+            if (ok && uvi)
+                *uvi = corner_texcoord(ps, t0, p);
+        }
         if (ok && p < e && *p == '/') {
             p++;
             if (p < e && !is_space(*p))
@@ -119,10 +146,10 @@ int obj_face(Parser *ps, const char *ls, const char *p, const char *e)
 {
     size_t start = ps->b.ncorner;
     uint64_t fwd = 0;
-    uint32_t idx;
+    uint32_t idx, uvi;
     int r;
-    while ((r = read_corner(ps, "face corner", ls, &p, e, &idx, &fwd)) > 0)
-        if (mb_corner(&ps->b, idx))
+    while ((r = read_corner(ps, "face corner", ls, &p, e, &idx, &fwd, &uvi)) > 0)
+        if (mb_corner(&ps->b, idx) || mb_corner_uv(&ps->b, uvi))
             return -1;
     if (r < 0)
         return -1;
@@ -140,7 +167,7 @@ int obj_points(Parser *ps, const char *ls, const char *p, const char *e)
     uint32_t start = ps->m->npoints, idx;
     uint64_t fwd = 0;
     int r;
-    while ((r = read_corner(ps, "point", ls, &p, e, &idx, &fwd)) > 0)
+    while ((r = read_corner(ps, "point", ls, &p, e, &idx, &fwd, NULL)) > 0)
         if (mb_point(&ps->b, idx))
             return -1;
     if (r < 0)
@@ -157,7 +184,7 @@ int obj_polyline(Parser *ps, const char *ls, const char *p, const char *e)
     uint64_t fwd = 0;
     uint32_t idx;
     int r;
-    while ((r = read_corner(ps, "line corner", ls, &p, e, &idx, &fwd)) > 0)
+    while ((r = read_corner(ps, "line corner", ls, &p, e, &idx, &fwd, NULL)) > 0)
         if (mb_line_corner(&ps->b, idx))
             return -1;
     if (r < 0)
@@ -255,6 +282,8 @@ static uint32_t drop_faces(Parser *ps, const uint8_t *bad)
             continue;
         }
         memmove(&m->corner[nc], &m->corner[c0], (c1 - c0) * sizeof *m->corner);
+        if (m->corner_uv)
+            memmove(&m->corner_uv[nc], &m->corner_uv[c0], (c1 - c0) * sizeof *m->corner_uv);
         m->face_start[nf] = (uint32_t)nc;
         m->face_mat[nf++] = m->face_mat[f];
         nc += c1 - c0;

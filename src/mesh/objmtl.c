@@ -268,7 +268,7 @@ static int load_library(Parser *ps, const char *name, size_t n)
         return lib_unread(ps, name, n, "cannot read material library", why);
     }
     uint32_t had = ps->m->nmats;
-    r = mesh_mtl_parse(ps->e, full, &f, f.data, f.len, &ps->m->mats, &ps->m->nmats, &ps->b.mcap);
+    r = mesh_mtl_parse(&ps->b, full, &f, f.data, f.len);
     int changed = mf_changed(&f);
     mf_close(&f);
     if (r < 0)

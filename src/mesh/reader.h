@@ -46,6 +46,10 @@ typedef struct {
      * machine (sysmem_available). */
     uint64_t    max_polys;
     uint64_t    max_bytes;
+    /* Textures (MeshLoadOpts): defer those with a longer side, or open
+     * none at all. */
+    int         tex_defer_side;
+    int         no_textures;
 } MeshErr;
 
 /* Each writes the message and returns -1, so `return me_fail(...)`. */

@@ -37,6 +37,22 @@ static void print_mesh(Out *out, const Mesh *m, int pos_exp)
     out_printf(out, "materials:  %u\n", m->nmats);
     out_printf(out, "texcoords:  %u   normals: %u   vertex colours: %s\n", m->info.texcoords,
            m->info.normals, m->rgb ? "yes" : "no");
+    if (m->ntex) {
+        out_printf(out, "textures:   %u, %.1f MB of texels\n", m->ntex, mesh_texture_bytes(m) / 1e6);
+        for (uint32_t k = 0; k < m->ntex; k++) {
+            const MeshTexture *t = &m->tex[k];
+            if (t->state == MTEX_FAILED)
+                out_printf(out, "            %s: could not be read\n", t->name);
+            else if (t->state == MTEX_PENDING)
+                out_printf(out, "            %s: %dx%d, not decoded yet\n", t->name, t->src_w, t->src_h);
+            else if (t->halved)
+                out_printf(out, "            %s: %dx%d, kept at %dx%d, %.1f MB\n", t->name, t->src_w, t->src_h,
+                           t->img.w, t->img.h, texture_bytes(&t->img) / 1e6);
+            else
+                out_printf(out, "            %s: %dx%d, %.1f MB\n", t->name, t->img.w, t->img.h,
+                           texture_bytes(&t->img) / 1e6);
+        }
+    }
     if (m->npoints || m->nlines) {
         uint32_t segs = m->nlines ? m->line_start[m->nlines] - m->nlines : 0;
         out_printf(out, "points:     %u%s\n", m->npoints, m->npoints && !m->point ? " (every vertex)" : "");
@@ -143,6 +159,11 @@ int app_info(const Options *o, Scene *s, const FirstView *fv)
         out_printf(out, "            %u points, %u lines (%u segments)\n", s->npoints, s->nlines, s->nsegs);
     if (fv)
         print_first_view(out, fv);
+    TextureCount tc;
+    scene_texture_count(s, &tc);
+    if (tc.count)
+        out_printf(out, "            %u texture%s, %.1f MB of texels%s\n", tc.count, tc.count == 1 ? "" : "s",
+                   tc.bytes / 1e6, tc.failed ? " (some could not be read)" : "");
     out_printf(out, "simd:       %s\n", simd_name(simd_level()));
     if (!report_ok(out))
         return 1;

@@ -43,6 +43,8 @@ static int taken(const Source *src, int i)
 /* What the composed scene holds. */
 typedef struct {
     uint64_t nobjs, nfaces, npolys, ncorners, nsegs, nmeshes;
+    uint64_t nsurf;                  /* every source's surfaces, all kept */
+    int      surf, uv;               /* some source has face_surf, poly_uv */
 } ComposeCounts;
 
 /* Count what the sources give, numbering the meshes still used in
@@ -54,6 +56,9 @@ static int compose_count(const Source *src, int nsrc, int *mesh_used[], ComposeC
     for (int k = 0; k < nsrc; k++) {
         const Scene *s = src[k].s;
         int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
+        n->nsurf += s->nsurf;
+        n->surf |= s->face_surf != NULL;
+        n->uv |= s->poly_uv != NULL;
         for (int i = 0; i < s->nmeshes; i++)
             mesh_used[k][i] = -1;
         for (int i = 0; i < nb; i++) {
@@ -70,7 +75,7 @@ static int compose_count(const Source *src, int nsrc, int *mesh_used[], ComposeC
                 mesh_used[k][f] = (int)n->nmeshes++;
         }
     }
-    if (n->nobjs > 65535 || n->nfaces > INT32_MAX || n->nsegs > INT32_MAX ||
+    if (n->nobjs > 65535 || n->nfaces > INT32_MAX || n->nsegs > INT32_MAX || n->nsurf > SCENE_SURF_MAX ||
         n->npolys > UINT32_MAX / 2 || n->ncorners > UINT32_MAX / 2) {
         const Scene *last = src[nsrc - 1].s;    /* what is being added */
         scene_too_large(last->meshes, last->nmeshes, n->nobjs, n->nfaces, err, errlen);
@@ -93,8 +98,15 @@ static int compose_alloc(Scene *out, const ComposeCounts *n)
     out->poly_corner = malloc((n->ncorners ? n->ncorners : 1) * sizeof(uint32_t));
     out->poly_lface = malloc((npolys ? npolys : 1) * sizeof(uint32_t));
     out->seg_corner = malloc((n->nsegs ? n->nsegs : 1) * sizeof(uint32_t));
+    if (n->surf)
+        out->face_surf = malloc((nfaces ? nfaces : 1) * sizeof *out->face_surf);
+    if (n->nsurf)
+        out->surf = malloc(n->nsurf * sizeof *out->surf);
+    if (n->uv)
+        out->poly_uv = malloc((n->ncorners ? n->ncorners : 1) * 2 * sizeof(float));
     if (!out->meshes || !out->objs || !out->face_normal || !out->face_rgb || !out->face_own || !out->face_obj ||
-        !out->poly_start || !out->poly_corner || !out->poly_lface || !out->seg_corner) {
+        !out->poly_start || !out->poly_corner || !out->poly_lface || !out->seg_corner ||
+        (n->surf && !out->face_surf) || (n->nsurf && !out->surf) || (n->uv && !out->poly_uv)) {
         free(out->meshes);
         out->meshes = NULL;
         scene_free(out);
@@ -106,7 +118,27 @@ static int compose_alloc(Scene *out, const ComposeCounts *n)
 /* Where the composed scene's lists have been written to. */
 typedef struct {
     uint32_t oi, fi, pi, ci, si;   /* objects, faces, polygons, corners, segments */
+    uint32_t surf0;                /* where the current source's surfaces start in out */
 } ComposePos;
+
+/* The faces' surfaces (textured ones moved to where s's surfaces now
+ * start) and the polygon corners' texture coordinates of faces [f0,
+ * f0 + nf) and corners [c0, c0 + nc) of s, to out at `at`. */
+static void copy_surfaces(Scene *out, const Scene *s, uint32_t f0, uint32_t nf, uint32_t c0, uint32_t nc,
+                          const ComposePos *at)
+{
+    if (out->face_surf)
+        for (uint32_t q = 0; q < nf; q++) {
+            uint16_t k = s->face_surf ? s->face_surf[f0 + q] : SURF_PLAIN;
+            out->face_surf[at->fi + q] = (uint16_t)(k >= SURF_TEX0 ? k + at->surf0 : k);
+        }
+    if (!out->poly_uv)
+        return;
+    if (s->poly_uv)
+        memcpy(&out->poly_uv[2 * (size_t)at->ci], &s->poly_uv[2 * (size_t)c0], 2 * (size_t)nc * sizeof(float));
+    else
+        memset(&out->poly_uv[2 * (size_t)at->ci], 0, 2 * (size_t)nc * sizeof(float));
+}
 
 /* Copy object i of s (whose mesh is now out's mesh `mesh`, or none) to
  * the end of out: the object, its faces' data, its polygons (offsets
@@ -139,6 +171,7 @@ static void copy_object(Scene *out, const Scene *s, int i, Mesh *mesh, ComposePo
     }
     uint32_t nc = s->poly_start[from->poly_first + from->poly_count] - c0;
     memcpy(&out->poly_corner[ci], &s->poly_corner[c0], (size_t)nc * sizeof(uint32_t));
+    copy_surfaces(out, s, f0, nf, c0, nc, at);
     memcpy(&out->seg_corner[at->si], &s->seg_corner[from->seg_first], (size_t)from->seg_count * sizeof(uint32_t));
     at->fi += nf;
     at->pi += from->poly_count;
@@ -167,10 +200,17 @@ static int compose(Scene *out, const Source *src, int nsrc, int *mesh_used[], ch
     out->nmeshes = (int)n.nmeshes;
     /* invariant: at counts the objects, faces, polygons, corners and
      * segments copied so far */
-    ComposePos at = { 0, 0, 0, 0, 0 };
+    ComposePos at = { 0, 0, 0, 0, 0, 0 };
     for (int k = 0; k < nsrc; k++) {
         const Scene *s = src[k].s;
         int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
+        at.surf0 = out->nsurf;
+        if (s->nsurf) {
+            /* the meshes (and their textures) move by value: the
+             * surfaces' texture pointers stay good */
+            memcpy(&out->surf[out->nsurf], s->surf, s->nsurf * sizeof *s->surf);
+            out->nsurf += s->nsurf;
+        }
         for (int i = 0; i < nb; i++) {
             if (!taken(&src[k], i))
                 continue;

@@ -127,6 +127,9 @@ void scene_free(Scene *s)
     free(s->face_obj);
     free(s->seg_corner);
     free(s->wire);
+    free(s->face_surf);
+    free(s->surf);
+    free(s->poly_uv);
     memset(s, 0, sizeof *s);
 }
 
@@ -332,6 +335,7 @@ typedef struct {
     /* per face: bit 0 planar (kept whole), bit 1 a colour of its own */
     uint8_t *planar;
     int      take_over;              /* the polygon lists are the mesh's face lists */
+    SurfBuild surf;                  /* textured and vertex-coloured faces */
 } SceneCounts;
 
 /* Objects, faces and segments over every mesh; -1 with the message
@@ -384,6 +388,7 @@ static int face_data(Scene *s, const Mesh *meshes, int nmeshes, SceneCounts *c, 
     uint8_t *planar = c->planar;
     for (int mi = 0; mi < nmeshes; mi++) {
         const Mesh *m = &meshes[mi];
+        surf_build_mesh(&c->surf, m);
         for (uint32_t f = 0; f < m->nfaces; f++, gface++) {
             double n[3];
             face_newell(m, f, n);
@@ -391,6 +396,7 @@ static int face_data(Scene *s, const Mesh *meshes, int nmeshes, SceneCounts *c, 
             for (int i = 0; i < 3; i++)
                 s->face_normal[3 * gface + i] = len > 0 ? (float)(n[i] / len) : (i == 2);
             int own = face_base_rgb(m, f, &s->face_rgb[3 * gface]);
+            surf_of_face(&c->surf, s, f, gface, &s->face_rgb[3 * gface]);
             planar[gface] = (uint8_t)(face_is_planar(m, f, n) | own << 1);
             s->face_own[gface] = (uint8_t)own;
             uint32_t nc = m->face_start[f + 1] - m->face_start[f];
@@ -451,6 +457,11 @@ static int alloc_polys(Scene *s, Mesh *meshes, int nmeshes, SceneCounts *c)
     s->poly_lface = malloc((npolys ? npolys : 1) * sizeof(uint32_t));
     if (!s->poly_start || !s->poly_corner || !s->poly_lface)
         return -1;
+    if (surf_want_uv(s)) {
+        if (!(s->poly_uv = malloc((ncorners ? ncorners : 1) * 2 * sizeof(float))))
+            return -1;
+        bigmem_advise(s->poly_uv, ncorners * 2 * sizeof(float), 1);
+    }
     bigmem_advise(s->poly_lface, npolys * sizeof(uint32_t), 1);
     if (!c->take_over) {
         bigmem_advise(s->poly_start, (npolys + 1) * sizeof(uint32_t), 1);
@@ -516,18 +527,25 @@ static void object_polys(Scene *s, const Mesh *m, const MeshObject *mo, uint32_t
             continue;
         }
         uint32_t a = m->face_start[f], b = m->face_start[f + 1];
+        float *uv = s->poly_uv;
         if (planar[g] & 1) {
             s->poly_start[pi] = ci;
             s->poly_lface[pi++] = f - mo->face_first;
-            for (uint32_t k = a; k < b; k++)
+            for (uint32_t k = a; k < b; k++) {
+                if (uv)
+                    surf_corner_uv(m, k, &uv[2 * (size_t)ci]);
                 s->poly_corner[ci++] = m->corner[k];
+            }
         } else {
             for (uint32_t k = a + 1; k + 1 < b; k++) {
                 s->poly_start[pi] = ci;
                 s->poly_lface[pi++] = f - mo->face_first;
-                s->poly_corner[ci++] = m->corner[a];
-                s->poly_corner[ci++] = m->corner[k];
-                s->poly_corner[ci++] = m->corner[k + 1];
+                const uint32_t fan[3] = { a, k, k + 1 };
+                for (int q = 0; q < 3; q++) {
+                    if (uv)
+                        surf_corner_uv(m, fan[q], &uv[2 * (size_t)ci]);
+                    s->poly_corner[ci++] = m->corner[fan[q]];
+                }
             }
         }
     }
@@ -570,8 +588,28 @@ static void release_mesh_faces(Mesh *meshes, int nmeshes)
         free(m->face_start);
         free(m->corner);
         free(m->face_mat);
-        m->face_start = m->corner = NULL;
+        free(m->corner_uv);
+        free(m->uv);
+        m->face_start = m->corner = m->corner_uv = NULL;
         m->face_mat = NULL;
+        m->uv = NULL;
+    }
+}
+
+/* Taken over, the polygon corners are the mesh's corners: their texture
+ * coordinates in order (a per-vertex entry through the corner's vertex). */
+static void take_over_uv(Scene *s, const Mesh *m)
+{
+    uint32_t nc = s->poly_start[s->npolys];
+    for (uint32_t c = 0; c < nc; c++) {
+        uint32_t i = m->corner_uv ? m->corner_uv[c] : s->poly_corner[c];
+        float *out = &s->poly_uv[2 * (size_t)c];
+        if (!m->uv || i == MESH_NO_UV || i >= m->nuv) {
+            out[0] = out[1] = 0;
+        } else {
+            out[0] = m->uv[2 * (size_t)i];
+            out[1] = m->uv[2 * (size_t)i + 1];
+        }
     }
 }
 
@@ -584,9 +622,14 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     if (count_meshes(meshes, nmeshes, &c, err, errlen))
         return -1;
     int oom = alloc_face_arrays(s, &c);
+    if (!oom)
+        oom = surf_build_start(&c.surf, s, meshes, nmeshes, c.nfaces);
     if (oom || face_data(s, meshes, nmeshes, &c, err, errlen) || (oom = alloc_polys(s, meshes, nmeshes, &c)))
         goto fail;
     build_objects(s, meshes, nmeshes, &c);
+    if (c.take_over && s->poly_uv)
+        take_over_uv(s, &meshes[0]);
+    surf_build_end(&c.surf, s);
     free(c.planar);
     c.planar = NULL;
     s->pos_exp = shrink_huge_meshes(s, c.take_over);
@@ -601,6 +644,7 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
 
 fail:
     free(c.planar);
+    free(c.surf.matsurf);
     s->meshes = NULL;   /* the caller still owns them on failure */
     s->nmeshes = 0;
     scene_free(s);
@@ -637,7 +681,10 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
     uint8_t *own = s->face_own ? realloc(s->face_own, nf1) : NULL;
     if (own)
         s->face_own = own;
-    if (!objs || !fn || !fc || !fo || (s->face_own && !own)) {
+    uint16_t *surf = s->face_surf ? realloc(s->face_surf, nf1 * sizeof *surf) : NULL;
+    if (surf)
+        s->face_surf = surf;
+    if (!objs || !fn || !fc || !fo || (s->face_own && !own) || (s->face_surf && !surf)) {
         snprintf(err, errlen, "--grid %d: out of memory", n);
         return -1;
     }
@@ -658,6 +705,8 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
         memcpy(&s->face_rgb[3 * c * nf], s->face_rgb, 3 * (size_t)nf);
         if (s->face_own)
             memcpy(&s->face_own[c * nf], s->face_own, nf);
+        if (s->face_surf)   /* the copies share the polygons and their texture coordinates */
+            memcpy(&s->face_surf[c * nf], s->face_surf, (size_t)nf * sizeof *s->face_surf);
         for (uint32_t f = 0; f < nf; f++)
             s->face_obj[c * nf + f] = (uint16_t)(s->face_obj[f] + c * nb);
     }

@@ -40,6 +40,7 @@ void shade_cache_free(ShadeCache *c)
     free(c->rgb);
     smooth_free(&c->smooth);
     edges_free(&c->edges);
+    surf_cache_free(&c->surf);
     memset(c, 0, sizeof *c);
 }
 
@@ -630,10 +631,18 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
         shade_depth(fb, nfaces + s->nprims, out);
         return 0;
     }
+    SurfFrame sf;
+    int varying = 0;
+    if (mode == SHADE_LAMBERT || mode == SHADE_SMOOTH) {
+        int r = surf_frame_begin(&sf, s, sp, set, &cache->surf);
+        if (r < 0)
+            return -1;
+        varying = r == 0;
+    }
     if (mode == SHADE_SMOOTH) {
         if (smooth_prepare(&cache->smooth, s, set->crease))
             return -1;
-        return shade_smooth(s, sp, fb, &cache->smooth, default_grey, out);
+        return shade_smooth(s, sp, fb, &cache->smooth, default_grey, varying ? &sf : NULL, out);
     }
     if (cache_grow(cache, nfaces) != 0)
         return -1;
@@ -677,5 +686,9 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
         i = shade_pixels_avx2(&fc, fb->ids, n, out->rgb, out->lit);
 #endif
     shade_pixels(&fc, fb->ids, i, n, out->rgb, out->lit);
+    /* textured and vertex-coloured faces: their samples again, each its
+     * own colour under the face's light */
+    if (varying)
+        shade_surfaces_flat(&sf, fb, out);
     return 0;
 }

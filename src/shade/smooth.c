@@ -104,6 +104,28 @@ static int object_normals(SmoothData *sd, const Scene *s, const Object *o, float
     return 0;
 }
 
+void shade_face_polys(const Scene *s, uint32_t *face_poly)
+{
+    /* face -> its run of polygons (first, count) in its loaded object */
+    memset(face_poly, 0, ((size_t)s->nfaces + 1) * 2 * sizeof(uint32_t));   /* loaded faces only */
+    uint32_t nb = s->nbase_objs ? s->nbase_objs : (uint32_t)s->nobjs;
+    for (uint32_t oi = 0; oi < nb && (int)oi < s->nobjs; oi++) {
+        const Object *o = &s->objs[oi];
+        if (!o->poly_count || !o->mesh)
+            continue;
+        for (uint32_t k = o->poly_first; k < o->poly_first + o->poly_count; k++) {
+            uint32_t f = (uint32_t)o->face_base + s->poly_lface[k];
+            if (f >= s->nfaces)
+                continue;
+            uint32_t *fp = &face_poly[2 * (size_t)f];
+            if (!fp[1])
+                fp[0] = k;
+            if (fp[0] + fp[1] == k)     /* a face's polygons are consecutive */
+                fp[1]++;
+        }
+    }
+}
+
 int smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg)
 {
     if (sd->key == s && sd->key_gen == s->gen && sd->key_npolys == s->npolys && sd->crease == crease_deg &&
@@ -117,24 +139,13 @@ int smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg)
         smooth_free(sd);
         return -1;
     }
-    /* face -> its run of polygons (first, count) in its loaded object */
-    memset(sd->face_poly, 0, ((size_t)s->nfaces + 1) * 2 * sizeof(uint32_t));   /* loaded faces only */
+    shade_face_polys(s, sd->face_poly);
     float cos_crease = cosf(deg2rad(crease_deg < 0 ? 0 : crease_deg > 180 ? 180 : crease_deg));
     uint32_t nb = s->nbase_objs ? s->nbase_objs : (uint32_t)s->nobjs;
     for (uint32_t oi = 0; oi < nb && (int)oi < s->nobjs; oi++) {
         const Object *o = &s->objs[oi];
         if (!o->poly_count || !o->mesh)
             continue;
-        for (uint32_t k = o->poly_first; k < o->poly_first + o->poly_count; k++) {
-            uint32_t f = (uint32_t)o->face_base + s->poly_lface[k];
-            if (f >= s->nfaces)
-                continue;
-            uint32_t *fp = &sd->face_poly[2 * (size_t)f];
-            if (!fp[1])
-                fp[0] = k;
-            if (fp[0] + fp[1] == k)     /* a face's polygons are consecutive */
-                fp[1]++;
-        }
         if (object_normals(sd, s, o, cos_crease)) {
             smooth_free(sd);
             return -1;
@@ -236,7 +247,7 @@ static Vec3 face_normal_at(const SmoothData *sd, const Scene *s, const Object *o
 }
 
 int shade_smooth(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, SmoothData *sd,
-                 const uint8_t *face_rgb_default, Image *out)
+                 const uint8_t *face_rgb_default, SurfFrame *sf, Image *out)
 {
     Mat4 view = camera_view(&s->cam);
     double cx = fb->w * 0.5, cy = fb->h * 0.5;
@@ -283,6 +294,15 @@ int shade_smooth(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, Smo
             Vec3 n = face_normal_at(sd, s, &s->objs[base], bface, p);
             Vec3 v = v3_norm(m4_dir(&im.fwd, n));
             float k = amb + (1.0f - amb) * fabsf(v3_dot(v, s->light.dir));
+            float lin[3];
+            if (sf && surf_colour(sf, id, x, y, lin)) {
+                /* a texture or corner colours: in linear light */
+                float kl = surf_light(k);
+                for (int a = 0; a < 3; a++)
+                    px[a] = srgb_enc(sf->sc->enc, lin[a] * kl);
+                out->lit[i] = 1;
+                continue;
+            }
             const uint8_t *c = s->face_rgb ? s->face_rgb + 3 * (size_t)id : face_rgb_default;
             for (int a = 0; a < 3; a++) {
                 float val = (float)c[a] * k + 0.5f;

@@ -1,6 +1,7 @@
 /* decode.c: PNG (libpng's simplified API) and JPEG (libjpeg-turbo) images
- * into RGBA texels, told apart by their first bytes; then mipmapped
- * (mip.c). Sizes are checked before anything big is allocated. */
+ * into RGBA texels, told apart by their first bytes (TGA, which has no
+ * magic, when its header makes sense: tga.c); then mipmapped (mip.c).
+ * Sizes are checked before anything big is allocated. */
 
 #include <errno.h>
 #include <png.h>
@@ -29,9 +30,7 @@ uint64_t texture_bytes_for(int w, int h)
     }
 }
 
-/* Refuse a w x h image before decoding it: too big a side, or more
- * memory than the caller allows or the machine has. */
-static int check_size(int w, int h, const char *name, uint64_t max_bytes, char *err, size_t errlen)
+int texture_check_size(int w, int h, const char *name, uint64_t max_bytes, char *err, size_t errlen)
 {
     if (w < 1 || h < 1 || w > TEX_MAX_SIDE || h > TEX_MAX_SIDE) {
         snprintf(err, errlen, "%s: a %dx%d image (1 to %d per side)", name, w, h, TEX_MAX_SIDE);
@@ -50,8 +49,7 @@ static int check_size(int w, int h, const char *name, uint64_t max_bytes, char *
     return 0;
 }
 
-/* Level 0's texels for a w x h image, with room for every level. */
-static uint8_t *alloc_levels(Texture *t, int w, int h)
+uint8_t *texture_alloc_levels(Texture *t, int w, int h)
 {
     memset(t, 0, sizeof *t);
     t->rgba = malloc(texture_bytes_for(w, h));
@@ -74,7 +72,7 @@ static int decode_png(Texture *t, const void *data, size_t len, const char *name
         snprintf(err, errlen, "%s: %s", name, img.message);
         return -1;
     }
-    if (check_size((int)(img.width > INT32_MAX ? 0 : img.width), (int)(img.height > INT32_MAX ? 0 : img.height),
+    if (texture_check_size((int)(img.width > INT32_MAX ? 0 : img.width), (int)(img.height > INT32_MAX ? 0 : img.height),
                    name, max_bytes, err, errlen)) {
         png_image_free(&img);
         return -1;
@@ -82,7 +80,7 @@ static int decode_png(Texture *t, const void *data, size_t len, const char *name
     /* 8-bit sRGB RGBA whatever the file holds (palette, grey, 16 bits,
      * a gAMA chunk): libpng converts */
     img.format = PNG_FORMAT_RGBA;
-    uint8_t *px = alloc_levels(t, (int)img.width, (int)img.height);
+    uint8_t *px = texture_alloc_levels(t, (int)img.width, (int)img.height);
     if (!px) {
         png_image_free(&img);
         snprintf(err, errlen, "%s: out of memory", name);
@@ -119,8 +117,9 @@ static void jpeg_quiet(j_common_ptr c, int level)
     (void)level;
 }
 
+/* denom: 1, 2, 4 or 8, the reduction libjpeg decodes at. */
 static int decode_jpeg(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
-                       char *err, size_t errlen)
+                       int denom, char *err, size_t errlen)
 {
     struct jpeg_decompress_struct c;
     JpegErr e;
@@ -140,13 +139,16 @@ static int decode_jpeg(Texture *t, const void *data, size_t len, const char *nam
     jpeg_create_decompress(&c);
     jpeg_mem_src(&c, data, (unsigned long)len);
     jpeg_read_header(&c, TRUE);
-    if (check_size((int)c.image_width, (int)c.image_height, name, max_bytes, err, errlen)) {
+    c.scale_num = 1;
+    c.scale_denom = (unsigned)denom;
+    jpeg_calc_output_dimensions(&c);
+    if (texture_check_size((int)c.output_width, (int)c.output_height, name, max_bytes, err, errlen)) {
         jpeg_destroy_decompress(&c);
         return -1;
     }
     c.out_color_space = JCS_EXT_RGBA;       /* libjpeg-turbo: grey and CMYK converted too */
     jpeg_start_decompress(&c);
-    uint8_t *px = alloc_levels(t, (int)c.output_width, (int)c.output_height);
+    uint8_t *px = texture_alloc_levels(t, (int)c.output_width, (int)c.output_height);
     if (!px) {
         jpeg_destroy_decompress(&c);
         snprintf(err, errlen, "%s: out of memory", name);
@@ -163,24 +165,124 @@ static int decode_jpeg(Texture *t, const void *data, size_t len, const char *nam
 
 /* ==== the front door ==== */
 
-int texture_decode(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
-                   char *err, size_t errlen)
+static int is_png(const uint8_t *b, size_t len) { return len >= 8 && memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0; }
+static int is_jpeg(const uint8_t *b, size_t len) { return len >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF; }
+
+int texture_peek(const void *data, size_t len, int *w_out, int *h_out)
+{
+    *w_out = *h_out = 0;
+    if (!is_png(data, len) && !is_jpeg(data, len))
+        return texture_tga_probe(data, len, w_out, h_out);
+    if (is_png(data, len)) {
+        png_image img;
+        memset(&img, 0, sizeof img);
+        img.version = PNG_IMAGE_VERSION;
+        if (!png_image_begin_read_from_memory(&img, data, len))
+            return -1;
+        *w_out = img.width > INT32_MAX ? INT32_MAX : (int)img.width;
+        *h_out = img.height > INT32_MAX ? INT32_MAX : (int)img.height;
+        png_image_free(&img);
+        return 0;
+    }
+    if (!is_jpeg(data, len))
+        return -1;
+    struct jpeg_decompress_struct c;
+    JpegErr e;
+    c.err = jpeg_std_error(&e.mgr);
+    e.mgr.error_exit = jpeg_on_error;
+    e.mgr.emit_message = jpeg_quiet;
+    if (setjmp(e.jmp)) {
+        jpeg_destroy_decompress(&c);
+        return -1;
+    }
+    jpeg_create_decompress(&c);
+    jpeg_mem_src(&c, data, (unsigned long)len);
+    jpeg_read_header(&c, TRUE);
+    *w_out = (int)c.image_width;
+    *h_out = (int)c.image_height;
+    jpeg_destroy_decompress(&c);
+    return 0;
+}
+
+/* Drop the first k levels: level k becomes level 0, the texels moved to
+ * the start of the block and the rest given back. */
+static void drop_levels(Texture *t, int k)
+{
+    if (k <= 0 || k >= t->levels)
+        return;
+    size_t off = t->off[k], total = texture_bytes_for(t->w, t->h) / 4;
+    memmove(t->rgba, t->rgba + 4 * off, 4 * (total - off));
+    uint8_t *q = realloc(t->rgba, 4 * (total - off));
+    if (q)
+        t->rgba = q;
+    for (int i = 0; i + k < t->levels; i++) {
+        t->lw[i] = t->lw[i + k];
+        t->lh[i] = t->lh[i + k];
+        t->off[i] = t->off[i + k] - off;
+    }
+    t->levels -= k;
+    t->w = t->lw[0];
+    t->h = t->lh[0];
+}
+
+int texture_decode_fit(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
+                       int max_side, int *halved_out, char *err, size_t errlen)
 {
     const uint8_t *b = data;
-    int rc;
+    int rc, w = 0, h = 0, halve = 0;
     memset(t, 0, sizeof *t);
-    if (len >= 8 && memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0)
+    if (halved_out)
+        *halved_out = 0;
+    if (max_side > 0 && texture_peek(data, len, &w, &h) == 0)
+        while (((w - 1) >> halve) + 1 > max_side || ((h - 1) >> halve) + 1 > max_side)
+            halve++;
+    if (is_png(b, len)) {
         rc = decode_png(t, data, len, name, max_bytes, err, errlen);
-    else if (len >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF)
-        rc = decode_jpeg(t, data, len, name, max_bytes, err, errlen);
-    else {
-        snprintf(err, errlen, "%s: not a PNG or JPEG image", name);
+    } else if (is_jpeg(b, len)) {
+        int j = halve < 3 ? halve : 3;      /* libjpeg reduces by 8 at most */
+        rc = decode_jpeg(t, data, len, name, max_bytes, 1 << j, err, errlen);
+        halve -= j;
+        if (halved_out)
+            *halved_out = j;
+    } else if (texture_tga_probe(data, len, &w, &h) == 0) {
+        rc = texture_decode_tga(t, data, len, name, max_bytes, err, errlen);
+    } else {
+        snprintf(err, errlen, "%s: not a PNG, JPEG or TGA image", name);
         return -1;
     }
     if (rc)
         return -1;
     texture_build_levels(t);
+    /* what the decoder could not reduce: the finest levels go */
+    if (halve > 0) {
+        int k = halve < t->levels - 1 ? halve : t->levels - 1;
+        drop_levels(t, k);
+        if (halved_out)
+            *halved_out += k;
+    }
     return 0;
+}
+
+int texture_from_rgba(Texture *t, const uint8_t *rgba, int w, int h, const char *name, uint64_t max_bytes,
+                      char *err, size_t errlen)
+{
+    memset(t, 0, sizeof *t);
+    if (texture_check_size(w, h, name, max_bytes, err, errlen))
+        return -1;
+    uint8_t *px = texture_alloc_levels(t, w, h);
+    if (!px) {
+        snprintf(err, errlen, "%s: out of memory", name);
+        return -1;
+    }
+    memcpy(px, rgba, (size_t)w * (size_t)h * 4);
+    texture_build_levels(t);
+    return 0;
+}
+
+int texture_decode(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
+                   char *err, size_t errlen)
+{
+    return texture_decode_fit(t, data, len, name, max_bytes, 0, NULL, err, errlen);
 }
 
 int texture_load_file(Texture *t, const char *path, uint64_t max_bytes, char *err, size_t errlen)

@@ -9,9 +9,48 @@
 
 #include "texture_internal.h"
 
-/* Level dst (dw x dh) from level src (sw x sh). */
-static void halve(const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh)
+/* linear_to_srgb by table: th[b] is the least linear value that
+ * encodes to b + 1 or more, found by bisection on linear_to_srgb
+ * itself, so that a binary search over th gives its very bytes at a
+ * fraction of a power's cost (a 16k image's first level is 200 million
+ * encodings). */
+typedef struct {
+    float th[255];
+} Encoder;
+
+static void encoder_init(Encoder *e)
 {
+    for (int b = 0; b < 255; b++) {
+        float lo = 0, hi = 1;           /* linear_to_srgb(lo) <= b < linear_to_srgb(hi) */
+        for (int i = 0; i < 40; i++) {
+            float mid = 0.5f * (lo + hi);
+            if (mid == lo || mid == hi)
+                break;
+            if (linear_to_srgb(mid) > b)
+                hi = mid;
+            else
+                lo = mid;
+        }
+        e->th[b] = hi;
+    }
+}
+
+static inline uint8_t encode(const Encoder *e, float v)
+{
+    if (!(v > 0))
+        return 0;
+    int b = 0;
+    /* invariant: the answer is in [b, b + step * 2) */
+    for (int step = 128; step; step >>= 1)
+        if (b + step <= 255 && v >= e->th[b + step - 1])
+            b += step;
+    return (uint8_t)b;
+}
+
+/* Level dst (dw x dh) from level src (sw x sh). */
+static void halve(const Encoder *e, const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh)
+{
+    const float *lin = srgb_table();
     for (int y = 0; y < dh; y++) {
         int y0 = 2 * y < sh ? 2 * y : sh - 1, y1 = 2 * y + 1 < sh ? 2 * y + 1 : y0;
         for (int x = 0; x < dw; x++) {
@@ -20,8 +59,7 @@ static void halve(const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int 
                                     src + 4 * ((size_t)y1 * sw + x0), src + 4 * ((size_t)y1 * sw + x1) };
             uint8_t *o = dst + 4 * ((size_t)y * dw + x);
             for (int c = 0; c < 3; c++)
-                o[c] = linear_to_srgb(0.25f * (srgb_to_linear(p[0][c]) + srgb_to_linear(p[1][c]) +
-                                               srgb_to_linear(p[2][c]) + srgb_to_linear(p[3][c])));
+                o[c] = encode(e, 0.25f * (lin[p[0][c]] + lin[p[1][c]] + lin[p[2][c]] + lin[p[3][c]]));
             o[3] = (uint8_t)((p[0][3] + p[1][3] + p[2][3] + p[3][3] + 2) / 4);
         }
     }
@@ -43,7 +81,9 @@ void texture_build_levels(Texture *t)
         k++;
     }
     t->levels = k + 1;
+    Encoder e;
+    encoder_init(&e);
     for (int i = 1; i < t->levels; i++)
-        halve(t->rgba + 4 * t->off[i - 1], t->lw[i - 1], t->lh[i - 1], t->rgba + 4 * t->off[i], t->lw[i],
+        halve(&e, t->rgba + 4 * t->off[i - 1], t->lw[i - 1], t->lh[i - 1], t->rgba + 4 * t->off[i], t->lw[i],
               t->lh[i]);
 }

@@ -68,3 +68,14 @@ uint8_t linear_to_srgb(float v)
     float c = v <= 0.0031308f ? v * 12.92f : 1.055f * powf(v, 1 / 2.4f) - 0.055f;
     return (uint8_t)(c * 255 + 0.5f);
 }
+
+const float *srgb_table(void)
+{
+    return byte_to_linear;
+}
+
+void srgb_enc_init(SrgbEnc *e)
+{
+    for (int i = 0; i <= SRGB_ENC_SIZE; i++)
+        e->b[i] = linear_to_srgb((float)i / SRGB_ENC_SIZE);
+}

@@ -229,6 +229,13 @@ static Reaction act_edges(App *a)
     return RE_RENDER;
 }
 
+static Reaction act_textures(App *a)
+{
+    a->p.no_textures = !a->p.no_textures;
+    snprintf(a->note, sizeof a->note, "textures %s", a->p.no_textures ? "off" : "on");
+    return RE_RENDER;
+}
+
 /* 1, 4, 9, 16 samples a pixel, round */
 static Reaction act_samples(App *a)
 {
@@ -571,6 +578,7 @@ const KeyRow app_keys[] = {
     { "m", "display mode", { { 'm', act_mode } } },
     { "v", "shading", { { 'v', act_shade } } },
     { "e", "outlines (edges)", { { 'e', act_edges } } },
+    { "t", "textures on / off", { { 't', act_textures } } },
     { "S", "samples 1 4 9 16", { { 'S', act_samples } } },
     { "[ ] { }", "light left right up down",
       { { '[', act_light_left }, { ']', act_light_right }, { '{', act_light_up }, { '}', act_light_down } } },

@@ -60,6 +60,8 @@ void app_live_free(App *a)
         loadjob_abandon(a->job);
         a->job = NULL;
     }
+    texjob_abandon(a->tex);
+    a->tex = NULL;
 }
 
 void app_update_name(App *a)
@@ -123,7 +125,11 @@ static int changing(App *a)
 
 void app_warning_note(App *a, const MeshInfo *info, const char *path)
 {
-    if (info->skipped)
+    /* a texture that failed first: the picture looks wrong without a word */
+    if (info->tex_failed)
+        app_note(a, "%s: %u texture%s could not be read (first: %s)", base_name(path), info->tex_failed,
+                 info->tex_failed == 1 ? "" : "s", info->first_tex_failed);
+    else if (info->skipped)
         app_note(a, "%s: %u statement%s skipped (first: %s)", base_name(path), info->skipped,
                  info->skipped == 1 ? "" : "s", info->first_skipped);
     else if (info->warnings)
@@ -300,6 +306,8 @@ Reaction app_load_poll(App *a)
     }
     Reaction r = add_part(a, &part, path);
     scene_free(&part);          /* empty when it went into the scene */
+    if (!a->tex)
+        a->tex = texjob_start(a->s);
     return r;
 }
 

@@ -279,6 +279,7 @@ LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t err
     j->lo.strict = o->strict;
     j->lo.max_polys = o->max_polys;
     j->lo.quiet = 1;            /* curses owns the terminal: warnings go to the status bar */
+    j->lo.tex_defer_side = TEX_DEFER_SIDE;  /* big images after the file shows (texjob.c) */
     j->lo.progress = &j->prog;
     j->lo.cancel = &j->stop;
     j->flip = o->flip;

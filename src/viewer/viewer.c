@@ -70,6 +70,8 @@ static int app_init(App *a, const Options *o, Scene *s)
     }
     a->p.samples = TEXT_SAMPLES;
     pipeline_apply_options(&a->p, o);
+    /* images the load left for later (tex_defer): on their own thread */
+    a->tex = texjob_start(s);
     a->pic_cols = o->w;     /* --size fixes the picture (0: the window's size) */
     a->pic_rows = o->h;
     return 0;
@@ -117,6 +119,7 @@ ViewSettings app_view_settings(const App *a)
         .wireframe = a->p.wireframe,
         .point_size = a->p.point_size,
         .line_width = a->p.line_width,
+        .no_textures = a->p.no_textures,
     };
     return v;
 }
@@ -296,6 +299,8 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
     char busy[96] = "";
     if (a->job)
         loadjob_status(a->job, busy, sizeof busy);
+    else if (a->tex)
+        texjob_status(a->tex, busy, sizeof busy);
     else if (a->p.st.building)
         snprintf(busy, sizeof busy, "building octree...");
     bar_field(&f[BUSY], 0, "%s", busy);
@@ -582,7 +587,7 @@ static int run(App *a, int fps)
                 timeout = pace;
         }
         /* work in the background: wake up to show how it goes */
-        int busy = a->job != NULL || a->p.st.building;
+        int busy = a->job != NULL || a->tex != NULL || a->p.st.building;
         if (busy) {
             double now = now_ms();
             int t = tick > now ? (int)(tick - now + 0.999) : 0;
@@ -607,6 +612,11 @@ static int run(App *a, int fps)
         if (busy && now_ms() >= tick) {
             /* a finished load joins the scene here, on this thread */
             todo |= app_load_poll(a);
+            /* a big texture decoded: in place between frames, then drawn */
+            if (a->tex && !a->sk.on && texjob_poll(&a->tex, a->s, a->note, sizeof a->note))
+                todo |= RE_RENDER;
+            else if (a->tex)
+                todo |= RE_DRAW;    /* its progress in the status line */
             if (a->p.st.building)
                 todo |= RE_RENDER;
             tick = now_ms() + BUSY_TICK_MS;

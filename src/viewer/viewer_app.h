@@ -59,6 +59,19 @@ const char *loadjob_path(const LoadJob *j);
  * the format reports no progress; "building dragon.obj" after parsing. */
 void     loadjob_status(LoadJob *j, char *buf, size_t len);
 
+/* texjob.c: the pending (big) textures of a scene decoded on a thread
+ * of their own. NULL when there are none (or no thread). */
+typedef struct TexJob TexJob;
+TexJob  *texjob_start(Scene *s);
+/* Put the finished ones in place (on the UI thread, between frames);
+ * returns 1 when one was (draw again). A texture that could not be read
+ * says so in note. When every one is done the job is freed (*jp NULL). */
+int      texjob_poll(TexJob **jp, Scene *s, char *note, size_t notelen);
+/* "decoding textures 1/2" */
+void     texjob_status(TexJob *j, char *buf, size_t len);
+/* Stop wanting it: the thread ends alone. */
+void     texjob_abandon(TexJob *j);
+
 typedef struct App {
     const Options *opt;     /* the command line: files and layout, for view commands
                                (points at live below: O, X and E change its files) */
@@ -86,6 +99,7 @@ typedef struct App {
     int         prompting;  /* the open prompt is in the status line */
     Prompt      prompt;
     LoadJob    *job;        /* a file loading in the background, or NULL */
+    TexJob     *tex;        /* big textures decoding in the background, or NULL */
     int         info;       /* the info panel is shown */
     int         confirm;    /* E asked "empty the scene? y/n": the next key answers */
     const char *empty_why;  /* why the last frame covers no pixel, NULL when it covers some */

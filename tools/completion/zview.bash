@@ -50,11 +50,11 @@ _zview()
 
     if [[ $cur == -* && $cur != - ]]; then
         COMPREPLY=($(compgen -W "--help --version --print --output --size --mode --color --shade
-            --info --dump-ids --dump-screen --algo --yaw --pitch --roll --zoom --pan --fit-from
+            --info --check --dump-ids --dump-screen --algo --yaw --pitch --roll --zoom --pan --fit-from
             --move --turn --scale --persp --ortho --cull --grid --max-polys --bench --bench-tty
             --views --threads --json --fps --format --formats --up --flip --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
-            --turntable --point-size --line-width --wireframe --points --strict --bg --contrast" -- "$cur"))
+            --turntable --point-size --line-width --wireframe --points --strict --bg --contrast --no-textures" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
     fi

@@ -1,0 +1,395 @@
+/* check.c: meshcheck_run, object by object, and the verdict in words.
+ *
+ * The passes, for each object: its points (the welded positions its
+ * corners use, renumbered from 0 so that every array is the object's
+ * size, not the file's), the topology (topo.c), the winding and the
+ * measures (shape.c), duplicates, then the crossing pairs (cross.c).
+ * Each pass frees what it built before the next starts: the check's
+ * memory stays within the mesh's own (the benchmark says how far). */
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check_internal.h"
+#include "clock.h"
+
+typedef struct {
+    const Mesh      *m;
+    const CheckOpts *opt;
+    Pool            *pool;
+    uint32_t        *pid;       /* mesh vertex -> welded point */
+    uint32_t        *rep;       /* welded point -> a vertex */
+    uint32_t         np;
+    uint32_t        *loc;       /* welded point -> the object's point, CHECK_NONE */
+    uint32_t        *vpt;       /* mesh vertex -> the object's point */
+    uint32_t        *prep;      /* the object's point -> a vertex */
+    uint8_t         *used;      /* welded point used by a face of any object */
+} Run;
+
+static void counts_empty(CheckCounts *c)
+{
+    memset(c, 0, sizeof *c);
+    for (int k = 0; k < 3; k++) {
+        c->lo[k] = 1;
+        c->hi[k] = -1;
+    }
+}
+
+/* ==== One object ==== */
+
+/* Its faces and corners, the shape of its faces, its points and box. */
+static int obj_prepare(Run *r, ObjCheck *o, const MeshObject *mo, char *err, size_t errlen)
+{
+    const Mesh *m = r->m;
+    o->f0 = mo->face_first;
+    o->nf = mo->face_count;
+    o->c0 = m->face_start[o->f0];
+    uint64_t nc = (uint64_t)m->face_start[o->f0 + o->nf] - o->c0;
+    if (nc >= MATE_FIRST_SPECIAL) {
+        snprintf(err, errlen, "object '%s': too many corners to check", mo->name);
+        return -1;
+    }
+    o->nc = (uint32_t)nc;
+    o->tris = 1;
+    o->max_corners = 0;
+    for (uint32_t f = 0; f < o->nf; f++) {
+        uint32_t n = oc_start(o, f + 1) - oc_start(o, f);
+        o->tris &= n == 3;
+        o->max_corners = n > o->max_corners ? n : o->max_corners;
+    }
+    if (!o->tris) {
+        o->cface = malloc(((size_t)o->nc + 1) * sizeof *o->cface);
+        if (!o->cface)
+            return -1;
+        for (uint32_t f = 0; f < o->nf; f++)
+            for (uint32_t c = oc_start(o, f); c < oc_start(o, f + 1); c++)
+                o->cface[c] = f;
+    }
+    o->vpt = r->vpt;
+    o->prep = r->prep;
+    o->npts = 0;
+    CheckCounts *c = o->c;
+    for (uint32_t k = 0; k < o->nc; k++) {
+        uint32_t v = oc_vert(o, k), g = r->pid[v];
+        if (r->loc[g] == CHECK_NONE) {
+            r->loc[g] = o->npts;
+            r->prep[o->npts++] = v;
+            r->used[g] = 1;
+            const float *p = oc_vpos(o, v);
+            for (int i = 0; i < 3; i++) {
+                c->lo[i] = o->npts == 1 || p[i] < c->lo[i] ? p[i] : c->lo[i];
+                c->hi[i] = o->npts == 1 || p[i] > c->hi[i] ? p[i] : c->hi[i];
+            }
+        }
+        r->vpt[v] = r->loc[g];
+    }
+    c->faces = o->nf;
+    c->vertices = o->npts;
+    for (int i = 0; i < 3; i++)
+        o->ref[i] = o->npts ? ((double)c->lo[i] + c->hi[i]) / 2 : 0;
+    return 0;
+}
+
+static int cancelled(const Run *r)
+{
+    return r->opt->cancel && __atomic_load_n(r->opt->cancel, __ATOMIC_RELAXED);
+}
+
+/* The passes, each timed into ms[]. */
+static int obj_passes(Run *r, ObjCheck *o, double *ms)
+{
+    double t = now_ms();
+    o->mate = malloc(((size_t)o->nc + 1) * sizeof *o->mate);
+    if (!o->mate || check_topology(o))
+        return -1;
+    double t2 = now_ms();
+    ms[CHECK_T_EDGES] += t2 - t;
+    if (cancelled(r) || check_shape(o))
+        return -1;
+    t = now_ms();
+    ms[CHECK_T_SHAPE] += t - t2;
+    if (cancelled(r) || check_duplicates(o))
+        return -1;
+    free(o->mate);
+    free(o->nm_half);
+    free(o->nm_group);
+    o->mate = o->nm_half = o->nm_group = NULL;
+    t2 = now_ms();
+    ms[CHECK_T_DUPS] += t2 - t;
+    if (r->opt->intersections) {
+        if (cancelled(r) || check_crossings(o))
+            return -1;
+        o->c->intersections_tested = 1;
+        ms[CHECK_T_CROSS] += now_ms() - t2;
+    }
+    return cancelled(r) ? -1 : 0;
+}
+
+static int check_object(Run *r, MeshCheck *mc, uint32_t i, char *err, size_t errlen)
+{
+    const MeshObject *mo = &r->m->objs[i];
+    CheckObject *out = &mc->objs[i];
+    snprintf(out->name, sizeof out->name, "%s", mo->name);
+    out->face_first = mo->face_first;
+    out->face_count = mo->face_count;
+    counts_empty(&out->c);
+    ObjCheck o = { .m = r->m, .opt = r->opt, .pool = r->pool, .c = &out->c, .out = out };
+    int rc = -1;
+    if (mc->face_flags) {
+        o.flags = mc->face_flags + mo->face_first;
+        o.part = mc->face_part + mo->face_first;
+    } else {
+        o.flags = calloc((size_t)mo->face_count + 1, 1);
+        o.part = malloc(((size_t)mo->face_count + 1) * sizeof *o.part);
+        if (!o.flags || !o.part)
+            goto out;
+    }
+    if (obj_prepare(r, &o, mo, err, errlen) == 0)
+        rc = obj_passes(r, &o, mc->ms);
+    for (uint32_t p = 0; p < o.npts; p++)
+        r->loc[r->pid[o.prep[p]]] = CHECK_NONE;
+out:
+    free(o.cface);
+    free(o.mate);
+    free(o.nm_half);
+    free(o.nm_group);
+    if (!mc->face_flags) {
+        free(o.flags);
+        free(o.part);
+    }
+    return rc;
+}
+
+/* ==== The file ==== */
+
+/* Vertices no face, point or line of the mesh uses: the file's, and
+ * each object's within the range of vertices it uses. */
+static int count_unused(const Mesh *m, MeshCheck *mc)
+{
+    uint8_t *used = calloc((size_t)m->nverts + 1, 1);
+    if (!used)
+        return -1;
+    uint32_t ncorners = m->nfaces ? m->face_start[m->nfaces] : 0;
+    for (uint32_t c = 0; c < ncorners; c++)
+        used[m->corner[c]] = 1;
+    for (uint32_t i = 0; i < m->npoints; i++)
+        used[m->point ? m->point[i] : i] = 1;
+    uint32_t nl = m->nlines ? m->line_start[m->nlines] : 0;
+    for (uint32_t i = 0; i < nl; i++)
+        used[m->line_corner[i]] = 1;
+    for (uint32_t v = 0; v < m->nverts; v++)
+        mc->file.unused_vertices += !used[v];
+    for (uint32_t i = 0; i < mc->nobjs; i++) {
+        const MeshObject *mo = &m->objs[i];
+        if (mo->face_count + mo->point_count + mo->line_count == 0)
+            continue;
+        for (uint32_t v = mo->vert_min; v <= mo->vert_max && v < m->nverts; v++)
+            mc->objs[i].c.unused_vertices += !used[v];
+    }
+    free(used);
+    return 0;
+}
+
+/* The file's figures: the objects' with faces, summed. */
+static void file_totals(MeshCheck *mc, uint32_t used_points)
+{
+    CheckCounts *f = &mc->file;
+    uint32_t unused = f->unused_vertices;
+    counts_empty(f);
+    f->unused_vertices = unused;
+    f->vertices = used_points;
+    int any = 0;
+    double mom[3] = { 0, 0, 0 };
+    f->closed = f->watertight = f->has_volume = f->intersections_tested = 1;
+    for (uint32_t i = 0; i < mc->nobjs; i++) {
+        const CheckCounts *c = &mc->objs[i].c;
+        if (!c->faces)
+            continue;
+        f->faces += c->faces;
+        f->components += c->components;
+        f->boundary_edges += c->boundary_edges;
+        f->holes += c->holes;
+        f->nonmanifold_edges += c->nonmanifold_edges;
+        f->nonmanifold_vertices += c->nonmanifold_vertices;
+        f->inconsistent_faces += c->inconsistent_faces;
+        f->nonorientable += c->nonorientable;
+        f->degenerate_faces += c->degenerate_faces;
+        f->duplicate_faces += c->duplicate_faces;
+        f->self_intersections += c->self_intersections;
+        f->intersections_tested &= c->intersections_tested;
+        f->closed &= c->closed;
+        f->watertight &= c->watertight;
+        f->has_volume &= c->has_volume;
+        f->inside_out |= c->inside_out;
+        f->area += c->area;
+        f->volume += c->volume;
+        for (int k = 0; k < 3; k++) {
+            mom[k] += c->volume * c->centre[k];
+            f->lo[k] = !any || c->lo[k] < f->lo[k] ? c->lo[k] : f->lo[k];
+            f->hi[k] = !any || c->hi[k] > f->hi[k] ? c->hi[k] : f->hi[k];
+        }
+        any = 1;
+    }
+    if (!any)
+        f->closed = f->watertight = f->has_volume = f->intersections_tested = 0;
+    if (!f->has_volume)
+        f->volume = 0;
+    for (int k = 0; k < 3; k++)
+        f->centre[k] = f->has_volume && f->volume > 0 ? mom[k] / f->volume : 0;
+}
+
+static void run_free(Run *r)
+{
+    free(r->pid);
+    free(r->rep);
+    free(r->loc);
+    free(r->vpt);
+    free(r->prep);
+    free(r->used);
+    pool_free(r->pool);
+}
+
+static int run_start(Run *r, MeshCheck *mc)
+{
+    const Mesh *m = r->m;
+    size_t nv = (size_t)m->nverts + 1;
+    double t = now_ms();
+    r->pid = malloc(nv * sizeof *r->pid);
+    if (!r->pid || check_weld(m, r->pid, &r->rep, &r->np))
+        return -1;
+    mc->ms[CHECK_T_WELD] = now_ms() - t;
+    r->loc = malloc(((size_t)r->np + 1) * sizeof *r->loc);
+    r->prep = malloc(((size_t)r->np + 1) * sizeof *r->prep);
+    r->used = calloc((size_t)r->np + 1, 1);
+    r->vpt = malloc(nv * sizeof *r->vpt);
+    if (!r->loc || !r->prep || !r->used || !r->vpt)
+        return -1;
+    memset(r->loc, 0xff, ((size_t)r->np + 1) * sizeof *r->loc);
+    if (r->opt->intersections && r->opt->threads > 1)
+        r->pool = pool_create(r->opt->threads - 1);     /* NULL: the caller alone, still right */
+    mc->nobjs = m->nobjs;
+    mc->objs = calloc((size_t)m->nobjs + 1, sizeof *mc->objs);
+    if (!mc->objs)
+        return -1;
+    if (r->opt->detail) {
+        mc->face_flags = calloc((size_t)m->nfaces + 1, 1);
+        mc->face_part = calloc((size_t)m->nfaces + 1, sizeof *mc->face_part);
+        if (!mc->face_flags || !mc->face_part)
+            return -1;
+    }
+    return 0;
+}
+
+int meshcheck_run(MeshCheck *mc, const Mesh *m, const CheckOpts *opt, char *err, size_t errlen)
+{
+    memset(mc, 0, sizeof *mc);
+    snprintf(mc->unit, sizeof mc->unit, "%s", m->info.unit);
+    Run r = { .m = m, .opt = opt };
+    err[0] = 0;
+    int rc = run_start(&r, mc);
+    for (uint32_t i = 0; rc == 0 && i < m->nobjs; i++)
+        rc = check_object(&r, mc, i, err, errlen);
+    if (rc == 0)
+        rc = count_unused(m, mc);
+    uint32_t used = 0;
+    for (uint32_t p = 0; rc == 0 && p < r.np; p++)
+        used += r.used[p];
+    run_free(&r);
+    if (rc) {
+        if (!err[0])
+            snprintf(err, errlen, "%s: %s", m->path ? m->path : "(input)",
+                     cancelled(&r) ? "cancelled" : "out of memory checking the model");
+        meshcheck_free(mc);
+        return -1;
+    }
+    file_totals(mc, used);
+    return 0;
+}
+
+void meshcheck_free(MeshCheck *mc)
+{
+    for (uint32_t i = 0; mc->objs && i < mc->nobjs; i++) {
+        free(mc->objs[i].boundary);
+        free(mc->objs[i].nm_edges);
+        free(mc->objs[i].nm_verts);
+        free(mc->objs[i].pairs);
+    }
+    free(mc->objs);
+    free(mc->face_flags);
+    free(mc->face_part);
+    memset(mc, 0, sizeof *mc);
+}
+
+/* ==== The verdict ==== */
+
+int meshcheck_sound(const CheckCounts *c)
+{
+    return c->faces > 0 && c->boundary_edges == 0 && c->nonmanifold_edges == 0 && c->nonmanifold_vertices == 0 &&
+           c->nonorientable == 0 && c->inconsistent_faces == 0 && !c->inside_out && c->degenerate_faces == 0 &&
+           c->duplicate_faces == 0 && c->self_intersections == 0;
+}
+
+typedef struct {
+    char (*item)[CHECK_PROBLEM_LEN];
+    int   max, n;
+} Problems;
+
+static void say(Problems *p, const char *text)
+{
+    if (p->n < p->max)
+        snprintf(p->item[p->n], CHECK_PROBLEM_LEN, "%s", text);
+    p->n++;
+}
+
+static void say_n(Problems *p, unsigned long long n, const char *one, const char *many)
+{
+    char t[CHECK_PROBLEM_LEN];
+    snprintf(t, sizeof t, "%llu %s", n, n == 1 ? one : many);
+    say(p, t);
+}
+
+int meshcheck_problems(const CheckCounts *c, char (*item)[CHECK_PROBLEM_LEN], int max)
+{
+    Problems p = { item, max, 0 };
+    if (c->faces == 0)
+        say(&p, "no faces");
+    if (c->boundary_edges) {
+        char t[CHECK_PROBLEM_LEN];
+        snprintf(t, sizeof t, "%u hole%s (%u boundary edge%s)", c->holes, c->holes == 1 ? "" : "s",
+                 c->boundary_edges, c->boundary_edges == 1 ? "" : "s");
+        say(&p, t);
+    }
+    if (c->nonmanifold_edges)
+        say_n(&p, c->nonmanifold_edges, "non-manifold edge", "non-manifold edges");
+    if (c->nonmanifold_vertices)
+        say_n(&p, c->nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices");
+    if (c->nonorientable)
+        say_n(&p, c->nonorientable, "non-orientable part", "non-orientable parts");
+    if (c->inconsistent_faces)
+        say_n(&p, c->inconsistent_faces, "flipped face", "flipped faces");
+    if (c->inside_out)
+        say(&p, "inside out");
+    if (c->degenerate_faces)
+        say_n(&p, c->degenerate_faces, "degenerate face", "degenerate faces");
+    if (c->duplicate_faces)
+        say_n(&p, c->duplicate_faces, "duplicate face", "duplicate faces");
+    if (c->self_intersections)
+        say_n(&p, c->self_intersections, "intersecting face pair", "intersecting face pairs");
+    return p.n;
+}
+
+int meshcheck_verdict(const CheckCounts *c, char *buf, size_t n)
+{
+    char item[CHECK_PROBLEMS_MAX][CHECK_PROBLEM_LEN];
+    int k = meshcheck_problems(c, item, CHECK_PROBLEMS_MAX);
+    if (!n)
+        return k;
+    snprintf(buf, n, "%s", k ? "" : "sound");
+    size_t len = strlen(buf);
+    for (int i = 0; i < k && len + 1 < n; i++) {
+        int w = snprintf(buf + len, n - len, "%s%s", i ? ", " : "", item[i]);
+        len = w > 0 && len + (size_t)w < n ? len + (size_t)w : n - 1;
+    }
+    return k;
+}

@@ -1,0 +1,303 @@
+/* topo.c: the topology of one object on its points. Which faces share
+ * each edge (the half-edge pairing), and from it the boundary edges and
+ * holes, the non-manifold edges and vertices (the parts are counted
+ * with the winding, in shape.c).
+ *
+ * Edges are found without a hash table: the half-edges are bucketed by
+ * the point they leave (a counting sort), each bucket sorted by the
+ * point they reach, and the edge {a, b} is the run a -> b in a's bucket
+ * with the run b -> a in b's (found by binary search). An edge with one
+ * half-edge is a boundary edge, with two a manifold one (its half-edges
+ * are each other's mate), with more a non-manifold one.
+ *
+ * Holes are the independent cycles of the graph of boundary edges
+ * (edges - points + connected pieces, by union-find over points): one
+ * per closed loop, two where two loops touch at a point. A vertex is
+ * non-manifold when the corners around it fall into more than one fan:
+ * corners are joined across each edge at its two ends (union-find over
+ * corners), and a point whose corners make two sets or more is where
+ * separate fans meet (two cones tip to tip, two cubes touching at a
+ * corner). */
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "check_internal.h"
+
+/* ==== The half-edge buckets ==== */
+
+typedef struct {
+    uint32_t *off;      /* npts + 1: point a's half-edges are [off[a], off[a + 1]) */
+    uint32_t *to;       /* the point each reaches */
+    uint32_t *he;       /* the half-edge (relative corner) */
+} Buckets;
+
+static void buckets_free(Buckets *b)
+{
+    free(b->off);
+    free(b->to);
+    free(b->he);
+    memset(b, 0, sizeof *b);
+}
+
+/* Sort one bucket by the point reached, keeping corner order within a
+ * run (so that the runs list their faces in file order). Short buckets,
+ * nearly all of them, by insertion; a long one (the centre of a fan of
+ * thousands) through packed keys and qsort, in `scratch`. */
+static int cmp_u64(const void *x, const void *y)
+{
+    uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
+    return a < b ? -1 : a > b;
+}
+
+static void bucket_sort(uint32_t *to, uint32_t *he, uint32_t n, uint64_t *scratch)
+{
+    if (n <= 32) {
+        for (uint32_t i = 1; i < n; i++) {
+            uint32_t t = to[i], h = he[i], j = i;
+            for (; j > 0 && to[j - 1] > t; j--) {
+                to[j] = to[j - 1];
+                he[j] = he[j - 1];
+            }
+            to[j] = t;
+            he[j] = h;
+        }
+        return;
+    }
+    for (uint32_t i = 0; i < n; i++)
+        scratch[i] = (uint64_t)to[i] << 32 | he[i];
+    qsort(scratch, n, sizeof *scratch, cmp_u64);
+    for (uint32_t i = 0; i < n; i++) {
+        to[i] = (uint32_t)(scratch[i] >> 32);
+        he[i] = (uint32_t)scratch[i];
+    }
+}
+
+/* Bucket every half-edge that joins two different points; mate[] of the
+ * others is MATE_DEGENERATE. mate[] first holds each corner's point, so
+ * that the counting and the filling passes look each up once. */
+static int buckets_build(ObjCheck *o, Buckets *b)
+{
+    uint32_t np = o->npts, nc = o->nc, *pt = o->mate;
+    b->off = calloc((size_t)np + 1, sizeof *b->off);
+    if (!b->off)
+        return -1;
+    for (uint32_t c = 0; c < nc; c++)
+        pt[c] = oc_pt(o, c);
+    uint32_t nhe = 0;
+    for (uint32_t c = 0; c < nc; c++)
+        if (pt[c] != pt[oc_next(o, c)]) {
+            b->off[pt[c] + 1]++;
+            nhe++;
+        }
+    uint32_t maxdeg = 0;
+    for (uint32_t p = 0; p < np; p++) {
+        if (b->off[p + 1] > maxdeg)
+            maxdeg = b->off[p + 1];
+        b->off[p + 1] += b->off[p];
+    }
+    b->to = malloc(((size_t)nhe + 1) * sizeof *b->to);
+    b->he = malloc(((size_t)nhe + 1) * sizeof *b->he);
+    uint64_t *scratch = maxdeg > 32 ? malloc((size_t)maxdeg * sizeof *scratch) : NULL;
+    if (!b->to || !b->he || (maxdeg > 32 && !scratch)) {
+        free(scratch);
+        return -1;
+    }
+    /* fill with off[p] as the cursor, then shift it back one bucket;
+     * a face's points are read before its mate[] entries are set */
+    for (uint32_t f = 0; f < o->nf; f++) {
+        uint32_t s = oc_start(o, f), e = oc_start(o, f + 1), first = e > s ? pt[s] : 0;
+        for (uint32_t c = s; c < e; c++) {
+            uint32_t p = pt[c], q = c + 1 < e ? pt[c + 1] : first;
+            if (p == q) {
+                pt[c] = MATE_DEGENERATE;
+                continue;
+            }
+            uint32_t k = b->off[p]++;
+            b->to[k] = q;
+            b->he[k] = c;
+            pt[c] = MATE_BOUNDARY;      /* until a partner turns up */
+        }
+    }
+    memmove(b->off + 1, b->off, (size_t)np * sizeof *b->off);
+    b->off[0] = 0;
+    for (uint32_t p = 0; p < np; p++)
+        bucket_sort(b->to + b->off[p], b->he + b->off[p], b->off[p + 1] - b->off[p], scratch);
+    free(scratch);
+    return 0;
+}
+
+/* The run of half-edges reaching `a` in point p's sorted bucket:
+ * [*lo, *hi), empty when there is none. */
+static void find_run(const Buckets *b, uint32_t p, uint32_t a, uint32_t *lo, uint32_t *hi)
+{
+    uint32_t l = b->off[p], h = b->off[p + 1];
+    while (l < h) {
+        uint32_t mid = l + (h - l) / 2;
+        if (b->to[mid] < a)
+            l = mid + 1;
+        else
+            h = mid;
+    }
+    uint32_t e = l;
+    while (e < b->off[p + 1] && b->to[e] == a)
+        e++;
+    *lo = l;
+    *hi = e;
+}
+
+/* ==== Classifying the edges ==== */
+
+static int push_edge(ObjCheck *o, uint32_t **list, size_t *n, size_t *cap, uint32_t c)
+{
+    if (!o->opt->detail)
+        return 0;
+    return check_push(list, n, cap, oc_vert(o, c)) || check_push(list, n, cap, oc_vert(o, oc_next(o, c)));
+}
+
+typedef struct {
+    size_t nb, capb, nn, capn;      /* the detail lists' lengths and capacities */
+} EdgeLists;
+
+/* The edge whose half-edges are same[0..ns) (a -> b) and opp[0..no)
+ * (b -> a). */
+static int edge_group(ObjCheck *o, EdgeLists *l, const uint32_t *same, uint32_t ns, const uint32_t *opp,
+                      uint32_t no)
+{
+    uint32_t n = ns + no;
+    uint32_t first = ns ? same[0] : opp[0];
+    if (n == 1) {
+        o->c->boundary_edges++;
+        o->flags[oc_face(o, first)] |= CHECK_OPEN;
+        return push_edge(o, &o->out->boundary, &l->nb, &l->capb, first);
+    }
+    if (n == 2) {
+        uint32_t h1 = first, h2 = ns == 2 ? same[1] : no == 2 ? opp[1] : opp[0];
+        o->mate[h1] = h2;
+        o->mate[h2] = h1;
+        return 0;
+    }
+    o->c->nonmanifold_edges++;
+    if (check_push(&o->nm_group, &o->nm_ngroup, &o->nm_group_cap, (uint32_t)o->nm_nhalf))
+        return -1;
+    for (uint32_t k = 0; k < n; k++) {
+        uint32_t h = k < ns ? same[k] : opp[k - ns];
+        o->mate[h] = MATE_NONMANIF;
+        o->flags[oc_face(o, h)] |= CHECK_NONMANIFOLD;
+        if (check_push(&o->nm_half, &o->nm_nhalf, &o->nm_half_cap, h))
+            return -1;
+    }
+    return push_edge(o, &o->out->nm_edges, &l->nn, &l->capn, first);
+}
+
+/* Every edge once: from the bucket of its smaller point, or from the
+ * only bucket that has it. */
+static int classify(ObjCheck *o, const Buckets *b)
+{
+    EdgeLists l = { 0 };
+    for (uint32_t a = 0; a < o->npts; a++) {
+        uint32_t j = b->off[a], end = b->off[a + 1];
+        while (j < end) {
+            uint32_t pb = b->to[j], j1 = j + 1;
+            while (j1 < end && b->to[j1] == pb)
+                j1++;
+            uint32_t k0, k1;
+            find_run(b, pb, a, &k0, &k1);
+            if (!(pb < a && k1 > k0) && edge_group(o, &l, b->he + j, j1 - j, b->he + k0, k1 - k0))
+                return -1;
+            j = j1;
+        }
+    }
+    return check_push(&o->nm_group, &o->nm_ngroup, &o->nm_group_cap, (uint32_t)o->nm_nhalf);
+}
+
+/* ==== Holes, fans, parts ==== */
+
+static int count_holes(ObjCheck *o)
+{
+    uint32_t *uf = check_identity(o->npts);
+    if (!uf)
+        return -1;
+    uint32_t merged = 0;
+    for (uint32_t c = 0; c < o->nc; c++)
+        if (o->mate[c] == MATE_BOUNDARY)
+            merged += (uint32_t)check_union(uf, oc_pt(o, c), oc_pt(o, oc_next(o, c)));
+    o->c->holes = o->c->boundary_edges - merged;
+    free(uf);
+    return 0;
+}
+
+/* Join the corners at each end of the manifold edge of half-edges h1 and
+ * h2: h1 runs a -> b; h2 runs b -> a when the two agree, a -> b when
+ * they do not. */
+static void join_pair(ObjCheck *o, uint32_t *uf, uint32_t h1, uint32_t h2)
+{
+    uint32_t n1 = oc_next(o, h1), n2 = oc_next(o, h2);
+    if (oc_pt(o, h1) != oc_pt(o, h2)) {
+        check_union(uf, h1, n2);
+        check_union(uf, n1, h2);
+    } else {
+        check_union(uf, h1, h2);
+        check_union(uf, n1, n2);
+    }
+}
+
+/* The corners at each end of a non-manifold edge, all joined. */
+static void join_group(ObjCheck *o, uint32_t *uf, const uint32_t *h, uint32_t n)
+{
+    uint32_t a = oc_pt(o, h[0]), at_a = h[0], at_b = oc_next(o, h[0]);
+    for (uint32_t k = 1; k < n; k++) {
+        uint32_t nk = oc_next(o, h[k]);
+        int from_a = oc_pt(o, h[k]) == a;
+        check_union(uf, at_a, from_a ? h[k] : nk);
+        check_union(uf, at_b, from_a ? nk : h[k]);
+    }
+}
+
+static int count_fans(ObjCheck *o)
+{
+    uint32_t *uf = check_identity(o->nc);
+    uint8_t *fans = calloc((size_t)o->npts + 1, 1);
+    if (!uf || !fans) {
+        free(uf);
+        free(fans);
+        return -1;
+    }
+    for (uint32_t c = 0; c < o->nc; c++) {
+        uint32_t m = o->mate[c];
+        if (m < MATE_FIRST_SPECIAL && c < m)
+            join_pair(o, uf, c, m);
+        else if (m == MATE_DEGENERATE)
+            check_union(uf, c, oc_next(o, c));  /* a point repeated in a row is one corner */
+    }
+    for (size_t g = 0; g + 1 < o->nm_ngroup; g++)
+        join_group(o, uf, o->nm_half + o->nm_group[g], o->nm_group[g + 1] - o->nm_group[g]);
+    for (uint32_t c = 0; c < o->nc; c++)
+        if (check_find(uf, c) == c) {
+            uint32_t p = oc_pt(o, c);
+            if (fans[p] < 2)
+                fans[p]++;
+        }
+    free(uf);
+    size_t n = 0, cap = 0;
+    int r = 0;
+    for (uint32_t p = 0; p < o->npts && !r; p++)
+        if (fans[p] >= 2) {
+            o->c->nonmanifold_vertices++;
+            if (o->opt->detail)
+                r = check_push(&o->out->nm_verts, &n, &cap, o->prep[p]);
+        }
+    free(fans);
+    return r;
+}
+
+int check_topology(ObjCheck *o)
+{
+    Buckets b = { 0 };
+    if (buckets_build(o, &b) || classify(o, &b)) {
+        buckets_free(&b);
+        return -1;
+    }
+    buckets_free(&b);
+    return count_holes(o) || count_fans(o) ? -1 : 0;
+}

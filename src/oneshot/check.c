@@ -1,0 +1,351 @@
+/* check.c: --check FILE...: is each model right? Every file is loaded on
+ * its own, checked (check/: meshcheck_run) and freed before the next, so
+ * that the memory is one model's; the picture, when --print or -o asks
+ * for one, comes first, then the report: a block per file (and per
+ * object when a file has several), then one verdict line. --json
+ * prints one JSON document instead (the schema is in the man page and
+ * the README). Exit status: 0 sound, 3 problems found, 1 a file could
+ * not be read (or the output not written). */
+
+#define _DEFAULT_SOURCE
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "meshcheck.h"
+#include "oneshot.h"
+
+typedef struct {
+    const char *path;
+    int         read;           /* loaded and checked; else err says why */
+    char        err[512];
+    char        format[32];
+    MeshCheck   mc;
+} FileCheck;
+
+/* ==== Checking ==== */
+
+static int check_file(const Options *o, FileCheck *fc)
+{
+    MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys };
+    Mesh m;
+    if (mesh_load_ex(&m, fc->path, &lo, fc->err, sizeof fc->err))
+        return -1;
+    if (o->flip)
+        mesh_flip_winding(&m);
+    /* the check reads positions and faces only: what else it holds goes
+     * first, so that the check's memory comes out of the model's */
+    free(m.face_mat);
+    m.face_mat = NULL;
+    free(m.rgb);
+    m.rgb = NULL;
+    snprintf(fc->format, sizeof fc->format, "%s", m.info.format);
+    CheckOpts co = { .threads = o->threads > 0 ? o->threads : default_threads(), .intersections = 1 };
+    int r = meshcheck_run(&fc->mc, &m, &co, fc->err, sizeof fc->err);
+    mesh_free(&m);
+    if (r)
+        return -1;
+    fc->read = 1;
+    return 0;
+}
+
+/* The picture --print or -o asks for, of all the files as one scene, as
+ * without --check. */
+static int picture(const Options *o)
+{
+    char err[512];
+    Scene s;
+    if (app_check_output(o, err, sizeof err) || app_load_scene(o, &s, err, sizeof err)) {
+        fprintf(stderr, "zview: %s\n", err);
+        return 1;
+    }
+    int rc = app_oneshot(o, &s);
+    scene_free(&s);
+    fflush(stdout);
+    return rc;
+}
+
+/* ==== The text report ==== */
+
+/* "mm", "mm^2": the unit the format states, to a power. */
+static const char *unit_of(const FileCheck *fc, int power, char *buf, size_t n)
+{
+    if (!fc->mc.unit[0])
+        return "";
+    if (power == 1)
+        snprintf(buf, n, " %s", fc->mc.unit);
+    else
+        snprintf(buf, n, " %s^%d", fc->mc.unit, power);
+    return buf;
+}
+
+static void text_counts(Out *out, const FileCheck *fc, const CheckCounts *c, const char *ind)
+{
+    char u1[16], u2[16], u3[16], words[512];
+    if (!c->faces) {
+        out_printf(out, "%sfaces         none\n", ind);
+        return;
+    }
+    out_printf(out, "%ssize          %g x %g x %g%s\n", ind, (double)c->hi[0] - c->lo[0],
+               (double)c->hi[1] - c->lo[1], (double)c->hi[2] - c->lo[2],
+               fc->mc.unit[0] ? unit_of(fc, 1, u1, sizeof u1) : " (file units; the format states none)");
+    out_printf(out, "%sarea          %g%s\n", ind, c->area, unit_of(fc, 2, u2, sizeof u2));
+    if (c->has_volume)
+        out_printf(out, "%svolume        %g%s, centre of mass %g %g %g\n", ind, c->volume, unit_of(fc, 3, u3, sizeof u3),
+                   c->centre[0], c->centre[1], c->centre[2]);
+    else
+        out_printf(out, "%svolume        none: %s\n", ind, c->closed ? "not orientable" : "not closed");
+    out_printf(out, "%sparts         %u\n", ind, c->components);
+    out_printf(out, "%sfaces         %u, %u degenerate, %u duplicate\n", ind, c->faces, c->degenerate_faces,
+               c->duplicate_faces);
+    out_printf(out, "%svertices      %u, %u non-manifold, %u unused\n", ind, c->vertices, c->nonmanifold_vertices,
+               c->unused_vertices);
+    out_printf(out, "%sedges         %u boundary in %u hole%s, %u non-manifold%s\n", ind, c->boundary_edges, c->holes,
+               c->holes == 1 ? "" : "s", c->nonmanifold_edges, c->watertight ? " (watertight)" : "");
+    if (c->nonorientable)
+        out_printf(out, "%swinding       %u non-orientable part%s: no flip makes it agree\n", ind, c->nonorientable,
+                   c->nonorientable == 1 ? "" : "s");
+    else
+        out_printf(out, "%swinding       %u flipped face%s%s\n", ind, c->inconsistent_faces,
+                   c->inconsistent_faces == 1 ? "" : "s", c->inside_out ? ", inside out" : "");
+    out_printf(out, "%scrossing      %llu pair%s of faces\n", ind, (unsigned long long)c->self_intersections,
+               c->self_intersections == 1 ? "" : "s");
+    meshcheck_verdict(c, words, sizeof words);
+    out_printf(out, "%s%-14s%s\n", ind, meshcheck_sound(c) ? "verdict" : "problems", words);
+}
+
+static void text_file(Out *out, const FileCheck *fc)
+{
+    if (!fc->read) {
+        /* the message names the file already */
+        size_t n = strlen(fc->path);
+        const char *why = !strncmp(fc->err, fc->path, n) && !strncmp(fc->err + n, ": ", 2) ? fc->err + n + 2 : fc->err;
+        out_printf(out, "%s: not read: %s\n", fc->path, why);
+        return;
+    }
+    const MeshCheck *mc = &fc->mc;
+    uint32_t nobj = 0;
+    for (uint32_t i = 0; i < mc->nobjs; i++)
+        nobj += mc->objs[i].c.faces > 0;
+    out_printf(out, "%s (%s)", fc->path, fc->format);
+    if (nobj > 1) {
+        out_printf(out, ": %u objects\n", nobj);
+        for (uint32_t i = 0, k = 0; i < mc->nobjs; i++)
+            if (mc->objs[i].c.faces) {
+                out_printf(out, "  object %u \"%s\"\n", ++k, mc->objs[i].name);
+                text_counts(out, fc, &mc->objs[i].c, "    ");
+            }
+        out_printf(out, "  all %u objects\n", nobj);
+        text_counts(out, fc, &mc->file, "    ");
+    } else {
+        out_printf(out, "\n");
+        text_counts(out, fc, &mc->file, "  ");
+    }
+}
+
+/* The last line: sound, or every file's problems. */
+static void text_verdict(Out *out, const FileCheck *fcs, int n)
+{
+    int bad = 0;
+    for (int i = 0; i < n; i++)
+        bad += !fcs[i].read || !meshcheck_sound(&fcs[i].mc.file);
+    if (!bad) {
+        out_printf(out, "verdict: sound\n");
+        return;
+    }
+    out_printf(out, "verdict: ");
+    for (int i = 0, k = 0; i < n; i++) {
+        char words[512];
+        if (fcs[i].read && meshcheck_sound(&fcs[i].mc.file))
+            continue;
+        if (fcs[i].read)
+            meshcheck_verdict(&fcs[i].mc.file, words, sizeof words);
+        out_printf(out, "%s%s: %s", k++ ? "; " : "", fcs[i].path, fcs[i].read ? words : "not read");
+    }
+    out_printf(out, "\n");
+}
+
+/* ==== JSON ==== */
+
+/* Bytes of the well-formed UTF-8 sequence at p (1 .. 4), 0 when it is
+ * not one (overlong, a surrogate, past U+10FFFF, cut short). */
+static int utf8_len(const unsigned char *p)
+{
+    if (p[0] < 0x80)
+        return 1;
+    int n = p[0] >= 0xf0 ? 4 : p[0] >= 0xe0 ? 3 : p[0] >= 0xc2 ? 2 : 0;
+    if (!n || p[0] > 0xf4)
+        return 0;
+    for (int i = 1; i < n; i++)
+        if ((p[i] & 0xc0) != 0x80)
+            return 0;
+    if ((n == 3 && p[0] == 0xe0 && p[1] < 0xa0) || (n == 3 && p[0] == 0xed && p[1] >= 0xa0) ||
+        (n == 4 && p[0] == 0xf0 && p[1] < 0x90) || (n == 4 && p[0] == 0xf4 && p[1] >= 0x90))
+        return 0;
+    return n;
+}
+
+/* A JSON string: quotes, backslashes and control bytes escaped, a byte
+ * that is not UTF-8 (an object name in Latin-1) as U+FFFD. */
+static void json_str(Out *out, const char *s)
+{
+    out_write(out, "\"", 1);
+    for (const unsigned char *p = (const unsigned char *)s; *p;) {
+        int n = utf8_len(p);
+        if (n == 0) {
+            out_printf(out, "\\ufffd");
+            p++;
+        } else if (n == 1 && (*p == '"' || *p == '\\')) {
+            out_printf(out, "\\%c", *p++);
+        } else if (n == 1 && *p < 0x20) {
+            out_printf(out, "\\u%04x", *p++);
+        } else {
+            out_write(out, p, (size_t)n);
+            p += n;
+        }
+    }
+    out_write(out, "\"", 1);
+}
+
+static const char *json_bool(int b)
+{
+    return b ? "true" : "false";
+}
+
+/* The figures of one object or file, as members after others. */
+static void json_counts(Out *out, const CheckCounts *c, const char *ind)
+{
+    out_printf(out, ",\n%s\"faces\": %u,\n%s\"vertices\": %u,\n%s\"components\": %u", ind, c->faces, ind,
+               c->vertices, ind, c->components);
+    out_printf(out, ",\n%s\"boundary_edges\": %u,\n%s\"holes\": %u,\n%s\"nonmanifold_edges\": %u", ind,
+               c->boundary_edges, ind, c->holes, ind, c->nonmanifold_edges);
+    out_printf(out, ",\n%s\"nonmanifold_vertices\": %u,\n%s\"inconsistent_faces\": %u,\n%s\"non_orientable\": %s",
+               ind, c->nonmanifold_vertices, ind, c->inconsistent_faces, ind, json_bool(c->nonorientable > 0));
+    out_printf(out, ",\n%s\"inside_out\": %s,\n%s\"degenerate_faces\": %u,\n%s\"duplicate_faces\": %u", ind,
+               json_bool(c->inside_out), ind, c->degenerate_faces, ind, c->duplicate_faces);
+    out_printf(out, ",\n%s\"unused_vertices\": %u,\n%s\"self_intersections\": %llu,\n%s\"watertight\": %s", ind,
+               c->unused_vertices, ind, (unsigned long long)c->self_intersections, ind, json_bool(c->watertight));
+    out_printf(out, ",\n%s\"area\": %.9g", ind, c->area);
+    if (c->has_volume)
+        out_printf(out, ",\n%s\"volume\": %.9g,\n%s\"center_of_mass\": [%.9g, %.9g, %.9g]", ind, c->volume, ind,
+                   c->centre[0], c->centre[1], c->centre[2]);
+    else
+        out_printf(out, ",\n%s\"volume\": null,\n%s\"center_of_mass\": null", ind, ind);
+    if (c->faces)
+        out_printf(out, ",\n%s\"size\": [%.9g, %.9g, %.9g],\n%s\"min\": [%.9g, %.9g, %.9g]", ind,
+                   (double)c->hi[0] - c->lo[0], (double)c->hi[1] - c->lo[1], (double)c->hi[2] - c->lo[2], ind,
+                   c->lo[0], c->lo[1], c->lo[2]);
+    else
+        out_printf(out, ",\n%s\"size\": null,\n%s\"min\": null", ind, ind);
+    char item[CHECK_PROBLEMS_MAX][CHECK_PROBLEM_LEN];
+    int k = meshcheck_problems(c, item, CHECK_PROBLEMS_MAX);
+    out_printf(out, ",\n%s\"problems\": [", ind);
+    for (int i = 0; i < k; i++) {
+        out_printf(out, "%s", i ? ", " : "");
+        json_str(out, item[i]);
+    }
+    out_printf(out, "]");
+}
+
+static void json_file(Out *out, const FileCheck *fc, int first)
+{
+    out_printf(out, "%s\n    {\n      \"path\": ", first ? "" : ",");
+    json_str(out, fc->path);
+    if (!fc->read) {
+        out_printf(out, ",\n      \"ok\": false,\n      \"error\": ");
+        json_str(out, fc->err);
+        out_printf(out, "\n    }");
+        return;
+    }
+    out_printf(out, ",\n      \"format\": ");
+    json_str(out, fc->format);
+    out_printf(out, ",\n      \"unit\": ");
+    if (fc->mc.unit[0])
+        json_str(out, fc->mc.unit);
+    else
+        out_printf(out, "null");
+    uint32_t nobj = 0;
+    for (uint32_t i = 0; i < fc->mc.nobjs; i++)
+        nobj += fc->mc.objs[i].c.faces > 0;
+    out_printf(out, ",\n      \"ok\": %s,\n      \"object_count\": %u", json_bool(meshcheck_sound(&fc->mc.file)),
+               nobj);
+    json_counts(out, &fc->mc.file, "      ");
+    out_printf(out, "\n    }");
+}
+
+/* The objects with faces (a file without any: the file as one). */
+static void json_objects(Out *out, const FileCheck *fc, int *first)
+{
+    const MeshCheck *mc = &fc->mc;
+    int any = 0;
+    for (uint32_t i = 0; i <= mc->nobjs; i++) {
+        const CheckCounts *c = i < mc->nobjs ? &mc->objs[i].c : &mc->file;
+        if (i < mc->nobjs ? !c->faces : any)
+            continue;
+        any = 1;
+        out_printf(out, "%s\n    {\n      \"file\": ", *first ? "" : ",");
+        json_str(out, fc->path);
+        out_printf(out, ",\n      \"name\": ");
+        json_str(out, i < mc->nobjs ? mc->objs[i].name : fc->path);
+        out_printf(out, ",\n      \"ok\": %s", json_bool(meshcheck_sound(c)));
+        json_counts(out, c, "      ");
+        out_printf(out, "\n    }");
+        *first = 0;
+    }
+}
+
+static void json_report(Out *out, const FileCheck *fcs, int n)
+{
+    int ok = 1;
+    for (int i = 0; i < n; i++)
+        ok &= fcs[i].read && meshcheck_sound(&fcs[i].mc.file);
+    out_printf(out, "{\n  \"ok\": %s,\n  \"files\": [", json_bool(ok));
+    for (int i = 0; i < n; i++)
+        json_file(out, &fcs[i], i == 0);
+    out_printf(out, "\n  ],\n  \"objects\": [");
+    int first = 1;
+    for (int i = 0; i < n; i++)
+        if (fcs[i].read)
+            json_objects(out, &fcs[i], &first);
+    out_printf(out, "\n  ]\n}\n");
+}
+
+/* ==== The front door ==== */
+
+int app_check(const Options *o)
+{
+    FileCheck *fcs = calloc((size_t)o->nfiles + 1, sizeof *fcs);
+    if (!fcs) {
+        fprintf(stderr, "zview: out of memory\n");
+        return 1;
+    }
+    int unread = 0, bad = 0, rc = 0;
+    for (int i = 0; i < o->nfiles; i++) {
+        fcs[i].path = o->files[i];
+        if (check_file(o, &fcs[i])) {
+            fprintf(stderr, "zview: %s\n", fcs[i].err);
+            unread++;
+        } else
+            bad += !meshcheck_sound(&fcs[i].mc.file);
+    }
+    if ((o->print || o->out) && picture(o))
+        rc = 1;
+    Out out;
+    out_init(&out, stdout, "standard output");
+    if (o->json)
+        json_report(&out, fcs, o->nfiles);
+    else {
+        for (int i = 0; i < o->nfiles; i++)
+            text_file(&out, &fcs[i]);
+        text_verdict(&out, fcs, o->nfiles);
+    }
+    if (out_flush(&out)) {
+        fprintf(stderr, "zview: standard output: %s\n", out_error(&out));
+        rc = 1;
+    }
+    for (int i = 0; i < o->nfiles; i++)
+        meshcheck_free(&fcs[i].mc);
+    free(fcs);
+    return rc || unread ? 1 : bad ? 3 : 0;
+}
