@@ -199,7 +199,7 @@ Test(viewcmd, files_come_first_and_a_dash_name_is_a_path)
     memset(&s, 0, sizeof s);
     s.cam.zoom = 1;
     light_set(&s.light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
-    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0 };
+    ViewSettings v = { .mode = -1, .shade = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT };
     char cmd[512];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_expect_str_eq(cmd, "zview ./-odd.obj - --yaw 0 --pitch 0");
@@ -219,7 +219,7 @@ Test(viewcmd, files_come_first_and_a_dash_name_is_a_path)
 /* The view command of a scene, parsed and loaded again. */
 static void reload(const Options *o, Scene *s, Scene *t, char *cmd, size_t len)
 {
-    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0 };
+    ViewSettings v = { .mode = -1, .shade = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT };
     cr_assert_eq(view_command(cmd, len, o, s, &v), 0);
     char line[4096], *argv[64];
     snprintf(line, sizeof line, "%s", cmd);
