@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "app.h"
+#include "pixels.h"
 
 /* ==== Reading values ==== */
 
@@ -292,9 +293,23 @@ static int set_up(Options *o, const OptCall *c)
     return set_name(&o->up, c, up_axis_from_name, "x, y, z, -x, -y or -z");
 }
 
+static int pixel_proto_from_name(const char *name)
+{
+    for (int i = 0; i < PIX_COUNT; i++)
+        if (!strcmp(name, pixel_proto_names[i]))
+            return i;
+    return -1;
+}
+
+/* --mode: a text mode (half, ascii, braille), or the terminal's pixels
+ * (sixel, kitty, iterm), cells (text only) or auto (ask the terminal) */
 static int set_mode(Options *o, const OptCall *c)
 {
-    return set_name(&o->mode, c, mode_from_name, "half, ascii or braille");
+    if (mode_from_name(c->val) < 0 && pixel_proto_from_name(c->val) >= 0) {
+        o->pixels = pixel_proto_from_name(c->val);
+        return 0;
+    }
+    return set_name(&o->mode, c, mode_from_name, "half, ascii, braille, sixel, kitty, iterm, cells or auto");
 }
 
 static int set_colour(Options *o, const OptCall *c)
@@ -466,7 +481,8 @@ const OptSpec cli_options[] = {
       NULL, FLAG(sketch), 0 },
     { "size", 's', "WxH", NULL, OPTSEC_OUTPUT, "pixels for -o (default 640x480); cells for --print\nand the viewer",
       set_size, 0, 0 },
-    { "mode", 0, NULL, "half ascii braille", OPTSEC_OUTPUT, "text mode (default: half on UTF-8, else ascii)",
+    { "mode", 0, NULL, "half ascii braille sixel kitty iterm cells auto", OPTSEC_OUTPUT,
+      "text mode (default: half on UTF-8, else ascii), or\nthe terminal's pixels: sixel, kitty, iterm, auto\n(what the terminal answers), cells (text only)",
       set_mode, 0, OPT_VIEWCMD },
     { "color", 0, NULL, "truecolor 256 16 8 none", OPTSEC_OUTPUT,
       "colours (default: from COLORTERM, TERM, NO_COLOR)", set_colour, 0, 0 },
