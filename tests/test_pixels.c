@@ -399,3 +399,73 @@ Test(pixels, multiplexers_and_dumb_terminals_get_cells_without_a_question)
         free(saved[i]);
     }
 }
+
+/* pixels_detect over pipes standing for a terminal: one whose answers
+ * are waiting, one that never answers (the wait ends, cells), and the
+ * keys that came with the answers passed on. */
+typedef struct {
+    char   got[64];
+    size_t n;
+} Sink;
+
+static void sink_keep(void *ctx, const unsigned char *b, size_t n)
+{
+    Sink *s = ctx;
+    for (size_t i = 0; i < n && s->n + 1 < sizeof s->got; i++)
+        s->got[s->n++] = (char)b[i];
+}
+
+static PixelProto detect_with(const char *answer, Sink *sink, char *question, size_t qlen)
+{
+    int out[2], in[2];
+    cr_assert_eq(pipe(out), 0);
+    cr_assert_eq(pipe(in), 0);
+    if (answer)
+        cr_assert_eq(write(in[1], answer, strlen(answer)), (ssize_t)strlen(answer));
+    PixelProto p = pixels_detect(out[1], in[0], 60, sink_keep, sink);
+    close(out[1]);
+    out[1] = -1;
+    ssize_t n = read(out[0], question, qlen - 1);       /* the end, at once, when nothing was asked */
+    question[n > 0 ? n : 0] = 0;
+    close(out[0]);
+    close(in[0]);
+    close(in[1]);
+    return p;
+}
+
+Test(pixels, detect_asks_and_reads_the_answers)
+{
+    char *tmux = getenv("TMUX") ? strdup(getenv("TMUX")) : NULL, *sty = getenv("STY") ? strdup(getenv("STY")) : NULL;
+    char *term = getenv("TERM") ? strdup(getenv("TERM")) : NULL;
+    unsetenv("TMUX");
+    unsetenv("STY");
+    setenv("TERM", "xterm", 1);
+    char q[256];
+    Sink s = { .n = 0 };
+    cr_expect_eq(detect_with("\033[?63;1;2;4;6c", &s, q, sizeof q), PIX_SIXEL, "a VT340's answer");
+    cr_expect_not_null(strstr(q, "\033[c"), "the attributes asked");
+    cr_expect_not_null(strstr(q, "a=q"), "the kitty query asked");
+    s.n = 0;
+    cr_expect_eq(detect_with("\033_Gi=31;OK\033\\\033[?62;22c", &s, q, sizeof q), PIX_KITTY, "kitty's answer");
+    s.n = 0;
+    cr_expect_eq(detect_with("j\033[?62;22c", &s, q, sizeof q), PIX_CELLS, "a VT220's answer");
+    cr_expect(s.n >= 1 && s.got[0] == 'j', "the key typed before the answer is passed on");
+    s.n = 0;
+    cr_expect_eq(detect_with(NULL, &s, q, sizeof q), PIX_CELLS, "no answer: cells after the wait");
+    setenv("TMUX", "/tmp/x,1,0", 1);
+    cr_expect_eq(detect_with("\033[?63;4c", &s, q, sizeof q), PIX_CELLS, "tmux: cells");
+    cr_expect_eq(q[0], 0, "and nothing asked inside tmux");
+    if (tmux)
+        setenv("TMUX", tmux, 1);
+    else
+        unsetenv("TMUX");
+    if (sty)
+        setenv("STY", sty, 1);
+    if (term)
+        setenv("TERM", term, 1);
+    else
+        unsetenv("TERM");
+    free(tmux);
+    free(sty);
+    free(term);
+}

@@ -87,6 +87,8 @@ typedef struct App {
     int         cull;
     int         sel;        /* selected object, -1 = the whole scene */
     int         spin;       /* auto-rotate (turntable) */
+    int         pixels;     /* a still picture in the terminal's pixels, where it has them (m turns it off) */
+    size_t      pix_bytes;  /* the last image's bytes */
     int         help;       /* help overlay shown */
     int         help_top;   /* first help row shown (scrolled) */
     int         help_hidden; /* help rows that did not fit the window (0: all shown) */

@@ -26,7 +26,7 @@ _zview()
     fi
 
     case $prev in
-        --mode) COMPREPLY=($(compgen -W "half ascii braille" -- "$cur")); return ;;
+        --mode) COMPREPLY=($(compgen -W "half ascii braille sixel kitty iterm cells auto" -- "$cur")); return ;;
         --color | --colour) COMPREPLY=($(compgen -W "truecolor 256 16 8 none" -- "$cur")); return ;;
         --shade) COMPREPLY=($(compgen -W "lambert smooth depth id" -- "$cur")); return ;;
         --view) COMPREPLY=($(compgen -W "auto front back left right top bottom iso" -- "$cur")); return ;;
