@@ -38,9 +38,16 @@ void base64_put(ByteBuf *o, const uint8_t *p, size_t n);
  * ITERM), appended to out. kitty_id: the kitty image's number (a later
  * image of the same number replaces it, and the cursor stays: C=1); 0:
  * unnumbered, the cursor moves below it as after text. Sixel and iTerm2
- * leave the cursor where the terminal puts it. Returns 0, or -1 out of
- * memory. */
-int  pixels_encode(PixelProto p, const Image *im, uint32_t kitty_id, ByteBuf *out);
+ * leave the cursor where the terminal puts it. cols x rows > 0: kitty and
+ * iTerm2 scale the image to fill that many cells (a smaller image then
+ * fills the same place); sixel's pixels are the terminal's, 1:1. Returns
+ * 0, or -1 out of memory. */
+int  pixels_encode(PixelProto p, const Image *im, uint32_t kitty_id, int cols, int rows, ByteBuf *out);
+
+/* The viewer's link budget: a still image is sent whole only when it
+ * takes at most this long at --max-rate (KB/s, default below). */
+#define PIXELS_RATE_DEFAULT 1000
+#define PIXELS_BUDGET_S     0.5
 
 /* The image as PNG bytes (zlib level 0..9), appended. Returns 0, or -1
  * with the reason in err. */

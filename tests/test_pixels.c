@@ -119,8 +119,10 @@ static Image kitty_read_back(const ByteBuf *s, uint32_t id)
             char want[32];
             snprintf(want, sizeof want, "i=%u", id);
             cr_expect_eq(strstr(keys, "i=") != NULL, id != 0, "%s", keys);
-            if (id)
+            if (id) {
                 cr_expect_not_null(strstr(keys, want), "%s", keys);
+                cr_expect(id != 7 || strstr(keys, "c=30,r=10"), "scaled to its cells: %s", keys);
+            }
         }
         const char *stop = strstr(semi, "\033\\");
         cr_assert_not_null(stop);
@@ -146,7 +148,7 @@ Test(pixels, kitty_stream_reads_back_as_the_image)
     for (int k = 0; k < 2; k++) {
         Image im = gradient(k ? 301 : 9, k ? 177 : 5);   /* one chunk, and many */
         ByteBuf s = { 0 };
-        cr_assert_eq(pixels_encode(PIX_KITTY, &im, k ? 7 : 0, &s), 0);
+        cr_assert_eq(pixels_encode(PIX_KITTY, &im, k ? 7 : 0, k ? 30 : 0, k ? 10 : 0, &s), 0);
         Image back = kitty_read_back(&s, k ? 7 : 0);
         expect_same(&im, &back, "kitty");
         free(back.rgb);
@@ -182,7 +184,7 @@ Test(pixels, iterm_stream_reads_back_as_the_image)
 {
     Image im = gradient(64, 40);
     ByteBuf s = { 0 };
-    cr_assert_eq(pixels_encode(PIX_ITERM, &im, 0, &s), 0);
+    cr_assert_eq(pixels_encode(PIX_ITERM, &im, 0, 0, 0, &s), 0);
     Image back = iterm_read_back(&s);
     expect_same(&im, &back, "iterm");
     free(back.rgb);
@@ -266,7 +268,7 @@ Test(pixels, sixel_stream_reads_back_as_the_quantized_image)
     for (int k = 0; k < 2; k++) {
         Image im = gradient(k ? 97 : 13, k ? 53 : 6);       /* a last band of 5 rows, and one whole band */
         ByteBuf s = { 0 };
-        cr_assert_eq(pixels_encode(PIX_SIXEL, &im, 0, &s), 0);
+        cr_assert_eq(pixels_encode(PIX_SIXEL, &im, 0, 0, 0, &s), 0);
         Image back = sixel_read_back(&s);
         cr_assert_eq(back.w, im.w);
         cr_assert_eq(back.h, im.h);
@@ -321,7 +323,7 @@ Test(pixels, a_view_in_each_protocol_is_the_o_image)
     free(file);
     for (PixelProto proto = PIX_SIXEL; proto <= PIX_ITERM; proto++) {
         ByteBuf b = { 0 };
-        cr_assert_eq(pixels_encode(proto, &p.img, 3, &b), 0);
+        cr_assert_eq(pixels_encode(proto, &p.img, 3, 0, 0, &b), 0);
         Image back = proto == PIX_KITTY ? kitty_read_back(&b, 3) : proto == PIX_ITERM ? iterm_read_back(&b)
                                                                                    : sixel_read_back(&b);
         if (proto != PIX_SIXEL) {

@@ -402,6 +402,11 @@ static int set_fps(Options *o, const OptCall *c)
     return set_int(&o->fps, c, 1, 1000, "1 to 1000");
 }
 
+static int set_max_rate(Options *o, const OptCall *c)
+{
+    return set_int(&o->max_rate, c, 1, 10000000, "KB a second, 1 to 10000000");
+}
+
 static int set_point_size(Options *o, const OptCall *c)
 {
     return set_int(&o->point_size, c, 1, POINT_SIZE_MAX, "pixels, 1 to 16");
@@ -568,6 +573,8 @@ const OptSpec cli_options[] = {
     { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench or --check: JSON instead of text", NULL, FLAG(json), 0 },
     { "threads", 'j', "N", NULL, OPTSEC_BENCH, "threads for every stage (default: all cores)", set_threads, 0, 0 },
     { "fps", 0, "N", NULL, OPTSEC_BENCH, "auto-rotate frame cap in the viewer (default 30)", set_fps, 0, 0 },
+    { "max-rate", 0, "KB", NULL, OPTSEC_BENCH,
+      "the link's speed in KB/s for the viewer's still\nimages in pixels (default 1000): one goes only\nwhen it takes at most 0.5 s", set_max_rate, 0, 0 },
 };
 
 const int cli_noptions = (int)(sizeof cli_options / sizeof cli_options[0]);

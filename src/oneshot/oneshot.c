@@ -274,7 +274,7 @@ static int print_pixels(const Options *o, Pipeline *p, Backdrops *b, PixelProto 
     }
     backdrop_paint(&p->img, &p->bd);
     ByteBuf out = { 0 };
-    if (pixels_encode(proto, &p->img, 0, &out)) {
+    if (pixels_encode(proto, &p->img, 0, 0, 0, &out)) {
         bytebuf_free(&out);
         fprintf(stderr, "zview: out of memory\n");
         return 1;

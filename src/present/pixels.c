@@ -199,7 +199,7 @@ static int sixel_encode(const Image *im, ByteBuf *o)
 
 #define KITTY_CHUNK 4096        /* the protocol's largest chunk of base64 */
 
-static int kitty_encode(const Image *im, uint32_t id, ByteBuf *o)
+static int kitty_encode(const Image *im, uint32_t id, int cols, int rows, ByteBuf *o)
 {
     ByteBuf png = { 0 }, b64 = { 0 };
     char err[160];
@@ -220,10 +220,13 @@ static int kitty_encode(const Image *im, uint32_t id, ByteBuf *o)
          * (f=100), no answer (q=2); a numbered image (the viewer's, over
          * its own screen) leaves the cursor where it is (C=1), an
          * unnumbered one (--print) moves it below, scrolling as text would */
+        char fit[32] = "";
+        if (cols > 0 && rows > 0)
+            snprintf(fit, sizeof fit, ",c=%d,r=%d", cols, rows);     /* scaled to fill those cells */
         if (at == 0 && id)
-            k = snprintf(head, sizeof head, "\033_Ga=T,f=100,q=2,C=1,i=%u,m=%d;", id, more);
+            k = snprintf(head, sizeof head, "\033_Ga=T,f=100,q=2,C=1,i=%u%s,m=%d;", id, fit, more);
         else if (at == 0)
-            k = snprintf(head, sizeof head, "\033_Ga=T,f=100,q=2,m=%d;", more);
+            k = snprintf(head, sizeof head, "\033_Ga=T,f=100,q=2%s,m=%d;", fit, more);
         else
             k = snprintf(head, sizeof head, "\033_Gm=%d;", more);
         bytebuf_put(o, head, (size_t)k);
@@ -236,7 +239,7 @@ static int kitty_encode(const Image *im, uint32_t id, ByteBuf *o)
     return o->err ? -1 : 0;
 }
 
-static int iterm_encode(const Image *im, ByteBuf *o)
+static int iterm_encode(const Image *im, int cols, int rows, ByteBuf *o)
 {
     ByteBuf png = { 0 };
     char err[160], head[160];
@@ -244,7 +247,10 @@ static int iterm_encode(const Image *im, ByteBuf *o)
         bytebuf_free(&png);
         return -1;
     }
-    int k = snprintf(head, sizeof head, "\033]1337;File=inline=1;size=%zu;width=%dpx;height=%dpx;preserveAspectRatio=0:",
+    int k = cols > 0 && rows > 0
+          ? snprintf(head, sizeof head, "\033]1337;File=inline=1;size=%zu;width=%d;height=%d;preserveAspectRatio=0:",
+                     png.len, cols, rows)
+          : snprintf(head, sizeof head, "\033]1337;File=inline=1;size=%zu;width=%dpx;height=%dpx;preserveAspectRatio=0:",
                      png.len, im->w, im->h);
     bytebuf_put(o, head, (size_t)k);
     base64_put(o, png.b, png.len);
@@ -253,14 +259,14 @@ static int iterm_encode(const Image *im, ByteBuf *o)
     return o->err ? -1 : 0;
 }
 
-int pixels_encode(PixelProto p, const Image *im, uint32_t kitty_id, ByteBuf *out)
+int pixels_encode(PixelProto p, const Image *im, uint32_t kitty_id, int cols, int rows, ByteBuf *out)
 {
     if (im->w <= 0 || im->h <= 0)
         return -1;
     switch (p) {
     case PIX_SIXEL: return sixel_encode(im, out);
-    case PIX_KITTY: return kitty_encode(im, kitty_id, out);
-    case PIX_ITERM: return iterm_encode(im, out);
+    case PIX_KITTY: return kitty_encode(im, kitty_id, cols, rows, out);
+    case PIX_ITERM: return iterm_encode(im, cols, rows, out);
     default:        return -1;
     }
 }

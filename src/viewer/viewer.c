@@ -415,8 +415,18 @@ static void draw_candidates(App *a, int cols, int rows)
  * of INFO_BESIDE_MIN columns), each line wrapped after a comma to fit. */
 static void draw_info(App *a, int cols, int rows, double out_ms)
 {
-    ReportLine rl[REPORT_LINES];
+    ReportLine rl[REPORT_LINES + 1];
     int n = frame_report(&a->p, out_ms, rl, REPORT_LINES);
+    if (term_pixels() != PIX_CELLS) {
+        rl[n].label = "pixels:";
+        if (a->pix_bytes)
+            snprintf(rl[n].text, REPORT_TEXT, "%s when still, last image %zu KB%s", pixel_proto_names[term_pixels()],
+                     a->pix_bytes / 1000, a->pix_shrink > 1 ? " (fewer pixels, scaled)" : "");
+        else
+            snprintf(rl[n].text, REPORT_TEXT, "%s when still%s", pixel_proto_names[term_pixels()],
+                     a->pixels ? "" : " (off: m)");
+        n++;
+    }
     int inner = cols - 4 < INFO_BOX - 4 ? cols - 4 : INFO_BOX - 4;    /* the box's frame and margins */
     if (inner < 20)
         return;
@@ -561,7 +571,11 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
 
 /* The still picture in the terminal's pixels, over the cells: the same
  * view at the cells' size in pixels, on the background, painted. Not
- * over a box, the info panel, sketch mode or a turning model. */
+ * over a box, the info panel, sketch mode or a turning model. Within the
+ * link's budget (--max-rate for PIXELS_BUDGET_S): kitty and iTerm2
+ * images are rendered at a half, then a quarter of the pixels and
+ * scaled by the terminal to the same cells; a sixel image over it is
+ * not sent (the cells stay, and the note says why). */
 static int draw_pixels(App *a, DrawState *d)
 {
     if (viewer_mode(a) != VM_VIEW || a->info || a->spin || a->sk.on || !d->pic_cols || !d->pic_rows ||
@@ -569,15 +583,35 @@ static int draw_pixels(App *a, DrawState *d)
         return 0;
     int cw = PIXELS_CELL_W, ch = PIXELS_CELL_H;
     term_cell_pixels(&cw, &ch);
+    PixelProto px = term_pixels();
+    double budget = (a->opt->max_rate > 0 ? a->opt->max_rate : PIXELS_RATE_DEFAULT) * 1000.0 * PIXELS_BUDGET_S;
     a->p.highlight = a->s->nobjs > 1 ? a->sel : -1;
-    if (pipeline_render(&a->p, d->pic_cols * cw, d->pic_rows * ch, 1.0f, a->cull, 1))
-        return RUN_NO_MEMORY;
-    if (a->p.has_bd)
-        backdrop_paint(&a->p.img, &a->p.bd);
     ByteBuf b = { 0 };
-    int rc = pixels_encode(term_pixels(), &a->p.img, 1, &b) ? RUN_NO_MEMORY
-           : term_show_image(&b) ? RUN_OUTPUT_FAILED : 0;
-    a->pix_bytes = b.len;
+    for (int shrink = 1; shrink <= 4; shrink *= 2) {
+        int w = d->pic_cols * cw / shrink, h = d->pic_rows * ch / shrink;
+        if (w < 1 || h < 1 || pipeline_render(&a->p, w, h, 1.0f, a->cull, 1)) {
+            bytebuf_free(&b);
+            return RUN_NO_MEMORY;
+        }
+        if (a->p.has_bd)
+            backdrop_paint(&a->p.img, &a->p.bd);
+        b.len = 0;
+        if (pixels_encode(px, &a->p.img, 1, d->pic_cols, d->pic_rows, &b)) {
+            bytebuf_free(&b);
+            return RUN_NO_MEMORY;
+        }
+        a->pix_bytes = b.len;
+        a->pix_shrink = shrink;
+        if ((double)b.len <= budget)
+            break;
+        if (px == PIX_SIXEL || shrink == 4) {
+            snprintf(a->note, sizeof a->note, "%s still image %zu KB: over --max-rate's budget, cells kept",
+                     pixel_proto_names[px], b.len / 1000);
+            bytebuf_free(&b);
+            return 0;
+        }
+    }
+    int rc = term_show_image(&b) ? RUN_OUTPUT_FAILED : 0;
     bytebuf_free(&b);
     return rc;
 }

@@ -83,6 +83,14 @@ run "-ti vt340" "$Z assets/demo.obj; echo \$? >$T/rc; sleep 30"
 shades 290 14 || { run "-ti vt340" "$Z assets/demo.obj; echo \$? >$T/rc; sleep 30"; shades 290 14; }
 check "the viewer in xterm -ti vt340: a still model in pixels ($n colours)" '[ "$n" -gt 14 ]' "$n colours"
 pkill -f "xterm.*zv-xterm-$$"
+# a link of 1 KB/s: the sixel image (tens of KB) is over the budget,
+# the cells stay
+run "-ti vt340" "$Z --max-rate 1 assets/demo.obj; echo \$? >$T/rc; sleep 30"
+shades 290 2
+sleep 2
+shot
+n=$(colours 290)
+check "the viewer in xterm -ti vt340 with --max-rate 1: cells kept ($n colours)" '[ "$n" -ge 3 ] && [ "$n" -le 12 ]' "$n colours"
 run "" "$Z assets/demo.obj; echo \$? >$T/rc; sleep 30"
 shades 290 2
 check "the viewer in plain xterm: cells ($n colours)" '[ "$n" -ge 3 ] && [ "$n" -le 12 ]' "$n colours"
