@@ -75,6 +75,7 @@ typedef struct {
     int    got_da;          /* the attributes' answer came */
     int    sixel;           /* ... and it lists 4 */
     int    kitty;           /* the kitty query was answered OK */
+    int    iterm;           /* the terminal's name is iTerm2 */
 } PixelScan;
 
 void pixels_scan_init(PixelScan *s);

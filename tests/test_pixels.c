@@ -365,14 +365,19 @@ Test(pixels, the_answers_say_which_protocol_at_any_split)
     const char *kitty = "\033_Gi=31;OK\033\\\033[?62;c";
     const char *refused = "\033_Gi=31;ENOTSUPPORTED:x\033\\\033[?62;4c";
     const char *keys = "q\033[A\033[?1;2c";
+    const char *iterm = "\033P>|iTerm2 3.5.0\033\\\033[?62;4c";
+    const char *xterm = "\033P>|XTerm(379)\033\\\033[?63;1;2;4;6;9;15;22c";
     for (size_t at = 0; at <= strlen(kitty); at++) {
         PixelScan a = scan_split(vt340, at), b = scan_split(vt220, at), c = scan_split(kitty, at),
-                  d = scan_split(refused, at), e = scan_split(keys, at);
+                  d = scan_split(refused, at), e = scan_split(keys, at), f = scan_split(iterm, at),
+                  g = scan_split(xterm, at);
         cr_expect(a.got_da && a.sixel && !a.kitty, "vt340 split at %zu", at);
         cr_expect(b.got_da && !b.sixel && !b.kitty, "vt220 split at %zu", at);
         cr_expect(c.got_da && !c.sixel && c.kitty, "kitty split at %zu", at);
         cr_expect(d.got_da && d.sixel && !d.kitty, "an error answer is no kitty (split at %zu)", at);
         cr_expect(e.got_da && !e.sixel && !e.kitty, "keys before the answer (split at %zu)", at);
+        cr_expect(f.got_da && f.iterm && !f.kitty, "iTerm2 by its name (split at %zu)", at);
+        cr_expect(g.got_da && g.sixel && !g.iterm && !g.kitty, "xterm's name and a VT340's attributes (split at %zu)", at);
     }
 }
 
@@ -449,6 +454,9 @@ Test(pixels, detect_asks_and_reads_the_answers)
     cr_expect_not_null(strstr(q, "a=q"), "the kitty query asked");
     s.n = 0;
     cr_expect_eq(detect_with("\033_Gi=31;OK\033\\\033[?62;22c", &s, q, sizeof q), PIX_KITTY, "kitty's answer");
+    s.n = 0;
+    cr_expect_eq(detect_with("\033P>|iTerm2 3.5.0\033\\\033[?62;4c", &s, q, sizeof q), PIX_ITERM,
+                 "iTerm2 (which also takes sixel): its own images");
     s.n = 0;
     cr_expect_eq(detect_with("j\033[?62;22c", &s, q, sizeof q), PIX_CELLS, "a VT220's answer");
     cr_expect(s.n >= 1 && s.got[0] == 'j', "the key typed before the answer is passed on");

@@ -1,10 +1,13 @@
 /* termgfx.c: does this terminal draw pixels, and in which protocol?
  *
- * Asked, not guessed from names: the kitty graphics query (a one-pixel
- * image that is only checked, a=q, which a terminal speaking the
- * protocol answers "OK") and then the primary device attributes
- * (ESC [ c), which every terminal since the VT100 answers, a 4 among
- * them meaning sixel graphics. The attributes' answer comes last, so once
+ * Asked, not guessed from the environment: the kitty graphics query (a
+ * one-pixel image that is only checked, a=q, which a terminal speaking
+ * the protocol answers "OK"), the terminal's name (XTVERSION: iTerm2
+ * says its own, and its inline images are the one protocol with no
+ * query) and then the primary device attributes (ESC [ c), which every
+ * terminal since the VT100 answers, a 4 among them meaning sixel
+ * graphics. kitty's protocol is preferred (PNG, replaced in place), then
+ * iTerm2's, then sixel. The attributes' answer comes last, so once
  * it is in, the kitty answer is in too or is not coming: one round trip.
  * Multiplexers are the exception: tmux and screen answer the attributes
  * themselves and pass no images by default, so inside them the answer
@@ -20,8 +23,11 @@
 #include "clock.h"
 #include "pixels.h"
 
-#define QUESTION "\033_Gi=31,s=1,v=1,a=q,t=d,f=24;AAAA\033\\\033[c"
+/* kitty's query, the terminal's name and version (XTVERSION, which
+ * iTerm2, WezTerm, kitty, foot and xterm answer), the device attributes */
+#define QUESTION "\033_Gi=31,s=1,v=1,a=q,t=d,f=24;AAAA\033\\\033[>0q\033[c"
 
+/* APC and DCS strings are read alike: their body up to ST */
 enum { S_GROUND, S_ESC, S_CSI, S_APC, S_APC_ESC };
 
 int pixels_cell_size(int fd, int *cw, int *ch)
@@ -54,12 +60,15 @@ static void da_done(PixelScan *s)
     }
 }
 
-/* A kitty answer "ESC _ G i=31 ; OK ESC \" */
+/* A kitty answer "ESC _ G i=31 ; OK ESC \", or the name's "ESC P > |
+ * iTerm2 3.5.0 ESC \" */
 static void apc_done(PixelScan *s)
 {
     s->body[s->len < sizeof s->body ? s->len : sizeof s->body - 1] = 0;
     if (s->body[0] == 'G' && strstr(s->body, "i=31") && strstr(s->body, ";OK"))
         s->kitty = 1;
+    if (!strncmp(s->body, ">|iTerm2", 8))
+        s->iterm = 1;
 }
 
 static void scan_byte(PixelScan *s, unsigned char c)
@@ -70,7 +79,7 @@ static void scan_byte(PixelScan *s, unsigned char c)
         break;
     case S_ESC:
         s->len = 0;
-        s->state = c == '[' ? S_CSI : c == '_' ? S_APC : c == 0x1b ? S_ESC : S_GROUND;
+        s->state = c == '[' ? S_CSI : c == '_' || c == 'P' ? S_APC : c == 0x1b ? S_ESC : S_GROUND;
         break;
     case S_CSI:
         if (c >= 0x40 && c <= 0x7e) {
@@ -95,7 +104,7 @@ static void scan_byte(PixelScan *s, unsigned char c)
         if (c == '\\')
             apc_done(s);
         s->len = 0;
-        s->state = c == '[' ? S_CSI : c == '_' ? S_APC : S_GROUND;
+        s->state = c == '[' ? S_CSI : c == '_' || c == 'P' ? S_APC : S_GROUND;
         break;
     }
 }
@@ -151,5 +160,5 @@ PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, voi
         if (sink)
             sink(ctx, buf, (size_t)r);
     }
-    return s.kitty ? PIX_KITTY : s.sixel ? PIX_SIXEL : PIX_CELLS;
+    return s.kitty ? PIX_KITTY : s.iterm ? PIX_ITERM : s.sixel ? PIX_SIXEL : PIX_CELLS;
 }
