@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order bench-textures
+.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order bench-textures bench-pixels
 
 all: $(BIN)
 
@@ -74,6 +74,7 @@ help:
 	@echo '  make bench-points  a 10M-point scan: load and frames'
 	@echo '  make bench-order   hzb and hzb-octree under each --order'
 	@echo '  make bench-textures textured frames against untextured; the first picture of a 16k image'
+	@echo '  make bench-pixels  bytes a picture costs in sixel, kitty and iTerm2 images against text'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
 	@echo '  make assets        regenerate the bundled models (they are committed)'
@@ -220,6 +221,9 @@ $(BUILD)/mkcloud: tools/mkcloud.c $(LIBOBJS)
 # The texture targets of issue 18: the dragon and the bunny with texture
 # coordinates and an image (tools/uvmodel), textured against not, and a
 # 16k x 16k image's first picture (doc/benchmarks.md: Textures).
+bench-pixels: $(BIN)
+	ZVIEW=$(abspath $(BIN)) sh tools/bench-pixels.sh
+
 bench-textures: $(BIN) $(BUILD)/uvmodel
 	ZVIEW=$(abspath $(BIN)) UVMODEL=$(BUILD)/uvmodel sh tools/bench-textures.sh
 

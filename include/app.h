@@ -40,6 +40,8 @@ typedef struct {
     const char *dump_screen;
     int         w, h;           /* --size (0 = not given) */
     int         mode;           /* DisplayMode, -1 = from the locale */
+    int         pixels;         /* PixelProto: --mode sixel|kitty|iterm|cells|auto, -1 = not given */
+    int         max_rate;       /* --max-rate KB/s: the viewer's still images fit it (0 = the default) */
     int         colour;          /* ColourDepth, -1 = from the environment */
     int         shade;          /* ShadeMode */
     const char *algo;           /* name, "all", or a comma list (bench) */

@@ -9,6 +9,7 @@
 
 #include <stddef.h>
 #include <stdio.h>
+#include "pixels.h"
 #include "present.h"
 
 /* Keys: characters are their code point; the rest sit above Unicode. */
@@ -61,6 +62,7 @@ typedef struct {
     int         mouse;          /* report clicks, drags and the wheel */
     int         signals;        /* restore on SIGINT/SIGTERM/SIGHUP, handle SIGTSTP */
     int         ask_bg;         /* ask the terminal for its background (termbg.c) */
+    int         pixels;         /* PixelProto to draw stills in; PIX_AUTO: ask (pixels.h) */
 } TermConfig;
 
 /* The terminal description to use for name (NULL: $TERM): name itself
@@ -79,6 +81,16 @@ int  term_open(const TermConfig *cfg, char *err, size_t errlen);
 void term_restore(void);
 
 ColourDepth term_colour(void);            /* the depth actually used */
+/* Pixels: the protocol the terminal takes (PIX_CELLS: none, or not
+ * wanted), its cell size in pixels (0 when it does not say), an image
+ * drawn from the top left over the picture, and taken away again (the
+ * next term_update draws every cell). Quitting, Ctrl-Z and a resize's
+ * full redraw clear images too. */
+PixelProto term_pixels(void);
+int  term_cell_pixels(int *cw, int *ch);
+int  term_show_image(const ByteBuf *b);
+void term_hide_image(void);
+int  term_image_shown(void);
 /* The terminal's background as it answered at open: 1 with rgb_out, 0
  * when it did not (or was not asked); waited_ms_out (may be NULL): how
  * long the question took. */

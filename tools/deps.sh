@@ -12,7 +12,9 @@ set -e
 # (/usr/share/assimp/models): the up-axis tests read models from it, and
 # the texture tests its textured models (tests/test_surface.c: glTF, GLB,
 # data: URIs, COLLADA, OBJ).
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev libcriterion-dev tmux python3 libassimp-dev assimp-testmodels"
+# xvfb, xterm and imagemagick: a real terminal that draws sixel, looked
+# at through a screenshot (tests/e2e/test_xterm.sh).
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev libcriterion-dev tmux python3 libassimp-dev assimp-testmodels xvfb xterm imagemagick"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive

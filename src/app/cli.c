@@ -110,6 +110,7 @@ void cli_defaults(Options *o)
 {
     memset(o, 0, sizeof *o);
     o->mode = -1;
+    o->pixels = -1;
     o->colour = -1;
     o->shade = SHADE_LAMBERT;
     o->zoom = 1;

@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "app.h"
+#include "pixels.h"
 
 /* ==== Reading values ==== */
 
@@ -292,9 +293,23 @@ static int set_up(Options *o, const OptCall *c)
     return set_name(&o->up, c, up_axis_from_name, "x, y, z, -x, -y or -z");
 }
 
+static int pixel_proto_from_name(const char *name)
+{
+    for (int i = 0; i < PIX_COUNT; i++)
+        if (!strcmp(name, pixel_proto_names[i]))
+            return i;
+    return -1;
+}
+
+/* --mode: a text mode (half, ascii, braille), or the terminal's pixels
+ * (sixel, kitty, iterm), cells (text only) or auto (ask the terminal) */
 static int set_mode(Options *o, const OptCall *c)
 {
-    return set_name(&o->mode, c, mode_from_name, "half, ascii or braille");
+    if (mode_from_name(c->val) < 0 && pixel_proto_from_name(c->val) >= 0) {
+        o->pixels = pixel_proto_from_name(c->val);
+        return 0;
+    }
+    return set_name(&o->mode, c, mode_from_name, "half, ascii, braille, sixel, kitty, iterm, cells or auto");
 }
 
 static int set_colour(Options *o, const OptCall *c)
@@ -387,6 +402,11 @@ static int set_fps(Options *o, const OptCall *c)
     return set_int(&o->fps, c, 1, 1000, "1 to 1000");
 }
 
+static int set_max_rate(Options *o, const OptCall *c)
+{
+    return set_int(&o->max_rate, c, 1, 10000000, "KB a second, 1 to 10000000");
+}
+
 static int set_point_size(Options *o, const OptCall *c)
 {
     return set_int(&o->point_size, c, 1, POINT_SIZE_MAX, "pixels, 1 to 16");
@@ -466,7 +486,8 @@ const OptSpec cli_options[] = {
       NULL, FLAG(sketch), 0 },
     { "size", 's', "WxH", NULL, OPTSEC_OUTPUT, "pixels for -o (default 640x480); cells for --print\nand the viewer",
       set_size, 0, 0 },
-    { "mode", 0, NULL, "half ascii braille", OPTSEC_OUTPUT, "text mode (default: half on UTF-8, else ascii)",
+    { "mode", 0, NULL, "half ascii braille sixel kitty iterm cells auto", OPTSEC_OUTPUT,
+      "text mode (default: half on UTF-8, else ascii), or\nthe terminal's pixels: sixel, kitty, iterm, auto\n(what the terminal answers), cells (text only)",
       set_mode, 0, OPT_VIEWCMD },
     { "color", 0, NULL, "truecolor 256 16 8 none", OPTSEC_OUTPUT,
       "colours (default: from COLORTERM, TERM, NO_COLOR)", set_colour, 0, 0 },
@@ -552,6 +573,8 @@ const OptSpec cli_options[] = {
     { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench or --check: JSON instead of text", NULL, FLAG(json), 0 },
     { "threads", 'j', "N", NULL, OPTSEC_BENCH, "threads for every stage (default: all cores)", set_threads, 0, 0 },
     { "fps", 0, "N", NULL, OPTSEC_BENCH, "auto-rotate frame cap in the viewer (default 30)", set_fps, 0, 0 },
+    { "max-rate", 0, "KB", NULL, OPTSEC_BENCH,
+      "the link's speed in KB/s for the viewer's still\nimages in pixels (default 1000): one goes only\nwhen it takes at most 0.5 s", set_max_rate, 0, 0 },
 };
 
 const int cli_noptions = (int)(sizeof cli_options / sizeof cli_options[0]);

@@ -11,10 +11,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/ioctl.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include "oneshot.h"
+#include "pixels.h"
 #include "safefile.h"
 #include "tty.h"
 
@@ -22,6 +25,7 @@
 typedef struct {
     Backdrop image, text;
     int      image_known, text_known;
+    int      proto;             /* --print's PixelProto, -1 = not asked yet (a turntable asks once) */
 } Backdrops;
 
 /* Cells for --print: --size, else the terminal's size, else 80x24. */
@@ -225,6 +229,66 @@ static int render_painted(const Options *o, Pipeline *p, Backdrops *b)
     return 0;
 }
 
+/* The protocol --print draws in: the one given, or (auto) the one the
+ * terminal on standard output answers for; PIX_CELLS for text. */
+static PixelProto print_protocol(const Options *o)
+{
+    if (o->pixels != PIX_AUTO)
+        return o->pixels > 0 ? (PixelProto)o->pixels : PIX_CELLS;
+    if (!isatty(STDOUT_FILENO))
+        return PIX_CELLS;
+    int fd = open("/dev/tty", O_RDWR | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0)
+        return PIX_CELLS;
+    /* as for the background: only in the foreground, without echo */
+    struct termios old, raw;
+    PixelProto p = PIX_CELLS;
+    if (tcgetpgrp(fd) == getpgrp() && tcgetattr(fd, &old) == 0) {
+        raw = old;
+        raw.c_lflag &= (tcflag_t) ~(ICANON | ECHO);
+        raw.c_cc[VMIN] = 1;
+        raw.c_cc[VTIME] = 0;
+        if (tcsetattr(fd, TCSANOW, &raw) == 0) {
+            p = pixels_detect(fd, fd, TERMBG_WAIT_MS, NULL, NULL);
+            tcsetattr(fd, TCSANOW, &old);
+        }
+    }
+    close(fd);
+    return p;
+}
+
+/* --print in the terminal's pixels: the picture at the text's size in
+ * cells times the cell's size in pixels (what the terminal says, else
+ * 10 x 20), on the text's background, painted. Returns 0, or 1 after a
+ * message. */
+static int print_pixels(const Options *o, Pipeline *p, Backdrops *b, PixelProto proto)
+{
+    int cols, rows, cw = PIXELS_CELL_W, ch = PIXELS_CELL_H;
+    print_size(o, &cols, &rows);
+    if (isatty(STDOUT_FILENO))
+        pixels_cell_size(STDOUT_FILENO, &cw, &ch);
+    pipeline_set_backdrop(p, text_backdrop(o, b));
+    if (pipeline_render(p, cols * cw, rows * ch, 1.0f, o->cull, 1)) {
+        fprintf(stderr, "zview: out of memory\n");
+        return 1;
+    }
+    backdrop_paint(&p->img, &p->bd);
+    ByteBuf out = { 0 };
+    if (pixels_encode(proto, &p->img, 0, 0, 0, &out)) {
+        bytebuf_free(&out);
+        fprintf(stderr, "zview: out of memory\n");
+        return 1;
+    }
+    bytebuf_put(&out, "\n", 1);
+    int bad = out.err || fwrite(out.b, 1, out.len, stdout) != out.len || fflush(stdout) != 0;
+    bytebuf_free(&out);
+    if (bad) {
+        fprintf(stderr, "zview: standard output: %s\n", strerror(errno ? errno : ENOMEM));
+        return 1;
+    }
+    return 0;
+}
+
 /* The text frame into a file. Returns 0, or -1 after a message. */
 static int write_text(const char *path, const CellGrid *g, ColourDepth depth)
 {
@@ -264,7 +328,12 @@ static int one_frame(const Options *o, Pipeline *p, Backdrops *b, const char *fi
         }
     }
     int to_file = text_file(o, file);
-    if (to_file || o->print) {
+    if (o->print && b->proto < 0)
+        b->proto = (int)print_protocol(o);
+    PixelProto proto = o->print ? (PixelProto)b->proto : PIX_CELLS;
+    if (proto != PIX_CELLS && print_pixels(o, p, b, proto))
+        return 1;
+    if (to_file || (o->print && proto == PIX_CELLS)) {
         if (render_text(o, p, b, &depth)) {
             fprintf(stderr, "zview: out of memory\n");
             return 1;
@@ -354,7 +423,7 @@ int app_oneshot(const Options *o, Scene *s)
     }
     pipeline_apply_options(&p, o);     /* images: 1 sample unless asked, full resolution already */
     int rc = 0;
-    Backdrops b = { .image_known = 0, .text_known = 0 };
+    Backdrops b = { .image_known = 0, .text_known = 0, .proto = -1 };
     if (o->turntable) {
         rc = turntable(o, s, &p, &b);
         goto out;

@@ -7,14 +7,16 @@
 #include <setjmp.h>
 #include <stdio.h>
 #include <string.h>
+#include "pixels.h"
 #include "present.h"
 #include "safefile.h"
 
 typedef struct {
-    jmp_buf jmp;
-    char    msg[160];
-    FILE   *f;
-    int     write_errno;    /* why a write failed (libpng only says "Write Error") */
+    jmp_buf  jmp;
+    char     msg[160];
+    FILE    *f;
+    ByteBuf *mem;           /* png_encode's destination (f is NULL) */
+    int      write_errno;   /* why a write failed (libpng only says "Write Error") */
 } PngErr;
 
 /* libpng's own writer drops errno; this one keeps it for the message. */
@@ -68,6 +70,7 @@ int write_png(const char *path, const Image *im, char *err, size_t errlen)
     PngErr e;
     e.msg[0] = '\0';
     e.f = f;
+    e.mem = NULL;
     e.write_errno = 0;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &e,
                                               png_on_error, png_on_warning);
@@ -102,5 +105,57 @@ int write_png(const char *path, const Image *im, char *err, size_t errlen)
         snprintf(err, errlen, "%s: %s", path, strerror(errno ? errno : EIO));
         return -1;
     }
+    return 0;
+}
+
+/* png_encode's writer: into memory, an allocation failure as libpng's
+ * error. */
+static void png_mem_cb(png_structp png, png_bytep data, size_t len)
+{
+    PngErr *e = png_get_error_ptr(png);
+    bytebuf_put(e->mem, data, len);
+    if (e->mem->err)
+        png_error(png, "out of memory");
+}
+
+static void png_mem_flush(png_structp png)
+{
+    (void)png;
+}
+
+int png_encode(const Image *im, int level, ByteBuf *out, char *err, size_t errlen)
+{
+    if (im->w <= 0 || im->h <= 0) {
+        snprintf(err, errlen, "empty image");
+        return -1;
+    }
+    PngErr e;
+    e.msg[0] = '\0';
+    e.f = NULL;
+    e.mem = out;
+    e.write_errno = 0;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &e, png_on_error, png_on_warning);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!png || !info) {
+        png_destroy_write_struct(png ? &png : NULL, NULL);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    if (setjmp(e.jmp)) {
+        png_destroy_write_struct(&png, &info);
+        snprintf(err, errlen, "%s", e.msg);
+        return -1;
+    }
+    png_set_write_fn(png, &e, png_mem_cb, png_mem_flush);
+    /* a terminal's picture is sent each time the model stops: speed
+     * over size (level 1 is about a third the time of the default) */
+    png_set_compression_level(png, level);
+    png_set_IHDR(png, info, (png_uint_32)im->w, (png_uint_32)im->h, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    for (int y = 0; y < im->h; y++)
+        png_write_row(png, im->rgb + 3 * (size_t)y * (size_t)im->w);
+    png_write_end(png, info);
+    png_destroy_write_struct(&png, &info);
     return 0;
 }

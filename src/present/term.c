@@ -43,6 +43,7 @@
 
 #include "clock.h"
 #include "outq.h"
+#include "pixels.h"
 #include "termcaps.h"
 #include "tty.h"
 
@@ -64,6 +65,7 @@ extern int tputs(const char *str, int affcnt, int (*putc)(int));
 /* Device status request: the terminal answers "\e[0n" once it has
  * handled every byte before it, which is how we know a frame arrived. */
 #define STATUS_ASK "\033[5n"
+#define KITTY_DELETE_ALL "\033_Ga=d,q=2\033\\"     /* every image placed, gone */
 #define ACK_GIVE_UP 8           /* unanswered requests before we stop asking */
 #define LAST_ANSWER_MS 250      /* on quit, the wait for the answer still to come */
 #define PACE_MIN_MS 4           /* first wait for a busy line; doubles up to */
@@ -99,6 +101,8 @@ static struct {
     int         bg_known;       /* the terminal told its background (termbg.c) */
     uint8_t     bg[3];
     double      bg_wait_ms;     /* how long the question took */
+    PixelProto  pix;            /* the pixels the terminal takes (PIX_CELLS: none, or not wanted) */
+    int         pix_shown;      /* an image is on the screen */
     struct sigaction old_int, old_term, old_hup, old_tstp, old_winch;
     /* crashes: bytes prepared at open */
     char        crash_reset[256];
@@ -176,6 +180,13 @@ static void send_cap(const char *cap)
 
 /* ==== Restore and signals ==== */
 
+/* The answers to the pixels' questions, and keys typed meanwhile, go to
+ * the key parser (which drops the answers). */
+static void answers_to_keys(void *ctx, const unsigned char *b, size_t n)
+{
+    kp_push(ctx, b, n);
+}
+
 /* Blank the terminal before leaving curses: a terminal whose window grew
  * while in the alternate screen (tmux) keeps the part beyond the old size
  * when it switches back, and a terminal without one keeps everything. */
@@ -183,6 +194,9 @@ static void blank_terminal(void)
 {
     send_cap(tigetstr("sgr0"));
     send_cap(tigetstr("clear"));
+    if (T.pix == PIX_KITTY)
+        send_cap(KITTY_DELETE_ALL);     /* kitty's images are not cells: clear leaves them */
+    T.pix_shown = 0;
 }
 
 /* Frames still queued for a slow link would hold the reset up (and
@@ -541,6 +555,13 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     T.bg_wait_ms = 0;
     T.bg_known = cfg->ask_bg && T.ask && isatty(T.in_fd) &&
                  termbg_ask(T.q.fd, T.in_fd, TERMBG_WAIT_MS, &T.kp, T.bg, &T.bg_wait_ms);
+    /* which pixels it draws: asked the same way, the answers dropped by
+     * the key parser */
+    T.pix = cfg->pixels == PIX_AUTO ? (T.ask && isatty(T.in_fd) ? pixels_detect(T.q.fd, T.in_fd, TERMBG_WAIT_MS,
+                                                                               answers_to_keys, &T.kp)
+                                                                : PIX_CELLS)
+                                    : (PixelProto)cfg->pixels;
+    T.pix_shown = 0;
     T.ack_wait = T.acks_seen = T.unanswered = 0;
     T.pace_ms = PACE_MIN_MS;
     T.mouse_on = 0;
@@ -556,6 +577,47 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
 }
 
 ColourDepth term_colour(void) { return T.depth; }
+
+PixelProto term_pixels(void) { return T.pix; }
+
+int term_cell_pixels(int *cw, int *ch)
+{
+    return pixels_cell_size(T.q.fd, cw, ch);
+}
+
+int term_show_image(const ByteBuf *b)
+{
+    if (T.out_errno || b->err)
+        return -1;
+    /* from the top left. The cells under the image stay as the screen
+     * model has them (the status bar's changes still go out alone); only
+     * the cursor and the colours are unknown after it */
+    if (out_add("\033[H\033[0m", 7) || out_add((const char *)b->b, b->len)) {
+        errno = ENOMEM;
+        return -1;
+    }
+    T.vt.cy = -1;
+    T.vt.sgr_ok = 0;
+    T.pix_shown = 1;
+    if (out_pump()) {
+        T.out_errno = errno;
+        out_drop();
+        return -1;
+    }
+    return 0;
+}
+
+void term_hide_image(void)
+{
+    if (!T.pix_shown)
+        return;
+    if (T.pix == PIX_KITTY)
+        out_add(KITTY_DELETE_ALL, sizeof KITTY_DELETE_ALL - 1);
+    vt_invalidate(&T.vt);       /* sixel and iTerm2 images are covered by the cells, all of them */
+    T.pix_shown = 0;
+}
+
+int term_image_shown(void) { return T.pix_shown; }
 
 int term_background(uint8_t rgb_out[3], double *waited_ms_out)
 {

@@ -153,10 +153,24 @@ static Reaction act_mode(App *a)
         snprintf(a->note, sizeof a->note, "half and braille need a UTF-8 locale");
         return RE_DRAW;
     }
-    a->mode = (DisplayMode)((a->mode + 1) % MODE_COUNT);
+    /* where the terminal draws pixels: stills in pixels (cells, half
+     * blocks, while the model moves), then each text mode alone */
+    PixelProto px = term_pixels();
+    if (a->pixels) {
+        a->pixels = 0;
+    } else if (px != PIX_CELLS && a->mode == MODE_COUNT - 1) {
+        a->pixels = 1;
+        a->mode = MODE_HALF;
+    } else {
+        a->mode = (DisplayMode)((a->mode + 1) % MODE_COUNT);
+    }
     /* every key that changes a setting says so: at 80 columns the
      * bar's own field for it is one of the first to go */
-    snprintf(a->note, sizeof a->note, "mode: %s", mode_names[a->mode]);
+    if (a->pixels)
+        snprintf(a->note, sizeof a->note, "mode: %s when still, %s while moving", pixel_proto_names[px],
+                 mode_names[a->mode]);
+    else
+        snprintf(a->note, sizeof a->note, "mode: %s", mode_names[a->mode]);
     return RE_RENDER;
 }
 

@@ -46,6 +46,9 @@ static int app_init(App *a, const Options *o, Scene *s)
     a->cull = o->cull;
     a->utf8 = locale_utf8();
     a->mode = o->mode >= 0 ? (DisplayMode)o->mode : mode_from_locale();
+    /* pixels when still: asked for, or (no --mode) where the terminal
+     * has them; --mode half and its kind mean cells */
+    a->pixels = o->pixels > PIX_CELLS || (o->pixels < 0 && o->mode < 0);
     const HsrAlgo *algo = hsr_find(o->algo ? o->algo : "zbuffer");
     if (!algo)
         algo = hsr_algos[0];
@@ -283,7 +286,9 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
     snprintf(f[2].brief, sizeof f[2].brief, "%u/%u", a->p.sp.npolys, s->nfaces);
     bar_field(&f[3], 0, "%s %.2fms", a->p.algo->name, a->p.hsr_ms);
     bar_field(&f[4], 1, "frame %.1fms %.0ffps", frame_ms, frame_ms > 0 ? 1000.0 / frame_ms : 0);
-    bar_field(&f[5], 3, "%s %s %s", mode_names[a->mode], shade_names[a->p.shade], depth_label(term_colour()));
+    bar_field(&f[5], 3, "%s %s %s", a->pixels && term_pixels() != PIX_CELLS ? pixel_proto_names[term_pixels()]
+                                                                          : mode_names[a->mode],
+              shade_names[a->p.shade], depth_label(term_colour()));
     char spin[24] = "";
     if (a->spin)
         snprintf(spin, sizeof spin, "spin@%d", fps_cap);
@@ -410,8 +415,18 @@ static void draw_candidates(App *a, int cols, int rows)
  * of INFO_BESIDE_MIN columns), each line wrapped after a comma to fit. */
 static void draw_info(App *a, int cols, int rows, double out_ms)
 {
-    ReportLine rl[REPORT_LINES];
+    ReportLine rl[REPORT_LINES + 1];
     int n = frame_report(&a->p, out_ms, rl, REPORT_LINES);
+    if (term_pixels() != PIX_CELLS) {
+        rl[n].label = "pixels:";
+        if (a->pix_bytes)
+            snprintf(rl[n].text, REPORT_TEXT, "%s when still, last image %zu KB%s", pixel_proto_names[term_pixels()],
+                     a->pix_bytes / 1000, a->pix_shrink > 1 ? " (fewer pixels, scaled)" : "");
+        else
+            snprintf(rl[n].text, REPORT_TEXT, "%s when still%s", pixel_proto_names[term_pixels()],
+                     a->pixels ? "" : " (off: m)");
+        n++;
+    }
     int inner = cols - 4 < INFO_BOX - 4 ? cols - 4 : INFO_BOX - 4;    /* the box's frame and margins */
     if (inner < 20)
         return;
@@ -451,9 +466,16 @@ typedef struct {
     int    small;           /* last draw was the too-small message */
     int    help;            /* last draw showed the help */
     int    pic_cols;        /* the picture's width last drawn */
+    int    pic_rows;        /* ... and height */
     double out_ms;          /* last curses output time */
     double frame_ms;        /* last rendered frame, render + output */
+    double pix_due;         /* when the model has been still long enough for pixels (0: not due) */
 } DrawState;
+
+/* Cells while the model moves, the terminal's pixels once it has been
+ * still this long: a full-resolution image costs tens of kilobytes to
+ * hundreds, too much for every frame of a turn over SSH. */
+#define PIX_STILL_MS 180
 
 /* Why the loop ended (and what draw() can fail with). */
 enum { RUN_QUIT = 0, RUN_NO_MEMORY = -1, RUN_INPUT_ENDED = 1, RUN_OUTPUT_FAILED = 2 };
@@ -502,6 +524,9 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     }
     ViewerMode m = viewer_mode(a);
     int over = viewer_mode_boxed(m) || m == VM_PROMPT || a->info;     /* drawn past the picture */
+    /* a new picture, or anything over it: the cells again */
+    if ((what & RE_RENDER) == RE_RENDER || over || a->sk.on)
+        term_hide_image();
     if (d->help && !over)
         term_erase();       /* the box may reach past a --size picture */
     d->help = over;
@@ -536,9 +561,59 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     draw_overlay(a, m, cols, rows);
     if (term_update(full))
         return RUN_OUTPUT_FAILED;
-    if ((what & RE_RENDER) == RE_RENDER)
+    if ((what & RE_RENDER) == RE_RENDER) {
         d->out_ms = now_ms() - t1;
+        d->pic_rows = pr;
+        d->pix_due = term_pixels() != PIX_CELLS && a->pixels ? now_ms() + PIX_STILL_MS : 0;
+    }
     return 0;
+}
+
+/* The still picture in the terminal's pixels, over the cells: the same
+ * view at the cells' size in pixels, on the background, painted. Not
+ * over a box, the info panel, sketch mode or a turning model. Within the
+ * link's budget (--max-rate for PIXELS_BUDGET_S): kitty and iTerm2
+ * images are rendered at a half, then a quarter of the pixels and
+ * scaled by the terminal to the same cells; a sixel image over it is
+ * not sent (the cells stay, and the note says why). */
+static int draw_pixels(App *a, DrawState *d)
+{
+    if (viewer_mode(a) != VM_VIEW || a->info || a->spin || a->sk.on || !d->pic_cols || !d->pic_rows ||
+        term_image_shown())
+        return 0;
+    int cw = PIXELS_CELL_W, ch = PIXELS_CELL_H;
+    term_cell_pixels(&cw, &ch);
+    PixelProto px = term_pixels();
+    double budget = (a->opt->max_rate > 0 ? a->opt->max_rate : PIXELS_RATE_DEFAULT) * 1000.0 * PIXELS_BUDGET_S;
+    a->p.highlight = a->s->nobjs > 1 ? a->sel : -1;
+    ByteBuf b = { 0 };
+    for (int shrink = 1; shrink <= 4; shrink *= 2) {
+        int w = d->pic_cols * cw / shrink, h = d->pic_rows * ch / shrink;
+        if (w < 1 || h < 1 || pipeline_render(&a->p, w, h, 1.0f, a->cull, 1)) {
+            bytebuf_free(&b);
+            return RUN_NO_MEMORY;
+        }
+        if (a->p.has_bd)
+            backdrop_paint(&a->p.img, &a->p.bd);
+        b.len = 0;
+        if (pixels_encode(px, &a->p.img, 1, d->pic_cols, d->pic_rows, &b)) {
+            bytebuf_free(&b);
+            return RUN_NO_MEMORY;
+        }
+        a->pix_bytes = b.len;
+        a->pix_shrink = shrink;
+        if ((double)b.len <= budget)
+            break;
+        if (px == PIX_SIXEL || shrink == 4) {
+            snprintf(a->note, sizeof a->note, "%s still image %zu KB: over --max-rate's budget, cells kept",
+                     pixel_proto_names[px], b.len / 1000);
+            bytebuf_free(&b);
+            return 0;
+        }
+    }
+    int rc = term_show_image(&b) ? RUN_OUTPUT_FAILED : 0;
+    bytebuf_free(&b);
+    return rc;
 }
 
 static Reaction dispatch(App *a, const TermEvent *ev)
@@ -576,6 +651,12 @@ static int run(App *a, int fps)
                 return rc;
             todo = RE_NONE;
         }
+        if (!todo && d.pix_due > 0 && now_ms() >= d.pix_due && term_ready()) {
+            d.pix_due = 0;
+            int rc = draw_pixels(a, &d);
+            if (rc)
+                return rc;
+        }
         int timeout = -1;
         if (a->spin) {
             double now = now_ms();
@@ -585,6 +666,12 @@ static int run(App *a, int fps)
             int pace = term_pace_ms();
             if (timeout < 0 || pace < timeout)
                 timeout = pace;
+        }
+        if (d.pix_due > 0) {
+            double now = now_ms();
+            int t = d.pix_due > now ? (int)(d.pix_due - now + 0.999) : 0;
+            if (timeout < 0 || t < timeout)
+                timeout = t;
         }
         /* work in the background: wake up to show how it goes */
         int busy = a->job != NULL || a->tex != NULL || a->p.st.building;
@@ -715,6 +802,7 @@ int app_viewer(const Options *o, Scene *s)
         .mouse = 1,
         .signals = 1,
         .ask_bg = !o->bg,       /* --bg given: nothing to ask */
+        .pixels = !a.pixels ? PIX_CELLS : o->pixels > PIX_CELLS ? o->pixels : PIX_AUTO,
     };
     if (!use || term_open(&cfg, err, sizeof err)) {
         fprintf(stderr, "zview: %s%s\n",
@@ -728,6 +816,7 @@ int app_viewer(const Options *o, Scene *s)
             fclose(screen_tty);
         return no_viewer(o, s);
     }
+    a.pixels = a.pixels && term_pixels() != PIX_CELLS;     /* none there: cells */
     /* the picture is kept visible on the terminal's background */
     uint8_t asked[3];
     Backdrop bd = pipeline_text_backdrop(o, term_background(asked, NULL) ? asked : NULL);

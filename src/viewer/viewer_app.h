@@ -87,6 +87,9 @@ typedef struct App {
     int         cull;
     int         sel;        /* selected object, -1 = the whole scene */
     int         spin;       /* auto-rotate (turntable) */
+    int         pixels;     /* a still picture in the terminal's pixels, where it has them (m turns it off) */
+    size_t      pix_bytes;  /* the last image's bytes */
+    int         pix_shrink; /* ... rendered at 1/pix_shrink of the cells' pixels a side, to fit the link */
     int         help;       /* help overlay shown */
     int         help_top;   /* first help row shown (scrolled) */
     int         help_hidden; /* help rows that did not fit the window (0: all shown) */

@@ -26,7 +26,7 @@ _zview()
     fi
 
     case $prev in
-        --mode) COMPREPLY=($(compgen -W "half ascii braille" -- "$cur")); return ;;
+        --mode) COMPREPLY=($(compgen -W "half ascii braille sixel kitty iterm cells auto" -- "$cur")); return ;;
         --color | --colour) COMPREPLY=($(compgen -W "truecolor 256 16 8 none" -- "$cur")); return ;;
         --shade) COMPREPLY=($(compgen -W "lambert smooth depth id" -- "$cur")); return ;;
         --view) COMPREPLY=($(compgen -W "auto front back left right top bottom iso" -- "$cur")); return ;;
@@ -42,7 +42,7 @@ _zview()
             COMPREPLY=($(compgen -f -- "$cur"))
             return ;;
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
-            --scale | --persp | --grid | --max-polys | --views | -j | --threads | --fps | --crease | \
+            --scale | --persp | --grid | --max-polys | --views | -j | --threads | --fps | --max-rate | --crease | \
             --light | --ambient | --turntable | --point-size | --line-width | --contrast)
             return ;;
     esac
@@ -52,7 +52,7 @@ _zview()
         COMPREPLY=($(compgen -W "--help --version --print --output --size --mode --color --shade
             --info --check --dump-ids --dump-screen --algo --yaw --pitch --roll --zoom --pan --fit-from
             --move --turn --scale --persp --ortho --cull --grid --max-polys --bench --bench-tty
-            --views --threads --json --fps --format --formats --up --flip --image-format --sketch
+            --views --threads --json --fps --max-rate --format --formats --up --flip --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
             --turntable --point-size --line-width --wireframe --points --strict --bg --contrast --no-textures" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
