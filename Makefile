@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order bench-textures bench-pixels
+.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-tex fuzz-seeds replay bench-points bench-order bench-textures bench-pixels
 
 all: $(BIN)
 
@@ -64,7 +64,7 @@ help:
 	@echo '  make replay        every input that ever failed, through the normal build'
 	@echo '  make mutate        each mutant of tests/mutants.txt must fail make test (about 15 minutes)'
 	@echo 'Fuzzing (clang + libFuzzer: sh tools/deps.sh installs them)'
-	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh'
+	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh, fuzz-tex (the image decoders)'
 	@echo '  make fuzz-run SECONDS=N   run each for N seconds; failures go to build-fuzz/artifacts/'
 	@echo '  make fuzz-seeds    rewrite the differential fuzzer seed scenes'
 	@echo 'Benchmarks (never timed tests: compare medians and ratios within one run)'
@@ -101,9 +101,10 @@ $(TESTBIN): $(LIBOBJS) $(TOBJS) $(CONFIG)
 FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c tests/testlib.c
 FUZZ_DIFF_SRCS := tests/fuzz/fuzz_diff.c tests/fuzz/scenecode.c tests/testlib.c
 FUZZ_MESH_SRCS := tests/fuzz/fuzz_mesh.c tests/testlib.c
+FUZZ_TEX_SRCS  := tests/fuzz/fuzz_tex.c
 REPLAY_OBJS    := $(sort $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) \
-                  $(FUZZ_MESH_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
-REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff $(BUILD)/replay-mesh
+                  $(FUZZ_MESH_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
+REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff $(BUILD)/replay-mesh $(BUILD)/replay-tex
 
 $(BUILD)/tests/fuzz/%.o: CFLAGS += -Itests
 
@@ -116,12 +117,16 @@ $(BUILD)/replay-diff: $(LIBOBJS) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tes
 $(BUILD)/replay-mesh: $(LIBOBJS) $(FUZZ_MESH_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
+$(BUILD)/replay-tex: $(LIBOBJS) $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
 # Every input that ever failed, and the seeds (pending/ is not replayed).
 # fuzz-mesh's loaders warn about what they skip: that goes to /dev/null.
 replay: $(REPLAYS)
 	$(BUILD)/replay-obj tests/fuzz/seeds/obj tests/fuzz/regress/obj
 	$(BUILD)/replay-diff tests/fuzz/seeds/diff tests/fuzz/regress/diff
 	$(BUILD)/replay-mesh tests/fuzz/seeds/mesh tests/fuzz/regress/mesh 2>/dev/null
+	$(BUILD)/replay-tex tests/fuzz/seeds/tex tests/fuzz/regress/tex
 
 # The whole suite: unit tests (Criterion), the fuzz corpora, then
 # end-to-end shell tests. Both runners count the checks that skipped
@@ -259,14 +264,14 @@ FUZZ_SAN    := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno
 FUZZ_CFLAGS := -O1 -g $(EXTRA_CFLAGS) $(COMMON_CFLAGS) -Itests $(FUZZ_SAN)
 FUZZ_LIBOBJS := $(LIBSRCS:%.c=$(FUZZ_BUILD)/%.o)
 FUZZ_OBJS   := $(sort $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o) \
-                      $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o))
+                      $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o))
 SECONDS     ?= 60
 FUZZ_FLAGS  ?=
 # the invariants (ZV_ASSERT, include/check.h) are on here as in make asan:
 # a fuzz input that breaks one stops where it broke
 FUZZ_CFLAGS += -DZV_CHECKS
 
-fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff $(FUZZ_BUILD)/fuzz-mesh
+fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff $(FUZZ_BUILD)/fuzz-mesh $(FUZZ_BUILD)/fuzz-tex
 
 # Rewrite the differential fuzzer's seed scenes (they are committed).
 fuzz-seeds: $(BUILD)/mkseeds
@@ -294,10 +299,13 @@ $(FUZZ_BUILD)/fuzz-diff: $(FUZZ_LIBOBJS) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 $(FUZZ_BUILD)/fuzz-mesh: $(FUZZ_LIBOBJS) $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
 
+$(FUZZ_BUILD)/fuzz-tex: $(FUZZ_LIBOBJS) $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+
 # fuzz-obj's and fuzz-mesh's stderr is closed (-close_fd_mask=2): the
 # loaders' warnings would drown their output; crash reports still get
 # through. make fuzz-run-mesh runs fuzz-mesh alone.
-fuzz-run: fuzz fuzz-run-mesh
+fuzz-run: fuzz fuzz-run-mesh fuzz-run-tex
 	@mkdir -p $(FUZZ_BUILD)/corpus/obj $(FUZZ_BUILD)/corpus/diff $(FUZZ_BUILD)/artifacts/obj $(FUZZ_BUILD)/artifacts/diff
 	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
 	    -dict=tests/fuzz/obj.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/obj/ $(FUZZ_FLAGS) \
@@ -311,6 +319,13 @@ fuzz-run-mesh: $(FUZZ_BUILD)/fuzz-mesh
 	nice $(FUZZ_BUILD)/fuzz-mesh -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
 	    -dict=tests/fuzz/mesh.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/mesh/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/mesh tests/fuzz/seeds/mesh tests/fuzz/regress/mesh
+
+# the image decoders: make fuzz-run-tex runs fuzz-tex alone
+fuzz-run-tex: $(FUZZ_BUILD)/fuzz-tex
+	@mkdir -p $(FUZZ_BUILD)/corpus/tex $(FUZZ_BUILD)/artifacts/tex
+	nice $(FUZZ_BUILD)/fuzz-tex -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=65536 \
+	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/tex/ $(FUZZ_FLAGS) \
+	    $(FUZZ_BUILD)/corpus/tex tests/fuzz/seeds/tex tests/fuzz/regress/tex
 
 clean:
 	rm -rf build build-asan build-noassimp build-nosimd $(FUZZ_BUILD) $(BIN)

@@ -35,7 +35,10 @@ static inline int floor_int(float x)
  * resolves texels (floats past 2^23 have no fraction left anyway). */
 static inline float tame(float x)
 {
-    if (!(x == x))
+    /* NaN and the infinities (a file's "inf" texture coordinate, a
+     * weight of a triangle seen edge-on): fmodf would give NaN, and
+     * (int)NaN is undefined: take the texture's corner */
+    if (!isfinite(x))
         return 0;
     return x > 1e6f ? fmodf(x, 1e6f) : x < -1e6f ? -fmodf(-x, 1e6f) : x;
 }
