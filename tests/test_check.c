@@ -891,6 +891,58 @@ Test(check, triangle_pair_cases)
     cr_assert_eq(check_tri_pair(A, ia, A, ia), CHECK_SAME_TRI);
 }
 
+/* The orientation of points on a small integer grid, moved and scaled
+ * by powers of two (which keeps them exact floats and the sign as it
+ * was): the sign the integers give, through both exact stages (the
+ * 128-bit one for coordinates of one magnitude, the expansion for a
+ * wide range, which a far translation makes). */
+Test(check, orient3d_sign_is_exact_at_every_scale)
+{
+    uint32_t seed = 12345;
+    int tested = 0, zeros = 0;
+    for (int round = 0; round < 4000; round++) {
+        int64_t g[4][3];
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++) {
+                seed = seed * 1103515245u + 12345u;
+                g[i][k] = (int64_t)(seed >> 16 & 15) - 8;
+            }
+        /* d on the plane of a, b, c, or one step off it */
+        seed = seed * 1103515245u + 12345u;
+        int64_t s = (int64_t)(seed >> 16 & 3) - 1, t = (int64_t)(seed >> 20 & 3) - 1;
+        for (int k = 0; k < 3; k++)
+            g[3][k] = g[0][k] + s * (g[1][k] - g[0][k]) + t * (g[2][k] - g[0][k]);
+        if (round & 1)
+            g[3][(round >> 1) % 3] += (round & 2) ? 1 : -1;
+        int64_t m[3][3];
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++)
+                m[i][k] = g[i][k] - g[3][k];
+        int64_t det = m[0][2] * (m[1][0] * m[2][1] - m[2][0] * m[1][1]) +
+                      m[1][2] * (m[2][0] * m[0][1] - m[0][0] * m[2][1]) +
+                      m[2][2] * (m[0][0] * m[1][1] - m[1][0] * m[0][1]);
+        int want = det > 0 ? 1 : det < 0 ? -1 : 0;
+        static const int scale[] = { -40, -3, 0, 9, 60 };
+        /* none, all far (one magnitude), x alone far (a wide range) */
+        static const double shift[] = { 0, 1000, 1 << 22 };
+        for (int si = 0; si < 5; si++)
+            for (int ti = 0; ti < 3; ti++) {
+                float f[4][3];
+                for (int i = 0; i < 4; i++)
+                    for (int k = 0; k < 3; k++)
+                        f[i][k] = (float)ldexp((double)g[i][k] + shift[ti] * (ti == 2 ? k == 0 : k == 1 ? -1 : 1),
+                                               scale[si]);
+                int got = exact_orient3d(f[0], f[1], f[2], f[3]);
+                cr_assert_eq(got, want, "round %d, scale 2^%d, shift %g: %d, wanted %d", round, scale[si], shift[ti],
+                             got, want);
+                tested++;
+                zeros += want == 0;
+            }
+    }
+    cr_assert_gt(zeros, 1000, "coplanar cases reach the exact stages");
+    cr_assert_gt(tested, 50000);
+}
+
 /* ==== An independent reference ==== */
 
 /* Counted here without meshcheck's code: points by sorting positions,
