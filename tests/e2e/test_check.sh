@@ -190,3 +190,18 @@ fi
 printf 'OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 2 3 7 6\n4 0 4 7 3\n4 1 2 6 5\n' >"$T/cube.off"
 expect_status "an OFF cube is sound" 0 "$Z" --check "$T/cube.off"
 expect_out "... in OFF" "$T/cube.off (off)"
+
+# ==== The unit a format states (through assimp: 3MF millimetres, glTF metres) ====
+"$Z" --formats >"$T/formats" 2>/dev/null
+A=/usr/share/assimp/models
+if ! grep -q '^3mf ' "$T/formats"; then
+    skip "3MF states millimetres" "no assimp in this build"
+elif [ ! -r "$A/3MF/box.3mf" ]; then
+    skip "3MF states millimetres" "no assimp-testmodels (tools/deps.sh)"
+else
+    expect_status "a 3MF box is sound" 0 "$Z" --check "$A/3MF/box.3mf"
+    expect_out "... its size in millimetres" "size          10 x 20 x 30 mm"
+    expect_out "... its volume in cubic millimetres" "volume        6000 mm^3, centre of mass 5 10 15"
+    expect_status "a glTF box" 0 "$Z" --check --json "$A/glTF2/BoxTextured-glTF/BoxTextured.gltf"
+    expect_out "... states metres" '"unit": "m"'
+fi
