@@ -138,6 +138,7 @@ static void exp_add_det3(Expansion *e, int s, const float *p, const float *q, co
  * coordinates of one magnitude), and much faster than the expansion.
  * Returns 0 when the coordinates do not allow (a range too wide, a
  * subnormal), else 1 with the sign in *sign. */
+#ifdef __SIZEOF_INT128__
 static int orient3d_fixed(const float *a, const float *b, const float *c, const float *d, int *sign)
 {
     const float *p[4] = { a, b, c, d };
@@ -174,6 +175,14 @@ static int orient3d_fixed(const float *a, const float *b, const float *c, const 
     *sign = det > 0 ? 1 : det < 0 ? -1 : 0;
     return 1;
 }
+#else
+/* No 128-bit integers on this compiler: the expansion does it all. */
+static int orient3d_fixed(const float *a, const float *b, const float *c, const float *d, int *sign)
+{
+    (void)a, (void)b, (void)c, (void)d, (void)sign;
+    return 0;
+}
+#endif
 
 /* det[a-d; b-d; c-d] = det(a,b,c) - det(a,b,d) + det(a,c,d) - det(b,c,d):
  * the 4x4 determinant of the points with a column of ones, expanded
