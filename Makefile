@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-tex fuzz-seeds replay bench-points bench-order bench-textures bench-pixels
+.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels
 
 all: $(BIN)
 
@@ -64,8 +64,9 @@ help:
 	@echo '  make replay        every input that ever failed, through the normal build'
 	@echo '  make mutate        each mutant of tests/mutants.txt must fail make test (about 15 minutes)'
 	@echo 'Fuzzing (clang + libFuzzer: sh tools/deps.sh installs them)'
-	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh, fuzz-tex (the image decoders)'
+	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh, fuzz-check, fuzz-tex (the image decoders)'
 	@echo '  make fuzz-run SECONDS=N   run each for N seconds; failures go to build-fuzz/artifacts/'
+	@echo '  make fuzz-run-mesh, fuzz-run-check, fuzz-run-tex   one of them alone'
 	@echo '  make fuzz-seeds    rewrite the differential fuzzer seed scenes'
 	@echo 'Benchmarks (never timed tests: compare medians and ratios within one run)'
 	@echo '  make bench         the speed table (tools/bench.sh), single-thread rows pinned to a core'
@@ -75,6 +76,7 @@ help:
 	@echo '  make bench-order   hzb and hzb-octree under each --order'
 	@echo '  make bench-textures textured frames against untextured; the first picture of a 16k image'
 	@echo '  make bench-pixels  bytes a picture costs in sixel, kitty and iTerm2 images against text'
+	@echo '  make bench-check   --check of the dragon and the 5.2M model beyond loading, and its peak memory'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
 	@echo '  make assets        regenerate the bundled models (they are committed)'
@@ -101,10 +103,13 @@ $(TESTBIN): $(LIBOBJS) $(TOBJS) $(CONFIG)
 FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c tests/testlib.c
 FUZZ_DIFF_SRCS := tests/fuzz/fuzz_diff.c tests/fuzz/scenecode.c tests/testlib.c
 FUZZ_MESH_SRCS := tests/fuzz/fuzz_mesh.c tests/testlib.c
+FUZZ_CHECK_SRCS := tests/fuzz/fuzz_check.c
 FUZZ_TEX_SRCS  := tests/fuzz/fuzz_tex.c
 REPLAY_OBJS    := $(sort $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) \
-                  $(FUZZ_MESH_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
-REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff $(BUILD)/replay-mesh $(BUILD)/replay-tex
+                  $(FUZZ_MESH_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_CHECK_SRCS:%.c=$(BUILD)/%.o) \
+                  $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
+REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff $(BUILD)/replay-mesh $(BUILD)/replay-check \
+                  $(BUILD)/replay-tex
 
 $(BUILD)/tests/fuzz/%.o: CFLAGS += -Itests
 
@@ -117,6 +122,9 @@ $(BUILD)/replay-diff: $(LIBOBJS) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tes
 $(BUILD)/replay-mesh: $(LIBOBJS) $(FUZZ_MESH_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
+$(BUILD)/replay-check: $(LIBOBJS) $(FUZZ_CHECK_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
 $(BUILD)/replay-tex: $(LIBOBJS) $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
@@ -126,6 +134,7 @@ replay: $(REPLAYS)
 	$(BUILD)/replay-obj tests/fuzz/seeds/obj tests/fuzz/regress/obj
 	$(BUILD)/replay-diff tests/fuzz/seeds/diff tests/fuzz/regress/diff
 	$(BUILD)/replay-mesh tests/fuzz/seeds/mesh tests/fuzz/regress/mesh 2>/dev/null
+	$(BUILD)/replay-check tests/fuzz/seeds/check tests/fuzz/regress/check 2>/dev/null
 	$(BUILD)/replay-tex tests/fuzz/seeds/tex tests/fuzz/regress/tex
 
 # The whole suite: unit tests (Criterion), the fuzz corpora, then
@@ -186,6 +195,14 @@ run: $(BIN)
 # tools/subdiv writes the many-triangle model into /tmp at bench time
 bench: $(BIN) $(BUILD)/subdiv
 	SUBDIV=$(BUILD)/subdiv sh tools/bench.sh
+
+# What --check costs beyond loading, and its peak memory against loading
+# alone (issue 19; doc/benchmarks.md: The check).
+bench-check: $(BIN) $(BUILD)/checkbench $(BUILD)/subdiv
+	ZVIEW=$(abspath $(BIN)) CHECKBENCH=$(BUILD)/checkbench SUBDIV=$(BUILD)/subdiv sh tools/bench-check.sh
+
+$(BUILD)/checkbench: tools/checkbench.c $(LIBOBJS)
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/subdiv: tools/subdiv.c
 	@mkdir -p $(BUILD)
@@ -264,14 +281,15 @@ FUZZ_SAN    := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno
 FUZZ_CFLAGS := -O1 -g $(EXTRA_CFLAGS) $(COMMON_CFLAGS) -Itests $(FUZZ_SAN)
 FUZZ_LIBOBJS := $(LIBSRCS:%.c=$(FUZZ_BUILD)/%.o)
 FUZZ_OBJS   := $(sort $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o) \
-                      $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o))
+                      $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_CHECK_SRCS:%.c=$(FUZZ_BUILD)/%.o) \
+                      $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o))
 SECONDS     ?= 60
 FUZZ_FLAGS  ?=
 # the invariants (ZV_ASSERT, include/check.h) are on here as in make asan:
 # a fuzz input that breaks one stops where it broke
 FUZZ_CFLAGS += -DZV_CHECKS
 
-fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff $(FUZZ_BUILD)/fuzz-mesh $(FUZZ_BUILD)/fuzz-tex
+fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff $(FUZZ_BUILD)/fuzz-mesh $(FUZZ_BUILD)/fuzz-check $(FUZZ_BUILD)/fuzz-tex
 
 # Rewrite the differential fuzzer's seed scenes (they are committed).
 fuzz-seeds: $(BUILD)/mkseeds
@@ -302,10 +320,15 @@ $(FUZZ_BUILD)/fuzz-mesh: $(FUZZ_LIBOBJS) $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 $(FUZZ_BUILD)/fuzz-tex: $(FUZZ_LIBOBJS) $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
 
-# fuzz-obj's and fuzz-mesh's stderr is closed (-close_fd_mask=2): the
-# loaders' warnings would drown their output; crash reports still get
-# through. make fuzz-run-mesh runs fuzz-mesh alone.
-fuzz-run: fuzz fuzz-run-mesh fuzz-run-tex
+$(FUZZ_BUILD)/fuzz-check: $(FUZZ_LIBOBJS) $(FUZZ_CHECK_SRCS:%.c=$(FUZZ_BUILD)/%.o)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+
+# fuzz-obj's, fuzz-mesh's and fuzz-check's stderr is closed
+# (-close_fd_mask=2): the loaders' warnings would drown their output;
+# crash reports still get through. make fuzz-run-mesh runs fuzz-mesh
+# alone, make fuzz-run-check fuzz-check (the --check analysis on what
+# the loaders make of the bytes; the mesh dictionary serves it too).
+fuzz-run: fuzz fuzz-run-mesh fuzz-run-check fuzz-run-tex
 	@mkdir -p $(FUZZ_BUILD)/corpus/obj $(FUZZ_BUILD)/corpus/diff $(FUZZ_BUILD)/artifacts/obj $(FUZZ_BUILD)/artifacts/diff
 	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
 	    -dict=tests/fuzz/obj.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/obj/ $(FUZZ_FLAGS) \
@@ -319,6 +342,12 @@ fuzz-run-mesh: $(FUZZ_BUILD)/fuzz-mesh
 	nice $(FUZZ_BUILD)/fuzz-mesh -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
 	    -dict=tests/fuzz/mesh.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/mesh/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/mesh tests/fuzz/seeds/mesh tests/fuzz/regress/mesh
+
+fuzz-run-check: $(FUZZ_BUILD)/fuzz-check
+	@mkdir -p $(FUZZ_BUILD)/corpus/check $(FUZZ_BUILD)/artifacts/check
+	nice $(FUZZ_BUILD)/fuzz-check -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
+	    -dict=tests/fuzz/mesh.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/check/ $(FUZZ_FLAGS) \
+	    $(FUZZ_BUILD)/corpus/check tests/fuzz/seeds/check tests/fuzz/regress/check
 
 # the image decoders: make fuzz-run-tex runs fuzz-tex alone
 fuzz-run-tex: $(FUZZ_BUILD)/fuzz-tex

@@ -55,6 +55,12 @@ int main(int argc, char **argv)
         return 1;
     }
     double load_ms = now_ms() - t0;
+    /* as --check does (oneshot/check.c): what the check does not read
+     * goes before it starts */
+    free(m.face_mat);
+    m.face_mat = NULL;
+    free(m.rgb);
+    m.rgb = NULL;
     if (load_only) {
         printf("%-28s faces %9u  load %7.1f ms  peak %7.1f MB (loading alone)\n", path, m.nfaces, load_ms,
                peak_kb() / 1024.0);

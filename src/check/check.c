@@ -19,7 +19,6 @@ typedef struct {
     const CheckOpts *opt;
     Pool            *pool;
     uint32_t        *pid;       /* mesh vertex -> welded point */
-    uint32_t        *rep;       /* welded point -> a vertex */
     uint32_t         np;
     uint32_t        *loc;       /* welded point -> the object's point, CHECK_NONE */
     uint32_t        *vpt;       /* mesh vertex -> the object's point */
@@ -115,6 +114,10 @@ static int obj_passes(Run *r, ObjCheck *o, double *ms)
     free(o->nm_half);
     free(o->nm_group);
     o->mate = o->nm_half = o->nm_group = NULL;
+    if (!r->opt->detail) {
+        free(o->part);          /* read by nothing after this: memory for the crossings */
+        o->part = NULL;
+    }
     t2 = now_ms();
     ms[CHECK_T_DUPS] += t2 - t;
     if (r->opt->intersections) {
@@ -242,7 +245,6 @@ static void file_totals(MeshCheck *mc, uint32_t used_points)
 static void run_free(Run *r)
 {
     free(r->pid);
-    free(r->rep);
     free(r->loc);
     free(r->vpt);
     free(r->prep);
@@ -256,7 +258,7 @@ static int run_start(Run *r, MeshCheck *mc)
     size_t nv = (size_t)m->nverts + 1;
     double t = now_ms();
     r->pid = malloc(nv * sizeof *r->pid);
-    if (!r->pid || check_weld(m, r->pid, &r->rep, &r->np))
+    if (!r->pid || check_weld(m, r->pid, &r->np))
         return -1;
     mc->ms[CHECK_T_WELD] = now_ms() - t;
     r->loc = malloc(((size_t)r->np + 1) * sizeof *r->loc);

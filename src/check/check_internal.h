@@ -79,10 +79,10 @@ uint32_t check_find(uint32_t *p, uint32_t i);
 int      check_union(uint32_t *p, uint32_t a, uint32_t b);
 
 /* weld.c: mesh vertex -> point (vertices at one position are one
- * point), for the whole mesh. pid gets nverts entries; rep (npts_out
- * entries, allocated) a vertex of each point. Returns 0 or -1 (out of
- * memory). */
-int  check_weld(const Mesh *m, uint32_t *pid, uint32_t **rep, uint32_t *npts_out);
+ * point, numbered from 0 in vertex order), for the whole mesh. pid gets
+ * nverts entries, *npts_out the number of points. Returns 0 or -1 (out
+ * of memory). */
+int  check_weld(const Mesh *m, uint32_t *pid, uint32_t *npts_out);
 
 /* topo.c: the half-edge pairing (mate, the non-manifold groups), the
  * boundary, holes, non-manifold edges and vertices. */

@@ -566,6 +566,8 @@ static int gather(Cross *x)
         return -1;
     size_t k = 0;
     for (uint32_t t = 0; t < x->njobs; t++) {
+        if (!x->found[t].n)
+            continue;           /* a job that found none has no list (memcpy from NULL is undefined) */
         memcpy(all + k, x->found[t].pairs, x->found[t].n * sizeof *all);
         k += x->found[t].n;
     }

@@ -18,10 +18,14 @@
  * < 2^385, and a nonzero product is > 2^-447), so nothing is lost.
  *
  * The exact stage runs only for (nearly) degenerate inputs: coplanar
- * faces of a flat part, collinear corners. */
+ * faces of a flat part, collinear corners. orient3d tries 128-bit
+ * integers first (orient3d_fixed), which cover coordinates of one
+ * magnitude, before the expansion. */
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "exact.h"
 
@@ -125,6 +129,61 @@ static void exp_add_det3(Expansion *e, int s, const float *p, const float *q, co
 #define O3D_BOUND ((7.0 + 56.0 * EPS) * EPS)
 #define O2D_BOUND ((3.0 + 16.0 * EPS) * EPS)
 
+/* The same determinant in 128-bit integers, when the coordinates allow:
+ * a float is M 2^(e-150) with M < 2^24 (e its exponent field), so when
+ * the twelve fields span at most 16, every coordinate is an integer
+ * multiple of 2^(lo-150) below 2^40, the differences are below 2^41,
+ * their triple products below 2^123 and the determinant below 2^126.
+ * That is the common case of a nearly flat neighbourhood of a mesh (its
+ * coordinates of one magnitude), and much faster than the expansion.
+ * Returns 0 when the coordinates do not allow (a range too wide, a
+ * subnormal), else 1 with the sign in *sign. */
+#ifdef __SIZEOF_INT128__
+static int orient3d_fixed(const float *a, const float *b, const float *c, const float *d, int *sign)
+{
+    const float *p[4] = { a, b, c, d };
+    int lo = 256, hi = -1;
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t u;
+            memcpy(&u, &p[i][k], sizeof u);
+            int e = (int)(u >> 23 & 0xff);
+            if ((e == 0 && (u & 0x7fffff)) || e == 255)
+                return 0;               /* subnormal, or not finite */
+            if (e == 0)
+                continue;               /* zero: any multiple */
+            lo = e < lo ? e : lo;
+            hi = e > hi ? e : hi;
+        }
+    if (hi < 0) {
+        *sign = 0;                      /* every coordinate zero */
+        return 1;
+    }
+    if (hi - lo > 16)
+        return 0;
+    int64_t q[4][3];
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 3; k++)
+            q[i][k] = (int64_t)ldexp((double)p[i][k], 150 - lo);   /* exact: an integer below 2^40 */
+    int64_t adx = q[0][0] - q[3][0], ady = q[0][1] - q[3][1], adz = q[0][2] - q[3][2];
+    int64_t bdx = q[1][0] - q[3][0], bdy = q[1][1] - q[3][1], bdz = q[1][2] - q[3][2];
+    int64_t cdx = q[2][0] - q[3][0], cdy = q[2][1] - q[3][1], cdz = q[2][2] - q[3][2];
+    __int128 bc = (__int128)bdx * cdy - (__int128)cdx * bdy;
+    __int128 ca = (__int128)cdx * ady - (__int128)adx * cdy;
+    __int128 ab = (__int128)adx * bdy - (__int128)bdx * ady;
+    __int128 det = bc * adz + ca * bdz + ab * cdz;
+    *sign = det > 0 ? 1 : det < 0 ? -1 : 0;
+    return 1;
+}
+#else
+/* No 128-bit integers on this compiler: the expansion does it all. */
+static int orient3d_fixed(const float *a, const float *b, const float *c, const float *d, int *sign)
+{
+    (void)a, (void)b, (void)c, (void)d, (void)sign;
+    return 0;
+}
+#endif
+
 /* det[a-d; b-d; c-d] = det(a,b,c) - det(a,b,d) + det(a,c,d) - det(b,c,d):
  * the 4x4 determinant of the points with a column of ones, expanded
  * along that column. */
@@ -154,6 +213,9 @@ int exact_orient3d(const float *a, const float *b, const float *c, const float *
         return 1;
     if (det < -bound)
         return -1;
+    int sign;
+    if (orient3d_fixed(a, b, c, d, &sign))
+        return sign;
     return orient3d_exact(a, b, c, d);
 }
 

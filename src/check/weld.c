@@ -93,19 +93,15 @@ static inline void pos_key(const Mesh *m, uint32_t v, uint32_t k[3])
         k[i] = coord_bits(m->pos[3 * (size_t)v + i]);
 }
 
-int check_weld(const Mesh *m, uint32_t *pid, uint32_t **rep_out, uint32_t *npts_out)
+int check_weld(const Mesh *m, uint32_t *pid, uint32_t *npts_out)
 {
     uint32_t nv = m->nverts;
     size_t size = 64;
     while (size < 2 * (size_t)nv)
         size *= 2;
     uint32_t *slot = malloc(size * sizeof *slot);   /* a vertex of each point, CHECK_NONE empty */
-    uint32_t *rep = malloc((nv ? nv : 1) * sizeof *rep);
-    if (!slot || !rep) {
-        free(slot);
-        free(rep);
+    if (!slot)
         return -1;
-    }
     memset(slot, 0xff, size * sizeof *slot);
     uint32_t np = 0;
     for (uint32_t v = 0; v < nv; v++) {
@@ -117,7 +113,6 @@ int check_weld(const Mesh *m, uint32_t *pid, uint32_t **rep_out, uint32_t *npts_
             uint32_t w = slot[h];
             if (w == CHECK_NONE) {
                 slot[h] = v;
-                rep[np] = v;
                 pid[v] = np++;
                 break;
             }
@@ -129,7 +124,6 @@ int check_weld(const Mesh *m, uint32_t *pid, uint32_t **rep_out, uint32_t *npts_
         }
     }
     free(slot);
-    *rep_out = rep;
     *npts_out = np;
     return 0;
 }
