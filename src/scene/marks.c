@@ -143,10 +143,8 @@ void scene_check_meshes_free(Mesh *m, int n)
 
 /* ==== The marks ==== */
 
-void scene_marks_clear(Scene *s)
+void scene_marks_release(SceneMarks *mk)
 {
-    SceneMarks *mk = &s->marks;
-    int had = mk->nedges > 0;
     free(mk->edge);
     free(mk->edge_kind);
     free(mk->face);
@@ -154,7 +152,13 @@ void scene_marks_clear(Scene *s)
     uint32_t gen = mk->gen;
     memset(mk, 0, sizeof *mk);
     mk->gen = gen + 1;
-    for (int i = 0; i < s->nobjs; i++)
+}
+
+void scene_marks_clear(Scene *s)
+{
+    int had = s->marks.nedges > 0;
+    scene_marks_release(&s->marks);
+    for (int i = 0; s->objs && i < s->nobjs; i++)
         s->objs[i].mark_first = s->objs[i].mark_count = 0;
     if (had)
         scene_number_prims(s);      /* fewer ids: always fits */

@@ -114,7 +114,7 @@ static int face_base_rgb(const Mesh *m, uint32_t f, uint8_t out[3])
 
 void scene_free(Scene *s)
 {
-    scene_marks_clear(s);
+    scene_marks_release(&s->marks);
     for (int i = 0; i < s->nmeshes; i++)
         mesh_free(&s->meshes[i]);
     free(s->meshes);
