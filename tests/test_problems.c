@@ -17,6 +17,7 @@
 #include "app.h"
 #include "backdrop.h"
 #include "testlib.h"
+#include "../src/viewer/viewer_app.h"
 
 static const char *cube_v = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
 /* outward faces; the last is the x = 0 side (vertices 4 1 5 8) */
@@ -358,4 +359,57 @@ Test(problems, part_colours_differ_and_stay_off_black_and_white)
         for (uint32_t j = 0; j < i; j++)
             cr_expect(memcmp(c[i], c[j], 3) != 0, "parts %u and %u share a colour", i, j);
     }
+}
+
+/* ==== --watch's events (watch.c) ==== */
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f, "%s", path);
+    fputs(text, f);
+    cr_assert_eq(fclose(f), 0);
+}
+
+/* The times are given, not read: a change is due WATCH_SETTLE_MS (0.1 s)
+ * after the last event of its name. */
+Test(watch, a_rename_over_the_file_and_a_write_in_place_are_changes)
+{
+    char dir[] = "/tmp/zv-watch-XXXXXX", a[64], b[64], tmp[64], other[64];
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(a, sizeof a, "%s/a.obj", dir);
+    snprintf(b, sizeof b, "%s/b.obj", dir);
+    snprintf(tmp, sizeof tmp, "%s/.a.obj.tmp", dir);
+    snprintf(other, sizeof other, "%s/c.obj", dir);
+    write_file(a, "v 0 0 0\n");
+    write_file(b, "v 0 0 0\n");
+    char err[160];
+    Watch *w = watch_start(err, sizeof err);
+    cr_assert_not_null(w, "%s", err);
+    const char *files[2] = { a, b };
+    watch_files(w, files, 2);
+    cr_assert_eq(watch_due(w, 0), -1, "nothing changed yet");
+    /* an exporter's way: a temporary file renamed over a.obj */
+    write_file(tmp, "v 1 1 1\n");
+    cr_assert_eq(rename(tmp, a), 0);
+    cr_assert_eq(watch_due(w, 1000), -1, "not before it settled");
+    cr_assert_eq(watch_due(w, 1099), -1);
+    cr_assert_eq(watch_due(w, 1100), 0, "a.obj, once it settled");
+    cr_assert_eq(watch_due(w, 5000), -1, "once");
+    /* a file of no interest changes nothing; b.obj written in place does */
+    write_file(other, "v 2 2 2\n");
+    cr_assert_eq(watch_due(w, 6000), -1);
+    cr_assert_eq(watch_due(w, 7000), -1);
+    write_file(b, "v 3 3 3\n");
+    cr_assert_eq(watch_due(w, 8000), -1);
+    cr_assert_eq(watch_due(w, 8200), 1, "b.obj");
+    /* a change met while a load runs comes back later */
+    watch_again(w, 0, 9000);
+    cr_assert_eq(watch_due(w, 9050), -1);
+    cr_assert_eq(watch_due(w, 9100), 0);
+    watch_free(w);
+    unlink(a);
+    unlink(b);
+    unlink(other);
+    rmdir(dir);
 }

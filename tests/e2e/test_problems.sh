@@ -89,3 +89,18 @@ if wait_for 'faces 5 drawn' && wait_for '1 hole'; then ok "--watch reads a file 
     notok "--watch reads a file written in place" "$(status 30)"; fi
 tm send-keys -t zv q
 prompt_back
+
+# the view stays: a turned camera, the same file written again
+cp assets/torus.obj "$T/t.obj"
+start 100 30 --watch --view front "$T/t.obj" assets/cube.obj
+wait_for "faces [0-9]+ drawn" >/dev/null || notok "the viewer starts" "$(cat "$T/screen")"
+tm send-keys -t zv h h K w
+wait_stable
+picture 29 >"$T/turned"
+cp assets/torus.obj "$T/t.new"
+mv "$T/t.new" "$T/t.obj"
+if wait_for 'read t\.obj again'; then ok "--watch says it read the file again"; else notok "--watch says it read the file again" "$(status 30)"; fi
+wait_stable
+check "... and the camera and the layout stay as they were" 'picture 29 | cmp -s - "$T/turned"' "the picture moved"
+tm send-keys -t zv q
+prompt_back
