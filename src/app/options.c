@@ -508,8 +508,8 @@ const OptSpec cli_options[] = {
       "draw what the check finds on the model: holes and\nnon-manifold edges as lines, faces seen from\n"
       "inside and crossing faces coloured (! in the viewer)",
       NULL, FLAG(problems), OPT_VIEWCMD },
-    { "parts", 0, NULL, NULL, OPTSEC_OUTPUT, "each connected part of the model its own colour", NULL, FLAG(parts),
-      OPT_VIEWCMD },
+    { "parts", 0, NULL, NULL, OPTSEC_OUTPUT, "each connected part of the model its own colour\n(@ in the viewer)",
+      NULL, FLAG(parts), OPT_VIEWCMD },
     { "watch", 0, NULL, NULL, OPTSEC_INPUT,
       "the viewer reads the files again when they change\n(an exporter's rename too), keeping the view", NULL,
       FLAG(watch), 0 },
