@@ -84,6 +84,9 @@ typedef struct {
     int         tex_defer;      /* the viewer: images longer than this a side decode after the first picture */
     int         tex_skip;       /* one picture without textures: no image is opened */
     int         check;          /* --check: is each model right (a report, exit status 3 on problems) */
+    int         problems;       /* --problems: what the check finds, drawn on the model */
+    int         parts;          /* --parts: each connected part its own colour */
+    int         watch;          /* --watch: the files read again when they change */
 } Options;
 
 /* The viewer decodes images longer than this a side on a thread of its
@@ -218,6 +221,11 @@ typedef struct {
     int          line_width;    /* pixels */
     int          wireframe;     /* every face edge as a line (the scene's wire is built on first use) */
     int          no_textures;   /* textured faces in their one colour */
+    /* what --check found, on the model (Scene.marks, when a check set them) */
+    int          problems;      /* problem edges drawn, faces seen from inside or crossing coloured */
+    int          parts;         /* each part its own colour */
+    MarkColours  markcol;       /* the faces' colours for those */
+    Scene        shade_view;    /* the scene with those colours, as shading reads it */
     PrimWork    *prims;
     /* the background and the contrast rule (backdrop.h), applied to img
      * once a backdrop is set */
@@ -281,6 +289,29 @@ typedef struct {
 } ReportLine;
 int  frame_report(const Pipeline *p, double out_ms, ReportLine *lines, int max);
 
+/* problems.c: the check of a scene's files (--problems, --parts, the
+ * viewer's ! key): each file's MeshCheck (with the lists an overlay
+ * draws) and their figures together. */
+typedef struct {
+    MeshCheck  *files;
+    int         nfiles;
+    CheckCounts all;            /* the files' figures summed */
+} SceneCheck;
+/* Check meshes m[0..n) (scene_check_meshes' copies of the files; on any
+ * thread; cancel as CheckOpts.cancel). 0, or -1 with the message. */
+int  app_check_meshes(const Mesh *m, int n, int threads, const int *cancel, SceneCheck *out, char *err,
+                      size_t errlen);
+/* The same on the scene's files, then what it found set as the scene's
+ * marks (on the calling thread: --print and -o). */
+int  app_check_scene(Scene *s, int threads, char *err, size_t errlen);
+void scene_check_free(SceneCheck *sc);
+/* The verdict in a word or two for the status bar: "watertight", "3
+ * holes · 12 flipped" (sep between the problems). Returns the number of
+ * problems. */
+int  check_verdict_short(const CheckCounts *c, const char *sep, char *buf, size_t len);
+/* The counts as lines of the info panel (labels as report.c's). */
+int  check_report(const SceneCheck *sc, ReportLine *lines, int max);
+
 /* The settings outside the scene that change the picture. */
 typedef struct {
     int         mode;           /* DisplayMode, -1 = not part of the view (images) */
@@ -294,6 +325,8 @@ typedef struct {
     int         point_size;     /* pixels, 0 or 1 = the default */
     int         line_width;     /* pixels, 0 or 1 = the default */
     int         no_textures;    /* textures hidden (--no-textures, t) */
+    int         problems;       /* --problems (!) */
+    int         parts;          /* --parts */
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

@@ -6,6 +6,7 @@
 
 #include <stdint.h>
 #include "mesh.h"
+#include "meshcheck.h"
 #include "vec.h"
 
 /* Which model axis points up (UpAxis, mesh.h): each object is turned by
@@ -46,7 +47,8 @@ typedef struct {
     uint32_t   point_first, point_count;  /* its points in the mesh (Mesh.point, or vertices) */
     uint32_t   seg_first, seg_count;      /* its segments in Scene.seg_corner */
     uint32_t   wire_first, wire_count;    /* its edges in Scene.wire (when built) */
-    int32_t    point_id0, seg_id0, wire_id0; /* global id of its first of each */
+    uint32_t   mark_first, mark_count;    /* its problem edges in Scene.marks (when set) */
+    int32_t    point_id0, seg_id0, wire_id0, mark_id0; /* global id of its first of each */
     uint32_t   line_count;                /* polylines (for counts) */
 } Object;
 
@@ -96,6 +98,24 @@ enum {
 };
 #define SCENE_SURF_MAX 65000  /* surfaces a scene holds (face_surf is 16 bits) */
 
+/* The problems a check found, as the picture draws them (marks.c): the
+ * problem edges (boundary and non-manifold) as lines, numbered after the
+ * wireframe's, and per loaded face its MARK_* bits and its part. */
+enum { MARK_BOUNDARY = 1, MARK_NONMANIFOLD = 2 };      /* SceneMarks.edge_kind */
+enum { MARK_FLIPPED = 1, MARK_CROSSING = 2 };          /* SceneMarks.face */
+typedef struct {
+    int       set;            /* a check's findings are here */
+    uint32_t *edge;           /* 2 mesh vertex indices per problem edge, object by object */
+    uint8_t  *edge_kind;      /* MARK_BOUNDARY or MARK_NONMANIFOLD per edge */
+    uint32_t  nedges;
+    uint32_t  nfaces;         /* faces the arrays below cover: the loaded objects' */
+    uint8_t  *face;           /* per face: MARK_FLIPPED (seen from inside), MARK_CROSSING */
+    uint32_t *face_part;      /* per face: its part, numbered across the scene from 0 */
+    uint32_t  nparts;
+    uint32_t  nflagged;       /* faces with a MARK_* bit */
+    uint32_t  gen;            /* bumped by every set and clear: what is made from the marks is keyed by it */
+} SceneMarks;
+
 typedef struct Scene {
     Mesh     *meshes;         /* owned */
     int       nmeshes;
@@ -144,7 +164,10 @@ typedef struct Scene {
     uint32_t  nwire_edges;    /* edges of the loaded objects */
     uint32_t  nwire;          /* wireframe edges drawn, grid copies counted (0: not built) */
     int       wire_built;
-    uint32_t  nprims;         /* npoints + nsegs + nwire: the ids after the faces' */
+    /* What --check found, drawn on the model (--problems, --parts; marks.c):
+     * set by scene_marks_set, dropped by any edit. */
+    SceneMarks marks;
+    uint32_t  nprims;         /* npoints + nsegs + nwire + marks.nedges: the ids after the faces' */
     /* Bumped whenever objects are added or removed (edit.c) or copied
      * (--grid): what is built from a scene and kept across frames (the
      * octree, smooth normals) is keyed by it as well as by the pointer,
@@ -169,7 +192,7 @@ void scene_texture_count(const Scene *s, TextureCount *out);
 void scene_files_text(const Mesh *meshes, int n, char *buf, size_t len);
 
 /* What an id of the face-id buffer is. */
-typedef enum { PRIM_NONE = -1, PRIM_FACE = 0, PRIM_POINT, PRIM_SEG, PRIM_WIRE } PrimKind;
+typedef enum { PRIM_NONE = -1, PRIM_FACE = 0, PRIM_POINT, PRIM_SEG, PRIM_WIRE, PRIM_MARK } PrimKind;
 
 /* The kind of id, its object (*obj) and its index among that object's
  * points, segments or wireframe edges (*local; for a face, the face
@@ -187,6 +210,19 @@ static inline uint32_t object_point_vert(const Object *o, uint32_t k)
     const uint32_t *pt = o->mesh->point;
     return pt ? pt[o->point_first + k] : o->point_first + k;
 }
+
+/* marks.c: what --check found, on the model. scene_check_meshes gives
+ * each file back as a Mesh the check can read (the scene dropped the
+ * meshes' face lists: they are made again from its polygons, a split
+ * face whole again), owning all its arrays, so that the check can run on
+ * another thread while the scene changes. scene_marks_set takes the
+ * checks of those meshes (checks[i] of file i, made with
+ * CheckOpts.detail) as marks; scene_marks_clear drops them. 0, or -1
+ * out of memory (or too many ids) with the message. */
+int  scene_check_meshes(const Scene *s, Mesh **out, int *n, char *err, size_t errlen);
+void scene_check_meshes_free(Mesh *m, int n);
+int  scene_marks_set(Scene *s, const MeshCheck *checks, int n, char *err, size_t errlen);
+void scene_marks_clear(Scene *s);
 
 /* Make the wireframe's edges (once; later calls return at once).
  * Returns 0, or -1 with a message (out of memory, too many ids). */
@@ -215,6 +251,10 @@ int  scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen);
  * scene_clear leaves no object (camera and light kept). */
 int  scene_add(Scene *s, Scene *part, char *err, size_t errlen);
 int  scene_remove(Scene *s, int i, char *err, size_t errlen);
+/* scene_replace_file puts part's objects where file f's were (--watch:
+ * the file read again), in the same place among the files; part is
+ * left empty. -1 with a message, s and part unchanged. */
+int  scene_replace_file(Scene *s, int f, Scene *part, char *err, size_t errlen);
 void scene_clear(Scene *s);
 /* The file (index into meshes) that object i comes from, -1 if none. */
 int  scene_object_file(const Scene *s, int i);

@@ -141,6 +141,7 @@ typedef struct {
                                reduction gives the same buffers) */
     int pixel;              /* samples a pixel's side (supersampling): squares
                                of whole pixels start on a pixel (0, 1: any sample) */
+    int marks;              /* the problem edges too (Scene.marks, --problems) */
 } PrimStyle;
 
 typedef struct PrimWork PrimWork;   /* per-frame scratch, kept across frames */

@@ -132,6 +132,31 @@ void shade_face_polys(const Scene *s, uint32_t *face_poly);
 #define PRIM_FAR_SHADE  0.4f
 #define WIRE_FACE_SHADE 0.4f
 
+/* marks.c: what --check found, in colour (Scene.marks). Problem edges
+ * are drawn unlit in their kind's colour (MARK_BOUNDARY, MARK_NONMANIFOLD);
+ * with --problems a face seen from inside takes MARK_FLIPPED's colour
+ * and one that crosses another MARK_CROSSING's (crossing first), lit as
+ * any face; with --parts every face takes its part's colour. */
+void shade_mark_edge_colour(int kind, uint8_t rgb_out[3]);
+void shade_mark_face_colour(int bits, uint8_t rgb_out[3]);
+void shade_part_colour(uint32_t part, uint8_t rgb_out[3]);
+/* The faces' colours and surfaces a frame shades with instead of the
+ * scene's, made again only when the scene, its marks or the mode
+ * change. */
+typedef struct {
+    uint8_t     *rgb;           /* 3 per face (and one byte more: 4-byte loads) */
+    uint16_t    *surf;          /* per face, NULL: every face plain */
+    uint32_t     cap;           /* faces the arrays hold */
+    const Scene *key;
+    uint32_t     key_gen, key_marks, key_nfaces;
+    int          key_mode;
+} MarkColours;
+/* Make them for mode (1 problems, 2 parts, 3 both): 1 when the frame
+ * should shade with them, 0 when the scene's own colours are right (no
+ * marks, or --problems with no face marked), -1 out of memory. */
+int  shade_mark_colours(MarkColours *mc, const Scene *s, int mode);
+void mark_colours_free(MarkColours *mc);
+
 /* Distinct colour for a face id (also used by tests). */
 void shade_id_colour(int32_t id, uint8_t rgb_out[3]);
 

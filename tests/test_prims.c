@@ -108,7 +108,7 @@ static void mixed_scene(Scene *s, uint32_t seed)
 }
 
 static const PrimStyle styles[] = {
-    { 1, 1, 0, 0, 0 }, { 2, 1, 1, 0, 2 }, { 3, 2, 0, 0, 0 }, { 5, 3, 1, 0, 0 }, { 1, 1, 1, 1, 0 }, { 6, 3, 0, 0, 3 },
+    { 1, 1, 0, 0, 0, 0 }, { 2, 1, 1, 0, 2, 0 }, { 3, 2, 0, 0, 0, 0 }, { 5, 3, 1, 0, 0, 0 }, { 1, 1, 1, 1, 0, 0 }, { 6, 3, 0, 0, 3, 0 },
 };
 
 /* Every algorithm against the z-buffer on the scene's seeded views. */
@@ -178,7 +178,7 @@ Test(prims, octree_finds_points_and_lines_reordered)
         ScreenPolys sp = { 0 };
         PrimWork *w = NULL;
         ReorderScratch rs = { 0 };
-        PrimStyle st = { 2, 1, 1, 0, 0 };
+        PrimStyle st = { 2, 1, 1, 0, 0, 0 };
         cr_assert_eq(tl_project(&sp, &s, &vp, &st, &w), 0);
         cr_assert_eq(screen_reorder(&sp, (PolyOrder)order, 3, &rs), 0);
         HsrInput in = { .sp = &sp, .scene = &s, .vp = &vp };
@@ -233,7 +233,7 @@ Test(prims, one_square_per_box_gives_the_buffers_of_every_point)
         int pixel = size % 3 == 0 ? 3 : size % 2 == 0 && seed % 4 ? 2 : 1;
         ScreenPolys all = { 0 }, kept = { 0 };
         PrimWork *w = NULL;
-        PrimStyle st_all = { size, 1, 0, 1, pixel }, st_kept = { size, 1, 0, 0, pixel };
+        PrimStyle st_all = { size, 1, 0, 1, pixel, 0 }, st_kept = { size, 1, 0, 0, pixel, 0 };
         FrameBufs ref = { 0 }, fb = { 0 };
         HsrStats hs;
         cr_assert_eq(tl_project(&all, &s, &vp, &st_all, &w), 0);
@@ -320,7 +320,7 @@ Test(prims, a_point_covers_size_by_size_samples)
         FrameBufs fb = { 0 };
         HsrStats hs;
         Viewport vp = { 41, 31, 1.0f, 0 };
-        PrimStyle st = { size, 1, 0, 0, 0 };
+        PrimStyle st = { size, 1, 0, 0, 0, 0 };
         cr_assert_eq(tl_project(&sp, &s, &vp, &st, &w), 0);
         HsrInput in = { .sp = &sp, .scene = &s, .vp = &vp };
         HsrRunner r;
@@ -403,7 +403,7 @@ Test(prims, a_wireframe_edge_wins_against_its_own_face)
     FrameBufs fb = { 0 };
     HsrStats hs;
     Viewport vp = { 120, 90, 1.0f, 0 };
-    PrimStyle st = { 1, 1, 1, 0, 0 };
+    PrimStyle st = { 1, 1, 1, 0, 0, 0 };
     cr_assert_eq(tl_project(&sp, &s, &vp, &st, &w), 0);
     HsrInput in = { .sp = &sp, .scene = &s, .vp = &vp };
     HsrRunner r;

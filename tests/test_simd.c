@@ -291,7 +291,7 @@ static void points_case(const Case *c, void *arg)
     cloud_of(c->s, &cloud);
     tl_random_view(&cloud, c->seed, (int)(c->seed & 1));
     /* a point per sample, a bigger square, squares of whole pixels of 2 x 2 samples */
-    static const PrimStyle styles[] = { { 1, 1, 0, 0, 1 }, { 3, 1, 0, 0, 1 }, { 4, 2, 0, 0, 2 } };
+    static const PrimStyle styles[] = { { 1, 1, 0, 0, 1, 0 }, { 3, 1, 0, 0, 1, 0 }, { 4, 2, 0, 0, 2, 0 } };
     for (int k = 0; k < 3; k++) {
         ScreenPolys ref = { 0 };
         PrimWork *rw = NULL;
@@ -367,7 +367,7 @@ static void expect_same_counts(const HsrStats *ref, const HsrStats *st, const Ca
  * shuffle puts a copy before its original now and then). */
 static void project_case(const Case *c, PolyOrder order, ScreenPolys *sp)
 {
-    static const PrimStyle every_point = { 2, 1, 0, 1, 1 };
+    static const PrimStyle every_point = { 2, 1, 0, 1, 1, 0 };
     PrimWork *w = NULL;
     ReorderScratch rs = { 0 };
     sp->threads = 1;

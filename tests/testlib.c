@@ -76,7 +76,7 @@ void tl_random_view(Scene *s, uint32_t seed, int persp)
 
 int tl_project(ScreenPolys *sp, Scene *s, const Viewport *vp, const PrimStyle *style, PrimWork **work)
 {
-    PrimStyle st = { 1, 1, 0, 0, 0 };
+    PrimStyle st = { 1, 1, 0, 0, 0, 0 };
     if (style)
         st = *style;
     st.point_size = st.point_size > 0 ? st.point_size : 1;

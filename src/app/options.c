@@ -525,6 +525,15 @@ const OptSpec cli_options[] = {
       "is each model right: holes, flipped, non-manifold\nand crossing faces, parts, size, volume (exit 3\n"
       "on problems); with --print or -o the picture too",
       NULL, FLAG(check), 0 },
+    { "problems", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "draw what the check finds on the model: holes and\nnon-manifold edges as lines, faces seen from\n"
+      "inside and crossing faces coloured (! in the viewer)",
+      NULL, FLAG(problems), OPT_VIEWCMD },
+    { "parts", 0, NULL, NULL, OPTSEC_OUTPUT, "each connected part of the model its own colour\n(@ in the viewer)",
+      NULL, FLAG(parts), OPT_VIEWCMD },
+    { "watch", 0, NULL, NULL, OPTSEC_INPUT,
+      "the viewer reads the files again when they change\n(an exporter's rename too), keeping the view", NULL,
+      FLAG(watch), 0 },
     { "dump-ids", 0, "FILE", NULL, OPTSEC_OUTPUT, "face-id buffer: W*H little-endian int32, -1 = none",
       set_dump_ids, 0, 0 },
     { "dump-screen", 0, "FILE", NULL, OPTSEC_OUTPUT, "screen-space polygons as OBJ text", set_dump_screen, 0, 0 },

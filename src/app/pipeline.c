@@ -154,6 +154,8 @@ void pipeline_apply_options(Pipeline *p, const Options *o)
     p->wireframe = o->wireframe;
     p->contrast = o->contrast;
     p->no_textures = o->no_textures;
+    p->problems = o->problems;
+    p->parts = o->parts;
 }
 
 void pipeline_set_backdrop(Pipeline *p, const Backdrop *b)
@@ -207,6 +209,7 @@ void pipeline_free(Pipeline *p)
     cells_free(&p->cells);
     prims_free(&p->prims);
     contrast_free(&p->rule);
+    mark_colours_free(&p->markcol);
     memset(p, 0, sizeof *p);
 }
 
@@ -216,6 +219,22 @@ int pipeline_samples_side(int samples)
     while ((k + 1) * (k + 1) <= samples)
         k++;
     return k;
+}
+
+/* The scene as shading reads it: itself, or, when what a check found
+ * colours faces (--problems, --parts), a view of it whose faces' colours
+ * and surfaces are those (the geometry and ids are the scene's own
+ * arrays). NULL out of memory. */
+static const Scene *shade_scene(Pipeline *p)
+{
+    int mode = (p->problems ? 1 : 0) | (p->parts ? 2 : 0);
+    int r = mode ? shade_mark_colours(&p->markcol, p->scene, mode) : 0;
+    if (r <= 0)
+        return r < 0 ? NULL : p->scene;
+    p->shade_view = *p->scene;
+    p->shade_view.face_rgb = p->markcol.rgb;
+    p->shade_view.face_surf = p->markcol.surf;
+    return &p->shade_view;
 }
 
 int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int shade_too)
@@ -244,7 +263,7 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     if (p->wireframe && !p->scene->wire_built && scene_wire_build(p->scene, err, sizeof err))
         return -1;
     int ps = p->point_size > 0 ? p->point_size : 1, lw = p->line_width > 0 ? p->line_width : 1;
-    PrimStyle style = { ps * k, lw * k, p->wireframe, 0, k };
+    PrimStyle style = { ps * k, lw * k, p->wireframe, 0, k, p->problems && p->scene->marks.set };
     if (screen_prims(&p->sp, p->scene, &style, &p->prims))
         return -1;
     double t1 = now_ms();
@@ -257,8 +276,11 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     p->shade_ms = 0;
     if (shade_too) {
         ShadeSettings set = { p->shade, p->crease, p->highlight, p->edges, p->wireframe, simd, p->no_textures };
-        if (k == 1 ? shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img)
-                   : shade_frame(p->scene, &p->sp, &p->fb, &set, &p->shade_cache, &p->img_ss) ||
+        const Scene *ss = shade_scene(p);
+        if (!ss)
+            return -1;
+        if (k == 1 ? shade_frame(ss, &p->sp, &p->fb, &set, &p->shade_cache, &p->img)
+                   : shade_frame(ss, &p->sp, &p->fb, &set, &p->shade_cache, &p->img_ss) ||
                          image_downsample(&p->img_ss, k, &p->img))
             return -1;
         /* on the final pixels, so that what is shown keeps the minimum */

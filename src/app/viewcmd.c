@@ -172,6 +172,10 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --wireframe");
     if (v->no_textures)
         put(&o, " --no-textures");
+    if (v->problems)
+        put(&o, " --problems");
+    if (v->parts)
+        put(&o, " --parts");
     if (v->point_size > 1)
         put(&o, " --point-size %d", v->point_size);
     if (v->line_width > 1)

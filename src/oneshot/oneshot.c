@@ -415,6 +415,12 @@ int app_check_output(const Options *o, char *err, size_t errlen)
 
 int app_oneshot(const Options *o, Scene *s)
 {
+    char err[512];
+    /* what the check finds, on the model */
+    if ((o->problems || o->parts) && !s->marks.set && app_check_scene(s, o->threads, err, sizeof err)) {
+        fprintf(stderr, "zview: %s\n", err);
+        return 1;
+    }
     const HsrAlgo *algo = hsr_find(o->algo ? o->algo : "zbuffer");
     Pipeline p;
     if (pipeline_init(&p, s, algo, o->threads)) {

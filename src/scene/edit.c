@@ -153,6 +153,7 @@ static void copy_object(Scene *out, const Scene *s, int i, Mesh *mesh, ComposePo
     o->poly_first = at->pi;
     o->seg_first = at->si;
     o->wire_first = o->wire_count = 0;
+    o->mark_first = o->mark_count = 0;      /* what a check found is dropped with the ids it named */
     uint32_t fi = at->fi, pi = at->pi, ci = at->ci;
     uint32_t f0 = (uint32_t)from->face_base, nf = from->face_count;
     memcpy(&out->face_normal[3 * (size_t)fi], &s->face_normal[3 * (size_t)f0], 3 * (size_t)nf * sizeof(float));
@@ -321,4 +322,44 @@ void scene_clear(Scene *s)
     s->cam = cam;
     s->light = light;
     s->gen = gen + 1;
+}
+
+int scene_replace_file(Scene *s, int f, Scene *part, char *err, size_t errlen)
+{
+    int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
+    if (f < 0 || f >= s->nmeshes) {
+        snprintf(err, errlen, "no file %d", f + 1);
+        return -1;
+    }
+    /* the files before f, the new one, the files after: in that order,
+     * the scene keeps its order of files (and so its layout) */
+    uint8_t *keep = malloc(2 * (size_t)(nb ? nb : 1));
+    int *used = malloc((size_t)(2 * s->nmeshes + (part->nmeshes ? part->nmeshes : 1)) * sizeof(int));
+    if (!keep || !used) {
+        free(keep);
+        free(used);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    for (int i = 0; i < nb; i++) {
+        int fi = scene_object_file(s, i);
+        keep[i] = fi >= 0 && fi < f;
+        keep[nb + i] = fi > f;
+    }
+    Source src[3] = { { s, keep }, { part, NULL }, { s, keep + nb } };
+    int *u[3] = { used, used + 2 * s->nmeshes, used + s->nmeshes };
+    Scene n;
+    int rc = compose(&n, src, 3, u, err, errlen);
+    if (rc == 0) {
+        /* a mesh of s moved when either of its two sources took it */
+        for (int i = 0; i < s->nmeshes; i++)
+            u[0][i] = u[0][i] >= 0 ? u[0][i] : u[2][i];
+        release(s, u[0]);
+        release(part, u[1]);
+        memset(part, 0, sizeof *part);
+        *s = n;
+    }
+    free(keep);
+    free(used);
+    return rc;
 }

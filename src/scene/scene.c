@@ -114,6 +114,7 @@ static int face_base_rgb(const Mesh *m, uint32_t f, uint8_t out[3])
 
 void scene_free(Scene *s)
 {
+    scene_marks_release(&s->marks);
     for (int i = 0; i < s->nmeshes; i++)
         mesh_free(&s->meshes[i]);
     free(s->meshes);
@@ -152,13 +153,19 @@ int scene_number_prims(Scene *s)
         id += s->objs[i].wire_count;
         nw += s->objs[i].wire_count;
     }
+    uint64_t nm = 0;
+    for (int i = 0; i < s->nobjs; i++) {
+        s->objs[i].mark_id0 = (int32_t)(id < INT32_MAX ? id : INT32_MAX);
+        id += s->objs[i].mark_count;
+        nm += s->objs[i].mark_count;
+    }
     if (id > INT32_MAX)
         return -1;
     s->npoints = (uint32_t)np;
     s->nsegs = (uint32_t)ns;
     s->nwire = (uint32_t)nw;
     s->nlines = nl > UINT32_MAX ? UINT32_MAX : (uint32_t)nl;
-    s->nprims = (uint32_t)(np + ns + nw);
+    s->nprims = (uint32_t)(np + ns + nw + nm);
     return 0;
 }
 
@@ -196,14 +203,15 @@ PrimKind scene_prim_of(const Scene *s, int32_t id, int *obj, uint32_t *local)
     static const struct {
         PrimKind kind;
         size_t   id0, count;
-    } kinds[3] = {
+    } kinds[4] = {
+        { PRIM_MARK, offsetof(Object, mark_id0), offsetof(Object, mark_count) },
         { PRIM_WIRE, offsetof(Object, wire_id0), offsetof(Object, wire_count) },
         { PRIM_SEG, offsetof(Object, seg_id0), offsetof(Object, seg_count) },
         { PRIM_POINT, offsetof(Object, point_id0), offsetof(Object, point_count) },
     };
     /* the kinds follow one another: the last whose range starts at or
      * before id holds it */
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 4; k++) {
         int o = object_at(s, id, kinds[k].id0);
         int32_t f;
         uint32_t n;
@@ -220,6 +228,12 @@ PrimKind scene_prim_of(const Scene *s, int32_t id, int *obj, uint32_t *local)
 
 void scene_edge_verts(const Scene *s, const Object *o, PrimKind kind, uint32_t k, uint32_t v[2])
 {
+    if (kind == PRIM_MARK) {
+        const uint32_t *w = &s->marks.edge[2 * ((size_t)o->mark_first + k)];
+        v[0] = w[0];
+        v[1] = w[1];
+        return;
+    }
     if (kind == PRIM_WIRE) {
         const uint32_t *w = &s->wire[2 * ((size_t)o->wire_first + k)];
         v[0] = w[0];

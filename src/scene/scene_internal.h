@@ -13,6 +13,9 @@ extern const uint8_t scene_default_rgb[3];
  * edges. -1 when the ids would pass INT32_MAX. */
 int scene_number_prims(Scene *s);
 
+/* marks.c: free what the marks hold (the objects' ranges left as they are). */
+void scene_marks_release(SceneMarks *mk);
+
 /* "scene too large" messages: the files, then what passes which limit. */
 void scene_too_large(const Mesh *meshes, int n, uint64_t nobjs, uint64_t nfaces, char *err, size_t errlen);
 

@@ -35,8 +35,9 @@
  * notch) and o its half width across it, each snapped: an exact
  * parallelogram in fixed point. Its depth plane is the one through it
  * that is constant across the width and takes the segment's depths
- * (extended linearly to E0 and E1) at its ends. Wireframe edges are the
- * same with their depths less PRIM_WIRE_BIAS. */
+ * (extended linearly to E0 and E1) at its ends. Wireframe edges, and
+ * the problem edges of --problems (Scene.marks), are the same with their
+ * depths less PRIM_WIRE_BIAS. */
 
 #define _DEFAULT_SOURCE
 #include <math.h>
@@ -625,16 +626,16 @@ static int emit_edge(ScreenPolys *sp, const PProj *pj, Vec3 p, Vec3 q, int width
 
 static int edges_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat4 *view, const PrimStyle *st)
 {
-    for (int kind = PRIM_SEG; kind <= PRIM_WIRE; kind++) {
-        if (kind == PRIM_WIRE && !(st->wire && s->wire_built))
-            break;
-        double bias = kind == PRIM_WIRE ? PRIM_WIRE_BIAS : 0;
+    for (int kind = PRIM_SEG; kind <= PRIM_MARK; kind++) {
+        if ((kind == PRIM_WIRE && !(st->wire && s->wire_built)) || (kind == PRIM_MARK && !st->marks))
+            continue;
+        double bias = kind == PRIM_SEG ? 0 : PRIM_WIRE_BIAS;
         for (int oi = 0; oi < s->nobjs; oi++) {
             const Object *o = &s->objs[oi];
-            uint32_t n = kind == PRIM_SEG ? o->seg_count : o->wire_count;
+            uint32_t n = kind == PRIM_SEG ? o->seg_count : kind == PRIM_WIRE ? o->wire_count : o->mark_count;
             if (!n)
                 continue;
-            int32_t id0 = kind == PRIM_SEG ? o->seg_id0 : o->wire_id0;
+            int32_t id0 = kind == PRIM_SEG ? o->seg_id0 : kind == PRIM_WIRE ? o->wire_id0 : o->mark_id0;
             Mat4 mv = m4_mul(*view, object_matrix(o));
             const float *pos = o->mesh->pos;
             for (uint32_t k = 0; k < n; k++) {

@@ -289,6 +289,9 @@ static void shade_prims(const Scene *s, const FrameBufs *fb, const ShadeSettings
             if (kind == PRIM_WIRE) {
                 base[0] = base[1] = base[2] = 235;
                 own = 1;
+            } else if (kind == PRIM_MARK) {
+                shade_mark_edge_colour(s->marks.edge_kind[s->objs[obj].mark_first + k], base);
+                own = 1;
             } else {
                 own = prim_base(s, obj, kind, k, base);
             }

@@ -320,6 +320,21 @@ static Reaction act_wireframe(App *a)
     return RE_RENDER;
 }
 
+/* What the check finds, on the model (checkjob.c runs it when wanted). */
+static Reaction act_problems(App *a)
+{
+    a->p.problems = !a->p.problems;
+    snprintf(a->note, sizeof a->note, "problems %s", a->p.problems ? "shown" : "hidden");
+    return RE_RENDER;
+}
+
+static Reaction act_parts(App *a)
+{
+    a->p.parts = !a->p.parts;
+    snprintf(a->note, sizeof a->note, "parts in colours %s", a->p.parts ? "on" : "off");
+    return RE_RENDER;
+}
+
 static Reaction act_sketch(App *a)
 {
     return sketch_mode_enter(a);
@@ -601,7 +616,8 @@ const KeyRow app_keys[] = {
     { "U", "up axis (y z x -y -z -x)", { { 'U', act_up } } },
     { "< >", "point size", { { '<', act_point_smaller }, { '>', act_point_bigger } } },
     { "( )", "line width", { { '(', act_line_thinner }, { ')', act_line_wider } } },
-    { "W", "wireframe", { { 'W', act_wireframe } } },
+    { "W ! @", "wireframe, problems, parts",
+      { { 'W', act_wireframe }, { '!', act_problems }, { '@', act_parts } } },
     { "space", "auto-rotate", { { ' ', act_spin } } },
     { "O", "open a file (Tab completes)", { { 'O', act_open } } },
     { "X Delete", "remove the selected object", { { 'X', act_remove }, { TK_DEL, act_remove } } },

@@ -62,6 +62,10 @@ void app_live_free(App *a)
     }
     texjob_abandon(a->tex);
     a->tex = NULL;
+    checkjob_abandon(a->chk);
+    a->chk = NULL;
+    watch_free(a->watch);
+    a->watch = NULL;
 }
 
 void app_update_name(App *a)
@@ -217,6 +221,7 @@ Reaction app_cancel_load(App *a)
     if (!a->job)
         return RE_NONE;
     app_note(a, "cancelled loading %s", base_name(loadjob_path(a->job)));
+    a->reload = -1;
     loadjob_abandon(a->job);    /* the thread ends alone; the scene is as it was */
     a->job = NULL;
     return RE_DRAW;
@@ -279,6 +284,62 @@ static Reaction add_part(App *a, Scene *part, const char *path)
     return RE_RENDER;
 }
 
+/* --watch: file f read again (part) takes the old one's place among the
+ * files; its objects keep the old ones' placements when there are as
+ * many, else the files are laid out again; the camera stays. */
+static Reaction reload_file(App *a, Scene *part, int f, const char *path)
+{
+    Scene *s = a->s;
+    char err[256];
+    int nb = (int)s->nbase_objs, first = -1, count = 0;
+    for (int i = 0; i < nb; i++)
+        if (scene_object_file(s, i) == f) {
+            first = first < 0 ? i : first;
+            count++;
+        }
+    Object *was = malloc((size_t)(count ? count : 1) * sizeof *was);
+    if (!was) {
+        app_note(a, "out of memory");
+        return RE_DRAW;
+    }
+    if (count)
+        memcpy(was, &s->objs[first], (size_t)count * sizeof *was);
+    Camera cam = s->cam;
+    int same = (int)part->nbase_objs == count, up = scene_up_forced(s);
+    uint32_t faces = part->nfaces;
+    if (changing(a) || scene_replace_file(s, f, part, err, sizeof err)) {
+        if (!a->note[0])
+            app_note(a, "%s: %s", base_name(path), err);
+        free(was);
+        return RE_RENDER;
+    }
+    if (same) {
+        for (int k = 0; k < count; k++) {
+            Object *o = &s->objs[first + k];
+            o->yaw = was[k].yaw, o->pitch = was[k].pitch, o->roll = was[k].roll;
+            o->offset = was[k].offset, o->home = was[k].home;
+            o->scale = was[k].scale, o->home_scale = was[k].home_scale;
+            o->open_move = was[k].open_move, o->open_scale = was[k].open_scale;
+            o->open_yaw = was[k].open_yaw, o->open_pitch = was[k].open_pitch, o->open_roll = was[k].open_roll;
+            o->up = was[k].up;
+        }
+        if (a->opt->grid > 1 && s->nobjs > 0 && scene_make_grid(s, a->opt->grid, err, sizeof err))
+            app_note(a, "%s", err);
+    } else {
+        for (int i = 0; i < s->nobjs; i++)
+            if (up >= 0 && scene_object_file(s, i) == f)
+                s->objs[i].up = up;
+        if (relayout(a, err, sizeof err))
+            app_note(a, "%s", err);
+    }
+    free(was);
+    s->cam = cam;           /* the view stays as it was */
+    if (!same || a->sel >= (int)s->nbase_objs)
+        a->sel = -1;
+    app_note(a, "read %s again: %u faces", base_name(path), faces);
+    return RE_RENDER;
+}
+
 Reaction app_load_poll(App *a)
 {
     if (!a->job)
@@ -292,6 +353,22 @@ Reaction app_load_poll(App *a)
     Scene part;
     int rc = loadjob_finish(a->job, &part, err, sizeof err);
     a->job = NULL;
+    int reload = a->reload;
+    a->reload = -1;
+    if (rc && reload >= 0) {
+        /* --watch: a file written halfway, or broken: what was read last stays */
+        size_t n = strlen(path);
+        const char *why = strncmp(err, path, n) == 0 && err[n] == ':' ? err + n : NULL;
+        app_note(a, "kept the last good model: %s%s", why ? base_name(path) : "", why ? why : err);
+        return RE_DRAW;
+    }
+    if (reload >= 0) {
+        Reaction r = reload_file(a, &part, reload, path);
+        scene_free(&part);
+        if (!a->tex)
+            a->tex = texjob_start(a->s);
+        return r;
+    }
     if (rc) {
         /* the loader's message names the file by the path it was given,
          * which a narrow bar would cut before the reason: the short name

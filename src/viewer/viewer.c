@@ -77,6 +77,10 @@ static int app_init(App *a, const Options *o, Scene *s)
     a->tex = texjob_start(s);
     a->pic_cols = o->w;     /* --size fixes the picture (0: the window's size) */
     a->pic_rows = o->h;
+    a->reload = -1;
+    char err[160];
+    if (o->watch && !(a->watch = watch_start(err, sizeof err)))
+        app_note(a, "%s", err);
     return 0;
 }
 
@@ -123,6 +127,8 @@ ViewSettings app_view_settings(const App *a)
         .point_size = a->p.point_size,
         .line_width = a->p.line_width,
         .no_textures = a->p.no_textures,
+        .problems = a->p.problems,
+        .parts = a->p.parts,
     };
     return v;
 }
@@ -207,9 +213,9 @@ static const char *depth_label(ColourDepth d)
  * goes (rank 6: it answers a key, so it outlasts everything else but the
  * name's last columns; without one, why the frame is empty), and last of
  * all the file name is cut further. The man page gives the same order. */
-#define BAR_FIELDS 11
+#define BAR_FIELDS 12
 #define BAR_NOTE   6
-enum { BUSY = 8, NOTE = 9, HELP = 10 };     /* the last fields' places */
+enum { CHECK = 8, BUSY = 9, NOTE = 10, HELP = 11 };     /* the last fields' places */
 
 typedef struct {
     char text[96];
@@ -309,6 +315,10 @@ static void status_text(const App *a, char *buf, size_t len, double frame_ms, in
     else if (a->p.st.building)
         snprintf(busy, sizeof busy, "building octree...");
     bar_field(&f[BUSY], 0, "%s", busy);
+    /* the check's verdict in a word or two (--problems, --parts, !) */
+    char verdict[96];
+    app_check_status(a, verdict, sizeof verdict);
+    bar_field(&f[CHECK], 0, "%s", verdict);
     for (int rank = 1; rank < BAR_NOTE && bar_join(f, buf, len) > width; rank++)
         for (int i = 0; i < BAR_FIELDS; i++)
             if (f[i].rank == rank)
@@ -415,8 +425,9 @@ static void draw_candidates(App *a, int cols, int rows)
  * of INFO_BESIDE_MIN columns), each line wrapped after a comma to fit. */
 static void draw_info(App *a, int cols, int rows, double out_ms)
 {
-    ReportLine rl[REPORT_LINES + 1];
+    ReportLine rl[REPORT_LINES + 6];
     int n = frame_report(&a->p, out_ms, rl, REPORT_LINES);
+    n += app_check_report(a, rl + n, 5);
     if (term_pixels() != PIX_CELLS) {
         rl[n].label = "pixels:";
         if (a->pix_bytes)
@@ -674,7 +685,7 @@ static int run(App *a, int fps)
                 timeout = t;
         }
         /* work in the background: wake up to show how it goes */
-        int busy = a->job != NULL || a->tex != NULL || a->p.st.building;
+        int busy = a->job != NULL || a->tex != NULL || a->p.st.building || a->chk != NULL || a->watch != NULL;
         if (busy) {
             double now = now_ms();
             int t = tick > now ? (int)(tick - now + 0.999) : 0;
@@ -696,9 +707,12 @@ static int run(App *a, int fps)
         }
         if (got < 0)
             return RUN_INPUT_ENDED;     /* no key will come: waiting would spin */
+        todo |= app_check_poll(a);      /* a key asked for the check, or it is done */
         if (busy && now_ms() >= tick) {
             /* a finished load joins the scene here, on this thread */
-            todo |= app_load_poll(a);
+            todo |= app_load_poll(a) | app_watch_poll(a);
+            if (a->chk)
+                todo |= RE_DRAW;    /* the check's time in the status line */
             /* a big texture decoded: in place between frames, then drawn */
             if (a->tex && !a->sk.on && texjob_poll(&a->tex, a->s, a->note, sizeof a->note))
                 todo |= RE_RENDER;

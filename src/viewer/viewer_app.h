@@ -72,6 +72,22 @@ void     texjob_status(TexJob *j, char *buf, size_t len);
 /* Stop wanting it: the thread ends alone. */
 void     texjob_abandon(TexJob *j);
 
+/* checkjob.c: the check behind --problems, --parts and !, on a thread
+ * of its own (the job owns copies of the files). */
+typedef struct CheckJob CheckJob;
+void     checkjob_abandon(CheckJob *j);     /* cancelled; the thread ends alone */
+
+/* watch.c: --watch, the files' folders watched through inotify. */
+typedef struct Watch Watch;
+Watch   *watch_start(char *err, size_t errlen);
+void     watch_free(Watch *w);
+/* Watch these files (again: the files changed). */
+void     watch_files(Watch *w, const char *const *paths, int n);
+/* The index of a file changed and settled, -1 none. */
+int      watch_due(Watch *w, double now);
+/* File i again later (a load was under way). */
+void     watch_again(Watch *w, int i, double now);
+
 typedef struct App {
     const Options *opt;     /* the command line: files and layout, for view commands
                                (points at live below: O, X and E change its files) */
@@ -106,6 +122,16 @@ typedef struct App {
     int         info;       /* the info panel is shown */
     int         confirm;    /* E asked "empty the scene? y/n": the next key answers */
     const char *empty_why;  /* why the last frame covers no pixel, NULL when it covers some */
+    /* what the check found (checkjob.c), and --watch (watch.c) */
+    CheckJob   *chk;        /* a check running, or NULL */
+    int         check_started;  /* a check was started for check_gen */
+    uint32_t    check_gen;  /* the scene generation checked (its marks are set when it went well) */
+    CheckCounts check;      /* its figures */
+    char        check_err[160];     /* why it failed, "" none */
+    Watch      *watch;      /* --watch, or NULL */
+    int         watch_set;  /* the files are watched as of watch_gen */
+    uint32_t    watch_gen;
+    int         reload;     /* the load job reads file reload again (--watch), -1 none */
     char        help_text[HELP_LINES_MAX][HELP_LINE_MAX];
     SketchMode  sk;
 } App;
@@ -213,6 +239,14 @@ Reaction app_load_poll(App *a);             /* a background load finished? join 
 Reaction app_cancel_load(App *a);           /* Esc while loading: drop the load, note it */
 Reaction app_remove_selected(App *a);       /* X, Delete */
 Reaction app_clear_scene(App *a);           /* E */
+/* checkjob.c: start the check when it is wanted and the scene changed,
+ * set its marks when it is done; the verdict for the status bar (""
+ * when not wanted), the counts for the info panel. */
+Reaction app_check_poll(App *a);
+void     app_check_status(const App *a, char *buf, size_t len);
+int      app_check_report(const App *a, ReportLine *lines, int max);
+/* watch.c: a watched file changed: read it again (a load job). */
+Reaction app_watch_poll(App *a);
 /* The files of the command line copied so that they can change; the
  * status line's name from them. */
 int      app_live_init(App *a, const Options *o);

@@ -54,7 +54,8 @@ _zview()
             --move --turn --scale --persp --ortho --cull --grid --max-polys --bench --bench-tty
             --views --threads --json --fps --max-rate --format --formats --up --flip --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
-            --turntable --point-size --line-width --wireframe --points --strict --bg --contrast --no-textures" -- "$cur"))
+            --turntable --point-size --line-width --wireframe --points --strict --bg --contrast --no-textures
+            --problems --parts --watch" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
     fi

@@ -1,0 +1,175 @@
+/* checkjob.c: the check behind --problems, --parts and the ! key, on a
+ * thread of its own: the dragon's takes about a second, which the viewer
+ * spends drawing and taking keys.
+ *
+ * The job owns its work: the files as meshes (scene_check_meshes copies
+ * them on the UI thread) and what the check makes; the thread reads
+ * nothing of the scene, which the viewer may edit meanwhile (O, X, E, a
+ * file read again by --watch). The UI thread sets the result as the
+ * scene's marks only if the scene is still the one it was made from
+ * (Scene.gen); otherwise it is dropped and the check runs again. A job
+ * the viewer no longer wants is cancelled (meshcheck_run stops at its
+ * next step) and abandoned: the thread frees the job when it ends. */
+
+#define _DEFAULT_SOURCE
+
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "clock.h"
+#include "thread.h"
+#include "viewer_app.h"
+
+struct CheckJob {
+    pthread_mutex_t mu;
+    pthread_t   th;
+    int         done, abandoned;    /* under mu */
+    int         cancel;             /* stored atomically: meshcheck_run stops */
+    Mesh       *m;
+    int         n, threads;
+    uint32_t    gen;                /* the scene's generation it was made from */
+    double      t0;
+    int         rc;
+    char        err[256];
+    SceneCheck  res;
+};
+
+static void job_free(CheckJob *j)
+{
+    scene_check_meshes_free(j->m, j->n);
+    scene_check_free(&j->res);
+    pthread_mutex_destroy(&j->mu);
+    free(j);
+}
+
+static void *job_main(void *arg)
+{
+    CheckJob *j = arg;
+    j->rc = app_check_meshes(j->m, j->n, j->threads, &j->cancel, &j->res, j->err, sizeof j->err);
+    pthread_mutex_lock(&j->mu);
+    j->done = 1;
+    int gone = j->abandoned;
+    pthread_mutex_unlock(&j->mu);
+    if (gone)
+        job_free(j);
+    return NULL;
+}
+
+static CheckJob *job_start(const Scene *s, int threads, char *err, size_t errlen)
+{
+    CheckJob *j = calloc(1, sizeof *j);
+    if (!j) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    if (scene_check_meshes(s, &j->m, &j->n, err, errlen)) {
+        free(j);
+        return NULL;
+    }
+    j->threads = threads;
+    j->gen = s->gen;
+    j->t0 = now_ms();
+    pthread_mutex_init(&j->mu, NULL);
+    if (thread_start(&j->th, job_main, j)) {
+        snprintf(err, errlen, "cannot start a thread to check the model");
+        job_free(j);
+        return NULL;
+    }
+    return j;
+}
+
+static int job_done(CheckJob *j)
+{
+    pthread_mutex_lock(&j->mu);
+    int d = j->done;
+    pthread_mutex_unlock(&j->mu);
+    return d;
+}
+
+void checkjob_abandon(CheckJob *j)
+{
+    if (!j)
+        return;
+    pthread_t th = j->th;
+    __atomic_store_n(&j->cancel, 1, __ATOMIC_RELAXED);
+    pthread_mutex_lock(&j->mu);
+    int done = j->done;
+    j->abandoned = !done;
+    pthread_mutex_unlock(&j->mu);
+    if (done) {
+        pthread_join(th, NULL);
+        job_free(j);
+    } else {
+        pthread_detach(th);
+    }
+}
+
+/* ==== The viewer's side ==== */
+
+static int wanted(const App *a)
+{
+    return (a->p.problems || a->p.parts) && !a->sk.on;
+}
+
+Reaction app_check_poll(App *a)
+{
+    Scene *s = a->s;
+    if (!wanted(a))
+        return RE_NONE;
+    if (a->chk && job_done(a->chk)) {
+        CheckJob *j = a->chk;
+        a->chk = NULL;
+        pthread_join(j->th, NULL);
+        Reaction r = RE_NONE;       /* the scene changed meanwhile: checked again below */
+        if (j->gen == s->gen) {
+            r = RE_DRAW;
+            if (j->rc)
+                snprintf(a->check_err, sizeof a->check_err, "%.150s", j->err);
+            else if (scene_marks_set(s, j->res.files, j->res.nfiles, a->check_err, sizeof a->check_err) == 0) {
+                a->check = j->res.all;
+                r = RE_RENDER;
+            }
+        }
+        job_free(j);
+        if (r != RE_NONE)
+            return r;
+    }
+    if (a->chk && a->chk->gen != s->gen) {
+        checkjob_abandon(a->chk);   /* for a scene that is gone */
+        a->chk = NULL;
+    }
+    /* a scene edited since (its marks went with the edit): check it again */
+    if (!a->chk && s->nobjs > 0 && (!a->check_started || a->check_gen != s->gen)) {
+        a->check_started = 1;
+        a->check_gen = s->gen;
+        a->check_err[0] = 0;
+        a->chk = job_start(s, a->opt->threads, a->check_err, sizeof a->check_err);
+        return RE_DRAW;
+    }
+    return RE_NONE;
+}
+
+void app_check_status(const App *a, char *buf, size_t len)
+{
+    buf[0] = 0;
+    if (!wanted(a) || a->s->nobjs == 0)
+        return;
+    if (a->chk) {
+        double t = (now_ms() - a->chk->t0) / 1000.0;
+        snprintf(buf, len, "checking %.1fs", t);
+    } else if (a->check_err[0]) {
+        snprintf(buf, len, "check: %s", a->check_err);
+    } else if (a->s->marks.set) {
+        check_verdict_short(&a->check, a->utf8 ? " \xc2\xb7 " : ", ", buf, len);
+    }
+}
+
+int app_check_report(const App *a, ReportLine *lines, int max)
+{
+    if (!wanted(a) || a->chk || a->check_err[0] || !a->s->marks.set)
+        return 0;
+    SceneCheck sc = { .all = a->check };
+    return check_report(&sc, lines, max);
+}
