@@ -619,6 +619,23 @@ out:
     return r;
 }
 
+/* A file told by content has no extension to name its format: the
+ * importer's name, when it gives one. */
+static void ai_name_format(MeshCtx *c, const struct aiScene *sc)
+{
+    if (c->hint && *c->hint)
+        return;
+    const struct aiMetadataEntry *e = ai_meta(sc, "SourceAsset_Format");
+    const char *imp = e && e->mType == AI_AISTRING ? ((const struct aiString *)e->mData)->data : "";
+    size_t n = strlen(imp);
+    if (n > 9 && strcmp(imp + n - 9, " Importer") == 0)
+        n -= 9;   /* "AC3D Importer": the format is AC3D */
+    if (n > 20)
+        n = 20;
+    snprintf(c->m->info.format, sizeof c->m->info.format, "%.*s (assimp)", (int)(n ? n : 15),
+             n ? imp : "told by content");
+}
+
 static int no_library(MeshCtx *c)
 {
     return me_fail(&c->err, "the assimp library (%s) cannot be opened", ZV_ASSIMP_SONAME);
@@ -632,8 +649,10 @@ static int ai_parse_path(MeshCtx *c, const char *path)
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);
-    if (r == 0)
+    if (r == 0) {
         ai_stance(c, sc, NULL, 0);
+        ai_name_format(c, sc);
+    }
     ai()->aiReleaseImport(sc);
     return r;
 }

@@ -1,0 +1,61 @@
+#!/bin/sh
+# Files a person meets (issue 20): told by content and name together,
+# gzip-compressed and piped input, partial files, several files of which
+# one is missing. Corpus files from Debian's assimp-testmodels where it
+# has them (tools/deps.sh), generated files otherwise.
+. "$(dirname "$0")/lib.sh"
+. "$(dirname "$0")/tmux.sh"
+A=/usr/share/assimp/models
+have_corpus() {
+    [ -d "$A" ] && "$Z" --formats | grep -q assimp && return 0
+    skip "$1" "no assimp or no $A (tools/deps.sh)"
+    return 1
+}
+# info FIELD: the value of a --info field in $T/out
+info() { sed -n "s/^$1: *//p" "$T/out" | head -1; }
+
+# ---- gzip: transparent, on files and standard input, errors name the file
+gzip -c assets/cube.obj >"$T/model.obj.gz"
+expect_status "model.obj.gz loads" 0 "$Z" --info "$T/model.obj.gz"
+check "... as the OBJ it holds, 6 faces" '[ "$(info format)" = obj ] && [ "$(info faces)" = 6 ]' "$(cat "$T/out")"
+"$Z" -o "$T/plain.png" --size 40x30 assets/cube.obj && "$Z" -o "$T/gz.png" --size 40x30 "$T/model.obj.gz"
+check "... and draws the same picture as the plain file" 'cmp -s "$T/plain.png" "$T/gz.png"'
+gzip -c assets/cube.obj | "$Z" --info - >"$T/out" 2>"$T/err"
+check "gzip on standard input loads" '[ "$(info faces)" = 6 ]' "$(cat "$T/err")"
+head -c 40 "$T/model.obj.gz" >"$T/cut.obj.gz"
+expect_status "a gzip file cut short: status 1" 1 "$Z" --info "$T/cut.obj.gz"
+expect_err "... one line naming the file" "$T/cut.obj.gz: gzip data cut short"
+printf '\037\213\010\000\000\000\000\000\000\003garbage-not-deflate' >"$T/bad.stl.gz"
+expect_status "damaged gzip data: status 1" 1 "$Z" --info "$T/bad.stl.gz"
+expect_err "... one line naming the file and the byte" "$T/bad.stl.gz: damaged gzip data near compressed byte"
+# a gzip bomb is held to the same bound as any stream: the memory a load
+# may take (ZV_MEM_AVAILABLE stands in for a small machine)
+head -c 50000000 /dev/zero | tr '\0' 'v' | gzip -c >"$T/bomb.obj.gz"
+ZV_MEM_AVAILABLE=16000000 "$Z" --info "$T/bomb.obj.gz" >/dev/null 2>"$T/err"
+st=$?
+check "a gzip bomb past the memory bound is refused" '[ $st -eq 1 ]' "status $st"
+expect_err "... saying so, naming the file" "$T/bomb.obj.gz: input too large for the memory available"
+if have_corpus "gzip-compressed .blend"; then
+    expect_status "a compressed .blend (BlenderDefault_250_Compressed) loads" 0 "$Z" --info "$A/BLEND/BlenderDefault_250_Compressed.blend"
+    check "... through assimp as blend" '[ "$(info format)" = "blend (assimp)" ]' "$(info format)"
+    gzip -c "$A/PLY/cube.ply" >"$T/scan.ply.gz"
+    expect_status "scan.ply.gz loads" 0 "$Z" --info "$T/scan.ply.gz"
+fi
+
+# ---- content and name together; assimp asked for what it tells by content
+if have_corpus "nff and extensionless files"; then
+    expect_status ".nff (whose first word is v) goes to assimp" 0 "$Z" --info "$A/NFF/NFF/cylinder.nff"
+    check "... named nff, not read as OBJ" '[ "$(info format)" = "nff (assimp)" ]' "$(info format) $(cat "$T/err")"
+    for f in 3DS/testFormatDetection X/TestFormatDetection AC/TestFormatDetection; do
+        expect_status "extensionless $f: assimp tells it by content" 0 "$Z" --info "$A/$f"
+        check "... and names the format" 'info format | grep -q "(assimp)"' "$(info format)"
+    done
+fi
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$T/tri"
+expect_status "extensionless OBJ text is still OBJ" 0 "$Z" --info "$T/tri"
+check "... format obj" '[ "$(info format)" = obj ]' "$(info format)"
+cp "$T/tri" "$T/tri.stl"
+expect_status "OBJ text named .stl: the STL reader cannot read it, OBJ does" 0 "$Z" --info "$T/tri.stl"
+echo "hello there" >"$T/notes"
+expect_status "text nothing reads: refused" 1 "$Z" --info "$T/notes"
+expect_err "... in zview's own words" "$T/notes: not a model zview can read (text;"
