@@ -623,7 +623,7 @@ out:
  * importer's name, when it gives one. */
 static void ai_name_format(MeshCtx *c, const struct aiScene *sc)
 {
-    if (c->hint && *c->hint)
+    if (c->hint && *c->hint && strcmp(c->hint, "assimp"))
         return;
     const struct aiMetadataEntry *e = ai_meta(sc, "SourceAsset_Format");
     const char *imp = e && e->mType == AI_AISTRING ? ((const struct aiString *)e->mData)->data : "";
@@ -657,26 +657,6 @@ static int ai_parse_path(MeshCtx *c, const char *path)
     return r;
 }
 
-static int ai_parse(MeshCtx *c, const char *data, size_t len)
-{
-    if (!ai())
-        return no_library(c);
-    if (len > UINT_MAX)
-        return me_fail(&c->err, "too large for assimp from memory");
-    /* the hint is an extension, or "assimp" when forced without one */
-    const char *hint = c->hint && strcmp(c->hint, "assimp") ? c->hint : "";
-    const struct aiScene *sc = ai()->aiImportFileFromMemory(data, (unsigned)len, ai_flags(hint), hint);
-    if (!sc)
-        return import_failed(c);
-    int r = from_scene(c, sc);
-    if (r == 0) {
-        c->m->info.bytes = len;
-        ai_stance(c, sc, data, len);
-    }
-    ai()->aiReleaseImport(sc);
-    return r;
-}
-
 static int has_word(const char *h, size_t n, const char *w)
 {
     size_t wl = strlen(w);
@@ -685,6 +665,61 @@ static int has_word(const char *h, size_t n, const char *w)
             return 1;
     return 0;
 }
+
+/* The extension of the format ai_probe knows these bytes by ("" for
+ * none). */
+static const char *content_hint(const char *h, size_t n)
+{
+    if (n > MESH_HEAD)
+        n = MESH_HEAD;
+    if (n >= 4 && memcmp(h, "glTF", 4) == 0)
+        return "glb";
+    if (n >= 18 && memcmp(h, "Kaydara FBX Binary", 18) == 0)
+        return "fbx";
+    if (n >= 7 && memcmp(h, "BLENDER", 7) == 0)
+        return "blend";
+    size_t i = 0;
+    while (i < n && mesh_is_ws(h[i]))
+        i++;
+    if (i < n && h[i] == '{' && has_word(h, n, "\"asset\""))
+        return "gltf";
+    if (i < n && h[i] == '<' && has_word(h, n, "<COLLADA"))
+        return "dae";
+    if (i < n && h[i] == '<' && has_word(h, n, "<X3D"))
+        return "x3d";
+    if (n >= 18 && memcmp(h, "; FBX", 5) == 0)
+        return "fbx";
+    return "";
+}
+
+static int ai_parse(MeshCtx *c, const char *data, size_t len)
+{
+    if (!ai())
+        return no_library(c);
+    if (len > UINT_MAX)
+        return me_fail(&c->err, "too large for assimp from memory");
+    /* the hint is an extension, or "assimp" when forced without one;
+     * without one (standard input) the content names the format, as
+     * assimp from memory goes by the hint */
+    const char *hint = c->hint && strcmp(c->hint, "assimp") ? c->hint : "";
+    if (!*hint) {
+        hint = content_hint(data, len);
+        if (*hint)
+            c->hint = hint;   /* and the format's unit and name follow it */
+    }
+    const struct aiScene *sc = ai()->aiImportFileFromMemory(data, (unsigned)len, ai_flags(hint), hint);
+    if (!sc)
+        return import_failed(c);
+    int r = from_scene(c, sc);
+    if (r == 0) {
+        c->m->info.bytes = len;
+        ai_stance(c, sc, data, len);
+        ai_name_format(c, sc);
+    }
+    ai()->aiReleaseImport(sc);
+    return r;
+}
+
 
 /* Formats with a magic or a telling header; the rest go by extension. */
 static int ai_probe(const char *h, size_t n, uint64_t size)

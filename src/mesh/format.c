@@ -565,13 +565,16 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
     /* only a file on disk is offered to assimp by content: bytes in
      * memory (a pipe, the fuzzers) stay with the native loaders */
     int try_assimp = 0;
-    const MeshLoader *l = pick(f.head, f.nhead, f.size, ext, format, &what, f.regular ? &try_assimp : NULL);
+    const MeshLoader *l = pick(f.head, f.nhead, f.size, ext, format, &what,
+                               f.regular && !is_stdin ? &try_assimp : NULL);
     if (!l) {
         mf_close(&f);
         return refuse(&c.err, what);
     }
     int r;
-    if (l->parse_path && f.regular) {
+    /* standard input, even redirected from a file, has no name a
+     * library could open: it is read from memory */
+    if (l->parse_path && f.regular && !is_stdin) {
         uint64_t size = f.size;
         mf_close(&f);
         r = l->parse_path(&c, path);

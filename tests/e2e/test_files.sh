@@ -59,3 +59,18 @@ expect_status "OBJ text named .stl: the STL reader cannot read it, OBJ does" 0 "
 echo "hello there" >"$T/notes"
 expect_status "text nothing reads: refused" 1 "$Z" --info "$T/notes"
 expect_err "... in zview's own words" "$T/notes: not a model zview can read (text;"
+
+# ---- standard input with a format assimp reads: imported from memory
+if have_corpus "assimp formats on standard input"; then
+    "$Z" --info - <"$A/FBX/box.fbx" >"$T/out" 2>"$T/err"
+    check "zview - < box.fbx: read from memory, told by content" '[ "$(info format)" = "fbx (assimp)" ] && [ "$(info vertices)" = 24 ]' "$(cat "$T/err")"
+    G=$A/glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb
+    cat "$G" | "$Z" --format glb --info - >"$T/out" 2>"$T/err"
+    check "cat x.glb | zview --format glb -" '[ "$(info format)" = "glb (assimp)" ] && [ "$(info vertices)" = 24 ]' "$(cat "$T/err")"
+    cat "$G" | "$Z" --info - >"$T/out" 2>"$T/err"
+    check "cat x.glb | zview - (the content names it)" '[ "$(info format)" = "glb (assimp)" ]' "$(cat "$T/err")"
+    "$Z" -p --size 30x10 --color none - <"$A/FBX/box.fbx" >"$T/p" 2>"$T/err"
+    check "zview -p - < box.fbx draws" 'grep -q "[▀▄█]" "$T/p"' "$(cat "$T/err")"
+    gzip -c "$A/BLEND/box.blend" | "$Z" --info - >"$T/out" 2>"$T/err"
+    check "a gzip-compressed .blend on standard input" '[ "$(info format)" = "blend (assimp)" ]' "$(cat "$T/err")"
+fi
