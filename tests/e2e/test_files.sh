@@ -74,3 +74,23 @@ if have_corpus "assimp formats on standard input"; then
     gzip -c "$A/BLEND/box.blend" | "$Z" --info - >"$T/out" 2>"$T/err"
     check "a gzip-compressed .blend on standard input" '[ "$(info format)" = "blend (assimp)" ]' "$(cat "$T/err")"
 fi
+
+# ---- partial and odd files: shown with a warning, refused by --strict
+if have_corpus "PLY with a writer's own header line"; then
+    "$Z" --info "$A/PLY/Wuson.ply" >"$T/out" 2>"$T/err"
+    check "Wuson.ply (a 'Created by Blender' header line) loads" '[ "$(info format)" = "ply ascii" ] && [ "$(info faces)" -gt 0 ]' "$(cat "$T/err")"
+    expect_err "... warning of the line skipped" "Wuson.ply:3: unknown header line 'Created'"
+    expect_status "... --strict refuses it" 1 "$Z" --strict --info "$A/PLY/Wuson.ply"
+    expect_err "... naming the line" "Wuson.ply:3: unknown header line 'Created'"
+fi
+python3 - "$T" <<'PY'
+import struct, sys
+d = b'\0' * 80 + struct.pack('<I', 3)
+for t in (((0,0,0),(1,0,0),(0,1,0)), ((0,0,0),(0,1,0),(0,0,1)), ((0,0,0),(1,0,0),(0,0,1))):
+    d += struct.pack('<3f', 0, 0, 1) + b''.join(struct.pack('<3f', *v) for v in t) + b'\0\0'
+open(sys.argv[1] + '/cut.stl', 'wb').write(d[:84 + 2 * 50 + 20])
+PY
+"$Z" --info "$T/cut.stl" >"$T/out" 2>"$T/err"
+check "a binary STL cut inside triangle 3 of 3 shows the 2 whole ones" '[ "$(info faces)" = 2 ]' "$(cat "$T/err")"
+expect_err "... with a warning saying where it ends" "byte 184: file ends inside triangle 3 of 3"
+expect_status "... --strict refuses it" 1 "$Z" --strict --info "$T/cut.stl"
