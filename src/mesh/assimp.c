@@ -611,6 +611,13 @@ static int from_scene(MeshCtx *c, const struct aiScene *sc)
     }
     if (walk(&w, sc->mRootNode, &id))
         goto out;
+    /* meshes no node names (assimp's AC3D importer makes a mesh of
+     * points for an object without surfaces and leaves it out of the
+     * node): shown as they are, when the nodes gave nothing */
+    if (!m->nfaces && !m->npoints && !m->nlines)
+        for (unsigned k = 0; k < sc->mNumMeshes; k++)
+            if (sc->mMeshes[k] && add_mesh(&w, sc->mMeshes[k], &id, 1))
+                goto out;
     r = mb_finish(&w.b, 1);
 out:
     free(w.matmap);

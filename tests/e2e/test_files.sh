@@ -94,3 +94,11 @@ PY
 check "a binary STL cut inside triangle 3 of 3 shows the 2 whole ones" '[ "$(info faces)" = 2 ]' "$(cat "$T/err")"
 expect_err "... with a warning saying where it ends" "byte 184: file ends inside triangle 3 of 3"
 expect_status "... --strict refuses it" 1 "$Z" --strict --info "$T/cut.stl"
+
+# ---- points only through assimp: a cloud, as the native loaders show one
+if have_corpus "AC/nosurfaces.ac"; then
+    "$Z" --info "$A/AC/nosurfaces.ac" >"$T/out" 2>"$T/err"
+    check "nosurfaces.ac (7 vertices, no surface) is a cloud of 7 points" '[ "$(info points)" = 7 ]' "$(cat "$T/err")"
+    "$Z" -p --size 30x10 --color none "$A/AC/nosurfaces.ac" >"$T/p" 2>"$T/err"
+    check "... and draws them" '[ "$(grep -o "[▀▄█]" "$T/p" | wc -l)" -ge 5 ]' "$(cat "$T/p")"
+fi
