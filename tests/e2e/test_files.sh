@@ -102,3 +102,17 @@ if have_corpus "AC/nosurfaces.ac"; then
     "$Z" -p --size 30x10 --color none "$A/AC/nosurfaces.ac" >"$T/p" 2>"$T/err"
     check "... and draws them" '[ "$(grep -o "[▀▄█]" "$T/p" | wc -l)" -ge 5 ]' "$(cat "$T/p")"
 fi
+
+# ---- one file of several missing: the rest shown, the missing one named
+"$Z" --info assets/cube.obj "$T/gone.obj" assets/knot.obj >"$T/out" 2>"$T/err"
+st=$?
+check "cube, a missing file, knot: status 0" '[ $st -eq 0 ]' "status $st: $(cat "$T/err")"
+check "... the two others make the scene" 'grep -q "^scene: *2 objects" "$T/out"' "$(grep scene "$T/out")"
+expect_err "... a warning names the missing one" "warning: $T/gone.obj: cannot open: No such file or directory (left out"
+expect_status "--strict refuses the run" 1 "$Z" --strict --info assets/cube.obj "$T/gone.obj"
+expect_err "... naming the file" "$T/gone.obj: cannot open"
+expect_status "every file missing: status 1" 1 "$Z" --info "$T/gone.obj" "$T/gone2.obj"
+start 100 30 assets/cube.obj "$T/gone.obj"
+if wait_for "gone.obj: cannot open"; then ok "the viewer's status bar names the file left out"; else notok "the viewer's status bar names the file left out" "$(tail -2 "$T/screen")"; fi
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
