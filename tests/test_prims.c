@@ -524,16 +524,17 @@ Test(load, lenient_obj_skips_and_counts, .init = cr_redirect_stderr)
     cr_assert_str_eq(E, "x.obj:5: face has fewer than 3 vertices (0)");
     /* lenient: the empty face, the unknown keyword, the three statements
      * with indices past the end, the unreadable vertex and the face
-     * using it (its number 4 is kept: face 1 2 5 still means what the
-     * file meant) */
+     * using it (face 1 2 5 still means what the file meant: the
+     * unreadable vertex itself goes, vertex 5 becomes the fourth) */
     cr_assert_eq(lenient("x.obj", text), 0, "%s", E);
     cr_assert_eq(M.info.skipped, 7);
     cr_assert_str_eq(M.info.first_skipped, "x.obj:5: face has fewer than 3 vertices (0)");
-    cr_assert_eq(M.nverts, 5);
+    cr_assert_eq(M.nverts, 4);
     cr_assert_eq(M.nfaces, 2);
     cr_assert_eq(M.npoints, 0);
     cr_assert_eq(M.nlines, 0);
-    cr_assert_eq(M.corner[5], 4);
+    cr_assert_eq(M.corner[5], 3);
+    cr_assert(M.pos[9] == 1 && M.pos[10] == 1 && M.pos[11] == 0, "vertex 5 of the file (1 1 0)");
     fflush(stderr);
     cr_assert_stderr_eq_str("zview: warning: x.obj: 7 statements skipped (first: x.obj:5: face has fewer "
                             "than 3 vertices (0))\n");

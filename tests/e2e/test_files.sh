@@ -116,3 +116,16 @@ start 100 30 assets/cube.obj "$T/gone.obj"
 if wait_for "gone.obj: cannot open"; then ok "the viewer's status bar names the file left out"; else notok "the viewer's status bar names the file left out" "$(tail -2 "$T/screen")"; fi
 tm send-keys -t zv q
 wait_for 'zv-exit=0' >/dev/null
+
+# ---- an unreadable vertex is never drawn
+printf 'v 1 abc 2\n' >"$T/onebad.obj"
+expect_status "a file whose only vertex is unreadable: nothing to show, status 1" 1 "$Z" --info "$T/onebad.obj"
+expect_err "... naming the line" "onebad.obj:1: malformed number 'abc' (1 statement skipped, nothing left to show)"
+"$Z" -p --size 20x10 --color none "$T/onebad.obj" >"$T/p" 2>/dev/null
+check "... and draws no point at the origin" '! grep -q "[▀▄█]" "$T/p"' "$(cat "$T/p")"
+printf 'v 5 5 5\nv 1 abc 2\nv 6 6 6\n' >"$T/cloud.obj"
+"$Z" --info "$T/cloud.obj" >"$T/out" 2>"$T/err"
+check "a cloud of 3 vertices, one unreadable: 2 points" '[ "$(info points)" = "2 (every vertex)" ] && [ "$(info vertices)" = 2 ]' "$(info points)"
+printf 'v 0 0 0\nv 1 x 0\nv 1 0 0\nv 0 1 0\nf 1 3 4\nf 1 2 3\n' >"$T/tri.obj"
+"$Z" --points --info "$T/tri.obj" >"$T/out" 2>"$T/err"
+check "--points draws the 3 readable vertices, not the unreadable one" '[ "$(info points)" = "3 (every vertex)" ]' "$(info points)"
