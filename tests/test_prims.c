@@ -627,6 +627,27 @@ Test(load, points_option_makes_every_vertex_a_point)
     scene_free(&s);
 }
 
+Test(load, points_option_keeps_the_objects)
+{
+    /* a and b share vertex 2; vertex 6 is used by nothing */
+    const char *obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 5 1 0\nv 9 9 9\n"
+                      "o a\nf 1 2 3\no b\nf 2 4 5\n";
+    cr_assert_eq(strict("two.obj", obj), 0, "%s", E);
+    cr_assert_eq(M.nobjs, 2);
+    mesh_as_points(&M);
+    cr_assert_eq(M.nfaces, 0);
+    cr_assert_eq(M.npoints, 6, "every vertex a point, once");
+    cr_assert_eq(M.nobjs, 2, "the objects stay");
+    cr_assert_str_eq(M.objs[0].name, "a");
+    cr_assert_eq(M.objs[0].point_count, 3);
+    cr_assert_eq(M.objs[1].point_count, 3, "4, 5 and the unused 6 (2 went to a)");
+    uint32_t want[6] = { 0, 1, 2, 3, 4, 5 };
+    for (int i = 0; i < 6; i++)
+        cr_assert_eq(M.point[i], want[i], "point %d", i);
+    cr_assert_eq(M.objs[1].vert_min, 3);
+    cr_assert_eq(M.objs[1].vert_max, 5);
+}
+
 /* ==== empty frames ==== */
 
 static const char *empty_reason(const char *obj, float yaw, float pitch, int cull, float zoom, float pan, int persp)

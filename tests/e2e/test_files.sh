@@ -129,3 +129,10 @@ check "a cloud of 3 vertices, one unreadable: 2 points" '[ "$(info points)" = "2
 printf 'v 0 0 0\nv 1 x 0\nv 1 0 0\nv 0 1 0\nf 1 3 4\nf 1 2 3\n' >"$T/tri.obj"
 "$Z" --points --info "$T/tri.obj" >"$T/out" 2>"$T/err"
 check "--points draws the 3 readable vertices, not the unreadable one" '[ "$(info points)" = "3 (every vertex)" ]' "$(info points)"
+
+# ---- --points keeps the objects: --move 2:... moves the second
+expect_status "--points --move 2:1,0,0 on a scene of 6 objects" 0 "$Z" --points --move 2:1,0,0 --info assets/scene.obj
+check "... the objects stay" 'grep -q "^scene: *6 objects, 0 faces" "$T/out"' "$(grep scene "$T/out") $(cat "$T/err")"
+"$Z" --points -p --size 40x12 --color none --fit-from 30,25 --yaw 30 --pitch 25 assets/scene.obj >"$T/p1"
+"$Z" --points --move 2:1,0,0 -p --size 40x12 --color none --fit-from 30,25 --yaw 30 --pitch 25 assets/scene.obj >"$T/p2" 2>"$T/err"
+check "... and the move changes the picture" '! cmp -s "$T/p1" "$T/p2"' "$(cat "$T/err")"
