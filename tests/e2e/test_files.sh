@@ -133,6 +133,6 @@ check "--points draws the 3 readable vertices, not the unreadable one" '[ "$(inf
 # ---- --points keeps the objects: --move 2:... moves the second
 expect_status "--points --move 2:1,0,0 on a scene of 6 objects" 0 "$Z" --points --move 2:1,0,0 --info assets/scene.obj
 check "... the objects stay" 'grep -q "^scene: *6 objects, 0 faces" "$T/out"' "$(grep scene "$T/out") $(cat "$T/err")"
-"$Z" --points -p --size 40x12 --color none --fit-from 30,25 --yaw 30 --pitch 25 assets/scene.obj >"$T/p1"
-"$Z" --points --move 2:1,0,0 -p --size 40x12 --color none --fit-from 30,25 --yaw 30 --pitch 25 assets/scene.obj >"$T/p2" 2>"$T/err"
+"$Z" --points -p --size 40x12 --color none --fit-from 30,25,0 --yaw 30 --pitch 25 assets/scene.obj >"$T/p1"
+"$Z" --points --move 2:1,0,0 -p --size 40x12 --color none --fit-from 30,25,0 --yaw 30 --pitch 25 assets/scene.obj >"$T/p2" 2>"$T/err"
 check "... and the move changes the picture" '! cmp -s "$T/p1" "$T/p2"' "$(cat "$T/err")"
