@@ -136,3 +136,18 @@ check "... the objects stay" 'grep -q "^scene: *6 objects, 0 faces" "$T/out"' "$
 "$Z" --points -p --size 40x12 --color none --fit-from 30,25,0 --yaw 30 --pitch 25 assets/scene.obj >"$T/p1"
 "$Z" --points --move 2:1,0,0 -p --size 40x12 --color none --fit-from 30,25,0 --yaw 30 --pitch 25 assets/scene.obj >"$T/p2" 2>"$T/err"
 check "... and the move changes the picture" '! cmp -s "$T/p1" "$T/p2"' "$(cat "$T/err")"
+
+# ---- --scale acts within the fitted view; empty frames say why
+"$Z" -p --size 30x10 --color none assets/cube.obj >"$T/p1"
+"$Z" -p --size 30x10 --color none --scale 1:0.5 assets/cube.obj >"$T/p2"
+n1=$(grep -o "[▀▄█]" "$T/p1" | wc -l); n2=$(grep -o "[▀▄█]" "$T/p2" | wc -l)
+check "--scale 1:0.5 on a single object: it shrinks in the picture, as documented" '[ "$n2" -lt "$n1" ] && [ "$n2" -gt 0 ]' "$n1 -> $n2"
+grep -q "as loaded and laid out" doc/zview.1
+check "... and the man page says the fit is of the objects as loaded" '[ $? -eq 0 ]'
+"$Z" -o "$T/x.png" --size 30x10 --scale 1:1000 --move 1:2000,0,0 assets/cube.obj 2>"$T/err"
+expect_err "a scene scaled and moved out of view: outside the picture" "everything is outside the picture (--pan, --move, --scale or --zoom)"
+"$Z" -o "$T/x.png" --size 30x10 --scale 1:0.001 assets/cube.obj 2>"$T/err"
+expect_err "scaled too small: says it was scaled down" "the model, scaled down (--scale), covers no sample"
+printf 'v 0 0 0\nv 1 1 1\nv 2 2 2\nv 0 1 0\nf 1 2 3\nf 4 4 4\n' >"$T/zero.obj"
+"$Z" -o "$T/x.png" --size 30x10 "$T/zero.obj" 2>"$T/err"
+expect_err "a model whose faces all have zero area says so" "nothing drawn: every face has zero area"
