@@ -64,6 +64,7 @@ static const char *known_other(const char *h, size_t n)
 
 static int has_nul(const char *h, size_t n) { return memchr(h, '\0', n) != NULL; }
 
+#ifdef ZV_ASSIMP
 /* A head of zeros (a sparse file, a disk image's gap) is no format
  * assimp reads either: it is not handed the whole file to find that. */
 static int all_zero(const char *h, size_t n)
@@ -73,6 +74,7 @@ static int all_zero(const char *h, size_t n)
             return 0;
     return 1;
 }
+#endif
 
 /* For the refusal: what the bytes look like. */
 static const char *describe(const char *h, size_t n)
@@ -241,6 +243,7 @@ void mesh_formats_print(FILE *f)
 static const MeshLoader *pick(const char *head, size_t n, uint64_t size, const char *ext,
                               const char *forced, const char **what, int *try_assimp)
 {
+    (void)try_assimp;   /* used with assimp only */
     *what = NULL;
     if (forced) {
         const MeshLoader *l = native_by_name(forced);
