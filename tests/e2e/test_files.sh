@@ -90,6 +90,16 @@ for t in (((0,0,0),(1,0,0),(0,1,0)), ((0,0,0),(0,1,0),(0,0,1)), ((0,0,0),(1,0,0)
     d += struct.pack('<3f', 0, 0, 1) + b''.join(struct.pack('<3f', *v) for v in t) + b'\0\0'
 open(sys.argv[1] + '/cut.stl', 'wb').write(d[:84 + 2 * 50 + 20])
 PY
+python3 - "$T" <<'PY'
+import struct, sys
+d = b'\0' * 80 + struct.pack('<I', 2)
+for t in (((0,0,0),(1,0,0),(0,1,0)), ((0,0,0),(0,1,0),(0,0,1))):
+    d += struct.pack('<3f', 0, 0, 1) + b''.join(struct.pack('<3f', *v) for v in t) + b'\0\0'
+open(sys.argv[1] + '/part.stl', 'wb').write(d)
+PY
+gzip -c "$T/part.stl" >"$T/part.stl.gz"
+"$Z" --info "$T/part.stl.gz" >"$T/out" 2>"$T/err"
+check "part.stl.gz (a binary STL, told by its size once decompressed)" '[ "$(info format)" = "stl binary" ] && [ "$(info faces)" = 2 ]' "$(cat "$T/err")"
 "$Z" --info "$T/cut.stl" >"$T/out" 2>"$T/err"
 check "a binary STL cut inside triangle 3 of 3 shows the 2 whole ones" '[ "$(info faces)" = 2 ]' "$(cat "$T/err")"
 expect_err "... with a warning saying where it ends" "byte 184: file ends inside triangle 3 of 3"
