@@ -136,7 +136,7 @@ Test(formats, not_a_model_in_one_line)
         size_t n;
         const char *what;
     } t[] = {
-        { "x.gz", "\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03", 10, "gzip data" },
+        { "x.bz2", "BZh91AY&SY", 10, "bzip2 data" },
         { "x.png", "\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16, "PNG image" },
         { "x.obj", "\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16, "PNG image" },
         { "x.zip", "PK\x03\x04\x14\0\0\0", 8, "zip archive" },

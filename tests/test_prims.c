@@ -524,16 +524,17 @@ Test(load, lenient_obj_skips_and_counts, .init = cr_redirect_stderr)
     cr_assert_str_eq(E, "x.obj:5: face has fewer than 3 vertices (0)");
     /* lenient: the empty face, the unknown keyword, the three statements
      * with indices past the end, the unreadable vertex and the face
-     * using it (its number 4 is kept: face 1 2 5 still means what the
-     * file meant) */
+     * using it (face 1 2 5 still means what the file meant: the
+     * unreadable vertex itself goes, vertex 5 becomes the fourth) */
     cr_assert_eq(lenient("x.obj", text), 0, "%s", E);
     cr_assert_eq(M.info.skipped, 7);
     cr_assert_str_eq(M.info.first_skipped, "x.obj:5: face has fewer than 3 vertices (0)");
-    cr_assert_eq(M.nverts, 5);
+    cr_assert_eq(M.nverts, 4);
     cr_assert_eq(M.nfaces, 2);
     cr_assert_eq(M.npoints, 0);
     cr_assert_eq(M.nlines, 0);
-    cr_assert_eq(M.corner[5], 4);
+    cr_assert_eq(M.corner[5], 3);
+    cr_assert(M.pos[9] == 1 && M.pos[10] == 1 && M.pos[11] == 0, "vertex 5 of the file (1 1 0)");
     fflush(stderr);
     cr_assert_stderr_eq_str("zview: warning: x.obj: 7 statements skipped (first: x.obj:5: face has fewer "
                             "than 3 vertices (0))\n");
@@ -624,6 +625,27 @@ Test(load, points_option_makes_every_vertex_a_point)
     cr_assert_eq(s.npoints, 8);
     cr_assert_eq(s.nfaces, 0);
     scene_free(&s);
+}
+
+Test(load, points_option_keeps_the_objects)
+{
+    /* a and b share vertex 2; vertex 6 is used by nothing */
+    const char *obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 5 1 0\nv 9 9 9\n"
+                      "o a\nf 1 2 3\no b\nf 2 4 5\n";
+    cr_assert_eq(strict("two.obj", obj), 0, "%s", E);
+    cr_assert_eq(M.nobjs, 2);
+    mesh_as_points(&M);
+    cr_assert_eq(M.nfaces, 0);
+    cr_assert_eq(M.npoints, 6, "every vertex a point, once");
+    cr_assert_eq(M.nobjs, 2, "the objects stay");
+    cr_assert_str_eq(M.objs[0].name, "a");
+    cr_assert_eq(M.objs[0].point_count, 3);
+    cr_assert_eq(M.objs[1].point_count, 3, "4, 5 and the unused 6 (2 went to a)");
+    uint32_t want[6] = { 0, 1, 2, 3, 4, 5 };
+    for (int i = 0; i < 6; i++)
+        cr_assert_eq(M.point[i], want[i], "point %d", i);
+    cr_assert_eq(M.objs[1].vert_min, 3);
+    cr_assert_eq(M.objs[1].vert_max, 5);
 }
 
 /* ==== empty frames ==== */

@@ -63,18 +63,39 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
     int from_stdin = 0;
     MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys,
                         .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
+    /* one file of several that cannot be read (gone, unreadable, not a
+     * model) is named in a warning and the rest are shown; --strict, or
+     * every file failing, refuses */
+    int nread = 0, nfailed = 0;
+    char left_out[256] = "";
     for (int i = 0; i < nfiles; i++) {
-        if (mesh_load_ex(&meshes[i], files[i], &lo, err, errlen)) {
-            for (int k = 0; k < i; k++)
+        from_stdin |= strcmp(files[i], "-") == 0;
+        if (mesh_load_ex(&meshes[nread], files[i], &lo, err, errlen)) {
+            nfailed++;
+            if (nfiles > 1 && !o->strict && nfailed < nfiles) {
+                fprintf(stderr, "zview: warning: %s (left out; the other files are shown)\n", err);
+                if (!left_out[0])
+                    snprintf(left_out, sizeof left_out, "%s (left out)", err);
+                continue;
+            }
+            for (int k = 0; k < nread; k++)
                 mesh_free(&meshes[k]);
             free(meshes);
             return -1;
         }
         if (o->flip)
-            mesh_flip_winding(&meshes[i]);
+            mesh_flip_winding(&meshes[nread]);
         if (o->points)
-            mesh_as_points(&meshes[i]);
-        from_stdin |= strcmp(files[i], "-") == 0;
+            mesh_as_points(&meshes[nread]);
+        nread++;
+    }
+    err[0] = '\0';
+    nfiles = nread;
+    /* the viewer's status bar shows the first file's first warning (the
+     * screen covers stderr): a file left out is the one to know about */
+    if (left_out[0] && !meshes[0].info.skipped && !meshes[0].info.tex_failed) {
+        meshes[0].info.warnings++;
+        memcpy(meshes[0].info.first_warning, left_out, sizeof left_out);
     }
     /* The model came through standard input (`curl ... | zview -`): the
      * viewer reads its keys from there, so give it the terminal back. */

@@ -341,6 +341,39 @@ static void scene_extent(const Pipeline *p, SceneExtent *e)
     }
 }
 
+/* Does any polygon of the scene have an area (a nonzero Newell normal,
+ * in the mesh's coordinates)? Asked only of an empty frame. */
+static int any_face_area(const Scene *s)
+{
+    for (int i = 0; i < s->nobjs; i++) {
+        const Object *o = &s->objs[i];
+        const float *pos = o->mesh->pos;
+        for (uint32_t q = o->poly_first; q < o->poly_first + o->poly_count; q++) {
+            double n[3] = { 0, 0, 0 };
+            uint32_t c0 = s->poly_start[q], c1 = s->poly_start[q + 1];
+            for (uint32_t c = c0; c < c1; c++) {
+                const float *a = &pos[3 * (size_t)s->poly_corner[c]];
+                const float *b = &pos[3 * (size_t)s->poly_corner[c + 1 < c1 ? c + 1 : c0]];
+                n[0] += ((double)a[1] - b[1]) * ((double)a[2] + b[2]);
+                n[1] += ((double)a[2] - b[2]) * ((double)a[0] + b[0]);
+                n[2] += ((double)a[0] - b[0]) * ((double)a[1] + b[1]);
+            }
+            if (n[0] != 0 || n[1] != 0 || n[2] != 0)
+                return 1;
+        }
+    }
+    return 0;
+}
+
+/* Were objects scaled down from how they were laid out (--scale)? */
+static int scaled_down(const Scene *s)
+{
+    for (int i = 0; i < s->nobjs; i++)
+        if (s->objs[i].scale < s->objs[i].home_scale)
+            return 1;
+    return 0;
+}
+
 const char *frame_empty_reason(const Pipeline *p)
 {
     const FrameBufs *fb = &p->fb;
@@ -358,8 +391,10 @@ const char *frame_empty_reason(const Pipeline *p)
         return "everything is behind the eye (--persp with a --zoom that moves the eye past the model): "
                "try --zoom 1, or fit with f, reset with r";
     if (e.objects && (e.x1 <= 0 || e.x0 >= sp->w || e.y1 <= 0 || e.y0 >= sp->h))
-        return "everything is outside the picture (--pan, --move or --zoom): try --pan 0,0, or fit with f, "
-               "reset with r";
+        return "everything is outside the picture (--pan, --move, --scale or --zoom): try --pan 0,0, or fit "
+               "with f, reset with r";
+    if (s->nprims == 0 && !any_face_area(s))
+        return "every face has zero area (its corners lie on a line or a point): nothing to fill";
     /* a flat model turned edge-on: its box's outline has no width or no
      * height (less than a sample across); not from a sample's size */
     if (e.objects && (e.x1 - e.x0 < 1 || e.y1 - e.y0 < 1) && (e.x1 - e.x0 >= 1 || e.y1 - e.y0 >= 1) &&
@@ -368,5 +403,8 @@ const char *frame_empty_reason(const Pipeline *p)
     if (sp->cull && sp->culled_back > 0 && sp->culled_back + sp->culled_empty >= sp->in_polys)
         return "every face was culled as a back face (--cull): try without --cull (b in the viewer), "
                "or --flip if the faces point inwards";
+    if (scaled_down(s))
+        return "the model, scaled down (--scale), covers no sample at this size: try a larger --scale, "
+               "a bigger --size or --zoom (+ in the viewer)";
     return "the model covers no sample at this size: try a bigger --size or --zoom (+ in the viewer)";
 }

@@ -611,12 +611,36 @@ static int from_scene(MeshCtx *c, const struct aiScene *sc)
     }
     if (walk(&w, sc->mRootNode, &id))
         goto out;
+    /* meshes no node names (assimp's AC3D importer makes a mesh of
+     * points for an object without surfaces and leaves it out of the
+     * node): shown as they are, when the nodes gave nothing */
+    if (!m->nfaces && !m->npoints && !m->nlines)
+        for (unsigned k = 0; k < sc->mNumMeshes; k++)
+            if (sc->mMeshes[k] && add_mesh(&w, sc->mMeshes[k], &id, 1))
+                goto out;
     r = mb_finish(&w.b, 1);
 out:
     free(w.matmap);
     if (r)
         mb_abort(&w.b);
     return r;
+}
+
+/* A file told by content has no extension to name its format: the
+ * importer's name, when it gives one. */
+static void ai_name_format(MeshCtx *c, const struct aiScene *sc)
+{
+    if (c->hint && *c->hint && strcmp(c->hint, "assimp"))
+        return;
+    const struct aiMetadataEntry *e = ai_meta(sc, "SourceAsset_Format");
+    const char *imp = e && e->mType == AI_AISTRING ? ((const struct aiString *)e->mData)->data : "";
+    size_t n = strlen(imp);
+    if (n > 9 && strcmp(imp + n - 9, " Importer") == 0)
+        n -= 9;   /* "AC3D Importer": the format is AC3D */
+    if (n > 20)
+        n = 20;
+    snprintf(c->m->info.format, sizeof c->m->info.format, "%.*s (assimp)", (int)(n ? n : 15),
+             n ? imp : "told by content");
 }
 
 static int no_library(MeshCtx *c)
@@ -632,27 +656,9 @@ static int ai_parse_path(MeshCtx *c, const char *path)
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);
-    if (r == 0)
-        ai_stance(c, sc, NULL, 0);
-    ai()->aiReleaseImport(sc);
-    return r;
-}
-
-static int ai_parse(MeshCtx *c, const char *data, size_t len)
-{
-    if (!ai())
-        return no_library(c);
-    if (len > UINT_MAX)
-        return me_fail(&c->err, "too large for assimp from memory");
-    /* the hint is an extension, or "assimp" when forced without one */
-    const char *hint = c->hint && strcmp(c->hint, "assimp") ? c->hint : "";
-    const struct aiScene *sc = ai()->aiImportFileFromMemory(data, (unsigned)len, ai_flags(hint), hint);
-    if (!sc)
-        return import_failed(c);
-    int r = from_scene(c, sc);
     if (r == 0) {
-        c->m->info.bytes = len;
-        ai_stance(c, sc, data, len);
+        ai_stance(c, sc, NULL, 0);
+        ai_name_format(c, sc);
     }
     ai()->aiReleaseImport(sc);
     return r;
@@ -666,6 +672,61 @@ static int has_word(const char *h, size_t n, const char *w)
             return 1;
     return 0;
 }
+
+/* The extension of the format ai_probe knows these bytes by ("" for
+ * none). */
+static const char *content_hint(const char *h, size_t n)
+{
+    if (n > MESH_HEAD)
+        n = MESH_HEAD;
+    if (n >= 4 && memcmp(h, "glTF", 4) == 0)
+        return "glb";
+    if (n >= 18 && memcmp(h, "Kaydara FBX Binary", 18) == 0)
+        return "fbx";
+    if (n >= 7 && memcmp(h, "BLENDER", 7) == 0)
+        return "blend";
+    size_t i = 0;
+    while (i < n && mesh_is_ws(h[i]))
+        i++;
+    if (i < n && h[i] == '{' && has_word(h, n, "\"asset\""))
+        return "gltf";
+    if (i < n && h[i] == '<' && has_word(h, n, "<COLLADA"))
+        return "dae";
+    if (i < n && h[i] == '<' && has_word(h, n, "<X3D"))
+        return "x3d";
+    if (n >= 18 && memcmp(h, "; FBX", 5) == 0)
+        return "fbx";
+    return "";
+}
+
+static int ai_parse(MeshCtx *c, const char *data, size_t len)
+{
+    if (!ai())
+        return no_library(c);
+    if (len > UINT_MAX)
+        return me_fail(&c->err, "too large for assimp from memory");
+    /* the hint is an extension, or "assimp" when forced without one;
+     * without one (standard input) the content names the format, as
+     * assimp from memory goes by the hint */
+    const char *hint = c->hint && strcmp(c->hint, "assimp") ? c->hint : "";
+    if (!*hint) {
+        hint = content_hint(data, len);
+        if (*hint)
+            c->hint = hint;   /* and the format's unit and name follow it */
+    }
+    const struct aiScene *sc = ai()->aiImportFileFromMemory(data, (unsigned)len, ai_flags(hint), hint);
+    if (!sc)
+        return import_failed(c);
+    int r = from_scene(c, sc);
+    if (r == 0) {
+        c->m->info.bytes = len;
+        ai_stance(c, sc, data, len);
+        ai_name_format(c, sc);
+    }
+    ai()->aiReleaseImport(sc);
+    return r;
+}
+
 
 /* Formats with a magic or a telling header; the rest go by extension. */
 static int ai_probe(const char *h, size_t n, uint64_t size)

@@ -622,10 +622,57 @@ void mesh_free(Mesh *m)
     memset(m, 0, sizeof *m);
 }
 
+/* --points of a mesh of several objects: each object's points are the
+ * vertices its faces, points and lines use (a vertex two objects share
+ * goes to the first), so that objects stay objects (--move 2:...).
+ * Vertices nothing uses go to the last. Returns the point array (object
+ * by object, every vertex once), or NULL out of memory. */
+static uint32_t *points_by_object(Mesh *m)
+{
+    uint32_t nv = m->nverts;
+    uint32_t *pt = malloc((size_t)(nv ? nv : 1) * sizeof *pt);
+    uint8_t *seen = calloc((size_t)nv / 8 + 1, 1);
+    if (!pt || !seen) {
+        free(pt);
+        free(seen);
+        return NULL;
+    }
+    uint32_t k = 0;
+#define TAKE(v)                                                              \
+    do {                                                                     \
+        uint32_t v_ = (v);                                                   \
+        if (v_ < nv && !(seen[v_ >> 3] >> (v_ & 7) & 1)) {                   \
+            seen[v_ >> 3] |= (uint8_t)(1u << (v_ & 7));                      \
+            pt[k++] = v_;                                                    \
+        }                                                                    \
+    } while (0)
+    for (uint32_t i = 0; i < m->nobjs; i++) {
+        MeshObject *o = &m->objs[i];
+        uint32_t first = k;
+        for (uint32_t f = o->face_first; f < o->face_first + o->face_count; f++)
+            for (uint32_t c = m->face_start[f]; c < m->face_start[f + 1]; c++)
+                TAKE(m->corner[c]);
+        for (uint32_t p = o->point_first; p < o->point_first + o->point_count; p++)
+            TAKE(m->point ? m->point[p] : p);
+        for (uint32_t l = o->line_first; l < o->line_first + o->line_count; l++)
+            for (uint32_t c = m->line_start[l]; c < m->line_start[l + 1]; c++)
+                TAKE(m->line_corner[c]);
+        if (i + 1 == m->nobjs)
+            for (uint32_t v = 0; v < nv; v++)
+                TAKE(v);
+#undef TAKE
+        o->point_first = first;
+        o->point_count = k - first;
+    }
+    free(seen);
+    return pt;
+}
+
 void mesh_as_points(Mesh *m)
 {
-    /* the vertices stay; every vertex is a point of one object (points
-     * are not textured) */
+    /* the vertices stay; every vertex is a point, of the object that
+     * used it (points are not textured) */
+    uint32_t *pt = m->nobjs > 1 ? points_by_object(m) : NULL;
     free(m->corner_uv);
     free(m->uv);
     m->corner_uv = NULL;
@@ -645,8 +692,31 @@ void mesh_as_points(Mesh *m)
     /* a mesh is never without its face_start sentinel */
     m->face_start = calloc(1, sizeof *m->face_start);
     m->face_mat = calloc(1, sizeof *m->face_mat);
+    if (pt) {
+        m->point = pt;
+        for (uint32_t i = 0; i < m->nobjs; i++) {
+            MeshObject *o = &m->objs[i];
+            o->face_first = o->face_count = o->line_first = o->line_count = 0;
+            uint32_t lo = UINT32_MAX, hi = 0;
+            for (uint32_t p = o->point_first; p < o->point_first + o->point_count; p++) {
+                lo = pt[p] < lo ? pt[p] : lo;
+                hi = pt[p] > hi ? pt[p] : hi;
+            }
+            o->vert_min = o->point_count ? lo : 0;
+            o->vert_max = o->point_count ? hi : 0;
+        }
+        /* an object left without points (all its vertices shared with an
+         * earlier one) goes, as mb_finish drops empty objects */
+        uint32_t n = 0;
+        for (uint32_t i = 0; i < m->nobjs; i++)
+            if (m->objs[i].point_count)
+                m->objs[n++] = m->objs[i];
+        m->nobjs = n;
+        return;
+    }
     if (m->nobjs > 1) {
-        /* the whole mesh, named after the file as its default object is */
+        /* out of memory for the table: the whole mesh, one object named
+         * after the file as its default object is */
         const char *base = m->path ? strrchr(m->path, '/') : NULL;
         base = base ? base + 1 : m->path ? m->path : "points";
         const char *dot = strrchr(base, '.');

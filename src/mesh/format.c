@@ -64,6 +64,18 @@ static const char *known_other(const char *h, size_t n)
 
 static int has_nul(const char *h, size_t n) { return memchr(h, '\0', n) != NULL; }
 
+#ifdef ZV_ASSIMP
+/* A head of zeros (a sparse file, a disk image's gap) is no format
+ * assimp reads either: it is not handed the whole file to find that. */
+static int all_zero(const char *h, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (h[i])
+            return 0;
+    return 1;
+}
+#endif
+
 /* For the refusal: what the bytes look like. */
 static const char *describe(const char *h, size_t n)
 {
@@ -92,11 +104,20 @@ static void extension(const char *path, char *ext, size_t n)
         return;
     const char *base = strrchr(path, '/');
     base = base ? base + 1 : path;
-    const char *dot = strrchr(base, '.');
-    if (!dot || dot == base || strlen(dot + 1) >= n)
+    const char *dot = strrchr(base, '.'), *end = base + strlen(base);
+    /* part.stl.gz is an STL: the content is decompressed (reader.c), and
+     * the name before the .gz says what it holds */
+    if (dot && dot > base && strcasecmp(dot, ".gz") == 0) {
+        end = dot;
+        dot = NULL;
+        for (const char *p = base + 1; p < end; p++)
+            if (*p == '.')
+                dot = p;
+    }
+    if (!dot || dot == base || (size_t)(end - dot - 1) >= n)
         return;
     size_t i = 0;
-    for (const char *p = dot + 1; *p; p++)
+    for (const char *p = dot + 1; p < end; p++)
         ext[i++] = (char)(*p >= 'A' && *p <= 'Z' ? *p + 32 : *p);
     ext[i] = '\0';
 }
@@ -220,8 +241,9 @@ void mesh_formats_print(FILE *f)
 /* The loader for these bytes (head: the first n of `size`), or NULL
  * with a description of them in *what. */
 static const MeshLoader *pick(const char *head, size_t n, uint64_t size, const char *ext,
-                              const char *forced, const char **what)
+                              const char *forced, const char **what, int *try_assimp)
 {
+    (void)try_assimp;   /* used with assimp only */
     *what = NULL;
     if (forced) {
         const MeshLoader *l = native_by_name(forced);
@@ -231,14 +253,31 @@ static const MeshLoader *pick(const char *head, size_t n, uint64_t size, const c
 #endif
         return l;
     }
-    /* 1. a format's own magic or header */
-    const MeshLoader *maybe = NULL;
+    /* 1. a format's own magic or header; a probe only fairly sure (OBJ's
+     * first keyword: NFF and others start with `v` too) yields to an
+     * extension that names another reader */
+    const MeshLoader *maybe = NULL, *fair = NULL;
     for (size_t i = 0; i < NNATIVE; i++) {
         int p = natives[i]->probe ? natives[i]->probe(head, n, size) : PROBE_NO;
         if (p == PROBE_SURE)
             return natives[i];
+        if (p == PROBE_FAIR && !fair)
+            fair = natives[i];
         if (p == PROBE_MAYBE && !maybe)
             maybe = natives[i];
+    }
+    if (fair) {
+        const MeshLoader *by = native_by_ext(ext);
+        int other = by ? by != fair && !by->needs_magic && !(by->text && has_nul(head, n)) &&
+                             (!by->probe || by->probe(head, n, size) != PROBE_NO)
+                       : 0;
+#ifdef ZV_ASSIMP
+        if (!by && !other)
+            other = mesh_assimp_has_ext(ext);
+#endif
+        if (!other)
+            return fair;
+        maybe = fair;
     }
 #ifdef ZV_ASSIMP
     if (mesh_loader_assimp.probe(head, n, size) == PROBE_SURE)
@@ -265,6 +304,15 @@ static const MeshLoader *pick(const char *head, size_t n, uint64_t size, const c
     if (maybe)
         return maybe;
     *what = describe(head, n);
+#ifdef ZV_ASSIMP
+    /* 5. assimp tells many formats by content (3DS, X, ASE, AC3D): let
+     * it try bytes nothing here knows; if it fails too, the refusal is
+     * ours (*what) */
+    if (n && try_assimp && !all_zero(head, n) && mesh_assimp_available()) {
+        *try_assimp = 1;
+        return &mesh_loader_assimp;
+    }
+#endif
     return NULL;
 }
 
@@ -358,7 +406,7 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
         return me_fail(&c.err, "unknown format '%s'", format);
     const char *what;
     const MeshLoader *l = pick(data ? data : "", len < MESH_HEAD ? len : MESH_HEAD, len, ext,
-                               format, &what);
+                               format, &what, NULL);
     if (!l)
         return refuse(&c.err, what);
     int r = run(l, &c, data ? data : "", len);
@@ -517,16 +565,26 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
         }
     }
     const char *what;
-    const MeshLoader *l = pick(f.head, f.nhead, f.size, ext, format, &what);
+    /* only a file on disk is offered to assimp by content: bytes in
+     * memory (a pipe, the fuzzers) stay with the native loaders */
+    int try_assimp = 0;
+    const MeshLoader *l = pick(f.head, f.nhead, f.size, ext, format, &what,
+                               f.regular && !is_stdin ? &try_assimp : NULL);
     if (!l) {
         mf_close(&f);
         return refuse(&c.err, what);
     }
     int r;
-    if (l->parse_path && f.regular) {
+    /* standard input, even redirected from a file, has no name a
+     * library could open: it is read from memory */
+    if (l->parse_path && f.regular && !is_stdin) {
         uint64_t size = f.size;
         mf_close(&f);
         r = l->parse_path(&c, path);
+        if (r && try_assimp) {
+            c.err.buf[0] = '\0';
+            r = refuse(&c.err, what);
+        }
         if (r) {
             mesh_free(m);
         } else {

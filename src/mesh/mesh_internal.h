@@ -26,7 +26,10 @@ typedef struct MeshCtx {
     const char *hint;      /* --format name or the file's extension (assimp) */
 } MeshCtx;
 
-enum { PROBE_NO = 0, PROBE_MAYBE = 1, PROBE_SURE = 2 };
+/* PROBE_FAIR: the bytes read as this format but prove it less than a
+ * magic does (a text format's first keyword); an extension naming
+ * another reader wins over it. */
+enum { PROBE_NO = 0, PROBE_MAYBE = 1, PROBE_SURE = 2, PROBE_FAIR = 3 };
 
 typedef struct MeshLoader {
     const char *name;      /* --format name */

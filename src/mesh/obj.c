@@ -409,7 +409,7 @@ static int obj_probe(const char *head, size_t n, uint64_t size)
             p++;
         for (size_t i = 0; i < sizeof kw / sizeof kw[0]; i++)
             if (strlen(kw[i]) == (size_t)(p - k) && memcmp(k, kw[i], (size_t)(p - k)) == 0)
-                return PROBE_SURE;
+                return PROBE_FAIR;
         return PROBE_NO;
     }
     return n ? PROBE_MAYBE : PROBE_NO;

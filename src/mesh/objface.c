@@ -352,6 +352,43 @@ static uint32_t drop_lines(Parser *ps, const uint8_t *bad)
     return more;
 }
 
+/* The stand-ins themselves go, once nothing uses them: a file of
+ * vertices alone is a cloud of every vertex (and --points draws every
+ * vertex), where a stand-in would be a point no statement gave. The
+ * vertices after each move down, and the indices with them. */
+static void drop_standins(Parser *ps, const uint8_t *bad)
+{
+    Mesh *m = ps->m;
+    uint32_t nv = m->nverts, k = 0;
+    /* to[v]: vertex v's index once the stand-ins before it are gone */
+    uint32_t *to = malloc((size_t)(nv ? nv : 1) * sizeof *to);
+    if (!to) {
+        /* not enough memory for the table: leave them (they sit on a
+         * good vertex's position, mark_standins) */
+        return;
+    }
+    for (uint32_t v = 0; v < nv; v++) {
+        to[v] = k;
+        if (!vert_ok(bad, nv, v))
+            continue;
+        if (k != v) {
+            memmove(&m->pos[3 * (size_t)k], &m->pos[3 * (size_t)v], 3 * sizeof(float));
+            if (m->rgb)
+                memmove(&m->rgb[3 * (size_t)k], &m->rgb[3 * (size_t)v], 3 * sizeof(float));
+        }
+        k++;
+    }
+    for (size_t c = 0; c < ps->b.ncorner; c++)
+        m->corner[c] = to[m->corner[c]];
+    if (m->point)
+        for (uint32_t p = 0; p < m->npoints; p++)
+            m->point[p] = to[m->point[p]];
+    for (size_t c = 0; c < ps->b.nlcorner; c++)
+        m->line_corner[c] = to[m->line_corner[c]];
+    m->nverts = k;
+    free(to);
+}
+
 /* What could not be resolved until the end: positive indices past the
  * last vertex (strict: the load fails on the largest; otherwise each
  * statement that had one is skipped) and the stand-ins of unreadable
@@ -368,6 +405,8 @@ int obj_drop_unreadable(Parser *ps)
     uint32_t more = drop_faces(ps, bad);
     more += drop_points(ps, bad);
     more += drop_lines(ps, bad);
+    if (bad)
+        drop_standins(ps, bad);
     free(bad);
     MeshErr *e = ps->e;
     e->skipped = e->skipped + more < e->skipped ? UINT32_MAX : e->skipped + more;

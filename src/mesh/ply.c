@@ -231,7 +231,12 @@ static int parse_header(Ply *ply, const char *data, size_t len)
         } else if (eq(ks, ke, "property")) {
             r = header_property(ply, ply->nel ? &ply->el[ply->nel - 1] : NULL, p, le, line);
         } else {
-            return me_fail_line(e, line, "unknown header line '%.*s'", mesh_tok_len(ks, le), ks);
+            /* writers put their own lines in ("Created by Blender3D 247"):
+             * skipped and counted like any statement (--strict refuses) */
+            me_fail_line(e, line, "unknown header line '%.*s'", mesh_tok_len(ks, le), ks);
+            if (me_skip(e, line))
+                return -1;
+            continue;
         }
         if (r)
             return -1;
@@ -292,11 +297,15 @@ static int check_counts(Ply *ply)
         if (unit && el->count > left / unit) {
             me_fail(e, "element '%s' of %llu records needs more than the %llu bytes after the header",
                     el->name, (unsigned long long)el->count, (unsigned long long)avail);
-            /* a file cut short in its faces shows what it has (not
-             * strict): the faces are read until the bytes run out */
-            if (el->kind != EL_FACE || me_skip(e, 0))
+            /* a file cut short shows what it has (not strict): the
+             * records are read until the bytes run out (the whole
+             * vertices there; faces as far as they go; what follows
+             * has none) */
+            if (me_skip(e, 0))
                 return -1;
             el->count = left / unit;
+            if (el->kind == EL_VERTEX)
+                ply->nverts = el->count;
         }
         used += unit * el->count;
     }

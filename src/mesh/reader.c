@@ -134,7 +134,15 @@ static int read_more(MeshFile *f, size_t want, int stop_at_nul, char *msg, size_
         size_t room = f->cap - f->len;
         if (room > want - f->len)
             room = want - f->len;
-        ssize_t r = read(f->fd, f->heap + f->len, room);
+        if (f->cancel && __atomic_load_n(f->cancel, __ATOMIC_RELAXED)) {
+            f->cancelled = 1;
+            snprintf(msg, msglen, "cancelled");
+            return -1;
+        }
+        ssize_t r = f->gz ? mf_gz_read(f, f->heap + f->len, room, msg, msglen)
+                          : read(f->fd, f->heap + f->len, room);
+        if (r < 0 && f->gz)
+            return -1;
         if (r < 0) {
             if (errno == EINTR)
                 continue;
@@ -217,6 +225,18 @@ int mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen)
         }
         f->head = f->headbuf;
         f->nhead = got;
+        if (!mf_is_gzip(f->head, f->nhead))
+            return 0;
+        /* compressed: read as a stream of the decompressed bytes, from
+         * the start (pread left the offset there) */
+        f->regular = 0;
+        f->size = 0;
+        if (mf_gz_start(f, "", 0, msg, msglen) || read_more(f, MESH_HEAD, 0, msg, msglen)) {
+            mf_close(f);
+            return -1;
+        }
+        f->head = f->data;
+        f->nhead = f->len;
         return 0;
     }
     /* A stream: its first bytes start the heap copy (nothing can be read
@@ -224,6 +244,16 @@ int mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen)
     if (read_more(f, MESH_HEAD, 0, msg, msglen)) {
         mf_close(f);
         return -1;
+    }
+    if (mf_is_gzip(f->data, f->len)) {
+        /* what was read is compressed: it seeds zlib, and the copy
+         * starts again with the bytes that come out */
+        size_t n = f->len;
+        f->len = 0;
+        if (mf_gz_start(f, f->heap, n, msg, msglen) || read_more(f, MESH_HEAD, 0, msg, msglen)) {
+            mf_close(f);
+            return -1;
+        }
     }
     f->head = f->data;
     f->nhead = f->len;
@@ -302,7 +332,8 @@ int mf_load(MeshFile *f, const MfLimits *lim, char *msg, size_t msglen)
     /* full: an error when the stream goes on past a limit of ours (a
      * format's own bound, lim->max, lets the loader see the byte more) */
     char c;
-    if (!nul && f->len >= cap && (cap < max || max == MESH_MAX_BYTES) && read(f->fd, &c, 1) == 1) {
+    if (!nul && f->len >= cap && (cap < max || max == MESH_MAX_BYTES) &&
+        (f->gz ? mf_gz_read(f, &c, 1, msg, msglen) : read(f->fd, &c, 1)) == 1) {
         char have[32];
         sysmem_format(cap, have, sizeof have);
         if (cap < max)
@@ -413,6 +444,7 @@ void mf_close(MeshFile *f)
 {
     if (f->map)
         munmap(f->map, f->len);
+    mf_gz_end(f);
     free(f->heap);
     if (f->fd >= 0)
         close(f->fd);

@@ -125,6 +125,7 @@ typedef struct MeshFile {
     const int  *cancel;    /* NULL, or nonzero (read atomically) when the load is
                               no longer wanted: the rest reads as zeros */
     int         cancelled; /* cancel was seen */
+    struct MfGzip *gz;     /* gzip data: the stream's bytes come out of zlib (gzip.c) */
 } MeshFile;
 
 /* Open `path` ("-" = standard input) and read its first bytes into head
@@ -133,6 +134,15 @@ typedef struct MeshFile {
  * ("cannot open: ...", "is a directory", "not a regular file (a FIFO)").
  * An empty file succeeds with nhead 0. */
 int  mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen);
+
+/* gzip (gzip.c): do these bytes start gzip data? Start decompressing
+ * f (its fd read on from where it stands; seed: the compressed bytes
+ * already read from it), read decompressed bytes (0 at the end, -1 with
+ * msg), and free the state (mf_close does). */
+int  mf_is_gzip(const char *h, size_t n);
+int  mf_gz_start(MeshFile *f, const char *seed, size_t nseed, char *msg, size_t msglen);
+long mf_gz_read(MeshFile *f, char *buf, size_t n, char *msg, size_t msglen);
+void mf_gz_end(MeshFile *f);
 
 /* How much of a stream to read (mapped files are always whole). */
 typedef struct {

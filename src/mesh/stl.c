@@ -102,17 +102,22 @@ static int stl_binary(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
         /* the count is checked against the size before anything is
          * allocated: a lying header costs nothing */
         uint64_t whole = (len - STL_HEADER - 4) / STL_TRI;
-        return me_fail_at(&c->err, STL_HEADER + 4 + whole * STL_TRI,
-                          "file ends inside triangle %llu of %u (%u triangles need %llu "
-                          "bytes, the file has %zu)",
-                          (unsigned long long)whole + 1, n, n, (unsigned long long)need, len);
-    }
-    if (len - need >= STL_TRI)
+        me_fail_at(&c->err, STL_HEADER + 4 + whole * STL_TRI,
+                   "file ends inside triangle %llu of %u (%u triangles need %llu "
+                   "bytes, the file has %zu)",
+                   (unsigned long long)whole + 1, n, n, (unsigned long long)need, len);
+        /* a file cut short (a copy that stopped) shows the whole
+         * triangles it has, as PLY and OFF do; --strict refuses it */
+        if (whole == 0 || me_skip(&c->err, STL_HEADER + 4 + whole * STL_TRI))
+            return -1;
+        n = (uint32_t)whole;
+        need = STL_HEADER + 4 + (uint64_t)STL_TRI * n;
+    } else if (len - need >= STL_TRI)
         /* a whole triangle more or beyond: the count is wrong, and what
          * follows it cannot be trusted either */
         return me_fail(&c->err, "the header's count, %u triangles, makes %llu bytes; the file has %zu",
                        n, (unsigned long long)need, len);
-    if (need < len)
+    if (need < len && !c->err.skipped)
         me_warn(&c->err, NULL, 0, "%llu bytes after the last of %u triangles ignored",
                 (unsigned long long)(len - need), n);
     snprintf(m->info.format, sizeof m->info.format, "stl binary");

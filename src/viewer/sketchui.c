@@ -266,8 +266,11 @@ Reaction sketch_mode_enter(App *a)
     m->model = a->s;
     m->dirty = 1;
     m->cx = m->cy = -1;     /* the picture's middle, once its size is known */
+    m->cursor = 1;          /* shown from the start: where space adds a corner */
     a->sel = -1;
     a->spin = 0;
+    /* a first-time user sees a blank canvas: say how to start */
+    snprintf(a->note, sizeof a->note, "arrows move +, space: corner, Enter: close");
     return RE_RENDER;
 }
 
@@ -322,8 +325,11 @@ static void mark(CellGrid *g, int x, int y, uint32_t ch)
     c->flags = CELL_FG | CELL_BG;
 }
 
+static void canvas_corners(const App *a, CellGrid *g);
+
 void sketch_mode_marks(const App *a, CellGrid *g)
 {
+    canvas_corners(a, g);
     const Sketch *k = &a->sk.k;
     uint32_t open = sketch_open_points(k), first = k->npts - open;
     /* the open polygon's sides as dots, from each corner to the next
@@ -351,6 +357,35 @@ void sketch_mode_marks(const App *a, CellGrid *g)
         mark(g, a->sk.cx, a->sk.cy, '+');
 }
 
+/* The canvas's corners, so that a person sees where a drawing can go
+ * (a click beside it lands on its edge). ASCII: the locale may not be
+ * UTF-8. Drawn under the drawing's marks. */
+static void canvas_corners(const App *a, CellGrid *g)
+{
+    int x0, y0, x1, y1;
+    canvas_cell(a, (SketchPt){ -1, -1 }, &x0, &y0);
+    canvas_cell(a, (SketchPt){ 1, 1 }, &x1, &y1);
+    int l = x0 < x1 ? x0 : x1, r = x0 < x1 ? x1 : x0, t = y0 < y1 ? y0 : y1, b = y0 < y1 ? y1 : y0;
+    /* the cells of the corners themselves, kept inside the picture */
+    l = l < 0 ? 0 : l;
+    t = t < 0 ? 0 : t;
+    r = r >= g->cols ? g->cols - 1 : r;
+    b = b >= g->rows ? g->rows - 1 : b;
+    if (r - l < 2 || b - t < 2)
+        return;
+    for (int k = 0; k < 2; k++) {
+        int y = k ? b : t;
+        mark(g, l, y, k ? '`' : ',');
+        mark(g, l + 1, y, '-');
+        mark(g, r - 1, y, '-');
+        mark(g, r, y, k ? '\'' : '.');
+    }
+    mark(g, l, t + 1, '|');
+    mark(g, r, t + 1, '|');
+    mark(g, l, b - 1, '|');
+    mark(g, r, b - 1, '|');
+}
+
 Reaction sketch_mode_click(App *a, int button, int x, int y)
 {
     int cols, rows;
@@ -374,18 +409,23 @@ const char *sketch_mode_file(const App *a)
 void sketch_mode_status(const App *a, char *buf, size_t len, int width)
 {
     const SketchMode *m = &a->sk;
-    char sel[24] = "", hints[96];
+    char sel[24] = "", hints[96], counts[96], algo[48], note[sizeof a->note + 4] = "";
     if (m->k.sel >= 0)
         snprintf(sel, sizeof sel, " | #%d selected", m->k.sel + 1);
     snprintf(hints, sizeof hints, " | Tab flip t y tilt n next u undo c clear w write %s", m->only ? "q quit" : "D back");
+    snprintf(counts, sizeof counts, " | %u polygon%s | %u open%s%s", m->k.npolys, m->k.npolys == 1 ? "" : "s",
+             sketch_open_points(&m->k), sel, m->k.flipped ? " | flipped" : "");
+    snprintf(algo, sizeof algo, " | %s %.2fms", a->p.algo->name, a->p.hsr_ms);
+    if (a->note[0])
+        snprintf(note, sizeof note, " | %s", a->note);
     /* the parts in the order they go when the window is narrow: the key
-     * hints first, then the note; the counts, the algorithm and the help
-     * key stay (cut at the end in a window narrower still) */
-    for (int keep = 2; keep >= 0; keep--) {
-        int n = snprintf(buf, len, " sketch | %u polygon%s | %u open%s%s | %s %.2fms%s%s%s | ? help", m->k.npolys,
-                         m->k.npolys == 1 ? "" : "s", sketch_open_points(&m->k), sel,
-                         m->k.flipped ? " | flipped" : "", a->p.algo->name, a->p.hsr_ms,
-                         keep >= 1 && a->note[0] ? " | " : "", keep >= 1 ? a->note : "", keep >= 2 ? hints : "");
+     * hints first, then the algorithm, then the counts; a note answers
+     * the key just pressed (w's file name) and outranks them all, as in
+     * the viewer's bar; the help key stays (the whole cut at the end in
+     * a window narrower still) */
+    for (int keep = 3; keep >= 0; keep--) {
+        int n = snprintf(buf, len, " sketch%s%s%s%s | ? help", keep >= 1 ? counts : "", keep >= 2 ? algo : "", note,
+                         keep >= 3 ? hints : "");
         if (n >= 0 && n <= width)
             return;
     }

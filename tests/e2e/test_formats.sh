@@ -80,9 +80,10 @@ expect_status "an unknown --format is a usage error" 2 "$Z" --format gzip --prin
 expect_err "the usage error lists the formats" "obj stl ply off"
 
 # files no loader accepts: one line, status 1
-printf '\037\213\010\000\000\000\000\000\000\003' >"$T/x.gz"
-expect_status "a gzip file is refused" 1 "$Z" --print "$T/x.gz"
-expect_err "the refusal says what it is" "x.gz: not a model zview can read (gzip data; formats: obj stl ply off"
+# (gzip is decompressed: test_files.sh; bzip2 is not)
+printf 'BZh91AY&SY\001\002' >"$T/x.bz2"
+expect_status "a bzip2 file is refused" 1 "$Z" --print "$T/x.bz2"
+expect_err "the refusal says what it is" "x.bz2: not a model zview can read (bzip2 data; formats: obj stl ply off"
 if [ "$(wc -l <"$T/err")" -eq 1 ]; then ok "the refusal is one line"; else notok "the refusal is one line" "$(cat "$T/err")"; fi
 head -c 4096 /dev/urandom >"$T/noise.stl"
 expect_status "noise named .stl fails cleanly" 1 "$Z" --print "$T/noise.stl"

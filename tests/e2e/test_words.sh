@@ -78,3 +78,23 @@ tm send-keys -t zv O "$T/broken-model.obj" Enter
 if wait_for 'broken-model.obj:2: '; then ok "a failed O names the file by its short name, the reason after"; else notok "a failed O names the file by its short name, the reason after" "$(status 24)"; fi
 tm send-keys -t zv q
 wait_for 'zv-exit=0' >/dev/null
+
+# sketch mode at start: the canvas's corners, the cursor in the middle and
+# a one-line hint; at 80 columns w's note outranks the counts
+mkdir -p "$T/sk80"
+session xterm-256color 80 24
+tm send-keys -t zv "cd $T/sk80 && TERM=xterm-256color $Z --sketch; echo zv-exit=\$?" Enter
+if wait_for 'arrows move \+, space: corner, Enter: close'; then ok "--sketch starts with a hint in the status bar"; else notok "--sketch starts with a hint in the status bar" "$(status 24)"; fi
+check "... the canvas's top corners marked" 'head -1 "$T/screen" | grep -q "^ *,-  *-\.$"' "$(head -2 "$T/screen")"
+check "... and its bottom ones" 'sed -n 23p "$T/screen" | grep -q "^ *\`-  *-'"'"'$"' "$(sed -n 22,23p "$T/screen")"
+check "... the cursor shown in the middle before any key" '[ "$(grep -c "^ *+$" "$T/screen")" = 1 ] && grep -n "^ *+$" "$T/screen" | grep -q "^1[0-2]:"' "$(grep -n "+" "$T/screen")"
+tm send-keys -t zv Left Space Up Up Up Space S-Right Space Enter
+wait_for '1 polygon' >/dev/null
+tm send-keys -t zv t
+wait_for 'tilted' >/dev/null
+tm send-keys -t zv w
+if wait_for 'wrote sketch-001.obj'; then ok "80 columns: w's note shows"; else notok "80 columns: w's note shows" "$(status 24)"; fi
+check "... in full, before the help key" 'status 24 | grep -q "wrote sketch-001.obj | ? help$"' "$(status 24)"
+check "... and the file is there" '[ -s "$T/sk80/sketch-001.obj" ]'
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null

@@ -7,7 +7,8 @@
  *   bit 5      the wireframe
  *   bit 6      point size and line width - 1 (samples)
  *   bit 7      read as a stream (a pipe a thread writes into), the way
- *              `zview -` reads: decided from its head, within bounds
+ *              `zview -` reads: decided from its head, within bounds;
+ *              gzip data is decompressed on the way (seeds gz-*)
  *
  * The bytes go through mesh_parse_buffer (no path: no other file is
  * opened), or through mesh_load_ex on a pipe; the mesh's invariants are checked (every index in range,

@@ -4,6 +4,7 @@ selector byte (fuzz_mesh.c: format, lenient, --points, wireframe, size)
 then a small valid file of each native format, ascii and binary, with
 faces, points, lines and colours where the format has them. The output
 is committed; this is how it was made: python3 tests/fuzz/mkseeds_mesh.py"""
+import gzip
 import os
 import struct
 import sys
@@ -89,3 +90,15 @@ save("xyz-colours", XYZ | 64, "# x y z r g b\n" + "".join("%g %g %g %d %d %d\n" 
 save("pts-intensity", XYZ | LENIENT, "8\n" + "".join("%g %g %g -%d %d %d %d\n" % (v + (i * 100, 10 * i, 20, 30)) for i, v in enumerate(cube_v)))
 save("xyz-normals-commas", XYZ | 128, "".join("%g,%g,%g,0,%d,1\n" % (v + (-1 if i % 2 else 1,)) for i, v in enumerate(cube_v)))
 save("xyz-detected", DETECT, "X Y Z\n" + "".join("%g %g %g\n" % v for v in cube_v))
+
+# gzip streams (decompressed as they are read, reader.c/gzip.c): detected
+# and forced formats, binary and text, and a stream cut inside its data
+def gz(data):
+    return gzip.compress(data.encode() if isinstance(data, str) else data, mtime=0)
+
+
+save("gz-obj-detected", DETECT | 128, gz(obj))
+save("gz-stl-binary-forced", STL | LENIENT | 128, gz(open(os.path.join(out, "stl-binary-cube-colours"), "rb").read()[1:]))
+save("gz-ply-ascii-detected", DETECT | 128, gz(ply_header("ascii", 8, 6) + body))
+save("gz-off-cut", DETECT | LENIENT | 128, gz(off)[:40])
+save("gz-twice", DETECT | 128, gz(gz(off)))
