@@ -68,7 +68,8 @@ tm send-keys -t zv i
 tm send-keys -t zv '!'
 if wait_gone '1 hole'; then ok "! again: the verdict goes"; else notok "! again: the verdict goes" "$(status 30)"; fi
 tm send-keys -t zv q
-prompt_back
+# the shell's prompt once zview has gone (keys typed before that are zview's)
+wait_for 'zv-exit=[0-9]' >/dev/null && prompt_back >/dev/null || notok "the viewer quits" "$(tail -3 "$T/screen")"
 
 # ==== --watch ====
 cp "$T/open.obj" "$T/w.obj"
@@ -88,7 +89,8 @@ cube open >"$T/w.obj"
 if wait_for 'faces 5 drawn' && wait_for '1 hole'; then ok "--watch reads a file written in place"; else
     notok "--watch reads a file written in place" "$(status 30)"; fi
 tm send-keys -t zv q
-prompt_back
+# the shell's prompt once zview has gone (keys typed before that are zview's)
+wait_for 'zv-exit=[0-9]' >/dev/null && prompt_back >/dev/null || notok "the viewer quits" "$(tail -3 "$T/screen")"
 
 # the view stays: a turned camera, the same file written again
 cp assets/torus.obj "$T/t.obj"
@@ -103,4 +105,5 @@ if wait_for 'read t\.obj again'; then ok "--watch says it read the file again"; 
 wait_stable
 check "... and the camera and the layout stay as they were" 'picture 29 | cmp -s - "$T/turned"' "the picture moved"
 tm send-keys -t zv q
-prompt_back
+# the shell's prompt once zview has gone (keys typed before that are zview's)
+wait_for 'zv-exit=[0-9]' >/dev/null && prompt_back >/dev/null || notok "the viewer quits" "$(tail -3 "$T/screen")"
