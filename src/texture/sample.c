@@ -6,6 +6,7 @@
 
 #include <math.h>
 
+#include "simd.h"
 #include "texture.h"
 
 /* Texel index i of a row or column of n under the wrap mode. */
@@ -105,4 +106,136 @@ void texture_sample(const Texture *t, float u, float v, float lod, float out[3])
     bilinear(t, k, u, v, 1 - f, out);
     if (f > 0)
         bilinear(t, k + 1, u, v, f, out);
+}
+
+/* ==== From the 16-bit linear texels ==== */
+
+/* A coordinate brought into the range its wrap mode reads, once for
+ * both levels (what texel_pair does first, so the texels and weights
+ * are texel_pair's). */
+static inline float wrap_coord(float c, TexWrap m)
+{
+    c = tame(c);
+    if (m == TEX_REPEAT)
+        return c - (float)floor_int(c);
+    if (m == TEX_CLAMP)
+        return c < -1 ? -1 : c > 2 ? 2 : c;
+    return c;
+}
+
+/* texel_pair after wrap_coord. */
+static inline __attribute__((always_inline)) float texel_pair_w(float c, int n, TexWrap m, int *a, int *b)
+{
+    float x = c * (float)n - 0.5f;
+    int i = floor_int(x);
+    float f0 = (float)i;
+    if (m == TEX_REPEAT) {
+        *a = i < 0 ? i + n : i;
+        *b = i + 1 >= n ? i + 1 - n : i + 1;
+    } else if (m == TEX_CLAMP) {
+        *a = i < 0 ? 0 : i >= n ? n - 1 : i;
+        *b = i + 1 < 0 ? 0 : i + 1 >= n ? n - 1 : i + 1;
+    } else {
+        *a = wrap_index(i, n, m);
+        *b = wrap_index(i + 1, n, m);
+    }
+    return x - f0;
+}
+
+/* The four texels of a bilinear lookup on level k and their weights. */
+typedef struct {
+    const uint16_t *p[4];       /* (xa, ya), (xb, ya), (xa, yb), (xb, yb) */
+    float w[4];
+} Quad;
+
+static inline __attribute__((always_inline)) void quad_at(const Texture *t, int k, float u, float v, Quad *q)
+{
+    int w = t->lw[k], h = t->lh[k], xa, xb, ya, yb;
+    const uint16_t *px = t->lin + 3 * t->off[k];
+    float fx = texel_pair_w(u, w, t->wrap_u, &xa, &xb), fy = texel_pair_w(v, h, t->wrap_v, &ya, &yb);
+    const uint16_t *r0 = px + 3 * (size_t)ya * w, *r1 = px + 3 * (size_t)yb * w;
+    q->p[0] = r0 + 3 * xa;
+    q->p[1] = r0 + 3 * xb;
+    q->p[2] = r1 + 3 * xa;
+    q->p[3] = r1 + 3 * xb;
+    q->w[0] = (1 - fx) * (1 - fy);
+    q->w[1] = fx * (1 - fy);
+    q->w[2] = (1 - fx) * fy;
+    q->w[3] = fx * fy;
+}
+
+/* acc[c] += wt * (w0 t0 + w1 t1 + w2 t2 + w3 t3), in that order: the
+ * reference for quad_add_sse2. */
+static inline void quad_add(const Quad *q, float wt, float acc[3])
+{
+    for (int c = 0; c < 3; c++)
+        acc[c] += wt * (q->w[0] * (float)q->p[0][c] + q->w[1] * (float)q->p[1][c] + q->w[2] * (float)q->p[2][c] +
+                        q->w[3] * (float)q->p[3][c]);
+}
+
+#ifdef ZV_SSE2
+/* quad_add on four lanes (the fourth reads the next texel's red and is
+ * dropped): the same operations in the same order, so the same bits. */
+static inline __m128 texel_sse2(const uint16_t *p)
+{
+    __m128i v = _mm_loadl_epi64((const __m128i *)(const void *)p);
+    return _mm_cvtepi32_ps(_mm_unpacklo_epi16(v, _mm_setzero_si128()));
+}
+
+static inline __m128 quad_add_sse2(const Quad *q, float wt, __m128 acc)
+{
+    __m128 s = _mm_mul_ps(_mm_set1_ps(q->w[0]), texel_sse2(q->p[0]));
+    s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(q->w[1]), texel_sse2(q->p[1])));
+    s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(q->w[2]), texel_sse2(q->p[2])));
+    s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(q->w[3]), texel_sse2(q->p[3])));
+    return _mm_add_ps(acc, _mm_mul_ps(_mm_set1_ps(wt), s));
+}
+#endif
+
+void texture_sample_lin(const Texture *t, float u, float v, float lod, int simd, float out[3])
+{
+    if (!t->lin) {
+        texture_sample(t, u, v, lod, out);
+        return;
+    }
+    u = wrap_coord(u, t->wrap_u);
+    v = wrap_coord(v, t->wrap_v);
+    /* the levels and their weights as texture_sample has them */
+    int k0 = 0, n = 1, top = t->levels - 1;
+    float w0 = 1, w1 = 0;
+    if (lod > 0) {
+        if (lod >= (float)top) {
+            k0 = top;
+        } else {
+            k0 = (int)lod;
+            w1 = lod - (float)k0;
+            w0 = 1 - w1;
+            n = w1 > 0 ? 2 : 1;
+        }
+    }
+    Quad q[2];
+    quad_at(t, k0, u, v, &q[0]);
+    if (n == 2)
+        quad_at(t, k0 + 1, u, v, &q[1]);
+    const float unit = 1.0f / 65535.0f;
+#ifdef ZV_SSE2
+    if (simd >= SIMD_SSE2) {
+        __m128 acc = quad_add_sse2(&q[0], w0, _mm_setzero_ps());
+        if (n == 2)
+            acc = quad_add_sse2(&q[1], w1, acc);
+        float r[4];
+        _mm_storeu_ps(r, _mm_mul_ps(acc, _mm_set1_ps(unit)));
+        out[0] = r[0];
+        out[1] = r[1];
+        out[2] = r[2];
+        return;
+    }
+#endif
+    (void)simd;
+    float acc[3] = { 0, 0, 0 };
+    quad_add(&q[0], w0, acc);
+    if (n == 2)
+        quad_add(&q[1], w1, acc);
+    for (int c = 0; c < 3; c++)
+        out[c] = acc[c] * unit;
 }
