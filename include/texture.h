@@ -73,6 +73,22 @@ void texture_sample(const Texture *t, float u, float v, float lod, float out[3])
  * the step between the darkest sRGB bytes). simd: a SimdLevel to run
  * at (SIMD_SCALAR: plain C); every level gives the same bits. */
 void texture_sample_lin(const Texture *t, float u, float v, float lod, int simd, float out[3]);
+/* texture_sample_lin in two steps, for samples that share a level (a
+ * face seen orthographically has one footprint): the levels and their
+ * weights once (t->lin must be there), then each lookup; the same bits. */
+typedef struct {
+    const uint16_t *px[2];          /* the levels' first texels */
+    int      w[2], h[2];
+    float    wt[2];                 /* the levels' weights */
+    int      n;                     /* levels blended: 1 or 2 */
+    TexWrap  wrap_u, wrap_v;
+    float    size[4];               /* w[0], h[0], w[1], h[1] as floats (the lanes of the SIMD path) */
+    int32_t  last[4];               /* the same less one */
+    int32_t  repeat[4];             /* -1 on the lanes whose wrap is TEX_REPEAT (else clamp) */
+    int      vec;                   /* no mirror: the SIMD path can wrap */
+} TexLod;
+void texture_lod(const Texture *t, float lod, TexLod *l);
+void texture_lookup(const TexLod *l, float u, float v, int simd, float out[3]);
 
 /* sRGB transfer (IEC 61966-2-1): a byte to linear light, and back. */
 float   srgb_to_linear(uint8_t v);

@@ -60,6 +60,8 @@ struct SurfSetup {
     float    tw, th;            /* level 0's size: texture units to texels */
     float    klin;              /* the face's flat light, as a factor on linear light */
     float    lod;               /* orthographic, one triangle: the footprint's level, one for the face */
+    int      flat1;             /* orthographic, one triangle, 16-bit texels: tl holds the levels */
+    TexLod   tl;
     TriSetup tri[SURF_TRI];
 };
 
@@ -283,8 +285,14 @@ static const SurfSetup *face_setup(SurfFrame *f, InstCache *ic, int32_t id)
     if (n == 0)
         st->kind = SURF_PLAIN;      /* no polygon: nothing to interpolate over */
     st->lod = 0;
-    if (st->ntri == 1 && st->tex && !f->sp->persp)
+    st->flat1 = 0;
+    if (st->ntri == 1 && st->tex && !f->sp->persp) {
         st->lod = tri_lod(st, &st->tri[0]);
+        if (st->tex->lin) {
+            texture_lod(st->tex, st->lod, &st->tl);
+            st->flat1 = 1;
+        }
+    }
     return st->kind == SURF_PLAIN ? NULL : st;
 }
 
@@ -343,6 +351,27 @@ static void eval_tris(const SurfSetup *st, const TriSetup *t, int n, float X, fl
     out[0] *= st->fac[0];
     out[1] *= st->fac[1];
     out[2] *= st->fac[2];
+}
+
+/* eval_face's first case with the face's levels looked up once (the
+ * same bits): 0 when the sample is not inside the triangle. */
+static inline int flat1_colour(const SurfSetup *st, float X, float Y, int simd, float out[3])
+{
+    const TriSetup *t = &st->tri[0];
+    float m0 = t->a[0] * X + t->b[0] * Y + t->c[0];
+    float m1 = t->a[1] * X + t->b[1] * Y + t->c[1];
+    float m2 = t->a[2] * X + t->b[2] * Y + t->c[2];
+    float l = m0 + m1 + m2;
+    if (!(m0 * l >= 0 && m1 * l >= 0 && m2 * l >= 0 && l != 0))
+        return 0;
+    float inv = 1.0f / l;
+    float u = (m0 * t->at[0][0] + m1 * t->at[1][0] + m2 * t->at[2][0]) * inv;
+    float v = (m0 * t->at[0][1] + m1 * t->at[1][1] + m2 * t->at[2][1]) * inv;
+    texture_lookup(&st->tl, u, v, simd, out);
+    out[0] *= st->fac[0];
+    out[1] *= st->fac[1];
+    out[2] *= st->fac[2];
+    return 1;
 }
 
 /* The colour of face id at (X, Y) (its slot st): from the slot's
@@ -482,7 +511,8 @@ static void shade_box(SurfFrame *f, InstCache *ic, const FrameBufs *fb, int32_t 
                 }
             }
             float c[3];
-            eval_face(f, ic, st, id, (float)x + 0.5f, (float)y + 0.5f, c);
+            if (!st->flat1 || !flat1_colour(st, (float)x + 0.5f, (float)y + 0.5f, f->simd, c))
+                eval_face(f, ic, st, id, (float)x + 0.5f, (float)y + 0.5f, c);
             uint8_t *px = out->rgb + 3 * ((size_t)y * fb->w + x);
             for (int a = 0; a < 3; a++)
                 px[a] = srgb_enc(enc, c[a] * st->klin);

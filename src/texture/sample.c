@@ -142,18 +142,18 @@ static inline __attribute__((always_inline)) float texel_pair_w(float c, int n, 
     return x - f0;
 }
 
-/* The four texels of a bilinear lookup on level k and their weights. */
+/* The four texels of a bilinear lookup on level k of l and their
+ * weights. */
 typedef struct {
     const uint16_t *p[4];       /* (xa, ya), (xb, ya), (xa, yb), (xb, yb) */
     float w[4];
 } Quad;
 
-static inline __attribute__((always_inline)) void quad_at(const Texture *t, int k, float u, float v, Quad *q)
+static inline __attribute__((always_inline)) void quad_at(const TexLod *l, int k, float u, float v, Quad *q)
 {
-    int w = t->lw[k], h = t->lh[k], xa, xb, ya, yb;
-    const uint16_t *px = t->lin + 3 * t->off[k];
-    float fx = texel_pair_w(u, w, t->wrap_u, &xa, &xb), fy = texel_pair_w(v, h, t->wrap_v, &ya, &yb);
-    const uint16_t *r0 = px + 3 * (size_t)ya * w, *r1 = px + 3 * (size_t)yb * w;
+    int w = l->w[k], h = l->h[k], xa, xb, ya, yb;
+    float fx = texel_pair_w(u, w, l->wrap_u, &xa, &xb), fy = texel_pair_w(v, h, l->wrap_v, &ya, &yb);
+    const uint16_t *r0 = l->px[k] + 3 * (size_t)ya * w, *r1 = l->px[k] + 3 * (size_t)yb * w;
     q->p[0] = r0 + 3 * xa;
     q->p[1] = r0 + 3 * xb;
     q->p[2] = r1 + 3 * xa;
@@ -192,37 +192,130 @@ static inline __m128 quad_add_sse2(const Quad *q, float wt, __m128 acc)
 }
 #endif
 
-void texture_sample_lin(const Texture *t, float u, float v, float lod, int simd, float out[3])
+void texture_lod(const Texture *t, float lod, TexLod *l)
 {
-    if (!t->lin) {
-        texture_sample(t, u, v, lod, out);
-        return;
-    }
-    u = wrap_coord(u, t->wrap_u);
-    v = wrap_coord(v, t->wrap_v);
     /* the levels and their weights as texture_sample has them */
-    int k0 = 0, n = 1, top = t->levels - 1;
-    float w0 = 1, w1 = 0;
+    int k0 = 0, top = t->levels - 1;
+    l->n = 1;
+    l->wt[0] = 1;
+    l->wt[1] = 0;
     if (lod > 0) {
         if (lod >= (float)top) {
             k0 = top;
         } else {
             k0 = (int)lod;
-            w1 = lod - (float)k0;
-            w0 = 1 - w1;
-            n = w1 > 0 ? 2 : 1;
+            l->wt[1] = lod - (float)k0;
+            l->wt[0] = 1 - l->wt[1];
+            l->n = l->wt[1] > 0 ? 2 : 1;
         }
     }
+    for (int i = 0; i < 2; i++) {
+        int k = k0 + i < t->levels ? k0 + i : k0;
+        l->px[i] = t->lin + 3 * t->off[k];
+        l->w[i] = t->lw[k];
+        l->h[i] = t->lh[k];
+    }
+    l->wrap_u = t->wrap_u;
+    l->wrap_v = t->wrap_v;
+    for (int i = 0; i < 4; i++) {
+        int n = i & 1 ? l->h[i >> 1] : l->w[i >> 1];
+        l->size[i] = (float)n;
+        l->last[i] = n - 1;
+        l->repeat[i] = (i & 1 ? l->wrap_v : l->wrap_u) == TEX_REPEAT ? -1 : 0;
+    }
+    l->vec = l->wrap_u != TEX_MIRROR && l->wrap_v != TEX_MIRROR;
+}
+
+#ifdef ZV_SSE2
+/* a ? b : c on each lane, a all ones or zero */
+static inline __m128i pick_epi32(__m128i a, __m128i b, __m128i c)
+{
+    return _mm_or_si128(_mm_and_si128(a, b), _mm_andnot_si128(a, c));
+}
+
+/* texel_pair_w's indices for repeat and clamp, lanes u0 v0 u1 v1. */
+static inline void wrap_sse2(const TexLod *l, __m128i i, __m128i *a_out, __m128i *b_out)
+{
+    __m128i last = _mm_loadu_si128((const __m128i *)(const void *)l->last), zero = _mm_setzero_si128();
+    __m128i n = _mm_add_epi32(last, _mm_set1_epi32(1)), i1 = _mm_add_epi32(i, _mm_set1_epi32(1));
+    /* repeat: i in [-1, n - 1] */
+    __m128i ra = _mm_add_epi32(i, _mm_and_si128(_mm_cmplt_epi32(i, zero), n));
+    __m128i rb = _mm_sub_epi32(i1, _mm_and_si128(_mm_cmpgt_epi32(i1, last), n));
+    __m128i rep = _mm_loadu_si128((const __m128i *)(const void *)l->repeat);
+    if (_mm_movemask_epi8(rep) == 0xffff) {
+        *a_out = ra;
+        *b_out = rb;
+        return;
+    }
+    /* clamp to [0, n - 1] */
+    __m128i ca = pick_epi32(_mm_cmplt_epi32(i, zero), zero, pick_epi32(_mm_cmpgt_epi32(i, last), last, i));
+    __m128i cb = pick_epi32(_mm_cmplt_epi32(i1, zero), zero, pick_epi32(_mm_cmpgt_epi32(i1, last), last, i1));
+    *a_out = pick_epi32(rep, ra, ca);
+    *b_out = pick_epi32(rep, rb, cb);
+}
+
+/* One level's quad_add_sse2 with its weights in lanes (w0 w1 w2 w3). */
+static inline __m128 level_sse2(const uint16_t *r0, const uint16_t *r1, int xa, int xb, __m128 w, float wt, __m128 acc)
+{
+    __m128 s = _mm_mul_ps(_mm_shuffle_ps(w, w, 0x00), texel_sse2(r0 + 3 * xa));
+    s = _mm_add_ps(s, _mm_mul_ps(_mm_shuffle_ps(w, w, 0x55), texel_sse2(r0 + 3 * xb)));
+    s = _mm_add_ps(s, _mm_mul_ps(_mm_shuffle_ps(w, w, 0xaa), texel_sse2(r1 + 3 * xa)));
+    s = _mm_add_ps(s, _mm_mul_ps(_mm_shuffle_ps(w, w, 0xff), texel_sse2(r1 + 3 * xb)));
+    return _mm_add_ps(acc, _mm_mul_ps(_mm_set1_ps(wt), s));
+}
+
+/* texture_lookup's texels and sums for repeat and clamp (l->vec), both
+ * levels' coordinates at once: texel_pair_w's and quad_at's operations
+ * lane by lane, so quad_add's bits. Returns the sum, not yet scaled. */
+static inline __m128 lookup_sse2(const TexLod *l, float u, float v)
+{
+    __m128 x = _mm_sub_ps(_mm_mul_ps(_mm_setr_ps(u, v, u, v), _mm_loadu_ps(l->size)), _mm_set1_ps(0.5f));
+    __m128i i = _mm_cvttps_epi32(x);
+    /* floor_int: one down where truncation went up */
+    i = _mm_add_epi32(i, _mm_castps_si128(_mm_cmpgt_ps(_mm_cvtepi32_ps(i), x)));
+    __m128 f = _mm_sub_ps(x, _mm_cvtepi32_ps(i));
+    __m128i va, vb;
+    wrap_sse2(l, i, &va, &vb);
+    int32_t a[4], b[4];
+    _mm_storeu_si128((__m128i *)(void *)a, va);
+    _mm_storeu_si128((__m128i *)(void *)b, vb);
+    /* weights: (1 - fx)(1 - fy), fx (1 - fy), (1 - fx) fy, fx fy per level */
+    __m128 g = _mm_sub_ps(_mm_set1_ps(1.0f), f);
+    __m128 gf = _mm_unpacklo_ps(g, f), gf1 = _mm_unpackhi_ps(g, f);    /* g0x f0x g0y f0y; level 1's */
+    __m128 w0 = _mm_mul_ps(_mm_shuffle_ps(gf, gf, _MM_SHUFFLE(1, 0, 1, 0)), _mm_shuffle_ps(gf, gf, _MM_SHUFFLE(3, 3, 2, 2)));
+    const uint16_t *p0 = l->px[0];
+    size_t s0 = 3 * (size_t)l->w[0];
+    __m128 acc = level_sse2(p0 + (size_t)a[1] * s0, p0 + (size_t)b[1] * s0, a[0], b[0], w0, l->wt[0], _mm_setzero_ps());
+    if (l->n == 2) {
+        __m128 w1 = _mm_mul_ps(_mm_shuffle_ps(gf1, gf1, _MM_SHUFFLE(1, 0, 1, 0)),
+                               _mm_shuffle_ps(gf1, gf1, _MM_SHUFFLE(3, 3, 2, 2)));
+        const uint16_t *p1 = l->px[1];
+        size_t s1 = 3 * (size_t)l->w[1];
+        acc = level_sse2(p1 + (size_t)a[3] * s1, p1 + (size_t)b[3] * s1, a[2], b[2], w1, l->wt[1], acc);
+    }
+    return acc;
+}
+#endif
+
+void texture_lookup(const TexLod *l, float u, float v, int simd, float out[3])
+{
+    u = wrap_coord(u, l->wrap_u);
+    v = wrap_coord(v, l->wrap_v);
     Quad q[2];
-    quad_at(t, k0, u, v, &q[0]);
-    if (n == 2)
-        quad_at(t, k0 + 1, u, v, &q[1]);
     const float unit = 1.0f / 65535.0f;
 #ifdef ZV_SSE2
     if (simd >= SIMD_SSE2) {
-        __m128 acc = quad_add_sse2(&q[0], w0, _mm_setzero_ps());
-        if (n == 2)
-            acc = quad_add_sse2(&q[1], w1, acc);
+        __m128 acc;
+        if (l->vec) {
+            acc = lookup_sse2(l, u, v);
+        } else {
+            quad_at(l, 0, u, v, &q[0]);
+            acc = quad_add_sse2(&q[0], l->wt[0], _mm_setzero_ps());
+            if (l->n == 2) {
+                quad_at(l, 1, u, v, &q[1]);
+                acc = quad_add_sse2(&q[1], l->wt[1], acc);
+            }
+        }
         float r[4];
         _mm_storeu_ps(r, _mm_mul_ps(acc, _mm_set1_ps(unit)));
         out[0] = r[0];
@@ -232,10 +325,24 @@ void texture_sample_lin(const Texture *t, float u, float v, float lod, int simd,
     }
 #endif
     (void)simd;
+    quad_at(l, 0, u, v, &q[0]);
+    if (l->n == 2)
+        quad_at(l, 1, u, v, &q[1]);
     float acc[3] = { 0, 0, 0 };
-    quad_add(&q[0], w0, acc);
-    if (n == 2)
-        quad_add(&q[1], w1, acc);
+    quad_add(&q[0], l->wt[0], acc);
+    if (l->n == 2)
+        quad_add(&q[1], l->wt[1], acc);
     for (int c = 0; c < 3; c++)
         out[c] = acc[c] * unit;
+}
+
+void texture_sample_lin(const Texture *t, float u, float v, float lod, int simd, float out[3])
+{
+    if (!t->lin) {
+        texture_sample(t, u, v, lod, out);
+        return;
+    }
+    TexLod l;
+    texture_lod(t, lod, &l);
+    texture_lookup(&l, u, v, simd, out);
 }
