@@ -99,8 +99,9 @@ static void tri_planes(const SurfFrame *f, const Vec3 q[3], TriSetup *t)
 {
     const ScreenPolys *sp = f->sp;
     double cx = sp->w * 0.5, cy = sp->h * 0.5, fx = sp->focal_x, fy = sp->focal_y;
+    static const int next[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
     for (int i = 0; i < 3; i++) {
-        const Vec3 *p = &q[(i + 1) % 3], *r = &q[(i + 2) % 3];
+        const Vec3 *p = &q[next[i][0]], *r = &q[next[i][1]];
         double A, B, C;
         if (sp->persp) {
             /* m_i = d . (P - E) x (R - E), d = ((X - cx)/fx, (cy - Y)/fy, -1) */
@@ -250,14 +251,11 @@ static float face_klin(const SurfFrame *f, int32_t id, const Mat4 *fwd)
     return surf_light(amb + (1.0f - amb) * fabsf(v3_dot(v, f->s->light.dir)));
 }
 
-/* The slot of face id, set up for this frame; NULL when its colour
- * does not vary. */
-static const SurfSetup *face_setup(SurfFrame *f, InstCache *ic, int32_t id)
+/* Face id set up in st for this frame; NULL when its colour does not
+ * vary. */
+static const SurfSetup *face_setup_in(SurfFrame *f, InstCache *ic, int32_t id, SurfSetup *st)
 {
     SurfCache *sc = f->sc;
-    SurfSetup *st = &sc->slot[(uint32_t)id & (SURF_SLOTS - 1)];
-    if (st->id == id && st->frame == sc->frame)
-        return st->kind == SURF_PLAIN ? NULL : st;
     const Scene *s = f->s;
     st->id = id;
     st->frame = sc->frame;
@@ -294,6 +292,17 @@ static const SurfSetup *face_setup(SurfFrame *f, InstCache *ic, int32_t id)
         }
     }
     return st->kind == SURF_PLAIN ? NULL : st;
+}
+
+/* The slot of face id, set up for this frame; NULL when its colour
+ * does not vary. */
+static const SurfSetup *face_setup(SurfFrame *f, InstCache *ic, int32_t id)
+{
+    SurfCache *sc = f->sc;
+    SurfSetup *st = &sc->slot[(uint32_t)id & (SURF_SLOTS - 1)];
+    if (st->id == id && st->frame == sc->frame)
+        return st->kind == SURF_PLAIN ? NULL : st;
+    return face_setup_in(f, ic, id, st);
 }
 
 /* The colour at (X, Y) from the best triangle of t[0..n). */
@@ -495,13 +504,17 @@ static void shade_box(SurfFrame *f, InstCache *ic, const FrameBufs *fb, int32_t 
     const Scene *s = f->s;
     const SrgbEnc *enc = f->sc->enc;
     const SurfSetup *st = NULL;
+    /* set up here, not in the slot table: the pass meets each face once
+     * (in its polygon's box), and the table's slots, scattered over
+     * 512 x ~350 bytes, were a cache miss or several a face */
+    SurfSetup local;
     for (int y = y0; y < y1; y++) {
         const int32_t *ids = fb->ids + (size_t)y * fb->w;
         for (int x = x0; x < x1; x++) {
             if (ids[x] != id)
                 continue;
             if (!st) {
-                st = face_setup(f, ic, id);
+                st = face_setup_in(f, ic, id, &local);
                 if (!st)
                     return;
                 int inst = s->face_obj ? s->face_obj[id] : 0;

@@ -209,21 +209,27 @@ void texture_lod(const Texture *t, float lod, TexLod *l)
             l->n = l->wt[1] > 0 ? 2 : 1;
         }
     }
-    for (int i = 0; i < 2; i++) {
-        int k = k0 + i < t->levels ? k0 + i : k0;
-        l->px[i] = t->lin + 3 * t->off[k];
-        l->w[i] = t->lw[k];
-        l->h[i] = t->lh[k];
-    }
+    int k1 = k0 < top ? k0 + 1 : k0;
+    l->px[0] = t->lin + 3 * t->off[k0];
+    l->px[1] = t->lin + 3 * t->off[k1];
+    l->w[0] = t->lw[k0];
+    l->h[0] = t->lh[k0];
+    l->w[1] = t->lw[k1];
+    l->h[1] = t->lh[k1];
     l->wrap_u = t->wrap_u;
     l->wrap_v = t->wrap_v;
-    for (int i = 0; i < 4; i++) {
-        int n = i & 1 ? l->h[i >> 1] : l->w[i >> 1];
-        l->size[i] = (float)n;
-        l->last[i] = n - 1;
-        l->repeat[i] = (i & 1 ? l->wrap_v : l->wrap_u) == TEX_REPEAT ? -1 : 0;
-    }
-    l->vec = l->wrap_u != TEX_MIRROR && l->wrap_v != TEX_MIRROR;
+    /* the SIMD path's lanes: u0 v0 u1 v1 */
+    l->size[0] = (float)l->w[0];
+    l->size[1] = (float)l->h[0];
+    l->size[2] = (float)l->w[1];
+    l->size[3] = (float)l->h[1];
+    l->last[0] = l->w[0] - 1;
+    l->last[1] = l->h[0] - 1;
+    l->last[2] = l->w[1] - 1;
+    l->last[3] = l->h[1] - 1;
+    l->repeat[0] = l->repeat[2] = t->wrap_u == TEX_REPEAT ? -1 : 0;
+    l->repeat[1] = l->repeat[3] = t->wrap_v == TEX_REPEAT ? -1 : 0;
+    l->vec = t->wrap_u != TEX_MIRROR && t->wrap_v != TEX_MIRROR;
 }
 
 #ifdef ZV_SSE2
