@@ -94,11 +94,21 @@ static inline float lin_of(float c)
     return srgb_table()[(int)b];
 }
 
+/* The loaded object instance inst copies: a division only for grid
+ * copies (a division is dozens of cycles, and a face met takes several). */
+static inline int base_of(const SurfFrame *f, int inst)
+{
+    return inst < f->nb ? inst : inst % f->nb;
+}
+
 /* Triangle (Q0, Q1, Q2, view space) as three planes over the screen. */
 static void tri_planes(const SurfFrame *f, const Vec3 q[3], TriSetup *t)
 {
+    /* by the reciprocals of the focal lengths, not 12 divisions a
+     * triangle (the weights are rounded to float: the same but for a
+     * last bit in a few million) */
     const ScreenPolys *sp = f->sp;
-    double cx = sp->w * 0.5, cy = sp->h * 0.5, fx = sp->focal_x, fy = sp->focal_y;
+    double cx = sp->w * 0.5, cy = sp->h * 0.5, ifx = 1.0 / sp->focal_x, ify = 1.0 / sp->focal_y;
     static const int next[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
     for (int i = 0; i < 3; i++) {
         const Vec3 *p = &q[next[i][0]], *r = &q[next[i][1]];
@@ -108,15 +118,15 @@ static void tri_planes(const SurfFrame *f, const Vec3 q[3], TriSetup *t)
             double ez = sp->eye_z;
             double px = p->x, py = p->y, pz = p->z - ez, rx = r->x, ry = r->y, rz = r->z - ez;
             double nx = py * rz - pz * ry, ny = pz * rx - px * rz, nz = px * ry - py * rx;
-            A = nx / fx;
-            B = -ny / fy;
-            C = -nx * cx / fx + ny * cy / fy - nz;
+            A = nx * ifx;
+            B = -ny * ify;
+            C = -nx * cx * ifx + ny * cy * ify - nz;
         } else {
             /* the ray from (vx, vy) along -z: m_i = -((P - O) x (R - O)).z */
             double px = p->x, py = p->y, rx = r->x, ry = r->y;
-            A = -(py - ry) / fx;
-            B = (rx - px) / fy;
-            C = -(px * ry - py * rx) + (py - ry) * cx / fx - (rx - px) * cy / fy;
+            A = -(py - ry) * ifx;
+            B = (rx - px) * ify;
+            C = -(px * ry - py * rx) + (py - ry) * cx * ifx - (rx - px) * cy * ify;
         }
         t->a[i] = (float)A;
         t->b[i] = (float)B;
@@ -262,7 +272,7 @@ static const SurfSetup *face_setup_in(SurfFrame *f, InstCache *ic, int32_t id, S
     st->kind = face_kind(f, id, &st->tex);
     if (st->kind == SURF_PLAIN)
         return NULL;
-    int inst = s->face_obj ? s->face_obj[id] : 0, base = inst % f->nb;
+    int inst = s->face_obj ? s->face_obj[id] : 0, base = base_of(f, inst);
     if (inst != ic->inst) {
         ic->fwd = m4_mul(f->view, object_matrix(&s->objs[inst]));
         ic->inst = inst;
@@ -413,7 +423,7 @@ static void eval_face(SurfFrame *f, InstCache *ic, const SurfSetup *st, int32_t 
     /* a polygon of many corners: its triangles one at a time, the one
      * holding the sample (the largest smallest weight) kept */
     const Scene *s = f->s;
-    int inst = s->face_obj ? s->face_obj[id] : 0, base = inst % f->nb;
+    int inst = s->face_obj ? s->face_obj[id] : 0, base = base_of(f, inst);
     uint32_t bface = (uint32_t)(s->objs[base].face_base + (id - s->objs[inst].face_base));
     const uint32_t *fp = &f->sc->face_poly[2 * (size_t)bface];
     TriSetup best, t;
@@ -546,7 +556,7 @@ static void shade_box(SurfFrame *f, InstCache *ic, const FrameBufs *fb, int32_t 
 static inline const uint32_t *face_run(const SurfFrame *f, int32_t id)
 {
     const Scene *s = f->s;
-    int inst = s->face_obj ? s->face_obj[id] : 0, base = inst % f->nb;
+    int inst = s->face_obj ? s->face_obj[id] : 0, base = base_of(f, inst);
     uint32_t bface = (uint32_t)(s->objs[base].face_base + (id - s->objs[inst].face_base));
     return &f->sc->face_poly[2 * (size_t)bface];
 }
@@ -585,7 +595,7 @@ static void prefetch_stage(const SurfFrame *f, int32_t id, int k)
             __builtin_prefetch(&s->poly_uv[2 * (size_t)c0]);
         return;
     }
-    const float *pos = s->objs[(s->face_obj ? s->face_obj[id] : 0) % f->nb].mesh->pos;
+    const float *pos = s->objs[base_of(f, s->face_obj ? s->face_obj[id] : 0)].mesh->pos;
     for (uint32_t c = c0; c < c0 + 3; c++)
         __builtin_prefetch(&pos[3 * (size_t)s->poly_corner[c]]);
 }
