@@ -273,9 +273,9 @@ static inline __m128 level_sse2(const uint16_t *r0, const uint16_t *r1, int xa, 
 /* texture_lookup's texels and sums for repeat and clamp (l->vec), both
  * levels' coordinates at once: texel_pair_w's and quad_at's operations
  * lane by lane, so quad_add's bits. Returns the sum, not yet scaled. */
-static inline __m128 lookup_sse2(const TexLod *l, float u, float v)
+static inline __m128 lookup_sse2(const TexLod *l, __m128 c)
 {
-    __m128 x = _mm_sub_ps(_mm_mul_ps(_mm_setr_ps(u, v, u, v), _mm_loadu_ps(l->size)), _mm_set1_ps(0.5f));
+    __m128 x = _mm_sub_ps(_mm_mul_ps(c, _mm_loadu_ps(l->size)), _mm_set1_ps(0.5f));
     __m128i i = _mm_cvttps_epi32(x);
     /* floor_int: one down where truncation went up */
     i = _mm_add_epi32(i, _mm_castps_si128(_mm_cmpgt_ps(_mm_cvtepi32_ps(i), x)));
@@ -303,24 +303,62 @@ static inline __m128 lookup_sse2(const TexLod *l, float u, float v)
 }
 #endif
 
+#ifdef ZV_SSE2
+/* wrap_coord on lanes u v u v, for repeat and clamp; coordinates past
+ * tame's range (or NaN) go through wrap_coord itself. */
+static inline __m128 wrap_coords_sse2(const TexLod *l, float u, float v)
+{
+    __m128 c = _mm_setr_ps(u, v, u, v);
+    __m128 big = _mm_set1_ps(1e6f);
+    /* |c| <= 1e6, false for NaN */
+    __m128 ok = _mm_cmple_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), c), big);
+    if (_mm_movemask_ps(ok) != 0xf)
+        return _mm_setr_ps(wrap_coord(u, l->wrap_u), wrap_coord(v, l->wrap_v), wrap_coord(u, l->wrap_u),
+                           wrap_coord(v, l->wrap_v));
+    /* repeat: c - floor_int(c) */
+    __m128i i = _mm_cvttps_epi32(c);
+    __m128 fi = _mm_cvtepi32_ps(i);
+    fi = _mm_cvtepi32_ps(_mm_add_epi32(i, _mm_castps_si128(_mm_cmpgt_ps(fi, c))));
+    __m128 rep = _mm_sub_ps(c, fi);
+    /* clamp: c < -1 ? -1 : c > 2 ? 2 : c (c is not NaN here) */
+    __m128 cl = _mm_min_ps(_mm_max_ps(c, _mm_set1_ps(-1.0f)), _mm_set1_ps(2.0f));
+    __m128 m = _mm_castsi128_ps(_mm_loadu_si128((const __m128i *)(const void *)l->repeat));
+    return _mm_or_ps(_mm_and_ps(m, rep), _mm_andnot_ps(m, cl));
+}
+
+/* texture_lookup's SSE2 path for repeat and clamp, kept out of line
+ * from the rest (its registers are its own). */
+static __attribute__((noinline)) void lookup_vec_sse2(const TexLod *l, float u, float v, float out[3])
+{
+    __m128 acc = lookup_sse2(l, wrap_coords_sse2(l, u, v));
+    float r[4];
+    _mm_storeu_ps(r, _mm_mul_ps(acc, _mm_set1_ps(1.0f / 65535.0f)));
+    out[0] = r[0];
+    out[1] = r[1];
+    out[2] = r[2];
+}
+#endif
+
 void texture_lookup(const TexLod *l, float u, float v, int simd, float out[3])
 {
+#ifdef ZV_SSE2
+    if (simd >= SIMD_SSE2 && l->vec) {
+        lookup_vec_sse2(l, u, v, out);
+        return;
+    }
+#endif
     u = wrap_coord(u, l->wrap_u);
     v = wrap_coord(v, l->wrap_v);
     Quad q[2];
     const float unit = 1.0f / 65535.0f;
 #ifdef ZV_SSE2
     if (simd >= SIMD_SSE2) {
-        __m128 acc;
-        if (l->vec) {
-            acc = lookup_sse2(l, u, v);
-        } else {
-            quad_at(l, 0, u, v, &q[0]);
-            acc = quad_add_sse2(&q[0], l->wt[0], _mm_setzero_ps());
-            if (l->n == 2) {
-                quad_at(l, 1, u, v, &q[1]);
-                acc = quad_add_sse2(&q[1], l->wt[1], acc);
-            }
+        /* mirror */
+        quad_at(l, 0, u, v, &q[0]);
+        __m128 acc = quad_add_sse2(&q[0], l->wt[0], _mm_setzero_ps());
+        if (l->n == 2) {
+            quad_at(l, 1, u, v, &q[1]);
+            acc = quad_add_sse2(&q[1], l->wt[1], acc);
         }
         float r[4];
         _mm_storeu_ps(r, _mm_mul_ps(acc, _mm_set1_ps(unit)));
