@@ -504,6 +504,29 @@ int surf_colour(SurfFrame *f, int32_t id, int x, int y, float out[3])
     return 1;
 }
 
+/* The sample's bytes: colour c under light k, srgb_enc's (the SSE2
+ * lanes clamp and index as it does: the same bytes). */
+static inline void encode_px(const SrgbEnc *enc, const float c[3], float k, int simd, uint8_t *px)
+{
+#ifdef ZV_SSE2
+    if (simd >= SIMD_SSE2) {
+        __m128 v = _mm_mul_ps(_mm_setr_ps(c[0], c[1], c[2], 0), _mm_set1_ps(k));
+        /* maxps gives its second operand for NaN: 0, as srgb_enc */
+        v = _mm_min_ps(_mm_max_ps(v, _mm_setzero_ps()), _mm_set1_ps(1.0f));
+        __m128i i = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(v, _mm_set1_ps((float)SRGB_ENC_SIZE)), _mm_set1_ps(0.5f)));
+        int32_t ix[4];
+        _mm_storeu_si128((__m128i *)(void *)ix, i);
+        px[0] = enc->b[ix[0]];
+        px[1] = enc->b[ix[1]];
+        px[2] = enc->b[ix[2]];
+        return;
+    }
+#endif
+    (void)simd;
+    for (int a = 0; a < 3; a++)
+        px[a] = srgb_enc(enc, c[a] * k);
+}
+
 /* The samples of face id within polygon box [x0, x1) x [y0, y1), each
  * its own colour under the face's light. The face is set up at its
  * first sample: a polygon whose face lost every sample costs a scan of
@@ -536,9 +559,7 @@ static void shade_box(SurfFrame *f, InstCache *ic, const FrameBufs *fb, int32_t 
             float c[3];
             if (!st->flat1 || !flat1_colour(st, (float)x + 0.5f, (float)y + 0.5f, f->simd, c))
                 eval_face(f, ic, st, id, (float)x + 0.5f, (float)y + 0.5f, c);
-            uint8_t *px = out->rgb + 3 * ((size_t)y * fb->w + x);
-            for (int a = 0; a < 3; a++)
-                px[a] = srgb_enc(enc, c[a] * st->klin);
+            encode_px(enc, c, st->klin, f->simd, out->rgb + 3 * ((size_t)y * fb->w + x));
         }
     }
 }
