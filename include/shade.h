@@ -94,6 +94,7 @@ typedef struct {
     SurfCache         *sc;
     int                no_tex;
     int                nb;          /* loaded objects (grid copies share their polygons) */
+    int                simd;        /* the SimdLevel texture lookups run at */
     Mat4               view;
 } SurfFrame;
 

@@ -26,6 +26,8 @@ typedef struct {
     int      lw[TEX_MAX_LEVELS], lh[TEX_MAX_LEVELS];
     size_t   off[TEX_MAX_LEVELS];   /* level k's first texel */
     uint8_t *rgba;                  /* every level, 4 bytes a texel, sRGB (alpha kept, unused) */
+    uint16_t *lin;                  /* every level again, for sampling: 3 x 16 bits a texel, linear
+                                       light x 65535 (NULL when memory ran out: rgba is sampled) */
     TexWrap  wrap_u, wrap_v;
 } Texture;
 
@@ -54,7 +56,7 @@ int  texture_peek(const void *data, size_t len, int *w_out, int *h_out);
 int  texture_decode_fit(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
                         int max_side, int *halved_out, char *err, size_t errlen);
 void texture_free(Texture *t);
-/* Bytes the texels of every level take. */
+/* Bytes the texels of every level take (rgba and lin). */
 size_t texture_bytes(const Texture *t);
 /* Bytes a w x h image's texels and mipmaps take (4/3 of level 0). */
 uint64_t texture_bytes_for(int w, int h);
@@ -64,6 +66,29 @@ uint64_t texture_bytes_for(int w, int h);
  * or below 0 the image is magnified (bilinear on level 0), above it the
  * two nearest levels are blended (trilinear). */
 void texture_sample(const Texture *t, float u, float v, float lod, float out[3]);
+/* The same from the 16-bit linear texels (t->lin), the shading pass's
+ * lookup: a texel is 3 loads fewer table look-ups and one load, and
+ * the coordinates are wrapped once for both levels. Within 8e-6 of
+ * texture_sample (a texel's rounding to 16 bits; 16 times finer than
+ * the step between the darkest sRGB bytes). simd: a SimdLevel to run
+ * at (SIMD_SCALAR: plain C); every level gives the same bits. */
+void texture_sample_lin(const Texture *t, float u, float v, float lod, int simd, float out[3]);
+/* texture_sample_lin in two steps, for samples that share a level (a
+ * face seen orthographically has one footprint): the levels and their
+ * weights once (t->lin must be there), then each lookup; the same bits. */
+typedef struct {
+    const uint16_t *px[2];          /* the levels' first texels */
+    int      w[2], h[2];
+    float    wt[2];                 /* the levels' weights */
+    int      n;                     /* levels blended: 1 or 2 */
+    TexWrap  wrap_u, wrap_v;
+    float    size[4];               /* w[0], h[0], w[1], h[1] as floats (the lanes of the SIMD path) */
+    int32_t  last[4];               /* the same less one */
+    int32_t  repeat[4];             /* -1 on the lanes whose wrap is TEX_REPEAT (else clamp) */
+    int      vec;                   /* no mirror: the SIMD path can wrap */
+} TexLod;
+void texture_lod(const Texture *t, float lod, TexLod *l);
+void texture_lookup(const TexLod *l, float u, float v, int simd, float out[3]);
 
 /* sRGB transfer (IEC 61966-2-1): a byte to linear light, and back. */
 float   srgb_to_linear(uint8_t v);

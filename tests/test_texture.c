@@ -10,6 +10,7 @@
 #include <string.h>
 #include <jpeglib.h>
 
+#include "simd.h"
 #include "texture.h"
 
 /* The IEC 61966-2-1 decoding, in double, written out here. */
@@ -97,7 +98,8 @@ Test(texture, a_png_decodes_texel_for_texel)
     cr_expect_eq(t.h, 3);
     cr_expect_eq(t.levels, 3, "5x3, 2x1, 1x1");
     cr_expect_eq(memcmp(t.rgba, px, sizeof px), 0);
-    cr_expect_eq(texture_bytes(&t), (5 * 3 + 2 * 1 + 1) * 4);
+    /* the sRGB bytes, and the 16-bit linear copy sampling reads (6 bytes a texel, 8 of padding) */
+    cr_expect_eq(texture_bytes(&t), (5 * 3 + 2 * 1 + 1) * (4 + 6) + 8);
     texture_free(&t);
     free(png);
 }
@@ -157,7 +159,7 @@ Test(texture, an_image_too_big_for_the_memory_allowed_is_refused_before_decoding
     Texture t;
     char err[256];
     cr_expect_eq(texture_decode(&t, png, n, "big.png", 100000, err, sizeof err), -1);
-    cr_expect_str_eq(err, "big.png: a 256x256 image needs about 350 KB; 100 KB available");
+    cr_expect_str_eq(err, "big.png: a 256x256 image needs about 874 KB; 100 KB available");
     cr_expect_eq(texture_bytes_for(256, 256), 349524, "4/3 of the texels, 4 bytes each, down to 1x1");
     free(png);
 }
@@ -276,4 +278,52 @@ Test(texture, mipmap_bytes_are_the_encoding_of_the_average_exactly)
             cr_expect(abs(got - (int)floor(c * 255 + 0.5)) <= 1, "bytes %d and %d: %d", a, b, got);
             texture_free(&t);
         }
+}
+
+/* ==== the shading pass's lookup from 16-bit linear texels ==== */
+
+static uint8_t noise(int x, int y) { return (uint8_t)((x * 73 + y * 151 + ((x * y) ^ 0x5a)) & 255); }
+
+Test(texture, the_16_bit_lookup_is_the_reference_to_8e_6_and_every_simd_level_gives_its_bits)
+{
+    /* odd sizes (levels 37x23 .. 1x1), coordinates far out, on edges,
+     * huge and NaN, every level and wrap mode */
+    Texture t;
+    make_grey(&t, 37, 23, noise);
+    cr_assert_not_null(t.lin);
+    const TexWrap modes[3] = { TEX_REPEAT, TEX_CLAMP, TEX_MIRROR };
+    uint32_t r = 12345;
+    for (int m = 0; m < 9; m++) {
+        t.wrap_u = modes[m % 3];
+        t.wrap_v = modes[m / 3];
+        for (int i = 0; i < 4000; i++) {
+            float c[3];
+            r = r * 1664525u + 1013904223u;
+            float u = (float)((int)(r >> 8) % 40000 - 20000) / 4096.0f;
+            r = r * 1664525u + 1013904223u;
+            float v = (float)((int)(r >> 8) % 40000 - 20000) / 4096.0f;
+            float lod = (float)(i % 80) / 10.0f - 1.0f;
+            if (i % 97 == 0)
+                u = i % 2 ? 3e30f : NAN;
+            if (i % 89 == 0)
+                v = (float)(i % 23) / 23.0f;
+            float want[3], got[SIMD_LEVELS][3];
+            texture_sample(&t, u, v, lod, want);
+            for (int lv = SIMD_SCALAR; lv < SIMD_LEVELS; lv++)
+                texture_sample_lin(&t, u, v, lod, lv, got[lv]);
+            for (int k = 0; k < 3; k++) {
+                cr_assert(fabsf(got[SIMD_SCALAR][k] - want[k]) < 8e-6f, "wrap %d at (%g, %g) lod %g: %.9g, reference %.9g",
+                          m, (double)u, (double)v, (double)lod, (double)got[SIMD_SCALAR][k], (double)want[k]);
+                for (int lv = SIMD_SSE2; lv < SIMD_LEVELS; lv++)
+                    cr_assert(!memcmp(&got[lv][k], &got[SIMD_SCALAR][k], sizeof(float)), "level %d, wrap %d at (%g, %g)",
+                              lv, m, (double)u, (double)v);
+            }
+            /* the two-step form gives the same bits */
+            TexLod l;
+            texture_lod(&t, lod, &l);
+            texture_lookup(&l, u, v, SIMD_SSE2, c);
+            cr_assert(!memcmp(c, got[SIMD_SSE2], sizeof c));
+        }
+    }
+    texture_free(&t);
 }

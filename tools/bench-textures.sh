@@ -44,6 +44,21 @@ echo "| case (zbuffer, 1 thread, pinned; ms, medians of $VIEWS views) | frame | 
 echo "|---|---:|---:|---:|---:|---:|---|"
 case_row "dragon 160x96, 4 samples" "<= 1.25x" "$TMP/dragon-uv.obj" --size 160x96 --samples 4
 case_row "bunny 1920x1080, 1 sample" "<= +3 ms" "$TMP/stanford-bunny-uv.obj" --size 1920x1080 --samples 1
+# Instructions (callgrind, no timing noise: the machine's cores are
+# shared) in shade_frame, textured and not, over a --views 2 run:
+# CALLGRIND=0 leaves them out.
+icount() {
+    valgrind --tool=callgrind --callgrind-out-file="$TMP/cg.out" --toggle-collect=shade_frame \
+        "$ZV" --bench --views 2 --threads 1 --algo zbuffer "$@" >/dev/null 2>&1 &&
+        callgrind_annotate "$TMP/cg.out" 2>/dev/null | awk '/PROGRAM TOTALS/ { gsub(",", "", $1); printf "%.1fM", $1 / 1e6 }'
+}
+if [ "${CALLGRIND:-1}" != 0 ] && command -v valgrind >/dev/null 2>&1; then
+    echo
+    echo "| case: instructions in shade_frame (callgrind, --views 2) | textured | untextured |"
+    echo "|---|---:|---:|"
+    echo "| dragon 160x96, 4 samples | $(icount --size 160x96 --samples 4 "$TMP/dragon-uv.obj") | $(icount --size 160x96 --samples 4 --no-textures "$TMP/dragon-uv.obj") |"
+    echo "| bunny 1920x1080, 1 sample | $(icount --size 1920x1080 --samples 1 "$TMP/stanford-bunny-uv.obj") | $(icount --size 1920x1080 --samples 1 --no-textures "$TMP/stanford-bunny-uv.obj") |"
+fi
 echo
 echo "Texture memory (zview --info):"
 "$ZV" --info "$TMP/dragon-uv.obj" | grep -A1 '^textures:'

@@ -37,6 +37,7 @@
 
 #include "bigmem.h"
 #include "shade.h"
+#include "simd.h"
 
 /* ==== Set-up of a face ==== */
 
@@ -59,6 +60,8 @@ struct SurfSetup {
     float    tw, th;            /* level 0's size: texture units to texels */
     float    klin;              /* the face's flat light, as a factor on linear light */
     float    lod;               /* orthographic, one triangle: the footprint's level, one for the face */
+    int      flat1;             /* orthographic, one triangle, 16-bit texels: tl holds the levels */
+    TexLod   tl;
     TriSetup tri[SURF_TRI];
 };
 
@@ -91,28 +94,39 @@ static inline float lin_of(float c)
     return srgb_table()[(int)b];
 }
 
+/* The loaded object instance inst copies: a division only for grid
+ * copies (a division is dozens of cycles, and a face met takes several). */
+static inline int base_of(const SurfFrame *f, int inst)
+{
+    return inst < f->nb ? inst : inst % f->nb;
+}
+
 /* Triangle (Q0, Q1, Q2, view space) as three planes over the screen. */
 static void tri_planes(const SurfFrame *f, const Vec3 q[3], TriSetup *t)
 {
+    /* by the reciprocals of the focal lengths, not 12 divisions a
+     * triangle (the weights are rounded to float: the same but for a
+     * last bit in a few million) */
     const ScreenPolys *sp = f->sp;
-    double cx = sp->w * 0.5, cy = sp->h * 0.5, fx = sp->focal_x, fy = sp->focal_y;
+    double cx = sp->w * 0.5, cy = sp->h * 0.5, ifx = 1.0 / sp->focal_x, ify = 1.0 / sp->focal_y;
+    static const int next[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
     for (int i = 0; i < 3; i++) {
-        const Vec3 *p = &q[(i + 1) % 3], *r = &q[(i + 2) % 3];
+        const Vec3 *p = &q[next[i][0]], *r = &q[next[i][1]];
         double A, B, C;
         if (sp->persp) {
             /* m_i = d . (P - E) x (R - E), d = ((X - cx)/fx, (cy - Y)/fy, -1) */
             double ez = sp->eye_z;
             double px = p->x, py = p->y, pz = p->z - ez, rx = r->x, ry = r->y, rz = r->z - ez;
             double nx = py * rz - pz * ry, ny = pz * rx - px * rz, nz = px * ry - py * rx;
-            A = nx / fx;
-            B = -ny / fy;
-            C = -nx * cx / fx + ny * cy / fy - nz;
+            A = nx * ifx;
+            B = -ny * ify;
+            C = -nx * cx * ifx + ny * cy * ify - nz;
         } else {
             /* the ray from (vx, vy) along -z: m_i = -((P - O) x (R - O)).z */
             double px = p->x, py = p->y, rx = r->x, ry = r->y;
-            A = -(py - ry) / fx;
-            B = (rx - px) / fy;
-            C = -(px * ry - py * rx) + (py - ry) * cx / fx - (rx - px) * cy / fy;
+            A = -(py - ry) * ifx;
+            B = (rx - px) * ify;
+            C = -(px * ry - py * rx) + (py - ry) * cx * ifx - (rx - px) * cy * ify;
         }
         t->a[i] = (float)A;
         t->b[i] = (float)B;
@@ -247,21 +261,18 @@ static float face_klin(const SurfFrame *f, int32_t id, const Mat4 *fwd)
     return surf_light(amb + (1.0f - amb) * fabsf(v3_dot(v, f->s->light.dir)));
 }
 
-/* The slot of face id, set up for this frame; NULL when its colour
- * does not vary. */
-static const SurfSetup *face_setup(SurfFrame *f, InstCache *ic, int32_t id)
+/* Face id set up in st for this frame; NULL when its colour does not
+ * vary. */
+static const SurfSetup *face_setup_in(SurfFrame *f, InstCache *ic, int32_t id, SurfSetup *st)
 {
     SurfCache *sc = f->sc;
-    SurfSetup *st = &sc->slot[(uint32_t)id & (SURF_SLOTS - 1)];
-    if (st->id == id && st->frame == sc->frame)
-        return st->kind == SURF_PLAIN ? NULL : st;
     const Scene *s = f->s;
     st->id = id;
     st->frame = sc->frame;
     st->kind = face_kind(f, id, &st->tex);
     if (st->kind == SURF_PLAIN)
         return NULL;
-    int inst = s->face_obj ? s->face_obj[id] : 0, base = inst % f->nb;
+    int inst = s->face_obj ? s->face_obj[id] : 0, base = base_of(f, inst);
     if (inst != ic->inst) {
         ic->fwd = m4_mul(f->view, object_matrix(&s->objs[inst]));
         ic->inst = inst;
@@ -282,13 +293,30 @@ static const SurfSetup *face_setup(SurfFrame *f, InstCache *ic, int32_t id)
     if (n == 0)
         st->kind = SURF_PLAIN;      /* no polygon: nothing to interpolate over */
     st->lod = 0;
-    if (st->ntri == 1 && st->tex && !f->sp->persp)
+    st->flat1 = 0;
+    if (st->ntri == 1 && st->tex && !f->sp->persp) {
         st->lod = tri_lod(st, &st->tri[0]);
+        if (st->tex->lin) {
+            texture_lod(st->tex, st->lod, &st->tl);
+            st->flat1 = 1;
+        }
+    }
     return st->kind == SURF_PLAIN ? NULL : st;
 }
 
+/* The slot of face id, set up for this frame; NULL when its colour
+ * does not vary. */
+static const SurfSetup *face_setup(SurfFrame *f, InstCache *ic, int32_t id)
+{
+    SurfCache *sc = f->sc;
+    SurfSetup *st = &sc->slot[(uint32_t)id & (SURF_SLOTS - 1)];
+    if (st->id == id && st->frame == sc->frame)
+        return st->kind == SURF_PLAIN ? NULL : st;
+    return face_setup_in(f, ic, id, st);
+}
+
 /* The colour at (X, Y) from the best triangle of t[0..n). */
-static void eval_tris(const SurfSetup *st, const TriSetup *t, int n, float X, float Y, float out[3])
+static void eval_tris(const SurfSetup *st, const TriSetup *t, int n, float X, float Y, int simd, float out[3])
 {
     float w[3] = { 1, 0, 0 }, inv = 0, best = -INFINITY;
     int bi = 0;
@@ -338,10 +366,31 @@ static void eval_tris(const SurfSetup *st, const TriSetup *t, int n, float X, fl
         float fx = ux * ux + vx * vx, fy = uy * uy + vy * vy, f2 = fx > fy ? fx : fy;
         lod = f2 > 1 && isfinite(f2) ? 0.5f * fast_log2(f2) : 0;
     }
-    texture_sample(st->tex, v0, v1, lod, out);
+    texture_sample_lin(st->tex, v0, v1, lod, simd, out);
     out[0] *= st->fac[0];
     out[1] *= st->fac[1];
     out[2] *= st->fac[2];
+}
+
+/* eval_face's first case with the face's levels looked up once (the
+ * same bits): 0 when the sample is not inside the triangle. */
+static inline int flat1_colour(const SurfSetup *st, float X, float Y, int simd, float out[3])
+{
+    const TriSetup *t = &st->tri[0];
+    float m0 = t->a[0] * X + t->b[0] * Y + t->c[0];
+    float m1 = t->a[1] * X + t->b[1] * Y + t->c[1];
+    float m2 = t->a[2] * X + t->b[2] * Y + t->c[2];
+    float l = m0 + m1 + m2;
+    if (!(m0 * l >= 0 && m1 * l >= 0 && m2 * l >= 0 && l != 0))
+        return 0;
+    float inv = 1.0f / l;
+    float u = (m0 * t->at[0][0] + m1 * t->at[1][0] + m2 * t->at[2][0]) * inv;
+    float v = (m0 * t->at[0][1] + m1 * t->at[1][1] + m2 * t->at[2][1]) * inv;
+    texture_lookup(&st->tl, u, v, simd, out);
+    out[0] *= st->fac[0];
+    out[1] *= st->fac[1];
+    out[2] *= st->fac[2];
+    return 1;
 }
 
 /* The colour of face id at (X, Y) (its slot st): from the slot's
@@ -360,7 +409,7 @@ static void eval_face(SurfFrame *f, InstCache *ic, const SurfSetup *st, int32_t 
             float inv = 1.0f / l;
             float u = (m0 * t->at[0][0] + m1 * t->at[1][0] + m2 * t->at[2][0]) * inv;
             float v = (m0 * t->at[0][1] + m1 * t->at[1][1] + m2 * t->at[2][1]) * inv;
-            texture_sample(st->tex, u, v, st->lod, out);
+            texture_sample_lin(st->tex, u, v, st->lod, f->simd, out);
             out[0] *= st->fac[0];
             out[1] *= st->fac[1];
             out[2] *= st->fac[2];
@@ -368,13 +417,13 @@ static void eval_face(SurfFrame *f, InstCache *ic, const SurfSetup *st, int32_t 
         }
     }
     if (st->ntri) {
-        eval_tris(st, st->tri, st->ntri, X, Y, out);
+        eval_tris(st, st->tri, st->ntri, X, Y, f->simd, out);
         return;
     }
     /* a polygon of many corners: its triangles one at a time, the one
      * holding the sample (the largest smallest weight) kept */
     const Scene *s = f->s;
-    int inst = s->face_obj ? s->face_obj[id] : 0, base = inst % f->nb;
+    int inst = s->face_obj ? s->face_obj[id] : 0, base = base_of(f, inst);
     uint32_t bface = (uint32_t)(s->objs[base].face_base + (id - s->objs[inst].face_base));
     const uint32_t *fp = &f->sc->face_poly[2 * (size_t)bface];
     TriSetup best, t;
@@ -394,7 +443,7 @@ static void eval_face(SurfFrame *f, InstCache *ic, const SurfSetup *st, int32_t 
             }
         }
     }
-    eval_tris(st, &best, 1, X, Y, out);
+    eval_tris(st, &best, 1, X, Y, f->simd, out);
 }
 
 int surf_frame_begin(SurfFrame *f, const Scene *s, const ScreenPolys *sp, const ShadeSettings *set,
@@ -435,6 +484,7 @@ int surf_frame_begin(SurfFrame *f, const Scene *s, const ScreenPolys *sp, const 
     f->sp = sp;
     f->sc = sc;
     f->no_tex = set->no_textures;
+    f->simd = simd_use(set->simd);
     f->nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs;
     f->view = camera_view(&s->cam);
     return 0;
@@ -454,6 +504,29 @@ int surf_colour(SurfFrame *f, int32_t id, int x, int y, float out[3])
     return 1;
 }
 
+/* The sample's bytes: colour c under light k, srgb_enc's (the SSE2
+ * lanes clamp and index as it does: the same bytes). */
+static inline void encode_px(const SrgbEnc *enc, const float c[3], float k, int simd, uint8_t *px)
+{
+#ifdef ZV_SSE2
+    if (simd >= SIMD_SSE2) {
+        __m128 v = _mm_mul_ps(_mm_setr_ps(c[0], c[1], c[2], 0), _mm_set1_ps(k));
+        /* maxps gives its second operand for NaN: 0, as srgb_enc */
+        v = _mm_min_ps(_mm_max_ps(v, _mm_setzero_ps()), _mm_set1_ps(1.0f));
+        __m128i i = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(v, _mm_set1_ps((float)SRGB_ENC_SIZE)), _mm_set1_ps(0.5f)));
+        int32_t ix[4];
+        _mm_storeu_si128((__m128i *)(void *)ix, i);
+        px[0] = enc->b[ix[0]];
+        px[1] = enc->b[ix[1]];
+        px[2] = enc->b[ix[2]];
+        return;
+    }
+#endif
+    (void)simd;
+    for (int a = 0; a < 3; a++)
+        px[a] = srgb_enc(enc, c[a] * k);
+}
+
 /* The samples of face id within polygon box [x0, x1) x [y0, y1), each
  * its own colour under the face's light. The face is set up at its
  * first sample: a polygon whose face lost every sample costs a scan of
@@ -464,13 +537,17 @@ static void shade_box(SurfFrame *f, InstCache *ic, const FrameBufs *fb, int32_t 
     const Scene *s = f->s;
     const SrgbEnc *enc = f->sc->enc;
     const SurfSetup *st = NULL;
+    /* set up here, not in the slot table: the pass meets each face once
+     * (in its polygon's box), and the table's slots, scattered over
+     * 512 x ~350 bytes, were a cache miss or several a face */
+    SurfSetup local;
     for (int y = y0; y < y1; y++) {
         const int32_t *ids = fb->ids + (size_t)y * fb->w;
         for (int x = x0; x < x1; x++) {
             if (ids[x] != id)
                 continue;
             if (!st) {
-                st = face_setup(f, ic, id);
+                st = face_setup_in(f, ic, id, &local);
                 if (!st)
                     return;
                 int inst = s->face_obj ? s->face_obj[id] : 0;
@@ -480,10 +557,9 @@ static void shade_box(SurfFrame *f, InstCache *ic, const FrameBufs *fb, int32_t 
                 }
             }
             float c[3];
-            eval_face(f, ic, st, id, (float)x + 0.5f, (float)y + 0.5f, c);
-            uint8_t *px = out->rgb + 3 * ((size_t)y * fb->w + x);
-            for (int a = 0; a < 3; a++)
-                px[a] = srgb_enc(enc, c[a] * st->klin);
+            if (!st->flat1 || !flat1_colour(st, (float)x + 0.5f, (float)y + 0.5f, f->simd, c))
+                eval_face(f, ic, st, id, (float)x + 0.5f, (float)y + 0.5f, c);
+            encode_px(enc, c, st->klin, f->simd, out->rgb + 3 * ((size_t)y * fb->w + x));
         }
     }
 }
@@ -501,14 +577,17 @@ static void shade_box(SurfFrame *f, InstCache *ic, const FrameBufs *fb, int32_t 
 static inline const uint32_t *face_run(const SurfFrame *f, int32_t id)
 {
     const Scene *s = f->s;
-    int inst = s->face_obj ? s->face_obj[id] : 0, base = inst % f->nb;
+    int inst = s->face_obj ? s->face_obj[id] : 0, base = base_of(f, inst);
     uint32_t bface = (uint32_t)(s->objs[base].face_base + (id - s->objs[inst].face_base));
     return &f->sc->face_poly[2 * (size_t)bface];
 }
 
 /* Stage k (4: furthest) of the fetch of face id: k = 4 only fetches,
- * every other stage reads what the stage before fetched. */
-static void prefetch_stage(const SurfFrame *f, int32_t id, int k)
+ * every other stage reads what the stage before fetched. Inlined by
+ * force: as a function of its own, GCC 12 (its mod-ref analysis) finds
+ * that it changes nothing and drops the calls, and with them every
+ * fetch (none was issued until this was seen). */
+static inline __attribute__((always_inline)) void prefetch_stage(const SurfFrame *f, int32_t id, int k)
 {
     const Scene *s = f->s;
     if (id < 0 || (uint32_t)id >= s->nfaces)
@@ -540,10 +619,27 @@ static void prefetch_stage(const SurfFrame *f, int32_t id, int k)
             __builtin_prefetch(&s->poly_uv[2 * (size_t)c0]);
         return;
     }
-    const float *pos = s->objs[(s->face_obj ? s->face_obj[id] : 0) % f->nb].mesh->pos;
+    const float *pos = s->objs[base_of(f, s->face_obj ? s->face_obj[id] : 0)].mesh->pos;
     for (uint32_t c = c0; c < c0 + 3; c++)
         __builtin_prefetch(&pos[3 * (size_t)s->poly_corner[c]]);
 }
+
+/* Whether polygon p's box holds a sample of its face. */
+static inline int poly_shows(const FrameBufs *fb, const ScreenPoly *p)
+{
+    int x1 = p->x1 < fb->w ? p->x1 : fb->w, y1 = p->y1 < fb->h ? p->y1 : fb->h;
+    for (int y = p->y0; y < y1; y++) {
+        const int32_t *ids = fb->ids + (size_t)y * fb->w;
+        for (int x = p->x0; x < x1; x++)
+            if (ids[x] == p->face)
+                return 1;
+    }
+    return 0;
+}
+
+/* Polygons with a sample waiting to be shaded: a ring of SURF_RING
+ * (a power of two, more than the 5 stages' SURF_STEP apart). */
+#define SURF_RING 64
 
 void shade_surfaces_flat(SurfFrame *f, const FrameBufs *fb, Image *out)
 {
@@ -554,18 +650,34 @@ void shade_surfaces_flat(SurfFrame *f, const FrameBufs *fb, Image *out)
      * a cache miss or several each (the dragon in a small picture: a
      * third of the shading time). Even where faces are big (the bunny
      * at 1920x1080) this beats a pass sample by sample with the set-ups
-     * looked up again (measured: 33 against 38 ms of CPU a frame). */
+     * looked up again (measured: 33 against 38 ms of CPU a frame).
+     *
+     * Only the polygons that kept a sample are fetched ahead and set
+     * up: a huge mesh in a small picture has most of its polygons' boxes
+     * empty (the dragon at 160x96 x 4: 18k of 43k show), and fetching
+     * those too would put the fetches of the ones that count too close
+     * to their use. The id buffer (read first) is small and hot. */
     const Scene *s = f->s;
     const ScreenPolys *sp = f->sp;
     InstCache ic = { -1, m4_identity() };
+    uint32_t ring[SURF_RING], head = 0, tail = 0, i = 0;
     /* points and lines (after the faces) have ids past the faces' */
-    for (uint32_t i = 0; i < sp->npolys; i++) {
-        for (int k = 0; k < 5; k++)
-            if (i + (uint32_t)(k + 1) * SURF_STEP < sp->npolys)
-                prefetch_stage(f, sp->polys[i + (uint32_t)(k + 1) * SURF_STEP].face, k);
-        const ScreenPoly *p = &sp->polys[i];
+    for (;;) {
+        while (tail - head <= 5 * SURF_STEP && i < sp->npolys) {
+            const ScreenPoly *p = &sp->polys[i++];
+            if (p->face < 0 || (uint32_t)p->face >= s->nfaces || !poly_shows(fb, p))
+                continue;
+            ring[tail % SURF_RING] = (uint32_t)(p - sp->polys);
+            for (int k = 0; k < 5; k++)
+                if (tail >= (uint32_t)k * SURF_STEP)
+                    prefetch_stage(f, sp->polys[ring[(tail - (uint32_t)k * SURF_STEP) % SURF_RING]].face, 4 - k);
+            tail++;
+        }
+        if (head == tail)
+            break;
+        const ScreenPoly *p = &sp->polys[ring[head++ % SURF_RING]];
         int32_t id = p->face;
-        if (id < 0 || (uint32_t)id >= s->nfaces || s->face_surf[id] == SURF_PLAIN)
+        if (s->face_surf[id] == SURF_PLAIN)
             continue;
         shade_box(f, &ic, fb, id, p->x0, p->x1 < fb->w ? p->x1 : fb->w, p->y0, p->y1 < fb->h ? p->y1 : fb->h, out);
     }

@@ -36,7 +36,7 @@ int texture_check_size(int w, int h, const char *name, uint64_t max_bytes, char 
         snprintf(err, errlen, "%s: a %dx%d image (1 to %d per side)", name, w, h, TEX_MAX_SIDE);
         return -1;
     }
-    uint64_t need = texture_bytes_for(w, h), avail = sysmem_available();
+    uint64_t need = texture_bytes_for(w, h) + texture_lin_bytes_for(w, h), avail = sysmem_available();
     if (max_bytes && max_bytes < avail)
         avail = max_bytes;
     if (need > avail) {
@@ -260,6 +260,7 @@ int texture_decode_fit(Texture *t, const void *data, size_t len, const char *nam
         if (halved_out)
             *halved_out += k;
     }
+    texture_build_lin(t);
     return 0;
 }
 
@@ -276,6 +277,7 @@ int texture_from_rgba(Texture *t, const uint8_t *rgba, int w, int h, const char 
     }
     memcpy(px, rgba, (size_t)w * (size_t)h * 4);
     texture_build_levels(t);
+    texture_build_lin(t);
     return 0;
 }
 
@@ -331,10 +333,11 @@ int texture_load_file(Texture *t, const char *path, uint64_t max_bytes, char *er
 void texture_free(Texture *t)
 {
     free(t->rgba);
+    free(t->lin);
     memset(t, 0, sizeof *t);
 }
 
 size_t texture_bytes(const Texture *t)
 {
-    return t->rgba ? (size_t)texture_bytes_for(t->w, t->h) : 0;
+    return (t->rgba ? (size_t)texture_bytes_for(t->w, t->h) : 0) + (t->lin ? (size_t)texture_lin_bytes_for(t->w, t->h) : 0);
 }

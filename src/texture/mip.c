@@ -5,6 +5,7 @@
  * black and white checker would fade to sRGB 128 (linear 0.22) instead
  * of linear 0.5 (sRGB 188). */
 
+#include <stdlib.h>
 #include <string.h>
 
 #include "texture_internal.h"
@@ -86,4 +87,37 @@ void texture_build_levels(Texture *t)
     for (int i = 1; i < t->levels; i++)
         halve(&e, t->rgba + 4 * t->off[i - 1], t->lw[i - 1], t->lh[i - 1], t->rgba + 4 * t->off[i], t->lw[i],
               t->lh[i]);
+}
+
+/* Sampling reads a texel's three channels with one 8-byte load: the
+ * last texel's reads 2 bytes past it, and 8 bytes of padding keep that
+ * inside the block. */
+#define LIN_PAD 8
+
+uint64_t texture_lin_bytes_for(int w, int h)
+{
+    /* 6 bytes a texel where texture_bytes_for counts 4 */
+    return texture_bytes_for(w, h) / 4 * 6 + LIN_PAD;
+}
+
+void texture_build_lin(Texture *t)
+{
+    free(t->lin);
+    t->lin = NULL;
+    if (!t->rgba || t->levels < 1)
+        return;
+    int top = t->levels - 1;
+    size_t n = t->off[top] + (size_t)t->lw[top] * t->lh[top];
+    uint16_t *l = malloc(6 * n + LIN_PAD);
+    if (!l)
+        return;             /* sampling falls back to rgba and the table */
+    uint16_t q[256];
+    const float *lin = srgb_table();
+    for (int b = 0; b < 256; b++)
+        q[b] = (uint16_t)(lin[b] * 65535.0f + 0.5f);
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++)
+            l[3 * i + c] = q[t->rgba[4 * i + c]];
+    memset(l + 3 * n, 0, LIN_PAD);
+    t->lin = l;
 }

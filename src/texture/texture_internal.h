@@ -7,6 +7,11 @@
 /* Level 0 is in t->rgba (with room for all levels): fill in every
  * level's size and offset and compute levels 1.. from it (mip.c). */
 void texture_build_levels(Texture *t);
+/* t->lin from t->rgba's levels (mip.c), once the levels are final; left
+ * NULL when out of memory. */
+void texture_build_lin(Texture *t);
+/* Bytes t->lin takes for a w x h level 0 (its padding included). */
+uint64_t texture_lin_bytes_for(int w, int h);
 
 /* Refuse a w x h image before decoding it: too big a side, or more
  * memory than the caller allows or the machine has ("name: a 20000x20
