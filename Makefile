@@ -2,10 +2,10 @@
 # them under AddressSanitizer + UBSan; make bench prints the benchmark.
 CC      ?= cc
 PREFIX  ?= /usr/local
-PKGS    := ncursesw libpng libjpeg
+PKGS    := ncursesw libpng libjpeg libseccomp
 # feature macros are set per file (term.c needs the wide-char curses ones)
 PKG_CFLAGS := $(filter-out -D%,$(shell pkg-config --cflags $(PKGS) 2>/dev/null))
-PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -ltinfo -lpng16 -ljpeg)
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -ltinfo -lpng16 -ljpeg -lseccomp)
 
 # Optional: assimp for the long tail of formats (glTF, FBX, 3DS, ...).
 # On when pkg-config finds it; `make ASSIMP=0` builds without.

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "sandbox.h"
 
 #ifndef ZV_DATADIR
 #define ZV_DATADIR "/usr/local/share/zview"
@@ -40,6 +41,19 @@ const char *app_demo_path(void)
     return "assets/demo.obj";
 }
 
+SandboxOpts app_sandbox_opts(const Options *o)
+{
+    SandboxOpts so = { .off = o->no_sandbox, .max_memory = o->max_memory };
+    return so;
+}
+
+void app_sandbox_warn(const Options *o)
+{
+    if (!o->no_sandbox && !sandbox_available())
+        fprintf(stderr, "zview: warning: this system has no seccomp filters: models load in zview's own process, "
+                "unsandboxed (--no-sandbox says so and silences this)\n");
+}
+
 int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
 {
     return app_load_scene_ex(o, s, NULL, err, errlen);
@@ -61,10 +75,12 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
         return -1;
     }
     int from_stdin = 0;
+    app_sandbox_warn(o);
     MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys,
-                        .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
+                        .max_bytes = o->max_memory, .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
+    SandboxOpts so = app_sandbox_opts(o);
     for (int i = 0; i < nfiles; i++) {
-        if (mesh_load_ex(&meshes[i], files[i], &lo, err, errlen)) {
+        if (sandbox_load(&meshes[i], files[i], &lo, &so, err, errlen)) {
             for (int k = 0; k < i; k++)
                 mesh_free(&meshes[k]);
             free(meshes);

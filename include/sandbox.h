@@ -1,0 +1,65 @@
+#ifndef ZV_SANDBOX_H
+#define ZV_SANDBOX_H
+/* sandbox: mesh_load in a child process that can do nothing but read and
+ * fail. A model file is input from strangers, and its parsers (assimp's
+ * above all) have a long record of memory-safety bugs; whatever a
+ * malformed file makes a parser do happens in a child that
+ *   - has a seccomp-bpf filter: it may read files, map memory, make
+ *     threads and write to standard error; creating or writing files,
+ *     exec, sockets, ptrace, signals to other processes and the rest are
+ *     refused (the attacks kill the child, the rest fail with EPERM);
+ *   - has limits: address space (the memory it may add: --max-memory, by
+ *     default what the machine has available), CPU time, no core file;
+ *   - hands the Mesh back through a memfd the parent maps, with its
+ *     error text and warnings counted in MeshInfo as a load in-process.
+ * A child that crashes, breaks the filter or passes a limit becomes one
+ * line naming the file ("x.fbx: the loader crashed (Segmentation fault)
+ * in the sandbox"). Knows nothing of scenes or terminals. */
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "mesh.h"
+
+/* CPU time a load may take. A 30 M-triangle file loads in well under a
+ * minute on a slow machine; a file that keeps a parser busy longer is
+ * taken for hostile (assimp's node DAGs grow without end). */
+#define SANDBOX_CPU_SECONDS 120
+
+typedef struct {
+    int      off;           /* --no-sandbox: load in this process */
+    uint64_t max_memory;    /* bytes the load may add to the address space; 0: what is available */
+    unsigned cpu_seconds;   /* 0: SANDBOX_CPU_SECONDS */
+} SandboxOpts;
+
+/* Can this system sandbox a load (a kernel with seccomp filters)? When
+ * it cannot, sandbox_load loads in-process (the caller warns once). */
+int sandbox_available(void);
+
+/* mesh_load_ex in a child (in-process when so->off or no seccomp). Same
+ * contract: 0, or -1 with "path: message" in err and *m empty. A set
+ * lo->cancel ends the child at once ("path: cancelled"); lo->progress
+ * is copied from the child's while it runs. so may be NULL (defaults). */
+int sandbox_load(Mesh *m, const char *path, const MeshLoadOpts *lo, const SandboxOpts *so, char *err,
+                 size_t errlen);
+
+/* mesh_parse_buffer_ex in a child: the bytes are already here (a FIFO
+ * read by the viewer), path names them and gives the folder for what
+ * they reference. */
+int sandbox_parse_buffer(Mesh *m, const char *path, const MeshLoadOpts *lo, const SandboxOpts *so,
+                         const void *data, size_t len, char *err, size_t errlen);
+
+/* ---- Used by the sandbox's own files and its tests ---- */
+
+/* The result of a load in a memfd: a header (rc, err, the Mesh's
+ * scalars) then every array. wire_write sizes fd and fills it; wire_read
+ * rebuilds *m (arrays malloc'd, as mesh_free expects) from a mapping of
+ * len bytes, checking every offset (the child is not trusted): 0, or -1
+ * with a message. */
+int sandbox_wire_write(int fd, const Mesh *m, int rc, const char *err);
+int sandbox_wire_read(const void *map, size_t len, Mesh *m, int *rc, char *err, size_t errlen);
+
+/* Install the child's filter: 0, or -1 when seccomp cannot be had. */
+int sandbox_filter_install(int memfd);
+
+#endif

@@ -1,0 +1,276 @@
+/* sandbox.c: a load in a child process (sandbox.h). The parent makes a
+ * memfd for the result and a shared page for progress, forks, and waits
+ * for the child to end, polling a pipe the child holds open so that a
+ * cancel (the viewer's Esc) can kill it and progress can be copied out.
+ * The child lowers its limits, closes what it does not need, installs
+ * the filter (filter.c), runs the unchanged loader and writes the mesh
+ * into the memfd (wire.c); the parent reads it back, checking it. */
+
+#define _GNU_SOURCE
+
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "clock.h"
+#include "sandbox.h"
+#include "sysmem.h"
+
+/* How often the parent looks at the cancel flag and copies progress
+ * while the child works: quick enough for Esc to feel immediate. */
+#define POLL_MS 50
+
+typedef struct {
+    const char         *path;
+    const MeshLoadOpts *lo;
+    const void         *data;   /* the bytes, or NULL to read path */
+    size_t              len;
+    uint64_t            budget; /* address space the child may add */
+    unsigned            cpu;    /* seconds */
+    int                 memfd;
+    MeshProgress       *progress;   /* shared with the parent, or NULL */
+} Job;
+
+int sandbox_available(void)
+{
+    /* EINVAL: a kernel built without seccomp */
+    return prctl(PR_GET_SECCOMP, 0, 0, 0, 0) >= 0;
+}
+
+/* The child's address space now, in bytes: its limit is this plus the
+ * budget, so that what the process already maps (a viewer's scene, a
+ * sanitizer's shadow memory, reserved but never touched) is not counted
+ * against the model. */
+static uint64_t vm_now(void)
+{
+    FILE *f = fopen("/proc/self/statm", "r");
+    unsigned long long pages = 0;
+    if (f) {
+        if (fscanf(f, "%llu", &pages) != 1)
+            pages = 0;
+        fclose(f);
+    }
+    return (uint64_t)pages * (uint64_t)sysconf(_SC_PAGESIZE);
+}
+
+static void set_limit(int what, uint64_t soft, uint64_t hard)
+{
+    struct rlimit rl;
+    if (getrlimit(what, &rl) == 0) {
+        /* never above what the parent was given */
+        rl.rlim_cur = rl.rlim_max != RLIM_INFINITY && hard > rl.rlim_max ? rl.rlim_max : soft;
+        rl.rlim_max = rl.rlim_max != RLIM_INFINITY && hard > rl.rlim_max ? rl.rlim_max : hard;
+        if (rl.rlim_cur > rl.rlim_max)
+            rl.rlim_cur = rl.rlim_max;
+        setrlimit(what, &rl);
+    }
+}
+
+/* Everything before the filter: default signal handling (the viewer's
+ * handlers touch the terminal), the parent's descriptors closed but for
+ * standard input (a model piped in), output and the memfd, limits. */
+static void child_prepare(Job *j, int alive)
+{
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    for (int s = 1; s < NSIG; s++)
+        if (s != SIGKILL && s != SIGSTOP)
+            signal(s, SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, NULL);
+    int keep_lo = j->memfd < alive ? j->memfd : alive, keep_hi = j->memfd < alive ? alive : j->memfd;
+    syscall(SYS_close_range, 3u, (unsigned)keep_lo - 1, 0u);
+    if (keep_hi > keep_lo + 1)
+        syscall(SYS_close_range, (unsigned)keep_lo + 1, (unsigned)keep_hi - 1, 0u);
+    syscall(SYS_close_range, (unsigned)keep_hi + 1, ~0u, 0u);
+    uint64_t vm = vm_now();
+    if (j->budget < (uint64_t)RLIM_INFINITY - vm)  /* else nothing is known of the machine's memory */
+        set_limit(RLIMIT_AS, vm + j->budget, vm + j->budget);
+    set_limit(RLIMIT_CPU, j->cpu, j->cpu + 1);     /* SIGXCPU, then SIGKILL a second later */
+    set_limit(RLIMIT_CORE, 0, 0);
+}
+
+static void child_main(Job *j, int alive)
+{
+    child_prepare(j, alive);
+    Mesh m;
+    char err[512] = "";
+    int rc;
+    MeshLoadOpts lo = *j->lo;
+    lo.cancel = NULL;           /* the parent kills the child instead */
+    lo.progress = j->progress;
+    if (sandbox_filter_install(j->memfd) != 0) {
+        snprintf(err, sizeof err, "%s: the sandbox's filter cannot be installed", j->path);
+        rc = -1;
+    } else if (j->data) {
+        rc = mesh_parse_buffer_ex(&m, j->path, &lo, j->data, j->len, err, sizeof err);
+    } else {
+        rc = mesh_load_ex(&m, j->path, &lo, err, sizeof err);
+    }
+    _exit(sandbox_wire_write(j->memfd, &m, rc, err) == 0 ? 0 : 3);
+}
+
+/* The message for a child that did not finish: what ended it. */
+static void died(const Job *j, int status, const struct rusage *ru, int cancelled, char *err, size_t errlen)
+{
+    double cpu = (double)ru->ru_utime.tv_sec + (double)ru->ru_stime.tv_sec +
+                 ((double)ru->ru_utime.tv_usec + (double)ru->ru_stime.tv_usec) / 1e6;
+    int sig = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+    char mem[32];
+    sysmem_format(j->budget, mem, sizeof mem);
+    if (cancelled)
+        snprintf(err, errlen, "%s: cancelled", j->path);
+    else if (sig == SIGSYS)
+        snprintf(err, errlen, "%s: the loader tried something the sandbox forbids (writing a file, running a "
+                 "program, a network connection, ...) and was stopped", j->path);
+    else if (sig == SIGXCPU || (sig == SIGKILL && cpu >= j->cpu))
+        snprintf(err, errlen, "%s: the load took more than %u s of CPU time and was stopped", j->path, j->cpu);
+    else if (sig == SIGKILL)
+        snprintf(err, errlen, "%s: the loader was killed (out of memory?)", j->path);
+    else if (sig == SIGABRT)
+        snprintf(err, errlen, "%s: the loader gave up (aborted; more than its %s of memory, or a malformed "
+                 "file)", j->path, mem);
+    else if (sig)
+        snprintf(err, errlen, "%s: the loader crashed (%s) in the sandbox: a malformed file", j->path,
+                 strsignal(sig));
+    else
+        snprintf(err, errlen, "%s: the loader failed in the sandbox (exit status %d)", j->path,
+                 WEXITSTATUS(status));
+}
+
+/* Wait for the child, killing it on cancel, copying progress: its
+ * status and resource use. */
+static int wait_child(const Job *j, pid_t pid, int alive, int *status, struct rusage *ru)
+{
+    int cancelled = 0;
+    for (;;) {
+        struct pollfd pf = { .fd = alive, .events = POLLIN };
+        int n = poll(&pf, 1, j->lo->cancel || j->lo->progress ? POLL_MS : -1);
+        if (j->lo->progress && j->progress) {
+            __atomic_store_n(&j->lo->progress->done, __atomic_load_n(&j->progress->done, __ATOMIC_RELAXED),
+                             __ATOMIC_RELAXED);
+            __atomic_store_n(&j->lo->progress->total, __atomic_load_n(&j->progress->total, __ATOMIC_RELAXED),
+                             __ATOMIC_RELAXED);
+        }
+        if (!cancelled && j->lo->cancel && __atomic_load_n(j->lo->cancel, __ATOMIC_RELAXED)) {
+            kill(pid, SIGKILL);
+            cancelled = 1;
+        }
+        if (n > 0 || (n < 0 && errno != EINTR && errno != EAGAIN))
+            break;              /* the pipe's end: the child is gone */
+    }
+    while (wait4(pid, status, 0, ru) < 0)
+        if (errno != EINTR)
+            return -1;
+    return cancelled;
+}
+
+/* Read the child's result out of the memfd. */
+static int collect(const Job *j, Mesh *m, char *err, size_t errlen)
+{
+    struct stat st;
+    if (fstat(j->memfd, &st) != 0 || st.st_size <= 0) {
+        snprintf(err, errlen, "%s: the sandboxed loader returned nothing", j->path);
+        return -1;
+    }
+    void *map = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_PRIVATE, j->memfd, 0);
+    if (map == MAP_FAILED) {
+        snprintf(err, errlen, "%s: cannot map the loader's result: %s", j->path, strerror(errno));
+        return -1;
+    }
+    int rc = -1;
+    char why[400];
+    if (sandbox_wire_read(map, (size_t)st.st_size, m, &rc, why, sizeof why) != 0) {
+        snprintf(err, errlen, "%s: %s", j->path, why);
+        rc = -1;
+    } else if (rc) {
+        snprintf(err, errlen, "%s", why);
+    }
+    munmap(map, (size_t)st.st_size);
+    return rc;
+}
+
+static int run(Job *j, Mesh *m, char *err, size_t errlen)
+{
+    double t0 = now_ms();
+    int alive[2];
+    j->memfd = memfd_create("zview-load", MFD_CLOEXEC);
+    if (j->memfd < 0 || pipe2(alive, O_CLOEXEC) != 0) {
+        snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->path, strerror(errno));
+        if (j->memfd >= 0)
+            close(j->memfd);
+        return -1;
+    }
+    j->progress = mmap(NULL, sizeof *j->progress, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (j->progress == MAP_FAILED)
+        j->progress = NULL;
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(alive[0]);
+        child_main(j, alive[1]);
+    }
+    close(alive[1]);
+    int rc = -1;
+    if (pid < 0) {
+        snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->path, strerror(errno));
+    } else {
+        int status = 0;
+        struct rusage ru = { 0 };
+        int cancelled = wait_child(j, pid, alive[0], &status, &ru);
+        if (cancelled == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
+            rc = collect(j, m, err, errlen);
+        else
+            died(j, status, &ru, cancelled, err, errlen);
+    }
+    if (rc == 0)
+        m->info.load_ms = now_ms() - t0;    /* the sandbox's cost included */
+    close(alive[0]);
+    close(j->memfd);
+    if (j->progress)
+        munmap(j->progress, sizeof *j->progress);
+    return rc;
+}
+
+static int load(Mesh *m, const char *path, const MeshLoadOpts *lo, const SandboxOpts *so, const void *data,
+                size_t len, char *err, size_t errlen)
+{
+    MeshLoadOpts def = { 0 };
+    if (!lo)
+        lo = &def;
+    int off = (so && so->off) || !sandbox_available();
+    if (off)
+        return data ? mesh_parse_buffer_ex(m, path, lo, data, len, err, errlen)
+                    : mesh_load_ex(m, path, lo, err, errlen);
+    memset(m, 0, sizeof *m);
+    Job j = { .path = path ? path : "(input)", .lo = lo, .data = data, .len = len,
+              .cpu = so && so->cpu_seconds ? so->cpu_seconds : SANDBOX_CPU_SECONDS };
+    j.budget = so && so->max_memory ? so->max_memory : lo->max_bytes ? lo->max_bytes : sysmem_available();
+    MeshLoadOpts lo2 = *lo;
+    if (!lo2.max_bytes && so && so->max_memory)
+        lo2.max_bytes = so->max_memory;     /* the loaders' own estimates refuse first, with a better message */
+    j.lo = &lo2;
+    return run(&j, m, err, errlen);
+}
+
+int sandbox_load(Mesh *m, const char *path, const MeshLoadOpts *lo, const SandboxOpts *so, char *err,
+                 size_t errlen)
+{
+    return load(m, path, lo, so, NULL, 0, err, errlen);
+}
+
+int sandbox_parse_buffer(Mesh *m, const char *path, const MeshLoadOpts *lo, const SandboxOpts *so,
+                         const void *data, size_t len, char *err, size_t errlen)
+{
+    return load(m, path, lo, so, data ? data : "", len, err, errlen);
+}
