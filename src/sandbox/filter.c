@@ -26,10 +26,13 @@
 
 #include "sandbox.h"
 
+/* O_TMPFILE without the O_DIRECTORY it includes (a read-only open of a
+ * folder is fine) */
+#define TMPFILE_BIT (O_TMPFILE & ~O_DIRECTORY)
 /* open flags that make or change a file: refused (the child dies) */
-#define WRITE_FLAGS (O_WRONLY | O_RDWR | O_CREAT | O_TRUNC | O_APPEND | O_TMPFILE)
+#define WRITE_FLAGS (O_WRONLY | O_RDWR | O_CREAT | O_TRUNC | O_APPEND | TMPFILE_BIT)
 
-static const int write_bits[] = { O_WRONLY, O_RDWR, O_CREAT, O_TRUNC, O_APPEND, __O_TMPFILE };
+static const int write_bits[] = { O_WRONLY, O_RDWR, O_CREAT, O_TRUNC, O_APPEND, TMPFILE_BIT };
 
 static const int allowed[] = {
     SCMP_SYS(read), SCMP_SYS(pread64), SCMP_SYS(readv), SCMP_SYS(preadv), SCMP_SYS(lseek),
