@@ -34,7 +34,7 @@ LDLIBS  += $(PKG_LIBS) $(AI_LIBS) -lm -pthread
 BUILD   ?= build
 SRCS    := $(wildcard src/*/*.c)
 ifneq ($(ASSIMP),1)
-SRCS    := $(filter-out src/mesh/assimp.c,$(SRCS))
+SRCS    := $(filter-out src/mesh/assimp.c src/mesh/assimpio.c,$(SRCS))
 endif
 LIBSRCS := $(filter-out src/main/main.c,$(SRCS))
 OBJS    := $(SRCS:%.c=$(BUILD)/%.o)

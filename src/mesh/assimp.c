@@ -37,6 +37,7 @@
 #include <assimp/scene.h>
 #include <assimp/version.h>
 
+#include "assimpio.h"
 #include "mesh.h"
 #include "mesh_internal.h"
 
@@ -49,7 +50,7 @@
     X(aiImportFile) X(aiImportFileFromMemory) X(aiReleaseImport) X(aiGetErrorString)   \
     X(aiIsExtensionSupported) X(aiGetImportFormatCount) X(aiGetImportFormatDescription) \
     X(aiGetVersionMajor) X(aiGetVersionMinor) X(aiGetVersionPatch) X(aiGetMaterialColor) \
-    X(aiGetMaterialFloatArray) X(aiGetMaterialString) X(aiIdentityMatrix4) X(aiGetMaterialTexture)
+    X(aiGetMaterialFloatArray) X(aiGetMaterialString) X(aiIdentityMatrix4) X(aiGetMaterialTexture) X(aiImportFileEx)
 
 typedef struct {
 #define AI_FIELD(f) __typeof__(f) *f;
@@ -628,7 +629,10 @@ static int ai_parse_path(MeshCtx *c, const char *path)
 {
     if (!ai())
         return no_library(c);
-    const struct aiScene *sc = ai()->aiImportFile(path, ai_flags(c->hint));
+    /* what the model names is opened beneath its folder only (assimpio.c) */
+    AiIo io;
+    ai_io_init(&io, &c->err, path, NULL, 0, NULL);
+    const struct aiScene *sc = ai()->aiImportFileEx(path, ai_flags(c->hint), &io.fio);
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);
@@ -646,7 +650,12 @@ static int ai_parse(MeshCtx *c, const char *data, size_t len)
         return me_fail(&c->err, "too large for assimp from memory");
     /* the hint is an extension, or "assimp" when forced without one */
     const char *hint = c->hint && strcmp(c->hint, "assimp") ? c->hint : "";
-    const struct aiScene *sc = ai()->aiImportFileFromMemory(data, (unsigned)len, ai_flags(hint), hint);
+    /* from memory through a file system of its own, which serves the
+     * bytes and nothing else: assimp's own memory import would open the
+     * files a model names from the current folder */
+    AiIo io;
+    ai_io_init(&io, &c->err, NULL, data, len, hint);
+    const struct aiScene *sc = ai()->aiImportFileEx(io.name, ai_flags(hint), &io.fio);
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);
