@@ -130,10 +130,18 @@ replay: $(REPLAYS)
 # "models" (needs ../shared/models: make test-models) and "tools" (run by
 # tools/ scripts) are not part of it.
 UNIT_FILTER := !(models/*|tools/*)
-test: $(BIN) $(TESTBIN) $(REPLAYS)
+test: $(BIN) $(TESTBIN) $(REPLAYS) $(STANDIN)
 	ZVIEW=$(abspath $(BIN)) sh tests/unit.sh $(TESTBIN) --jobs 2 --filter '$(UNIT_FILTER)'
 	$(MAKE) --no-print-directory replay
-	ZVIEW=$(abspath $(BIN)) sh tests/e2e/run.sh
+	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) sh tests/e2e/run.sh
+
+# The stand-in assimp library of the sandbox's tests (tests/standin):
+# its import tries what an exploited parser would. Named as the real one
+# is, so that LD_LIBRARY_PATH=$(BUILD)/standin puts it in its place.
+STANDIN := $(BUILD)/standin/$(if $(AI_SONAME),$(AI_SONAME),libassimp.so.5)
+$(STANDIN): tests/standin/fakeassimp.c
+	@mkdir -p $(dir $@)
+	$(CC) -O1 -g -Wall -Wextra -fPIC -shared -Wl,-soname,$(notdir $@) $(filter-out -D%,$(shell pkg-config --cflags assimp 2>/dev/null)) -o $@ $<
 
 unit: $(TESTBIN)
 	ZVIEW=$(abspath $(BIN)) sh tests/unit.sh $(TESTBIN) --jobs 2 --filter '$(UNIT_FILTER)'
@@ -153,8 +161,8 @@ test-models: $(TESTBIN)
 mutate:
 	sh tools/mutate.sh tests/mutants.txt
 
-e2e: $(BIN)
-	ZVIEW=$(abspath $(BIN)) sh tests/e2e/run.sh
+e2e: $(BIN) $(STANDIN)
+	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) sh tests/e2e/run.sh
 
 # Sanitized build in its own folder, same tests, with the invariants
 # on (-DZV_CHECKS turns ZV_ASSERT on: include/check.h).

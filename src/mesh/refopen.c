@@ -153,8 +153,10 @@ int mesh_ref_open(const char *model, const char *full, char *why, size_t whylen)
     if (!rel)
         return refuse(why, whylen, full[0] == '/' ? "an absolute path outside the model's folder"
                                                   : "outside the model's folder");
-    while (rel[0] == '/')
-        rel++;
+    /* the folder and an absolute name run together ("m//dev/zero": how
+     * assimp joins them) */
+    if (rel[0] == '/')
+        return refuse(why, whylen, "an absolute path outside the model's folder");
     if (!*rel || climbs(rel))
         return refuse(why, whylen, "'..' leads out of the model's folder");
     int dirfd = open(root, O_PATH | O_DIRECTORY | O_CLOEXEC);

@@ -32,7 +32,8 @@
 #define POLL_MS 50
 
 typedef struct {
-    const char         *path;
+    const char         *path;   /* what is loaded */
+    const char         *name;   /* what messages call it */
     const MeshLoadOpts *lo;
     const void         *data;   /* the bytes, or NULL to read path */
     size_t              len;
@@ -111,7 +112,7 @@ static void child_main(Job *j, int alive)
     lo.cancel = NULL;           /* the parent kills the child instead */
     lo.progress = j->progress;
     if (sandbox_filter_install(j->memfd) != 0) {
-        snprintf(err, sizeof err, "%s: the sandbox's filter cannot be installed", j->path);
+        snprintf(err, sizeof err, "%s: the sandbox's filter cannot be installed", j->name);
         rc = -1;
     } else if (j->data) {
         rc = mesh_parse_buffer_ex(&m, j->path, &lo, j->data, j->len, err, sizeof err);
@@ -130,22 +131,22 @@ static void died(const Job *j, int status, const struct rusage *ru, int cancelle
     char mem[32];
     sysmem_format(j->budget, mem, sizeof mem);
     if (cancelled)
-        snprintf(err, errlen, "%s: cancelled", j->path);
+        snprintf(err, errlen, "%s: cancelled", j->name);
     else if (sig == SIGSYS)
         snprintf(err, errlen, "%s: the loader tried something the sandbox forbids (writing a file, running a "
-                 "program, a network connection, ...) and was stopped", j->path);
+                 "program, a network connection, ...) and was stopped", j->name);
     else if (sig == SIGXCPU || (sig == SIGKILL && cpu >= j->cpu))
-        snprintf(err, errlen, "%s: the load took more than %u s of CPU time and was stopped", j->path, j->cpu);
+        snprintf(err, errlen, "%s: the load took more than %u s of CPU time and was stopped", j->name, j->cpu);
     else if (sig == SIGKILL)
-        snprintf(err, errlen, "%s: the loader was killed (out of memory?)", j->path);
+        snprintf(err, errlen, "%s: the loader was killed (out of memory?)", j->name);
     else if (sig == SIGABRT)
         snprintf(err, errlen, "%s: the loader gave up (aborted; more than its %s of memory, or a malformed "
-                 "file)", j->path, mem);
+                 "file)", j->name, mem);
     else if (sig)
-        snprintf(err, errlen, "%s: the loader crashed (%s) in the sandbox: a malformed file", j->path,
+        snprintf(err, errlen, "%s: the loader crashed (%s) in the sandbox: a malformed file", j->name,
                  strsignal(sig));
     else
-        snprintf(err, errlen, "%s: the loader failed in the sandbox (exit status %d)", j->path,
+        snprintf(err, errlen, "%s: the loader failed in the sandbox (exit status %d)", j->name,
                  WEXITSTATUS(status));
 }
 
@@ -181,18 +182,18 @@ static int collect(const Job *j, Mesh *m, char *err, size_t errlen)
 {
     struct stat st;
     if (fstat(j->memfd, &st) != 0 || st.st_size <= 0) {
-        snprintf(err, errlen, "%s: the sandboxed loader returned nothing", j->path);
+        snprintf(err, errlen, "%s: the sandboxed loader returned nothing", j->name);
         return -1;
     }
     void *map = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_PRIVATE, j->memfd, 0);
     if (map == MAP_FAILED) {
-        snprintf(err, errlen, "%s: cannot map the loader's result: %s", j->path, strerror(errno));
+        snprintf(err, errlen, "%s: cannot map the loader's result: %s", j->name, strerror(errno));
         return -1;
     }
     int rc = -1;
     char why[400];
     if (sandbox_wire_read(map, (size_t)st.st_size, m, &rc, why, sizeof why) != 0) {
-        snprintf(err, errlen, "%s: %s", j->path, why);
+        snprintf(err, errlen, "%s: %s", j->name, why);
         rc = -1;
     } else if (rc) {
         snprintf(err, errlen, "%s", why);
@@ -207,7 +208,7 @@ static int run(Job *j, Mesh *m, char *err, size_t errlen)
     int alive[2];
     j->memfd = memfd_create("zview-load", MFD_CLOEXEC);
     if (j->memfd < 0 || pipe2(alive, O_CLOEXEC) != 0) {
-        snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->path, strerror(errno));
+        snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->name, strerror(errno));
         if (j->memfd >= 0)
             close(j->memfd);
         return -1;
@@ -223,7 +224,7 @@ static int run(Job *j, Mesh *m, char *err, size_t errlen)
     close(alive[1]);
     int rc = -1;
     if (pid < 0) {
-        snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->path, strerror(errno));
+        snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->name, strerror(errno));
     } else {
         int status = 0;
         struct rusage ru = { 0 };
@@ -253,7 +254,7 @@ static int load(Mesh *m, const char *path, const MeshLoadOpts *lo, const Sandbox
         return data ? mesh_parse_buffer_ex(m, path, lo, data, len, err, errlen)
                     : mesh_load_ex(m, path, lo, err, errlen);
     memset(m, 0, sizeof *m);
-    Job j = { .path = path ? path : "(input)", .lo = lo, .data = data, .len = len,
+    Job j = { .path = path, .name = !path ? "(input)" : strcmp(path, "-") ? path : "stdin", .lo = lo, .data = data, .len = len,
               .cpu = so && so->cpu_seconds ? so->cpu_seconds : SANDBOX_CPU_SECONDS };
     j.budget = so && so->max_memory ? so->max_memory : lo->max_bytes ? lo->max_bytes : sysmem_available();
     MeshLoadOpts lo2 = *lo;

@@ -1,0 +1,127 @@
+#!/bin/sh
+# The loading sandbox (issue 22): a stand-in assimp library whose import
+# writes a file, runs a shell, opens a socket, allocates without bound or
+# spins (tests/standin, built by make and found through LD_LIBRARY_PATH)
+# does none of it and is one line of error; assimp's hostile cases end
+# with an error and bounded memory; references out of the model's folder
+# are refused with warnings and never opened (strace watches); the viewer
+# survives all of it through O, and Esc ends a load that spins.
+. "$(dirname "$0")/lib.sh"
+Z=$ZVIEW
+LIB=${ZV_STANDIN_LIB:-$ROOT/build/standin}
+S=$T/standin
+mkdir -p "$S"
+echo 'Kaydara FBX stand-in' >"$S/x.fbx"
+
+# run_standin WHAT ARGS...: zview --info with the stand-in doing WHAT
+run_standin() {
+    what=$1; shift
+    rm -f "$S/created" "$S/exec-ran" "$S/socket-opened"
+    LD_LIBRARY_PATH=$LIB ZV_STANDIN=$what ZV_STANDIN_DIR=$S timeout 30 "$Z" --info "$@" >"$T/out" 2>"$T/err" </dev/null
+    st=$?
+}
+
+if [ ! -d "$LIB" ]; then
+    skip "the stand-in assimp library" "not built ($LIB): make builds it"
+else
+    for case in "create created" "exec exec-ran" "socket socket-opened"; do
+        what=${case% *}; marker=${case#* }
+        # without the sandbox the attempt is real: the test can fail
+        run_standin "$what" --no-sandbox "$S/x.fbx"
+        if [ -e "$S/$marker" ]; then ok "unsandboxed, the stand-in's $what happens ($marker)"; else
+            notok "unsandboxed, the stand-in's $what happens ($marker)" "status $st: $(cat "$T/err")"; fi
+        run_standin "$what" "$S/x.fbx"
+        if [ $st -eq 1 ] && [ ! -e "$S/$marker" ] && [ "$(wc -l <"$T/err")" -eq 1 ] &&
+            grep -q "^zview: $S/x.fbx: the loader tried something the sandbox forbids" "$T/err"; then
+            ok "sandboxed, $what does not happen: one line naming the file, status 1"
+        else notok "sandboxed, $what does not happen: one line naming the file, status 1" "status $st, $(ls "$S"): $(cat "$T/err")"; fi
+    done
+    rm -f "$S/created" "$S/exec-ran" "$S/socket-opened"
+    LD_LIBRARY_PATH=$LIB ZV_STANDIN=create,exec ZV_STANDIN_DIR=$S timeout 30 "$Z" --info --format fbx - <"$S/x.fbx" >"$T/out" 2>"$T/err"
+    st=$?
+    if [ $st -eq 1 ] && [ ! -e "$S/created" ] && [ ! -e "$S/exec-ran" ] && grep -q "^zview: stdin: the loader tried" "$T/err"; then
+        ok "the same from standard input"; else notok "the same from standard input" "status $st: $(cat "$T/err")"; fi
+    run_standin alloc --max-memory 256M "$S/x.fbx"
+    if [ $st -eq 1 ] && grep -q "^zview: $S/x.fbx: stand-in: no more memory after [0-9]* MB" "$T/err"; then
+        n=$(sed -n 's/.*after \([0-9]*\) MB.*/\1/p' "$T/err")
+        check_n=$([ "$n" -le 256 ] && echo yes)
+        if [ "$check_n" = yes ]; then ok "allocation without bound stops at --max-memory 256M ($n MB)"; else
+            notok "allocation without bound stops at --max-memory 256M" "$n MB"; fi
+    else notok "allocation without bound stops at --max-memory 256M" "status $st: $(cat "$T/err")"; fi
+fi
+
+# ==== assimp's hostile cases: an error naming the file, memory bounded ====
+if need_python "assimp's hostile cases"; then
+    H=$T/hostile
+    mkdir -p "$H"
+    python3 tests/e2e/hostile_assimp.py "$H"
+    for f in dag.gltf chain.gltf deep.dae count.dae chunk.glb; do
+        timeout 60 "$Z" --max-memory 1G --info "$H/$f" >"$T/out" 2>"$T/err" </dev/null
+        st=$?
+        if [ $st -eq 1 ] && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "^zview: $H/$f: " "$T/err"; then
+            ok "$f: status 1, one line naming it ($(cut -c1-90 "$T/err" | sed "s|$H/||"))"
+        else notok "$f: status 1, one line naming it" "status $st: $(head -c 300 "$T/err")"; fi
+    done
+    grep -q "out of memory" "$T/err" 2>/dev/null
+    timeout 60 "$Z" --max-memory 1G --info "$H/dag.gltf" >"$T/out" 2>"$T/err" </dev/null
+    expect_err "the node DAG runs out of its 1G, and says so" "out of memory reading it"
+    timeout 60 "$Z" --max-memory 1G --info "$H/chain.gltf" >"$T/out" 2>"$T/err" </dev/null
+    expect_err "the deep chain's crash is the child's" "the loader crashed (Segmentation fault) in the sandbox"
+fi
+
+# ==== references out of the model's folder: refused, never opened ====
+R=$T/refs
+mkdir -p "$R/m" "$R/out"
+printf 'newmtl a\nKd 1 0 0\n' >"$R/out/secret.mtl"
+printf 'SECRET' >"$R/out/secret.bin"
+ln -s ../out/secret.mtl "$R/m/link.mtl"
+ln -s ../out/secret.bin "$R/m/link.bin"
+ln -s /dev/zero "$R/m/zero.mtl"
+mkfifo "$R/m/fifo.mtl" "$R/m/fifo.bin"
+tri='v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n'
+n=0
+for ref in ../out/secret.mtl "$R/out/secret.mtl" link.mtl /dev/zero zero.mtl fifo.mtl; do
+    n=$((n + 1))
+    printf "mtllib $ref\n$tri" >"$R/m/r$n.obj"
+    if command -v strace >/dev/null 2>&1; then
+        timeout 20 strace -f -qq -o "$T/trace" -e trace=open,openat,openat2 "$Z" --info "$R/m/r$n.obj" >"$T/out" 2>"$T/err" </dev/null
+        st=$?
+        opened=$(grep -E 'secret|/dev/zero|zero.mtl|fifo' "$T/trace" | grep -v ' = -1 ' | grep -v 'O_PATH' | head -3)
+    else
+        timeout 20 "$Z" --info "$R/m/r$n.obj" >"$T/out" 2>"$T/err" </dev/null
+        st=$?
+        opened="strace is missing (tools/deps.sh installs it)"
+    fi
+    if [ $st -eq 0 ] && grep -qF "cannot open material library '$ref' (refused: " "$T/err" && [ -z "$opened" ]; then
+        ok "mtllib $ref: refused with a warning naming it, nothing opened ($(sed 's/.*(refused: \(.*\))/\1/' "$T/err"))"
+    else notok "mtllib $ref: refused with a warning naming it, nothing opened" "status $st, opened: $opened; $(cat "$T/err")"; fi
+done
+# a texture out of the folder, through a library inside it
+printf 'newmtl a\nKd 1 1 1\nmap_Kd ../out/secret.bin\n' >"$R/m/t.mtl"
+printf "mtllib t.mtl\nusemtl a\nvt 0 0\nvt 1 0\nvt 0 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/2 3/3\n" >"$R/m/t.obj"
+expect_status "a texture named by ../ loads the model" 0 "$Z" --info "$R/m/t.obj"
+expect_err "... and refuses the texture, by name" "texture $R/m/../out/secret.bin: refused: '..' leads out of the model's folder"
+# a model on standard input names nothing, not even beside the working folder
+(cd "$R/out" && printf "mtllib secret.mtl\n$tri" | "$Z" --info - >"$T/out" 2>"$T/err")
+expect_err "a model on standard input may name no file" "cannot open material library 'secret.mtl' (refused: a model on standard input may name no other file)"
+
+# glTF buffers: by .., absolute, a link out, /dev/zero, a FIFO
+if "$Z" --formats 2>/dev/null | grep -q '^gltf'; then
+    n=0
+    for uri in ../out/secret.bin "$R/out/secret.bin" link.bin /dev/zero fifo.bin; do
+        n=$((n + 1))
+        printf '{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"buffers":[{"byteLength":36,"uri":"%s"}],"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}]}' "$uri" >"$R/m/b$n.gltf"
+        if command -v strace >/dev/null 2>&1; then
+            timeout 20 strace -f -qq -o "$T/trace" -e trace=open,openat,openat2 "$Z" --info "$R/m/b$n.gltf" >"$T/out" 2>"$T/err" </dev/null
+            st=$?
+            opened=$(grep -E 'secret|/dev/zero|fifo' "$T/trace" | grep -v ' = -1 ' | grep -v 'O_PATH' | head -3)
+        else
+            timeout 20 "$Z" --info "$R/m/b$n.gltf" >"$T/out" 2>"$T/err" </dev/null
+            st=$?
+            opened="strace is missing (tools/deps.sh installs it)"
+        fi
+        if [ $st -eq 1 ] && grep -q "is not read (refused: " "$T/err" && [ -z "$opened" ] && ! grep -q bounds "$T/out"; then
+            ok "glTF buffer $uri: refused with a warning, nothing opened, status 1"
+        else notok "glTF buffer $uri: refused with a warning, nothing opened, status 1" "status $st, opened: $opened; $(cat "$T/err")"; fi
+    done
+fi
