@@ -125,3 +125,58 @@ if "$Z" --formats 2>/dev/null | grep -q '^gltf'; then
         else notok "glTF buffer $uri: refused with a warning, nothing opened, status 1" "status $st, opened: $opened; $(cat "$T/err")"; fi
     done
 fi
+
+# ==== the viewer: O survives each, Esc ends a load that spins ====
+[ -d "$LIB" ] || exit 0
+. "$(dirname "$0")/tmux.sh"
+for f in create-exec-socket.fbx alloc.fbx spin.fbx; do echo 'Kaydara FBX stand-in' >"$S/$f"; done
+rm -f "$S/created" "$S/exec-ran" "$S/socket-opened"
+session xterm-256color 100 30
+tm send-keys -t zv "LD_LIBRARY_PATH=$LIB ZV_STANDIN_DIR=$S TERM=xterm-256color sh -c 'echo \$\$ >$T/pid; exec $Z --max-memory 256M --mode ascii assets/cube.obj'; echo zv-exit=\$?" Enter
+wait_for 'cube.obj \| (6/6|faces 6 drawn)' >/dev/null
+# open_file PATH: O, the path, Enter
+open_file() {
+    tm send-keys -t zv O
+    wait_for '^ open:' >/dev/null
+    tm send-keys -t zv -l "$1"
+    tm send-keys -t zv Enter
+}
+open_file "$S/create-exec-socket.fbx"
+if wait_for 'create-exec-socket.fbx: the loader tried something the sandbox forbids' && wait_for 'cube.obj \| (6/6|faces 6 drawn)' &&
+    [ ! -e "$S/created" ] && [ ! -e "$S/exec-ran" ] && [ ! -e "$S/socket-opened" ]; then
+    ok "O: the stand-in's attacks stop the load, nothing happens, the scene stays"
+else notok "O: the stand-in's attacks stop the load, nothing happens, the scene stays" "$(ls "$S"); $(tail -2 "$T/screen")"; fi
+open_file "$S/alloc.fbx"
+if wait_for 'alloc.fbx: stand-in: no more memory after' && wait_for 'cube.obj \| (6/6|faces 6 drawn)'; then
+    ok "O: allocation without bound ends at --max-memory, the scene stays"
+else notok "O: allocation without bound ends at --max-memory, the scene stays" "$(tail -2 "$T/screen")"; fi
+open_file "$S/spin.fbx"
+wait_for 'loading spin.fbx' >/dev/null
+zpid=$(cat "$T/pid")
+kids=$(ps -o pid= --ppid "$zpid" | wc -l)
+tm send-keys -t zv Escape
+left=1
+for i in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
+    left=$(ps -o pid= --ppid "$zpid" | wc -l)
+    [ "$left" -eq 0 ] && break
+    sleep 0.2
+done
+if [ "$kids" -eq 1 ] && [ "$left" -eq 0 ] && wait_for 'cancelled loading spin.fbx' && wait_for 'cube.obj \| (6/6|faces 6 drawn)'; then
+    ok "Esc ends a load that spins: its child is gone, the scene stays"
+else notok "Esc ends a load that spins: its child is gone, the scene stays" "children $kids then $left; $(tail -2 "$T/screen")"; fi
+tm send-keys -t zv q
+if wait_for 'zv-exit=0'; then ok "the viewer quits normally after all of it"; else notok "the viewer quits normally after all of it" "$(tail -3 "$T/screen")"; fi
+
+# assimp's hostile cases through O, with the real library
+if [ -n "${H:-}" ] && [ -e "$H/chain.gltf" ]; then
+    session xterm-256color 100 30
+    tm send-keys -t zv "TERM=xterm-256color $Z --max-memory 1G --mode ascii assets/cube.obj; echo zv-exit=\$?" Enter
+    wait_for 'cube.obj \| (6/6|faces 6 drawn)' >/dev/null
+    for f in dag.gltf chain.gltf deep.dae count.dae chunk.glb; do
+        open_file "$H/$f"
+        if wait_for "$f: " && wait_for 'cube.obj \| (6/6|faces 6 drawn)'; then ok "O $f: a message naming it, the scene stays"; else
+            notok "O $f: a message naming it, the scene stays" "$(tail -2 "$T/screen")"; fi
+    done
+    tm send-keys -t zv q
+    if wait_for 'zv-exit=0'; then ok "... and the viewer quits normally"; else notok "... and the viewer quits normally" "$(tail -3 "$T/screen")"; fi
+fi

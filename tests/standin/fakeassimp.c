@@ -4,7 +4,7 @@
  * (connect to a local port), "alloc" without bound, "spin" for ever. Each that succeeds
  * leaves a marker file in ZV_STANDIN_DIR, so that a test run without the
  * sandbox proves the attempt is real and one with it that nothing
- * happened. Exports every function zview looks up (src/mesh/assimp.c). */
+ * happened. Without ZV_STANDIN the file's name says what to do. Exports every function zview looks up (src/mesh/assimp.c). */
 #define _GNU_SOURCE
 
 #include <arpa/inet.h>
@@ -33,11 +33,13 @@ static void mark(const char *what)
         close(fd);
 }
 
-static void attack(void)
+/* What to do: ZV_STANDIN, else the file's name ("spin.fbx"), so that
+ * one viewer can open several stand-ins. */
+static void attack(const char *file)
 {
     const char *what = getenv("ZV_STANDIN");
-    if (!what)
-        return;
+    if (!what || !*what)
+        what = file ? file : "";
     if (strstr(what, "create"))
         mark("created");
     if (strstr(what, "exec")) {
@@ -78,22 +80,22 @@ static void attack(void)
 
 const struct aiScene *aiImportFile(const char *f, unsigned int fl)
 {
-    (void)f, (void)fl;
-    attack();
+    (void)fl;
+    attack(f);
     return NULL;
 }
 
 const struct aiScene *aiImportFileEx(const char *f, unsigned int fl, struct aiFileIO *io)
 {
-    (void)f, (void)fl, (void)io;
-    attack();
+    (void)fl, (void)io;
+    attack(f);
     return NULL;
 }
 
 const struct aiScene *aiImportFileFromMemory(const char *b, unsigned int n, unsigned int fl, const char *h)
 {
     (void)b, (void)n, (void)fl, (void)h;
-    attack();
+    attack(NULL);
     return NULL;
 }
 
