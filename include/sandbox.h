@@ -52,12 +52,12 @@ int sandbox_parse_buffer(Mesh *m, const char *path, const MeshLoadOpts *lo, cons
 /* ---- Used by the sandbox's own files and its tests ---- */
 
 /* The result of a load in a memfd: a header (rc, err, the Mesh's
- * scalars) then every array. wire_write sizes fd and fills it; wire_read
- * rebuilds *m (arrays malloc'd, as mesh_free expects) from a mapping of
- * len bytes, checking every offset (the child is not trusted): 0, or -1
- * with a message. */
+ * scalars) then every array. wire_write fills fd; wire_read rebuilds *m
+ * (arrays malloc'd, as mesh_free expects) from fd's len bytes, checking
+ * every offset, length and index (the child is not trusted): 0 (*rc the
+ * load's result, err its message), or -1 with a message. */
 int sandbox_wire_write(int fd, const Mesh *m, int rc, const char *err);
-int sandbox_wire_read(const void *map, size_t len, Mesh *m, int *rc, char *err, size_t errlen);
+int sandbox_wire_read(int fd, size_t len, Mesh *m, int *rc, char *err, size_t errlen);
 
 /* Install the child's filter: 0, or -1 when seccomp cannot be had. */
 int sandbox_filter_install(int memfd);

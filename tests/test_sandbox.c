@@ -120,7 +120,7 @@ Test(sandbox, a_buffer_loads_in_the_child)
 /* ==== A forged result ==== */
 
 /* The wire of the demo model in a memfd, mapped writable: *len bytes. */
-static char *wire_of(const char *path, size_t *len, Mesh *m)
+static char *wire_of(const char *path, size_t *len, Mesh *m, int *fd_out)
 {
     char err[512];
     cr_assert_eq(mesh_load(m, path, err, sizeof err), 0, "%s", err);
@@ -132,15 +132,17 @@ static char *wire_of(const char *path, size_t *len, Mesh *m)
     *len = (size_t)st.st_size;
     char *map = mmap(NULL, *len, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
     cr_assert(map != MAP_FAILED);
-    close(fd);
+    *fd_out = fd;
     return map;
 }
 
-static int read_back(const char *map, size_t len, char *err, size_t errlen)
+/* The map is the memfd's, shared: what the test writes there is what
+ * the reader reads through fd. */
+static int read_back(int fd, size_t len, char *err, size_t errlen)
 {
     Mesh m;
     int rc = 0;
-    int r = sandbox_wire_read(map, len, &m, &rc, err, errlen);
+    int r = sandbox_wire_read(fd, len, &m, &rc, err, errlen);
     if (r == 0)
         mesh_free(&m);
     return r;
@@ -161,32 +163,34 @@ Test(sandbox, a_forged_result_is_refused)
     Mesh m;
     size_t len;
     char err[256];
-    char *map = wire_of("assets/demo.obj", &len, &m);
-    cr_assert_eq(read_back(map, len, err, sizeof err), 0, "%s", err);
+    int fd;
+    char *map = wire_of("assets/demo.obj", &len, &m, &fd);
+    cr_assert_eq(read_back(fd, len, err, sizeof err), 0, "%s", err);
     /* a corner index past the vertices */
     size_t at = find(map, len, m.corner, 16);
     uint32_t keep;
     memcpy(&keep, map + at, 4);
     uint32_t bad = m.nverts + 5;
     memcpy(map + at, &bad, 4);
-    cr_assert_eq(read_back(map, len, err, sizeof err), -1);
+    cr_assert_eq(read_back(fd, len, err, sizeof err), -1);
     cr_assert(strstr(err, "malformed mesh (faces)"), "%s", err);
     memcpy(map + at, &keep, 4);
     /* cut short: a span past the end */
-    cr_assert_eq(read_back(map, len - 64, err, sizeof err), -1);
+    cr_assert_eq(read_back(fd, len - 64, err, sizeof err), -1);
     cr_assert(strstr(err, "malformed mesh"), "%s", err);
     /* no magic: the child died half-way */
     char m0 = map[0];
     map[0] ^= 1;
-    cr_assert_eq(read_back(map, len, err, sizeof err), -1);
+    cr_assert_eq(read_back(fd, len, err, sizeof err), -1);
     cr_assert(strstr(err, "no result"), "%s", err);
     map[0] = m0;
     /* a face_start that runs backwards */
     at = find(map, len, m.face_start, 12);
     uint32_t huge = 0xfffffff0u;
     memcpy(map + at + 4, &huge, 4);
-    cr_assert_eq(read_back(map, len, err, sizeof err), -1);
+    cr_assert_eq(read_back(fd, len, err, sizeof err), -1);
     munmap(map, len);
+    close(fd);
     mesh_free(&m);
 }
 

@@ -3,7 +3,8 @@
  * An allow list, because a parser needs few system calls: reading what
  * it opens (read-only opens only), mapping memory, threads and their
  * futexes, clocks, and writing to standard error (warnings, a
- * sanitizer's report) and to the memfd that carries the result. What an
+ * sanitizer's report) and to the memfd that carries the result
+ * (pwrite, and shared mappings of it only). What an
  * exploited parser would do next kills the child at once, so that the
  * parent can say so: opens that could create or write, exec, sockets,
  * ptrace, new processes, signals to other processes, mount and the
@@ -66,7 +67,7 @@ static const int fatal[] = {
     SCMP_SYS(mknod), SCMP_SYS(mknodat), SCMP_SYS(mount), SCMP_SYS(umount2), SCMP_SYS(chroot),
     SCMP_SYS(setuid), SCMP_SYS(setgid), SCMP_SYS(unshare), SCMP_SYS(setns), SCMP_SYS(pivot_root),
     SCMP_SYS(bpf), SCMP_SYS(perf_event_open), SCMP_SYS(init_module), SCMP_SYS(finit_module),
-    SCMP_SYS(kexec_load), SCMP_SYS(memfd_create), SCMP_SYS(pwrite64), SCMP_SYS(pwritev),
+    SCMP_SYS(kexec_load), SCMP_SYS(memfd_create), SCMP_SYS(pwritev),
     SCMP_SYS(io_uring_setup), SCMP_SYS(userfaultfd), SCMP_SYS(keyctl), SCMP_SYS(add_key),
 };
 
@@ -105,7 +106,8 @@ static int add_rules(scmp_filter_ctx f, int memfd)
     /* writes: standard error and the result's memfd only */
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(write), 1, SCMP_A0(SCMP_CMP_EQ, STDERR_FILENO));
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(writev), 1, SCMP_A0(SCMP_CMP_EQ, STDERR_FILENO));
-    r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(ftruncate), 1, SCMP_A0(SCMP_CMP_EQ, (scmp_datum_t)memfd));
+    r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(pwrite64), 1, SCMP_A0(SCMP_CMP_EQ, (scmp_datum_t)memfd));
+    r |= seccomp_rule_add(f, SCMP_ACT_KILL_PROCESS, SCMP_SYS(pwrite64), 1, SCMP_A0(SCMP_CMP_NE, (scmp_datum_t)memfd));
     /* signals: to itself only (abort(), a sanitizer's report) */
     pid_t self = getpid();
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(tgkill), 1, SCMP_A0(SCMP_CMP_EQ, (scmp_datum_t)self));

@@ -185,20 +185,14 @@ static int collect(const Job *j, Mesh *m, char *err, size_t errlen)
         snprintf(err, errlen, "%s: the sandboxed loader returned nothing", j->name);
         return -1;
     }
-    void *map = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_PRIVATE, j->memfd, 0);
-    if (map == MAP_FAILED) {
-        snprintf(err, errlen, "%s: cannot map the loader's result: %s", j->name, strerror(errno));
-        return -1;
-    }
     int rc = -1;
     char why[400];
-    if (sandbox_wire_read(map, (size_t)st.st_size, m, &rc, why, sizeof why) != 0) {
+    if (sandbox_wire_read(j->memfd, (size_t)st.st_size, m, &rc, why, sizeof why) != 0) {
         snprintf(err, errlen, "%s: %s", j->name, why);
         rc = -1;
     } else if (rc) {
         snprintf(err, errlen, "%s", why);
     }
-    munmap(map, (size_t)st.st_size);
     return rc;
 }
 

@@ -1,6 +1,7 @@
 /* wire.c: a loaded Mesh across the process boundary, through a memfd.
- * The child lays the mesh out in the memfd (a header, a table of spans,
- * the arrays); the parent maps it and rebuilds a Mesh of malloc'd arrays,
+ * The child writes the mesh into the memfd (a header, a table of spans,
+ * the arrays: pwrite, one copy); the parent reads it into a Mesh of
+ * malloc'd arrays (pread into arrays faulted in by huge pages, one copy),
  * which is what mesh_free and every later stage expect. The parent
  * trusts nothing it reads: a child a hostile file took over writes what
  * it likes, so every span is checked against the mapping, every length
@@ -9,12 +10,13 @@
 
 #define _GNU_SOURCE
 
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 #include <unistd.h>
 
+#include "bigmem.h"
 #include "sandbox.h"
 
 #define WIRE_MAGIC 0x7a763232u  /* "zv22" */
@@ -112,42 +114,56 @@ static uint64_t round8(uint64_t n)
     return (n + 7) & ~(uint64_t)7;
 }
 
+/* All of buf at off: 0, or -1. pwrite, not a shared mapping: the kernel
+ * copies into the memfd's pages without a page fault for each. */
+static int put(int fd, const void *buf, uint64_t len, uint64_t off)
+{
+    const char *p = buf;
+    while (len) {
+        ssize_t w = pwrite(fd, p, len, (off_t)off);
+        if (w <= 0)
+            return -1;
+        p += w;
+        off += (uint64_t)w;
+        len -= (uint64_t)w;
+    }
+    return 0;
+}
+
 int sandbox_wire_write(int fd, const Mesh *m, int rc, const char *err)
 {
     Mesh mm = rc ? (Mesh){ 0 } : *m;
     uint32_t nspans = F_FIXED + mm.ntex * T_SPANS;
-    uint64_t at = round8(sizeof(WireHead) + (uint64_t)nspans * sizeof(WireSpan));
-    uint64_t total = at;
-    for (int k = 0; k < F_FIXED; k++)
-        total += *slot(&mm, k) ? round8(want_len(&mm, k)) : 0;
-    for (uint32_t i = 0; i < mm.ntex; i++)
-        for (int k = 0; k < T_SPANS; k++)
-            total += round8(tex_len(&mm.tex[i], k));
-    if (ftruncate(fd, (off_t)total) != 0)
+    size_t head = sizeof(WireHead) + (size_t)nspans * sizeof(WireSpan);
+    char *hb = calloc(1, head);
+    if (!hb)
         return -1;
-    char *map = mmap(NULL, total, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-    if (map == MAP_FAILED)
-        return -1;
-    WireHead *h = (WireHead *)map;
-    WireSpan *sp = (WireSpan *)(map + sizeof *h);
+    WireHead *h = (WireHead *)hb;
+    WireSpan *sp = (WireSpan *)(hb + sizeof *h);
     h->rc = rc;
     snprintf(h->err, sizeof h->err, "%s", err ? err : "");
     h->mesh = mm;
     h->nspans = nspans;
-    uint32_t s = 0;
-    for (int k = 0; k < F_FIXED + (int)(mm.ntex * T_SPANS); k++, s++) {
-        const MeshTexture *t = k >= F_FIXED ? &mm.tex[(k - F_FIXED) / T_SPANS] : NULL;
-        int tk = t ? (k - F_FIXED) % T_SPANS : 0;
-        void *p = t ? *tex_slot((MeshTexture *)t, tk) : *slot(&mm, k);
-        uint64_t len = !p ? 0 : t ? tex_len(t, tk) : want_len(&mm, k);
+    uint64_t at = round8(head);
+    int r = 0;
+    for (uint32_t s = 0; s < nspans && r == 0; s++) {
+        const MeshTexture *t = s >= F_FIXED ? &mm.tex[(s - F_FIXED) / T_SPANS] : NULL;
+        int k = t ? (int)((s - F_FIXED) % T_SPANS) : (int)s;
+        void *p = t ? *tex_slot((MeshTexture *)t, k) : *slot(&mm, k);
+        uint64_t len = !p ? 0 : t ? tex_len(t, k) : want_len(&mm, k);
         sp[s] = (WireSpan){ .off = at, .len = len, .present = p != NULL };
         if (len)
-            memcpy(map + at, p, len);
+            r = put(fd, p, len, at);
         at += round8(len);
     }
-    h->magic = WIRE_MAGIC;      /* last: a child that died half-way left no magic */
-    munmap(map, total);
-    return 0;
+    /* the magic last: a child that died half-way left none */
+    if (r == 0)
+        r = put(fd, hb, head, 0);
+    uint32_t magic = WIRE_MAGIC;
+    if (r == 0)
+        r = put(fd, &magic, sizeof magic, offsetof(WireHead, magic));
+    free(hb);
+    return r;
 }
 
 /* ==== Reading, trusting nothing ==== */
@@ -247,29 +263,38 @@ static const char *tidy(Mesh *m)
     return NULL;
 }
 
-/* Copy span s of the mapping into a fresh array at *dst: 0, or -1. */
-static int take(const char *map, size_t len, const WireSpan *s, uint64_t want, int is_str, void **dst)
+/* Span s of the memfd (len bytes) into a fresh array at *dst: 0, or
+ * -1. Big arrays get huge pages and are faulted in at once (bigmem.h),
+ * then filled by pread: the one copy the parent makes. */
+static int take(int fd, size_t len, const WireSpan *s, uint64_t want, int is_str, void **dst)
 {
     *dst = NULL;
     if (!s->present)
         return 0;
     if (s->off > len || len - s->off < s->len || (!is_str && s->len != want) || (is_str && s->len == 0))
         return -1;
-    if (is_str && (memchr(map + s->off, 0, s->len) != map + s->off + s->len - 1))
+    char *p = malloc(s->len ? s->len : 1);
+    if (!p)
         return -1;
-    *dst = malloc(s->len ? s->len : 1);
-    if (!*dst)
+    *dst = p;
+    bigmem_advise(p, s->len, 1);
+    for (uint64_t got = 0; got < s->len;) {
+        ssize_t r = pread(fd, p + got, s->len - got, (off_t)(s->off + got));
+        if (r <= 0)
+            return -1;
+        got += (uint64_t)r;
+    }
+    if (is_str && memchr(p, 0, s->len) != p + s->len - 1)
         return -1;
-    memcpy(*dst, map + s->off, s->len);
     return 0;
 }
 
-int sandbox_wire_read(const void *mapv, size_t len, Mesh *m, int *rc, char *err, size_t errlen)
+int sandbox_wire_read(int fd, size_t len, Mesh *m, int *rc, char *err, size_t errlen)
 {
-    const char *map = mapv;
-    const WireHead *h = mapv;
+    WireHead hd;
+    const WireHead *h = &hd;
     memset(m, 0, sizeof *m);
-    if (len < sizeof *h || h->magic != WIRE_MAGIC)
+    if (len < sizeof hd || pread(fd, &hd, sizeof hd, 0) != (ssize_t)sizeof hd || hd.magic != WIRE_MAGIC)
         return bad(err, errlen, "no result");
     *rc = h->rc ? -1 : 0;
     if (h->rc) {
@@ -280,12 +305,17 @@ int sandbox_wire_read(const void *mapv, size_t len, Mesh *m, int *rc, char *err,
     if (hm.ntex > ((uint32_t)-1 - F_FIXED) / T_SPANS || h->nspans != F_FIXED + hm.ntex * T_SPANS ||
         (len - sizeof *h) / sizeof(WireSpan) < h->nspans)
         return bad(err, errlen, "span table");
-    const WireSpan *sp = (const WireSpan *)(map + sizeof *h);
+    size_t spbytes = (size_t)h->nspans * sizeof(WireSpan);
+    WireSpan *sp = malloc(spbytes);
+    if (!sp || pread(fd, sp, spbytes, sizeof hd) != (ssize_t)spbytes) {
+        free(sp);
+        return bad(err, errlen, "span table");
+    }
     *m = hm;
     for (int k = 0; k < F_FIXED; k++)
         *slot(m, k) = NULL;
     for (int k = 0; k < F_FIXED; k++) {
-        if (take(map, len, &sp[k], want_len(m, k), k == F_PATH, slot(m, k)))
+        if (take(fd, len, &sp[k], want_len(m, k), k == F_PATH, slot(m, k)))
             goto fail;
         if ((k == F_FSTART && !runs_ok(m->face_start, m->nfaces, NULL, 0, 0)) ||
             (k == F_LSTART && !runs_ok(m->line_start, m->nlines, NULL, 0, 0)))
@@ -302,7 +332,7 @@ int sandbox_wire_read(const void *mapv, size_t len, Mesh *m, int *rc, char *err,
             goto fail;
         for (int k = 0; k < T_SPANS; k++) {
             uint64_t want = k == T_DATA ? dlen : k == T_RGBA ? texture_bytes_for(w, ht) : 0;
-            if (take(map, len, &sp[F_FIXED + i * T_SPANS + k], want, k <= T_PATH, tex_slot(t, k)))
+            if (take(fd, len, &sp[F_FIXED + i * T_SPANS + k], want, k <= T_PATH, tex_slot(t, k)))
                 goto fail;
         }
         m->ntex = hm.ntex;
@@ -312,12 +342,14 @@ int sandbox_wire_read(const void *mapv, size_t len, Mesh *m, int *rc, char *err,
     const char *what = tidy(m);
     if (!what)
         what = wire_check(m);
+    free(sp);
     if (what) {
         mesh_free(m);
         return bad(err, errlen, what);
     }
     return 0;
 fail:
+    free(sp);
     if (!m->tex)
         m->ntex = 0;
     mesh_free(m);
