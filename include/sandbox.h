@@ -10,14 +10,18 @@
  *     refused (the attacks kill the child, the rest fail with EPERM);
  *   - has limits: address space (the memory it may add: --max-memory, by
  *     default what the machine has available), CPU time, no core file;
- *   - hands the Mesh back through a memfd the parent maps, with its
- *     error text and warnings counted in MeshInfo as a load in-process.
+ *   - hands the Mesh back: a header in a memfd says where its arrays
+ *     are, and the parent copies them straight out of the child's memory
+ *     (process_vm_readv: one copy), or, where it may not, out of the
+ *     memfd the child then fills; the error text and warnings come in
+ *     MeshInfo as in a load in-process.
  * A child that crashes, breaks the filter or passes a limit becomes one
  * line naming the file ("x.fbx: the loader crashed (Segmentation fault)
  * in the sandbox"). Knows nothing of scenes or terminals. */
 
 #include <stddef.h>
 #include <stdint.h>
+#include <sys/types.h>
 
 #include "mesh.h"
 
@@ -52,14 +56,19 @@ int sandbox_parse_buffer(Mesh *m, const char *path, const MeshLoadOpts *lo, cons
 /* ---- Used by the sandbox's own files and its tests ---- */
 
 /* The result of a load in a memfd: a header (rc, err, the Mesh's
- * scalars) then every array. wire_write fills fd; wire_read rebuilds *m
- * (arrays malloc'd, as mesh_free expects) from fd's len bytes, checking
+ * scalars, where each array is) and, unless in_child, every array after
+ * it. in_child: the arrays stay in the child's memory, which the parent
+ * reads with process_vm_readv while the child waits. wire_read rebuilds
+ * *m (arrays malloc'd, as mesh_free expects) from fd's len bytes, or from
+ * the memory of pid when the header says so (pid 0: never), checking
  * every offset, length and index (the child is not trusted): 0 (*rc the
  * load's result, err its message), or -1 with a message. */
-int sandbox_wire_write(int fd, const Mesh *m, int rc, const char *err);
-int sandbox_wire_read(int fd, size_t len, Mesh *m, int *rc, char *err, size_t errlen);
+int sandbox_wire_write(int fd, const Mesh *m, int rc, const char *err, int in_child);
+int sandbox_wire_read(int fd, size_t len, pid_t pid, Mesh *m, int *rc, char *err, size_t errlen);
 
-/* Install the child's filter: 0, or -1 when seccomp cannot be had. */
-int sandbox_filter_install(int memfd);
+/* Install the child's filter (memfd: the result's; pipefd: the one it
+ * may write to besides standard error): 0, or -1 when seccomp cannot be
+ * had. */
+int sandbox_filter_install(int memfd, int pipefd);
 
 #endif

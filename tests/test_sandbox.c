@@ -126,7 +126,7 @@ static char *wire_of(const char *path, size_t *len, Mesh *m, int *fd_out)
     cr_assert_eq(mesh_load(m, path, err, sizeof err), 0, "%s", err);
     int fd = memfd_create("t", 0);
     cr_assert(fd >= 0);
-    cr_assert_eq(sandbox_wire_write(fd, m, 0, ""), 0);
+    cr_assert_eq(sandbox_wire_write(fd, m, 0, "", 0), 0);
     struct stat st;
     cr_assert_eq(fstat(fd, &st), 0);
     *len = (size_t)st.st_size;
@@ -142,7 +142,7 @@ static int read_back(int fd, size_t len, char *err, size_t errlen)
 {
     Mesh m;
     int rc = 0;
-    int r = sandbox_wire_read(fd, len, &m, &rc, err, errlen);
+    int r = sandbox_wire_read(fd, len, 0, &m, &rc, err, errlen);
     if (r == 0)
         mesh_free(&m);
     return r;

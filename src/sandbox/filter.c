@@ -3,8 +3,9 @@
  * An allow list, because a parser needs few system calls: reading what
  * it opens (read-only opens only), mapping memory, threads and their
  * futexes, clocks, and writing to standard error (warnings, a
- * sanitizer's report) and to the memfd that carries the result
- * (pwrite, and shared mappings of it only). What an
+ * sanitizer's report), to the pipe that tells the parent the result is
+ * ready, and to the memfd that carries the result (pwrite, and shared
+ * mappings of it only). What an
  * exploited parser would do next kills the child at once, so that the
  * parent can say so: opens that could create or write, exec, sockets,
  * ptrace, new processes, signals to other processes, mount and the
@@ -71,7 +72,7 @@ static const int fatal[] = {
     SCMP_SYS(io_uring_setup), SCMP_SYS(userfaultfd), SCMP_SYS(keyctl), SCMP_SYS(add_key),
 };
 
-static int add_rules(scmp_filter_ctx f, int memfd)
+static int add_rules(scmp_filter_ctx f, int memfd, int pipefd)
 {
     int r = 0;
     for (size_t i = 0; i < sizeof allowed / sizeof allowed[0]; i++)
@@ -106,6 +107,7 @@ static int add_rules(scmp_filter_ctx f, int memfd)
     /* writes: standard error and the result's memfd only */
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(write), 1, SCMP_A0(SCMP_CMP_EQ, STDERR_FILENO));
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(writev), 1, SCMP_A0(SCMP_CMP_EQ, STDERR_FILENO));
+    r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(write), 1, SCMP_A0(SCMP_CMP_EQ, (scmp_datum_t)pipefd));
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(pwrite64), 1, SCMP_A0(SCMP_CMP_EQ, (scmp_datum_t)memfd));
     r |= seccomp_rule_add(f, SCMP_ACT_KILL_PROCESS, SCMP_SYS(pwrite64), 1, SCMP_A0(SCMP_CMP_NE, (scmp_datum_t)memfd));
     /* signals: to itself only (abort(), a sanitizer's report) */
@@ -116,12 +118,12 @@ static int add_rules(scmp_filter_ctx f, int memfd)
     return r;
 }
 
-int sandbox_filter_install(int memfd)
+int sandbox_filter_install(int memfd, int pipefd)
 {
     scmp_filter_ctx f = seccomp_init(SCMP_ACT_ERRNO(EPERM));
     if (!f)
         return -1;
-    int r = add_rules(f, memfd);
+    int r = add_rules(f, memfd, pipefd);
     if (r == 0)
         r = seccomp_load(f);    /* sets no_new_privs first (libseccomp's default) */
     seccomp_release(f);

@@ -20,6 +20,7 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
+#include <sys/uio.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -40,6 +41,8 @@ typedef struct {
     uint64_t            budget; /* address space the child may add */
     unsigned            cpu;    /* seconds */
     int                 memfd;
+    int                 alive;  /* the child's end: 'r' when its result is ready; closed when it ends */
+    int                 go;     /* the child's end: 'w' asks for the arrays in the memfd; EOF ends it */
     MeshProgress       *progress;   /* shared with the parent, or NULL */
 } Job;
 
@@ -78,10 +81,16 @@ static void set_limit(int what, uint64_t soft, uint64_t hard)
     }
 }
 
+static int cmp_int(const void *a, const void *b)
+{
+    return *(const int *)a - *(const int *)b;
+}
+
 /* Everything before the filter: default signal handling (the viewer's
  * handlers touch the terminal), the parent's descriptors closed but for
- * standard input (a model piped in), output and the memfd, limits. */
-static void child_prepare(Job *j, int alive)
+ * standard input (a model piped in), output, the memfd and the two
+ * pipes, and the limits. */
+static void child_prepare(Job *j)
 {
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     for (int s = 1; s < NSIG; s++)
@@ -90,11 +99,15 @@ static void child_prepare(Job *j, int alive)
     sigset_t none;
     sigemptyset(&none);
     sigprocmask(SIG_SETMASK, &none, NULL);
-    int keep_lo = j->memfd < alive ? j->memfd : alive, keep_hi = j->memfd < alive ? alive : j->memfd;
-    syscall(SYS_close_range, 3u, (unsigned)keep_lo - 1, 0u);
-    if (keep_hi > keep_lo + 1)
-        syscall(SYS_close_range, (unsigned)keep_lo + 1, (unsigned)keep_hi - 1, 0u);
-    syscall(SYS_close_range, (unsigned)keep_hi + 1, ~0u, 0u);
+    int keep[3] = { j->memfd, j->alive, j->go };
+    qsort(keep, 3, sizeof keep[0], cmp_int);
+    unsigned from = 3;
+    for (int i = 0; i < 3; i++) {
+        if ((unsigned)keep[i] > from)
+            syscall(SYS_close_range, from, (unsigned)keep[i] - 1, 0u);
+        from = (unsigned)keep[i] + 1;
+    }
+    syscall(SYS_close_range, from, ~0u, 0u);
     uint64_t vm = vm_now();
     if (j->budget < (uint64_t)RLIM_INFINITY - vm)  /* else nothing is known of the machine's memory */
         set_limit(RLIMIT_AS, vm + j->budget, vm + j->budget);
@@ -102,16 +115,20 @@ static void child_prepare(Job *j, int alive)
     set_limit(RLIMIT_CORE, 0, 0);
 }
 
-static void child_main(Job *j, int alive)
+/* Load, say where the result is, and wait: the parent copies the arrays
+ * out of this process's memory (one copy, none through the memfd), or,
+ * where it may not read another process (ptrace rules), asks for them
+ * in the memfd. */
+static void child_main(Job *j)
 {
-    child_prepare(j, alive);
+    child_prepare(j);
     Mesh m;
     char err[512] = "";
     int rc;
     MeshLoadOpts lo = *j->lo;
     lo.cancel = NULL;           /* the parent kills the child instead */
     lo.progress = j->progress;
-    if (sandbox_filter_install(j->memfd) != 0) {
+    if (sandbox_filter_install(j->memfd, j->alive) != 0) {
         snprintf(err, sizeof err, "%s: the sandbox's filter cannot be installed", j->name);
         rc = -1;
     } else if (j->data) {
@@ -119,7 +136,12 @@ static void child_main(Job *j, int alive)
     } else {
         rc = mesh_load_ex(&m, j->path, &lo, err, sizeof err);
     }
-    _exit(sandbox_wire_write(j->memfd, &m, rc, err) == 0 ? 0 : 3);
+    if (sandbox_wire_write(j->memfd, &m, rc, err, 1) != 0 || write(j->alive, "r", 1) != 1)
+        _exit(3);
+    char c = 0;
+    if (read(j->go, &c, 1) == 1 && c == 'w')
+        _exit(sandbox_wire_write(j->memfd, &m, rc, err, 0) == 0 ? 0 : 3);
+    _exit(0);
 }
 
 /* The message for a child that did not finish: what ended it. */
@@ -150,9 +172,12 @@ static void died(const Job *j, int status, const struct rusage *ru, int cancelle
                  WEXITSTATUS(status));
 }
 
-/* Wait for the child, killing it on cancel, copying progress: its
- * status and resource use. */
-static int wait_child(const Job *j, pid_t pid, int alive, int *status, struct rusage *ru)
+enum { CHILD_GONE, CHILD_CANCELLED, CHILD_READY };
+
+/* Wait for the child's word, killing it on cancel, copying progress:
+ * ready (its result waits to be read), gone (it ended: crashed, or
+ * killed by a limit or the filter), or cancelled. */
+static int wait_child(const Job *j, pid_t pid, int alive)
 {
     int cancelled = 0;
     for (;;) {
@@ -168,17 +193,25 @@ static int wait_child(const Job *j, pid_t pid, int alive, int *status, struct ru
             kill(pid, SIGKILL);
             cancelled = 1;
         }
-        if (n > 0 || (n < 0 && errno != EINTR && errno != EAGAIN))
-            break;              /* the pipe's end: the child is gone */
+        if (n > 0 || (n < 0 && errno != EINTR && errno != EAGAIN)) {
+            char c = 0;
+            if (!cancelled && read(alive, &c, 1) == 1 && c == 'r')
+                return CHILD_READY;
+            return cancelled ? CHILD_CANCELLED : CHILD_GONE;
+        }
     }
+}
+
+static int reap(pid_t pid, int *status, struct rusage *ru)
+{
     while (wait4(pid, status, 0, ru) < 0)
         if (errno != EINTR)
             return -1;
-    return cancelled;
+    return 0;
 }
 
-/* Read the child's result out of the memfd. */
-static int collect(const Job *j, Mesh *m, char *err, size_t errlen)
+/* Read the child's result: from its memory (pid), else from the memfd. */
+static int collect(const Job *j, pid_t pid, Mesh *m, char *err, size_t errlen)
 {
     struct stat st;
     if (fstat(j->memfd, &st) != 0 || st.st_size <= 0) {
@@ -187,22 +220,47 @@ static int collect(const Job *j, Mesh *m, char *err, size_t errlen)
     }
     int rc = -1;
     char why[400];
-    if (sandbox_wire_read(j->memfd, (size_t)st.st_size, m, &rc, why, sizeof why) != 0) {
+    if (sandbox_wire_read(j->memfd, (size_t)st.st_size, pid, m, &rc, why, sizeof why) != 0) {
         snprintf(err, errlen, "%s: %s", j->name, why);
-        rc = -1;
-    } else if (rc) {
-        snprintf(err, errlen, "%s", why);
+        return -2;
     }
+    if (rc)
+        snprintf(err, errlen, "%s", why);
     return rc;
+}
+
+/* The child is ready: its result, read from its memory, or (when that
+ * is not allowed) from the memfd once it has written it there. */
+static int finish(const Job *j, pid_t pid, int go, Mesh *m, char *err, size_t errlen)
+{
+    int rc = collect(j, pid, m, err, errlen), status = 0;
+    struct rusage ru = { 0 };
+    if (rc == -2 && write(go, "w", 1) == 1) {
+        close(go);
+        if (reap(pid, &status, &ru) == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
+            rc = collect(j, 0, m, err, errlen);
+        else
+            died(j, status, &ru, 0, err, errlen);
+        return rc < 0 ? -1 : rc;
+    }
+    close(go);
+    reap(pid, &status, &ru);
+    return rc < 0 ? -1 : rc;
 }
 
 static int run(Job *j, Mesh *m, char *err, size_t errlen)
 {
     double t0 = now_ms();
-    int alive[2];
+    int alive[2] = { -1, -1 }, go[2] = { -1, -1 };
     j->memfd = memfd_create("zview-load", MFD_CLOEXEC);
-    if (j->memfd < 0 || pipe2(alive, O_CLOEXEC) != 0) {
+    if (j->memfd < 0 || pipe2(alive, O_CLOEXEC) != 0 || pipe2(go, O_CLOEXEC) != 0) {
         snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->name, strerror(errno));
+        for (int i = 0; i < 2; i++) {
+            if (alive[i] >= 0)
+                close(alive[i]);
+            if (go[i] >= 0)
+                close(go[i]);
+        }
         if (j->memfd >= 0)
             close(j->memfd);
         return -1;
@@ -210,23 +268,31 @@ static int run(Job *j, Mesh *m, char *err, size_t errlen)
     j->progress = mmap(NULL, sizeof *j->progress, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
     if (j->progress == MAP_FAILED)
         j->progress = NULL;
+    j->alive = alive[1];
+    j->go = go[0];
     pid_t pid = fork();
     if (pid == 0) {
         close(alive[0]);
-        child_main(j, alive[1]);
+        close(go[1]);
+        child_main(j);
     }
     close(alive[1]);
+    close(go[0]);
     int rc = -1;
     if (pid < 0) {
         snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->name, strerror(errno));
+        close(go[1]);
     } else {
-        int status = 0;
-        struct rusage ru = { 0 };
-        int cancelled = wait_child(j, pid, alive[0], &status, &ru);
-        if (cancelled == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
-            rc = collect(j, m, err, errlen);
-        else
-            died(j, status, &ru, cancelled, err, errlen);
+        int state = wait_child(j, pid, alive[0]);
+        if (state == CHILD_READY) {
+            rc = finish(j, pid, go[1], m, err, errlen);
+        } else {
+            int status = 0;
+            struct rusage ru = { 0 };
+            close(go[1]);
+            reap(pid, &status, &ru);
+            died(j, status, &ru, state == CHILD_CANCELLED, err, errlen);
+        }
     }
     if (rc == 0)
         m->info.load_ms = now_ms() - t0;    /* the sandbox's cost included */

@@ -14,12 +14,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
 #include "bigmem.h"
 #include "sandbox.h"
 
-#define WIRE_MAGIC 0x7a763232u  /* "zv22" */
+#define WIRE_MAGIC 0x7a763232u  /* "zv22": the arrays are in the memfd */
+#define WIRE_MAGIC_VM 0x7a76766du /* "zvvm": the spans are the child's addresses */
 
 typedef struct {
     uint64_t off, len;
@@ -130,7 +132,7 @@ static int put(int fd, const void *buf, uint64_t len, uint64_t off)
     return 0;
 }
 
-int sandbox_wire_write(int fd, const Mesh *m, int rc, const char *err)
+int sandbox_wire_write(int fd, const Mesh *m, int rc, const char *err, int in_child)
 {
     Mesh mm = rc ? (Mesh){ 0 } : *m;
     uint32_t nspans = F_FIXED + mm.ntex * T_SPANS;
@@ -151,15 +153,18 @@ int sandbox_wire_write(int fd, const Mesh *m, int rc, const char *err)
         int k = t ? (int)((s - F_FIXED) % T_SPANS) : (int)s;
         void *p = t ? *tex_slot((MeshTexture *)t, k) : *slot(&mm, k);
         uint64_t len = !p ? 0 : t ? tex_len(t, k) : want_len(&mm, k);
-        sp[s] = (WireSpan){ .off = at, .len = len, .present = p != NULL };
-        if (len)
+        sp[s] = (WireSpan){ .off = in_child ? (uint64_t)(uintptr_t)p : at, .len = len, .present = p != NULL };
+        if (len && !in_child)
             r = put(fd, p, len, at);
         at += round8(len);
     }
-    /* the magic last: a child that died half-way left none */
+    /* the magic last: a child that died half-way left none (a header
+     * written before, of the other kind, is unmarked first) */
+    uint32_t magic = 0;
+    r |= put(fd, &magic, sizeof magic, offsetof(WireHead, magic));
     if (r == 0)
         r = put(fd, hb, head, 0);
-    uint32_t magic = WIRE_MAGIC;
+    magic = in_child ? WIRE_MAGIC_VM : WIRE_MAGIC;
     if (r == 0)
         r = put(fd, &magic, sizeof magic, offsetof(WireHead, magic));
     free(hb);
@@ -263,39 +268,64 @@ static const char *tidy(Mesh *m)
     return NULL;
 }
 
-/* Span s of the memfd (len bytes) into a fresh array at *dst: 0, or
- * -1. Big arrays get huge pages and are faulted in at once (bigmem.h),
- * then filled by pread: the one copy the parent makes. */
-static int take(int fd, size_t len, const WireSpan *s, uint64_t want, int is_str, void **dst)
+/* Where the arrays are: the memfd (len bytes), or the memory of the
+ * child pid, which waits to be read (process_vm_readv: no memfd copy). */
+typedef struct {
+    int    fd;
+    size_t len;
+    pid_t  pid;
+    int    vm;              /* the header said the spans are addresses */
+} Src;
+
+static int src_read(const Src *src, char *dst, uint64_t len, uint64_t off)
+{
+    for (uint64_t got = 0; got < len;) {
+        ssize_t r;
+        if (src->vm) {
+            struct iovec here = { dst + got, len - got }, there = { (void *)(uintptr_t)(off + got), len - got };
+            r = process_vm_readv(src->pid, &here, 1, &there, 1, 0);
+        } else {
+            r = pread(src->fd, dst + got, len - got, (off_t)(off + got));
+        }
+        if (r <= 0)
+            return -1;
+        got += (uint64_t)r;
+    }
+    return 0;
+}
+
+/* Span s into a fresh array at *dst: 0, or -1. Big arrays get huge
+ * pages and are faulted in at once (bigmem.h), then filled by one read:
+ * the one copy the parent makes. */
+static int take(const Src *src, const WireSpan *s, uint64_t want, int is_str, void **dst)
 {
     *dst = NULL;
     if (!s->present)
         return 0;
-    if (s->off > len || len - s->off < s->len || (!is_str && s->len != want) || (is_str && s->len == 0))
+    if ((!src->vm && (s->off > src->len || src->len - s->off < s->len)) || (!is_str && s->len != want) ||
+        (is_str && s->len == 0) || s->len > ((uint64_t)1 << 46))
         return -1;
     char *p = malloc(s->len ? s->len : 1);
     if (!p)
         return -1;
     *dst = p;
     bigmem_advise(p, s->len, 1);
-    for (uint64_t got = 0; got < s->len;) {
-        ssize_t r = pread(fd, p + got, s->len - got, (off_t)(s->off + got));
-        if (r <= 0)
-            return -1;
-        got += (uint64_t)r;
-    }
+    if (src_read(src, p, s->len, s->off))
+        return -1;
     if (is_str && memchr(p, 0, s->len) != p + s->len - 1)
         return -1;
     return 0;
 }
 
-int sandbox_wire_read(int fd, size_t len, Mesh *m, int *rc, char *err, size_t errlen)
+int sandbox_wire_read(int fd, size_t len, pid_t pid, Mesh *m, int *rc, char *err, size_t errlen)
 {
     WireHead hd;
     const WireHead *h = &hd;
     memset(m, 0, sizeof *m);
-    if (len < sizeof hd || pread(fd, &hd, sizeof hd, 0) != (ssize_t)sizeof hd || hd.magic != WIRE_MAGIC)
+    if (len < sizeof hd || pread(fd, &hd, sizeof hd, 0) != (ssize_t)sizeof hd ||
+        (hd.magic != WIRE_MAGIC && !(pid > 0 && hd.magic == WIRE_MAGIC_VM)))
         return bad(err, errlen, "no result");
+    Src src = { .fd = fd, .len = len, .pid = pid, .vm = hd.magic == WIRE_MAGIC_VM };
     *rc = h->rc ? -1 : 0;
     if (h->rc) {
         snprintf(err, errlen, "%.*s", (int)strnlen(h->err, sizeof h->err - 1), h->err);
@@ -315,7 +345,7 @@ int sandbox_wire_read(int fd, size_t len, Mesh *m, int *rc, char *err, size_t er
     for (int k = 0; k < F_FIXED; k++)
         *slot(m, k) = NULL;
     for (int k = 0; k < F_FIXED; k++) {
-        if (take(fd, len, &sp[k], want_len(m, k), k == F_PATH, slot(m, k)))
+        if (take(&src, &sp[k], want_len(m, k), k == F_PATH, slot(m, k)))
             goto fail;
         if ((k == F_FSTART && !runs_ok(m->face_start, m->nfaces, NULL, 0, 0)) ||
             (k == F_LSTART && !runs_ok(m->line_start, m->nlines, NULL, 0, 0)))
@@ -332,7 +362,7 @@ int sandbox_wire_read(int fd, size_t len, Mesh *m, int *rc, char *err, size_t er
             goto fail;
         for (int k = 0; k < T_SPANS; k++) {
             uint64_t want = k == T_DATA ? dlen : k == T_RGBA ? texture_bytes_for(w, ht) : 0;
-            if (take(fd, len, &sp[F_FIXED + i * T_SPANS + k], want, k <= T_PATH, tex_slot(t, k)))
+            if (take(&src, &sp[F_FIXED + i * T_SPANS + k], want, k <= T_PATH, tex_slot(t, k)))
                 goto fail;
         }
         m->ntex = hm.ntex;
