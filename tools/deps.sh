@@ -8,12 +8,13 @@ set -e
 # tmux drives the viewer's end-to-end tests; python3 reads colours out of
 # their screens (tests/e2e/looks.py), decodes PNG sizes and plays a slow
 # terminal link (slowpty.py). libpng-dev and libjpeg-dev decode textures.
-# libseccomp-dev builds the filter of the loading sandbox (src/sandbox).
+# libseccomp-dev builds the filter of the loading sandbox (src/sandbox);
+# strace shows its tests what a load opened and how its result came back.
 # assimp-testmodels is Debian's corpus of assimp's test files
 # (/usr/share/assimp/models): the up-axis tests read models from it, and
 # the texture tests its textured models (tests/test_surface.c: glTF, GLB,
 # data: URIs, COLLADA, OBJ).
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev libseccomp-dev libcriterion-dev tmux python3 libassimp-dev assimp-testmodels"
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive

@@ -126,6 +126,24 @@ if "$Z" --formats 2>/dev/null | grep -q '^gltf'; then
     done
 fi
 
+# ==== the result's way back: the child's memory, else the memfd ====
+if command -v strace >/dev/null 2>&1; then
+    # --info without its timing line
+    info() { "$@" 2>&1 | grep -v '^load:'; }
+    info "$Z" --info --no-sandbox assets/demo.obj >"$T/want"
+    info strace -f -qq -o "$T/trace" -e trace=process_vm_readv "$Z" --info assets/demo.obj >"$T/out"
+    if grep -aq 'process_vm_readv(.*) = [1-9]' "$T/trace" && cmp -s "$T/want" "$T/out"; then
+        ok "the mesh is copied out of the child's memory, and is the mesh loaded in-process"
+    else notok "the mesh is copied out of the child's memory, and is the mesh loaded in-process" "$(diff "$T/want" "$T/out" | head -5)"; fi
+    # where reading another process is not allowed (ptrace rules), the memfd
+    info strace -f -qq -o /dev/null -e trace=process_vm_readv -e inject=process_vm_readv:error=EPERM \
+        "$Z" --info assets/demo.obj >"$T/out"
+    if cmp -s "$T/want" "$T/out"; then ok "process_vm_readv refused: the same mesh through the memfd"; else
+        notok "process_vm_readv refused: the same mesh through the memfd" "$(diff "$T/want" "$T/out" | head -5)"; fi
+else
+    skip "the result's way back" "no strace (tools/deps.sh installs it)"
+fi
+
 # ==== the viewer: O survives each, Esc ends a load that spins ====
 [ -d "$LIB" ] || exit 0
 . "$(dirname "$0")/tmux.sh"
