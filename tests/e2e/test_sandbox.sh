@@ -129,7 +129,7 @@ fi
 # ==== the result's way back: the child's memory, else the memfd ====
 if command -v strace >/dev/null 2>&1; then
     # --info without its timing line
-    info() { "$@" 2>&1 | grep -v '^load:'; }
+    info() { "$@" 2>&1 | grep -v '^load:\|scored in'; }
     info "$Z" --info --no-sandbox assets/demo.obj >"$T/want"
     info strace -f -qq -o "$T/trace" -e trace=process_vm_readv "$Z" --info assets/demo.obj >"$T/out"
     if grep -aq 'process_vm_readv(.*) = [1-9]' "$T/trace" && cmp -s "$T/want" "$T/out"; then
