@@ -128,6 +128,20 @@ static int open_resolved(const char *root, const char *full, char *why, size_t w
     return fd;
 }
 
+/* full relative to the folder root, or NULL when it is not in it (by
+ * name: links and `..` are looked at later). */
+static const char *beneath(const char *root, const char *full)
+{
+    size_t rl = strlen(root);
+    if (!strcmp(root, "."))
+        return full[0] == '/' ? NULL : full;
+    if (!strcmp(root, "/"))
+        return full[0] == '/' ? full + 1 : NULL;
+    if (!strncmp(full, root, rl) && full[rl] == '/')
+        return full + rl + 1;
+    return NULL;
+}
+
 int mesh_ref_open(const char *model, const char *full, char *why, size_t whylen)
 {
     if (!model || !strcmp(model, "-"))
@@ -142,21 +156,14 @@ int mesh_ref_open(const char *model, const char *full, char *why, size_t whylen)
         snprintf(root, sizeof root, "%.*s", (int)(slash - model), model);
     /* the loaders give the referring file's folder + the name, or the
      * name alone when it is absolute: what follows the model's folder */
-    const char *rel = NULL;
-    size_t rl = strlen(root);
-    if (!strcmp(root, "."))
-        rel = full[0] == '/' ? NULL : full;
-    else if (!strcmp(root, "/"))
-        rel = full[0] == '/' ? full + 1 : NULL;
-    else if (!strncmp(full, root, rl) && full[rl] == '/')
-        rel = full + rl + 1;
+    const char *rel = beneath(root, full);
+    /* the folder and an absolute name run together, as assimp joins them
+     * ("m//dev/zero"): the absolute name is what counts */
+    if (rel && rel[0] == '/')
+        rel = beneath(root, rel);
     if (!rel)
         return refuse(why, whylen, full[0] == '/' ? "an absolute path outside the model's folder"
                                                   : "outside the model's folder");
-    /* the folder and an absolute name run together ("m//dev/zero": how
-     * assimp joins them) */
-    if (rel[0] == '/')
-        return refuse(why, whylen, "an absolute path outside the model's folder");
     if (!*rel || climbs(rel))
         return refuse(why, whylen, "'..' leads out of the model's folder");
     int dirfd = open(root, O_PATH | O_DIRECTORY | O_CLOEXEC);
