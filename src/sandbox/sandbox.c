@@ -52,20 +52,27 @@ int sandbox_available(void)
     return prctl(PR_GET_SECCOMP, 0, 0, 0, 0) >= 0;
 }
 
-/* The child's address space now, in bytes: its limit is this plus the
- * budget, so that what the process already maps (a viewer's scene, a
- * sanitizer's shadow memory, reserved but never touched) is not counted
- * against the model. */
-static uint64_t vm_now(void)
+/* The child's address space and its private writable part (VmData)
+ * now, in bytes: its limits are these plus the budget, so that what the
+ * process already maps (a viewer's scene, a sanitizer's shadow memory,
+ * reserved but never touched) is not counted against the model. Both:
+ * AddressSanitizer's allocator carves its heap out of space reserved at
+ * start, which RLIMIT_AS never sees grow, but each piece it maps
+ * writable counts in VmData (RLIMIT_DATA). */
+static void vm_now(uint64_t *as, uint64_t *data)
 {
-    FILE *f = fopen("/proc/self/statm", "r");
-    unsigned long long pages = 0;
-    if (f) {
-        if (fscanf(f, "%llu", &pages) != 1)
-            pages = 0;
-        fclose(f);
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[128];
+    unsigned long long kb;
+    *as = *data = 0;
+    while (f && fgets(line, sizeof line, f)) {
+        if (sscanf(line, "VmSize: %llu kB", &kb) == 1)
+            *as = (uint64_t)kb << 10;
+        else if (sscanf(line, "VmData: %llu kB", &kb) == 1)
+            *data = (uint64_t)kb << 10;
     }
-    return (uint64_t)pages * (uint64_t)sysconf(_SC_PAGESIZE);
+    if (f)
+        fclose(f);
 }
 
 static void set_limit(int what, uint64_t soft, uint64_t hard)
@@ -108,9 +115,20 @@ static void child_prepare(Job *j)
         from = (unsigned)keep[i] + 1;
     }
     syscall(SYS_close_range, from, ~0u, 0u);
-    uint64_t vm = vm_now();
-    if (j->budget < (uint64_t)RLIM_INFINITY - vm)  /* else nothing is known of the machine's memory */
-        set_limit(RLIMIT_AS, vm + j->budget, vm + j->budget);
+    /* a quiet load (the viewer's, under curses) keeps the child's stderr
+     * off the terminal too: a crashing library's last words, a
+     * sanitizer's report */
+    int null = j->lo->quiet ? open("/dev/null", O_WRONLY | O_CLOEXEC) : -1;
+    if (null >= 0) {
+        dup2(null, STDERR_FILENO);
+        close(null);
+    }
+    uint64_t as, data;
+    vm_now(&as, &data);
+    if (j->budget < (uint64_t)RLIM_INFINITY - as) {     /* else nothing is known of the machine's memory */
+        set_limit(RLIMIT_AS, as + j->budget, as + j->budget);
+        set_limit(RLIMIT_DATA, data + j->budget, data + j->budget);
+    }
     set_limit(RLIMIT_CPU, j->cpu, j->cpu + 1);     /* SIGXCPU, then SIGKILL a second later */
     set_limit(RLIMIT_CORE, 0, 0);
 }
