@@ -332,8 +332,8 @@ static int load(Mesh *m, const char *path, const MeshLoadOpts *lo, const Sandbox
         return data ? mesh_parse_buffer_ex(m, path, lo, data, len, err, errlen)
                     : mesh_load_ex(m, path, lo, err, errlen);
     memset(m, 0, sizeof *m);
-    Job j = { .path = path, .name = !path ? "(input)" : strcmp(path, "-") ? path : "stdin", .lo = lo, .data = data, .len = len,
-              .cpu = so && so->cpu_seconds ? so->cpu_seconds : SANDBOX_CPU_SECONDS };
+    Job j = { .path = path, .name = !path ? "(input)" : strcmp(path, "-") ? path : "stdin", .lo = lo,
+              .data = data, .len = len, .cpu = so && so->cpu_seconds ? so->cpu_seconds : SANDBOX_CPU_SECONDS };
     j.budget = so && so->max_memory ? so->max_memory : lo->max_bytes ? lo->max_bytes : sysmem_available();
     MeshLoadOpts lo2 = *lo;
     if (!lo2.max_bytes && so && so->max_memory)
