@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order bench-textures
+.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-seeds replay bench-points bench-order bench-textures bench-sandbox
 
 all: $(BIN)
 
@@ -74,6 +74,7 @@ help:
 	@echo '  make bench-points  a 10M-point scan: load and frames'
 	@echo '  make bench-order   hzb and hzb-octree under each --order'
 	@echo '  make bench-textures textured frames against untextured; the first picture of a 16k image'
+	@echo '  make bench-sandbox the loading sandbox against --no-sandbox on the dragon'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
 	@echo '  make assets        regenerate the bundled models (they are committed)'
@@ -233,6 +234,11 @@ bench-textures: $(BIN) $(BUILD)/uvmodel
 
 $(BUILD)/uvmodel: tools/uvmodel.c $(LIBOBJS)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
+# The loading sandbox's cost on the dragon (README: Security): sandboxed
+# against --no-sandbox, medians, pinned to one core.
+bench-sandbox: $(BIN)
+	ZVIEW=$(abspath $(BIN)) sh tools/bench-sandbox.sh
 
 # Regenerate the bundled models (they are committed; this is how they were made).
 assets: $(BUILD)/genassets

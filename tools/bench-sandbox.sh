@@ -3,7 +3,9 @@
 # --no-sandbox, alternately, pinned to one core, RUNS times each; the
 # medians of the load as --info reports it (wall time from the load's
 # start to a Mesh in hand: for the sandbox that is the fork, the child's
-# load, the filter and the copy back) and of the whole command.
+# load, the filter and the copy back) and of the whole command; then the
+# CPU time (user + system, the child's included) of RUNS commands of
+# each, which a busy machine disturbs far less than wall time.
 # MODEL=... another model; RUNS=N (default 21).
 set -u
 Z=${ZVIEW:-./zview}
@@ -32,3 +34,10 @@ ron=$(med "$T/run-on"); roff=$(med "$T/run-off")
 echo "model: $MODEL, $RUNS runs each, pinned to CPU $CPU, medians"
 awk -v a="$lon" -v b="$loff" 'BEGIN { printf "load (--info):  sandboxed %.1f ms, --no-sandbox %.1f ms: %+.1f%%\n", a, b, 100 * (a - b) / b }'
 awk -v a="$ron" -v b="$roff" 'BEGIN { printf "whole command:  sandboxed %.1f ms, --no-sandbox %.1f ms: %+.1f%%\n", a / 1000, b / 1000, 100 * (a - b) / b }'
+cpu() {
+    /usr/bin/time -f "%U %S" -o "$T/cpu" taskset -c "$CPU" sh -c \
+        "i=0; while [ \$i -lt $RUNS ]; do '$Z' --info $1 '$MODEL' >/dev/null 2>&1; i=\$((i + 1)); done"
+    awk -v n="$RUNS" '{ printf "%.1f", ($1 + $2) * 1000 / n }' "$T/cpu"
+}
+con=$(cpu ""); coff=$(cpu --no-sandbox)
+awk -v a="$con" -v b="$coff" 'BEGIN { printf "CPU a command:  sandboxed %.1f ms, --no-sandbox %.1f ms: %+.1f%%\n", a, b, 100 * (a - b) / b }'
