@@ -2,10 +2,10 @@
 # them under AddressSanitizer + UBSan; make bench prints the benchmark.
 CC      ?= cc
 PREFIX  ?= /usr/local
-PKGS    := ncursesw libpng libjpeg zlib
+PKGS    := ncursesw libpng libjpeg zlib libseccomp
 # feature macros are set per file (term.c needs the wide-char curses ones)
 PKG_CFLAGS := $(filter-out -D%,$(shell pkg-config --cflags $(PKGS) 2>/dev/null))
-PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -ltinfo -lpng16 -ljpeg -lz)
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lncursesw -ltinfo -lpng16 -ljpeg -lz -lseccomp)
 
 # Optional: assimp for the long tail of formats (glTF, FBX, 3DS, ...).
 # On when pkg-config finds it; `make ASSIMP=0` builds without.
@@ -34,7 +34,7 @@ LDLIBS  += $(PKG_LIBS) $(AI_LIBS) -lm -pthread
 BUILD   ?= build
 SRCS    := $(wildcard src/*/*.c)
 ifneq ($(ASSIMP),1)
-SRCS    := $(filter-out src/mesh/assimp.c,$(SRCS))
+SRCS    := $(filter-out src/mesh/assimp.c src/mesh/assimpio.c,$(SRCS))
 endif
 LIBSRCS := $(filter-out src/main/main.c,$(SRCS))
 OBJS    := $(SRCS:%.c=$(BUILD)/%.o)
@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels
+.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox
 
 all: $(BIN)
 
@@ -77,6 +77,7 @@ help:
 	@echo '  make bench-textures textured frames against untextured; the first picture of a 16k image'
 	@echo '  make bench-pixels  bytes a picture costs in sixel, kitty and iTerm2 images against text'
 	@echo '  make bench-check   --check of the dragon and the 5.2M model beyond loading, and its peak memory'
+	@echo '  make bench-sandbox the loading sandbox against --no-sandbox on the dragon'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
 	@echo '  make assets        regenerate the bundled models (they are committed)'
@@ -145,10 +146,18 @@ replay: $(REPLAYS)
 # "models" (needs ../shared/models: make test-models) and "tools" (run by
 # tools/ scripts) are not part of it.
 UNIT_FILTER := !(models/*|tools/*)
-test: $(BIN) $(TESTBIN) $(REPLAYS)
+test: $(BIN) $(TESTBIN) $(REPLAYS) $(STANDIN)
 	ZVIEW=$(abspath $(BIN)) sh tests/unit.sh $(TESTBIN) --jobs 2 --filter '$(UNIT_FILTER)'
 	$(MAKE) --no-print-directory replay
-	ZVIEW=$(abspath $(BIN)) sh tests/e2e/run.sh
+	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) sh tests/e2e/run.sh
+
+# The stand-in assimp library of the sandbox's tests (tests/standin):
+# its import tries what an exploited parser would. Named as the real one
+# is, so that LD_LIBRARY_PATH=$(BUILD)/standin puts it in its place.
+STANDIN := $(BUILD)/standin/$(if $(AI_SONAME),$(AI_SONAME),libassimp.so.5)
+$(STANDIN): tests/standin/fakeassimp.c
+	@mkdir -p $(dir $@)
+	$(CC) -O1 -g -Wall -Wextra -fPIC -shared -Wl,-soname,$(notdir $@) $(filter-out -D%,$(shell pkg-config --cflags assimp 2>/dev/null)) -o $@ $<
 
 unit: $(TESTBIN)
 	ZVIEW=$(abspath $(BIN)) sh tests/unit.sh $(TESTBIN) --jobs 2 --filter '$(UNIT_FILTER)'
@@ -168,8 +177,8 @@ test-models: $(TESTBIN)
 mutate:
 	sh tools/mutate.sh tests/mutants.txt
 
-e2e: $(BIN)
-	ZVIEW=$(abspath $(BIN)) sh tests/e2e/run.sh
+e2e: $(BIN) $(STANDIN)
+	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) sh tests/e2e/run.sh
 
 # Sanitized build in its own folder, same tests, with the invariants
 # on (-DZV_CHECKS turns ZV_ASSERT on: include/check.h).
@@ -251,6 +260,11 @@ bench-textures: $(BIN) $(BUILD)/uvmodel
 
 $(BUILD)/uvmodel: tools/uvmodel.c $(LIBOBJS)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
+# The loading sandbox's cost on the dragon (README: Security): sandboxed
+# against --no-sandbox, medians, pinned to one core.
+bench-sandbox: $(BIN)
+	ZVIEW=$(abspath $(BIN)) sh tools/bench-sandbox.sh
 
 # Regenerate the bundled models (they are committed; this is how they were made).
 assets: $(BUILD)/genassets

@@ -9,6 +9,7 @@
 #include "backdrop.h"
 #include "hsr.h"
 #include "present.h"
+#include "sandbox.h"
 #include "scene.h"
 #include "screen.h"
 #include "shade.h"
@@ -56,6 +57,8 @@ typedef struct {
     Placement   place[MAX_PLACE];
     int         nplace;
     uint64_t    max_polys;      /* refuse bigger scenes */
+    uint64_t    max_memory;     /* --max-memory: bytes a load may take (0: what is available) */
+    int         no_sandbox;     /* --no-sandbox: load in this process (sandbox.h) */
     int         persp;          /* 1 = --persp given */
     float       fov;
     int         cull;
@@ -187,6 +190,10 @@ int   app_standin(const Scene *s, Scene *out);
  * or -1 with "file:line: message" in err. app_load_scene_ex also gives
  * the automatic first view's choice (fv NULL: not wanted). */
 int  app_load_scene(const Options *o, Scene *s, char *err, size_t errlen);
+/* How the options say loads are sandboxed (--no-sandbox, --max-memory),
+ * and the warning, once a run, of a system that cannot sandbox them. */
+SandboxOpts app_sandbox_opts(const Options *o);
+void app_sandbox_warn(const Options *o);
 int  app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size_t errlen);
 /* Refuse (-1, the reason in err) a scene that, with its --grid copies,
  * would have more than --max-polys polygons; the message gives the count

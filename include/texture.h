@@ -56,6 +56,10 @@ int  texture_peek(const void *data, size_t len, int *w_out, int *h_out);
 int  texture_decode_fit(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
                         int max_side, int *halved_out, char *err, size_t errlen);
 void texture_free(Texture *t);
+/* The 16-bit linear texels (t->lin) for levels that came whole from
+ * elsewhere (the loading sandbox passes the sRGB levels only); left NULL
+ * when out of memory, and sampling then reads the sRGB levels. */
+void texture_make_lin(Texture *t);
 /* Bytes the texels of every level take (rgba and lin). */
 size_t texture_bytes(const Texture *t);
 /* Bytes a w x h image's texels and mipmaps take (4/3 of level 0). */

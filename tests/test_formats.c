@@ -287,8 +287,9 @@ Test(formats, mtllib_naming_a_fifo_does_not_block, .init = cr_redirect_stderr)
     fflush(stderr);
     char want[1024];
     snprintf(want, sizeof want,
-             "zview: warning: %s:1: cannot open material library 'pipe.mtl' (not a regular file (a FIFO))\n"
-             "zview: warning: %s:2: cannot open material library '/dev/stdin' (not a regular file (a FIFO))\n",
+             "zview: warning: %s:1: cannot open material library 'pipe.mtl' (refused: a FIFO)\n"
+             "zview: warning: %s:2: cannot open material library '/dev/stdin' (refused: an absolute path outside "
+             "the model's folder)\n",
              obj, obj);
     cr_assert_stderr_eq_str(want);
 }

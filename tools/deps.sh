@@ -9,13 +9,15 @@ set -e
 # their screens (tests/e2e/looks.py), decodes PNG sizes and plays a slow
 # terminal link (slowpty.py). libpng-dev and libjpeg-dev decode textures;
 # zlib1g-dev reads gzip-compressed models (x.stl.gz).
+# libseccomp-dev builds the filter of the loading sandbox (src/sandbox);
+# strace shows its tests what a load opened and how its result came back.
 # assimp-testmodels is Debian's corpus of assimp's test files
 # (/usr/share/assimp/models): the up-axis tests read models from it, and
 # the texture tests its textured models (tests/test_surface.c: glTF, GLB,
 # data: URIs, COLLADA, OBJ).
 # xvfb, xterm and imagemagick: a real terminal that draws sixel, looked
 # at through a screenshot (tests/e2e/test_xterm.sh).
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libcriterion-dev tmux python3 libassimp-dev assimp-testmodels xvfb xterm imagemagick"
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive

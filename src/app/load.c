@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "sandbox.h"
 
 #ifndef ZV_DATADIR
 #define ZV_DATADIR "/usr/local/share/zview"
@@ -40,6 +41,19 @@ const char *app_demo_path(void)
     return "assets/demo.obj";
 }
 
+SandboxOpts app_sandbox_opts(const Options *o)
+{
+    SandboxOpts so = { .off = o->no_sandbox, .max_memory = o->max_memory };
+    return so;
+}
+
+void app_sandbox_warn(const Options *o)
+{
+    if (!o->no_sandbox && !sandbox_available())
+        fprintf(stderr, "zview: warning: this system has no seccomp filters: models load in zview's own process, "
+                "unsandboxed (--no-sandbox says so and silences this)\n");
+}
+
 int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
 {
     return app_load_scene_ex(o, s, NULL, err, errlen);
@@ -61,8 +75,10 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
         return -1;
     }
     int from_stdin = 0;
+    app_sandbox_warn(o);
     MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys,
-                        .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
+                        .max_bytes = o->max_memory, .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
+    SandboxOpts so = app_sandbox_opts(o);
     /* one file of several that cannot be read (gone, unreadable, not a
      * model) is named in a warning and the rest are shown; --strict, or
      * every file failing, refuses */
@@ -70,7 +86,7 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
     char left_out[256] = "";
     for (int i = 0; i < nfiles; i++) {
         from_stdin |= strcmp(files[i], "-") == 0;
-        if (mesh_load_ex(&meshes[nread], files[i], &lo, err, errlen)) {
+        if (sandbox_load(&meshes[nread], files[i], &lo, &so, err, errlen)) {
             nfailed++;
             if (nfiles > 1 && !o->strict && nfailed < nfiles) {
                 fprintf(stderr, "zview: warning: %s (left out; the other files are shown)\n", err);

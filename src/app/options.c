@@ -256,6 +256,21 @@ static int set_max_polys(Options *o, const OptCall *c)
     return 0;
 }
 
+/* "512M", "2G", "1.5G", or bytes: the memory a load may take. */
+static int set_max_memory(Options *o, const OptCall *c)
+{
+    char *end;
+    double v = strtod(c->val, &end);
+    double unit = *end == 'k' || *end == 'K' ? 1e3 : *end == 'M' ? 1048576.0 : *end == 'G' ? 1073741824.0
+                : *end == 'T' ? 1099511627776.0 : 1;
+    if (unit != 1)
+        end++;
+    if (end == c->val || *end || !(v * unit >= 16 * 1048576.0) || v * unit > 1e18)
+        return bad(c, "a size of at least 16M (512M, 2G, or bytes)");
+    o->max_memory = (uint64_t)(v * unit);
+    return 0;
+}
+
 static int set_light(Options *o, const OptCall *c)
 {
     if (parse_floats(c->val, o->light, 2))
@@ -466,6 +481,10 @@ const OptSpec cli_options[] = {
     { "strict", 0, NULL, NULL, OPTSEC_INPUT,
       "refuse a file with a statement zview cannot read\n(default: skip those, show the rest, warn once)",
       NULL, FLAG(strict), 0 },
+    { "no-sandbox", 0, NULL, NULL, OPTSEC_INPUT,
+      "load in zview's own process, not in a sandboxed child\n(README: Security)", NULL, FLAG(no_sandbox), 0 },
+    { "max-memory", 0, "SIZE", NULL, OPTSEC_INPUT,
+      "memory a load may take (512M, 2G; default: what\nthe machine has available)", set_max_memory, 0, 0 },
     { "points", 0, NULL, NULL, OPTSEC_INPUT, "every vertex as a point, the faces left out", NULL, FLAG(points),
       OPT_VIEWCMD },
     /* ---- Output ---- */

@@ -37,6 +37,7 @@
 #include <assimp/scene.h>
 #include <assimp/version.h>
 
+#include "assimpio.h"
 #include "mesh.h"
 #include "mesh_internal.h"
 
@@ -49,7 +50,7 @@
     X(aiImportFile) X(aiImportFileFromMemory) X(aiReleaseImport) X(aiGetErrorString)   \
     X(aiIsExtensionSupported) X(aiGetImportFormatCount) X(aiGetImportFormatDescription) \
     X(aiGetVersionMajor) X(aiGetVersionMinor) X(aiGetVersionPatch) X(aiGetMaterialColor) \
-    X(aiGetMaterialFloatArray) X(aiGetMaterialString) X(aiIdentityMatrix4) X(aiGetMaterialTexture)
+    X(aiGetMaterialFloatArray) X(aiGetMaterialString) X(aiIdentityMatrix4) X(aiGetMaterialTexture) X(aiImportFileEx)
 
 typedef struct {
 #define AI_FIELD(f) __typeof__(f) *f;
@@ -577,6 +578,8 @@ static int import_failed(MeshCtx *c)
     const char *s = ai()->aiGetErrorString();
     if (!s || !*s)
         s = "assimp could not read it";
+    if (strstr(s, "bad_alloc"))     /* the limit of the sandbox (--max-memory) or of the machine */
+        return me_fail(&c->err, "out of memory reading it (assimp: %.100s; --max-memory sets the bound)", s);
     size_t n = strcspn(s, "\n");
     return me_fail(&c->err, "%.*s", (int)(n < 300 ? n : 300), s);
 }
@@ -652,7 +655,10 @@ static int ai_parse_path(MeshCtx *c, const char *path)
 {
     if (!ai())
         return no_library(c);
-    const struct aiScene *sc = ai()->aiImportFile(path, ai_flags(c->hint));
+    /* what the model names is opened beneath its folder only (assimpio.c) */
+    AiIo io;
+    ai_io_init(&io, &c->err, path, NULL, 0, NULL);
+    const struct aiScene *sc = ai()->aiImportFileEx(path, ai_flags(c->hint), &io.fio);
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);
@@ -714,7 +720,12 @@ static int ai_parse(MeshCtx *c, const char *data, size_t len)
         if (*hint)
             c->hint = hint;   /* and the format's unit and name follow it */
     }
-    const struct aiScene *sc = ai()->aiImportFileFromMemory(data, (unsigned)len, ai_flags(hint), hint);
+    /* from memory through a file system of its own, which serves the
+     * bytes and nothing else: assimp's own memory import would open the
+     * files a model names from the current folder */
+    AiIo io;
+    ai_io_init(&io, &c->err, NULL, data, len, hint);
+    const struct aiScene *sc = ai()->aiImportFileEx(io.name, ai_flags(hint), &io.fio);
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "grow.h"
 #include "mesh_internal.h"
@@ -75,26 +76,30 @@ void mb_material_no_texture(Material *mt)
 /* A file's bytes, for an image: regular files only (a FIFO would block
  * for ever), no bigger than the texels of the largest image allowed
  * (compressed images are far smaller). 0, or -1 with the reason. */
-static int read_image_file(const char *path, void **data_out, size_t *len_out, char *why, size_t whylen)
+static int read_image_file(const char *model, const char *path, void **data_out, size_t *len_out, char *why,
+                           size_t whylen)
 {
     struct stat st;
     *data_out = NULL;
     *len_out = 0;
-    if (stat(path, &st) != 0) {
-        snprintf(why, whylen, "%s", strerror(errno));
+    /* beneath the model's folder, a regular file (mesh_ref_open) */
+    int fd = mesh_ref_open(model, path, why, whylen);
+    if (fd < 0)
         return -1;
-    }
-    if (!S_ISREG(st.st_mode)) {
-        snprintf(why, whylen, "not a regular file");
+    if (fstat(fd, &st) != 0) {
+        snprintf(why, whylen, "%s", strerror(errno));
+        close(fd);
         return -1;
     }
     if ((uint64_t)st.st_size > texture_bytes_for(TEX_MAX_SIDE, TEX_MAX_SIDE)) {
         snprintf(why, whylen, "too large for an image");
+        close(fd);
         return -1;
     }
-    FILE *f = fopen(path, "rb");
+    FILE *f = fdopen(fd, "rb");
     if (!f) {
         snprintf(why, whylen, "%s", strerror(errno));
+        close(fd);
         return -1;
     }
     size_t n = (size_t)st.st_size;
@@ -165,7 +170,9 @@ int mesh_texture_decode(const MeshTexture *t, uint64_t max_bytes, Texture *out, 
     size_t len = t->len;
     char why[160];
     memset(out, 0, sizeof *out);
-    if (!data && t->path && read_image_file(t->path, &data, &len, why, sizeof why)) {
+    /* a pending texture's path has no model to be confined to (and may
+     * have come from a sandboxed child): none is opened */
+    if (!data && t->path && read_image_file(NULL, t->path, &data, &len, why, sizeof why)) {
         snprintf(err, errlen, "%s", why);
         return -1;
     }
@@ -250,7 +257,7 @@ int32_t mb_texture(MeshBuild *b, const char *name, const char *path, const void 
     void *bytes = NULL;
     char why[160];
     if (path) {
-        if (read_image_file(path, &bytes, &len, why, sizeof why)) {
+        if (read_image_file(b->e->model, path, &bytes, &len, why, sizeof why)) {
             texture_failed(b, name, why);
             return i;
         }

@@ -235,9 +235,15 @@ static int load_library(Parser *ps, const char *name, size_t n)
     }
     MeshFile f;
     char msg[160];
-    /* Regular files only: a FIFO or /dev/stdin would block for ever. */
+    /* Regular files beneath the model's folder only: a FIFO or
+     * /dev/stdin would block for ever, ../../secret.mtl is not the
+     * model's to show (mesh_ref_open). */
     char why[200];
-    if (mf_open(&f, full, MF_REGULAR_ONLY, msg, sizeof msg)) {
+    char ref[120];
+    int fd = mesh_ref_open(ps->e->model, full, ref, sizeof ref);
+    if (fd < 0)
+        snprintf(msg, sizeof msg, "%s%s", strncmp(ref, "refused", 7) ? "cannot open: " : "", ref);
+    if (fd < 0 || mf_open_fd(&f, fd, MF_REGULAR_ONLY, msg, sizeof msg)) {
         snprintf(why, sizeof why, "(%s)", msg);
         return lib_unread(ps, name, n, "cannot open material library", why);
     }

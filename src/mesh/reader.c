@@ -182,6 +182,13 @@ int mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen)
         snprintf(msg, msglen, "cannot open: %s", strerror(errno));
         return -1;
     }
+    return mf_open_fd(f, fd, flags, msg, msglen);
+}
+
+int mf_open_fd(MeshFile *f, int fd, int flags, char *msg, size_t msglen)
+{
+    memset(f, 0, sizeof *f);
+    f->data = f->head = "";
     f->fd = fd;
     struct stat st;
     if (fstat(fd, &st) < 0) {

@@ -50,6 +50,9 @@ typedef struct {
      * none at all. */
     int         tex_defer_side;
     int         no_textures;
+    /* The model's file: what it names is opened beneath its folder only
+     * (mesh_ref_open). NULL for standard input and memory: nothing. */
+    const char *model;
 } MeshErr;
 
 /* Each writes the message and returns -1, so `return me_fail(...)`. */
@@ -134,6 +137,17 @@ typedef struct MeshFile {
  * ("cannot open: ...", "is a directory", "not a regular file (a FIFO)").
  * An empty file succeeds with nhead 0. */
 int  mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen);
+/* The same on a descriptor already open (taken over: closed on failure
+ * and by mf_close): a file mesh_ref_open let through. */
+int  mf_open_fd(MeshFile *f, int fd, int flags, char *msg, size_t msglen);
+
+/* Open for reading `full`, a file the model at `model` names, as the
+ * loader composed it (the referring file's folder and the name, or the
+ * name alone when absolute): only a regular file beneath the model's
+ * folder (refopen.c). model NULL or "-": nothing may be opened. A
+ * descriptor, or -1 with the reason in why ("refused: ..." for a
+ * reference out of bounds, else the system's message). */
+int  mesh_ref_open(const char *model, const char *full, char *why, size_t whylen);
 
 /* gzip (gzip.c): do these bytes start gzip data? Start decompressing
  * f (its fd read on from where it stands; seed: the compressed bytes

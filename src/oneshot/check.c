@@ -28,9 +28,11 @@ typedef struct {
 
 static int check_file(const Options *o, FileCheck *fc)
 {
-    MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys };
+    MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys,
+                        .max_bytes = o->max_memory };
+    SandboxOpts so = app_sandbox_opts(o);
     Mesh m;
-    if (mesh_load_ex(&m, fc->path, &lo, fc->err, sizeof fc->err))
+    if (sandbox_load(&m, fc->path, &lo, &so, fc->err, sizeof fc->err))
         return -1;
     if (o->flip)
         mesh_flip_winding(&m);

@@ -337,6 +337,12 @@ void texture_free(Texture *t)
     memset(t, 0, sizeof *t);
 }
 
+void texture_make_lin(Texture *t)
+{
+    if (t->rgba && !t->lin)
+        texture_build_lin(t);
+}
+
 size_t texture_bytes(const Texture *t)
 {
     return (t->rgba ? (size_t)texture_bytes_for(t->w, t->h) : 0) + (t->lin ? (size_t)texture_lin_bytes_for(t->w, t->h) : 0);

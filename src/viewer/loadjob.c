@@ -48,6 +48,7 @@ struct LoadJob {
     int          fifo;          /* the path is a FIFO: read here */
     char         path[4096];
     MeshLoadOpts lo;
+    SandboxOpts  so;            /* the load runs in a child (sandbox.h): Esc kills it */
     MeshProgress prog;
     int          flip, points;
     uint64_t     size;          /* the file's size, 0 unknown */
@@ -178,7 +179,7 @@ static int fifo_load(LoadJob *j, Mesh *m)
         snprintf(j->err, sizeof j->err, "%.300s: %s", j->path, why);
         return -1;
     }
-    rc = mesh_parse_buffer_ex(m, j->path, &j->lo, data, len, j->err, sizeof j->err);
+    rc = sandbox_parse_buffer(m, j->path, &j->lo, &j->so, data, len, j->err, sizeof j->err);
     free(data);
     return rc;
 }
@@ -192,7 +193,7 @@ static void *job_main(void *arg)
     j->rc = -1;
     if (!m) {
         snprintf(j->err, sizeof j->err, "out of memory");
-    } else if (j->fifo ? fifo_load(j, m) : mesh_load_ex(m, j->path, &j->lo, j->err, sizeof j->err)) {
+    } else if (j->fifo ? fifo_load(j, m) : sandbox_load(m, j->path, &j->lo, &j->so, j->err, sizeof j->err)) {
         free(m);
     } else if (cancelled(j)) {
         mesh_free(m);           /* nobody wants it: no scene built */
@@ -278,6 +279,8 @@ LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t err
     j->lo.format = o->format;
     j->lo.strict = o->strict;
     j->lo.max_polys = o->max_polys;
+    j->lo.max_bytes = o->max_memory;
+    j->so = app_sandbox_opts(o);
     j->lo.quiet = 1;            /* curses owns the terminal: warnings go to the status bar */
     j->lo.tex_defer_side = TEX_DEFER_SIDE;  /* big images after the file shows (texjob.c) */
     j->lo.progress = &j->prog;

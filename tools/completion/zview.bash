@@ -42,7 +42,7 @@ _zview()
             COMPREPLY=($(compgen -f -- "$cur"))
             return ;;
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
-            --scale | --persp | --grid | --max-polys | --views | -j | --threads | --fps | --max-rate | --crease | \
+            --scale | --persp | --grid | --max-polys | --max-memory | --views | -j | --threads | --fps | --max-rate | --crease | \
             --light | --ambient | --turntable | --point-size | --line-width | --contrast)
             return ;;
     esac
@@ -54,7 +54,7 @@ _zview()
             --move --turn --scale --persp --ortho --cull --grid --max-polys --bench --bench-tty
             --views --threads --json --fps --max-rate --format --formats --up --flip --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
-            --turntable --point-size --line-width --wireframe --points --strict --bg --contrast --no-textures
+            --turntable --point-size --line-width --wireframe --points --strict --no-sandbox --max-memory --bg --contrast --no-textures
             --problems --parts --watch" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return

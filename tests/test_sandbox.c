@@ -1,0 +1,238 @@
+/* test_sandbox.c: the loading sandbox (issue 22). A load in the child
+ * gives the very arrays a load in-process gives (the wire loses and
+ * invents nothing, textures included); a result the child could have
+ * forged is refused by the parent's checks; cancel ends the child; and
+ * references beneath the model's folder are the only ones opened. */
+
+#define _GNU_SOURCE
+
+#include <criterion/criterion.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "../src/mesh/mesh_internal.h"
+#include "sandbox.h"
+
+#define SAME(a, b, n) ((!(a) && !(b)) || ((a) && (b) && memcmp((a), (b), (n)) == 0))
+
+static void assert_same(const Mesh *a, const Mesh *b)
+{
+    cr_assert_eq(a->nverts, b->nverts);
+    cr_assert_eq(a->nfaces, b->nfaces);
+    cr_assert_eq(a->nmats, b->nmats);
+    cr_assert_eq(a->nobjs, b->nobjs);
+    cr_assert_eq(a->ntex, b->ntex);
+    cr_assert_eq(a->nuv, b->nuv);
+    cr_assert_str_eq(a->path, b->path);
+    cr_assert(SAME(a->pos, b->pos, (size_t)a->nverts * 12));
+    cr_assert(SAME(a->rgb, b->rgb, (size_t)a->nverts * 12));
+    cr_assert(SAME(a->face_start, b->face_start, ((size_t)a->nfaces + 1) * 4));
+    size_t nc = a->face_start ? a->face_start[a->nfaces] : 0;
+    cr_assert(SAME(a->corner, b->corner, nc * 4));
+    cr_assert(SAME(a->corner_uv, b->corner_uv, nc * 4));
+    cr_assert(SAME(a->face_mat, b->face_mat, (size_t)a->nfaces * 4));
+    cr_assert(SAME(a->mats, b->mats, (size_t)a->nmats * sizeof(Material)));
+    cr_assert(SAME(a->objs, b->objs, (size_t)a->nobjs * sizeof(MeshObject)));
+    cr_assert(SAME(a->uv, b->uv, (size_t)a->nuv * 8));
+    for (uint32_t i = 0; i < a->ntex; i++) {
+        cr_assert_str_eq(a->tex[i].name, b->tex[i].name);
+        cr_assert_eq(a->tex[i].state, b->tex[i].state);
+        cr_assert_eq(texture_bytes(&a->tex[i].img), texture_bytes(&b->tex[i].img));
+        cr_assert(SAME(a->tex[i].img.rgba, b->tex[i].img.rgba, texture_bytes(&a->tex[i].img)));
+    }
+    cr_assert_eq(a->info.warnings, b->info.warnings);
+    cr_assert_str_eq(a->info.format, b->info.format);
+}
+
+static void load_both(const char *path)
+{
+    Mesh in, out;
+    char e1[512], e2[512];
+    MeshLoadOpts lo = { .quiet = 1 };
+    SandboxOpts off = { .off = 1 }, on = { 0 };
+    cr_assert_eq(sandbox_load(&in, path, &lo, &off, e1, sizeof e1), 0, "%s", e1);
+    cr_assert_eq(sandbox_load(&out, path, &lo, &on, e2, sizeof e2), 0, "%s", e2);
+    assert_same(&in, &out);
+    mesh_free(&in);
+    mesh_free(&out);
+}
+
+Test(sandbox, a_sandboxed_load_gives_the_same_mesh)
+{
+    cr_assert(sandbox_available());
+    load_both("assets/demo.obj");       /* materials, objects */
+    load_both("assets/torus.obj");
+}
+
+Test(sandbox, textures_cross_the_wire)
+{
+    const char *p = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+    cr_assert_eq(access(p, R_OK), 0, "assimp-testmodels is missing (tools/deps.sh)");
+    Mesh m;
+    char err[512];
+    MeshLoadOpts lo = { .quiet = 1 };
+    cr_assert_eq(sandbox_load(&m, p, &lo, NULL, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(m.ntex, 1);
+    cr_assert_eq(m.tex[0].state, MTEX_OK);
+    mesh_free(&m);
+    load_both(p);
+}
+
+Test(sandbox, errors_read_as_in_process)
+{
+    Mesh a, b;
+    char e1[512], e2[512];
+    SandboxOpts off = { .off = 1 };
+    cr_assert_eq(sandbox_load(&a, "/nonexistent/x.obj", NULL, &off, e1, sizeof e1), -1);
+    cr_assert_eq(sandbox_load(&b, "/nonexistent/x.obj", NULL, NULL, e2, sizeof e2), -1);
+    cr_assert_str_eq(e1, e2);
+    cr_assert_eq(b.nverts, 0);
+    cr_assert_null(b.pos);
+}
+
+Test(sandbox, a_set_cancel_ends_the_child)
+{
+    Mesh m;
+    char err[512];
+    int stop = 1;
+    MeshLoadOpts lo = { .cancel = &stop };
+    cr_assert_eq(sandbox_load(&m, "assets/torus.obj", &lo, NULL, err, sizeof err), -1);
+    cr_assert_str_eq(err, "assets/torus.obj: cancelled");
+}
+
+Test(sandbox, a_buffer_loads_in_the_child)
+{
+    static const char obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    Mesh m;
+    char err[512];
+    cr_assert_eq(sandbox_parse_buffer(&m, "t.obj", NULL, NULL, obj, sizeof obj - 1, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(m.nverts, 3);
+    cr_assert_eq(m.nfaces, 1);
+    cr_assert_eq(m.corner[2], 2);
+    mesh_free(&m);
+}
+
+/* ==== A forged result ==== */
+
+/* The wire of the demo model in a memfd, mapped writable: *len bytes. */
+static char *wire_of(const char *path, size_t *len, Mesh *m, int *fd_out)
+{
+    char err[512];
+    cr_assert_eq(mesh_load(m, path, err, sizeof err), 0, "%s", err);
+    int fd = memfd_create("t", 0);
+    cr_assert(fd >= 0);
+    cr_assert_eq(sandbox_wire_write(fd, m, 0, "", 0), 0);
+    struct stat st;
+    cr_assert_eq(fstat(fd, &st), 0);
+    *len = (size_t)st.st_size;
+    char *map = mmap(NULL, *len, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    cr_assert(map != MAP_FAILED);
+    *fd_out = fd;
+    return map;
+}
+
+/* The map is the memfd's, shared: what the test writes there is what
+ * the reader reads through fd. */
+static int read_back(int fd, size_t len, char *err, size_t errlen)
+{
+    Mesh m;
+    int rc = 0;
+    int r = sandbox_wire_read(fd, len, 0, &m, &rc, err, errlen);
+    if (r == 0)
+        mesh_free(&m);
+    return r;
+}
+
+/* Offset of the bytes of `needle` (n bytes) in the map, after the header. */
+static size_t find(const char *map, size_t len, const void *needle, size_t n)
+{
+    for (size_t i = 64; i + n <= len; i += 4)
+        if (!memcmp(map + i, needle, n))
+            return i;
+    cr_assert_fail("not found");
+    return 0;
+}
+
+Test(sandbox, a_forged_result_is_refused)
+{
+    Mesh m;
+    size_t len;
+    char err[256];
+    int fd;
+    char *map = wire_of("assets/demo.obj", &len, &m, &fd);
+    cr_assert_eq(read_back(fd, len, err, sizeof err), 0, "%s", err);
+    /* a corner index past the vertices */
+    size_t at = find(map, len, m.corner, 16);
+    uint32_t keep;
+    memcpy(&keep, map + at, 4);
+    uint32_t bad = m.nverts + 5;
+    memcpy(map + at, &bad, 4);
+    cr_assert_eq(read_back(fd, len, err, sizeof err), -1);
+    cr_assert(strstr(err, "malformed mesh (faces)"), "%s", err);
+    memcpy(map + at, &keep, 4);
+    /* cut short: a span past the end */
+    cr_assert_eq(read_back(fd, len - 64, err, sizeof err), -1);
+    cr_assert(strstr(err, "malformed mesh"), "%s", err);
+    /* no magic: the child died half-way */
+    char m0 = map[0];
+    map[0] ^= 1;
+    cr_assert_eq(read_back(fd, len, err, sizeof err), -1);
+    cr_assert(strstr(err, "no result"), "%s", err);
+    map[0] = m0;
+    /* a face_start that runs backwards */
+    at = find(map, len, m.face_start, 12);
+    uint32_t huge = 0xfffffff0u;
+    memcpy(map + at + 4, &huge, 4);
+    cr_assert_eq(read_back(fd, len, err, sizeof err), -1);
+    munmap(map, len);
+    close(fd);
+    mesh_free(&m);
+}
+
+/* ==== References beneath the model's folder ==== */
+
+Test(sandbox, references_stay_beneath_the_folder)
+{
+    char dir[] = "/tmp/zv-ref-XXXXXX", p[600], why[200];
+    cr_assert(mkdtemp(dir));
+    snprintf(p, sizeof p, "mkdir -p %s/m/sub %s/out && echo x >%s/m/sub/ok.png && echo s >%s/out/s.bin && "
+             "ln -s ../out/s.bin %s/m/out.bin && ln -s sub/ok.png %s/m/in.png && mkfifo %s/m/f",
+             dir, dir, dir, dir, dir, dir, dir);
+    cr_assert_eq(system(p), 0);
+    char model[300], full[400];
+    snprintf(model, sizeof model, "%s/m/x.obj", dir);
+    struct { const char *ref; int ok; const char *why; } cases[] = {
+        { "sub/ok.png", 1, NULL },
+        { "sub/../sub/ok.png", 1, NULL },
+        { "in.png", 1, NULL },                          /* a link that stays inside */
+        { "../out/s.bin", 0, "'..' leads out" },
+        { "sub/../../out/s.bin", 0, "'..' leads out" },
+        { "out.bin", 0, "leads out of the model's folder" },
+        { "f", 0, "a FIFO" },
+        { "/dev/zero", 0, "an absolute path" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        if (cases[i].ref[0] == '/')
+            snprintf(full, sizeof full, "%s", cases[i].ref);
+        else
+            snprintf(full, sizeof full, "%s/m/%s", dir, cases[i].ref);
+        int fd = mesh_ref_open(model, full, why, sizeof why);
+        if (cases[i].ok) {
+            cr_assert(fd >= 0, "%s: %s", cases[i].ref, why);
+            close(fd);
+        } else {
+            cr_assert_eq(fd, -1, "%s was opened", cases[i].ref);
+            cr_assert(strstr(why, "refused: ") && strstr(why, cases[i].why), "%s: %s", cases[i].ref, why);
+        }
+    }
+    snprintf(full, sizeof full, "%s/m/sub/ok.png", dir);
+    cr_assert_eq(mesh_ref_open("-", full, why, sizeof why), -1);
+    cr_assert_eq(mesh_ref_open(NULL, full, why, sizeof why), -1);
+    snprintf(p, sizeof p, "rm -rf %s", dir);
+    cr_assert_eq(system(p), 0);
+}
