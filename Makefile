@@ -138,6 +138,15 @@ replay: $(REPLAYS)
 	$(BUILD)/replay-check tests/fuzz/seeds/check tests/fuzz/regress/check 2>/dev/null
 	$(BUILD)/replay-tex tests/fuzz/seeds/tex tests/fuzz/regress/tex
 
+# The stand-in assimp library of the sandbox's tests (tests/standin):
+# its import tries what an exploited parser would. Named as the real one
+# is, so that LD_LIBRARY_PATH=$(BUILD)/standin puts it in its place. (Defined before the
+# rules that list it: a rule's prerequisites are expanded as it is read.)
+STANDIN := $(BUILD)/standin/$(if $(AI_SONAME),$(AI_SONAME),libassimp.so.5)
+$(STANDIN): tests/standin/fakeassimp.c
+	@mkdir -p $(dir $@)
+	$(CC) -O1 -g -Wall -Wextra -fPIC -shared -Wl,-soname,$(notdir $@) $(filter-out -D%,$(shell pkg-config --cflags assimp 2>/dev/null)) -o $@ $<
+
 # The whole suite: unit tests (Criterion), the fuzz corpora, then
 # end-to-end shell tests. Both runners count the checks that skipped
 # themselves (no tmux, no python3, no assimp) and fail on them: the run
@@ -150,14 +159,6 @@ test: $(BIN) $(TESTBIN) $(REPLAYS) $(STANDIN)
 	ZVIEW=$(abspath $(BIN)) sh tests/unit.sh $(TESTBIN) --jobs 2 --filter '$(UNIT_FILTER)'
 	$(MAKE) --no-print-directory replay
 	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) sh tests/e2e/run.sh
-
-# The stand-in assimp library of the sandbox's tests (tests/standin):
-# its import tries what an exploited parser would. Named as the real one
-# is, so that LD_LIBRARY_PATH=$(BUILD)/standin puts it in its place.
-STANDIN := $(BUILD)/standin/$(if $(AI_SONAME),$(AI_SONAME),libassimp.so.5)
-$(STANDIN): tests/standin/fakeassimp.c
-	@mkdir -p $(dir $@)
-	$(CC) -O1 -g -Wall -Wextra -fPIC -shared -Wl,-soname,$(notdir $@) $(filter-out -D%,$(shell pkg-config --cflags assimp 2>/dev/null)) -o $@ $<
 
 unit: $(TESTBIN)
 	ZVIEW=$(abspath $(BIN)) sh tests/unit.sh $(TESTBIN) --jobs 2 --filter '$(UNIT_FILTER)'

@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "fuzz.h"
+#include "simd.h"
 #include "texture.h"
 
 #define CHECK(cond)                                                                 \
@@ -44,7 +45,8 @@ static void check_pyramid(const Texture *t)
         end += (size_t)t->lw[k] * t->lh[k];
     }
     CHECK(t->lw[t->levels - 1] == 1 && t->lh[t->levels - 1] == 1);
-    CHECK(texture_bytes(t) == 4 * end);
+    CHECK(texture_bytes_for(t->w, t->h) == 4 * end);
+    CHECK(texture_bytes(t) >= 4 * end);     /* and the 16-bit linear copy, when there is one */
     /* the last texel of the last level is readable (ASan says if not) */
     volatile uint8_t last = t->rgba[4 * end - 1];
     (void)last;
@@ -99,6 +101,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (!fit && texture_peek(img, len, &pw, &ph) == 0)
         CHECK(pw == t.w && ph == t.h);
     sample_all_over(&t, data, size);
+    /* the shading pass's lookup from the 16-bit copy, at every SIMD level */
+    for (int simd = 0; simd <= (int)simd_level(); simd++) {
+        float c[3];
+        texture_sample_lin(&t, NAN, INFINITY, 3.5f, simd, c);
+        texture_sample_lin(&t, 1e7f, -0.25f, NAN, simd, c);
+        texture_sample_lin(&t, 0.3f, 0.7f, INFINITY, simd, c);
+        for (int k = 0; k < 3; k++)
+            CHECK(c[k] >= 0 && c[k] <= 1.0001f);
+    }
     for (TexWrap m = TEX_REPEAT; m <= TEX_MIRROR; m++) {
         t.wrap_u = m;
         t.wrap_v = (TexWrap)((m + 1) % 3);
