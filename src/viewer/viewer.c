@@ -189,163 +189,6 @@ int app_command_layout(const App *a, int cols, char *buf, size_t len, const char
     return n;
 }
 
-/* The colour depth as the status bar names it. */
-static const char *depth_label(ColourDepth d)
-{
-    switch (d) {
-    case COLOUR_TRUE: return "24bit";
-    case COLOUR_256:  return "256";
-    case COLOUR_16:   return "16";
-    case COLOUR_8:    return "8";
-    default:         return "mono";
-    }
-}
-
-/* The status bar's fields, in the order shown. When the bar is wider
- * than the window, fields go by rank, lowest first: 1 frame time and
- * fps, 2 picture size, 3 display mode, shading and colours, 4 view flags
- * (persp, cull, spin), 5 selection. Rank 0 stays: the file, the
- * polygons (points and lines too when there are some), the algorithm and
- * its time, work going on in the background (a file loading, the octree
- * building), and "? help"; in a window still
- * too narrow they take their brief forms ("drawn/faces", "?"), then the
- * file name is cut to a dozen columns, then the note is cut at its end or
- * goes (rank 6: it answers a key, so it outlasts everything else but the
- * name's last columns; without one, why the frame is empty), and last of
- * all the file name is cut further. The man page gives the same order. */
-#define BAR_FIELDS 12
-#define BAR_NOTE   6
-enum { CHECK = 8, BUSY = 9, NOTE = 10, HELP = 11 };     /* the last fields' places */
-
-typedef struct {
-    char text[96];
-    char brief[32];     /* a rank 0 field's short form ("" = none) */
-    int  rank;          /* -1: dropped */
-    int  glued;         /* joined to the field before by a space, not " | " */
-} BarField;
-
-static void bar_field(BarField *f, int rank, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static void bar_field(BarField *f, int rank, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(f->text, sizeof f->text, fmt, ap);
-    va_end(ap);
-    f->brief[0] = 0;
-    f->rank = rank;
-    f->glued = 0;
-}
-
-/* Join the fields still in (not dropped, not empty). Returns the length. */
-static int bar_join(const BarField *f, char *buf, size_t len)
-{
-    size_t o = 0;
-    buf[0] = 0;
-    for (int i = 0; i < BAR_FIELDS; i++) {
-        if (f[i].rank < 0 || !f[i].text[0])
-            continue;
-        int k = snprintf(buf + o, len - o, "%s%s", !o ? " " : f[i].glued ? " " : " | ", f[i].text);
-        if (k < 0 || (size_t)k >= len - o)
-            break;
-        o += (size_t)k;
-    }
-    return (int)o;
-}
-
-/* Cut the file name (field 0) until the bar fits, keeping at least
- * `keep_min` bytes and marking the cut with '~'. */
-static void shorten_name(BarField *f, char *buf, size_t len, int width, int keep_min)
-{
-    int over = bar_join(f, buf, len) - width;
-    int name_len = (int)strlen(f[0].text);
-    if (over <= 0 || name_len <= keep_min + 1)
-        return;
-    int keep = name_len - over - 1 > keep_min ? name_len - over - 1 : keep_min;
-    while (keep > 3 && (f[0].text[keep] & 0xc0) == 0x80)
-        keep--;         /* not inside a UTF-8 character */
-    f[0].text[keep] = '~';      /* ASCII: the locale may not be UTF-8 */
-    f[0].text[keep + 1] = 0;
-}
-
-static void status_text(const App *a, char *buf, size_t len, double frame_ms, int fps_cap, int width)
-{
-    if (a->sk.on) {
-        sketch_mode_status(a, buf, len, width);
-        return;
-    }
-    const Scene *s = a->s;
-    BarField f[BAR_FIELDS];
-    bar_field(&f[0], 0, "%s", a->name);
-    bar_field(&f[1], 5, "%s", "");
-    if (a->sel >= 0)
-        bar_field(&f[1], 5, "[%s %d/%d]", s->objs[a->sel].name, a->sel + 1, s->nobjs);
-    else if (s->nobjs > 1)
-        bar_field(&f[1], 5, "[all %d]", s->nobjs);
-    f[1].glued = 1;
-    /* points and lines beside the faces when the scene has them */
-    char prims[48] = "";
-    if (s->npoints)
-        snprintf(prims, sizeof prims, " points %u", s->npoints);
-    if (s->nlines)
-        snprintf(prims + strlen(prims), sizeof prims - strlen(prims), " lines %u", s->nlines);
-    bar_field(&f[2], 0, "faces %u%s drawn %u", s->nfaces, prims, a->p.sp.npolys);
-    snprintf(f[2].brief, sizeof f[2].brief, "%u/%u", a->p.sp.npolys, s->nfaces);
-    bar_field(&f[3], 0, "%s %.2fms", a->p.algo->name, a->p.hsr_ms);
-    bar_field(&f[4], 1, "frame %.1fms %.0ffps", frame_ms, frame_ms > 0 ? 1000.0 / frame_ms : 0);
-    bar_field(&f[5], 3, "%s %s %s", a->pixels && term_pixels() != PIX_CELLS ? pixel_proto_names[term_pixels()]
-                                                                          : mode_names[a->mode],
-              shade_names[a->p.shade], depth_label(term_colour()));
-    char spin[24] = "";
-    if (a->spin)
-        snprintf(spin, sizeof spin, "spin@%d", fps_cap);
-    bar_field(&f[6], 4, "%s%s%s%s%s", s->cam.persp ? "persp" : "",
-              s->cam.persp && (a->cull || a->spin) ? " " : "", a->cull ? "cull" : "",
-              a->cull && a->spin ? " " : "", spin);
-    bar_field(&f[7], 2, "%dx%dpx", a->p.img.w, a->p.img.h);
-    /* a note answers a key; without one, why the frame is empty */
-    bar_field(&f[NOTE], BAR_NOTE, "%s", a->note[0] ? a->note : a->empty_why ? a->empty_why : "");
-    bar_field(&f[HELP], 0, "? help");
-    snprintf(f[HELP].brief, sizeof f[HELP].brief, "?");
-    /* work going on in the background, so that nothing looks frozen */
-    char busy[96] = "";
-    if (a->job)
-        loadjob_status(a->job, busy, sizeof busy);
-    else if (a->tex)
-        texjob_status(a->tex, busy, sizeof busy);
-    else if (a->p.st.building)
-        snprintf(busy, sizeof busy, "building octree...");
-    bar_field(&f[BUSY], 0, "%s", busy);
-    /* the check's verdict in a word or two (--problems, --parts, !) */
-    char verdict[96];
-    app_check_status(a, verdict, sizeof verdict);
-    bar_field(&f[CHECK], 0, "%s", verdict);
-    for (int rank = 1; rank < BAR_NOTE && bar_join(f, buf, len) > width; rank++)
-        for (int i = 0; i < BAR_FIELDS; i++)
-            if (f[i].rank == rank)
-                f[i].rank = -1;
-    if (bar_join(f, buf, len) > width)
-        for (int i = 0; i < BAR_FIELDS; i++)
-            if (f[i].brief[0])
-                memcpy(f[i].text, f[i].brief, sizeof f[i].brief);
-    /* a note outranks the rest while it shows: the file name gives way
-     * first (to a dozen columns), then the note is cut at its end, and
-     * goes when little would be left; the name last of all */
-    shorten_name(f, buf, len, width, 12);
-    int over = bar_join(f, buf, len) - width, note_len = (int)strlen(f[NOTE].text);
-    if (over > 0 && note_len - over - 1 >= 12) {
-        int keep = note_len - over - 1;
-        while (keep > 0 && (f[NOTE].text[keep] & 0xc0) == 0x80)
-            keep--;
-        f[NOTE].text[keep] = '~';
-        f[NOTE].text[keep + 1] = 0;
-    } else if (over > 0) {
-        f[NOTE].rank = -1;
-    }
-    shorten_name(f, buf, len, width, 3);
-    bar_join(f, buf, len);
-}
-
-/* ==== Overlays: the open prompt, its candidates, the info panel ==== */
 
 /* Columns of UTF-8 text (every character one column, as vt_text draws). */
 static int text_cols(const char *s, int bytes)
@@ -564,7 +407,7 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
     if (m == VM_PROMPT) {
         draw_prompt(&a->prompt, rows - 1, cols);
     } else {
-        status_text(a, bar, sizeof bar, d->frame_ms, fps_cap, cols);
+        viewer_status_text(a, bar, sizeof bar, d->frame_ms, fps_cap, cols);
         term_draw_bar(rows - 1, bar);
     }
     if (a->info && !viewer_mode_boxed(m))
@@ -958,7 +801,7 @@ int app_bench_tty(const Options *o)
         }
         double t1 = now_ms();
         term_draw_cells(&a.p.cells, 0);
-        status_text(&a, bar, sizeof bar, k ? render_ms[k - 1] + out_ms[k - 1] : 0, o->fps, cols);
+        viewer_status_text(&a, bar, sizeof bar, k ? render_ms[k - 1] + out_ms[k - 1] : 0, o->fps, cols);
         term_draw_bar(rows, bar);
         if (term_update(0)) {
             int e = errno;

@@ -265,4 +265,8 @@ void     app_note(App *a, const char *fmt, ...) __attribute__((format(printf, 2,
  * into a->help_text) and returns how many. */
 int      app_help_layout(App *a, int cols, int rows, const char **lines);
 
+/* The status bar's text for a window width columns wide (statusbar.c):
+ * frame_ms the last frame's time, fps_cap the auto-rotate cap. */
+void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, int fps_cap, int width);
+
 #endif
