@@ -9,6 +9,7 @@
 
 #define _DEFAULT_SOURCE
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -82,6 +83,20 @@ static const char *unit_of(const FileCheck *fc, int power, char *buf, size_t n)
     return buf;
 }
 
+/* The centre of mass with the rounding of its sums taken off: a
+ * component within a billionth of the model's size of zero is zero (a
+ * torus about the origin has its centre at 0 0 0, not 1.4e-10 ...). */
+static void centre_rounded(const CheckCounts *c, double out[3])
+{
+    double size = 0;
+    for (int k = 0; k < 3; k++) {
+        double d = (double)c->hi[k] - c->lo[k];
+        size = d > size ? d : size;
+    }
+    for (int k = 0; k < 3; k++)
+        out[k] = fabs(c->centre[k]) <= 1e-9 * size ? 0 : c->centre[k];
+}
+
 static void text_counts(Out *out, const FileCheck *fc, const CheckCounts *c, const char *ind)
 {
     char u1[16], u2[16], u3[16], words[512];
@@ -93,9 +108,11 @@ static void text_counts(Out *out, const FileCheck *fc, const CheckCounts *c, con
                (double)c->hi[1] - c->lo[1], (double)c->hi[2] - c->lo[2],
                fc->mc.unit[0] ? unit_of(fc, 1, u1, sizeof u1) : " (file units; the format states none)");
     out_printf(out, "%sarea          %g%s\n", ind, c->area, unit_of(fc, 2, u2, sizeof u2));
+    double com[3];
+    centre_rounded(c, com);
     if (c->has_volume)
         out_printf(out, "%svolume        %g%s, centre of mass %g %g %g\n", ind, c->volume, unit_of(fc, 3, u3, sizeof u3),
-                   c->centre[0], c->centre[1], c->centre[2]);
+                   com[0], com[1], com[2]);
     else
         out_printf(out, "%svolume        none: %s\n", ind, c->closed ? "not orientable" : "not closed");
     out_printf(out, "%sparts         %u\n", ind, c->components);
@@ -229,9 +246,11 @@ static void json_counts(Out *out, const CheckCounts *c, const char *ind)
     out_printf(out, ",\n%s\"unused_vertices\": %u,\n%s\"self_intersections\": %llu,\n%s\"watertight\": %s", ind,
                c->unused_vertices, ind, (unsigned long long)c->self_intersections, ind, json_bool(c->watertight));
     out_printf(out, ",\n%s\"area\": %.9g", ind, c->area);
+    double com[3];
+    centre_rounded(c, com);
     if (c->has_volume)
         out_printf(out, ",\n%s\"volume\": %.9g,\n%s\"center_of_mass\": [%.9g, %.9g, %.9g]", ind, c->volume, ind,
-                   c->centre[0], c->centre[1], c->centre[2]);
+                   com[0], com[1], com[2]);
     else
         out_printf(out, ",\n%s\"volume\": null,\n%s\"center_of_mass\": null", ind, ind);
     if (c->faces)
