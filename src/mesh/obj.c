@@ -13,9 +13,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "grow.h"
 #include "obj.h"
+#include "sysmem.h"
 
 /* ==== Messages ==== */
 
@@ -320,6 +322,120 @@ static int continued_statement(Parser *ps, LineReader *lr, const char *ls, const
     return statement(ps, ps->scratch, ps->scratch + n);
 }
 
+/* ==== What a big file will need ==== */
+
+/* Files from this size on are judged before they are parsed. */
+#define OBJ_JUDGE_BYTES ((size_t)8 << 20)
+/* The lines looked at: this much of the start and of the end. */
+#define OBJ_SAMPLE ((size_t)1 << 20)
+
+/* What the whole lines of a sample hold. */
+typedef struct {
+    uint64_t verts, faces, corners, bytes, vbytes;
+    uint64_t maxidx;        /* the largest positive vertex index a face names */
+} Sample;
+
+static void sample_lines(Sample *st, const char *p, const char *e)
+{
+    memset(st, 0, sizeof *st);
+    while (p < e) {
+        const char *q = memchr(p, '\n', (size_t)(e - p));
+        if (!q)
+            break;
+        const char *s = p;
+        while (s < q && is_space(*s))
+            s++;
+        if (q - s > 2 && (s[1] == ' ' || s[1] == '\t') && (s[0] == 'v' || s[0] == 'f')) {
+            if (s[0] == 'v') {
+                st->verts++;
+                st->vbytes += (uint64_t)(q + 1 - p);
+            } else {
+                st->faces++;
+                for (const char *t = s + 1; t < q; t++) {
+                    if (!is_space(t[-1]) || is_space(*t))
+                        continue;
+                    st->corners++;
+                    uint64_t v = 0;
+                    for (const char *d = t; d < q && is_digit(*d) && v < ((uint64_t)1 << 40); d++)
+                        v = v * 10 + (uint64_t)(*d - '0');
+                    st->maxidx = v > st->maxidx ? v : st->maxidx;
+                }
+            }
+        }
+        st->bytes += (uint64_t)(q + 1 - p);
+        p = q + 1;
+    }
+}
+
+/* The memory a byte of the sample makes: the mesh's arrays and what the
+ * scene adds (mb_estimate), per byte. -1 when it has no line. */
+static double sample_rate(const Sample *st)
+{
+    if (!st->bytes)
+        return -1;
+    return (double)mb_estimate(st->verts, 0, st->faces, st->corners, 0) / (double)st->bytes;
+}
+
+/* The estimate for a file of len bytes whose start and end look like
+ * hs and ts. An OBJ lists its vertices first and its faces last: the
+ * largest index its last faces name is (about) the vertex count, whose
+ * lines are as long as the start's; the rest of the file costs what
+ * the end does. Without that (no face at the end, relative indices, a
+ * vertex count the file could not hold), a floor: the rate of the start
+ * or of the end, whichever is less. */
+static double size_estimate(const Sample *hs, const Sample *ts, uint64_t len)
+{
+    double head = sample_rate(hs), end = sample_rate(ts);
+    double floor = head < 0 ? end : end < 0 ? head : head < end ? head : end;
+    if (hs->verts && ts->faces && ts->maxidx) {
+        double vlen = (double)hs->vbytes / (double)hs->verts;
+        double vb = vlen * (double)ts->maxidx;
+        if (vb < (double)len)
+            return (double)mb_estimate(ts->maxidx, 0, 0, 0, 0) + ((double)len - vb) * end;
+    }
+    return floor * (double)len;
+}
+
+/* A file that cannot fit is refused before it is parsed (seconds for a
+ * big one), with the estimate and the memory there is. The estimate
+ * leans low (size_estimate), so that nothing that fits is refused; what
+ * it lets through is still bounded as the arrays grow. */
+static int judge_size(MeshCtx *c, const char *text, size_t len)
+{
+    if (len < OBJ_JUDGE_BYTES)
+        return 0;
+    Sample hs, ts;
+    sample_lines(&hs, text, text + OBJ_SAMPLE);     /* in the first window */
+    char *buf = NULL;
+    const char *tail = text + len - OBJ_SAMPLE;
+    if (c->file && c->file->map) {
+        /* the end is not in the window: read, never touched in place */
+        buf = malloc(OBJ_SAMPLE);
+        if (!buf)
+            return me_oom(&c->err);
+        ssize_t r = pread(c->file->fd, buf, OBJ_SAMPLE, (off_t)(len - OBJ_SAMPLE));
+        tail = buf;
+        if (r != (ssize_t)OBJ_SAMPLE) {
+            free(buf);
+            return 0;       /* the parse will find out what happened */
+        }
+    }
+    /* the tail's first line is a piece: start after its end */
+    const char *t0 = memchr(tail, '\n', OBJ_SAMPLE);
+    sample_lines(&ts, t0 ? t0 + 1 : tail + OBJ_SAMPLE, tail + OBJ_SAMPLE);
+    free(buf);
+    double est = size_estimate(&hs, &ts, len);
+    uint64_t avail = c->err.max_bytes ? c->err.max_bytes : sysmem_available();
+    if (est <= 0 || !avail || est <= (double)avail)
+        return 0;
+    char size[32], need[32], have[32];
+    sysmem_format(len, size, sizeof size);
+    sysmem_format((uint64_t)est, need, sizeof need);
+    sysmem_format(avail, have, sizeof have);
+    return me_fail(&c->err, "%s of OBJ need about %s for the mesh (judged from lines of its start and end); "
+                   "%s available", size, need, have);
+}
+
 static int obj_parse(MeshCtx *c, const char *text, size_t len)
 {
     Parser ps = {0};
@@ -332,6 +448,8 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
         return -1;
     m->info.bytes = len;
     snprintf(m->info.format, sizeof m->info.format, "obj");
+    if (judge_size(c, text, len))
+        goto fail;
 
     /* Reserve for the densest plausible file (a vertex or a triangle per
      * 24 bytes) so that big meshes are not copied while growing; pages
