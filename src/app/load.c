@@ -61,7 +61,7 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
         return -1;
     }
     int from_stdin = 0;
-    MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys,
+    MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys, .threads = o->threads,
                         .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
     for (int i = 0; i < nfiles; i++) {
         if (mesh_load_ex(&meshes[i], files[i], &lo, err, errlen)) {

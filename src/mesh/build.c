@@ -332,9 +332,14 @@ int mb_want_rgb(MeshBuild *b)
 
 int mb_object(MeshBuild *b, const char *name, size_t len)
 {
+    return mb_object_at(b, name, len, b->m->nfaces, b->m->npoints, b->m->nlines);
+}
+
+int mb_object_at(MeshBuild *b, const char *name, size_t len, uint32_t nf, uint32_t np, uint32_t nl)
+{
     Mesh *m = b->m;
     MeshObject *cur = &m->objs[m->nobjs - 1];
-    if (cur->face_first != m->nfaces || cur->point_first != m->npoints || cur->line_first != m->nlines) {
+    if (cur->face_first != nf || cur->point_first != np || cur->line_first != nl) {
         if (m->nobjs == b->ocap &&
             grow((void **)&m->objs, &b->ocap, (size_t)m->nobjs + 1, sizeof(MeshObject)))
             return me_oom(b->e);
@@ -342,9 +347,9 @@ int mb_object(MeshBuild *b, const char *name, size_t len)
     }
     /* An object that got nothing is renamed rather than kept. */
     memset(cur, 0, sizeof *cur);
-    cur->face_first = m->nfaces;
-    cur->point_first = m->npoints;
-    cur->line_first = m->nlines;
+    cur->face_first = nf;
+    cur->point_first = np;
+    cur->line_first = nl;
     if (len > MESH_NAME_MAX - 1)
         len = MESH_NAME_MAX - 1;
     if (len) {

@@ -141,6 +141,11 @@ static int check_numbers(Parser *ps, const char *what, int lo, int hi,
 static int start_object(Parser *ps, const char *p, const char *e)
 {
     obj_trim(&p, &e);
+    const Mesh *m = ps->m;
+    /* a piece's first object is the one current where it starts, unless
+     * an `o` comes before any face, point or line of it */
+    if (m->nobjs == 1 && m->nfaces == 0 && m->npoints == 0 && m->nlines == 0)
+        ps->renamed0 = 1;
     return mb_object(&ps->b, p, (size_t)(e - p));
 }
 
@@ -254,7 +259,7 @@ static int scratch_put(Parser *ps, size_t *n, const char *p, size_t len)
 
 /* ==== The loader ==== */
 
-static void parser_free(Parser *ps)
+void obj_parser_free(Parser *ps)
 {
     free(ps->fwd);
     free(ps->bad_vert);
@@ -274,9 +279,7 @@ static Undo undo_mark(const Parser *ps)
     return (Undo){ ps->b.ncorner, ps->b.nlcorner, ps->m->npoints };
 }
 
-/* One logical line; a statement that cannot be read is skipped (undone
- * and counted) unless the load is strict. Returns -1 to stop. */
-static int statement(Parser *ps, const char *ls, const char *e)
+int obj_statement(Parser *ps, const char *ls, const char *e)
 {
     Undo u = undo_mark(ps);
     ps->stmt_failed = ps->stmt_vertex = 0;
@@ -319,7 +322,7 @@ static int continued_statement(Parser *ps, LineReader *lr, const char *ls, const
             break;
         }
     }
-    return statement(ps, ps->scratch, ps->scratch + n);
+    return obj_statement(ps, ps->scratch, ps->scratch + n);
 }
 
 /* ==== What a big file will need ==== */
@@ -436,15 +439,54 @@ static int judge_size(MeshCtx *c, const char *text, size_t len)
                    "%s available", size, need, have);
 }
 
+int obj_parser_init(Parser *ps, MeshCtx *c, int piece)
+{
+    memset(ps, 0, sizeof *ps);
+    ps->m = c->m;
+    ps->e = &c->err;
+    ps->path = piece ? NULL : c->path;
+    ps->cur_use = piece ? OBJ_INHERIT : -1;
+    ps->piece = piece;
+    return mb_start(&ps->b, c->m, &c->err, c->err.name);
+}
+
+int obj_lines(Parser *ps, LineReader *lr, const char *file_end)
+{
+    const char *ls, *le;
+    while (lr_next(lr, &ls, &le)) {
+        ps->line = lr->line;
+        if (le > ls && le[-1] == '\\') {
+            if (continued_statement(ps, lr, ls, le))
+                return -1;
+        } else if (obj_statement(ps, ls, le)) {
+            return -1;
+        } else if (le > ls && le[-1] == '\0') {
+            /* a NUL (the line ends with the run of them): no text goes
+             * on past binary data, so the rest is not read */
+            me_warn(ps->e, NULL, lr->line, "binary data: the rest of the file (%llu bytes) is not read",
+                    (unsigned long long)(file_end - le));
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int obj_finish(Parser *ps)
+{
+    if (obj_drop_unreadable(ps) || obj_resolve_materials(ps) || mb_finish(&ps->b, !ps->saw_elements))
+        return -1;
+    obj_libs_warn(ps);
+    if (ps->undrawn)
+        me_warn(ps->e, NULL, 0, "%u free-form statement%s (curves, surfaces) not drawn, first '%s'",
+                ps->undrawn, ps->undrawn == 1 ? "" : "s", ps->first_undrawn);
+    return 0;
+}
+
 static int obj_parse(MeshCtx *c, const char *text, size_t len)
 {
-    Parser ps = {0};
-    ps.m = c->m;
-    ps.e = &c->err;
-    ps.path = c->path;
-    ps.cur_use = -1;
+    Parser ps;
     Mesh *m = c->m;
-    if (mb_start(&ps.b, m, &c->err, c->err.name))
+    if (obj_parser_init(&ps, c, 0))
         return -1;
     m->info.bytes = len;
     snprintf(m->info.format, sizeof m->info.format, "obj");
@@ -462,39 +504,13 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
         if (mb_reserve_ex(&ps.b, guess, guess, 3 * guess, 0))
             goto fail;
     }
-
-    const char *p = text, *end = text + len;
-    if (len >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0)   /* UTF-8 BOM */
-        p += 3;
-    LineReader lr;
-    lr_init(&lr, p, (size_t)(end - p), c->file);
-    const char *ls, *le;
-    while (lr_next(&lr, &ls, &le)) {
-        ps.line = lr.line;
-        if (le > ls && le[-1] == '\\') {
-            if (continued_statement(&ps, &lr, ls, le))
-                goto fail;
-        } else if (statement(&ps, ls, le)) {
-            goto fail;
-        } else if (le > ls && le[-1] == '\0') {
-            /* a NUL (the line ends with the run of them): no text goes
-             * on past binary data, so the rest is not read */
-            me_warn(&c->err, NULL, lr.line, "binary data: the rest of the file (%llu bytes) is not read",
-                    (unsigned long long)(end - le));
-            break;
-        }
-    }
-    if (obj_drop_unreadable(&ps) || obj_resolve_materials(&ps) || mb_finish(&ps.b, !ps.saw_elements))
+    if (obj_parse_parallel(&ps, c, text, mesh_bom_len(text, len), len) < 0 || obj_finish(&ps))
         goto fail;
-    obj_libs_warn(&ps);
-    if (ps.undrawn)
-        me_warn(&c->err, NULL, 0, "%u free-form statement%s (curves, surfaces) not drawn, first '%s'",
-                ps.undrawn, ps.undrawn == 1 ? "" : "s", ps.first_undrawn);
-    parser_free(&ps);
+    obj_parser_free(&ps);
     return 0;
 
 fail:
-    parser_free(&ps);
+    obj_parser_free(&ps);
     mb_abort(&ps.b);
     return -1;
 }

@@ -50,6 +50,10 @@ typedef struct {
      * none at all. */
     int         tex_defer_side;
     int         no_textures;
+    /* Threads a text loader may parse on (0: every core; 1: serially),
+     * and the size of its pieces (0: its own; tests make them small). */
+    int         threads;
+    uint64_t    piece_bytes;
 } MeshErr;
 
 /* Each writes the message and returns -1, so `return me_fail(...)`. */
