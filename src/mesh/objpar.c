@@ -455,7 +455,6 @@ int obj_parse_parallel(Parser *ps, MeshCtx *c, const char *text, size_t from, si
     pool_free(pool);
     pthread_mutex_destroy(&r.mu);
     int rc = r.fatal ? -1 : r.first_rc;
-    if (getenv("ZV_OBJPAR_DEBUG")) fprintf(stderr, "pieces %d stop %d\n", r.n, r.stop);
     size_t resume = r.stop < r.n ? r.pc[r.stop].from : len;
     for (int k = 0; k < r.n; k++)
         piece_free(&r.pc[k]);
