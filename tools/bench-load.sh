@@ -36,37 +36,37 @@ fi
 # median of the numbers on stdin
 median() { sort -n | awk '{ a[NR] = $1 } END { print NR ? a[int((NR + 1) / 2)] : "-" }'; }
 
-# secs CMD...: the median wall time of RUNS runs, seconds
+# secs CMD...: "wall cpu max_rss_kb" of RUNS runs: the median wall and
+# CPU (user + system) seconds, the largest resident set
 secs() {
     for i in $(seq "$RUNS"); do
-        /usr/bin/time -f "%e" -o "$TMP/t" "$@" >/dev/null 2>&1
-        cat "$TMP/t"
-    done | median
-}
-
-# rss CMD...: max resident set of one run, KB
-rss() {
-    /usr/bin/time -f "%M" -o "$TMP/t" "$@" >/dev/null 2>&1
-    cat "$TMP/t"
+        t0=$(date +%s%N)
+        /usr/bin/time -f "%U %S %M" -o "$TMP/t" "$@" >/dev/null 2>&1
+        t1=$(date +%s%N)
+        echo "$(( (t1 - t0) / 1000000 )) $(cat "$TMP/t")"
+    done | awk '{ printf "%.3f %s %s %s\n", $1 / 1000, $2, $3, $4 }' >"$TMP/runs"
+    printf "%s %s %s\n" "$(awk '{ print $1 }' "$TMP/runs" | median)" \
+        "$(awk '{ print $2 + $3 }' "$TMP/runs" | median)" "$(awk '{ print $4 }' "$TMP/runs" | sort -n | tail -1)"
 }
 
 echo
 echo "## first picture (--print --size 80x24) against wc -l of the same cached file; medians of $RUNS, seconds"
-printf "%-14s %-10s %8s %8s %8s %8s %10s %8s\n" "model" "build" "threads" "wc_s" "print_s" "x_wc" "rss_MB" "B/tri"
+echo "## (wall: the clock, which other jobs on the machine stretch; cpu: user + system of all threads)"
+printf "%-14s %-8s %7s %7s %8s %7s %7s %9s %7s\n" "model" "build" "threads" "wc_s" "print_s" "x_wc" "cpu_s" "rss_MB" "B/tri"
 for m in $models; do
     name=$(basename "$m" .obj)
     cat "$m" >/dev/null
     tris=$("$ZV" --info "$m" | awk '/^triangles:/ { print $2 }')
-    wc=$(secs wc -l "$m")
+    wc=$(secs wc -l "$m" | cut -d' ' -f1)
     for b in after ${BEFORE:+before}; do
         set -- "$ZV"
         # the older builds refuse more than 20M polygons unless told
         [ "$b" = before ] && set -- "$BEFORE" --max-polys 2000000000
         for t in 1 2; do
-            p=$(secs "$@" --print --size 80x24 --threads "$t" "$m")
-            kb=$(rss "$@" --print --size 80x24 --threads "$t" "$m")
-            awk -v n="$name" -v b="$b" -v t="$t" -v w="$wc" -v p="$p" -v kb="$kb" -v tri="$tris" 'BEGIN {
-                printf "%-14s %-10s %8s %8.2f %8.2f %8.1f %10.0f %8.1f\n", n, b, t, w, p, w > 0 ? p / w : 0, kb / 1024, kb * 1024 / tri }'
+            set -- $(secs "$@" --print --size 80x24 --threads "$t" "$m") "$@"
+            awk -v n="$name" -v b="$b" -v t="$t" -v w="$wc" -v p="$1" -v cpu="$2" -v kb="$3" -v tri="$tris" 'BEGIN {
+                printf "%-14s %-8s %7s %7.3f %8.3f %7.1f %7.2f %9.0f %7.1f\n", n, b, t, w, p, (w > 0 ? p / w : 0), cpu, kb / 1024, kb * 1024 / tri }'
+            shift 3
         done
     done
 done
