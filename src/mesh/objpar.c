@@ -249,12 +249,14 @@ static int merge_vertices(Parser *ps, const Piece *p)
     const Mesh *pm = &p->m;
     if (pm->rgb && !m->rgb && mb_want_rgb(b))
         return -1;
-    memcpy(m->pos + 3 * (size_t)m->nverts, pm->pos, 3 * sizeof(float) * pm->nverts);
+    /* (memcpy may not be given NULL, even for nothing) */
+    if (pm->nverts)
+        memcpy(m->pos + 3 * (size_t)m->nverts, pm->pos, 3 * sizeof(float) * pm->nverts);
     if (m->rgb) {
         float *d = m->rgb + 3 * (size_t)m->nverts;
-        if (pm->rgb)
+        if (pm->rgb && pm->nverts)
             memcpy(d, pm->rgb, 3 * sizeof(float) * pm->nverts);
-        else
+        else if (!pm->rgb)
             for (size_t i = 0; i < 3 * (size_t)pm->nverts; i++)
                 d[i] = 1.0f;
     }
