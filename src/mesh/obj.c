@@ -427,7 +427,10 @@ static int judge_size(MeshCtx *c, const char *text, size_t len)
     const char *t0 = memchr(tail, '\n', OBJ_SAMPLE);
     sample_lines(&ts, t0 ? t0 + 1 : tail + OBJ_SAMPLE, tail + OBJ_SAMPLE);
     free(buf);
-    double est = size_estimate(&hs, &ts, len);
+    /* four fifths: lines grow longer down a file (bigger indices), so
+     * that the start's vertex lines can be shorter than the average and
+     * the estimate high; a refusal must not be wrong */
+    double est = 0.8 * size_estimate(&hs, &ts, len);
     uint64_t avail = c->err.max_bytes ? c->err.max_bytes : sysmem_available();
     if (est <= 0 || !avail || est <= (double)avail)
         return 0;
@@ -435,7 +438,7 @@ static int judge_size(MeshCtx *c, const char *text, size_t len)
     sysmem_format(len, size, sizeof size);
     sysmem_format((uint64_t)est, need, sizeof need);
     sysmem_format(avail, have, sizeof have);
-    return me_fail(&c->err, "%s of OBJ need about %s for the mesh (judged from lines of its start and end); "
+    return me_fail(&c->err, "%s of OBJ need at least about %s for the mesh (judged from lines of its start and end); "
                    "%s available", size, need, have);
 }
 
@@ -501,6 +504,11 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
      * little. */
     if (len >= ((size_t)1 << 20)) {
         size_t guess = (len < ((size_t)256 << 20) ? len : ((size_t)256 << 20)) / 24;
+        /* a guess is address space, but one bigger than the memory there
+         * is is cut to it: past it, the arrays are judged as they grow */
+        uint64_t avail = c->err.max_bytes ? c->err.max_bytes : sysmem_available();
+        if (avail && (uint64_t)guess * (12 + 8 + 12) > avail)
+            guess = (size_t)(avail / (12 + 8 + 12));
         if (mb_reserve_ex(&ps.b, guess, guess, 3 * guess, 0))
             goto fail;
     }
