@@ -186,6 +186,39 @@ Test(objpar, from_a_file)
     unlink(path);
 }
 
+/* A line longer than a piece's read block (4 MB): the block grows. */
+Test(objpar, a_line_longer_than_the_block)
+{
+    char path[] = "/tmp/zv-objpar-XXXXXX";
+    int fd = mkstemp(path);
+    cr_assert(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fprintf(f, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n");
+    for (int k = 0; k < 3; k++) {
+        fprintf(f, "f");
+        for (int i = 0; i < 900000; i++)
+            fprintf(f, " 1 2 4");
+        fprintf(f, "\nf -1 -2 -3\n");
+        /* short lines, where the cuts fall (none inside a long line) */
+        for (int i = 0; i < 150000; i++)
+            fprintf(f, "f 1 2 3\n");
+    }
+    fclose(f);
+    Mesh a, b;
+    char ea[256], eb[256];
+    MeshLoadOpts oa = { .strict = 1, .quiet = 1, .threads = 1 }, ob = oa;
+    ob.threads = 2;
+    ob.piece_bytes = 1 << 20;
+    cr_assert_eq(mesh_load_ex(&a, path, &oa, ea, sizeof ea), 0, "%s", ea);
+    cr_assert_eq(mesh_load_ex(&b, path, &ob, eb, sizeof eb), 0, "%s", eb);
+    const char *d = tl_mesh_differs(&a, &b);
+    cr_expect_null(d, "%s differs", d);
+    cr_expect_eq(a.nfaces, 3 * 150002);
+    mesh_free(&a);
+    mesh_free(&b);
+    unlink(path);
+}
+
 /* The comparison itself sees a difference (a test that cannot fail
  * proves nothing). */
 Test(objpar, a_difference_is_seen)
