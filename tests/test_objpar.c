@@ -219,6 +219,82 @@ Test(objpar, a_line_longer_than_the_block)
     unlink(path);
 }
 
+static void write_text(const char *path, const char *text, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    cr_assert_eq(fwrite(text, 1, n, f), n);
+    fclose(f);
+}
+
+/* Indices counting back past a piece's start, vertices and texture
+ * coordinates, with a textured material (so that the texture
+ * coordinates are kept and compared), and one reaching back exactly one
+ * past the first vertex (the serial parse skips it). */
+Test(objpar, indices_back_past_a_piece)
+{
+    char dir[] = "/tmp/zv-objpar-XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    char obj[64], mtl[64], tga[64];
+    snprintf(obj, sizeof obj, "%s/t.obj", dir);
+    snprintf(mtl, sizeof mtl, "%s/t.mtl", dir);
+    snprintf(tga, sizeof tga, "%s/t.tga", dir);
+    /* a 2x2 true-colour TGA */
+    const unsigned char img[18 + 12] = { 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 2, 0, 24, 0,
+                                         255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255 };
+    write_text(tga, (const char *)img, sizeof img);
+    write_text(mtl, "newmtl m\nmap_Kd t.tga\n", 22);
+    FILE *f = fopen(obj, "w");
+    fprintf(f, "mtllib t.mtl\nusemtl m\n");
+    for (int i = 0; i < 400; i++) {
+        fprintf(f, "v %d 0 0\nv 0 %d 0\nv 0 0 %d\nvt 0.%d 0.5\nvt 0.5 0.%d\n", i, i + 1, i + 2, i % 10, i % 7);
+        /* a cut between a face and the vertices it counts back to */
+        fprintf(f, "f -3/-2 -2/-1 -1/-2\nf -6/-4 -5/-3 -4/-%d\n", i % 2 ? 9 : 1);
+    }
+    fprintf(f, "f -1 -2 -1201\nf -1 -2 -1200\n");
+    fclose(f);
+    Mesh a, b;
+    char ea[256], eb[256];
+    for (int strict = 0; strict <= 1; strict++)
+        for (uint64_t piece = 16; piece < 3000; piece = piece * 2 + 3) {
+            MeshLoadOpts oa = { .strict = strict, .quiet = 1, .threads = 1 }, ob = oa;
+            ob.threads = 2;
+            ob.piece_bytes = piece;
+            int ra = mesh_load_ex(&a, obj, &oa, ea, sizeof ea), rb = mesh_load_ex(&b, obj, &ob, eb, sizeof eb);
+            cr_expect_eq(ra, rb);
+            cr_expect_str_eq(ea, eb);
+            if (ra == 0 && rb == 0) {
+                const char *d = tl_mesh_differs(&a, &b);
+                cr_expect_null(d, "pieces of %llu: %s differs", (unsigned long long)piece, d);
+                cr_expect_not_null(a.corner_uv, "the texture coordinates are kept");
+            }
+            mesh_free(&a);
+            mesh_free(&b);
+        }
+    /* entries counted back where there are none: no corner has one, and
+     * no per-corner array is made */
+    f = fopen(obj, "w");
+    fprintf(f, "mtllib t.mtl\nusemtl m\n");
+    for (int i = 0; i < 300; i++)
+        fprintf(f, "v %d 0 0\nv 0 %d 0\nv 0 0 1\nf -3/-1 -2/-2 -1/-3\n", i, i + 1);
+    fclose(f);
+    for (uint64_t piece = 16; piece < 2000; piece = piece * 2 + 3) {
+        MeshLoadOpts oa = { .quiet = 1, .threads = 1 }, ob = oa;
+        ob.threads = 2;
+        ob.piece_bytes = piece;
+        cr_assert_eq(mesh_load_ex(&a, obj, &oa, ea, sizeof ea), 0, "%s", ea);
+        cr_assert_eq(mesh_load_ex(&b, obj, &ob, eb, sizeof eb), 0, "%s", eb);
+        const char *d = tl_mesh_differs(&a, &b);
+        cr_expect_null(d, "no entries, pieces of %llu: %s differs", (unsigned long long)piece, d);
+        mesh_free(&a);
+        mesh_free(&b);
+    }
+    unlink(obj);
+    unlink(mtl);
+    unlink(tga);
+    rmdir(dir);
+}
+
 /* The comparison itself sees a difference (a test that cannot fail
  * proves nothing). */
 Test(objpar, a_difference_is_seen)

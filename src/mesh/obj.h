@@ -97,19 +97,28 @@ typedef struct {
 
     /* A piece of the file parsed apart (objpar.c): indices that count
      * back (-1) resolve within the piece and are marked OBJ_LOCAL, the
-     * merge adding the vertices before it; faces before the piece's
-     * first usemtl take OBJ_INHERIT; whatever the piece cannot judge
-     * alone (an index back past its start, an mtllib, any statement
-     * that fails) fails it, and the file is read on from there by the
-     * serial parser. fwd_max: the largest positive index past the
-     * piece's own vertices. */
+     * merge adding the vertices before it, or, reaching back past its
+     * start, are marked OBJ_EXTERN with how far past (the merge takes
+     * them from the vertices before it); faces before the piece's first
+     * usemtl take OBJ_INHERIT; whatever the piece cannot judge alone (an
+     * mtllib, any statement that fails) fails it, and the file is read
+     * on from there by the serial parser. fwd_max: the largest positive
+     * index past the piece's own vertices; ext_max: the farthest back
+     * past its start. */
     int         piece;
     int         renamed0;        /* an `o` named the piece's first object */
+    uint32_t    ext_max;
 } Parser;
 
-/* A piece's index resolved within the piece (at most 2^31 vertices fit
- * in the 4 GB a file may have, at 8 bytes a vertex at least). */
+/* A piece's index resolved within the piece (at most 2^29 vertices fit
+ * in the 4 GB a file may have, at 8 bytes a vertex at least, so the top
+ * bits are free). */
 #define OBJ_LOCAL 0x80000000u
+/* A piece's index counting back past its start, by OBJ_FAR_MASK (at
+ * most OBJ_FAR_MAX) before its first vertex. */
+#define OBJ_EXTERN 0xC0000000u
+#define OBJ_FAR_MASK 0x3FFFFFFFu
+#define OBJ_FAR_MAX (1u << 29)
 /* A texture coordinate index a piece cannot resolve (never a valid one:
  * nor local, since no file has 2^31 entries, nor MESH_NO_UV). */
 #define OBJ_UNKNOWN 0xFFFFFFFEu

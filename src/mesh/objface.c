@@ -42,8 +42,10 @@ static uint32_t corner_texcoord(const Parser *ps, const char *p, const char *q)
     for (; p < q && val < ((uint64_t)1 << 40); p++)
         val = val * 10 + (uint64_t)(*p - '0');
     uint32_t nuv = ps->m->nuv;
-    if (ps->piece && val && ((neg && val > nuv) || (!neg && val > OBJ_LOCAL)))
+    if (ps->piece && val && !neg && val > OBJ_LOCAL)
         return OBJ_UNKNOWN;     /* a piece cannot tell (see read_corner) */
+    if (ps->piece && neg && val > nuv)      /* before the piece: the merge resolves it */
+        return OBJ_EXTERN | (uint32_t)(val - nuv < OBJ_FAR_MAX ? val - nuv : OBJ_FAR_MAX);
     if (val == 0 || (neg && val > nuv) || (!neg && val >= UINT32_MAX))
         return MESH_NO_UV;
     if (neg && ps->piece)
@@ -111,6 +113,14 @@ static int read_corner(Parser *ps, const char *what, const char *ls, const char 
     int nd = (int)(d1 - d0);
     if (val == 0)
         return obj_fail(ps, "vertex index 0 is invalid (indices start at 1; %u vertices)", m->nverts);
+    if (neg && ps->piece && val > m->nverts && val - m->nverts <= OBJ_FAR_MAX) {
+        /* before the piece: the merge resolves it, or the serial parser
+         * reads on from the piece when there are not so many before */
+        uint32_t far = (uint32_t)(val - m->nverts);
+        ps->ext_max = far > ps->ext_max ? far : ps->ext_max;
+        *idx = OBJ_EXTERN | far;
+        return 1;
+    }
     if (neg) {
         if (val > m->nverts)
             return obj_fail(ps, "vertex index -%.*s out of range (%u vertices so far)", nd, d0, m->nverts);

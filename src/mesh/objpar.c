@@ -4,10 +4,11 @@
  * each by a parser of its own into a mesh of its own (obj.h: a piece),
  * and they are merged into the serial parser's mesh in file order, as
  * each is done, so that the arrays of a few pieces at most exist twice.
- * What a piece cannot settle alone (an index counting back past its
- * start, a library, any statement that cannot be read, a `\` line, a
- * NUL) fails it, and the serial parser reads on from its start, with the
- * state the merges left, which is the state a serial parse has there:
+ * What a piece cannot settle alone (a library, any statement that
+ * cannot be read, a `\` line, a NUL, an index past its end or back past
+ * the first vertex) fails it, and the serial parser reads on from its
+ * start, with the state the merges left, which is the state a serial
+ * parse has there:
  * the mesh, ids, objects, materials, warnings and messages are the
  * serial parse's in every case (tests/test_objpar.c compares them). */
 #define _GNU_SOURCE     /* memrchr */
@@ -214,9 +215,26 @@ static void piece_free(Piece *p)
 
 /* ==== Merging ==== */
 
+/* A piece's vertex index, with `base` vertices before the piece (the
+ * merge checked that OBJ_EXTERN ones reach no farther back). */
 static inline uint32_t fix(uint32_t v, uint32_t base)
 {
-    return v & OBJ_LOCAL ? (v & ~OBJ_LOCAL) + base : v;
+    if (!(v & OBJ_LOCAL))
+        return v;
+    if ((v & OBJ_EXTERN) == OBJ_EXTERN)
+        return base - (v & OBJ_FAR_MASK);
+    return (v & ~OBJ_LOCAL) + base;
+}
+
+/* The same for a texture coordinate entry: one reaching back past the
+ * entries there are is none, as in the serial parse. */
+static inline uint32_t fix_uv(uint32_t t, uint32_t base)
+{
+    if (t == MESH_NO_UV)
+        return t;
+    if ((t & OBJ_EXTERN) == OBJ_EXTERN)
+        return (t & OBJ_FAR_MASK) <= base ? base - (t & OBJ_FAR_MASK) : MESH_NO_UV;
+    return fix(t, base);
 }
 
 /* Room for the piece in the serial parser's arrays (growing by half
@@ -230,6 +248,9 @@ static int merge_room(Parser *ps, const Piece *p)
     /* an index past the piece's end: a serial parse keeps such
      * statements apart (obj_drop_unreadable); it reads on from here */
     if (pp->fwd_max > (uint64_t)m->nverts + pm->nverts)
+        return -1;
+    /* an index back past the first vertex: the serial parse says so */
+    if (pp->ext_max > m->nverts)
         return -1;
     /* a polygon bound met inside: where the serial parse meets it */
     uint64_t polys = (uint64_t)m->nfaces + m->npoints + pm->nfaces + pm->npoints;
@@ -278,7 +299,12 @@ static int merge_faces(Parser *ps, const Piece *p, const int32_t *usemap, uint32
     size_t cbase = b->ncorner, nc = p->ps.b.ncorner;
     for (size_t i = 0; i < nc; i++)
         m->corner[cbase + i] = fix(pm->corner[i], vbase);
-    if (pm->corner_uv && !m->corner_uv) {
+    /* the array is made at the first corner that has an entry: one
+     * reaching back too far has none */
+    int some = 0;
+    for (size_t i = 0; pm->corner_uv && !m->corner_uv && i < nc && !some; i++)
+        some = fix_uv(pm->corner_uv[i], uvbase) != MESH_NO_UV;
+    if (some) {
         m->corner_uv = malloc((b->ccap ? b->ccap : 1) * sizeof *m->corner_uv);
         if (!m->corner_uv)
             return -1;
@@ -287,7 +313,7 @@ static int merge_faces(Parser *ps, const Piece *p, const int32_t *usemap, uint32
     }
     for (size_t i = 0; m->corner_uv && i < nc; i++) {
         uint32_t t = pm->corner_uv ? pm->corner_uv[i] : MESH_NO_UV;
-        m->corner_uv[cbase + i] = t == MESH_NO_UV ? t : fix(t, uvbase);
+        m->corner_uv[cbase + i] = fix_uv(t, uvbase);
     }
     b->ncorner += nc;
     for (uint32_t i = 0; i < pm->nfaces; i++) {
