@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox
+.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load
 
 all: $(BIN)
 
@@ -72,6 +72,7 @@ help:
 	@echo '  make bench         the speed table (tools/bench.sh), single-thread rows pinned to a core'
 	@echo '  make bench-formats load speed and peak memory of every format'
 	@echo '  make views         doc/views.md: the first view of 29 models (../shared/models, assimp-testmodels)'
+	@echo '  make bench-load    big OBJ files (31M triangles): first picture against wc -l, bytes per triangle'
 	@echo '  make bench-points  a 10M-point scan: load and frames'
 	@echo '  make bench-order   hzb and hzb-octree under each --order'
 	@echo '  make bench-textures textured frames against untextured; the first picture of a 16k image'
@@ -213,6 +214,13 @@ bench-check: $(BIN) $(BUILD)/checkbench $(BUILD)/subdiv
 
 $(BUILD)/checkbench: tools/checkbench.c $(LIBOBJS)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
+# Loading big OBJ files (issue 21): the first picture against wc -l, and
+# memory per triangle, for the dragon and its 5.2M and 31M subdivisions
+# (written to a temporary folder and deleted). BEFORE=path/to/zview adds
+# the rows of another build, in the same run.
+bench-load: $(BIN) $(BUILD)/subdiv
+	SUBDIV=$(BUILD)/subdiv sh tools/bench-load.sh
 
 $(BUILD)/subdiv: tools/subdiv.c
 	@mkdir -p $(BUILD)

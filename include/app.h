@@ -56,7 +56,7 @@ typedef struct {
     int         has_fit_from;
     Placement   place[MAX_PLACE];
     int         nplace;
-    uint64_t    max_polys;      /* refuse bigger scenes */
+    uint64_t    max_polys;      /* refuse bigger scenes; 0: what memory holds */
     uint64_t    max_memory;     /* --max-memory: bytes a load may take (0: what is available) */
     int         no_sandbox;     /* --no-sandbox: load in this process (sandbox.h) */
     int         persp;          /* 1 = --persp given */
@@ -196,8 +196,10 @@ SandboxOpts app_sandbox_opts(const Options *o);
 void app_sandbox_warn(const Options *o);
 int  app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size_t errlen);
 /* Refuse (-1, the reason in err) a scene that, with its --grid copies,
- * would have more than --max-polys polygons; the message gives the count
- * and an estimate of the memory. Called before the copies are made. */
+ * would have more than --max-polys polygons, or, without --max-polys,
+ * whose copies and one frame would need more memory than is available;
+ * the message gives the count, an estimate of the memory and the limit
+ * or the memory available. Called before the copies are made. */
 int  app_check_size(const Options *o, const Scene *s, char *err, size_t errlen);
 /* Path of the bundled demo scene (next to the binary or installed). */
 const char *app_demo_path(void);

@@ -211,6 +211,11 @@ typedef struct {
      * the first picture. 0: every texture is decoded while loading. */
     int           tex_defer_side;
     int           no_textures;  /* --no-textures: no image is even opened */
+    /* OBJ parses in pieces on this many threads (0: every core; 1:
+     * serially), the same mesh either way; piece_bytes (0: the loader's
+     * own) is for tests, which make pieces small. */
+    int           threads;
+    uint64_t      piece_bytes;
 } MeshLoadOpts;
 
 int  mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, size_t errlen);

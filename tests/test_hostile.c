@@ -499,10 +499,29 @@ Test(hostile, growing_arrays_stop_at_the_memory_available)
 {
     char path[128];
     at("g.obj", path, sizeof path);
-    big_obj(path, 400000);
+    big_obj(path, 120000);      /* under 8 MB: not judged before parsing (below) */
     MeshLoadOpts o = { .strict = 1, .max_bytes = (uint64_t)2 << 20 };
     cr_assert_eq(load(path, &o), -1);
     cr_expect(strstr(E, "g.obj: the ") && strstr(E, "available"), "%s", E);
+}
+
+/* Issue 21: a big OBJ that cannot fit is refused before it is parsed,
+ * from its size and lines of its start and end; the estimate leans low,
+ * so the memory the whole mesh takes lets it through. */
+Test(hostile, a_big_obj_is_judged_before_parsing)
+{
+    char path[128];
+    at("g.obj", path, sizeof path);
+    big_obj(path, 400000);
+    MeshLoadOpts o = { .strict = 1, .max_bytes = (uint64_t)2 << 20 };
+    cr_assert_eq(load(path, &o), -1);
+    cr_expect(strstr(E, "g.obj: 22 MB of OBJ need at least about ") &&
+                  strstr(E, "for the mesh (judged from lines of its start and end); 2 MB available"),
+              "%s", E);
+    /* what the finished mesh and its scene take (mb_estimate's terms) */
+    o.max_bytes = (uint64_t)400002 * 12 + (uint64_t)400000 * (8 + 19 + 12);
+    cr_expect_eq(load(path, &o), 0, "%s", E);
+    cr_expect_eq(M.nfaces, 400000, "%u faces", M.nfaces);
 }
 
 /* ==== Byte-order marks and line ends ==== */

@@ -360,6 +360,75 @@ const char *tl_shared_model(const char *name)
     return access(path, R_OK) == 0 ? path : NULL;
 }
 
+/* ==== the same mesh ==== */
+
+#define SAME(what, cond)        \
+    do {                        \
+        if (!(cond))            \
+            return what;        \
+    } while (0)
+
+static int same_bytes(const void *a, const void *b, size_t n)
+{
+    return n == 0 || (a && b && memcmp(a, b, n) == 0);
+}
+
+const char *tl_mesh_differs(const Mesh *a, const Mesh *b)
+{
+    SAME("path", (!a->path && !b->path) || (a->path && b->path && strcmp(a->path, b->path) == 0));
+    SAME("nverts", a->nverts == b->nverts);
+    SAME("pos", same_bytes(a->pos, b->pos, 3 * sizeof(float) * a->nverts));
+    SAME("rgb", !a->rgb == !b->rgb && (!a->rgb || same_bytes(a->rgb, b->rgb, 3 * sizeof(float) * a->nverts)));
+    SAME("nfaces", a->nfaces == b->nfaces);
+    SAME("face_start", !a->face_start == !b->face_start &&
+                           (!a->face_start || same_bytes(a->face_start, b->face_start, 4 * ((size_t)a->nfaces + 1))));
+    size_t nc = a->face_start ? a->face_start[a->nfaces] : 0;
+    SAME("corner", same_bytes(a->corner, b->corner, 4 * nc));
+    SAME("face_mat", !a->face_mat == !b->face_mat && (!a->face_mat || same_bytes(a->face_mat, b->face_mat, 4 * (size_t)a->nfaces)));
+    SAME("nmats", a->nmats == b->nmats);
+    SAME("mats", same_bytes(a->mats, b->mats, sizeof(Material) * a->nmats));
+    SAME("nobjs", a->nobjs == b->nobjs);
+    SAME("objs", same_bytes(a->objs, b->objs, sizeof(MeshObject) * a->nobjs));
+    SAME("npoints", a->npoints == b->npoints);
+    SAME("point", !a->point == !b->point && (!a->point || same_bytes(a->point, b->point, 4 * (size_t)a->npoints)));
+    SAME("nlines", a->nlines == b->nlines);
+    SAME("line_start", !a->nlines || same_bytes(a->line_start, b->line_start, 4 * ((size_t)a->nlines + 1)));
+    size_t nl = a->nlines ? a->line_start[a->nlines] : 0;
+    SAME("line_corner", same_bytes(a->line_corner, b->line_corner, 4 * nl));
+    SAME("nuv", a->nuv == b->nuv);
+    SAME("uv", !a->uv == !b->uv && (!a->uv || same_bytes(a->uv, b->uv, 2 * sizeof(float) * a->nuv)));
+    SAME("corner_uv", !a->corner_uv == !b->corner_uv && (!a->corner_uv || same_bytes(a->corner_uv, b->corner_uv, 4 * nc)));
+    SAME("ntex", a->ntex == b->ntex);
+    for (uint32_t i = 0; i < a->ntex; i++)
+        SAME("tex", a->tex[i].state == b->tex[i].state && strcmp(a->tex[i].name, b->tex[i].name) == 0);
+    MeshInfo ia = a->info, ib = b->info;
+    ia.load_ms = ib.load_ms = ia.load_cpu_ms = ib.load_cpu_ms = 0;
+    SAME("info", memcmp(&ia, &ib, sizeof ia) == 0);
+    return NULL;
+}
+
+const char *tl_obj_pieces_differ(const char *name, const char *text, size_t len, int threads, uint64_t piece,
+                                 int strict)
+{
+    static char why[700];
+    Mesh a, b;
+    char ea[256], eb[256];
+    MeshLoadOpts oa = { .format = "obj", .strict = strict, .quiet = 1, .threads = 1 };
+    MeshLoadOpts ob = oa;
+    ob.threads = threads;
+    ob.piece_bytes = piece;
+    int ra = mesh_parse_buffer_ex(&a, name, &oa, text, len, ea, sizeof ea);
+    int rb = mesh_parse_buffer_ex(&b, name, &ob, text, len, eb, sizeof eb);
+    const char *d = ra != rb ? "result" : strcmp(ea, eb) ? "message" : ra ? NULL : tl_mesh_differs(&a, &b);
+    if (d)
+        snprintf(why, sizeof why, "%s: %d threads, pieces of %llu, strict %d: %s differs (serial %d '%s', "
+                 "pieces %d '%s')", name ? name : "(input)", threads, (unsigned long long)piece, strict, d, ra,
+                 ea, rb, eb);
+    mesh_free(&a);
+    mesh_free(&b);
+    return d ? why : NULL;
+}
+
 /* ==== what every loader promises ==== */
 
 #define PROMISE(cond)           \

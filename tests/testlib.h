@@ -94,6 +94,19 @@ const char *tl_mesh_broken(const Mesh *m);
  * an empty mesh. */
 const char *tl_load_broken(int rc, const Mesh *m, const char *err, const char *name);
 
+/* Are a and b the same mesh, array for array and byte for byte (every
+ * count, index, position, object, material, texture name, and what info
+ * says but the load's times)? NULL when they are, else the first that
+ * differs, as C text. */
+const char *tl_mesh_differs(const Mesh *a, const Mesh *b);
+
+/* Load the OBJ text [text, text + len) named `name` serially and on
+ * `threads` threads in pieces of about `piece` bytes (strict or not),
+ * and compare: the result, the message and the mesh. NULL when all
+ * agree, else what differs (a static buffer). */
+const char *tl_obj_pieces_differ(const char *name, const char *text, size_t len, int threads, uint64_t piece,
+                                 int strict);
+
 /* Path to ../shared/models/NAME if that folder exists, else NULL. */
 const char *tl_shared_model(const char *name);
 

@@ -118,7 +118,7 @@ void cli_defaults(Options *o)
     o->views = 8;
     o->fps = 30;
     o->grid = 1;
-    o->max_polys = 20000000;
+    o->max_polys = 0;               /* none: what memory holds (app_check_size) */
     o->crease = SHADE_CREASE_DEFAULT;
     o->light[0] = LIGHT_YAW;
     o->light[1] = LIGHT_PITCH;

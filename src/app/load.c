@@ -76,7 +76,7 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
     }
     int from_stdin = 0;
     app_sandbox_warn(o);
-    MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys,
+    MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys, .threads = o->threads,
                         .max_bytes = o->max_memory, .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
     SandboxOpts so = app_sandbox_opts(o);
     /* one file of several that cannot be read (gone, unreadable, not a

@@ -590,7 +590,7 @@ const OptSpec cli_options[] = {
       OPT_VIEWCMD },
     { "order", 0, NULL, "file front-to-back back-to-front shuffle", OPTSEC_VIEW,
       "the order polygons reach the algorithm (same picture)", set_order, 0, 0 },
-    { "max-polys", 0, "N", NULL, OPTSEC_VIEW, "refuse scenes of more polygons (default 20000000)", set_max_polys, 0,
+    { "max-polys", 0, "N", NULL, OPTSEC_VIEW, "refuse scenes of more polygons (default: what fits)", set_max_polys, 0,
       0 },
     /* ---- Benchmark and performance ---- */
     { "bench", 0, NULL, NULL, OPTSEC_BENCH, "time the algorithms (all, or --algo) on views of\neach file", NULL,

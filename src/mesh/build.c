@@ -71,18 +71,43 @@ static int over_polys(MeshBuild *b, uint64_t polys)
                    lim);
 }
 
+static int over_memory_say(MeshBuild *b, const char *what, uint64_t bytes, uint64_t avail)
+{
+    char need[32], have[32];
+    sysmem_format(bytes, need, sizeof need);
+    sysmem_format(avail, have, sizeof have);
+    return me_fail(b->e, "the %s need more than %s; %s available", what, need, have);
+}
+
 /* An array about to grow to `bytes`: more than the load may take is
  * refused by name, before the allocation (the machine might grant it
  * and then run out). */
 static int over_memory(MeshBuild *b, const char *what, uint64_t bytes)
 {
-    char need[32], have[32];
     uint64_t avail = budget(b->e);
     if (!avail || bytes <= avail)
         return 0;
-    sysmem_format(bytes, need, sizeof need);
-    sysmem_format(avail, have, sizeof have);
-    return me_fail(b->e, "the %s need more than %s; %s available", what, need, have);
+    return over_memory_say(b, what, bytes, avail);
+}
+
+/* The arrays' capacities, in bytes. */
+static uint64_t arrays_bytes(const MeshBuild *b)
+{
+    return (uint64_t)b->vcap * (b->m->rgb ? 24 : 12) + (uint64_t)b->fcap * 8 + (uint64_t)b->ccap * 4 +
+           (uint64_t)b->pcap * 4 + (uint64_t)b->lccap * 4;
+}
+
+/* An array growing from `was` bytes to `bytes`: it alone, and all the
+ * arrays together with it, within the memory (each alone could fit
+ * while the mesh does not). */
+static int over_memory_grow(MeshBuild *b, const char *what, uint64_t bytes, uint64_t was)
+{
+    uint64_t avail = budget(b->e), all = arrays_bytes(b) - was + bytes;
+    if (!avail || all <= avail)
+        return 0;
+    if (bytes > avail)
+        return over_memory_say(b, what, bytes, avail);
+    return over_memory_say(b, "mesh's arrays", all, avail);
 }
 
 /* Grow *arr (elements of `elem` bytes, `*cap` of them) to hold `need`,
@@ -168,7 +193,8 @@ int mb_grow_verts(MeshBuild *b)
     /* vertices alone are a point cloud: each a point */
     if (m->nfaces == 0 && m->npoints == 0 && m->nlines == 0 && over_polys(b, (uint64_t)m->nverts + 1))
         return -1;
-    if (over_memory(b, "vertices", (uint64_t)next_cap(b->vcap, (size_t)m->nverts + 1) * (m->rgb ? 24 : 12)))
+    if (over_memory_grow(b, "vertices", (uint64_t)next_cap(b->vcap, (size_t)m->nverts + 1) * (m->rgb ? 24 : 12),
+                         (uint64_t)b->vcap * (m->rgb ? 24 : 12)))
         return -1;
     size_t cap = b->vcap;
     if (grow((void **)&m->pos, &cap, (size_t)m->nverts + 1, 3 * sizeof(float)))
@@ -191,7 +217,7 @@ int mb_grow_faces(MeshBuild *b)
     if (m->nfaces >= UINT32_MAX - 1)
         return me_fail(b->e, "too many faces");
     if (over_polys(b, (uint64_t)m->nfaces + m->npoints + 1) ||
-        over_memory(b, "faces", (uint64_t)next_cap(b->fcap, (size_t)m->nfaces + 1) * 8))
+        over_memory_grow(b, "faces", (uint64_t)next_cap(b->fcap, (size_t)m->nfaces + 1) * 8, (uint64_t)b->fcap * 8))
         return -1;
     size_t cap = b->fcap;
     if (grow((void **)&m->face_mat, &cap, (size_t)m->nfaces + 1, sizeof(int32_t)))
@@ -208,7 +234,8 @@ int mb_room_corners(MeshBuild *b, size_t n)
 {
     if (b->ncorner + n >= UINT32_MAX - 1)
         return me_fail(b->e, "too many face corners");
-    if (b->ncorner + n > b->ccap && over_memory(b, "face corners", (uint64_t)next_cap(b->ccap, b->ncorner + n) * 4))
+    if (b->ncorner + n > b->ccap &&
+        over_memory_grow(b, "face corners", (uint64_t)next_cap(b->ccap, b->ncorner + n) * 4, (uint64_t)b->ccap * 4))
         return -1;
     if (grow((void **)&b->m->corner, &b->ccap, b->ncorner + n, sizeof(uint32_t)))
         return me_oom(b->e);
@@ -226,7 +253,7 @@ int mb_grow_points(MeshBuild *b)
     if (m->npoints >= UINT32_MAX - 1)
         return me_fail(b->e, "too many points");
     if (over_polys(b, (uint64_t)m->nfaces + m->npoints + 1) ||
-        over_memory(b, "points", (uint64_t)next_cap(b->pcap, (size_t)m->npoints + 1) * 4))
+        over_memory_grow(b, "points", (uint64_t)next_cap(b->pcap, (size_t)m->npoints + 1) * 4, (uint64_t)b->pcap * 4))
         return -1;
     if (grow((void **)&m->point, &b->pcap, (size_t)m->npoints + 1, sizeof(uint32_t)))
         return me_oom(b->e);
@@ -250,7 +277,7 @@ int mb_grow_line_corners(MeshBuild *b)
 {
     if (b->nlcorner >= UINT32_MAX - 1)
         return me_fail(b->e, "too many line corners");
-    if (over_memory(b, "line corners", (uint64_t)next_cap(b->lccap, b->nlcorner + 1) * 4))
+    if (over_memory_grow(b, "line corners", (uint64_t)next_cap(b->lccap, b->nlcorner + 1) * 4, (uint64_t)b->lccap * 4))
         return -1;
     if (grow((void **)&b->m->line_corner, &b->lccap, b->nlcorner + 1, sizeof(uint32_t)))
         return me_oom(b->e);
@@ -263,7 +290,10 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
     size_t nv = (size_t)m->nverts + verts, nf = (size_t)m->nfaces + faces, nc = b->ncorner + corners;
     if (nv >= UINT32_MAX || nf >= UINT32_MAX || nc >= UINT32_MAX)
         return me_fail(b->e, "too many vertices or faces (%zu, %zu)", nv, nf);
-    if (over_memory(b, "mesh's arrays", (uint64_t)nv * (m->rgb ? 24 : 12) + (uint64_t)nf * 8 + (uint64_t)nc * 4))
+    /* a guess (exact 0) is address space, pages made resident only as
+     * they are written: judged as the arrays fill (mb_grow_*), or a file
+     * that fits would be refused for what its size allowed */
+    if (exact && over_memory(b, "mesh's arrays", (uint64_t)nv * (m->rgb ? 24 : 12) + (uint64_t)nf * 8 + (uint64_t)nc * 4))
         return -1;
     /* Exact sizes: a count read from a header is what the file holds. */
     if (nv > b->vcap) {
@@ -332,9 +362,14 @@ int mb_want_rgb(MeshBuild *b)
 
 int mb_object(MeshBuild *b, const char *name, size_t len)
 {
+    return mb_object_at(b, name, len, b->m->nfaces, b->m->npoints, b->m->nlines);
+}
+
+int mb_object_at(MeshBuild *b, const char *name, size_t len, uint32_t nf, uint32_t np, uint32_t nl)
+{
     Mesh *m = b->m;
     MeshObject *cur = &m->objs[m->nobjs - 1];
-    if (cur->face_first != m->nfaces || cur->point_first != m->npoints || cur->line_first != m->nlines) {
+    if (cur->face_first != nf || cur->point_first != np || cur->line_first != nl) {
         if (m->nobjs == b->ocap &&
             grow((void **)&m->objs, &b->ocap, (size_t)m->nobjs + 1, sizeof(MeshObject)))
             return me_oom(b->e);
@@ -342,9 +377,9 @@ int mb_object(MeshBuild *b, const char *name, size_t len)
     }
     /* An object that got nothing is renamed rather than kept. */
     memset(cur, 0, sizeof *cur);
-    cur->face_first = m->nfaces;
-    cur->point_first = m->npoints;
-    cur->line_first = m->nlines;
+    cur->face_first = nf;
+    cur->point_first = np;
+    cur->line_first = nl;
     if (len > MESH_NAME_MAX - 1)
         len = MESH_NAME_MAX - 1;
     if (len) {

@@ -397,7 +397,8 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
                                    .strict = opt ? opt->strict : 1, .quiet = opt && opt->quiet,
                                    .max_polys = opt ? opt->max_polys : 0, .max_bytes = opt ? opt->max_bytes : 0,
                                    .tex_defer_side = opt ? opt->tex_defer_side : 0,
-                                   .no_textures = opt && opt->no_textures, .model = path },
+                                   .no_textures = opt && opt->no_textures, .model = path,
+                                   .threads = opt ? opt->threads : 0, .piece_bytes = opt ? opt->piece_bytes : 0 },
                   .path = path };
     char ext[16];
     extension(path, ext, sizeof ext);
@@ -531,7 +532,8 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
                                    .max_bytes = opt ? opt->max_bytes : 0,
                                    .tex_defer_side = opt ? opt->tex_defer_side : 0,
                                    .no_textures = opt && opt->no_textures,
-                                   .model = is_stdin ? NULL : path },
+                                   .model = is_stdin ? NULL : path,
+                                   .threads = opt ? opt->threads : 0, .piece_bytes = opt ? opt->piece_bytes : 0 },
                   .path = path };
     char ext[16];
     extension(is_stdin ? NULL : path, ext, sizeof ext);

@@ -258,6 +258,9 @@ static inline int mb_line_end(MeshBuild *b, size_t first)
  * current one is renamed instead when it has none of them yet). An empty
  * name: the file's. */
 int  mb_object(MeshBuild *b, const char *name, size_t len);
+/* The same where the counts were nf, np, nl (faces, points, lines):
+ * what a merge of pieces of a file places (objpar.c). */
+int  mb_object_at(MeshBuild *b, const char *name, size_t len, uint32_t nf, uint32_t np, uint32_t nl);
 /* Append a material; returns its index or -1 out of memory. */
 int32_t mb_material(MeshBuild *b, const char *name, float r, float g, float bl, float alpha);
 /* The material of a face colour (8 bits a channel), made once per

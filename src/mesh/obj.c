@@ -13,9 +13,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "grow.h"
 #include "obj.h"
+#include "sysmem.h"
 
 /* ==== Messages ==== */
 
@@ -139,6 +141,11 @@ static int check_numbers(Parser *ps, const char *what, int lo, int hi,
 static int start_object(Parser *ps, const char *p, const char *e)
 {
     obj_trim(&p, &e);
+    const Mesh *m = ps->m;
+    /* a piece's first object is the one current where it starts, unless
+     * an `o` comes before any face, point or line of it */
+    if (m->nobjs == 1 && m->nfaces == 0 && m->npoints == 0 && m->nlines == 0)
+        ps->renamed0 = 1;
     return mb_object(&ps->b, p, (size_t)(e - p));
 }
 
@@ -252,7 +259,7 @@ static int scratch_put(Parser *ps, size_t *n, const char *p, size_t len)
 
 /* ==== The loader ==== */
 
-static void parser_free(Parser *ps)
+void obj_parser_free(Parser *ps)
 {
     free(ps->fwd);
     free(ps->bad_vert);
@@ -272,9 +279,7 @@ static Undo undo_mark(const Parser *ps)
     return (Undo){ ps->b.ncorner, ps->b.nlcorner, ps->m->npoints };
 }
 
-/* One logical line; a statement that cannot be read is skipped (undone
- * and counted) unless the load is strict. Returns -1 to stop. */
-static int statement(Parser *ps, const char *ls, const char *e)
+int obj_statement(Parser *ps, const char *ls, const char *e)
 {
     Undo u = undo_mark(ps);
     ps->stmt_failed = ps->stmt_vertex = 0;
@@ -317,21 +322,179 @@ static int continued_statement(Parser *ps, LineReader *lr, const char *ls, const
             break;
         }
     }
-    return statement(ps, ps->scratch, ps->scratch + n);
+    return obj_statement(ps, ps->scratch, ps->scratch + n);
+}
+
+/* ==== What a big file will need ==== */
+
+/* Files from this size on are judged before they are parsed. */
+#define OBJ_JUDGE_BYTES ((size_t)8 << 20)
+/* The lines looked at: this much of the start and of the end. */
+#define OBJ_SAMPLE ((size_t)1 << 20)
+
+/* What the whole lines of a sample hold. */
+typedef struct {
+    uint64_t verts, faces, corners, bytes, vbytes;
+    uint64_t maxidx;        /* the largest positive vertex index a face names */
+} Sample;
+
+static void sample_lines(Sample *st, const char *p, const char *e)
+{
+    memset(st, 0, sizeof *st);
+    while (p < e) {
+        const char *q = memchr(p, '\n', (size_t)(e - p));
+        if (!q)
+            break;
+        const char *s = p;
+        while (s < q && is_space(*s))
+            s++;
+        if (q - s > 2 && (s[1] == ' ' || s[1] == '\t') && (s[0] == 'v' || s[0] == 'f')) {
+            if (s[0] == 'v') {
+                st->verts++;
+                st->vbytes += (uint64_t)(q + 1 - p);
+            } else {
+                st->faces++;
+                for (const char *t = s + 1; t < q; t++) {
+                    if (!is_space(t[-1]) || is_space(*t))
+                        continue;
+                    st->corners++;
+                    uint64_t v = 0;
+                    for (const char *d = t; d < q && is_digit(*d) && v < ((uint64_t)1 << 40); d++)
+                        v = v * 10 + (uint64_t)(*d - '0');
+                    st->maxidx = v > st->maxidx ? v : st->maxidx;
+                }
+            }
+        }
+        st->bytes += (uint64_t)(q + 1 - p);
+        p = q + 1;
+    }
+}
+
+/* The memory a byte of the sample makes: the mesh's arrays and what the
+ * scene adds (mb_estimate), per byte. -1 when it has no line. */
+static double sample_rate(const Sample *st)
+{
+    if (!st->bytes)
+        return -1;
+    return (double)mb_estimate(st->verts, 0, st->faces, st->corners, 0) / (double)st->bytes;
+}
+
+/* The estimate for a file of len bytes whose start and end look like
+ * hs and ts. An OBJ lists its vertices first and its faces last: the
+ * largest index its last faces name is (about) the vertex count, whose
+ * lines are as long as the start's; the rest of the file costs what
+ * the end does. Without that (no face at the end, relative indices, a
+ * vertex count the file could not hold), a floor: the rate of the start
+ * or of the end, whichever is less. */
+static double size_estimate(const Sample *hs, const Sample *ts, uint64_t len)
+{
+    double head = sample_rate(hs), end = sample_rate(ts);
+    double floor = head < 0 ? end : end < 0 ? head : head < end ? head : end;
+    if (hs->verts && ts->faces && ts->maxidx) {
+        double vlen = (double)hs->vbytes / (double)hs->verts;
+        double vb = vlen * (double)ts->maxidx;
+        if (vb < (double)len)
+            return (double)mb_estimate(ts->maxidx, 0, 0, 0, 0) + ((double)len - vb) * end;
+    }
+    return floor * (double)len;
+}
+
+/* A file that cannot fit is refused before it is parsed (seconds for a
+ * big one), with the estimate and the memory there is. The estimate
+ * leans low (size_estimate), so that nothing that fits is refused; what
+ * it lets through is still bounded as the arrays grow. */
+static int judge_size(MeshCtx *c, const char *text, size_t len)
+{
+    if (len < OBJ_JUDGE_BYTES)
+        return 0;
+    Sample hs, ts;
+    sample_lines(&hs, text, text + OBJ_SAMPLE);     /* in the first window */
+    char *buf = NULL;
+    const char *tail = text + len - OBJ_SAMPLE;
+    if (c->file && c->file->map) {
+        /* the end is not in the window: read, never touched in place */
+        buf = malloc(OBJ_SAMPLE);
+        if (!buf)
+            return me_oom(&c->err);
+        ssize_t r = pread(c->file->fd, buf, OBJ_SAMPLE, (off_t)(len - OBJ_SAMPLE));
+        tail = buf;
+        if (r != (ssize_t)OBJ_SAMPLE) {
+            free(buf);
+            return 0;       /* the parse will find out what happened */
+        }
+    }
+    /* the tail's first line is a piece: start after its end */
+    const char *t0 = memchr(tail, '\n', OBJ_SAMPLE);
+    sample_lines(&ts, t0 ? t0 + 1 : tail + OBJ_SAMPLE, tail + OBJ_SAMPLE);
+    free(buf);
+    /* four fifths: lines grow longer down a file (bigger indices), so
+     * that the start's vertex lines can be shorter than the average and
+     * the estimate high; a refusal must not be wrong */
+    double est = 0.8 * size_estimate(&hs, &ts, len);
+    uint64_t avail = c->err.max_bytes ? c->err.max_bytes : sysmem_available();
+    if (est <= 0 || !avail || est <= (double)avail)
+        return 0;
+    char size[32], need[32], have[32];
+    sysmem_format(len, size, sizeof size);
+    sysmem_format((uint64_t)est, need, sizeof need);
+    sysmem_format(avail, have, sizeof have);
+    return me_fail(&c->err, "%s of OBJ need at least about %s for the mesh (judged from lines of its start and end); "
+                   "%s available", size, need, have);
+}
+
+int obj_parser_init(Parser *ps, MeshCtx *c, int piece)
+{
+    memset(ps, 0, sizeof *ps);
+    ps->m = c->m;
+    ps->e = &c->err;
+    ps->path = piece ? NULL : c->path;
+    ps->cur_use = piece ? OBJ_INHERIT : -1;
+    ps->piece = piece;
+    return mb_start(&ps->b, c->m, &c->err, c->err.name);
+}
+
+int obj_lines(Parser *ps, LineReader *lr, const char *file_end)
+{
+    const char *ls, *le;
+    while (lr_next(lr, &ls, &le)) {
+        ps->line = lr->line;
+        if (le > ls && le[-1] == '\\') {
+            if (continued_statement(ps, lr, ls, le))
+                return -1;
+        } else if (obj_statement(ps, ls, le)) {
+            return -1;
+        } else if (le > ls && le[-1] == '\0') {
+            /* a NUL (the line ends with the run of them): no text goes
+             * on past binary data, so the rest is not read */
+            me_warn(ps->e, NULL, lr->line, "binary data: the rest of the file (%llu bytes) is not read",
+                    (unsigned long long)(file_end - le));
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int obj_finish(Parser *ps)
+{
+    if (obj_drop_unreadable(ps) || obj_resolve_materials(ps) || mb_finish(&ps->b, !ps->saw_elements))
+        return -1;
+    obj_libs_warn(ps);
+    if (ps->undrawn)
+        me_warn(ps->e, NULL, 0, "%u free-form statement%s (curves, surfaces) not drawn, first '%s'",
+                ps->undrawn, ps->undrawn == 1 ? "" : "s", ps->first_undrawn);
+    return 0;
 }
 
 static int obj_parse(MeshCtx *c, const char *text, size_t len)
 {
-    Parser ps = {0};
-    ps.m = c->m;
-    ps.e = &c->err;
-    ps.path = c->path;
-    ps.cur_use = -1;
+    Parser ps;
     Mesh *m = c->m;
-    if (mb_start(&ps.b, m, &c->err, c->err.name))
+    if (obj_parser_init(&ps, c, 0))
         return -1;
     m->info.bytes = len;
     snprintf(m->info.format, sizeof m->info.format, "obj");
+    if (judge_size(c, text, len))
+        goto fail;
 
     /* Reserve for the densest plausible file (a vertex or a triangle per
      * 24 bytes) so that big meshes are not copied while growing; pages
@@ -341,42 +504,21 @@ static int obj_parse(MeshCtx *c, const char *text, size_t len)
      * little. */
     if (len >= ((size_t)1 << 20)) {
         size_t guess = (len < ((size_t)256 << 20) ? len : ((size_t)256 << 20)) / 24;
+        /* a guess is address space, but one bigger than the memory there
+         * is is cut to it: past it, the arrays are judged as they grow */
+        uint64_t avail = c->err.max_bytes ? c->err.max_bytes : sysmem_available();
+        if (avail && (uint64_t)guess * (12 + 8 + 12) > avail)
+            guess = (size_t)(avail / (12 + 8 + 12));
         if (mb_reserve_ex(&ps.b, guess, guess, 3 * guess, 0))
             goto fail;
     }
-
-    const char *p = text, *end = text + len;
-    if (len >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0)   /* UTF-8 BOM */
-        p += 3;
-    LineReader lr;
-    lr_init(&lr, p, (size_t)(end - p), c->file);
-    const char *ls, *le;
-    while (lr_next(&lr, &ls, &le)) {
-        ps.line = lr.line;
-        if (le > ls && le[-1] == '\\') {
-            if (continued_statement(&ps, &lr, ls, le))
-                goto fail;
-        } else if (statement(&ps, ls, le)) {
-            goto fail;
-        } else if (le > ls && le[-1] == '\0') {
-            /* a NUL (the line ends with the run of them): no text goes
-             * on past binary data, so the rest is not read */
-            me_warn(&c->err, NULL, lr.line, "binary data: the rest of the file (%llu bytes) is not read",
-                    (unsigned long long)(end - le));
-            break;
-        }
-    }
-    if (obj_drop_unreadable(&ps) || obj_resolve_materials(&ps) || mb_finish(&ps.b, !ps.saw_elements))
+    if (obj_parse_parallel(&ps, c, text, mesh_bom_len(text, len), len) < 0 || obj_finish(&ps))
         goto fail;
-    obj_libs_warn(&ps);
-    if (ps.undrawn)
-        me_warn(&c->err, NULL, 0, "%u free-form statement%s (curves, surfaces) not drawn, first '%s'",
-                ps.undrawn, ps.undrawn == 1 ? "" : "s", ps.first_undrawn);
-    parser_free(&ps);
+    obj_parser_free(&ps);
     return 0;
 
 fail:
-    parser_free(&ps);
+    obj_parser_free(&ps);
     mb_abort(&ps.b);
     return -1;
 }

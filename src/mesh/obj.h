@@ -94,7 +94,62 @@ typedef struct {
 
     char       *scratch;         /* joined `\` continuation lines */
     size_t      scap;
+
+    /* A piece of the file parsed apart (objpar.c): indices that count
+     * back (-1) resolve within the piece and are marked OBJ_LOCAL, the
+     * merge adding the vertices before it, or, reaching back past its
+     * start, are marked OBJ_EXTERN with how far past (the merge takes
+     * them from the vertices before it); faces before the piece's first
+     * usemtl take OBJ_INHERIT; whatever the piece cannot judge alone (an
+     * mtllib, any statement that fails) fails it, and the file is read
+     * on from there by the serial parser. fwd_max: the largest positive
+     * index past the piece's own vertices; ext_max: the farthest back
+     * past its start. */
+    int         piece;
+    int         renamed0;        /* an `o` named the piece's first object */
+    uint32_t    ext_max;
 } Parser;
+
+/* A piece's index resolved within the piece (at most 2^29 vertices fit
+ * in the 4 GB a file may have, at 8 bytes a vertex at least, so the top
+ * bits are free). */
+#define OBJ_LOCAL 0x80000000u
+/* A piece's index counting back past its start, by OBJ_FAR_MASK (at
+ * most OBJ_FAR_MAX) before its first vertex. */
+#define OBJ_EXTERN 0xC0000000u
+#define OBJ_FAR_MASK 0x3FFFFFFFu
+#define OBJ_FAR_MAX (1u << 29)
+/* A texture coordinate index a piece cannot resolve (never a valid one:
+ * nor local, since no file has 2^31 entries, nor MESH_NO_UV). */
+#define OBJ_UNKNOWN 0xFFFFFFFEu
+/* A piece's faces before its first usemtl: the material current where
+ * the piece starts. */
+#define OBJ_INHERIT (-2)
+
+/* ==== The lines (obj.c) ==== */
+
+/* A parser for the mesh c builds (mb_start'ed), serial or a piece. */
+int  obj_parser_init(Parser *ps, MeshCtx *c, int piece);
+void obj_parser_free(Parser *ps);
+/* One logical line; a statement that cannot be read is skipped (undone
+ * and counted) unless the load is strict. Returns -1 to stop. */
+int  obj_statement(Parser *ps, const char *ls, const char *e);
+/* Read the lines lr gives to its end (file_end: the text's, for the
+ * message): 0, 1 when a NUL ended the text (the rest is not read), -1
+ * to stop. */
+int  obj_lines(Parser *ps, LineReader *lr, const char *file_end);
+/* After the last line: what only the whole file settles, then the
+ * finish. 0 or -1. */
+int  obj_finish(Parser *ps);
+
+/* ==== Parsing on every core (objpar.c) ==== */
+
+/* Parse text[from, len) (the start of the file is `text`) with ps, in
+ * pieces on several threads when it is big enough and the load allows
+ * (MeshErr.threads), else serially: the mesh, its ids, objects,
+ * materials, warnings and messages are those of the serial parse.
+ * Returns obj_lines' result. */
+int  obj_parse_parallel(Parser *ps, MeshCtx *c, const char *text, size_t from, size_t len);
 
 /* ==== Messages (obj.c) ==== */
 
@@ -127,6 +182,9 @@ int obj_drop_unreadable(Parser *ps);
 
 /* usemtl NAME: the faces after it take that name's material. */
 int obj_use_material(Parser *ps, const char *p, const char *e);
+/* The index of usemtl name `name` (first named at `line`), added when
+ * new; -1 out of memory. */
+int32_t obj_use_index(Parser *ps, const char *name, uint64_t line);
 /* mtllib NAME...: each library read (once) into the mesh's materials. */
 int obj_mtllib(Parser *ps, const char *p, const char *e);
 /* After the last line: usemtl names to material indices. 0 or -1. */

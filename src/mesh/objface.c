@@ -42,8 +42,14 @@ static uint32_t corner_texcoord(const Parser *ps, const char *p, const char *q)
     for (; p < q && val < ((uint64_t)1 << 40); p++)
         val = val * 10 + (uint64_t)(*p - '0');
     uint32_t nuv = ps->m->nuv;
+    if (ps->piece && val && !neg && val > OBJ_LOCAL)
+        return OBJ_UNKNOWN;     /* a piece cannot tell (see read_corner) */
+    if (ps->piece && neg && val > nuv)      /* before the piece: the merge resolves it */
+        return OBJ_EXTERN | (uint32_t)(val - nuv < OBJ_FAR_MAX ? val - nuv : OBJ_FAR_MAX);
     if (val == 0 || (neg && val > nuv) || (!neg && val >= UINT32_MAX))
         return MESH_NO_UV;
+    if (neg && ps->piece)
+        return (nuv - (uint32_t)val) | OBJ_LOCAL;
     return neg ? nuv - (uint32_t)val : (uint32_t)(val - 1);
 }
 
@@ -86,6 +92,9 @@ static int read_corner(Parser *ps, const char *what, const char *ls, const char 
             ok = skip_int(&p, e);          /* vt */
             if (ok && uvi)
                 *uvi = corner_texcoord(ps, t0, p);
+            /* a piece: an entry before its start, or one no file holds */
+            if (ok && uvi && *uvi == OBJ_UNKNOWN)
+                return obj_fail(ps, "texture coordinate index beyond the piece");
         }
         if (ok && p < e && *p == '/') {
             p++;
@@ -104,12 +113,22 @@ static int read_corner(Parser *ps, const char *what, const char *ls, const char 
     int nd = (int)(d1 - d0);
     if (val == 0)
         return obj_fail(ps, "vertex index 0 is invalid (indices start at 1; %u vertices)", m->nverts);
+    if (neg && ps->piece && val > m->nverts && val - m->nverts <= OBJ_FAR_MAX) {
+        /* before the piece: the merge resolves it, or the serial parser
+         * reads on from the piece when there are not so many before */
+        uint32_t far = (uint32_t)(val - m->nverts);
+        ps->ext_max = far > ps->ext_max ? far : ps->ext_max;
+        *idx = OBJ_EXTERN | far;
+        return 1;
+    }
     if (neg) {
         if (val > m->nverts)
             return obj_fail(ps, "vertex index -%.*s out of range (%u vertices so far)", nd, d0, m->nverts);
-        *idx = m->nverts - (uint32_t)val;
+        *idx = (m->nverts - (uint32_t)val) | (ps->piece ? OBJ_LOCAL : 0);
         return 1;
     }
+    if (ps->piece && val > OBJ_LOCAL)
+        return obj_fail(ps, "vertex index %.*s out of range", nd, d0);
     if (val > m->nverts) {
         if (val >= UINT32_MAX)
             return obj_fail(ps, "vertex index %.*s out of range (%u vertices)", nd, d0, m->nverts);
@@ -126,6 +145,11 @@ static int note_forward(Parser *ps, uint64_t fwd, uint32_t point_first)
 {
     if (!fwd)
         return 0;
+    if (ps->piece) {
+        /* only the largest matters: the merge judges it */
+        ps->fwd_max = fwd > ps->fwd_max ? fwd : ps->fwd_max;
+        return 0;
+    }
     if (fwd > ps->fwd_max) {
         ps->fwd_max = fwd;
         ps->fwd_line = ps->line;

@@ -170,23 +170,30 @@ int obj_use_material(Parser *ps, const char *p, const char *e)
         ps->cur_use = -1;
         return 0;
     }
-    int32_t i = name_find(&ps->use_index, ps->uses, sizeof(UseName), name);
-    if (i < 0) {
-        if (ps->nuse == ps->usecap) {
-            size_t cap = ps->usecap;
-            if (grow_size((void **)&ps->uses, &cap, (size_t)ps->nuse + 1, sizeof(UseName)))
-                return obj_oom(ps);
-            ps->usecap = (uint32_t)cap;
-        }
-        UseName *u = &ps->uses[ps->nuse];
-        memcpy(u->name, name, sizeof name);
-        u->line = ps->line;
-        if (name_add(&ps->use_index, ps->uses, sizeof(UseName), ps->nuse))
-            return obj_oom(ps);
-        i = (int32_t)ps->nuse++;
-    }
+    int32_t i = obj_use_index(ps, name, ps->line);
+    if (i < 0)
+        return obj_oom(ps);
     ps->cur_use = i;
     return 0;
+}
+
+int32_t obj_use_index(Parser *ps, const char *name, uint64_t line)
+{
+    int32_t i = name_find(&ps->use_index, ps->uses, sizeof(UseName), name);
+    if (i >= 0)
+        return i;
+    if (ps->nuse == ps->usecap) {
+        size_t cap = ps->usecap;
+        if (grow_size((void **)&ps->uses, &cap, (size_t)ps->nuse + 1, sizeof(UseName)))
+            return -1;
+        ps->usecap = (uint32_t)cap;
+    }
+    UseName *u = &ps->uses[ps->nuse];
+    snprintf(u->name, sizeof u->name, "%s", name);
+    u->line = line;
+    if (name_add(&ps->use_index, ps->uses, sizeof(UseName), ps->nuse))
+        return -1;
+    return (int32_t)ps->nuse++;
 }
 
 /* ==== mtllib ==== */
@@ -289,6 +296,10 @@ static int load_library(Parser *ps, const char *name, size_t n)
 
 int obj_mtllib(Parser *ps, const char *p, const char *e)
 {
+    /* libraries are read in the order the file names them: not by a
+     * piece (the serial parser reads on from it) */
+    if (ps->piece)
+        return obj_fail(ps, "mtllib in a piece");
     obj_trim(&p, &e);
     /* Several names are separated by blanks, but some exporters write
      * one name containing spaces: take the whole rest as one name when

@@ -53,6 +53,10 @@ typedef struct {
     /* The model's file: what it names is opened beneath its folder only
      * (mesh_ref_open). NULL for standard input and memory: nothing. */
     const char *model;
+    /* Threads a text loader may parse on (0: every core; 1: serially),
+     * and the size of its pieces (0: its own; tests make them small). */
+    int         threads;
+    uint64_t    piece_bytes;
 } MeshErr;
 
 /* Each writes the message and returns -1, so `return me_fail(...)`. */

@@ -244,7 +244,7 @@ static Reaction add_part(App *a, Scene *part, const char *path)
     const Options *o = a->opt;
     uint64_t copies = o->grid > 1 ? (uint64_t)o->grid * o->grid * o->grid : 1;
     uint64_t total = scene_polys(s, copies) + scene_polys(part, copies);
-    if (total > o->max_polys) {
+    if (o->max_polys && total > o->max_polys) {
         app_note(a, "%s: the scene would have %llu polygons (limit %llu; --max-polys raises it)",
                  base_name(path), (unsigned long long)total, (unsigned long long)o->max_polys);
         return RE_DRAW;

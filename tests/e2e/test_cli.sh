@@ -169,18 +169,24 @@ if cmp -s "$T/vf" "$T/v0" && ! cmp -s "$T/vf" "$T/vauto"; then ok "--view front 
     notok "--view front is the plain view; the default picks another"; fi
 # runaway scenes are refused before they are built: --grid 40 of the torus
 # is 64,000 copies (hundreds of millions of polygons)
-expect_status "--grid 40 is refused" 1 "$Z" --print --grid 40 assets/torus.obj
-expect_err "the refusal gives the polygon count" "would have "
+# (issue 21: no fixed count; the limit is the memory, ZV_MEM_AVAILABLE
+# plays a machine of 1 GB)
+expect_status "--grid 40 is refused" 1 env ZV_MEM_AVAILABLE=1000000000 "$Z" --print --grid 40 assets/torus.obj
+expect_err "the refusal gives the polygon count" "would have 786,432,000 polygons"
 expect_err "the refusal gives the memory estimate" "GB for itself and one frame"
-expect_err "the refusal gives the limit" "(limit 20,000,000; --max-polys raises it)"
+expect_err "the refusal gives the memory available" "more than it has; 1.0 GB available)"
 expect_err "the refusal names the file" "assets/torus.obj: the scene would have"
+expect_status "a grid that fits is not refused: no fixed count" 0 env ZV_MEM_AVAILABLE=1000000000 \
+    "$Z" --print --size 20x6 --grid 4 assets/torus.obj
+expect_status "--max-polys is an explicit cap" 1 "$Z" --print --size 20x6 --max-polys 1000 assets/torus.obj
+expect_err "the cap's refusal gives the limit" "more than the limit of 1,000 polygons"
 # the limit is the exact polygon count, grid copies counted
 np=$("$Z" --info assets/torus.obj | sed -n 's/.* faces, \([0-9]*\) polygons.*/\1/p')
 expect_status "--max-polys lets a moderate grid through" 0 "$Z" --print --size 20x6 --grid 3 --max-polys $((np * 27)) assets/torus.obj
 expect_status "one polygon less is refused" 1 "$Z" --print --size 20x6 --grid 3 --max-polys $((np * 27 - 1)) assets/torus.obj
 expect_err "the refusal names the count with the copies" "$(printf "%d" $((np * 27)) | sed ':a;s/\B[0-9]\{3\}\>/,&/;ta') polygons"
 expect_status "the benchmark refuses it too" 1 "$Z" --bench --views 1 --grid 40 assets/torus.obj
-expect_err "the benchmark names the limit" "--max-polys raises it"
+expect_err "the benchmark names the memory" "GB available)"
 
 # every write is checked: a full device (/dev/full) or a closed standard
 # output (>&-) is an error naming the file, status 1, never a quiet success

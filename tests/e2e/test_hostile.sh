@@ -32,8 +32,10 @@ if [ $st -le 1 ]; then ok "a PLY header on zeros is read only as far as it says"
 printf '%080d' 0 | tr 0 '\000' >"$T/big.stl"
 printf '\120\270\036\005' >>"$T/big.stl"         # 85,899,344 triangles
 truncate -s $((84 + 50 * 85899344)) "$T/big.stl"
-expect_quick "a sparse 4.3 GB STL is refused by its count" 1 "$Z" --info "$T/big.stl"
+expect_quick "a sparse 4.3 GB STL is refused by its count" 1 "$Z" --info --max-polys 20000000 "$T/big.stl"
 expect_err "the refusal names the file, the count and the limit" "big.stl: 85,899,344 triangles, more than the limit of 20,000,000 polygons (--max-polys raises it)"
+expect_quick "... and without --max-polys, by the memory it needs (a 2 GB machine)" 1 env ZV_MEM_AVAILABLE=2000000000 "$Z" --info "$T/big.stl"
+expect_err "... named with the estimate and the memory" "big.stl: 85,899,344 triangles need about 4.6 GB; 2.0 GB available"
 
 # a material library of zeros (17 s before), and 50,000 missing ones
 printf 'mtllib z.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n' >"$T/m.obj"

@@ -72,3 +72,15 @@ awk 'BEGIN { for (i = 0; i < 10; i++) printf "%d 0 0\n", i }' >"$T/ten.xyz"
 expect_status "a cloud of 10 points passes --max-polys 10" 0 "$Z" -p --size 20x6 --max-polys 10 "$T/ten.xyz"
 expect_status "... and not --max-polys 9: points count" 1 "$Z" -p --size 20x6 --max-polys 9 "$T/ten.xyz"
 expect_err "... naming the file" "$T/ten.xyz: more than the limit of 9 polygons"
+
+# Issue 21: no fixed polygon count. A big OBJ that cannot fit is refused
+# before it is parsed, from its size and lines of its start and end, with
+# the estimate and the memory there is; one that fits is not refused.
+awk 'BEGIN { n = 420; for (i = 0; i < n; i++) for (j = 0; j < n; j++) printf "v %.6f %.6f %.6f\n", i / n, j / n, (i * j) % 7 / 70.0
+    for (i = 0; i < n - 1; i++) for (j = 0; j < n - 1; j++) { a = i * n + j + 1; printf "f %d %d %d\nf %d %d %d\n", a, a + 1, a + n, a + 1, a + n + 1, a + n } }' >"$T/grid.obj"
+expect_status "a 13 MB OBJ on a machine of 8 MB is refused" 1 env ZV_MEM_AVAILABLE=8000000 "$Z" --info "$T/grid.obj"
+expect_err "... before parsing, with the estimate and the memory" "grid.obj: 13 MB of OBJ need at least about 12 MB for the mesh (judged from lines of its start and end); 8 MB available"
+expect_status "... and loads whole with 40 MB" 0 env ZV_MEM_AVAILABLE=40000000 "$Z" --info "$T/grid.obj"
+expect_out "... every triangle of it" "triangles:  351122"
+expect_status "--max-polys is still a cap" 1 "$Z" --info --max-polys 351121 "$T/grid.obj"
+expect_err "... named in the refusal" "more than the limit of 351,121 polygons"

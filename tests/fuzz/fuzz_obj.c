@@ -1,7 +1,9 @@
 /* fuzz_obj.c: the loader harness. OBJ text (and the MTL file it names)
  * through mesh_parse, scene_build, a small render in every display mode
  * and the text output, the way `zview --print` goes; then every algorithm
- * against the z-buffer on the loaded scene (abort on a difference).
+ * against the z-buffer on the loaded scene (abort on a difference); and
+ * the text parsed in pieces on two threads against the serial parse
+ * (objpar.c; abort on a difference).
  *
  * Input: OBJ text, optionally followed by a line "@@mtl" and the text of
  * the file in.mtl, which `mtllib in.mtl` in the OBJ part loads. mtllib is
@@ -164,6 +166,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* each input sees only its own MTL part, never the last one's */
     if (mtl ? write_file(work.mtl, mtl, size - (size_t)(mtl - text)) : (unlink(work.mtl), 0))
         return 0;
+    /* parsed in pieces (small ones, so that the fuzzer's short inputs
+     * are cut too) on two threads: the serial parse, byte for byte */
+    for (int strict = 0; strict <= 1; strict++) {
+        const char *d = tl_obj_pieces_differ(work.obj, text, obj_len, 2, 1 + size % 61, strict);
+        if (d) {
+            fprintf(stderr, "fuzz_obj: %s\n", d);
+            abort();
+        }
+    }
     Mesh *m = calloc(1, sizeof *m);
     char err[512];
     if (!m)
