@@ -26,6 +26,8 @@
 
 #include "clock.h"
 #include "sandbox.h"
+
+#define SANDBOX_SLACK (256ull << 20)     /* bytes beyond the memory available, without --max-memory */
 #include "sysmem.h"
 
 /* How often the parent looks at the cancel flag and copies progress
@@ -125,8 +127,14 @@ static void child_prepare(Job *j)
     }
     uint64_t as, data;
     vm_now(&as, &data);
-    if (j->budget < (uint64_t)RLIM_INFINITY - as) {     /* else nothing is known of the machine's memory */
-        set_limit(RLIMIT_AS, as + j->budget, as + j->budget);
+    /* the reader maps the model's file (read-only: address space, not
+     * VmData), whatever its size, and copies windows of it: the address
+     * space has room for the file besides the budget */
+    struct stat st;
+    uint64_t file = j->path && strcmp(j->path, "-") && stat(j->path, &st) == 0 && S_ISREG(st.st_mode)
+                  ? (uint64_t)st.st_size : 0;
+    if (j->budget < (uint64_t)RLIM_INFINITY - as - file) {      /* else nothing is known of the machine's memory */
+        set_limit(RLIMIT_AS, as + file + j->budget, as + file + j->budget);
         set_limit(RLIMIT_DATA, data + j->budget, data + j->budget);
     }
     set_limit(RLIMIT_CPU, j->cpu, j->cpu + 1);     /* SIGXCPU, then SIGKILL a second later */
@@ -334,7 +342,12 @@ static int load(Mesh *m, const char *path, const MeshLoadOpts *lo, const Sandbox
     memset(m, 0, sizeof *m);
     Job j = { .path = path, .name = !path ? "(input)" : strcmp(path, "-") ? path : "stdin", .lo = lo,
               .data = data, .len = len, .cpu = so && so->cpu_seconds ? so->cpu_seconds : SANDBOX_CPU_SECONDS };
-    j.budget = so && so->max_memory ? so->max_memory : lo->max_bytes ? lo->max_bytes : sysmem_available();
+    /* without --max-memory the bound is what is available and some slack:
+     * the loaders' own estimates judge against what is available and
+     * refuse first, with the estimate in the message; the bound is for
+     * what they cannot foresee (a parser gone wrong) */
+    j.budget = so && so->max_memory ? so->max_memory
+             : lo->max_bytes ? lo->max_bytes : sysmem_available() + SANDBOX_SLACK;
     MeshLoadOpts lo2 = *lo;
     if (!lo2.max_bytes && so && so->max_memory)
         lo2.max_bytes = so->max_memory;     /* the loaders' own estimates refuse first, with a better message */
