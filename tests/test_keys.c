@@ -299,6 +299,22 @@ Test(keys, the_answer_to_a_status_request_is_ready)
     cr_expect(e.ev[0].type == TE_READY && e.ev[1].type == TE_READY);
 }
 
+/* Esc typed while an answer is on its way: on a busy machine the two
+ * arrive in one read, and the Esc is the user's (it was taken for Alt
+ * with the answer and dropped: Esc could not stop a load under load) */
+Test(keys, esc_just_before_an_answer_is_esc)
+{
+    Events e = FEED("\033\033[0n");
+    cr_expect_eq(e.n, 2, "%s", show(&e));
+    cr_expect(e.ev[0].type == TE_KEY && e.ev[0].key == TK_ESC, "%s", show(&e));
+    cr_expect(e.ev[1].type == TE_READY, "%s", show(&e));
+    EXPECT_KEYS("before the attributes' answer", "\033\033[?62;22c", TK_ESC);
+    EXPECT_KEYS("before an answer, then a key", "\033\033[?62;22cq", TK_ESC, 'q');
+    /* Alt with a key (rxvt: ESC ESC [ A) is still dropped whole */
+    EXPECT_NONE("Alt-Up", "\033\033[A");
+    EXPECT_NONE("Alt-Delete", "\033\033[3~");
+}
+
 /* ==== The mouse ==== */
 
 Test(keys, sgr_press_drag_release)

@@ -343,6 +343,25 @@ static int ss3(KeyParser *p, size_t o, TermEvent *ev, size_t *used)
     }
 }
 
+/* The CSI sequence from b[o] (after ESC ESC [): 1 when it is a key
+ * (Alt with an arrow or an editing key: a final the keys use, no '?',
+ * '>' or '<' before its parameters), 0 when it is something else (a
+ * terminal's answer), -1 when it has not ended yet. */
+static int alt_key_csi(const unsigned char *b, size_t o, size_t len)
+{
+    if (o >= len)
+        return -1;
+    int priv = b[o] == '?' || b[o] == '>' || b[o] == '<' || b[o] == '=';
+    for (size_t i = o; i < len; i++) {
+        unsigned char c = b[i];
+        if (c >= 0x40 && c <= 0x7e)
+            return !priv && c != 'M' && strchr("ABCDHFZ~$^@abcd", c) != NULL;
+        if (c < 0x20 || c > 0x3f)
+            return 0;           /* not a CSI sequence: no key either */
+    }
+    return -1;
+}
+
 /* An ESC at b[0]. */
 static int escape(KeyParser *p, TermEvent *ev, size_t *used)
 {
@@ -362,10 +381,23 @@ static int escape(KeyParser *p, TermEvent *ev, size_t *used)
         *used = 2;
         return R_DROP;
     case ESC:
-        /* ESC ESC [ ...: a key with Alt (rxvt), dropped whole; ESC ESC
+        /* ESC ESC [ ...: a key with Alt (rxvt), dropped whole; but an
+         * answer of the terminal's (a status or attributes report, a
+         * mouse report) right after a lone Esc is not a key: the Esc is
+         * the user's and the answer is read afresh (on a loaded machine
+         * the two arrive together, and the Esc was lost). ESC ESC
          * otherwise: the first is an Esc of its own */
         if (p->len < 3)
             return R_MORE;
+        if (b[2] == '[') {
+            int k = alt_key_csi(b, 3, p->len);
+            if (k < 0)
+                return R_MORE;
+            if (!k) {
+                *used = 1;
+                return key(ev, TK_ESC);
+            }
+        }
         if (b[2] == '[' || b[2] == 'O') {
             int r = b[2] == '[' ? csi(p, 3, ev, used) : ss3(p, 3, ev, used);
             return r == R_MORE ? R_MORE : R_DROP;
