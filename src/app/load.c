@@ -59,29 +59,19 @@ int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
     return app_load_scene_ex(o, s, NULL, err, errlen);
 }
 
-int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size_t errlen)
+/* Every file of the command line into meshes (nfiles of them), each in
+ * the sandbox: one of several that cannot be read (gone, unreadable, not
+ * a model) is named in a warning and the rest are kept; --strict, or
+ * every file failing, refuses. Returns how many were read, or -1 with
+ * the reason in err (meshes freed). */
+static int read_files(const Options *o, const char *const *files, int nfiles, Mesh *meshes, char *err,
+                      size_t errlen)
 {
-    const char *demo[1];
-    const char *const *files = o->files;
-    int nfiles = o->nfiles;
-    if (nfiles == 0) {
-        demo[0] = app_demo_path();
-        files = demo;
-        nfiles = 1;
-    }
-    Mesh *meshes = calloc((size_t)nfiles, sizeof *meshes);
-    if (!meshes) {
-        snprintf(err, errlen, "out of memory");
-        return -1;
-    }
     int from_stdin = 0;
     app_sandbox_warn(o);
     MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys, .threads = o->threads,
                         .max_bytes = o->max_memory, .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
     SandboxOpts so = app_sandbox_opts(o);
-    /* one file of several that cannot be read (gone, unreadable, not a
-     * model) is named in a warning and the rest are shown; --strict, or
-     * every file failing, refuses */
     int nread = 0, nfailed = 0;
     char left_out[256] = "";
     for (int i = 0; i < nfiles; i++) {
@@ -96,7 +86,6 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
             }
             for (int k = 0; k < nread; k++)
                 mesh_free(&meshes[k]);
-            free(meshes);
             return -1;
         }
         if (o->flip)
@@ -106,7 +95,6 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
         nread++;
     }
     err[0] = '\0';
-    nfiles = nread;
     /* the viewer's status bar shows the first file's first warning (the
      * screen covers stderr): a file left out is the one to know about */
     if (left_out[0] && !meshes[0].info.skipped && !meshes[0].info.tex_failed) {
@@ -122,6 +110,81 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
             close(fd);
             clearerr(stdin);
         }
+    }
+    return nread;
+}
+
+/* --move, --turn and --scale on the objects, then what a reset (r in the
+ * viewer) goes back to. Returns 0, or -1 for an object that does not
+ * exist. */
+static int place_objects(const Options *o, Scene *s, char *err, size_t errlen)
+{
+    for (int k = 0; k < o->nplace; k++) {
+        const Placement *pl = &o->place[k];
+        if (pl->obj >= (int)s->nbase_objs) {
+            snprintf(err, errlen, "object %d does not exist (the scene has %u)", pl->obj + 1, s->nbase_objs);
+            return -1;
+        }
+        Object *ob = &s->objs[pl->obj];
+        if (pl->kind == PLACE_MOVE)
+            ob->offset = v3_add(ob->home, v3(pl->v[0], pl->v[1], pl->v[2]));
+        else if (pl->kind == PLACE_TURN) {
+            ob->yaw = deg2rad(pl->v[0]);
+            ob->pitch = deg2rad(pl->v[1]);
+            ob->roll = deg2rad(pl->v[2]);
+        } else
+            ob->scale = ob->home_scale * pl->v[0];
+    }
+    for (int k = 0; k < s->nobjs; k++) {
+        Object *ob = &s->objs[k];
+        ob->open_move = v3_sub(ob->offset, ob->home);
+        ob->open_yaw = ob->yaw;
+        ob->open_pitch = ob->pitch;
+        ob->open_roll = ob->roll;
+        ob->open_scale = ob->home_scale != 0 ? ob->scale / ob->home_scale : 1;
+    }
+    return 0;
+}
+
+/* The camera: fitted once as seen from the requested (or the
+ * --fit-from) turn, then turned, zoomed and panned: any state of the
+ * viewer is reachable from here. */
+static void set_camera(const Options *o, Scene *s, float yaw, float pitch)
+{
+    light_set(&s->light, o->light[0], o->light[1], o->ambient);
+    s->cam.persp = o->persp;
+    s->cam.fov_deg = o->fov;
+    const float *fit = o->has_fit_from ? o->fit_from : (const float[3]){ yaw, pitch, o->roll };
+    s->cam.yaw = deg2rad(fit[0]);
+    s->cam.pitch = deg2rad(fit[1]);
+    s->cam.roll = deg2rad(fit[2]);
+    scene_fit(s);
+    s->cam.yaw = deg2rad(yaw);
+    s->cam.pitch = deg2rad(pitch);
+    s->cam.roll = deg2rad(o->roll);
+    s->cam.zoom = o->zoom;
+    s->cam.pan = v3(o->pan[0], o->pan[1], 0);
+}
+
+int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size_t errlen)
+{
+    const char *demo[1];
+    const char *const *files = o->files;
+    int nfiles = o->nfiles;
+    if (nfiles == 0) {
+        demo[0] = app_demo_path();
+        files = demo;
+        nfiles = 1;
+    }
+    Mesh *meshes = calloc((size_t)nfiles, sizeof *meshes);
+    if (!meshes) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    nfiles = read_files(o, files, nfiles, meshes, err, errlen);
+    if (nfiles < 0) {
+        free(meshes);
+        return -1;
     }
     if (scene_build(s, meshes, nfiles, err, errlen)) {
         for (int k = 0; k < nfiles; k++)
@@ -146,54 +209,12 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
         vy = py;
         vp = pp;
     }
-    float yaw = vy + o->yaw, pitch = vp + o->pitch;
     scene_layout(s, (LayoutKind)o->layout, deg2rad(py));
-    if (app_check_size(o, s, err, errlen) ||
-        (o->grid > 1 && scene_make_grid(s, o->grid, err, errlen))) {
+    if (app_check_size(o, s, err, errlen) || (o->grid > 1 && scene_make_grid(s, o->grid, err, errlen)) ||
+        place_objects(o, s, err, errlen)) {
         scene_free(s);
         return -1;
     }
-    /* scene_build left everything reset: place the objects, fit once as
-     * seen from the requested (or the --fit-from) turn, then turn, zoom
-     * and pan: any state of the viewer is reachable from here */
-    for (int k = 0; k < o->nplace; k++) {
-        const Placement *pl = &o->place[k];
-        if (pl->obj >= (int)s->nbase_objs) {
-            snprintf(err, errlen, "object %d does not exist (the scene has %u)", pl->obj + 1, s->nbase_objs);
-            scene_free(s);
-            return -1;
-        }
-        Object *ob = &s->objs[pl->obj];
-        if (pl->kind == PLACE_MOVE)
-            ob->offset = v3_add(ob->home, v3(pl->v[0], pl->v[1], pl->v[2]));
-        else if (pl->kind == PLACE_TURN) {
-            ob->yaw = deg2rad(pl->v[0]);
-            ob->pitch = deg2rad(pl->v[1]);
-            ob->roll = deg2rad(pl->v[2]);
-        } else
-            ob->scale = ob->home_scale * pl->v[0];
-    }
-    /* what a reset (r in the viewer) goes back to */
-    for (int k = 0; k < s->nobjs; k++) {
-        Object *ob = &s->objs[k];
-        ob->open_move = v3_sub(ob->offset, ob->home);
-        ob->open_yaw = ob->yaw;
-        ob->open_pitch = ob->pitch;
-        ob->open_roll = ob->roll;
-        ob->open_scale = ob->home_scale != 0 ? ob->scale / ob->home_scale : 1;
-    }
-    light_set(&s->light, o->light[0], o->light[1], o->ambient);
-    s->cam.persp = o->persp;
-    s->cam.fov_deg = o->fov;
-    const float *fit = o->has_fit_from ? o->fit_from : (const float[3]){ yaw, pitch, o->roll };
-    s->cam.yaw = deg2rad(fit[0]);
-    s->cam.pitch = deg2rad(fit[1]);
-    s->cam.roll = deg2rad(fit[2]);
-    scene_fit(s);
-    s->cam.yaw = deg2rad(yaw);
-    s->cam.pitch = deg2rad(pitch);
-    s->cam.roll = deg2rad(o->roll);
-    s->cam.zoom = o->zoom;
-    s->cam.pan = v3(o->pan[0], o->pan[1], 0);
+    set_camera(o, s, vy + o->yaw, vp + o->pitch);
     return 0;
 }
