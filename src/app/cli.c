@@ -285,6 +285,11 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
     }
     if (o->check && check_with(o, err, errlen))
         return -1;
+    if (o->json && !o->check && !o->bench) {
+        /* a script that asked for JSON would read a picture instead */
+        snprintf(err, errlen, "--json goes with --check or --bench");
+        return -1;
+    }
     if (o->algo && !o->bench && !hsr_find(o->algo)) {
         snprintf(err, errlen, "unknown algorithm '%s' (zbuffer, scanline, span, hzb, hzb-octree)", o->algo);
         return -1;
