@@ -238,10 +238,14 @@ static void decode_or_defer(MeshBuild *b, MeshTexture *t, void *data, size_t len
         texture_failed(b, t->name, why);
 }
 
-int32_t mb_texture(MeshBuild *b, const char *name, const char *path, const void *data, size_t len,
-                   TexWrap wrap_u, TexWrap wrap_v, int *oom)
+/* The texture of this name and wrap modes (its index, *t_new NULL), or a
+ * new one for the caller to fill (*t_new). -1 when textures are off, or
+ * out of memory (*oom set). */
+static int32_t texture_slot(MeshBuild *b, const char *name, TexWrap wrap_u, TexWrap wrap_v, int *oom,
+                            MeshTexture **t_new)
 {
     *oom = 0;
+    *t_new = NULL;
     if (b->e->no_textures)
         return -1;
     int32_t i = find_texture(b->m, name, wrap_u, wrap_v);
@@ -253,7 +257,17 @@ int32_t mb_texture(MeshBuild *b, const char *name, const char *path, const void 
         me_oom(b->e);
         return -1;
     }
-    i = (int32_t)(t - b->m->tex);
+    *t_new = t;
+    return (int32_t)(t - b->m->tex);
+}
+
+int32_t mb_texture(MeshBuild *b, const char *name, const char *path, const void *data, size_t len,
+                   TexWrap wrap_u, TexWrap wrap_v, int *oom)
+{
+    MeshTexture *t;
+    int32_t i = texture_slot(b, name, wrap_u, wrap_v, oom, &t);
+    if (!t)
+        return i;      /* there already, textures off, or out of memory */
     void *bytes = NULL;
     char why[160];
     if (path) {
@@ -276,47 +290,31 @@ int32_t mb_texture(MeshBuild *b, const char *name, const char *path, const void 
 int32_t mb_texture_rgba(MeshBuild *b, const char *name, const uint8_t *rgba, int w, int h, TexWrap wrap_u,
                         TexWrap wrap_v, int *oom)
 {
-    *oom = 0;
-    if (b->e->no_textures)
-        return -1;
-    int32_t i = find_texture(b->m, name, wrap_u, wrap_v);
-    if (i >= 0)
-        return i;
-    MeshTexture *t = new_texture(b, name, wrap_u, wrap_v);
-    if (!t) {
-        *oom = 1;
-        me_oom(b->e);
-        return -1;
-    }
+    MeshTexture *t;
+    int32_t i = texture_slot(b, name, wrap_u, wrap_v, oom, &t);
+    if (!t)
+        return i;      /* there already, textures off, or out of memory */
     t->src_w = w;
     t->src_h = h;
     Texture img;
     char why[256];
     if (texture_from_rgba(&img, rgba, w, h, name, b->e->max_bytes, why, sizeof why)) {
         texture_failed(b, name, why);
-        return (int32_t)(t - b->m->tex);
+        return i;
     }
     mesh_texture_install(t, 0, &img, 0);
-    return (int32_t)(t - b->m->tex);
+    return i;
 }
 
 int32_t mb_texture_missing(MeshBuild *b, const char *name, const char *why, TexWrap wrap_u, TexWrap wrap_v,
                            int *oom)
 {
-    *oom = 0;
-    if (b->e->no_textures)
-        return -1;
-    int32_t i = find_texture(b->m, name, wrap_u, wrap_v);
-    if (i >= 0)
-        return i;
-    MeshTexture *t = new_texture(b, name, wrap_u, wrap_v);
-    if (!t) {
-        *oom = 1;
-        me_oom(b->e);
-        return -1;
-    }
+    MeshTexture *t;
+    int32_t i = texture_slot(b, name, wrap_u, wrap_v, oom, &t);
+    if (!t)
+        return i;      /* there already, textures off, or out of memory */
     texture_failed(b, name, why);
-    return (int32_t)(t - b->m->tex);
+    return i;
 }
 
 /* ==== Reading them back ==== */
