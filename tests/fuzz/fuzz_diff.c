@@ -117,6 +117,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fprintf(stderr, "%dx%d, %d thread(s), order %s, hidden surfaces at %s: %u objects, %u polygons on screen\n",
                 vp.w, vp.h, threads, order_names[run.order], run.hsr_simd ? simd_name(run.hsr_simd) : "every level",
                 (unsigned)s.nobjs, bufs.ref.sp.npolys);
+    for (int k = 0; getenv("FUZZ_DIFF_SAY") && k < s.nobjs; k++)
+        fprintf(stderr, "  object %d: %u polygons%s\n", k, (unsigned)s.objs[k].poly_count, k ? "" : style.wire ? ", wireframe" : "");
     HsrInput in = { .sp = &bufs.ref.sp, .scene = &s, .vp = &vp, .simd = SIMD_SCALAR };
     if (tl_render_poisoned(&hsr_zbuffer, 1, &in, &bufs.ref_fb))
         goto out;

@@ -270,8 +270,9 @@ int sc_decode_style(const uint8_t *data, size_t size, Scene *s, Viewport *vp, in
     return sc_decode_run(data, size, s, vp, threads, style, &run);
 }
 
-/* The large mesh (scenecode.h) into m; 1 when the input asks for none. */
-static int decode_big(Rd *r, Mesh *m, int grid)
+/* The large mesh (scenecode.h) into m; 1 when the input asks for none.
+ * small: a tenth of the faces (eight copies of it, or its wireframe). */
+static int decode_big(Rd *r, Mesh *m, int small)
 {
     if (rd_u8(r) == 0)
         return 1;
@@ -281,7 +282,7 @@ static int decode_big(Rd *r, Mesh *m, int grid)
         c[i] = rd_coord(r, 0);
     double size = ldexp(1, (int)(rd_u8(r) % 64) - 32);
     if (tl_mesh_init(m, "big") || tl_mesh_object(m, "big") ||
-        sc_big_mesh(m, kind, n, seed, c, size, grid ? SC_MAX_BIG_FACES / 10 : SC_MAX_BIG_FACES))
+        sc_big_mesh(m, kind, n, seed, c, size, small ? SC_MAX_BIG_FACES / 10 : SC_MAX_BIG_FACES))
         return -1;
     return 0;
 }
@@ -397,7 +398,7 @@ int sc_decode_run(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int 
     run->hsr_simd = (int)(rb >> 2 & 3);
     run->seed = rd_u16(&r);
     Mesh *big = &meshes[nmeshes++];
-    int rc = decode_big(&r, big, flags & SC_GRID);
+    int rc = decode_big(&r, big, (flags & SC_GRID) || style->wire);
     if (rc < 0)
         goto fail;
     place[nplace++].placed = 0;

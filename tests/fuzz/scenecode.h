@@ -86,10 +86,15 @@
  *   u8  big                       0: none; else a mesh of its own, after
  *                                 the others, one object, not placed:
  *     u8 kind, u8 n, u16 seed     sc_big_mesh: kind % 4 = 0 a terrain, 1 a
- *                                 sphere, 2 a soup of small triangles, 3
+ *                                 sphere, 2 a soup of small triangles (up
+ *                                 to 8,192), 3
  *                                 layers one behind another, up to
  *                                 SC_MAX_BIG_FACES triangles (a tenth of
- *                                 that with SC_GRID); n its size
+ *                                 that with SC_GRID or the wireframe: span
+ *                                 is quadratic in the crossings of a row,
+ *                                 and a 10,000-triangle sphere's wireframe
+ *                                 at 64x59 took a minute under the
+ *                                 fuzzer); n its size
  *     coord x, y, z               its centre, as for objects (not raw)
  *     u8  size                    its half extent, 2^(v % 64 - 32) */
 
