@@ -270,9 +270,9 @@ int sc_decode_style(const uint8_t *data, size_t size, Scene *s, Viewport *vp, in
     return sc_decode_run(data, size, s, vp, threads, style, &run);
 }
 
-/* The large mesh (scenecode.h) into m; 1 when the input asks for none.
- * small: a tenth of the faces (eight copies of it, or its wireframe). */
-static int decode_big(Rd *r, Mesh *m, int small)
+/* The large mesh (scenecode.h) into m, of at most SC_MAX_BIG_FACES /
+ * part faces; 1 when the input asks for none. */
+static int decode_big(Rd *r, Mesh *m, int part)
 {
     if (rd_u8(r) == 0)
         return 1;
@@ -282,7 +282,7 @@ static int decode_big(Rd *r, Mesh *m, int small)
         c[i] = rd_coord(r, 0);
     double size = ldexp(1, (int)(rd_u8(r) % 64) - 32);
     if (tl_mesh_init(m, "big") || tl_mesh_object(m, "big") ||
-        sc_big_mesh(m, kind, n, seed, c, size, small ? SC_MAX_BIG_FACES / 10 : SC_MAX_BIG_FACES))
+        sc_big_mesh(m, kind, n, seed, c, size, SC_MAX_BIG_FACES / (uint32_t)part))
         return -1;
     return 0;
 }
@@ -398,7 +398,7 @@ int sc_decode_run(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int 
     run->hsr_simd = (int)(rb >> 2 & 3);
     run->seed = rd_u16(&r);
     Mesh *big = &meshes[nmeshes++];
-    int rc = decode_big(&r, big, (flags & SC_GRID) || style->wire);
+    int rc = decode_big(&r, big, (flags & SC_GRID ? 10 : 1) * (style->wire ? 10 : 1));
     if (rc < 0)
         goto fail;
     place[nplace++].placed = 0;

@@ -90,7 +90,8 @@
  *                                 to 8,192), 3
  *                                 layers one behind another, up to
  *                                 SC_MAX_BIG_FACES triangles (a tenth of
- *                                 that with SC_GRID or the wireframe: span
+ *                                 that with SC_GRID, a tenth with the
+ *                                 wireframe, a hundredth with both: span
  *                                 is quadratic in the crossings of a row,
  *                                 and a 10,000-triangle sphere's wireframe
  *                                 at 64x59 took a minute under the
