@@ -204,9 +204,10 @@ nosimd:
 run: $(BIN)
 	./$(BIN)
 
-# tools/subdiv writes the many-triangle model into /tmp at bench time
-bench: $(BIN) $(BUILD)/subdiv
-	SUBDIV=$(BUILD)/subdiv sh tools/bench.sh
+# tools/subdiv writes the many-triangle models into /tmp at bench time;
+# memframes measures memory over 10,000 frames (issue 21's targets)
+bench: $(BIN) $(BUILD)/subdiv $(BUILD)/memframes
+	SUBDIV=$(BUILD)/subdiv MEMFRAMES=$(BUILD)/memframes sh tools/bench.sh
 
 # What --check costs beyond loading, and its peak memory against loading
 # alone (issue 19; doc/benchmarks.md: The check).
