@@ -122,7 +122,7 @@ if [ -f "$D" ]; then
         for a in zbuffer hzb-octree; do
             "$MEMFRAMES" --views "$MEM_FRAMES" --size 160x96 --samples 1 --threads 2 --algo "$a" "$D" | awk -v a="$a" -v n="$MEM_FRAMES" 'NR == 2 {
                 printf "%-46s %9s %9s %8s %8s %8s   %s\n", "RSS KB grown, frames 100-" n ", " a, $9, "", "", "", "",
-                    "0 (RSS " $6 " -> " $7 " MB, heap " $10 " -> " $11 " MB)" }'
+                    "0 (RSS " $6 " -> " $7 " MB; heap " $10 " -> " $11 " MB, " $12 " B grown after frame 1000)" }'
         done
     else
         other "memory over $MEM_FRAMES frames" "(no tool)" "0: $MEMFRAMES is not built (make bench builds it)"
