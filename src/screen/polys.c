@@ -300,9 +300,10 @@ int project_range(RangeJob *j)
                 nk = project_sift_tiny_avx2(s->poly_corner + c0, j->vs->sv, vmin, sp->cull, keep, nk, j->lut,
                                             &empty, &sp->culled_back);
 #endif
-            /* the face ids of the kept ones are read below, a few lines
-             * each out of a big array: start fetching them now */
-            for (uint32_t i = 0; i < nk; i += 4)
+            /* the face ids of the kept ones are read below, scattered
+             * over a big array (one kept in twenty at small sizes: a
+             * line each): start fetching every one now */
+            for (uint32_t i = 0; i < nk; i++)
                 __builtin_prefetch(&s->poly_lface[k + keep[i]]);
         } else {
             /* a mixed chunk: triangles screened one by one */
