@@ -178,6 +178,27 @@ ZV_AVX2_FN static inline __m256i edge8(__m256i ax, __m256i ay, __m256i bx, __m25
     return _mm256_or_si256(_mm256_cmpgt_epi32(e, zero), _mm256_and_si256(_mm256_cmpeq_epi32(e, zero), tl));
 }
 
+/* The snapped corners of the eight triangles t[0..8) (corners at
+ * corner[3 t ..], points sv[corner - vmin]): x[k], y[k] of corner k.
+ * Plain loads, a point's x and y in one: faster than gathers here, and
+ * the points are scattered (each load likely a miss). */
+ZV_AVX2_FN static inline void corners8_xy(const uint32_t *corner, const ScreenVert *sv, uint32_t vmin,
+                                          const uint32_t *t, __m256i x[3], __m256i y[3])
+{
+    for (int k = 0; k < 3; k++) {
+        __m128i p[8];
+        for (int l = 0; l < 8; l++)
+            p[l] = _mm_loadl_epi64((const __m128i *)&sv[corner[3 * (size_t)t[l] + k] - vmin]);
+        /* (x, y) pairs of lanes 0-3 | 4-7 -> x of all eight, y of all eight */
+        __m256i lo = _mm256_set_m128i(_mm_unpacklo_epi64(p[4], p[5]), _mm_unpacklo_epi64(p[0], p[1]));
+        __m256i hi = _mm256_set_m128i(_mm_unpacklo_epi64(p[6], p[7]), _mm_unpacklo_epi64(p[2], p[3]));
+        /* lo: x0 y0 x1 y1 | x4 y4 x5 y5, hi: x2 y2 x3 y3 | x6 y6 x7 y7 */
+        __m256 fl = _mm256_castsi256_ps(lo), fh = _mm256_castsi256_ps(hi);
+        x[k] = _mm256_castps_si256(_mm256_shuffle_ps(fl, fh, _MM_SHUFFLE(2, 0, 2, 0)));
+        y[k] = _mm256_castps_si256(_mm256_shuffle_ps(fl, fh, _MM_SHUFFLE(3, 1, 3, 1)));
+    }
+}
+
 /* Second screening of the kept triangles keep[0 .. nk) (corners at
  * corner[3 keep[i] ..], points sv[corner - vmin]), eight at a time: a
  * triangle whose sample box is a single sample has its corners within
@@ -191,22 +212,15 @@ ZV_AVX2_FN uint32_t project_sift_tiny_avx2(const uint32_t *corner, const ScreenV
                                            uint32_t *keep, uint32_t nk, const KeepLut *lut, uint32_t *empty,
                                            uint32_t *back)
 {
-    const __m256i vm = _mm256_set1_epi32((int32_t)vmin), one = _mm256_set1_epi32(1);
+    const __m256i one = _mm256_set1_epi32(1);
     const __m256i k127 = _mm256_set1_epi32(127), k128 = _mm256_set1_epi32(128);
     const __m256i out = _mm256_set1_epi32(VERT_OUT), zero = _mm256_setzero_si256();
     const __m256i vcull = _mm256_set1_epi32(cull ? -1 : 0);
-    const int *cb = (const int *)corner, *pb = (const int *)sv;
     uint32_t n = 0, i = 0;
     for (; i + 8 <= nk; i += 8) {
         __m256i t = _mm256_loadu_si256((const __m256i *)(keep + i));
-        __m256i c3 = _mm256_add_epi32(_mm256_add_epi32(t, t), t);
         __m256i x[3], y[3];
-        for (int k = 0; k < 3; k++) {
-            __m256i v = _mm256_sub_epi32(_mm256_i32gather_epi32(cb + k, c3, 4), vm);
-            __m256i v3 = _mm256_add_epi32(_mm256_add_epi32(v, v), v);      /* 3 ints a point */
-            x[k] = _mm256_i32gather_epi32(pb, v3, 4);
-            y[k] = _mm256_i32gather_epi32(pb + 1, v3, 4);
-        }
+        corners8_xy(corner, sv, vmin, keep + i, x, y);
         __m256i xmn = _mm256_min_epi32(_mm256_min_epi32(x[0], x[1]), x[2]);
         __m256i xmx = _mm256_max_epi32(_mm256_max_epi32(x[0], x[1]), x[2]);
         __m256i ymn = _mm256_min_epi32(_mm256_min_epi32(y[0], y[1]), y[2]);
