@@ -297,14 +297,14 @@ int project_range(RangeJob *j)
             empty += n - nk;
 #ifdef ZV_AVX2
             if (j->simd >= SIMD_AVX2)
-                nk = project_sift_tiny_avx2(s->poly_corner + c0, j->vs->sv, vmin, sp->cull, keep, nk, j->lut,
-                                            &empty, &sp->culled_back);
+                nk = project_sift_small_avx2(s->poly_corner + c0, j->vs->sv, vmin, sp->w, sp->h, sp->cull, keep, nk,
+                                             j->lut, &empty, &sp->culled_back);
 #endif
             /* the face ids of the kept ones are read below, scattered
              * over a big array (one kept in twenty at small sizes: a
              * line each): start fetching every one now */
             for (uint32_t i = 0; i < nk; i++)
-                __builtin_prefetch(&s->poly_lface[k + keep[i]]);
+                __builtin_prefetch(&s->poly_lface[k + (keep[i] & ~KEEP_HIT)]);
         } else {
             /* a mixed chunk: triangles screened one by one */
             nk = 0;
