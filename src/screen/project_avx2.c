@@ -209,22 +209,31 @@ ZV_AVX2_FN static inline __m256i hits8_small(const __m256i ex[3], const __m256i 
         DX[k] = _mm256_slli_epi32(dx, SUBPIX_BITS);
         DY[k] = _mm256_slli_epi32(dy, SUBPIX_BITS);
     }
-    /* the eight places a sample of a box of at most four can be: (c, r) */
-    static const int8_t pos[8][2] = { { 0, 0 }, { 1, 0 }, { 2, 0 }, { 3, 0 }, { 0, 1 }, { 0, 2 }, { 0, 3 }, { 1, 1 } };
+    /* the eight places a sample of a box of at most four can be, (c, r):
+     * (0..3, 0), (0, 1..3) and (1, 1), each edge's function stepped there */
+    __m256i at[8][3];
+    for (int k = 0; k < 3; k++) {
+        at[0][k] = e[k];
+        at[1][k] = _mm256_sub_epi32(at[0][k], DY[k]);
+        at[2][k] = _mm256_sub_epi32(at[1][k], DY[k]);
+        at[3][k] = _mm256_sub_epi32(at[2][k], DY[k]);
+        at[4][k] = _mm256_add_epi32(at[0][k], DX[k]);
+        at[5][k] = _mm256_add_epi32(at[4][k], DX[k]);
+        at[6][k] = _mm256_add_epi32(at[5][k], DX[k]);
+        at[7][k] = _mm256_add_epi32(at[1][k], DX[k]);
+    }
+    const __m256i c1 = _mm256_set1_epi32(1), c2 = _mm256_set1_epi32(2), c3 = _mm256_set1_epi32(3);
+    const __m256i wide[4] = { _mm256_cmpeq_epi32(zero, zero), _mm256_cmpgt_epi32(bw, c1), _mm256_cmpgt_epi32(bw, c2),
+                              _mm256_cmpgt_epi32(bw, c3) };
+    const __m256i tall[4] = { wide[0], _mm256_cmpgt_epi32(bh, c1), _mm256_cmpgt_epi32(bh, c2),
+                              _mm256_cmpgt_epi32(bh, c3) };
+    const __m256i valid[8] = { wide[0], wide[1], wide[2], wide[3], tall[1], tall[2], tall[3],
+                               _mm256_and_si256(wide[1], tall[1]) };
     __m256i hit = zero;
     for (int q = 0; q < 8; q++) {
-        int c = pos[q][0], r = pos[q][1];
-        __m256i in = _mm256_and_si256(_mm256_cmpgt_epi32(bw, _mm256_set1_epi32(c)),
-                                      _mm256_cmpgt_epi32(bh, _mm256_set1_epi32(r)));
-        for (int k = 0; k < 3; k++) {
-            __m256i v = e[k];
-            for (int t = 0; t < r; t++)
-                v = _mm256_add_epi32(v, DX[k]);
-            for (int t = 0; t < c; t++)
-                v = _mm256_sub_epi32(v, DY[k]);
-            in = _mm256_and_si256(in, _mm256_cmpgt_epi32(v, zero));
-        }
-        hit = _mm256_or_si256(hit, in);
+        __m256i in = _mm256_and_si256(_mm256_cmpgt_epi32(at[q][0], zero), _mm256_cmpgt_epi32(at[q][1], zero));
+        in = _mm256_and_si256(in, _mm256_cmpgt_epi32(at[q][2], zero));
+        hit = _mm256_or_si256(hit, _mm256_and_si256(in, valid[q]));
     }
     return hit;
 }
