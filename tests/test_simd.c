@@ -631,3 +631,65 @@ Test(simd, second_screening_keeps_exactly_the_small_triangles_that_cover_a_sampl
               "every outcome tested (%d %d %d %d)", seen_hit, seen_empty, seen_back, seen_left);
 }
 #endif
+
+/* ==== shading split over threads ==== */
+
+#include "pool.h"
+
+Test(simd, shading_split_over_threads_gives_the_same_pixels)
+{
+    /* enough faces and pixels for the per-face and per-pixel loops to
+     * split (64k a task at least): a grid of 180 k faces at 640 x 400 */
+    Scene s;
+    char *text = twice_obj(200);
+    cr_assert_eq(tl_scene_from_text(&s, "twice", text), 0);
+    free(text);
+    Pool *pool[2] = { pool_create(1), pool_create(3) };
+    cr_assert(pool[0] && pool[1]);
+    int tested = 0;
+    for (uint32_t seed = 0; seed < 3; seed++) {
+        /* the whole grid in view, turned a random way about its normal */
+        tl_random_view(&s, seed, (int)(seed & 1));
+        s.cam.pitch = 0.3f;
+        s.cam.zoom = 0.9f;
+        s.cam.pan = v3(0, 0, 0);
+        Case c = { &s, "grid", { 640, 400, 1.0f, 0 }, seed };
+        ScreenPolys sp = { 0 };
+        FrameBufs fb = { 0 };
+        project_case(&c, ORDER_FILE, &sp);
+        HsrStats st;
+        render_at(&hsr_zbuffer, 1, SIMD_SCALAR, &c, &sp, &fb, &st);
+        for (int level = SIMD_SCALAR; level <= top_level(); level++)
+            for (int k = 0; k < 2; k++) {
+                ShadeCache c0 = { 0 }, c1 = { 0 };
+                ShadeSettings one = { .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1,
+                                      .simd = level };
+                ShadeSettings many = one;
+                many.pool = pool[k];
+                Image ref = { 0 }, img = { 0 };
+                cr_assert_eq(shade_frame(&s, &sp, &fb, &one, &c0, &ref), 0);
+                /* a second frame, its cached colours scribbled over: every
+                 * face shown must be coloured again, by one task or another */
+                cr_assert_eq(shade_frame(&s, &sp, &fb, &many, &c1, &img), 0);
+                memset(c1.rgb, 0x5a, (size_t)c1.cap * 3);
+                cr_assert_eq(shade_frame(&s, &sp, &fb, &many, &c1, &img), 0);
+                char what[64];
+                snprintf(what, sizeof what, "lambert shading with %d helpers", pool_helpers(pool[k]));
+                expect_same_image(&ref, &img, &c, what, level);
+                size_t lit = 0;
+                for (size_t i = 0; i < (size_t)fb.w * fb.h; i++)
+                    lit += ref.lit[i];
+                tested += lit > 40000;
+                image_free(&ref);
+                image_free(&img);
+                shade_cache_free(&c0);
+                shade_cache_free(&c1);
+            }
+        fbuf_free(&fb);
+        screen_free(&sp);
+    }
+    cr_assert_gt(tested, 3, "views that show the grid");
+    pool_free(pool[0]);
+    pool_free(pool[1]);
+    scene_free(&s);
+}

@@ -501,6 +501,72 @@ ZV_AVX2_FN static void colour_objects_avx2(FaceColours *fc)
         colour_faces_avx2(fc, object_nmat(fc, o), (uint32_t)ob->face_base, (uint32_t)ob->face_base + ob->face_count);
     }
 }
+
+/* The faces and pixels split over a pool's threads: each task a range
+ * of face ids (its own copy of the colours' state: the normal matrices'
+ * slots are a cache it fills) or of pixels (reading colours all made
+ * current before, so nothing shared is written but its own bytes). A
+ * face's colour and a pixel's bytes do not depend on the split. */
+typedef struct {
+    const FaceColours *fc;
+    const int32_t     *ids;
+    uint8_t           *rgb, *lit;
+    size_t             n;           /* faces or pixels */
+    int                ntasks;
+} ShadeSplit;
+
+/* Range t of n among ntasks, in multiples of 8. */
+static void split_range(size_t n, int t, int ntasks, size_t *a, size_t *b)
+{
+    *a = n * (size_t)t / (size_t)ntasks / 8 * 8;
+    *b = t + 1 == ntasks ? n : n * (size_t)(t + 1) / (size_t)ntasks / 8 * 8;
+}
+
+ZV_AVX2_FN static void colour_faces_task(void *arg, int t, int worker)
+{
+    (void)worker;
+    const ShadeSplit *sp = arg;
+    FaceColours fc = *sp->fc;
+    size_t lo, hi;
+    split_range(sp->n, t, sp->ntasks, &lo, &hi);
+    const Scene *s = fc.s;
+    for (int o = 0; o < s->nobjs; o++) {
+        const Object *ob = &s->objs[o];
+        size_t f0 = (uint32_t)ob->face_base, f1 = f0 + ob->face_count;
+        f0 = f0 > lo ? f0 : lo;
+        f1 = f1 < hi ? f1 : hi;
+        if (ob->poly_count && f0 < f1)
+            colour_faces_avx2(&fc, object_nmat(&fc, o), (uint32_t)f0, (uint32_t)f1);
+    }
+}
+
+static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t i1, uint8_t *rgb, uint8_t *lit);
+ZV_AVX2_FN static size_t shade_pixels_avx2(FaceColours *fc, const int32_t *ids, size_t n, uint8_t *rgb,
+                                           uint8_t *lit);
+
+ZV_AVX2_FN static void shade_pixels_task(void *arg, int t, int worker)
+{
+    (void)worker;
+    const ShadeSplit *sp = arg;
+    FaceColours *fc = (FaceColours *)sp->fc;    /* current: only read */
+    size_t a, b;
+    split_range(sp->n, t, sp->ntasks, &a, &b);
+    /* the eight-pixel loop stops short of its range's end: no store
+     * reaches the next range */
+    size_t i = a + shade_pixels_avx2(fc, sp->ids + a, b - a, sp->rgb + 3 * a, sp->lit + a);
+    shade_pixels(fc, sp->ids, i, b, sp->rgb, sp->lit);
+}
+
+/* Tasks for work of n items: a few per thread (a helper may be late to
+ * get a core), none under 64k items; one without helpers. */
+static int split_tasks(Pool *pool, size_t n)
+{
+    if (pool_helpers(pool) == 0)
+        return 1;
+    int t = 4 * (pool_helpers(pool) + 1);
+    size_t most = n / 65536;
+    return most < (size_t)t ? (most ? (int)most : 1) : t;
+}
 #endif
 
 /* Distance (in polygons) the colour pre-pass fetches ahead. */
@@ -672,9 +738,13 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
          * with --cull, a third of its faces drawn, shades in 6 ms instead
          * of 9) */
 #ifdef ZV_AVX2
-        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces)
-            colour_objects_avx2(&fc);
-        else
+        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces) {
+            ShadeSplit sf = { &fc, NULL, NULL, NULL, nfaces, split_tasks(set->pool, nfaces) };
+            if (sf.ntasks > 1)
+                pool_run(set->pool, sf.ntasks, colour_faces_task, &sf);
+            else
+                colour_objects_avx2(&fc);
+        } else
 #endif
             colour_polys(&fc, sp);
         fc.current = 1;
@@ -685,8 +755,15 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
 #ifdef ZV_AVX2
     /* the eight-pixel loop leaves ids past the faces black: not for id
      * colours of points and lines */
-    if (avx2 && !(mode == SHADE_ID && s->nprims))
-        i = shade_pixels_avx2(&fc, fb->ids, n, out->rgb, out->lit);
+    if (avx2 && !(mode == SHADE_ID && s->nprims)) {
+        ShadeSplit sx = { &fc, fb->ids, out->rgb, out->lit, n, fc.current ? split_tasks(set->pool, n) : 1 };
+        if (sx.ntasks > 1) {
+            pool_run(set->pool, sx.ntasks, shade_pixels_task, &sx);
+            i = n;
+        } else {
+            i = shade_pixels_avx2(&fc, fb->ids, n, out->rgb, out->lit);
+        }
+    }
 #endif
     shade_pixels(&fc, fb->ids, i, n, out->rgb, out->lit);
     /* textured and vertex-coloured faces: their samples again, each its
