@@ -647,11 +647,13 @@ Test(simd, shading_split_over_threads_gives_the_same_pixels)
     Pool *pool[2] = { pool_create(1), pool_create(3) };
     cr_assert(pool[0] && pool[1]);
     int tested = 0;
-    for (uint32_t seed = 0; seed < 3; seed++) {
-        /* the whole grid in view, turned a random way about its normal */
+    for (uint32_t seed = 0; seed < 4; seed++) {
+        /* the whole grid in view, turned a random way about its normal;
+         * small now and then (fewer polygons than a quarter of the faces:
+         * the faces coloured polygon by polygon) */
         tl_random_view(&s, seed, (int)(seed & 1));
         s.cam.pitch = 0.3f;
-        s.cam.zoom = 0.9f;
+        s.cam.zoom = seed < 2 ? 0.9f : 0.45f;
         s.cam.pan = v3(0, 0, 0);
         Case c = { &s, "grid", { 640, 400, 1.0f, 0 }, seed };
         ScreenPolys sp = { 0 };
@@ -660,12 +662,12 @@ Test(simd, shading_split_over_threads_gives_the_same_pixels)
         HsrStats st;
         render_at(&hsr_zbuffer, 1, SIMD_SCALAR, &c, &sp, &fb, &st);
         for (int level = SIMD_SCALAR; level <= top_level(); level++)
-            for (int k = 0; k < 2; k++) {
+            for (int k = 0; k < 4; k++) {
                 ShadeCache c0 = { 0 }, c1 = { 0 };
-                ShadeSettings one = { .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1,
-                                      .simd = level };
+                ShadeSettings one = { .mode = k < 2 ? SHADE_LAMBERT : SHADE_ID, .crease = SHADE_CREASE_DEFAULT,
+                                      .highlight = -1, .simd = level };
                 ShadeSettings many = one;
-                many.pool = pool[k];
+                many.pool = pool[k & 1];
                 Image ref = { 0 }, img = { 0 };
                 cr_assert_eq(shade_frame(&s, &sp, &fb, &one, &c0, &ref), 0);
                 /* a second frame, its cached colours scribbled over: every
@@ -674,7 +676,8 @@ Test(simd, shading_split_over_threads_gives_the_same_pixels)
                 memset(c1.rgb, 0x5a, (size_t)c1.cap * 3);
                 cr_assert_eq(shade_frame(&s, &sp, &fb, &many, &c1, &img), 0);
                 char what[64];
-                snprintf(what, sizeof what, "lambert shading with %d helpers", pool_helpers(pool[k]));
+                snprintf(what, sizeof what, "%s shading with %d helpers (%u polygons)", shade_names[one.mode],
+                         pool_helpers(pool[k & 1]), sp.npolys);
                 expect_same_image(&ref, &img, &c, what, level);
                 size_t lit = 0;
                 for (size_t i = 0; i < (size_t)fb.w * fb.h; i++)

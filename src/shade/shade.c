@@ -557,16 +557,6 @@ ZV_AVX2_FN static void shade_pixels_task(void *arg, int t, int worker)
     shade_pixels(fc, sp->ids, i, b, sp->rgb, sp->lit);
 }
 
-/* Tasks for work of n items: a few per thread (a helper may be late to
- * get a core), none under 64k items; one without helpers. */
-static int split_tasks(Pool *pool, size_t n)
-{
-    if (pool_helpers(pool) == 0)
-        return 1;
-    int t = 4 * (pool_helpers(pool) + 1);
-    size_t most = n / 65536;
-    return most < (size_t)t ? (most ? (int)most : 1) : t;
-}
 #endif
 
 /* Distance (in polygons) the colour pre-pass fetches ahead. */
@@ -577,14 +567,25 @@ static int split_tasks(Pool *pool, size_t n)
  * ahead), where the pixels would visit them scattered, one cache miss
  * each. Only faces of sp's polygons can be in the picture, so the pixel
  * loop then finds every colour current. */
-static void colour_polys(FaceColours *fc, const ScreenPolys *sp)
+/* Tasks for work of n items: a few per thread (a helper may be late to
+ * get a core), none under 64k items; one without helpers. */
+static int split_tasks(Pool *pool, size_t n)
+{
+    if (pool_helpers(pool) == 0)
+        return 1;
+    int t = 4 * (pool_helpers(pool) + 1);
+    size_t most = n / 65536;
+    return most < (size_t)t ? (most ? (int)most : 1) : t;
+}
+
+static void colour_polys_in(FaceColours *fc, const ScreenPolys *sp, uint32_t lo, uint32_t hi)
 {
     const Scene *s = fc->s;
     int32_t last = -1;
     for (uint32_t i = 0; i < sp->npolys; i++) {
         if (i + FETCH_AHEAD < sp->npolys) {
             uint32_t f = (uint32_t)sp->polys[i + FETCH_AHEAD].face;
-            if (f < s->nfaces) {
+            if (f >= lo && f < hi) {
                 __builtin_prefetch(&fc->stamp[f]);
                 __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
                 if (s->face_rgb)
@@ -593,11 +594,35 @@ static void colour_polys(FaceColours *fc, const ScreenPolys *sp)
             }
         }
         int32_t f = sp->polys[i].face;
-        if (f == last || f < 0 || (uint32_t)f >= s->nfaces)
+        if (f == last || f < 0 || (uint32_t)f < lo || (uint32_t)f >= hi)
             continue;
         last = f;
         face_colour(fc, f);
     }
+}
+
+static void colour_polys(FaceColours *fc, const ScreenPolys *sp)
+{
+    colour_polys_in(fc, sp, 0, fc->s->nfaces);
+}
+
+/* colour_polys() over a pool: each task every polygon but only the
+ * faces of its range of ids, so no face is two tasks' (the polygons of
+ * one face need not be next to each other). */
+typedef struct {
+    const FaceColours *fc;
+    const ScreenPolys *sp;
+    int                ntasks;
+} PolySplit;
+
+static void colour_polys_task(void *arg, int t, int worker)
+{
+    (void)worker;
+    const PolySplit *ps = arg;
+    FaceColours fc = *ps->fc;
+    uint64_t n = fc.s->nfaces;
+    colour_polys_in(&fc, ps->sp, (uint32_t)(n * (uint32_t)t / (uint32_t)ps->ntasks),
+                    (uint32_t)(n * (uint32_t)(t + 1) / (uint32_t)ps->ntasks));
 }
 
 /* Pixels [i0, i1) one at a time. */
@@ -746,7 +771,15 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
                 colour_objects_avx2(&fc);
         } else
 #endif
-            colour_polys(&fc, sp);
+        {
+            /* each task reads every polygon: worth it from a few
+             * thousand up, with one task a thread */
+            PolySplit ps = { &fc, sp, pool_helpers(set->pool) + 1 };
+            if (ps.ntasks > 1 && sp->npolys >= 16384)
+                pool_run(set->pool, ps.ntasks, colour_polys_task, &ps);
+            else
+                colour_polys(&fc, sp);
+        }
         fc.current = 1;
     } else if (sp && mode == SHADE_LAMBERT) {
         colour_pixels(&fc, fb->ids, n);
