@@ -1,8 +1,10 @@
 /* project_avx2.c: the front end's loops eight lanes wide, compiled for
  * AVX2 (ZV_AVX2_FN) in a baseline build and run when the frame's level
  * is SIMD_AVX2: the vertex loop of pass 1, the screening of a chunk of
- * triangles by gathers, the second screening of triangles whose box is
- * one sample, and finish_tri() four triangles at a time. Each performs
+ * triangles eight at a time, the second screening of triangles whose box
+ * holds at most four samples, and finish_tri() four triangles at a time
+ * (skipping the sample test for those the second screening found
+ * covering one). Each performs
  * the scalar code's operations (project.h, polys.c) in its order, so
  * the polygons, counts and map are the scalar ones bit for bit.
  *
