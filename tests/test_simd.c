@@ -696,3 +696,45 @@ Test(simd, shading_split_over_threads_gives_the_same_pixels)
     pool_free(pool[1]);
     scene_free(&s);
 }
+
+Test(simd, shading_a_huge_mesh_in_a_small_picture_gives_the_cached_colours)
+{
+    /* far more faces than pixels: Lambert shading colours the pixels
+     * straight from their faces, and must give what the per-pixel pass
+     * through the colour cache (no polygons given) gives */
+    Scene s;
+    char *text = twice_obj(200);
+    cr_assert_eq(tl_scene_from_text(&s, "twice", text), 0);
+    free(text);
+    int tested = 0;
+    for (uint32_t seed = 0; seed < 4; seed++) {
+        tl_random_view(&s, seed, (int)(seed & 1));
+        Case c = { &s, "grid", { 48, 30, seed & 2 ? 2.0f : 1.0f, 0 }, seed };
+        ScreenPolys sp = { 0 };
+        FrameBufs fb = { 0 };
+        project_case(&c, ORDER_FILE, &sp);
+        cr_assert_lt((uint64_t)sp.npolys * 16, s.nfaces, "polygons few against the faces: %u", sp.npolys);
+        HsrStats st;
+        render_at(&hsr_zbuffer, 1, SIMD_SCALAR, &c, &sp, &fb, &st);
+        for (int level = SIMD_SCALAR; level <= top_level(); level++) {
+            ShadeCache cache = { 0 };
+            ShadeSettings set = { .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1,
+                                  .simd = level };
+            Image ref = { 0 }, img = { 0 };
+            cr_assert_eq(shade_frame(&s, NULL, &fb, &set, &cache, &ref), 0);
+            cr_assert_eq(shade_frame(&s, &sp, &fb, &set, &cache, &img), 0);
+            expect_same_image(&ref, &img, &c, "lambert shading from the faces", level);
+            size_t lit = 0;
+            for (size_t i = 0; i < (size_t)fb.w * fb.h; i++)
+                lit += ref.lit[i];
+            tested += lit > 200;
+            image_free(&ref);
+            image_free(&img);
+            shade_cache_free(&cache);
+        }
+        fbuf_free(&fb);
+        screen_free(&sp);
+    }
+    cr_assert_gt(tested, 3, "views that show the grid");
+    scene_free(&s);
+}
