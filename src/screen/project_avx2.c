@@ -22,13 +22,16 @@
  * every step. */
 typedef struct {
     __m256  m[3][4];
-    __m256d cx, cy, fx, fy, dbias, dscale, eye, n, dk, one, gx0, gx1, gy0, gy1, sub, half, tmin, tmax;
+    __m256d cx, cy, fx, fy, dbias, dscale, eye, n, dk, one, gx0, gx1, gy0, gy1, sub, half;
 } Avx2Proj;
 
+/* snap() without its clamp: a vertex inside the guard band is far inside
+ * the clamp's range, and the others' lanes (NaN too: every compare
+ * false) are replaced by VERT_OUT after, so their conversion, defined
+ * for vectors whatever the value, is never seen. */
 ZV_AVX2_FN static inline __m128i snap4_avx2(const Avx2Proj *c, __m256d v)
 {
     __m256d t = _mm256_add_pd(_mm256_mul_pd(v, c->sub), c->half);
-    t = _mm256_min_pd(_mm256_max_pd(t, c->tmin), c->tmax);
     return _mm256_cvttpd_epi32(_mm256_round_pd(t, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
 }
 
@@ -114,8 +117,6 @@ ZV_AVX2_FN void project_verts_avx2(const VertJob *j, uint32_t a, uint32_t b)
     c.gy1 = _mm256_set1_pd(pj->gy1);
     c.sub = _mm256_set1_pd((double)SUBPIX);
     c.half = _mm256_set1_pd(0.5);
-    c.tmin = _mm256_set1_pd(-1073741824.0);
-    c.tmax = _mm256_set1_pd(1073741824.0);
     /* whole groups of eight, stopping short of b (store4's spill) */
     uint32_t e = b - a > 8 ? a + (b - a - 1) / 8 * 8 : a;
     if (pj->persp)
