@@ -3,6 +3,7 @@
 /* shade: face ids + depths + the scene's normals, colours and light in,
  * an RGB image out. Knows nothing of terminals or file formats. */
 
+#include "pool.h"
 #include <stddef.h>
 #include <stdint.h>
 #include "hsr.h"
@@ -76,6 +77,8 @@ typedef struct {
     int       wire;         /* the wireframe is drawn: faces dimmed under its edges */
     int       simd;         /* a SimdLevel (simd.h): SIMD_AUTO (0) = the level in use */
     int       no_textures;  /* textured faces show their one colour (--no-textures, the t key) */
+    Pool     *pool;         /* helpers for the per-face and per-pixel loops (NULL: the caller alone);
+                               the picture is the same with any number */
 } ShadeSettings;
 
 int  shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,

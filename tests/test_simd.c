@@ -521,3 +521,220 @@ Test(simd, shading_levels_give_the_same_pixels)
     each_case(shade_case, &lit);
     cr_assert_gt(lit, 10000, "the views lit pixels");
 }
+
+/* ==== the second screening of small triangles, against brute force ==== */
+
+#ifdef ZV_AVX2
+#include "../src/screen/project.h"
+
+/* A corner near sample (i, j) of a w x h screen: on the sample's centre
+ * or a pixel corner half the time (ties of the edge functions), else
+ * anywhere within a few pixels, past the screen's edges too. */
+static int32_t small_coord(uint32_t *r, int32_t lo, int32_t hi)
+{
+    *r = *r * 1664525u + 1013904223u;
+    uint32_t v = *r >> 8;
+    int32_t px = lo + (int32_t)(v % (uint32_t)(hi - lo + 1));
+    switch (v >> 20 & 3) {
+    case 0:
+        return 256 * px + 128;
+    case 1:
+        return 256 * px;
+    default:
+        return 256 * px + (int32_t)(v >> 12 & 255);
+    }
+}
+
+Test(simd, second_screening_keeps_exactly_the_small_triangles_that_cover_a_sample)
+{
+    if (simd_best() < SIMD_AVX2)
+        return;     /* nothing to compare on this CPU */
+    enum { W = 9, H = 7, NT = 2000 };
+    static ScreenVert sv[3 * NT];
+    static uint32_t idx[3 * NT], corner[3 * NT], keep[NT + 8];
+    KeepLut lut = { { 0 }, { 0 } };
+    for (unsigned m = 0; m < 256; m++)
+        for (unsigned b = 0; b < 8; b++)
+            if (m >> b & 1)
+                lut.lanes[m] |= (uint64_t)b << (8 * lut.count[m]++);
+    uint32_t r = 7, vmin = 5;  /* corners count from vmin, as an object's do */
+    int seen_hit = 0, seen_empty = 0, seen_back = 0, seen_left = 0;
+    for (int round = 0; round < 40; round++) {
+        int cull = round & 1;
+        for (uint32_t t = 0; t < NT; t++) {
+            int32_t ox = (int32_t)(r % (W + 4)) - 2, oy = (int32_t)(r / 97 % (H + 4)) - 2;
+            int32_t span = 1 + (int32_t)(t % 3);   /* corners within 1 to 3 pixels */
+            for (int k = 0; k < 3; k++) {
+                ScreenVert *v = &sv[3 * t + k];
+                v->x = small_coord(&r, ox, ox + span);
+                v->y = small_coord(&r, oy, oy + span);
+                v->z = 0;
+                /* now and then a corner to clip */
+                if (t % 61 == 0 && k == 1)
+                    v->x = v->y = VERT_OUT;
+                idx[3 * t + k] = v->x == VERT_OUT ? (uint16_t)IDX_OUT * 0x10001u
+                                                  : (uint16_t)sample_ceil(v->x) |
+                                                        (uint32_t)(uint16_t)sample_ceil(v->y) << 16;
+                corner[3 * t + k] = 3 * t + k + vmin;
+            }
+        }
+        uint32_t nk = project_screen_tris(corner, 0, NT, idx, vmin, W, H, keep, 0);
+        uint32_t first[NT + 8], nfirst = nk, empty = 0, back = 0;
+        memcpy(first, keep, nk * sizeof *keep);
+        nk = project_sift_small_avx2(corner, sv, vmin, W, H, cull, keep, nk, &lut, &empty, &back);
+        cr_assert_eq(nk + empty + back, nfirst, "every triangle kept or counted once");
+        uint32_t at = 0, dropped_empty = 0, dropped_back = 0;
+        for (uint32_t q = 0; q < nfirst; q++) {
+            uint32_t t = first[q];
+            const ScreenVert *v = &sv[3 * t];
+            int clip = v[0].x == VERT_OUT || v[1].x == VERT_OUT || v[2].x == VERT_OUT;
+            int32_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+            if (!clip) {
+                x0 = sample_ceil(min3(v[0].x, v[1].x, v[2].x));
+                x1 = sample_ceil(max3(v[0].x, v[1].x, v[2].x));
+                y0 = sample_ceil(min3(v[0].y, v[1].y, v[2].y));
+                y1 = sample_ceil(max3(v[0].y, v[1].y, v[2].y));
+            }
+            int small = !clip && x0 >= 0 && y0 >= 0 && x1 <= W && y1 <= H && (x1 - x0) * (y1 - y0) <= 4;
+            int64_t area2 = ((int64_t)v[1].x - v[0].x) * ((int64_t)v[2].y - v[0].y) -
+                            ((int64_t)v[1].y - v[0].y) * ((int64_t)v[2].x - v[0].x);
+            /* the reference: every sample of the box, one by one */
+            int covers = 0;
+            for (int32_t j = y0; small && j < y1; j++)
+                for (int32_t i = x0; i < x1; i++)
+                    covers |= tri_covers_sample(v, i, j);
+            int kept = at < nk && (keep[at] & ~KEEP_HIT) == t;
+            uint32_t mark = kept ? keep[at] & KEEP_HIT : 0;
+            if (!small || q >= nfirst / 8 * 8) {
+                /* the tail short of eight is left too */
+                cr_assert(kept && !mark, "round %d triangle %u: left for finish_tri", round, t);
+                seen_left++;
+            } else if (cull && area2 >= 0) {
+                cr_assert(!kept, "round %d triangle %u faces away", round, t);
+                dropped_back++;
+            } else if (!covers) {
+                cr_assert(!kept, "round %d triangle %u covers no sample", round, t);
+                dropped_empty++;
+            } else {
+                cr_assert(kept && mark, "round %d triangle %u covers a sample: kept, marked", round, t);
+                seen_hit++;
+            }
+            at += kept;
+        }
+        cr_assert_eq(at, nk, "the kept ones in order");
+        cr_assert_eq(dropped_empty, empty);
+        cr_assert_eq(dropped_back, back);
+        seen_empty += dropped_empty;
+        seen_back += dropped_back;
+    }
+    cr_assert(seen_hit > 1000 && seen_empty > 1000 && seen_back > 1000 && seen_left > 1000,
+              "every outcome tested (%d %d %d %d)", seen_hit, seen_empty, seen_back, seen_left);
+}
+#endif
+
+/* ==== shading split over threads ==== */
+
+#include "pool.h"
+
+Test(simd, shading_split_over_threads_gives_the_same_pixels)
+{
+    /* enough faces and pixels for the per-face and per-pixel loops to
+     * split (64k a task at least): a grid of 180 k faces at 640 x 400 */
+    Scene s;
+    char *text = twice_obj(200);
+    cr_assert_eq(tl_scene_from_text(&s, "twice", text), 0);
+    free(text);
+    Pool *pool[2] = { pool_create(1), pool_create(3) };
+    cr_assert(pool[0] && pool[1]);
+    int tested = 0;
+    for (uint32_t seed = 0; seed < 4; seed++) {
+        /* the whole grid in view, turned a random way about its normal;
+         * small now and then (fewer polygons than a quarter of the faces:
+         * the faces coloured polygon by polygon) */
+        tl_random_view(&s, seed, (int)(seed & 1));
+        s.cam.pitch = 0.3f;
+        s.cam.zoom = seed < 2 ? 0.9f : 0.45f;
+        s.cam.pan = v3(0, 0, 0);
+        Case c = { &s, "grid", { 640, 400, 1.0f, 0 }, seed };
+        ScreenPolys sp = { 0 };
+        FrameBufs fb = { 0 };
+        project_case(&c, ORDER_FILE, &sp);
+        HsrStats st;
+        render_at(&hsr_zbuffer, 1, SIMD_SCALAR, &c, &sp, &fb, &st);
+        for (int level = SIMD_SCALAR; level <= top_level(); level++)
+            for (int k = 0; k < 4; k++) {
+                ShadeCache c0 = { 0 }, c1 = { 0 };
+                ShadeSettings one = { .mode = k < 2 ? SHADE_LAMBERT : SHADE_ID, .crease = SHADE_CREASE_DEFAULT,
+                                      .highlight = -1, .simd = level };
+                ShadeSettings many = one;
+                many.pool = pool[k & 1];
+                Image ref = { 0 }, img = { 0 };
+                cr_assert_eq(shade_frame(&s, &sp, &fb, &one, &c0, &ref), 0);
+                /* a second frame, its cached colours scribbled over: every
+                 * face shown must be coloured again, by one task or another */
+                cr_assert_eq(shade_frame(&s, &sp, &fb, &many, &c1, &img), 0);
+                memset(c1.rgb, 0x5a, (size_t)c1.cap * 3);
+                cr_assert_eq(shade_frame(&s, &sp, &fb, &many, &c1, &img), 0);
+                char what[64];
+                snprintf(what, sizeof what, "%s shading with %d helpers (%u polygons)", shade_names[one.mode],
+                         pool_helpers(pool[k & 1]), sp.npolys);
+                expect_same_image(&ref, &img, &c, what, level);
+                size_t lit = 0;
+                for (size_t i = 0; i < (size_t)fb.w * fb.h; i++)
+                    lit += ref.lit[i];
+                tested += lit > 40000;
+                image_free(&ref);
+                image_free(&img);
+                shade_cache_free(&c0);
+                shade_cache_free(&c1);
+            }
+        fbuf_free(&fb);
+        screen_free(&sp);
+    }
+    cr_assert_gt(tested, 3, "views that show the grid");
+    pool_free(pool[0]);
+    pool_free(pool[1]);
+    scene_free(&s);
+}
+
+Test(simd, shading_a_huge_mesh_in_a_small_picture_gives_the_cached_colours)
+{
+    /* far more faces than pixels: Lambert shading colours the pixels
+     * straight from their faces, and must give what the per-pixel pass
+     * through the colour cache (no polygons given) gives */
+    Scene s;
+    char *text = twice_obj(200);
+    cr_assert_eq(tl_scene_from_text(&s, "twice", text), 0);
+    free(text);
+    int tested = 0;
+    for (uint32_t seed = 0; seed < 4; seed++) {
+        tl_random_view(&s, seed, (int)(seed & 1));
+        Case c = { &s, "grid", { 48, 30, seed & 2 ? 2.0f : 1.0f, 0 }, seed };
+        ScreenPolys sp = { 0 };
+        FrameBufs fb = { 0 };
+        project_case(&c, ORDER_FILE, &sp);
+        cr_assert_lt((uint64_t)sp.npolys * 16, s.nfaces, "polygons few against the faces: %u", sp.npolys);
+        HsrStats st;
+        render_at(&hsr_zbuffer, 1, SIMD_SCALAR, &c, &sp, &fb, &st);
+        for (int level = SIMD_SCALAR; level <= top_level(); level++) {
+            ShadeCache cache = { 0 };
+            ShadeSettings set = { .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1,
+                                  .simd = level };
+            Image ref = { 0 }, img = { 0 };
+            cr_assert_eq(shade_frame(&s, NULL, &fb, &set, &cache, &ref), 0);
+            cr_assert_eq(shade_frame(&s, &sp, &fb, &set, &cache, &img), 0);
+            expect_same_image(&ref, &img, &c, "lambert shading from the faces", level);
+            size_t lit = 0;
+            for (size_t i = 0; i < (size_t)fb.w * fb.h; i++)
+                lit += ref.lit[i];
+            tested += lit > 200;
+            image_free(&ref);
+            image_free(&img);
+            shade_cache_free(&cache);
+        }
+        fbuf_free(&fb);
+        screen_free(&sp);
+    }
+    cr_assert_gt(tested, 3, "views that show the grid");
+    scene_free(&s);
+}

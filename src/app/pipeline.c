@@ -310,7 +310,8 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     p->hsr_ms = t2 - t1;
     p->shade_ms = 0;
     if (shade_too) {
-        ShadeSettings set = { p->shade, p->crease, p->highlight, p->edges, p->wireframe, simd, p->no_textures };
+        ShadeSettings set = { p->shade, p->crease, p->highlight, p->edges, p->wireframe, simd, p->no_textures,
+                              p->run.pool };
         const Scene *ss = shade_scene(p);
         if (!ss)
             return -1;

@@ -295,15 +295,25 @@ int project_range(RangeJob *j)
              * in all: triangles only, at corners c0 + 3 i */
             nk = screen_tris(j->simd, s->poly_corner + c0, n, idx, vmin, sp->w, sp->h, keep, j->lut);
             empty += n - nk;
+            /* the kept ones' points are read next, scattered over an
+             * array too big for the caches: ask for all of them at once
+             * (dragon at 160x96: the second screening 0.9 -> 0.3 ms) */
+            for (uint32_t i = 0; i < nk; i++) {
+                const uint32_t *c = s->poly_corner + c0 + 3 * keep[i];
+                __builtin_prefetch(&j->vs->sv[c[0] - vmin]);
+                __builtin_prefetch(&j->vs->sv[c[1] - vmin]);
+                __builtin_prefetch(&j->vs->sv[c[2] - vmin]);
+            }
 #ifdef ZV_AVX2
             if (j->simd >= SIMD_AVX2)
-                nk = project_sift_tiny_avx2(s->poly_corner + c0, j->vs->sv, vmin, sp->cull, keep, nk, j->lut,
-                                            &empty, &sp->culled_back);
+                nk = project_sift_small_avx2(s->poly_corner + c0, j->vs->sv, vmin, sp->w, sp->h, sp->cull, keep, nk,
+                                             j->lut, &empty, &sp->culled_back);
 #endif
-            /* the face ids of the kept ones are read below, a few lines
-             * each out of a big array: start fetching them now */
-            for (uint32_t i = 0; i < nk; i += 4)
-                __builtin_prefetch(&s->poly_lface[k + keep[i]]);
+            /* the face ids of the kept ones are read below, scattered
+             * over a big array (one kept in twenty at small sizes: a
+             * line each): start fetching every one now */
+            for (uint32_t i = 0; i < nk; i++)
+                __builtin_prefetch(&s->poly_lface[k + (keep[i] & ~KEEP_HIT)]);
         } else {
             /* a mixed chunk: triangles screened one by one */
             nk = 0;

@@ -10,10 +10,12 @@
  *     scalar order, so every level gives the same bits.
  *  2. Polygons, a chunk at a time (polys.c): the chunk's map entries
  *     start at -1; a chunk of triangles is first screened by a box test
- *     (SIMD with gathers under AVX2) that keeps only triangles whose
+ *     (eight at a time under AVX2) that keeps only triangles whose
  *     sample box is non-empty and on screen, or that have a corner to
  *     clip (at a small size most of a big model covers no sample centre,
- *     and this is the whole cost of those triangles). The survivors, and
+ *     and this is the whole cost of those triangles); under AVX2 a second
+ *     screening then settles the survivors whose box holds at most four
+ *     samples by their edge functions. The survivors, and
  *     every polygon of other chunks, take the fast path (copy the snapped
  *     corners) or the slow one (clip.c: clip against the near plane and
  *     the guard band, then snap), then the sample box, back-face test and

@@ -257,16 +257,21 @@ int project_emit_poly(RangeJob *j, uint32_t k, uint32_t c0, uint32_t c1, uint32_
  * j->out. Returns 0, 1 to skip it, or vert_room's error. */
 int project_clip(RangeJob *j, uint32_t c0, uint32_t c1);
 
+/* A mark on a keep[] entry (project_avx2.c's second screening). */
+#define KEEP_HIT 0x80000000u
+
 #ifdef ZV_AVX2
 /* project_avx2.c: the screening of a chunk of triangles eight at a
  * time (keep[] with room for n + 8: it stores eight at a time); the
- * second screening of the kept ones whose box is one sample; and the
- * kept ones finished four at a time. Each gives what polys.c's scalar
- * code gives. */
+ * second screening of the kept ones whose box is at most four samples,
+ * which marks those it found covering one KEEP_HIT (a bit above every
+ * chunk index: readers of keep[] mask it off); and the kept ones
+ * finished four at a time. Each gives what polys.c's scalar code gives. */
 uint32_t project_screen_tris_avx2(const uint32_t *corner, uint32_t n, const uint32_t *idx, uint32_t vmin, int32_t w,
                                   int32_t h, uint32_t *keep, const KeepLut *lut);
-uint32_t project_sift_tiny_avx2(const uint32_t *corner, const ScreenVert *sv, uint32_t vmin, int cull,
-                                uint32_t *keep, uint32_t nk, const KeepLut *lut, uint32_t *empty, uint32_t *back);
+uint32_t project_sift_small_avx2(const uint32_t *corner, const ScreenVert *sv, uint32_t vmin, int32_t w, int32_t h,
+                                 int cull, uint32_t *keep, uint32_t nk, const KeepLut *lut, uint32_t *empty,
+                                 uint32_t *back);
 int      project_emit_tris_avx2(RangeJob *j, uint32_t k, uint32_t c0, uint32_t inst, const uint32_t *keep,
                                 uint32_t nk);
 #endif

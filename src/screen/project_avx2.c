@@ -1,8 +1,10 @@
 /* project_avx2.c: the front end's loops eight lanes wide, compiled for
  * AVX2 (ZV_AVX2_FN) in a baseline build and run when the frame's level
  * is SIMD_AVX2: the vertex loop of pass 1, the screening of a chunk of
- * triangles by gathers, the second screening of triangles whose box is
- * one sample, and finish_tri() four triangles at a time. Each performs
+ * triangles eight at a time, the second screening of triangles whose box
+ * holds at most four samples, and finish_tri() four triangles at a time
+ * (skipping the sample test for those the second screening found
+ * covering one). Each performs
  * the scalar code's operations (project.h, polys.c) in its order, so
  * the polygons, counts and map are the scalar ones bit for bit.
  *
@@ -20,13 +22,16 @@
  * every step. */
 typedef struct {
     __m256  m[3][4];
-    __m256d cx, cy, fx, fy, dbias, dscale, eye, n, dk, one, gx0, gx1, gy0, gy1, sub, half, tmin, tmax;
+    __m256d cx, cy, fx, fy, dbias, dscale, eye, n, dk, one, gx0, gx1, gy0, gy1, sub, half;
 } Avx2Proj;
 
+/* snap() without its clamp: a vertex inside the guard band is far inside
+ * the clamp's range, and the others' lanes (NaN too: every compare
+ * false) are replaced by VERT_OUT after, so their conversion, defined
+ * for vectors whatever the value, is never seen. */
 ZV_AVX2_FN static inline __m128i snap4_avx2(const Avx2Proj *c, __m256d v)
 {
     __m256d t = _mm256_add_pd(_mm256_mul_pd(v, c->sub), c->half);
-    t = _mm256_min_pd(_mm256_max_pd(t, c->tmin), c->tmax);
     return _mm256_cvttpd_epi32(_mm256_round_pd(t, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
 }
 
@@ -112,8 +117,6 @@ ZV_AVX2_FN void project_verts_avx2(const VertJob *j, uint32_t a, uint32_t b)
     c.gy1 = _mm256_set1_pd(pj->gy1);
     c.sub = _mm256_set1_pd((double)SUBPIX);
     c.half = _mm256_set1_pd(0.5);
-    c.tmin = _mm256_set1_pd(-1073741824.0);
-    c.tmax = _mm256_set1_pd(1073741824.0);
     /* whole groups of eight, stopping short of b (store4's spill) */
     uint32_t e = b - a > 8 ? a + (b - a - 1) / 8 * 8 : a;
     if (pj->persp)
@@ -124,32 +127,39 @@ ZV_AVX2_FN void project_verts_avx2(const VertJob *j, uint32_t a, uint32_t b)
         vert_one(j, i);
 }
 
-/* Eight triangles a step: their 24 corner indices deinterleaved with the
- * in-lane shuffles of load4_xyz (project_sse2.c; triangles 0-3 in the low
- * lanes, 4-7 in the high ones), each corner's sample indices fetched by
- * one gather, and tri_keeps() on the x and y halves side by side (16-bit
- * lanes). */
+/* Bytes ahead of the screening's corner reads to fetch (6 KB: a few
+ * dozen steps of the loop). */
+#define CORNER_AHEAD 6144
+
+/* Corner k (0, 1, 2) of eight consecutive triangles (corners c[0 ..]):
+ * its sample indices idx[corner - vmin]. */
+ZV_AVX2_FN static inline __m256i corner8(const uint32_t *idx, uint32_t vmin, const uint32_t *c, int k)
+{
+#define ZV_IDX(q) (int)idx[c[(q) + k] - vmin]
+    return _mm256_setr_epi32(ZV_IDX(0), ZV_IDX(3), ZV_IDX(6), ZV_IDX(9), ZV_IDX(12), ZV_IDX(15), ZV_IDX(18),
+                             ZV_IDX(21));
+#undef ZV_IDX
+}
+
+/* Eight triangles a step: each corner's sample indices fetched by plain
+ * loads (on the AMD cores measured, 24 loads and inserts beat three
+ * gathers by ~15%), and tri_keeps() on the x and y halves side by side
+ * (16-bit lanes). */
 ZV_AVX2_FN uint32_t project_screen_tris_avx2(const uint32_t *corner, uint32_t n, const uint32_t *idx, uint32_t vmin,
                                              int32_t w, int32_t h, uint32_t *keep, const KeepLut *lut)
 {
-    const __m256i vm = _mm256_set1_epi32((int32_t)vmin), zero = _mm256_setzero_si256();
+    const __m256i zero = _mm256_setzero_si256();
     const __m256i ones = _mm256_set1_epi32(-1), out = _mm256_set1_epi32((int32_t)0x80008000u);
     const __m256i lim = _mm256_set1_epi32((int32_t)((uint32_t)h << 16 | (uint32_t)w));
-    const int *base = (const int *)idx;
     uint32_t nk = 0, i = 0;
     for (; i + 8 <= n; i += 8) {
-        const float *c = (const float *)(corner + 3 * (size_t)i);  /* indices as float bit patterns, untouched */
-        __m256 va = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(c)), _mm_loadu_ps(c + 12), 1);
-        __m256 vb = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(c + 4)), _mm_loadu_ps(c + 16), 1);
-        __m256 vc = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(c + 8)), _mm_loadu_ps(c + 20), 1);
-        __m256 t = _mm256_shuffle_ps(vb, vc, _MM_SHUFFLE(2, 1, 3, 2));
-        __m256 u = _mm256_shuffle_ps(va, vb, _MM_SHUFFLE(1, 0, 2, 1));
-        __m256i c0 = _mm256_sub_epi32(_mm256_castps_si256(_mm256_shuffle_ps(va, t, _MM_SHUFFLE(2, 0, 3, 0))), vm);
-        __m256i c1 = _mm256_sub_epi32(_mm256_castps_si256(_mm256_shuffle_ps(u, t, _MM_SHUFFLE(3, 1, 2, 0))), vm);
-        __m256i c2 = _mm256_sub_epi32(_mm256_castps_si256(_mm256_shuffle_ps(u, vc, _MM_SHUFFLE(3, 0, 3, 1))), vm);
-        __m256i g0 = _mm256_i32gather_epi32(base, c0, 4);
-        __m256i g1 = _mm256_i32gather_epi32(base, c1, 4);
-        __m256i g2 = _mm256_i32gather_epi32(base, c2, 4);
+        const uint32_t *c = corner + 3 * (size_t)i;
+        /* the corners stream in faster fetched well ahead by hand (the
+         * hardware's prefetch fell behind: 1.5 -> 0.85 ms a frame on the
+         * dragon at 160x96); no dereference, so past the end is harmless */
+        __builtin_prefetch((const void *)((uintptr_t)c + CORNER_AHEAD));
+        __builtin_prefetch((const void *)((uintptr_t)c + CORNER_AHEAD + 64));
+        __m256i g0 = corner8(idx, vmin, c, 0), g1 = corner8(idx, vmin, c, 1), g2 = corner8(idx, vmin, c, 2);
         __m256i mn = _mm256_min_epi16(_mm256_min_epi16(g0, g1), g2);
         __m256i mx = _mm256_max_epi16(_mm256_max_epi16(g0, g1), g2);
         __m256i ok = _mm256_and_si256(_mm256_cmpgt_epi16(mx, mn),
@@ -167,48 +177,103 @@ ZV_AVX2_FN uint32_t project_screen_tris_avx2(const uint32_t *corner, uint32_t n,
     return project_screen_tris(corner, i, n, idx, vmin, w, h, keep, nk);
 }
 
-/* One edge a -> b of eight triangles at the sample, all relative to it:
- * e = dx (0 - ay) - dy (0 - ax), covered where e > 0, or e == 0 on a top
- * or left edge (dy < 0, or dy == 0 and dx > 0): edge_covers(). */
-ZV_AVX2_FN static inline __m256i edge8(__m256i ax, __m256i ay, __m256i bx, __m256i by)
+/* The snapped corners of the eight triangles t[0..8) (corners at
+ * corner[3 t ..], points sv[corner - vmin]): x[k], y[k] of corner k.
+ * Plain loads, a point's x and y in one: faster than gathers here, and
+ * the points are scattered (each load likely a miss). */
+ZV_AVX2_FN static inline void corners8_xy(const uint32_t *corner, const ScreenVert *sv, uint32_t vmin,
+                                          const uint32_t *t, __m256i x[3], __m256i y[3])
+{
+    for (int k = 0; k < 3; k++) {
+        __m128i p[8];
+        for (int l = 0; l < 8; l++)
+            p[l] = _mm_loadl_epi64((const __m128i *)&sv[corner[3 * (size_t)t[l] + k] - vmin]);
+        /* (x, y) pairs of lanes 0-3 | 4-7 -> x of all eight, y of all eight */
+        __m256i lo = _mm256_set_m128i(_mm_unpacklo_epi64(p[4], p[5]), _mm_unpacklo_epi64(p[0], p[1]));
+        __m256i hi = _mm256_set_m128i(_mm_unpacklo_epi64(p[6], p[7]), _mm_unpacklo_epi64(p[2], p[3]));
+        /* lo: x0 y0 x1 y1 | x4 y4 x5 y5, hi: x2 y2 x3 y3 | x6 y6 x7 y7 */
+        __m256 fl = _mm256_castsi256_ps(lo), fh = _mm256_castsi256_ps(hi);
+        x[k] = _mm256_castps_si256(_mm256_shuffle_ps(fl, fh, _MM_SHUFFLE(2, 0, 2, 0)));
+        y[k] = _mm256_castps_si256(_mm256_shuffle_ps(fl, fh, _MM_SHUFFLE(3, 1, 3, 1)));
+    }
+}
+
+/* The three edges of eight triangles (corners relative to the sample
+ * (px, py) of their box's first column and row, b and c swapped where
+ * the triangle is wound the other way) against the box's samples at
+ * most four (bw x bh, lanes where small): edge_covers() on each. An
+ * edge's function at the sample c columns right and r rows down is
+ * e + 256 (r dx - c dy), and the top-left rule is folded in as e + 1 > 0
+ * (integers), so every sample is a few adds and compares. Exact: small
+ * boxes keep every corner within 2^11 of the sample, so every product
+ * fits 32 bits. The mask of the lanes that cover one of the samples. */
+ZV_AVX2_FN static inline __m256i hits8_small(const __m256i ex[3], const __m256i ey[3], __m256i bw, __m256i bh)
 {
     const __m256i zero = _mm256_setzero_si256();
-    __m256i dx = _mm256_sub_epi32(bx, ax), dy = _mm256_sub_epi32(by, ay);
-    __m256i e = _mm256_sub_epi32(_mm256_mullo_epi32(dy, ax), _mm256_mullo_epi32(dx, ay));
-    __m256i tl = _mm256_or_si256(_mm256_cmpgt_epi32(zero, dy),
-                                 _mm256_and_si256(_mm256_cmpeq_epi32(dy, zero), _mm256_cmpgt_epi32(dx, zero)));
-    return _mm256_or_si256(_mm256_cmpgt_epi32(e, zero), _mm256_and_si256(_mm256_cmpeq_epi32(e, zero), tl));
+    __m256i e[3], DX[3], DY[3];
+    for (int k = 0; k < 3; k++) {
+        int m = k == 2 ? 0 : k + 1;
+        __m256i dx = _mm256_sub_epi32(ex[m], ex[k]), dy = _mm256_sub_epi32(ey[m], ey[k]);
+        __m256i tl = _mm256_or_si256(_mm256_cmpgt_epi32(zero, dy),
+                                     _mm256_and_si256(_mm256_cmpeq_epi32(dy, zero), _mm256_cmpgt_epi32(dx, zero)));
+        /* dx (0 - ay) - dy (0 - ax), plus one on a top or left edge */
+        e[k] = _mm256_sub_epi32(_mm256_sub_epi32(_mm256_mullo_epi32(dy, ex[k]), _mm256_mullo_epi32(dx, ey[k])), tl);
+        DX[k] = _mm256_slli_epi32(dx, SUBPIX_BITS);
+        DY[k] = _mm256_slli_epi32(dy, SUBPIX_BITS);
+    }
+    /* the eight places a sample of a box of at most four can be, (c, r):
+     * (0..3, 0), (0, 1..3) and (1, 1), each edge's function stepped there */
+    __m256i at[8][3];
+    for (int k = 0; k < 3; k++) {
+        at[0][k] = e[k];
+        at[1][k] = _mm256_sub_epi32(at[0][k], DY[k]);
+        at[2][k] = _mm256_sub_epi32(at[1][k], DY[k]);
+        at[3][k] = _mm256_sub_epi32(at[2][k], DY[k]);
+        at[4][k] = _mm256_add_epi32(at[0][k], DX[k]);
+        at[5][k] = _mm256_add_epi32(at[4][k], DX[k]);
+        at[6][k] = _mm256_add_epi32(at[5][k], DX[k]);
+        at[7][k] = _mm256_add_epi32(at[1][k], DX[k]);
+    }
+    const __m256i c1 = _mm256_set1_epi32(1), c2 = _mm256_set1_epi32(2), c3 = _mm256_set1_epi32(3);
+    const __m256i wide[4] = { _mm256_cmpeq_epi32(zero, zero), _mm256_cmpgt_epi32(bw, c1), _mm256_cmpgt_epi32(bw, c2),
+                              _mm256_cmpgt_epi32(bw, c3) };
+    const __m256i tall[4] = { wide[0], _mm256_cmpgt_epi32(bh, c1), _mm256_cmpgt_epi32(bh, c2),
+                              _mm256_cmpgt_epi32(bh, c3) };
+    const __m256i valid[8] = { wide[0], wide[1], wide[2], wide[3], tall[1], tall[2], tall[3],
+                               _mm256_and_si256(wide[1], tall[1]) };
+    __m256i hit = zero;
+    for (int q = 0; q < 8; q++) {
+        __m256i in = _mm256_and_si256(_mm256_cmpgt_epi32(at[q][0], zero), _mm256_cmpgt_epi32(at[q][1], zero));
+        in = _mm256_and_si256(in, _mm256_cmpgt_epi32(at[q][2], zero));
+        hit = _mm256_or_si256(hit, _mm256_and_si256(in, valid[q]));
+    }
+    return hit;
 }
 
 /* Second screening of the kept triangles keep[0 .. nk) (corners at
  * corner[3 keep[i] ..], points sv[corner - vmin]), eight at a time: a
- * triangle whose sample box is a single sample has its corners within
- * 256 of that sample's centre, so relative to it finish_tri()'s tests
- * fit 32-bit lanes exactly: back-facing when culling (culled_back, as
- * finish_tri counts it), else missing its sample (culled_empty) drops
- * it. The others, and triangles with a corner to clip or a bigger box,
- * stay for finish_tri. Returns the new count; keep[] is compacted in
- * place (a store never passes the entries still to be read). */
-ZV_AVX2_FN uint32_t project_sift_tiny_avx2(const uint32_t *corner, const ScreenVert *sv, uint32_t vmin, int cull,
-                                           uint32_t *keep, uint32_t nk, const KeepLut *lut, uint32_t *empty,
-                                           uint32_t *back)
+ * triangle with no corner to clip whose sample box lies on the screen
+ * and holds at most four samples is decided here as finish_tri()
+ * decides it (corners relative to the box's first sample fit 32-bit
+ * lanes exactly): back-facing when culling (culled_back), else missing
+ * every sample (culled_empty) drops it, else it is kept and marked
+ * KEEP_HIT (finish need not look at its samples again). The others stay
+ * for finish_tri. Returns the new count; keep[] is compacted in place
+ * (a store never passes the entries still to be read). */
+ZV_AVX2_FN uint32_t project_sift_small_avx2(const uint32_t *corner, const ScreenVert *sv, uint32_t vmin, int32_t w,
+                                            int32_t h, int cull, uint32_t *keep, uint32_t nk, const KeepLut *lut,
+                                            uint32_t *empty, uint32_t *back)
 {
-    const __m256i vm = _mm256_set1_epi32((int32_t)vmin), one = _mm256_set1_epi32(1);
+    const __m256i one = _mm256_set1_epi32(1), five = _mm256_set1_epi32(5);
     const __m256i k127 = _mm256_set1_epi32(127), k128 = _mm256_set1_epi32(128);
     const __m256i out = _mm256_set1_epi32(VERT_OUT), zero = _mm256_setzero_si256();
-    const __m256i vcull = _mm256_set1_epi32(cull ? -1 : 0);
-    const int *cb = (const int *)corner, *pb = (const int *)sv;
+    const __m256i vw = _mm256_set1_epi32(w + 1), vh = _mm256_set1_epi32(h + 1);
+    const __m256i vcull = _mm256_set1_epi32(cull ? -1 : 0), flag = _mm256_set1_epi32((int32_t)KEEP_HIT);
     uint32_t n = 0, i = 0;
     for (; i + 8 <= nk; i += 8) {
         __m256i t = _mm256_loadu_si256((const __m256i *)(keep + i));
-        __m256i c3 = _mm256_add_epi32(_mm256_add_epi32(t, t), t);
         __m256i x[3], y[3];
-        for (int k = 0; k < 3; k++) {
-            __m256i v = _mm256_sub_epi32(_mm256_i32gather_epi32(cb + k, c3, 4), vm);
-            __m256i v3 = _mm256_add_epi32(_mm256_add_epi32(v, v), v);      /* 3 ints a point */
-            x[k] = _mm256_i32gather_epi32(pb, v3, 4);
-            y[k] = _mm256_i32gather_epi32(pb + 1, v3, 4);
-        }
+        corners8_xy(corner, sv, vmin, keep + i, x, y);
         __m256i xmn = _mm256_min_epi32(_mm256_min_epi32(x[0], x[1]), x[2]);
         __m256i xmx = _mm256_max_epi32(_mm256_max_epi32(x[0], x[1]), x[2]);
         __m256i ymn = _mm256_min_epi32(_mm256_min_epi32(y[0], y[1]), y[2]);
@@ -217,11 +282,17 @@ ZV_AVX2_FN uint32_t project_sift_tiny_avx2(const uint32_t *corner, const ScreenV
         __m256i sy0 = _mm256_srai_epi32(_mm256_add_epi32(ymn, k127), SUBPIX_BITS);
         __m256i sx1 = _mm256_srai_epi32(_mm256_add_epi32(xmx, k127), SUBPIX_BITS);
         __m256i sy1 = _mm256_srai_epi32(_mm256_add_epi32(ymx, k127), SUBPIX_BITS);
-        /* one sample, no corner to clip (the first screening put the
-         * box on screen, so clamping leaves it as it is) */
-        __m256i tiny = _mm256_andnot_si256(_mm256_cmpeq_epi32(xmn, out),
-                                           _mm256_and_si256(_mm256_cmpeq_epi32(sx1, _mm256_add_epi32(sx0, one)),
-                                                            _mm256_cmpeq_epi32(sy1, _mm256_add_epi32(sy0, one))));
+        __m256i bw = _mm256_sub_epi32(sx1, sx0), bh = _mm256_sub_epi32(sy1, sy0);
+        /* no corner to clip (then every sample index is small), the box
+         * on the screen (clamping leaves it as it is: 0 <= sx0, sx1 <= w)
+         * and of one to four samples (the first screening made it not
+         * empty) */
+        __m256i on = _mm256_and_si256(_mm256_and_si256(_mm256_cmpgt_epi32(sx0, _mm256_set1_epi32(-1)),
+                                                       _mm256_cmpgt_epi32(sy0, _mm256_set1_epi32(-1))),
+                                      _mm256_and_si256(_mm256_cmpgt_epi32(vw, sx1), _mm256_cmpgt_epi32(vh, sy1)));
+        __m256i small = _mm256_and_si256(on, _mm256_cmpgt_epi32(five, _mm256_mullo_epi32(bw, bh)));
+        small = _mm256_and_si256(small, _mm256_and_si256(_mm256_cmpgt_epi32(five, bw), _mm256_cmpgt_epi32(five, bh)));
+        small = _mm256_andnot_si256(_mm256_cmpeq_epi32(xmn, out), small);
         __m256i px = _mm256_add_epi32(_mm256_slli_epi32(sx0, SUBPIX_BITS), k128);
         __m256i py = _mm256_add_epi32(_mm256_slli_epi32(sy0, SUBPIX_BITS), k128);
         __m256i ax = _mm256_sub_epi32(x[0], px), ay = _mm256_sub_epi32(y[0], py);
@@ -232,12 +303,13 @@ ZV_AVX2_FN uint32_t project_sift_tiny_avx2(const uint32_t *corner, const ScreenV
                                          _mm256_mullo_epi32(_mm256_sub_epi32(by, ay), _mm256_sub_epi32(cx, ax)));
         __m256i faces_away = _mm256_and_si256(vcull, _mm256_cmpgt_epi32(_mm256_add_epi32(area2, one), zero));
         __m256i neg = _mm256_cmpgt_epi32(zero, area2);      /* walk b and c the other way round */
-        __m256i bx2 = _mm256_blendv_epi8(bx, cx, neg), by2 = _mm256_blendv_epi8(by, cy, neg);
-        __m256i cx2 = _mm256_blendv_epi8(cx, bx, neg), cy2 = _mm256_blendv_epi8(cy, by, neg);
-        __m256i hit = _mm256_andnot_si256(_mm256_cmpeq_epi32(area2, zero), edge8(ax, ay, bx2, by2));
-        hit = _mm256_and_si256(hit, _mm256_and_si256(edge8(bx2, by2, cx2, cy2), edge8(cx2, cy2, ax, ay)));
-        __m256i gone_back = _mm256_and_si256(tiny, faces_away);
-        __m256i gone_empty = _mm256_andnot_si256(faces_away, _mm256_andnot_si256(hit, tiny));
+        __m256i ex[3] = { ax, _mm256_blendv_epi8(bx, cx, neg), _mm256_blendv_epi8(cx, bx, neg) };
+        __m256i ey[3] = { ay, _mm256_blendv_epi8(by, cy, neg), _mm256_blendv_epi8(cy, by, neg) };
+        __m256i hit = _mm256_andnot_si256(_mm256_cmpeq_epi32(area2, zero), hits8_small(ex, ey, bw, bh));
+        __m256i gone_back = _mm256_and_si256(small, faces_away);
+        __m256i decided = _mm256_andnot_si256(faces_away, small);
+        __m256i gone_empty = _mm256_andnot_si256(hit, decided);
+        t = _mm256_or_si256(t, _mm256_and_si256(flag, _mm256_and_si256(hit, decided)));
         unsigned mb = (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(gone_back));
         unsigned me = (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(gone_empty));
         unsigned m = ~(mb | me) & 0xff;
@@ -387,7 +459,7 @@ FIN_INLINE int tris4_plane(const __m128i X[3], const __m128i Y[3], const __m128 
     return _mm256_movemask_pd(flat);
 }
 
-ZV_AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *v[4][3], Finish4 *f)
+ZV_AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *v[4][3], int known, Finish4 *f)
 {
     __m128i X[3], Y[3];
     __m128 Z[3];
@@ -408,7 +480,8 @@ ZV_AVX2_FN static void finish_tris4(const ScreenPolys *sp, const ScreenVert *v[4
     __m256i area2 = tris4_area2(xl, yl);
     __m256i back = _mm256_cmpgt_epi64(area2, _mm256_set1_epi64x(-1));     /* area2 >= 0 */
     __m128i nsamp = _mm_mullo_epi32(bw, bh);
-    int mt = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(_mm_set1_epi32(5), nsamp)));
+    /* the lanes the second screening found covering a sample need no look */
+    int mt = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(_mm_set1_epi32(5), nsamp))) & ~known;
     int hits = mt ? tris4_hits(xl, yl, area2, box[0], box[2], bw, nsamp) : 0;
     int mf = tris4_plane(X, Y, Z, box, bw, bh, f);
     _mm_storeu_si128((__m128i *)f->x0, box[0]);
@@ -439,18 +512,19 @@ ZV_AVX2_FN int project_emit_tris_avx2(RangeJob *j, uint32_t k, uint32_t c0, uint
         if (rv)
             return rv;
         const ScreenVert *v[4][3];
-        int out[4];
+        int out[4], known = 0;
         for (int l = 0; l < 4; l++) {
-            const uint32_t *c = corner + c0 + 3 * keep[i + l];
+            known |= (keep[i + l] >> 31) << l;     /* KEEP_HIT */
+            const uint32_t *c = corner + c0 + 3 * (keep[i + l] & ~KEEP_HIT);
             v[l][0] = &sv[c[0] - vmin];
             v[l][1] = &sv[c[1] - vmin];
             v[l][2] = &sv[c[2] - vmin];
             out[l] = (v[l][0]->x == VERT_OUT) | (v[l][1]->x == VERT_OUT) | (v[l][2]->x == VERT_OUT);
         }
         Finish4 f;
-        finish_tris4(sp, v, &f);
+        finish_tris4(sp, v, known, &f);
         for (int l = 0; l < 4; l++) {
-            uint32_t q = keep[i + l];
+            uint32_t q = keep[i + l] & ~KEEP_HIT;
             if (out[l]) {
                 rv = project_emit_poly(j, k + q, c0 + 3 * q, c0 + 3 * q + 3, inst + q);
                 if (rv)
@@ -484,7 +558,7 @@ ZV_AVX2_FN int project_emit_tris_avx2(RangeJob *j, uint32_t k, uint32_t c0, uint
         }
     }
     for (; i < nk; i++) {
-        uint32_t q = keep[i];
+        uint32_t q = keep[i] & ~KEEP_HIT;
         int rv = project_emit_poly(j, k + q, c0 + 3 * q, c0 + 3 * q + 3, inst + q);
         if (rv)
             return rv;

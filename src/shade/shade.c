@@ -366,37 +366,6 @@ static inline const NormalMat *object_nmat(FaceColours *fc, int obj)
 /* Distance (in pixels) the pixel pre-pass fetches ahead. */
 #define PIXEL_AHEAD 24
 
-/* Every face the pixels show, coloured before the pixel loop when the
- * polygons outnumber the pixels (a huge mesh in a small picture): the
- * ids come scattered over big per-face arrays, so their data is fetched
- * PIXEL_AHEAD pixels ahead instead of missing the cache one face at a
- * time inside the loop. */
-static void colour_pixels(FaceColours *fc, const int32_t *ids, size_t n)
-{
-    const Scene *s = fc->s;
-    uint32_t nfaces = s->nfaces;
-    int32_t last = -1;
-    for (size_t i = 0; i < n; i++) {
-        if (i + PIXEL_AHEAD < n) {
-            uint32_t f = (uint32_t)ids[i + PIXEL_AHEAD];
-            if (f < nfaces) {
-                __builtin_prefetch(&fc->stamp[f]);
-                __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
-                if (s->face_rgb)
-                    __builtin_prefetch(&s->face_rgb[3 * (size_t)f]);
-                if (s->face_obj)
-                    __builtin_prefetch(&s->face_obj[f]);
-                __builtin_prefetch(&fc->crgb[3 * (size_t)f], 1);
-            }
-        }
-        int32_t id = ids[i];
-        if (id == last || id < 0 || (uint32_t)id >= nfaces)
-            continue;
-        last = id;
-        face_colour(fc, id);
-    }
-}
-
 #ifdef ZV_AVX2
 /* lambert_face() of faces [f0, f1) of one object (normal matrix nm),
  * eight at a time: the same float operations in the same order (the
@@ -501,6 +470,62 @@ ZV_AVX2_FN static void colour_objects_avx2(FaceColours *fc)
         colour_faces_avx2(fc, object_nmat(fc, o), (uint32_t)ob->face_base, (uint32_t)ob->face_base + ob->face_count);
     }
 }
+
+/* The faces and pixels split over a pool's threads: each task a range
+ * of face ids (its own copy of the colours' state: the normal matrices'
+ * slots are a cache it fills) or of pixels (reading colours all made
+ * current before, so nothing shared is written but its own bytes). A
+ * face's colour and a pixel's bytes do not depend on the split. */
+typedef struct {
+    const FaceColours *fc;
+    const int32_t     *ids;
+    uint8_t           *rgb, *lit;
+    size_t             n;           /* faces or pixels */
+    int                ntasks;
+} ShadeSplit;
+
+/* Range t of n among ntasks, in multiples of 8. */
+static void split_range(size_t n, int t, int ntasks, size_t *a, size_t *b)
+{
+    *a = n * (size_t)t / (size_t)ntasks / 8 * 8;
+    *b = t + 1 == ntasks ? n : n * (size_t)(t + 1) / (size_t)ntasks / 8 * 8;
+}
+
+ZV_AVX2_FN static void colour_faces_task(void *arg, int t, int worker)
+{
+    (void)worker;
+    const ShadeSplit *sp = arg;
+    FaceColours fc = *sp->fc;
+    size_t lo, hi;
+    split_range(sp->n, t, sp->ntasks, &lo, &hi);
+    const Scene *s = fc.s;
+    for (int o = 0; o < s->nobjs; o++) {
+        const Object *ob = &s->objs[o];
+        size_t f0 = (uint32_t)ob->face_base, f1 = f0 + ob->face_count;
+        f0 = f0 > lo ? f0 : lo;
+        f1 = f1 < hi ? f1 : hi;
+        if (ob->poly_count && f0 < f1)
+            colour_faces_avx2(&fc, object_nmat(&fc, o), (uint32_t)f0, (uint32_t)f1);
+    }
+}
+
+static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t i1, uint8_t *rgb, uint8_t *lit);
+ZV_AVX2_FN static size_t shade_pixels_avx2(FaceColours *fc, const int32_t *ids, size_t n, uint8_t *rgb,
+                                           uint8_t *lit);
+
+ZV_AVX2_FN static void shade_pixels_task(void *arg, int t, int worker)
+{
+    (void)worker;
+    const ShadeSplit *sp = arg;
+    FaceColours *fc = (FaceColours *)sp->fc;    /* current: only read */
+    size_t a, b;
+    split_range(sp->n, t, sp->ntasks, &a, &b);
+    /* the eight-pixel loop stops short of its range's end: no store
+     * reaches the next range */
+    size_t i = a + shade_pixels_avx2(fc, sp->ids + a, b - a, sp->rgb + 3 * a, sp->lit + a);
+    shade_pixels(fc, sp->ids, i, b, sp->rgb, sp->lit);
+}
+
 #endif
 
 /* Distance (in polygons) the colour pre-pass fetches ahead. */
@@ -511,14 +536,70 @@ ZV_AVX2_FN static void colour_objects_avx2(FaceColours *fc)
  * ahead), where the pixels would visit them scattered, one cache miss
  * each. Only faces of sp's polygons can be in the picture, so the pixel
  * loop then finds every colour current. */
-static void colour_polys(FaceColours *fc, const ScreenPolys *sp)
+/* Lambert shading of pixels [0, n) straight from the faces, no colour
+ * cache: for a huge mesh in a small picture, where nearly every pixel
+ * shows a face of its own and the cache's stamp and colour would be two
+ * more scattered lines a pixel to read and write. The same colours as
+ * the cache's (lambert_face), a face shown by neighbouring pixels
+ * coloured once. */
+static void shade_pixels_direct(FaceColours *fc, const int32_t *ids, size_t n, uint8_t *rgb, uint8_t *lit)
+{
+    const Scene *s = fc->s;
+    uint32_t nfaces = s->nfaces;
+    int32_t last = -1;
+    uint8_t c[3] = { 0, 0, 0 };
+    for (size_t i = 0; i < n; i++) {
+        if (i + PIXEL_AHEAD < n) {
+            uint32_t f = (uint32_t)ids[i + PIXEL_AHEAD];
+            if (f < nfaces) {
+                __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
+                if (s->face_rgb)
+                    __builtin_prefetch(&s->face_rgb[3 * (size_t)f]);
+                if (s->face_obj)
+                    __builtin_prefetch(&s->face_obj[f]);
+            }
+        }
+        int32_t id = ids[i];
+        uint8_t *px = rgb + 3 * i;
+        if (id < 0 || (uint32_t)id >= nfaces) {
+            px[0] = px[1] = px[2] = 0;
+            lit[i] = 0;
+            continue;
+        }
+        if (id != last) {
+            int obj = s->face_obj ? s->face_obj[id] : 0;
+            NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
+            if (nm->obj != obj)
+                normal_mat(s, &fc->view, obj, nm);
+            lambert_face(s, nm, (uint32_t)id, c);
+            last = id;
+        }
+        px[0] = c[0];
+        px[1] = c[1];
+        px[2] = c[2];
+        lit[i] = 1;
+    }
+}
+
+/* Tasks for work of n items: a few per thread (a helper may be late to
+ * get a core), none under 64k items; one without helpers. */
+static int split_tasks(Pool *pool, size_t n)
+{
+    if (pool_helpers(pool) == 0)
+        return 1;
+    int t = 4 * (pool_helpers(pool) + 1);
+    size_t most = n / 65536;
+    return most < (size_t)t ? (most ? (int)most : 1) : t;
+}
+
+static void colour_polys_in(FaceColours *fc, const ScreenPolys *sp, uint32_t lo, uint32_t hi)
 {
     const Scene *s = fc->s;
     int32_t last = -1;
     for (uint32_t i = 0; i < sp->npolys; i++) {
         if (i + FETCH_AHEAD < sp->npolys) {
             uint32_t f = (uint32_t)sp->polys[i + FETCH_AHEAD].face;
-            if (f < s->nfaces) {
+            if (f >= lo && f < hi) {
                 __builtin_prefetch(&fc->stamp[f]);
                 __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
                 if (s->face_rgb)
@@ -527,11 +608,35 @@ static void colour_polys(FaceColours *fc, const ScreenPolys *sp)
             }
         }
         int32_t f = sp->polys[i].face;
-        if (f == last || f < 0 || (uint32_t)f >= s->nfaces)
+        if (f == last || f < 0 || (uint32_t)f < lo || (uint32_t)f >= hi)
             continue;
         last = f;
         face_colour(fc, f);
     }
+}
+
+static void colour_polys(FaceColours *fc, const ScreenPolys *sp)
+{
+    colour_polys_in(fc, sp, 0, fc->s->nfaces);
+}
+
+/* colour_polys() over a pool: each task every polygon but only the
+ * faces of its range of ids, so no face is two tasks' (the polygons of
+ * one face need not be next to each other). */
+typedef struct {
+    const FaceColours *fc;
+    const ScreenPolys *sp;
+    int                ntasks;
+} PolySplit;
+
+static void colour_polys_task(void *arg, int t, int worker)
+{
+    (void)worker;
+    const PolySplit *ps = arg;
+    FaceColours fc = *ps->fc;
+    uint64_t n = fc.s->nfaces;
+    colour_polys_in(&fc, ps->sp, (uint32_t)(n * (uint32_t)t / (uint32_t)ps->ntasks),
+                    (uint32_t)(n * (uint32_t)(t + 1) / (uint32_t)ps->ntasks));
 }
 
 /* Pixels [i0, i1) one at a time. */
@@ -658,13 +763,15 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
     /* Colour the faces before the pixels, so that the pixel loop finds
      * every colour current and checks no stamp: the polygons' faces when
      * they are no more than the pixels (measured: the bunny at 1920x1080
-     * shades in half the time this way), else the faces the pixels show,
-     * fetched ahead (a huge mesh in a small picture). */
+     * shades in half the time this way). A huge mesh in a small picture
+     * (polygons under a sixteenth of the faces, or more than the pixels)
+     * skips the cache: each pixel straight from its face (the dragon at
+     * 160x96: 0.65 -> 0.17 ms). */
     int avx2 = simd_use(set->simd) >= SIMD_AVX2;
 #ifndef ZV_AVX2
     (void)avx2;             /* no eight-lane loops in this build */
 #endif
-    if (sp && sp->npolys <= n) {
+    if (sp && sp->npolys <= n && !(mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 16 < nfaces)) {
         /* a frame's polygons are a subset of the faces' (split faces
          * repeat a face): when they are a quarter of them or more, every
          * face of the objects in view, in order, eight at a time, costs
@@ -672,21 +779,40 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
          * with --cull, a third of its faces drawn, shades in 6 ms instead
          * of 9) */
 #ifdef ZV_AVX2
-        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces)
-            colour_objects_avx2(&fc);
-        else
+        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces) {
+            ShadeSplit sf = { &fc, NULL, NULL, NULL, nfaces, split_tasks(set->pool, nfaces) };
+            if (sf.ntasks > 1)
+                pool_run(set->pool, sf.ntasks, colour_faces_task, &sf);
+            else
+                colour_objects_avx2(&fc);
+        } else
 #endif
-            colour_polys(&fc, sp);
+        {
+            /* each task reads every polygon: worth it from a few
+             * thousand up, with one task a thread */
+            PolySplit ps = { &fc, sp, pool_helpers(set->pool) + 1 };
+            if (ps.ntasks > 1 && sp->npolys >= 16384)
+                pool_run(set->pool, ps.ntasks, colour_polys_task, &ps);
+            else
+                colour_polys(&fc, sp);
+        }
         fc.current = 1;
     } else if (sp && mode == SHADE_LAMBERT) {
-        colour_pixels(&fc, fb->ids, n);
-        fc.current = 1;
+        shade_pixels_direct(&fc, fb->ids, n, out->rgb, out->lit);
+        i = n;
     }
 #ifdef ZV_AVX2
     /* the eight-pixel loop leaves ids past the faces black: not for id
      * colours of points and lines */
-    if (avx2 && !(mode == SHADE_ID && s->nprims))
-        i = shade_pixels_avx2(&fc, fb->ids, n, out->rgb, out->lit);
+    if (i < n && avx2 && !(mode == SHADE_ID && s->nprims)) {
+        ShadeSplit sx = { &fc, fb->ids, out->rgb, out->lit, n, fc.current ? split_tasks(set->pool, n) : 1 };
+        if (sx.ntasks > 1) {
+            pool_run(set->pool, sx.ntasks, shade_pixels_task, &sx);
+            i = n;
+        } else {
+            i = shade_pixels_avx2(&fc, fb->ids, n, out->rgb, out->lit);
+        }
+    }
 #endif
     shade_pixels(&fc, fb->ids, i, n, out->rgb, out->lit);
     /* textured and vertex-coloured faces: their samples again, each its
