@@ -85,8 +85,18 @@ printf 'BZh91AY&SY\001\002' >"$T/x.bz2"
 expect_status "a bzip2 file is refused" 1 "$Z" --print "$T/x.bz2"
 expect_err "the refusal says what it is" "x.bz2: not a model zview can read (bzip2 data; formats: obj stl ply off"
 if [ "$(wc -l <"$T/err")" -eq 1 ]; then ok "the refusal is one line"; else notok "the refusal is one line" "$(cat "$T/err")"; fi
+# Binary STL has no magic: noise reads as a file cut short inside its
+# triangles, whose 80 whole ones load when none holds a NaN or an
+# infinity (about 6% of random files). Either way, no crash: a picture
+# (status 0) or a one-line refusal naming the file (status 1).
 head -c 4096 /dev/urandom >"$T/noise.stl"
-expect_status "noise named .stl fails cleanly" 1 "$Z" --print "$T/noise.stl"
+"$Z" --print --size 40x12 "$T/noise.stl" >/dev/null 2>"$T/err" </dev/null
+st=$?
+if [ "$st" -eq 0 ] || { [ "$st" -eq 1 ] && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "noise.stl" "$T/err"; }; then
+    ok "noise named .stl: a picture or a one-line refusal naming it"
+else
+    notok "noise named .stl: a picture or a one-line refusal naming it" "status $st: $(cat "$T/err")"
+fi
 head -c 4096 /dev/urandom >"$T/noise.ply"
 expect_status "noise named .ply fails cleanly" 1 "$Z" --print "$T/noise.ply"
 expect_err "noise named .ply is refused as binary data" "binary data"
