@@ -267,7 +267,8 @@ static void knot_scaled(Scene *s, int e)
         cr_assert_eq(tl_mesh_vertex(&m, ldexpf(m0->pos[3 * v], e), ldexpf(m0->pos[3 * v + 1], e),
                                     ldexpf(m0->pos[3 * v + 2], e)), 0);
     for (uint32_t p = 0; p < src.npolys; p++)
-        cr_assert_eq(tl_mesh_face(&m, &src.poly_corner[src.poly_start[p]], src.poly_start[p + 1] - src.poly_start[p]), 0);
+        cr_assert_eq(tl_mesh_face(&m, &src.poly_corner[scene_poly_c0(&src, p)],
+                                  scene_poly_c0(&src, p + 1) - scene_poly_c0(&src, p)), 0);
     cr_assert_eq(tl_mesh_finish(&m), 0);
     scene_free(&src);
     Mesh *one = malloc(sizeof *one);

@@ -378,7 +378,7 @@ static void lambert_ref(const Scene *s, int obj, uint32_t f, uint8_t out[3])
     v = v3_norm(v);
     float amb = s->light.ambient;
     float k = amb + (1.0f - amb) * fabsf(v3_dot(v, s->light.dir));
-    static const uint8_t grey[3] = { 200, 200, 200 };
+    static const uint8_t grey[3] = { 204, 204, 196 };   /* scene.c's default colour */
     const uint8_t *base = s->face_rgb ? s->face_rgb + 3 * (size_t)f : grey;
     for (int c = 0; c < 3; c++) {
         float x = (float)base[c] * k + 0.5f;

@@ -260,7 +260,7 @@ static int project_parts(ScreenPolys *sp, const Scene *s, const Object *o, const
     for (int i = 0; i <= parts; i++)
         k[i] = o->poly_first + (uint32_t)((uint64_t)o->poly_count * (uint32_t)i / (uint32_t)parts);
     for (int i = 0; i < parts; i++) {
-        uint32_t corners = s->poly_start[k[i + 1]] - s->poly_start[k[i]];
+        uint32_t corners = scene_poly_c0(s, k[i + 1]) - scene_poly_c0(s, k[i]);
         vb[i] = (uint32_t)end;
         end += (uint64_t)corners + corners / 16 + 64;
     }
@@ -346,7 +346,7 @@ static int frame_room(ScreenPolys *sp, const Scene *s)
     for (int oi = 0; oi < s->nobjs; oi++) {
         const Object *o = &s->objs[oi];
         ninst += o->poly_count;
-        ncorners += s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
+        ncorners += scene_poly_c0(s, o->poly_first + o->poly_count) - scene_poly_c0(s, o->poly_first);
     }
     if (ninst > INT32_MAX || ncorners + 64 > UINT32_MAX / 2)
         return -1;

@@ -239,7 +239,7 @@ static inline int vert_room(RangeJob *j, uint32_t need)
 static inline void kept_poly(RangeJob *j, uint32_t k, uint32_t inst)
 {
     ScreenPolys *sp = j->out;
-    sp->polys[sp->npolys - 1].face = j->o->face_base + (int32_t)j->s->poly_lface[k];
+    sp->polys[sp->npolys - 1].face = j->o->face_base + (int32_t)scene_poly_lface(j->s, j->o, k);
     j->map[inst] = (int32_t)(sp->npolys - 1);
 }
 

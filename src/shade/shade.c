@@ -144,20 +144,19 @@ static void normal_mat(const Scene *s, const Mat4 *view, int obj, NormalMat *out
             out->m[i][j] = m.m[i][j];
 }
 
-static const uint8_t default_grey[3] = { 200, 200, 200 };
-
 /* Lambert colour of one face, two-sided (|n.l|) so faces seen from the
  * back are lit like their fronts. */
 static void lambert_face(const Scene *s, const NormalMat *nm, uint32_t face, uint8_t out[3])
 {
-    const float *n = s->face_normal + 3 * (size_t)face;
+    float n[3];
+    scene_face_normal(s, face, n);
     Vec3 v = v3(nm->m[0][0] * n[0] + nm->m[0][1] * n[1] + nm->m[0][2] * n[2],
                 nm->m[1][0] * n[0] + nm->m[1][1] * n[1] + nm->m[1][2] * n[2],
                 nm->m[2][0] * n[0] + nm->m[2][1] * n[1] + nm->m[2][2] * n[2]);
     v = v3_norm(v);
     float amb = s->light.ambient;
     float k = amb + (1.0f - amb) * fabsf(v3_dot(v, s->light.dir));
-    const uint8_t *base = s->face_rgb ? s->face_rgb + 3 * (size_t)face : default_grey;
+    const uint8_t *base = scene_face_rgb(s, face);
     out[0] = clamp_u8((float)base[0] * k);
     out[1] = clamp_u8((float)base[1] * k);
     out[2] = clamp_u8((float)base[2] * k);
@@ -381,7 +380,8 @@ static void colour_pixels(FaceColours *fc, const int32_t *ids, size_t n)
             uint32_t f = (uint32_t)ids[i + PIXEL_AHEAD];
             if (f < nfaces) {
                 __builtin_prefetch(&fc->stamp[f]);
-                __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
+                if (s->face_normal)
+                    __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
                 if (s->face_rgb)
                     __builtin_prefetch(&s->face_rgb[3 * (size_t)f]);
                 if (s->face_obj)
@@ -416,7 +416,7 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
                  lz = _mm256_set1_ps(s->light.dir.z);
     const __m256 vamb = _mm256_set1_ps(amb), voma = _mm256_set1_ps(1.0f - amb);
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f),
-                 top = _mm256_set1_ps(255.0f), grey = _mm256_set1_ps((float)default_grey[0]);
+                 top = _mm256_set1_ps(255.0f);
     const __m256i vframe = _mm256_set1_epi32((int32_t)fc->frame);
     /* bytes 3 l + c of 24 (16 in lo, 8 in hi) to lane l of channel c */
     const __m128i pick_lo[3] = {
@@ -459,7 +459,7 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
             hi = _mm_loadl_epi64((const __m128i *)(s->face_rgb + 3 * (size_t)f + 16));
         }
         for (int c = 0; c < 3; c++) {
-            __m256 base = grey;
+            __m256 base = _mm256_set1_ps((float)scene_default_rgb[c]);
             if (s->face_rgb)
                 base = _mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(
                     _mm_or_si128(_mm_shuffle_epi8(lo, pick_lo[c]), _mm_shuffle_epi8(hi, pick_hi[c]))));
@@ -520,7 +520,8 @@ static void colour_polys(FaceColours *fc, const ScreenPolys *sp)
             uint32_t f = (uint32_t)sp->polys[i + FETCH_AHEAD].face;
             if (f < s->nfaces) {
                 __builtin_prefetch(&fc->stamp[f]);
-                __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
+                if (s->face_normal)
+                    __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
                 if (s->face_rgb)
                     __builtin_prefetch(&s->face_rgb[3 * (size_t)f]);
                 __builtin_prefetch(&fc->crgb[3 * (size_t)f], 1);
@@ -645,7 +646,7 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
     if (mode == SHADE_SMOOTH) {
         if (smooth_prepare(&cache->smooth, s, set->crease))
             return -1;
-        return shade_smooth(s, sp, fb, &cache->smooth, default_grey, varying ? &sf : NULL, out);
+        return shade_smooth(s, sp, fb, &cache->smooth, scene_default_rgb, varying ? &sf : NULL, out);
     }
     if (cache_grow(cache, nfaces) != 0)
         return -1;
@@ -672,7 +673,7 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
          * with --cull, a third of its faces drawn, shades in 6 ms instead
          * of 9) */
 #ifdef ZV_AVX2
-        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces)
+        if (avx2 && mode == SHADE_LAMBERT && s->face_normal && (uint64_t)sp->npolys * 4 >= nfaces)
             colour_objects_avx2(&fc);
         else
 #endif
