@@ -47,11 +47,20 @@ typedef struct {
     SrgbEnc  *enc;
 } SurfCache;
 
+/* A face's colour in the table a frame uses instead of the per-face
+ * arrays when they would outweigh it (a huge mesh in a small picture). */
+typedef struct {
+    int32_t id;         /* -1: empty */
+    uint8_t rgb[4];
+} ShadeSlot;
+
 /* Per-face colour cache, reused across frames (grows to the face count). */
 typedef struct {
     uint32_t *stamp;    /* frame stamp per face: colour below is current */
     uint8_t  *rgb;      /* 3 per face */
     uint32_t  cap, frame;
+    ShadeSlot *slot;    /* slots (a power of two), keyed by a hash of the id */
+    uint32_t  nslot;
     SmoothData smooth;
     EdgeData   edges;
     SurfCache  surf;

@@ -292,6 +292,7 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     int simd = simd_level();
     p->sp.simd = simd;
     double t0 = now_ms();
+    p->sp.no_map = !p->algo->uses_map;
     if (screen_project(&p->sp, p->scene, &p->vp))
         return -1;
     if (p->order != ORDER_FILE && screen_reorder(&p->sp, p->order, 1, &p->reorder))

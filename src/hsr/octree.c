@@ -515,5 +515,6 @@ const HsrAlgo hsr_hzb_octree = {
     .destroy_shared = oct_destroy_shared,
     .share = oct_share,
     .frame_begin = oct_frame_begin,
+    .uses_map = 1,
 };
 

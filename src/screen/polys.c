@@ -286,7 +286,8 @@ int project_range(RangeJob *j)
         uint32_t n = j->k1 - k < CHUNK ? j->k1 - k : CHUNK, inst = j->inst0 + (k - j->k0);
         uint32_t c0 = scene_poly_c0(s, k);
         /* every polygon starts dropped; project_emit_poly records the kept ones */
-        memset(j->map + inst, 0xff, (size_t)n * sizeof *j->map);
+        if (j->map)
+            memset(j->map + inst, 0xff, (size_t)n * sizeof *j->map);
         sp->in_polys += n;
         int tris = scene_poly_c0(s, k + n) - c0 == 3 * n;
         uint32_t nk;

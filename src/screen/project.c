@@ -205,7 +205,7 @@ static void compact_task(void *arg, int task, int worker)
         memmove(sp->polys + bp, sp->polys + c->pb[i], (size_t)part->npolys * sizeof *sp->polys);
         for (uint32_t q = 0; q < part->npolys; q++)
             sp->polys[bp + q].first += bv;
-        for (uint32_t q = c->inst0[i]; q < c->inst0[i] + c->ninst[i]; q++)
+        for (uint32_t q = c->inst0[i]; !sp->no_map && q < c->inst0[i] + c->ninst[i]; q++)
             if (sp->map[q] >= 0)
                 sp->map[q] += (int32_t)bp;
     }
@@ -283,7 +283,7 @@ static int project_parts(ScreenPolys *sp, const Scene *s, const Object *o, const
             win[i].in_polys = win[i].culled_back = win[i].culled_empty = 0;
         }
         job[i] = (RangeJob){ &win[i], s, o, pj, mv, &w->sc, &w->clip[i], k[i], k[i + 1],
-                             inst + (k[i] - o->poly_first), sp->map, 1, simd, 0, &w->lut };
+                             inst + (k[i] - o->poly_first), sp->no_map ? NULL : sp->map, 1, simd, 0, &w->lut };
     }
     pool_run(pool, parts, range_part, job);
     int rc = 0;
@@ -359,7 +359,7 @@ static int frame_room(ScreenPolys *sp, const Scene *s)
     }
     /* every corner at most once, plus a little for clipped outlines */
     if (grow_array((void **)&sp->verts, &sp->cap_verts, (uint32_t)(ncorners + ncorners / 64 + 64), sizeof *sp->verts) ||
-        grow_array((void **)&sp->map, &sp->cap_map, (uint32_t)ninst + 1, sizeof *sp->map) ||
+        (!sp->no_map && grow_array((void **)&sp->map, &sp->cap_map, (uint32_t)ninst + 1, sizeof *sp->map)) ||
         grow_array((void **)&sp->polys, &sp->cap_polys, (uint32_t)ninst + 1, sizeof *sp->polys))
         return -1;
     return 0;
@@ -413,14 +413,14 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
             return -1;
         if (rc) {
             RangeJob j = { sp, s, o, &pj, &vj.mv, sc, &w->clip[0], o->poly_first,
-                           o->poly_first + o->poly_count, inst, sp->map, 0, simd, 0, &w->lut };
+                           o->poly_first + o->poly_count, inst, sp->no_map ? NULL : sp->map, 0, simd, 0, &w->lut };
             if (project_range(&j))
                 return -1;
         }
         inst += o->poly_count;
     }
     sp->polys[sp->npolys].first = sp->nverts;   /* sentinel */
-    sp->nmap = inst;
+    sp->nmap = sp->no_map ? 0 : inst;
     sp->face_sorted = 1;
     sp->ms = now_ms() - t0;
     return 0;

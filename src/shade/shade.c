@@ -15,6 +15,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "bigmem.h"
 #include "shade.h"
 #include "simd.h"
 
@@ -36,39 +37,39 @@ int shade_from_name(const char *name)
 
 void shade_cache_free(ShadeCache *c)
 {
-    free(c->stamp);
+    bigmem_zfree(c->stamp, (size_t)c->cap * sizeof *c->stamp);
     free(c->rgb);
+    free(c->slot);
     smooth_free(&c->smooth);
     edges_free(&c->edges);
     surf_cache_free(&c->surf);
     memset(c, 0, sizeof *c);
 }
 
-/* Room for n faces; new faces get stamp 0, which no frame uses. */
+/* Room for n faces, every one stale (stamp 0, which no frame uses).
+ * The stamps come zeroed from the kernel (bigmem_zalloc), not realloc'd
+ * and cleared: only the pages of faces a frame shows become resident (a
+ * 5M-face model in a terminal-sized picture leaves nearly all of its
+ * 20 MB of stamps untouched; issue 21). */
 static int cache_grow(ShadeCache *c, uint32_t n)
 {
     if (n <= c->cap && c->stamp && c->rgb)
         return 0;
     uint32_t cap = n ? n : 1;
-    uint32_t *st = realloc(c->stamp, (size_t)cap * sizeof *st);
-    if (!st)
-        return -1;
-    c->stamp = st;      /* bigger than before: valid even if rgb fails */
-    uint8_t *rgb = realloc(c->rgb, (size_t)cap * 3 + 1);     /* + 1: the pixel loop loads 4 bytes a face */
-    if (!rgb)
-        return -1;
-    c->rgb = rgb;
-    uint32_t old = c->cap < cap ? c->cap : cap;
-    memset(c->stamp + old, 0, (size_t)(cap - old) * sizeof *st);
-    c->cap = cap;
-    return 0;
+    bigmem_zfree(c->stamp, (size_t)c->cap * sizeof *c->stamp);
+    free(c->rgb);
+    c->stamp = bigmem_zalloc((size_t)cap * sizeof *c->stamp);
+    c->rgb = malloc((size_t)cap * 3 + 1);     /* + 1: the pixel loop loads 4 bytes a face */
+    c->cap = c->stamp ? cap : 0;               /* the size bigmem_zfree is given */
+    return c->stamp && c->rgb ? 0 : -1;
 }
 
 /* Start a frame: a fresh stamp makes every cached colour stale at once. */
 static void cache_next_frame(ShadeCache *c)
 {
     if (++c->frame == 0) {
-        memset(c->stamp, 0, (size_t)c->cap * sizeof *c->stamp);
+        if (c->stamp)
+            memset(c->stamp, 0, (size_t)c->cap * sizeof *c->stamp);
         c->frame = 1;
     }
 }
@@ -330,24 +331,97 @@ typedef struct {
     NormalMat    nmat[NMAT_SLOTS];
 } FaceColours;
 
+/* Face id's colour into c. */
+static inline void face_make(FaceColours *fc, int32_t id, uint8_t *c)
+{
+    if (fc->mode == SHADE_ID) {
+        shade_id_colour(id, c);
+    } else {
+        const Scene *s = fc->s;
+        int obj = s->face_obj ? s->face_obj[id] : 0;
+        NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
+        if (nm->obj != obj)
+            normal_mat(s, &fc->view, obj, nm);
+        lambert_face(s, nm, (uint32_t)id, c);
+    }
+}
+
 /* Face id's colour, made current. */
 static inline const uint8_t *face_colour(FaceColours *fc, int32_t id)
 {
     uint8_t *c = fc->crgb + 3 * (size_t)id;
     if (fc->stamp[id] != fc->frame) {
-        if (fc->mode == SHADE_ID) {
-            shade_id_colour(id, c);
-        } else {
-            const Scene *s = fc->s;
-            int obj = s->face_obj ? s->face_obj[id] : 0;
-            NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
-            if (nm->obj != obj)
-                normal_mat(s, &fc->view, obj, nm);
-            lambert_face(s, nm, (uint32_t)id, c);
-        }
+        face_make(fc, id, c);
         fc->stamp[id] = fc->frame;
     }
     return c;
+}
+
+/* ==== A huge mesh in a small picture ==== */
+
+static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t i1, uint8_t *rgb, uint8_t *lit);
+
+/* The slot table for a frame of n pixels: a power of two at least twice
+ * n (at most every pixel a face of its own, the table half full). */
+static uint32_t slots_for(size_t n)
+{
+    uint64_t cap = 64;
+    while (cap < 2 * (uint64_t)n)
+        cap *= 2;
+    return cap > ((uint64_t)1 << 31) ? 0 : (uint32_t)cap;
+}
+
+/* Do the frame's colours go through the slots? When the per-face arrays
+ * (7 bytes a face, and whichever faces the polygons show touch their
+ * pages: a 5M-face model drawn into a few hundred thousand samples
+ * touched all 36 MB) outweigh the slots (8 bytes each): the memory a
+ * frame touches is then the picture's, not the mesh's (issue 21). */
+static int slots_pay(uint32_t nfaces, size_t n)
+{
+    uint32_t cap = slots_for(n);
+    return cap && (uint64_t)cap * sizeof(ShadeSlot) < (uint64_t)nfaces * 7;
+}
+
+/* The pixels through the slots (shade_pixels' bytes): a face seen first,
+ * or whose slot another face took, has its colour made again. */
+static int shade_pixels_slots(FaceColours *fc, ShadeCache *cache, const int32_t *ids, size_t n, uint8_t *rgb,
+                              uint8_t *lit)
+{
+    uint32_t cap = slots_for(n);
+    if (cap > cache->nslot) {
+        ShadeSlot *t = realloc(cache->slot, (size_t)cap * sizeof *t);
+        if (!t)
+            return -1;
+        cache->slot = t;
+        cache->nslot = cap;
+    }
+    memset(cache->slot, 0xff, (size_t)cap * sizeof *cache->slot);     /* ids -1: empty */
+    int shift = 32 - __builtin_ctz(cap);
+    uint32_t nfaces = fc->s->nfaces;
+    int32_t last = -1;
+    const uint8_t *c = NULL;
+    for (size_t i = 0; i < n; i++) {
+        int32_t id = ids[i];
+        uint8_t *px = rgb + 3 * i;
+        if (id < 0 || (uint32_t)id >= nfaces) {
+            shade_pixels(fc, ids, i, i + 1, rgb, lit);      /* background, points and lines */
+            continue;
+        }
+        if (id != last) {
+            ShadeSlot *sl = &cache->slot[((uint32_t)id * 2654435769u) >> shift];
+            if (sl->id != id) {
+                face_make(fc, id, sl->rgb);
+                sl->id = id;
+            }
+            c = sl->rgb;
+            last = id;
+        }
+        px[0] = c[0];
+        px[1] = c[1];
+        px[2] = c[2];
+        lit[i] = 1;
+    }
+    return 0;
 }
 
 #ifdef ZV_AVX2
@@ -648,14 +722,22 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
             return -1;
         return shade_smooth(s, sp, fb, &cache->smooth, scene_default_rgb, varying ? &sf : NULL, out);
     }
-    if (cache_grow(cache, nfaces) != 0)
+    size_t n = (size_t)fb->w * (size_t)fb->h, i = 0;
+    int slots = slots_pay(nfaces, n);
+    if (!slots && cache_grow(cache, nfaces) != 0)
         return -1;
     cache_next_frame(cache);
 
     FaceColours fc = { s, mode, cache->frame, cache->stamp, cache->rgb, 0, camera_view(&s->cam), { { 0 } } };
     for (int k = 0; k < NMAT_SLOTS; k++)
         fc.nmat[k].obj = -1;
-    size_t n = (size_t)fb->w * (size_t)fb->h, i = 0;
+    if (slots) {
+        if (shade_pixels_slots(&fc, cache, fb->ids, n, out->rgb, out->lit))
+            return -1;
+        if (varying)
+            shade_surfaces_flat(&sf, fb, out);
+        return 0;
+    }
     /* Colour the faces before the pixels, so that the pixel loop finds
      * every colour current and checks no stamp: the polygons' faces when
      * they are no more than the pixels (measured: the bunny at 1920x1080
