@@ -447,7 +447,7 @@ const char *tl_mesh_broken(const Mesh *m)
     for (uint32_t c = 0; c < (m->nfaces ? m->face_start[m->nfaces] : 0); c++)
         PROMISE(m->corner[c] < m->nverts);
     for (uint32_t f = 0; f < m->nfaces; f++)
-        PROMISE(m->face_mat[f] < 0 || (uint32_t)m->face_mat[f] < m->nmats);
+        PROMISE(mesh_face_mat(m, f) < 0 || (uint32_t)mesh_face_mat(m, f) < m->nmats);
     PROMISE(m->point || m->npoints <= m->nverts);
     for (uint32_t k = 0; m->point && k < m->npoints; k++)
         PROMISE(m->point[k] < m->nverts);
