@@ -94,6 +94,31 @@ Test(edit, a_single_object_scene_gets_distinct_colours_when_another_comes)
     scene_free(&ref);
 }
 
+/* The viewer's first file is a part added to an empty scene: the part
+ * is taken whole, so a file of triangles stays in the compact form
+ * (scene.h, issue 21), the same scene a load of it alone makes. */
+Test(edit, a_file_added_to_an_empty_scene_stays_compact)
+{
+    const char *one[] = { file_c };
+    Scene s, part, ref;
+    build(&part, one, 1, 0);
+    build(&ref, one, 1, 0);
+    char err[128];
+    cr_assert_eq(scene_build(&s, NULL, 0, err, sizeof err), 0, "%s", err);
+    cr_assert(!part.poly_start && !part.poly_lface && !part.face_normal && !part.face_rgb, "a compact part");
+    cr_assert_eq(scene_wire_build(&part, err, sizeof err), 0, "%s", err);
+    uint32_t gen = s.gen;
+    cr_assert_eq(scene_add(&s, &part, err, sizeof err), 0, "%s", err);
+    cr_expect_eq(part.nobjs, 0, "the part is left empty");
+    cr_expect_neq(s.gen, gen, "the generation moves on");
+    cr_expect(!s.poly_start && !s.poly_lface && !s.face_normal && !s.face_rgb, "still compact");
+    cr_expect(!s.wire_built && !s.wire && s.nwire == 0, "the wireframe to be built again, as after any edit");
+    expect_same(&s, &ref);
+    scene_free(&part);
+    scene_free(&s);
+    scene_free(&ref);
+}
+
 Test(edit, removing_objects_renumbers_ids_and_drops_an_empty_file)
 {
     const char *all[] = { file_a, file_b, file_c }, *a[] = { file_a }, *c[] = { file_c };
