@@ -215,6 +215,10 @@ static inline const uint8_t *scene_face_rgb(const Scene *s, uint32_t id)
 }
 /* Face id's unit normal in object space (stored or computed). */
 void scene_face_normal(const Scene *s, uint32_t id, float n[3]);
+/* The same of faces [f0, f0 + n) of one object, 3 floats each into out;
+ * simd a SimdLevel (simd.h: SIMD_AUTO the level in use), the same bits
+ * at every level. */
+void scene_face_normals(const Scene *s, uint32_t f0, uint32_t n, float *out, int simd);
 /* Corners of every polygon (the end of the corner list). */
 static inline uint32_t scene_ncorners(const Scene *s)
 {

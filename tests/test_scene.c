@@ -771,3 +771,46 @@ Test(scene, colours_of_their_own_are_kept_in_the_compact_form)
     rmdir(dir);
     free(t);
 }
+
+/* The normals of a block of faces at every SIMD level are the stored
+ * ones of the full form, bit for bit: random triangles of every size
+ * (1e-30 to 1e30), slivers, degenerate ones (a repeated corner: +z). */
+Test(scene, computed_normals_are_the_stored_ones_at_every_simd_level)
+{
+    enum { NT = 203 };
+    size_t cap = 200000, at = 0;
+    char *t = malloc(cap);
+    cr_assert(t);
+    uint32_t seed = 7;
+    for (int i = 0; i < 3 * NT; i++) {
+        double c[3];
+        for (int a = 0; a < 3; a++) {
+            seed = seed * 1664525u + 1013904223u;
+            c[a] = ((double)(seed >> 8) / 16777216.0 - 0.5) * pow(10.0, (double)((i / 3) % 61 - 30));
+        }
+        at += (size_t)snprintf(t + at, cap - at, "v %.9g %.9g %.9g\n", c[0], c[1], c[2]);
+    }
+    for (int f = 0; f < NT; f++) {
+        int a = 3 * f + 1, b = f % 17 == 5 ? a : a + 1, d = f % 23 == 7 ? a + 1 : a + 2;
+        at += (size_t)snprintf(t + at, cap - at, "f %d %d %d\n", a, b, d);
+    }
+    Scene c, full;
+    compact_and_full(t, &c, &full);
+    cr_assert(!c.face_normal && !c.poly_start);
+    static float got[3 * NT];
+    for (int lv = SIMD_SCALAR; lv < SIMD_LEVELS; lv++) {
+        memset(got, 0xff, sizeof got);
+        scene_face_normals(&c, 0, NT, got, lv);
+        cr_expect_eq(memcmp(got, full.face_normal, sizeof got), 0, "SIMD level %s", simd_name(lv));
+        /* a block starting mid-way, of a length no multiple of four */
+        scene_face_normals(&c, 5, 11, got, lv);
+        cr_expect_eq(memcmp(got, &full.face_normal[15], 11 * 3 * sizeof(float)), 0, "%s, faces 5..15", simd_name(lv));
+    }
+    int degenerate = 0;
+    for (int f = 0; f < NT; f++)
+        degenerate += full.face_normal[3 * f] == 0 && full.face_normal[3 * f + 1] == 0 && full.face_normal[3 * f + 2] == 1;
+    cr_expect_geq(degenerate, NT / 23, "degenerate faces' +z is among them");
+    scene_free(&c);
+    scene_free(&full);
+    free(t);
+}

@@ -12,6 +12,7 @@
 #include "check.h"
 #include "scene.h"
 #include "scene_internal.h"
+#include "simd.h"
 
 /* A face whose corners stray from its plane by more than this fraction
  * of its size is split into triangles. */
@@ -78,6 +79,70 @@ void scene_face_normal(const Scene *s, uint32_t id, float n[3])
     double v[3];
     corners_newell(o->mesh->pos, s->poly_corner + c0, c1 - c0, v);
     unit_of(v, n);
+}
+
+#ifdef ZV_AVX2
+/* The unit normals of four triangles (corners c[0 .. 12)) at once: the
+ * double operations of corners_newell and unit_of in their order, each
+ * lane rounding as a scalar double does (no fused multiply-add), so the
+ * same bits. */
+ZV_AVX2_FN static void tri_normals4(const float *pos, const uint32_t *c, float *out)
+{
+    double v[9][4];     /* p, q, r: x y z, a lane each */
+    for (int l = 0; l < 4; l++)
+        for (int k = 0; k < 3; k++) {
+            const float *p = &pos[3 * (size_t)c[3 * l + k]];
+            for (int a = 0; a < 3; a++)
+                v[3 * k + a][l] = p[a];
+        }
+    __m256d u[3], w[3];
+    for (int a = 0; a < 3; a++) {
+        __m256d p = _mm256_loadu_pd(v[a]);
+        u[a] = _mm256_sub_pd(_mm256_loadu_pd(v[3 + a]), p);
+        w[a] = _mm256_sub_pd(_mm256_loadu_pd(v[6 + a]), p);
+    }
+    __m256d n[3] = { _mm256_sub_pd(_mm256_mul_pd(u[1], w[2]), _mm256_mul_pd(u[2], w[1])),
+                     _mm256_sub_pd(_mm256_mul_pd(u[2], w[0]), _mm256_mul_pd(u[0], w[2])),
+                     _mm256_sub_pd(_mm256_mul_pd(u[0], w[1]), _mm256_mul_pd(u[1], w[0])) };
+    __m256d len = _mm256_sqrt_pd(_mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(n[0], n[0]), _mm256_mul_pd(n[1], n[1])),
+                                               _mm256_mul_pd(n[2], n[2])));
+    __m256d some = _mm256_cmp_pd(len, _mm256_setzero_pd(), _CMP_GT_OQ);
+    float f[3][4];
+    for (int a = 0; a < 3; a++) {
+        __m256d none = _mm256_set1_pd(a == 2 ? 1.0 : 0.0);     /* unit_of's +z */
+        _mm_storeu_ps(f[a], _mm256_cvtpd_ps(_mm256_blendv_pd(none, _mm256_div_pd(n[a], len), some)));
+    }
+    for (int l = 0; l < 4; l++)
+        for (int a = 0; a < 3; a++)
+            out[3 * l + a] = f[a][l];
+}
+#endif
+
+void scene_face_normals(const Scene *s, uint32_t f0, uint32_t n, float *out, int simd)
+{
+    if (s->face_normal || !n) {
+        if (n)
+            memcpy(out, &s->face_normal[3 * (size_t)f0], 3 * (size_t)n * sizeof(float));
+        return;
+    }
+    const Object *o = &s->objs[scene_face_obj(s, f0)];
+    const float *pos = o->mesh->pos;
+    uint32_t k = o->poly_first + (f0 - (uint32_t)o->face_base), i = 0;
+#ifdef ZV_AVX2
+    if (simd_use(simd) >= SIMD_AVX2 && !s->poly_start)     /* triangles: corners 3k on */
+        for (; i + 4 <= n; i += 4, k += 4)
+            tri_normals4(pos, s->poly_corner + 3 * (size_t)k, &out[3 * (size_t)i]);
+#else
+    (void)simd;
+#endif
+    uint32_t c1 = scene_poly_c0(s, k);
+    for (; i < n; i++, k++) {
+        uint32_t c0 = c1;
+        c1 = scene_poly_c0(s, k + 1);
+        double v[3];
+        corners_newell(pos, s->poly_corner + c0, c1 - c0, v);
+        unit_of(v, &out[3 * (size_t)i]);
+    }
 }
 
 static int face_is_planar(const Mesh *m, uint32_t f, const double n[3])

@@ -477,8 +477,10 @@ static void colour_pixels(FaceColours *fc, const int32_t *ids, size_t n)
  * matrix rows, the length by sqrt, 1 / length, the scale, |n.l|, the
  * ambient mix, base * k + 0.5 clamped and truncated), so the same bytes;
  * the faces' stamps made current. A whole object's faces in a row read
- * their normals and base colours in order, with no gathers. */
-ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, uint32_t f0, uint32_t f1)
+ * their normals (nrm: face f0's on) and base colours in order, with no
+ * gathers. */
+ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, uint32_t f0, uint32_t f1,
+                                         const float *nrm)
 {
     const Scene *s = fc->s;
     __m256 m[3][3];
@@ -505,7 +507,7 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
     for (; f + 8 <= f1; f += 8) {
         /* faces 0-3 in the low lanes, 4-7 in the high ones, deinterleaved
          * in-lane (as project.c's vertex loop does) */
-        const float *p = s->face_normal + 3 * (size_t)f;
+        const float *p = nrm + 3 * (size_t)(f - f0);
         __m256 va = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p)), _mm_loadu_ps(p + 12), 1);
         __m256 vb = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4)), _mm_loadu_ps(p + 16), 1);
         __m256 vc = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 8)), _mm_loadu_ps(p + 20), 1);
@@ -572,7 +574,20 @@ ZV_AVX2_FN static void colour_objects_avx2(FaceColours *fc)
         const Object *ob = &s->objs[o];
         if (!ob->poly_count || !ob->face_count)
             continue;
-        colour_faces_avx2(fc, object_nmat(fc, o), (uint32_t)ob->face_base, (uint32_t)ob->face_base + ob->face_count);
+        uint32_t f0 = (uint32_t)ob->face_base, f1 = f0 + ob->face_count;
+        if (s->face_normal) {
+            colour_faces_avx2(fc, object_nmat(fc, o), f0, f1, s->face_normal + 3 * (size_t)f0);
+            continue;
+        }
+        /* the compact form (scene.h): the normals of a block of faces
+         * at a time, computed in order (the corners read in a row) */
+        enum { BLOCK = 512 };
+        float nrm[3 * BLOCK];
+        for (uint32_t f = f0; f < f1; f += BLOCK) {
+            uint32_t n = f1 - f < BLOCK ? f1 - f : BLOCK;
+            scene_face_normals(s, f, n, nrm, SIMD_AVX2);   /* (this loop runs at AVX2 only) */
+            colour_faces_avx2(fc, object_nmat(fc, o), f, f + n, nrm);
+        }
     }
 }
 #endif
@@ -755,7 +770,7 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
          * with --cull, a third of its faces drawn, shades in 6 ms instead
          * of 9) */
 #ifdef ZV_AVX2
-        if (avx2 && mode == SHADE_LAMBERT && s->face_normal && (uint64_t)sp->npolys * 4 >= nfaces)
+        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces)
             colour_objects_avx2(&fc);
         else
 #endif
