@@ -61,6 +61,12 @@ typedef struct {
     uint32_t  cap, frame;
     ShadeSlot *slot;    /* slots (a power of two), keyed by a hash of the id */
     uint32_t  nslot;
+    /* The compact form's face normals (scene.h), made by the first frame
+     * dense enough to colour every face, for the scene nrm_key at
+     * generation nrm_gen with nrm_n faces */
+    float    *nrm;
+    const Scene *nrm_key;
+    uint32_t  nrm_gen, nrm_n;
     SmoothData smooth;
     EdgeData   edges;
     SurfCache  surf;

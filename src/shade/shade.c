@@ -40,6 +40,7 @@ void shade_cache_free(ShadeCache *c)
     bigmem_zfree(c->stamp, (size_t)c->cap * sizeof *c->stamp);
     free(c->rgb);
     free(c->slot);
+    free(c->nrm);
     smooth_free(&c->smooth);
     edges_free(&c->edges);
     surf_cache_free(&c->surf);
@@ -564,31 +565,51 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
     }
 }
 
+/* The face normals for the loop below: the scene's, or for the compact
+ * form (scene.h) computed once a scene and kept: computing them every
+ * frame cost more than the colours (8 of 12 ms for the dragon at
+ * 1920x1080), and a frame dense enough to come here holds more per face
+ * already (a quarter of the faces' polygons, 80 bytes each). NULL out
+ * of memory. */
+ZV_AVX2_FN static const float *dense_normals(ShadeCache *c, const Scene *s)
+{
+    if (s->face_normal)
+        return s->face_normal;
+    if (c->nrm && c->nrm_key == s && c->nrm_gen == s->gen && c->nrm_n == s->nfaces)
+        return c->nrm;
+    free(c->nrm);
+    c->nrm_key = NULL;
+    if (!(c->nrm = malloc(((size_t)s->nfaces + 1) * 3 * sizeof(float))))
+        return NULL;
+    for (int o = 0; o < s->nobjs; o++) {
+        const Object *ob = &s->objs[o];
+        scene_face_normals(s, (uint32_t)ob->face_base, ob->face_count, c->nrm + 3 * (size_t)ob->face_base,
+                           SIMD_AVX2);  /* (called at AVX2 only) */
+    }
+    c->nrm_key = s;
+    c->nrm_gen = s->gen;
+    c->nrm_n = s->nfaces;
+    return c->nrm;
+}
+
 /* Every face of every object with polygons in the frame, object by
  * object, eight at a time: cheaper than face by face over the polygons
- * when most faces have one on screen (a dense mesh at a large size). */
-ZV_AVX2_FN static void colour_objects_avx2(FaceColours *fc)
+ * when most faces have one on screen (a dense mesh at a large size).
+ * Returns -1 out of memory. */
+ZV_AVX2_FN static int colour_objects_avx2(FaceColours *fc, ShadeCache *cache)
 {
     const Scene *s = fc->s;
+    const float *nrm = dense_normals(cache, s);
+    if (!nrm)
+        return -1;
     for (int o = 0; o < s->nobjs; o++) {
         const Object *ob = &s->objs[o];
         if (!ob->poly_count || !ob->face_count)
             continue;
         uint32_t f0 = (uint32_t)ob->face_base, f1 = f0 + ob->face_count;
-        if (s->face_normal) {
-            colour_faces_avx2(fc, object_nmat(fc, o), f0, f1, s->face_normal + 3 * (size_t)f0);
-            continue;
-        }
-        /* the compact form (scene.h): the normals of a block of faces
-         * at a time, computed in order (the corners read in a row) */
-        enum { BLOCK = 512 };
-        float nrm[3 * BLOCK];
-        for (uint32_t f = f0; f < f1; f += BLOCK) {
-            uint32_t n = f1 - f < BLOCK ? f1 - f : BLOCK;
-            scene_face_normals(s, f, n, nrm, SIMD_AVX2);   /* (this loop runs at AVX2 only) */
-            colour_faces_avx2(fc, object_nmat(fc, o), f, f + n, nrm);
-        }
+        colour_faces_avx2(fc, object_nmat(fc, o), f0, f1, nrm + 3 * (size_t)f0);
     }
+    return 0;
 }
 #endif
 
@@ -770,9 +791,10 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
          * with --cull, a third of its faces drawn, shades in 6 ms instead
          * of 9) */
 #ifdef ZV_AVX2
-        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces)
-            colour_objects_avx2(&fc);
-        else
+        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces) {
+            if (colour_objects_avx2(&fc, cache))
+                return -1;
+        } else
 #endif
             colour_polys(&fc, sp);
         fc.current = 1;
