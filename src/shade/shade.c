@@ -147,11 +147,14 @@ static void normal_mat(const Scene *s, const Mat4 *view, int obj, NormalMat *out
 }
 
 /* Lambert colour of one face, two-sided (|n.l|) so faces seen from the
- * back are lit like their fronts. */
-static void lambert_face(const Scene *s, const NormalMat *nm, uint32_t face, uint8_t out[3])
+ * back are lit like their fronts. nrm: the faces' normals when at hand
+ * (NULL: computed, scene.h). */
+static void lambert_face(const Scene *s, const float *nrm, const NormalMat *nm, uint32_t face, uint8_t out[3])
 {
-    float n[3];
-    scene_face_normal(s, face, n);
+    float own[3];
+    const float *n = nrm ? nrm + 3 * (size_t)face : own;
+    if (!nrm)
+        scene_face_normal(s, face, own);
     Vec3 v = v3(nm->m[0][0] * n[0] + nm->m[0][1] * n[1] + nm->m[0][2] * n[2],
                 nm->m[1][0] * n[0] + nm->m[1][1] * n[1] + nm->m[1][2] * n[2],
                 nm->m[2][0] * n[0] + nm->m[2][1] * n[1] + nm->m[2][2] * n[2]);
@@ -330,6 +333,7 @@ typedef struct {
     int          current;       /* every face the pixels can show is coloured: no stamp checks */
     Mat4         view;
     NormalMat    nmat[NMAT_SLOTS];
+    const float *nrm;           /* the faces' normals when at hand (dense_normals), else NULL */
 } FaceColours;
 
 /* Face id's colour into c. */
@@ -343,7 +347,7 @@ static inline void face_make(FaceColours *fc, int32_t id, uint8_t *c)
         NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
         if (nm->obj != obj)
             normal_mat(s, &fc->view, obj, nm);
-        lambert_face(s, nm, (uint32_t)id, c);
+        lambert_face(s, fc->nrm, nm, (uint32_t)id, c);
     }
 }
 
@@ -560,18 +564,16 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
         _mm256_storeu_si256((__m256i *)(fc->stamp + f), vframe);
     }
     for (; f < f1; f++) {
-        lambert_face(s, nm, f, fc->crgb + 3 * (size_t)f);
+        lambert_face(s, fc->nrm, nm, f, fc->crgb + 3 * (size_t)f);
         fc->stamp[f] = fc->frame;
     }
 }
 
-/* The face normals for the loop below: the scene's, or for the compact
- * form (scene.h) computed once a scene and kept: computing them every
- * frame cost more than the colours (8 of 12 ms for the dragon at
- * 1920x1080), and a frame dense enough to come here holds more per face
- * already (a quarter of the faces' polygons, 80 bytes each). NULL out
- * of memory. */
-ZV_AVX2_FN static const float *dense_normals(ShadeCache *c, const Scene *s)
+/* The face normals of a big frame: the scene's, or for the compact form
+ * (scene.h) computed once a scene and kept: computing them every frame
+ * cost more than the colours (8 of 12 ms for the dragon at 1920x1080,
+ * 100 ms for the 5.2M dragon). NULL out of memory. */
+static const float *dense_normals(ShadeCache *c, const Scene *s, int simd)
 {
     if (s->face_normal)
         return s->face_normal;
@@ -583,8 +585,7 @@ ZV_AVX2_FN static const float *dense_normals(ShadeCache *c, const Scene *s)
         return NULL;
     for (int o = 0; o < s->nobjs; o++) {
         const Object *ob = &s->objs[o];
-        scene_face_normals(s, (uint32_t)ob->face_base, ob->face_count, c->nrm + 3 * (size_t)ob->face_base,
-                           SIMD_AVX2);  /* (called at AVX2 only) */
+        scene_face_normals(s, (uint32_t)ob->face_base, ob->face_count, c->nrm + 3 * (size_t)ob->face_base, simd);
     }
     c->nrm_key = s;
     c->nrm_gen = s->gen;
@@ -596,12 +597,10 @@ ZV_AVX2_FN static const float *dense_normals(ShadeCache *c, const Scene *s)
  * object, eight at a time: cheaper than face by face over the polygons
  * when most faces have one on screen (a dense mesh at a large size).
  * Returns -1 out of memory. */
-ZV_AVX2_FN static int colour_objects_avx2(FaceColours *fc, ShadeCache *cache)
+ZV_AVX2_FN static void colour_objects_avx2(FaceColours *fc)
 {
     const Scene *s = fc->s;
-    const float *nrm = dense_normals(cache, s);
-    if (!nrm)
-        return -1;
+    const float *nrm = fc->nrm;
     for (int o = 0; o < s->nobjs; o++) {
         const Object *ob = &s->objs[o];
         if (!ob->poly_count || !ob->face_count)
@@ -609,7 +608,6 @@ ZV_AVX2_FN static int colour_objects_avx2(FaceColours *fc, ShadeCache *cache)
         uint32_t f0 = (uint32_t)ob->face_base, f1 = f0 + ob->face_count;
         colour_faces_avx2(fc, object_nmat(fc, o), f0, f1, nrm + 3 * (size_t)f0);
     }
-    return 0;
 }
 #endif
 
@@ -759,14 +757,25 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
         return shade_smooth(s, sp, fb, &cache->smooth, scene_default_rgb, varying ? &sf : NULL, out);
     }
     size_t n = (size_t)fb->w * (size_t)fb->h, i = 0;
-    int slots = slots_pay(nfaces, n);
+    int avx2 = simd_use(set->simd) >= SIMD_AVX2;
+    /* a frame whose polygons are an eighth of the faces or more holds
+     * about as much per face as the per-face arrays and normals (80
+     * bytes a polygon): they are kept (issue 21); every face is coloured
+     * eight at a time when the polygons are a quarter of the faces and
+     * no more than the pixels (below) */
+    int big = sp && (uint64_t)sp->npolys * 8 >= nfaces;
+    int dense = avx2 && mode == SHADE_LAMBERT && sp && sp->npolys <= n && (uint64_t)sp->npolys * 4 >= nfaces;
+    int slots = !big && slots_pay(nfaces, n);
     if (!slots && cache_grow(cache, nfaces) != 0)
         return -1;
     cache_next_frame(cache);
 
-    FaceColours fc = { s, mode, cache->frame, cache->stamp, cache->rgb, 0, camera_view(&s->cam), { { 0 } } };
+    FaceColours fc = { s, mode, cache->frame, cache->stamp, cache->rgb, 0, camera_view(&s->cam), { { 0 } }, NULL };
     for (int k = 0; k < NMAT_SLOTS; k++)
         fc.nmat[k].obj = -1;
+    fc.nrm = s->face_normal;
+    if (big && mode == SHADE_LAMBERT && !(fc.nrm = dense_normals(cache, s, set->simd)))
+        return -1;
     if (slots) {
         if (shade_pixels_slots(&fc, cache, fb->ids, n, out->rgb, out->lit))
             return -1;
@@ -779,9 +788,8 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
      * they are no more than the pixels (measured: the bunny at 1920x1080
      * shades in half the time this way), else the faces the pixels show,
      * fetched ahead (a huge mesh in a small picture). */
-    int avx2 = simd_use(set->simd) >= SIMD_AVX2;
 #ifndef ZV_AVX2
-    (void)avx2;             /* no eight-lane loops in this build */
+    (void)dense;            /* no eight-lane loops in this build */
 #endif
     if (sp && sp->npolys <= n) {
         /* a frame's polygons are a subset of the faces' (split faces
@@ -791,10 +799,9 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
          * with --cull, a third of its faces drawn, shades in 6 ms instead
          * of 9) */
 #ifdef ZV_AVX2
-        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces) {
-            if (colour_objects_avx2(&fc, cache))
-                return -1;
-        } else
+        if (dense)
+            colour_objects_avx2(&fc);
+        else
 #endif
             colour_polys(&fc, sp);
         fc.current = 1;
