@@ -62,10 +62,12 @@ typedef struct {
     ShadeSlot *slot;    /* slots (a power of two), keyed by a hash of the id */
     uint32_t  nslot;
     /* The compact form's face normals (scene.h), made by the first frame
-     * dense enough to colour every face, for the scene nrm_key at
-     * generation nrm_gen with nrm_n faces */
+     * big enough, for the scene nrm_key at generation nrm_gen with nrm_n
+     * faces and its corners at nrm_corner (a scene built again in the
+     * same place has new arrays) */
     float    *nrm;
     const Scene *nrm_key;
+    const uint32_t *nrm_corner;
     uint32_t  nrm_gen, nrm_n;
     SmoothData smooth;
     EdgeData   edges;

@@ -577,7 +577,7 @@ static const float *dense_normals(ShadeCache *c, const Scene *s, int simd)
 {
     if (s->face_normal)
         return s->face_normal;
-    if (c->nrm && c->nrm_key == s && c->nrm_gen == s->gen && c->nrm_n == s->nfaces)
+    if (c->nrm && c->nrm_key == s && c->nrm_gen == s->gen && c->nrm_n == s->nfaces && c->nrm_corner == s->poly_corner)
         return c->nrm;
     free(c->nrm);
     c->nrm_key = NULL;
@@ -588,6 +588,7 @@ static const float *dense_normals(ShadeCache *c, const Scene *s, int simd)
         scene_face_normals(s, (uint32_t)ob->face_base, ob->face_count, c->nrm + 3 * (size_t)ob->face_base, simd);
     }
     c->nrm_key = s;
+    c->nrm_corner = s->poly_corner;
     c->nrm_gen = s->gen;
     c->nrm_n = s->nfaces;
     return c->nrm;
