@@ -476,6 +476,31 @@ static void colour_pixels(FaceColours *fc, const int32_t *ids, size_t n)
     }
 }
 
+/* The face normals of a big frame: the scene's, or for the compact form
+ * (scene.h) computed once a scene and kept: computing them every frame
+ * cost more than the colours (8 of 12 ms for the dragon at 1920x1080,
+ * 100 ms for the 5.2M dragon). NULL out of memory. */
+static const float *dense_normals(ShadeCache *c, const Scene *s, int simd)
+{
+    if (s->face_normal)
+        return s->face_normal;
+    if (c->nrm && c->nrm_key == s && c->nrm_gen == s->gen && c->nrm_n == s->nfaces && c->nrm_corner == s->poly_corner)
+        return c->nrm;
+    free(c->nrm);
+    c->nrm_key = NULL;
+    if (!(c->nrm = malloc(((size_t)s->nfaces + 1) * 3 * sizeof(float))))
+        return NULL;
+    for (int o = 0; o < s->nobjs; o++) {
+        const Object *ob = &s->objs[o];
+        scene_face_normals(s, (uint32_t)ob->face_base, ob->face_count, c->nrm + 3 * (size_t)ob->face_base, simd);
+    }
+    c->nrm_key = s;
+    c->nrm_corner = s->poly_corner;
+    c->nrm_gen = s->gen;
+    c->nrm_n = s->nfaces;
+    return c->nrm;
+}
+
 #ifdef ZV_AVX2
 /* lambert_face() of faces [f0, f1) of one object (normal matrix nm),
  * eight at a time: the same float operations in the same order (the
@@ -569,30 +594,6 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
     }
 }
 
-/* The face normals of a big frame: the scene's, or for the compact form
- * (scene.h) computed once a scene and kept: computing them every frame
- * cost more than the colours (8 of 12 ms for the dragon at 1920x1080,
- * 100 ms for the 5.2M dragon). NULL out of memory. */
-static const float *dense_normals(ShadeCache *c, const Scene *s, int simd)
-{
-    if (s->face_normal)
-        return s->face_normal;
-    if (c->nrm && c->nrm_key == s && c->nrm_gen == s->gen && c->nrm_n == s->nfaces && c->nrm_corner == s->poly_corner)
-        return c->nrm;
-    free(c->nrm);
-    c->nrm_key = NULL;
-    if (!(c->nrm = malloc(((size_t)s->nfaces + 1) * 3 * sizeof(float))))
-        return NULL;
-    for (int o = 0; o < s->nobjs; o++) {
-        const Object *ob = &s->objs[o];
-        scene_face_normals(s, (uint32_t)ob->face_base, ob->face_count, c->nrm + 3 * (size_t)ob->face_base, simd);
-    }
-    c->nrm_key = s;
-    c->nrm_corner = s->poly_corner;
-    c->nrm_gen = s->gen;
-    c->nrm_n = s->nfaces;
-    return c->nrm;
-}
 
 /* Every face of every object with polygons in the frame, object by
  * object, eight at a time: cheaper than face by face over the polygons
