@@ -30,6 +30,8 @@ typedef struct {
 typedef struct {
     int32_t  *face_sp;      /* per face: its screen polygon this frame, -1 none */
     uint32_t  cap;
+    const float *nrm;       /* the faces' normals when at hand (set by shade_frame), else
+                               NULL: computed pair by pair (scene.h) */
 } EdgeData;
 
 /* Textured and vertex-coloured faces' data (surface.c): per scene, each

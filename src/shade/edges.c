@@ -88,8 +88,13 @@ static int edge_against(const Scene *s, const ScreenPolys *sp, const FrameBufs *
         return nearer;                              /* where two objects meet */
     /* one surface: a crease when the normals turn enough */
     float na[3], nb[3];
-    scene_face_normal(s, (uint32_t)a, na);
-    scene_face_normal(s, (uint32_t)b, nb);
+    if (ed->nrm) {
+        memcpy(na, &ed->nrm[3 * (size_t)a], sizeof na);
+        memcpy(nb, &ed->nrm[3 * (size_t)b], sizeof nb);
+    } else {
+        scene_face_normal(s, (uint32_t)a, na);
+        scene_face_normal(s, (uint32_t)b, nb);
+    }
     float c = na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2];
     return c < cos_crease && a < b;
 }

@@ -731,6 +731,12 @@ int shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, cons
     shade_prims(s, fb, set, out);
     if (set->highlight >= 0 && set->highlight < s->nobjs)
         highlight_object(s, fb, set->highlight, out);
+    /* a big frame's outlines compare many pairs of faces: their normals
+     * computed once (dense_normals), not twice a pair (issue 21) */
+    cache->edges.nrm = s->face_normal;
+    if (set->edges && sp && !s->face_normal && (uint64_t)sp->npolys * 8 >= s->nfaces &&
+        !(cache->edges.nrm = dense_normals(cache, s, set->simd)))
+        return -1;
     if (set->edges && sp && shade_edges(s, sp, fb, set->crease, &cache->edges, out))
         return -1;
     return 0;
