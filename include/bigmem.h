@@ -9,4 +9,12 @@
  * populate, fault it all in with one call (its size is final). */
 void bigmem_advise(void *p, size_t bytes, int populate);
 
+/* An array of zero bytes whose pages become resident only when written
+ * (straight from the kernel: calloc of a block the heap reuses would
+ * write every byte), for a table indexed by face of which a frame
+ * touches few entries. NULL out of memory; bigmem_zfree with the same
+ * size (p NULL: nothing). */
+void *bigmem_zalloc(size_t bytes);
+void  bigmem_zfree(void *p, size_t bytes);
+
 #endif

@@ -75,6 +75,7 @@ typedef struct HsrAlgo {
     void  (*destroy_shared)(void *sh);
     void  (*share)(void *st, void *sh);
     void  (*frame_begin)(void *sh, const HsrInput *in);
+    int   uses_map;               /* reads ScreenPolys.map (else it need not be kept) */
 } HsrAlgo;
 
 /* Registry, in the order the viewer cycles through them. */

@@ -118,7 +118,9 @@ typedef struct Mesh {
     uint32_t   nfaces;
     uint32_t  *face_start;  /* nfaces + 1 offsets into corner[] */
     uint32_t  *corner;      /* 0-based vertex index per face corner */
-    int32_t   *face_mat;    /* material index per face, -1 = default colour */
+    int32_t   *face_mat;    /* material index per face, -1 = default colour; NULL:
+                               every face -1 (a file without materials keeps no
+                               array: 4 bytes a face; read it through mesh_face_mat) */
     Material  *mats;
     uint32_t   nmats;
     MeshObject *objs;       /* at least one */
@@ -146,6 +148,12 @@ typedef struct Mesh {
 } Mesh;
 
 #define MESH_NO_UV UINT32_MAX
+
+/* Face f's material index (-1: the default colour). */
+static inline int32_t mesh_face_mat(const Mesh *m, uint32_t f)
+{
+    return m->face_mat ? m->face_mat[f] : -1;
+}
 
 /* The decoded texture of material mat, or NULL (none, failed, pending). */
 const Texture *mesh_material_texture(const Mesh *m, int32_t mat);

@@ -125,18 +125,22 @@ typedef struct Scene {
     /* Polygons every frame projects: a face kept whole when planar, else
      * split into triangles that keep the face's id. */
     uint32_t  npolys;
-    uint32_t *poly_start;     /* npolys + 1 offsets into poly_corner */
+    uint32_t *poly_start;     /* npolys + 1 offsets into poly_corner; NULL: all triangles */
     uint32_t *poly_corner;    /* mesh vertex index (of the polygon's object's mesh) */
-    uint32_t *poly_lface;     /* face index within its object: id = face_base + lface */
+    uint32_t *poly_lface;     /* face index within its object: id = face_base + lface;
+                                 NULL: one polygon a face (scene_poly_lface) */
     /* Objects refer to polygon ranges; copies made by scene_make_grid
      * share the ranges of the object they copy. */
-    /* Per global face, for shading. */
-    float    *face_normal;    /* 3 * nfaces, object space, unit (Newell) */
-    uint8_t  *face_rgb;       /* 3 * nfaces, base colour (Kd, vertex colours, or default) */
+    /* Per global face, for shading (read through the accessors below:
+     * the compact form leaves them NULL). */
+    float    *face_normal;    /* 3 * nfaces, object space, unit (Newell); NULL:
+                                 computed when asked (scene_face_normal) */
+    uint8_t  *face_rgb;       /* 3 * nfaces, base colour (Kd, vertex colours, or default);
+                                 NULL: every face scene_default_rgb, none its own */
     uint8_t  *face_own;       /* per face: 1 = its colour is its own (material, vertex
                                  colours), 0 = its object's (recoloured when objects
-                                 come or go); NULL = all own */
-    uint16_t *face_obj;       /* object index per face */
+                                 come or go); NULL = all own (with face_rgb) */
+    uint16_t *face_obj;       /* object index per face; NULL: all object 0 */
     /* Colours that vary across a face (texture, vertex colours): per
      * global face its SURF_* (NULL: every face plain), the textured
      * surfaces, and per scene polygon corner (as poly_corner) its
@@ -178,6 +182,48 @@ typedef struct Scene {
      * float; a power of two keeps them exact): --info multiplies back. */
     int       pos_exp;
 } Scene;
+
+/* The compact form (scene_build makes it of one file of triangles whose
+ * faces all stay whole): no array holds what can be derived. The mesh's
+ * corner list is the polygon list, polygon k is a triangle of corners
+ * 3k .. 3k + 2 (poly_start NULL) and is face k of the file (poly_lface
+ * NULL: lface is k - poly_first of its object); its normal is computed
+ * from its corners when shading asks (face_normal NULL), in the same
+ * double-precision arithmetic the stored normals were made with, so the
+ * same bits; and a scene of one object with no colour of its own has no
+ * face_rgb, face_own or face_obj. What is left resident is the positions
+ * (12 bytes a vertex) and the corners (12 bytes a triangle). Every reader
+ * goes through these accessors. */
+extern const uint8_t scene_default_rgb[3];    /* a face without a colour of its own */
+
+static inline uint32_t scene_poly_c0(const Scene *s, uint32_t k)
+{
+    return s->poly_start ? s->poly_start[k] : 3 * k;
+}
+/* Polygon k's face within object o (the object whose range holds k). */
+static inline uint32_t scene_poly_lface(const Scene *s, const Object *o, uint32_t k)
+{
+    return s->poly_lface ? s->poly_lface[k] : k - o->poly_first;
+}
+static inline int scene_face_obj(const Scene *s, uint32_t id)
+{
+    return s->face_obj ? s->face_obj[id] : 0;
+}
+static inline const uint8_t *scene_face_rgb(const Scene *s, uint32_t id)
+{
+    return s->face_rgb ? s->face_rgb + 3 * (size_t)id : scene_default_rgb;
+}
+/* Face id's unit normal in object space (stored or computed). */
+void scene_face_normal(const Scene *s, uint32_t id, float n[3]);
+/* The same of faces [f0, f0 + n) of one object, 3 floats each into out;
+ * simd a SimdLevel (simd.h: SIMD_AUTO the level in use), the same bits
+ * at every level. */
+void scene_face_normals(const Scene *s, uint32_t f0, uint32_t n, float *out, int simd);
+/* Corners of every polygon (the end of the corner list). */
+static inline uint32_t scene_ncorners(const Scene *s)
+{
+    return scene_poly_c0(s, s->npolys);
+}
 
 /* The textures of every mesh: how many, how many could not be read,
  * how many wait to be decoded, and the bytes of those decoded. */

@@ -48,6 +48,9 @@ typedef struct {
     int         simd;           /* a SimdLevel (simd.h) for the vertex, screening and
                                    point loops: SIMD_AUTO (0) = the level in use, else at
                                    most that one (every level gives the same bits) */
+    int         no_map;         /* keep no map below (nmap 0): the algorithms that do
+                                   not read it (HsrAlgo.uses_map) save 4 bytes a polygon
+                                   written every frame (issue 21) */
     /* set by screen_project */
     int         w, h;
     float       pixel_aspect;   /* pixel height / width (2 for terminal cells) */

@@ -31,6 +31,8 @@ typedef struct {
 typedef struct {
     int32_t  *face_sp;      /* per face: its screen polygon this frame, -1 none */
     uint32_t  cap;
+    const float *nrm;       /* the faces' normals when at hand (set by shade_frame), else
+                               NULL: computed pair by pair (scene.h) */
 } EdgeData;
 
 /* Textured and vertex-coloured faces' data (surface.c): per scene, each
@@ -48,11 +50,28 @@ typedef struct {
     SrgbEnc  *enc;
 } SurfCache;
 
+/* A face's colour in the table a frame uses instead of the per-face
+ * arrays when they would outweigh it (a huge mesh in a small picture). */
+typedef struct {
+    int32_t id;         /* -1: empty */
+    uint8_t rgb[4];
+} ShadeSlot;
+
 /* Per-face colour cache, reused across frames (grows to the face count). */
 typedef struct {
     uint32_t *stamp;    /* frame stamp per face: colour below is current */
     uint8_t  *rgb;      /* 3 per face */
     uint32_t  cap, frame;
+    ShadeSlot *slot;    /* slots (a power of two), keyed by a hash of the id */
+    uint32_t  nslot;
+    /* The compact form's face normals (scene.h), made by the first frame
+     * big enough, for the scene nrm_key at generation nrm_gen with nrm_n
+     * faces and its corners at nrm_corner (a scene built again in the
+     * same place has new arrays) */
+    float    *nrm;
+    const Scene *nrm_key;
+    const uint32_t *nrm_corner;
+    uint32_t  nrm_gen, nrm_n;
     SmoothData smooth;
     EdgeData   edges;
     SurfCache  surf;

@@ -256,7 +256,7 @@ Test(formats, mtllib_naming_itself_on_every_line, .init = cr_redirect_stderr)
     cr_assert_lt(ms_now() - t0, 2000 * SLOW, "took %.0f ms", ms_now() - t0);
     cr_assert_eq(M.info.skipped, 2);
     cr_assert_eq(M.nmats, 1, "the library was read once");
-    cr_assert_eq(M.face_mat[0], 0);
+    cr_assert_eq(mesh_face_mat(&M, 0), 0);
     cr_assert_eq(M.mats[0].kd[0], 1.0f);
 }
 

@@ -83,7 +83,7 @@ Test(mesh, triangle)
     cr_assert_float_eq(M.pos[3], 1.0f, 0.0f);
     cr_assert_float_eq(M.pos[7], 1.0f, 0.0f);
     cr_assert_null(M.rgb);
-    cr_assert_eq(M.face_mat[0], -1);
+    cr_assert_eq(mesh_face_mat(&M, 0), -1);
     cr_assert_eq(M.nmats, 0);
     cr_assert_eq(M.nobjs, 1);
     cr_assert_str_eq(M.objs[0].name, "t");
@@ -261,9 +261,9 @@ Test(mesh, usemtl_without_library_is_default)
 {
     expect_ok("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl red\nf 1 2 3\nusemtl\nf 3 2 1\n");
     cr_assert_eq(M.nmats, 0);
-    cr_assert_eq(M.face_mat[0], -1);
-    cr_assert_eq(M.face_mat[1], -1);
-    cr_assert_eq(M.face_mat[2], -1);
+    cr_assert_eq(mesh_face_mat(&M, 0), -1);
+    cr_assert_eq(mesh_face_mat(&M, 1), -1);
+    cr_assert_eq(mesh_face_mat(&M, 2), -1);
 }
 
 Test(mesh, mtllib_relative_to_obj_folder, .init = cr_redirect_stderr)
@@ -290,7 +290,7 @@ Test(mesh, mtllib_relative_to_obj_folder, .init = cr_redirect_stderr)
     int32_t want[6] = {0, 4, 2, -1, 1, 3};
     cr_assert_eq(M.nfaces, 6);
     for (int i = 0; i < 6; i++)
-        cr_assert_eq(M.face_mat[i], want[i], "face_mat[%d] = %d", i, M.face_mat[i]);
+        cr_assert_eq(mesh_face_mat(&M, i), want[i], "face_mat[%d] = %d", i, mesh_face_mat(&M, i));
     cr_assert_eq(M.info.triangles, 7);
     fflush(stderr);
     cr_assert_stderr_eq_str(
@@ -303,7 +303,7 @@ Test(mesh, missing_mtl_is_a_warning, .init = cr_redirect_stderr)
     cr_assert_eq(mesh_load(&M, path, E, sizeof E), 0, "%s", E);
     cr_assert_eq(M.nmats, 0);
     cr_assert_eq(M.nfaces, 1);
-    cr_assert_eq(M.face_mat[0], -1);
+    cr_assert_eq(mesh_face_mat(&M, 0), -1);
     cr_assert_str_eq(M.objs[0].name, "missing_mtl");
     fflush(stderr);
     cr_assert_stderr_eq_str("zview: warning: tests/data/mesh/missing_mtl.obj:2: "
@@ -316,7 +316,7 @@ Test(mesh, mtllib_from_parse_uses_path_folder, .init = cr_redirect_stderr)
     const char *s = "mtllib colors.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl green\nf 1 2 3\n";
     cr_assert_eq(parse_as("tests/data/mesh/inline.obj", s, strlen(s)), 0, "%s", E);
     cr_assert_eq(M.nmats, 4);
-    cr_assert_eq(M.face_mat[0], 1);
+    cr_assert_eq(mesh_face_mat(&M, 0), 1);
     fflush(stderr);
     cr_assert_stderr_eq_str("");
 }
@@ -693,15 +693,15 @@ Test(models, mesh_cornell_box, .fini = teardown)
     cr_assert_eq(M.objs[6].face_count, 5);
     cr_assert_eq(M.objs[7].face_count, 5);
     cr_assert_eq(M.objs[7].face_first, 13);
-    cr_assert_str_eq(M.mats[M.face_mat[3]].name, "light");
-    cr_assert_str_eq(M.mats[M.face_mat[M.objs[4].face_first]].name, "green");
-    const Material *red = &M.mats[M.face_mat[M.objs[5].face_first]];
+    cr_assert_str_eq(M.mats[mesh_face_mat(&M, 3)].name, "light");
+    cr_assert_str_eq(M.mats[mesh_face_mat(&M, M.objs[4].face_first)].name, "green");
+    const Material *red = &M.mats[mesh_face_mat(&M, M.objs[5].face_first)];
     cr_assert_str_eq(red->name, "red");
     cr_assert_eq(red->kd[0], 1.0f);
     cr_assert_eq(red->kd[1], 0.0f);
     cr_assert_eq(red->alpha, 1.0f);
     for (uint32_t f = 0; f < M.nfaces; f++)
-        cr_assert_geq(M.face_mat[f], 0);
+        cr_assert_geq(mesh_face_mat(&M, f), 0);
 }
 
 static int cmp_key(const void *x, const void *y)

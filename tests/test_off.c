@@ -58,7 +58,7 @@ Test(off, basic)
     expect_corners(1, (uint32_t[]){ 0, 1, 2, 3 }, 4);
     cr_assert_eq(M.pos[6], 1.0f);
     cr_assert_null(M.rgb);
-    cr_assert_eq(M.face_mat[0], -1);
+    cr_assert_eq(mesh_face_mat(&M, 0), -1);
 }
 
 Test(off, counts_on_the_keyword_line_and_no_keyword)
@@ -105,9 +105,9 @@ Test(off, face_colours)
     cr_assert_eq(parse("OFF\n4 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 255 0 0\n3 0 2 3 1.0 0.0 0.0 0.5\n"
                        "3 0 1 3 7\n"), 0, "%s", E);
     cr_assert_eq(M.nmats, 1, "equal colours share a material");
-    cr_assert_eq(M.face_mat[0], 0);
-    cr_assert_eq(M.face_mat[1], 0);
-    cr_assert_eq(M.face_mat[2], -1, "a colour-map index is skipped");
+    cr_assert_eq(mesh_face_mat(&M, 0), 0);
+    cr_assert_eq(mesh_face_mat(&M, 1), 0);
+    cr_assert_eq(mesh_face_mat(&M, 2), -1, "a colour-map index is skipped");
     cr_assert_eq(M.mats[0].kd[0], 1.0f);
 }
 

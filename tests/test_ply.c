@@ -80,7 +80,7 @@ Test(ply, ascii_basic)
     cr_assert_eq(M.pos[12], 0.5f);
     cr_assert_eq(M.pos[14], 1.0f);
     cr_assert_null(M.rgb);
-    cr_assert_eq(M.face_mat[1], -1);
+    cr_assert_eq(mesh_face_mat(&M, 1), -1);
     cr_assert_str_eq(M.objs[0].name, "t");
 }
 
@@ -120,8 +120,8 @@ Test(ply, float_colours_and_face_colours)
     cr_assert_eq(M.rgb[0], 0.5f);
     cr_assert_eq(M.rgb[2], 1.0f, "floats are clamped to 0..1");
     cr_assert_eq(M.nmats, 1, "equal face colours share a material");
-    cr_assert_eq(M.face_mat[0], 0);
-    cr_assert_eq(M.face_mat[1], 0);
+    cr_assert_eq(mesh_face_mat(&M, 0), 0);
+    cr_assert_eq(mesh_face_mat(&M, 1), 0);
     cr_assert_eq(M.mats[0].kd[0], 1.0f);
     cr_assert_eq(M.mats[0].kd[1], 0.0f);
 }

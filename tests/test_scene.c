@@ -2,13 +2,17 @@
  * the projection (aspect, perspective, near-plane clipping), snapping
  * and back-face culling. */
 
+#define _DEFAULT_SOURCE  /* mkdtemp, M_PI */
+
 #include <criterion/criterion.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "app.h"
 #include "testlib.h"
 #include "simd.h"
 
@@ -267,7 +271,8 @@ static void knot_scaled(Scene *s, int e)
         cr_assert_eq(tl_mesh_vertex(&m, ldexpf(m0->pos[3 * v], e), ldexpf(m0->pos[3 * v + 1], e),
                                     ldexpf(m0->pos[3 * v + 2], e)), 0);
     for (uint32_t p = 0; p < src.npolys; p++)
-        cr_assert_eq(tl_mesh_face(&m, &src.poly_corner[src.poly_start[p]], src.poly_start[p + 1] - src.poly_start[p]), 0);
+        cr_assert_eq(tl_mesh_face(&m, &src.poly_corner[scene_poly_c0(&src, p)],
+                                  scene_poly_c0(&src, p + 1) - scene_poly_c0(&src, p)), 0);
     cr_assert_eq(tl_mesh_finish(&m), 0);
     scene_free(&src);
     Mesh *one = malloc(sizeof *one);
@@ -576,4 +581,236 @@ Test(scene, simd_levels_agree_where_samples_touch_edges)
     screen_free(&ref);
     screen_free(&sp);
     scene_free(&s);
+}
+
+/* ==== The compact form (scene.h, issue 21) ==== */
+
+/* OBJ text of a torus of nu x nv cells, its vertices jittered: triangles
+ * (each cell split), or quads (warped: not planar). */
+static char *torus_obj(int nu, int nv, int tris)
+{
+    size_t cap = (size_t)(nu * nv) * 96 + 64, at = 0;
+    char *t = malloc(cap);
+    cr_assert(t);
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            double a = 2 * M_PI * i / nu, b = 2 * M_PI * j / nv, r = 1 + 0.4 * cos(b);
+            double jit = 0.03 * ((i * 7 + j * 3) % 5 - 2);
+            at += (size_t)snprintf(t + at, cap - at, "v %.6f %.6f %.6f\n", r * cos(a), 0.4 * sin(b) + jit, r * sin(a));
+        }
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            int p = i * nv + j + 1, q = (i + 1) % nu * nv + j + 1, r = (i + 1) % nu * nv + (j + 1) % nv + 1,
+                u = i * nv + (j + 1) % nv + 1;
+            if (tris)
+                at += (size_t)snprintf(t + at, cap - at, "f %d %d %d\nf %d %d %d\n", p, q, r, p, r, u);
+            else
+                at += (size_t)snprintf(t + at, cap - at, "f %d %d %d %d\n", p, q, r, u);
+        }
+    return t;
+}
+
+/* A cube whose sides are 3 x 3 planar quads. */
+static char *grid_cube_obj(void)
+{
+    size_t cap = 16384, at = 0;
+    char *t = malloc(cap);
+    cr_assert(t);
+    int nv = 0;
+    for (int side = 0; side < 6; side++) {
+        int ax = side % 3, sg = side < 3 ? 1 : -1, u = (ax + 1) % 3, w = (ax + 2) % 3;
+        for (int i = 0; i <= 3; i++)
+            for (int j = 0; j <= 3; j++) {
+                double p[3];
+                p[ax] = sg;
+                p[u] = -1 + 2.0 * i / 3;
+                p[w] = -1 + 2.0 * j / 3;
+                at += (size_t)snprintf(t + at, cap - at, "v %g %g %g\n", p[0], p[1], p[2]);
+            }
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                int a = nv + i * 4 + j + 1, b = a + 4, c = b + 1, d = a + 1;
+                if (sg > 0)
+                    at += (size_t)snprintf(t + at, cap - at, "f %d %d %d %d\n", a, b, c, d);
+                else
+                    at += (size_t)snprintf(t + at, cap - at, "f %d %d %d %d\n", a, d, c, b);
+            }
+        nv += 16;
+    }
+    return t;
+}
+
+static void parse_into(Mesh *m, const char *name, const char *text)
+{
+    char err[256];
+    cr_assert_eq(mesh_parse(m, name, text, strlen(text), err, sizeof err), 0, "%s", err);
+}
+
+/* The scene of `text` as scene_build makes it of the file alone, and the
+ * same file's objects written out in full: built beside another file
+ * (two meshes: no lists taken over) and that file removed. */
+static void compact_and_full(const char *text, Scene *c, Scene *f)
+{
+    char err[256];
+    Mesh *one = calloc(1, sizeof *one), *two = calloc(2, sizeof *two);
+    cr_assert(one && two);
+    parse_into(one, "a.obj", text);
+    parse_into(&two[0], "a.obj", text);
+    parse_into(&two[1], "b.obj", "v 9 9 9\nv 10 9 9\nv 9 10 9\nf 1 2 3\n");
+    cr_assert_eq(scene_build(c, one, 1, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(scene_build(f, two, 2, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(scene_remove(f, 1, err, sizeof err), 0, "%s", err);
+    cr_assert(f->poly_start && f->poly_lface && f->face_normal && f->face_rgb && f->face_obj,
+              "the reference keeps every array");
+}
+
+/* The compact scene gives what the full one gives: the same polygons
+ * and faces through the accessors, and with every algorithm the same
+ * face ids and the same shaded picture, Lambert and smooth, with
+ * outlines, turned and in perspective. */
+static void expect_same_pictures(Scene *c, Scene *f)
+{
+    char msg[256];
+    cr_expect_eq(tl_scene_faces_differ(c, f, msg, sizeof msg), 0, "%s", msg);
+    TlView v = { .yaw = 0.6f, .pitch = 0.5f, .roll = 0.1f, .fit_yaw = 0.6f, .fit_pitch = 0.5f, .zoom = 1.3f,
+                 .persp = 1, .fov_deg = 50 };
+    tl_set_view(c, &v);
+    tl_set_view(f, &v);
+    for (int a = 0; a < hsr_nalgos; a++)
+        for (int mode = 0; mode < 2; mode++) {
+            Pipeline pc, pf;
+            cr_assert_eq(pipeline_init(&pc, c, hsr_algos[a], 1), 0);
+            cr_assert_eq(pipeline_init(&pf, f, hsr_algos[a], 1), 0);
+            pc.shade = pf.shade = mode ? SHADE_SMOOTH : SHADE_LAMBERT;
+            pc.edges = pf.edges = 1;
+            cr_assert_eq(pipeline_render(&pc, 90, 60, 1.0f, 0, 1), 0);
+            cr_assert_eq(pipeline_render(&pf, 90, 60, 1.0f, 0, 1), 0);
+            long drawn = 0;
+            for (int i = 0; i < 90 * 60; i++)
+                drawn += pc.fb.ids[i] >= 0;
+            cr_expect_gt(drawn, 90 * 60 / 10, "%s: the model is in the picture", hsr_algos[a]->name);
+            cr_expect_eq(memcmp(pc.fb.ids, pf.fb.ids, 90 * 60 * sizeof(int32_t)), 0, "%s: ids", hsr_algos[a]->name);
+            cr_expect_eq(memcmp(pc.img.rgb, pf.img.rgb, 90 * 60 * 3), 0, "%s, shading %d: colours",
+                         hsr_algos[a]->name, mode);
+            pipeline_free(&pc);
+            pipeline_free(&pf);
+        }
+}
+
+Test(scene, a_file_of_triangles_takes_the_compact_form_and_draws_as_the_full_one)
+{
+    char *t = torus_obj(24, 12, 1);
+    Scene c, f;
+    compact_and_full(t, &c, &f);
+    cr_expect_eq(c.npolys, 24 * 12 * 2);
+    cr_expect(!c.poly_start, "corners 3k");
+    cr_expect(!c.poly_lface, "one polygon a face");
+    cr_expect(!c.face_normal, "normals computed");
+    cr_expect(!c.face_rgb && !c.face_own && !c.face_obj, "one object, no colour of its own");
+    cr_expect(!c.meshes[0].face_start && !c.meshes[0].face_mat, "nothing left in the mesh");
+    expect_same_pictures(&c, &f);
+    /* the compact scene edited (a grid of copies) still draws the same */
+    char err[256];
+    cr_assert_eq(scene_make_grid(&c, 2, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(scene_make_grid(&f, 2, err, sizeof err), 0, "%s", err);
+    cr_expect(!c.face_normal && c.face_obj, "copies: normals still computed, objects stored");
+    expect_same_pictures(&c, &f);
+    scene_free(&c);
+    scene_free(&f);
+    free(t);
+}
+
+Test(scene, planar_quads_keep_their_offsets_warped_ones_the_full_form)
+{
+    char *q = grid_cube_obj();
+    Scene c, f;
+    compact_and_full(q, &c, &f);
+    cr_expect_eq(c.npolys, 54, "planar quads whole");
+    cr_expect(c.poly_start && !c.poly_lface && !c.face_normal, "offsets kept, faces and normals derived");
+    expect_same_pictures(&c, &f);
+    scene_free(&c);
+    scene_free(&f);
+    free(q);
+    char *w = torus_obj(16, 10, 0);
+    compact_and_full(w, &c, &f);
+    cr_expect_gt(c.npolys, 16 * 10, "warped quads split");
+    cr_expect(c.poly_start && c.poly_lface && c.face_normal, "the full form");
+    expect_same_pictures(&c, &f);
+    scene_free(&c);
+    scene_free(&f);
+    free(w);
+}
+
+/* A file of triangles with materials: the lists and normals compact,
+ * the colours kept. */
+Test(scene, colours_of_their_own_are_kept_in_the_compact_form)
+{
+    char *t = torus_obj(12, 8, 1);
+    char dir[] = "/tmp/zv-compact-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    char mtl[64], obj[64];
+    snprintf(mtl, sizeof mtl, "%s/c.mtl", dir);
+    snprintf(obj, sizeof obj, "%s/c.obj", dir);
+    FILE *fp = fopen(mtl, "w");
+    cr_assert(fp);
+    fputs("newmtl red\nKd 0.8 0.1 0.1\n", fp);
+    cr_assert_eq(fclose(fp), 0);
+    fp = fopen(obj, "w");
+    cr_assert(fp);
+    fprintf(fp, "mtllib c.mtl\nusemtl red\n%s", t);
+    cr_assert_eq(fclose(fp), 0);
+    Scene s;
+    cr_assert_eq(tl_scene_from_file(&s, obj), 0);
+    cr_expect(!s.poly_start && !s.poly_lface && !s.face_normal);
+    cr_assert(s.face_rgb, "the material's colour");
+    cr_expect_eq(s.face_rgb[0], 204);
+    cr_expect_eq(s.face_rgb[1], 26);
+    scene_free(&s);
+    remove(mtl);
+    remove(obj);
+    rmdir(dir);
+    free(t);
+}
+
+/* The normals of a block of faces at every SIMD level are the stored
+ * ones of the full form, bit for bit: random triangles of every size
+ * (1e-30 to 1e30), slivers, degenerate ones (a repeated corner: +z). */
+Test(scene, computed_normals_are_the_stored_ones_at_every_simd_level)
+{
+    enum { NT = 203 };
+    size_t cap = 200000, at = 0;
+    char *t = malloc(cap);
+    cr_assert(t);
+    uint32_t seed = 7;
+    for (int i = 0; i < 3 * NT; i++) {
+        double c[3];
+        for (int a = 0; a < 3; a++) {
+            seed = seed * 1664525u + 1013904223u;
+            c[a] = ((double)(seed >> 8) / 16777216.0 - 0.5) * pow(10.0, (double)((i / 3) % 61 - 30));
+        }
+        at += (size_t)snprintf(t + at, cap - at, "v %.9g %.9g %.9g\n", c[0], c[1], c[2]);
+    }
+    for (int f = 0; f < NT; f++) {
+        int a = 3 * f + 1, b = f % 17 == 5 ? a : a + 1, d = f % 23 == 7 ? a + 1 : a + 2;
+        at += (size_t)snprintf(t + at, cap - at, "f %d %d %d\n", a, b, d);
+    }
+    Scene c, full;
+    compact_and_full(t, &c, &full);
+    cr_assert(!c.face_normal && !c.poly_start);
+    static float got[3 * NT];
+    for (int lv = SIMD_SCALAR; lv < SIMD_LEVELS; lv++) {
+        memset(got, 0xff, sizeof got);
+        scene_face_normals(&c, 0, NT, got, lv);
+        cr_expect_eq(memcmp(got, full.face_normal, sizeof got), 0, "SIMD level %s", simd_name(lv));
+        /* a block starting mid-way, of a length no multiple of four */
+        scene_face_normals(&c, 5, 11, got, lv);
+        cr_expect_eq(memcmp(got, &full.face_normal[15], 11 * 3 * sizeof(float)), 0, "%s, faces 5..15", simd_name(lv));
+    }
+    int degenerate = 0;
+    for (int f = 0; f < NT; f++)
+        degenerate += full.face_normal[3 * f] == 0 && full.face_normal[3 * f + 1] == 0 && full.face_normal[3 * f + 2] == 1;
+    cr_expect_geq(degenerate, NT / 23, "degenerate faces' +z is among them");
+    scene_free(&c);
+    scene_free(&full);
+    free(t);
 }

@@ -197,13 +197,28 @@ Test(shade, cache_is_per_frame)
     /* The cache grows with the scene. */
     static TestScene big;
     scene_init(&big, 3000);
-    int32_t ids2[2] = { 2999, 0 };
+    int32_t ids2[2000];
+    for (int i = 0; i < 2000; i++)
+        ids2[i] = i == 0 ? 2999 : i % 7 == 0 ? -1 : 0;
     FrameBufs fb2;
-    frame_init(&fb2, 2, 1, ids2, NULL);
+    frame_init(&fb2, 2000, 1, ids2, NULL);
     cr_assert_eq(shade_frame(&big.s, NULL, &fb2, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &cache, &im), 0);
     cr_expect_geq(cache.cap, 3000);
     cr_expect_eq(cache.stamp[2999], cache.frame);
     cr_expect_eq(px(&im, 0, 0), 200);
+    frame_done(&fb2);
+
+    /* But not for a picture whose pixels are few beside the faces: its
+     * colours go through a table of the picture's size (issue 21). */
+    ShadeCache small = { 0 };
+    frame_init(&fb2, 2, 1, ids2, NULL);
+    cr_assert_eq(shade_frame(&big.s, NULL, &fb2, &(ShadeSettings){ .mode = SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT, .highlight = -1 }, &small, &im), 0);
+    cr_expect_eq(small.cap, 0, "no per-face arrays");
+    cr_expect_geq(small.nslot, 4);
+    cr_expect_lt(small.nslot, 3000);
+    cr_expect_eq(px(&im, 0, 0), 200);
+    cr_expect_eq(px(&im, 1, 0), 200);
+    shade_cache_free(&small);
     frame_done(&fb);
     frame_done(&fb2);
     image_free(&im);
@@ -378,7 +393,7 @@ static void lambert_ref(const Scene *s, int obj, uint32_t f, uint8_t out[3])
     v = v3_norm(v);
     float amb = s->light.ambient;
     float k = amb + (1.0f - amb) * fabsf(v3_dot(v, s->light.dir));
-    static const uint8_t grey[3] = { 200, 200, 200 };
+    static const uint8_t grey[3] = { 204, 204, 196 };   /* scene.c's default colour */
     const uint8_t *base = s->face_rgb ? s->face_rgb + 3 * (size_t)f : grey;
     for (int c = 0; c < 3; c++) {
         float x = (float)base[c] * k + 0.5f;
@@ -464,4 +479,51 @@ Test(shade, lambert_eight_at_a_time_equals_face_by_face)
         shade_cache_free(&ca);
         shade_cache_free(&cb);
     }
+}
+
+/* The colours of a picture with few pixels beside the faces (through
+ * the slot table, where two faces may take one slot) are the per-face
+ * cache's: the same ids in the first rows of a picture big enough for
+ * the per-face arrays give the same bytes, Lambert and id colours, with
+ * random normals and colours and faces seen again and again. */
+Test(shade, few_pixels_many_faces_shade_as_the_per_face_cache)
+{
+    static TestScene t;
+    const uint32_t nf = 3000;
+    uint32_t seed = 99;
+    scene_init(&t, nf);
+    for (uint32_t f = 0; f < nf; f++) {
+        set_normal(&t, f, 2 * rnd(&seed) - 1, 2 * rnd(&seed) - 1, 2 * rnd(&seed) - 1);
+        for (int c = 0; c < 3; c++)
+            t.rgb[3 * f + c] = (uint8_t)(256 * rnd(&seed));
+    }
+    light_set(&t.s.light, 30, 20, 0.3f);
+    /* 32 x 32 pixels: a table of 2048 slots (16 kB, under the arrays'
+     * 21 kB); 32 x 64: 4096 slots would not be, so the arrays are used */
+    int w = 32, h = 64;
+    int32_t *ids = malloc((size_t)w * h * sizeof *ids);
+    for (int i = 0; i < w * h; i++)
+        ids[i] = i % 11 == 0 ? -1 : i % 5 == 0 ? (int32_t)(i / 5) : (int32_t)(rnd(&seed) * nf);
+    for (int mode = 0; mode < 2; mode++) {
+        ShadeSettings set = { .mode = mode ? SHADE_ID : SHADE_LAMBERT, .crease = SHADE_CREASE_DEFAULT,
+                              .highlight = -1 };
+        FrameBufs small, big;
+        frame_init(&small, w, h / 2, ids, NULL);
+        frame_init(&big, w, h, ids, NULL);
+        ShadeCache cs = { 0 }, cb = { 0 };
+        Image a = { 0 }, b = { 0 };
+        cr_assert_eq(shade_frame(&t.s, NULL, &small, &set, &cs, &a), 0);
+        cr_assert_eq(shade_frame(&t.s, NULL, &big, &set, &cb, &b), 0);
+        cr_expect(cs.nslot > 0 && cs.cap == 0, "the small picture through the slots");
+        cr_expect(cb.cap >= nf, "the big one through the per-face arrays");
+        cr_expect_eq(memcmp(a.rgb, b.rgb, 3 * (size_t)w * (h / 2)), 0, "mode %d: colours differ", mode);
+        cr_expect_eq(memcmp(a.lit, b.lit, (size_t)w * (h / 2)), 0, "mode %d: lit differs", mode);
+        frame_done(&small);
+        frame_done(&big);
+        image_free(&a);
+        image_free(&b);
+        shade_cache_free(&cs);
+        shade_cache_free(&cb);
+    }
+    free(ids);
 }

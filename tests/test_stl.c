@@ -130,7 +130,7 @@ Test(stl, binary_merges_equal_vertices)
     expect_corners(1, 1, 3, 2);
     cr_assert_eq(M.pos[9], 1.0f);
     cr_assert_eq(M.pos[10], 1.0f);
-    cr_assert_eq(M.face_mat[0], -1);
+    cr_assert_eq(mesh_face_mat(&M, 0), -1);
     cr_assert_eq(M.nmats, 0);
     cr_assert_null(M.rgb);
     cr_assert_eq(M.nobjs, 1);
@@ -186,8 +186,8 @@ Test(stl, viscam_face_colours)
     Buf b = square("", 0x8000 | 31 << 10, 0);
     cr_assert_eq(parse(b.b, b.n), 0, "%s", E);
     cr_assert_eq(M.nmats, 1);
-    cr_assert_eq(M.face_mat[0], 0);
-    cr_assert_eq(M.face_mat[1], -1, "bit 15 clear: no colour");
+    cr_assert_eq(mesh_face_mat(&M, 0), 0);
+    cr_assert_eq(mesh_face_mat(&M, 1), -1, "bit 15 clear: no colour");
     cr_assert_eq(M.mats[0].kd[0], 1.0f);
     cr_assert_eq(M.mats[0].kd[1], 0.0f);
     cr_assert_eq(M.mats[0].kd[2], 0.0f);
@@ -200,7 +200,7 @@ Test(stl, viscam_equal_colours_share_a_material)
     Buf b = square("", 0x8000 | 16 << 5, 0x8000 | 16 << 5);
     cr_assert_eq(parse(b.b, b.n), 0, "%s", E);
     cr_assert_eq(M.nmats, 1);
-    cr_assert_eq(M.face_mat[0], M.face_mat[1]);
+    cr_assert_eq(mesh_face_mat(&M, 0), mesh_face_mat(&M, 1));
     cr_assert_float_eq(M.mats[0].kd[1], 132 / 255.0f, 1e-6);   /* 16 of 31 -> 132 */
     free(b.b);
 }
@@ -216,7 +216,7 @@ Test(stl, materialise_part_and_face_colours)
     tri(&b, T1, 31);
     cr_assert_eq(parse(b.b, b.n), 0, "%s", E);
     cr_assert_eq(M.nmats, 2);
-    const Material *part = &M.mats[M.face_mat[0]], *own = &M.mats[M.face_mat[1]];
+    const Material *part = &M.mats[mesh_face_mat(&M, 0)], *own = &M.mats[mesh_face_mat(&M, 1)];
     cr_assert_eq(part->kd[2], 1.0f);
     cr_assert_eq(part->kd[0], 0.0f);
     cr_assert_eq(own->kd[0], 1.0f);

@@ -445,7 +445,7 @@ const char *tl_mesh_broken(const Mesh *m)
     for (uint32_t c = 0; c < (m->nfaces ? m->face_start[m->nfaces] : 0); c++)
         PROMISE(m->corner[c] < m->nverts);
     for (uint32_t f = 0; f < m->nfaces; f++)
-        PROMISE(m->face_mat[f] < 0 || (uint32_t)m->face_mat[f] < m->nmats);
+        PROMISE(mesh_face_mat(m, f) < 0 || (uint32_t)mesh_face_mat(m, f) < m->nmats);
     PROMISE(m->point || m->npoints <= m->nverts);
     for (uint32_t k = 0; m->point && k < m->npoints; k++)
         PROMISE(m->point[k] < m->nverts);
@@ -491,4 +491,51 @@ const char *tl_load_broken(int rc, const Mesh *m, const char *err, const char *n
     PROMISE(strlen(err) > strlen(name) + 2);          /* and says something */
     PROMISE(m->pos == NULL && m->nverts == 0 && m->nfaces == 0);  /* nothing left behind */
     return NULL;
+}
+
+/* Whether face f's colour is its own (scene.h: no face_rgb, none is;
+ * no face_own, all are). */
+static int face_own_of(const Scene *s, uint32_t f)
+{
+    return s->face_rgb ? (s->face_own ? s->face_own[f] : 1) : 0;
+}
+
+/* The object whose polygon range holds polygon k (loaded objects). */
+static const Object *poly_object(const Scene *s, uint32_t k)
+{
+    for (int i = 0; i < s->nobjs; i++)
+        if (k >= s->objs[i].poly_first && k - s->objs[i].poly_first < s->objs[i].poly_count)
+            return &s->objs[i];
+    return NULL;
+}
+
+int tl_scene_faces_differ(const Scene *a, const Scene *b, char *msg, size_t n)
+{
+    if (a->npolys != b->npolys || a->nfaces != b->nfaces || scene_ncorners(a) != scene_ncorners(b)) {
+        snprintf(msg, n, "counts: %u vs %u polygons, %u vs %u faces, %u vs %u corners", a->npolys, b->npolys,
+                 a->nfaces, b->nfaces, scene_ncorners(a), scene_ncorners(b));
+        return 1;
+    }
+    for (uint32_t k = 0; k < a->npolys; k++) {
+        uint32_t ca = scene_poly_c0(a, k), cb = scene_poly_c0(b, k);
+        const Object *oa = poly_object(a, k), *ob = poly_object(b, k);
+        if (ca != cb || scene_poly_c0(a, k + 1) != scene_poly_c0(b, k + 1) ||
+            memcmp(&a->poly_corner[ca], &b->poly_corner[cb], (scene_poly_c0(a, k + 1) - ca) * sizeof(uint32_t)) ||
+            !oa || !ob || scene_poly_lface(a, oa, k) != scene_poly_lface(b, ob, k)) {
+            snprintf(msg, n, "polygon %u: corners from %u vs %u, or its face", k, ca, cb);
+            return 1;
+        }
+    }
+    for (uint32_t f = 0; f < a->nfaces; f++) {
+        float na[3], nb[3];
+        scene_face_normal(a, f, na);
+        scene_face_normal(b, f, nb);
+        if (memcmp(na, nb, sizeof na) || scene_face_obj(a, f) != scene_face_obj(b, f) ||
+            memcmp(scene_face_rgb(a, f), scene_face_rgb(b, f), 3) || face_own_of(a, f) != face_own_of(b, f)) {
+            snprintf(msg, n, "face %u: normal %g %g %g vs %g %g %g, object %d vs %d, colour or own colour", f,
+                     na[0], na[1], na[2], nb[0], nb[1], nb[2], scene_face_obj(a, f), scene_face_obj(b, f));
+            return 1;
+        }
+    }
+    return 0;
 }

@@ -95,6 +95,12 @@ void tl_agree_free(TlAgree *a);
  * broken, as C text. */
 const char *tl_mesh_broken(const Mesh *m);
 
+/* Do scenes a and b (either in the compact form, scene.h) hold different
+ * polygons (corners, faces) or faces (normals, objects, colours, whether
+ * the colour is its own), read through the accessors? 0 when they are
+ * the same, else 1 with the first difference in msg. */
+int tl_scene_faces_differ(const Scene *a, const Scene *b, char *msg, size_t n);
+
 /* The same for a load's whole result: rc 0 and a mesh that keeps the
  * promises, or rc -1, a message that starts with the input's name, and
  * an empty mesh. */

@@ -73,8 +73,9 @@ static void count_sides(const Scene *s, const FrameBufs *fb, const Mat4 *om, Vec
             f++;                /* a point or a line: no side */
             continue;
         }
-        const float *nf = &s->face_normal[3 * (size_t)id];
-        Vec3 wn = m4_dir(&om[s->face_obj[id]], v3(nf[0], nf[1], nf[2]));
+        float nf[3];
+        scene_face_normal(s, (uint32_t)id, nf);
+        Vec3 wn = m4_dir(&om[scene_face_obj(s, (uint32_t)id)], v3(nf[0], nf[1], nf[2]));
         if (v3_dot(wn, d) > 0)
             f++;
         else

@@ -42,10 +42,14 @@ static uint64_t scene_frame_bytes(const Scene *s, uint64_t copies, uint64_t poly
     uint64_t verts = 0;
     for (int i = 0; i < s->nmeshes; i++)
         verts += s->meshes[i].nverts;
+    /* what the scene holds: the compact form (scene.h) leaves out the
+     * arrays it derives */
+    uint64_t face_bytes = (s->face_normal ? 3 * sizeof(float) : 0) + (s->face_rgb ? 3 + 1 : 0) +
+                          (s->face_obj || copies > 1 ? sizeof(uint16_t) : 0);
     uint64_t scene = verts * 3 * sizeof(float) +
-                     (uint64_t)s->npolys * 2 * sizeof(uint32_t) +                /* start, lface */
-                     (uint64_t)s->poly_start[s->npolys] * sizeof(uint32_t) +    /* corners */
-                     (uint64_t)s->nfaces * copies * (3 * sizeof(float) + 3 + 1 + sizeof(uint16_t)) +
+                     (uint64_t)s->npolys * ((s->poly_start ? 1 : 0) + (s->poly_lface ? 1 : 0)) * sizeof(uint32_t) +
+                     (uint64_t)scene_ncorners(s) * sizeof(uint32_t) +          /* corners */
+                     (uint64_t)s->nfaces * copies * face_bytes +
                      (uint64_t)s->nobjs * copies * sizeof(Object);
     uint64_t frame = polys * (sizeof(ScreenPoly) + sizeof(int32_t) + ALGO_BYTES_PER_POLY) +
                      corners * sizeof(ScreenVert) * 65 / 64 +
@@ -73,7 +77,7 @@ int app_check_size(const Options *o, const Scene *s, char *err, size_t errlen)
     for (int k = 0; k < s->nobjs; k++) {
         const Object *ob = &s->objs[k];
         polys += ob->poly_count;
-        corners += s->poly_start[ob->poly_first + ob->poly_count] - s->poly_start[ob->poly_first];
+        corners += scene_poly_c0(s, ob->poly_first + ob->poly_count) - scene_poly_c0(s, ob->poly_first);
         prims += (uint64_t)ob->point_count + ob->seg_count;
     }
     polys = (polys + prims) * copies;
@@ -288,6 +292,7 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     int simd = simd_level();
     p->sp.simd = simd;
     double t0 = now_ms();
+    p->sp.no_map = !p->algo->uses_map;
     if (screen_project(&p->sp, p->scene, &p->vp))
         return -1;
     if (p->order != ORDER_FILE && screen_reorder(&p->sp, p->order, 1, &p->reorder))
@@ -386,7 +391,7 @@ static int any_face_area(const Scene *s)
         const float *pos = o->mesh->pos;
         for (uint32_t q = o->poly_first; q < o->poly_first + o->poly_count; q++) {
             double n[3] = { 0, 0, 0 };
-            uint32_t c0 = s->poly_start[q], c1 = s->poly_start[q + 1];
+            uint32_t c0 = scene_poly_c0(s, q), c1 = scene_poly_c0(s, q + 1);
             for (uint32_t c = c0; c < c1; c++) {
                 const float *a = &pos[3 * (size_t)s->poly_corner[c]];
                 const float *b = &pos[3 * (size_t)s->poly_corner[c + 1 < c1 ? c + 1 : c0]];

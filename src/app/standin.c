@@ -145,7 +145,7 @@ static int add_prims(Build *b, const Scene *s, const Object *o)
 {
     const uint32_t *vm = b->vmap, v0 = o->vert_min;
     for (uint32_t p = o->poly_first; p < o->poly_first + o->poly_count; p++) {
-        uint32_t c0 = s->poly_start[p], c1 = s->poly_start[p + 1];
+        uint32_t c0 = scene_poly_c0(s, p), c1 = scene_poly_c0(s, p + 1);
         for (uint32_t c = c0 + 1; c + 1 < c1; c++) {
             uint32_t t[3] = { vm[s->poly_corner[c0] - v0], vm[s->poly_corner[c] - v0],
                               vm[s->poly_corner[c + 1] - v0] };

@@ -377,8 +377,6 @@ static double object_front(const Mat4 *view, const Object *o)
  * bookkeeping, not the order. Returns -1 out of memory (no groups). */
 static int group_by_object(OctState *s, const Scene *sc, const ScreenPolys *sp)
 {
-    if (!sc->face_obj)
-        return -1;
     if (sp->npolys > s->cap_sidx) {
         uint32_t *q = realloc(s->sidx, (size_t)sp->npolys * sizeof *q);
         if (!q)
@@ -398,7 +396,7 @@ static int group_by_object(OctState *s, const Scene *sc, const ScreenPolys *sp)
     for (uint32_t i = 0; i < sp->npolys; i++) {
         uint32_t f = (uint32_t)sp->polys[i].face;
         if (f < sc->nfaces)
-            start[sc->face_obj[f] + 1]++;
+            start[scene_face_obj(sc, f) + 1]++;
     }
     for (int o = 0; o < sc->nobjs; o++)
         start[o + 1] += start[o];
@@ -407,7 +405,7 @@ static int group_by_object(OctState *s, const Scene *sc, const ScreenPolys *sp)
     for (uint32_t i = 0; i < sp->npolys; i++) {
         uint32_t f = (uint32_t)sp->polys[i].face;
         if (f < sc->nfaces)
-            s->sidx[start[sc->face_obj[f]]++] = i;
+            s->sidx[start[scene_face_obj(sc, f)]++] = i;
     }
     memmove(start + 1, start, (size_t)sc->nobjs * sizeof *start);
     start[0] = 0;
@@ -517,5 +515,6 @@ const HsrAlgo hsr_hzb_octree = {
     .destroy_shared = oct_destroy_shared,
     .share = oct_share,
     .frame_begin = oct_frame_begin,
+    .uses_map = 1,
 };
 

@@ -240,7 +240,7 @@ static int tree_build(OctTree *s, const Scene *sc)
     s->lface_sorted = 1;
     for (int k = 0; k < nb; k++) {
         const Object *o = &sc->objs[k];
-        for (uint32_t i = 1; i < o->poly_count; i++)
+        for (uint32_t i = 1; sc->poly_lface && i < o->poly_count; i++)
             if (sc->poly_lface[o->poly_first + i] < sc->poly_lface[o->poly_first + i - 1])
                 s->lface_sorted = 0;
     }
@@ -257,7 +257,7 @@ static int tree_build(OctTree *s, const Scene *sc)
             uint32_t pk = o->poly_first + i;
             /* summed in locals: a store to w.cen could alias pos */
             float c[3] = { 0, 0, 0 };
-            uint32_t c0 = sc->poly_start[pk], c1 = sc->poly_start[pk + 1];
+            uint32_t c0 = scene_poly_c0(sc, pk), c1 = scene_poly_c0(sc, pk + 1);
             for (uint32_t q = c0; q < c1; q++) {
                 const float *v = &pos[3 * (size_t)sc->poly_corner[q]];
                 c[0] += v[0];

@@ -219,15 +219,35 @@ int mb_grow_faces(MeshBuild *b)
     if (over_polys(b, (uint64_t)m->nfaces + m->npoints + 1) ||
         over_memory_grow(b, "faces", (uint64_t)next_cap(b->fcap, (size_t)m->nfaces + 1) * 8, (uint64_t)b->fcap * 8))
         return -1;
-    size_t cap = b->fcap;
-    if (grow((void **)&m->face_mat, &cap, (size_t)m->nfaces + 1, sizeof(int32_t)))
-        return me_oom(b->e);
+    size_t cap = next_cap(b->fcap, (size_t)m->nfaces + 1);
+    if (m->face_mat) {
+        int32_t *fm = realloc(m->face_mat, cap * sizeof(int32_t));
+        if (!fm)
+            return me_oom(b->e);
+        m->face_mat = fm;
+        bigmem_advise(fm, cap * sizeof(int32_t), 0);
+    }
     uint32_t *q = realloc(m->face_start, (cap + 1) * sizeof(uint32_t));
     if (!q)
         return me_oom(b->e);
     m->face_start = q;
     b->fcap = cap;
     return 0;
+}
+
+int32_t *mb_face_mats(MeshBuild *b)
+{
+    Mesh *m = b->m;
+    if (m->face_mat)
+        return m->face_mat;
+    size_t cap = b->fcap ? b->fcap : 1;
+    if (!(m->face_mat = malloc(cap * sizeof(int32_t)))) {
+        me_oom(b->e);
+        return NULL;
+    }
+    for (size_t f = 0; f < cap; f++)
+        m->face_mat[f] = -1;
+    return m->face_mat;
 }
 
 int mb_room_corners(MeshBuild *b, size_t n)
@@ -314,15 +334,17 @@ int mb_reserve_ex(MeshBuild *b, size_t verts, size_t faces, size_t corners, int 
         b->vcap = nv;
     }
     if (nf > b->fcap || !m->face_start) {
-        int32_t *fm = realloc(m->face_mat, (nf ? nf : 1) * sizeof(int32_t));
-        if (!fm)
-            return me_oom(b->e);
-        m->face_mat = fm;
+        if (m->face_mat) {
+            int32_t *fm = realloc(m->face_mat, (nf ? nf : 1) * sizeof(int32_t));
+            if (!fm)
+                return me_oom(b->e);
+            m->face_mat = fm;
+            bigmem_advise(fm, nf * sizeof(int32_t), exact);
+        }
         uint32_t *fs = realloc(m->face_start, (nf + 1) * sizeof(uint32_t));
         if (!fs)
             return me_oom(b->e);
         m->face_start = fs;
-        bigmem_advise(fm, nf * sizeof(int32_t), exact);
         bigmem_advise(fs, (nf + 1) * sizeof(uint32_t), exact);
         b->fcap = nf;
     }
@@ -626,8 +648,14 @@ int mb_finish(MeshBuild *b, int cloud_ok)
         object_range(m, &m->objs[i]);
     finish_uv(b);
     give_back_slack(b);
-    if (!m->face_mat && !(m->face_mat = calloc(1, sizeof(int32_t))))
-        return me_oom(e);
+    /* materials that all came to nothing (unknown names): no array */
+    uint32_t f = 0;
+    while (m->face_mat && f < m->nfaces && m->face_mat[f] == -1)
+        f++;
+    if (m->face_mat && f == m->nfaces) {
+        free(m->face_mat);
+        m->face_mat = NULL;
+    }
     return 0;
 }
 
@@ -726,7 +754,6 @@ void mesh_as_points(Mesh *m)
     m->npoints = m->nverts;
     /* a mesh is never without its face_start sentinel */
     m->face_start = calloc(1, sizeof *m->face_start);
-    m->face_mat = calloc(1, sizeof *m->face_mat);
     if (pt) {
         m->point = pt;
         for (uint32_t i = 0; i < m->nobjs; i++) {

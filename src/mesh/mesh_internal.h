@@ -138,6 +138,10 @@ int  mb_want_rgb(MeshBuild *b);
 int  mb_grow_verts(MeshBuild *b);
 int  mb_grow_faces(MeshBuild *b);
 int  mb_grow_corners(MeshBuild *b);
+/* The per-face materials, made on the first face with one (earlier
+ * faces, and the rest of the capacity, -1): a mesh without materials
+ * keeps none (Mesh.face_mat NULL). NULL out of memory. */
+int32_t *mb_face_mats(MeshBuild *b);
 /* Room for n more corners. */
 int  mb_room_corners(MeshBuild *b, size_t n);
 
@@ -178,8 +182,11 @@ static inline int mb_face_end(MeshBuild *b, size_t first, int32_t mat)
               (m->nfaces == 0 || first >= (size_t)m->face_start[m->nfaces - 1] + 3));
     if (m->nfaces == b->fcap && mb_grow_faces(b))
         return -1;
+    if (mat != -1 && !m->face_mat && !mb_face_mats(b))
+        return -1;
     m->face_start[m->nfaces] = (uint32_t)first;
-    m->face_mat[m->nfaces] = mat;
+    if (m->face_mat)
+        m->face_mat[m->nfaces] = mat;
     m->nfaces++;
     m->info.triangles += (uint32_t)(b->ncorner - first - 2);
     return 0;

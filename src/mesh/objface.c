@@ -309,7 +309,9 @@ static uint32_t drop_faces(Parser *ps, const uint8_t *bad)
         if (m->corner_uv)
             memmove(&m->corner_uv[nc], &m->corner_uv[c0], (c1 - c0) * sizeof *m->corner_uv);
         m->face_start[nf] = (uint32_t)nc;
-        m->face_mat[nf++] = m->face_mat[f];
+        if (m->face_mat)
+            m->face_mat[nf] = m->face_mat[f];
+        nf++;
         nc += c1 - c0;
     }
     for (; ob < m->nobjs; ob++)

@@ -357,7 +357,7 @@ int obj_resolve_materials(Parser *ps)
         if (map[i] < 0 && ps->mtl_loaded)
             me_warn(ps->e, NULL, ps->uses[i].line, "unknown material '%s'", ps->uses[i].name);
     }
-    for (uint32_t f = 0; f < m->nfaces; f++)
+    for (uint32_t f = 0; m->face_mat && f < m->nfaces; f++)
         if (m->face_mat[f] >= 0)
             m->face_mat[f] = map[m->face_mat[f]];
     free(map);

@@ -317,9 +317,13 @@ static int merge_faces(Parser *ps, const Piece *p, const int32_t *usemap, uint32
     }
     b->ncorner += nc;
     for (uint32_t i = 0; i < pm->nfaces; i++) {
-        int32_t u = pm->face_mat[i];
+        int32_t u = mesh_face_mat(pm, i);
+        int32_t mat = u == OBJ_INHERIT ? ps->cur_use : u >= 0 ? usemap[u] : -1;
         m->face_start[m->nfaces + i] = pm->face_start[i] + (uint32_t)cbase;
-        m->face_mat[m->nfaces + i] = u == OBJ_INHERIT ? ps->cur_use : u >= 0 ? usemap[u] : -1;
+        if (mat != -1 && !m->face_mat && !mb_face_mats(b))
+            return -1;
+        if (m->face_mat)
+            m->face_mat[m->nfaces + i] = mat;
     }
     m->nfaces += pm->nfaces;
     m->info.triangles += pm->info.triangles;

@@ -185,7 +185,7 @@ int  mf_changed(MeshFile *f);
  * MF_KEEP_BEHIND bytes from the last position it reported, nor read
  * more than MF_AHEAD - MF_STEP bytes past it: a longer read (a record or
  * a line longer than that) asks with mf_need first. */
-#define MF_AHEAD       ((size_t)8 << 20)
+#define MF_AHEAD       ((size_t)4 << 20)
 #define MF_KEEP_BEHIND ((size_t)1 << 20)
 #define MF_STEP        ((size_t)2 << 20)
 /* Keep [keep - MF_KEEP_BEHIND, upto + MF_AHEAD) in. */

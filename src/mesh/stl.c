@@ -189,11 +189,13 @@ static int stl_binary(MeshCtx *c, MeshBuild *b, const char *data, size_t len)
         } else if (attr & 0x8000) {
             mat = mb_colour(b, c5to8(attr >> 10 & 31), c5to8(attr >> 5 & 31), c5to8(attr & 31), 255);
         }
-        if (mat < -1 || (mat == -1 && (magics || (attr & 0x8000)))) {
+        if (mat < -1 || (mat == -1 && (magics || (attr & 0x8000))) ||
+            (mat != -1 && !face_mat && !(face_mat = mb_face_mats(b)))) {
             vm_free(&vm);
             return -1;
         }
-        face_mat[i] = mat;
+        if (face_mat)
+            face_mat[i] = mat;
     }
     vm_free(&vm);
     m->nfaces = n;

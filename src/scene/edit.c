@@ -68,7 +68,7 @@ static int compose_count(const Source *src, int nsrc, int *mesh_used[], ComposeC
             n->nobjs++;
             n->nfaces += o->face_count;
             n->npolys += o->poly_count;
-            n->ncorners += s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
+            n->ncorners += scene_poly_c0(s, o->poly_first + o->poly_count) - scene_poly_c0(s, o->poly_first);
             n->nsegs += o->seg_count;
             int f = scene_object_file(s, i);
             if (f >= 0 && mesh_used[k][f] < 0)
@@ -156,21 +156,27 @@ static void copy_object(Scene *out, const Scene *s, int i, Mesh *mesh, ComposePo
     o->mark_first = o->mark_count = 0;      /* what a check found is dropped with the ids it named */
     uint32_t fi = at->fi, pi = at->pi, ci = at->ci;
     uint32_t f0 = (uint32_t)from->face_base, nf = from->face_count;
-    memcpy(&out->face_normal[3 * (size_t)fi], &s->face_normal[3 * (size_t)f0], 3 * (size_t)nf * sizeof(float));
-    memcpy(&out->face_rgb[3 * (size_t)fi], &s->face_rgb[3 * (size_t)f0], 3 * (size_t)nf);
-    if (s->face_own)
-        memcpy(&out->face_own[fi], &s->face_own[f0], nf);
-    else
-        memset(&out->face_own[fi], 1, nf);
+    /* a compact source (scene.h) is written out in full */
+    for (uint32_t q = 0; q < nf; q++)
+        scene_face_normal(s, f0 + q, &out->face_normal[3 * ((size_t)fi + q)]);
+    if (s->face_rgb) {
+        memcpy(&out->face_rgb[3 * (size_t)fi], &s->face_rgb[3 * (size_t)f0], 3 * (size_t)nf);
+        if (s->face_own)
+            memcpy(&out->face_own[fi], &s->face_own[f0], nf);
+        else
+            memset(&out->face_own[fi], 1, nf);
+    } else {
+        memset(&out->face_own[fi], 0, nf);      /* coloured below */
+    }
     for (uint32_t q = 0; q < nf; q++)
         out->face_obj[fi + q] = (uint16_t)at->oi;
-    uint32_t c0 = s->poly_start[from->poly_first];
+    uint32_t c0 = scene_poly_c0(s, from->poly_first);
     for (uint32_t q = 0; q < from->poly_count; q++) {
         uint32_t p = from->poly_first + q;
-        out->poly_start[pi + q] = ci + (s->poly_start[p] - c0);
-        out->poly_lface[pi + q] = s->poly_lface[p];
+        out->poly_start[pi + q] = ci + (scene_poly_c0(s, p) - c0);
+        out->poly_lface[pi + q] = scene_poly_lface(s, from, p);
     }
-    uint32_t nc = s->poly_start[from->poly_first + from->poly_count] - c0;
+    uint32_t nc = scene_poly_c0(s, from->poly_first + from->poly_count) - c0;
     memcpy(&out->poly_corner[ci], &s->poly_corner[c0], (size_t)nc * sizeof(uint32_t));
     copy_surfaces(out, s, f0, nf, c0, nc, at);
     memcpy(&out->seg_corner[at->si], &s->seg_corner[from->seg_first], (size_t)from->seg_count * sizeof(uint32_t));
@@ -181,15 +187,73 @@ static void copy_object(Scene *out, const Scene *s, int i, Mesh *mesh, ComposePo
     at->oi++;
 }
 
+/* The source whose objects are the whole result, taken as they are
+ * (all its loaded objects, no grid copies, its files in order), or -1.
+ * Moving it keeps a compact scene compact (scene.h): the viewer's first
+ * file arrives as a part added to an empty scene. */
+static int sole_source(const Source *src, int nsrc, int *mesh_used[])
+{
+    int sole = -1;
+    for (int k = 0; k < nsrc; k++) {
+        const Scene *s = src[k].s;
+        int nb = s->nbase_objs ? (int)s->nbase_objs : s->nobjs, any = 0, all = 1;
+        for (int i = 0; i < nb; i++) {
+            any |= taken(&src[k], i);
+            all &= taken(&src[k], i);
+        }
+        if (!any)
+            continue;
+        if (sole >= 0 || !all || s->nobjs != nb || !s->nmeshes)
+            return -1;
+        for (int i = 0; i < s->nmeshes; i++)
+            if (mesh_used[k][i] != i)
+                return -1;
+        sole = k;
+    }
+    return sole;
+}
+
+/* out is source k's scene, moved (its wireframe and marks dropped, as a
+ * composed scene has none); the source is left empty. */
+static void compose_move(Scene *out, const Source *src, int k)
+{
+    Scene *s = src[k].s;
+    *out = *s;
+    memset(s, 0, sizeof *s);
+    scene_marks_release(&out->marks);
+    memset(&out->marks, 0, sizeof out->marks);
+    free(out->wire);
+    out->wire = NULL;
+    out->nwire_edges = out->nwire = 0;
+    out->wire_built = 0;
+    for (int i = 0; i < out->nobjs; i++) {
+        Object *o = &out->objs[i];
+        o->wire_first = o->wire_count = o->mark_first = o->mark_count = 0;
+    }
+    scene_number_prims(out);    /* fewer ids than before: fits */
+}
+
 /* Compose *out from the sources in order (see the top of the file).
  * Returns 0, or -1 with a message; the sources are untouched either way
- * (meshes are copied by value: the caller releases what moved). */
+ * (meshes are copied by value: the caller releases what moved), but for
+ * one that is the whole result, which is moved into *out. */
 static int compose(Scene *out, const Source *src, int nsrc, int *mesh_used[], char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
     ComposeCounts n = { 0 };
     if (compose_count(src, nsrc, mesh_used, &n, err, errlen))
         return -1;
+    int sole = sole_source(src, nsrc, mesh_used);
+    if (sole >= 0) {
+        Camera cam = src[0].s->cam;
+        Light light = src[0].s->light;
+        uint32_t gen = src[0].s->gen + 1;
+        compose_move(out, src, sole);
+        out->cam = cam;
+        out->light = light;
+        out->gen = gen;
+        return 0;
+    }
     if (compose_alloc(out, &n)) {
         snprintf(err, errlen, "out of memory");
         return -1;

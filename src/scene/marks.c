@@ -44,24 +44,25 @@ static void *dup_array(const void *p, size_t bytes, int *oom)
 static void object_faces(const Scene *s, const Object *o, int pass, uint32_t *cnt, const uint32_t *start,
                          uint32_t *corner)
 {
-    const uint32_t *pc = s->poly_corner, *ps = s->poly_start;
+    const uint32_t *pc = s->poly_corner;
     uint32_t p = o->poly_first, pe = o->poly_first + o->poly_count;
     while (p < pe) {
         uint32_t q = p + 1;
-        while (q < pe && s->poly_lface[q] == s->poly_lface[p])
+        while (s->poly_lface && q < pe && s->poly_lface[q] == s->poly_lface[p])
             q++;
-        uint32_t f = o->face_first + s->poly_lface[p];
-        uint32_t n = q - p == 1 ? ps[p + 1] - ps[p] : (q - p) + 2;
+        uint32_t f = o->face_first + scene_poly_lface(s, o, p);
+        uint32_t c0 = scene_poly_c0(s, p);
+        uint32_t n = q - p == 1 ? scene_poly_c0(s, p + 1) - c0 : (q - p) + 2;
         if (pass == 0) {
             cnt[f] = n;
         } else if (q - p == 1) {
-            memcpy(&corner[start[f]], &pc[ps[p]], n * sizeof *corner);
+            memcpy(&corner[start[f]], &pc[c0], n * sizeof *corner);
         } else {
             uint32_t k = start[f];
-            corner[k++] = pc[ps[p]];
+            corner[k++] = pc[c0];
             for (uint32_t t = p; t < q; t++)
-                corner[k++] = pc[ps[t] + 1];
-            corner[k] = pc[ps[q - 1] + 2];
+                corner[k++] = pc[scene_poly_c0(s, t) + 1];
+            corner[k] = pc[scene_poly_c0(s, q - 1) + 2];
         }
         p = q;
     }

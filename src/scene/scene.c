@@ -12,6 +12,7 @@
 #include "check.h"
 #include "scene.h"
 #include "scene_internal.h"
+#include "simd.h"
 
 /* A face whose corners stray from its plane by more than this fraction
  * of its size is split into triangles. */
@@ -26,27 +27,121 @@ static Vec3 mesh_vertex(const Mesh *m, uint32_t v)
     return v3(m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2]);
 }
 
-/* Newell's normal: robust for any simple or concave polygon. Not unit. */
+/* Newell's normal of the polygon of corners c[0 .. n) (vertex indices
+ * into pos): robust for any simple or concave polygon. Not unit. A
+ * triangle takes one cross product. In double: the stored normals and
+ * the compact form's computed ones (scene_face_normal) come from here,
+ * so they are the same bits. */
+static void corners_newell(const float *pos, const uint32_t *c, uint32_t n, double out[3])
+{
+    if (n == 3) {
+        const float *p = &pos[3 * (size_t)c[0]], *q = &pos[3 * (size_t)c[1]], *r = &pos[3 * (size_t)c[2]];
+        double ux = (double)q[0] - p[0], uy = (double)q[1] - p[1], uz = (double)q[2] - p[2];
+        double vx = (double)r[0] - p[0], vy = (double)r[1] - p[1], vz = (double)r[2] - p[2];
+        out[0] = uy * vz - uz * vy;
+        out[1] = uz * vx - ux * vz;
+        out[2] = ux * vy - uy * vx;
+        return;
+    }
+    out[0] = out[1] = out[2] = 0;
+    for (uint32_t k = 0; k < n; k++) {
+        const float *p = &pos[3 * (size_t)c[k]], *q = &pos[3 * (size_t)c[k + 1 < n ? k + 1 : 0]];
+        out[0] += ((double)p[1] - q[1]) * ((double)p[2] + q[2]);
+        out[1] += ((double)p[2] - q[2]) * ((double)p[0] + q[0]);
+        out[2] += ((double)p[0] - q[0]) * ((double)p[1] + q[1]);
+    }
+}
+
 static void face_newell(const Mesh *m, uint32_t f, double n[3])
 {
     uint32_t a = m->face_start[f], b = m->face_start[f + 1];
-    if (b - a == 3) {   /* a triangle: one cross product */
-        Vec3 p = mesh_vertex(m, m->corner[a]), q = mesh_vertex(m, m->corner[a + 1]),
-             r = mesh_vertex(m, m->corner[a + 2]);
-        double ux = (double)q.x - p.x, uy = (double)q.y - p.y, uz = (double)q.z - p.z;
-        double vx = (double)r.x - p.x, vy = (double)r.y - p.y, vz = (double)r.z - p.z;
-        n[0] = uy * vz - uz * vy;
-        n[1] = uz * vx - ux * vz;
-        n[2] = ux * vy - uy * vx;
+    corners_newell(m->pos, &m->corner[a], b - a, n);
+}
+
+/* The unit normal of Newell vector n (+z when it has no length). */
+static void unit_of(const double n[3], float out[3])
+{
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int i = 0; i < 3; i++)
+        out[i] = len > 0 ? (float)(n[i] / len) : (i == 2);
+}
+
+void scene_face_normal(const Scene *s, uint32_t id, float n[3])
+{
+    if (s->face_normal) {
+        memcpy(n, &s->face_normal[3 * (size_t)id], 3 * sizeof(float));
         return;
     }
-    n[0] = n[1] = n[2] = 0;
-    for (uint32_t k = a; k < b; k++) {
-        Vec3 p = mesh_vertex(m, m->corner[k]);
-        Vec3 q = mesh_vertex(m, m->corner[k + 1 < b ? k + 1 : a]);
-        n[0] += ((double)p.y - q.y) * ((double)p.z + q.z);
-        n[1] += ((double)p.z - q.z) * ((double)p.x + q.x);
-        n[2] += ((double)p.x - q.x) * ((double)p.y + q.y);
+    /* no face_normal: one polygon a face, polygon poly_first + lface */
+    const Object *o = &s->objs[scene_face_obj(s, id)];
+    uint32_t k = o->poly_first + (id - (uint32_t)o->face_base);
+    uint32_t c0 = scene_poly_c0(s, k), c1 = scene_poly_c0(s, k + 1);
+    double v[3];
+    corners_newell(o->mesh->pos, s->poly_corner + c0, c1 - c0, v);
+    unit_of(v, n);
+}
+
+#ifdef ZV_AVX2
+/* The unit normals of four triangles (corners c[0 .. 12)) at once: the
+ * double operations of corners_newell and unit_of in their order, each
+ * lane rounding as a scalar double does (no fused multiply-add), so the
+ * same bits. */
+ZV_AVX2_FN static void tri_normals4(const float *pos, const uint32_t *c, float *out)
+{
+    double v[9][4];     /* p, q, r: x y z, a lane each */
+    for (int l = 0; l < 4; l++)
+        for (int k = 0; k < 3; k++) {
+            const float *p = &pos[3 * (size_t)c[3 * l + k]];
+            for (int a = 0; a < 3; a++)
+                v[3 * k + a][l] = p[a];
+        }
+    __m256d u[3], w[3];
+    for (int a = 0; a < 3; a++) {
+        __m256d p = _mm256_loadu_pd(v[a]);
+        u[a] = _mm256_sub_pd(_mm256_loadu_pd(v[3 + a]), p);
+        w[a] = _mm256_sub_pd(_mm256_loadu_pd(v[6 + a]), p);
+    }
+    __m256d n[3] = { _mm256_sub_pd(_mm256_mul_pd(u[1], w[2]), _mm256_mul_pd(u[2], w[1])),
+                     _mm256_sub_pd(_mm256_mul_pd(u[2], w[0]), _mm256_mul_pd(u[0], w[2])),
+                     _mm256_sub_pd(_mm256_mul_pd(u[0], w[1]), _mm256_mul_pd(u[1], w[0])) };
+    __m256d len = _mm256_sqrt_pd(_mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(n[0], n[0]), _mm256_mul_pd(n[1], n[1])),
+                                               _mm256_mul_pd(n[2], n[2])));
+    __m256d some = _mm256_cmp_pd(len, _mm256_setzero_pd(), _CMP_GT_OQ);
+    float f[3][4];
+    for (int a = 0; a < 3; a++) {
+        __m256d none = _mm256_set1_pd(a == 2 ? 1.0 : 0.0);     /* unit_of's +z */
+        _mm_storeu_ps(f[a], _mm256_cvtpd_ps(_mm256_blendv_pd(none, _mm256_div_pd(n[a], len), some)));
+    }
+    for (int l = 0; l < 4; l++)
+        for (int a = 0; a < 3; a++)
+            out[3 * l + a] = f[a][l];
+}
+#endif
+
+void scene_face_normals(const Scene *s, uint32_t f0, uint32_t n, float *out, int simd)
+{
+    if (s->face_normal || !n) {
+        if (n)
+            memcpy(out, &s->face_normal[3 * (size_t)f0], 3 * (size_t)n * sizeof(float));
+        return;
+    }
+    const Object *o = &s->objs[scene_face_obj(s, f0)];
+    const float *pos = o->mesh->pos;
+    uint32_t k = o->poly_first + (f0 - (uint32_t)o->face_base), i = 0;
+#ifdef ZV_AVX2
+    if (simd_use(simd) >= SIMD_AVX2 && !s->poly_start)     /* triangles: corners 3k on */
+        for (; i + 4 <= n; i += 4, k += 4)
+            tri_normals4(pos, s->poly_corner + 3 * (size_t)k, &out[3 * (size_t)i]);
+#else
+    (void)simd;
+#endif
+    uint32_t c1 = scene_poly_c0(s, k);
+    for (; i < n; i++, k++) {
+        uint32_t c0 = c1;
+        c1 = scene_poly_c0(s, k + 1);
+        double v[3];
+        corners_newell(pos, s->poly_corner + c0, c1 - c0, v);
+        unit_of(v, &out[3 * (size_t)i]);
     }
 }
 
@@ -260,9 +355,11 @@ static void object_bounds(Object *o, const MeshObject *mo, const uint32_t *face_
 {
     const Mesh *m = o->mesh;
     float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
-    for (uint32_t f = o->face_first; f < o->face_first + o->face_count; f++)
-        for (uint32_t k = face_start[f]; k < face_start[f + 1]; k++)
-            bounds_add(lo, hi, &m->pos[3 * (size_t)corner[k]]);
+    /* face_start NULL: the taken-over lists of triangles (3 corners a face) */
+    uint32_t f0 = o->face_first, f1 = o->face_first + o->face_count;
+    uint32_t k0 = face_start ? face_start[f0] : 3 * f0, k1 = face_start ? face_start[f1] : 3 * f1;
+    for (uint32_t k = k0; k < k1; k++)
+        bounds_add(lo, hi, &m->pos[3 * (size_t)corner[k]]);
     for (uint32_t k = 0; k < o->point_count; k++)
         bounds_add(lo, hi, &m->pos[3 * (size_t)object_point_vert(o, k)]);
     if (mo->line_count)
@@ -346,23 +443,43 @@ void scene_too_large(const Mesh *meshes, int n, uint64_t nobjs, uint64_t nfaces,
 typedef struct {
     uint64_t nobjs, nfaces, nsegs;   /* over every mesh */
     uint64_t npolys, ncorners;       /* after splitting non-planar faces */
-    /* per face: bit 0 planar (kept whole), bit 1 a colour of its own */
-    uint8_t *planar;
+    int      all_tris;               /* every face of every mesh a triangle */
+    int      plain;                  /* one object, no face with a colour of its own:
+                                        no face_rgb, face_own, face_obj */
+    uint8_t *planar;                 /* per face: kept whole (NULL with all_tris: all) */
     int      take_over;              /* the polygon lists are the mesh's face lists */
     SurfBuild surf;                  /* textured and vertex-coloured faces */
 } SceneCounts;
+
+/* Does some face of m have a colour of its own (face_base_rgb)? */
+static int mesh_has_own_colour(const Mesh *m)
+{
+    if (m->rgb)
+        return 1;
+    for (uint32_t f = 0; m->face_mat && f < m->nfaces; f++)
+        if (m->face_mat[f] >= 0 && (uint32_t)m->face_mat[f] < m->nmats)
+            return 1;
+    return 0;
+}
 
 /* Objects, faces and segments over every mesh; -1 with the message
  * when they pass what a scene's ids and indices can hold. */
 static int count_meshes(const Mesh *meshes, int nmeshes, SceneCounts *c, char *err, size_t errlen)
 {
+    c->all_tris = 1;
+    int own = 0;
     for (int mi = 0; mi < nmeshes; mi++) {
         const Mesh *m = &meshes[mi];
         c->nobjs += m->nobjs;
         c->nfaces += m->nfaces;
         if (m->nlines)
             c->nsegs += m->line_start[m->nlines] - m->nlines;
+        /* every face has 3 corners or more: 3 a face on average is 3 each */
+        if (m->nfaces && !(m->face_start && m->face_start[m->nfaces] == 3 * (uint64_t)m->nfaces))
+            c->all_tris = 0;
+        own |= mesh_has_own_colour(m);
     }
+    c->plain = c->nobjs == 1 && !own;
     if (c->nobjs > 65535 || c->nfaces > INT32_MAX || c->nsegs > INT32_MAX) {
         scene_too_large(meshes, nmeshes, c->nobjs, c->nfaces, err, errlen);
         return -1;
@@ -370,30 +487,38 @@ static int count_meshes(const Mesh *meshes, int nmeshes, SceneCounts *c, char *e
     return 0;
 }
 
-/* The per-object and per-face arrays (and c->planar). -1 out of memory. */
+/* The per-object and per-face arrays the scene needs (and c->planar);
+ * the normals wait for alloc_polys. -1 out of memory. */
 static int alloc_face_arrays(Scene *s, SceneCounts *c)
 {
     uint64_t nfaces = c->nfaces;
     s->objs = calloc(c->nobjs ? c->nobjs : 1, sizeof *s->objs);
-    s->face_normal = malloc((nfaces ? nfaces : 1) * 3 * sizeof(float));
-    s->face_rgb = malloc((nfaces ? nfaces : 1) * 3);
-    s->face_obj = malloc((nfaces ? nfaces : 1) * sizeof(uint16_t));
-    s->face_own = malloc(nfaces ? nfaces : 1);
-    c->planar = malloc(nfaces ? nfaces : 1);
     s->seg_corner = malloc((c->nsegs ? c->nsegs : 1) * sizeof *s->seg_corner);
-    if (!s->objs || !s->face_normal || !s->face_rgb || !s->face_obj || !s->face_own || !c->planar ||
-        !s->seg_corner)
+    if (!s->objs || !s->seg_corner)
         return -1;
-    bigmem_advise(s->face_normal, nfaces * 3 * sizeof(float), 1);
-    bigmem_advise(s->face_rgb, nfaces * 3, 1);
-    bigmem_advise(s->face_obj, nfaces * sizeof(uint16_t), 1);
-    bigmem_advise(c->planar, nfaces, 1);
+    if (!c->plain) {
+        s->face_rgb = malloc((nfaces ? nfaces : 1) * 3);
+        s->face_own = malloc(nfaces ? nfaces : 1);
+        if (!s->face_rgb || !s->face_own)
+            return -1;
+        bigmem_advise(s->face_rgb, nfaces * 3, 1);
+    }
+    if (c->nobjs > 1) {
+        if (!(s->face_obj = malloc((nfaces ? nfaces : 1) * sizeof(uint16_t))))
+            return -1;
+        bigmem_advise(s->face_obj, nfaces * sizeof(uint16_t), 1);
+    }
+    if (!c->all_tris) {
+        if (!(c->planar = malloc(nfaces ? nfaces : 1)))
+            return -1;
+        bigmem_advise(c->planar, nfaces, 1);
+    }
     return 0;
 }
 
-/* Each face's unit normal, colour and whether it stays whole, and the
- * polygons and corners that makes; -1 with the message when they pass
- * what 32-bit offsets hold. */
+/* Each face's colour and whether it stays whole, and the polygons and
+ * corners that makes; -1 with the message when they pass what 32-bit
+ * offsets hold. */
 static int face_data(Scene *s, const Mesh *meshes, int nmeshes, SceneCounts *c, char *err,
                      size_t errlen)
 {
@@ -404,17 +529,20 @@ static int face_data(Scene *s, const Mesh *meshes, int nmeshes, SceneCounts *c, 
         const Mesh *m = &meshes[mi];
         surf_build_mesh(&c->surf, m);
         for (uint32_t f = 0; f < m->nfaces; f++, gface++) {
-            double n[3];
-            face_newell(m, f, n);
-            double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            for (int i = 0; i < 3; i++)
-                s->face_normal[3 * gface + i] = len > 0 ? (float)(n[i] / len) : (i == 2);
-            int own = face_base_rgb(m, f, &s->face_rgb[3 * gface]);
-            surf_of_face(&c->surf, s, f, gface, &s->face_rgb[3 * gface]);
-            planar[gface] = (uint8_t)(face_is_planar(m, f, n) | own << 1);
-            s->face_own[gface] = (uint8_t)own;
+            uint8_t rgb[3];
+            uint8_t *col = s->face_rgb ? &s->face_rgb[3 * (size_t)gface] : rgb;
+            int own = face_base_rgb(m, f, col);
+            surf_of_face(&c->surf, s, f, gface, col);
+            if (s->face_own)
+                s->face_own[gface] = (uint8_t)own;
             uint32_t nc = m->face_start[f + 1] - m->face_start[f];
-            if (planar[gface] & 1) {
+            if (planar) {
+                double n[3] = { 0, 0, 1 };
+                if (nc > 3)
+                    face_newell(m, f, n);
+                planar[gface] = (uint8_t)face_is_planar(m, f, n);
+            }
+            if (!planar || planar[gface]) {
                 npolys += 1;
                 ncorners += nc;
             } else {
@@ -454,32 +582,51 @@ static int can_take_over(const Mesh *meshes, int nmeshes, const SceneCounts *c)
     return next == meshes[0].nfaces;
 }
 
-/* The polygon lists: taken over from the mesh, or allocated to be
- * written. -1 out of memory. */
+/* Every face's unit normal (scenes whose polygons are not the faces one
+ * for one: the compact form computes them when asked). */
+static void store_normals(Scene *s, const Mesh *meshes, int nmeshes)
+{
+    size_t g = 0;
+    for (int mi = 0; mi < nmeshes; mi++)
+        for (uint32_t f = 0; f < meshes[mi].nfaces; f++, g++) {
+            double n[3];
+            face_newell(&meshes[mi], f, n);
+            unit_of(n, &s->face_normal[3 * g]);
+        }
+}
+
+/* The polygon lists: taken over from the mesh (the compact form: no
+ * normals, no face of each polygon, and for triangles no offsets), or
+ * allocated to be written, with the normals. -1 out of memory. */
 static int alloc_polys(Scene *s, Mesh *meshes, int nmeshes, SceneCounts *c)
 {
-    uint64_t npolys = c->npolys, ncorners = c->ncorners;
+    uint64_t npolys = c->npolys, ncorners = c->ncorners, nfaces = c->nfaces;
     c->take_over = can_take_over(meshes, nmeshes, c);
     if (c->take_over) {
         s->poly_start = meshes[0].face_start;
         s->poly_corner = meshes[0].corner;
         meshes[0].face_start = meshes[0].corner = NULL;
+        if (ncorners == 3 * npolys) {   /* triangles: offsets 3k */
+            free(s->poly_start);
+            s->poly_start = NULL;
+        }
     } else {
         s->poly_start = malloc((npolys + 1) * sizeof(uint32_t));
         s->poly_corner = malloc((ncorners ? ncorners : 1) * sizeof(uint32_t));
+        s->poly_lface = malloc((npolys ? npolys : 1) * sizeof(uint32_t));
+        s->face_normal = malloc((nfaces ? nfaces : 1) * 3 * sizeof(float));
+        if (!s->poly_start || !s->poly_corner || !s->poly_lface || !s->face_normal)
+            return -1;
+        bigmem_advise(s->poly_start, (npolys + 1) * sizeof(uint32_t), 1);
+        bigmem_advise(s->poly_corner, ncorners * sizeof(uint32_t), 1);
+        bigmem_advise(s->poly_lface, npolys * sizeof(uint32_t), 1);
+        bigmem_advise(s->face_normal, nfaces * 3 * sizeof(float), 1);
+        store_normals(s, meshes, nmeshes);
     }
-    s->poly_lface = malloc((npolys ? npolys : 1) * sizeof(uint32_t));
-    if (!s->poly_start || !s->poly_corner || !s->poly_lface)
-        return -1;
     if (surf_want_uv(s)) {
         if (!(s->poly_uv = malloc((ncorners ? ncorners : 1) * 2 * sizeof(float))))
             return -1;
         bigmem_advise(s->poly_uv, ncorners * 2 * sizeof(float), 1);
-    }
-    bigmem_advise(s->poly_lface, npolys * sizeof(uint32_t), 1);
-    if (!c->take_over) {
-        bigmem_advise(s->poly_start, (npolys + 1) * sizeof(uint32_t), 1);
-        bigmem_advise(s->poly_corner, ncorners * sizeof(uint32_t), 1);
     }
     return 0;
 }
@@ -523,26 +670,29 @@ static void object_from_mesh(Scene *s, const Mesh *m, const MeshObject *mo, uint
 
 /* Object oi's faces: their object, their colour when they have none of
  * their own and the scene has several objects, and their polygons (a
- * planar face whole, any other as a fan of triangles; taken over: only
- * each polygon's face). */
+ * planar face whole, any other as a fan of triangles; taken over: the
+ * polygons are there already). */
 static void object_polys(Scene *s, const Mesh *m, const MeshObject *mo, uint32_t oi, uint32_t gface,
                          const SceneCounts *c, ScenePos *at)
 {
     const uint8_t *planar = c->planar;
-    int take_over = c->take_over;
     uint32_t pi = at->pi, ci = at->ci;
-    for (uint32_t f = mo->face_first; f < mo->face_first + mo->face_count; f++) {
+    uint32_t f0 = mo->face_first, f1 = mo->face_first + mo->face_count;
+    for (uint32_t f = f0; f < f1 && (s->face_obj || s->face_own); f++) {
         uint32_t g = gface + f;
-        s->face_obj[g] = (uint16_t)oi;
-        if (!(planar[g] & 2) && c->nobjs > 1)
+        if (s->face_obj)
+            s->face_obj[g] = (uint16_t)oi;
+        if (s->face_own && !s->face_own[g] && c->nobjs > 1)
             object_colour((int)oi, &s->face_rgb[3 * (size_t)g]);
-        if (take_over) {
-            s->poly_lface[pi++] = f - mo->face_first;
-            continue;
-        }
+    }
+    if (c->take_over) {
+        at->pi = pi + mo->face_count;
+        return;
+    }
+    for (uint32_t f = f0; f < f1; f++) {
         uint32_t a = m->face_start[f], b = m->face_start[f + 1];
         float *uv = s->poly_uv;
-        if (planar[g] & 1) {
+        if (!planar || planar[gface + f]) {
             s->poly_start[pi] = ci;
             s->poly_lface[pi++] = f - mo->face_first;
             for (uint32_t k = a; k < b; k++) {
@@ -614,7 +764,7 @@ static void release_mesh_faces(Mesh *meshes, int nmeshes)
  * coordinates in order (a per-vertex entry through the corner's vertex). */
 static void take_over_uv(Scene *s, const Mesh *m)
 {
-    uint32_t nc = s->poly_start[s->npolys];
+    uint32_t nc = scene_ncorners(s);
     for (uint32_t c = 0; c < nc; c++) {
         uint32_t i = m->corner_uv ? m->corner_uv[c] : s->poly_corner[c];
         float *out = &s->poly_uv[2 * (size_t)c];
@@ -683,13 +833,16 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
     Object *objs = realloc(s->objs, (nobjs ? nobjs : 1) * sizeof *objs);
     if (objs)
         s->objs = objs;
-    float *fn = realloc(s->face_normal, nf1 * 3 * sizeof(float));
+    /* the compact form's missing arrays stay missing (the copies share
+     * the polygons the normals are computed from, and the one colour),
+     * but for the objects, which now differ */
+    float *fn = s->face_normal ? realloc(s->face_normal, nf1 * 3 * sizeof(float)) : NULL;
     if (fn)
         s->face_normal = fn;
-    uint8_t *fc = realloc(s->face_rgb, nf1 * 3);
+    uint8_t *fc = s->face_rgb ? realloc(s->face_rgb, nf1 * 3) : NULL;
     if (fc)
         s->face_rgb = fc;
-    uint16_t *fo = realloc(s->face_obj, nf1 * sizeof(uint16_t));
+    uint16_t *fo = s->face_obj ? realloc(s->face_obj, nf1 * sizeof(uint16_t)) : calloc(nf1, sizeof(uint16_t));
     if (fo)
         s->face_obj = fo;
     uint8_t *own = s->face_own ? realloc(s->face_own, nf1) : NULL;
@@ -698,7 +851,8 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
     uint16_t *surf = s->face_surf ? realloc(s->face_surf, nf1 * sizeof *surf) : NULL;
     if (surf)
         s->face_surf = surf;
-    if (!objs || !fn || !fc || !fo || (s->face_own && !own) || (s->face_surf && !surf)) {
+    if (!objs || (s->face_normal && !fn) || (s->face_rgb && !fc) || !fo || (s->face_own && !own) ||
+        (s->face_surf && !surf)) {
         snprintf(err, errlen, "--grid %d: out of memory", n);
         return -1;
     }
@@ -715,8 +869,10 @@ int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
             o->face_base = (int32_t)(s->objs[k].face_base + c * nf);
             o->offset = o->home = off;
         }
-        memcpy(&s->face_normal[3 * c * nf], s->face_normal, 3 * (size_t)nf * sizeof(float));
-        memcpy(&s->face_rgb[3 * c * nf], s->face_rgb, 3 * (size_t)nf);
+        if (s->face_normal)
+            memcpy(&s->face_normal[3 * c * nf], s->face_normal, 3 * (size_t)nf * sizeof(float));
+        if (s->face_rgb)
+            memcpy(&s->face_rgb[3 * c * nf], s->face_rgb, 3 * (size_t)nf);
         if (s->face_own)
             memcpy(&s->face_own[c * nf], s->face_own, nf);
         if (s->face_surf)   /* the copies share the polygons and their texture coordinates */

@@ -5,9 +5,6 @@
 
 #include "scene.h"
 
-/* The colour of a face with none of its own in a scene of one object. */
-extern const uint8_t scene_default_rgb[3];
-
 /* Number the points, segments and wireframe edges after the faces: every
  * object's points, then every object's segments, then every object's
  * edges. -1 when the ids would pass INT32_MAX. */

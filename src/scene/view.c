@@ -116,7 +116,8 @@ static Vec3 face_lean(const Scene *s, double *faces_out)
         const Object *o = &s->objs[i];
         double x = 0, y = 0, z = 0;
         for (uint32_t f = 0; f < o->face_count; f += stride) {
-            const float *nf = &s->face_normal[3 * ((size_t)o->face_base + f)];
+            float nf[3];
+            scene_face_normal(s, (uint32_t)o->face_base + f, nf);
             x += nf[0];
             y += nf[1];
             z += nf[2];
@@ -188,7 +189,7 @@ void scene_pick_view(const Scene *s, float *yaw_out, float *pitch_out)
         for (uint32_t k = o->poly_first; k < o->poly_first + o->poly_count; k += stride) {
             /* Newell's vector: the normal times twice the area */
             float n[3] = { 0, 0, 0 };
-            uint32_t c0 = s->poly_start[k], c1 = s->poly_start[k + 1];
+            uint32_t c0 = scene_poly_c0(s, k), c1 = scene_poly_c0(s, k + 1);
             for (uint32_t c = c0; c < c1; c++) {
                 const float *p = &pos[3 * (size_t)s->poly_corner[c]];
                 const float *q = &pos[3 * (size_t)s->poly_corner[c + 1 < c1 ? c + 1 : c0]];

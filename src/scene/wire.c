@@ -71,16 +71,16 @@ static void face_edges(const Scene *s, EdgeSet *es, uint32_t st, uint32_t p, uin
     const uint32_t *pc = s->poly_corner;
     uint32_t prev, first;
     if (q - p == 1) {
-        uint32_t c0 = s->poly_start[p], c1 = s->poly_start[p + 1];
+        uint32_t c0 = scene_poly_c0(s, p), c1 = scene_poly_c0(s, p + 1);
         first = prev = pc[c0];
         for (uint32_t c = c0 + 1; c < c1; c++) {
             edge_put(es, st, prev, pc[c]);
             prev = pc[c];
         }
     } else {
-        first = prev = pc[s->poly_start[p]];
+        first = prev = pc[scene_poly_c0(s, p)];
         for (uint32_t t = p; t < q; t++) {
-            uint32_t c0 = s->poly_start[t];
+            uint32_t c0 = scene_poly_c0(s, t);
             uint32_t next[2] = { pc[c0 + 1], pc[c0 + 2] };
             for (int j = 0; j < (t + 1 == q ? 2 : 1); j++) {
                 edge_put(es, st, prev, next[j]);
@@ -99,7 +99,7 @@ static void object_edges(Scene *s, EdgeSet *es, int k)
     uint32_t p = o->poly_first, pe = o->poly_first + o->poly_count;
     while (p < pe) {
         uint32_t q = p + 1;
-        while (q < pe && s->poly_lface[q] == s->poly_lface[p])
+        while (s->poly_lface && q < pe && s->poly_lface[q] == s->poly_lface[p])
             q++;
         face_edges(s, es, (uint32_t)k + 1, p, q);
         p = q;
@@ -111,10 +111,10 @@ static void object_edges(Scene *s, EdgeSet *es, int k)
  * enough for the largest object at most half full. -1 with the message. */
 static int edges_alloc(const Scene *s, int nb, EdgeSet *es, char *err, size_t errlen)
 {
-    uint64_t corners = s->npolys ? s->poly_start[s->npolys] : 0, most = 0;
+    uint64_t corners = scene_ncorners(s), most = 0;
     for (int k = 0; k < nb; k++) {
         const Object *o = &s->objs[k];
-        uint64_t c = s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
+        uint64_t c = scene_poly_c0(s, o->poly_first + o->poly_count) - scene_poly_c0(s, o->poly_first);
         most = c > most ? c : most;
     }
     uint64_t cap = 64;

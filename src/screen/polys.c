@@ -284,11 +284,12 @@ int project_range(RangeJob *j)
     uint32_t keep[CHUNK + 8];
     for (uint32_t k = j->k0; k < j->k1; k += CHUNK) {
         uint32_t n = j->k1 - k < CHUNK ? j->k1 - k : CHUNK, inst = j->inst0 + (k - j->k0);
-        uint32_t c0 = s->poly_start[k];
+        uint32_t c0 = scene_poly_c0(s, k);
         /* every polygon starts dropped; project_emit_poly records the kept ones */
-        memset(j->map + inst, 0xff, (size_t)n * sizeof *j->map);
+        if (j->map)
+            memset(j->map + inst, 0xff, (size_t)n * sizeof *j->map);
         sp->in_polys += n;
-        int tris = s->poly_start[k + n] - c0 == 3 * n;
+        int tris = scene_poly_c0(s, k + n) - c0 == 3 * n;
         uint32_t nk;
         if (tris) {
             /* n polygons of at least three corners each and 3 n corners
@@ -311,16 +312,17 @@ int project_range(RangeJob *j)
 #endif
             /* the face ids of the kept ones are read below, scattered
              * over a big array (one kept in twenty at small sizes: a
-             * line each): start fetching every one now */
-            for (uint32_t i = 0; i < nk; i++)
+             * line each): start fetching every one now (none in the
+             * compact form, where the id is the polygon's own) */
+            for (uint32_t i = 0; s->poly_lface && i < nk; i++)
                 __builtin_prefetch(&s->poly_lface[k + (keep[i] & ~KEEP_HIT)]);
         } else {
             /* a mixed chunk: triangles screened one by one */
             nk = 0;
             for (uint32_t i = 0; i < n; i++) {
-                uint32_t a = s->poly_start[k + i];
+                uint32_t a = scene_poly_c0(s, k + i);
                 keep[nk] = i;
-                nk += s->poly_start[k + i + 1] - a != 3 || tri_keeps(s->poly_corner + a, idx, vmin, sp->w, sp->h);
+                nk += scene_poly_c0(s, k + i + 1) - a != 3 || tri_keeps(s->poly_corner + a, idx, vmin, sp->w, sp->h);
             }
             empty += n - nk;
         }
@@ -336,7 +338,7 @@ int project_range(RangeJob *j)
 #endif
         for (uint32_t i = 0; i < nk; i++) {
             uint32_t q = k + keep[i];
-            uint32_t a = tris ? c0 + 3 * keep[i] : s->poly_start[q], b = tris ? a + 3 : s->poly_start[q + 1];
+            uint32_t a = tris ? c0 + 3 * keep[i] : scene_poly_c0(s, q), b = tris ? a + 3 : scene_poly_c0(s, q + 1);
             int rv = project_emit_poly(j, q, a, b, inst + keep[i]);
             if (rv) {
                 sp->culled_empty += empty;

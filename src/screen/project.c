@@ -207,7 +207,7 @@ static void compact_task(void *arg, int task, int worker)
         memmove(sp->polys + bp, sp->polys + c->pb[i], (size_t)part->npolys * sizeof *sp->polys);
         for (uint32_t q = 0; q < part->npolys; q++)
             sp->polys[bp + q].first += bv;
-        for (uint32_t q = c->inst0[i]; q < c->inst0[i] + c->ninst[i]; q++)
+        for (uint32_t q = c->inst0[i]; !sp->no_map && q < c->inst0[i] + c->ninst[i]; q++)
             if (sp->map[q] >= 0)
                 sp->map[q] += (int32_t)bp;
     }
@@ -262,7 +262,7 @@ static int project_parts(ScreenPolys *sp, const Scene *s, const Object *o, const
     for (int i = 0; i <= parts; i++)
         k[i] = o->poly_first + (uint32_t)((uint64_t)o->poly_count * (uint32_t)i / (uint32_t)parts);
     for (int i = 0; i < parts; i++) {
-        uint32_t corners = s->poly_start[k[i + 1]] - s->poly_start[k[i]];
+        uint32_t corners = scene_poly_c0(s, k[i + 1]) - scene_poly_c0(s, k[i]);
         vb[i] = (uint32_t)end;
         end += (uint64_t)corners + corners / 16 + 64;
     }
@@ -285,7 +285,7 @@ static int project_parts(ScreenPolys *sp, const Scene *s, const Object *o, const
             win[i].in_polys = win[i].culled_back = win[i].culled_empty = 0;
         }
         job[i] = (RangeJob){ &win[i], s, o, pj, mv, &w->sc, &w->clip[i], k[i], k[i + 1],
-                             inst + (k[i] - o->poly_first), sp->map, 1, simd, 0, &w->lut };
+                             inst + (k[i] - o->poly_first), sp->no_map ? NULL : sp->map, 1, simd, 0, &w->lut };
     }
     pool_run(pool, parts, range_part, job);
     int rc = 0;
@@ -348,7 +348,7 @@ static int frame_room(ScreenPolys *sp, const Scene *s)
     for (int oi = 0; oi < s->nobjs; oi++) {
         const Object *o = &s->objs[oi];
         ninst += o->poly_count;
-        ncorners += s->poly_start[o->poly_first + o->poly_count] - s->poly_start[o->poly_first];
+        ncorners += scene_poly_c0(s, o->poly_first + o->poly_count) - scene_poly_c0(s, o->poly_first);
     }
     if (ninst > INT32_MAX || ncorners + 64 > UINT32_MAX / 2)
         return -1;
@@ -361,7 +361,7 @@ static int frame_room(ScreenPolys *sp, const Scene *s)
     }
     /* every corner at most once, plus a little for clipped outlines */
     if (grow_array((void **)&sp->verts, &sp->cap_verts, (uint32_t)(ncorners + ncorners / 64 + 64), sizeof *sp->verts) ||
-        grow_array((void **)&sp->map, &sp->cap_map, (uint32_t)ninst + 1, sizeof *sp->map) ||
+        (!sp->no_map && grow_array((void **)&sp->map, &sp->cap_map, (uint32_t)ninst + 1, sizeof *sp->map)) ||
         grow_array((void **)&sp->polys, &sp->cap_polys, (uint32_t)ninst + 1, sizeof *sp->polys))
         return -1;
     return 0;
@@ -415,14 +415,14 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
             return -1;
         if (rc) {
             RangeJob j = { sp, s, o, &pj, &vj.mv, sc, &w->clip[0], o->poly_first,
-                           o->poly_first + o->poly_count, inst, sp->map, 0, simd, 0, &w->lut };
+                           o->poly_first + o->poly_count, inst, sp->no_map ? NULL : sp->map, 0, simd, 0, &w->lut };
             if (project_range(&j))
                 return -1;
         }
         inst += o->poly_count;
     }
     sp->polys[sp->npolys].first = sp->nverts;   /* sentinel */
-    sp->nmap = inst;
+    sp->nmap = sp->no_map ? 0 : inst;
     sp->face_sorted = 1;
     sp->ms = now_ms() - t0;
     return 0;

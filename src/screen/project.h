@@ -215,7 +215,7 @@ typedef struct {
     const Scratch *vs;
     ClipBuf       *cb;
     uint32_t       k0, k1, inst0;
-    int32_t       *map;
+    int32_t       *map;         /* NULL: none kept (ScreenPolys.no_map) */
     int            fixed;       /* out's arrays are a window of another's: never grow */
     int            simd;
     int            rc;          /* 0, -1 out of memory, -2 window full */
@@ -239,8 +239,9 @@ static inline int vert_room(RangeJob *j, uint32_t need)
 static inline void kept_poly(RangeJob *j, uint32_t k, uint32_t inst)
 {
     ScreenPolys *sp = j->out;
-    sp->polys[sp->npolys - 1].face = j->o->face_base + (int32_t)j->s->poly_lface[k];
-    j->map[inst] = (int32_t)(sp->npolys - 1);
+    sp->polys[sp->npolys - 1].face = j->o->face_base + (int32_t)scene_poly_lface(j->s, j->o, k);
+    if (j->map)
+        j->map[inst] = (int32_t)(sp->npolys - 1);
 }
 
 /* Pass 2 over polygons [j->k0, j->k1) of the object (polys.c): 0, -1 out

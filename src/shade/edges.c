@@ -87,7 +87,14 @@ static int edge_against(const Scene *s, const ScreenPolys *sp, const FrameBufs *
     if (s->face_obj && s->face_obj[a] != s->face_obj[b])
         return nearer;                              /* where two objects meet */
     /* one surface: a crease when the normals turn enough */
-    const float *na = &s->face_normal[3 * (size_t)a], *nb = &s->face_normal[3 * (size_t)b];
+    float na[3], nb[3];
+    if (ed->nrm) {
+        memcpy(na, &ed->nrm[3 * (size_t)a], sizeof na);
+        memcpy(nb, &ed->nrm[3 * (size_t)b], sizeof nb);
+    } else {
+        scene_face_normal(s, (uint32_t)a, na);
+        scene_face_normal(s, (uint32_t)b, nb);
+    }
     float c = na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2];
     return c < cos_crease && a < b;
 }

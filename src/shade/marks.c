@@ -99,7 +99,8 @@ int shade_mark_colours(MarkColours *mc, const Scene *s, int mode)
     if (s->face_rgb)
         memcpy(mc->rgb, s->face_rgb, 3 * (size_t)n);
     else
-        memset(mc->rgb, 200, 3 * (size_t)n);      /* shade.c's grey */
+        for (uint32_t g = 0; g < n; g++)
+            memcpy(&mc->rgb[3 * (size_t)g], scene_default_rgb, 3);     /* the compact form's one colour */
     /* grid copies repeat the loaded faces in order */
     for (uint32_t g = 0; g < n; g++) {
         uint32_t f = g % mk->nfaces;

@@ -15,6 +15,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "bigmem.h"
 #include "shade.h"
 #include "simd.h"
 
@@ -36,39 +37,40 @@ int shade_from_name(const char *name)
 
 void shade_cache_free(ShadeCache *c)
 {
-    free(c->stamp);
+    bigmem_zfree(c->stamp, (size_t)c->cap * sizeof *c->stamp);
     free(c->rgb);
+    free(c->slot);
+    free(c->nrm);
     smooth_free(&c->smooth);
     edges_free(&c->edges);
     surf_cache_free(&c->surf);
     memset(c, 0, sizeof *c);
 }
 
-/* Room for n faces; new faces get stamp 0, which no frame uses. */
+/* Room for n faces, every one stale (stamp 0, which no frame uses).
+ * The stamps come zeroed from the kernel (bigmem_zalloc), not realloc'd
+ * and cleared: only the pages of faces a frame shows become resident (a
+ * 5M-face model in a terminal-sized picture leaves nearly all of its
+ * 20 MB of stamps untouched; issue 21). */
 static int cache_grow(ShadeCache *c, uint32_t n)
 {
     if (n <= c->cap && c->stamp && c->rgb)
         return 0;
     uint32_t cap = n ? n : 1;
-    uint32_t *st = realloc(c->stamp, (size_t)cap * sizeof *st);
-    if (!st)
-        return -1;
-    c->stamp = st;      /* bigger than before: valid even if rgb fails */
-    uint8_t *rgb = realloc(c->rgb, (size_t)cap * 3 + 1);     /* + 1: the pixel loop loads 4 bytes a face */
-    if (!rgb)
-        return -1;
-    c->rgb = rgb;
-    uint32_t old = c->cap < cap ? c->cap : cap;
-    memset(c->stamp + old, 0, (size_t)(cap - old) * sizeof *st);
-    c->cap = cap;
-    return 0;
+    bigmem_zfree(c->stamp, (size_t)c->cap * sizeof *c->stamp);
+    free(c->rgb);
+    c->stamp = bigmem_zalloc((size_t)cap * sizeof *c->stamp);
+    c->rgb = malloc((size_t)cap * 3 + 1);     /* + 1: the pixel loop loads 4 bytes a face */
+    c->cap = c->stamp ? cap : 0;               /* the size bigmem_zfree is given */
+    return c->stamp && c->rgb ? 0 : -1;
 }
 
 /* Start a frame: a fresh stamp makes every cached colour stale at once. */
 static void cache_next_frame(ShadeCache *c)
 {
     if (++c->frame == 0) {
-        memset(c->stamp, 0, (size_t)c->cap * sizeof *c->stamp);
+        if (c->stamp)
+            memset(c->stamp, 0, (size_t)c->cap * sizeof *c->stamp);
         c->frame = 1;
     }
 }
@@ -144,20 +146,22 @@ static void normal_mat(const Scene *s, const Mat4 *view, int obj, NormalMat *out
             out->m[i][j] = m.m[i][j];
 }
 
-static const uint8_t default_grey[3] = { 200, 200, 200 };
-
 /* Lambert colour of one face, two-sided (|n.l|) so faces seen from the
- * back are lit like their fronts. */
-static void lambert_face(const Scene *s, const NormalMat *nm, uint32_t face, uint8_t out[3])
+ * back are lit like their fronts. nrm: the faces' normals when at hand
+ * (NULL: computed, scene.h). */
+static void lambert_face(const Scene *s, const float *nrm, const NormalMat *nm, uint32_t face, uint8_t out[3])
 {
-    const float *n = s->face_normal + 3 * (size_t)face;
+    float own[3];
+    const float *n = nrm ? nrm + 3 * (size_t)face : own;
+    if (!nrm)
+        scene_face_normal(s, face, own);
     Vec3 v = v3(nm->m[0][0] * n[0] + nm->m[0][1] * n[1] + nm->m[0][2] * n[2],
                 nm->m[1][0] * n[0] + nm->m[1][1] * n[1] + nm->m[1][2] * n[2],
                 nm->m[2][0] * n[0] + nm->m[2][1] * n[1] + nm->m[2][2] * n[2]);
     v = v3_norm(v);
     float amb = s->light.ambient;
     float k = amb + (1.0f - amb) * fabsf(v3_dot(v, s->light.dir));
-    const uint8_t *base = s->face_rgb ? s->face_rgb + 3 * (size_t)face : default_grey;
+    const uint8_t *base = scene_face_rgb(s, face);
     out[0] = clamp_u8((float)base[0] * k);
     out[1] = clamp_u8((float)base[1] * k);
     out[2] = clamp_u8((float)base[2] * k);
@@ -329,26 +333,100 @@ typedef struct {
     int          current;       /* every face the pixels can show is coloured: no stamp checks */
     Mat4         view;
     NormalMat    nmat[NMAT_SLOTS];
+    const float *nrm;           /* the faces' normals when at hand (dense_normals), else NULL */
 } FaceColours;
+
+/* Face id's colour into c. */
+static inline void face_make(FaceColours *fc, int32_t id, uint8_t *c)
+{
+    if (fc->mode == SHADE_ID) {
+        shade_id_colour(id, c);
+    } else {
+        const Scene *s = fc->s;
+        int obj = s->face_obj ? s->face_obj[id] : 0;
+        NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
+        if (nm->obj != obj)
+            normal_mat(s, &fc->view, obj, nm);
+        lambert_face(s, fc->nrm, nm, (uint32_t)id, c);
+    }
+}
 
 /* Face id's colour, made current. */
 static inline const uint8_t *face_colour(FaceColours *fc, int32_t id)
 {
     uint8_t *c = fc->crgb + 3 * (size_t)id;
     if (fc->stamp[id] != fc->frame) {
-        if (fc->mode == SHADE_ID) {
-            shade_id_colour(id, c);
-        } else {
-            const Scene *s = fc->s;
-            int obj = s->face_obj ? s->face_obj[id] : 0;
-            NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
-            if (nm->obj != obj)
-                normal_mat(s, &fc->view, obj, nm);
-            lambert_face(s, nm, (uint32_t)id, c);
-        }
+        face_make(fc, id, c);
         fc->stamp[id] = fc->frame;
     }
     return c;
+}
+
+/* ==== A huge mesh in a small picture ==== */
+
+static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t i1, uint8_t *rgb, uint8_t *lit);
+
+/* The slot table for a frame of n pixels: a power of two at least twice
+ * n (at most every pixel a face of its own, the table half full). */
+static uint32_t slots_for(size_t n)
+{
+    uint64_t cap = 64;
+    while (cap < 2 * (uint64_t)n)
+        cap *= 2;
+    return cap > ((uint64_t)1 << 31) ? 0 : (uint32_t)cap;
+}
+
+/* Do the frame's colours go through the slots? When the per-face arrays
+ * (7 bytes a face, and whichever faces the polygons show touch their
+ * pages: a 5M-face model drawn into a few hundred thousand samples
+ * touched all 36 MB) outweigh the slots (8 bytes each): the memory a
+ * frame touches is then the picture's, not the mesh's (issue 21). */
+static int slots_pay(uint32_t nfaces, size_t n)
+{
+    uint32_t cap = slots_for(n);
+    return cap && (uint64_t)cap * sizeof(ShadeSlot) < (uint64_t)nfaces * 7;
+}
+
+/* The pixels through the slots (shade_pixels' bytes): a face seen first,
+ * or whose slot another face took, has its colour made again. */
+static int shade_pixels_slots(FaceColours *fc, ShadeCache *cache, const int32_t *ids, size_t n, uint8_t *rgb,
+                              uint8_t *lit)
+{
+    uint32_t cap = slots_for(n);
+    if (cap > cache->nslot) {
+        ShadeSlot *t = realloc(cache->slot, (size_t)cap * sizeof *t);
+        if (!t)
+            return -1;
+        cache->slot = t;
+        cache->nslot = cap;
+    }
+    memset(cache->slot, 0xff, (size_t)cap * sizeof *cache->slot);     /* ids -1: empty */
+    int shift = 32 - __builtin_ctz(cap);
+    uint32_t nfaces = fc->s->nfaces;
+    int32_t last = -1;
+    const uint8_t *c = NULL;
+    for (size_t i = 0; i < n; i++) {
+        int32_t id = ids[i];
+        uint8_t *px = rgb + 3 * i;
+        if (id < 0 || (uint32_t)id >= nfaces) {
+            shade_pixels(fc, ids, i, i + 1, rgb, lit);      /* background, points and lines */
+            continue;
+        }
+        if (id != last) {
+            ShadeSlot *sl = &cache->slot[((uint32_t)id * 2654435769u) >> shift];
+            if (sl->id != id) {
+                face_make(fc, id, sl->rgb);
+                sl->id = id;
+            }
+            c = sl->rgb;
+            last = id;
+        }
+        px[0] = c[0];
+        px[1] = c[1];
+        px[2] = c[2];
+        lit[i] = 1;
+    }
+    return 0;
 }
 
 #ifdef ZV_AVX2
@@ -366,14 +444,41 @@ static inline const NormalMat *object_nmat(FaceColours *fc, int obj)
 /* Distance (in pixels) the pixel pre-pass fetches ahead. */
 #define PIXEL_AHEAD 24
 
+/* The face normals of a big frame: the scene's, or for the compact form
+ * (scene.h) computed once a scene and kept: computing them every frame
+ * cost more than the colours (8 of 12 ms for the dragon at 1920x1080,
+ * 100 ms for the 5.2M dragon). NULL out of memory. */
+static const float *dense_normals(ShadeCache *c, const Scene *s, int simd)
+{
+    if (s->face_normal)
+        return s->face_normal;
+    if (c->nrm && c->nrm_key == s && c->nrm_gen == s->gen && c->nrm_n == s->nfaces && c->nrm_corner == s->poly_corner)
+        return c->nrm;
+    free(c->nrm);
+    c->nrm_key = NULL;
+    if (!(c->nrm = malloc(((size_t)s->nfaces + 1) * 3 * sizeof(float))))
+        return NULL;
+    for (int o = 0; o < s->nobjs; o++) {
+        const Object *ob = &s->objs[o];
+        scene_face_normals(s, (uint32_t)ob->face_base, ob->face_count, c->nrm + 3 * (size_t)ob->face_base, simd);
+    }
+    c->nrm_key = s;
+    c->nrm_corner = s->poly_corner;
+    c->nrm_gen = s->gen;
+    c->nrm_n = s->nfaces;
+    return c->nrm;
+}
+
 #ifdef ZV_AVX2
 /* lambert_face() of faces [f0, f1) of one object (normal matrix nm),
  * eight at a time: the same float operations in the same order (the
  * matrix rows, the length by sqrt, 1 / length, the scale, |n.l|, the
  * ambient mix, base * k + 0.5 clamped and truncated), so the same bytes;
  * the faces' stamps made current. A whole object's faces in a row read
- * their normals and base colours in order, with no gathers. */
-ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, uint32_t f0, uint32_t f1)
+ * their normals (nrm: face f0's on) and base colours in order, with no
+ * gathers. */
+ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, uint32_t f0, uint32_t f1,
+                                         const float *nrm)
 {
     const Scene *s = fc->s;
     __m256 m[3][3];
@@ -385,7 +490,7 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
                  lz = _mm256_set1_ps(s->light.dir.z);
     const __m256 vamb = _mm256_set1_ps(amb), voma = _mm256_set1_ps(1.0f - amb);
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f),
-                 top = _mm256_set1_ps(255.0f), grey = _mm256_set1_ps((float)default_grey[0]);
+                 top = _mm256_set1_ps(255.0f);
     const __m256i vframe = _mm256_set1_epi32((int32_t)fc->frame);
     /* bytes 3 l + c of 24 (16 in lo, 8 in hi) to lane l of channel c */
     const __m128i pick_lo[3] = {
@@ -400,7 +505,7 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
     for (; f + 8 <= f1; f += 8) {
         /* faces 0-3 in the low lanes, 4-7 in the high ones, deinterleaved
          * in-lane (as project.c's vertex loop does) */
-        const float *p = s->face_normal + 3 * (size_t)f;
+        const float *p = nrm + 3 * (size_t)(f - f0);
         __m256 va = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p)), _mm_loadu_ps(p + 12), 1);
         __m256 vb = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4)), _mm_loadu_ps(p + 16), 1);
         __m256 vc = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 8)), _mm_loadu_ps(p + 20), 1);
@@ -428,7 +533,7 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
             hi = _mm_loadl_epi64((const __m128i *)(s->face_rgb + 3 * (size_t)f + 16));
         }
         for (int c = 0; c < 3; c++) {
-            __m256 base = grey;
+            __m256 base = _mm256_set1_ps((float)scene_default_rgb[c]);
             if (s->face_rgb)
                 base = _mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(
                     _mm_or_si128(_mm_shuffle_epi8(lo, pick_lo[c]), _mm_shuffle_epi8(hi, pick_hi[c]))));
@@ -452,22 +557,26 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
         _mm256_storeu_si256((__m256i *)(fc->stamp + f), vframe);
     }
     for (; f < f1; f++) {
-        lambert_face(s, nm, f, fc->crgb + 3 * (size_t)f);
+        lambert_face(s, fc->nrm, nm, f, fc->crgb + 3 * (size_t)f);
         fc->stamp[f] = fc->frame;
     }
 }
 
+
 /* Every face of every object with polygons in the frame, object by
  * object, eight at a time: cheaper than face by face over the polygons
- * when most faces have one on screen (a dense mesh at a large size). */
+ * when most faces have one on screen (a dense mesh at a large size).
+ * Returns -1 out of memory. */
 ZV_AVX2_FN static void colour_objects_avx2(FaceColours *fc)
 {
     const Scene *s = fc->s;
+    const float *nrm = fc->nrm;
     for (int o = 0; o < s->nobjs; o++) {
         const Object *ob = &s->objs[o];
         if (!ob->poly_count || !ob->face_count)
             continue;
-        colour_faces_avx2(fc, object_nmat(fc, o), (uint32_t)ob->face_base, (uint32_t)ob->face_base + ob->face_count);
+        uint32_t f0 = (uint32_t)ob->face_base, f1 = f0 + ob->face_count;
+        colour_faces_avx2(fc, object_nmat(fc, o), f0, f1, nrm + 3 * (size_t)f0);
     }
 }
 
@@ -505,7 +614,7 @@ ZV_AVX2_FN static void colour_faces_task(void *arg, int t, int worker)
         f0 = f0 > lo ? f0 : lo;
         f1 = f1 < hi ? f1 : hi;
         if (ob->poly_count && f0 < f1)
-            colour_faces_avx2(&fc, object_nmat(&fc, o), (uint32_t)f0, (uint32_t)f1);
+            colour_faces_avx2(&fc, object_nmat(&fc, o), (uint32_t)f0, (uint32_t)f1, fc.nrm + 3 * f0);
     }
 }
 
@@ -552,7 +661,8 @@ static void shade_pixels_direct(FaceColours *fc, const int32_t *ids, size_t n, u
         if (i + PIXEL_AHEAD < n) {
             uint32_t f = (uint32_t)ids[i + PIXEL_AHEAD];
             if (f < nfaces) {
-                __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
+                if (fc->nrm)
+                    __builtin_prefetch(&fc->nrm[3 * (size_t)f]);
                 if (s->face_rgb)
                     __builtin_prefetch(&s->face_rgb[3 * (size_t)f]);
                 if (s->face_obj)
@@ -571,7 +681,7 @@ static void shade_pixels_direct(FaceColours *fc, const int32_t *ids, size_t n, u
             NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
             if (nm->obj != obj)
                 normal_mat(s, &fc->view, obj, nm);
-            lambert_face(s, nm, (uint32_t)id, c);
+            lambert_face(s, fc->nrm, nm, (uint32_t)id, c);
             last = id;
         }
         px[0] = c[0];
@@ -601,7 +711,8 @@ static void colour_polys_in(FaceColours *fc, const ScreenPolys *sp, uint32_t lo,
             uint32_t f = (uint32_t)sp->polys[i + FETCH_AHEAD].face;
             if (f >= lo && f < hi) {
                 __builtin_prefetch(&fc->stamp[f]);
-                __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
+                if (s->face_normal)
+                    __builtin_prefetch(&s->face_normal[3 * (size_t)f]);
                 if (s->face_rgb)
                     __builtin_prefetch(&s->face_rgb[3 * (size_t)f]);
                 __builtin_prefetch(&fc->crgb[3 * (size_t)f], 1);
@@ -725,6 +836,12 @@ int shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, cons
     shade_prims(s, fb, set, out);
     if (set->highlight >= 0 && set->highlight < s->nobjs)
         highlight_object(s, fb, set->highlight, out);
+    /* a big frame's outlines compare many pairs of faces: their normals
+     * computed once (dense_normals), not twice a pair (issue 21) */
+    cache->edges.nrm = s->face_normal;
+    if (set->edges && sp && !s->face_normal && (uint64_t)sp->npolys * 8 >= s->nfaces &&
+        !(cache->edges.nrm = dense_normals(cache, s, set->simd)))
+        return -1;
     if (set->edges && sp && shade_edges(s, sp, fb, set->crease, &cache->edges, out))
         return -1;
     return 0;
@@ -750,16 +867,35 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
     if (mode == SHADE_SMOOTH) {
         if (smooth_prepare(&cache->smooth, s, set->crease))
             return -1;
-        return shade_smooth(s, sp, fb, &cache->smooth, default_grey, varying ? &sf : NULL, out);
+        return shade_smooth(s, sp, fb, &cache->smooth, scene_default_rgb, varying ? &sf : NULL, out);
     }
-    if (cache_grow(cache, nfaces) != 0)
+    size_t n = (size_t)fb->w * (size_t)fb->h, i = 0;
+    int avx2 = simd_use(set->simd) >= SIMD_AVX2;
+    /* a frame whose polygons are an eighth of the faces or more holds
+     * about as much per face as the per-face arrays and normals (80
+     * bytes a polygon): they are kept (issue 21); every face is coloured
+     * eight at a time when the polygons are a quarter of the faces and
+     * no more than the pixels (below) */
+    int big = sp && (uint64_t)sp->npolys * 8 >= nfaces;
+    int dense = avx2 && mode == SHADE_LAMBERT && sp && sp->npolys <= n && (uint64_t)sp->npolys * 4 >= nfaces;
+    int slots = !big && slots_pay(nfaces, n);
+    if (!slots && cache_grow(cache, nfaces) != 0)
         return -1;
     cache_next_frame(cache);
 
-    FaceColours fc = { s, mode, cache->frame, cache->stamp, cache->rgb, 0, camera_view(&s->cam), { { 0 } } };
+    FaceColours fc = { s, mode, cache->frame, cache->stamp, cache->rgb, 0, camera_view(&s->cam), { { 0 } }, NULL };
     for (int k = 0; k < NMAT_SLOTS; k++)
         fc.nmat[k].obj = -1;
-    size_t n = (size_t)fb->w * (size_t)fb->h, i = 0;
+    fc.nrm = s->face_normal;
+    if (big && mode == SHADE_LAMBERT && !(fc.nrm = dense_normals(cache, s, set->simd)))
+        return -1;
+    if (slots) {
+        if (shade_pixels_slots(&fc, cache, fb->ids, n, out->rgb, out->lit))
+            return -1;
+        if (varying)
+            shade_surfaces_flat(&sf, fb, out);
+        return 0;
+    }
     /* Colour the faces before the pixels, so that the pixel loop finds
      * every colour current and checks no stamp: the polygons' faces when
      * they are no more than the pixels (measured: the bunny at 1920x1080
@@ -767,9 +903,8 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
      * (polygons under a sixteenth of the faces, or more than the pixels)
      * skips the cache: each pixel straight from its face (the dragon at
      * 160x96: 0.65 -> 0.17 ms). */
-    int avx2 = simd_use(set->simd) >= SIMD_AVX2;
 #ifndef ZV_AVX2
-    (void)avx2;             /* no eight-lane loops in this build */
+    (void)dense;            /* no eight-lane loops in this build */
 #endif
     if (sp && sp->npolys <= n && !(mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 16 < nfaces)) {
         /* a frame's polygons are a subset of the faces' (split faces
@@ -779,7 +914,7 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
          * with --cull, a third of its faces drawn, shades in 6 ms instead
          * of 9) */
 #ifdef ZV_AVX2
-        if (avx2 && mode == SHADE_LAMBERT && (uint64_t)sp->npolys * 4 >= nfaces) {
+        if (dense) {
             ShadeSplit sf = { &fc, NULL, NULL, NULL, nfaces, split_tasks(set->pool, nfaces) };
             if (sf.ntasks > 1)
                 pool_run(set->pool, sf.ntasks, colour_faces_task, &sf);

@@ -40,7 +40,7 @@ void smooth_free(SmoothData *sd)
 static Vec3 poly_newell(const Scene *s, const float *pos, uint32_t k)
 {
     Vec3 n = v3(0, 0, 0);
-    uint32_t c0 = s->poly_start[k], c1 = s->poly_start[k + 1];
+    uint32_t c0 = scene_poly_c0(s, k), c1 = scene_poly_c0(s, k + 1);
     for (uint32_t c = c0; c < c1; c++) {
         const float *p = &pos[3 * (size_t)s->poly_corner[c]];
         const float *q = &pos[3 * (size_t)s->poly_corner[c + 1 < c1 ? c + 1 : c0]];
@@ -58,7 +58,7 @@ static int object_normals(SmoothData *sd, const Scene *s, const Object *o, float
 {
     const float *pos = o->mesh->pos;
     uint32_t nv = o->vert_max - o->vert_min + 1, p0 = o->poly_first, np = o->poly_count;
-    uint32_t c0 = s->poly_start[p0], nc = s->poly_start[p0 + np] - c0;
+    uint32_t c0 = scene_poly_c0(s, p0), nc = scene_poly_c0(s, p0 + np) - c0;
     uint32_t *start = calloc((size_t)nv + 1, sizeof *start);
     uint32_t *list = malloc((size_t)(nc ? nc : 1) * sizeof *list);
     Vec3 *pn = malloc((size_t)(np ? np : 1) * sizeof *pn);     /* area-weighted */
@@ -75,7 +75,7 @@ static int object_normals(SmoothData *sd, const Scene *s, const Object *o, float
     for (uint32_t v = 0; v < nv; v++)
         start[v + 1] += start[v];
     for (uint32_t k = 0; k < np; k++)
-        for (uint32_t c = s->poly_start[p0 + k]; c < s->poly_start[p0 + k + 1]; c++)
+        for (uint32_t c = scene_poly_c0(s, p0 + k); c < scene_poly_c0(s, p0 + k + 1); c++)
             list[start[s->poly_corner[c] - o->vert_min]++] = k;
     /* start[v] now ends v's run: shift back */
     for (uint32_t v = nv; v > 0; v--)
@@ -83,7 +83,7 @@ static int object_normals(SmoothData *sd, const Scene *s, const Object *o, float
     start[0] = 0;
     for (uint32_t k = 0; k < np; k++) {
         Vec3 own = v3_norm(pn[k]);
-        for (uint32_t c = s->poly_start[p0 + k]; c < s->poly_start[p0 + k + 1]; c++) {
+        for (uint32_t c = scene_poly_c0(s, p0 + k); c < scene_poly_c0(s, p0 + k + 1); c++) {
             uint32_t v = s->poly_corner[c] - o->vert_min;
             Vec3 sum = v3(0, 0, 0);
             for (uint32_t i = start[v]; i < start[v + 1]; i++) {
@@ -114,7 +114,7 @@ void shade_face_polys(const Scene *s, uint32_t *face_poly)
         if (!o->poly_count || !o->mesh)
             continue;
         for (uint32_t k = o->poly_first; k < o->poly_first + o->poly_count; k++) {
-            uint32_t f = (uint32_t)o->face_base + s->poly_lface[k];
+            uint32_t f = (uint32_t)o->face_base + scene_poly_lface(s, o, k);
             if (f >= s->nfaces)
                 continue;
             uint32_t *fp = &face_poly[2 * (size_t)f];
@@ -132,7 +132,7 @@ int smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg)
         sd->cnorm)
         return 0;
     smooth_free(sd);
-    uint32_t ncorners = s->npolys ? s->poly_start[s->npolys] : 0;
+    uint32_t ncorners = scene_ncorners(s);
     sd->cnorm = malloc((size_t)(ncorners ? ncorners : 1) * 3 * sizeof(float));
     sd->face_poly = malloc(((size_t)s->nfaces + 1) * 2 * sizeof(uint32_t));
     if (!sd->cnorm || !sd->face_poly) {
@@ -215,7 +215,7 @@ static Vec3 face_normal_at(const SmoothData *sd, const Scene *s, const Object *o
     float best = -INFINITY, bw[3] = { 1, 0, 0 };
     uint32_t bc[3] = { 0, 0, 0 };
     for (uint32_t k = fp[0]; k < fp[0] + fp[1]; k++) {
-        uint32_t c0 = s->poly_start[k], c1 = s->poly_start[k + 1];
+        uint32_t c0 = scene_poly_c0(s, k), c1 = scene_poly_c0(s, k + 1);
         for (uint32_t c = c0 + 1; c + 1 < c1; c++) {
             float w[3];
             const float *a = &pos[3 * (size_t)s->poly_corner[c0]], *b = &pos[3 * (size_t)s->poly_corner[c]],
@@ -230,8 +230,11 @@ static Vec3 face_normal_at(const SmoothData *sd, const Scene *s, const Object *o
             }
         }
     }
-    if (best == -INFINITY)
-        return v3(s->face_normal[3 * (size_t)f], s->face_normal[3 * (size_t)f + 1], s->face_normal[3 * (size_t)f + 2]);
+    if (best == -INFINITY) {
+        float n[3];
+        scene_face_normal(s, f, n);
+        return v3(n[0], n[1], n[2]);
+    }
     /* a point a rounding outside: clamp to the triangle */
     float sum = 0;
     for (int i = 0; i < 3; i++) {

@@ -200,7 +200,7 @@ static int face_tris(const Scene *s, const uint32_t *fp, uint32_t tris[][3], int
 {
     int n = 0;
     for (uint32_t k = fp[0]; k < fp[0] + fp[1]; k++) {
-        uint32_t c0 = s->poly_start[k], c1 = s->poly_start[k + 1];
+        uint32_t c0 = scene_poly_c0(s, k), c1 = scene_poly_c0(s, k + 1);
         for (uint32_t c = c0 + 1; c + 1 < c1; c++, n++)
             if (n < max) {
                 tris[n][0] = c0;
@@ -255,7 +255,8 @@ static int face_kind(const SurfFrame *f, int32_t id, const Texture **tex_out)
 /* The flat light of face id (as lambert shading computes it). */
 static float face_klin(const SurfFrame *f, int32_t id, const Mat4 *fwd)
 {
-    const float *n = &f->s->face_normal[3 * (size_t)id];
+    float n[3];
+    scene_face_normal(f->s, (uint32_t)id, n);
     Vec3 v = v3_norm(m4_dir(fwd, v3(n[0], n[1], n[2])));
     float amb = f->s->light.ambient;
     return surf_light(amb + (1.0f - amb) * fabsf(v3_dot(v, f->s->light.dir)));
@@ -430,7 +431,7 @@ static void eval_face(SurfFrame *f, InstCache *ic, const SurfSetup *st, int32_t 
     float bm = -INFINITY;
     int any = 0;
     for (uint32_t k = fp[0]; k < fp[0] + fp[1]; k++) {
-        uint32_t c0 = s->poly_start[k], c1 = s->poly_start[k + 1];
+        uint32_t c0 = scene_poly_c0(s, k), c1 = scene_poly_c0(s, k + 1);
         for (uint32_t c = c0 + 1; c + 1 < c1; c++) {
             const uint32_t tri[3] = { c0, c, c + 1 };
             tri_setup(f, &s->objs[base], st, &ic->fwd, tri, &t);
@@ -596,7 +597,8 @@ static inline __attribute__((always_inline)) void prefetch_stage(const SurfFrame
         __builtin_prefetch(&s->face_surf[id]);
         if (s->face_obj)
             __builtin_prefetch(&s->face_obj[id]);
-        __builtin_prefetch(&s->face_normal[3 * (size_t)id]);
+        if (s->face_normal)
+            __builtin_prefetch(&s->face_normal[3 * (size_t)id]);
         return;
     }
     if (s->face_surf[id] == SURF_PLAIN)
@@ -609,10 +611,11 @@ static inline __attribute__((always_inline)) void prefetch_stage(const SurfFrame
     if (!fp[1])
         return;
     if (k == 2) {
-        __builtin_prefetch(&s->poly_start[fp[0]]);
+        if (s->poly_start)
+            __builtin_prefetch(&s->poly_start[fp[0]]);
         return;
     }
-    uint32_t c0 = s->poly_start[fp[0]];
+    uint32_t c0 = scene_poly_c0(s, fp[0]);
     if (k == 1) {
         __builtin_prefetch(&s->poly_corner[c0]);
         if (s->poly_uv)

@@ -30,3 +30,15 @@ void bigmem_advise(void *p, size_t bytes, int populate)
     (void)page;
 #endif
 }
+
+void *bigmem_zalloc(size_t bytes)
+{
+    void *p = mmap(NULL, bytes ? bytes : 1, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    return p == MAP_FAILED ? NULL : p;
+}
+
+void bigmem_zfree(void *p, size_t bytes)
+{
+    if (p)
+        munmap(p, bytes ? bytes : 1);
+}

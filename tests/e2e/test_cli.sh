@@ -185,7 +185,9 @@ np=$("$Z" --info assets/torus.obj | sed -n 's/.* faces, \([0-9]*\) polygons.*/\1
 expect_status "--max-polys lets a moderate grid through" 0 "$Z" --print --size 20x6 --grid 3 --max-polys $((np * 27)) assets/torus.obj
 expect_status "one polygon less is refused" 1 "$Z" --print --size 20x6 --grid 3 --max-polys $((np * 27 - 1)) assets/torus.obj
 expect_err "the refusal names the count with the copies" "$(printf "%d" $((np * 27)) | sed ':a;s/\B[0-9]\{3\}\>/,&/;ta') polygons"
-expect_status "the benchmark refuses it too" 1 "$Z" --bench --views 1 --grid 40 assets/torus.obj
+# (on the machine of 1 GB too: a compact scene's copies cost so much less
+# that on a big machine the refusal is no longer certain, issue 21)
+expect_status "the benchmark refuses it too" 1 env ZV_MEM_AVAILABLE=1000000000 "$Z" --bench --views 1 --grid 40 assets/torus.obj
 expect_err "the benchmark names the memory" "GB available)"
 
 # every write is checked: a full device (/dev/full) or a closed standard
