@@ -60,6 +60,8 @@ void app_live_free(App *a)
         loadjob_abandon(a->job);
         a->job = NULL;
     }
+    firstload_abandon(a->first);
+    a->first = NULL;
     texjob_abandon(a->tex);
     a->tex = NULL;
     checkjob_abandon(a->chk);
