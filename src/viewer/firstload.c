@@ -222,7 +222,6 @@ static void *previewer_main(void *arg)
         built = seen = n;
         double took = now_ms() - t0;
         took_per = took / (double)(n ? n : 1);
-        { FILE *tr = fopen("/tmp/p21/trace", "a"); if (tr) { fprintf(tr, "%.0f: build %llu v %llu f took %.0f\n", t0 - f->t0, (unsigned long long)nv, (unsigned long long)nf, took); fclose(tr); } }
         next = now_ms() + (3 * took > PREVIEW_MIN_MS ? 3 * took : PREVIEW_MIN_MS);
     }
     release(f);
