@@ -377,3 +377,14 @@ void firstload_status(FirstLoad *f, char *buf, size_t len)
     else
         snprintf(buf, len, "loading %s %.1fs", name, s);
 }
+
+int firstload_now(const Options *o, Scene *s)
+{
+    char err[512];
+    scene_free(s);
+    if (app_load_scene(o, s, err, sizeof err) == 0)
+        return 0;
+    memset(s, 0, sizeof *s);    /* (the caller frees it again) */
+    fprintf(stderr, "zview: %s\n", err);
+    return -1;
+}

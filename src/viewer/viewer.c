@@ -607,15 +607,8 @@ static FILE *open_keys(FILE **opened, const char **name)
  * frame in its place. */
 static int no_viewer(const Options *o, Scene *s, int loading)
 {
-    char err[512];
-    if (loading) {
-        scene_free(s);          /* the empty scene: the file is loaded now */
-        if (app_load_scene(o, s, err, sizeof err)) {
-            memset(s, 0, sizeof *s);
-            fprintf(stderr, "zview: %s\n", err);
-            return 1;
-        }
-    }
+    if (loading && firstload_now(o, s))
+        return 1;
     if (o->sketch) {
         fprintf(stderr, "zview: --sketch: no terminal to draw on\n");
         return 1;

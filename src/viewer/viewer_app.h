@@ -67,6 +67,10 @@ FirstLoad *firstload_start(const Options *o, char *err, size_t errlen);
 void     firstload_abandon(FirstLoad *f);
 /* "loading dragon.obj 42%" */
 void     firstload_status(FirstLoad *f, char *buf, size_t len);
+/* No viewer after all (no terminal description): the file loaded into
+ * s (its empty scene freed) before the one-shot output. 0, or -1 with
+ * the loader's message on stderr. */
+int      firstload_now(const Options *o, Scene *s);
 
 /* texjob.c: the pending (big) textures of a scene decoded on a thread
  * of their own. NULL when there are none (or no thread). */
