@@ -37,6 +37,10 @@ void        mesh_prefix_hold(MeshPrefix *p, uint64_t faces, const char *path);
  * past what was published; ncorner: the corners its faces use. */
 void        mesh_prefix_publish(MeshPrefix *p, const Mesh *m, size_t ncorner);
 
+/* The reader will take no more: the writer stops copying (but for a
+ * hold's faces, which it still publishes). */
+void        mesh_prefix_stop(MeshPrefix *p);
+
 /* Vertices and faces published so far (atomic reads). */
 void        mesh_prefix_counts(const MeshPrefix *p, uint64_t *verts, uint64_t *faces);
 

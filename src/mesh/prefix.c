@@ -26,6 +26,7 @@
 typedef struct {
     uint64_t nverts, nfaces, ncorner;   /* published (atomic) */
     int      full;                      /* the arrays could not take more: publishing stopped */
+    int      stop;                      /* the reader wants no more (atomic) but what a hold shows */
     uint64_t hold_faces;                /* 0: none */
     char     hold_path[512];
 } Shared;
@@ -80,6 +81,11 @@ void mesh_prefix_hold(MeshPrefix *p, uint64_t faces, const char *path)
     snprintf(p->sh->hold_path, sizeof p->sh->hold_path, "%s", path);
 }
 
+void mesh_prefix_stop(MeshPrefix *p)
+{
+    __atomic_store_n(&p->sh->stop, 1, __ATOMIC_RELAXED);
+}
+
 void mesh_prefix_counts(const MeshPrefix *p, uint64_t *verts, uint64_t *faces)
 {
     *faces = __atomic_load_n(&p->sh->nfaces, __ATOMIC_ACQUIRE);
@@ -105,6 +111,8 @@ void mesh_prefix_publish(MeshPrefix *p, const Mesh *m, size_t ncorner)
     int held = sh->hold_faces && nf >= sh->hold_faces;
     if (held && pf >= sh->hold_faces)
         return;                 /* held already, and let go: the rest comes whole */
+    if (!held && __atomic_load_n(&sh->stop, __ATOMIC_RELAXED))
+        return;
     if (held) {
         nf = sh->hold_faces;
         nc = nf < m->nfaces ? (m->face_start ? m->face_start[nf] : 3 * nf) : ncorner;

@@ -157,8 +157,8 @@ static int worth(uint64_t n, uint64_t built, uint64_t seen)
     return n != built && (built == 0 || n - built >= built / 8 || n == seen);
 }
 
-/* Would a picture of n vertices or faces, at took_per ms each (the last
- * build's pace), be ready well before the whole model? The load's rest
+/* Would a picture of n vertices and faces, at took_per ms each (the
+ * last build's pace), be ready well before the whole model? The load's rest
  * is judged from its pace so far. A picture that would not only slows
  * the whole down: the two builds would share the cores. */
 static int in_time(FirstLoad *f, double took_per, uint64_t n)
@@ -199,7 +199,7 @@ static void *previewer_main(void *arg)
 {
     FirstLoad *f = arg;
     uint64_t built = 0, seen = 0;   /* vertices while there are no faces, then faces */
-    double took_per = 0;            /* the last build's milliseconds per vertex or face */
+    double took_per = 0;            /* the last build's milliseconds per vertex and face */
     int faces = 0;
     double next = now_ms();
     while (nap(f, next)) {
@@ -213,7 +213,12 @@ static void *previewer_main(void *arg)
             next = now_ms() + PREVIEW_IDLE_MS;
             continue;
         }
-        if (!in_time(f, took_per, n)) {
+        /* a build costs for its vertices and its faces alike */
+        if (!in_time(f, took_per, nv + nf)) {
+            /* with faces there, a later picture would be later still:
+             * the loader need not copy more for pictures to come */
+            if (faces)
+                mesh_prefix_stop(f->prefix);
             next = now_ms() + PREVIEW_IDLE_MS;
             continue;
         }
@@ -221,7 +226,7 @@ static void *previewer_main(void *arg)
         preview_once(f);
         built = seen = n;
         double took = now_ms() - t0;
-        took_per = took / (double)(n ? n : 1);
+        took_per = took / (double)(nv + nf);
         next = now_ms() + (3 * took > PREVIEW_MIN_MS ? 3 * took : PREVIEW_MIN_MS);
     }
     release(f);
