@@ -39,7 +39,10 @@
 #define FIRST_LOAD_MIN_BYTES ((uint64_t)32 << 20)
 #define PREVIEW_MIN_MS 100      /* previews at most this often ... */
 #define PREVIEW_IDLE_MS 50      /* ... the prefix looked at this often */
-#define PREVIEW_SLACK 2         /* a picture is built when the load's rest takes this many times as long */
+/* Points are not refined past this many: a terminal's picture of more
+ * looks the same, and building them takes time from the parse. */
+#define PREVIEW_POINTS_MAX 2000000
+#define PREVIEW_SLACK 1         /* a picture is built when the load's rest takes this many times as long */
 
 struct FirstLoad {
     pthread_mutex_t mu;
@@ -208,7 +211,7 @@ static void *previewer_main(void *arg)
         if (nf && !faces)
             faces = 1, built = seen = 0;    /* the first faces: points no more */
         uint64_t n = faces ? nf : nv;
-        if (!worth(n, built, seen)) {
+        if (!worth(n, built, seen) || (!faces && built && n > PREVIEW_POINTS_MAX)) {
             seen = n;
             next = now_ms() + PREVIEW_IDLE_MS;
             continue;
