@@ -56,6 +56,7 @@ until_ok() {
         tm has-session -t zv 2>/dev/null || return 1
         [ "$(date +%s)" -gt $t_end ] && return 1
     done
+    return 0
 }
 
 start() {

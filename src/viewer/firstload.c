@@ -9,10 +9,12 @@
  * --print makes of a file cut there. The UI thread only swaps finished
  * scenes in, between frames: keys are answered all along.
  *
- * Previews are rebuilt when the prefix has grown by an eighth, or has
- * stopped growing, but never sooner than twice the last build's time
- * after it: building takes at most about a third of a core from the
- * parse. The camera is fitted to each new scene until the user turns or
+ * Previews are rebuilt when the prefix has doubled, or has stopped
+ * growing, never sooner than three times the last build's time after
+ * it (building takes at most a quarter of a core from the parse), and
+ * only when the picture can be ready before the whole model (after
+ * that the loader stops copying for pictures). The vertices are shown
+ * as points up to 2M of them, then the faces as they come. The camera is fitted to each new scene until the user turns or
  * moves it; from then on it stays.
  *
  * The job is shared by three threads; whichever lets go of it last
@@ -152,12 +154,13 @@ static int nap(FirstLoad *f, double until)
     return go;
 }
 
-/* Worth a new picture: the first, grown by an eighth, or no longer
+/* Worth a new picture: the first, twice the last (so that all the
+ * pictures together cost about what the last does), or no longer
  * growing (a slow stretch, or the end of what will come before the
  * whole: the picture then shows all of it). */
 static int worth(uint64_t n, uint64_t built, uint64_t seen)
 {
-    return n != built && (built == 0 || n - built >= built / 8 || n == seen);
+    return n != built && (built == 0 || n - built >= built || n == seen);
 }
 
 /* Would a picture of n vertices and faces, at took_per ms each (the
