@@ -49,8 +49,30 @@ check "the picture while loading is --print's of the file cut there" 'cmp -s "$T
 # (the bar may shorten the count to drawn/faces beside the note P left)
 if wait_for "(faces $all drawn|/$all )"; then ok "then the whole model: faces $all"; else notok "then the whole model: faces $all" "$(status 30)"; fi
 check "no longer loading" '! status 30 | grep -q loading' "$(status 30)"
+tm send-keys -t zv P
+wait_for 'wrote zview-grid-002' >/dev/null
+"$Z" --print --size 100x29 --color 256 "$T/grid.obj" >"$T/print"
+check "the whole model's picture is --print's of the file" 'cmp -s "$T/snap/zview-grid-002.txt" "$T/print"' \
+    "$(cmp "$T/snap/zview-grid-002.txt" "$T/print" 2>&1)"
 tm send-keys -t zv q
 if wait_for 'zv-exit=0'; then ok "q quits after the load"; else notok "q quits after the load" "$(status 30)"; fi
+rm -f "$T/go"
+
+# ==== turned while loading: the camera stays where the user put it ====
+session xterm-256color 100 30
+tm send-keys -t zv "cd $T/snap && TERM=xterm-256color ZV_TEST_HOLD=$hold:$T/go $Z $T/grid.obj; echo zv-exit=\$?" Enter
+wait_for "faces $hold drawn" >/dev/null
+wait_stable
+picture 29 >"$T/before"
+tm send-keys -t zv h
+wait_change "$T/before" 29 || notok "h turns the picture while loading"
+: >"$T/go"
+wait_for "(faces $all drawn|/$all )" >/dev/null
+tm send-keys -t zv P
+wait_for 'wrote zview-grid-003' >/dev/null
+check "turned while loading, the whole model keeps the turn" '! cmp -s "$T/snap/zview-grid-003.txt" "$T/print"'
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null
 rm -f "$T/go"
 
 # ==== q while loading ====
