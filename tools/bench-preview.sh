@@ -27,6 +27,7 @@ TMP=$(mktemp -d "${TMPDIR:-/tmp}/zview-bench-preview-XXXXXX")
 SOCK=zv-bench-preview-$$
 tm() { tmux -L "$SOCK" -f /dev/null "$@"; }
 [ "${KEEP:-0}" = 1 ] || trap 'tm kill-server >/dev/null 2>&1; rm -rf "$TMP"' EXIT INT TERM
+exec 2>/dev/null    # tmux's words on a server gone (after q) are not results
 sh "$(dirname "$0")/stamp.sh" "make bench-preview (tools/bench-preview.sh), RUNS=$RUNS"
 
 M=${MODEL:-}
@@ -100,7 +101,7 @@ while [ $r -lt "$RUNS" ]; do
     start
     until_ok shows
     T0=$(date +%s%N); tm send-keys -t zv q
-    until_ok '! tm has-session -t zv 2>/dev/null || ! tm list-panes -t zv -F "#{pane_current_command}" | grep -q zview' && ms >>"$TMP/quit"
+    until_ok '! tm has-session -t zv 2>/dev/null || ! tm list-panes -t zv -F "#{pane_current_command}" 2>/dev/null | grep -q zview' && ms >>"$TMP/quit"
     tm kill-server >/dev/null 2>&1
     # before issue 21: loaded before the viewer starts
     start --print-view

@@ -67,7 +67,6 @@ struct FirstLoad {
     Scene           final;
     Scene           preview;
     int             have_preview;
-    double          first_ms;   /* when the first preview was ready (0: none yet) */
 };
 
 static void release(FirstLoad *f)
@@ -196,8 +195,6 @@ static void preview_once(FirstLoad *f)
         scene_free(&f->preview);    /* the UI did not take the last one: this is newer */
     f->preview = s;
     f->have_preview = 1;
-    if (f->first_ms == 0)
-        f->first_ms = now_ms() - f->t0;
     pthread_mutex_unlock(&f->mu);
 }
 
