@@ -121,11 +121,14 @@ void mesh_prefix_publish(MeshPrefix *p, const Mesh *m, size_t ncorner)
         sh->full = 1;
         return;
     }
-    memcpy(p->pos + 3 * pv, m->pos + 3 * pv, (nv - pv) * 3 * sizeof(float));
+    /* (memcpy may not be given NULL, even for nothing) */
+    if (nv > pv)
+        memcpy(p->pos + 3 * pv, m->pos + 3 * pv, (nv - pv) * 3 * sizeof(float));
     for (uint64_t f = pf; f < nf; f++)
         p->fstart[f] = m->face_start ? m->face_start[f] : (uint32_t)(3 * f);
     p->fstart[nf] = (uint32_t)nc;
-    memcpy(p->corner + pc, m->corner + pc, (nc - pc) * sizeof(uint32_t));
+    if (nc > pc)
+        memcpy(p->corner + pc, m->corner + pc, (nc - pc) * sizeof(uint32_t));
     __atomic_store_n(&sh->nverts, nv, __ATOMIC_RELEASE);
     __atomic_store_n(&sh->ncorner, nc, __ATOMIC_RELEASE);
     __atomic_store_n(&sh->nfaces, nf, __ATOMIC_RELEASE);

@@ -336,7 +336,8 @@ static Reaction install(App *a, Scene *s)
 Reaction app_first_poll(App *a)
 {
     FirstLoad *f = a->first;
-    if (!f)
+    /* sketch mode holds its own scene in a->s: the pictures wait */
+    if (!f || a->sk.on)
         return RE_NONE;
     Scene s;
     int have = 0, done;

@@ -38,6 +38,9 @@ tm send-keys -t zv '?'
 if wait_for 'zview keys'; then ok "? shows the help while loading"; else notok "? shows the help while loading" "$(status 30)"; fi
 tm send-keys -t zv '?'
 wait_gone 'zview keys' >/dev/null
+tm send-keys -t zv O
+if wait_for 'still loading grid\.obj'; then ok "O waits for the load (the scene is a picture of its part)"; else
+    notok "O waits for the load (the scene is a picture of its part)" "$(status 30)"; fi
 tm send-keys -t zv P
 if wait_for 'wrote zview-grid-001'; then ok "P writes the picture while loading"; else notok "P writes the picture while loading" "$(status 30)"; fi
 # the file cut after its $hold-th face, printed at the same size
