@@ -93,6 +93,14 @@ tm send-keys -t zv "stty -a | tr ' ;' '\n\n' | grep -Ex -- '-?(icanon|echo)' | t
 if wait_for '^icanon echo$'; then ok "the terminal is given back (echo, line editing)"; else
     notok "the terminal is given back (echo, line editing)" "$(tail -3 "$T/screen")"; fi
 
+# the same with the load in zview's own process (--no-sandbox): the
+# loading thread is held, and the viewer does not wait for it
+session xterm-256color 100 30
+tm send-keys -t zv "TERM=xterm-256color ZV_TEST_HOLD=$hold:$T/go $Z --no-sandbox $T/grid.obj; echo zv-exit=\$?" Enter
+wait_for "faces $hold drawn" >/dev/null
+tm send-keys -t zv q
+if wait_for 'zv-exit=0'; then ok "--no-sandbox: q while loading quits"; else notok "--no-sandbox: q while loading quits" "$(status 30)"; fi
+
 # ==== a load that fails after the viewer started ====
 cp "$T/grid.obj" "$T/bad.obj"
 echo "f 1 2 $((N * N + 5))" >>"$T/bad.obj"
