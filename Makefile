@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-preview
+.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview
 
 all: $(BIN)
 
@@ -72,6 +72,7 @@ help:
 	@echo '  make bench         the speed table (tools/bench.sh), single-thread rows pinned to a core'
 	@echo '  make bench-formats load speed and peak memory of every format'
 	@echo '  make views         doc/views.md: the first view of 29 models (../shared/models, assimp-testmodels)'
+	@echo '  make bench-memory  resident memory after frame 100 and frame 10,000 of a turning view'
 	@echo '  make bench-load    big OBJ files (31M triangles): first picture against wc -l, bytes per triangle'
 	@echo '  make bench-preview the viewer on a 31M-triangle OBJ: first partial picture, keys while loading'
 	@echo '  make bench-points  a 10M-point scan: load and frames'
@@ -104,7 +105,7 @@ $(TESTBIN): $(LIBOBJS) $(TOBJS) $(CONFIG)
 # The fuzz harnesses (tests/fuzz/) linked with a plain main() instead of
 # libFuzzer: they replay the seed and regression corpora in every build.
 FUZZ_OBJ_SRCS  := tests/fuzz/fuzz_obj.c tests/testlib.c
-FUZZ_DIFF_SRCS := tests/fuzz/fuzz_diff.c tests/fuzz/scenecode.c tests/testlib.c
+FUZZ_DIFF_SRCS := tests/fuzz/fuzz_diff.c tests/fuzz/scenecode.c tests/fuzz/scenebig.c tests/testlib.c
 FUZZ_MESH_SRCS := tests/fuzz/fuzz_mesh.c tests/testlib.c
 FUZZ_CHECK_SRCS := tests/fuzz/fuzz_check.c
 FUZZ_TEX_SRCS  := tests/fuzz/fuzz_tex.c
@@ -204,14 +205,24 @@ nosimd:
 run: $(BIN)
 	./$(BIN)
 
-# tools/subdiv writes the many-triangle model into /tmp at bench time
-bench: $(BIN) $(BUILD)/subdiv
-	SUBDIV=$(BUILD)/subdiv sh tools/bench.sh
+# tools/subdiv writes the many-triangle models into /tmp at bench time;
+# memframes measures memory over 10,000 frames (issue 21's targets)
+bench: $(BIN) $(BUILD)/subdiv $(BUILD)/memframes
+	SUBDIV=$(BUILD)/subdiv MEMFRAMES=$(BUILD)/memframes sh tools/bench.sh
 
 # What --check costs beyond loading, and its peak memory against loading
 # alone (issue 19; doc/benchmarks.md: The check).
 bench-check: $(BIN) $(BUILD)/checkbench $(BUILD)/subdiv
 	ZVIEW=$(abspath $(BIN)) CHECKBENCH=$(BUILD)/checkbench SUBDIV=$(BUILD)/subdiv sh tools/bench-check.sh
+
+# Memory while the view turns (issue 21): resident and malloc'd bytes
+# after frame 100 and after frame 10,000 of the dragon (the bundled
+# models without it), each algorithm (doc/benchmarks.md: Memory over frames).
+bench-memory: $(BUILD)/memframes
+	MEMFRAMES=$(BUILD)/memframes sh tools/bench-memory.sh
+
+$(BUILD)/memframes: tools/memframes.c $(LIBOBJS)
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/checkbench: tools/checkbench.c $(LIBOBJS)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
@@ -332,6 +343,10 @@ $(BUILD)/mkseeds: tests/fuzz/mkseeds.c tests/fuzz/scenecode.h
 # maps (and cost most of the time), so it is left uninstrumented
 FUZZ_COV := -fsanitize=fuzzer-no-link
 $(FUZZ_BUILD)/tests/testlib.o: FUZZ_COV :=
+# span's inner loops (a row's crossings kept sorted) run millions of
+# compares on a large scene's wireframe: traced, each input took a
+# minute. Its edges are still covered, its compares not traced.
+$(FUZZ_BUILD)/src/hsr/span.o: FUZZ_COV := -fsanitize=fuzzer-no-link -fno-sanitize-coverage=trace-cmp
 $(FUZZ_BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) $(FUZZ_COV) -c -o $@ $<

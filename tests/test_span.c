@@ -268,3 +268,37 @@ Test(span, ngons_with_local_tops)
     check_same(&b.sp, 7, "ngons", NULL);
     b_free(&b);
 }
+
+/* Thin triangles running corner to corner in two directions, so that
+ * every pair of opposite ones crosses: each row's order of crossings is
+ * far from the last row's. Keeping it sorted by insertion would cost the
+ * square of the crossings (a hostile file made span take 60x the
+ * z-buffer); past a budget the row is radix-sorted instead, which must
+ * give the same list, so the same picture. */
+Test(span, many_crossing_edges_resort_rows)
+{
+    Builder b;
+    b_init(&b, 200, 120);
+    int n = 3000;
+    for (int k = 0; k < n; k++) {
+        int32_t y = (int32_t)((int64_t)k * 60 * 256 / n);
+        int32_t up[] = { 0, y, 200 * 256, y + 60 * 256, 200 * 256, y + 60 * 256 + 40 };
+        int32_t down[] = { 0, y + 60 * 256, 200 * 256, y, 200 * 256, y + 40 };
+        if (k % 2)
+            b_poly(&b, 3, up, k, 1e-4f, -1e-4f, 1.0f + (float)(k % 7));
+        else
+            b_poly(&b, 3, down, k, -1e-4f, 1e-4f, 1.0f + (float)(k % 5));
+    }
+    check_same(&b.sp, 1, "crossing", NULL);
+    check_same(&b.sp, 4, "crossing", NULL);
+    /* the budget was passed: the radix path drew that picture */
+    FrameBufs fb = { 0 };
+    void *ss = hsr_span.create();
+    cr_assert(ss);
+    render_bands(&hsr_span, ss, &b.sp, &fb, 1);
+    cr_assert_gt(span_resorted_rows(ss), 10, "rows re-sorted: %llu",
+                 (unsigned long long)span_resorted_rows(ss));
+    hsr_span.destroy(ss);
+    fbuf_free(&fb);
+    b_free(&b);
+}

@@ -295,9 +295,7 @@ void tl_set_view(Scene *s, const TlView *v)
     s->cam.pan = v3(v->pan_x, v->pan_y, 0);
 }
 
-/* Render with fresh buffers' contents: ids that no algorithm writes and
- * NaN depths, so that a pixel an algorithm skips cannot match by luck. */
-static int render_poisoned(const HsrAlgo *algo, int threads, const HsrInput *in, FrameBufs *fb)
+int tl_render_poisoned(const HsrAlgo *algo, int threads, const HsrInput *in, FrameBufs *fb)
 {
     HsrRunner r;
     HsrStats st;
@@ -319,13 +317,13 @@ long tl_agree(TlAgree *a, Scene *s, const Viewport *vp, int threads, char *msg, 
 {
     HsrInput in = { .sp = &a->sp, .scene = s, .vp = vp };
     snprintf(msg, msglen, "out of memory");
-    if (tl_project(&a->sp, s, vp, &a->style, &a->prims) || render_poisoned(&hsr_zbuffer, 1, &in, &a->ref))
+    if (tl_project(&a->sp, s, vp, &a->style, &a->prims) || tl_render_poisoned(&hsr_zbuffer, 1, &in, &a->ref))
         return -1;
     msg[0] = '\0';
     for (int k = 0; k < hsr_nalgos; k++) {
         if (hsr_algos[k] == &hsr_zbuffer && threads == 1)
             continue;   /* the reference itself */
-        if (render_poisoned(hsr_algos[k], threads, &in, &a->fb)) {
+        if (tl_render_poisoned(hsr_algos[k], threads, &in, &a->fb)) {
             snprintf(msg, msglen, "out of memory");
             return -1;
         }

@@ -74,6 +74,12 @@ typedef struct {
  * wireframe is built when asked for). */
 int  tl_project(ScreenPolys *sp, Scene *s, const Viewport *vp, const PrimStyle *style, PrimWork **work);
 
+/* Render in with algo on `threads` threads into fb, its buffers first
+ * filled with ids that no algorithm writes and NaN depths, so that a
+ * pixel an algorithm skips cannot match by luck. 0, or -1 when out of
+ * memory. */
+int  tl_render_poisoned(const HsrAlgo *algo, int threads, const HsrInput *in, FrameBufs *fb);
+
 /* Project the current view at vp, render it with the z-buffer on one
  * thread and with every algorithm on `threads` threads (the buffers
  * poisoned before each run, so a pixel left unwritten shows). Returns 0

@@ -141,6 +141,7 @@ typedef struct {
     int       inf_cap;
     /* per-sample decisions taken on intervals of 2+ samples (analysis) */
     uint64_t  fallback;
+    uint64_t  resorted;       /* rows whose next list was radix-sorted (row_pass) */
     uint64_t  covered;
     int       simd;             /* this frame's SimdLevel, resolved (simd_use) */
 } SpanState;
@@ -173,6 +174,11 @@ static void span_destroy(void *st)
 uint64_t span_fallback_samples(const void *st)
 {
     return ((const SpanState *)st)->fallback;
+}
+
+uint64_t span_resorted_rows(const void *st)
+{
+    return ((const SpanState *)st)->resorted;
 }
 
 /* grow_array for this file's int counts (never shrinks). */
@@ -447,26 +453,11 @@ static inline int toggle(SpanState *s, int32_t slot, int j)
 
 /* ==== edge tables ==== */
 
-/* Sort the entering crossings by column: insertion sort when short,
- * else an LSD radix sort in two 8-bit passes (clamped columns are at
- * most SCREEN_MAX = 2^14). */
-static void sort_fresh(SpanState *s)
+/* Sort crossings f[0 .. n) by column, stably, with tmp[n] as scratch:
+ * an LSD radix sort in two 8-bit passes (clamped columns are at most
+ * SCREEN_MAX = 2^14); the result is back in f. */
+static void radix_sort_cross(Cross *f, Cross *t, int n)
 {
-    int n = s->fresh_n;
-    Cross *f = s->fresh;
-    if (n < 48) {
-        for (int i = 1; i < n; i++) {
-            Cross c = f[i];
-            int q = i;
-            while (q > 0 && f[q - 1].key > c.key) {
-                f[q] = f[q - 1];
-                q--;
-            }
-            f[q] = c;
-        }
-        return;
-    }
-    Cross *t = s->fresh_tmp;
     uint32_t cnt[256];
     for (int sh = 0; sh < 16; sh += 8) {
         memset(cnt, 0, sizeof cnt);
@@ -484,7 +475,28 @@ static void sort_fresh(SpanState *s)
         f = t;
         t = x;
     }
-    /* two passes: the result is back in s->fresh */
+    /* two passes: the result is back where it started */
+}
+
+/* Sort the entering crossings by column: insertion sort when short,
+ * else the radix sort. */
+static void sort_fresh(SpanState *s)
+{
+    int n = s->fresh_n;
+    Cross *f = s->fresh;
+    if (n < 48) {
+        for (int i = 1; i < n; i++) {
+            Cross c = f[i];
+            int q = i;
+            while (q > 0 && f[q - 1].key > c.key) {
+                f[q] = f[q - 1];
+                q--;
+            }
+            f[q] = c;
+        }
+        return;
+    }
+    radix_sort_cross(f, s->fresh_tmp, n);
 }
 
 static int fresh_push(SpanState *s, int32_t key, int32_t edge)
@@ -680,6 +692,14 @@ static int row_pass(SpanState *s, int32_t *ids, float *dep, int j, int32_t w, co
     Cross *nxt = s->nxt;
     SpanEdge *edges = s->edges;
     int nb = 0, cur = 0;
+    /* Insertion keeps the next row sorted in near-linear time while the
+     * order changes little; where many edges cross each other (a
+     * wireframe in a small picture) its moves grow with the square of
+     * the row's crossings, so past a budget the rest is appended and the
+     * whole list radix-sorted at the end. Both sorts are stable, so the
+     * list is the same either way. */
+    long moves = 0, budget = 16L * total + 1024;
+    int sorted = 1;
     for (int k = 0; k < total; k++) {
         int x = m[k].key;
         int32_t ei = m[k].edge;
@@ -698,9 +718,13 @@ static int row_pass(SpanState *s, int32_t *ids, float *dep, int j, int32_t w, co
             /* keep sorted: the order changes little from row to row */
             int32_t kx = clamp_col(e->e.xi, w);
             int q = nb++;
-            while (q > 0 && nxt[q - 1].key > kx) {
-                nxt[q] = nxt[q - 1];
-                q--;
+            if (sorted) {
+                while (q > 0 && nxt[q - 1].key > kx) {
+                    nxt[q] = nxt[q - 1];
+                    q--;
+                }
+                moves += nb - 1 - q;
+                sorted = moves <= budget;
             }
             nxt[q].key = kx;
             nxt[q].edge = ei;
@@ -714,6 +738,11 @@ static int row_pass(SpanState *s, int32_t *ids, float *dep, int j, int32_t w, co
     ZV_ASSERT(s->in_n == 0);
     if (cur < w)
         emit(s, ids, dep, cur, w);
+    /* m (which may be s->mrg) is read to the end: mrg is free scratch */
+    if (!sorted) {
+        radix_sort_cross(nxt, s->mrg, nb);
+        s->resorted++;
+    }
     s->nxt = s->act;
     s->act = nxt;
     s->act_n = nb;

@@ -139,7 +139,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         pipeline_free(&p);
     }
     scene_reset(&s);
-    bufs.style = (PrimStyle){ samples, samples, (sel & 32) != 0, 0, samples };
+    bufs.style = (PrimStyle){ .point_size = samples, .line_width = samples, .wire = (sel & 32) != 0, .pixel = samples };
     Viewport vp = { 40, 28, 1.0f, 0 };
     char msg[512];
     TlView v = { 0.4f, -0.3f, 0.1f, 0.4f, -0.3f, 0.1f, 1.2f, 0.05f, -0.05f, 0, 60 };

@@ -120,7 +120,8 @@ static void wobj(Out *o, const Obj *b)
     const uint8_t *f = b->faces;
     for (int k = 0; k < b->nf; k++) {
         int n = *f++;
-        w8(o, n == 3 ? 0 : n == 4 ? 160 : 224 + (unsigned)(n - 5));
+        /* 5 + code % 12 corners: 224 % 12 is 8, hence the turn */
+        w8(o, n == 3 ? 0 : n == 4 ? 160 : 224 + (unsigned)(n - 5 + 4) % 12);
         for (int c = 0; c < n; c++)
             w8(o, *f++);
     }
@@ -197,6 +198,26 @@ static void wpobj(Out *o, const PObj *b)
             wcoord(o, b->move[i]);
         w8(o, (unsigned)lround((log10(b->scale) + 3) / 6 * 255));
     }
+}
+
+/* The part after the points and lines (scenecode.h): the polygons'
+ * order, the hidden-surface SIMD level (0 every level), the shuffle's
+ * seed; then a large mesh (kind, n, seed, its centre, its half extent
+ * 2^(size - 32)) when kind >= 0. Written after the style byte and the
+ * points' and lines' meshes. */
+static void wrun(Out *o, int order, int hsr_simd, int seed, int kind, int n, int bseed, const double c[3], int size)
+{
+    w8(o, (unsigned)order | (unsigned)hsr_simd << 2);
+    w16(o, seed);
+    w8(o, kind >= 0);
+    if (kind < 0)
+        return;
+    w8(o, (unsigned)kind);
+    w8(o, (unsigned)n);
+    w16(o, bseed);
+    for (int i = 0; i < 3; i++)
+        wcoord(o, c[i]);
+    w8(o, (unsigned)size);
 }
 
 static int save(const char *dir, const char *name, const Out *o)
@@ -425,5 +446,49 @@ int main(int argc, char **argv)
     o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &corridor);
     wstyle(&o, 4, 3, 1, 0); w8(&o, 1); wpobj(&o, &past);
     rc |= save(dir, "lines-near-plane-wire", &o);
+
+    /* 17: large meshes (tens of thousands of triangles) under each
+     * --order, with the cube or the star beside them; the hidden
+     * surfaces at every SIMD level unless a level is named */
+    static const double origin[3] = { 0, 0, 0 }, aside[3] = { 0.5, -0.3, 0.2 };
+    /* a 144 x 144 terrain of hills seen from above in perspective, front to back */
+    h = (Head){ 256, 160, SC_PERSP | SC_THREADS2, 0, 60, 20, -50, 0, { 0 }, 2.5, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &cube);
+    wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ORDER_FRONT, 0, 0, 0, 15 + 16 * 8, 5, origin, 32);
+    rc |= save(dir, "big-terrain-front", &o);
+    /* a bumpy sphere of 51,076 triangles, culled, back to front, terminal cells */
+    h = (Head){ 160, 80, SC_PERSP | SC_CULL | SC_THREADS2 | 1 << 5, 0, 50, 30, 20, 0, { 0 }, 1, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &cube);
+    wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ORDER_BACK, 0, 0, 1, 15 + 16, 9, aside, 32);
+    rc |= save(dir, "big-sphere-cull-back", &o);
+    /* 32,768 small crossing triangles shuffled, the hidden surfaces at AVX2 */
+    h = (Head){ 256, 256, SC_THREADS2, 0, 50, 35, 25, 10, { 0 }, 1, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &pierce);
+    wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ORDER_SHUFFLE, 3, 1234, 2, 31 + 32 * 3, 77, origin, 32);
+    rc |= save(dir, "big-soup-shuffle-avx2", &o);
+    /* 16 wavy layers one behind another, orthographic, one thread, the file's order */
+    h = (Head){ 180, 100, 0, 0, 50, 10, 80, 0, { 0 }, 1, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &cube);
+    wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ORDER_FILE, 0, 0, 3, 15 + 16 * 4, 3, aside, 33);
+    rc |= save(dir, "big-layers-file", &o);
+    /* the same layers seen edge on in perspective, shuffled, the wireframe over them */
+    h = (Head){ 120, 120, SC_PERSP, 0, 70, 5, 5, 0, { 0 }, 2, 0, 0.1, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &cube);
+    wstyle(&o, 1, 1, 1, 0); w8(&o, 0); wrun(&o, ORDER_SHUFFLE, 0, 7, 3, 7 + 16 * 8, 4, aside, 33);
+    rc |= save(dir, "big-layers-edge-wire-shuffle", &o);
+    /* a grid of 2 x 2 x 2 spheres (6,000 triangles each), front to back, SSE2 */
+    h = (Head){ 200, 150, SC_PERSP | SC_GRID | SC_THREADS2, 0, 45, 5, 5, 0, { 0 }, 1.5, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &cube);
+    wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ORDER_FRONT, 2, 0, 1, 7, 1, origin, 32);
+    rc |= save(dir, "big-grid-spheres-front-sse2", &o);
+    /* the small generated scene of 12 under each reordering, no large mesh */
+    static const char *const gen_names[3] = { "generated-front", "generated-back", "generated-shuffle" };
+    for (int ord = ORDER_FRONT; ord <= ORDER_SHUFFLE; ord++) {
+        h = (Head){ 180, 120, SC_PERSP | SC_THREADS2, 0, 60, 20, 25, 0, { 0 }, 1.2, 0, 0, 0 };
+        o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 2);
+        wobj(&o, &sphere); wobj(&o, &field); wobj(&o, &cloud);
+        wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ord, 0, 99, -1, 0, 0, origin, 0);
+        rc |= save(dir, gen_names[ord - ORDER_FRONT], &o);
+    }
     return rc ? 1 : 0;
 }

@@ -266,6 +266,30 @@ int sc_decode(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *thr
 
 int sc_decode_style(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *threads, PrimStyle *style)
 {
+    ScRun run;
+    return sc_decode_run(data, size, s, vp, threads, style, &run);
+}
+
+/* The large mesh (scenecode.h) into m, of at most SC_MAX_BIG_FACES /
+ * part faces; 1 when the input asks for none. */
+static int decode_big(Rd *r, Mesh *m, int part)
+{
+    if (rd_u8(r) == 0)
+        return 1;
+    unsigned kind = rd_u8(r), n = rd_u8(r), seed = rd_u16(r);
+    double c[3];
+    for (int i = 0; i < 3; i++)
+        c[i] = rd_coord(r, 0);
+    double size = ldexp(1, (int)(rd_u8(r) % 64) - 32);
+    if (tl_mesh_init(m, "big") || tl_mesh_object(m, "big") ||
+        sc_big_mesh(m, kind, n, seed, c, size, SC_MAX_BIG_FACES / (uint32_t)part))
+        return -1;
+    return 0;
+}
+
+int sc_decode_run(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *threads, PrimStyle *style,
+                  ScRun *run)
+{
     Rd r = { data, data + size };
     memset(s, 0, sizeof *s);
     vp->w = 1 + (int)rd_u8(&r);
@@ -296,8 +320,8 @@ int sc_decode_style(const uint8_t *data, size_t size, Scene *s, Viewport *vp, in
     v.pan_y = (float)rd_i16(&r) / 32768.0f * pan;
 
     int nmeshes = 1 + (int)(rd_u8(&r) % SC_MAX_MESHES);
-    Mesh *meshes = calloc((size_t)nmeshes + SC_MAX_PRIM_MESHES, sizeof *meshes);
-    Place place[SC_MAX_OBJS + SC_MAX_PRIM_MESHES];
+    Mesh *meshes = calloc((size_t)nmeshes + SC_MAX_PRIM_MESHES + 1, sizeof *meshes);
+    Place place[SC_MAX_OBJS + SC_MAX_PRIM_MESHES + 1];
     int nplace = 0;
     uint32_t faces_left = SC_MAX_FACES;
     if (!meshes)
@@ -367,6 +391,20 @@ int sc_decode_style(const uint8_t *data, size_t size, Scene *s, Viewport *vp, in
             memset(m, 0, sizeof *m);
             pl->placed = 0;
         }
+    }
+    /* how the frame is run, then the large mesh */
+    unsigned rb = rd_u8(&r);
+    run->order = (int)(rb & 3);
+    run->hsr_simd = (int)(rb >> 2 & 3);
+    run->seed = rd_u16(&r);
+    Mesh *big = &meshes[nmeshes++];
+    int rc = decode_big(&r, big, (flags & SC_GRID ? 10 : 1) * (style->wire ? 10 : 1));
+    if (rc < 0)
+        goto fail;
+    place[nplace++].placed = 0;
+    if (rc > 0 || tl_mesh_finish(big)) {
+        mesh_free(big);
+        memset(big, 0, sizeof *big);
     }
     /* drop the empty meshes, keep the order (and the placements' order:
      * they go to the objects that remain) */

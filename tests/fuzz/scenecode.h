@@ -73,7 +73,31 @@
  *     else: u8 points             v % 64, each u8 vertex index (mod count)
  *     u8  lines                   v % 8, each u8 corners (2 + v % 6) and
  *                                 u8 vertex indices (mod count)
- *     PF_PLACED: placement as for objects */
+ *     PF_PLACED: placement as for objects
+ *
+ * Then how the frame is run, and a large mesh (an input that ends before
+ * this part renders in the file's order, the hidden surfaces at every
+ * SIMD level, with no large mesh, as it did before the part existed):
+ *   u8  run                       bits 0-1: the polygons' order (PolyOrder,
+ *                                 --order), bits 2-3: the hidden-surface
+ *                                 SIMD level: 0 every level, else the
+ *                                 SimdLevel v (at most the CPU's best)
+ *   u16 seed                      ORDER_SHUFFLE's seed
+ *   u8  big                       0: none; else a mesh of its own, after
+ *                                 the others, one object, not placed:
+ *     u8 kind, u8 n, u16 seed     sc_big_mesh: kind % 4 = 0 a terrain, 1 a
+ *                                 sphere, 2 a soup of small triangles (up
+ *                                 to 8,192), 3
+ *                                 layers one behind another, up to
+ *                                 SC_MAX_BIG_FACES triangles (a tenth of
+ *                                 that with SC_GRID, a tenth with the
+ *                                 wireframe, a hundredth with both: span
+ *                                 is quadratic in the crossings of a row,
+ *                                 and a 10,000-triangle sphere's wireframe
+ *                                 at 64x59 took a minute under the
+ *                                 fuzzer); n its size
+ *     coord x, y, z               its centre, as for objects (not raw)
+ *     u8  size                    its half extent, 2^(v % 64 - 32) */
 
 #include <stddef.h>
 #include <stdint.h>
@@ -92,6 +116,7 @@ enum {
 #define SC_MAX_OBJS      12
 #define SC_MAX_FACES     2048
 #define SC_MAX_PRIM_MESHES 3
+#define SC_MAX_BIG_FACES 60000     /* under the octree's background build (65,536) */
 enum {
     PF_PLACED = 1, PF_COPY = 2, PF_WIDE = 4, PF_RAW = 8, PF_CLOUD = 16
 };
@@ -106,5 +131,23 @@ int sc_decode(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *thr
 /* The same, with the points' and lines' style. */
 int sc_decode_style(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *threads,
                     PrimStyle *style);
+
+/* How the frame is run (the part after the points and lines). */
+typedef struct {
+    int      order;         /* a PolyOrder */
+    uint32_t seed;          /* for ORDER_SHUFFLE */
+    int      hsr_simd;      /* SIMD_AUTO: every level; else that SimdLevel */
+} ScRun;
+
+/* The same, with how the frame is run. */
+int sc_decode_run(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *threads, PrimStyle *style,
+                  ScRun *run);
+
+/* scenebig.c: a large mesh (see above) into m, an object begun: kind
+ * and n as the input gives them, seeded, centred at centre, of half
+ * extent size, at most max_faces triangles. 0, or -1 when out of
+ * memory. */
+int sc_big_mesh(Mesh *m, unsigned kind, unsigned n, unsigned seed, const double centre[3], double size,
+                uint32_t max_faces);
 
 #endif
