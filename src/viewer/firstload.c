@@ -14,8 +14,9 @@
  * it (building takes at most a quarter of a core from the parse), and
  * only when the picture can be ready before the whole model (after
  * that the loader stops copying for pictures). The vertices are shown
- * as points up to 2M of them, then the faces as they come. The camera is fitted to each new scene until the user turns or
- * moves it; from then on it stays.
+ * as points up to 2M of them, then the faces as they come. The camera
+ * is fitted to each new scene until the user turns or moves it; from
+ * then on it stays.
  *
  * The job is shared by three threads; whichever lets go of it last
  * frees it, so that q mid-load neither waits for the loader nor for a
@@ -23,7 +24,6 @@
 
 #define _DEFAULT_SOURCE
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -81,8 +81,7 @@ static int app_init(App *a, const Options *o, Scene *s, int loading)
     char err[160];
     a->first_cam = s->cam;
     if (loading && !(a->first = firstload_start(o, err, sizeof err))) {
-        fprintf(stderr, "zview: %s\n", err);
-        app_live_free(a);
+        app_live_free(a);       /* (out of memory, or of threads: the caller says so) */
         return -1;
     }
     if (o->watch && !(a->watch = watch_start(err, sizeof err)))
@@ -534,7 +533,8 @@ static int run(App *a, int fps)
                 timeout = t;
         }
         /* work in the background: wake up to show how it goes */
-        int busy = a->job != NULL || a->first != NULL || a->tex != NULL || a->p.st.building || a->chk != NULL || a->watch != NULL;
+        int busy = a->job != NULL || a->first != NULL || a->tex != NULL || a->p.st.building || a->chk != NULL ||
+                   a->watch != NULL;
         if (busy) {
             double now = now_ms();
             int t = tick > now ? (int)(tick - now + 0.999) : 0;
