@@ -201,7 +201,7 @@ static void preview_once(FirstLoad *f)
 static void *previewer_main(void *arg)
 {
     FirstLoad *f = arg;
-    uint64_t built = 0, seen = 0;   /* vertices while there are no faces, then faces */
+    uint64_t built = 0, seen = 0;   /* vertices while there are no faces, then vertices + faces */
     double took_per = 0;            /* the last build's milliseconds per vertex and face */
     int faces = 0;
     double next = now_ms();
@@ -210,7 +210,11 @@ static void *previewer_main(void *arg)
         mesh_prefix_counts(f->prefix, &nv, &nf);
         if (nf && !faces)
             faces = 1, built = seen = 0;    /* the first faces: points no more */
-        uint64_t n = faces ? nf : nv;
+        /* a picture costs for its vertices and its faces alike: it is
+         * the sum that doubles (a file's vertices come first, so that
+         * faces doubling from the first few would mean a dozen pictures
+         * of every vertex) */
+        uint64_t n = faces ? nv + nf : nv;
         if (!worth(n, built, seen) || (!faces && built && n > PREVIEW_POINTS_MAX)) {
             seen = n;
             next = now_ms() + PREVIEW_IDLE_MS;
