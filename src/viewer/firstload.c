@@ -44,7 +44,7 @@
 /* Points are not refined past this many: a terminal's picture of more
  * looks the same, and building them takes time from the parse. */
 #define PREVIEW_POINTS_MAX 2000000
-#define PREVIEW_SLACK 1         /* a picture is built when the load's rest takes this many times as long */
+#define PREVIEW_SLACK 2         /* a picture comes within the first 1/PREVIEW_SLACK of the wait */
 
 struct FirstLoad {
     pthread_mutex_t mu;
@@ -163,18 +163,21 @@ static int worth(uint64_t n, uint64_t built, uint64_t seen)
 }
 
 /* Would a picture of n vertices and faces, at took_per ms each (the
- * last build's pace), be ready well before the whole model? The load's rest
- * is judged from its pace so far. A picture that would not only slows
- * the whole down: the two builds would share the cores. */
+ * last build's pace), come well before the whole model: within the
+ * first 1/PREVIEW_SLACK of the wait for it? The wait is the parse's
+ * rest at its pace so far, and the whole model's build, its size
+ * judged from the bytes (at the same pace: a small build's fixed costs
+ * make both estimates high alike). A picture that would not only slows
+ * the whole down: the builds share the cores. */
 static int in_time(FirstLoad *f, double took_per, uint64_t n)
 {
     uint64_t done = __atomic_load_n(&f->prog.done, __ATOMIC_RELAXED);
     uint64_t total = __atomic_load_n(&f->prog.total, __ATOMIC_RELAXED);
     if (took_per <= 0 || done == 0 || total <= done)
         return total == 0 || done < total;
-    double spent = now_ms() - f->t0;
-    double rest = spent * (double)(total - done) / (double)done;
-    return took_per * (double)n * PREVIEW_SLACK < rest;
+    double spent = now_ms() - f->t0, grow = (double)total / (double)done;
+    double wait = spent * (grow - 1) + took_per * (double)n * grow;
+    return took_per * (double)n * PREVIEW_SLACK < wait;
 }
 
 static void preview_once(FirstLoad *f)
