@@ -12,8 +12,8 @@
  * Previews are rebuilt when the prefix has doubled, or has stopped
  * growing, never sooner than three times the last build's time after
  * it (building takes at most a quarter of a core from the parse), and
- * only when the picture can be ready before the whole model (after
- * that the loader stops copying for pictures). The vertices are shown
+ * only when the picture comes within the first half of the wait for
+ * the whole model (after that the loader stops copying for pictures). The vertices are shown
  * as points up to 2M of them, then the faces as they come. The camera
  * is fitted to each new scene until the user turns or moves it; from
  * then on it stays.
