@@ -12,7 +12,7 @@
  * Previews are rebuilt when the prefix has doubled, or has stopped
  * growing, never sooner than three times the last build's time after
  * it (building takes at most a quarter of a core from the parse), and
- * only when the picture comes within the first half of the wait for
+ * only when the picture comes within the first third of the wait for
  * the whole model (after that the loader stops copying for pictures). The vertices are shown
  * as points up to 2M of them, then the faces as they come. The camera
  * is fitted to each new scene until the user turns or moves it; from
@@ -44,7 +44,7 @@
 /* Points are not refined past this many: a terminal's picture of more
  * looks the same, and building them takes time from the parse. */
 #define PREVIEW_POINTS_MAX 2000000
-#define PREVIEW_SLACK 2         /* a picture comes within the first 1/PREVIEW_SLACK of the wait */
+#define PREVIEW_SLACK 3         /* a picture comes within the first 1/PREVIEW_SLACK of the wait */
 
 struct FirstLoad {
     pthread_mutex_t mu;
