@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory
+.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview
 
 all: $(BIN)
 
@@ -74,6 +74,7 @@ help:
 	@echo '  make views         doc/views.md: the first view of 29 models (../shared/models, assimp-testmodels)'
 	@echo '  make bench-memory  resident memory after frame 100 and frame 10,000 of a turning view'
 	@echo '  make bench-load    big OBJ files (31M triangles): first picture against wc -l, bytes per triangle'
+	@echo '  make bench-preview the viewer on a 31M-triangle OBJ: first partial picture, keys while loading'
 	@echo '  make bench-points  a 10M-point scan: load and frames'
 	@echo '  make bench-order   hzb and hzb-octree under each --order'
 	@echo '  make bench-textures textured frames against untextured; the first picture of a 16k image'
@@ -232,6 +233,10 @@ $(BUILD)/checkbench: tools/checkbench.c $(LIBOBJS)
 # the rows of another build, in the same run.
 bench-load: $(BIN) $(BUILD)/subdiv
 	SUBDIV=$(BUILD)/subdiv sh tools/bench-load.sh
+
+# the picture while a big file loads, and keys meanwhile, in tmux (issue 21)
+bench-preview: $(BIN) $(BUILD)/subdiv
+	ZVIEW=$(abspath $(BIN)) SUBDIV=$(BUILD)/subdiv sh tools/bench-preview.sh
 
 $(BUILD)/subdiv: tools/subdiv.c
 	@mkdir -p $(BUILD)

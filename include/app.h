@@ -195,6 +195,13 @@ int  app_load_scene(const Options *o, Scene *s, char *err, size_t errlen);
 SandboxOpts app_sandbox_opts(const Options *o);
 void app_sandbox_warn(const Options *o);
 int  app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size_t errlen);
+/* The second half of app_load_scene_ex: nfiles meshes (malloc'd array,
+ * --flip and --points applied; taken over, freed on failure) into the
+ * scene, placed and viewed as the options say. The viewer builds its
+ * pictures while loading with it, so that they are what --print makes
+ * of the same meshes. */
+int  app_scene_from_meshes(const Options *o, Mesh *meshes, int nfiles, Scene *s, FirstView *fv, char *err,
+                           size_t errlen);
 /* Refuse (-1, the reason in err) a scene that, with its --grid copies,
  * would have more than --max-polys polygons, or, without --max-polys,
  * whose copies and one frame would need more memory than is available;

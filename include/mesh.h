@@ -224,6 +224,9 @@ typedef struct {
      * own) is for tests, which make pieces small. */
     int           threads;
     uint64_t      piece_bytes;
+    /* NULL, or where the loader publishes what it has parsed so far, for
+     * a picture while it loads (meshprefix.h; OBJ only) */
+    struct MeshPrefix *prefix;
 } MeshLoadOpts;
 
 int  mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, size_t errlen);

@@ -186,6 +186,12 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
         free(meshes);
         return -1;
     }
+    return app_scene_from_meshes(o, meshes, nfiles, s, fv, err, errlen);
+}
+
+int app_scene_from_meshes(const Options *o, Mesh *meshes, int nfiles, Scene *s, FirstView *fv, char *err,
+                          size_t errlen)
+{
     if (scene_build(s, meshes, nfiles, err, errlen)) {
         for (int k = 0; k < nfiles; k++)
             mesh_free(&meshes[k]);

@@ -113,6 +113,18 @@ int main(int argc, char **argv)
         o.tex_skip = o.no_textures;
     else if (!o.info)
         o.tex_defer = TEX_DEFER_SIDE;
+    if (!oneshot && !o.info && app_viewer_loads_first(&o)) {
+        /* a big file: the viewer starts at once and shows what is
+         * parsed so far (firstload.c); it starts on an empty scene */
+        if (scene_build(&scene, NULL, 0, err, sizeof err)) {
+            fprintf(stderr, "zview: %s\n", err);
+            return 1;
+        }
+        light_set(&scene.light, o.light[0], o.light[1], o.ambient);
+        rc = app_viewer_loading(&o, &scene);
+        scene_free(&scene);
+        return rc ? rc : finish_stdout();
+    }
     FirstView fv;
     if (app_load_scene_ex(&o, &scene, &fv, err, sizeof err)) {
         fprintf(stderr, "zview: %s\n", err);

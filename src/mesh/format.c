@@ -398,7 +398,8 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
                                    .max_polys = opt ? opt->max_polys : 0, .max_bytes = opt ? opt->max_bytes : 0,
                                    .tex_defer_side = opt ? opt->tex_defer_side : 0,
                                    .no_textures = opt && opt->no_textures, .model = path,
-                                   .threads = opt ? opt->threads : 0, .piece_bytes = opt ? opt->piece_bytes : 0 },
+                                   .threads = opt ? opt->threads : 0, .piece_bytes = opt ? opt->piece_bytes : 0,
+                                   .prefix = opt ? opt->prefix : NULL },
                   .path = path };
     char ext[16];
     extension(path, ext, sizeof ext);
@@ -533,7 +534,8 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
                                    .tex_defer_side = opt ? opt->tex_defer_side : 0,
                                    .no_textures = opt && opt->no_textures,
                                    .model = is_stdin ? NULL : path,
-                                   .threads = opt ? opt->threads : 0, .piece_bytes = opt ? opt->piece_bytes : 0 },
+                                   .threads = opt ? opt->threads : 0, .piece_bytes = opt ? opt->piece_bytes : 0,
+                                   .prefix = opt ? opt->prefix : NULL },
                   .path = path };
     char ext[16];
     extension(is_stdin ? NULL : path, ext, sizeof ext);

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "grow.h"
+#include "meshprefix.h"
 #include "obj.h"
 #include "sysmem.h"
 
@@ -456,8 +457,13 @@ int obj_parser_init(Parser *ps, MeshCtx *c, int piece)
 int obj_lines(Parser *ps, LineReader *lr, const char *file_end)
 {
     const char *ls, *le;
+    MeshPrefix *pre = ps->piece ? NULL : ps->e->prefix;
     while (lr_next(lr, &ls, &le)) {
         ps->line = lr->line;
+        /* what is parsed so far, for a picture while loading: between
+         * statements, every 64k lines (a few milliseconds of parsing) */
+        if (pre && (lr->line & 0xffff) == 0)
+            mesh_prefix_publish(pre, ps->m, ps->b.ncorner);
         if (le > ls && le[-1] == '\\') {
             if (continued_statement(ps, lr, ls, le))
                 return -1;

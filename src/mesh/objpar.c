@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "grow.h"
+#include "meshprefix.h"
 #include "obj.h"
 #include "pool.h"
 
@@ -429,6 +430,9 @@ static void merge_ready(Run *r)
         if (f && f->progress)
             __atomic_store_n(f->progress, (uint64_t)p->to, __ATOMIC_RELAXED);
         r->merged++;
+        /* the file so far, in order, for a picture while loading */
+        if (r->c->err.prefix)
+            mesh_prefix_publish(r->c->err.prefix, r->ps->m, r->ps->b.ncorner);
     }
     pthread_mutex_unlock(&r->mu);
 }

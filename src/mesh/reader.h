@@ -57,6 +57,8 @@ typedef struct {
      * and the size of its pieces (0: its own; tests make them small). */
     int         threads;
     uint64_t    piece_bytes;
+    /* NULL, or where the prefix parsed so far is published (meshprefix.h) */
+    struct MeshPrefix *prefix;
 } MeshErr;
 
 /* Each writes the message and returns -1, so `return me_fail(...)`. */

@@ -60,6 +60,8 @@ void app_live_free(App *a)
         loadjob_abandon(a->job);
         a->job = NULL;
     }
+    firstload_abandon(a->first);
+    a->first = NULL;
     texjob_abandon(a->tex);
     a->tex = NULL;
     checkjob_abandon(a->chk);
@@ -182,12 +184,25 @@ static int relayout(App *a, char *err, size_t errlen)
 
 /* ==== Open ==== */
 
+/* The command line's file is still loading (firstload.c): the scene is
+ * a picture of its part, replaced as the load goes on, so it is not
+ * edited (1, with the note). */
+static int first_loading(App *a)
+{
+    if (!a->first)
+        return 0;
+    app_note(a, "still loading %s (q quits)", a->name);
+    return 1;
+}
+
 Reaction app_open_prompt(App *a)
 {
     if (a->job) {
         app_note(a, "still loading %s (Esc cancels)", base_name(loadjob_path(a->job)));
         return RE_DRAW;
     }
+    if (first_loading(a))
+        return RE_DRAW;
     a->prompting = 1;
     prompt_start(&a->prompt, "open: ");
     return RE_DRAW;
@@ -392,6 +407,8 @@ Reaction app_load_poll(App *a)
 
 Reaction app_remove_selected(App *a)
 {
+    if (first_loading(a))
+        return RE_DRAW;
     Scene *s = a->s;
     int nb = (int)s->nbase_objs;
     if (nb == 0) {
@@ -429,7 +446,7 @@ Reaction app_remove_selected(App *a)
 
 Reaction app_clear_scene(App *a)
 {
-    if (changing(a))
+    if (first_loading(a) || changing(a))
         return RE_DRAW;
     scene_clear(a->s);
     while (a->live.nfiles > 0)

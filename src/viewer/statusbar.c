@@ -123,12 +123,14 @@ void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, in
               a->cull && a->spin ? " " : "", spin);
     bar_field(&f[7], 2, "%dx%dpx", a->p.img.w, a->p.img.h);
     /* a note answers a key; without one, why the frame is empty */
-    bar_field(&f[NOTE], BAR_NOTE, "%s", a->note[0] ? a->note : a->empty_why ? a->empty_why : "");
+    bar_field(&f[NOTE], BAR_NOTE, "%s", a->note[0] ? a->note : a->empty_why && !a->first ? a->empty_why : "");
     bar_field(&f[HELP], 0, "? help");
     snprintf(f[HELP].brief, sizeof f[HELP].brief, "?");
     /* work going on in the background, so that nothing looks frozen */
     char busy[96] = "";
-    if (a->job)
+    if (a->first)
+        firstload_status(a->first, busy, sizeof busy);
+    else if (a->job)
         loadjob_status(a->job, busy, sizeof busy);
     else if (a->tex)
         texjob_status(a->tex, busy, sizeof busy);

@@ -35,7 +35,7 @@ static int locale_utf8(void)
     return cs && (!strcmp(cs, "UTF-8") || !strcmp(cs, "utf-8") || !strcmp(cs, "UTF8"));
 }
 
-static int app_init(App *a, const Options *o, Scene *s)
+static int app_init(App *a, const Options *o, Scene *s, int loading)
 {
     memset(a, 0, sizeof *a);
     sketch_init(&a->sk.k);
@@ -79,6 +79,11 @@ static int app_init(App *a, const Options *o, Scene *s)
     a->pic_rows = o->h;
     a->reload = -1;
     char err[160];
+    a->first_cam = s->cam;
+    if (loading && !(a->first = firstload_start(o, err, sizeof err))) {
+        app_live_free(a);       /* (out of memory, or of threads: the caller says so) */
+        return -1;
+    }
     if (o->watch && !(a->watch = watch_start(err, sizeof err)))
         app_note(a, "%s", err);
     return 0;
@@ -528,7 +533,8 @@ static int run(App *a, int fps)
                 timeout = t;
         }
         /* work in the background: wake up to show how it goes */
-        int busy = a->job != NULL || a->tex != NULL || a->p.st.building || a->chk != NULL || a->watch != NULL;
+        int busy = a->job != NULL || a->first != NULL || a->tex != NULL || a->p.st.building || a->chk != NULL ||
+                   a->watch != NULL;
         if (busy) {
             double now = now_ms();
             int t = tick > now ? (int)(tick - now + 0.999) : 0;
@@ -550,10 +556,13 @@ static int run(App *a, int fps)
         }
         if (got < 0)
             return RUN_INPUT_ENDED;     /* no key will come: waiting would spin */
-        todo |= app_check_poll(a);      /* a key asked for the check, or it is done */
+        if (!a->first)
+            todo |= app_check_poll(a);  /* a key asked for the check, or it is done */
         if (busy && now_ms() >= tick) {
             /* a finished load joins the scene here, on this thread */
-            todo |= app_load_poll(a) | app_watch_poll(a);
+            todo |= app_load_poll(a) | app_watch_poll(a) | app_first_poll(a);
+            if (todo & RE_QUIT)
+                return RUN_QUIT;    /* the first file failed to load */
             if (a->chk)
                 todo |= RE_DRAW;    /* the check's time in the status line */
             /* a big texture decoded: in place between frames, then drawn */
@@ -596,8 +605,10 @@ static FILE *open_keys(FILE **opened, const char **name)
 /* No viewer after all: one frame as --print gives, or, when the view's
  * command line was wanted on standard output, an error rather than a
  * frame in its place. */
-static int no_viewer(const Options *o, Scene *s)
+static int no_viewer(const Options *o, Scene *s, int loading)
 {
+    if (loading && firstload_now(o, s))
+        return 1;
     if (o->sketch) {
         fprintf(stderr, "zview: --sketch: no terminal to draw on\n");
         return 1;
@@ -609,7 +620,19 @@ static int no_viewer(const Options *o, Scene *s)
     return app_oneshot(o, s);
 }
 
+static int viewer_main(const Options *o, Scene *s, int loading);
+
 int app_viewer(const Options *o, Scene *s)
+{
+    return viewer_main(o, s, 0);
+}
+
+int app_viewer_loading(const Options *o, Scene *s)
+{
+    return viewer_main(o, s, 1);
+}
+
+static int viewer_main(const Options *o, Scene *s, int loading)
 {
     const char *t = getenv("TERM");
     if (!t || !*t || !strcmp(t, "dumb")) {
@@ -618,7 +641,7 @@ int app_viewer(const Options *o, Scene *s)
         fprintf(stderr, "zview: TERM=%s cannot show the viewer (it needs a terminal that moves its "
                         "cursor: set TERM, e.g. TERM=xterm-256color)%s\n",
                 t ? t : "", o->print_view || o->sketch ? "" : "; one frame instead, as --print gives");
-        return no_viewer(o, s);
+        return no_viewer(o, s, loading);
     }
     FILE *tty;
     const char *keys_name;
@@ -626,7 +649,7 @@ int app_viewer(const Options *o, Scene *s)
     if (!keys) {
         fprintf(stderr, "zview: no terminal to read keys from (standard input is not one, "
                         "/dev/tty: %s)%s\n", strerror(errno), o->print_view ? "" : ": one frame instead");
-        return no_viewer(o, s);
+        return no_viewer(o, s, loading);
     }
     /* the screen: standard output, or the terminal when --print-view
      * keeps standard output for the command line */
@@ -634,10 +657,10 @@ int app_viewer(const Options *o, Scene *s)
     if (!isatty(STDOUT_FILENO) && !(screen = screen_tty = fopen("/dev/tty", "we"))) {
         if (tty)
             fclose(tty);
-        return no_viewer(o, s);
+        return no_viewer(o, s, loading);
     }
     App a;
-    if (app_init(&a, o, s)) {
+    if (app_init(&a, o, s, loading)) {
         fprintf(stderr, "zview: out of memory\n");
         if (tty)
             fclose(tty);
@@ -671,7 +694,7 @@ int app_viewer(const Options *o, Scene *s)
             fclose(tty);
         if (screen_tty)
             fclose(screen_tty);
-        return no_viewer(o, s);
+        return no_viewer(o, s, loading);
     }
     a.pixels = a.pixels && term_pixels() != PIX_CELLS;     /* none there: cells */
     /* the picture is kept visible on the terminal's background */
@@ -696,6 +719,10 @@ int app_viewer(const Options *o, Scene *s)
         fclose(tty);
     if (screen_tty)
         fclose(screen_tty);
+    if (a.load_err[0]) {
+        fprintf(stderr, "zview: %s\n", a.load_err);
+        return 1;
+    }
     if (rc == RUN_NO_MEMORY) {
         fprintf(stderr, "zview: out of memory\n");
         return 1;
@@ -770,7 +797,7 @@ int app_bench_tty(const Options *o)
     int rc = 1;
     App a;
     FILE *out = tmpfile(), *in = fopen("/dev/null", "r");
-    if (!out || !in || app_init(&a, &opt, &s)) {
+    if (!out || !in || app_init(&a, &opt, &s, 0)) {
         fprintf(stderr, "zview: cannot set up the benchmark\n");
         goto done;
     }

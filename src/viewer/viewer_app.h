@@ -59,6 +59,19 @@ const char *loadjob_path(const LoadJob *j);
  * the format reports no progress; "building dragon.obj" after parsing. */
 void     loadjob_status(LoadJob *j, char *buf, size_t len);
 
+/* firstload.c: the command line's big file loaded on threads while the
+ * viewer runs, with pictures of what is parsed so far. */
+typedef struct FirstLoad FirstLoad;
+FirstLoad *firstload_start(const Options *o, char *err, size_t errlen);
+/* q mid-load: the threads end alone (the sandbox's child is killed). */
+void     firstload_abandon(FirstLoad *f);
+/* "loading dragon.obj 42%" */
+void     firstload_status(FirstLoad *f, char *buf, size_t len);
+/* No viewer after all (no terminal description): the file loaded into
+ * s (its empty scene freed) before the one-shot output. 0, or -1 with
+ * the loader's message on stderr. */
+int      firstload_now(const Options *o, Scene *s);
+
 /* texjob.c: the pending (big) textures of a scene decoded on a thread
  * of their own. NULL when there are none (or no thread). */
 typedef struct TexJob TexJob;
@@ -118,6 +131,9 @@ typedef struct App {
     int         prompting;  /* the open prompt is in the status line */
     Prompt      prompt;
     LoadJob    *job;        /* a file loading in the background, or NULL */
+    FirstLoad  *first;      /* the command line's file loading (firstload.c), or NULL */
+    Camera      first_cam;  /* the camera of the last scene it gave: the user has not moved it */
+    char        load_err[512];  /* it failed: the viewer ends with this message */
     TexJob     *tex;        /* big textures decoding in the background, or NULL */
     int         info;       /* the info panel is shown */
     int         confirm;    /* E asked "empty the scene? y/n": the next key answers */
@@ -236,6 +252,7 @@ const char *key_name(int key, char *buf, size_t len);
 Reaction app_open_prompt(App *a);           /* O: ask for a file */
 Reaction app_prompt_key(App *a, int key);   /* a key while the prompt is up */
 Reaction app_load_poll(App *a);             /* a background load finished? join its part */
+Reaction app_first_poll(App *a);            /* a new picture of the first file, or the whole */
 Reaction app_cancel_load(App *a);           /* Esc while loading: drop the load, note it */
 Reaction app_remove_selected(App *a);       /* X, Delete */
 Reaction app_clear_scene(App *a);           /* E */
