@@ -22,6 +22,10 @@
 
 typedef struct MeshPrefix MeshPrefix;
 
+/* The most faces published (a hold's aside): a picture of more shows no
+ * more in a terminal, and the copy costs 16 bytes a face. */
+#define MESH_PREFIX_FACES_MAX 4000000u
+
 /* Room for the prefix of a file of `bytes` bytes (address space for the
  * densest OBJ such a file can be; pages are only made as they are
  * written). NULL when it cannot be had (no picture while loading). */
@@ -40,6 +44,10 @@ void        mesh_prefix_publish(MeshPrefix *p, const Mesh *m, size_t ncorner);
 /* The reader will take no more: the writer stops copying (but for a
  * hold's faces, which it still publishes). */
 void        mesh_prefix_stop(MeshPrefix *p);
+
+/* For tests: where the published arrays start (the vertices' floats
+ * first) and how far the mapping goes past it. */
+const void *mesh_prefix_data(const MeshPrefix *p, size_t *len);
 
 /* Vertices and faces published so far (atomic reads). */
 void        mesh_prefix_counts(const MeshPrefix *p, uint64_t *verts, uint64_t *faces);

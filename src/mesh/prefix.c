@@ -38,6 +38,7 @@ struct MeshPrefix {
     float    *pos;
     uint32_t *fstart;   /* fcap + 1 */
     uint32_t *corner;
+    int       released;         /* the reader's side: stopped, its pages given back */
 };
 
 static uint64_t cap32(uint64_t n)
@@ -84,6 +85,24 @@ void mesh_prefix_hold(MeshPrefix *p, uint64_t faces, const char *path)
 void mesh_prefix_stop(MeshPrefix *p)
 {
     __atomic_store_n(&p->sh->stop, 1, __ATOMIC_RELAXED);
+    if (p->sh->hold_faces || p->released)
+        return;         /* a hold's faces are still to be read */
+    /* The reader takes no more: the copy is given back now, not when the
+     * load ends (on the 31M model it held up to 700 MB just when the
+     * whole mesh arrives, the viewer's most resident moment). MADV_REMOVE
+     * frees shared pages for the writer too; a copy it is still making
+     * lands in fresh pages no one reads, and it publishes no more. */
+    uintptr_t page = 4096, a = ((uintptr_t)p->pos + page - 1) & ~(page - 1);
+    uintptr_t e = ((uintptr_t)p->sh + p->maplen) & ~(page - 1);
+    if (e > a)
+        madvise((void *)a, e - a, MADV_REMOVE);
+    p->released = 1;
+}
+
+const void *mesh_prefix_data(const MeshPrefix *p, size_t *len)
+{
+    *len = p->maplen - (size_t)((const char *)p->pos - (const char *)p->sh);
+    return p->pos;
 }
 
 void mesh_prefix_counts(const MeshPrefix *p, uint64_t *verts, uint64_t *faces)
@@ -117,6 +136,15 @@ void mesh_prefix_publish(MeshPrefix *p, const Mesh *m, size_t ncorner)
         nf = sh->hold_faces;
         nc = nf < m->nfaces ? (m->face_start ? m->face_start[nf] : 3 * nf) : ncorner;
     }
+    /* a picture while loading shows at most MESH_PREFIX_FACES_MAX faces:
+     * past them the copy (16 bytes a face, shared, so counted in the
+     * loader's memory too) would only add to the load's most resident
+     * moment, for no more than a terminal shows */
+    int capped = !held && nf > MESH_PREFIX_FACES_MAX;
+    if (capped) {
+        nf = MESH_PREFIX_FACES_MAX;
+        nc = m->face_start ? m->face_start[nf] : 3 * nf;
+    }
     if (nv > p->vcap || nf > p->fcap || nc > p->ccap || nv < pv || nf < pf || nc < pc) {
         sh->full = 1;
         return;
@@ -132,6 +160,8 @@ void mesh_prefix_publish(MeshPrefix *p, const Mesh *m, size_t ncorner)
     __atomic_store_n(&sh->nverts, nv, __ATOMIC_RELEASE);
     __atomic_store_n(&sh->ncorner, nc, __ATOMIC_RELEASE);
     __atomic_store_n(&sh->nfaces, nf, __ATOMIC_RELEASE);
+    if (capped)
+        sh->full = 1;           /* the rest comes whole */
     if (held)
         hold(sh);
 }
@@ -164,6 +194,8 @@ static int take_faces(const MeshPrefix *p, MeshBuild *b, uint64_t nf, uint64_t n
 int mesh_prefix_take(const MeshPrefix *p, const char *path, Mesh *m)
 {
     memset(m, 0, sizeof *m);
+    if (p->released)
+        return 1;       /* given back at the stop */
     uint64_t nf = __atomic_load_n(&p->sh->nfaces, __ATOMIC_ACQUIRE);
     uint64_t nc = __atomic_load_n(&p->sh->ncorner, __ATOMIC_ACQUIRE);
     uint64_t nv = __atomic_load_n(&p->sh->nverts, __ATOMIC_ACQUIRE);
