@@ -551,16 +551,6 @@ draw_tri_block(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, 
     return (uint64_t)__builtin_popcount((unsigned)mask);
 }
 
-ZV_AVX2_FN static uint64_t draw_tri_block2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
-{
-    return draw_tri_block(v, p, fb, ya, yb, 2);
-}
-
-ZV_AVX2_FN static uint64_t draw_tri_block4(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
-{
-    return draw_tri_block(v, p, fb, ya, yb, 4);
-}
-
 /* draw_tri_narrow made once for each width, so that the lane layout is
  * known to the compiler. */
 ZV_AVX2_FN static uint64_t draw_tri_narrow2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
@@ -573,14 +563,17 @@ ZV_AVX2_FN static uint64_t draw_tri_narrow4(const ScreenVert *v, const ScreenPol
     return draw_tri_narrow(v, p, fb, ya, yb, 4);
 }
 
-/* The AVX2 path for triangle v: the narrowest layout its box fits. */
-ZV_AVX2_FN static uint64_t draw_triangle_avx2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+/* The AVX2 path for triangle v: the narrowest layout its box fits (the
+ * one-block cases inlined where the frame's loop calls it: most of a
+ * dense mesh's triangles at any size, where a call's cost counts). */
+ZV_AVX2_FN static inline __attribute__((always_inline)) uint64_t
+draw_triangle_avx2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
     int bw = p->x1 - p->x0, bh = yb - ya;
     if (bw <= 2 && bh <= 4 && p->x0 + 2 <= fb->w)
-        return draw_tri_block2(v, p, fb, ya, yb);
+        return draw_tri_block(v, p, fb, ya, yb, 2);
     if (bw <= 4 && bh <= 2 && p->x0 + 4 <= fb->w)
-        return draw_tri_block4(v, p, fb, ya, yb);
+        return draw_tri_block(v, p, fb, ya, yb, 4);
     if (bw <= 2 && p->x0 + 2 <= fb->w)
         return draw_tri_narrow2(v, p, fb, ya, yb);
     if (bw <= 4 && p->x0 + 4 <= fb->w)
@@ -589,6 +582,50 @@ ZV_AVX2_FN static uint64_t draw_triangle_avx2(const ScreenVert *v, const ScreenP
         return draw_tri_col8(v, p, fb, ya, yb);
     return draw_tri_rows8(v, p, fb, ya, yb);
 }
+
+/* The same for callers outside the AVX2 code (draw_triangle). */
+ZV_AVX2_FN static uint64_t draw_triangle_avx2_call(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya,
+                                                   int yb)
+{
+    return draw_triangle_avx2(v, p, fb, ya, yb);
+}
+
+/* Do triangle v's corners lie within AVX2_SPAN pixels of each other? */
+static inline int avx2_span(const ScreenVert *v)
+{
+    int32_t xlo = v[0].x < v[1].x ? v[0].x : v[1].x, xhi = v[0].x < v[1].x ? v[1].x : v[0].x;
+    int32_t ylo = v[0].y < v[1].y ? v[0].y : v[1].y, yhi = v[0].y < v[1].y ? v[1].y : v[0].y;
+    xlo = v[2].x < xlo ? v[2].x : xlo;
+    xhi = v[2].x > xhi ? v[2].x : xhi;
+    ylo = v[2].y < ylo ? v[2].y : ylo;
+    yhi = v[2].y > yhi ? v[2].y : yhi;
+    return xhi - xlo <= AVX2_SPAN * SUBPIX && yhi - ylo <= AVX2_SPAN * SUBPIX;
+}
+
+/* zb_render's loop at the AVX2 level: the small triangles' path called
+ * from the loop itself, not through zbuffer_draw_poly and draw_triangle
+ * (three calls a triangle were a tenth of the dragon's z-buffer at
+ * 1920x1080); the rest as zbuffer_draw_poly draws them. */
+ZV_AVX2_FN static uint64_t zb_polys_avx2(ZState *z, const ScreenPolys *sp, FrameBufs *fb, int y0, int y1,
+                                         uint64_t *polys)
+{
+    uint64_t written = 0, np = 0;
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        const ScreenPoly *p = &sp->polys[i];
+        if (p->y1 <= y0 || p->y0 >= y1)
+            continue;
+        np++;
+        const ScreenVert *v = &sp->verts[p->first];
+        if (p[1].first - p->first == 3 && avx2_span(v)) {
+            int ya = p->y0 > y0 ? p->y0 : y0, yb = p->y1 < y1 ? p->y1 : y1;
+            written += draw_triangle_avx2(v, p, fb, ya, yb);
+        } else {
+            written += zbuffer_draw_poly(z, sp, i, fb, y0, y1);
+        }
+    }
+    *polys = np;
+    return written;
+}
 #endif
 
 /* A triangle: sorted by y, the long edge against the two short ones. */
@@ -596,16 +633,8 @@ static uint64_t draw_triangle(int simd, const ScreenPolys *sp, const ScreenPoly 
 {
     const ScreenVert *v = &sp->verts[p->first];
 #ifdef ZV_AVX2
-    if (simd >= SIMD_AVX2) {
-        int32_t xlo = v[0].x < v[1].x ? v[0].x : v[1].x, xhi = v[0].x < v[1].x ? v[1].x : v[0].x;
-        int32_t ylo = v[0].y < v[1].y ? v[0].y : v[1].y, yhi = v[0].y < v[1].y ? v[1].y : v[0].y;
-        xlo = v[2].x < xlo ? v[2].x : xlo;
-        xhi = v[2].x > xhi ? v[2].x : xhi;
-        ylo = v[2].y < ylo ? v[2].y : ylo;
-        yhi = v[2].y > yhi ? v[2].y : yhi;
-        if (xhi - xlo <= AVX2_SPAN * SUBPIX && yhi - ylo <= AVX2_SPAN * SUBPIX)
-            return draw_triangle_avx2(v, p, fb, ya, yb);
-    }
+    if (simd >= SIMD_AVX2 && avx2_span(v))
+        return draw_triangle_avx2_call(v, p, fb, ya, yb);
 #endif
     if ((p->x1 - p->x0) * (yb - ya) <= SMALL_BOX)
         return draw_small_triangle(v, p, fb, ya, yb);
@@ -683,6 +712,14 @@ static void zb_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y
     zbuffer_begin(st, simd_use(in->simd));
     fbuf_clear_rows(fb, y0, y1);
     uint64_t written = 0, polys = 0;
+#ifdef ZV_AVX2
+    if (((ZState *)st)->simd >= SIMD_AVX2) {
+        written = zb_polys_avx2(st, sp, fb, y0, y1, &polys);
+        stats->polys_in += polys;
+        stats->pixels_written += written;
+        return;
+    }
+#endif
     for (uint32_t i = 0; i < sp->npolys; i++) {
         const ScreenPoly *p = &sp->polys[i];
         if (p->y1 <= y0 || p->y0 >= y1)
