@@ -317,6 +317,48 @@ ZV_AVX2_FN static uint64_t draw_tri_rows8(const ScreenVert *v, const ScreenPoly 
     return n;
 }
 
+/* draw_tri_rows8() of a triangle whose sample box is at most 8 columns
+ * wide and wholly inside the image's width: one block a row, so no
+ * column loop and no right-edge case; the box mask and a (i - x0) of
+ * each lane are made once (the same product rows8 makes every row), so
+ * every sample gets the same bits. Most triangles of a mesh of tens of
+ * thousands at 1920x1080 are this size. */
+ZV_AVX2_FN static uint64_t draw_tri_col8(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+{
+    Edges8 t;
+    if (!edges8_setup(&t, v, p->x0, ya, 8))
+        return 0;
+    int w = fb->w;
+    int32_t id = p->face;
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i inbox = _mm256_cmpgt_epi32(_mm256_set1_epi32(p->x1 - p->x0), lane);
+    const __m256 za = _mm256_mul_ps(_mm256_set1_ps(p->a), _mm256_cvtepi32_ps(lane));
+    const __m256i vid = _mm256_set1_epi32(id), vidb = _mm256_xor_si256(vid, _mm256_set1_epi32(INT32_MIN));
+    const __m256i step_y[3] = { _mm256_set1_epi32(t.sy[0]), _mm256_set1_epi32(t.sy[1]), _mm256_set1_epi32(t.sy[2]) };
+    int32_t *ids = fb->ids + (size_t)ya * w + p->x0;
+    float *dep = fb->depth + (size_t)ya * w + p->x0;
+    uint64_t n = 0;
+    for (int j = ya; j < yb; j++, ids += w, dep += w) {
+        __m256i in = _mm256_and_si256(edges8_in(&t, t.e[0], t.e[1], t.e[2]), inbox);
+        t.e[0] = _mm256_add_epi32(t.e[0], step_y[0]);
+        t.e[1] = _mm256_add_epi32(t.e[1], step_y[1]);
+        t.e[2] = _mm256_add_epi32(t.e[2], step_y[2]);
+        if (_mm256_testz_si256(in, in))
+            continue;
+        __m256 z = _mm256_add_ps(_mm256_set1_ps(plane_row(p, j)), za);
+        __m256 zb = _mm256_loadu_ps(dep);
+        __m256i ib = _mm256_loadu_si256((const __m256i *)ids);
+        __m256i win = wins8(z, vidb, zb, ib, in);
+        int mask = _mm256_movemask_ps(_mm256_castsi256_ps(win));
+        if (!mask)
+            continue;
+        _mm256_storeu_ps(dep, _mm256_blendv_ps(zb, z, _mm256_castsi256_ps(win)));
+        _mm256_storeu_si256((__m256i *)ids, _mm256_blendv_epi8(ib, vid, win));
+        n += (uint64_t)__builtin_popcount((unsigned)mask);
+    }
+    return n;
+}
+
 /* A triangle whose sample box is at most wl (2 or 4) columns wide and
  * wholly inside the image's width: 8 / wl rows a block, lane l at column
  * x0 + l % wl of row j + l / wl. Rows past yb are neither read nor
@@ -509,16 +551,6 @@ draw_tri_block(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, 
     return (uint64_t)__builtin_popcount((unsigned)mask);
 }
 
-ZV_AVX2_FN static uint64_t draw_tri_block2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
-{
-    return draw_tri_block(v, p, fb, ya, yb, 2);
-}
-
-ZV_AVX2_FN static uint64_t draw_tri_block4(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
-{
-    return draw_tri_block(v, p, fb, ya, yb, 4);
-}
-
 /* draw_tri_narrow made once for each width, so that the lane layout is
  * known to the compiler. */
 ZV_AVX2_FN static uint64_t draw_tri_narrow2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
@@ -531,19 +563,68 @@ ZV_AVX2_FN static uint64_t draw_tri_narrow4(const ScreenVert *v, const ScreenPol
     return draw_tri_narrow(v, p, fb, ya, yb, 4);
 }
 
-/* The AVX2 path for triangle v: the narrowest layout its box fits. */
-ZV_AVX2_FN static uint64_t draw_triangle_avx2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
+/* The AVX2 path for triangle v: the narrowest layout its box fits (the
+ * one-block cases inlined where the frame's loop calls it: most of a
+ * dense mesh's triangles at any size, where a call's cost counts). */
+ZV_AVX2_FN static inline __attribute__((always_inline)) uint64_t
+draw_triangle_avx2(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya, int yb)
 {
     int bw = p->x1 - p->x0, bh = yb - ya;
     if (bw <= 2 && bh <= 4 && p->x0 + 2 <= fb->w)
-        return draw_tri_block2(v, p, fb, ya, yb);
+        return draw_tri_block(v, p, fb, ya, yb, 2);
     if (bw <= 4 && bh <= 2 && p->x0 + 4 <= fb->w)
-        return draw_tri_block4(v, p, fb, ya, yb);
+        return draw_tri_block(v, p, fb, ya, yb, 4);
     if (bw <= 2 && p->x0 + 2 <= fb->w)
         return draw_tri_narrow2(v, p, fb, ya, yb);
     if (bw <= 4 && p->x0 + 4 <= fb->w)
         return draw_tri_narrow4(v, p, fb, ya, yb);
+    if (bw <= 8 && p->x0 + 8 <= fb->w)
+        return draw_tri_col8(v, p, fb, ya, yb);
     return draw_tri_rows8(v, p, fb, ya, yb);
+}
+
+/* The same for callers outside the AVX2 code (draw_triangle). */
+ZV_AVX2_FN static uint64_t draw_triangle_avx2_call(const ScreenVert *v, const ScreenPoly *p, FrameBufs *fb, int ya,
+                                                   int yb)
+{
+    return draw_triangle_avx2(v, p, fb, ya, yb);
+}
+
+/* Do triangle v's corners lie within AVX2_SPAN pixels of each other? */
+static inline int avx2_span(const ScreenVert *v)
+{
+    int32_t xlo = v[0].x < v[1].x ? v[0].x : v[1].x, xhi = v[0].x < v[1].x ? v[1].x : v[0].x;
+    int32_t ylo = v[0].y < v[1].y ? v[0].y : v[1].y, yhi = v[0].y < v[1].y ? v[1].y : v[0].y;
+    xlo = v[2].x < xlo ? v[2].x : xlo;
+    xhi = v[2].x > xhi ? v[2].x : xhi;
+    ylo = v[2].y < ylo ? v[2].y : ylo;
+    yhi = v[2].y > yhi ? v[2].y : yhi;
+    return xhi - xlo <= AVX2_SPAN * SUBPIX && yhi - ylo <= AVX2_SPAN * SUBPIX;
+}
+
+/* zb_render's loop at the AVX2 level: the small triangles' path called
+ * from the loop itself, not through zbuffer_draw_poly and draw_triangle
+ * (three calls a triangle were a tenth of the dragon's z-buffer at
+ * 1920x1080); the rest as zbuffer_draw_poly draws them. */
+ZV_AVX2_FN static uint64_t zb_polys_avx2(ZState *z, const ScreenPolys *sp, FrameBufs *fb, int y0, int y1,
+                                         uint64_t *polys)
+{
+    uint64_t written = 0, np = 0;
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        const ScreenPoly *p = &sp->polys[i];
+        if (p->y1 <= y0 || p->y0 >= y1)
+            continue;
+        np++;
+        const ScreenVert *v = &sp->verts[p->first];
+        if (p[1].first - p->first == 3 && avx2_span(v)) {
+            int ya = p->y0 > y0 ? p->y0 : y0, yb = p->y1 < y1 ? p->y1 : y1;
+            written += draw_triangle_avx2(v, p, fb, ya, yb);
+        } else {
+            written += zbuffer_draw_poly(z, sp, i, fb, y0, y1);
+        }
+    }
+    *polys = np;
+    return written;
 }
 #endif
 
@@ -552,16 +633,8 @@ static uint64_t draw_triangle(int simd, const ScreenPolys *sp, const ScreenPoly 
 {
     const ScreenVert *v = &sp->verts[p->first];
 #ifdef ZV_AVX2
-    if (simd >= SIMD_AVX2) {
-        int32_t xlo = v[0].x < v[1].x ? v[0].x : v[1].x, xhi = v[0].x < v[1].x ? v[1].x : v[0].x;
-        int32_t ylo = v[0].y < v[1].y ? v[0].y : v[1].y, yhi = v[0].y < v[1].y ? v[1].y : v[0].y;
-        xlo = v[2].x < xlo ? v[2].x : xlo;
-        xhi = v[2].x > xhi ? v[2].x : xhi;
-        ylo = v[2].y < ylo ? v[2].y : ylo;
-        yhi = v[2].y > yhi ? v[2].y : yhi;
-        if (xhi - xlo <= AVX2_SPAN * SUBPIX && yhi - ylo <= AVX2_SPAN * SUBPIX)
-            return draw_triangle_avx2(v, p, fb, ya, yb);
-    }
+    if (simd >= SIMD_AVX2 && avx2_span(v))
+        return draw_triangle_avx2_call(v, p, fb, ya, yb);
 #endif
     if ((p->x1 - p->x0) * (yb - ya) <= SMALL_BOX)
         return draw_small_triangle(v, p, fb, ya, yb);
@@ -639,6 +712,14 @@ static void zb_render(void *st, const HsrInput *in, FrameBufs *fb, int y0, int y
     zbuffer_begin(st, simd_use(in->simd));
     fbuf_clear_rows(fb, y0, y1);
     uint64_t written = 0, polys = 0;
+#ifdef ZV_AVX2
+    if (((ZState *)st)->simd >= SIMD_AVX2) {
+        written = zb_polys_avx2(st, sp, fb, y0, y1, &polys);
+        stats->polys_in += polys;
+        stats->pixels_written += written;
+        return;
+    }
+#endif
     for (uint32_t i = 0; i < sp->npolys; i++) {
         const ScreenPoly *p = &sp->polys[i];
         if (p->y1 <= y0 || p->y0 >= y1)

@@ -204,9 +204,22 @@ static void compact_task(void *arg, int task, int worker)
             continue;
         }
         uint32_t bp = c->bp[i], bv = c->bv[i];
-        memmove(sp->polys + bp, sp->polys + c->pb[i], (size_t)part->npolys * sizeof *sp->polys);
-        for (uint32_t q = 0; q < part->npolys; q++)
-            sp->polys[bp + q].first += bv;
+        if (bp <= c->pb[i]) {
+            /* down (always, as each part keeps at most its polygons): in
+             * order, each shifted as it moves, one pass over them, not
+             * two (the dragon at 1920x1080 on two threads moves 260k) */
+            ScreenPoly *dst = sp->polys + bp;
+            const ScreenPoly *src = sp->polys + c->pb[i];
+            for (uint32_t q = 0; q < part->npolys; q++) {
+                ScreenPoly p = src[q];
+                p.first += bv;
+                dst[q] = p;
+            }
+        } else {
+            memmove(sp->polys + bp, sp->polys + c->pb[i], (size_t)part->npolys * sizeof *sp->polys);
+            for (uint32_t q = 0; q < part->npolys; q++)
+                sp->polys[bp + q].first += bv;
+        }
         for (uint32_t q = c->inst0[i]; !sp->no_map && q < c->inst0[i] + c->ninst[i]; q++)
             if (sp->map[q] >= 0)
                 sp->map[q] += (int32_t)bp;

@@ -18,6 +18,7 @@
 #include "bigmem.h"
 #include "shade.h"
 #include "simd.h"
+#include "facecol.h"
 
 /* ==== Names ==== */
 
@@ -127,16 +128,7 @@ void shade_id_colour(int32_t id, uint8_t rgb_out[3])
     rgb_out[2] = clamp_u8(b * 255.0f);
 }
 
-/* The linear part of view * object for one object: rotates (and scales)
- * object-space normals into view space. */
-typedef struct {
-    int   obj;          /* -1 = empty slot */
-    float m[3][3];
-} NormalMat;
-
-#define NMAT_SLOTS 64   /* direct-mapped by object index, lives on the stack */
-
-static void normal_mat(const Scene *s, const Mat4 *view, int obj, NormalMat *out)
+void shade_normal_mat(const Scene *s, const Mat4 *view, int obj, NormalMat *out)
 {
     Mat4 om = object_matrix(&s->objs[obj]);
     Mat4 m = m4_mul(*view, om);
@@ -149,7 +141,7 @@ static void normal_mat(const Scene *s, const Mat4 *view, int obj, NormalMat *out
 /* Lambert colour of one face, two-sided (|n.l|) so faces seen from the
  * back are lit like their fronts. nrm: the faces' normals when at hand
  * (NULL: computed, scene.h). */
-static void lambert_face(const Scene *s, const float *nrm, const NormalMat *nm, uint32_t face, uint8_t out[3])
+void shade_lambert_face(const Scene *s, const float *nrm, const NormalMat *nm, uint32_t face, uint8_t out[3])
 {
     float own[3];
     const float *n = nrm ? nrm + 3 * (size_t)face : own;
@@ -322,35 +314,6 @@ static int id_object(const Scene *s, int32_t id)
 
 /* ==== Lambert and id colours, per face, per pixel ==== */
 
-/* What the per-pixel loops need: the per-face colours (computed once a
- * frame, on first sight, stamped with the frame) and how to make them. */
-typedef struct {
-    const Scene *s;
-    ShadeMode    mode;
-    uint32_t     frame;
-    uint32_t    *stamp;
-    uint8_t     *crgb;          /* 3 per face, and one byte more (4-byte loads) */
-    int          current;       /* every face the pixels can show is coloured: no stamp checks */
-    Mat4         view;
-    NormalMat    nmat[NMAT_SLOTS];
-    const float *nrm;           /* the faces' normals when at hand (dense_normals), else NULL */
-} FaceColours;
-
-/* Face id's colour into c. */
-static inline void face_make(FaceColours *fc, int32_t id, uint8_t *c)
-{
-    if (fc->mode == SHADE_ID) {
-        shade_id_colour(id, c);
-    } else {
-        const Scene *s = fc->s;
-        int obj = s->face_obj ? s->face_obj[id] : 0;
-        NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
-        if (nm->obj != obj)
-            normal_mat(s, &fc->view, obj, nm);
-        lambert_face(s, fc->nrm, nm, (uint32_t)id, c);
-    }
-}
-
 /* Face id's colour, made current. */
 static inline const uint8_t *face_colour(FaceColours *fc, int32_t id)
 {
@@ -362,73 +325,6 @@ static inline const uint8_t *face_colour(FaceColours *fc, int32_t id)
     return c;
 }
 
-/* ==== A huge mesh in a small picture ==== */
-
-static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t i1, uint8_t *rgb, uint8_t *lit);
-
-/* The slot table for a frame of n pixels: a power of two at least twice
- * n (at most every pixel a face of its own, the table half full). */
-static uint32_t slots_for(size_t n)
-{
-    uint64_t cap = 64;
-    while (cap < 2 * (uint64_t)n)
-        cap *= 2;
-    return cap > ((uint64_t)1 << 31) ? 0 : (uint32_t)cap;
-}
-
-/* Do the frame's colours go through the slots? When the per-face arrays
- * (7 bytes a face, and whichever faces the polygons show touch their
- * pages: a 5M-face model drawn into a few hundred thousand samples
- * touched all 36 MB) outweigh the slots (8 bytes each): the memory a
- * frame touches is then the picture's, not the mesh's (issue 21). */
-static int slots_pay(uint32_t nfaces, size_t n)
-{
-    uint32_t cap = slots_for(n);
-    return cap && (uint64_t)cap * sizeof(ShadeSlot) < (uint64_t)nfaces * 7;
-}
-
-/* The pixels through the slots (shade_pixels' bytes): a face seen first,
- * or whose slot another face took, has its colour made again. */
-static int shade_pixels_slots(FaceColours *fc, ShadeCache *cache, const int32_t *ids, size_t n, uint8_t *rgb,
-                              uint8_t *lit)
-{
-    uint32_t cap = slots_for(n);
-    if (cap > cache->nslot) {
-        ShadeSlot *t = realloc(cache->slot, (size_t)cap * sizeof *t);
-        if (!t)
-            return -1;
-        cache->slot = t;
-        cache->nslot = cap;
-    }
-    memset(cache->slot, 0xff, (size_t)cap * sizeof *cache->slot);     /* ids -1: empty */
-    int shift = 32 - __builtin_ctz(cap);
-    uint32_t nfaces = fc->s->nfaces;
-    int32_t last = -1;
-    const uint8_t *c = NULL;
-    for (size_t i = 0; i < n; i++) {
-        int32_t id = ids[i];
-        uint8_t *px = rgb + 3 * i;
-        if (id < 0 || (uint32_t)id >= nfaces) {
-            shade_pixels(fc, ids, i, i + 1, rgb, lit);      /* background, points and lines */
-            continue;
-        }
-        if (id != last) {
-            ShadeSlot *sl = &cache->slot[((uint32_t)id * 2654435769u) >> shift];
-            if (sl->id != id) {
-                face_make(fc, id, sl->rgb);
-                sl->id = id;
-            }
-            c = sl->rgb;
-            last = id;
-        }
-        px[0] = c[0];
-        px[1] = c[1];
-        px[2] = c[2];
-        lit[i] = 1;
-    }
-    return 0;
-}
-
 #ifdef ZV_AVX2
 /* The normal matrix of object obj, from its direct-mapped slot (for the
  * eight-face loop: the scalar code finds it face by face). */
@@ -436,13 +332,10 @@ static inline const NormalMat *object_nmat(FaceColours *fc, int obj)
 {
     NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
     if (nm->obj != obj)
-        normal_mat(fc->s, &fc->view, obj, nm);
+        shade_normal_mat(fc->s, &fc->view, obj, nm);
     return nm;
 }
 #endif
-
-/* Distance (in pixels) the pixel pre-pass fetches ahead. */
-#define PIXEL_AHEAD 24
 
 /* The face normals of a big frame: the scene's, or for the compact form
  * (scene.h) computed once a scene and kept: computing them every frame
@@ -470,7 +363,7 @@ static const float *dense_normals(ShadeCache *c, const Scene *s, int simd)
 }
 
 #ifdef ZV_AVX2
-/* lambert_face() of faces [f0, f1) of one object (normal matrix nm),
+/* shade_lambert_face() of faces [f0, f1) of one object (normal matrix nm),
  * eight at a time: the same float operations in the same order (the
  * matrix rows, the length by sqrt, 1 / length, the scale, |n.l|, the
  * ambient mix, base * k + 0.5 clamped and truncated), so the same bytes;
@@ -557,7 +450,7 @@ ZV_AVX2_FN static void colour_faces_avx2(FaceColours *fc, const NormalMat *nm, u
         _mm256_storeu_si256((__m256i *)(fc->stamp + f), vframe);
     }
     for (; f < f1; f++) {
-        lambert_face(s, fc->nrm, nm, f, fc->crgb + 3 * (size_t)f);
+        shade_lambert_face(s, fc->nrm, nm, f, fc->crgb + 3 * (size_t)f);
         fc->stamp[f] = fc->frame;
     }
 }
@@ -618,7 +511,6 @@ ZV_AVX2_FN static void colour_faces_task(void *arg, int t, int worker)
     }
 }
 
-static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t i1, uint8_t *rgb, uint8_t *lit);
 ZV_AVX2_FN static size_t shade_pixels_avx2(FaceColours *fc, const int32_t *ids, size_t n, uint8_t *rgb,
                                            uint8_t *lit);
 
@@ -632,7 +524,7 @@ ZV_AVX2_FN static void shade_pixels_task(void *arg, int t, int worker)
     /* the eight-pixel loop stops short of its range's end: no store
      * reaches the next range */
     size_t i = a + shade_pixels_avx2(fc, sp->ids + a, b - a, sp->rgb + 3 * a, sp->lit + a);
-    shade_pixels(fc, sp->ids, i, b, sp->rgb, sp->lit);
+    shade_pixels_range(fc, sp->ids, i, b, sp->rgb, sp->lit);
 }
 
 #endif
@@ -640,57 +532,7 @@ ZV_AVX2_FN static void shade_pixels_task(void *arg, int t, int worker)
 /* Distance (in polygons) the colour pre-pass fetches ahead. */
 #define FETCH_AHEAD 16
 
-/* Every drawn polygon's face colour, before the pixels: the polygons come
- * in face order, so the per-face arrays are read in order (and fetched
- * ahead), where the pixels would visit them scattered, one cache miss
- * each. Only faces of sp's polygons can be in the picture, so the pixel
- * loop then finds every colour current. */
-/* Lambert shading of pixels [0, n) straight from the faces, no colour
- * cache: for a huge mesh in a small picture, where nearly every pixel
- * shows a face of its own and the cache's stamp and colour would be two
- * more scattered lines a pixel to read and write. The same colours as
- * the cache's (lambert_face), a face shown by neighbouring pixels
- * coloured once. */
-static void shade_pixels_direct(FaceColours *fc, const int32_t *ids, size_t n, uint8_t *rgb, uint8_t *lit)
-{
-    const Scene *s = fc->s;
-    uint32_t nfaces = s->nfaces;
-    int32_t last = -1;
-    uint8_t c[3] = { 0, 0, 0 };
-    for (size_t i = 0; i < n; i++) {
-        if (i + PIXEL_AHEAD < n) {
-            uint32_t f = (uint32_t)ids[i + PIXEL_AHEAD];
-            if (f < nfaces) {
-                if (fc->nrm)
-                    __builtin_prefetch(&fc->nrm[3 * (size_t)f]);
-                if (s->face_rgb)
-                    __builtin_prefetch(&s->face_rgb[3 * (size_t)f]);
-                if (s->face_obj)
-                    __builtin_prefetch(&s->face_obj[f]);
-            }
-        }
-        int32_t id = ids[i];
-        uint8_t *px = rgb + 3 * i;
-        if (id < 0 || (uint32_t)id >= nfaces) {
-            px[0] = px[1] = px[2] = 0;
-            lit[i] = 0;
-            continue;
-        }
-        if (id != last) {
-            int obj = s->face_obj ? s->face_obj[id] : 0;
-            NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
-            if (nm->obj != obj)
-                normal_mat(s, &fc->view, obj, nm);
-            lambert_face(s, fc->nrm, nm, (uint32_t)id, c);
-            last = id;
-        }
-        px[0] = c[0];
-        px[1] = c[1];
-        px[2] = c[2];
-        lit[i] = 1;
-    }
-}
-
+#ifdef ZV_AVX2
 /* Tasks for work of n items: a few per thread (a helper may be late to
  * get a core), none under 64k items; one without helpers. */
 static int split_tasks(Pool *pool, size_t n)
@@ -701,7 +543,13 @@ static int split_tasks(Pool *pool, size_t n)
     size_t most = n / 65536;
     return most < (size_t)t ? (most ? (int)most : 1) : t;
 }
+#endif
 
+/* Every drawn polygon's face colour, before the pixels: the polygons come
+ * in face order, so the per-face arrays are read in order (and fetched
+ * ahead), where the pixels would visit them scattered, one cache miss
+ * each. Only faces of sp's polygons can be in the picture, so the pixel
+ * loop then finds every colour current. */
 static void colour_polys_in(FaceColours *fc, const ScreenPolys *sp, uint32_t lo, uint32_t hi)
 {
     const Scene *s = fc->s;
@@ -751,7 +599,7 @@ static void colour_polys_task(void *arg, int t, int worker)
 }
 
 /* Pixels [i0, i1) one at a time. */
-static void shade_pixels(FaceColours *fc, const int32_t *ids, size_t i0, size_t i1, uint8_t *rgb, uint8_t *lit)
+void shade_pixels_range(FaceColours *fc, const int32_t *ids, size_t i0, size_t i1, uint8_t *rgb, uint8_t *lit)
 {
     uint32_t nfaces = fc->s->nfaces;
     for (size_t i = i0; i < i1; i++) {
@@ -808,7 +656,7 @@ ZV_AVX2_FN static size_t shade_pixels_avx2(FaceColours *fc, const int32_t *ids, 
         if (!fc->current) {
             __m256i st = _mm256_mask_i32gather_epi32(vframe, (const int *)fc->stamp, id, valid, 4);
             if (!_mm256_testc_si256(_mm256_cmpeq_epi32(st, vframe), _mm256_set1_epi32(-1))) {
-                shade_pixels(fc, ids, i, i + 8, rgb, lit);
+                shade_pixels_range(fc, ids, i, i + 8, rgb, lit);
                 continue;
             }
         }
@@ -878,7 +726,7 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
      * no more than the pixels (below) */
     int big = sp && (uint64_t)sp->npolys * 8 >= nfaces;
     int dense = avx2 && mode == SHADE_LAMBERT && sp && sp->npolys <= n && (uint64_t)sp->npolys * 4 >= nfaces;
-    int slots = !big && slots_pay(nfaces, n);
+    int slots = !big && shade_slots_pay(nfaces, n);
     if (!slots && cache_grow(cache, nfaces) != 0)
         return -1;
     cache_next_frame(cache);
@@ -949,7 +797,7 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
         }
     }
 #endif
-    shade_pixels(&fc, fb->ids, i, n, out->rgb, out->lit);
+    shade_pixels_range(&fc, fb->ids, i, n, out->rgb, out->lit);
     /* textured and vertex-coloured faces: their samples again, each its
      * own colour under the face's light */
     if (varying)
