@@ -109,7 +109,11 @@ void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, in
     if (s->nlines)
         snprintf(prims + strlen(prims), sizeof prims - strlen(prims), " lines %u", s->nlines);
     bar_field(&f[2], 0, "faces %u%s drawn %u", s->nfaces, prims, a->p.sp.npolys);
-    snprintf(f[2].brief, sizeof f[2].brief, "%u/%u", a->p.sp.npolys, s->nfaces);
+    /* a cloud (or a load's first picture, its vertices) is its points */
+    if (s->nfaces == 0 && s->npoints)
+        snprintf(f[2].brief, sizeof f[2].brief, "points %u", s->npoints);
+    else
+        snprintf(f[2].brief, sizeof f[2].brief, "%u/%u", a->p.sp.npolys, s->nfaces);
     bar_field(&f[3], 0, "%s %.2fms", a->p.algo->name, a->p.hsr_ms);
     bar_field(&f[4], 1, "frame %.1fms %.0ffps", frame_ms, frame_ms > 0 ? 1000.0 / frame_ms : 0);
     bar_field(&f[5], 3, "%s %s %s", a->pixels && term_pixels() != PIX_CELLS ? pixel_proto_names[term_pixels()]
