@@ -5,6 +5,12 @@
 
 #include "scene.h"
 
+/* normals.c: Newell's normal of face f of m, in double, not unit; and
+ * a normal made unit in float (+z for a degenerate one). Stored and
+ * computed normals both come from these, so they are the same bits. */
+void scene_face_newell(const Mesh *m, uint32_t f, double n[3]);
+void scene_unit_normal(const double n[3], float out[3]);
+
 /* Number the points, segments and wireframe edges after the faces: every
  * object's points, then every object's segments, then every object's
  * edges. -1 when the ids would pass INT32_MAX. */
