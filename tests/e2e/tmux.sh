@@ -57,10 +57,11 @@ prompt_back() {
 
 # cap: the pane's text, trailing blanks dropped
 cap() { tm capture-pane -p -t zv | sed 's/[[:space:]]*$//' >"$T/screen"; }
-# wait_for EXTENDED-REGEX: poll the pane (up to about 10 s) until it matches
+# wait_for EXTENDED-REGEX: poll the pane (up to about 10 s, WAIT_POLLS
+# polls of 0.05 s and a capture each) until it matches
 wait_for() {
     i=0
-    while [ $i -lt 200 ]; do
+    while [ $i -lt "${WAIT_POLLS:-200}" ]; do
         cap
         grep -Eq -- "$1" "$T/screen" && return 0
         sleep 0.05
@@ -74,7 +75,7 @@ status() { sed -n "$1p" "$T/screen"; }
 # wait_change FILE ROWS: poll until the picture differs from FILE
 wait_change() {
     i=0
-    while [ $i -lt 200 ]; do
+    while [ $i -lt "${WAIT_POLLS:-200}" ]; do
         cap
         picture "$2" | cmp -s - "$1" || return 0
         sleep 0.05
@@ -100,7 +101,7 @@ wait_stable() {
 # wait_gone EXTENDED-REGEX: poll until the pane no longer matches
 wait_gone() {
     i=0
-    while [ $i -lt 200 ]; do
+    while [ $i -lt "${WAIT_POLLS:-200}" ]; do
         cap
         grep -Eq -- "$1" "$T/screen" || return 0
         sleep 0.05
@@ -118,7 +119,7 @@ print_looks() { "$Z" --print "$@" | python3 tests/e2e/looks.py; }
 # wait_looks ROWS FILE: poll until the pane's looks equal FILE
 wait_looks() {
     i=0
-    while [ $i -lt 200 ]; do
+    while [ $i -lt "${WAIT_POLLS:-200}" ]; do
         looks "$1" >"$T/looks"
         cmp -s "$T/looks" "$2" && return 0
         sleep 0.05
