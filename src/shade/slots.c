@@ -140,11 +140,7 @@ void shade_pixels_direct(FaceColours *fc, const int32_t *ids, size_t n, uint8_t 
             continue;
         }
         if (id != last) {
-            int obj = s->face_obj ? s->face_obj[id] : 0;
-            NormalMat *nm = &fc->nmat[obj & (NMAT_SLOTS - 1)];
-            if (nm->obj != obj)
-                shade_normal_mat(s, &fc->view, obj, nm);
-            shade_lambert_face(s, fc->nrm, nm, (uint32_t)id, c);
+            face_make(fc, id, c);       /* Lambert: the caller's mode */
             last = id;
         }
         px[0] = c[0];
