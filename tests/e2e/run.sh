@@ -4,35 +4,69 @@
 # (lib.sh's skip). Ends with "N passed, N failed, N skipped", the skips
 # named; fails on a failure, and on a skip unless skips are allowed
 # (tests/skips.sh).
+#
+# The scripts run E2E_JOBS at a time (default 2, the cores of the
+# machines we test on): each has its own temporary folder, tmux socket
+# and X display, so they do not meet. The longest start first (their
+# times from the last run are kept in $E2E_TIMES), so that the two
+# queues end together; each script's output is printed whole, in name
+# order, once all have ended.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/../skips.sh"
 : "${ZVIEW:=$here/../../zview}"
+: "${E2E_JOBS:=2}"
+: "${E2E_TIMES:=$here/../../build/e2e-times}"
 export ZVIEW
 pass=0
 fail=0
 skipped=0
-out=$(mktemp)
-skips=$(mktemp)
-trap 'rm -f "$out" "$skips"' EXIT
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# one script: its output, exit status and seconds into $work
+one() {
+    name=$(basename "$1" .sh)
+    start=$(date +%s)
+    sh "$1" >"$2/$name.out" 2>&1
+    echo $? >"$2/$name.rc"
+    echo $(($(date +%s) - start)) >"$2/$name.sec"
+}
+if [ "${1:-}" = --one ]; then
+    one "$2" "$3"
+    exit 0
+fi
+
+# longest first by the last run's times; a new script counts as long
 for t in "$here"/test_*.sh; do
-    sh "$t" >"$out" 2>&1
-    rc=$?
+    n=$(basename "$t" .sh)
+    s=$(awk -v n="$n" '$1 == n { print $2 }' "$E2E_TIMES" 2>/dev/null)
+    echo "${s:-999} $t"
+done | sort -rn | cut -d' ' -f2- >"$work/order"
+xargs -P "$E2E_JOBS" -I{} sh "$here/run.sh" --one {} "$work" <"$work/order"
+
+: >"$work/times"
+for t in "$here"/test_*.sh; do
+    n=$(basename "$t" .sh)
+    out="$work/$n.out"
     cat "$out"
+    rc=$(cat "$work/$n.rc" 2>/dev/null || echo 1)
+    echo "$n $(cat "$work/$n.sec" 2>/dev/null || echo 999)" >>"$work/times"
     s=$(grep -ci '^ok .*# skip' "$out")
     p=$(($(grep -c '^ok ' "$out") - s))
     f=$(grep -c '^not ok ' "$out")
     if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
-        echo "not ok - $(basename "$t") exited with status $rc"
+        echo "not ok - $n.sh exited with status $rc"
         f=1
     fi
-    grep -i '^ok .*# skip' "$out" | sed "s|^ok - |  skipped: $(basename "$t"): |" >>"$skips"
+    grep -i '^ok .*# skip' "$out" | sed "s|^ok - |  skipped: $n.sh: |" >>"$work/skips"
     pass=$((pass + p))
     fail=$((fail + f))
     skipped=$((skipped + s))
 done
+cp "$work/times" "$E2E_TIMES" 2>/dev/null || true
 echo "e2e: $pass passed, $fail failed, $skipped skipped"
-cat "$skips"
+[ -f "$work/skips" ] && cat "$work/skips"
 verdict=0
 skips_verdict e2e "$skipped" || verdict=1
 [ "$fail" -eq 0 ] && [ "$pass" -gt 0 ] && [ $verdict -eq 0 ]
