@@ -395,6 +395,93 @@ Test(pipeline, every_order_gives_the_same_buffers)
     scene_free(&s);
 }
 
+/* A polygon's whole content as a string: face, box, plane, corners. Two
+ * orders must hold the same multiset of these. */
+static void poly_text(const ScreenPolys *sp, uint32_t i, char *buf, size_t cap)
+{
+    const ScreenPoly *p = &sp->polys[i];
+    int n = snprintf(buf, cap, "%d %d %d %d %d %a %a %a %a:", p->face, p->x0, p->x1, p->y0, p->y1,
+                     (double)p->a, (double)p->b, (double)p->zc, (double)p->zmin);
+    for (uint32_t k = p->first; k < sp->polys[i + 1].first && (size_t)n < cap; k++)
+        n += snprintf(buf + n, cap - (size_t)n, " %d,%d,%a", sp->verts[k].x, sp->verts[k].y,
+                      (double)sp->verts[k].z);
+}
+
+static int cmp_str(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+static char **poly_texts(const ScreenPolys *sp)
+{
+    char **t = calloc(sp->npolys, sizeof *t);
+    cr_assert(t);
+    for (uint32_t i = 0; i < sp->npolys; i++) {
+        t[i] = malloc(512);
+        cr_assert(t[i]);
+        poly_text(sp, i, t[i], 512);
+    }
+    return t;
+}
+
+/* The order itself, checked from its definition rather than from what the
+ * algorithms make of it (which is the same under any order, right or
+ * wrong): front to back is non-decreasing least depth, back to front
+ * non-increasing; every order is a permutation of the file order's
+ * polygons, corners and all; and the map still leads each scene polygon
+ * to a screen polygon of the same face. */
+Test(pipeline, each_order_sorts_as_it_says_and_keeps_every_polygon)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_file(&s, "assets/demo.obj"), 0);
+    s.cam.yaw = 0.4f;
+    s.cam.pitch = 0.3f;
+    Pipeline ref;
+    cr_assert_eq(pipeline_init(&ref, &s, hsr_find("hzb-octree"), 1), 0);
+    cr_assert_eq(pipeline_render(&ref, 200, 120, 1.0f, 0, 0), 0);
+    uint32_t n = ref.sp.npolys;
+    cr_assert_gt(n, 100, "the demo scene gives many polygons");
+    char **want = poly_texts(&ref.sp);
+    qsort(want, n, sizeof *want, cmp_str);
+    for (int ord = ORDER_FRONT; ord < ORDER_COUNT; ord++) {
+        Pipeline p;
+        cr_assert_eq(pipeline_init(&p, &s, hsr_find("hzb-octree"), 1), 0);
+        p.order = (PolyOrder)ord;
+        cr_assert_eq(pipeline_render(&p, 200, 120, 1.0f, 0, 0), 0);
+        cr_assert_eq(p.sp.npolys, n);
+        uint32_t moved = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            moved += p.sp.polys[i].face != ref.sp.polys[i].face;
+            if (i + 1 < n && ord == ORDER_FRONT)
+                cr_assert_leq(p.sp.polys[i].zmin, p.sp.polys[i + 1].zmin, "%s at %u", order_names[ord], i);
+            if (i + 1 < n && ord == ORDER_BACK)
+                cr_assert_geq(p.sp.polys[i].zmin, p.sp.polys[i + 1].zmin, "%s at %u", order_names[ord], i);
+        }
+        cr_expect_gt(moved, n / 4, "%s moves most polygons (%u of %u)", order_names[ord], moved, n);
+        char **got = poly_texts(&p.sp);
+        qsort(got, n, sizeof *got, cmp_str);
+        for (uint32_t i = 0; i < n; i++)
+            cr_assert_str_eq(got[i], want[i], "%s keeps every polygon whole", order_names[ord]);
+        cr_assert_eq(p.sp.nmap, ref.sp.nmap);
+        cr_assert_gt(p.sp.nmap, 0, "the octree keeps the map");
+        for (uint32_t k = 0; k < p.sp.nmap; k++) {
+            cr_assert_eq(p.sp.map[k] < 0, ref.sp.map[k] < 0);
+            if (p.sp.map[k] >= 0)
+                cr_assert_eq(p.sp.polys[p.sp.map[k]].face, ref.sp.polys[ref.sp.map[k]].face,
+                             "%s: the map follows polygon %u", order_names[ord], k);
+        }
+        for (uint32_t i = 0; i < n; i++)
+            free(got[i]);
+        free(got);
+        pipeline_free(&p);
+    }
+    for (uint32_t i = 0; i < n; i++)
+        free(want[i]);
+    free(want);
+    pipeline_free(&ref);
+    scene_free(&s);
+}
+
 Test(pipeline, front_to_back_helps_the_pyramid_most)
 {
     Scene s;
