@@ -325,6 +325,10 @@ void scene_check_free(SceneCheck *sc);
  * holes · 12 flipped" (sep between the problems). Returns the number of
  * problems. */
 int  check_verdict_short(const CheckCounts *c, const char *sep, char *buf, size_t len);
+/* The same with at most max problems named and the rest counted ("6
+ * holes · +3"; max 0: "4 problems"), so that a narrow status bar gives
+ * way by whole items, never mid-word. */
+int  check_verdict_items(const CheckCounts *c, const char *sep, int max, char *buf, size_t len);
 /* The counts as lines of the info panel (labels as report.c's). */
 int  check_report(const SceneCheck *sc, ReportLine *lines, int max);
 

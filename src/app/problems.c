@@ -5,6 +5,7 @@
  * and the counts for the info panel. The report of --check is
  * oneshot/check.c's. */
 
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -108,7 +109,15 @@ static void add(char *buf, size_t len, const char *sep, const char *fmt, unsigne
     snprintf(buf + o, len - o, fmt, n);
 }
 
-int check_verdict_short(const CheckCounts *c, const char *sep, char *buf, size_t len)
+/* Append item k of the verdict unless max items are in already; count
+ * it either way. */
+static void item(char *buf, size_t len, const char *sep, int *k, int max, const char *fmt, unsigned long long n)
+{
+    if ((*k)++ < max)
+        add(buf, len, sep, fmt, n);
+}
+
+int check_verdict_items(const CheckCounts *c, const char *sep, int max, char *buf, size_t len)
 {
     buf[0] = 0;
     int k = 0;
@@ -116,28 +125,36 @@ int check_verdict_short(const CheckCounts *c, const char *sep, char *buf, size_t
         snprintf(buf, len, "no faces");
         return 1;
     }
-    if (c->boundary_edges && ++k)
-        add(buf, len, sep, c->holes == 1 ? "%llu hole" : "%llu holes", c->holes);
-    if (c->nonmanifold_edges && ++k)
-        add(buf, len, sep, "%llu non-manifold", c->nonmanifold_edges);
-    if (c->nonmanifold_vertices && ++k)
-        add(buf, len, sep, c->nonmanifold_vertices == 1 ? "%llu pinched vertex" : "%llu pinched vertices",
-            c->nonmanifold_vertices);
-    if (c->nonorientable && ++k)
-        add(buf, len, sep, "%llu non-orientable", c->nonorientable);
-    if (c->inconsistent_faces && ++k)
-        add(buf, len, sep, "%llu flipped", c->inconsistent_faces);
-    if (c->inside_out && ++k)
-        add(buf, len, sep, "inside out", 0);
-    if (c->self_intersections && ++k)
-        add(buf, len, sep, "%llu crossing", c->self_intersections);
-    if (c->degenerate_faces && ++k)
-        add(buf, len, sep, "%llu degenerate", c->degenerate_faces);
-    if (c->duplicate_faces && ++k)
-        add(buf, len, sep, "%llu duplicate", c->duplicate_faces);
+    if (c->boundary_edges)
+        item(buf, len, sep, &k, max, c->holes == 1 ? "%llu hole" : "%llu holes", c->holes);
+    if (c->nonmanifold_edges)
+        item(buf, len, sep, &k, max, "%llu non-manifold", c->nonmanifold_edges);
+    if (c->nonmanifold_vertices)
+        item(buf, len, sep, &k, max,
+             c->nonmanifold_vertices == 1 ? "%llu pinched vertex" : "%llu pinched vertices",
+             c->nonmanifold_vertices);
+    if (c->nonorientable)
+        item(buf, len, sep, &k, max, "%llu non-orientable", c->nonorientable);
+    if (c->inconsistent_faces)
+        item(buf, len, sep, &k, max, "%llu flipped", c->inconsistent_faces);
+    if (c->inside_out)
+        item(buf, len, sep, &k, max, "inside out", 0);
+    if (c->self_intersections)
+        item(buf, len, sep, &k, max, "%llu crossing", c->self_intersections);
+    if (c->degenerate_faces)
+        item(buf, len, sep, &k, max, "%llu degenerate", c->degenerate_faces);
+    if (c->duplicate_faces)
+        item(buf, len, sep, &k, max, "%llu duplicate", c->duplicate_faces);
+    if (k > max)        /* the rest as a count: "6 holes · +3" */
+        add(buf, len, sep, max > 0 ? "+%llu" : "%llu problems", (unsigned long long)(k - max));
     if (!k)
         snprintf(buf, len, "watertight");
     return k;
+}
+
+int check_verdict_short(const CheckCounts *c, const char *sep, char *buf, size_t len)
+{
+    return check_verdict_items(c, sep, INT_MAX, buf, len);
 }
 
 int check_report(const SceneCheck *sc, ReportLine *lines, int max)

@@ -151,7 +151,7 @@ Reaction app_check_poll(App *a)
     return RE_NONE;
 }
 
-void app_check_status(const App *a, char *buf, size_t len)
+void app_check_status(const App *a, int max_items, char *buf, size_t len)
 {
     buf[0] = 0;
     if (!wanted(a) || a->s->nobjs == 0)
@@ -162,7 +162,7 @@ void app_check_status(const App *a, char *buf, size_t len)
     } else if (a->check_err[0]) {
         snprintf(buf, len, "check: %s", a->check_err);
     } else if (a->s->marks.set) {
-        check_verdict_short(&a->check, a->utf8 ? " \xc2\xb7 " : ", ", buf, len);
+        check_verdict_items(&a->check, a->utf8 ? " \xc2\xb7 " : ", ", max_items, buf, len);
     }
 }
 

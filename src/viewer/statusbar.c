@@ -2,6 +2,7 @@
  * way by rank as the window narrows (the man page's KEYS section gives
  * the same order). */
 
+#include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -143,7 +144,7 @@ void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, in
     bar_field(&f[BUSY], 0, "%s", busy);
     /* the check's verdict in a word or two (--problems, --parts, !) */
     char verdict[96];
-    app_check_status(a, verdict, sizeof verdict);
+    app_check_status(a, INT_MAX, verdict, sizeof verdict);
     bar_field(&f[CHECK], 0, "%s", verdict);
     for (int rank = 1; rank < BAR_NOTE && bar_join(f, buf, len) > width; rank++)
         for (int i = 0; i < BAR_FIELDS; i++)
@@ -153,6 +154,12 @@ void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, in
         for (int i = 0; i < BAR_FIELDS; i++)
             if (f[i].brief[0])
                 memcpy(f[i].text, f[i].brief, sizeof f[i].brief);
+    /* the verdict gives way by whole problems ("6 holes · +3"), before
+     * the file name is cut */
+    for (int items = 8; items >= 1 && bar_join(f, buf, len) > width; items--) {
+        app_check_status(a, items, verdict, sizeof verdict);
+        snprintf(f[CHECK].text, sizeof f[CHECK].text, "%s", verdict);
+    }
     /* a note outranks the rest while it shows: the file name gives way
      * first (to a dozen columns), then the note is cut at its end, and
      * goes when little would be left; the name last of all */
@@ -168,6 +175,14 @@ void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, in
         f[NOTE].rank = -1;
     }
     shorten_name(f, buf, len, width, 3);
+    /* still too wide: the verdict as a count, then gone, so that "?"
+     * (help) always shows and nothing is cut mid-word by the edge */
+    if (bar_join(f, buf, len) > width) {
+        app_check_status(a, 0, verdict, sizeof verdict);
+        snprintf(f[CHECK].text, sizeof f[CHECK].text, "%s", verdict);
+    }
+    if (bar_join(f, buf, len) > width)
+        f[CHECK].rank = -1;
     bar_join(f, buf, len);
 }
 

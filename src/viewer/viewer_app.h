@@ -260,7 +260,7 @@ Reaction app_clear_scene(App *a);           /* E */
  * set its marks when it is done; the verdict for the status bar (""
  * when not wanted), the counts for the info panel. */
 Reaction app_check_poll(App *a);
-void     app_check_status(const App *a, char *buf, size_t len);
+void     app_check_status(const App *a, int max_items, char *buf, size_t len);
 int      app_check_report(const App *a, ReportLine *lines, int max);
 /* watch.c: a watched file changed: read it again (a load job). */
 Reaction app_watch_poll(App *a);

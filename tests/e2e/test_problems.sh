@@ -71,6 +71,25 @@ tm send-keys -t zv q
 # the shell's prompt once zview has gone (keys typed before that are zview's)
 wait_for 'zv-exit=[0-9]' >/dev/null && prompt_back >/dev/null || notok "the viewer quits" "$(tail -3 "$T/screen")"
 
+# ==== a long verdict in a narrow window gives way by whole problems ====
+# an open cube (a hole), a triangle listed both ways (non-manifold,
+# flipped) and once more (a duplicate), a face with a repeated corner:
+# more problems than 50 columns hold
+printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nv 3 0 0\nv 4 0 0\nv 3 1 0\n' >"$T/many-problems.obj"
+printf 'f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 4 8 7 3\nf 9 10 11\nf 9 11 10\nf 9 10 11\nf 1 1 2\n' >>"$T/many-problems.obj"
+start 50 20 --problems "$T/many-problems.obj"
+wait_for 'hole' >/dev/null
+bar=$(status 20)
+check "50 columns: the verdict names what fits and counts the rest" 'echo "$bar" | grep -Eq "[0-9]+ (hole|holes|non-manifold)( · [0-9]+ [a-z -]+)* · \+[0-9]+ \| \?( help)?$"' "$bar"
+check "... the help key stays at the end" 'echo "$bar" | grep -Eq "\| \?( help)?$"' "$bar"
+tm resize-window -t zv -x 34 -y 20
+i=0
+while [ $i -lt 100 ]; do cap; status 20 | grep -q 'hole' || break; sleep 0.05; i=$((i + 1)); done
+bar=$(status 20)
+check "34 columns: the verdict is a count or gone, never cut mid-word; ? stays" 'echo "$bar" | grep -Eq "(\| [0-9]+ problems )?\| \?( help)?$" && ! echo "$bar" | grep -q "hole"' "$bar"
+tm send-keys -t zv q
+wait_for 'zv-exit=[0-9]' >/dev/null
+
 # ==== --watch ====
 cp "$T/open.obj" "$T/w.obj"
 start 100 30 --watch --problems --view left --yaw 20 --pitch 20 "$T/w.obj"
