@@ -117,9 +117,13 @@ void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, in
         snprintf(f[2].brief, sizeof f[2].brief, "%u/%u", a->p.sp.npolys, s->nfaces);
     bar_field(&f[3], 0, "%s %.2fms", a->p.algo->name, a->p.hsr_ms);
     bar_field(&f[4], 1, "frame %.1fms %.0ffps", frame_ms, frame_ms > 0 ? 1000.0 / frame_ms : 0);
+    /* while a still image shows, the image's own colours and size (the
+     * cells under it, which move with the model, are the text's) */
+    int image = term_image_shown() && term_pixels() != PIX_CELLS;
     bar_field(&f[5], 3, "%s %s %s", a->pixels && term_pixels() != PIX_CELLS ? pixel_proto_names[term_pixels()]
                                                                           : mode_names[a->mode],
-              shade_names[a->p.shade], depth_label(term_colour()));
+              shade_names[a->p.shade],
+              !image ? depth_label(term_colour()) : term_pixels() == PIX_SIXEL ? "256" : "24bit");
     char spin[24] = "";
     if (a->spin)
         snprintf(spin, sizeof spin, "spin@%d", fps_cap);

@@ -435,7 +435,7 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
  * images are rendered at a half, then a quarter of the pixels and
  * scaled by the terminal to the same cells; a sixel image over it is
  * not sent (the cells stay, and the note says why). */
-static int draw_pixels(App *a, DrawState *d)
+static int draw_pixels(App *a, DrawState *d, int fps_cap)
 {
     if (viewer_mode(a) != VM_VIEW || a->info || a->spin || a->sk.on || !d->pic_cols || !d->pic_rows ||
         term_image_shown())
@@ -472,6 +472,15 @@ static int draw_pixels(App *a, DrawState *d)
     }
     int rc = term_show_image(&b) ? RUN_OUTPUT_FAILED : 0;
     bytebuf_free(&b);
+    /* the status bar again: it now names the image's colours and size */
+    if (!rc) {
+        int cols, rows;
+        term_size(&cols, &rows);
+        char bar[512];
+        viewer_status_text(a, bar, sizeof bar, d->frame_ms, fps_cap, cols);
+        term_draw_bar(rows - 1, bar);
+        rc = term_update(0) ? RUN_OUTPUT_FAILED : 0;
+    }
     return rc;
 }
 
@@ -512,7 +521,7 @@ static int run(App *a, int fps)
         }
         if (!todo && d.pix_due > 0 && now_ms() >= d.pix_due && term_ready()) {
             d.pix_due = 0;
-            int rc = draw_pixels(a, &d);
+            int rc = draw_pixels(a, &d, fps);
             if (rc)
                 return rc;
         }

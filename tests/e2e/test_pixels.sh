@@ -25,6 +25,20 @@ check "--print --mode auto into a pipe: cells, no question, no image" \
 expect_status "--mode nope is a usage error" 2 "$Z" --mode nope --print assets/torus.obj
 expect_err "... naming the pixel modes" "sixel, kitty, iterm, cells or auto"
 
+# the viewer's status bar while a still image shows names the image's
+# colours and size, not the cells' under it (140x30 cells of the default
+# 10x20 pixels: an image of 1400x580 over 29 rows)
+if need_python "the status bar names the image's colours and size"; then
+    for m in sixel:256 kitty:24bit iterm:24bit; do
+        mode=${m%%:*} want=${m#*:}
+        TERM=xterm-256color python3 tests/e2e/pixbar.py 140 30 -- "$Z" --mode "$mode" --color 16 assets/torus.obj >"$T/bar" 2>&1
+        check "$mode: the cells' bar says their 16 colours and 140x58px" \
+            'grep -q "^cells: .* $mode lambert 16 | 140x58px |" "$T/bar"' "$(cat "$T/bar")"
+        check "... the image's says $want and 1400x580px" \
+            'grep -q "^image: .* $mode lambert $want | 1400x580px | ? help" "$T/bar"' "$(cat "$T/bar")"
+    done
+fi
+
 command -v tmux >/dev/null 2>&1 || { skip "the viewer under tmux" "no tmux"; exit 0; }
 . "$(dirname "$0")/tmux.sh"
 for how in inside unset; do
