@@ -74,8 +74,8 @@ typedef struct {
     char     format[32];    /* what read it: "obj", "stl binary", "ply ascii", "gltf (assimp)" */
     uint64_t bytes;         /* size of the input */
     uint64_t corners_read;  /* STL: corners in the file, before merging equal vertices */
-    uint32_t texcoords;     /* `vt` count */
-    uint32_t normals;       /* `vn` count */
+    uint32_t texcoords;     /* OBJ: `vt` lines; assimp: vertices that carry them */
+    uint32_t normals;       /* OBJ: `vn` lines; assimp: vertices that carry them */
     uint32_t unknown;       /* unknown keywords (each also a skipped statement) */
     char     first_unknown[32]; /* the first unknown keyword, for --info */
     uint32_t triangles;     /* sum of (corners - 2) over faces */

@@ -300,6 +300,11 @@ static int textured(const Walk *w, unsigned i)
                 aiReturn_SUCCESS);
 }
 
+static uint32_t sat_add(uint32_t a, uint32_t b)
+{
+    return a > UINT32_MAX - b ? UINT32_MAX : a + b;
+}
+
 /* One mesh instance: its vertices through the node's transform, then
  * its faces. */
 static int add_mesh(Walk *w, const struct aiMesh *am, const struct aiMatrix4x4 *t, int identity)
@@ -323,6 +328,11 @@ static int add_mesh(Walk *w, const struct aiMesh *am, const struct aiMatrix4x4 *
         return -1;
     if (tc && mb_want_vertex_uv(&w->b))
         return -1;
+    /* what the file carries, for --info (OBJ counts its vt and vn lines) */
+    if (am->mTextureCoords[0])
+        m->info.texcoords = sat_add(m->info.texcoords, am->mNumVertices);
+    if (am->mNormals)
+        m->info.normals = sat_add(m->info.normals, am->mNumVertices);
     for (unsigned v = 0; v < am->mNumVertices; v++) {
         struct aiVector3D p = am->mVertices[v];
         float x = p.x, y = p.y, z = p.z;

@@ -76,6 +76,16 @@ if [ $has_assimp = 1 ]; then
 else
     skip "--formats lists the assimp formats" "no assimp in this build"
 fi
+# --info counts the texture coordinates and normals an assimp model
+# carries, as the file's own accessors say (read here with python's json)
+box=/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf
+if [ $has_assimp = 1 ] && [ -r "$box" ] && need_python "--info counts a glTF's texcoords and normals"; then
+    counts=$(python3 -c 'import json,sys; g=json.load(open(sys.argv[1])); p=g["meshes"][0]["primitives"][0]["attributes"]; a=g["accessors"]; print("texcoords:  %d   normals: %d" % (a[p["TEXCOORD_0"]]["count"], a[p["NORMAL"]]["count"]))' "$box")
+    expect_status "--info on a textured glTF" 0 "$Z" --info "$box"
+    expect_out "... counts its texcoords and normals ($counts)" "${counts:-none read}"
+elif [ $has_assimp = 1 ]; then
+    skip "--info counts a glTF's texcoords and normals" "no assimp-testmodels"
+fi
 expect_status "an unknown --format is a usage error" 2 "$Z" --format gzip --print $D/house.obj
 expect_err "the usage error lists the formats" "obj stl ply off"
 
