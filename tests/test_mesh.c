@@ -432,7 +432,9 @@ Test(mesh, error_no_faces)
     cr_assert_eq(parse(""), -1);
     cr_assert_eq(strncmp(E, "t.obj: no faces", 15), 0, "%s", E);
     cr_assert_eq(parse("o a\no b\n"), -1);
-    cr_assert_str_eq(E, "t.obj: no faces");
+    cr_assert_str_eq(E, "t.obj: no faces and no vertices in its 8 bytes", "not called empty");
+    cr_assert_eq(parse("# a comment\n\n"), -1);
+    cr_assert_str_eq(E, "t.obj: no faces and no vertices in its 13 bytes");
 }
 
 Test(mesh, error_index_zero)

@@ -140,6 +140,8 @@ Test(off, errors)
     expect_err("OFF BINARY\n3 1 0\n", "binary OFF is not read");
     expect_err("nOFF\n4\n3 1 0\n", "only 3-dimensional nOFF files are read");
     expect_err("", "no faces (empty file)");
+    expect_err("# a comment\n\n", "no faces (only comments and blank lines)");
+    expect_err("OFF\n0 0 0\n", "no faces and no vertices in its 10 bytes");
     /* counts checked against the size before anything is allocated */
     expect_err("OFF\n4000000000 1 0\n0 0 0\n", "4000000000 vertices and 1 faces cannot fit in the 6 bytes left");
     expect_err("OFF\n99999999999999999999 1 0\n", "bad count '99999999999999999999'");

@@ -510,9 +510,12 @@ static int nothing_to_show(MeshBuild *b)
         return me_fail_raw(e, "%s (%u statement%s skipped, nothing left to show)", first, e->skipped,
                            e->skipped == 1 ? "" : "s");
     }
+    /* say what the bytes held: nothing at all, or nothing drawable */
     if (b->m->info.bytes == 0)
         return me_fail(e, "no faces (empty file)");
-    return me_fail(e, "no faces");
+    if (b->m->nverts == 0)
+        return me_fail(e, "no faces and no vertices in its %llu bytes", (unsigned long long)b->m->info.bytes);
+    return me_fail(e, "no faces (%u vertices, none used)", b->m->nverts);
 }
 
 /* Each object's counts from where the next one starts; only the last

@@ -220,7 +220,8 @@ static int off_header(Off *o)
 {
     Mesh *m = o->b->m;
     if (!next_line(o))
-        return me_fail(o->e, "no faces (empty file)");
+        return me_fail(o->e, m->info.bytes ? "no faces (only comments and blank lines)"
+                                              : "no faces (empty file)");
     const char *p = o->ls, *w = p;
     while (p < o->le && !mesh_is_blank(*p))
         p++;
