@@ -16,29 +16,53 @@
 #define ZV_DATADIR "/usr/local/share/zview"
 #endif
 
+/* The places the demo scene is looked for, in order: next to the
+ * binary (the source tree), the installed copy beside it, the install
+ * prefix's, then the working folder's assets/. Returns how many. */
+static int demo_places(char places[4][PATH_MAX + 32])
+{
+    int n = 0;
+    char exe[PATH_MAX];
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    char *slash = len > 0 ? (exe[len] = 0, strrchr(exe, '/')) : NULL;
+    if (slash) {
+        *slash = 0;
+        snprintf(places[n++], PATH_MAX + 32, "%s/assets/demo.obj", exe);
+        snprintf(places[n++], PATH_MAX + 32, "%s/../share/zview/demo.obj", exe);
+    }
+    snprintf(places[n++], PATH_MAX + 32, "%s/demo.obj", ZV_DATADIR);
+    snprintf(places[n++], PATH_MAX + 32, "assets/demo.obj");
+    return n;
+}
+
 const char *app_demo_path(void)
 {
     static char path[PATH_MAX + 32];
-    /* next to the binary (the source tree), then the installed copy, then cwd */
-    char exe[PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n > 0) {
-        exe[n] = 0;
-        char *slash = strrchr(exe, '/');
-        if (slash) {
-            *slash = 0;
-            snprintf(path, sizeof path, "%s/assets/demo.obj", exe);
-            if (access(path, R_OK) == 0)
-                return path;
-            snprintf(path, sizeof path, "%s/../share/zview/demo.obj", exe);
-            if (access(path, R_OK) == 0)
-                return path;
+    char places[4][PATH_MAX + 32];
+    int n = demo_places(places);
+    for (int i = 0; i < n; i++)
+        if (access(places[i], R_OK) == 0 || i == n - 1) {
+            memcpy(path, places[i], sizeof path);
+            break;
         }
-    }
-    snprintf(path, sizeof path, "%s/demo.obj", ZV_DATADIR);
-    if (access(path, R_OK) == 0)
-        return path;
-    return "assets/demo.obj";
+    return path;
+}
+
+/* When no place holds the demo scene, every place in the message (a
+ * binary copied away from the source names them all). 0 when found. */
+static int demo_missing(char *err, size_t errlen)
+{
+    char places[4][PATH_MAX + 32];
+    int n = demo_places(places);
+    for (int i = 0; i < n; i++)
+        if (access(places[i], R_OK) == 0)
+            return 0;
+    size_t o = (size_t)snprintf(err, errlen, "no model given, and no demo scene in ");
+    for (int i = 0; i < n && o < errlen; i++)
+        o += (size_t)snprintf(err + o, errlen - o, "%s%s", i == 0 ? "" : i == n - 1 ? " or " : ", ", places[i]);
+    if (o < errlen)
+        snprintf(err + o, errlen - o, " (zview MODEL opens a model)");
+    return -1;
 }
 
 SandboxOpts app_sandbox_opts(const Options *o)
@@ -172,6 +196,8 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
     const char *const *files = o->files;
     int nfiles = o->nfiles;
     if (nfiles == 0) {
+        if (demo_missing(err, errlen))
+            return -1;
         demo[0] = app_demo_path();
         files = demo;
         nfiles = 1;

@@ -284,3 +284,17 @@ echo | TERM=xterm-256color setsid -w "$Z" --print-view assets/cube.obj >"$T/out"
 st=$?
 if [ $st -eq 1 ] && [ ! -s "$T/out" ] && grep -q "print-view" "$T/err"; then ok "--print-view without a terminal fails cleanly"; else
     notok "--print-view without a terminal fails cleanly" "status $st: $(cat "$T/err")"; fi
+# a binary copied away from the source tree, run where no assets/ is:
+# the demo scene's refusal names every place it looked
+mkdir -p "$T/away/bin" "$T/away/cwd"
+cp "$Z" "$T/away/bin/zview"
+if [ -r /usr/local/share/zview/demo.obj ]; then
+    expect_status "a copied binary finds the installed demo scene" 0 sh -c "cd '$T/away/cwd' && '$T/away/bin/zview' -p --size 20x6"
+else
+    expect_status "a copied binary with no demo scene anywhere fails" 1 sh -c "cd '$T/away/cwd' && '$T/away/bin/zview' -p --size 20x6"
+    for place in "$T/away/bin/assets/demo.obj" "$T/away/bin/../share/zview/demo.obj" "/usr/local/share/zview/demo.obj" " or assets/demo.obj"; do
+        expect_err "... naming $place" "$place"
+    done
+    check_lines=$(wc -l <"$T/err")
+    if [ "$check_lines" -eq 1 ]; then ok "... in one line"; else notok "... in one line" "$(cat "$T/err")"; fi
+fi
