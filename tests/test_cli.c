@@ -5,6 +5,8 @@
 #include <string.h>
 
 #include "app.h"
+#include "hsr.h"
+#include "pixels.h"
 
 static int parse(Options *o, char *err, int n, const char **args)
 {
@@ -118,4 +120,66 @@ Test(cli, sketch_is_for_the_viewer)
         cr_expect_eq(PARSE(&o, err, "--sketch", clash[i][0]), -1, "%s", clash[i][0]);
         cr_expect(strstr(err, clash[i][1]) != NULL, "%s: %s", clash[i][0], err);
     }
+}
+
+/* An option that takes a word from a table: its refusal lists the words
+ * (taken apart here at ", " and " or "), and every word listed is
+ * accepted; the list holds every name of the table it comes from. */
+static void words_round_trip(const char *opt, const char *const *table, int ntable)
+{
+    Options o;
+    char err[256];
+    cr_assert_neq(PARSE(&o, err, opt, "no-such-word", "--print", "m.obj"), 0);
+    const char *open = strchr(err, '('), *close = strrchr(err, ')');
+    cr_assert(open && close && close > open, "%s: %s", opt, err);
+    char list[256];
+    snprintf(list, sizeof list, "%.*s", (int)(close - open - 1), open + 1);
+    char *or = strstr(list, " or ");
+    cr_assert(or, "%s: '%s' ends in 'or'", opt, list);
+    memcpy(or, ", ", 2);
+    memmove(or + 2, or + 4, strlen(or + 4) + 1);
+    char words[16][64];
+    int n = 0;
+    for (char *w = strtok(list, ","); w && n < 16; w = strtok(NULL, ","), n++) {
+        while (*w == ' ')
+            w++;
+        snprintf(words[n], sizeof words[n], "%s", w);
+        cr_assert_eq(PARSE(&o, err, opt, words[n], "--print", "m.obj"), 0, "%s %s: %s", opt, words[n], err);
+    }
+    for (int i = 0; i < ntable; i++) {
+        int found = 0;
+        for (int k = 0; k < n; k++)
+            found |= strcmp(words[k], table[i]) == 0;
+        cr_assert(found, "%s lists %s", opt, table[i]);
+    }
+}
+
+Test(cli, option_words_come_from_their_tables)
+{
+    words_round_trip("--mode", mode_names, MODE_COUNT);
+    words_round_trip("--mode", pixel_proto_names, PIX_COUNT);
+    words_round_trip("--shade", shade_names, SHADE_COUNT);
+    words_round_trip("--order", order_names, ORDER_COUNT);
+    words_round_trip("--layout", layout_names, LAYOUT_COUNT);
+    const char *up[UP_COUNT], *colour[COLOUR_TRUE + 1], *view[16];
+    for (int i = 0; i < UP_COUNT; i++)
+        up[i] = up_axis_name(i);
+    words_round_trip("--up", up, UP_COUNT);
+    for (int i = 0; i <= COLOUR_TRUE; i++)
+        colour[i] = colour_name((ColourDepth)i);
+    words_round_trip("--color", colour, COLOUR_TRUE + 1);
+    int nv = 0;
+    while (nv < 15 && view_name(nv))
+        view[nv] = view_name(nv), nv++;
+    view[nv++] = "auto";
+    words_round_trip("--view", view, nv);
+}
+
+Test(cli, an_unknown_algorithm_lists_every_algorithm)
+{
+    Options o;
+    char err[256];
+    cr_assert_neq(PARSE(&o, err, "--algo", "nope", "--print", "m.obj"), 0);
+    for (int i = 0; i < hsr_nalgos; i++)
+        cr_assert(strstr(err, hsr_algos[i]->name), "%s missing from: %s", hsr_algos[i]->name, err);
 }

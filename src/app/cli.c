@@ -283,6 +283,24 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
                  : "--dump-screen");
         return -1;
     }
+    /* --info and --bench write their report only, --turntable frames
+     * only: an output asked beside them would be silently left out */
+    const char *only = o->info ? "--info" : o->bench ? "--bench" : NULL;
+    const char *out = o->out ? "-o" : o->print ? "--print" : o->dump_ids ? "--dump-ids"
+                    : o->dump_screen ? "--dump-screen" : o->turntable ? "--turntable" : NULL;
+    if (only && out && !o->check) {
+        snprintf(err, errlen, "%s writes its report alone: %s goes without it (run them apart)", only, out);
+        return -1;
+    }
+    if (o->info && o->bench) {
+        snprintf(err, errlen, "--info and --bench each write a report of their own: choose one");
+        return -1;
+    }
+    if (o->turntable && (o->dump_ids || o->dump_screen)) {
+        snprintf(err, errlen, "--turntable writes pictures only: %s goes without it",
+                 o->dump_ids ? "--dump-ids" : "--dump-screen");
+        return -1;
+    }
     if (o->check && check_with(o, err, errlen))
         return -1;
     if (o->json && !o->check && !o->bench) {
@@ -291,7 +309,9 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
         return -1;
     }
     if (o->algo && !o->bench && !hsr_find(o->algo)) {
-        snprintf(err, errlen, "unknown algorithm '%s' (zbuffer, scanline, span, hzb, hzb-octree)", o->algo);
+        size_t n = (size_t)snprintf(err, errlen, "unknown algorithm '%s' (", o->algo);
+        for (int i = 0; i < hsr_nalgos && n < errlen; i++)
+            n += (size_t)snprintf(err + n, errlen - n, "%s%s", hsr_algos[i]->name, i + 1 < hsr_nalgos ? ", " : ")");
         return -1;
     }
     return 0;

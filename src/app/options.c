@@ -123,12 +123,45 @@ static int set_float(float *dst, const OptCall *c, float lo, float hi, const cha
     return 0;
 }
 
-/* A name that from_name knows (it returns -1 for the others) into *dst. */
-static int set_name(int *dst, const OptCall *c, int (*from_name)(const char *), const char *what)
+/* The words an option takes, from the table that defines them: name i,
+ * or NULL past the last. */
+typedef const char *(*NameAt)(int i);
+
+/* "a, b, c or d": every word of a table, for a refusal. */
+static void name_list(NameAt name_at, char *buf, size_t len)
 {
-    if ((*dst = from_name(c->val)) < 0)
-        return bad(c, what);
+    size_t o = 0;
+    buf[0] = 0;
+    for (int i = 0; name_at(i) && o < len; i++)
+        o += (size_t)snprintf(buf + o, len - o, "%s%s", i == 0 ? "" : name_at(i + 1) ? ", " : " or ", name_at(i));
+}
+
+/* A name that from_name knows (it returns -1 for the others) into *dst;
+ * else the refusal lists the table's words. */
+static int set_name(int *dst, const OptCall *c, int (*from_name)(const char *), NameAt name_at)
+{
+    if ((*dst = from_name(c->val)) < 0) {
+        char words[256];
+        name_list(name_at, words, sizeof words);
+        return bad(c, words);
+    }
     return 0;
+}
+
+static const char *up_word(int i) { return i < UP_COUNT ? up_axis_name(i) : NULL; }
+static const char *colour_word(int i) { return i <= COLOUR_TRUE ? colour_name((ColourDepth)(COLOUR_TRUE - i)) : NULL; }
+static const char *shade_word(int i) { return i < SHADE_COUNT ? shade_names[i] : NULL; }
+static const char *order_word(int i) { return i < ORDER_COUNT ? order_names[i] : NULL; }
+static const char *layout_word(int i) { return i < LAYOUT_COUNT ? layout_names[i] : NULL; }
+/* --mode: the text modes, then the pixel protocols (cells and auto too) */
+static const char *mode_word(int i)
+{
+    return i < MODE_COUNT ? mode_names[i] : i < MODE_COUNT + PIX_COUNT ? pixel_proto_names[i - MODE_COUNT] : NULL;
+}
+/* --view: the named views, then auto */
+static const char *view_word(int i)
+{
+    return view_name(i) ? view_name(i) : i > 0 && view_name(i - 1) ? "auto" : NULL;
 }
 
 /* ==== Setters: one per option that takes a value ==== */
@@ -181,8 +214,11 @@ static int set_size(Options *o, const OptCall *c)
 static int set_view(Options *o, const OptCall *c)
 {
     float y, p;
-    if (strcmp(c->val, "auto") && view_from_name(c->val, &y, &p))
-        return bad(c, "front, back, left, right, top, bottom, iso or auto");
+    if (strcmp(c->val, "auto") && view_from_name(c->val, &y, &p)) {
+        char words[256];
+        name_list(view_word, words, sizeof words);
+        return bad(c, words);
+    }
     o->view = c->val;
     return 0;
 }
@@ -221,11 +257,11 @@ static int add_place(Options *o, const OptCall *c, PlaceKind kind)
     Placement *pl = &o->place[o->nplace];
     pl->kind = kind;
     if (kind == PLACE_MOVE && parse_place(c->val, 3, pl))
-        return bad(c, "I:X,Y,Z with I the object's number from 1");
+        return bad(c, "I:X,Y,Z with I the object's number from 1 to 65535 and X, Y, Z from -1e9 to 1e9");
     if (kind == PLACE_TURN && parse_place(c->val, 3, pl))
-        return bad(c, "I:YAW,PITCH,ROLL with I the object's number from 1");
+        return bad(c, "I:YAW,PITCH,ROLL with I the object's number from 1 to 65535 and the angles from -1e9 to 1e9 degrees");
     if (kind == PLACE_SCALE && (parse_place(c->val, 1, pl) || !(pl->v[0] >= 1e-3f && pl->v[0] <= 1e3f)))
-        return bad(c, "I:F with I the object's number from 1 and F from 0.001 to 1000");
+        return bad(c, "I:F with I the object's number from 1 to 65535 and F from 0.001 to 1000");
     o->nplace++;
     return 0;
 }
@@ -233,7 +269,7 @@ static int add_place(Options *o, const OptCall *c, PlaceKind kind)
 static int set_persp(Options *o, const OptCall *c)
 {
     if (parse_float(c->val, &o->fov) || o->fov <= 1 || o->fov >= 179)
-        return bad(c, "a field of view in degrees, 1 < FOV < 179");
+        return bad(c, "a field of view in degrees, more than 1 and less than 179");
     o->persp = 1;
     return 0;
 }
@@ -305,7 +341,7 @@ static int set_dump_screen(Options *o, const OptCall *c)
 
 static int set_up(Options *o, const OptCall *c)
 {
-    return set_name(&o->up, c, up_axis_from_name, "x, y, z, -x, -y or -z");
+    return set_name(&o->up, c, up_axis_from_name, up_word);
 }
 
 static int pixel_proto_from_name(const char *name)
@@ -324,27 +360,27 @@ static int set_mode(Options *o, const OptCall *c)
         o->pixels = pixel_proto_from_name(c->val);
         return 0;
     }
-    return set_name(&o->mode, c, mode_from_name, "half, ascii, braille, sixel, kitty, iterm, cells or auto");
+    return set_name(&o->mode, c, mode_from_name, mode_word);
 }
 
 static int set_colour(Options *o, const OptCall *c)
 {
-    return set_name(&o->colour, c, colour_from_name, "truecolor, 256, 16, 8 or none");
+    return set_name(&o->colour, c, colour_from_name, colour_word);
 }
 
 static int set_shade(Options *o, const OptCall *c)
 {
-    return set_name(&o->shade, c, shade_from_name, "lambert, smooth, depth or id");
+    return set_name(&o->shade, c, shade_from_name, shade_word);
 }
 
 static int set_order(Options *o, const OptCall *c)
 {
-    return set_name(&o->order, c, order_from_name, "file, front-to-back, back-to-front or shuffle");
+    return set_name(&o->order, c, order_from_name, order_word);
 }
 
 static int set_layout(Options *o, const OptCall *c)
 {
-    return set_name(&o->layout, c, layout_from_name, "row, grid or none");
+    return set_name(&o->layout, c, layout_from_name, layout_word);
 }
 
 static int set_yaw(Options *o, const OptCall *c)

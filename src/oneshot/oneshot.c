@@ -386,7 +386,6 @@ static int turntable(const Options *o, Scene *s, Pipeline *p, Backdrops *b)
 
 int app_check_output(const Options *o, char *err, size_t errlen)
 {
-    static const char *const mode_names[MODE_COUNT] = { "half", "ascii", "braille" };
     char what[96];
     int text = o->print || text_file(o, o->out) || (!o->out && !o->dump_ids && !o->dump_screen);
     if (o->out && !text_file(o, o->out)) {

@@ -298,3 +298,13 @@ else
     check_lines=$(wc -l <"$T/err")
     if [ "$check_lines" -eq 1 ]; then ok "... in one line"; else notok "... in one line" "$(cat "$T/err")"; fi
 fi
+# options that cannot both be honoured are refused, not one silently dropped
+for combo in "--info -o $T/i.png" "--info --dump-ids $T/i.bin" "--info --print" "--bench -o $T/b.png" \
+             "--turntable 2 -o $T/t%d.png --dump-ids $T/t.bin" "--info --bench" "--check --dump-ids $T/c.bin"; do
+    expect_status "$combo is refused" 2 "$Z" $combo assets/cube.obj
+    first=${combo%% *}
+    expect_err "... naming $first" "$first"
+done
+for f in i.png i.bin b.png t0.png t.bin c.bin; do
+    if [ ! -e "$T/$f" ]; then ok "... and $f not written"; else notok "... and $f not written"; fi
+done

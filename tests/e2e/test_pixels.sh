@@ -23,7 +23,7 @@ check "--print --mode iterm: an OSC 1337 File string" 'head -c 40 "$T/iterm" | g
 check "--print --mode auto into a pipe: cells, no question, no image" \
     'grep -q "▀" "$T/auto" && ! grep -q "_G\|1337\|P0;1;0q" "$T/auto"'
 expect_status "--mode nope is a usage error" 2 "$Z" --mode nope --print assets/torus.obj
-expect_err "... naming the pixel modes" "sixel, kitty, iterm, cells or auto"
+expect_err "... naming the pixel modes" "cells, sixel, kitty, iterm or auto"
 
 # the viewer's status bar while a still image shows names the image's
 # colours and size, not the cells' under it (140x30 cells of the default
