@@ -55,6 +55,7 @@ help:
 	@echo '  make run           build, then open the bundled demo scene'
 	@echo '  make install       to $$(PREFIX) (default /usr/local), with the man page and completions'
 	@echo '  make noassimp      the build without assimp, in build-noassimp/'
+	@echo '  make nosimd        SIMD compiled out (-DZV_NO_SIMD), in build-nosimd/, and its unit tests'
 	@echo 'Tests'
 	@echo '  make test          every test: unit (Criterion), fuzz replays, end-to-end (about 1 minute);'
 	@echo '                     a check skipped for want of a tool fails it; ZV_ALLOW_SKIPS=1 allows that outside CI'

@@ -136,3 +136,12 @@ else
     if [ -z "$missing" ]; then ok "the layout map names every file under src/ and include/"; else notok "the layout map names every file under src/ and include/" "missing: $missing"; fi
     if [ -z "$extra" ]; then ok "the layout map names only files that exist"; else notok "the layout map names only files that exist" "not in the tree: $extra"; fi
 fi
+
+# ==== make help names every target ====
+make -s help >"$T/help" 2>&1
+missing=
+for t in $(sed -n 's/^\.PHONY: *//p' Makefile); do
+    case $t in all | help) continue ;; esac
+    grep -Eq "make $t( |,|$)|, $t( |,|$)" "$T/help" || missing="$missing $t"
+done
+if [ -z "$missing" ]; then ok "make help names every target of .PHONY"; else notok "make help names every target of .PHONY" "missing:$missing"; fi
