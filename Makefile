@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview
+.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview
 
 all: $(BIN)
 
@@ -64,6 +64,7 @@ help:
 	@echo '  make test-models   every algorithm against the z-buffer on ../shared/models'
 	@echo '  make replay        every input that ever failed, through the normal build'
 	@echo '  make mutate        each mutant of tests/mutants.txt must fail make test (about 15 minutes)'
+	@echo '  make mutate-rooms  mechanical mutants, PER_ROOM=10 lines of each room (SEED=1): the kill rate per room (hours)'
 	@echo 'Fuzzing (clang + libFuzzer: sh tools/deps.sh installs them)'
 	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh, fuzz-check, fuzz-tex (the image decoders)'
 	@echo '  make fuzz-run SECONDS=N   run each for N seconds; failures go to build-fuzz/artifacts/'
@@ -181,6 +182,17 @@ test-models: $(TESTBIN)
 # MUTANTS="a b" runs only those; see tools/mutate.sh for the rest.
 mutate:
 	sh tools/mutate.sh tests/mutants.txt
+
+# The mechanical mutants (tools/mutagen.py): PER_ROOM lines of each room
+# drawn at random (SEED), one operator or constant changed on each, run
+# as make mutate runs its list; then the kill rate per room. Hours: a
+# mutant costs 30 s to 3 min here.
+PER_ROOM ?= 10
+SEED ?= 1
+mutate-rooms:
+	python3 tools/mutagen.py --per-room $(PER_ROOM) --seed $(SEED) >$(BUILD)/mutants-auto.txt
+	-MUTATE_LOGS=$(BUILD)/mutate-rooms sh tools/mutate.sh $(BUILD)/mutants-auto.txt | tee $(BUILD)/mutate-rooms.log
+	python3 tools/mutagen.py --summary $(BUILD)/mutate-rooms.log
 
 e2e: $(BIN) $(STANDIN)
 	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) sh tests/e2e/run.sh
