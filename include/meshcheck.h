@@ -17,7 +17,11 @@
  * (its faces only); the file's figures are the objects' summed. Faces
  * keep their polygon form for the topology; area, volume and the
  * intersection tests take a polygon as the fan of triangles from its
- * first corner, as the rest of zview draws it. */
+ * first corner, as the rest of zview draws it. Degenerate faces (every
+ * corner on one line) are counted as such and left out of the rest of
+ * the topology (edges, non-manifold vertices, parts), as CGAL and the
+ * slicers set them aside; duplicate faces are counted as such and left
+ * out of the crossing test. */
 
 #include <stdint.h>
 
@@ -38,8 +42,8 @@ enum {
 typedef struct {
     uint32_t faces;
     uint32_t vertices;              /* distinct positions its faces use */
-    uint32_t components;            /* parts: faces joined by shared edges */
-    uint32_t boundary_edges;        /* edges of one face */
+    uint32_t components;            /* parts: faces joined by shared edges (degenerate faces in none) */
+    uint32_t boundary_edges;        /* edges of one face (the edges of non-degenerate faces only) */
     uint32_t holes;                 /* independent closed loops of boundary edges */
     uint32_t nonmanifold_edges;     /* edges of three or more faces */
     uint32_t nonmanifold_vertices;  /* points where separate fans of faces meet */
@@ -50,7 +54,7 @@ typedef struct {
     uint32_t unused_vertices;       /* vertices no face, point or line uses */
     uint64_t self_intersections;    /* pairs of faces that cross */
     int      intersections_tested;  /* self_intersections counted (CheckOpts.intersections) */
-    int      closed;                /* has faces, and no boundary edge */
+    int      closed;                /* has a non-degenerate face, and no boundary edge */
     int      watertight;            /* closed and edge-manifold */
     int      inside_out;            /* closed, and its volume (winding made to agree) is negative */
     int      has_volume;            /* volume and centre of mass mean something: closed and orientable */
@@ -90,7 +94,8 @@ typedef struct {
     CheckObject *objs;          /* one per mesh object */
     uint32_t     nobjs;
     uint8_t     *face_flags;    /* per mesh face, CHECK_* (detail), else NULL */
-    uint32_t    *face_part;     /* per mesh face, its part within its object, from 0 (detail), else NULL */
+    uint32_t    *face_part;     /* per mesh face, its part within its object, from 0, UINT32_MAX for a
+                                 * degenerate face (detail), else NULL */
     char         unit[8];       /* the unit the format states ("mm", "m"), "" none */
     double       ms[CHECK_T_COUNT];
 } MeshCheck;
