@@ -52,8 +52,11 @@ typedef struct {
     uint32_t degenerate_faces;      /* zero area */
     uint32_t duplicate_faces;       /* faces on the same points as an earlier one */
     uint32_t unused_vertices;       /* vertices no face, point or line uses */
-    uint64_t self_intersections;    /* pairs of faces that cross */
+    uint64_t self_intersections;    /* pairs of faces that cross (at least, when intersections_stopped) */
     int      intersections_tested;  /* self_intersections counted (CheckOpts.intersections) */
+    int      intersections_stopped; /* the crossing test spent its budget and stopped: a lower bound */
+    uint64_t pair_tests;            /* triangle pairs the crossing test decided exactly */
+    uint64_t pair_budget;           /* the most it may: CHECK_PAIR_BUDGET of the triangles tested */
     int      closed;                /* has a non-degenerate face, and no boundary edge */
     int      watertight;            /* closed and edge-manifold */
     int      inside_out;            /* closed, and its volume (winding made to agree) is negative */
@@ -78,6 +81,14 @@ typedef struct {
 } CheckObject;
 
 #define CHECK_PAIRS_MAX 1000000u
+
+/* The crossing test's work is bounded: of an object's n triangles (its
+ * faces' fan triangles, degenerate and duplicate ones left out) at most
+ * this many pairs go to the exact test, and 16 times as many are
+ * compared by box; past that it stops (intersections_stopped). 64 a
+ * triangle is 8 times what the dragon needs; a million is the floor for
+ * small objects. */
+#define CHECK_PAIR_BUDGET(n) (64 * (uint64_t)(n) + (1u << 20))
 
 /* Phases timed (wall ms), for the benchmark. */
 enum { CHECK_T_WELD, CHECK_T_EDGES, CHECK_T_SHAPE, CHECK_T_DUPS, CHECK_T_CROSS, CHECK_T_COUNT };
@@ -106,14 +117,15 @@ int  meshcheck_run(MeshCheck *mc, const Mesh *m, const CheckOpts *opt, char *err
 void meshcheck_free(MeshCheck *mc);
 
 /* Nothing wrong: faces, closed, manifold, agreeing, outward, no
- * degenerate or duplicate faces, no crossing (when tested). Several
- * parts and unused vertices are not problems. */
+ * degenerate or duplicate faces, no crossing (when tested; a crossing
+ * test that stopped on its budget proved none). Several parts and
+ * unused vertices are not problems. */
 int  meshcheck_sound(const CheckCounts *c);
 
 /* The problems in words, most serious first ("1 hole (4 boundary
  * edges)", "12 flipped faces"), at most max into item; returns how many
  * there are (0: sound). */
-#define CHECK_PROBLEM_LEN  64
+#define CHECK_PROBLEM_LEN  96
 #define CHECK_PROBLEMS_MAX 10       /* there are no more kinds */
 int  meshcheck_problems(const CheckCounts *c, char (*item)[CHECK_PROBLEM_LEN], int max);
 

@@ -36,6 +36,9 @@ static void sum_files(SceneCheck *sc)
         a->duplicate_faces += c->duplicate_faces;
         a->self_intersections += c->self_intersections;
         a->intersections_tested &= c->intersections_tested;
+        a->intersections_stopped |= c->intersections_stopped;
+        a->pair_tests += c->pair_tests;
+        a->pair_budget += c->pair_budget;
         a->closed &= c->closed;
         a->watertight &= c->watertight;
         a->has_volume &= c->has_volume;
@@ -129,7 +132,9 @@ int check_verdict_short(const CheckCounts *c, const char *sep, char *buf, size_t
         add(buf, len, sep, "%llu flipped", c->inconsistent_faces);
     if (c->inside_out && ++k)
         add(buf, len, sep, "inside out", 0);
-    if (c->self_intersections && ++k)
+    if (c->intersections_stopped && ++k)
+        add(buf, len, sep, "%llu+ crossing", c->self_intersections);
+    else if (c->self_intersections && ++k)
         add(buf, len, sep, "%llu crossing", c->self_intersections);
     if (c->degenerate_faces && ++k)
         add(buf, len, sep, "%llu degenerate", c->degenerate_faces);
