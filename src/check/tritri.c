@@ -134,12 +134,14 @@ static int tri_tri_apart(const float *const a[3], const float *const b[3])
         ob[k] = exact_orient3d(a[0], a[1], a[2], b[k]);
     if ((ob[0] > 0 && ob[1] > 0 && ob[2] > 0) || (ob[0] < 0 && ob[1] < 0 && ob[2] < 0))
         return 0;
+    /* in one plane: a's corners are on b's plane too, no need to ask
+     * (in a coplanar stack each orient3d is exact arithmetic) */
+    if (ob[0] == 0 && ob[1] == 0 && ob[2] == 0)
+        return tri_tri_2d(a, b);
     for (int k = 0; k < 3; k++)
         oa[k] = exact_orient3d(b[0], b[1], b[2], a[k]);
     if ((oa[0] > 0 && oa[1] > 0 && oa[2] > 0) || (oa[0] < 0 && oa[1] < 0 && oa[2] < 0))
         return 0;
-    if (ob[0] == 0 && ob[1] == 0 && ob[2] == 0)
-        return tri_tri_2d(a, b);
     for (int k = 0; k < 3; k++) {
         int l = (k + 1) % 3;
         if (seg_tri(a[k], a[l], oa[k], oa[l], b) || seg_tri(b[k], b[l], ob[k], ob[l], a))
