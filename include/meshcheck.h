@@ -51,7 +51,8 @@ typedef struct {
     uint32_t nonorientable;         /* parts no flip can make agree (a Moebius strip) */
     uint32_t degenerate_faces;      /* zero area */
     uint32_t duplicate_faces;       /* faces on the same points as an earlier one */
-    uint32_t unused_vertices;       /* vertices no face, point or line uses */
+    uint32_t unused_vertices;       /* vertices no face, point or line uses: a file's all of them, an
+                                     * object's those within the range of vertex indices it uses */
     uint64_t self_intersections;    /* pairs of faces that cross (at least, when intersections_stopped) */
     int      intersections_tested;  /* self_intersections counted (CheckOpts.intersections) */
     int      intersections_stopped; /* the crossing test spent its budget and stopped: a lower bound */
