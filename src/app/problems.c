@@ -168,9 +168,10 @@ int check_report(const SceneCheck *sc, ReportLine *lines, int max)
     }
     if (n < max) {
         lines[n].label = "faces:";
-        snprintf(lines[n++].text, REPORT_TEXT, "%u flipped%s, %llu crossing pairs, %u degenerate, %u duplicate",
+        snprintf(lines[n++].text, REPORT_TEXT, "%u flipped%s, %s%llu crossing pairs, %u degenerate, %u duplicate",
                  c->inconsistent_faces, c->inside_out ? ", inside out" : "",
-                 (unsigned long long)c->self_intersections, c->degenerate_faces, c->duplicate_faces);
+                 c->intersections_stopped ? "at least " : "", (unsigned long long)c->self_intersections,
+                 c->degenerate_faces, c->duplicate_faces);
     }
     if (n < max) {
         lines[n].label = "volume:";
