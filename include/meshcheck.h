@@ -17,7 +17,11 @@
  * (its faces only); the file's figures are the objects' summed. Faces
  * keep their polygon form for the topology; area, volume and the
  * intersection tests take a polygon as the fan of triangles from its
- * first corner, as the rest of zview draws it. */
+ * first corner, as the rest of zview draws it. Degenerate faces (every
+ * corner on one line) are counted as such and left out of the rest of
+ * the topology (edges, non-manifold vertices, parts), as CGAL and the
+ * slicers set them aside; duplicate faces are counted as such and left
+ * out of the crossing test. */
 
 #include <stdint.h>
 
@@ -38,8 +42,8 @@ enum {
 typedef struct {
     uint32_t faces;
     uint32_t vertices;              /* distinct positions its faces use */
-    uint32_t components;            /* parts: faces joined by shared edges */
-    uint32_t boundary_edges;        /* edges of one face */
+    uint32_t components;            /* parts: faces joined by shared edges (degenerate faces in none) */
+    uint32_t boundary_edges;        /* edges of one face (the edges of non-degenerate faces only) */
     uint32_t holes;                 /* independent closed loops of boundary edges */
     uint32_t nonmanifold_edges;     /* edges of three or more faces */
     uint32_t nonmanifold_vertices;  /* points where separate fans of faces meet */
@@ -47,10 +51,14 @@ typedef struct {
     uint32_t nonorientable;         /* parts no flip can make agree (a Moebius strip) */
     uint32_t degenerate_faces;      /* zero area */
     uint32_t duplicate_faces;       /* faces on the same points as an earlier one */
-    uint32_t unused_vertices;       /* vertices no face, point or line uses */
-    uint64_t self_intersections;    /* pairs of faces that cross */
+    uint32_t unused_vertices;       /* vertices no face, point or line uses: a file's all of them, an
+                                     * object's those within the range of vertex indices it uses */
+    uint64_t self_intersections;    /* pairs of faces that cross (at least, when intersections_stopped) */
     int      intersections_tested;  /* self_intersections counted (CheckOpts.intersections) */
-    int      closed;                /* has faces, and no boundary edge */
+    int      intersections_stopped; /* the crossing test spent its budget and stopped: a lower bound */
+    uint64_t pair_tests;            /* triangle pairs the crossing test decided exactly */
+    uint64_t pair_budget;           /* the most it may: CHECK_PAIR_BUDGET of the triangles tested */
+    int      closed;                /* has a non-degenerate face, and no boundary edge */
     int      watertight;            /* closed and edge-manifold */
     int      inside_out;            /* closed, and its volume (winding made to agree) is negative */
     int      has_volume;            /* volume and centre of mass mean something: closed and orientable */
@@ -75,6 +83,14 @@ typedef struct {
 
 #define CHECK_PAIRS_MAX 1000000u
 
+/* The crossing test's work is bounded: of an object's n triangles (its
+ * faces' fan triangles, degenerate and duplicate ones left out) at most
+ * this many pairs go to the exact test, and 16 times as many are
+ * compared by box; past that it stops (intersections_stopped). 64 a
+ * triangle is 8 times what the dragon needs; a million is the floor for
+ * small objects. */
+#define CHECK_PAIR_BUDGET(n) (64 * (uint64_t)(n) + (1u << 20))
+
 /* Phases timed (wall ms), for the benchmark. */
 enum { CHECK_T_WELD, CHECK_T_EDGES, CHECK_T_SHAPE, CHECK_T_DUPS, CHECK_T_CROSS, CHECK_T_COUNT };
 
@@ -90,7 +106,8 @@ typedef struct {
     CheckObject *objs;          /* one per mesh object */
     uint32_t     nobjs;
     uint8_t     *face_flags;    /* per mesh face, CHECK_* (detail), else NULL */
-    uint32_t    *face_part;     /* per mesh face, its part within its object, from 0 (detail), else NULL */
+    uint32_t    *face_part;     /* per mesh face, its part within its object, from 0, UINT32_MAX for a
+                                 * degenerate face (detail), else NULL */
     char         unit[8];       /* the unit the format states ("mm", "m"), "" none */
     double       ms[CHECK_T_COUNT];
 } MeshCheck;
@@ -101,14 +118,15 @@ int  meshcheck_run(MeshCheck *mc, const Mesh *m, const CheckOpts *opt, char *err
 void meshcheck_free(MeshCheck *mc);
 
 /* Nothing wrong: faces, closed, manifold, agreeing, outward, no
- * degenerate or duplicate faces, no crossing (when tested). Several
- * parts and unused vertices are not problems. */
+ * degenerate or duplicate faces, no crossing (when tested; a crossing
+ * test that stopped on its budget proved none). Several parts and
+ * unused vertices are not problems. */
 int  meshcheck_sound(const CheckCounts *c);
 
 /* The problems in words, most serious first ("1 hole (4 boundary
  * edges)", "12 flipped faces"), at most max into item; returns how many
  * there are (0: sound). */
-#define CHECK_PROBLEM_LEN  64
+#define CHECK_PROBLEM_LEN  96
 #define CHECK_PROBLEMS_MAX 10       /* there are no more kinds */
 int  meshcheck_problems(const CheckCounts *c, char (*item)[CHECK_PROBLEM_LEN], int max);
 

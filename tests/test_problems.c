@@ -347,6 +347,14 @@ Test(problems, the_verdict_in_a_word_or_two)
     c.self_intersections = 1;
     check_verdict_short(&c, ", ", buf, sizeof buf);
     cr_assert_str_eq(buf, "1 hole, 1 crossing");
+    /* the crossing test stopped on its budget: a lower bound, a problem
+     * even when it found none */
+    c = (CheckCounts){ 0 };
+    c.faces = 40000;
+    c.closed = c.watertight = 1;
+    c.intersections_stopped = 1;
+    cr_assert_eq(check_verdict_short(&c, ", ", buf, sizeof buf), 1);
+    cr_assert_str_eq(buf, "0+ crossing");
 }
 
 Test(problems, part_colours_differ_and_stay_off_black_and_white)

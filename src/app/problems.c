@@ -37,6 +37,9 @@ static void sum_files(SceneCheck *sc)
         a->duplicate_faces += c->duplicate_faces;
         a->self_intersections += c->self_intersections;
         a->intersections_tested &= c->intersections_tested;
+        a->intersections_stopped |= c->intersections_stopped;
+        a->pair_tests += c->pair_tests;
+        a->pair_budget += c->pair_budget;
         a->closed &= c->closed;
         a->watertight &= c->watertight;
         a->has_volume &= c->has_volume;
@@ -139,7 +142,9 @@ int check_verdict_items(const CheckCounts *c, const char *sep, int max, char *bu
         item(buf, len, sep, &k, max, "%llu flipped", c->inconsistent_faces);
     if (c->inside_out)
         item(buf, len, sep, &k, max, "inside out", 0);
-    if (c->self_intersections)
+    if (c->intersections_stopped)      /* a lower bound: the test stopped */
+        item(buf, len, sep, &k, max, "%llu+ crossing", c->self_intersections);
+    else if (c->self_intersections)
         item(buf, len, sep, &k, max, "%llu crossing", c->self_intersections);
     if (c->degenerate_faces)
         item(buf, len, sep, &k, max, "%llu degenerate", c->degenerate_faces);
@@ -180,9 +185,10 @@ int check_report(const SceneCheck *sc, ReportLine *lines, int max)
     }
     if (n < max) {
         lines[n].label = "faces:";
-        snprintf(lines[n++].text, REPORT_TEXT, "%u flipped%s, %llu crossing pairs, %u degenerate, %u duplicate",
+        snprintf(lines[n++].text, REPORT_TEXT, "%u flipped%s, %s%llu crossing pairs, %u degenerate, %u duplicate",
                  c->inconsistent_faces, c->inside_out ? ", inside out" : "",
-                 (unsigned long long)c->self_intersections, c->degenerate_faces, c->duplicate_faces);
+                 c->intersections_stopped ? "at least " : "", (unsigned long long)c->self_intersections,
+                 c->degenerate_faces, c->duplicate_faces);
     }
     if (n < max) {
         lines[n].label = "volume:";

@@ -221,6 +221,9 @@ static void file_totals(MeshCheck *mc, uint32_t used_points)
         f->duplicate_faces += c->duplicate_faces;
         f->self_intersections += c->self_intersections;
         f->intersections_tested &= c->intersections_tested;
+        f->intersections_stopped |= c->intersections_stopped;
+        f->pair_tests += c->pair_tests;
+        f->pair_budget += c->pair_budget;
         f->closed &= c->closed;
         f->watertight &= c->watertight;
         f->has_volume &= c->has_volume;
@@ -329,7 +332,7 @@ int meshcheck_sound(const CheckCounts *c)
 {
     return c->faces > 0 && c->boundary_edges == 0 && c->nonmanifold_edges == 0 && c->nonmanifold_vertices == 0 &&
            c->nonorientable == 0 && c->inconsistent_faces == 0 && !c->inside_out && c->degenerate_faces == 0 &&
-           c->duplicate_faces == 0 && c->self_intersections == 0;
+           c->duplicate_faces == 0 && c->self_intersections == 0 && !c->intersections_stopped;
 }
 
 typedef struct {
@@ -376,7 +379,13 @@ int meshcheck_problems(const CheckCounts *c, char (*item)[CHECK_PROBLEM_LEN], in
         say_n(&p, c->degenerate_faces, "degenerate face", "degenerate faces");
     if (c->duplicate_faces)
         say_n(&p, c->duplicate_faces, "duplicate face", "duplicate faces");
-    if (c->self_intersections)
+    if (c->intersections_stopped) {
+        char t[CHECK_PROBLEM_LEN];
+        snprintf(t, sizeof t, "at least %llu intersecting face pair%s (stopped after %llu pair tests)",
+                 (unsigned long long)c->self_intersections, c->self_intersections == 1 ? "" : "s",
+                 (unsigned long long)c->pair_tests);
+        say(&p, t);
+    } else if (c->self_intersections)
         say_n(&p, c->self_intersections, "intersecting face pair", "intersecting face pairs");
     return p.n;
 }

@@ -21,7 +21,8 @@
 #define MATE_BOUNDARY   UINT32_MAX          /* the only face on its edge */
 #define MATE_NONMANIF   (UINT32_MAX - 1)    /* three or more faces on its edge */
 #define MATE_DEGENERATE (UINT32_MAX - 2)    /* from a point to itself: no edge */
-#define MATE_FIRST_SPECIAL MATE_DEGENERATE  /* corners of an object stay below this */
+#define MATE_SKIPPED    (UINT32_MAX - 3)    /* of a degenerate face: out of the topology */
+#define MATE_FIRST_SPECIAL MATE_SKIPPED     /* corners of an object stay below this */
 
 typedef struct {
     const Mesh      *m;
@@ -84,12 +85,14 @@ int      check_union(uint32_t *p, uint32_t a, uint32_t b);
  * of memory). */
 int  check_weld(const Mesh *m, uint32_t *pid, uint32_t *npts_out);
 
-/* topo.c: the half-edge pairing (mate, the non-manifold groups), the
- * boundary, holes, non-manifold edges and vertices. */
+/* topo.c: the degenerate faces (flagged and counted first: the rest
+ * leaves them out), the half-edge pairing (mate, the non-manifold
+ * groups), the boundary, holes, non-manifold edges and vertices. */
 int  check_topology(ObjCheck *o);
 
 /* shape.c: the winding (fewest flips, non-orientable parts) and the
- * parts, then area, volume and centre of mass and degenerate faces;
+ * parts (without the degenerate faces: their part is CHECK_NONE), then
+ * area, volume and centre of mass;
  * duplicate faces (dups.c). Both read mate[]. */
 int  check_shape(ObjCheck *o);
 int  check_duplicates(ObjCheck *o);

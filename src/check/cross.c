@@ -24,10 +24,25 @@
  * nodes whose boxes do not meet have none across (the usual self-
  * collision traversal). The top of that recursion is unrolled into
  * tasks for the helper threads; the count does not depend on how.
- * A candidate pair is decided exactly by tritri.c. Two triangles of one
- * face are never a pair; a pair of faces is counted once, at the first
- * of their triangle pairs (in fan order) that crosses; two faces on the
- * same points are duplicates (dups.c), not a crossing. */
+ * A candidate pair is decided exactly by tritri.c (a pair that shares a
+ * corner or an edge by the shared element). Two triangles of one face
+ * are never a pair; a pair of faces is counted once, at the first of
+ * their triangle pairs (in fan order) that crosses; two faces on the
+ * same points are duplicates (dups.c), not a crossing, and a face that
+ * duplicates an earlier one is left out (16,000 coincident triangles
+ * were 128 million pairs).
+ *
+ * The work is bounded: some inputs make every pair a candidate (a
+ * planar fan of 40k triangles around one vertex, 100k triangles on one
+ * edge, a stack of coplanar triangles), and no tree helps there. At
+ * most CHECK_PAIR_BUDGET(n) triangle pairs, n triangles, go to the exact
+ * test, and 16 times as many are compared by box at the leaves; past
+ * either the test stops and the count is a lower bound ("at least N",
+ * intersections_stopped). An ordinary model needs far fewer: the
+ * dragon (871k triangles) 7.4 tests and 37 box comparisons a triangle.
+ * Each job counts its work and adds it to the shared total every
+ * CROSS_FLUSH units, so that the helpers share no cache line in the
+ * hot loop; the total may pass the budget by that much per thread. */
 
 #include <math.h>
 #include <stdlib.h>
@@ -37,6 +52,7 @@
 #include "exact.h"
 
 #define LEAF 8                  /* triangles a leaf holds */
+#define CROSS_FLUSH 4096        /* a job's work between additions to the shared total */
 
 typedef struct {
     uint16_t lo[3], hi[3];      /* quantized box */
@@ -46,6 +62,7 @@ typedef struct {
 
 typedef struct {
     uint64_t  count;            /* crossing pairs found */
+    uint64_t  tests, boxes;     /* exact pair tests and leaf box comparisons, not yet in the total */
     uint64_t *pairs;            /* (face a << 32 | face b), mesh indices, a < b (detail) */
     size_t    n, cap;
     int       oom;
@@ -69,6 +86,9 @@ typedef struct {
     Job      *job;
     uint32_t  njobs;
     Found    *found;            /* one per job */
+    uint64_t  budget;           /* exact pair tests allowed; box comparisons 16 times as many */
+    uint64_t  tests, boxes;     /* the work done (atomic: every job adds to it) */
+    int       stop;             /* the budget is spent (atomic) */
 } Cross;
 
 /* ==== Boxes and the Morton order ==== */
@@ -189,7 +209,7 @@ static int collect(Cross *x, uint32_t **face_out, uint32_t **fan_out)
             n = 0;
         }
         for (uint32_t f = 0; f < o->nf; f++) {
-            if (o->flags[f] & CHECK_DEGENERATE)
+            if (o->flags[f] & (CHECK_DEGENERATE | CHECK_DUPLICATE))
                 continue;
             uint32_t nfan = oc_start(o, f + 1) - oc_start(o, f) - 2;
             for (uint32_t k = 1; k <= nfan; k++) {
@@ -335,6 +355,29 @@ static inline int is_leaf(const Node *n)
     return n->end - n->first <= LEAF;
 }
 
+/* ==== The budget ==== */
+
+/* Add a job's work to the total; 1 when the budget is spent. */
+static int spend(Cross *x, Found *fd)
+{
+    uint64_t t = __atomic_add_fetch(&x->tests, fd->tests, __ATOMIC_RELAXED);
+    uint64_t b = __atomic_add_fetch(&x->boxes, fd->boxes, __ATOMIC_RELAXED);
+    fd->tests = fd->boxes = 0;
+    if (t > x->budget || b > 16 * x->budget) {
+        __atomic_store_n(&x->stop, 1, __ATOMIC_RELAXED);
+        return 1;
+    }
+    return 0;
+}
+
+/* Stop here? The job's own work goes to the total once it is large. */
+static inline int spent(Cross *x, Found *fd)
+{
+    if (fd->tests + fd->boxes / 16 >= CROSS_FLUSH && spend(x, fd))
+        return 1;
+    return __atomic_load_n(&x->stop, __ATOMIC_RELAXED);
+}
+
 /* ==== Testing a pair ==== */
 
 /* Do faces fa and fb use the same points, as many times each? */
@@ -356,9 +399,11 @@ static int same_points(const ObjCheck *o, uint32_t fa, uint32_t fb)
     return 1;
 }
 
-/* Do fan triangles ka of fa and kb of fb cross (any answer but 0)? */
-static int fans_cross(const ObjCheck *o, uint32_t fa, uint32_t ka, uint32_t fb, uint32_t kb)
+/* Do fan triangles ka of fa and kb of fb cross (any answer but 0)? An
+ * exact test, counted in fd. */
+static int fans_cross(const ObjCheck *o, Found *fd, uint32_t fa, uint32_t ka, uint32_t fb, uint32_t kb)
 {
+    fd->tests++;
     uint32_t ca[3], cb[3], ia[3], ib[3];
     const float *pa[3], *pb[3];
     fan_corners(o, fa, ka, ca);
@@ -375,13 +420,16 @@ static int fans_cross(const ObjCheck *o, uint32_t fa, uint32_t ka, uint32_t fb, 
 }
 
 /* The pair of polygons fa and fb is counted at their first crossing
- * pair of fan triangles: is (ka, kb) that one? */
-static int first_crossing(const ObjCheck *o, uint32_t fa, uint32_t ka, uint32_t fb, uint32_t kb)
+ * pair of fan triangles: is (ka, kb) that one? Two long polygons make
+ * this long too: the budget stops it (answering no, the count a lower
+ * bound then). */
+static int first_crossing(Cross *x, Found *fd, uint32_t fa, uint32_t ka, uint32_t fb, uint32_t kb)
 {
+    const ObjCheck *o = x->o;
     uint32_t nb = oc_start(o, fb + 1) - oc_start(o, fb) - 2;
     for (uint32_t i = 1; i <= ka; i++)
         for (uint32_t j = 1; j <= (i < ka ? nb : kb - 1); j++)
-            if (fans_cross(o, fa, i, fb, j))
+            if (fans_cross(o, fd, fa, i, fb, j) || spent(x, fd))
                 return 0;
     return 1;
 }
@@ -414,6 +462,7 @@ static void test_pair(Cross *x, Found *fd, uint32_t i, uint32_t j)
     const float *pa[3], *pb[3];
     tri_pos(x, i, pa);
     tri_pos(x, j, pb);
+    fd->tests++;
     int r = check_tri_pair(pa, x->id + 3 * (size_t)i, pb, x->id + 3 * (size_t)j);
     if (!r)
         return;
@@ -421,8 +470,8 @@ static void test_pair(Cross *x, Found *fd, uint32_t i, uint32_t j)
     /* faces on the same points are duplicates, whatever their fans do */
     if ((r == CHECK_SAME_TRI || x->fan) && same_points(x->o, fa, fb))
         return;
-    if (x->fan && !(fa < fb ? first_crossing(x->o, fa, x->fan[i], fb, x->fan[j])
-                            : first_crossing(x->o, fb, x->fan[j], fa, x->fan[i])))
+    if (x->fan && !(fa < fb ? first_crossing(x, fd, fa, x->fan[i], fb, x->fan[j])
+                            : first_crossing(x, fd, fb, x->fan[j], fa, x->fan[i])))
         return;
     found(x, fd, fa, fb);
 }
@@ -437,11 +486,15 @@ static inline int qboxes_meet(const uint16_t *a, const uint16_t *b)
 /* The pairs between the triangles of leaves a and b (a == b: within). */
 static void leaf_pairs(Cross *x, Found *fd, const Node *a, const Node *b)
 {
+    if (spent(x, fd))
+        return;
     for (uint32_t i = a->first; i < a->end; i++) {
         const uint16_t *bi = x->qbox + 6 * (size_t)i;
         if (a != b && !qboxes_meet(bi, b->lo))
             continue;
-        for (uint32_t j = a == b ? i + 1 : b->first; j < b->end; j++)
+        uint32_t j0 = a == b ? i + 1 : b->first;
+        fd->boxes += b->end - j0;
+        for (uint32_t j = j0; j < b->end; j++)
             if (qboxes_meet(bi, x->qbox + 6 * (size_t)j) && x->face[i] != x->face[j])
                 test_pair(x, fd, i, j);
     }
@@ -452,7 +505,7 @@ static void leaf_pairs(Cross *x, Found *fd, const Node *a, const Node *b)
 static void across(Cross *x, Found *fd, uint32_t a, uint32_t b)
 {
     const Node *na = &x->node[a], *nb = &x->node[b];
-    if (!nodes_meet(na, nb))
+    if (!nodes_meet(na, nb) || __atomic_load_n(&x->stop, __ATOMIC_RELAXED))
         return;
     int la = is_leaf(na), lb = is_leaf(nb);
     if (la && lb) {
@@ -482,7 +535,7 @@ static void within(Cross *x, Found *fd, uint32_t a)
         leaf_pairs(x, fd, n, n);
         return;
     }
-    if (cancelled(x))
+    if (cancelled(x) || __atomic_load_n(&x->stop, __ATOMIC_RELAXED))
         return;
     uint32_t l = a + 1, r = x->node[l].skip;
     within(x, fd, l);
@@ -540,6 +593,7 @@ static void run_job(void *arg, int task, int worker)
         within(x, &x->found[task], j.a);
     else
         across(x, &x->found[task], j.a, j.b);
+    spend(x, &x->found[task]);
 }
 
 static int cmp_u64(const void *a, const void *b)
@@ -553,6 +607,8 @@ static int gather(Cross *x)
 {
     ObjCheck *o = x->o;
     size_t total = 0;
+    o->c->pair_tests += x->tests;
+    o->c->intersections_stopped |= x->stop;
     for (uint32_t t = 0; t < x->njobs; t++) {
         o->c->self_intersections += x->found[t].count;
         total += x->found[t].n;
@@ -612,6 +668,8 @@ int check_crossings(ObjCheck *o)
     }
     uint32_t *uface = NULL, *ufan = NULL;
     int r = collect(&x, &uface, &ufan);
+    x.budget = CHECK_PAIR_BUDGET((uint64_t)x.n);
+    o->c->pair_budget += x.budget;
     if (r == 0)
         r = sort_tris(&x, uface, ufan);
     free(uface);

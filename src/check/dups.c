@@ -5,10 +5,10 @@
  * to look: a face whose first edge is manifold can only duplicate the
  * face across it, and one on a boundary edge duplicates none. Only the
  * faces whose first edge is non-manifold (a doubled face on a closed
- * mesh makes all its edges so) and the faces of a single point go
- * through a hash table of sorted point lists. Of each set of equal
- * faces the first in the file is the original and the others are
- * flagged and counted. */
+ * mesh makes all its edges so) and the degenerate faces (out of the
+ * pairing) go through a hash table of sorted point lists. Of each set
+ * of equal faces the first in the file is the original and the others
+ * are flagged and counted. */
 
 #include <stdlib.h>
 #include <string.h>
@@ -112,7 +112,7 @@ int check_duplicates(ObjCheck *o)
         goto out;
     for (uint32_t f = 0; f < o->nf; f++) {
         uint32_t c = oc_start(o, f), e = oc_start(o, f + 1);
-        while (c < e && o->mate[c] == MATE_DEGENERATE)
+        while (c < e && (o->mate[c] == MATE_DEGENERATE || o->mate[c] == MATE_SKIPPED))
             c++;
         uint32_t m = c < e ? o->mate[c] : MATE_NONMANIF;
         if (m == MATE_BOUNDARY)

@@ -161,10 +161,19 @@ static int orient3d_fixed(const float *a, const float *b, const float *c, const 
     }
     if (hi - lo > 16)
         return 0;
+    /* each coordinate times 2^(150 - lo), from its bits (ldexp was most
+     * of the time of a coplanar pair): the significand with its hidden
+     * bit, shifted by its exponent's distance to lo, an integer below
+     * 2^40 */
     int64_t q[4][3];
     for (int i = 0; i < 4; i++)
-        for (int k = 0; k < 3; k++)
-            q[i][k] = (int64_t)ldexp((double)p[i][k], 150 - lo);   /* exact: an integer below 2^40 */
+        for (int k = 0; k < 3; k++) {
+            uint32_t u;
+            memcpy(&u, &p[i][k], sizeof u);
+            int e = (int)(u >> 23 & 0xff);
+            int64_t m = e ? (int64_t)((u & 0x7fffff) | 0x800000) << (e - lo) : 0;
+            q[i][k] = u >> 31 ? -m : m;
+        }
     int64_t adx = q[0][0] - q[3][0], ady = q[0][1] - q[3][1], adz = q[0][2] - q[3][2];
     int64_t bdx = q[1][0] - q[3][0], bdy = q[1][1] - q[3][1], bdz = q[1][2] - q[3][2];
     int64_t cdx = q[2][0] - q[3][0], cdy = q[2][1] - q[3][1], cdz = q[2][2] - q[3][2];
@@ -213,6 +222,12 @@ int exact_orient3d(const float *a, const float *b, const float *c, const float *
         return 1;
     if (det < -bound)
         return -1;
+    /* every term zero (points in an axis plane): a difference of floats
+     * rounds to zero only when it is zero, and a product of nonzero ones
+     * is far above the underflow (|x| >= 2^-149 each), so each term is
+     * exactly zero */
+    if (perm == 0)
+        return 0;
     int sign;
     if (orient3d_fixed(a, b, c, d, &sign))
         return sign;

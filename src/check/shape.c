@@ -10,7 +10,8 @@
  * tie, the class whose flip leaves the volume positive). Non-manifold
  * edges bound the patches: a fin's three faces have no winding to agree
  * on. The parts are the patches joined across non-manifold edges, both
- * numbered in face order.
+ * numbered in face order; a degenerate face (out of the pairing, a
+ * patch alone) is in no part.
  *
  * Area, volume and centre of mass, in face order: each face is a fan of
  * triangles from its first corner. The volume is the sum of the signed
@@ -19,9 +20,9 @@
  * that a model far from the origin loses no digits, with the flips made
  * first: a closed mesh whose sum is negative is inside out. The centre
  * of mass is the tetrahedra's centroids weighted by their signed
- * volumes (uniform density). Degenerate faces have zero area: every
- * corner on one line, decided exactly (exact.c), so that a thin but
- * real sliver is not one. */
+ * volumes (uniform density). Degenerate faces (flagged by topo.c) have
+ * zero area: every corner on one line, decided exactly (exact.c), so
+ * that a thin but real sliver is not one. */
 
 #include <math.h>
 #include <stdlib.h>
@@ -237,9 +238,14 @@ static int join_patches(ObjCheck *o, uint32_t npatches)
      * overwrites roots with labels, which a later find must not walk */
     for (uint32_t p = 0; p < npatches; p++)
         uf[p] = check_find(uf, p);
+    /* a degenerate face's patch is itself alone, joined to nothing */
+    for (uint32_t f = 0; f < o->nf; f++)
+        if (o->flags[f] & CHECK_DEGENERATE)
+            uf[o->part[f]] = CHECK_NONE;
     uint32_t parts = 0;
     for (uint32_t p = 0; p < npatches; p++)
-        uf[p] = uf[p] == p ? parts++ : uf[uf[p]];
+        if (uf[p] != CHECK_NONE)
+            uf[p] = uf[p] == p ? parts++ : uf[uf[p]];
     for (uint32_t f = 0; f < o->nf; f++)
         o->part[f] = uf[o->part[f]];
     o->c->components = parts;
@@ -270,17 +276,16 @@ static void measures(ObjCheck *o)
     for (uint32_t f = 0; f < o->nf; f++) {
         FaceMeasure fm;
         face_measure(o, f, &fm);
-        if (check_face_degenerate(o, f)) {
-            o->flags[f] |= CHECK_DEGENERATE;
-            c->degenerate_faces++;
-        } else
+        if (!(o->flags[f] & CHECK_DEGENERATE))
             c->area += fm.area;
         double s = o->flags[f] & CHECK_FLIPPED ? -1 : 1;
         vol += s * fm.vol;
         for (int k = 0; k < 3; k++)
             mom[k] += s * fm.mom[k];
     }
-    c->closed = o->nf > 0 && c->boundary_edges == 0;
+    /* faces of no area alone (a triangle collapsed to two points, whose
+     * edge a-b twice looked like a closed surface) close nothing */
+    c->closed = o->nf > c->degenerate_faces && c->boundary_edges == 0;
     c->watertight = c->closed && c->nonmanifold_edges == 0;
     c->has_volume = c->closed && c->nonorientable == 0;
     if (c->has_volume) {

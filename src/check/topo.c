@@ -73,9 +73,11 @@ static void bucket_sort(uint32_t *to, uint32_t *he, uint32_t n, uint64_t *scratc
     }
 }
 
-/* Bucket every half-edge that joins two different points; mate[] of the
- * others is MATE_DEGENERATE. mate[] first holds each corner's point, so
- * that the counting and the filling passes look each up once. */
+/* Bucket every half-edge of a non-degenerate face that joins two
+ * different points; mate[] of the others is MATE_DEGENERATE, of a
+ * degenerate face's corners MATE_SKIPPED. mate[] first holds each
+ * corner's point, so that the counting and the filling passes look each
+ * up once. */
 static int buckets_build(ObjCheck *o, Buckets *b)
 {
     uint32_t np = o->npts, nc = o->nc, *pt = o->mate;
@@ -86,7 +88,7 @@ static int buckets_build(ObjCheck *o, Buckets *b)
         pt[c] = oc_pt(o, c);
     uint32_t nhe = 0;
     for (uint32_t c = 0; c < nc; c++)
-        if (pt[c] != pt[oc_next(o, c)]) {
+        if (pt[c] != pt[oc_next(o, c)] && !(o->flags[oc_face(o, c)] & CHECK_DEGENERATE)) {
             b->off[pt[c] + 1]++;
             nhe++;
         }
@@ -107,6 +109,11 @@ static int buckets_build(ObjCheck *o, Buckets *b)
      * a face's points are read before its mate[] entries are set */
     for (uint32_t f = 0; f < o->nf; f++) {
         uint32_t s = oc_start(o, f), e = oc_start(o, f + 1), first = e > s ? pt[s] : 0;
+        if (o->flags[f] & CHECK_DEGENERATE) {
+            for (uint32_t c = s; c < e; c++)
+                pt[c] = MATE_SKIPPED;
+            continue;
+        }
         for (uint32_t c = s; c < e; c++) {
             uint32_t p = pt[c], q = c + 1 < e ? pt[c + 1] : first;
             if (p == q) {
@@ -273,7 +280,7 @@ static int count_fans(ObjCheck *o)
     for (size_t g = 0; g + 1 < o->nm_ngroup; g++)
         join_group(o, uf, o->nm_half + o->nm_group[g], o->nm_group[g + 1] - o->nm_group[g]);
     for (uint32_t c = 0; c < o->nc; c++)
-        if (check_find(uf, c) == c) {
+        if (o->mate[c] != MATE_SKIPPED && check_find(uf, c) == c) {
             uint32_t p = oc_pt(o, c);
             if (fans[p] < 2)
                 fans[p]++;
@@ -291,9 +298,20 @@ static int count_fans(ObjCheck *o)
     return r;
 }
 
+/* Flag and count the degenerate faces, before anything leaves them out. */
+static void find_degenerate(ObjCheck *o)
+{
+    for (uint32_t f = 0; f < o->nf; f++)
+        if (check_face_degenerate(o, f)) {
+            o->flags[f] |= CHECK_DEGENERATE;
+            o->c->degenerate_faces++;
+        }
+}
+
 int check_topology(ObjCheck *o)
 {
     Buckets b = { 0 };
+    find_degenerate(o);
     if (buckets_build(o, &b) || classify(o, &b)) {
         buckets_free(&b);
         return -1;

@@ -128,8 +128,13 @@ static void text_counts(Out *out, const FileCheck *fc, const CheckCounts *c, con
     else
         out_printf(out, "%swinding       %u flipped face%s%s\n", ind, c->inconsistent_faces,
                    c->inconsistent_faces == 1 ? "" : "s", c->inside_out ? ", inside out" : "");
-    out_printf(out, "%scrossing      %llu pair%s of faces\n", ind, (unsigned long long)c->self_intersections,
-               c->self_intersections == 1 ? "" : "s");
+    if (c->intersections_stopped)
+        out_printf(out, "%scrossing      at least %llu pair%s of faces (stopped after %llu pair tests: the bound is %llu)\n",
+                   ind, (unsigned long long)c->self_intersections, c->self_intersections == 1 ? "" : "s",
+                   (unsigned long long)c->pair_tests, (unsigned long long)c->pair_budget);
+    else
+        out_printf(out, "%scrossing      %llu pair%s of faces\n", ind, (unsigned long long)c->self_intersections,
+                   c->self_intersections == 1 ? "" : "s");
     meshcheck_verdict(c, words, sizeof words);
     out_printf(out, "%s%-14s%s\n", ind, meshcheck_sound(c) ? "verdict" : "problems", words);
 }
@@ -243,8 +248,12 @@ static void json_counts(Out *out, const CheckCounts *c, const char *ind)
                ind, c->nonmanifold_vertices, ind, c->inconsistent_faces, ind, json_bool(c->nonorientable > 0));
     out_printf(out, ",\n%s\"inside_out\": %s,\n%s\"degenerate_faces\": %u,\n%s\"duplicate_faces\": %u", ind,
                json_bool(c->inside_out), ind, c->degenerate_faces, ind, c->duplicate_faces);
-    out_printf(out, ",\n%s\"unused_vertices\": %u,\n%s\"self_intersections\": %llu,\n%s\"watertight\": %s", ind,
-               c->unused_vertices, ind, (unsigned long long)c->self_intersections, ind, json_bool(c->watertight));
+    out_printf(out, ",\n%s\"unused_vertices\": %u,\n%s\"self_intersections\": %llu", ind, c->unused_vertices, ind,
+               (unsigned long long)c->self_intersections);
+    out_printf(out, ",\n%s\"intersections_stopped\": %s,\n%s\"pair_tests\": %llu,\n%s\"pair_budget\": %llu", ind,
+               json_bool(c->intersections_stopped), ind, (unsigned long long)c->pair_tests, ind,
+               (unsigned long long)c->pair_budget);
+    out_printf(out, ",\n%s\"watertight\": %s", ind, json_bool(c->watertight));
     out_printf(out, ",\n%s\"area\": %.9g", ind, c->area);
     double com[3];
     centre_rounded(c, com);

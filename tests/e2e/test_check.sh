@@ -107,8 +107,8 @@ import json, sys
 T = sys.argv[1]
 INT = ["faces", "vertices", "components", "boundary_edges", "holes", "nonmanifold_edges",
        "nonmanifold_vertices", "inconsistent_faces", "degenerate_faces", "duplicate_faces",
-       "unused_vertices", "self_intersections"]
-BOOL = ["ok", "inside_out", "watertight", "non_orientable"]
+       "unused_vertices", "self_intersections", "pair_tests", "pair_budget"]
+BOOL = ["ok", "inside_out", "watertight", "non_orientable", "intersections_stopped"]
 def fail(msg):
     print(msg)
     sys.exit(1)
@@ -154,7 +154,8 @@ for f in three["files"]:
 cube, open_, cross = objs
 want = {"faces": 6, "vertices": 8, "components": 1, "boundary_edges": 0, "holes": 0, "watertight": True,
         "inside_out": False, "self_intersections": 0, "ok": True, "volume": 1, "area": 6,
-        "center_of_mass": [0.5, 0.5, 0.5], "size": [1, 1, 1]}
+        "center_of_mass": [0.5, 0.5, 0.5], "size": [1, 1, 1], "intersections_stopped": False,
+        "pair_budget": 64 * 12 + 2 ** 20}
 for k, v in want.items():
     if cube[k] != v:
         fail("cube: %s %r, wanted %r" % (k, cube[k], v))
@@ -186,6 +187,58 @@ EOF
     r=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["objects"][0]["name"])' "$T/name.json" 2>&1)
     want=$(printf 'we"ird\\\357\277\275name')
     if [ "$r" = "$want" ]; then ok "--json escapes names and replaces bytes that are not UTF-8"; else notok "--json escapes names and replaces bytes that are not UTF-8" "$r"; fi
+fi
+
+# ==== Degenerate faces: counted, and out of the topology ====
+{ cat "$T/cube.obj"; printf 'f 1 1 2\nf 3 3 3\n'; } >"$T/degen.obj"
+expect_status "a cube with degenerate faces on its edge and corner exits 3" 3 "$Z" --check "$T/degen.obj"
+expect_out "... which are counted" "faces         8, 2 degenerate, 0 duplicate"
+expect_out "... and make no part" "parts         1"
+expect_out "... no non-manifold edge, the cube still watertight" "0 boundary in 0 holes, 0 non-manifold (watertight)"
+expect_out "... no non-manifold vertex" "vertices      8, 0 non-manifold, 0 unused"
+printf 'v 0 0 0\nv 1 0 0\nf 1 2 1\n' >"$T/collapsed.obj"
+expect_status "a triangle collapsed to two points exits 3" 3 "$Z" --check "$T/collapsed.obj"
+if grep -q "watertight" "$T/out"; then notok "... and is not watertight" "$(cat "$T/out")"; else ok "... and is not watertight"; fi
+expect_out "... nor closed" "volume        none: not closed"
+
+# ==== Hostile inputs: the crossing test is bounded (issue 28) ====
+# tests/e2e/hostile_check.py writes them (binary STL); each stops at its
+# budget of pair tests (64 a triangle + 2^20, and what two threads may
+# have under way) and says so. Not timed: the work is counted.
+if need_python "--check of hostile inputs"; then
+    for c in "fan 10000" "coincident 16000" "edge 100000" "stacked 20000"; do
+        set -- $c
+        f="$T/$1-$2.stl"
+        python3 tests/e2e/hostile_check.py "$1" "$2" "$f"
+        expect_status "$1 $2: exits 3" 3 "$Z" --check -j2 "$f"
+        case $1 in
+            coincident) expect_out "... $(($2 - 1)) duplicates, left out of the crossing test" "crossing      0 pairs of faces" ;;
+            stacked) expect_out "... a lower bound, and where it stopped" "crossing      at least " ;;
+            *) expect_out "... none found, and where it stopped" "crossing      at least 0 pairs of faces (stopped after" ;;
+        esac
+        "$Z" --check --json -j2 "$f" >"$T/h.json" 2>/dev/null
+        cat >"$T/h.py" <<'EOF'
+import json, sys
+o = json.load(open(sys.argv[1]))["objects"][0]
+kind, n = sys.argv[2], int(sys.argv[3])
+tris = 1 if kind == "coincident" else n
+budget = 64 * tris + 2 ** 20
+if o["pair_budget"] != budget:
+    print("budget %d, wanted %d" % (o["pair_budget"], budget)); sys.exit()
+stopped = kind != "coincident"
+if o["intersections_stopped"] is not stopped:
+    print("stopped %r" % o["intersections_stopped"]); sys.exit()
+if stopped and not budget <= o["pair_tests"] <= budget + 2 * 8192:
+    print("pair tests %d, budget %d" % (o["pair_tests"], budget)); sys.exit()
+if stopped and not any(p.startswith("at least %d intersecting face pair" % o["self_intersections"]) for p in o["problems"]):
+    print("problems %r" % o["problems"]); sys.exit()
+if kind == "coincident" and (o["duplicate_faces"] != n - 1 or o["pair_tests"] != 0):
+    print("coincident: %r" % o); sys.exit()
+print("ok")
+EOF
+        r=$(python3 "$T/h.py" "$T/h.json" "$1" "$2" 2>&1)
+        if [ "$r" = ok ]; then ok "... --json: within the budget, stopped and said so"; else notok "... --json: within the budget, stopped and said so" "$r"; fi
+    done
 fi
 
 # ==== Other formats: the loaders' meshes, the same answers ====

@@ -6,6 +6,13 @@
  *   bit 3      lenient (skip what cannot be read) instead of strict
  *   bit 4      the crossing tests on three threads instead of one
  *   bit 5      --flip: every face wound the other way
+ *   bit 6      generated (issue 28): no file, but the inputs that once
+ *              kept --check busy for hours, built from the next bytes
+ *              (gen_obj): a planar fan around one vertex, coincident
+ *              triangles, a fin on one edge, a coplanar stack, each of
+ *              up to 4,096 triangles, moved, doubled and turned by the
+ *              bytes after that. The crossing test must stay within its
+ *              budget of pair tests, and say when it stopped.
  *
  * The bytes go through mesh_parse_buffer_ex (no other file is opened);
  * a mesh that loads is checked with the lists kept (detail), and the
@@ -13,9 +20,12 @@
  * the lists name vertices and faces that exist, the file's figures are
  * its objects' summed, the verdict agrees with meshcheck_sound, and the
  * check without the lists, and on another number of threads, gives the
- * same figures. Small meshes are also counted by brute force here (the
+ * same figures (the crossing pairs too, unless the budget stopped the
+ * test: then the count is a lower bound, and where it stopped depends on
+ * the threads). Small meshes are also counted by brute force here (the
  * boundary and non-manifold edges, each pair of corners against every
- * other). Aborts on the first thing that does not hold. */
+ * other, degenerate faces left out). Aborts on the first thing that does
+ * not hold. */
 
 #define _DEFAULT_SOURCE
 
@@ -24,6 +34,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../../src/check/exact.h"
 #include "fuzz.h"
 #include "mesh.h"
 #include "meshcheck.h"
@@ -46,7 +57,9 @@ static int same_counts(const CheckCounts *a, const CheckCounts *b)
            a->nonmanifold_edges == b->nonmanifold_edges && a->nonmanifold_vertices == b->nonmanifold_vertices &&
            a->inconsistent_faces == b->inconsistent_faces && a->nonorientable == b->nonorientable &&
            a->degenerate_faces == b->degenerate_faces && a->duplicate_faces == b->duplicate_faces &&
-           a->unused_vertices == b->unused_vertices && a->self_intersections == b->self_intersections &&
+           a->unused_vertices == b->unused_vertices && a->intersections_stopped == b->intersections_stopped &&
+           (a->intersections_stopped || a->self_intersections == b->self_intersections) &&
+           a->pair_budget == b->pair_budget &&
            a->closed == b->closed && a->watertight == b->watertight && a->inside_out == b->inside_out &&
            a->has_volume == b->has_volume && !memcmp(&a->area, &b->area, sizeof a->area) &&
            !memcmp(&a->volume, &b->volume, sizeof a->volume);
@@ -60,9 +73,16 @@ static void check_counts(const CheckCounts *c, int obj)
     CHECK(!c->watertight || c->closed);
     CHECK(!c->has_volume || c->closed);
     CHECK(!obj || !c->inside_out || c->has_volume);
-    CHECK(c->closed == (c->faces > 0 && c->boundary_edges == 0));
+    /* a file is closed when each object is: one of degenerate faces alone is not */
+    CHECK(obj ? c->closed == (c->faces > c->degenerate_faces && c->boundary_edges == 0)
+              : !c->closed || (c->faces > c->degenerate_faces && c->boundary_edges == 0));
     CHECK(c->watertight == (c->closed && c->nonmanifold_edges == 0));
-    CHECK(c->components <= c->faces);
+    CHECK(c->components <= c->faces - c->degenerate_faces);
+    /* the budget: a job adds its work every 4,096 tests, so each of the
+     * (at most 3) threads may be that much past it */
+    CHECK(c->pair_tests <= c->pair_budget + 3 * 8192);
+    CHECK(c->intersections_stopped || c->pair_tests <= c->pair_budget);
+    CHECK(!c->intersections_stopped || c->intersections_tested);
     CHECK(c->degenerate_faces <= c->faces && c->duplicate_faces <= c->faces);
     CHECK(c->inconsistent_faces <= c->faces / 2 + 1);
     CHECK(c->area >= 0 && c->volume >= 0);
@@ -92,7 +112,7 @@ static void check_object(const Mesh *m, const MeshCheck *mc, uint32_t i)
         degenerate += (fl & CHECK_DEGENERATE) != 0;
         duplicate += (fl & CHECK_DUPLICATE) != 0;
         nonorient += (fl & CHECK_NONORIENT) != 0;
-        CHECK(mc->face_part[f] < c->components);
+        CHECK(fl & CHECK_DEGENERATE ? mc->face_part[f] == UINT32_MAX : mc->face_part[f] < c->components);
         CHECK(!(fl & CHECK_OPEN) || c->boundary_edges);
         CHECK(!(fl & CHECK_NONMANIFOLD) || c->nonmanifold_edges);
         CHECK(!(fl & CHECK_INTERSECTS) || c->self_intersections);
@@ -146,17 +166,33 @@ static int same_pos(const Mesh *m, uint32_t a, uint32_t b)
     return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
 }
 
+/* Are all of face f's corners on one line (exactly)? */
+static int flat(const Mesh *m, uint32_t f)
+{
+    uint32_t s = m->face_start[f], e = m->face_start[f + 1], a = m->corner[s], b = a;
+    for (uint32_t c = s + 1; c < e && same_pos(m, a, b); c++)
+        b = m->corner[c];
+    for (uint32_t c = s; c < e; c++)
+        if (!exact_collinear(m->pos + 3 * (size_t)a, m->pos + 3 * (size_t)b, m->pos + 3 * (size_t)m->corner[c]))
+            return 0;
+    return 1;
+}
+
 /* Brute force on a small object: each edge (two corners at different
  * positions, next in a face) against every other, counting the faces
- * on it; boundary and non-manifold edges as meshcheck counts them. */
+ * on it; boundary and non-manifold edges as meshcheck counts them (the
+ * faces of one line, degenerate, have none). */
 static void brute_edges(const Mesh *m, const CheckObject *o)
 {
     uint32_t c0 = m->face_start[o->face_first], c1 = m->face_start[o->face_first + o->face_count];
     if (c1 - c0 > 300)
         return;
     uint32_t boundary = 0, nonmanifold = 0;
+    uint8_t deg[300];
     for (uint32_t f = o->face_first; f < o->face_first + o->face_count; f++)
-        for (uint32_t c = m->face_start[f]; c < m->face_start[f + 1]; c++) {
+        deg[f - o->face_first] = (uint8_t)flat(m, f);
+    for (uint32_t f = o->face_first; f < o->face_first + o->face_count; f++)
+        for (uint32_t c = m->face_start[f]; c < m->face_start[f + 1] && !deg[f - o->face_first]; c++) {
             uint32_t d = c + 1 < m->face_start[f + 1] ? c + 1 : m->face_start[f];
             uint32_t a = m->corner[c], b = m->corner[d];
             if (same_pos(m, a, b))
@@ -165,7 +201,7 @@ static void brute_edges(const Mesh *m, const CheckObject *o)
              * edge when no earlier half-edge is on it */
             uint32_t n = 0, first = 1;
             for (uint32_t g = o->face_first; g < o->face_first + o->face_count; g++)
-                for (uint32_t e = m->face_start[g]; e < m->face_start[g + 1]; e++) {
+                for (uint32_t e = m->face_start[g]; e < m->face_start[g + 1] && !deg[g - o->face_first]; e++) {
                     uint32_t e2 = e + 1 < m->face_start[g + 1] ? e + 1 : m->face_start[g];
                     uint32_t x = m->corner[e], y = m->corner[e2];
                     if ((same_pos(m, x, a) && same_pos(m, y, b)) || (same_pos(m, x, b) && same_pos(m, y, a))) {
@@ -183,6 +219,69 @@ static void brute_edges(const Mesh *m, const CheckObject *o)
     CHECK(nonmanifold == o->c.nonmanifold_edges);
 }
 
+/* ==== Generated inputs (bit 6) ==== */
+
+typedef struct {
+    char  *s;
+    size_t n, cap;
+} Text;
+
+static void put(Text *t, const char *fmt, double a, double b, double c)
+{
+    char line[96];
+    int k = snprintf(line, sizeof line, fmt, a, b, c);
+    if (t->n + (size_t)k + 1 > t->cap) {
+        t->cap = (t->n + (size_t)k + 1) * 2;
+        t->s = realloc(t->s, t->cap);
+        CHECK(t->s);
+    }
+    memcpy(t->s + t->n, line, (size_t)k + 1);
+    t->n += (size_t)k;
+}
+
+/* An OBJ of p[0] kind (fan, coincident, fin, stack) and p[1..2] size (at
+ * most 4,096 triangles); each later byte, one a triangle in turn, lifts
+ * its far corner off the plane a little (bits 0-1), turns it (bit 2) or
+ * doubles it (bit 3). */
+static char *gen_obj(const uint8_t *p, size_t n, size_t *len)
+{
+    if (n < 3)
+        return NULL;
+    unsigned kind = p[0] & 3, tris = 1 + ((p[1] | (unsigned)p[2] << 8) & 4095);
+    const uint8_t *mod = p + 3;
+    size_t nmod = n - 3;
+    Text t = { 0 };
+    put(&t, "v %.9g %.9g %.9g\n", 0, 0, 0);
+    put(&t, "v %.9g %.9g %.9g\n", 1, 0, 0);
+    for (unsigned i = 0; i < tris; i++) {
+        unsigned b = nmod ? mod[i % nmod] : 0;
+        double lift = (b & 3) == 3 ? 1e-3 : (b & 3) == 2 ? 1e-30 : 0, a = 2 * M_PI * i / tris;
+        double d = i * 1e-5;
+        if (kind == 0)          /* fan around vertex 1 (the origin) */
+            put(&t, "v %.9g %.9g %.9g\n", cos(a), sin(a), lift);
+        else if (kind == 1)     /* the same triangle again */
+            put(&t, "v %.9g %.9g %.9g\n", 0, 1, lift);
+        else if (kind == 2)     /* a blade on edge 1-2 */
+            put(&t, "v %.9g %.9g %.9g\n", 0.5, cos(a), sin(a) + lift);
+        else                    /* the stack: (d, d), moved along */
+            put(&t, "v %.9g %.9g %.9g\n", d, 1 + d, lift);
+    }
+    for (unsigned i = 0; i < tris; i++) {
+        unsigned b = nmod ? mod[i % nmod] : 0, far = 3 + i, next = 3 + (i + 1) % tris;
+        unsigned c[3] = { 1, 2, far };
+        if (kind == 0)
+            c[1] = far, c[2] = next;
+        for (int k = 0; k < (b & 8 ? 2 : 1); k++) {
+            if (b & 4)
+                put(&t, "f %.0f %.0f %.0f\n", c[2], c[1], c[0]);
+            else
+                put(&t, "f %.0f %.0f %.0f\n", c[0], c[1], c[2]);
+        }
+    }
+    *len = t.n;
+    return t.s;
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size < 1)
@@ -192,7 +291,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                          .quiet = 1, .max_polys = 100000 };
     Mesh m;
     char err[512];
-    if (mesh_parse_buffer_ex(&m, NULL, &opt, data + 1, size - 1, err, sizeof err))
+    const uint8_t *file = data + 1;
+    size_t flen = size - 1;
+    char *gen = NULL;
+    if (sel & 64) {
+        gen = gen_obj(data + 1, size - 1, &flen);
+        if (!gen)
+            return 0;
+        file = (const uint8_t *)gen;
+        opt.format = "obj";
+    }
+    int bad = mesh_parse_buffer_ex(&m, NULL, &opt, file, flen, err, sizeof err);
+    free(gen);
+    if (bad)
         return 0;
     if (sel & 32)
         mesh_flip_winding(&m);
