@@ -22,7 +22,7 @@ stop_kitty() {
     [ -n "$kpid" ] && kill "$kpid" 2>/dev/null && wait "$kpid" 2>/dev/null
     kpid=
 }
-trap 'stop_kitty; kill $xvfb 2>/dev/null; rm -rf "$T"' EXIT INT TERM HUP
+trap 'stop_kitty; kill $xvfb 2>/dev/null; rm -rf "$T"' EXIT INT TERM HUP PIPE
 i=0
 while [ ! -s "$T/display" ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
 d=$(cat "$T/display")
