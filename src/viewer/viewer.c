@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "clock.h"
+#include "safetext.h"
 #include "tty.h"
 #include "viewer_app.h"
 
@@ -195,29 +196,22 @@ int app_command_layout(const App *a, int cols, char *buf, size_t len, const char
 }
 
 
-/* Columns of UTF-8 text (every character one column, as vt_text draws). */
-static int text_cols(const char *s, int bytes)
-{
-    int n = 0;
-    for (int i = 0; i < bytes && s[i]; i++)
-        n += (s[i] & 0xc0) != 0x80;
-    return n;
-}
-
 /* The prompt in the status line: its label and line, scrolled so that
- * the cursor shows, the cursor out of reverse video. */
+ * the cursor shows, the cursor out of reverse video. A name completed
+ * from the folder may hold controls: they show as vt_text shows them
+ * (\x1b), and the columns are counted the same way. */
 static void draw_prompt(const Prompt *pr, int row, int cols)
 {
     char bar[PROMPT_MAX + 64];
     snprintf(bar, sizeof bar, " %s%s", pr->label, pr->buf);
-    int head = 1 + (int)strlen(pr->label);
-    int at = text_cols(bar, head + pr->cur);       /* the cursor's column */
+    size_t head = 1 + strlen(pr->label);
+    int at = vt_text_cols(bar, head + (size_t)pr->cur);      /* the cursor's column */
     const char *show = bar;
     while (at > cols - 2 && *show) {
-        show++;                                     /* drop a character from the left */
-        while ((*show & 0xc0) == 0x80)
-            show++;
-        at--;
+        char piece[SAFETEXT_PIECE];
+        size_t took = safetext_next(show, piece, SAFETEXT_TEXT);
+        at -= vt_text_cols(show, took);                      /* drop a character from the left */
+        show += took;
     }
     term_draw_bar(row, show);
     term_bar_cursor(row, at);
@@ -610,11 +604,11 @@ static int no_viewer(const Options *o, Scene *s, int loading)
     if (loading && firstload_now(o, s))
         return 1;
     if (o->sketch) {
-        fprintf(stderr, "zview: --sketch: no terminal to draw on\n");
+        safetext_line(stderr, "zview: --sketch: no terminal to draw on");
         return 1;
     }
     if (o->print_view) {
-        fprintf(stderr, "zview: --print-view: no terminal to show the viewer on\n");
+        safetext_line(stderr, "zview: --print-view: no terminal to show the viewer on");
         return 1;
     }
     return app_oneshot(o, s);
@@ -638,8 +632,8 @@ static int viewer_main(const Options *o, Scene *s, int loading)
     if (!t || !*t || !strcmp(t, "dumb")) {
         /* a terminal that cannot move its cursor (an editor's shell, a
          * CI log): say so, and what shows a picture there */
-        fprintf(stderr, "zview: TERM=%s cannot show the viewer (it needs a terminal that moves its "
-                        "cursor: set TERM, e.g. TERM=xterm-256color)%s\n",
+        safetext_line(stderr, "zview: TERM=%s cannot show the viewer (it needs a terminal that moves its "
+                        "cursor: set TERM, e.g. TERM=xterm-256color)%s",
                 t ? t : "", o->print_view || o->sketch ? "" : "; one frame instead, as --print gives");
         return no_viewer(o, s, loading);
     }
@@ -647,8 +641,8 @@ static int viewer_main(const Options *o, Scene *s, int loading)
     const char *keys_name;
     FILE *keys = open_keys(&tty, &keys_name);
     if (!keys) {
-        fprintf(stderr, "zview: no terminal to read keys from (standard input is not one, "
-                        "/dev/tty: %s)%s\n", strerror(errno), o->print_view ? "" : ": one frame instead");
+        safetext_line(stderr, "zview: no terminal to read keys from (standard input is not one, "
+                        "/dev/tty: %s)%s", strerror(errno), o->print_view ? "" : ": one frame instead");
         return no_viewer(o, s, loading);
     }
     /* the screen: standard output, or the terminal when --print-view
@@ -661,7 +655,7 @@ static int viewer_main(const Options *o, Scene *s, int loading)
     }
     App a;
     if (app_init(&a, o, s, loading)) {
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
         if (tty)
             fclose(tty);
         if (screen_tty)
@@ -673,7 +667,7 @@ static int viewer_main(const Options *o, Scene *s, int loading)
      * we have does better than one frame */
     const char *use = term_resolve(t);
     if (use && strcmp(use, t))
-        fprintf(stderr, "zview: unknown terminal type '%s': using %s\n", t, use);
+        safetext_line(stderr, "zview: unknown terminal type '%s': using %s", t, use);
     TermConfig cfg = {
         .out = screen,
         .in = keys,
@@ -685,7 +679,7 @@ static int viewer_main(const Options *o, Scene *s, int loading)
         .pixels = !a.pixels ? PIX_CELLS : o->pixels > PIX_CELLS ? o->pixels : PIX_AUTO,
     };
     if (!use || term_open(&cfg, err, sizeof err)) {
-        fprintf(stderr, "zview: %s%s\n",
+        safetext_line(stderr, "zview: %s%s",
                 use ? err : "no terminal description installed (not even xterm, vt100 or ansi)",
                 o->print_view ? "" : ": one frame instead");
         pipeline_free(&a.p);
@@ -720,27 +714,27 @@ static int viewer_main(const Options *o, Scene *s, int loading)
     if (screen_tty)
         fclose(screen_tty);
     if (a.load_err[0]) {
-        fprintf(stderr, "zview: %s\n", a.load_err);
+        safetext_line(stderr, "zview: %s", a.load_err);
         return 1;
     }
     if (rc == RUN_NO_MEMORY) {
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
         return 1;
     }
     if (rc == RUN_INPUT_ENDED) {
-        fprintf(stderr, "zview: %s: the input ended (no more keys)\n", keys_name);
+        safetext_line(stderr, "zview: %s: the input ended (no more keys)", keys_name);
         return 1;
     }
     if (rc == RUN_OUTPUT_FAILED) {
-        fprintf(stderr, "zview: the terminal: %s\n", strerror(out_errno));
+        safetext_line(stderr, "zview: the terminal: %s", strerror(out_errno));
         return 1;
     }
     if (o->print_view && !cmd_ok && unsaved) {
-        fprintf(stderr, "zview: --print-view: the sketch on screen was not written (w): no file shows it\n");
+        safetext_line(stderr, "zview: --print-view: the sketch on screen was not written (w): no file shows it");
         return 1;
     }
     if (o->print_view && !cmd_ok) {
-        fprintf(stderr, "zview: the view's command line is too long to print\n");
+        safetext_line(stderr, "zview: the view's command line is too long to print");
         return 1;
     }
     if (cmd_ok) {
@@ -748,7 +742,7 @@ static int viewer_main(const Options *o, Scene *s, int loading)
         out_init(&out, stdout, "standard output");
         out_printf(&out, "%s\n", cmd);
         if (out_flush(&out)) {
-            fprintf(stderr, "zview: standard output: %s\n", out_error(&out));
+            safetext_line(stderr, "zview: standard output: %s", out_error(&out));
             return 1;
         }
     }
@@ -785,7 +779,7 @@ int app_bench_tty(const Options *o)
     char err[512];
     Scene s;
     if (app_load_scene(o, &s, err, sizeof err)) {
-        fprintf(stderr, "zview: %s\n", err);
+        safetext_line(stderr, "zview: %s", err);
         return 1;
     }
     int cols = o->w > 0 ? o->w : 160, rows = o->h > 0 ? o->h : 48;
@@ -798,12 +792,12 @@ int app_bench_tty(const Options *o)
     App a;
     FILE *out = tmpfile(), *in = fopen("/dev/null", "r");
     if (!out || !in || app_init(&a, &opt, &s, 0)) {
-        fprintf(stderr, "zview: cannot set up the benchmark\n");
+        safetext_line(stderr, "zview: cannot set up the benchmark");
         goto done;
     }
     TermConfig cfg = { .out = out, .in = in, .termname = termname, .colour = colour };
     if (term_open(&cfg, err, sizeof err)) {
-        fprintf(stderr, "zview: %s: %s\n", termname, err);
+        safetext_line(stderr, "zview: %s: %s", termname, err);
         pipeline_free(&a.p);
         app_live_free(&a);
         goto done;
@@ -821,7 +815,7 @@ int app_bench_tty(const Options *o)
         double t0 = now_ms();
         if (render(&a, cols, rows)) {
             term_restore();
-            fprintf(stderr, "zview: out of memory\n");
+            safetext_line(stderr, "zview: out of memory");
             pipeline_free(&a.p);
             app_live_free(&a);
             goto done;
@@ -833,7 +827,7 @@ int app_bench_tty(const Options *o)
         if (term_update(0)) {
             int e = errno;
             term_restore();
-            fprintf(stderr, "zview: the benchmark's file: %s\n", strerror(e));
+            safetext_line(stderr, "zview: the benchmark's file: %s", strerror(e));
             pipeline_free(&a.p);
             app_live_free(&a);
             goto done;
@@ -862,7 +856,7 @@ int app_bench_tty(const Options *o)
     qsort(omed, TTY_FRAMES, sizeof *omed, cmp_dbl);
     Out rep;
     out_init(&rep, stdout, "standard output");
-    out_printf(&rep, "bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s\n",
+    out_line(&rep, "bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s",
            a.name, cols, rows, mode_names[a.mode], colour_name(used), termname, a.p.algo->name,
            a.p.threads, a.p.threads == 1 ? "" : "s");
     out_printf(&rep, "turn of %d frames at 5 degrees a frame; first frame (full paint) %ld bytes\n",
@@ -873,7 +867,7 @@ int app_bench_tty(const Options *o)
            frame[TTY_FRAMES / 2], rmed[TTY_FRAMES / 2], omed[TTY_FRAMES / 2],
            frame[TTY_FRAMES - 1]);
     if (out_flush(&rep)) {
-        fprintf(stderr, "zview: standard output: %s\n", out_error(&rep));
+        safetext_line(stderr, "zview: standard output: %s", out_error(&rep));
         pipeline_free(&a.p);
         app_live_free(&a);
         goto done;
