@@ -130,6 +130,7 @@ open(sys.argv[1], "w").write(json.dumps(d))' "$D/uri.gltf" "$EVIL"
         run $args "$D/uri.gltf"
         check "glTF uri with escapes, $args: status 1" '[ $st -eq 1 ]' "status $st: $(cat "$T/err")"
         clean "... nothing raw on stdout or stderr" "$T/out" "$T/err"
+        check "... one line on stderr" '[ "$(wc -l <"$T/err")" -eq 1 ]' "$(cat "$T/err")"
     done
     has "... assimp's words quote the uri by its bytes" "$T/err" "x${SHOWN}y.bin"
     run --check --json "$D/uri.gltf"
