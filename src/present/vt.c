@@ -165,7 +165,6 @@ static uint32_t utf8_cp(const char *s)
     return c;
 }
 
-
 /* The columns a piece of safe text takes: an escape (ASCII) one a
  * byte, a character one (vt_text draws what is not one wide as '?'). */
 static int piece_cols(const char *piece)
