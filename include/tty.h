@@ -277,9 +277,12 @@ int  vt_resize(Vt *v, int cols, int rows);
 void vt_clear(Vt *v);           /* want all blank */
 void vt_invalidate(Vt *v);      /* the terminal's content is unknown: repaint all */
 VtCell *vt_at(Vt *v, int y, int x);     /* a cell of want, NULL outside */
-/* UTF-8 text into row y from column x, at most maxw columns; characters
- * that are not one column wide show as '?'. Returns the columns used. */
+/* Text into row y from column x, at most maxw columns, made safe first
+ * (safetext.h: a control shows as \x1b, four columns); a character that
+ * is not one column wide shows as '?'. Returns the columns used. */
 int  vt_text(Vt *v, int y, int x, const char *s, int maxw, uint8_t attr);
+/* The columns vt_text gives the first `bytes` bytes of s. */
+int  vt_text_cols(const char *s, size_t bytes);
 /* A framed box of lines into want (term_draw_box_at says where). */
 void vt_box(Vt *v, const char *const *lines, int n, int bx, int by);
 /* The bytes from shown to want into buf/len; shown is then want.

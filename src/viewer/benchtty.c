@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include "clock.h"
+#include "safetext.h"
 #include "tty.h"
 #include "viewer_app.h"
 
@@ -43,7 +44,7 @@ int app_bench_tty(const Options *o)
     char err[512];
     Scene s;
     if (app_load_scene(o, &s, err, sizeof err)) {
-        fprintf(stderr, "zview: %s\n", err);
+        safetext_line(stderr, "zview: %s", err);
         return 1;
     }
     int cols = o->w > 0 ? o->w : 160, rows = o->h > 0 ? o->h : 48;
@@ -56,12 +57,12 @@ int app_bench_tty(const Options *o)
     App a;
     FILE *out = tmpfile(), *in = fopen("/dev/null", "r");
     if (!out || !in || viewer_app_init(&a, &opt, &s, 0)) {
-        fprintf(stderr, "zview: cannot set up the benchmark\n");
+        safetext_line(stderr, "zview: cannot set up the benchmark");
         goto done;
     }
     TermConfig cfg = { .out = out, .in = in, .termname = termname, .colour = colour };
     if (term_open(&cfg, err, sizeof err)) {
-        fprintf(stderr, "zview: %s: %s\n", termname, err);
+        safetext_line(stderr, "zview: %s: %s", termname, err);
         viewer_app_free(&a);
         goto done;
     }
@@ -78,7 +79,7 @@ int app_bench_tty(const Options *o)
         double t0 = now_ms();
         if (viewer_render(&a, cols, rows)) {
             term_restore();
-            fprintf(stderr, "zview: out of memory\n");
+            safetext_line(stderr, "zview: out of memory");
             viewer_app_free(&a);
             goto done;
         }
@@ -89,7 +90,7 @@ int app_bench_tty(const Options *o)
         if (term_update(0)) {
             int e = errno;
             term_restore();
-            fprintf(stderr, "zview: the benchmark's file: %s\n", strerror(e));
+            safetext_line(stderr, "zview: the benchmark's file: %s", strerror(e));
             viewer_app_free(&a);
             goto done;
         }
@@ -117,7 +118,7 @@ int app_bench_tty(const Options *o)
     qsort(omed, TTY_FRAMES, sizeof *omed, cmp_dbl);
     Out rep;
     out_init(&rep, stdout, "standard output");
-    out_printf(&rep, "bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s\n",
+    out_line(&rep, "bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s",
            a.name, cols, rows, mode_names[a.mode], colour_name(used), termname, a.p.algo->name,
            a.p.threads, a.p.threads == 1 ? "" : "s");
     out_printf(&rep, "turn of %d frames at 5 degrees a frame; first frame (full paint) %ld bytes\n",
@@ -128,7 +129,7 @@ int app_bench_tty(const Options *o)
            frame[TTY_FRAMES / 2], rmed[TTY_FRAMES / 2], omed[TTY_FRAMES / 2],
            frame[TTY_FRAMES - 1]);
     if (out_flush(&rep)) {
-        fprintf(stderr, "zview: standard output: %s\n", out_error(&rep));
+        safetext_line(stderr, "zview: standard output: %s", out_error(&rep));
         viewer_app_free(&a);
         goto done;
     }

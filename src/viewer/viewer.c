@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "clock.h"
+#include "safetext.h"
 #include "tty.h"
 #include "viewer_app.h"
 
@@ -198,29 +199,22 @@ int app_command_layout(const App *a, int cols, char *buf, size_t len, const char
 }
 
 
-/* Columns of UTF-8 text (every character one column, as vt_text draws). */
-static int text_cols(const char *s, int bytes)
-{
-    int n = 0;
-    for (int i = 0; i < bytes && s[i]; i++)
-        n += (s[i] & 0xc0) != 0x80;
-    return n;
-}
-
 /* The prompt in the status line: its label and line, scrolled so that
- * the cursor shows, the cursor out of reverse video. */
+ * the cursor shows, the cursor out of reverse video. A name completed
+ * from the folder may hold controls: they show as vt_text shows them
+ * (\x1b), and the columns are counted the same way. */
 static void draw_prompt(const Prompt *pr, int row, int cols)
 {
     char bar[PROMPT_MAX + 64];
     snprintf(bar, sizeof bar, " %s%s", pr->label, pr->buf);
-    int head = 1 + (int)strlen(pr->label);
-    int at = text_cols(bar, head + pr->cur);       /* the cursor's column */
+    size_t head = 1 + strlen(pr->label);
+    int at = vt_text_cols(bar, head + (size_t)pr->cur);      /* the cursor's column */
     const char *show = bar;
     while (at > cols - 2 && *show) {
-        show++;                                     /* drop a character from the left */
-        while ((*show & 0xc0) == 0x80)
-            show++;
-        at--;
+        char piece[SAFETEXT_PIECE];
+        size_t took = safetext_next(show, piece, SAFETEXT_TEXT);
+        at -= vt_text_cols(show, took);                      /* drop a character from the left */
+        show += took;
     }
     term_draw_bar(row, show);
     term_bar_cursor(row, at);
@@ -622,11 +616,11 @@ static int no_viewer(const Options *o, Scene *s, int loading)
     if (loading && firstload_now(o, s))
         return 1;
     if (o->sketch) {
-        fprintf(stderr, "zview: --sketch: no terminal to draw on\n");
+        safetext_line(stderr, "zview: --sketch: no terminal to draw on");
         return 1;
     }
     if (o->print_view) {
-        fprintf(stderr, "zview: --print-view: no terminal to show the viewer on\n");
+        safetext_line(stderr, "zview: --print-view: no terminal to show the viewer on");
         return 1;
     }
     return app_oneshot(o, s);
@@ -640,7 +634,7 @@ static int print_line(const char *line)
     out_init(&out, stdout, "standard output");
     out_printf(&out, "%s\n", line);
     if (out_flush(&out)) {
-        fprintf(stderr, "zview: standard output: %s\n", out_error(&out));
+        safetext_line(stderr, "zview: standard output: %s", out_error(&out));
         return -1;
     }
     return 0;
@@ -664,8 +658,8 @@ static int viewer_main(const Options *o, Scene *s, int loading)
     if (!t || !*t || !strcmp(t, "dumb")) {
         /* a terminal that cannot move its cursor (an editor's shell, a
          * CI log): say so, and what shows a picture there */
-        fprintf(stderr, "zview: TERM=%s cannot show the viewer (it needs a terminal that moves its "
-                        "cursor: set TERM, e.g. TERM=xterm-256color)%s\n",
+        safetext_line(stderr, "zview: TERM=%s cannot show the viewer (it needs a terminal that moves its "
+                        "cursor: set TERM, e.g. TERM=xterm-256color)%s",
                 t ? t : "", o->print_view || o->sketch ? "" : "; one frame instead, as --print gives");
         return no_viewer(o, s, loading);
     }
@@ -676,8 +670,8 @@ static int viewer_main(const Options *o, Scene *s, int loading)
     const char *keys_name;
     FILE *keys = open_keys(&tty, &keys_name);
     if (!keys) {
-        fprintf(stderr, "zview: no terminal to read keys from (standard input is not one, "
-                        "/dev/tty: %s)%s\n", strerror(errno), o->print_view ? "" : ": one frame instead");
+        safetext_line(stderr, "zview: no terminal to read keys from (standard input is not one, "
+                        "/dev/tty: %s)%s", strerror(errno), o->print_view ? "" : ": one frame instead");
         fallback = 1;
         goto done;
     }
@@ -689,7 +683,7 @@ static int viewer_main(const Options *o, Scene *s, int loading)
         goto done;
     }
     if (viewer_app_init(&a, o, s, loading)) {
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
         goto done;
     }
     made = 1;
@@ -697,7 +691,7 @@ static int viewer_main(const Options *o, Scene *s, int loading)
      * we have does better than one frame */
     const char *use = term_resolve(t);
     if (use && strcmp(use, t))
-        fprintf(stderr, "zview: unknown terminal type '%s': using %s\n", t, use);
+        safetext_line(stderr, "zview: unknown terminal type '%s': using %s", t, use);
     TermConfig cfg = {
         .out = screen,
         .in = keys,
@@ -710,7 +704,7 @@ static int viewer_main(const Options *o, Scene *s, int loading)
     };
     char err[256];
     if (!use || term_open(&cfg, err, sizeof err)) {
-        fprintf(stderr, "zview: %s%s\n",
+        safetext_line(stderr, "zview: %s%s",
                 use ? err : "no terminal description installed (not even xterm, vt100 or ansi)",
                 o->print_view ? "" : ": one frame instead");
         fallback = 1;
@@ -733,17 +727,17 @@ static int viewer_main(const Options *o, Scene *s, int loading)
     int cmd_ok = o->print_view && run_rc == RUN_QUIT && app_view_command(&a, cmd, sizeof cmd) == 0;
     int unsaved = a.sk.on && !sketch_mode_file(&a);
     if (a.load_err[0])
-        fprintf(stderr, "zview: %s\n", a.load_err);
+        safetext_line(stderr, "zview: %s", a.load_err);
     else if (run_rc == RUN_NO_MEMORY)
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
     else if (run_rc == RUN_INPUT_ENDED)
-        fprintf(stderr, "zview: %s: the input ended (no more keys)\n", keys_name);
+        safetext_line(stderr, "zview: %s: the input ended (no more keys)", keys_name);
     else if (run_rc == RUN_OUTPUT_FAILED)
-        fprintf(stderr, "zview: the terminal: %s\n", strerror(out_errno));
+        safetext_line(stderr, "zview: the terminal: %s", strerror(out_errno));
     else if (o->print_view && !cmd_ok && unsaved)
-        fprintf(stderr, "zview: --print-view: the sketch on screen was not written (w): no file shows it\n");
+        safetext_line(stderr, "zview: --print-view: the sketch on screen was not written (w): no file shows it");
     else if (o->print_view && !cmd_ok)
-        fprintf(stderr, "zview: the view's command line is too long to print\n");
+        safetext_line(stderr, "zview: the view's command line is too long to print");
     else if (cmd_ok && print_line(cmd))
         ;
     else
