@@ -2,7 +2,7 @@
 #define ZV_BACKDROP_H
 /* backdrop: the colour a picture is seen on, and the contrast rule that
  * keeps a model visible on it. The colour is given (--bg), asked of the
- * terminal (present/termbg.c), or picked for an image (-o); the rule
+ * terminal (tty/termbg.c), or picked for an image (-o); the rule
  * (contrast.c) moves the lightness of every drawn pixel that comes
  * within a minimum of the background's away from it, in OKLab L
  * (B. Ottosson, "A perceptual color space for image processing", 2020),

@@ -5,7 +5,8 @@
  * foot, WezTerm, Konsole, Windows Terminal), the kitty graphics
  * protocol (kitty, WezTerm, Ghostty, Konsole) and iTerm2's inline images
  * (iTerm2, WezTerm). The encoders turn an Image into the bytes that draw
- * it at the cursor; pixels_detect() asks the terminal which it takes. */
+ * it at the cursor. Asking the terminal which it takes is the
+ * terminal's room (tty.h, src/tty/termgfx.c). */
 
 #include <stddef.h>
 #include <stdint.h>
@@ -52,37 +53,5 @@ int  pixels_encode(PixelProto p, const Image *im, uint32_t kitty_id, int cols, i
 /* The image as PNG bytes (zlib level 0..9), appended. Returns 0, or -1
  * with the reason in err. */
 int  png_encode(const Image *im, int level, ByteBuf *out, char *err, size_t errlen);
-
-/* The terminal's cell size in pixels from the window size the kernel
- * keeps for fd (TIOCGWINSZ's pixel fields, which xterm, kitty, foot,
- * WezTerm and others fill); 0 when it does not say. */
-int  pixels_cell_size(int fd, int *cw, int *ch);
-
-/* Which protocol the terminal on out_fd/in_fd takes (PIX_CELLS: none
- * known). Inside tmux or screen, cells without asking (they pass no
- * images by default); else the kitty query and the primary device
- * attributes (attribute 4: sixel) are asked, and the answers read until
- * the attributes' answer or wait_ms. Every byte read is handed to sink
- * (NULL: dropped), so that keys typed meanwhile are not lost. */
-typedef void (*PixelSink)(void *ctx, const unsigned char *b, size_t n);
-PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx);
-
-/* The answers' reader, byte by byte (any split), for tests. */
-typedef struct {
-    int    state;
-    char   body[64];
-    size_t len;
-    int    got_da;          /* the attributes' answer came */
-    int    sixel;           /* ... and it lists 4 */
-    int    kitty;           /* the kitty query was answered OK */
-    int    iterm;           /* the terminal's name is iTerm2 */
-} PixelScan;
-
-void pixels_scan_init(PixelScan *s);
-void pixels_scan(PixelScan *s, const unsigned char *b, size_t n);
-/* What the environment says before any question: PIX_CELLS inside a
- * multiplexer or on a terminal that would show the questions, else
- * PIX_AUTO (ask). */
-PixelProto pixels_from_env(void);
 
 #endif

@@ -3,7 +3,7 @@
 /* present: an RGB image in, bytes out. cells.c turns pixels into
  * terminal cells (half blocks, ascii ramp, braille); print.c writes a
  * cell grid with ANSI colours in one write; png.c / ppm writers save the
- * image. Only term.c (the viewer) includes curses. */
+ * image. No terminal here: the viewer's is tty/ (tty.h). */
 
 #include <stddef.h>
 #include <stdint.h>

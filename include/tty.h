@@ -1,11 +1,13 @@
 #ifndef ZV_TTY_H
 #define ZV_TTY_H
-/* tty: the viewer's screen (src/present/term.c). Owns curses (only
- * term.c includes it) for the terminal's modes and its input: start and
- * the one restore path (atexit, SIGINT/SIGTERM/SIGHUP, SIGTSTP and back),
- * reading keys and mouse drags as plain events. What is drawn (a cell
- * grid, the status line, overlays) goes into a screen model (vt.c
- * below) whose changes term_update() sends. */
+/* tty: the viewer's terminal, the room src/tty/. The session (term.c)
+ * owns curses, for the terminal's modes and its description: start and
+ * the one restore path (atexit, SIGINT/SIGTERM/SIGHUP, SIGTSTP and
+ * back); its input is read as plain events (keys, mouse drags) through
+ * our key parser (keys.c). What is drawn (a cell grid, the status line,
+ * overlays) goes into a screen model (vt.c) whose changes term_update()
+ * sends. termbg.c and termgfx.c ask the terminal its background and
+ * which pixels it draws. */
 
 #include <stddef.h>
 #include <stdio.h>
@@ -223,6 +225,41 @@ int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, uint8_t rgb_o
  * mode without echo for the question and back; not from a job in the
  * background, nor on TERM=dumb (or none). Returns 1 with rgb_out, else 0. */
 int  termbg_ask_tty(int wait_ms, uint8_t rgb_out[3]);
+
+/* ==== Pixels the terminal takes (termgfx.c) ====
+ * The encoders are present/'s (pixels.h); here the questions. */
+
+/* The terminal's cell size in pixels from the window size the kernel
+ * keeps for fd (TIOCGWINSZ's pixel fields, which xterm, kitty, foot,
+ * WezTerm and others fill); 0 when it does not say. */
+int  pixels_cell_size(int fd, int *cw, int *ch);
+
+/* Which protocol the terminal on out_fd/in_fd takes (PIX_CELLS: none
+ * known). Inside tmux or screen, cells without asking (they pass no
+ * images by default); else the kitty query and the primary device
+ * attributes (attribute 4: sixel) are asked, and the answers read until
+ * the attributes' answer or wait_ms. Every byte read is handed to sink
+ * (NULL: dropped), so that keys typed meanwhile are not lost. */
+typedef void (*PixelSink)(void *ctx, const unsigned char *b, size_t n);
+PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx);
+
+/* The answers' reader, byte by byte (any split), for tests. */
+typedef struct {
+    int    state;
+    char   body[64];
+    size_t len;
+    int    got_da;          /* the attributes' answer came */
+    int    sixel;           /* ... and it lists 4 */
+    int    kitty;           /* the kitty query was answered OK */
+    int    iterm;           /* the terminal's name is iTerm2 */
+} PixelScan;
+
+void pixels_scan_init(PixelScan *s);
+void pixels_scan(PixelScan *s, const unsigned char *b, size_t n);
+/* What the environment says before any question: PIX_CELLS inside a
+ * multiplexer or on a terminal that would show the questions, else
+ * PIX_AUTO (ask). */
+PixelProto pixels_from_env(void);
 
 /* ==== The screen model (vt.c) ====
  * What the terminal should show (want) and what it shows (shown), cell

@@ -17,6 +17,7 @@
 #include "scene.h"
 #include "testlib.h"
 #include "texture.h"
+#include "tty.h"
 
 /* ==== base64 ==== */
 

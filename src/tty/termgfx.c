@@ -21,7 +21,7 @@
 #include <unistd.h>
 
 #include "clock.h"
-#include "pixels.h"
+#include "tty.h"
 
 /* kitty's query, the terminal's name and version (XTVERSION, which
  * iTerm2, WezTerm, kitty, foot and xterm answer), the device attributes */

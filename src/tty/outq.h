@@ -1,6 +1,6 @@
-#ifndef ZV_PRESENT_OUTQ_H
-#define ZV_PRESENT_OUTQ_H
-/* Internal to src/present/: the viewer's output queue. Bytes the
+#ifndef ZV_TTY_OUTQ_H
+#define ZV_TTY_OUTQ_H
+/* Internal to src/tty/: the viewer's output queue. Bytes the
  * terminal has not taken yet wait here and are written without ever
  * blocking, so that a slow link never holds up the keys (term.c pumps
  * the queue while it waits for input). */

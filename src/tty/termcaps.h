@@ -1,6 +1,6 @@
-#ifndef ZV_PRESENT_TERMCAPS_H
-#define ZV_PRESENT_TERMCAPS_H
-/* Internal to src/present/: the terminal's description, read for term.c
+#ifndef ZV_TTY_TERMCAPS_H
+#define ZV_TTY_TERMCAPS_H
+/* Internal to src/tty/: the terminal's description, read for term.c
  * (term_resolve itself is public, in tty.h). Call after setupterm. */
 
 #include "tty.h"
