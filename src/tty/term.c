@@ -1,6 +1,6 @@
 /* term: the viewer's screen. The only file that includes curses, which
  * here drives the terminal's modes (the alternate screen, keypad, the
- * tty settings) and nothing else. Every byte of the screen comes from
+ * tty settings) and reads its description (terminfo), and nothing else. Every byte of the screen comes from
  * the screen model (vt.c), which knows what the terminal shows and sends
  * only what changed; every byte of input goes through our key parser
  * (keys.c), which knows every form of the keys terminals send and drops
@@ -44,7 +44,6 @@
 #include "clock.h"
 #include "outq.h"
 #include "pixels.h"
-#include "termcaps.h"
 #include "tty.h"
 
 /* From ncurses' <term.h>, which is not included: its capability macros
@@ -180,6 +179,82 @@ static void send_cap(const char *cap)
 {
     if (cap && cap != (const char *)-1 && T.q.fd >= 0)
         tputs(cap, 1, send_byte);
+}
+
+/* ==== The terminal's description ====
+ * What terminfo says, read here beside the rest of curses: which
+ * description to use, the escapes the screen model may send (vt.c
+ * writes the ANSI forms itself when the description has them), and the
+ * colours. */
+
+static int description_found(const char *name, int fd)
+{
+    int found = 0;
+    if (setupterm(name, fd, &found) != OK || found != 1)
+        return 0;
+    del_curterm(set_curterm(NULL));
+    return 1;
+}
+
+const char *term_resolve(const char *name)
+{
+    static const char *const fallbacks[] = { "xterm-256color", "xterm", "vt100", "ansi" };
+    if (!name)
+        name = getenv("TERM");
+    if (name && *name && description_found(name, -1))
+        return name;
+    for (size_t i = 0; i < sizeof fallbacks / sizeof fallbacks[0]; i++)
+        if (description_found(fallbacks[i], -1))
+            return fallbacks[i];
+    return NULL;
+}
+
+/* Is capability `name` the ANSI form we write ourselves (padding aside)? */
+static int caps_is(const char *name, const char *ansi)
+{
+    const char *s = tigetstr(name);
+    return s && s != (const char *)-1 && strncmp(s, ansi, strlen(ansi)) == 0;
+}
+
+static int caps_flag(const char *name)
+{
+    return tigetflag(name) > 0;
+}
+
+/* The escapes of c the description has in the ANSI form vt.c writes. */
+static void caps_read(VtCaps *c)
+{
+    memset(c, 0, sizeof *c);
+    c->ech = caps_is("ech", "\033[%p1%dX");
+    c->el = caps_is("el", "\033[K");
+    c->rel = caps_is("cuf", "\033[%p1%dC") && caps_is("cub", "\033[%p1%dD") &&
+             caps_is("cud", "\033[%p1%dB") && caps_is("cuu", "\033[%p1%dA");
+    c->hpa = caps_is("hpa", "\033[%i%p1%dG");
+    c->vpa = caps_is("vpa", "\033[%i%p1%dd");
+    c->am = caps_flag("am");
+    c->xenl = caps_flag("xenl");
+    const char *cl = tigetstr("clear");
+    /* padding ($<...>) means nothing to a terminal emulator: the plain form */
+    if (cl && cl != (const char *)-1 && strncmp(cl, "\033[H\033[2J", 7) == 0)
+        snprintf(c->clear, sizeof c->clear, "\033[H\033[2J");
+    else
+        snprintf(c->clear, sizeof c->clear, "\033[H\033[J");
+}
+
+/* The colours to use: what is asked, lowered to what the description
+ * has; except 24-bit, which a description can only tell through a
+ * *-direct entry that most servers lack, so it is taken as asked. */
+static ColourDepth caps_depth(ColourDepth want, int colours)
+{
+    if (want == COLOUR_TRUE)
+        return COLOUR_TRUE;
+    if (want >= COLOUR_256 && colours >= 256)
+        return COLOUR_256;
+    if (want >= COLOUR_16 && colours >= 16)
+        return COLOUR_16;
+    if (want >= COLOUR_8 && colours >= 8)
+        return COLOUR_8;
+    return COLOUR_NONE;
 }
 
 /* ==== Restore and signals ==== */
@@ -497,14 +572,14 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     }
     set_term(s);
     /* the screen is written with ANSI cursor addressing */
-    if (!termcaps_is("cup", "\033[%i%p1%d;%p2%dH")) {
+    if (!caps_is("cup", "\033[%i%p1%d;%p2%dH")) {
         open_failed(s, "the terminal cannot move the cursor the ANSI way", err, errlen);
         return -1;
     }
     WINDOW *pad = newpad(1, 1);
     VtCaps caps;
-    termcaps_read(&caps);
-    ColourDepth depth = termcaps_depth(cfg->colour, tigetnum("colors"));
+    caps_read(&caps);
+    ColourDepth depth = caps_depth(cfg->colour, tigetnum("colors"));
     if (!pad || quant_init(&T.quant, depth)) {
         if (pad)
             delwin(pad);

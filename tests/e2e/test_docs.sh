@@ -145,3 +145,22 @@ for t in $(sed -n 's/^\.PHONY: *//p' Makefile); do
     grep -Eq "make $t( |,|$)|, $t( |,|$)" "$T/help" || missing="$missing $t"
 done
 if [ -z "$missing" ]; then ok "make help names every target of .PHONY"; else notok "make help names every target of .PHONY" "missing:$missing"; fi
+
+# ==== Curses in the one file the docs name ====
+# doc/design.md names it ("in `src/...`, the only file that includes
+# it"); no other file under src/ or include/ includes curses or terminfo
+# (<curses.h>, <ncurses.h>, <term.h>, their ncursesw/ forms) or calls
+# their functions: the screen is written by vt.c, the keys read by
+# keys.c, and curses only sets the modes and reads the description.
+named=$(tr '\n' ' ' <doc/design.md | grep -o '`src/[A-Za-z0-9_/]*\.c`, the only file that includes it' | sed 's/^`\([^`]*\)`.*/\1/')
+{
+    grep -rlE '^[[:space:]]*#[[:space:]]*include[[:space:]]*<(ncursesw?/)?(n?curses|term)\.h>' src include
+    grep -rlE '(^|[^A-Za-z0-9_])(initscr|newterm|set_term|delscreen|endwin|doupdate|refresh|resizeterm|newpad|newwin|delwin|keypad|curs_set|cbreak|noecho|nonl|intrflush|setupterm|set_curterm|del_curterm|tigetstr|tigetflag|tigetnum|tputs|putp|tparm|tiparm)[[:space:]]*\(' src include
+} | sort -u >"$T/curses"
+if [ -z "$named" ]; then
+    notok "doc/design.md names the one file that includes curses" "no \"\`src/...\`, the only file that includes it\""
+elif [ "$(cat "$T/curses")" = "$named" ]; then
+    ok "curses only in $named, as doc/design.md says"
+else
+    notok "curses only in $named, as doc/design.md says" "curses or terminfo in: $(tr '\n' ' ' <"$T/curses")"
+fi
