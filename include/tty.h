@@ -1,13 +1,14 @@
 #ifndef ZV_TTY_H
 #define ZV_TTY_H
 /* tty: the viewer's terminal, the room src/tty/. The session (term.c)
- * owns curses, for the terminal's modes and its description: start and
- * the one restore path (atexit, SIGINT/SIGTERM/SIGHUP, SIGTSTP and
- * back); its input is read as plain events (keys, mouse drags) through
- * our key parser (keys.c). What is drawn (a cell grid, the status line,
- * overlays) goes into a screen model (vt.c) whose changes term_update()
- * sends. termbg.c and termgfx.c ask the terminal its background and
- * which pixels it draws. */
+ * owns curses (the only file that includes it), for the terminal's
+ * modes and its description: start and the one restore path (atexit,
+ * SIGINT/SIGTERM/SIGHUP, SIGTSTP and back). What is drawn (a cell grid,
+ * the status line, overlays) goes into a screen model (vt.c) whose
+ * changes term_update() sends (termdraw.c); the input is read as plain
+ * events (keys, mouse drags) through our key parser (keys.c, termread.c).
+ * termbg.c and termgfx.c ask the terminal its background and which
+ * pixels it draws. */
 
 #include <stddef.h>
 #include <stdio.h>

@@ -100,8 +100,8 @@ int app_bench_tty(const Options *o)
         bytes[k] = now - before;
         before = now;
     }
+    ColourDepth used = term_colour();   /* before the session it belongs to ends */
     term_restore();
-    ColourDepth used = term_colour();
     /* frame 0 paints the whole screen; the turn is frames 1.. */
     long sum = 0, first = bytes[0];
     double frame[TTY_FRAMES];
