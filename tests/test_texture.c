@@ -723,6 +723,25 @@ Test(texture, a_4_megapixel_png_kept_at_128_is_never_whole_in_memory)
     free(png);
 }
 
+Test(texture, an_interlaced_png_counts_its_whole_image_and_a_plain_one_its_rows)
+{
+    /* 1024 x 1024 kept at 64: read a row at a time it needs 0.1 MB; an
+     * interlaced one is whole before its rows are known (4 MB) */
+    size_t n, ni;
+    unsigned char *plain = png_ll(1024, 1024, PNG_COLOR_TYPE_GRAY, 8, 0, 0, 0, &n);
+    unsigned char *inter = png_ll(1024, 1024, PNG_COLOR_TYPE_GRAY, 8, 1, 0, 0, &ni);
+    Texture t;
+    char err[256];
+    cr_expect_eq(texture_decode_fit(&t, plain, n, "plain.png", 1 << 20, 64, NULL, err, sizeof err), 0, "%s", err);
+    texture_free(&t);
+    cr_expect_eq(texture_decode_fit(&t, inter, ni, "inter.png", 1 << 20, 64, NULL, err, sizeof err), -1);
+    cr_expect_str_eq(err, "inter.png: a 1024x1024 interlaced PNG needs about 4 MB to decode; 1 MB allowed");
+    cr_expect_eq(texture_decode_fit(&t, inter, ni, "inter.png", 8 << 20, 64, NULL, err, sizeof err), 0, "%s", err);
+    texture_free(&t);
+    free(plain);
+    free(inter);
+}
+
 Test(texture, every_average_of_two_bytes_encodes_as_linear_to_srgb_does)
 {
     /* level 1 of a 512 x 512 image whose columns 2x, 2x + 1 hold bytes

@@ -46,17 +46,19 @@ void texture_encoder_init(TexEncoder *e)
         e->start[k] = encode_search(e, (float)k / TEX_ENC_BUCKETS);
 }
 
-/* The same byte as encode_search: the bucket's first byte (the one
- * below, in case v * TEX_ENC_BUCKETS rounded up), then the thresholds
- * passed from there, one or two at most (a bucket is narrower than the
- * step between two bytes' thresholds, the darkest included). */
+/* The same byte as encode_search: the one of v's bucket, then the
+ * thresholds passed from there, one or two at most (a bucket is
+ * narrower than the step between two bytes' thresholds, the darkest
+ * included); down first, for a v * TEX_ENC_BUCKETS rounded up into the
+ * next bucket. */
 static inline uint8_t encode(const TexEncoder *e, float v)
 {
     if (!(v > 0))
         return 0;
     float x = v * TEX_ENC_BUCKETS;
-    int k = x < TEX_ENC_BUCKETS ? (int)x : TEX_ENC_BUCKETS;
-    int b = e->start[k > 0 ? k - 1 : 0];
+    int b = e->start[x < TEX_ENC_BUCKETS ? (int)x : TEX_ENC_BUCKETS];
+    while (b > 0 && v < e->th[b - 1])
+        b--;
     while (b < 255 && v >= e->th[b])
         b++;
     return (uint8_t)b;
