@@ -4,7 +4,9 @@
  * open goes through mesh_ref_open, beneath the model's folder, and each
  * refusal is a warning naming the reference. A model in memory (standard
  * input, a FIFO's bytes) is served under one name, and every other file
- * it names is refused: it has no folder. Writing is never granted. */
+ * it names is refused: it has no folder. A model file whose bytes are
+ * given (a glTF mended: datauri.c) is served from them under its own
+ * path, the rest beneath its folder. Writing is never granted. */
 #define _DEFAULT_SOURCE
 
 #include <errno.h>
@@ -103,10 +105,10 @@ static struct aiFile *io_open(struct aiFileIO *fio, const char *name, const char
     AiIo *io = (AiIo *)fio->UserData;
     if (!name || !mode || strpbrk(mode, "wa+"))
         return NULL;
-    if (io->data && !strcmp(name, io->name))
+    if (io->data && (!strcmp(name, io->name) || (io->model && !strcmp(name, io->model))))
         return io_new(io, NULL);
     char why[200];
-    int fd = mesh_ref_open(io->data ? NULL : io->model, name, why, sizeof why);
+    int fd = mesh_ref_open(io->model, name, why, sizeof why);
     if (fd < 0) {
         /* a name that is not there is assimp looking for optional files;
          * a refusal is the model reaching out, and the user hears of it */
