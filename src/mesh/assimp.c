@@ -584,9 +584,10 @@ static void ai_stance(MeshCtx *c, const struct aiScene *sc, const char *data, si
     /* the rest: as every format that does not say (format.c) */
 }
 
-/* assimp's message, first line only (s: as it was when the import failed). */
-static int import_failed(MeshCtx *c, const char *s)
+/* assimp's message, first line only. */
+static int import_failed(MeshCtx *c)
 {
+    const char *s = ai()->aiGetErrorString();
     if (!s || !*s)
         s = "assimp could not read it";
     if (strstr(s, "bad_alloc"))     /* the limit of the sandbox (--max-memory) or of the machine */
@@ -675,14 +676,16 @@ static char *read_whole(const char *path, size_t *len_out)
     return buf;
 }
 
-/* assimp refused a glTF for an image whose data: URI is not base64 (why,
- * its message): the import again with each such image replaced
+/* assimp refused a glTF for an image whose data: URI is not base64
+ * (its message says so): the import again with each such image replaced
  * (datauri.c), so the model draws and each is one warning
  * (embedded_texture). The model at path, or in memory (data, len). NULL
- * when that is not the case or the model fails still. */
-static const struct aiScene *import_mended(MeshCtx *c, unsigned flags, const char *why, const char *path,
-                                           const char *data, size_t len)
+ * when that is not the case or the model fails still (and then
+ * assimp's message is the second import's). */
+static const struct aiScene *import_mended(MeshCtx *c, unsigned flags, const char *path, const char *data,
+                                           size_t len)
 {
+    const char *why = ai()->aiGetErrorString();
     if (!why || !strstr(why, "base64") || !c->hint || strcmp(c->hint, "gltf"))
         return NULL;
     char *own = data ? NULL : read_whole(path, &len);
@@ -695,23 +698,12 @@ static const struct aiScene *import_mended(MeshCtx *c, unsigned flags, const cha
     if (!mended)
         return NULL;
     AiIo io;
-    ai_io_init(&io, &c->err, path, mended, ml, "gltf");
+    ai_io_init(&io, &c->err, path, path ? NULL : mended, ml, "gltf");
+    io.model_data = mended;         /* served under the model's own path */
+    io.model_len = ml;
     const struct aiScene *sc = ai()->aiImportFileEx(path ? path : io.name, flags, &io.fio);
-    free(mended);           /* assimp has read it into its own */
+    free(mended);                   /* assimp has read it into its own */
     return sc;
-}
-
-/* Import through io (name: what assimp opens first), or else mended;
- * NULL with the first failure's message in why. */
-static const struct aiScene *import(MeshCtx *c, AiIo *io, const char *name, unsigned flags, const char *path,
-                                    const char *data, size_t len, char *why, size_t whylen)
-{
-    const struct aiScene *sc = ai()->aiImportFileEx(name, flags, &io->fio);
-    if (sc)
-        return sc;
-    const char *e = ai()->aiGetErrorString();
-    snprintf(why, whylen, "%s", e ? e : "");
-    return import_mended(c, flags, why, path, data, len);
 }
 
 static int no_library(MeshCtx *c)
@@ -725,11 +717,12 @@ static int ai_parse_path(MeshCtx *c, const char *path)
         return no_library(c);
     /* what the model names is opened beneath its folder only (assimpio.c) */
     AiIo io;
-    char why[400];
     ai_io_init(&io, &c->err, path, NULL, 0, NULL);
-    const struct aiScene *sc = import(c, &io, path, ai_flags(c->hint), path, NULL, 0, why, sizeof why);
+    const struct aiScene *sc = ai()->aiImportFileEx(path, ai_flags(c->hint), &io.fio);
     if (!sc)
-        return import_failed(c, why);
+        sc = import_mended(c, ai_flags(c->hint), path, NULL, 0);
+    if (!sc)
+        return import_failed(c);
     int r = from_scene(c, sc);
     if (r == 0) {
         ai_stance(c, sc, NULL, 0);
@@ -793,11 +786,12 @@ static int ai_parse(MeshCtx *c, const char *data, size_t len)
      * bytes and nothing else: assimp's own memory import would open the
      * files a model names from the current folder */
     AiIo io;
-    char why[400];
     ai_io_init(&io, &c->err, NULL, data, len, hint);
-    const struct aiScene *sc = import(c, &io, io.name, ai_flags(hint), NULL, data, len, why, sizeof why);
+    const struct aiScene *sc = ai()->aiImportFileEx(io.name, ai_flags(hint), &io.fio);
     if (!sc)
-        return import_failed(c, why);
+        sc = import_mended(c, ai_flags(hint), NULL, data, len);
+    if (!sc)
+        return import_failed(c);
     int r = from_scene(c, sc);
     if (r == 0) {
         c->m->info.bytes = len;

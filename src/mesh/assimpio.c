@@ -105,10 +105,19 @@ static struct aiFile *io_open(struct aiFileIO *fio, const char *name, const char
     AiIo *io = (AiIo *)fio->UserData;
     if (!name || !mode || strpbrk(mode, "wa+"))
         return NULL;
-    if (io->data && (!strcmp(name, io->name) || (io->model && !strcmp(name, io->model))))
+    if (io->model_data && io->model && !strcmp(name, io->model)) {
+        /* the model file's own bytes, mended (datauri.c) */
+        struct aiFile *af = io_new(io, NULL);
+        if (af) {
+            ((IoFile *)af->UserData)->data = io->model_data;
+            ((IoFile *)af->UserData)->len = io->model_len;
+        }
+        return af;
+    }
+    if (io->data && !strcmp(name, io->name))
         return io_new(io, NULL);
     char why[200];
-    int fd = mesh_ref_open(io->model, name, why, sizeof why);
+    int fd = mesh_ref_open(io->data ? NULL : io->model, name, why, sizeof why);
     if (fd < 0) {
         /* a name that is not there is assimp looking for optional files;
          * a refusal is the model reaching out, and the user hears of it */

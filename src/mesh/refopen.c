@@ -106,8 +106,6 @@ static int open_resolved(const char *root, const char *full, char *why, size_t w
         return -1;
     }
     size_t rl = strlen(rroot);
-    if (!strcmp(rfull, rroot))
-        return refuse(why, whylen, "a folder (the model's own)");     /* "map_Kd ." */
     int beneath = strncmp(rfull, rroot, rl) == 0 && (rfull[rl] == '/' || (rl == 1 && rroot[0] == '/'));
     if (!beneath)
         return refuse(why, whylen, "a symbolic link leads out of the model's folder");
@@ -166,9 +164,7 @@ int mesh_ref_open(const char *model, const char *full, char *why, size_t whylen)
     if (!rel)
         return refuse(why, whylen, full[0] == '/' ? "an absolute path outside the model's folder"
                                                   : "outside the model's folder");
-    if (!*rel)
-        return refuse(why, whylen, "a folder (the model's own)");
-    if (climbs(rel))
+    if (!*rel || climbs(rel))
         return refuse(why, whylen, "'..' leads out of the model's folder");
     int dirfd = open(root, O_PATH | O_DIRECTORY | O_CLOEXEC);
     if (dirfd < 0) {
