@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <jpeglib.h>
+#include <zlib.h>
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -472,6 +473,67 @@ Test(texture, a_png_and_a_tga_claiming_a_huge_size_cost_what_their_kept_texture_
     child_decode(tga, 18 + 4, "cut.tga", 64 << 20, 4096, msg, sizeof msg);
     cr_expect_str_eq(msg, "cut.tga: a 16384x16384 TGA needs about 224 MB to decode; 67 MB allowed");
     free(tga);
+}
+
+/* A chunk of a PNG: length, type, data, CRC. */
+static size_t png_chunk(uint8_t *o, const char *type, const uint8_t *d, uint32_t n)
+{
+    o[0] = (uint8_t)(n >> 24);
+    o[1] = (uint8_t)(n >> 16);
+    o[2] = (uint8_t)(n >> 8);
+    o[3] = (uint8_t)n;
+    memcpy(o + 4, type, 4);
+    if (n)
+        memcpy(o + 8, d, n);
+    uint32_t crc = (uint32_t)crc32(crc32(0, o + 4, 4), d, n);
+    for (int i = 0; i < 4; i++)
+        o[8 + n + i] = (uint8_t)(crc >> (24 - 8 * i));
+    return 12 + n;
+}
+
+Test(texture, a_png_of_text_chunks_that_inflate_to_a_gigabyte_is_not_read_for_them)
+{
+    /* a 4 x 4 image after 250 zTXt chunks of 4 KB, each 4 MB of zeros
+     * inflated: libpng's reader took 40 s over them (the size was
+     * peeked through it); the chunks are skipped unread now */
+    static uint8_t zeros[4 << 20];
+    uLongf zn = compressBound(sizeof zeros);
+    uint8_t *z = malloc(zn + 8);
+    memcpy(z, "k\0\0", 3);
+    cr_assert_eq(compress2(z + 3, &zn, zeros, sizeof zeros, 9), Z_OK);
+    size_t cap = 8 + 25 + 250 * (12 + 3 + zn) + 200, n = 8;
+    uint8_t *png = malloc(cap);
+    memcpy(png, "\x89PNG\r\n\x1a\n", 8);
+    const uint8_t ihdr[13] = { 0, 0, 0, 4, 0, 0, 0, 4, 8, 2, 0, 0, 0 };
+    n += png_chunk(png + n, "IHDR", ihdr, 13);
+    for (int i = 0; i < 250; i++)
+        n += png_chunk(png + n, "zTXt", z, (uint32_t)(3 + zn));
+    uint8_t raw[4 * 13] = { 0 }, idat[128];
+    uLongf in = sizeof idat;
+    cr_assert_eq(compress(idat, &in, raw, sizeof raw), Z_OK);
+    n += png_chunk(png + n, "IDAT", idat, (uint32_t)in);
+    n += png_chunk(png + n, "IEND", NULL, 0);
+    cr_expect_lt(n, 1100000, "%zu bytes", n);
+    int w, h;
+    cr_expect_eq(texture_peek(png, n, &w, &h), 0);
+    cr_expect(w == 4 && h == 4);
+    /* in a child: its CPU time (the guard is generous; the bomb took 40 s) */
+    pid_t pid = fork();
+    cr_assert_geq(pid, 0);
+    if (pid == 0) {
+        Texture t;
+        char err[256];
+        alarm(120);
+        _exit(texture_decode_fit(&t, png, n, "text.png", 0, 4096, NULL, err, sizeof err) == 0 ? 0 : 1);
+    }
+    int status;
+    struct rusage ru;
+    cr_assert_eq(wait4(pid, &status, 0, &ru), pid);
+    cr_expect(WIFEXITED(status) && WEXITSTATUS(status) == 0, "status %d", status);
+    double cpu = (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec / 1e6;
+    cr_expect_lt(cpu, 5.0, "%.1f s of CPU", cpu);
+    free(png);
+    free(z);
 }
 
 /* ==== CMYK and YCCK JPEGs ==== */
