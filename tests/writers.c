@@ -378,7 +378,8 @@ static void put_chunk(FILE *f, const char *type, const uint8_t *data, uint32_t n
     uint8_t head[4];
     memcpy(head, type, 4);
     fwrite(head, 1, 4, f);
-    fwrite(data, 1, n, f);
+    if (n)
+        fwrite(data, 1, n, f);
     uLong crc = crc32(crc32(0, head, 4), data, n);
     put_u32be(f, (uint32_t)crc);
 }
