@@ -742,17 +742,23 @@ Test(texture, an_image_halved_as_it_is_read_has_the_bytes_of_the_whole_chain)
             px[4 * i + 3] = (uint8_t)(255 - q % 64);
         }
         char what[64];
-        for (int kind = 0; kind < 5; kind++) {
+        for (int kind = 0; kind < 7; kind++) {
             size_t n;
-            char *img = kind == 0 ? (char *)png_bytes(px, w, h, &n) : tga_bytes(px, w, h, kind & 1, kind >= 3, &n);
+            char *img = kind == 0 ? (char *)png_bytes(px, w, h, &n)
+                                  : tga_bytes(px, w, h, kind & 1, kind >= 3, &n);
+            /* 5, 6: RLE TGAs cut at 40%: the rows past the end are black */
+            if (kind >= 5)
+                n = 18 + (n - 18) * 2 / 5;
             for (int side = 1; side <= 64; side *= 4) {
                 Texture whole, fit;
                 char err[256];
                 int halved = -1;
                 snprintf(what, sizeof what, "%dx%d %s to %d", w, h,
-                         (const char *[]){ "PNG", "TGA top", "TGA bottom", "RLE TGA top", "RLE TGA bottom" }[kind], side);
+                         (const char *[]){ "PNG", "TGA top", "TGA bottom", "RLE TGA top", "RLE TGA bottom",
+                                           "cut RLE TGA top", "cut RLE TGA bottom" }[kind], side);
                 cr_assert_eq(texture_decode(&whole, img, n, "a", 0, err, sizeof err), 0, "%s: %s", what, err);
-                cr_assert(!memcmp(whole.rgba, px, (size_t)w * h * 4), "%s: level 0 is not the image", what);
+                if (kind < 5)
+                    cr_assert(!memcmp(whole.rgba, px, (size_t)w * h * 4), "%s: level 0 is not the image", what);
                 cr_assert_eq(texture_decode_fit(&fit, img, n, "a", 0, side, &halved, err, sizeof err), 0, "%s: %s",
                              what, err);
                 cr_expect(fit.w <= side && fit.h <= side, "%s: %dx%d", what, fit.w, fit.h);

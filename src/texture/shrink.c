@@ -69,12 +69,42 @@ void texture_shrink_push(TexShrink *s)
     }
 }
 
+/* Whether some level holds the first row of a pair (not an odd last
+ * row, which is left out). */
+static int half_pair(const TexShrink *s)
+{
+    for (int j = 0; j < s->halve; j++)
+        if ((s->got[j] & 1) && s->got[j] < s->lh[j] && s->lh[j] > 1)
+            return 1;
+    return 0;
+}
+
+void texture_shrink_black(TexShrink *s, int n)
+{
+    int k = s->halve, step = 1 << k;
+    while (n > 0 && s->got[0] < s->lh[0]) {
+        /* no level waits for the second row of a pair, and the next
+         * `step` rows make one kept row, every level having them:
+         * that row is the halving of black rows alone, black */
+        int whole = !half_pair(s) && n >= step && s->lh[k] > 1;
+        for (int j = 0; whole && j <= k; j++)
+            whole = s->got[j] + (step >> j) <= s->lh[j];
+        if (whole) {
+            memset(slot(s, k), 0, (size_t)s->lw[k] * 4);
+            for (int j = 0; j <= k; j++)
+                s->got[j] += step >> j;
+            n -= step;
+        } else {
+            memset(texture_shrink_row(s), 0, (size_t)s->lw[0] * 4);
+            texture_shrink_push(s);
+            n--;
+        }
+    }
+}
+
 void texture_shrink_finish(TexShrink *s)
 {
-    while (s->got[0] < s->lh[0]) {
-        memset(texture_shrink_row(s), 0, (size_t)s->lw[0] * 4);
-        texture_shrink_push(s);
-    }
+    texture_shrink_black(s, s->lh[0] - s->got[0]);
     for (int j = 0; j < s->halve; j++) {
         free(s->pair[j]);
         s->pair[j] = NULL;

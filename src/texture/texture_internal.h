@@ -42,8 +42,12 @@ int      texture_shrink_begin(TexShrink *s, Texture *t, int w, int h, int halve)
  * been written. Rows past the last are ignored. */
 uint8_t *texture_shrink_row(TexShrink *s);
 void     texture_shrink_push(TexShrink *s);
-/* Rows never given are black (a file cut short shows what it holds);
- * the kept level's chain is built. The rows' memory is given back. */
+/* n black rows (0, 0, 0, 0: what a file cut short does not hold),
+ * not halved one by one where a whole kept row is black: a TGA that
+ * claims 16384 x 16384 in 20 bytes costs its kept texels only. */
+void     texture_shrink_black(TexShrink *s, int n);
+/* Rows never given are black; the kept level's chain is built. The
+ * rows' memory is given back. */
 void     texture_shrink_finish(TexShrink *s);
 /* A decode that failed: everything given back, t empty. */
 void     texture_shrink_abort(TexShrink *s);

@@ -168,12 +168,19 @@ int texture_decode_tga(Texture *t, const uint8_t *b, size_t len, const char *nam
     }
     size_t rowbytes = (size_t)th.w * (size_t)(th.bpp / 8);
     TgaAt at = { body, 0, 0 };
+    int black = 0;                              /* rows past the file's end, not yet given */
     for (int y = 0; y < th.h; y++) {
         int fy = flip ? th.h - 1 - y : y;       /* the row's place in the file */
         if (flip && rle)
             at = rows[fy];
         else if (flip)
             at.p = (size_t)(end - body) / rowbytes > (size_t)fy ? body + (size_t)fy * rowbytes : end;
+        if (!at.left && end - at.p < th.bpp / 8 + rle) {
+            black++;
+            continue;
+        }
+        texture_shrink_black(&s, black);
+        black = 0;
         uint8_t *o = texture_shrink_row(&s);
         size_t got = tga_pixels(&th, &at, end, o, (size_t)th.w);
         /* what the file holds is shown; the rest stays black */
