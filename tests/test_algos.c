@@ -102,10 +102,12 @@ static void matrix_folder_part(const char *dir, int part, int parts)
     cr_assert_gt(files, 0, "no models in %s", dir);
 }
 
-Test(agree, every_asset_every_view, .timeout = 600)
-{
-    matrix_folder_part("assets", 0, 1);
-}
+/* In four parts, so that the suite's jobs share the longest matrix (36 s
+ * alone here, the rest of the unit suite 20). */
+Test(agree, every_asset_every_view_part_1, .timeout = 600) { matrix_folder_part("assets", 0, 4); }
+Test(agree, every_asset_every_view_part_2, .timeout = 600) { matrix_folder_part("assets", 1, 4); }
+Test(agree, every_asset_every_view_part_3, .timeout = 600) { matrix_folder_part("assets", 2, 4); }
+Test(agree, every_asset_every_view_part_4, .timeout = 600) { matrix_folder_part("assets", 3, 4); }
 
 /* The shared models, when present (make test-models), in four parts. */
 static void shared_part(int part)
