@@ -69,6 +69,9 @@ static inline uint32_t oc_next(const ObjCheck *o, uint32_t c)
     return c + 1 < oc_start(o, f + 1) ? c + 1 : oc_start(o, f);
 }
 
+/* counts.c: c with nothing counted yet (its box empty: lo > hi). */
+void check_counts_empty(CheckCounts *c);
+
 /* Grow a uint32_t list by one; 0, or -1 out of memory. */
 int  check_push(uint32_t **a, size_t *n, size_t *cap, uint32_t v);
 
