@@ -64,6 +64,8 @@ static int obj_prepare(Run *r, ObjCheck *o, const MeshObject *mo, char *err, siz
     CheckCounts *c = o->c;
     for (uint32_t k = 0; k < o->nc; k++) {
         uint32_t v = oc_vert(o, k), g = r->pid[v];
+        /* the weld map is in range: loc[] and used[] have np entries */
+        ZV_ASSERT(g < r->np);
         if (r->loc[g] == CHECK_NONE) {
             r->loc[g] = o->npts;
             r->prep[o->npts++] = v;

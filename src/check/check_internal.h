@@ -12,6 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "check.h"
 #include "meshcheck.h"
 #include "pool.h"
 
