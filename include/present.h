@@ -132,6 +132,9 @@ typedef struct {
 void out_init(Out *o, FILE *f, const char *name);
 int  out_printf(Out *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 int  out_write(Out *o, const void *p, size_t n);
+/* One line of a report that names files or quotes them (--info): fmt
+ * formatted, all of it made safe (safetext.h), then a newline. */
+int  out_line(Out *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Flush, and fail too when the stream has an error from any write. */
 int  out_flush(Out *o);
 /* Flush and fclose (not for stdout). */

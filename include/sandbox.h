@@ -71,4 +71,20 @@ int sandbox_wire_read(int fd, size_t len, pid_t pid, Mesh *m, int *rc, char *err
  * had. */
 int sandbox_filter_install(int memfd, int pipefd);
 
+/* The child's standard error (childerr.c): a pipe the parent reads while
+ * it waits, passing on zview's lines made safe (safetext.h) and dropping
+ * a library's own. open: the parent's end in ce, the child's in
+ * *child_end (0, or -1 when no pipe can be had: the child then writes
+ * straight to standard error); read: what is there now, without
+ * waiting; close: the rest, then the pipe closed. */
+typedef struct {
+    int    fd;          /* the parent's end, non-blocking; -1: none */
+    size_t n;           /* bytes of the line so far */
+    int    over;        /* the line was longer than line: the rest is dropped */
+    char   line[1024];
+} ChildErr;
+int  childerr_open(ChildErr *ce, int *child_end);
+void childerr_read(ChildErr *ce);
+void childerr_close(ChildErr *ce);
+
 #endif

@@ -134,38 +134,58 @@ int  term_read(TermEvent *ev, int timeout_ms);
 
 /* ==== The key parser (keys.c) ====
  * The terminal's input bytes -> TermEvents (keys, mouse, the answer to a
- * status request); every sequence it does not know is dropped whole. No
- * I/O: term.c pushes what it reads and says how long the input has been
- * quiet, which is how a lone Esc is told from the start of a sequence. */
+ * status request); every sequence it does not know, and every answer a
+ * terminal gives (CSI, OSC, DCS, APC, PM, SOS strings, with BEL or ST,
+ * 7-bit or 8-bit), is dropped whole, however it is split. No I/O and no
+ * clock: term.c pushes what it reads with the time it read it, says when
+ * it has asked the terminal something, and asks for events at a time;
+ * the quiet after an ESC is how a lone Esc is told from the start of a
+ * sequence, longer while an answer is on its way. */
 
-#define KP_ESC_MS  25           /* an unfinished sequence this long quiet is decided: a lone ESC is Esc */
-#define KP_IDLE_MS 1000         /* a paste or string still open after this much quiet has ended */
+#define KP_ESC_MS   25          /* an unfinished sequence this long quiet is decided: a lone ESC is Esc */
+#define KP_REPLY_MS 500         /* ... while an answer is awaited (a slow link splits one after its ESC) */
+#define KP_IDLE_MS  1000        /* a paste or string still open after this much quiet has ended */
+#define KP_LATE_MS  10000       /* answers awaited this long after the last question are not coming */
+#define KP_STRING_MAX 4096      /* a string (or CSI) this long is no answer: given up, the input read afresh */
 
 typedef struct {
     unsigned char b[1024];      /* bytes pushed, not yet parsed */
     size_t   len;
-    int      utf8;              /* decode UTF-8; else a byte is its own code point */
+    int      utf8;              /* decode UTF-8 (C1 controls as U+0080-U+009F); else a byte is
+                                   its own code point (C1 controls as bytes 0x80-0x9f) */
     int      paste;             /* inside a bracketed paste: dropped to its end */
-    int      string;            /* inside an OSC/DCS/APC/PM/SOS string: dropped to its end */
+    int      string;            /* inside a string: its kind (']' OSC, 'P' DCS, '_' APC, '^' PM,
+                                   'X' SOS), dropped to its end; 0 none */
     int      skip;              /* inside an overlong CSI sequence: dropped to its final byte */
+    size_t   run;               /* bytes of the string or overlong CSI dropped so far */
+    int      pending;           /* answers awaited (kp_expect), each the last of its questions */
+    double   asked_ms;          /* when the last question went */
+    double   last_ms;           /* when bytes last came */
     int      drag_button;       /* the mouse button held (1 left, 3 right), 0 none */
     int      drag_x, drag_y;    /* the cell the drag reached */
 } KeyParser;
 
 void   kp_init(KeyParser *p, int utf8);
-/* Append input; returns how many bytes fit (the rest must wait). */
-size_t kp_push(KeyParser *p, const void *bytes, size_t n);
+/* Append input that came at now_ms; returns how many bytes fit (the rest
+ * must wait). After KP_IDLE_MS without input a paste or string still open
+ * has lost its end: what comes now is keys. */
+size_t kp_push(KeyParser *p, const void *bytes, size_t n, double now_ms);
 /* The next event in what was pushed: 1 with *ev, or 0 when nothing is
- * complete. quiet_ms: how long the input has been quiet (0 when bytes
- * just came); an unfinished sequence is decided once it reaches
- * kp_wait_ms(). */
-int    kp_next(KeyParser *p, TermEvent *ev, double quiet_ms);
-/* The quiet after which kp_next decides what is left (ms), -1 when it
- * waits for nothing. */
-int    kp_wait_ms(const KeyParser *p);
-/* The input was quiet for KP_IDLE_MS before new bytes: a paste or
- * string still open has lost its end, and what comes now is keys. */
-void   kp_quiet(KeyParser *p);
+ * complete at now_ms. An unfinished sequence is decided once the input
+ * has been quiet for kp_wait_ms(); the caller reads what is waiting
+ * first (a decision on bytes not yet read would split a sequence). */
+int    kp_next(KeyParser *p, TermEvent *ev, double now_ms);
+/* The ms from now_ms until kp_next decides what is left (0: now), -1 when
+ * it waits for nothing. */
+int    kp_wait_ms(const KeyParser *p, double now_ms);
+/* The caller has sent questions whose last answer is the attributes'
+ * (ESC [ ? ... c) or a status report (ESC [ 0 n): `more` answers more
+ * are awaited (0: the question only went out now, after queueing). Until
+ * they come (or KP_LATE_MS after the last question), a lone ESC waits
+ * KP_REPLY_MS for the rest of an answer before it is the Esc key. */
+void   kp_expect(KeyParser *p, int more, double now_ms);
+/* The answers still awaited at now_ms. */
+int    kp_awaiting(const KeyParser *p, double now_ms);
 
 /* ==== The terminal's background (termbg.c) ====
  * The colour query (OSC 11) and the device-attributes request after it,
@@ -257,9 +277,12 @@ int  vt_resize(Vt *v, int cols, int rows);
 void vt_clear(Vt *v);           /* want all blank */
 void vt_invalidate(Vt *v);      /* the terminal's content is unknown: repaint all */
 VtCell *vt_at(Vt *v, int y, int x);     /* a cell of want, NULL outside */
-/* UTF-8 text into row y from column x, at most maxw columns; characters
- * that are not one column wide show as '?'. Returns the columns used. */
+/* Text into row y from column x, at most maxw columns, made safe first
+ * (safetext.h: a control shows as \x1b, four columns); a character that
+ * is not one column wide shows as '?'. Returns the columns used. */
 int  vt_text(Vt *v, int y, int x, const char *s, int maxw, uint8_t attr);
+/* The columns vt_text gives the first `bytes` bytes of s. */
+int  vt_text_cols(const char *s, size_t bytes);
 /* A framed box of lines into want (term_draw_box_at says where). */
 void vt_box(Vt *v, const char *const *lines, int n, int bx, int by);
 /* The bytes from shown to want into buf/len; shown is then want.

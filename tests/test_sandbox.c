@@ -242,3 +242,71 @@ Test(sandbox, references_stay_beneath_the_folder)
     snprintf(p, sizeof p, "rm -rf %s", dir);
     cr_assert_eq(system(p), 0);
 }
+
+/* Issue 28: names that are in the folder however they are written (an
+ * absolute path to it, through a link to it, assimp's "m//name" and
+ * "m//<absolute>", Blender's "//name", a name without the folder) open;
+ * what leaves it (a sibling whose name starts alike, a link out, '..'
+ * after "//") stays refused; a name that is not there is not a refusal
+ * (assimp looking for optional files). */
+Test(sandbox, references_in_the_folder_open_however_they_are_written)
+{
+    char dir[] = "/tmp/zv-ref-XXXXXX", p[700], why[200];
+    cr_assert(mkdtemp(dir));
+    snprintf(p, sizeof p, "mkdir -p %s/m/sub %s/mm %s/out && echo x >%s/m/sub/ok.png && echo s >%s/mm/s.bin && "
+             "echo s >%s/out/s.bin && ln -s ../out/s.bin %s/m/out.bin && ln -s m %s/link",
+             dir, dir, dir, dir, dir, dir, dir, dir);
+    cr_assert_eq(system(p), 0);
+    char model[300], full[900];
+    snprintf(model, sizeof model, "%s/m/x.gltf", dir);
+    struct { const char *fmt; int ok; const char *why; } cases[] = {
+        { "%1$s/m/sub/ok.png", 1, NULL },               /* absolute, in the folder */
+        { "%1$s/link/sub/ok.png", 1, NULL },            /* absolute, through a link to the folder */
+        { "%1$s/m//sub/ok.png", 1, NULL },              /* assimp's "folder//name" */
+        { "%1$s/m/%1$s/m/sub/ok.png", 1, NULL },        /* a uri naming its own folder, joined */
+        { "%1$s/m/%1$s/m/sub/../../m/sub/ok.png", 1, NULL },
+        { "%1$s/m/%1$s/link/sub/ok.png", 1, NULL },
+        { "//sub/ok.png", 1, NULL },                    /* Blender: the blend file's folder */
+        { "sub/ok.png", 1, NULL },                      /* a name without the folder */
+        { "%1$s/m//nothere.bin", 0, "No such file" },
+        { "%1$s/m/%1$s/m/nothere.bin", 0, "No such file" },
+        { "%1$s/mm/s.bin", 0, "refused: an absolute path outside" },    /* /a/mm is not in /a/m */
+        { "%1$s/m/%1$s/mm/s.bin", 0, "refused: an absolute path outside" },
+        { "%1$s/m/%1$s/out/s.bin", 0, "refused: an absolute path outside" },
+        { "%1$s/m/out.bin", 0, "leads out of the model's folder" },     /* a link out, absolute */
+        { "%1$s/m/%1$s/m/out.bin", 0, "refused: an absolute path outside" },
+        { "//../out/s.bin", 0, "'..' leads out" },
+        { "%1$s/m//../out/s.bin", 0, "'..' leads out" },
+        { "%1$s/out/nothere.bin", 0, "refused: an absolute path outside" },
+        { "/etc/passwd", 0, "refused: an absolute path outside" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(full, sizeof full, cases[i].fmt, dir);
+        int fd = mesh_ref_open(model, full, why, sizeof why);
+        if (cases[i].ok) {
+            cr_expect(fd >= 0, "%s: %s", full, why);
+            if (fd >= 0)
+                close(fd);
+        } else {
+            cr_expect_eq(fd, -1, "%s was opened", full);
+            cr_expect(strstr(why, cases[i].why), "%s: %s", full, why);
+        }
+    }
+    /* a model named relative to the working folder, a uri absolute */
+    char cwd[600];
+    cr_assert(getcwd(cwd, sizeof cwd));
+    cr_assert_eq(chdir(dir), 0);
+    snprintf(full, sizeof full, "m//%s/m/sub/ok.png", dir);
+    int fd = mesh_ref_open("m/x.gltf", full, why, sizeof why);
+    cr_expect(fd >= 0, "%s: %s", full, why);
+    if (fd >= 0)
+        close(fd);
+    snprintf(full, sizeof full, "%s/m/sub/ok.png", dir);
+    fd = mesh_ref_open("m/x.gltf", full, why, sizeof why);
+    cr_expect(fd >= 0, "%s: %s", full, why);
+    if (fd >= 0)
+        close(fd);
+    cr_assert_eq(chdir(cwd), 0);
+    snprintf(p, sizeof p, "rm -rf %s", dir);
+    cr_assert_eq(system(p), 0);
+}

@@ -126,6 +126,45 @@ Test(term, a_lone_esc_is_esc, .timeout = 30)
     pty_close(&p);
 }
 
+/* The rest of a sequence came while the viewer was busy (drawing) after
+ * it had read the ESC: the viewer reads it before it decides on the
+ * quiet, and the sequence is whole (issue 28: read after the decision,
+ * an answer's ESC was the Esc key, which quits). */
+Test(term, a_sequence_whose_rest_came_while_busy_is_whole, .timeout = 30)
+{
+    Pty p;
+    pty_open(&p, 80, 24, 0);
+    TermEvent ev;
+    cr_assert_eq(write(p.m, "\033", 1), 1);
+    cr_expect_eq(term_read(&ev, 10), 0, "the ESC read, too soon to decide: type %d key %#x", ev.type, ev.key);
+    cr_assert_eq(write(p.m, "[A", 2), 2);
+    usleep(100 * 1000);         /* busy: longer than KP_ESC_MS */
+    cr_assert_eq(term_read(&ev, 1000), 1);
+    cr_expect(ev.type == TE_KEY && ev.key == TK_UP, "type %d key %#x", ev.type, ev.key);
+    pty_close(&p);
+}
+
+/* A frame's status request is an answer awaited: its answer split after
+ * the ESC (a slow link) is the frame's acknowledgement, no Esc. */
+Test(term, a_status_answer_split_after_its_esc_is_no_esc, .timeout = 30)
+{
+    Pty p;
+    pty_open(&p, 80, 24, 0);
+    term_draw_bar(0, "a frame");
+    cr_assert_eq(term_update(0), 0);
+    char buf[4096];
+    size_t n = drain(p.m, buf, sizeof buf);
+    cr_assert(has(buf, n, "\033[5n"), "the status request went");
+    cr_assert_eq(write(p.m, "\033", 1), 1);
+    TermEvent ev;
+    int got = term_read(&ev, 100);      /* well past KP_ESC_MS */
+    cr_expect(got == 0 || ev.type != TE_KEY, "the answer's ESC read as key %#x", ev.key);
+    cr_assert_eq(write(p.m, "[0n", 3), 3);
+    cr_assert_eq(term_read(&ev, 2000), 1);
+    cr_expect_eq(ev.type, TE_READY, "type %d key %#x", ev.type, ev.key);
+    pty_close(&p);
+}
+
 /* ==== Frames on a stalled line ==== */
 
 /* A frame far larger than the line holds, and nobody reading: the

@@ -81,7 +81,9 @@ Test(termbg, other_answers_are_not_the_background)
 
 /* ==== Asking a fake terminal ==== */
 
-typedef enum { ANSWER_BOTH, ANSWER_DA, SILENT } Reply;
+/* ANSWER_LATE: both answers after the wait, each with its ESC alone 40 ms
+ * before the rest, as a slow ssh link brings them */
+typedef enum { ANSWER_BOTH, ANSWER_DA, SILENT, ANSWER_LATE } Reply;
 
 typedef struct {
     int     m;              /* the pty's master: the terminal's side */
@@ -103,6 +105,16 @@ static void *fake_terminal(void *arg)
         ssize_t r = read(t->m, t->seen + t->nseen, sizeof t->seen - 1 - t->nseen);
         if (r > 0)
             t->nseen += (size_t)r;
+    }
+    if (t->reply == ANSWER_LATE) {
+        static const char *const pieces[] = { "x", "\033", "]11;rgb:ffff/ffff/ffff\033\\\033", "[?1;2c" };
+        static const int after_ms[] = { 0, TERMBG_WAIT_MS + 100, 40, 40 };
+        for (int i = 0; i < 4; i++) {
+            usleep((useconds_t)after_ms[i] * 1000);
+            ssize_t w = write(t->m, pieces[i], strlen(pieces[i]));
+            (void)w;
+        }
+        return NULL;
     }
     const char *answer = t->reply == ANSWER_BOTH ? "x\033]11;rgb:ffff/ffff/ffff\033\\\033[?1;2c"
                        : t->reply == ANSWER_DA   ? "x\033[?1;2c"
@@ -171,16 +183,19 @@ static Outcome open_and_ask(Reply reply)
     TermConfig cfg = { .out = p.out, .in = p.in, .termname = "xterm-256color", .colour = COLOUR_TRUE,
                        .ask_bg = 1 };
     int opened = term_open(&cfg, err, sizeof err);
-    pthread_join(th, NULL);
-    if (opened)
+    if (opened) {
+        pthread_join(th, NULL);
         cr_skip_test("no xterm-256color description: %s", err);
-    cr_assert(memmem(t.seen, t.nseen, "\033]11;?", 6), "the question was not asked");
+    }
     Outcome o = { 0 };
     o.told = term_background(o.rgb, &o.waited_ms);
-    /* the answers read by the parser, the keys left: nothing but x */
+    /* the answers read by the parser, the keys left: nothing but x (the
+     * late answers come while the events are read) */
     TermEvent ev;
-    while (o.nkeys < 8 && term_read(&ev, 120) == 1)
+    while (o.nkeys < 8 && term_read(&ev, reply == ANSWER_LATE ? 1000 : 120) == 1)
         o.keys[o.nkeys++] = ev.type == TE_KEY ? ev.key : -1;
+    pthread_join(th, NULL);
+    cr_assert(memmem(t.seen, t.nseen, "\033]11;?", 6), "the question was not asked");
     o.nscreen = drain(p.m, o.screen, sizeof o.screen - 1);
     term_restore();
     fclose(p.out);
@@ -230,13 +245,24 @@ Test(termbg, a_silent_terminal_costs_the_timeout_once, .timeout = 30)
     expect_only_x(&o);
 }
 
+/* Issue 28: the answers after the wait, each split after its ESC by a
+ * gap longer than the Esc key's: the ESC was read as Esc (which quits),
+ * the rest as keys. Awaited answers wait for their rest. */
+Test(termbg, late_answers_split_after_their_esc_are_no_keys, .timeout = 30)
+{
+    Outcome o = open_and_ask(ANSWER_LATE);
+    cr_expect(!o.told, "the colour came after the wait");
+    expect_nothing_echoed(&o);
+    expect_only_x(&o);
+}
+
 Test(termbg, an_answer_after_the_wait_is_dropped_whole, .timeout = 30)
 {
     /* the parser alone: a late answer among keys gives the keys only */
     KeyParser kp;
     kp_init(&kp, 1);
     const char late[] = "a\033]11;rgb:ffff/ffff/ffff\033\\\033[?62;22cb";
-    kp_push(&kp, late, sizeof late - 1);
+    kp_push(&kp, late, sizeof late - 1, 0);
     TermEvent ev;
     int keys[8], n = 0;
     while (n < 8 && kp_next(&kp, &ev, 1000))

@@ -1,5 +1,5 @@
 /* test_util.c: the rooms every stage uses: helper threads, the memory
- * probe, files written whole. */
+ * probe, files written whole, text safe to print. */
 
 #define _DEFAULT_SOURCE
 
@@ -14,6 +14,7 @@
 
 #include "check.h"
 #include "safefile.h"
+#include "safetext.h"
 #include "sysmem.h"
 #include "thread.h"
 
@@ -132,3 +133,125 @@ Test(util, a_broken_invariant_aborts, .signal = SIGABRT, .init = cr_redirect_std
     ZV_ASSERT(zero == 1);
 }
 #endif
+
+/* ==== Text safe to print (issue 28) ==== */
+
+static const char *safe(const char *s)
+{
+    static char buf[512];
+    return safetext(buf, sizeof buf, s);
+}
+
+static const char *json(const char *s)
+{
+    static char buf[512];
+    size_t o = 0;
+    while (*s) {
+        char piece[SAFETEXT_PIECE];
+        s += safetext_next(s, piece, SAFETEXT_JSON);
+        o += (size_t)snprintf(buf + o, sizeof buf - o, "%s", piece);
+    }
+    buf[o] = 0;
+    return buf;
+}
+
+Test(util, safe_text_shows_controls_and_broken_utf8_by_their_bytes)
+{
+    struct { const char *in, *want; } cases[] = {
+        { "plain/name-1.obj", "plain/name-1.obj" },
+        { "mod\xc3\xa8le \xe6\x97\xa5 \xf0\x9f\x99\x82", "mod\xc3\xa8le \xe6\x97\xa5 \xf0\x9f\x99\x82" },
+        { "a\x1b]52;c;aGk=\x07\x1b[2Jb", "a\\x1b]52;c;aGk=\\x07\\x1b[2Jb" },      /* OSC 52, CSI 2J */
+        { "tab\there\nnewline\r", "tab\\x09here\\x0anewline\\x0d" },
+        { "del\x7f", "del\\x7f" },
+        { "c1 \xc2\x9b" "2J", "c1 \\xc2\\x9b2J" },            /* U+009B, a CSI in UTF-8 */
+        { "raw \x9b" "2J", "raw \\x9b2J" },                   /* the C1 byte alone: no UTF-8 */
+        { "rlo \xe2\x80\xae" "gpj.exe", "rlo \\xe2\\x80\\xaegpj.exe" },    /* a bidirectional override */
+        { "ls \xe2\x80\xa8", "ls \\xe2\\x80\\xa8" },          /* the line separator */
+        { "over \xc0\xaf", "over \\xc0\\xaf" },               /* an overlong '/' */
+        { "sur \xed\xa0\x80", "sur \\xed\\xa0\\x80" },        /* a surrogate */
+        { "big \xf4\x90\x80\x80", "big \\xf4\\x90\\x80\\x80" },   /* past U+10FFFF */
+        { "cut \xe6\x97", "cut \\xe6\\x97" },                 /* a character cut short */
+        { "cont \x80x", "cont \\x80x" },
+        { "back\\slash", "back\\slash" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
+        cr_expect_str_eq(safe(cases[i].in), cases[i].want, "case %zu", i);
+}
+
+Test(util, safe_text_in_json_escapes_what_text_shows_by_bytes)
+{
+    cr_expect_str_eq(json("a\x1b[2J\x07"), "a\\u001b[2J\\u0007");
+    cr_expect_str_eq(json("q\"b\\"), "q\\\"b\\\\");
+    cr_expect_str_eq(json("\x7f\xc2\x9b\xe2\x80\xae"), "\\u007f\\u009b\\u202e");
+    cr_expect_str_eq(json("x\xff\xc0\xafy"), "x\\ufffd\\ufffd\\ufffdy", "a byte that is not UTF-8 is U+FFFD");
+    cr_expect_str_eq(json("mod\xc3\xa8le \xf0\x9f\x99\x82"), "mod\xc3\xa8le \xf0\x9f\x99\x82");
+}
+
+Test(util, safe_text_is_cut_at_a_whole_character)
+{
+    char buf[8];
+    cr_expect_str_eq(safetext(buf, sizeof buf, "ab\x1b"), "ab\\x1b");
+    cr_expect_str_eq(safetext(buf, sizeof buf, "abcd\x1b"), "abcd", "the escape does not fit: left out whole");
+    cr_expect_str_eq(safetext(buf, sizeof buf, "abcde\xc3\xa9"), "abcde\xc3\xa9");
+    cr_expect_str_eq(safetext(buf, sizeof buf, "abcdef\xc3\xa9"), "abcdef");
+    cr_expect_str_eq(safetext(buf, 1, "abc"), "");
+}
+
+/* Every string of up to two bytes, and random ones of up to eight: the
+ * text has no control byte, no DEL, no C1 character and is valid UTF-8;
+ * a string of printable ASCII is itself. */
+Test(util, safe_text_of_any_bytes_is_printable_utf8)
+{
+    unsigned seed = 28;
+    for (long k = 0; k < 65536 + 256 + 200000; k++) {
+        unsigned char in[9] = { 0 };
+        if (k < 256) {
+            in[0] = (unsigned char)k;
+        } else if (k < 65536 + 256) {
+            in[0] = (unsigned char)((k - 256) >> 8);
+            in[1] = (unsigned char)(k - 256);
+        } else {
+            int n = 1 + (int)(rand_r(&seed) % 8);
+            for (int i = 0; i < n; i++)
+                in[i] = (unsigned char)rand_r(&seed);
+        }
+        const unsigned char *out = (const unsigned char *)safe((const char *)in);
+        int ascii = 1;
+        for (const unsigned char *p = in; *p; p++)
+            ascii &= *p >= 0x20 && *p < 0x7f;
+        if (ascii)
+            cr_assert_str_eq((const char *)out, (const char *)in);
+        for (const unsigned char *p = out; *p;) {
+            cr_assert(*p >= 0x20 && *p != 0x7f, "byte %02x in the text of string %ld", *p, k);
+            if (*p < 0x80) {
+                p++;
+                continue;
+            }
+            /* a well-formed sequence, by the table of RFC 3629 */
+            int n = *p >= 0xf0 ? 4 : *p >= 0xe0 ? 3 : 2;
+            cr_assert(*p >= 0xc2 && *p <= 0xf4, "lead byte %02x of string %ld", *p, k);
+            for (int i = 1; i < n; i++)
+                cr_assert((p[i] & 0xc0) == 0x80, "string %ld", k);
+            cr_assert(!(*p == 0xc2 && p[1] < 0xa0), "a C1 character in the text of string %ld", k);
+            cr_assert(!(*p == 0xe0 && p[1] < 0xa0) && !(*p == 0xed && p[1] >= 0xa0) &&
+                      !(*p == 0xf0 && p[1] < 0x90) && !(*p == 0xf4 && p[1] >= 0x90), "string %ld", k);
+            p += n;
+        }
+    }
+}
+
+Test(util, a_safe_line_is_one_line_in_one_piece)
+{
+    char path[] = "/tmp/zv-safeline-XXXXXX";
+    int fd = mkstemp(path);
+    cr_assert(fd >= 0);
+    FILE *f = fdopen(fd, "w+");
+    safetext_line(f, "zview: %s: %s", "e\x1b[2Jvil.obj", "two\nlines");
+    rewind(f);
+    char got[200] = "";
+    size_t n = fread(got, 1, sizeof got - 1, f);
+    got[n] = 0;
+    cr_expect_str_eq(got, "zview: e\\x1b[2Jvil.obj: two\\x0alines\n");
+    fclose(f);
+    unlink(path);
+}

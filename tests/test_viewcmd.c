@@ -161,6 +161,12 @@ Test(viewcmd, defaults_are_left_out_and_odd_file_names_quoted)
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_expect_str_eq(cmd, "zview 'it'\\''s here.obj' --yaw 0 --pitch 0");
     cr_expect_eq(view_command(cmd, 10, &o, &s, &v), -1, "too small a buffer is reported");
+    /* issue 28: a name with controls is printed with the command: $'...'
+     * with its bytes as \xNN, which bash and zsh turn back into the name
+     * (test_hostile.sh runs it), and no ESC reaches the terminal */
+    o.files[0] = "e\x1b]52;c;aGk=\x07v'il\\\xff.obj";
+    cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
+    cr_expect_str_eq(cmd, "zview $'e\\x1b]52;c;aGk=\\x07v\\'il\\\\\\xff.obj' --yaw 0 --pitch 0");
 }
 
 /* The shortest numbers that give the view back: a turn of -25 degrees is

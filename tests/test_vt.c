@@ -410,11 +410,49 @@ Test(vt, text_keeps_one_column_per_character)
     Vt v;
     vt_init(&v, &c);
     cr_assert_eq(vt_resize(&v, 10, 1), 0);
-    cr_expect_eq(vt_text(&v, 0, 0, "a\xe6\x97\xa5\xc3\xa9\tb", 10, 0), 5);
+    cr_expect_eq(vt_text(&v, 0, 0, "a\xe6\x97\xa5\xc3\xa9\tb", 10, 0), 8);
     cr_expect_eq(vt_at(&v, 0, 1)->ch, (uint32_t)'?', "a wide character shows as ?");
     cr_expect_eq(vt_at(&v, 0, 2)->ch, 0xe9u, "e acute is one column");
-    cr_expect_eq(vt_at(&v, 0, 3)->ch, (uint32_t)'?', "a tab shows as ?");
+    char row[8];
+    for (int x = 0; x < 5; x++)
+        row[x] = (char)vt_at(&v, 0, 3 + x)->ch;
+    row[5] = 0;
+    cr_expect_str_eq(row, "\\x09b", "a tab shows by its byte");
+    cr_expect_eq(vt_text_cols("a\xe6\x97\xa5\xc3\xa9\tb", 9), 8, "the columns vt_text takes");
     cr_expect_eq(vt_text(&v, 0, 8, "xyz", 10, 0), 2, "cut at the edge");
+    vt_free(&v);
+}
+
+/* Issue 28: a name from a file with OSC 52 (the clipboard) and CSI 2J
+ * (clear the screen): drawn as text, no ESC or BEL reaches the terminal,
+ * in a line or a box. */
+Test(vt, controls_in_text_never_reach_the_terminal)
+{
+    VtCaps c = xterm_caps();
+    Vt v;
+    vt_init(&v, &c);
+    cr_assert_eq(vt_resize(&v, 60, 6), 0);
+    const char *evil = "x\x1b]52;c;aGk=\x07\x1b[2J\xc2\x9by";
+    cr_expect_eq(vt_text(&v, 0, 0, evil, 60, 0), 35);
+    const char *lines[] = { evil };
+    vt_box(&v, lines, 1, 0, 2);
+    cr_assert_eq(vt_encode(&v), 0);
+    char row[40];
+    for (int x = 0; x < 35; x++)
+        row[x] = (char)vt_at(&v, 0, x)->ch;
+    row[35] = 0;
+    cr_expect_str_eq(row, "x\\x1b]52;c;aGk=\\x07\\x1b[2J\\xc2\\x9by");
+    for (int x = 0; x < 35; x++)
+        cr_expect_eq(vt_at(&v, 3, 2 + x)->ch, vt_at(&v, 0, x)->ch, "the box draws the same text");
+    /* the encoder's own escapes start with ESC [ (SGR, moves, erases):
+     * no OSC, no BEL, no C1 */
+    for (size_t i = 0; i < v.len; i++) {
+        unsigned char b = (unsigned char)v.buf[i];
+        cr_expect(b != 0x07 && !(b >= 0x80 && b < 0xa0 && (i == 0 || (unsigned char)v.buf[i - 1] == 0xc2)),
+                  "byte %02x at %zu", b, i);
+        if (b == 0x1b)
+            cr_expect_eq(v.buf[i + 1], '[', "ESC %c at %zu", v.buf[i + 1], i);
+    }
     vt_free(&v);
 }
 

@@ -16,8 +16,11 @@ set -e
 # the texture tests its textured models (tests/test_surface.c: glTF, GLB,
 # data: URIs, COLLADA, OBJ).
 # xvfb, xterm and imagemagick: a real terminal that draws sixel, looked
-# at through a screenshot (tests/e2e/test_xterm.sh).
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick"
+# at through a screenshot (tests/e2e/test_xterm.sh). kitty, with the
+# software OpenGL it draws with under Xvfb (libgl1, libgl1-mesa-dri) and
+# a monospace font: a real terminal that answers the kitty graphics
+# query, and draws the viewer's pictures in its pixels (test_kitty.sh).
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick kitty libgl1 libgl1-mesa-dri fonts-dejavu-core"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "safetext.h"
 #include "sandbox.h"
 
 #ifndef ZV_DATADIR
@@ -74,8 +75,8 @@ SandboxOpts app_sandbox_opts(const Options *o)
 void app_sandbox_warn(const Options *o)
 {
     if (!o->no_sandbox && !sandbox_available())
-        fprintf(stderr, "zview: warning: this system has no seccomp filters: models load in zview's own process, "
-                "unsandboxed (--no-sandbox says so and silences this)\n");
+        safetext_line(stderr, "zview: warning: this system has no seccomp filters: models load in zview's own process, "
+                "unsandboxed (--no-sandbox says so and silences this)");
 }
 
 int app_load_scene(const Options *o, Scene *s, char *err, size_t errlen)
@@ -103,7 +104,7 @@ static int read_files(const Options *o, const char *const *files, int nfiles, Me
         if (sandbox_load(&meshes[nread], files[i], &lo, &so, err, errlen)) {
             nfailed++;
             if (nfiles > 1 && !o->strict && nfailed < nfiles) {
-                fprintf(stderr, "zview: warning: %s (left out; the other files are shown)\n", err);
+                safetext_line(stderr, "zview: warning: %s (left out; the other files are shown)", err);
                 if (!left_out[0])
                     snprintf(left_out, sizeof left_out, "%s (left out)", err);
                 continue;

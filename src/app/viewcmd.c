@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "app.h"
+#include "safetext.h"
 
 typedef struct {
     char  *buf;
@@ -38,20 +39,43 @@ static void put(CmdBuf *o, const char *fmt, ...)
 }
 
 /* A word for a POSIX shell: as is when it is plain, else in single
- * quotes (a quote inside becomes '\''). */
+ * quotes (a quote inside becomes '\''). A word with a character that
+ * is not safe to print (safetext.h: ESC, a newline, bytes that are not
+ * UTF-8) is written $'...' with those bytes as \xNN: the command is
+ * printed and pasted, and the terminal must not act on the name. */
 static void put_word(CmdBuf *o, const char *w)
 {
-    int plain = *w != 0;
-    for (const char *c = w; *c; c++)
+    int plain = *w != 0, printable = 1;
+    for (const char *c = w; *c;) {
+        size_t n;
+        printable &= safetext_plain(c, &n);
         if (!strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./,:=+@%", *c))
             plain = 0;
+        c += n;
+    }
     if (plain) {
         put(o, " %s", w);
         return;
     }
-    put(o, " '");
-    for (const char *c = w; *c; c++)
-        put(o, *c == '\'' ? "'\\''" : "%c", *c);
+    if (printable) {
+        put(o, " '");
+        for (const char *c = w; *c; c++)
+            put(o, *c == '\'' ? "'\\''" : "%c", *c);
+        put(o, "'");
+        return;
+    }
+    put(o, " $'");
+    for (const char *c = w; *c;) {
+        size_t n;
+        if (!safetext_plain(c, &n))
+            for (size_t i = 0; i < n; i++)
+                put(o, "\\x%02x", (unsigned char)c[i]);
+        else if (*c == '\'' || *c == '\\')
+            put(o, "\\%c", *c);
+        else
+            put(o, "%.*s", (int)n, c);
+        c += n;
+    }
     put(o, "'");
 }
 

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "oneshot.h"
+#include "safetext.h"
 #include "simd.h"
 #include "viewer.h"
 
@@ -45,7 +46,7 @@ static int finish_stdout(void)
         return 0;
     if (out.err == EIO && e)
         out.err = e;
-    fprintf(stderr, "zview: standard output: %s\n", out_error(&out));
+    safetext_line(stderr, "zview: standard output: %s", out_error(&out));
     return 1;
 }
 
@@ -63,7 +64,7 @@ int main(int argc, char **argv)
      * (the viewer's screen) covers standard error */
     simd_warn(stderr);
     if (cli_parse(argc, argv, &o, err, sizeof err)) {
-        fprintf(stderr, "zview: %s\n", err);
+        safetext_line(stderr, "zview: %s", err);
         return 2;
     }
     if (o.help) {
@@ -95,7 +96,7 @@ int main(int argc, char **argv)
         /* nothing to load: the canvas is the scene (sketchui.c); this
          * empty one holds the light it is drawn in */
         if (scene_build(&scene, NULL, 0, err, sizeof err)) {
-            fprintf(stderr, "zview: %s\n", err);
+            safetext_line(stderr, "zview: %s", err);
             return 1;
         }
         light_set(&scene.light, o.light[0], o.light[1], o.ambient);
@@ -106,7 +107,7 @@ int main(int argc, char **argv)
     int oneshot = !o.info && (o.print || o.out || o.dump_ids || o.dump_screen ||
                               (!isatty(STDOUT_FILENO) && !o.print_view && !o.sketch));
     if (oneshot && app_check_output(&o, err, sizeof err)) {
-        fprintf(stderr, "zview: %s\n", err);
+        safetext_line(stderr, "zview: %s", err);
         return 1;
     }
     if (oneshot)
@@ -117,7 +118,7 @@ int main(int argc, char **argv)
         /* a big file: the viewer starts at once and shows what is
          * parsed so far (firstload.c); it starts on an empty scene */
         if (scene_build(&scene, NULL, 0, err, sizeof err)) {
-            fprintf(stderr, "zview: %s\n", err);
+            safetext_line(stderr, "zview: %s", err);
             return 1;
         }
         light_set(&scene.light, o.light[0], o.light[1], o.ambient);
@@ -127,7 +128,7 @@ int main(int argc, char **argv)
     }
     FirstView fv;
     if (app_load_scene_ex(&o, &scene, &fv, err, sizeof err)) {
-        fprintf(stderr, "zview: %s\n", err);
+        safetext_line(stderr, "zview: %s", err);
         return 1;
     }
     if (o.info)

@@ -582,16 +582,35 @@ static void ai_stance(MeshCtx *c, const struct aiScene *sc, const char *data, si
     /* the rest: as every format that does not say (format.c) */
 }
 
-/* assimp's message, first line only. */
+/* assimp's message as one line: its lines joined (a run of newlines and
+ * blanks is one space), cut at AI_MSG_MAX bytes with "...". What it
+ * quotes from the file is made safe where it is printed (safetext.h). */
+#define AI_MSG_MAX 300
 static int import_failed(MeshCtx *c)
 {
     const char *s = ai()->aiGetErrorString();
     if (!s || !*s)
         s = "assimp could not read it";
-    if (strstr(s, "bad_alloc"))     /* the limit of the sandbox (--max-memory) or of the machine */
-        return me_fail(&c->err, "out of memory reading it (assimp: %.100s; --max-memory sets the bound)", s);
-    size_t n = strcspn(s, "\n");
-    return me_fail(&c->err, "%.*s", (int)(n < 300 ? n : 300), s);
+    char msg[AI_MSG_MAX + 4];
+    size_t o = 0;
+    const char *p = s;
+    for (; *p && o < AI_MSG_MAX; p++) {
+        if (strchr(" \t\r\n", *p)) {
+            p += strspn(p, " \t\r\n") - 1;
+            if (o && p[1])
+                msg[o++] = ' ';
+        } else {
+            msg[o++] = *p;
+        }
+    }
+    if (*p) {
+        memcpy(msg + o, "...", 3);
+        o += 3;
+    }
+    msg[o] = '\0';
+    if (strstr(msg, "bad_alloc"))   /* the limit of the sandbox (--max-memory) or of the machine */
+        return me_fail(&c->err, "out of memory reading it (assimp: %.100s; --max-memory sets the bound)", msg);
+    return me_fail(&c->err, "%s", msg);
 }
 
 static int from_scene(MeshCtx *c, const struct aiScene *sc)

@@ -568,6 +568,17 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
             mf_close(&f);
             return me_fail(&c.err, "%s", msg);
         }
+        /* bytes after the last gzip member: ignored with a warning, as
+         * zcat does; --strict refuses the file */
+        uint64_t junk = mf_gz_trailing(&f);
+        if (junk && c.err.strict) {
+            mf_close(&f);
+            return me_fail(&c.err, "bytes that are not gzip data after the last member (compressed byte %llu; "
+                           "--strict refuses them)", (unsigned long long)(junk - 1));
+        }
+        if (junk)
+            me_warn(&c.err, NULL, 0, "trailing garbage after the gzip data ignored (from compressed byte %llu)",
+                    (unsigned long long)(junk - 1));
     }
     const char *what;
     /* only a file on disk is offered to assimp by content: bytes in

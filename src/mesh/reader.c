@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "reader.h"
+#include "safetext.h"
 
 /* ==== Errors ==== */
 
@@ -105,7 +106,7 @@ void me_warn(MeshErr *e, const char *name, uint64_t line, const char *fmt, ...)
         e->warning[n] = '\0';
     }
     if (!e->quiet)
-        fprintf(stderr, "zview: warning: %s\n", full);
+        safetext_line(stderr, "zview: warning: %s", full);
 }
 
 /* ==== Input ==== */

@@ -157,12 +157,16 @@ int  mesh_ref_open(const char *model, const char *full, char *why, size_t whylen
 
 /* gzip (gzip.c): do these bytes start gzip data? Start decompressing
  * f (its fd read on from where it stands; seed: the compressed bytes
- * already read from it), read decompressed bytes (0 at the end, -1 with
- * msg), and free the state (mf_close does). */
+ * already read from it), read decompressed bytes of every member in turn
+ * (0 at the end, -1 with msg), and free the state (mf_close does). */
 int  mf_is_gzip(const char *h, size_t n);
 int  mf_gz_start(MeshFile *f, const char *seed, size_t nseed, char *msg, size_t msglen);
 long mf_gz_read(MeshFile *f, char *buf, size_t n, char *msg, size_t msglen);
 void mf_gz_end(MeshFile *f);
+/* After the data was read to its end: 1 + the compressed byte where
+ * bytes that are no gzip member follow the last (ignored, as zcat does,
+ * with a warning), or 0. */
+uint64_t mf_gz_trailing(const MeshFile *f);
 
 /* How much of a stream to read (mapped files are always whole). */
 typedef struct {

@@ -13,6 +13,7 @@
 
 #include "clock.h"
 #include "oneshot.h"
+#include "safetext.h"
 
 #define MAX_VIEWS 4096
 /* Frames the benchmark waits at most for an algorithm's structures
@@ -57,7 +58,7 @@ static int parse_algos(const char *spec, AlgoList *l)
     for (char *t = strtok_r(buf, ",", &save); t && l->n < 16; t = strtok_r(NULL, ",", &save)) {
         const HsrAlgo *a = hsr_find(t);
         if (!a) {
-            fprintf(stderr, "zview: unknown algorithm '%s'\n", t);
+            safetext_line(stderr, "zview: unknown algorithm '%s'", t);
             return -1;
         }
         l->algos[l->n++] = a->name;   /* the registry's string outlives buf */
@@ -70,7 +71,7 @@ static int report_ok(Out *out)
 {
     if (out_flush(out) == 0)
         return 1;
-    fprintf(stderr, "zview: %s: %s\n", out->name, out_error(out));
+    safetext_line(stderr, "zview: %s: %s", out->name, out_error(out));
     return 0;
 }
 
@@ -82,17 +83,26 @@ static int bench_model(Out *out, const Options *o, const char *file, const AlgoL
     one.files[0] = file;
     Scene s;
     if (app_load_scene(&one, &s, err, sizeof err)) {
-        fprintf(stderr, "zview: %s\n", err);
+        safetext_line(stderr, "zview: %s", err);
         return 1;
     }
     const char *name = file ? file : app_demo_path();
     const char *base = strrchr(name, '/');
     base = base ? base + 1 : name;
-    char label[128];
+    char raw[128], label[4 * sizeof raw], jlabel[6 * sizeof raw];
     if (o->grid > 1)
-        snprintf(label, sizeof label, "%s x%d^3", base, o->grid);
+        snprintf(raw, sizeof raw, "%s x%d^3", base, o->grid);
     else
-        snprintf(label, sizeof label, "%s", base);
+        snprintf(raw, sizeof raw, "%s", base);
+    /* the file's name made safe: as text for the table, escaped for JSON */
+    safetext(label, sizeof label, raw);
+    size_t jn = 0;
+    for (const char *c = raw; *c;) {
+        char piece[SAFETEXT_PIECE];
+        c += safetext_next(c, piece, SAFETEXT_JSON);
+        jn += (size_t)snprintf(jlabel + jn, sizeof jlabel - jn, "%s", piece);
+    }
+    jlabel[jn] = 0;
     int w = o->w > 0 ? o->w : 1920, h = o->h > 0 ? o->h : 1080;
     /* polygons of every object (grid copies share their source's lists) */
     uint64_t npolys = 0;
@@ -114,7 +124,7 @@ static int bench_model(Out *out, const Options *o, const char *file, const AlgoL
         set_view(&s, o, 0, views);
         double t0 = now_ms();
         if (pipeline_init(&p, &s, hsr_find(al->algos[a]), o->threads)) {
-            fprintf(stderr, "zview: out of memory\n");
+            safetext_line(stderr, "zview: out of memory");
             rc = 1;
             break;
         }
@@ -130,7 +140,7 @@ static int bench_model(Out *out, const Options *o, const char *file, const AlgoL
             set_view(&s, o, k, views);
             double t1 = now_ms(), c1 = process_cpu_ms();
             if (pipeline_render(&p, w, h, 1.0f, o->cull, 1)) {
-                fprintf(stderr, "zview: out of memory\n");
+                safetext_line(stderr, "zview: out of memory");
                 rc = 1;
                 break;
             }
@@ -163,7 +173,7 @@ static int bench_model(Out *out, const Options *o, const char *file, const AlgoL
                    "\"min_ms\": %.3f, \"project_median_ms\": %.3f, \"shade_median_ms\": %.3f, "
                    "\"frame_median_ms\": %.3f, \"cpu_median_ms\": %.3f, \"first_frame_ms\": %.3f, \"ready_ms\": %.3f, "
                    "\"culled_pct\": %.1f, \"overdraw\": %.2f}",
-                   *first_json ? "" : ",", label, (unsigned long long)npolys, al->algos[a], w, h, p.samples,
+                   *first_json ? "" : ",", jlabel, (unsigned long long)npolys, al->algos[a], w, h, p.samples,
                    p.threads, views, hmed, hmin, pmed, smed, fmed, cmed, first, ready, culled_pct, overdraw);
             *first_json = 0;
         } else {

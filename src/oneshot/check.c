@@ -16,6 +16,7 @@
 
 #include "meshcheck.h"
 #include "oneshot.h"
+#include "safetext.h"
 
 typedef struct {
     const char *path;
@@ -60,7 +61,7 @@ static int picture(const Options *o)
     char err[512];
     Scene s;
     if (app_check_output(o, err, sizeof err) || app_load_scene(o, &s, err, sizeof err)) {
-        fprintf(stderr, "zview: %s\n", err);
+        safetext_line(stderr, "zview: %s", err);
         return 1;
     }
     int rc = app_oneshot(o, &s);
@@ -126,23 +127,29 @@ void check_text_counts(Out *out, const CheckCounts *c, const char *unit, const c
 
 static void text_file(Out *out, const FileCheck *fc)
 {
+    /* the file's name and what its loader said, made safe (safetext.h) */
+    char path[SAFETEXT_NAME];
+    safetext(path, sizeof path, fc->path);
     if (!fc->read) {
         /* the message names the file already */
         size_t n = strlen(fc->path);
         const char *why = !strncmp(fc->err, fc->path, n) && !strncmp(fc->err + n, ": ", 2) ? fc->err + n + 2 : fc->err;
-        out_printf(out, "%s: not read: %s\n", fc->path, why);
+        char safe_why[4 * sizeof fc->err];
+        out_printf(out, "%s: not read: %s\n", path, safetext(safe_why, sizeof safe_why, why));
         return;
     }
     const MeshCheck *mc = &fc->mc;
     uint32_t nobj = 0;
     for (uint32_t i = 0; i < mc->nobjs; i++)
         nobj += mc->objs[i].c.faces > 0;
-    out_printf(out, "%s (%s)", fc->path, fc->format);
+    char format[4 * sizeof fc->format];
+    out_printf(out, "%s (%s)", path, safetext(format, sizeof format, fc->format));
     if (nobj > 1) {
         out_printf(out, ": %u objects\n", nobj);
         for (uint32_t i = 0, k = 0; i < mc->nobjs; i++)
             if (mc->objs[i].c.faces) {
-                out_printf(out, "  object %u \"%s\"\n", ++k, mc->objs[i].name);
+                char name[SAFETEXT_NAME];
+                out_printf(out, "  object %u \"%s\"\n", ++k, safetext(name, sizeof name, mc->objs[i].name));
                 check_text_counts(out, &mc->objs[i].c, mc->unit, "    ");
             }
         out_printf(out, "  all %u objects\n", nobj);
@@ -165,54 +172,28 @@ static void text_verdict(Out *out, const FileCheck *fcs, int n)
     }
     out_printf(out, "verdict: ");
     for (int i = 0, k = 0; i < n; i++) {
-        char words[512];
+        char words[512], path[SAFETEXT_NAME];
         if (fcs[i].read && meshcheck_sound(&fcs[i].mc.file))
             continue;
         if (fcs[i].read)
             meshcheck_verdict(&fcs[i].mc.file, words, sizeof words);
-        out_printf(out, "%s%s: %s", k++ ? "; " : "", fcs[i].path, fcs[i].read ? words : "not read");
+        out_printf(out, "%s%s: %s", k++ ? "; " : "", safetext(path, sizeof path, fcs[i].path),
+                   fcs[i].read ? words : "not read");
     }
     out_printf(out, "\n");
 }
 
 /* ==== JSON ==== */
 
-/* Bytes of the well-formed UTF-8 sequence at p (1 .. 4), 0 when it is
- * not one (overlong, a surrogate, past U+10FFFF, cut short). */
-static int utf8_len(const unsigned char *p)
-{
-    if (p[0] < 0x80)
-        return 1;
-    int n = p[0] >= 0xf0 ? 4 : p[0] >= 0xe0 ? 3 : p[0] >= 0xc2 ? 2 : 0;
-    if (!n || p[0] > 0xf4)
-        return 0;
-    for (int i = 1; i < n; i++)
-        if ((p[i] & 0xc0) != 0x80)
-            return 0;
-    if ((n == 3 && p[0] == 0xe0 && p[1] < 0xa0) || (n == 3 && p[0] == 0xed && p[1] >= 0xa0) ||
-        (n == 4 && p[0] == 0xf0 && p[1] < 0x90) || (n == 4 && p[0] == 0xf4 && p[1] >= 0x90))
-        return 0;
-    return n;
-}
-
-/* A JSON string: quotes, backslashes and control bytes escaped, a byte
- * that is not UTF-8 (an object name in Latin-1) as U+FFFD. */
+/* A JSON string: quotes, backslashes and controls escaped, a byte that
+ * is not UTF-8 (an object name in Latin-1) as U+FFFD (safetext.h). */
 static void json_str(Out *out, const char *s)
 {
     out_write(out, "\"", 1);
-    for (const unsigned char *p = (const unsigned char *)s; *p;) {
-        int n = utf8_len(p);
-        if (n == 0) {
-            out_printf(out, "\\ufffd");
-            p++;
-        } else if (n == 1 && (*p == '"' || *p == '\\')) {
-            out_printf(out, "\\%c", *p++);
-        } else if (n == 1 && *p < 0x20) {
-            out_printf(out, "\\u%04x", *p++);
-        } else {
-            out_write(out, p, (size_t)n);
-            p += n;
-        }
+    while (*s) {
+        char piece[SAFETEXT_PIECE];
+        s += safetext_next(s, piece, SAFETEXT_JSON);
+        out_write(out, piece, strlen(piece));
     }
     out_write(out, "\"", 1);
 }
@@ -327,14 +308,14 @@ int app_check(const Options *o)
 {
     FileCheck *fcs = calloc((size_t)o->nfiles + 1, sizeof *fcs);
     if (!fcs) {
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
         return 1;
     }
     int unread = 0, bad = 0, rc = 0;
     for (int i = 0; i < o->nfiles; i++) {
         fcs[i].path = o->files[i];
         if (check_file(o, &fcs[i])) {
-            fprintf(stderr, "zview: %s\n", fcs[i].err);
+            safetext_line(stderr, "zview: %s", fcs[i].err);
             unread++;
         } else
             bad += !meshcheck_sound(&fcs[i].mc.file);
@@ -351,7 +332,7 @@ int app_check(const Options *o)
         text_verdict(&out, fcs, o->nfiles);
     }
     if (out_flush(&out)) {
-        fprintf(stderr, "zview: standard output: %s\n", out_error(&out));
+        safetext_line(stderr, "zview: standard output: %s", out_error(&out));
         rc = 1;
     }
     for (int i = 0; i < o->nfiles; i++)

@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "oneshot.h"
+#include "safetext.h"
 #include "simd.h"
 
 /* pos_exp: the scene scaled the positions by 2^-pos_exp (scene.h); the
@@ -21,51 +22,51 @@ static void print_mesh(Out *out, const Mesh *m, int pos_exp)
     if (!m->nverts)
         lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
     double mb = m->info.bytes / 1e6;
-    out_printf(out, "file:       %s\n", m->path ? m->path : "?");
-    out_printf(out, "format:     %s\n", m->info.format[0] ? m->info.format : "?");
+    out_line(out, "file:       %s", m->path ? m->path : "?");
+    out_line(out, "format:     %s", m->info.format[0] ? m->info.format : "?");
     if (m->info.corners_read)
-        out_printf(out, "vertices:   %u (merged from %llu corners)\n", m->nverts,
+        out_line(out, "vertices:   %u (merged from %llu corners)", m->nverts,
                (unsigned long long)m->info.corners_read);
     else
-        out_printf(out, "vertices:   %u\n", m->nverts);
-    out_printf(out, "faces:      %u\n", m->nfaces);
-    out_printf(out, "triangles:  %u\n", m->info.triangles);
-    out_printf(out, "objects:    %u\n", m->nobjs);
+        out_line(out, "vertices:   %u", m->nverts);
+    out_line(out, "faces:      %u", m->nfaces);
+    out_line(out, "triangles:  %u", m->info.triangles);
+    out_line(out, "objects:    %u", m->nobjs);
     double u = ldexp(1, pos_exp);
-    out_printf(out, "bounds:     %g %g %g .. %g %g %g\n", lo[0] * u, lo[1] * u, lo[2] * u, hi[0] * u, hi[1] * u,
+    out_line(out, "bounds:     %g %g %g .. %g %g %g", lo[0] * u, lo[1] * u, lo[2] * u, hi[0] * u, hi[1] * u,
                hi[2] * u);
-    out_printf(out, "materials:  %u\n", m->nmats);
-    out_printf(out, "texcoords:  %u   normals: %u   vertex colours: %s\n", m->info.texcoords,
+    out_line(out, "materials:  %u", m->nmats);
+    out_line(out, "texcoords:  %u   normals: %u   vertex colours: %s", m->info.texcoords,
            m->info.normals, m->rgb ? "yes" : "no");
     if (m->ntex) {
-        out_printf(out, "textures:   %u, %.1f MB of texels\n", m->ntex, mesh_texture_bytes(m) / 1e6);
+        out_line(out, "textures:   %u, %.1f MB of texels", m->ntex, mesh_texture_bytes(m) / 1e6);
         for (uint32_t k = 0; k < m->ntex; k++) {
             const MeshTexture *t = &m->tex[k];
             if (t->state == MTEX_FAILED)
-                out_printf(out, "            %s: could not be read\n", t->name);
+                out_line(out, "            %s: could not be read", t->name);
             else if (t->state == MTEX_PENDING)
-                out_printf(out, "            %s: %dx%d, not decoded yet\n", t->name, t->src_w, t->src_h);
+                out_line(out, "            %s: %dx%d, not decoded yet", t->name, t->src_w, t->src_h);
             else if (t->halved)
-                out_printf(out, "            %s: %dx%d, kept at %dx%d, %.1f MB\n", t->name, t->src_w, t->src_h,
+                out_line(out, "            %s: %dx%d, kept at %dx%d, %.1f MB", t->name, t->src_w, t->src_h,
                            t->img.w, t->img.h, texture_bytes(&t->img) / 1e6);
             else
-                out_printf(out, "            %s: %dx%d, %.1f MB\n", t->name, t->img.w, t->img.h,
+                out_line(out, "            %s: %dx%d, %.1f MB", t->name, t->img.w, t->img.h,
                            texture_bytes(&t->img) / 1e6);
         }
     }
     if (m->npoints || m->nlines) {
         uint32_t segs = m->nlines ? m->line_start[m->nlines] - m->nlines : 0;
-        out_printf(out, "points:     %u%s\n", m->npoints, m->npoints && !m->point ? " (every vertex)" : "");
-        out_printf(out, "lines:      %u (%u segments)\n", m->nlines, segs);
+        out_line(out, "points:     %u%s", m->npoints, m->npoints && !m->point ? " (every vertex)" : "");
+        out_line(out, "lines:      %u (%u segments)", m->nlines, segs);
     }
     if (m->info.skipped)
-        out_printf(out, "skipped:    %u statements (first: %s)\n", m->info.skipped, m->info.first_skipped);
+        out_line(out, "skipped:    %u statements (first: %s)", m->info.skipped, m->info.first_skipped);
     if (m->info.unknown)
-        out_printf(out, "unknown:    %u statements skipped (first: '%s')\n", m->info.unknown,
+        out_line(out, "unknown:    %u statements skipped (first: '%s')", m->info.unknown,
                m->info.first_unknown);
     else
-        out_printf(out, "unknown:    0\n");
-    out_printf(out, "load:       %.1f ms, %.1f MB, %.0f MB/s (cpu %.1f ms, %.0f MB/s)\n", m->info.load_ms, mb,
+        out_line(out, "unknown:    0");
+    out_line(out, "load:       %.1f ms, %.1f MB, %.0f MB/s (cpu %.1f ms, %.0f MB/s)", m->info.load_ms, mb,
            m->info.load_ms > 0 ? mb / (m->info.load_ms / 1e3) : 0.0, m->info.load_cpu_ms,
            m->info.load_cpu_ms > 0 ? mb / (m->info.load_cpu_ms / 1e3) : 0.0);
 }
@@ -82,9 +83,9 @@ static void print_up(Out *out, const Options *o, const Scene *s, int i)
             break;
         }
     if (o->up >= 0)
-        out_printf(out, "up:         %s (--up)\n", up_axis_name(up));
+        out_line(out, "up:         %s (--up)", up_axis_name(up));
     else
-        out_printf(out, "up:         %s (%s)\n", up_axis_name(up),
+        out_line(out, "up:         %s (%s)", up_axis_name(up),
                    m->info.up_why[0] ? m->info.up_why : "the default");
 }
 
@@ -93,7 +94,7 @@ static int report_ok(Out *out)
 {
     if (out_flush(out) == 0)
         return 1;
-    fprintf(stderr, "zview: %s: %s\n", out->name, out_error(out));
+    safetext_line(stderr, "zview: %s: %s", out->name, out_error(out));
     return 0;
 }
 
@@ -172,13 +173,13 @@ int app_info(const Options *o, Scene *s, const FirstView *fv)
     const HsrAlgo *algo = hsr_find(o->algo);
     Pipeline p;
     if (pipeline_init(&p, s, algo, o->threads)) {
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
         return 1;
     }
     pipeline_apply_options(&p, o);
     int w = o->w > 0 ? o->w : 640, h = o->h > 0 ? o->h : 480;
     if (pipeline_render(&p, w, h, 1.0f, o->cull, 1)) {
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
         pipeline_free(&p);
         return 1;
     }
@@ -186,7 +187,7 @@ int app_info(const Options *o, Scene *s, const FirstView *fv)
     int n = frame_report(&p, -1, lines, REPORT_LINES);
     out_printf(out, "\n");
     for (int i = 0; i < n; i++)
-        out_printf(out, "%-12s%s\n", lines[i].label, lines[i].text);
+        out_line(out, "%-12s%s", lines[i].label, lines[i].text);
     pipeline_free(&p);
     return report_ok(out) ? 0 : 1;
 }

@@ -19,6 +19,7 @@
 #include "oneshot.h"
 #include "pixels.h"
 #include "safefile.h"
+#include "safetext.h"
 #include "tty.h"
 
 /* The two backgrounds of a run, found once. */
@@ -54,7 +55,7 @@ static int close_written(SafeFile *sf, Out *out)
     out_flush(out);
     errno = out->err;
     if (safefile_close(sf, out->f, out->err != 0)) {
-        fprintf(stderr, "zview: %s: %s\n", out->name, strerror(errno ? errno : EIO));
+        safetext_line(stderr, "zview: %s: %s", out->name, strerror(errno ? errno : EIO));
         return -1;
     }
     return 0;
@@ -67,7 +68,7 @@ static int write_ids(const char *path, const FrameBufs *fb)
     SafeFile sf;
     FILE *f = safefile_open(&sf, path, "wb");
     if (!f) {
-        fprintf(stderr, "zview: %s: %s\n", path, strerror(errno));
+        safetext_line(stderr, "zview: %s: %s", path, strerror(errno));
         return -1;
     }
     Out out;
@@ -149,7 +150,7 @@ static int dump_screen(const ScreenPolys *sp, const char *path)
     SafeFile sf;
     FILE *f = safefile_open(&sf, path, "w");
     if (!f) {
-        fprintf(stderr, "zview: %s: %s\n", path, strerror(errno));
+        safetext_line(stderr, "zview: %s: %s", path, strerror(errno));
         return -1;
     }
     Out out;
@@ -269,21 +270,21 @@ static int print_pixels(const Options *o, Pipeline *p, Backdrops *b, PixelProto 
         pixels_cell_size(STDOUT_FILENO, &cw, &ch);
     pipeline_set_backdrop(p, text_backdrop(o, b));
     if (pipeline_render(p, cols * cw, rows * ch, 1.0f, o->cull, 1)) {
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
         return 1;
     }
     backdrop_paint(&p->img, &p->bd);
     ByteBuf out = { 0 };
     if (pixels_encode(proto, &p->img, 0, 0, 0, &out)) {
         bytebuf_free(&out);
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
         return 1;
     }
     bytebuf_put(&out, "\n", 1);
     int bad = out.err || fwrite(out.b, 1, out.len, stdout) != out.len || fflush(stdout) != 0;
     bytebuf_free(&out);
     if (bad) {
-        fprintf(stderr, "zview: standard output: %s\n", strerror(errno ? errno : ENOMEM));
+        safetext_line(stderr, "zview: standard output: %s", strerror(errno ? errno : ENOMEM));
         return 1;
     }
     return 0;
@@ -295,7 +296,7 @@ static int write_text(const char *path, const CellGrid *g, ColourDepth depth)
     SafeFile sf;
     FILE *f = safefile_open(&sf, path, "w");
     if (!f) {
-        fprintf(stderr, "zview: %s: %s\n", path, strerror(errno));
+        safetext_line(stderr, "zview: %s: %s", path, strerror(errno));
         return -1;
     }
     Out out;
@@ -319,11 +320,11 @@ static int one_frame(const Options *o, Pipeline *p, Backdrops *b, const char *fi
     ColourDepth depth;
     if (file && !text_file(o, file)) {
         if (render_painted(o, p, b)) {
-            fprintf(stderr, "zview: out of memory\n");
+            safetext_line(stderr, "zview: out of memory");
             return 1;
         }
         if (write_image(o, file, &p->img, err, sizeof err)) {
-            fprintf(stderr, "zview: %s\n", err);
+            safetext_line(stderr, "zview: %s", err);
             return 1;
         }
     }
@@ -335,13 +336,13 @@ static int one_frame(const Options *o, Pipeline *p, Backdrops *b, const char *fi
         return 1;
     if (to_file || (o->print && proto == PIX_CELLS)) {
         if (render_text(o, p, b, &depth)) {
-            fprintf(stderr, "zview: out of memory\n");
+            safetext_line(stderr, "zview: out of memory");
             return 1;
         }
         if (to_file && write_text(file, &p->cells, depth))
             return 1;
         if (o->print && print_cells(stdout, &p->cells, depth)) {
-            fprintf(stderr, "zview: standard output: %s\n", strerror(errno));
+            safetext_line(stderr, "zview: standard output: %s", strerror(errno));
             return 1;
         }
     }
@@ -365,7 +366,7 @@ static int turntable(const Options *o, Scene *s, Pipeline *p, Backdrops *b)
             int n = snprintf(path, sizeof path, o->out, k);
 #pragma GCC diagnostic pop
             if (n < 0 || (size_t)n >= sizeof path) {
-                fprintf(stderr, "zview: %s: the file name is too long\n", o->out);
+                safetext_line(stderr, "zview: %s: the file name is too long", o->out);
                 return 1;
             }
             file = path;
@@ -375,7 +376,7 @@ static int turntable(const Options *o, Scene *s, Pipeline *p, Backdrops *b)
          * place in a terminal, where run together they would scroll by
          * as one long picture */
         if (o->print && fputs(k ? "\033[H" : "\033[H\033[2J", stdout) == EOF) {
-            fprintf(stderr, "zview: standard output: %s\n", strerror(errno));
+            safetext_line(stderr, "zview: standard output: %s", strerror(errno));
             return 1;
         }
         if (one_frame(o, p, b, file))
@@ -417,13 +418,13 @@ int app_oneshot(const Options *o, Scene *s)
     char err[512];
     /* what the check finds, on the model */
     if ((o->problems || o->parts) && !s->marks.set && app_check_scene(s, o->threads, err, sizeof err)) {
-        fprintf(stderr, "zview: %s\n", err);
+        safetext_line(stderr, "zview: %s", err);
         return 1;
     }
     const HsrAlgo *algo = hsr_find(o->algo ? o->algo : "zbuffer");
     Pipeline p;
     if (pipeline_init(&p, s, algo, o->threads)) {
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
         return 1;
     }
     pipeline_apply_options(&p, o);     /* images: 1 sample unless asked, full resolution already */
@@ -443,13 +444,13 @@ int app_oneshot(const Options *o, Scene *s)
     /* the dumps are of the last render: the image's, else the text's,
      * else one of their own at the image size */
     if ((o->dump_ids || o->dump_screen) && !o->out && !text.print && render_image(o, &p, 0)) {
-        fprintf(stderr, "zview: out of memory\n");
+        safetext_line(stderr, "zview: out of memory");
         rc = 1;
         goto out;
     }
     const char *why = frame_empty_reason(&p);     /* an empty picture says why */
     if (why)
-        fprintf(stderr, "zview: nothing drawn: %s\n", why);
+        safetext_line(stderr, "zview: nothing drawn: %s", why);
     if (o->dump_ids && write_ids(o->dump_ids, &p.fb))
         rc = 1;
     if (o->dump_screen && dump_screen(&p.sp, o->dump_screen))

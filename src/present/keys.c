@@ -6,23 +6,46 @@
  * wheel, and the answer to a status request.
  *
  * Anything else a terminal may send is dropped whole: focus events,
- * reports nobody asked for, keys without a meaning here, strings (OSC,
- * DCS), and the content of a bracketed paste. Reading such a sequence as
- * its Esc followed by text would quit the viewer (Esc) and then act on
- * the text as keys. ESC and a plain character is no such sequence: it is
- * Esc typed just before the key (or the key with Alt), read as both.
+ * reports nobody asked for, keys without a meaning here, the answers to
+ * the questions zview asks (the background colour, OSC 11; the device
+ * attributes, CSI ? ... c; the kitty graphics query, APC G ... ; the
+ * terminal's name, DCS > | ...), every string (OSC, DCS, APC, PM, SOS,
+ * ended by BEL or ST, tmux's passthrough with its doubled ESCs among
+ * them), and the content of a bracketed paste. Reading such a sequence
+ * as its Esc followed by text would quit the viewer (Esc) and then act
+ * on the text as keys: kitty's answer to the graphics query, read as
+ * Esc, quit the viewer before its first frame. ESC and a plain character
+ * is no such sequence: it is Esc typed just before the key (or the key
+ * with Alt), read as both. ESC and _ ^ X P ] always start a string, so
+ * Esc typed just before one of those five keys loses the key.
  *
  * The grammar is ECMA-48's: CSI is ESC [, then parameter bytes 0x30-0x3f,
  * intermediate bytes 0x20-0x2f and one final byte 0x40-0x7e; SS3 is ESC O
- * and one final byte (some terminals put parameters between). Two forms
- * break it and are special-cased: the X10 mouse report, ESC [ M and three
- * raw bytes, and the Linux console's F1-F5, ESC [ [ and a letter.
+ * and one final byte (some terminals put parameters between); a string
+ * runs from its introducer to ST (ESC \), or BEL as xterm allows, and
+ * CAN or SUB cancel it. Two forms break it and are special-cased: the X10
+ * mouse report, ESC [ M and three raw bytes, and the Linux console's
+ * F1-F5, ESC [ [ and a letter. The 8-bit forms (CSI as one byte 0x9b,
+ * ST as 0x9c, ...) come only from a terminal told to send them (S8C1T,
+ * which zview never sends), and are read as the terminal would encode
+ * them: in a UTF-8 locale as the characters U+0080-U+009F (C2 9B for
+ * CSI; a lone byte 0x9b there is part of no character and is dropped),
+ * otherwise as the bytes themselves.
  *
- * A lone Esc is only known by the silence after it: kp_next() is told how
- * long the input has been quiet, and an unfinished sequence that stays
- * unfinished for KP_ESC_MS is decided then (a lone ESC is the Esc key,
- * anything longer is dropped). Pure: bytes in, events out; term.c reads
- * the bytes and keeps the time. */
+ * The parser keeps at most one unfinished sequence (a CSI sequence is
+ * bounded; a string is dropped as it comes, however long, keeping only
+ * an ESC or C2 that may begin its terminator), so it survives a
+ * sequence split at any byte. A lone Esc is only known by the silence
+ * after it: an unfinished sequence that stays unfinished for KP_ESC_MS
+ * is decided (a lone ESC is the Esc key, anything longer is dropped).
+ * A slow link splits an answer after its ESC by more than that, so
+ * while an answer is awaited (kp_expect: the caller asked the terminal
+ * something whose answer has not come) the wait is KP_REPLY_MS, as
+ * tmux's escape-time. A string or an overlong CSI sequence is bounded
+ * too: after KP_STRING_MAX bytes it is no answer, and what follows is
+ * read afresh (a terminal that never ends one would otherwise hold the
+ * keys forever; one that floods garbage could send keys anyway). Pure:
+ * bytes and times in, events out; term.c reads the bytes and the clock. */
 
 #include <string.h>
 
@@ -31,6 +54,15 @@
 #define ESC 0x1b
 #define SEQ_MAX 64              /* a sequence this long is garbage: dropped up to its end */
 #define NPARAM 8
+/* the C1 controls zview reads, as their 8-bit codes */
+#define C1_DCS 0x90
+#define C1_SOS 0x98
+#define C1_CSI 0x9b
+#define C1_ST  0x9c
+#define C1_OSC 0x9d
+#define C1_PM  0x9e
+#define C1_APC 0x9f
+#define C1_SS3 0x8f
 
 enum { R_MORE, R_DROP, R_EVENT };       /* what one step did */
 
@@ -40,8 +72,19 @@ void kp_init(KeyParser *p, int utf8)
     p->utf8 = utf8;
 }
 
-size_t kp_push(KeyParser *p, const void *bytes, size_t n)
+/* The input was quiet for KP_IDLE_MS: a paste, string or overlong
+ * sequence still open has lost its end, and what comes now is keys. */
+static void lost_end(KeyParser *p)
 {
+    p->string = p->paste = p->skip = 0;
+    p->run = 0;
+}
+
+size_t kp_push(KeyParser *p, const void *bytes, size_t n, double now_ms)
+{
+    if (now_ms - p->last_ms >= KP_IDLE_MS)
+        lost_end(p);
+    p->last_ms = now_ms;
     size_t room = sizeof p->b - p->len;
     if (n > room)
         n = room;
@@ -201,6 +244,13 @@ static int tilde(KeyParser *p, int code, TermEvent *ev)
     }
 }
 
+/* An answer awaited has come (the attributes', or a status report). */
+static void answered(KeyParser *p)
+{
+    if (p->pending > 0)
+        p->pending--;
+}
+
 /* A whole CSI sequence. Of the modifiers (the second parameter) only
  * Shift on an arrow counts; the rest are ignored: Ctrl-Home is Home. */
 static int csi_meaning(KeyParser *p, const Seq *q, TermEvent *ev)
@@ -209,6 +259,8 @@ static int csi_meaning(KeyParser *p, const Seq *q, TermEvent *ev)
         return R_DROP;
     if (q->priv == '<' && (q->final == 'M' || q->final == 'm') && q->n >= 3)
         return mouse(p, q->v[0], q->v[1] - 1, q->v[2] - 1, q->final == 'm', ev);
+    if (q->priv == '?' && q->final == 'c')
+        answered(p);            /* the primary attributes: the last answer of its questions */
     if (q->priv)
         return R_DROP;
     /* the arrows with Shift: xterm's modifier parameter (ESC [ 1 ; 2 A,
@@ -234,6 +286,7 @@ static int csi_meaning(KeyParser *p, const Seq *q, TermEvent *ev)
     case 'n':
         /* the answer to a status request (0 ok, 3 a malfunction: answered all the same) */
         if (q->n == 1 && (q->v[0] == 0 || q->v[0] == 3)) {
+            answered(p);
             ev->type = TE_READY;
             return R_EVENT;
         }
@@ -286,6 +339,7 @@ static int csi(KeyParser *p, size_t o, TermEvent *ev, size_t *used)
         if (i <= SEQ_MAX)
             return R_MORE;
         p->skip = 1;            /* garbage: dropped up to its final byte */
+        p->run = 0;
         *used = i;
         return R_DROP;
     }
@@ -362,6 +416,15 @@ static int alt_key_csi(const unsigned char *b, size_t o, size_t len)
     return -1;
 }
 
+/* A string's introducer (its kind: ']' '_' ...), intro bytes long. */
+static int string_start(KeyParser *p, int kind, size_t intro, size_t *used)
+{
+    p->string = kind;
+    p->run = 0;
+    *used = intro;
+    return R_DROP;
+}
+
 /* An ESC at b[0]. */
 static int escape(KeyParser *p, TermEvent *ev, size_t *used)
 {
@@ -373,11 +436,14 @@ static int escape(KeyParser *p, TermEvent *ev, size_t *used)
         return csi(p, 2, ev, used);
     case 'O':
         return ss3(p, 2, ev, used);
-    case ']': case 'P':
-        /* OSC and DCS, the strings a terminal answers queries with (a
-         * colour, a capability): dropped to their end. APC, PM and SOS
-         * never come unasked; ESC and _ ^ X are read as Esc and a key. */
-        p->string = 1;
+    case ']': case 'P': case '_': case '^': case 'X':
+        /* OSC, DCS, APC, PM, SOS: the strings a terminal answers
+         * questions with (a colour, its name, kitty's graphics), dropped
+         * to their end */
+        return string_start(p, b[1], 2, used);
+    case '\\':
+        /* ST with no string open: the end of one given up (or cut by a
+         * lost byte), no Esc */
         *used = 2;
         return R_DROP;
     case ESC:
@@ -386,7 +452,8 @@ static int escape(KeyParser *p, TermEvent *ev, size_t *used)
          * mouse report) right after a lone Esc is not a key: the Esc is
          * the user's and the answer is read afresh (on a loaded machine
          * the two arrive together, and the Esc was lost). ESC ESC
-         * otherwise: the first is an Esc of its own */
+         * otherwise (a string after it too): the first is an Esc of its
+         * own */
         if (p->len < 3)
             return R_MORE;
         if (b[2] == '[') {
@@ -415,30 +482,88 @@ static int escape(KeyParser *p, TermEvent *ev, size_t *used)
     }
 }
 
+/* ==== The 8-bit forms ==== */
+
+/* A C1 control at b[0]: its 8-bit code with its length in *intro, 0 when
+ * b[0] starts none, -1 when the next byte decides. In a UTF-8 locale a
+ * C1 control is the character U+0080-U+009F (C2 80 .. C2 9F); otherwise
+ * the byte 0x80-0x9f itself, which is no character in Latin-1. */
+static int c1_at(const KeyParser *p, size_t *intro)
+{
+    const unsigned char *b = p->b;
+    if (!p->utf8) {
+        *intro = 1;
+        return b[0] >= 0x80 && b[0] <= 0x9f ? b[0] : 0;
+    }
+    if (b[0] != 0xc2)
+        return 0;
+    if (p->len < 2)
+        return -1;
+    *intro = 2;
+    return b[1] >= 0x80 && b[1] <= 0x9f ? b[1] : 0;
+}
+
+/* The C1 control c (intro bytes at b[0]) as its 7-bit ESC form would read. */
+static int c1(KeyParser *p, int c, size_t intro, TermEvent *ev, size_t *used)
+{
+    switch (c) {
+    case C1_CSI: return csi(p, intro, ev, used);
+    case C1_SS3: return ss3(p, intro, ev, used);
+    case C1_OSC: return string_start(p, ']', intro, used);
+    case C1_DCS: return string_start(p, 'P', intro, used);
+    case C1_APC: return string_start(p, '_', intro, used);
+    case C1_PM:  return string_start(p, '^', intro, used);
+    case C1_SOS: return string_start(p, 'X', intro, used);
+    default:
+        *used = intro;          /* ST with no string, and the rest: no key */
+        return R_DROP;
+    }
+}
+
 /* ==== Things dropped whole ==== */
 
-/* Inside a string: up to BEL or ST (ESC \); CAN and SUB cancel it, an
- * ESC of anything else ends it and starts a sequence. */
+/* A string has ended (or was cancelled, or given up) at b[end). */
+static int string_end(KeyParser *p, size_t end, size_t *used)
+{
+    p->string = 0;
+    p->run = 0;
+    *used = end;
+    return R_DROP;
+}
+
+/* Inside a string: up to BEL or ST (ESC \, or the 8-bit ST); CAN and
+ * SUB cancel it, an ESC of anything else ends it and starts a sequence.
+ * ESC ESC is one ESC of the string's: tmux's passthrough (DCS tmux; ...)
+ * doubles each ESC of what it wraps, ST too. The body is dropped as it
+ * comes; after KP_STRING_MAX bytes the string is given up. */
 static int skip_string(KeyParser *p, size_t *used)
 {
-    for (size_t i = 0; i < p->len; i++) {
-        unsigned c = p->b[i];
-        if (c == 7 || c == 0x18 || c == 0x1a) {
-            p->string = 0;
-            *used = i + 1;
-            return R_DROP;
-        }
-        if (c == ESC) {
-            if (i + 1 == p->len) {
-                *used = i;      /* keep the ESC: a backslash may follow */
+    const unsigned char *b = p->b;
+    size_t len = p->len;
+    for (size_t i = 0; i < len; i++) {
+        unsigned c = b[i];
+        if (c == 7 || c == 0x18 || c == 0x1a)
+            return string_end(p, i + 1, used);
+        if (c == ESC || (c == 0xc2 && p->utf8)) {
+            if (i + 1 == len) {
+                *used = i;      /* keep it: its terminator's second byte may follow */
                 return i ? R_DROP : R_MORE;
             }
-            p->string = 0;
-            *used = p->b[i + 1] == '\\' ? i + 2 : i;
-            return R_DROP;
+            if (c == ESC && b[i + 1] == ESC) {
+                i++;
+                p->run++;
+            } else if (c == ESC) {
+                return string_end(p, b[i + 1] == '\\' ? i + 2 : i, used);
+            } else if (b[i + 1] == C1_ST) {
+                return string_end(p, i + 2, used);
+            }
+        } else if (c == C1_ST && !p->utf8) {
+            return string_end(p, i + 1, used);
         }
+        if (++p->run > KP_STRING_MAX)
+            return string_end(p, i + 1, used);  /* no answer is this long: the rest is read afresh */
     }
-    *used = p->len;
+    *used = len;
     return R_DROP;
 }
 
@@ -466,14 +591,16 @@ static int skip_paste(KeyParser *p, size_t *used)
     return R_DROP;
 }
 
-/* The rest of an overlong CSI sequence, up to its final byte. */
+/* The rest of an overlong CSI sequence, up to its final byte (or
+ * KP_STRING_MAX bytes: then what follows is read afresh). */
 static int skip_csi(KeyParser *p, size_t *used)
 {
     for (size_t i = 0; i < p->len; i++) {
         unsigned c = p->b[i];
-        if (c >= 0x20 && c <= 0x3f)
+        if (c >= 0x20 && c <= 0x3f && ++p->run <= KP_STRING_MAX)
             continue;
         p->skip = 0;
+        p->run = 0;
         *used = c >= 0x40 && c <= 0x7e ? i + 1 : i;
         return R_DROP;
     }
@@ -483,9 +610,8 @@ static int skip_csi(KeyParser *p, size_t *used)
 
 /* ==== Events ==== */
 
-/* The input went quiet with b[0..len) unfinished (the parser waits in no
- * state that needs more than KP_ESC_MS): a lone ESC is the Esc key, any
- * other start of a sequence or character is dropped. */
+/* The input went quiet with b[0..len) unfinished: a lone ESC is the Esc
+ * key, any other start of a sequence or character is dropped. */
 static int decide(KeyParser *p, TermEvent *ev)
 {
     if (p->len >= 4 && p->b[0] == ESC && p->b[1] == '[' && rxvt_shift(p->b, 2, p->len - 1, p->len)) {
@@ -506,30 +632,59 @@ static int decide(KeyParser *p, TermEvent *ev)
     return R_DROP;
 }
 
-int kp_next(KeyParser *p, TermEvent *ev, double quiet_ms)
+/* One step at b[0]: what it is, and its length in *used. */
+static int step(KeyParser *p, TermEvent *ev, size_t *used)
+{
+    if (p->string)
+        return skip_string(p, used);
+    if (p->paste)
+        return skip_paste(p, used);
+    if (p->skip)
+        return skip_csi(p, used);
+    if (p->b[0] == ESC)
+        return escape(p, ev, used);
+    size_t intro = 1;
+    int c = c1_at(p, &intro);
+    if (c < 0)
+        return R_MORE;
+    if (c > 0)
+        return c1(p, c, intro, ev, used);
+    return plain(p, ev, used);
+}
+
+int kp_awaiting(const KeyParser *p, double now_ms)
+{
+    return now_ms - p->asked_ms < KP_LATE_MS ? p->pending : 0;
+}
+
+/* The quiet after which what is left is decided. */
+static int quiet_needed(const KeyParser *p, double now_ms)
+{
+    if (p->string || p->paste || p->skip)
+        return KP_IDLE_MS;
+    return kp_awaiting(p, now_ms) ? KP_REPLY_MS : KP_ESC_MS;
+}
+
+int kp_next(KeyParser *p, TermEvent *ev, double now_ms)
 {
     memset(ev, 0, sizeof *ev);
+    double quiet = now_ms - p->last_ms;
+    if (p->pending && !kp_awaiting(p, now_ms))
+        p->pending = 0;         /* too late: not coming */
     for (;;) {
-        if (p->len == 0)
+        if (p->len == 0) {
+            if ((p->string || p->paste || p->skip) && quiet >= KP_IDLE_MS)
+                lost_end(p);
             return 0;
+        }
         size_t used = 0;
-        int r;
-        if (p->string)
-            r = skip_string(p, &used);
-        else if (p->paste)
-            r = skip_paste(p, &used);
-        else if (p->skip)
-            r = skip_csi(p, &used);
-        else if (p->b[0] == ESC)
-            r = escape(p, ev, &used);
-        else
-            r = plain(p, ev, &used);
+        int r = step(p, ev, &used);
         if (r == R_MORE) {
-            if (quiet_ms < kp_wait_ms(p))
+            if (quiet < quiet_needed(p, now_ms))
                 return 0;
             if (p->string || p->paste) {
                 /* a terminator lost (or never sent): the input is keys again */
-                p->string = p->paste = 0;
+                lost_end(p);
                 consume(p, p->len);
                 continue;
             }
@@ -544,14 +699,18 @@ int kp_next(KeyParser *p, TermEvent *ev, double quiet_ms)
     }
 }
 
-int kp_wait_ms(const KeyParser *p)
+int kp_wait_ms(const KeyParser *p, double now_ms)
 {
-    if (!p->len)
+    if (!p->len && !p->string && !p->paste && !p->skip)
         return -1;
-    return p->string || p->paste || p->skip ? KP_IDLE_MS : KP_ESC_MS;
+    double left = p->last_ms + quiet_needed(p, now_ms) - now_ms;
+    return left > 0 ? (int)left + (left > (int)left) : 0;
 }
 
-void kp_quiet(KeyParser *p)
+void kp_expect(KeyParser *p, int more, double now_ms)
 {
-    p->string = p->paste = p->skip = 0;
+    if (!kp_awaiting(p, now_ms))
+        p->pending = 0;
+    p->pending += more;
+    p->asked_ms = now_ms;
 }

@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <string.h>
 #include "present.h"
+#include "safetext.h"
 
 void out_init(Out *o, FILE *f, const char *name)
 {
@@ -34,6 +35,19 @@ int out_printf(Out *o, const char *fmt, ...)
     int e = errno;
     va_end(ap);
     return n < 0 ? out_fail(o, e) : 0;
+}
+
+int out_line(Out *o, const char *fmt, ...)
+{
+    char msg[SAFETEXT_LINE], line[4 * SAFETEXT_LINE + 2];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    safetext(line, sizeof line - 1, msg);
+    size_t n = strlen(line);
+    line[n++] = '\n';
+    return out_write(o, line, n);
 }
 
 int out_write(Out *o, const void *p, size_t n)

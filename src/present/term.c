@@ -88,12 +88,12 @@ static struct {
     int         out_errno;      /* a write failed (sticky): the next update says so */
     /* input */
     KeyParser   kp;
-    double      last_in_ms;     /* when bytes last came: the parser's quiet */
     int         in_ended;       /* the input is at its end (a hung-up terminal) */
     int         wake[2];        /* a pipe the signal handlers write to, waking the reader */
     /* pacing: the answer to the last status request */
     int         ask;            /* requests are sent (the output is a terminal) */
     int         ack_wait;       /* a request is outstanding */
+    int         ack_told;       /* the key parser knows it went (its answer is awaited) */
     int         acks_seen;      /* the terminal has answered at least once */
     int         unanswered;
     double      ack_sent_ms;
@@ -147,8 +147,12 @@ static int out_pump(void)
     int emptied;
     if (outq_pump(&T.q, &emptied))
         return -1;
-    if (emptied && T.ack_wait)
+    if (emptied && T.ack_wait) {
         T.ack_sent_ms = now_ms();
+        if (!T.ack_told)
+            kp_expect(&T.kp, 1, T.ack_sent_ms);    /* an ESC alone now may be its answer's */
+        T.ack_told = 1;
+    }
     return 0;
 }
 
@@ -184,7 +188,7 @@ static void send_cap(const char *cap)
  * the key parser (which drops the answers). */
 static void answers_to_keys(void *ctx, const unsigned char *b, size_t n)
 {
-    kp_push(ctx, b, n);
+    kp_push(ctx, b, n, now_ms());
 }
 
 /* Blank the terminal before leaving curses: a terminal whose window grew
@@ -526,7 +530,6 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     T.q.off = T.q.len = T.q.cap = 0;
     T.out_errno = 0;
     kp_init(&T.kp, locale_utf8());
-    T.last_in_ms = now_ms();
     T.in_ended = 0;
     read_size();
     term_on = 1;
@@ -556,13 +559,14 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     T.bg_known = cfg->ask_bg && T.ask && isatty(T.in_fd) &&
                  termbg_ask(T.q.fd, T.in_fd, TERMBG_WAIT_MS, &T.kp, T.bg, &T.bg_wait_ms);
     /* which pixels it draws: asked the same way, the answers dropped by
-     * the key parser */
-    T.pix = cfg->pixels == PIX_AUTO ? (T.ask && isatty(T.in_fd) ? pixels_detect(T.q.fd, T.in_fd, TERMBG_WAIT_MS,
-                                                                               answers_to_keys, &T.kp)
-                                                                : PIX_CELLS)
-                                    : (PixelProto)cfg->pixels;
+     * the key parser (which waits for them: a late one is no Esc) */
+    int ask_pix = cfg->pixels == PIX_AUTO && T.ask && isatty(T.in_fd);
+    if (ask_pix && pixels_from_env() != PIX_CELLS)
+        kp_expect(&T.kp, 1, now_ms());
+    T.pix = ask_pix ? pixels_detect(T.q.fd, T.in_fd, TERMBG_WAIT_MS, answers_to_keys, &T.kp)
+                    : cfg->pixels == PIX_AUTO ? PIX_CELLS : (PixelProto)cfg->pixels;
     T.pix_shown = 0;
-    T.ack_wait = T.acks_seen = T.unanswered = 0;
+    T.ack_wait = T.ack_told = T.acks_seen = T.unanswered = 0;
     T.pace_ms = PACE_MIN_MS;
     T.mouse_on = 0;
     /* as curses decides: a description with a mouse key (kmous) is of a
@@ -752,6 +756,7 @@ int term_update(int full)
     if (T.ask && !T.ack_wait && (T.acks_seen || T.unanswered < ACK_GIVE_UP) &&
         out_add(STATUS_ASK, sizeof STATUS_ASK - 1) == 0) {
         T.ack_wait = 1;
+        T.ack_told = 0;
         T.ack_sent_ms = now_ms();      /* again when it has gone (out_pump) */
         T.unanswered++;
     }
@@ -820,12 +825,23 @@ static int take_signals(TermEvent *ev)
     return 1;
 }
 
+static void read_input(short revents);
+
 /* The next event the parser has; the input's end decides what is left
- * unfinished at once. */
+ * unfinished at once. Before the parser decides on a quiet, what has come
+ * meanwhile is read: the viewer may have been drawing while the rest of
+ * a sequence came, and reading it after the decision would split the
+ * sequence (an answer's ESC alone is the Esc key, which quits). */
 static int parsed(TermEvent *ev)
 {
-    double quiet = T.in_ended ? 1e12 : now_ms() - T.last_in_ms;
-    if (!kp_next(&T.kp, ev, quiet))
+    double now = now_ms();
+    if (!T.in_ended && kp_wait_ms(&T.kp, now) == 0) {
+        struct pollfd pf = { .fd = T.in_fd, .events = POLLIN };
+        if (poll(&pf, 1, 0) > 0)
+            read_input(pf.revents);
+        now = now_ms();
+    }
+    if (!kp_next(&T.kp, ev, T.in_ended ? now + 1e12 : now))
         return 0;
     if (ev->type == TE_READY) {
         /* the answer to a status request: the last frame is through */
@@ -848,11 +864,7 @@ static void read_input(short revents)
         return;                 /* cannot be: the parser keeps at most one unfinished sequence */
     ssize_t r = read(T.in_fd, buf, room);
     if (r > 0) {
-        double now = now_ms();
-        if (now - T.last_in_ms >= KP_IDLE_MS)
-            kp_quiet(&T.kp);
-        kp_push(&T.kp, buf, (size_t)r);
-        T.last_in_ms = now;
+        kp_push(&T.kp, buf, (size_t)r, now_ms());
     } else if (r == 0 || (errno != EINTR && errno != EAGAIN && errno != EWOULDBLOCK) ||
                (revents & (POLLERR | POLLNVAL))) {
         /* end of file, a hung-up terminal (EIO), or an input in error
@@ -874,13 +886,9 @@ static int wait_ms(double until)
 {
     double now = now_ms();
     double w = until < 0 ? -1 : until > now ? until - now : 0;
-    int kw = kp_wait_ms(&T.kp);
-    if (kw >= 0) {
-        double left = kw - (now - T.last_in_ms);
-        left = left > 0 ? left : 0;
-        if (w < 0 || left < w)
-            w = left;
-    }
+    int kw = kp_wait_ms(&T.kp, now);
+    if (kw >= 0 && (w < 0 || kw < w))
+        w = kw;
     return w < 0 ? -1 : (int)ceil(w);
 }
 

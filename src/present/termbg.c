@@ -188,6 +188,8 @@ int termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, uint8_t rgb_ou
     BgScan s;
     termbg_scan_init(&s);
     int sent = send_question(out_fd, wait_ms) == 0;
+    if (sent && kp)
+        kp_expect(kp, 1, now_ms());     /* the attributes' answer, however late, is no Esc */
     while (sent && !s.got_da) {
         double left = until - now_ms();
         struct pollfd pf = { .fd = in_fd, .events = POLLIN };
@@ -203,7 +205,7 @@ int termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, uint8_t rgb_ou
         }
         termbg_scan(&s, buf, (size_t)r);
         if (kp)
-            kp_push(kp, buf, (size_t)r);
+            kp_push(kp, buf, (size_t)r, now_ms());
     }
     if (waited_ms_out)
         *waited_ms_out = now_ms() - t0;

@@ -23,7 +23,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <wchar.h>
 
+#include "safetext.h"
 #include "tty.h"
 
 #define CH_UPPER 0x2580u
@@ -151,56 +153,75 @@ VtCell *vt_at(Vt *v, int y, int x)
     return &v->want[(size_t)y * v->cols + x];
 }
 
-/* One code point from UTF-8 at *s (advanced); U+FFFD for bad bytes. */
-static uint32_t utf8_next(const char **s)
+/* The code point of a well-formed UTF-8 character (safetext_next's
+ * piece, which holds nothing else). */
+static uint32_t utf8_cp(const char *s)
 {
-    const unsigned char *p = (const unsigned char *)*s;
-    uint32_t c = p[0];
-    int n = c < 0x80 ? 0 : c >= 0xf0 && c < 0xf8 ? 3 : c >= 0xe0 ? 2 : c >= 0xc0 ? 1 : -1;
-    if (n < 0) {
-        *s += 1;
-        return 0xfffd;
-    }
-    c &= n == 0 ? 0x7f : 0x3f >> n;
-    for (int i = 1; i <= n; i++) {
-        if ((p[i] & 0xc0) != 0x80) {
-            *s += i;
-            return 0xfffd;
-        }
+    const unsigned char *p = (const unsigned char *)s;
+    int n = p[0] < 0x80 ? 0 : p[0] >= 0xf0 ? 3 : p[0] >= 0xe0 ? 2 : 1;
+    uint32_t c = p[0] & (n == 0 ? 0x7f : 0x3f >> n);
+    for (int i = 1; i <= n; i++)
         c = c << 6 | (p[i] & 0x3f);
-    }
-    *s += n + 1;
     return c;
 }
 
-#include <wchar.h>
+/* The columns a piece of safe text takes: an escape (ASCII) one a
+ * byte, a character one (vt_text draws what is not one wide as '?'). */
+static int piece_cols(const char *piece)
+{
+    return (unsigned char)piece[0] < 0x80 ? (int)strlen(piece) : 1;
+}
+
+int vt_text_cols(const char *s, size_t bytes)
+{
+    int n = 0;
+    for (size_t i = 0; i < bytes && s[i];) {
+        char piece[SAFETEXT_PIECE];
+        i += safetext_next(s + i, piece, SAFETEXT_TEXT);
+        n += piece_cols(piece);
+    }
+    return n;
+}
 
 int vt_text(Vt *v, int y, int x, const char *s, int maxw, uint8_t attr)
 {
     int used = 0;
     while (*s && used < maxw) {
-        VtCell *c = vt_at(v, y, x + used);
-        if (!c)
-            break;
-        uint32_t ch = utf8_next(&s);
-        /* one column each keeps the model simple: wide and combining
-         * characters (rare in file names) show as '?' */
-        if (ch < 0x20 || ch == 0x7f || (ch >= 0x80 && wcwidth((wchar_t)ch) != 1))
-            ch = '?';
-        *c = (VtCell){ ch, CK_DEFAULT, CK_DEFAULT, attr };
-        used++;
+        /* a file's name or a loader's words: controls show by their
+         * bytes (safetext.h), never reach the terminal */
+        char piece[SAFETEXT_PIECE];
+        s += safetext_next(s, piece, SAFETEXT_TEXT);
+        if ((unsigned char)piece[0] >= 0x80) {
+            VtCell *c = vt_at(v, y, x + used);
+            if (!c)
+                break;
+            /* one column each keeps the model simple: wide and combining
+             * characters (rare in file names) show as '?' */
+            uint32_t ch = utf8_cp(piece);
+            *c = (VtCell){ wcwidth((wchar_t)ch) == 1 ? ch : '?', CK_DEFAULT, CK_DEFAULT, attr };
+            used++;
+            continue;
+        }
+        for (const char *p = piece; *p && used < maxw; p++) {
+            VtCell *c = vt_at(v, y, x + used);
+            if (!c)
+                return used;
+            *c = (VtCell){ (uint32_t)(unsigned char)*p, CK_DEFAULT, CK_DEFAULT, attr };
+            used++;
+        }
     }
     return used;
 }
 
 /* x, y == -2: centred; x < 0: against the right edge, y < 0: just above
- * the last row (tty.h: term_draw_box_at) */
+ * the last row (tty.h: term_draw_box_at). Each line is drawn as vt_text
+ * draws it; the widths are its columns. */
 void vt_box(Vt *v, const char *const *lines, int n, int bx, int by)
 {
     int H = v->rows, W = v->cols;
     int w = 0;
     for (int i = 0; i < n; i++) {
-        int len = (int)strlen(lines[i]);
+        int len = vt_text_cols(lines[i], strlen(lines[i]));
         if (len > w)
             w = len;
     }
@@ -212,18 +233,11 @@ void vt_box(Vt *v, const char *const *lines, int n, int bx, int by)
     int y0 = by == -2 ? (H - 1 - h) / 2 : by < 0 ? H - 1 - h : by;
     for (int r = 0; r < h; r++) {
         int edge = r == 0 || r == h - 1;
-        const char *t = !edge && r - 1 < n ? lines[r - 1] : "";
-        int len = (int)strlen(t);
-        for (int x = 0; x < w; x++) {
-            char ch[2] = { 0, 0 };
-            if (edge)
-                ch[0] = x == 0 || x == w - 1 ? '+' : '-';
-            else if (x == 0 || x == w - 1)
-                ch[0] = '|';
-            else
-                ch[0] = x - 2 >= 0 && x - 2 < len ? t[x - 2] : ' ';
-            vt_text(v, y0 + r, x0 + x, ch, 1, 0);
-        }
+        for (int x = 0; x < w; x++)
+            vt_text(v, y0 + r, x0 + x, edge ? (x == 0 || x == w - 1 ? "+" : "-")
+                                            : x == 0 || x == w - 1 ? "|" : " ", 1, 0);
+        if (!edge && r - 1 < n && w > 3)
+            vt_text(v, y0 + r, x0 + 2, lines[r - 1], w - 3, 0);
     }
 }
 

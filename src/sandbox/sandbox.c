@@ -46,6 +46,8 @@ typedef struct {
     int                 alive;  /* the child's end: 'r' when its result is ready; closed when it ends */
     int                 go;     /* the child's end: 'w' asks for the arrays in the memfd; EOF ends it */
     MeshProgress       *progress;   /* shared with the parent, or NULL */
+    int                 errfd;  /* the child's end of its standard error (childerr.c), or -1 */
+    ChildErr            cerr;   /* the parent's end */
 } Job;
 
 int sandbox_available(void)
@@ -108,6 +110,13 @@ static void child_prepare(Job *j)
     sigset_t none;
     sigemptyset(&none);
     sigprocmask(SIG_SETMASK, &none, NULL);
+    /* standard error is the parent's pipe, which passes zview's lines on
+     * made safe (childerr.c); a quiet load (the viewer's, under curses)
+     * keeps it off the terminal: a crashing library's last words, a
+     * sanitizer's report */
+    int null = j->lo->quiet ? open("/dev/null", O_WRONLY | O_CLOEXEC) : -1;
+    if (null >= 0 || j->errfd >= 0)
+        dup2(null >= 0 ? null : j->errfd, STDERR_FILENO);
     int keep[3] = { j->memfd, j->alive, j->go };
     qsort(keep, 3, sizeof keep[0], cmp_int);
     unsigned from = 3;
@@ -117,14 +126,6 @@ static void child_prepare(Job *j)
         from = (unsigned)keep[i] + 1;
     }
     syscall(SYS_close_range, from, ~0u, 0u);
-    /* a quiet load (the viewer's, under curses) keeps the child's stderr
-     * off the terminal too: a crashing library's last words, a
-     * sanitizer's report */
-    int null = j->lo->quiet ? open("/dev/null", O_WRONLY | O_CLOEXEC) : -1;
-    if (null >= 0) {
-        dup2(null, STDERR_FILENO);
-        close(null);
-    }
     uint64_t as, data;
     vm_now(&as, &data);
     /* the reader maps the model's file (read-only: address space, not
@@ -203,12 +204,17 @@ enum { CHILD_GONE, CHILD_CANCELLED, CHILD_READY };
 /* Wait for the child's word, killing it on cancel, copying progress:
  * ready (its result waits to be read), gone (it ended: crashed, or
  * killed by a limit or the filter), or cancelled. */
-static int wait_child(const Job *j, pid_t pid, int alive)
+static int wait_child(Job *j, pid_t pid, int alive)
 {
     int cancelled = 0;
     for (;;) {
-        struct pollfd pf = { .fd = alive, .events = POLLIN };
-        int n = poll(&pf, 1, j->lo->cancel || j->lo->progress ? POLL_MS : -1);
+        struct pollfd pf[2] = { { .fd = alive, .events = POLLIN }, { .fd = j->cerr.fd, .events = POLLIN } };
+        int n = poll(pf, j->cerr.fd >= 0 ? 2 : 1, j->lo->cancel || j->lo->progress ? POLL_MS : -1);
+        if (n > 0 && pf[1].revents) {
+            childerr_read(&j->cerr);
+            if (!pf[0].revents)
+                continue;
+        }
         if (j->lo->progress && j->progress) {
             __atomic_store_n(&j->lo->progress->done, __atomic_load_n(&j->progress->done, __ATOMIC_RELAXED),
                              __ATOMIC_RELAXED);
@@ -228,12 +234,23 @@ static int wait_child(const Job *j, pid_t pid, int alive)
     }
 }
 
-static int reap(pid_t pid, int *status, struct rusage *ru)
+/* Wait for the child to end, reading its standard error meanwhile: a
+ * report written as it dies (a sanitizer's) must not fill the pipe and
+ * hold it up. */
+static int reap(Job *j, pid_t pid, int *status, struct rusage *ru)
 {
-    while (wait4(pid, status, 0, ru) < 0)
-        if (errno != EINTR)
+    for (;;) {
+        pid_t r = wait4(pid, status, j->cerr.fd >= 0 ? WNOHANG : 0, ru);
+        if (r == pid)
+            return 0;
+        if (r < 0 && errno != EINTR)
             return -1;
-    return 0;
+        if (r == 0) {
+            struct pollfd pf = { .fd = j->cerr.fd, .events = POLLIN };
+            poll(&pf, 1, POLL_MS);
+            childerr_read(&j->cerr);
+        }
+    }
 }
 
 /* Read the child's result: from its memory (pid), else from the memfd. */
@@ -257,20 +274,20 @@ static int collect(const Job *j, pid_t pid, Mesh *m, char *err, size_t errlen)
 
 /* The child is ready: its result, read from its memory, or (when that
  * is not allowed) from the memfd once it has written it there. */
-static int finish(const Job *j, pid_t pid, int go, Mesh *m, char *err, size_t errlen)
+static int finish(Job *j, pid_t pid, int go, Mesh *m, char *err, size_t errlen)
 {
     int rc = collect(j, pid, m, err, errlen), status = 0;
     struct rusage ru = { 0 };
     if (rc == -2 && write(go, "w", 1) == 1) {
         close(go);
-        if (reap(pid, &status, &ru) == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
+        if (reap(j, pid, &status, &ru) == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
             rc = collect(j, 0, m, err, errlen);
         else
             died(j, status, &ru, 0, err, errlen);
         return rc < 0 ? -1 : rc;
     }
     close(go);
-    reap(pid, &status, &ru);
+    reap(j, pid, &status, &ru);
     return rc < 0 ? -1 : rc;
 }
 
@@ -296,6 +313,10 @@ static int run(Job *j, Mesh *m, char *err, size_t errlen)
         j->progress = NULL;
     j->alive = alive[1];
     j->go = go[0];
+    j->errfd = -1;
+    j->cerr.fd = -1;
+    if (!j->lo->quiet)
+        childerr_open(&j->cerr, &j->errfd);     /* none: the child writes to standard error itself */
     pid_t pid = fork();
     if (pid == 0) {
         close(alive[0]);
@@ -304,6 +325,8 @@ static int run(Job *j, Mesh *m, char *err, size_t errlen)
     }
     close(alive[1]);
     close(go[0]);
+    if (j->errfd >= 0)
+        close(j->errfd);
     int rc = -1;
     if (pid < 0) {
         snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->name, strerror(errno));
@@ -316,10 +339,11 @@ static int run(Job *j, Mesh *m, char *err, size_t errlen)
             int status = 0;
             struct rusage ru = { 0 };
             close(go[1]);
-            reap(pid, &status, &ru);
+            reap(j, pid, &status, &ru);
             died(j, status, &ru, state == CHILD_CANCELLED, err, errlen);
         }
     }
+    childerr_close(&j->cerr);
     if (rc == 0)
         m->info.load_ms = now_ms() - t0;    /* the sandbox's cost included */
     close(alive[0]);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "safetext.h"
 #include "simd.h"
 
 static const char *const level_names[SIMD_LEVELS] = { "auto", "scalar", "sse2", "avx2" };
@@ -65,11 +66,11 @@ int simd_warn(FILE *f)
     int want = env_level(&v);
     SimdLevel best = simd_best();
     if (want < 0) {
-        fprintf(f, "zview: ZV_SIMD=%s is not a level (scalar, sse2, avx2): using %s\n", v, simd_name(best));
+        safetext_line(f, "zview: ZV_SIMD=%s is not a level (scalar, sse2, avx2): using %s", v, simd_name(best));
         return 1;
     }
     if (want > (int)best) {
-        fprintf(f, "zview: ZV_SIMD=%s: this CPU or build cannot run it: using %s\n", v, simd_name(best));
+        safetext_line(f, "zview: ZV_SIMD=%s: this CPU or build cannot run it: using %s", v, simd_name(best));
         return 1;
     }
     return 0;

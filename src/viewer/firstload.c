@@ -33,6 +33,7 @@
 
 #include "clock.h"
 #include "meshprefix.h"
+#include "safetext.h"
 #include "thread.h"
 #include "viewer_app.h"
 
@@ -407,6 +408,6 @@ int firstload_now(const Options *o, Scene *s)
     if (app_load_scene(o, s, err, sizeof err) == 0)
         return 0;
     memset(s, 0, sizeof *s);    /* (the caller frees it again) */
-    fprintf(stderr, "zview: %s\n", err);
+    safetext_line(stderr, "zview: %s", err);
     return -1;
 }

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "safetext.h"
 #include "tty.h"
 #include "viewer_app.h"
 
@@ -48,10 +49,14 @@ typedef struct {
 static void bar_field(BarField *f, int rank, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 static void bar_field(BarField *f, int rank, const char *fmt, ...)
 {
+    char raw[sizeof f->text];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(f->text, sizeof f->text, fmt, ap);
+    vsnprintf(raw, sizeof raw, fmt, ap);
     va_end(ap);
+    /* a file's name, an object's, a warning: made safe here (safetext.h),
+     * so that the widths below are of what vt_text draws */
+    safetext(f->text, sizeof f->text, raw);
     f->brief[0] = 0;
     f->rank = rank;
     f->glued = 0;

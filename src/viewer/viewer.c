@@ -1,10 +1,10 @@
 /* viewer.c: the interactive viewer. kilo's loop: draw what changed, wait
  * for input, read every pending event before the next frame (held-down
  * keys coalesce, the view never lags), repeat. Frames are rendered only
- * when something changed, or on the auto-rotate clock (--fps). Also
- * --bench-tty: the bytes curses writes per frame of a scripted turn. */
+ * when something changed, or on the auto-rotate clock (--fps). Its
+ * set-up and render are benchtty.c's too. */
 
-#define _DEFAULT_SOURCE         /* tmpfile, fileno, lstat on glibc */
+#define _DEFAULT_SOURCE         /* lstat on glibc */
 
 #include <errno.h>
 #include <langinfo.h>
@@ -12,10 +12,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "clock.h"
+#include "safetext.h"
 #include "tty.h"
 #include "viewer_app.h"
 
@@ -35,7 +35,7 @@ static int locale_utf8(void)
     return cs && (!strcmp(cs, "UTF-8") || !strcmp(cs, "utf-8") || !strcmp(cs, "UTF8"));
 }
 
-static int app_init(App *a, const Options *o, Scene *s, int loading)
+int viewer_app_init(App *a, const Options *o, Scene *s, int loading)
 {
     memset(a, 0, sizeof *a);
     sketch_init(&a->sk.k);
@@ -55,10 +55,8 @@ static int app_init(App *a, const Options *o, Scene *s, int loading)
     for (int i = 0; i < hsr_nalgos; i++)
         if (hsr_algos[i] == algo)
             a->algo = i;
-    if (app_live_init(a, o)) {
-        app_live_free(a);
-        return -1;
-    }
+    if (app_live_init(a, o))
+        goto fail;
     app_update_name(a);
     /* a lenient load's warnings went to stderr, which the screen is
      * about to cover: the first file's that had any shows in the bar */
@@ -67,10 +65,8 @@ static int app_init(App *a, const Options *o, Scene *s, int loading)
             app_warning_note(a, &s->meshes[i].info, s->meshes[i].path ? s->meshes[i].path : "?");
             break;
         }
-    if (pipeline_init(&a->p, s, algo, o->threads)) {
-        app_live_free(a);
-        return -1;
-    }
+    if (pipeline_init(&a->p, s, algo, o->threads))
+        goto fail;
     a->p.samples = TEXT_SAMPLES;
     pipeline_apply_options(&a->p, o);
     /* images the load left for later (tex_defer): on their own thread */
@@ -80,20 +76,28 @@ static int app_init(App *a, const Options *o, Scene *s, int loading)
     a->reload = -1;
     char err[160];
     a->first_cam = s->cam;
-    if (loading && !(a->first = firstload_start(o, err, sizeof err))) {
-        app_live_free(a);       /* (out of memory, or of threads: the caller says so) */
-        return -1;
-    }
+    if (loading && !(a->first = firstload_start(o, err, sizeof err)))
+        goto fail;              /* (out of memory, or of threads: the caller says so) */
     if (o->watch && !(a->watch = watch_start(err, sizeof err)))
         app_note(a, "%s", err);
     return 0;
+fail:
+    viewer_app_free(a);         /* what was made so far; the rest is zero */
+    return -1;
+}
+
+void viewer_app_free(App *a)
+{
+    pipeline_free(&a->p);       /* its runner first: it may read the sketch's scene */
+    sketch_mode_free(a);
+    app_live_free(a);
 }
 
 /* ==== One frame ==== */
 
 /* Render the picture for cols x rows cells: the same call --print makes,
  * so the same view gives the same cells. */
-static int render(App *a, int cols, int rows)
+int viewer_render(App *a, int cols, int rows)
 {
     int pw, ph;
     mode_cell_pixels(a->mode, &pw, &ph);
@@ -195,29 +199,22 @@ int app_command_layout(const App *a, int cols, char *buf, size_t len, const char
 }
 
 
-/* Columns of UTF-8 text (every character one column, as vt_text draws). */
-static int text_cols(const char *s, int bytes)
-{
-    int n = 0;
-    for (int i = 0; i < bytes && s[i]; i++)
-        n += (s[i] & 0xc0) != 0x80;
-    return n;
-}
-
 /* The prompt in the status line: its label and line, scrolled so that
- * the cursor shows, the cursor out of reverse video. */
+ * the cursor shows, the cursor out of reverse video. A name completed
+ * from the folder may hold controls: they show as vt_text shows them
+ * (\x1b), and the columns are counted the same way. */
 static void draw_prompt(const Prompt *pr, int row, int cols)
 {
     char bar[PROMPT_MAX + 64];
     snprintf(bar, sizeof bar, " %s%s", pr->label, pr->buf);
-    int head = 1 + (int)strlen(pr->label);
-    int at = text_cols(bar, head + pr->cur);       /* the cursor's column */
+    size_t head = 1 + strlen(pr->label);
+    int at = vt_text_cols(bar, head + (size_t)pr->cur);      /* the cursor's column */
     const char *show = bar;
     while (at > cols - 2 && *show) {
-        show++;                                     /* drop a character from the left */
-        while ((*show & 0xc0) == 0x80)
-            show++;
-        at--;
+        char piece[SAFETEXT_PIECE];
+        size_t took = safetext_next(show, piece, SAFETEXT_TEXT);
+        at -= vt_text_cols(show, took);                      /* drop a character from the left */
+        show += took;
     }
     term_draw_bar(row, show);
     term_bar_cursor(row, at);
@@ -402,7 +399,7 @@ static int draw(App *a, DrawState *d, Reaction what, int fps_cap)
         d->pic_cols = pc;
     }
     double t0 = now_ms();
-    if ((what & RE_RENDER) == RE_RENDER && render(a, pc, pr))
+    if ((what & RE_RENDER) == RE_RENDER && viewer_render(a, pc, pr))
         return RUN_NO_MEMORY;
     term_draw_cells(&a->p.cells, 0);
     double t1 = now_ms();
@@ -619,14 +616,28 @@ static int no_viewer(const Options *o, Scene *s, int loading)
     if (loading && firstload_now(o, s))
         return 1;
     if (o->sketch) {
-        fprintf(stderr, "zview: --sketch: no terminal to draw on\n");
+        safetext_line(stderr, "zview: --sketch: no terminal to draw on");
         return 1;
     }
     if (o->print_view) {
-        fprintf(stderr, "zview: --print-view: no terminal to show the viewer on\n");
+        safetext_line(stderr, "zview: --print-view: no terminal to show the viewer on");
         return 1;
     }
     return app_oneshot(o, s);
+}
+
+/* The view's command line on standard output (--print-view); 0, or -1
+ * with the error said. */
+static int print_line(const char *line)
+{
+    Out out;
+    out_init(&out, stdout, "standard output");
+    out_printf(&out, "%s\n", line);
+    if (out_flush(&out)) {
+        safetext_line(stderr, "zview: standard output: %s", out_error(&out));
+        return -1;
+    }
+    return 0;
 }
 
 static int viewer_main(const Options *o, Scene *s, int loading);
@@ -647,42 +658,40 @@ static int viewer_main(const Options *o, Scene *s, int loading)
     if (!t || !*t || !strcmp(t, "dumb")) {
         /* a terminal that cannot move its cursor (an editor's shell, a
          * CI log): say so, and what shows a picture there */
-        fprintf(stderr, "zview: TERM=%s cannot show the viewer (it needs a terminal that moves its "
-                        "cursor: set TERM, e.g. TERM=xterm-256color)%s\n",
+        safetext_line(stderr, "zview: TERM=%s cannot show the viewer (it needs a terminal that moves its "
+                        "cursor: set TERM, e.g. TERM=xterm-256color)%s",
                 t ? t : "", o->print_view || o->sketch ? "" : "; one frame instead, as --print gives");
         return no_viewer(o, s, loading);
     }
-    FILE *tty;
+    /* what is made below is unmade in one place, at the end */
+    App a;
+    int made = 0, fallback = 0, rc = 1;
+    FILE *tty = NULL, *screen_tty = NULL;
     const char *keys_name;
     FILE *keys = open_keys(&tty, &keys_name);
     if (!keys) {
-        fprintf(stderr, "zview: no terminal to read keys from (standard input is not one, "
-                        "/dev/tty: %s)%s\n", strerror(errno), o->print_view ? "" : ": one frame instead");
-        return no_viewer(o, s, loading);
+        safetext_line(stderr, "zview: no terminal to read keys from (standard input is not one, "
+                        "/dev/tty: %s)%s", strerror(errno), o->print_view ? "" : ": one frame instead");
+        fallback = 1;
+        goto done;
     }
     /* the screen: standard output, or the terminal when --print-view
      * keeps standard output for the command line */
-    FILE *screen = stdout, *screen_tty = NULL;
+    FILE *screen = stdout;
     if (!isatty(STDOUT_FILENO) && !(screen = screen_tty = fopen("/dev/tty", "we"))) {
-        if (tty)
-            fclose(tty);
-        return no_viewer(o, s, loading);
+        fallback = 1;
+        goto done;
     }
-    App a;
-    if (app_init(&a, o, s, loading)) {
-        fprintf(stderr, "zview: out of memory\n");
-        if (tty)
-            fclose(tty);
-        if (screen_tty)
-            fclose(screen_tty);
-        return 1;
+    if (viewer_app_init(&a, o, s, loading)) {
+        safetext_line(stderr, "zview: out of memory");
+        goto done;
     }
-    char err[256];
+    made = 1;
     /* an unknown TERM (or xterm-direct without its entry): a description
      * we have does better than one frame */
     const char *use = term_resolve(t);
     if (use && strcmp(use, t))
-        fprintf(stderr, "zview: unknown terminal type '%s': using %s\n", t, use);
+        safetext_line(stderr, "zview: unknown terminal type '%s': using %s", t, use);
     TermConfig cfg = {
         .out = screen,
         .in = keys,
@@ -693,17 +702,13 @@ static int viewer_main(const Options *o, Scene *s, int loading)
         .ask_bg = !o->bg,       /* --bg given: nothing to ask */
         .pixels = !a.pixels ? PIX_CELLS : o->pixels > PIX_CELLS ? o->pixels : PIX_AUTO,
     };
+    char err[256];
     if (!use || term_open(&cfg, err, sizeof err)) {
-        fprintf(stderr, "zview: %s%s\n",
+        safetext_line(stderr, "zview: %s%s",
                 use ? err : "no terminal description installed (not even xterm, vt100 or ansi)",
                 o->print_view ? "" : ": one frame instead");
-        pipeline_free(&a.p);
-        app_live_free(&a);
-        if (tty)
-            fclose(tty);
-        if (screen_tty)
-            fclose(screen_tty);
-        return no_viewer(o, s, loading);
+        fallback = 1;
+        goto done;
     }
     a.pixels = a.pixels && term_pixels() != PIX_CELLS;     /* none there: cells */
     /* the picture is kept visible on the terminal's background */
@@ -714,187 +719,35 @@ static int viewer_main(const Options *o, Scene *s, int loading)
         a.sk.only = o->nfiles == 0;     /* no model to go back to */
         sketch_mode_enter(&a);
     }
-    int rc = run(&a, o->fps);
+    int run_rc = run(&a, o->fps);
     int out_errno = errno;
     term_restore();
     /* --print-view: the command line of the view as it was left */
     char cmd[CMD_MAX];
-    int cmd_ok = o->print_view && rc == RUN_QUIT && app_view_command(&a, cmd, sizeof cmd) == 0;
+    int cmd_ok = o->print_view && run_rc == RUN_QUIT && app_view_command(&a, cmd, sizeof cmd) == 0;
     int unsaved = a.sk.on && !sketch_mode_file(&a);
-    pipeline_free(&a.p);        /* its runner first: it may read the sketch's scene */
-    sketch_mode_free(&a);
-    app_live_free(&a);
+    if (a.load_err[0])
+        safetext_line(stderr, "zview: %s", a.load_err);
+    else if (run_rc == RUN_NO_MEMORY)
+        safetext_line(stderr, "zview: out of memory");
+    else if (run_rc == RUN_INPUT_ENDED)
+        safetext_line(stderr, "zview: %s: the input ended (no more keys)", keys_name);
+    else if (run_rc == RUN_OUTPUT_FAILED)
+        safetext_line(stderr, "zview: the terminal: %s", strerror(out_errno));
+    else if (o->print_view && !cmd_ok && unsaved)
+        safetext_line(stderr, "zview: --print-view: the sketch on screen was not written (w): no file shows it");
+    else if (o->print_view && !cmd_ok)
+        safetext_line(stderr, "zview: the view's command line is too long to print");
+    else if (cmd_ok && print_line(cmd))
+        ;
+    else
+        rc = 0;
+done:
+    if (made)
+        viewer_app_free(&a);
     if (tty)
         fclose(tty);
     if (screen_tty)
         fclose(screen_tty);
-    if (a.load_err[0]) {
-        fprintf(stderr, "zview: %s\n", a.load_err);
-        return 1;
-    }
-    if (rc == RUN_NO_MEMORY) {
-        fprintf(stderr, "zview: out of memory\n");
-        return 1;
-    }
-    if (rc == RUN_INPUT_ENDED) {
-        fprintf(stderr, "zview: %s: the input ended (no more keys)\n", keys_name);
-        return 1;
-    }
-    if (rc == RUN_OUTPUT_FAILED) {
-        fprintf(stderr, "zview: the terminal: %s\n", strerror(out_errno));
-        return 1;
-    }
-    if (o->print_view && !cmd_ok && unsaved) {
-        fprintf(stderr, "zview: --print-view: the sketch on screen was not written (w): no file shows it\n");
-        return 1;
-    }
-    if (o->print_view && !cmd_ok) {
-        fprintf(stderr, "zview: the view's command line is too long to print\n");
-        return 1;
-    }
-    if (cmd_ok) {
-        Out out;
-        out_init(&out, stdout, "standard output");
-        out_printf(&out, "%s\n", cmd);
-        if (out_flush(&out)) {
-            fprintf(stderr, "zview: standard output: %s\n", out_error(&out));
-            return 1;
-        }
-    }
-    return 0;
-}
-
-/* ==== --bench-tty ==== */
-
-static int cmp_long(const void *x, const void *y)
-{
-    long a = *(const long *)x, b = *(const long *)y;
-    return a < b ? -1 : a > b;
-}
-
-static int cmp_dbl(const void *x, const void *y)
-{
-    double a = *(const double *)x, b = *(const double *)y;
-    return a < b ? -1 : a > b;
-}
-
-static long file_bytes(FILE *f)
-{
-    struct stat st;
-    fflush(f);
-    return fstat(fileno(f), &st) == 0 ? (long)st.st_size : -1;
-}
-
-#define TTY_FRAMES 72   /* a whole turn at 5 degrees a frame */
-
-/* Curses writes into a temporary file standing in for the terminal; the
- * file's growth after each update is what a terminal would receive. */
-int app_bench_tty(const Options *o)
-{
-    char err[512];
-    Scene s;
-    if (app_load_scene(o, &s, err, sizeof err)) {
-        fprintf(stderr, "zview: %s\n", err);
-        return 1;
-    }
-    int cols = o->w > 0 ? o->w : 160, rows = o->h > 0 ? o->h : 48;
-    Options opt = *o;
-    if (opt.mode < 0)
-        opt.mode = MODE_HALF;
-    ColourDepth colour = o->colour >= 0 ? (ColourDepth)o->colour : COLOUR_256;
-    const char *termname = "xterm-256color";    /* 24-bit colour needs no other entry */
-    int rc = 1;
-    App a;
-    FILE *out = tmpfile(), *in = fopen("/dev/null", "r");
-    if (!out || !in || app_init(&a, &opt, &s, 0)) {
-        fprintf(stderr, "zview: cannot set up the benchmark\n");
-        goto done;
-    }
-    TermConfig cfg = { .out = out, .in = in, .termname = termname, .colour = colour };
-    if (term_open(&cfg, err, sizeof err)) {
-        fprintf(stderr, "zview: %s: %s\n", termname, err);
-        pipeline_free(&a.p);
-        app_live_free(&a);
-        goto done;
-    }
-    term_set_size(cols, rows + 1);
-    Backdrop bd = pipeline_text_backdrop(o, NULL);      /* as the viewer's, no terminal to ask */
-    pipeline_set_backdrop(&a.p, &bd);
-    long bytes[TTY_FRAMES + 1];
-    double render_ms[TTY_FRAMES + 1], out_ms[TTY_FRAMES + 1];
-    long before = file_bytes(out);
-    char bar[512];
-    for (int k = 0; k <= TTY_FRAMES; k++) {
-        if (k > 0)
-            s.cam.yaw += deg2rad(5);
-        double t0 = now_ms();
-        if (render(&a, cols, rows)) {
-            term_restore();
-            fprintf(stderr, "zview: out of memory\n");
-            pipeline_free(&a.p);
-            app_live_free(&a);
-            goto done;
-        }
-        double t1 = now_ms();
-        term_draw_cells(&a.p.cells, 0);
-        viewer_status_text(&a, bar, sizeof bar, k ? render_ms[k - 1] + out_ms[k - 1] : 0, o->fps, cols);
-        term_draw_bar(rows, bar);
-        if (term_update(0)) {
-            int e = errno;
-            term_restore();
-            fprintf(stderr, "zview: the benchmark's file: %s\n", strerror(e));
-            pipeline_free(&a.p);
-            app_live_free(&a);
-            goto done;
-        }
-        long now = file_bytes(out);
-        out_ms[k] = now_ms() - t1;
-        render_ms[k] = t1 - t0;
-        bytes[k] = now - before;
-        before = now;
-    }
-    term_restore();
-    ColourDepth used = term_colour();
-    /* frame 0 paints the whole screen; the turn is frames 1.. */
-    long sum = 0, first = bytes[0];
-    double frame[TTY_FRAMES];
-    for (int k = 1; k <= TTY_FRAMES; k++) {
-        sum += bytes[k];
-        frame[k - 1] = render_ms[k] + out_ms[k];
-    }
-    double rmed[TTY_FRAMES], omed[TTY_FRAMES];
-    memcpy(rmed, render_ms + 1, sizeof rmed);
-    memcpy(omed, out_ms + 1, sizeof omed);
-    qsort(bytes + 1, TTY_FRAMES, sizeof *bytes, cmp_long);
-    qsort(frame, TTY_FRAMES, sizeof *frame, cmp_dbl);
-    qsort(rmed, TTY_FRAMES, sizeof *rmed, cmp_dbl);
-    qsort(omed, TTY_FRAMES, sizeof *omed, cmp_dbl);
-    Out rep;
-    out_init(&rep, stdout, "standard output");
-    out_printf(&rep, "bench-tty: %s, %dx%d cells + status line, %s, %s colour (%s), algo %s, %d thread%s\n",
-           a.name, cols, rows, mode_names[a.mode], colour_name(used), termname, a.p.algo->name,
-           a.p.threads, a.p.threads == 1 ? "" : "s");
-    out_printf(&rep, "turn of %d frames at 5 degrees a frame; first frame (full paint) %ld bytes\n",
-           TTY_FRAMES, first);
-    out_printf(&rep, "bytes per frame: median %ld, mean %ld, max %ld\n", bytes[1 + TTY_FRAMES / 2],
-           sum / TTY_FRAMES, bytes[TTY_FRAMES]);
-    out_printf(&rep, "frame time: median %.2f ms (render %.2f ms + terminal output %.2f ms), max %.2f ms\n",
-           frame[TTY_FRAMES / 2], rmed[TTY_FRAMES / 2], omed[TTY_FRAMES / 2],
-           frame[TTY_FRAMES - 1]);
-    if (out_flush(&rep)) {
-        fprintf(stderr, "zview: standard output: %s\n", out_error(&rep));
-        pipeline_free(&a.p);
-        app_live_free(&a);
-        goto done;
-    }
-    pipeline_free(&a.p);
-    app_live_free(&a);
-    rc = 0;
-done:
-    if (out)
-        fclose(out);
-    if (in)
-        fclose(in);
-    scene_free(&s);
-    return rc;
+    return fallback ? no_viewer(o, s, loading) : rc;
 }

@@ -286,4 +286,11 @@ int      app_help_layout(App *a, int cols, int rows, const char **lines);
  * frame_ms the last frame's time, fps_cap the auto-rotate cap. */
 void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, int fps_cap, int width);
 
+/* viewer.c: the App set up for a scene (a load of the first file under
+ * way when loading), and everything it made freed (also what a failed
+ * set-up made); the picture for cols x rows cells, as --print makes it. */
+int  viewer_app_init(App *a, const Options *o, Scene *s, int loading);
+void viewer_app_free(App *a);
+int  viewer_render(App *a, int cols, int rows);
+
 #endif

@@ -28,6 +28,47 @@ expect_err "... one line naming the file" "$T/cut.obj.gz: gzip data cut short"
 printf '\037\213\010\000\000\000\000\000\000\003garbage-not-deflate' >"$T/bad.stl.gz"
 expect_status "damaged gzip data: status 1" 1 "$Z" --info "$T/bad.stl.gz"
 expect_err "... one line naming the file and the byte" "$T/bad.stl.gz: damaged gzip data near compressed byte"
+# several members (issue 28: all but the first were lost): read one after
+# the other as zcat does; made by python3's gzip module
+if need_python "gzip files of several members"; then
+    python3 - "$T" <<'EOF'
+import gzip, sys
+d = sys.argv[1]
+obj = open("assets/cube.obj", "rb").read()
+cut = obj.index(b"\nv ", len(obj) // 3) + 4          # inside a line
+w = lambda name, b: open(d + "/" + name, "wb").write(b)
+w("two.obj.gz", gzip.compress(obj[:cut]) + gzip.compress(obj[cut:]))
+w("empty-first.obj.gz", gzip.compress(b"") + gzip.compress(obj))
+w("garbage.obj.gz", gzip.compress(obj) + b"not gzip")
+w("zeros.obj.gz", gzip.compress(obj) + bytes(4096))
+second = gzip.compress(obj[cut:])
+w("cut-second.obj.gz", gzip.compress(obj[:cut]) + second[:len(second) // 2])
+w("cut-magic.obj.gz", gzip.compress(obj) + b"\x1f")
+EOF
+    expect_status "two members, the OBJ split inside a line: loads" 0 "$Z" --info "$T/two.obj.gz"
+    check "... the whole cube, 6 faces" '[ "$(info faces)" = 6 ]' "$(cat "$T/out" "$T/err")"
+    "$Z" -o "$T/two.png" --size 40x30 "$T/two.obj.gz"
+    check "... the same picture as the plain file" 'cmp -s "$T/plain.png" "$T/two.png"'
+    expect_status "an empty first member: loads" 0 "$Z" --info "$T/empty-first.obj.gz"
+    check "... the cube of the second, 6 faces" '[ "$(info faces)" = 6 ] && [ ! -s "$T/err" ]' "$(cat "$T/out" "$T/err")"
+    expect_status "bytes after the last member: loads" 0 "$Z" --info "$T/garbage.obj.gz"
+    check "... 6 faces" '[ "$(info faces)" = 6 ]' "$(cat "$T/out")"
+    expect_err "... with a warning as zcat's, naming the file" "zview: warning: $T/garbage.obj.gz: trailing garbage after the gzip data ignored (from compressed byte"
+    expect_status "... --strict refuses it" 1 "$Z" --info --strict "$T/garbage.obj.gz"
+    expect_err "... saying why" "$T/garbage.obj.gz: bytes that are not gzip data after the last member"
+    expect_status "zero padding after the last member: loads" 0 "$Z" --info "$T/zeros.obj.gz"
+    check "... quietly, as zcat" '[ "$(info faces)" = 6 ] && [ ! -s "$T/err" ]' "$(cat "$T/err")"
+    expect_status "a second member cut short: status 1" 1 "$Z" --info "$T/cut-second.obj.gz"
+    check "... one line naming the file" '[ "$(wc -l <"$T/err")" -eq 1 ]' "$(cat "$T/err")"
+    expect_err "... saying so" "zview: $T/cut-second.obj.gz: gzip data cut short"
+    expect_status "a file ending in a member's first byte: status 1" 1 "$Z" --info "$T/cut-magic.obj.gz"
+    expect_err "... cut short" "zview: $T/cut-magic.obj.gz: gzip data cut short"
+    cat "$T/two.obj.gz" | "$Z" --info - >"$T/out" 2>"$T/err"
+    check "two members on standard input: 6 faces" '[ "$(info faces)" = 6 ]' "$(cat "$T/err")"
+    # a stream of zeros after a member ends at once, with the warning
+    (cat "$T/zeros.obj.gz"; head -c 20000000 /dev/zero) | timeout 10 "$Z" --info - >"$T/out" 2>"$T/err"
+    check "zeros without end after a member: 6 faces, a warning" '[ "$(info faces)" = 6 ] && grep -q "trailing garbage" "$T/err"' "$(cat "$T/err")"
+fi
 # a gzip bomb is held to the same bound as any stream: the memory a load
 # may take (ZV_MEM_AVAILABLE stands in for a small machine)
 head -c 50000000 /dev/zero | tr '\0' 'v' | gzip -c >"$T/bomb.obj.gz"

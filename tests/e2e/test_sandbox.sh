@@ -142,6 +142,24 @@ if "$Z" --formats 2>/dev/null | grep -q '^gltf'; then
     done
 fi
 
+# a uri naming the model's own folder, absolute (directly and through a
+# link to the folder): read, in the sandbox too (issue 28: it was refused
+# as outside the folder)
+if "$Z" --formats 2>/dev/null | grep -q '^gltf'; then
+    python3 -c 'import struct, sys; open(sys.argv[1], "wb").write(struct.pack("<9f", 0,0,0, 1,0,0, 0,1,0))' "$R/m/tri.bin"
+    ln -s m "$R/mlink"
+    for uri in "$R/m/tri.bin" "$R/mlink/tri.bin"; do
+        printf '{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"buffers":[{"byteLength":36,"uri":"%s"}],"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}]}' "$uri" >"$R/m/own.gltf"
+        for sb in "" --no-sandbox; do
+            timeout 20 "$Z" --info $sb "$R/m/own.gltf" >"$T/out" 2>"$T/err" </dev/null
+            st=$?
+            if [ $st -eq 0 ] && grep -q '^faces: *1$' "$T/out" && [ ! -s "$T/err" ]; then
+                ok "glTF buffer ${uri#"$R"/} (absolute, in the folder) ${sb:-sandboxed}: read, no warning"
+            else notok "glTF buffer ${uri#"$R"/} (absolute, in the folder) ${sb:-sandboxed}: read, no warning" "status $st: $(cat "$T/err")"; fi
+        done
+    done
+fi
+
 # ==== the result's way back: the child's memory, else the memfd ====
 if command -v strace >/dev/null 2>&1; then
     # --info without its timing line

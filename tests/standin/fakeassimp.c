@@ -1,7 +1,9 @@
 /* fakeassimp.c: a stand-in for libassimp, built by the tests and found
  * through LD_LIBRARY_PATH. Its import does what an exploited parser
  * would, as ZV_STANDIN says: "create" a file, "exec" a shell, "socket"
- * (connect to a local port), "alloc" without bound, "spin" for ever. Each that succeeds
+ * (connect to a local port), "alloc" without bound, "spin" for ever,
+ * "chatter" (write escapes to stderr and fail with a message of several
+ * lines quoting them, as assimp's importers do). Each that succeeds
  * leaves a marker file in ZV_STANDIN_DIR, so that a test run without the
  * sandbox proves the attempt is real and one with it that nothing
  * happened. Without ZV_STANDIN the file's name says what to do. Exports every function zview looks up (src/mesh/assimp.c). */
@@ -62,6 +64,18 @@ static void attack(const char *file)
         volatile unsigned long n = 0;
         for (;;)
             n++;                /* a parser in an endless loop: Esc must end it */
+    }
+    if (strstr(what, "chatter")) {
+        /* a library's own words on stderr, quoting its file: OSC 52 (the
+         * clipboard), CSI 2J (clear), a C1 CSI, a line of zview's forged,
+         * and a long last line without its newline */
+        fputs("library chatter \x1b]52;c;aGk=\x07 and \x1b[2J\n", stderr);
+        fputs("zview: a forged line \x1b[2J\xc2\x9b\n", stderr);
+        char longline[3000];
+        memset(longline, 'x', sizeof longline);
+        fwrite(longline, 1, sizeof longline, stderr);
+        snprintf(error_text, sizeof error_text, "stand-in: line one\nline two \x1b]52;c;aGk=\x07\r\n\n  end\n");
+        return;
     }
     if (strstr(what, "alloc")) {
         size_t total = 0;
