@@ -219,6 +219,10 @@ typedef struct {
      * the first picture. 0: every texture is decoded while loading. */
     int           tex_defer_side;
     int           no_textures;  /* --no-textures: no image is even opened */
+    /* The path must name a regular file: it is opened without waiting
+     * (a FIFO would wait for a writer) and anything else is refused
+     * ("not a regular file (a FIFO)"). --watch's reloads. */
+    int           regular_only;
     /* OBJ parses in pieces on this many threads (0: every core; 1:
      * serially), the same mesh either way; piece_bytes (0: the loader's
      * own) is for tests, which make pieces small. */

@@ -88,7 +88,11 @@ typedef struct {
     uint32_t    points_in;      /* points in front of the eye and on screen */
     uint32_t    points_drawn;   /* squares kept: one per sample box (see prims.c) */
     uint32_t    edges_in;       /* segments and wireframe edges considered */
-    uint32_t    edges_drawn;    /* quads kept */
+    uint32_t    edges_drawn;    /* quads kept whole */
+    uint32_t    edges_sampled;  /* quads given as their samples (small, or past
+                                   one whole quad per 4 samples of the picture) */
+    uint32_t    edge_squares;   /* the one-sample squares they became: one per
+                                   sample they cover, the nearest (see prims.c) */
     double      prim_ms;        /* time spent on them */
 } ScreenPolys;
 
@@ -140,8 +144,9 @@ typedef struct {
     int point_size;         /* samples a side, 1 .. PRIM_SIZE_MAX */
     int line_width;         /* samples, 1 .. PRIM_SIZE_MAX */
     int wire;               /* the wireframe edges too (scene_wire_build first) */
-    int all_points;         /* every point as a square, none dropped (tests: the
-                               reduction gives the same buffers) */
+    int all_prims;          /* every point as a square and every segment as its
+                               quad, none dropped (tests: the reductions give
+                               the same buffers) */
     int pixel;              /* samples a pixel's side (supersampling): squares
                                of whole pixels start on a pixel (0, 1: any sample) */
     int marks;              /* the problem edges too (Scene.marks, --problems) */
@@ -153,8 +158,11 @@ typedef struct PrimWork PrimWork;   /* per-frame scratch, kept across frames */
  * screen_project left it for the same scene and viewport. Of the points
  * whose squares cover the same samples only the nearest (by depth, then
  * id) can show anywhere, so only it is kept: exactly the picture of all
- * of them, at a cost bounded by the screen. *work is made on first use.
- * Returns 0, or -1 on out of memory. */
+ * of them, at a cost bounded by the screen. Likewise a quad of a few
+ * samples, and every quad past one per 4 samples of the picture, is
+ * given as its samples: each sample such quads cover becomes one square
+ * of one sample at the nearest (depth, id) they give it. *work is made
+ * on first use. Returns 0, or -1 on out of memory. */
 int  screen_prims(ScreenPolys *sp, const Scene *s, const PrimStyle *st, PrimWork **work);
 void prims_free(PrimWork **work);
 

@@ -31,10 +31,11 @@ typedef struct {
     TexWrap  wrap_u, wrap_v;
 } Texture;
 
-/* Decode a PNG or JPEG image held in memory (told by its first bytes)
- * and build its mipmaps. name is what messages call it. Returns 0, or -1
- * with "name: reason" in err and *t empty. max_bytes: refuse an image
- * whose texels and mipmaps would take more (0: no bound of the caller's). */
+/* Decode a PNG, JPEG or TGA image held in memory (told by its first
+ * bytes) and build its mipmaps. name is what messages call it. Returns 0,
+ * or -1 with "name: reason" in err and *t empty. max_bytes: refuse an
+ * image whose decode (the decoder's own memory, the texels and mipmaps)
+ * would take more (0: the default budget, texture_decode_fit). */
 int  texture_decode(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
                     char *err, size_t errlen);
 /* Texels already decoded (rgba: w x h, 4 bytes a texel, sRGB), copied
@@ -49,10 +50,12 @@ int  texture_load_file(Texture *t, const char *path, uint64_t max_bytes, char *e
 int  texture_peek(const void *data, size_t len, int *w_out, int *h_out);
 /* texture_decode, but an image with a side longer than max_side (> 0)
  * is halved until it fits: JPEG decoded at a reduced scale (libjpeg's
- * scale_denom, which skips most of the work), PNG decoded whole and its
- * first levels dropped. *halved_out: how many times (may be NULL). A
- * picture has no use for more texels than it has samples, and a 16k x
- * 16k image's texels would take 1.4 GB. */
+ * scale_denom, which skips most of the work), and the rest halved as
+ * the rows are decoded (the bytes of the whole image's mipmap level).
+ * *halved_out: how many times (may be NULL). A picture has no use for
+ * more texels than it has samples, and a 16k x 16k image's texels would
+ * take 1.4 GB. With max_bytes 0 the bound is proportional to the
+ * texture kept: 16 times its level 0's texels (at least 64 MB). */
 int  texture_decode_fit(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
                         int max_side, int *halved_out, char *err, size_t errlen);
 void texture_free(Texture *t);

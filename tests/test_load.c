@@ -119,3 +119,48 @@ Test(load, a_job_obeys_strict)
     cr_expect(strstr(err, ":6: vertex index 9 out of range"), "%s", err);
     unlink(path);
 }
+
+/* --watch's reload (issue 28): a FIFO or a device in the model's place
+ * is refused at once, looked at and never opened, where a reader would
+ * wait for a writer; a regular file loads. And the loader itself, told
+ * regular_only, opens without waiting and refuses a FIFO put in the
+ * file's place after that look. alarm(): were anything opened to wait,
+ * the test's process ends. */
+Test(load, a_reload_takes_a_regular_file_only)
+{
+    alarm(60);
+    char dir[] = "/tmp/zv-reload-XXXXXX", fifo[64], dev[64], err[256];
+    cr_assert(mkdtemp(dir));
+    snprintf(fifo, sizeof fifo, "%s/m.obj", dir);
+    snprintf(dev, sizeof dev, "%s/d.obj", dir);
+    cr_assert_eq(mkfifo(fifo, 0600), 0);
+    cr_assert_eq(symlink("/dev/zero", dev), 0);
+    Options o;
+    cli_defaults(&o);
+    cr_assert_null(loadjob_reload(fifo, &o, err, sizeof err));
+    cr_expect_str_eq(err, "not a regular file (a FIFO)");
+    cr_assert_null(loadjob_reload(dev, &o, err, sizeof err));
+    cr_expect_str_eq(err, "not a regular file (a character device)");
+    cr_assert_null(loadjob_reload(dir, &o, err, sizeof err));
+    cr_expect_str_eq(err, "not a regular file (a folder)");
+    cr_assert_null(loadjob_reload("assets/no-such.obj", &o, err, sizeof err));
+    cr_expect(strstr(err, "cannot open"), "%s", err);
+    /* the O key's job still reads a FIFO (its writer waited for in poll) */
+    LoadJob *j = loadjob_start(fifo, &o, err, sizeof err);
+    cr_assert(j, "%s", err);
+    loadjob_abandon(j);
+    j = loadjob_reload("assets/cube.obj", &o, err, sizeof err);
+    cr_assert(j, "%s", err);
+    cr_assert(wait_job(j));
+    Scene part;
+    cr_assert_eq(loadjob_finish(j, &part, err, sizeof err), 0, "%s", err);
+    cr_expect_eq(part.nfaces, 6);
+    scene_free(&part);
+    MeshLoadOpts lo = { .strict = 0, .quiet = 1, .regular_only = 1 };
+    Mesh m;
+    cr_assert_eq(mesh_load_ex(&m, fifo, &lo, err, sizeof err), -1);
+    cr_expect(strstr(err, "not a regular file (a FIFO)"), "%s", err);
+    unlink(fifo);
+    unlink(dev);
+    rmdir(dir);
+}

@@ -420,6 +420,134 @@ Test(surface, a_missing_texture_warns_once_by_name_and_shows_the_base_colour)
     rm_tmpdir();
 }
 
+/* ==== images that cannot be had (issue 28) ==== */
+
+static char *base64(const unsigned char *b, size_t n)
+{
+    static const char a[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    char *o = malloc(4 * (n + 2) / 3 + 4), *q = o;
+    for (size_t i = 0; i < n; i += 3) {
+        unsigned v = (unsigned)b[i] << 16 | (i + 1 < n ? (unsigned)b[i + 1] << 8 : 0) | (i + 2 < n ? b[i + 2] : 0);
+        *q++ = a[v >> 18];
+        *q++ = a[(v >> 12) & 63];
+        *q++ = i + 1 < n ? a[(v >> 6) & 63] : '=';
+        *q++ = i + 2 < n ? a[v & 63] : '=';
+    }
+    *q = 0;
+    return o;
+}
+
+/* A 4 x 4 PNG of one colour, as a data: URI. */
+static char *png_uri(uint8_t r, uint8_t g, uint8_t b)
+{
+    uint8_t px[4 * 4 * 4];
+    for (int i = 0; i < 16; i++) {
+        px[4 * i] = r;
+        px[4 * i + 1] = g;
+        px[4 * i + 2] = b;
+        px[4 * i + 3] = 255;
+    }
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    img.width = img.height = 4;
+    img.format = PNG_FORMAT_RGBA;
+    unsigned char buf[512];
+    png_alloc_size_t n = sizeof buf;
+    cr_assert(png_image_write_to_memory(&img, buf, &n, 0, px, 0, NULL));
+    char *b64 = base64(buf, n), *uri = malloc(strlen(b64) + 32);
+    sprintf(uri, "data:image/png;base64,%s", b64);
+    free(b64);
+    return uri;
+}
+
+/* Two triangles side by side (x -1..0 and 0..1, facing the viewer), each
+ * with a material of its own whose base-colour image is the URI given. */
+static void write_two_image_gltf(const char *name, const char *uri0, const char *uri1)
+{
+    float geo[18 + 12] = { -1, -1, 0, 0, -1, 0, -1, 1, 0, 0, -1, 0, 1, -1, 0, 0, 1, 0,
+                           0, 1, 1, 1, 0, 0, 0, 1, 1, 1, 0, 0 };
+    char *buf = base64((const unsigned char *)geo, sizeof geo);
+    size_t n = strlen(buf) + strlen(uri0) + strlen(uri1) + 2048;
+    char *json = malloc(n);
+    snprintf(json, n,
+             "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+             "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":72},"
+             "{\"buffer\":0,\"byteOffset\":72,\"byteLength\":48}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+             "\"min\":[-1,-1,0],\"max\":[0,1,0]},"
+             "{\"bufferView\":0,\"byteOffset\":36,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+             "\"min\":[0,-1,0],\"max\":[1,1,0]},"
+             "{\"bufferView\":1,\"componentType\":5126,\"count\":3,\"type\":\"VEC2\"},"
+             "{\"bufferView\":1,\"byteOffset\":24,\"componentType\":5126,\"count\":3,\"type\":\"VEC2\"}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":2},\"material\":0,\"mode\":4},"
+             "{\"attributes\":{\"POSITION\":1,\"TEXCOORD_0\":3},\"material\":1,\"mode\":4}]}],"
+             "\"materials\":[{\"name\":\"m0\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}},"
+             "{\"name\":\"m1\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":1}}}],"
+             "\"samplers\":[{}],\"textures\":[{\"sampler\":0,\"source\":0},{\"sampler\":0,\"source\":1}],"
+             "\"images\":[{\"uri\":\"%s\"},{\"uri\":\"%s\"}]}",
+             sizeof geo, buf, uri0, uri1);
+    write_text(name, json);
+    free(json);
+    free(buf);
+}
+
+#ifdef ZV_ASSIMP
+Test(surface, a_gltf_with_one_broken_base64_image_draws_untextured_there_with_one_warning)
+{
+    make_tmpdir();
+    char *red = png_uri(230, 20, 20), *green = png_uri(20, 230, 20);
+    /* the second image cut: its base64 no longer a multiple of 4 characters */
+    green[strlen(green) - 7] = 0;
+    write_two_image_gltf("two.gltf", red, green);
+    Scene s;
+    load(&s, "two.gltf", 0, 0);
+    const Mesh *m = &s.meshes[0];
+    cr_assert_eq(m->ntex, 2);
+    cr_expect_eq(m->tex[0].state, MTEX_OK);
+    cr_expect_eq(m->tex[1].state, MTEX_FAILED);
+    cr_expect_eq(m->info.tex_failed, 1);
+    cr_expect_str_eq(m->info.first_tex_failed,
+                     "texture two.gltf *1: its data: URI is not base64; its faces show their base colour");
+    /* left: the red image; right: the base colour (glTF's default white) */
+    Pipeline p;
+    render(&p, &s, 100, 100, SHADE_LAMBERT);
+    const uint8_t *l = px_at(&p, 25, 70), *r = px_at(&p, 62, 70);
+    cr_expect(l[0] > 200 && l[1] < 60, "left %d %d %d", l[0], l[1], l[2]);
+    cr_expect(r[0] > 200 && r[1] > 200 && r[2] > 200, "right %d %d %d", r[0], r[1], r[2]);
+    pipeline_free(&p);
+    scene_free(&s);
+    /* an empty data: URI: the model loads, the material's image is named */
+    write_two_image_gltf("empty.gltf", red, "data:");
+    load(&s, "empty.gltf", 0, 0);
+    cr_expect_eq(s.meshes[0].info.tex_failed, 1);
+    cr_expect_str_eq(s.meshes[0].info.first_tex_failed,
+                     "texture empty.gltf material 'm1': its image is empty (a data: URI without data?); its faces "
+                     "show their base colour");
+    scene_free(&s);
+    free(red);
+    free(green);
+    rm_tmpdir();
+}
+#endif
+
+Test(surface, map_kd_dot_says_it_names_a_folder)
+{
+    make_tmpdir();
+    write_text("lib.mtl", "newmtl m\nKd 1 0 0\nmap_Kd .\n");
+    write_text("q.obj", quad_obj);
+    Scene s;
+    load(&s, "q.obj", 0, 0);
+    const MeshInfo *info = &s.meshes[0].info;
+    cr_expect_eq(info->tex_failed, 1);
+    cr_expect(strstr(info->first_tex_failed, "/.: a folder, not an image; its faces show their base colour") != NULL,
+              "%s", info->first_tex_failed);
+    cr_expect_null(strchr(info->first_tex_failed, '\n'));
+    scene_free(&s);
+    rm_tmpdir();
+}
+
 /* A model of assimp's test corpus: its textures decoded, and the
  * picture with them differs from the one without. */
 static void assimp_model(const char *rel, uint32_t ntex)

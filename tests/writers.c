@@ -1,10 +1,13 @@
 /* writers.c: see writers.h. Written for the tests, not for speed. */
 #define _DEFAULT_SOURCE
 
+#include <setjmp.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <jpeglib.h>
+#include <zlib.h>
 
 #include "writers.h"
 
@@ -239,4 +242,186 @@ int w_save(const char *path, const char *buf, size_t len)
         return -1;
     size_t n = fwrite(buf, 1, len, f);
     return fclose(f) == 0 && n == len ? 0 : -1;
+}
+
+/* ==== images ==== */
+
+typedef struct {
+    struct jpeg_error_mgr mgr;
+    jmp_buf               jmp;
+} WjErr;
+
+static void wj_fail(j_common_ptr c) { longjmp(((WjErr *)c->err)->jmp, 1); }
+
+char *w_jpeg(const uint8_t *px, int w, int h, int comps, const char *colour, int adobe, int progressive,
+             size_t *len)
+{
+    struct jpeg_compress_struct c;
+    WjErr e;
+    unsigned char *buf = NULL;
+    unsigned long n = 0;
+    c.err = jpeg_std_error(&e.mgr);
+    e.mgr.error_exit = wj_fail;
+    if (setjmp(e.jmp)) {
+        jpeg_destroy_compress(&c);
+        free(buf);
+        return NULL;
+    }
+    jpeg_create_compress(&c);
+    jpeg_mem_dest(&c, &buf, &n);
+    c.image_width = (JDIMENSION)w;
+    c.image_height = (JDIMENSION)h;
+    c.input_components = comps;
+    c.in_color_space = comps == 1 ? JCS_GRAYSCALE : comps == 4 ? JCS_CMYK : JCS_RGB;
+    jpeg_set_defaults(&c);
+    jpeg_set_quality(&c, 100, TRUE);
+    J_COLOR_SPACE cs = strcmp(colour, "grey") == 0   ? JCS_GRAYSCALE
+                     : strcmp(colour, "rgb") == 0    ? JCS_RGB
+                     : strcmp(colour, "cmyk") == 0   ? JCS_CMYK
+                     : strcmp(colour, "ycck") == 0   ? JCS_YCCK
+                                                     : JCS_YCbCr;
+    jpeg_set_colorspace(&c, cs);
+    c.write_Adobe_marker = adobe ? TRUE : FALSE;
+    /* full-size chroma: pure colours come back within rounding */
+    for (int i = 0; i < c.num_components; i++)
+        c.comp_info[i].h_samp_factor = c.comp_info[i].v_samp_factor = 1;
+    if (progressive)
+        jpeg_simple_progression(&c);
+    jpeg_start_compress(&c, TRUE);
+    /* libjpeg stores CMYK as it is given; Adobe's files hold it inverted */
+    size_t row = (size_t)w * comps;
+    uint8_t *tmp = malloc(row);
+    while (tmp && c.next_scanline < c.image_height) {
+        const uint8_t *src = px + (size_t)c.next_scanline * row;
+        for (size_t i = 0; i < row; i++)
+            tmp[i] = comps == 4 && adobe ? (uint8_t)(255 - src[i]) : src[i];
+        JSAMPROW r = tmp;
+        jpeg_write_scanlines(&c, &r, 1);
+    }
+    free(tmp);
+    jpeg_finish_compress(&c);
+    jpeg_destroy_compress(&c);
+    *len = n;
+    return (char *)buf;
+}
+
+int w_jpeg_set_size(char *jpg, size_t len, int w, int h)
+{
+    uint8_t *b = (uint8_t *)jpg;
+    for (size_t i = 2; i + 9 < len;) {
+        if (b[i] != 0xFF)
+            return -1;
+        int m = b[i + 1];
+        size_t seg = (size_t)b[i + 2] << 8 | b[i + 3];
+        if (m >= 0xC0 && m <= 0xCF && m != 0xC4 && m != 0xC8 && m != 0xCC) {
+            b[i + 5] = (uint8_t)(h >> 8);
+            b[i + 6] = (uint8_t)h;
+            b[i + 7] = (uint8_t)(w >> 8);
+            b[i + 8] = (uint8_t)w;
+            return 0;
+        }
+        i += 2 + seg;
+    }
+    return -1;
+}
+
+/* The end of the entropy-coded data that starts at i: the next marker
+ * that is neither a stuffed 0xFF00 nor a restart. */
+static size_t scan_end(const uint8_t *b, size_t len, size_t i)
+{
+    while (i + 1 < len && !(b[i] == 0xFF && b[i + 1] != 0 && !(b[i + 1] >= 0xD0 && b[i + 1] <= 0xD7)))
+        i++;
+    return i;
+}
+
+char *w_jpeg_repeat_last_scan(const char *jpg, size_t len, int n, size_t *len_out)
+{
+    const uint8_t *b = (const uint8_t *)jpg;
+    size_t i = 2, piece = 0, sos_end = 0, first_table = 0;
+    int tables = 0;
+    /* the last run of DHT/DQT segments and the SOS + data after it */
+    while (i + 4 <= len && b[i] == 0xFF && b[i + 1] != 0xD9) {
+        int m = b[i + 1];
+        size_t seg = (size_t)b[i + 2] << 8 | b[i + 3];
+        if (m == 0xC4 || m == 0xDB) {
+            if (!tables)
+                first_table = i;
+            tables = 1;
+            i += 2 + seg;
+        } else if (m == 0xDA) {
+            piece = tables ? first_table : i;
+            tables = 0;
+            sos_end = scan_end(b, len, i + 2 + seg);
+            i = sos_end;
+        } else {
+            tables = 0;
+            i += 2 + seg;
+        }
+    }
+    if (!sos_end || i + 2 > len)
+        return NULL;
+    size_t one = sos_end - piece, total = len + (size_t)n * one;
+    char *out = malloc(total);
+    if (!out)
+        return NULL;
+    memcpy(out, jpg, sos_end);
+    for (int k = 0; k < n; k++)
+        memcpy(out + sos_end + (size_t)k * one, jpg + piece, one);
+    memcpy(out + sos_end + (size_t)n * one, jpg + sos_end, len - sos_end);
+    *len_out = total;
+    return out;
+}
+
+static void put_chunk(FILE *f, const char *type, const uint8_t *data, uint32_t n)
+{
+    put_u32be(f, n);
+    uint8_t head[4];
+    memcpy(head, type, 4);
+    fwrite(head, 1, 4, f);
+    if (n)
+        fwrite(data, 1, n, f);
+    uLong crc = crc32(crc32(0, head, 4), data, n);
+    put_u32be(f, (uint32_t)crc);
+}
+
+char *w_png_claiming(int w, int h, size_t *len)
+{
+    char *buf;
+    FILE *f = open_memstream(&buf, len);
+    if (!f)
+        return NULL;
+    fwrite("\x89PNG\r\n\x1a\n", 1, 8, f);
+    uint8_t ihdr[13] = { (uint8_t)(w >> 24), (uint8_t)(w >> 16), (uint8_t)(w >> 8), (uint8_t)w,
+                         (uint8_t)(h >> 24), (uint8_t)(h >> 16), (uint8_t)(h >> 8), (uint8_t)h,
+                         8, 2, 0, 0, 0 };
+    put_chunk(f, "IHDR", ihdr, 13);
+    uint8_t zero = 0, z[16];
+    uLongf zn = sizeof z;
+    compress(z, &zn, &zero, 1);
+    put_chunk(f, "IDAT", z, (uint32_t)zn);
+    put_chunk(f, "IEND", NULL, 0);
+    return finish(f, &buf, len);
+}
+
+char *w_tga_rle(int w, int h, int top, size_t *len)
+{
+    size_t px = (size_t)w * h, packets = (px + 127) / 128;
+    uint8_t *b = malloc(18 + 2 * packets);
+    if (!b)
+        return NULL;
+    memset(b, 0, 18);
+    b[2] = 11;                                  /* grey, run-length encoded */
+    b[12] = (uint8_t)w;
+    b[13] = (uint8_t)(w >> 8);
+    b[14] = (uint8_t)h;
+    b[15] = (uint8_t)(h >> 8);
+    b[16] = 8;
+    b[17] = top ? 0x20 : 0;
+    for (size_t k = 0; k < packets; k++) {
+        size_t run = px - 128 * k < 128 ? px - 128 * k : 128;
+        b[18 + 2 * k] = (uint8_t)(0x80 | (run - 1));
+        b[18 + 2 * k + 1] = (uint8_t)(k * 37);
+    }
+    *len = 18 + 2 * packets;
+    return (char *)b;
 }

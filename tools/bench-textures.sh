@@ -6,7 +6,7 @@
 # geometry, faces in one colour each), medians over VIEWS views on one
 # core. Then the texels' memory as --info reports it, and a 16k x 16k
 # image: how long one picture takes with it (JPEG, decoded at a quarter
-# of its size; PNG, decoded whole and halved), against the viewer, which
+# of its size; PNG, halved as its rows are decoded), against the viewer, which
 # draws its first picture before decoding such an image.
 set -u
 ZV=${ZVIEW:-./zview}

@@ -28,8 +28,9 @@ int frame_report(const Pipeline *p, double out_ms, ReportLine *lines, int max)
          p->sp.culled_back, p->sp.culled_empty, p->sp.npolys);
     if (p->sp.points_in || p->sp.edges_in)
         LINE("points:", "%u on screen, %u squares after keeping the nearest per sample box; "
-                        "%u segments and edges, %u quads",
-             p->sp.points_in, p->sp.points_drawn, p->sp.edges_in, p->sp.edges_drawn);
+                        "%u segments and edges, %u quads, %u as samples in %u squares",
+             p->sp.points_in, p->sp.points_drawn, p->sp.edges_in, p->sp.edges_drawn, p->sp.edges_sampled,
+             p->sp.edge_squares);
     LINE("pyramid:", "%llu polygons culled, %llu octree nodes visited, %llu culled",
          (unsigned long long)st->polys_culled, (unsigned long long)st->nodes_visited,
          (unsigned long long)st->nodes_culled);

@@ -159,6 +159,9 @@ static const struct aiTexture *embedded(const struct aiScene *sc, const char *pa
 static int32_t embedded_texture(Walk *w, const struct aiTexture *t, const char *name, TexWrap wu, TexWrap wv,
                                 int *oom)
 {
+    size_t bl = sizeof MESH_BROKEN_IMAGE - 1;
+    if (t->mHeight == 0 && t->mWidth == bl && !memcmp(t->pcData, MESH_BROKEN_IMAGE, bl))
+        return mb_texture_missing(&w->b, name, "its data: URI is not base64", wu, wv, oom);
     if (t->mHeight == 0)
         return mb_texture(&w->b, name, NULL, t->pcData, t->mWidth, wu, wv, oom);
     if (t->mWidth > TEX_MAX_SIDE || t->mHeight > TEX_MAX_SIDE)
@@ -219,10 +222,19 @@ static int material_texture(Walk *w, const struct aiMaterial *mat, Material *mt)
         if (ai()->aiGetMaterialTexture(mat, type, 0, &path, NULL, NULL, NULL, NULL, mode, NULL) != aiReturn_SUCCESS)
             return 0;
     }
-    if (!path.length)
-        return 0;
     TexWrap wu = wrap_of(mode[0]), wv = wrap_of(mode[1]);
     int oom = 0;
+    if (!path.length) {
+        /* a texture whose image is nothing (glTF's "data:" with no data) */
+        struct aiString mn;
+        const char *model = w->c->err.name, *base = strrchr(model, '/');
+        int named = ai()->aiGetMaterialString(mat, AI_MATKEY_NAME, &mn) == aiReturn_SUCCESS && mn.length;
+        char name[300];
+        snprintf(name, sizeof name, "%.150s %s%.100s%s", base ? base + 1 : model, named ? "material '" : "a material",
+                 named ? mn.data : "", named ? "'" : "");
+        mt->tex = mb_texture_missing(&w->b, name, "its image is empty (a data: URI without data?)", wu, wv, &oom);
+        return oom ? -1 : 0;
+    }
     const struct aiTexture *emb = embedded(w->sc, path.data);
     if (emb) {
         char name[300];
@@ -675,6 +687,54 @@ static void ai_name_format(MeshCtx *c, const struct aiScene *sc)
              n ? imp : "told by content");
 }
 
+/* A file's bytes (a glTF's JSON, read again to be mended). */
+static char *read_whole(const char *path, size_t *len_out)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = NULL;
+    long n = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+    if (n >= 0 && fseek(f, 0, SEEK_SET) == 0 && (buf = malloc((size_t)n + 1)) &&
+        fread(buf, 1, (size_t)n, f) != (size_t)n) {
+        free(buf);
+        buf = NULL;
+    }
+    fclose(f);
+    *len_out = (size_t)n;
+    return buf;
+}
+
+/* assimp refused a glTF for an image whose data: URI is not base64
+ * (its message says so): the import again with each such image replaced
+ * (datauri.c), so the model draws and each is one warning
+ * (embedded_texture). The model at path, or in memory (data, len). NULL
+ * when that is not the case or the model fails still (and then
+ * assimp's message is the second import's). */
+static const struct aiScene *import_mended(MeshCtx *c, unsigned flags, const char *path, const char *data,
+                                           size_t len)
+{
+    const char *why = ai()->aiGetErrorString();
+    if (!why || !strstr(why, "base64") || !c->hint || strcmp(c->hint, "gltf"))
+        return NULL;
+    char *own = data ? NULL : read_whole(path, &len);
+    if (!data && !own)
+        return NULL;
+    size_t ml;
+    int n;
+    char *mended = mesh_gltf_mend_images(data ? data : own, len, &ml, &n);
+    free(own);
+    if (!mended)
+        return NULL;
+    AiIo io;
+    ai_io_init(&io, &c->err, path, path ? NULL : mended, ml, "gltf");
+    io.model_data = mended;         /* served under the model's own path */
+    io.model_len = ml;
+    const struct aiScene *sc = ai()->aiImportFileEx(path ? path : io.name, flags, &io.fio);
+    free(mended);                   /* assimp has read it into its own */
+    return sc;
+}
+
 static int no_library(MeshCtx *c)
 {
     return me_fail(&c->err, "the assimp library (%s) cannot be opened", ZV_ASSIMP_SONAME);
@@ -688,6 +748,8 @@ static int ai_parse_path(MeshCtx *c, const char *path)
     AiIo io;
     ai_io_init(&io, &c->err, path, NULL, 0, NULL);
     const struct aiScene *sc = ai()->aiImportFileEx(path, ai_flags(c->hint), &io.fio);
+    if (!sc)
+        sc = import_mended(c, ai_flags(c->hint), path, NULL, 0);
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);
@@ -755,6 +817,8 @@ static int ai_parse(MeshCtx *c, const char *data, size_t len)
     AiIo io;
     ai_io_init(&io, &c->err, NULL, data, len, hint);
     const struct aiScene *sc = ai()->aiImportFileEx(io.name, ai_flags(hint), &io.fio);
+    if (!sc)
+        sc = import_mended(c, ai_flags(hint), NULL, data, len);
     if (!sc)
         return import_failed(c);
     int r = from_scene(c, sc);

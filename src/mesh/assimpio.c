@@ -4,7 +4,9 @@
  * open goes through mesh_ref_open, beneath the model's folder, and each
  * refusal is a warning naming the reference. A model in memory (standard
  * input, a FIFO's bytes) is served under one name, and every other file
- * it names is refused: it has no folder. Writing is never granted. */
+ * it names is refused: it has no folder. A model file whose bytes are
+ * given (a glTF mended: datauri.c) is served from them under its own
+ * path, the rest beneath its folder. Writing is never granted. */
 #define _DEFAULT_SOURCE
 
 #include <errno.h>
@@ -103,6 +105,15 @@ static struct aiFile *io_open(struct aiFileIO *fio, const char *name, const char
     AiIo *io = (AiIo *)fio->UserData;
     if (!name || !mode || strpbrk(mode, "wa+"))
         return NULL;
+    if (io->model_data && io->model && !strcmp(name, io->model)) {
+        /* the model file's own bytes, mended (datauri.c) */
+        struct aiFile *af = io_new(io, NULL);
+        if (af) {
+            ((IoFile *)af->UserData)->data = io->model_data;
+            ((IoFile *)af->UserData)->len = io->model_len;
+        }
+        return af;
+    }
     if (io->data && !strcmp(name, io->name))
         return io_new(io, NULL);
     char why[200];

@@ -18,6 +18,8 @@ typedef struct {
     const char     *data;       /* a model in memory, or NULL */
     size_t          len;
     char            name[40];   /* the buffer's name for assimp */
+    const char     *model_data; /* served for the model's own path when set (a mended glTF) */
+    size_t          model_len;
     unsigned        warned;
 } AiIo;
 

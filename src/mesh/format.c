@@ -545,7 +545,7 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
 
     MeshFile f;
     char msg[256];
-    if (mf_open(&f, path, 0, msg, sizeof msg))
+    if (mf_open(&f, path, opt && opt->regular_only ? MF_REGULAR_ONLY : 0, msg, sizeof msg))
         return me_fail(&c.err, "%s", msg);
     if (opt && opt->progress) {
         __atomic_store_n(&opt->progress->total, f.regular ? f.size : 0, __ATOMIC_RELAXED);

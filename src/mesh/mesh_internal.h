@@ -223,6 +223,13 @@ int32_t mb_texture_missing(MeshBuild *b, const char *name, const char *why, TexW
                            int *oom);
 /* A material's texture fields, none set. */
 void mb_material_no_texture(Material *mt);
+
+/* datauri.c: glTF JSON with every image data: URI that is not base64
+ * replaced by one whose bytes are MESH_BROKEN_IMAGE (assimp refuses a
+ * whole model for one such image). A malloc'd copy and its length, and
+ * how many were replaced; NULL when none was (or out of memory). */
+#define MESH_BROKEN_IMAGE "zview: not base64"
+char *mesh_gltf_mend_images(const char *json, size_t len, size_t *len_out, int *n_out);
 /* Free the textures and texture coordinates of m. */
 void mesh_free_textures(Mesh *m);
 

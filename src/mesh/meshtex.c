@@ -261,6 +261,16 @@ static int32_t texture_slot(MeshBuild *b, const char *name, TexWrap wrap_u, TexW
     return (int32_t)(t - b->m->tex);
 }
 
+/* A reference whose last name is "." or ".." (or nothing: "dir/")
+ * names a folder, whatever is there: said so rather than whatever
+ * opening it would say ("map_Kd ." was "a symbolic link leads out"). */
+static int names_a_folder(const char *path)
+{
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    return !*base || !strcmp(base, ".") || !strcmp(base, "..");
+}
+
 int32_t mb_texture(MeshBuild *b, const char *name, const char *path, const void *data, size_t len,
                    TexWrap wrap_u, TexWrap wrap_v, int *oom)
 {
@@ -268,6 +278,11 @@ int32_t mb_texture(MeshBuild *b, const char *name, const char *path, const void 
     int32_t i = texture_slot(b, name, wrap_u, wrap_v, oom, &t);
     if (!t)
         return i;      /* there already, textures off, or out of memory */
+    if (path && names_a_folder(path)) {
+        texture_failed(b, name, "a folder, not an image");
+        return i;
+    }
+
     void *bytes = NULL;
     char why[160];
     if (path) {

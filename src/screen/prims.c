@@ -19,7 +19,7 @@
  * the one with the smaller (depth, id) wins; so of all the points in
  * one box only that one can show anywhere, and keeping only it gives
  * exactly the buffers of drawing them all (tests check this against
- * PrimStyle.all_points). One pass keeps, per box, the least
+ * PrimStyle.all_prims). One pass keeps, per box, the least
  * (depth, id) packed in a 64-bit key that orders as the pair does; the
  * boxes that got a point become squares. The work is one transform and
  * one compare per point, and the polygons are bounded by the screen
@@ -37,7 +37,19 @@
  * that is constant across the width and takes the segment's depths
  * (extended linearly to E0 and E1) at its ends. Wireframe edges, and
  * the problem edges of --problems (Scene.marks), are the same with their
- * depths less PRIM_WIRE_BIAS. */
+ * depths less PRIM_WIRE_BIAS.
+ *
+ * Many quads on few samples (a wireframe's copies in a small picture:
+ * --grid 8 of a 22k-quad model at 8x6 made 22.9M of them, and every
+ * algorithm drew them all) are reduced as points are: a quad whose
+ * sample box is small, and every quad past one per SAMPLES_PER_QUAD
+ * samples of the picture, is given as its samples, each with the depth
+ * plane_at() gives the quad there, and per sample only the least
+ * (depth, id) is kept. Each sample that got one becomes a square of one
+ * sample whose flat plane gives exactly that depth: the buffers of
+ * drawing every quad whole (tests check this against
+ * PrimStyle.all_prims), with at most a square per sample and a quad per
+ * SAMPLES_PER_QUAD samples for the algorithms. */
 
 #define _DEFAULT_SOURCE
 #include <math.h>
@@ -62,6 +74,9 @@ struct PrimWork {
     uint64_t *box[SCREEN_MAX_THREADS];      /* per thread: the best key per sample box */
     uint32_t  cap[SCREEN_MAX_THREADS];
     int       ncpus;
+    uint64_t *keys;         /* the least key per sample of the quads given as samples:
+                               all empty (UINT64_MAX) between frames */
+    uint32_t  cap_keys;
 };
 
 void prims_free(PrimWork **work)
@@ -70,6 +85,7 @@ void prims_free(PrimWork **work)
         return;
     for (int t = 0; t < SCREEN_MAX_THREADS; t++)
         free((*work)->box[t]);
+    free((*work)->keys);
     free(*work);
     *work = NULL;
 }
@@ -115,10 +131,14 @@ static inline void pproj_point(const PProj *p, double x, double y, double z, dou
 }
 
 /* Round to the nearest 1/256 pixel, halves up (the front end's rule);
- * callers keep v within a few screens of the image. */
+ * callers keep v within a few screens of the image. The floor by hand:
+ * without SSE4.1 floor() is a call, and a line makes six of these (the
+ * truncation is exact, and one below when it went up). */
 static inline int32_t snap(double v)
 {
-    return (int32_t)floor(v * SUBPIX + 0.5);
+    double x = v * SUBPIX + 0.5;
+    int64_t t = (int64_t)x;
+    return (int32_t)(t - ((double)t > x));
 }
 
 /* A key that orders as the (depth, id) pair does under hsr_wins: the
@@ -419,7 +439,7 @@ static void *points_thread(void *arg)
     return NULL;
 }
 
-/* Every point as its own square (PrimStyle.all_points). */
+/* Every point as its own square (PrimStyle.all_prims). */
 static int points_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat4 *view, int size, int align)
 {
     for (int oi = 0; oi < s->nobjs; oi++) {
@@ -502,6 +522,24 @@ static int points_reduced(ScreenPolys *sp, const Scene *s, const PProj *pj, cons
 
 /* ==== segments and wireframe edges ==== */
 
+/* A quad whose sample box holds at most this many samples is given as
+ * its samples: it covers at most as many, so it never makes more than
+ * that many squares, and many such quads on one sample make one. */
+#define SMALL_QUAD 4
+/* Whole quads kept at most: one per this many samples of the picture.
+ * Past it the picture is covered many times over, and every further
+ * quad is given as its samples, so that what reaches the algorithms
+ * (and the memory it takes) is bounded by the picture, not by the
+ * copies times the lines. */
+#define SAMPLES_PER_QUAD 4
+
+/* A segment's quad as the algorithms would get it: its snapped corners
+ * and its polygon (first not set). */
+typedef struct {
+    ScreenVert v[4];
+    ScreenPoly p;
+} EdgeQuad;
+
 /* Clip the screen segment a -> b (x, y, depth) to [lo, hi] on axis k:
  * the parameter range [*t0, *t1] shrinks; 0 when nothing is left. */
 static int clip_axis(const double *a, const double *b, int k, double lo, double hi, double *t0, double *t1)
@@ -522,12 +560,12 @@ static int clip_axis(const double *a, const double *b, int k, double lo, double 
     return *t0 <= *t1;
 }
 
-/* Append the quad of view-space segment p -> q, width samples wide,
- * depths less bias. Returns -1 on out of memory. */
-static int emit_edge(ScreenPolys *sp, const PProj *pj, Vec3 p, Vec3 q, int width, double bias, int32_t id)
+/* The quad of view-space segment p -> q, width samples wide, depths
+ * less bias, into *eq. Returns 0 when it reaches no sample box. */
+static int edge_quad(const ScreenPolys *sp, const PProj *pj, Vec3 p, Vec3 q, int width, double bias, int32_t id,
+                     EdgeQuad *eq)
 {
     double a[3] = { p.x, p.y, p.z }, b[3] = { q.x, q.y, q.z };
-    sp->edges_in++;
     if (pj->persp) {
         /* keep eye - z >= near: z <= eye - near */
         double lim = pj->eye - pj->n;
@@ -551,7 +589,13 @@ static int emit_edge(ScreenPolys *sp, const PProj *pj, Vec3 p, Vec3 q, int width
     /* the screen widened past what the quad's half width and ends can
      * reach into it: no sample changes */
     double half = width * 0.5, m = half + 2, t0 = 0, t1 = 1;
-    if (!clip_axis(sa, sb, 0, -m, pj->w + m, &t0, &t1) || !clip_axis(sa, sb, 1, -m, pj->h + m, &t0, &t1))
+    /* both ends inside: clip_axis would leave [0, 1] as it is (its
+     * quotients are <= 0 and >= 1 then, rounding being monotonic), so
+     * its four divisions are skipped */
+    int inside = sa[0] >= -m && sa[0] <= pj->w + m && sb[0] >= -m && sb[0] <= pj->w + m && sa[1] >= -m &&
+                 sa[1] <= pj->h + m && sb[1] >= -m && sb[1] <= pj->h + m;
+    if (!inside &&
+        (!clip_axis(sa, sb, 0, -m, pj->w + m, &t0, &t1) || !clip_axis(sa, sb, 1, -m, pj->h + m, &t0, &t1)))
         return 0;
     double e0[3], e1[3];
     for (int k = 0; k < 3; k++) {
@@ -594,17 +638,12 @@ static int emit_edge(ScreenPolys *sp, const PProj *pj, Vec3 p, Vec3 q, int width
     y1 = y1 > sp->h ? sp->h : y1;
     if (x0 >= x1 || y0 >= y1)
         return 0;
-    if (grow_array((void **)&sp->polys, &sp->cap_polys, sp->npolys + 2, sizeof *sp->polys) ||
-        grow_array((void **)&sp->verts, &sp->cap_verts, sp->nverts + 4, sizeof *sp->verts))
-        return -1;
-    ScreenVert *v = &sp->verts[sp->nverts];
     float zf[4] = { (float)z0, (float)z1, (float)z1, (float)z0 };
     for (int k = 0; k < 4; k++)
-        v[k] = (ScreenVert){ cx[k], cy[k], zf[k] };
+        eq->v[k] = (ScreenVert){ cx[k], cy[k], zf[k] };
     double X0 = (double)E0x / SUBPIX, Y0 = (double)E0y / SUBPIX;
     double zc = z0 + ga * (x0 + 0.5 - X0) + gb * (y0 + 0.5 - Y0);
-    ScreenPoly *poly = &sp->polys[sp->npolys++];
-    poly->first = sp->nverts;
+    ScreenPoly *poly = &eq->p;
     poly->face = id;
     poly->x0 = x0;
     poly->x1 = x1;
@@ -619,18 +658,152 @@ static int emit_edge(ScreenPolys *sp, const PProj *pj, Vec3 p, Vec3 q, int width
     double lo = z0 < z1 ? z0 : z1;
     double mag = fabs(zc) + fabs(ga) * (x1 - x0) + fabs(gb) * (y1 - y0);
     poly->zmin = (float)(lo - (fabs(lo) + mag) * (1.0 / (1 << 20)));
+    return 1;
+}
+
+/* Append the quad as a polygon. Returns -1 on out of memory. */
+static int emit_quad(ScreenPolys *sp, const EdgeQuad *eq)
+{
+    if (grow_array((void **)&sp->polys, &sp->cap_polys, sp->npolys + 2, sizeof *sp->polys) ||
+        grow_array((void **)&sp->verts, &sp->cap_verts, sp->nverts + 4, sizeof *sp->verts))
+        return -1;
+    memcpy(&sp->verts[sp->nverts], eq->v, sizeof eq->v);
+    ScreenPoly *poly = &sp->polys[sp->npolys++];
+    *poly = eq->p;
+    poly->first = sp->nverts;
     sp->nverts += 4;
     sp->edges_drawn++;
     return 0;
 }
 
-static int edges_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat4 *view, const PrimStyle *st)
+/* Can the quad be given as its samples? Each sample's depth becomes a
+ * square's flat plane, which gives back exactly the float plane_at()
+ * gave the quad there, and the samples' (depth, id) pairs are ordered
+ * by point_key as hsr_wins orders them, when every depth is finite and
+ * none is -0 (point_key puts -0 before +0, hsr_wins calls them equal;
+ * a square's plane makes -0 into +0). plane_at() is a sum of zc and
+ * two products: it is finite when the terms' magnitudes are far below
+ * FLT_MAX, and it is -0 only when zc is (a float sum is -0 only when
+ * both terms are). */
+static int quad_samplable(const ScreenPoly *p)
 {
-    for (int kind = PRIM_SEG; kind <= PRIM_MARK; kind++) {
+    double mag = fabs((double)p->zc) + fabs((double)p->a) * (p->x1 - p->x0) + fabs((double)p->b) * (p->y1 - p->y0);
+    return mag < 1e30 && !(p->zc == 0 && signbit(p->zc));
+}
+
+/* The least (depth, id) key per sample of the quads given as their
+ * samples, w x h, all empty (UINT64_MAX) between frames; the box
+ * written since (rows [y0, y1), columns [x0, x1)). */
+typedef struct {
+    uint64_t *key;
+    int32_t   w;
+    int32_t   x0, x1, y0, y1;
+} SampleKeys;
+
+/* Where edge a -> b crosses row j under raster.h's rule: 0 when it
+ * does not count for the row, else *xi, the column edge_setup() would
+ * give a walker started at row j (the same quotient, taken at once). */
+static inline int edge_crossing(const ScreenVert *a, const ScreenVert *b, int32_t j, int32_t *xi)
+{
+    if (a->y == b->y)
+        return 0;
+    const ScreenVert *t = a->y < b->y ? a : b, *m = a->y < b->y ? b : a;
+    if (j < sample_ceil(t->y) || j >= sample_ceil(m->y))
+        return 0;
+    int64_t dy = (int64_t)m->y - t->y, dx = (int64_t)m->x - t->x, den = 256 * dy, rem;
+    int64_t yc = (int64_t)j * 256 + 128;
+    *xi = (int32_t)floordiv64_rem((int64_t)t->x * dy + (yc - t->y) * dx - 128 * dy + den - 1, den, &rem);
+    return 1;
+}
+
+/* Give quad eq's samples to the keys: those it covers by raster.h's
+ * crossing rule, the rule every algorithm draws a polygon by (the
+ * crossings of each row, paired into intervals), each with the depth
+ * plane_at() gives there. The work is a row of the quad's box and a
+ * sample it covers at a time. */
+static void quad_samples(SampleKeys *sk, const EdgeQuad *eq)
+{
+    const ScreenPoly *p = &eq->p;
+    for (int32_t j = p->y0; j < p->y1; j++) {
+        int32_t xs[4];
+        int m = 0;
+        for (int k = 0; k < 4; k++)
+            m += edge_crossing(&eq->v[k], &eq->v[(k + 1) & 3], j, &xs[m]);
+        raster_sort_crossings(xs, m);
+        float zrow = plane_row(p, j);
+        uint64_t *row = sk->key + (size_t)j * (size_t)sk->w;
+        for (int t = 0; t + 1 < m; t += 2) {
+            int32_t i0 = xs[t] > p->x0 ? xs[t] : p->x0, i1 = xs[t + 1] < p->x1 ? xs[t + 1] : p->x1;
+            for (int32_t i = i0; i < i1; i++) {
+                uint64_t k = point_key(plane_at(p, zrow, i), p->face), old = row[i];
+                row[i] = k < old ? k : old;
+            }
+        }
+    }
+    sk->x0 = p->x0 < sk->x0 ? p->x0 : sk->x0;
+    sk->x1 = p->x1 > sk->x1 ? p->x1 : sk->x1;
+    sk->y0 = p->y0 < sk->y0 ? p->y0 : sk->y0;
+    sk->y1 = p->y1 > sk->y1 ? p->y1 : sk->y1;
+}
+
+/* The keys' samples as squares of one sample, each at its least
+ * (depth, id); the keys left empty again, even when out of memory
+ * (-1). */
+static int sample_squares(ScreenPolys *sp, SampleKeys *sk)
+{
+    uint32_t kept = 0;
+    for (int32_t j = sk->y0; j < sk->y1; j++)
+        for (int32_t i = sk->x0; i < sk->x1; i++)
+            kept += sk->key[(size_t)j * (size_t)sk->w + (size_t)i] != UINT64_MAX;
+    int rc = grow_array((void **)&sp->polys, &sp->cap_polys, sp->npolys + kept + 1, sizeof *sp->polys) ||
+             grow_array((void **)&sp->verts, &sp->cap_verts, sp->nverts + 4 * kept, sizeof *sp->verts);
+    for (int32_t j = sk->y0; j < sk->y1; j++) {
+        uint64_t *row = sk->key + (size_t)j * (size_t)sk->w;
+        for (int32_t i = sk->x0; i < sk->x1; i++)
+            if (row[i] != UINT64_MAX) {
+                if (!rc)
+                    emit_square(sp, i, j, 1, key_depth(row[i]), (int32_t)(uint32_t)row[i]);
+                row[i] = UINT64_MAX;
+            }
+    }
+    if (!rc)
+        sp->edge_squares += kept;
+    sk->x0 = sk->y0 = INT32_MAX;
+    sk->x1 = sk->y1 = INT32_MIN;
+    return rc ? -1 : 0;
+}
+
+/* The per-sample keys for n samples, all empty; made on first use (a
+ * frame with no quad given as samples needs none). NULL when out of
+ * memory: the quads are then kept whole, the same picture. */
+static uint64_t *sample_keys(PrimWork *w, uint32_t n)
+{
+    if (w->cap_keys < n) {
+        /* made empty once; sample_squares leaves it so */
+        free(w->keys);
+        w->cap_keys = 0;
+        w->keys = malloc((size_t)n * sizeof *w->keys);
+        if (!w->keys)
+            return NULL;
+        memset(w->keys, 0xff, (size_t)n * sizeof *w->keys);
+        w->cap_keys = n;
+    }
+    return w->keys;
+}
+
+/* Every segment, wireframe edge and problem edge: a quad kept whole, or
+ * given as its samples (see SMALL_QUAD, SAMPLES_PER_QUAD). */
+static int edges_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat4 *view, const PrimStyle *st,
+                     PrimWork *w)
+{
+    uint32_t nkeys = (uint32_t)sp->w * (uint32_t)sp->h, most = nkeys / SAMPLES_PER_QUAD;
+    SampleKeys sk = { NULL, sp->w, INT32_MAX, INT32_MIN, INT32_MAX, INT32_MIN };
+    int rc = 0;
+    for (int kind = PRIM_SEG; kind <= PRIM_MARK && !rc; kind++) {
         if ((kind == PRIM_WIRE && !(st->wire && s->wire_built)) || (kind == PRIM_MARK && !st->marks))
             continue;
         double bias = kind == PRIM_SEG ? 0 : PRIM_WIRE_BIAS;
-        for (int oi = 0; oi < s->nobjs; oi++) {
+        for (int oi = 0; oi < s->nobjs && !rc; oi++) {
             const Object *o = &s->objs[oi];
             uint32_t n = kind == PRIM_SEG ? o->seg_count : kind == PRIM_WIRE ? o->wire_count : o->mark_count;
             if (!n)
@@ -638,24 +811,37 @@ static int edges_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat
             int32_t id0 = kind == PRIM_SEG ? o->seg_id0 : kind == PRIM_WIRE ? o->wire_id0 : o->mark_id0;
             Mat4 mv = m4_mul(*view, object_matrix(o));
             const float *pos = o->mesh->pos;
-            for (uint32_t k = 0; k < n; k++) {
+            for (uint32_t k = 0; k < n && !rc; k++) {
                 uint32_t v[2];
                 scene_edge_verts(s, o, (PrimKind)kind, k, v);
                 const float *a = &pos[3 * (size_t)v[0]], *b = &pos[3 * (size_t)v[1]];
                 Vec3 p = m4_point(&mv, v3(a[0], a[1], a[2])), q = m4_point(&mv, v3(b[0], b[1], b[2]));
-                if (emit_edge(sp, pj, p, q, st->line_width, bias, id0 + (int32_t)k))
-                    return -1;
+                EdgeQuad eq;
+                sp->edges_in++;
+                if (!edge_quad(sp, pj, p, q, st->line_width, bias, id0 + (int32_t)k, &eq))
+                    continue;
+                const ScreenPoly *qp = &eq.p;
+                if (!st->all_prims && quad_samplable(qp) &&
+                    ((qp->x1 - qp->x0) * (qp->y1 - qp->y0) <= SMALL_QUAD || sp->edges_drawn >= most) &&
+                    (sk.key || (sk.key = sample_keys(w, nkeys)))) {
+                    quad_samples(&sk, &eq);
+                    sp->edges_sampled++;
+                } else {
+                    rc = emit_quad(sp, &eq);
+                }
             }
         }
     }
-    return 0;
+    if (sk.x0 < sk.x1 && sample_squares(sp, &sk))
+        rc = -1;
+    return rc;
 }
 
 int screen_prims(ScreenPolys *sp, const Scene *s, const PrimStyle *st, PrimWork **work)
 {
     double t0 = now_ms();
     sp->prim_first = sp->npolys;
-    sp->points_in = sp->points_drawn = sp->edges_in = sp->edges_drawn = 0;
+    sp->points_in = sp->points_drawn = sp->edges_in = sp->edges_drawn = sp->edges_sampled = sp->edge_squares = 0;
     sp->prim_ms = 0;
     if (s->nprims == 0 || sp->w <= 0 || sp->h <= 0)
         return 0;
@@ -677,10 +863,10 @@ int screen_prims(ScreenPolys *sp, const Scene *s, const PrimStyle *st, PrimWork 
     style.line_width = st->line_width < 1 ? 1 : st->line_width > PRIM_SIZE_MAX ? PRIM_SIZE_MAX : st->line_width;
     int rc = 0;
     if (s->npoints)
-        rc = st->all_points ? points_all(sp, s, &pj, &view, size, align)
-                            : points_reduced(sp, s, &pj, &view, size, align, *work);
+        rc = st->all_prims ? points_all(sp, s, &pj, &view, size, align)
+                           : points_reduced(sp, s, &pj, &view, size, align, *work);
     if (!rc)
-        rc = edges_all(sp, s, &pj, &view, &style);
+        rc = edges_all(sp, s, &pj, &view, &style, *work);
     if (grow_array((void **)&sp->polys, &sp->cap_polys, sp->npolys + 1, sizeof *sp->polys))
         rc = -1;
     else

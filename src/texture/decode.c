@@ -1,16 +1,14 @@
-/* decode.c: PNG (libpng's simplified API) and JPEG (libjpeg-turbo) images
- * into RGBA texels, told apart by their first bytes (TGA, which has no
- * magic, when its header makes sense: tga.c); then mipmapped (mip.c).
- * Sizes are checked before anything big is allocated. */
+/* decode.c: the front door of the image decoders: PNG (png.c), JPEG
+ * (jpeg.c) and TGA (tga.c), told apart by their first bytes (TGA, which
+ * has no magic, when its header makes sense); each halves the image to
+ * the size asked as its rows arrive (shrink.c), then the chain is
+ * mipmapped (mip.c). Sizes and the memory a decode will take are
+ * checked before anything big is allocated (the budget, here). */
 
 #include <errno.h>
-#include <png.h>
-#include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-/* jpeglib.h needs FILE and size_t declared first */
-#include <jpeglib.h>
 
 #include "sysmem.h"
 #include "texture.h"
@@ -49,6 +47,63 @@ int texture_check_size(int w, int h, const char *name, uint64_t max_bytes, char 
     return 0;
 }
 
+/* ==== the budget ==== */
+
+void texture_kept_size(int w, int h, int halve, int *kw, int *kh)
+{
+    for (int j = 0; j < halve; j++) {
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+    }
+    *kw = w;
+    *kh = h;
+}
+
+/* why_out: 0 the default budget, 1 the caller's bound, 2 the machine's memory */
+static uint64_t budget_of(int kw, int kh, uint64_t max_bytes, int *why_out)
+{
+    uint64_t b = max_bytes;
+    *why_out = 1;
+    if (!b) {
+        *why_out = 0;
+        b = TEX_BUDGET_FACTOR * (uint64_t)kw * (uint64_t)kh * 4;
+        if (b < TEX_BUDGET_FLOOR)
+            b = TEX_BUDGET_FLOOR;
+    }
+    uint64_t avail = sysmem_available();
+    if (avail && avail < b) {
+        *why_out = 2;
+        b = avail;
+    }
+    return b;
+}
+
+uint64_t texture_budget(int kw, int kh, uint64_t max_bytes)
+{
+    int why;
+    return budget_of(kw, kh, max_bytes, &why);
+}
+
+int texture_check_budget(const char *name, const char *what, int w, int h, int kw, int kh, uint64_t working,
+                         uint64_t max_bytes, char *err, size_t errlen)
+{
+    int why;
+    uint64_t need = working + texture_bytes_for(kw, kh) + texture_lin_bytes_for(kw, kh);
+    uint64_t budget = budget_of(kw, kh, max_bytes, &why);
+    if (need <= budget)
+        return 0;
+    char n[32], b[32];
+    sysmem_format(need, n, sizeof n);
+    sysmem_format(budget, b, sizeof b);
+    if (why == 0)
+        snprintf(err, errlen, "%s: a %dx%d %s needs about %s to decode; the budget for a texture kept at %dx%d is %s",
+                 name, w, h, what, n, kw, kh, b);
+    else
+        snprintf(err, errlen, "%s: a %dx%d %s needs about %s to decode; %s %s", name, w, h, what, n, b,
+                 why == 1 ? "allowed" : "available");
+    return -1;
+}
+
 uint8_t *texture_alloc_levels(Texture *t, int w, int h)
 {
     memset(t, 0, sizeof *t);
@@ -60,109 +115,6 @@ uint8_t *texture_alloc_levels(Texture *t, int w, int h)
     return t->rgba;
 }
 
-/* ==== PNG ==== */
-
-static int decode_png(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
-                      char *err, size_t errlen)
-{
-    png_image img;
-    memset(&img, 0, sizeof img);
-    img.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_memory(&img, data, len)) {
-        snprintf(err, errlen, "%s: %s", name, img.message);
-        return -1;
-    }
-    if (texture_check_size((int)(img.width > INT32_MAX ? 0 : img.width), (int)(img.height > INT32_MAX ? 0 : img.height),
-                   name, max_bytes, err, errlen)) {
-        png_image_free(&img);
-        return -1;
-    }
-    /* 8-bit sRGB RGBA whatever the file holds (palette, grey, 16 bits,
-     * a gAMA chunk): libpng converts */
-    img.format = PNG_FORMAT_RGBA;
-    uint8_t *px = texture_alloc_levels(t, (int)img.width, (int)img.height);
-    if (!px) {
-        png_image_free(&img);
-        snprintf(err, errlen, "%s: out of memory", name);
-        return -1;
-    }
-    if (!png_image_finish_read(&img, NULL, px, 0, NULL)) {
-        snprintf(err, errlen, "%s: %s", name, img.message);
-        texture_free(t);
-        return -1;
-    }
-    return 0;
-}
-
-/* ==== JPEG ==== */
-
-typedef struct {
-    struct jpeg_error_mgr mgr;      /* first: libjpeg's pointer is to it */
-    jmp_buf               jmp;
-    char                  msg[JMSG_LENGTH_MAX];
-} JpegErr;
-
-static void jpeg_on_error(j_common_ptr c)
-{
-    JpegErr *e = (JpegErr *)c->err;
-    c->err->format_message(c, e->msg);
-    longjmp(e->jmp, 1);
-}
-
-/* Warnings (a truncated file, bad data the decoder gets past) are not
- * written to stderr: the image shows what could be read. */
-static void jpeg_quiet(j_common_ptr c, int level)
-{
-    (void)c;
-    (void)level;
-}
-
-/* denom: 1, 2, 4 or 8, the reduction libjpeg decodes at. */
-static int decode_jpeg(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
-                       int denom, char *err, size_t errlen)
-{
-    struct jpeg_decompress_struct c;
-    JpegErr e;
-    memset(t, 0, sizeof *t);
-    c.err = jpeg_std_error(&e.mgr);
-    e.mgr.error_exit = jpeg_on_error;
-    e.mgr.emit_message = jpeg_quiet;
-    e.msg[0] = 0;
-    /* t is written after setjmp only through its pointer: what it holds
-     * when libjpeg gives up is freed below */
-    if (setjmp(e.jmp)) {
-        jpeg_destroy_decompress(&c);
-        texture_free(t);
-        snprintf(err, errlen, "%s: %s", name, e.msg[0] ? e.msg : "not a JPEG image zview can read");
-        return -1;
-    }
-    jpeg_create_decompress(&c);
-    jpeg_mem_src(&c, data, (unsigned long)len);
-    jpeg_read_header(&c, TRUE);
-    c.scale_num = 1;
-    c.scale_denom = (unsigned)denom;
-    jpeg_calc_output_dimensions(&c);
-    if (texture_check_size((int)c.output_width, (int)c.output_height, name, max_bytes, err, errlen)) {
-        jpeg_destroy_decompress(&c);
-        return -1;
-    }
-    c.out_color_space = JCS_EXT_RGBA;       /* libjpeg-turbo: grey and CMYK converted too */
-    jpeg_start_decompress(&c);
-    uint8_t *px = texture_alloc_levels(t, (int)c.output_width, (int)c.output_height);
-    if (!px) {
-        jpeg_destroy_decompress(&c);
-        snprintf(err, errlen, "%s: out of memory", name);
-        return -1;
-    }
-    while (c.output_scanline < c.output_height) {
-        JSAMPROW row = px + (size_t)c.output_scanline * (size_t)t->w * 4;
-        jpeg_read_scanlines(&c, &row, 1);
-    }
-    jpeg_finish_decompress(&c);
-    jpeg_destroy_decompress(&c);
-    return 0;
-}
-
 /* ==== the front door ==== */
 
 static int is_png(const uint8_t *b, size_t len) { return len >= 8 && memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0; }
@@ -170,59 +122,24 @@ static int is_jpeg(const uint8_t *b, size_t len) { return len >= 3 && b[0] == 0x
 
 int texture_peek(const void *data, size_t len, int *w_out, int *h_out)
 {
+    const uint8_t *b = data;
     *w_out = *h_out = 0;
-    if (!is_png(data, len) && !is_jpeg(data, len))
+    if (is_jpeg(data, len))
+        return texture_jpeg_peek(data, len, w_out, h_out);
+    if (!is_png(data, len))
         return texture_tga_probe(data, len, w_out, h_out);
-    if (is_png(data, len)) {
-        png_image img;
-        memset(&img, 0, sizeof img);
-        img.version = PNG_IMAGE_VERSION;
-        if (!png_image_begin_read_from_memory(&img, data, len))
-            return -1;
-        *w_out = img.width > INT32_MAX ? INT32_MAX : (int)img.width;
-        *h_out = img.height > INT32_MAX ? INT32_MAX : (int)img.height;
-        png_image_free(&img);
-        return 0;
-    }
-    if (!is_jpeg(data, len))
+    /* the IHDR chunk, which comes first, read here: libpng would read
+     * every chunk before the pixels, and 250 zTXt chunks of 4 KB that
+     * each inflate to 4 MB took it 40 s */
+    if (len < 24 || memcmp(b + 12, "IHDR", 4) != 0)
         return -1;
-    struct jpeg_decompress_struct c;
-    JpegErr e;
-    c.err = jpeg_std_error(&e.mgr);
-    e.mgr.error_exit = jpeg_on_error;
-    e.mgr.emit_message = jpeg_quiet;
-    if (setjmp(e.jmp)) {
-        jpeg_destroy_decompress(&c);
+    uint32_t w = (uint32_t)b[16] << 24 | (uint32_t)b[17] << 16 | (uint32_t)b[18] << 8 | b[19];
+    uint32_t h = (uint32_t)b[20] << 24 | (uint32_t)b[21] << 16 | (uint32_t)b[22] << 8 | b[23];
+    if (!w || !h)
         return -1;
-    }
-    jpeg_create_decompress(&c);
-    jpeg_mem_src(&c, data, (unsigned long)len);
-    jpeg_read_header(&c, TRUE);
-    *w_out = (int)c.image_width;
-    *h_out = (int)c.image_height;
-    jpeg_destroy_decompress(&c);
+    *w_out = w > INT32_MAX ? INT32_MAX : (int)w;
+    *h_out = h > INT32_MAX ? INT32_MAX : (int)h;
     return 0;
-}
-
-/* Drop the first k levels: level k becomes level 0, the texels moved to
- * the start of the block and the rest given back. */
-static void drop_levels(Texture *t, int k)
-{
-    if (k <= 0 || k >= t->levels)
-        return;
-    size_t off = t->off[k], total = texture_bytes_for(t->w, t->h) / 4;
-    memmove(t->rgba, t->rgba + 4 * off, 4 * (total - off));
-    uint8_t *q = realloc(t->rgba, 4 * (total - off));
-    if (q)
-        t->rgba = q;
-    for (int i = 0; i + k < t->levels; i++) {
-        t->lw[i] = t->lw[i + k];
-        t->lh[i] = t->lh[i + k];
-        t->off[i] = t->off[i + k] - off;
-    }
-    t->levels -= k;
-    t->w = t->lw[0];
-    t->h = t->lh[0];
 }
 
 int texture_decode_fit(Texture *t, const void *data, size_t len, const char *name, uint64_t max_bytes,
@@ -233,33 +150,28 @@ int texture_decode_fit(Texture *t, const void *data, size_t len, const char *nam
     memset(t, 0, sizeof *t);
     if (halved_out)
         *halved_out = 0;
-    if (max_side > 0 && texture_peek(data, len, &w, &h) == 0)
+    if (max_side > 0 && texture_peek(data, len, &w, &h) == 0) {
         while (((w - 1) >> halve) + 1 > max_side || ((h - 1) >> halve) + 1 > max_side)
             halve++;
+        /* a 1 x 1 level halves to itself: no more than the chain has */
+        int kw, kh;
+        while (halve > 0 && (texture_kept_size(w, h, halve - 1, &kw, &kh), kw == 1 && kh == 1))
+            halve--;
+    }
     if (is_png(b, len)) {
-        rc = decode_png(t, data, len, name, max_bytes, err, errlen);
+        rc = texture_decode_png(t, data, len, name, max_bytes, halve, err, errlen);
     } else if (is_jpeg(b, len)) {
-        int j = halve < 3 ? halve : 3;      /* libjpeg reduces by 8 at most */
-        rc = decode_jpeg(t, data, len, name, max_bytes, 1 << j, err, errlen);
-        halve -= j;
-        if (halved_out)
-            *halved_out = j;
+        rc = texture_decode_jpeg(t, data, len, name, max_bytes, halve, err, errlen);
     } else if (texture_tga_probe(data, len, &w, &h) == 0) {
-        rc = texture_decode_tga(t, data, len, name, max_bytes, err, errlen);
+        rc = texture_decode_tga(t, data, len, name, max_bytes, halve, err, errlen);
     } else {
         snprintf(err, errlen, "%s: not a PNG, JPEG or TGA image", name);
         return -1;
     }
     if (rc)
         return -1;
-    texture_build_levels(t);
-    /* what the decoder could not reduce: the finest levels go */
-    if (halve > 0) {
-        int k = halve < t->levels - 1 ? halve : t->levels - 1;
-        drop_levels(t, k);
-        if (halved_out)
-            *halved_out += k;
-    }
+    if (halved_out)
+        *halved_out = halve;
     texture_build_lin(t);
     return 0;
 }

@@ -12,14 +12,22 @@
 
 /* linear_to_srgb by table: th[b] is the least linear value that
  * encodes to b + 1 or more, found by bisection on linear_to_srgb
- * itself, so that a binary search over th gives its very bytes at a
- * fraction of a power's cost (a 16k image's first level is 200 million
- * encodings). */
-typedef struct {
-    float th[255];
-} Encoder;
+ * itself, so that the byte of v is the number of thresholds at or
+ * below it: its very bytes at a fraction of a power's cost (a 16k
+ * image's first level is 200 million encodings). */
+static uint8_t encode_search(const TexEncoder *e, float v)
+{
+    if (!(v > 0))
+        return 0;
+    int b = 0;
+    /* invariant: the answer is in [b, b + step * 2) */
+    for (int step = 128; step; step >>= 1)
+        if (b + step <= 255 && v >= e->th[b + step - 1])
+            b += step;
+    return (uint8_t)b;
+}
 
-static void encoder_init(Encoder *e)
+void texture_encoder_init(TexEncoder *e)
 {
     for (int b = 0; b < 255; b++) {
         float lo = 0, hi = 1;           /* linear_to_srgb(lo) <= b < linear_to_srgb(hi) */
@@ -34,22 +42,30 @@ static void encoder_init(Encoder *e)
         }
         e->th[b] = hi;
     }
+    for (int k = 0; k <= TEX_ENC_BUCKETS; k++)
+        e->start[k] = encode_search(e, (float)k / TEX_ENC_BUCKETS);
 }
 
-static inline uint8_t encode(const Encoder *e, float v)
+/* The same byte as encode_search: the one of v's bucket, then the
+ * thresholds passed from there, one or two at most (a bucket is
+ * narrower than the step between two bytes' thresholds, the darkest
+ * included); down first, for a v * TEX_ENC_BUCKETS rounded up into the
+ * next bucket. */
+static inline uint8_t encode(const TexEncoder *e, float v)
 {
     if (!(v > 0))
         return 0;
-    int b = 0;
-    /* invariant: the answer is in [b, b + step * 2) */
-    for (int step = 128; step; step >>= 1)
-        if (b + step <= 255 && v >= e->th[b + step - 1])
-            b += step;
+    float x = v * TEX_ENC_BUCKETS;
+    int b = e->start[x < TEX_ENC_BUCKETS ? (int)x : TEX_ENC_BUCKETS];
+    while (b > 0 && v < e->th[b - 1])
+        b--;
+    while (b < 255 && v >= e->th[b])
+        b++;
     return (uint8_t)b;
 }
 
 /* Level dst (dw x dh) from level src (sw x sh). */
-static void halve(const Encoder *e, const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh)
+void texture_halve(const TexEncoder *e, const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh)
 {
     const float *lin = srgb_table();
     for (int y = 0; y < dh; y++) {
@@ -82,10 +98,10 @@ void texture_build_levels(Texture *t)
         k++;
     }
     t->levels = k + 1;
-    Encoder e;
-    encoder_init(&e);
+    TexEncoder e;
+    texture_encoder_init(&e);
     for (int i = 1; i < t->levels; i++)
-        halve(&e, t->rgba + 4 * t->off[i - 1], t->lw[i - 1], t->lh[i - 1], t->rgba + 4 * t->off[i], t->lw[i],
+        texture_halve(&e, t->rgba + 4 * t->off[i - 1], t->lw[i - 1], t->lh[i - 1], t->rgba + 4 * t->off[i], t->lw[i],
               t->lh[i]);
 }
 

@@ -6,6 +6,7 @@
  * field is one of these and an unencoded body fits the bytes. */
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "texture_internal.h"
@@ -63,8 +64,72 @@ static inline void pixel(const uint8_t *p, int n, uint8_t *o)
     o[3] = n == 4 ? p[3] : 255;
 }
 
-int texture_decode_tga(Texture *t, const uint8_t *b, size_t len, const char *name, uint64_t max_bytes, char *err,
-                       size_t errlen)
+/* Where the reading stands: the next byte, and within a packet. */
+typedef struct {
+    const uint8_t *p;
+    size_t         left;        /* pixels left in the packet (0: a packet header comes next) */
+    int            run;         /* the packet repeats one pixel (at p) */
+} TgaAt;
+
+/* Up to n pixels into o (RGBA; NULL: skipped), from at; how many there were. */
+static size_t tga_pixels(const TgaHead *th, TgaAt *at, const uint8_t *end, uint8_t *o, size_t n)
+{
+    int bytes = th->bpp / 8, rle = th->type >= 9;
+    size_t i = 0;
+    while (i < n) {
+        if (!rle) {
+            size_t have = (size_t)(end - at->p) / (size_t)bytes, k = n - i < have ? n - i : have;
+            if (o)
+                for (size_t q = 0; q < k; q++)
+                    pixel(at->p + q * bytes, bytes, o + 4 * (i + q));
+            at->p += k * bytes;
+            return i + k;
+        }
+        if (!at->left) {
+            if (at->p >= end)
+                break;
+            at->run = *at->p >> 7;
+            at->left = (size_t)(*at->p++ & 0x7f) + 1;
+        }
+        size_t k = n - i < at->left ? n - i : at->left;
+        if (at->run) {
+            if (at->p + bytes > end) {
+                at->p = end;    /* cut short: nothing more for any row */
+                at->left = 0;
+                break;
+            }
+            if (o)
+                for (size_t q = 0; q < k; q++)
+                    pixel(at->p, bytes, o + 4 * (i + q));
+            if (k == at->left)
+                at->p += bytes;
+        } else {
+            if ((size_t)(end - at->p) < k * (size_t)bytes) {
+                k = (size_t)(end - at->p) / (size_t)bytes;
+                if (o)
+                    for (size_t q = 0; q < k; q++)
+                        pixel(at->p + q * bytes, bytes, o + 4 * (i + q));
+                at->p = end;    /* cut short: nothing more for any row */
+                at->left = 0;
+                return i + k;
+            }
+            if (o)
+                for (size_t q = 0; q < k; q++)
+                    pixel(at->p + q * bytes, bytes, o + 4 * (i + q));
+            at->p += k * bytes;
+        }
+        at->left -= k;
+        i += k;
+    }
+    return i;
+}
+
+/* The rows arrive top first (shrink.c halves them as they come). A file
+ * that stores the bottom row first is read from each row's start: found
+ * by position when unencoded, by a first pass over the packets (one
+ * TgaAt a row) when run-length encoded. */
+int texture_decode_tga(Texture *t, const uint8_t *b, size_t len, const char *name, uint64_t max_bytes, int halve,
+                       char *err, size_t errlen)
 {
     TgaHead th;
     memset(t, 0, sizeof *t);
@@ -72,54 +137,57 @@ int texture_decode_tga(Texture *t, const uint8_t *b, size_t len, const char *nam
         snprintf(err, errlen, "%s: not a TGA image zview can read", name);
         return -1;
     }
-    if (texture_check_size(th.w, th.h, name, max_bytes, err, errlen))
+    if (th.w > TEX_MAX_SIDE || th.h > TEX_MAX_SIDE) {
+        snprintf(err, errlen, "%s: a %dx%d image (1 to %d per side)", name, th.w, th.h, TEX_MAX_SIDE);
         return -1;
-    uint8_t *px = texture_alloc_levels(t, th.w, th.h);
-    if (!px) {
+    }
+    int kw, kh, rle = th.type >= 9, flip = !th.top;
+    texture_kept_size(th.w, th.h, halve, &kw, &kh);
+    uint64_t working = (rle && flip ? (uint64_t)th.h * sizeof(TgaAt) : 0) + texture_shrink_bytes(th.w, th.h, halve);
+    if (texture_check_budget(name, "TGA", th.w, th.h, kw, kh, working, max_bytes, err, errlen))
+        return -1;
+    const uint8_t *body = b + 18 + th.idlen, *end = b + len;
+    TgaAt *rows = NULL;
+    if (rle && flip) {
+        rows = malloc((size_t)th.h * sizeof *rows);
+        if (!rows) {
+            snprintf(err, errlen, "%s: out of memory", name);
+            return -1;
+        }
+        TgaAt at = { body, 0, 0 };
+        for (int y = 0; y < th.h; y++) {
+            rows[y] = at;
+            tga_pixels(&th, &at, end, NULL, (size_t)th.w);
+        }
+    }
+    TexShrink s;
+    if (texture_shrink_begin(&s, t, th.w, th.h, halve)) {
+        free(rows);
         snprintf(err, errlen, "%s: out of memory", name);
         return -1;
     }
-    int n = th.bpp / 8, rle = th.type >= 9;
-    const uint8_t *p = b + 18 + th.idlen, *end = b + len;
-    size_t total = (size_t)th.w * th.h, i = 0;
-    /* invariant: i pixels of the file's order written (rows flipped below) */
-    while (i < total) {
-        size_t run = 1;
-        int packet = 0;
-        if (rle) {
-            if (p >= end)
-                break;
-            packet = *p >> 7;
-            run = (size_t)(*p++ & 0x7f) + 1;
+    size_t rowbytes = (size_t)th.w * (size_t)(th.bpp / 8);
+    TgaAt at = { body, 0, 0 };
+    int black = 0;                              /* rows past the file's end, not yet given */
+    for (int y = 0; y < th.h; y++) {
+        int fy = flip ? th.h - 1 - y : y;       /* the row's place in the file */
+        if (flip && rle)
+            at = rows[fy];
+        else if (flip)
+            at.p = (size_t)(end - body) / rowbytes > (size_t)fy ? body + (size_t)fy * rowbytes : end;
+        if (!at.left && end - at.p < th.bpp / 8 + rle) {
+            black++;
+            continue;
         }
-        if (run > total - i)
-            run = total - i;
-        for (size_t k = 0; k < run; k++, i++) {
-            if (p + n > end)
-                goto short_file;
-            pixel(p, n, px + 4 * i);
-            if (!packet)
-                p += n;
-        }
-        if (packet)
-            p += n;
-    }
-    if (i < total) {
-short_file:
+        texture_shrink_black(&s, black);
+        black = 0;
+        uint8_t *o = texture_shrink_row(&s);
+        size_t got = tga_pixels(&th, &at, end, o, (size_t)th.w);
         /* what the file holds is shown; the rest stays black */
-        memset(px + 4 * i, 0, 4 * (total - i));
+        memset(o + 4 * got, 0, 4 * ((size_t)th.w - got));
+        texture_shrink_push(&s);
     }
-    if (!th.top) {
-        /* bottom-up in the file: row 0 first is the top here */
-        size_t row = (size_t)th.w * 4;
-        for (int y = 0; y < th.h / 2; y++) {
-            uint8_t *a = px + row * (size_t)y, *z = px + row * (size_t)(th.h - 1 - y);
-            for (size_t k = 0; k < row; k++) {
-                uint8_t c = a[k];
-                a[k] = z[k];
-                z[k] = c;
-            }
-        }
-    }
+    free(rows);
+    texture_shrink_finish(&s);
     return 0;
 }

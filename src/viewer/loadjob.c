@@ -14,7 +14,9 @@
  * waited for in poll(2) beside the cancel pipe (opening it as the loader
  * does would wait in open(2) for a writer that may never come, where
  * nothing can cancel it); standard input (the keyboard here) and devices
- * (/dev/urandom, /dev/zero, a terminal) are refused at once. */
+ * (/dev/urandom, /dev/zero, a terminal) are refused at once. A file read
+ * again (--watch) must be a regular file: a FIFO put in its place is
+ * refused too, since waiting for its writer would hold the watch. */
 
 #define _DEFAULT_SOURCE
 
@@ -220,10 +222,18 @@ static void *job_main(void *arg)
     return NULL;
 }
 
+static const char *kind_of(mode_t m)
+{
+    return S_ISFIFO(m) ? "a FIFO" : S_ISCHR(m) ? "a character device" : S_ISBLK(m) ? "a block device"
+         : S_ISSOCK(m) ? "a socket" : S_ISDIR(m) ? "a folder" : "a special file";
+}
+
 /* What the prompt named, looked at without opening it (opening a FIFO
  * or a device can wait, or do things): 0 to go on (a file, a FIFO, or
- * nothing there: the loader's message says so), -1 with a reason. */
-static int loadable(const char *path, struct stat *st, char *err, size_t errlen)
+ * nothing there: the loader's message says so), -1 with a reason. A
+ * reload (regular) takes a regular file only, and nothing there is
+ * said here. */
+static int loadable(const char *path, int regular, struct stat *st, char *err, size_t errlen)
 {
     if (!strcmp(path, "-")) {
         /* the loader's name for standard input, which is the keyboard here
@@ -231,10 +241,15 @@ static int loadable(const char *path, struct stat *st, char *err, size_t errlen)
         snprintf(err, errlen, "standard input is read on the command line only");
         return -1;
     }
-    if (stat(path, st) != 0 || S_ISREG(st->st_mode) || S_ISDIR(st->st_mode) || S_ISFIFO(st->st_mode))
+    if (stat(path, st) != 0) {
+        if (!regular)
+            return 0;
+        snprintf(err, errlen, "cannot open: %s", strerror(errno));
+        return -1;
+    }
+    if (S_ISREG(st->st_mode) || (!regular && (S_ISDIR(st->st_mode) || S_ISFIFO(st->st_mode))))
         return 0;
-    snprintf(err, errlen, "not a file (%s)", S_ISCHR(st->st_mode) ? "a character device"
-             : S_ISBLK(st->st_mode) ? "a block device" : S_ISSOCK(st->st_mode) ? "a socket" : "a special file");
+    snprintf(err, errlen, "not a %sfile (%s)", regular ? "regular " : "", kind_of(st->st_mode));
     return -1;
 }
 
@@ -246,10 +261,10 @@ static int start_thread(LoadJob *j)
     return thread_start(&j->th, job_main, j);
 }
 
-LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t errlen)
+static LoadJob *job_start(const char *path, const Options *o, int regular, char *err, size_t errlen)
 {
     struct stat st;
-    if (loadable(path, &st, err, errlen))
+    if (loadable(path, regular, &st, err, errlen))
         return NULL;
     LoadJob *j = calloc(1, sizeof *j);
     if (!j) {
@@ -285,6 +300,7 @@ LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t err
     j->lo.tex_defer_side = TEX_DEFER_SIDE;  /* big images after the file shows (texjob.c) */
     j->lo.progress = &j->prog;
     j->lo.cancel = &j->stop;
+    j->lo.regular_only = regular;   /* replaced since the look above: refused, not waited on */
     j->flip = o->flip;
     j->points = o->points;
     j->t0 = now_ms();
@@ -296,6 +312,16 @@ LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t err
         return NULL;
     }
     return j;
+}
+
+LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t errlen)
+{
+    return job_start(path, o, 0, err, errlen);
+}
+
+LoadJob *loadjob_reload(const char *path, const Options *o, char *err, size_t errlen)
+{
+    return job_start(path, o, 1, err, errlen);
 }
 
 int loadjob_done(LoadJob *j)

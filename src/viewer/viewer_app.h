@@ -46,6 +46,12 @@ typedef struct LoadJob LoadJob;
 /* Start loading path as the options say (format, strict, flip, points);
  * NULL with a message when no thread can be had. */
 LoadJob *loadjob_start(const char *path, const Options *o, char *err, size_t errlen);
+/* The same for a file read again (--watch): only a regular file, looked
+ * at without opening it; a FIFO, a device, a folder or nothing there is
+ * NULL with the reason ("not a regular file (a FIFO)"), and the loader
+ * opens it without waiting and refuses anything else in its place by
+ * then. */
+LoadJob *loadjob_reload(const char *path, const Options *o, char *err, size_t errlen);
 int      loadjob_done(LoadJob *j);          /* the thread has finished */
 /* Join the thread; 0 with the file's scene part in *part_out (the
  * caller owns it), or -1 with the loader's message. Frees the job. */

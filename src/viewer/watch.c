@@ -12,7 +12,11 @@
  * The viewer polls (every BUSY_TICK_MS): the descriptor is non-blocking
  * and its events are read until none is left. A file whose change is
  * due is read again through a load job (loadjob.c), whose part then
- * takes the old file's place (live.c: app_reload_file). */
+ * takes the old file's place (live.c: app_reload_file). Only a regular
+ * file is read again: a FIFO (or a device, a folder) put in the model's
+ * place is passed over with a note, never opened (a FIFO would wait for
+ * a writer, and the changes after it would wait behind that load); the
+ * watch goes on, and the next file there is read. */
 
 #define _DEFAULT_SOURCE
 
@@ -165,9 +169,11 @@ Reaction app_watch_poll(App *a)
     if (f >= s->nmeshes || a->live.nfiles != s->nmeshes)
         return RE_NONE;
     char err[256];
-    a->job = loadjob_start(a->live.files[f], a->opt, err, sizeof err);
+    a->job = loadjob_reload(a->live.files[f], a->opt, err, sizeof err);
     if (!a->job) {
-        app_note(a, "%s: %s", a->live.files[f], err);
+        /* the short name: a narrow bar would cut a path before the reason */
+        const char *slash = strrchr(a->live.files[f], '/');
+        app_note(a, "%s: %s; still watching", slash && slash[1] ? slash + 1 : a->live.files[f], err);
         return RE_DRAW;
     }
     a->reload = f;

@@ -3,8 +3,9 @@
 # and -o (nothing changes on a sound model; the hole of an open cube is
 # drawn), --check --print (the picture, then the report), and in the
 # viewer the ! key with the verdict in the status bar and the counts in
-# the info panel; --watch reading a file renamed over the old one, and a
-# broken write leaving the last good model with the reason.
+# the info panel; --watch reading a file renamed over the old one, a
+# broken write leaving the last good model with the reason, and a FIFO
+# or a device in the model's place passed over.
 . "$(dirname "$0")/lib.sh"
 Z=$ZVIEW
 check() { if eval "$2"; then ok "$1"; else notok "$1" "$3"; fi; }
@@ -107,6 +108,28 @@ check "... and the last good model stays" 'status 30 | grep -Eq "faces 6 drawn| 
 cube open >"$T/w.obj"
 if wait_for 'faces 5 drawn' && wait_for '1 hole'; then ok "--watch reads a file written in place"; else
     notok "--watch reads a file written in place" "$(status 30)"; fi
+# issue 28: a FIFO in the model's place waited for a writer for ever, and
+# the changes after it waited behind it until Esc. Now it is passed over
+# with a note, never opened; keys still work, and the next file is read.
+rm -f "$T/w.obj"
+mkfifo "$T/w.obj"
+if wait_for 'w\.obj: not a regular file \(a FIFO\); still watching'; then ok "--watch: a FIFO in the model's place is passed over with a note"; else
+    notok "--watch: a FIFO in the model's place is passed over with a note" "$(status 30)"; fi
+tm send-keys -t zv g
+if wait_for '\| scanline '; then ok "... and the viewer takes keys"; else notok "... and the viewer takes keys" "$(status 30)"; fi
+cube >"$T/w.new"
+mv "$T/w.new" "$T/w.obj"
+if wait_for 'faces 6 drawn' && wait_for 'watertight'; then ok "... and the file renamed over it is read"; else
+    notok "... and the file renamed over it is read" "$(status 30)"; fi
+# a link to a device: looked at, never opened (a device can do things on open)
+ln -s /dev/zero "$T/w.new"
+mv "$T/w.new" "$T/w.obj"
+if wait_for 'w\.obj: not a regular file \(a character device\)'; then ok "--watch: a link to /dev/zero is passed over with a note"; else
+    notok "--watch: a link to /dev/zero is passed over with a note" "$(status 30)"; fi
+check "... and the last model stays" 'status 30 | grep -Eq "faces 6 drawn| 6/6 "' "$(status 30)"
+cube open >"$T/w.new"
+mv "$T/w.new" "$T/w.obj"
+if wait_for 'faces 5 drawn'; then ok "... and the file after it is read"; else notok "... and the file after it is read" "$(status 30)"; fi
 tm send-keys -t zv q
 # the shell's prompt once zview has gone (keys typed before that are zview's)
 wait_for 'zv-exit=[0-9]' >/dev/null && prompt_back >/dev/null || notok "the viewer quits" "$(tail -3 "$T/screen")"

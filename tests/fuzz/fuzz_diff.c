@@ -9,7 +9,10 @@
  *  - the hidden surfaces: every algorithm, given the polygons in the
  *    input's order, at the input's SIMD level (or at each), gives the
  *    face-id and depth buffers of the z-buffer on one thread at the
- *    scalar level in the file's order.
+ *    scalar level in the file's order;
+ *  - the reductions: with the points and lines reduced (one square per
+ *    point box, small and surplus quads given as their samples), the
+ *    z-buffer's buffers are those of every point and quad drawn whole.
  * A difference aborts, so libFuzzer keeps the input. FUZZ_DIFF_SAY=1
  * build/replay-diff FILE says what FILE decodes to. */
 
@@ -35,7 +38,7 @@ typedef struct {
  * so no leak. ref: file order, scalar, one thread; at[level]: the
  * input's order and threads at that level. */
 static struct {
-    Front     ref, at[SIMD_LEVELS];
+    Front     ref, at[SIMD_LEVELS], whole;
     FrameBufs ref_fb, fb;
 } bufs;
 
@@ -74,7 +77,8 @@ static const char *polys_differ(const ScreenPolys *a, const ScreenPolys *b)
     if (a->nmap && memcmp(a->map, b->map, a->nmap * sizeof *a->map))
         return "the map from scene polygons";
     if (a->culled_back != b->culled_back || a->culled_empty != b->culled_empty ||
-        a->points_drawn != b->points_drawn || a->edges_drawn != b->edges_drawn)
+        a->points_drawn != b->points_drawn || a->edges_drawn != b->edges_drawn ||
+        a->edges_sampled != b->edges_sampled || a->edge_squares != b->edge_squares)
         return "the statistics";
     return NULL;
 }
@@ -122,6 +126,26 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     HsrInput in = { .sp = &bufs.ref.sp, .scene = &s, .vp = &vp, .simd = SIMD_SCALAR };
     if (tl_render_poisoned(&hsr_zbuffer, 1, &in, &bufs.ref_fb))
         goto out;
+    if (!style.all_prims && s.nprims) {
+        /* every point and quad whole: the same buffers */
+        PrimStyle whole = style;
+        whole.all_prims = 1;
+        in.sp = &bufs.whole.sp;
+        if (front(&bufs.whole, &s, &vp, &whole, SIMD_SCALAR, 1, &file) ||
+            tl_render_poisoned(&hsr_zbuffer, 1, &in, &bufs.fb))
+            goto out;
+        int fx, fy;
+        long n = tl_diff(&bufs.fb, &bufs.ref_fb, &fx, &fy);
+        if (n) {
+            size_t i = (size_t)fy * vp.w + fx;
+            snprintf(msg, sizeof msg,
+                     "the reduced points and lines (%u quads, %u as samples) differ from every one drawn whole "
+                     "in %ld pixels; first (%d,%d): id %d depth %.9g, whole id %d depth %.9g",
+                     bufs.ref.sp.edges_drawn, bufs.ref.sp.edges_sampled, n, fx, fy, bufs.ref_fb.ids[i],
+                     (double)bufs.ref_fb.depth[i], bufs.fb.ids[i], (double)bufs.fb.depth[i]);
+            fail(msg, &vp, 1, &file);
+        }
+    }
     in.sp = &bufs.at[SIMD_SCALAR].sp;
     int lo = run.hsr_simd ? (run.hsr_simd < best ? run.hsr_simd : best) : SIMD_SCALAR;
     int hi = run.hsr_simd ? lo : best;

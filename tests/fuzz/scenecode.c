@@ -364,7 +364,7 @@ int sc_decode_run(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int 
     style->point_size = 1 + (int)(sb & 7);
     style->line_width = 1 + (int)(sb >> 3 & 7);
     style->wire = sb >> 6 & 1;
-    style->all_points = sb >> 7 & 1;
+    style->all_prims = sb >> 7 & 1;
     unsigned pb = rd_u8(&r);
     int nprim = (int)(pb % (SC_MAX_PRIM_MESHES + 1));
     style->pixel = 1 + (int)(pb >> 4 & 3) % 3;
