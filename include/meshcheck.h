@@ -23,6 +23,7 @@
  * slicers set them aside; duplicate faces are counted as such and left
  * out of the crossing test. */
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "mesh.h"
@@ -117,18 +118,120 @@ typedef struct {
 int  meshcheck_run(MeshCheck *mc, const Mesh *m, const CheckOpts *opt, char *err, size_t errlen);
 void meshcheck_free(MeshCheck *mc);
 
-/* Nothing wrong: faces, closed, manifold, agreeing, outward, no
- * degenerate or duplicate faces, no crossing (when tested; a crossing
- * test that stopped on its budget proved none). Several parts and
- * unused vertices are not problems. */
+/* ==== The figures as data ====
+ *
+ * Every figure of CheckCounts but the measures (area, volume, centre,
+ * box) is one row of check_rows (counts.c): how it adds up over objects
+ * and files, its --json member, where the text report says it, whether
+ * it is a problem and the words for that. The sums, the JSON, the text
+ * report, the verdicts and the exit status read the rows, so a new
+ * check is its pass and one row. */
+
+typedef enum {
+    CHECK_U32,                  /* uint32_t count */
+    CHECK_U64,                  /* uint64_t count */
+    CHECK_FLAG,                 /* int, 0 or 1 */
+} CheckType;
+
+/* How the figure of several parts (a file's objects, a scene's files)
+ * comes from theirs. A part without faces adds nothing but its
+ * CHECK_SUM_EVERY figures. */
+typedef enum {
+    CHECK_SUM_ADD,              /* the parts' with faces added */
+    CHECK_SUM_EVERY,            /* every part's added, with faces or not */
+    CHECK_SUM_ALL,              /* a flag: every part with faces has it, and there is one */
+    CHECK_SUM_ANY,              /* a flag: some part has it */
+} CheckSum;
+
+/* When the figure is a problem (not sound, exit status 3). */
+typedef enum {
+    CHECK_FINE,                 /* never: a figure to know */
+    CHECK_BAD_SET,              /* when not zero */
+    CHECK_BAD_ZERO,             /* when zero (no faces: nothing was checked) */
+} CheckBad;
+
+/* The forms a figure is said in. */
+typedef enum {
+    CHECK_SAY_TEXT,             /* its phrase in the text report's line: "4 boundary" */
+    CHECK_SAY_PROBLEM,          /* the verdict (--check, --json, the info panel): "1 hole (4 boundary edges)" */
+    CHECK_SAY_SHORT,            /* the status bar's: "1 hole" */
+} CheckSay;
+
+typedef struct CheckRow CheckRow;
+struct CheckRow {
+    const char *field;          /* the CheckCounts member */
+    size_t      offset, size;   /* offsetof and sizeof that member */
+    CheckType   type;
+    CheckSum    sum;
+    const char *json;           /* the --json member, in row order; NULL: not written */
+    int         json_bool;      /* a count written as a bool: whether there is any */
+    /* The text report: the row's line (1 the first, after the
+     * measures; 0 none) with its label, and its phrase there: the
+     * number then text_one or text_many ("" the number alone), or for
+     * a flag text_one when set; after sep (NULL ", ") unless first on
+     * the line. text_one NULL: said by another row's words. */
+    int         line;
+    const char *label;
+    const char *sep;
+    const char *text_one, *text_many;
+    int         text_alone;     /* when set, it alone is its line; unset, it says nothing */
+    /* A problem: when, the problem's place in the verdict (1 first) and
+     * in the status bar's, and its words (the number first for a count;
+     * singular, plural). */
+    CheckBad    bad;
+    int         bound;          /* bound_at is a flag that makes this count a lower bound, and a problem */
+    size_t      bound_at;
+    int         rank, short_rank;
+    const char *one, *many;
+    const char *short_one, *short_many;
+    /* words where the forms above do not fit: 1 when it wrote buf, 0
+     * for the form above (NULL: always those) */
+    int       (*say)(const CheckCounts *c, CheckSay form, char *buf, size_t n);
+};
+
+extern const CheckRow check_rows[];
+extern const int      check_nrows;
+
+/* Row r's figure in c (a flag 0 or 1). */
+uint64_t meshcheck_value(const CheckRow *r, const CheckCounts *c);
+/* Is row r's figure in c a problem? */
+int  meshcheck_bad(const CheckRow *r, const CheckCounts *c);
+/* Row r of c in words in form into buf ("" when it says nothing there). */
+void meshcheck_say(const CheckRow *r, const CheckCounts *c, CheckSay form, char *buf, size_t n);
+
+/* total = the figures of n parts together: parts[i] at (const char *)
+ * first + i * stride (a file's objects, a scene's files). The rows by
+ * their CheckSum; the area and volume added, the centre of mass
+ * weighted by volume, the box the parts' together. A file's vertices
+ * and unused vertices are its own, not its objects' (objects share
+ * points, and a vertex between their ranges is the file's alone): its
+ * caller sets them after. */
+void meshcheck_sum(CheckCounts *total, const CheckCounts *first, size_t n, size_t stride);
+
+/* The text report's lines of the rows (the measures before them are
+ * the caller's): a label and the phrases. Returns how many. */
+#define CHECK_LINE_LEN   256
+#define CHECK_LINES_MAX  16
+typedef struct {
+    const char *label;
+    char        text[CHECK_LINE_LEN];
+} CheckLine;
+int  meshcheck_lines(const CheckCounts *c, CheckLine *line, int max);
+
+/* Nothing wrong: no row a problem (faces, closed, manifold, agreeing,
+ * outward, no degenerate or duplicate faces, no crossing when tested; a
+ * crossing test that stopped on its budget proved none). Several parts
+ * and unused vertices are not problems. */
 int  meshcheck_sound(const CheckCounts *c);
 
 /* The problems in words, most serious first ("1 hole (4 boundary
  * edges)", "12 flipped faces"), at most max into item; returns how many
- * there are (0: sound). */
+ * there are (0: sound). The _as form gives the status bar's words in
+ * its order (form CHECK_SAY_SHORT: "1 hole", "12 flipped"). */
 #define CHECK_PROBLEM_LEN  96
-#define CHECK_PROBLEMS_MAX 10       /* there are no more kinds */
+#define CHECK_PROBLEMS_MAX 10       /* there are no more kinds (test_checkrows holds the rows to it) */
 int  meshcheck_problems(const CheckCounts *c, char (*item)[CHECK_PROBLEM_LEN], int max);
+int  meshcheck_problems_as(const CheckCounts *c, CheckSay form, char (*item)[CHECK_PROBLEM_LEN], int max);
 
 /* The same on one line, ", " between them, or "sound"; cut to fit n
  * bytes. Returns the number of problems. */

@@ -17,6 +17,11 @@ int  app_oneshot(const Options *o, Scene *s);
  * when --print or -o asks for one, then the report (--json: JSON).
  * Returns 0 sound, 3 problems found, 1 a file not read. */
 int  app_check(const Options *o);
+/* The figures of one object or file: the text report's block (unit as
+ * MeshCheck.unit, ind before each line), and the JSON members (each
+ * after ",\n" and ind). Every row of counts.c's table is in them. */
+void check_text_counts(Out *out, const CheckCounts *c, const char *unit, const char *ind);
+void check_json_counts(Out *out, const CheckCounts *c, const char *ind);
 /* Refuse (-1, the reason in err) a --print, -o or dump frame that has
  * more than SCREEN_MAX pixels on a side or more memory than is left,
  * before anything is loaded. */

@@ -66,7 +66,7 @@ static long b64_decode(const char *s, size_t n, uint8_t *out)
 
 static Image gradient(int w, int h)
 {
-    Image im = { .w = w, .h = h, .rgb = malloc(3 * (size_t)w * h) };
+    Image im = { .w = w, .h = h, .rgb = malloc(3 * (size_t)w * h), .cap = (size_t)w * h };   /* as image_resize sets it */
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             uint8_t *p = im.rgb + 3 * ((size_t)y * w + x);
@@ -84,7 +84,7 @@ static Image png_read_back(const uint8_t *png, size_t len)
     Texture t;
     char err[256];
     cr_assert_eq(texture_decode(&t, png, len, "stream", 0, err, sizeof err), 0, "%s", err);
-    Image im = { .w = t.w, .h = t.h, .rgb = malloc(3 * (size_t)t.w * t.h) };
+    Image im = { .w = t.w, .h = t.h, .rgb = malloc(3 * (size_t)t.w * t.h), .cap = (size_t)t.w * t.h };
     for (size_t i = 0; i < (size_t)t.w * t.h; i++)
         memcpy(im.rgb + 3 * i, t.rgba + 4 * i, 3);
     texture_free(&t);
@@ -209,7 +209,7 @@ static Image sixel_read_back(const ByteBuf *s)
     p++;
     int w = 0, h = 0;
     cr_assert_eq(sscanf(p, "\"1;1;%d;%d", &w, &h), 2, "no raster attributes");
-    Image im = { .w = w, .h = h, .rgb = malloc(3 * (size_t)w * h) };
+    Image im = { .w = w, .h = h, .rgb = malloc(3 * (size_t)w * h), .cap = (size_t)w * h };   /* as image_resize sets it */
     for (size_t i = 0; i < (size_t)w * h; i++)
         memcpy(im.rgb + 3 * i, (uint8_t[3]){ 255, 0, 255 }, 3);
     uint8_t reg[256][3] = { { 0 } };

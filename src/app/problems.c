@@ -1,8 +1,9 @@
 /* problems.c: the check of a scene's files, for the picture (--problems,
  * --parts, the viewer's ! key, --watch): each file as the scene holds it
  * (scene_check_meshes) checked with the lists an overlay draws, the
- * files' figures summed, the verdict in a word or two for the status bar
- * and the counts for the info panel. The report of --check is
+ * files' figures summed (meshcheck_sum, as a file's objects), the
+ * verdict in a word or two for the status bar and the counts for the
+ * info panel. The report of --check is
  * oneshot/check.c's. */
 
 #include <limits.h>
@@ -11,46 +12,6 @@
 #include <string.h>
 
 #include "app.h"
-
-/* The files' figures together, as check.c sums a file's objects. */
-static void sum_files(SceneCheck *sc)
-{
-    CheckCounts *a = &sc->all;
-    memset(a, 0, sizeof *a);
-    int any = 0;
-    a->closed = a->watertight = a->has_volume = a->intersections_tested = 1;
-    for (int i = 0; i < sc->nfiles; i++) {
-        const CheckCounts *c = &sc->files[i].file;
-        a->vertices += c->vertices;
-        a->unused_vertices += c->unused_vertices;
-        if (!c->faces)
-            continue;
-        a->faces += c->faces;
-        a->components += c->components;
-        a->boundary_edges += c->boundary_edges;
-        a->holes += c->holes;
-        a->nonmanifold_edges += c->nonmanifold_edges;
-        a->nonmanifold_vertices += c->nonmanifold_vertices;
-        a->inconsistent_faces += c->inconsistent_faces;
-        a->nonorientable += c->nonorientable;
-        a->degenerate_faces += c->degenerate_faces;
-        a->duplicate_faces += c->duplicate_faces;
-        a->self_intersections += c->self_intersections;
-        a->intersections_tested &= c->intersections_tested;
-        a->intersections_stopped |= c->intersections_stopped;
-        a->pair_tests += c->pair_tests;
-        a->pair_budget += c->pair_budget;
-        a->closed &= c->closed;
-        a->watertight &= c->watertight;
-        a->has_volume &= c->has_volume;
-        a->inside_out |= c->inside_out;
-        a->area += c->area;
-        a->volume += c->volume;
-        any = 1;
-    }
-    if (!any)
-        a->closed = a->watertight = a->has_volume = a->intersections_tested = 0;
-}
 
 int app_check_meshes(const Mesh *m, int n, int threads, const int *cancel, SceneCheck *out, char *err,
                      size_t errlen)
@@ -71,7 +32,7 @@ int app_check_meshes(const Mesh *m, int n, int threads, const int *cancel, Scene
         out->nfiles = i + 1;
     }
     out->nfiles = n;
-    sum_files(out);
+    meshcheck_sum(&out->all, &out->files[0].file, (size_t)n, sizeof *out->files);   /* as a file's objects */
     return 0;
 }
 
@@ -101,7 +62,8 @@ int app_check_scene(Scene *s, int threads, char *err, size_t errlen)
 
 /* ==== In words ==== */
 
-static void add(char *buf, size_t len, const char *sep, const char *fmt, unsigned long long n)
+/* Append text to the verdict in buf, after sep unless it is the first. */
+static void add(char *buf, size_t len, const char *sep, const char *text)
 {
     size_t o = strlen(buf);
     if (o + 1 >= len)
@@ -109,49 +71,27 @@ static void add(char *buf, size_t len, const char *sep, const char *fmt, unsigne
     if (o)
         snprintf(buf + o, len - o, "%s", sep);
     o = strlen(buf);
-    snprintf(buf + o, len - o, fmt, n);
+    snprintf(buf + o, len - o, "%s", text);
 }
 
-/* Append item k of the verdict unless max items are in already; count
- * it either way. */
-static void item(char *buf, size_t len, const char *sep, int *k, int max, const char *fmt, unsigned long long n)
-{
-    if ((*k)++ < max)
-        add(buf, len, sep, fmt, n);
-}
-
+/* The problems in the status bar's words and order (counts.c's rows);
+ * past max, the rest as a count. */
 int check_verdict_items(const CheckCounts *c, const char *sep, int max, char *buf, size_t len)
 {
     buf[0] = 0;
-    int k = 0;
     if (!c->faces) {
         snprintf(buf, len, "no faces");
         return 1;
     }
-    if (c->boundary_edges)
-        item(buf, len, sep, &k, max, c->holes == 1 ? "%llu hole" : "%llu holes", c->holes);
-    if (c->nonmanifold_edges)
-        item(buf, len, sep, &k, max, "%llu non-manifold", c->nonmanifold_edges);
-    if (c->nonmanifold_vertices)
-        item(buf, len, sep, &k, max,
-             c->nonmanifold_vertices == 1 ? "%llu pinched vertex" : "%llu pinched vertices",
-             c->nonmanifold_vertices);
-    if (c->nonorientable)
-        item(buf, len, sep, &k, max, "%llu non-orientable", c->nonorientable);
-    if (c->inconsistent_faces)
-        item(buf, len, sep, &k, max, "%llu flipped", c->inconsistent_faces);
-    if (c->inside_out)
-        item(buf, len, sep, &k, max, "inside out", 0);
-    if (c->intersections_stopped)      /* a lower bound: the test stopped */
-        item(buf, len, sep, &k, max, "%llu+ crossing", c->self_intersections);
-    else if (c->self_intersections)
-        item(buf, len, sep, &k, max, "%llu crossing", c->self_intersections);
-    if (c->degenerate_faces)
-        item(buf, len, sep, &k, max, "%llu degenerate", c->degenerate_faces);
-    if (c->duplicate_faces)
-        item(buf, len, sep, &k, max, "%llu duplicate", c->duplicate_faces);
-    if (k > max)        /* the rest as a count: "6 holes · +3" */
-        add(buf, len, sep, max > 0 ? "+%llu" : "%llu problems", (unsigned long long)(k - max));
+    char item[CHECK_PROBLEMS_MAX][CHECK_PROBLEM_LEN];
+    int k = meshcheck_problems_as(c, CHECK_SAY_SHORT, item, CHECK_PROBLEMS_MAX);
+    for (int i = 0; i < k && i < max && i < CHECK_PROBLEMS_MAX; i++)
+        add(buf, len, sep, item[i]);
+    if (k > max) {      /* the rest as a count: "6 holes · +3" */
+        char rest[32];
+        snprintf(rest, sizeof rest, max > 0 ? "+%d" : "%d problems", k - max);
+        add(buf, len, sep, rest);
+    }
     if (!k)
         snprintf(buf, len, "watertight");
     return k;

@@ -1,11 +1,13 @@
-/* check.c: meshcheck_run, object by object, and the verdict in words.
+/* check.c: meshcheck_run, object by object.
  *
  * The passes, for each object: its points (the welded positions its
  * corners use, renumbered from 0 so that every array is the object's
  * size, not the file's), the topology (topo.c), the winding and the
  * measures (shape.c), duplicates, then the crossing pairs (cross.c).
  * Each pass frees what it built before the next starts: the check's
- * memory stays within the mesh's own (the benchmark says how far). */
+ * memory stays within the mesh's own (the benchmark says how far). The
+ * objects' figures are summed into the file's, and said in words, by
+ * the rows of counts.c. */
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,15 +27,6 @@ typedef struct {
     uint32_t        *prep;      /* the object's point -> a vertex */
     uint8_t         *used;      /* welded point used by a face of any object */
 } Run;
-
-static void counts_empty(CheckCounts *c)
-{
-    memset(c, 0, sizeof *c);
-    for (int k = 0; k < 3; k++) {
-        c->lo[k] = 1;
-        c->hi[k] = -1;
-    }
-}
 
 /* ==== One object ==== */
 
@@ -71,6 +64,8 @@ static int obj_prepare(Run *r, ObjCheck *o, const MeshObject *mo, char *err, siz
     CheckCounts *c = o->c;
     for (uint32_t k = 0; k < o->nc; k++) {
         uint32_t v = oc_vert(o, k), g = r->pid[v];
+        /* the weld map is in range: loc[] and used[] have np entries */
+        ZV_ASSERT(g < r->np);
         if (r->loc[g] == CHECK_NONE) {
             r->loc[g] = o->npts;
             r->prep[o->npts++] = v;
@@ -136,7 +131,7 @@ static int check_object(Run *r, MeshCheck *mc, uint32_t i, char *err, size_t err
     snprintf(out->name, sizeof out->name, "%s", mo->name);
     out->face_first = mo->face_first;
     out->face_count = mo->face_count;
-    counts_empty(&out->c);
+    check_counts_empty(&out->c);
     ObjCheck o = { .m = r->m, .opt = r->opt, .pool = r->pool, .c = &out->c, .out = out };
     int rc = -1;
     if (mc->face_flags) {
@@ -194,55 +189,15 @@ static int count_unused(const Mesh *m, MeshCheck *mc)
     return 0;
 }
 
-/* The file's figures: the objects' with faces, summed. */
+/* The file's figures: the objects' summed, but its points and unused
+ * vertices its own (objects share points; a vertex between the objects'
+ * ranges is the file's alone). */
 static void file_totals(MeshCheck *mc, uint32_t used_points)
 {
-    CheckCounts *f = &mc->file;
-    uint32_t unused = f->unused_vertices;
-    counts_empty(f);
-    f->unused_vertices = unused;
-    f->vertices = used_points;
-    int any = 0;
-    double mom[3] = { 0, 0, 0 };
-    f->closed = f->watertight = f->has_volume = f->intersections_tested = 1;
-    for (uint32_t i = 0; i < mc->nobjs; i++) {
-        const CheckCounts *c = &mc->objs[i].c;
-        if (!c->faces)
-            continue;
-        f->faces += c->faces;
-        f->components += c->components;
-        f->boundary_edges += c->boundary_edges;
-        f->holes += c->holes;
-        f->nonmanifold_edges += c->nonmanifold_edges;
-        f->nonmanifold_vertices += c->nonmanifold_vertices;
-        f->inconsistent_faces += c->inconsistent_faces;
-        f->nonorientable += c->nonorientable;
-        f->degenerate_faces += c->degenerate_faces;
-        f->duplicate_faces += c->duplicate_faces;
-        f->self_intersections += c->self_intersections;
-        f->intersections_tested &= c->intersections_tested;
-        f->intersections_stopped |= c->intersections_stopped;
-        f->pair_tests += c->pair_tests;
-        f->pair_budget += c->pair_budget;
-        f->closed &= c->closed;
-        f->watertight &= c->watertight;
-        f->has_volume &= c->has_volume;
-        f->inside_out |= c->inside_out;
-        f->area += c->area;
-        f->volume += c->volume;
-        for (int k = 0; k < 3; k++) {
-            mom[k] += c->volume * c->centre[k];
-            f->lo[k] = !any || c->lo[k] < f->lo[k] ? c->lo[k] : f->lo[k];
-            f->hi[k] = !any || c->hi[k] > f->hi[k] ? c->hi[k] : f->hi[k];
-        }
-        any = 1;
-    }
-    if (!any)
-        f->closed = f->watertight = f->has_volume = f->intersections_tested = 0;
-    if (!f->has_volume)
-        f->volume = 0;
-    for (int k = 0; k < 3; k++)
-        f->centre[k] = f->has_volume && f->volume > 0 ? mom[k] / f->volume : 0;
+    uint32_t unused = mc->file.unused_vertices;
+    meshcheck_sum(&mc->file, &mc->objs[0].c, mc->nobjs, sizeof *mc->objs);
+    mc->file.vertices = used_points;
+    mc->file.unused_vertices = unused;
 }
 
 static void run_free(Run *r)
@@ -324,83 +279,4 @@ void meshcheck_free(MeshCheck *mc)
     free(mc->face_flags);
     free(mc->face_part);
     memset(mc, 0, sizeof *mc);
-}
-
-/* ==== The verdict ==== */
-
-int meshcheck_sound(const CheckCounts *c)
-{
-    return c->faces > 0 && c->boundary_edges == 0 && c->nonmanifold_edges == 0 && c->nonmanifold_vertices == 0 &&
-           c->nonorientable == 0 && c->inconsistent_faces == 0 && !c->inside_out && c->degenerate_faces == 0 &&
-           c->duplicate_faces == 0 && c->self_intersections == 0 && !c->intersections_stopped;
-}
-
-typedef struct {
-    char (*item)[CHECK_PROBLEM_LEN];
-    int   max, n;
-} Problems;
-
-static void say(Problems *p, const char *text)
-{
-    if (p->n < p->max)
-        snprintf(p->item[p->n], CHECK_PROBLEM_LEN, "%s", text);
-    p->n++;
-}
-
-static void say_n(Problems *p, unsigned long long n, const char *one, const char *many)
-{
-    char t[CHECK_PROBLEM_LEN];
-    snprintf(t, sizeof t, "%llu %s", n, n == 1 ? one : many);
-    say(p, t);
-}
-
-int meshcheck_problems(const CheckCounts *c, char (*item)[CHECK_PROBLEM_LEN], int max)
-{
-    Problems p = { item, max, 0 };
-    if (c->faces == 0)
-        say(&p, "no faces");
-    if (c->boundary_edges) {
-        char t[CHECK_PROBLEM_LEN];
-        snprintf(t, sizeof t, "%u hole%s (%u boundary edge%s)", c->holes, c->holes == 1 ? "" : "s",
-                 c->boundary_edges, c->boundary_edges == 1 ? "" : "s");
-        say(&p, t);
-    }
-    if (c->nonmanifold_edges)
-        say_n(&p, c->nonmanifold_edges, "non-manifold edge", "non-manifold edges");
-    if (c->nonmanifold_vertices)
-        say_n(&p, c->nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices");
-    if (c->nonorientable)
-        say_n(&p, c->nonorientable, "non-orientable part", "non-orientable parts");
-    if (c->inconsistent_faces)
-        say_n(&p, c->inconsistent_faces, "flipped face", "flipped faces");
-    if (c->inside_out)
-        say(&p, "inside out");
-    if (c->degenerate_faces)
-        say_n(&p, c->degenerate_faces, "degenerate face", "degenerate faces");
-    if (c->duplicate_faces)
-        say_n(&p, c->duplicate_faces, "duplicate face", "duplicate faces");
-    if (c->intersections_stopped) {
-        char t[CHECK_PROBLEM_LEN];
-        snprintf(t, sizeof t, "at least %llu intersecting face pair%s (stopped after %llu pair tests)",
-                 (unsigned long long)c->self_intersections, c->self_intersections == 1 ? "" : "s",
-                 (unsigned long long)c->pair_tests);
-        say(&p, t);
-    } else if (c->self_intersections)
-        say_n(&p, c->self_intersections, "intersecting face pair", "intersecting face pairs");
-    return p.n;
-}
-
-int meshcheck_verdict(const CheckCounts *c, char *buf, size_t n)
-{
-    char item[CHECK_PROBLEMS_MAX][CHECK_PROBLEM_LEN];
-    int k = meshcheck_problems(c, item, CHECK_PROBLEMS_MAX);
-    if (!n)
-        return k;
-    snprintf(buf, n, "%s", k ? "" : "sound");
-    size_t len = strlen(buf);
-    for (int i = 0; i < k && len + 1 < n; i++) {
-        int w = snprintf(buf + len, n - len, "%s%s", i ? ", " : "", item[i]);
-        len = w > 0 && len + (size_t)w < n ? len + (size_t)w : n - 1;
-    }
-    return k;
 }

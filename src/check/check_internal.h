@@ -12,6 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "check.h"
 #include "meshcheck.h"
 #include "pool.h"
 
@@ -68,6 +69,9 @@ static inline uint32_t oc_next(const ObjCheck *o, uint32_t c)
     uint32_t f = o->cface[c];
     return c + 1 < oc_start(o, f + 1) ? c + 1 : oc_start(o, f);
 }
+
+/* counts.c: c with nothing counted yet (its box empty: lo > hi). */
+void check_counts_empty(CheckCounts *c);
 
 /* Grow a uint32_t list by one; 0, or -1 out of memory. */
 int  check_push(uint32_t **a, size_t *n, size_t *cap, uint32_t v);

@@ -290,6 +290,7 @@ static int renumber(Cross *x)
         fan_corners(o, x->face[i], x->fan ? x->fan[i] : 1, c);
         for (int k = 0; k < 3; k++) {
             uint32_t p = oc_pt(o, c[k]);
+            ZV_ASSERT(p < o->npts);     /* newid[] and pos[] hold the object's points */
             if (newid[p] == CHECK_NONE) {
                 newid[p] = np;
                 memcpy(x->pos + 3 * (size_t)np, oc_vpos(o, oc_vert(o, c[k])), 3 * sizeof *x->pos);
@@ -324,6 +325,9 @@ static int tri_boxes(Cross *x)
 static uint32_t build(Cross *x, uint32_t first, uint32_t end)
 {
     uint32_t me = x->nnodes++;
+    /* splits on multiples of LEAF: every leaf full but the last, so the
+     * tree has at most 2 ceil(n / LEAF) nodes, the array's size */
+    ZV_ASSERT(first % LEAF == 0 && first < end && x->nnodes <= 2 * ((x->n + LEAF - 1) / LEAF));
     Node *nd = &x->node[me];
     nd->first = first;
     nd->end = end;
@@ -607,6 +611,9 @@ static int gather(Cross *x)
 {
     ObjCheck *o = x->o;
     size_t total = 0;
+    /* within the budget, or stopped: a count past the budget that is
+     * not flagged would be reported as exact, not "at least" */
+    ZV_ASSERT(x->stop || (x->tests <= x->budget && x->boxes <= 16 * x->budget));
     o->c->pair_tests += x->tests;
     o->c->intersections_stopped |= x->stop;
     for (uint32_t t = 0; t < x->njobs; t++) {
@@ -636,6 +643,10 @@ static int gather(Cross *x)
         return -1;
     }
     for (size_t i = 0; i < total; i++) {
+        /* each pair of faces once, the lower first: the traversal meets
+         * every pair of leaves once, and a pair of polygons is counted
+         * at its first crossing fan pair only */
+        ZV_ASSERT((all[i] >> 32) < (uint32_t)all[i] && (i == 0 || all[i - 1] < all[i]));
         o->out->pairs[2 * i] = (uint32_t)(all[i] >> 32);
         o->out->pairs[2 * i + 1] = (uint32_t)all[i];
     }

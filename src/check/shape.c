@@ -103,6 +103,10 @@ static uint32_t pfind(ParityFind *u, uint32_t f, int *parity)
     uint32_t r = f;
     int p = 0;
     while (u->up[r] != r) {
+        /* parents point to earlier faces (punion links under the
+         * smaller root): the walk ends, and patches_find labels each
+         * root before the faces that name it */
+        ZV_ASSERT(u->up[r] < r);
         p ^= u->bits[r] & 1;
         r = u->up[r];
     }
@@ -173,8 +177,12 @@ static int patches_find(ObjCheck *o, ParityFind *u, Patches *pt)
         if (u->up[f] == f) {
             pt->conflict[n] = (u->bits[f] & 2) != 0;
             u->up[f] = n++;
-        } else
+        } else {
+            ZV_ASSERT(u->up[f] < f);        /* its root, labelled already */
             u->up[f] = u->up[u->up[f]];
+        }
+        /* a patch label indexes count[], conflict[] and flip[] */
+        ZV_ASSERT(u->up[f] < pt->npatches);
         pt->count[2 * u->up[f] + (u->bits[f] & 1)]++;
     }
     return 0;
@@ -246,8 +254,12 @@ static int join_patches(ObjCheck *o, uint32_t npatches)
     for (uint32_t p = 0; p < npatches; p++)
         if (uf[p] != CHECK_NONE)
             uf[p] = uf[p] == p ? parts++ : uf[uf[p]];
-    for (uint32_t f = 0; f < o->nf; f++)
+    for (uint32_t f = 0; f < o->nf; f++) {
         o->part[f] = uf[o->part[f]];
+        /* face_part: a part below the count (--parts colours by it), or
+         * none for a degenerate face alone */
+        ZV_ASSERT(o->flags[f] & CHECK_DEGENERATE ? o->part[f] == CHECK_NONE : o->part[f] < parts);
+    }
     o->c->components = parts;
     free(uf);
     return 0;

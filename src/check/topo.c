@@ -126,6 +126,10 @@ static int buckets_build(ObjCheck *o, Buckets *b)
             pt[c] = MATE_BOUNDARY;      /* until a partner turns up */
         }
     }
+    /* the filling pass met the half-edges the counting pass counted:
+     * the last bucket's cursor ends at their total (one more would
+     * have written past to[] and he[], one fewer left a slot unset) */
+    ZV_ASSERT(np == 0 || b->off[np - 1] == nhe);
     memmove(b->off + 1, b->off, (size_t)np * sizeof *b->off);
     b->off[0] = 0;
     for (uint32_t p = 0; p < np; p++)
@@ -180,6 +184,9 @@ static int edge_group(ObjCheck *o, EdgeLists *l, const uint32_t *same, uint32_t 
     }
     if (n == 2) {
         uint32_t h1 = first, h2 = ns == 2 ? same[1] : no == 2 ? opp[1] : opp[0];
+        /* every edge is met once: a half-edge paired twice would leave
+         * its first partner's mate pointing at a face that is not */
+        ZV_ASSERT(h1 != h2 && o->mate[h1] == MATE_BOUNDARY && o->mate[h2] == MATE_BOUNDARY);
         o->mate[h1] = h2;
         o->mate[h2] = h1;
         return 0;
@@ -208,6 +215,9 @@ static int classify(ObjCheck *o, const Buckets *b)
             uint32_t pb = b->to[j], j1 = j + 1;
             while (j1 < end && b->to[j1] == pb)
                 j1++;
+            /* buckets sorted by the point reached: each run is an edge
+             * whole, and find_run's binary search finds the opposite */
+            ZV_ASSERT(j1 == end || b->to[j1] > pb);
             uint32_t k0, k1;
             find_run(b, pb, a, &k0, &k1);
             if (!(pb < a && k1 > k0) && edge_group(o, &l, b->he + j, j1 - j, b->he + k0, k1 - k0))
@@ -225,10 +235,15 @@ static int count_holes(ObjCheck *o)
     uint32_t *uf = check_identity(o->npts);
     if (!uf)
         return -1;
-    uint32_t merged = 0;
+    uint32_t merged = 0, open = 0;
     for (uint32_t c = 0; c < o->nc; c++)
-        if (o->mate[c] == MATE_BOUNDARY)
+        if (o->mate[c] == MATE_BOUNDARY) {
             merged += (uint32_t)check_union(uf, oc_pt(o, c), oc_pt(o, oc_next(o, c)));
+            open++;
+        }
+    /* one boundary half-edge per boundary edge counted: else holes
+     * (edges - merged) would count the wrong graph, or wrap below 0 */
+    ZV_ASSERT(open == o->c->boundary_edges && merged <= open);
     o->c->holes = o->c->boundary_edges - merged;
     free(uf);
     return 0;
@@ -272,6 +287,8 @@ static int count_fans(ObjCheck *o)
     }
     for (uint32_t c = 0; c < o->nc; c++) {
         uint32_t m = o->mate[c];
+        /* mates are each other's and in range: join_pair reads both */
+        ZV_ASSERT(m >= MATE_FIRST_SPECIAL || (m < o->nc && o->mate[m] == c));
         if (m < MATE_FIRST_SPECIAL && c < m)
             join_pair(o, uf, c, m);
         else if (m == MATE_DEGENERATE)

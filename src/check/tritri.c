@@ -94,6 +94,10 @@ static int tri_tri_2d(const float *const a[3], const float *const b[3])
     int i = 0, j = 1;
     int oa = pick_plane(a[0], a[1], a[2], &i, &j);
     int ob = exact_orient2d(b[0], b[1], b[2], i, j);
+    /* both non-degenerate (collect leaves the others out), and b in
+     * a's plane, so both stay triangles on a's axes: a 0 here would
+     * call a real overlap apart */
+    ZV_ASSERT(oa && ob);
     if (!oa || !ob)
         return 0;
     for (int k = 0; k < 3; k++)
@@ -207,6 +211,10 @@ int check_tri_pair(const float *const a[3], const uint32_t ia[3], const float *c
 {
     int sa[3] = { -1, -1, -1 };     /* b's corner that is a's corner k, -1 none */
     int n = 0;
+    /* three points a triangle: the shared-corner cases (l = 3 - ...)
+     * count on it */
+    ZV_ASSERT(ia[0] != ia[1] && ia[1] != ia[2] && ia[0] != ia[2] && ib[0] != ib[1] && ib[1] != ib[2] &&
+              ib[0] != ib[2]);
     for (int k = 0; k < 3; k++)
         for (int l = 0; l < 3; l++)
             if (ia[k] == ib[l]) {

@@ -42,6 +42,10 @@ uint32_t *check_identity(size_t n)
 uint32_t check_find(uint32_t *p, uint32_t i)
 {
     while (p[i] != i) {
+        /* parents point to smaller indices (check_union links the larger
+         * root under the smaller): the walk ends, and a set's root is
+         * its first member, which the labellings in index order read */
+        ZV_ASSERT(p[i] < i);
         p[i] = p[p[i]];
         i = p[i];
     }
@@ -114,10 +118,16 @@ int check_weld(const Mesh *m, uint32_t *pid, uint32_t *npts_out)
             if (w == CHECK_NONE) {
                 slot[h] = v;
                 pid[v] = np++;
+                /* at most half full (size >= 2 nverts): an empty slot
+                 * always ends the probe */
+                ZV_ASSERT(2 * (size_t)np <= size);
                 break;
             }
             pos_key(m, w, q);
             if (q[0] == k[0] && q[1] == k[1] && q[2] == k[2]) {
+                /* a slot holds an earlier vertex, already numbered: the
+                 * points stay numbered in vertex order, below np */
+                ZV_ASSERT(w < v && pid[w] < np);
                 pid[v] = pid[w];
                 break;
             }

@@ -72,15 +72,15 @@ static int picture(const Options *o)
 
 /* ==== The text report ==== */
 
-/* "mm", "mm^2": the unit the format states, to a power. */
-static const char *unit_of(const FileCheck *fc, int power, char *buf, size_t n)
+/* " mm", " mm^2": the unit the format states ("" none), to a power. */
+static const char *unit_of(const char *unit, int power, char *buf, size_t n)
 {
-    if (!fc->mc.unit[0])
+    if (!unit[0])
         return "";
     if (power == 1)
-        snprintf(buf, n, " %s", fc->mc.unit);
+        snprintf(buf, n, " %s", unit);
     else
-        snprintf(buf, n, " %s^%d", fc->mc.unit, power);
+        snprintf(buf, n, " %s^%d", unit, power);
     return buf;
 }
 
@@ -98,44 +98,29 @@ static void centre_rounded(const CheckCounts *c, double out[3])
         out[k] = fabs(c->centre[k]) <= 1e-9 * size ? 0 : c->centre[k];
 }
 
-static void text_counts(Out *out, const FileCheck *fc, const CheckCounts *c, const char *ind)
+void check_text_counts(Out *out, const CheckCounts *c, const char *unit, const char *ind)
 {
     char u1[16], u2[16], u3[16], words[512];
     if (!c->faces) {
         out_printf(out, "%sfaces         none\n", ind);
         return;
     }
+    /* the measures, then the rows (counts.c), then the verdict */
     out_printf(out, "%ssize          %g x %g x %g%s\n", ind, (double)c->hi[0] - c->lo[0],
                (double)c->hi[1] - c->lo[1], (double)c->hi[2] - c->lo[2],
-               fc->mc.unit[0] ? unit_of(fc, 1, u1, sizeof u1) : " (file units; the format states none)");
-    out_printf(out, "%sarea          %g%s\n", ind, c->area, unit_of(fc, 2, u2, sizeof u2));
+               unit[0] ? unit_of(unit, 1, u1, sizeof u1) : " (file units; the format states none)");
+    out_printf(out, "%sarea          %g%s\n", ind, c->area, unit_of(unit, 2, u2, sizeof u2));
     double com[3];
     centre_rounded(c, com);
     if (c->has_volume)
-        out_printf(out, "%svolume        %g%s, centre of mass %g %g %g\n", ind, c->volume, unit_of(fc, 3, u3, sizeof u3),
+        out_printf(out, "%svolume        %g%s, centre of mass %g %g %g\n", ind, c->volume, unit_of(unit, 3, u3, sizeof u3),
                    com[0], com[1], com[2]);
     else
         out_printf(out, "%svolume        none: %s\n", ind, c->closed ? "not orientable" : "not closed");
-    out_printf(out, "%sparts         %u\n", ind, c->components);
-    out_printf(out, "%sfaces         %u, %u degenerate, %u duplicate\n", ind, c->faces, c->degenerate_faces,
-               c->duplicate_faces);
-    out_printf(out, "%svertices      %u, %u non-manifold, %u unused\n", ind, c->vertices, c->nonmanifold_vertices,
-               c->unused_vertices);
-    out_printf(out, "%sedges         %u boundary in %u hole%s, %u non-manifold%s\n", ind, c->boundary_edges, c->holes,
-               c->holes == 1 ? "" : "s", c->nonmanifold_edges, c->watertight ? " (watertight)" : "");
-    if (c->nonorientable)
-        out_printf(out, "%swinding       %u non-orientable part%s: no flip makes it agree\n", ind, c->nonorientable,
-                   c->nonorientable == 1 ? "" : "s");
-    else
-        out_printf(out, "%swinding       %u flipped face%s%s\n", ind, c->inconsistent_faces,
-                   c->inconsistent_faces == 1 ? "" : "s", c->inside_out ? ", inside out" : "");
-    if (c->intersections_stopped)
-        out_printf(out, "%scrossing      at least %llu pair%s of faces (stopped after %llu pair tests: the bound is %llu)\n",
-                   ind, (unsigned long long)c->self_intersections, c->self_intersections == 1 ? "" : "s",
-                   (unsigned long long)c->pair_tests, (unsigned long long)c->pair_budget);
-    else
-        out_printf(out, "%scrossing      %llu pair%s of faces\n", ind, (unsigned long long)c->self_intersections,
-                   c->self_intersections == 1 ? "" : "s");
+    CheckLine line[CHECK_LINES_MAX];
+    int n = meshcheck_lines(c, line, CHECK_LINES_MAX);
+    for (int i = 0; i < n; i++)
+        out_printf(out, "%s%-14s%s\n", ind, line[i].label, line[i].text);
     meshcheck_verdict(c, words, sizeof words);
     out_printf(out, "%s%-14s%s\n", ind, meshcheck_sound(c) ? "verdict" : "problems", words);
 }
@@ -165,13 +150,13 @@ static void text_file(Out *out, const FileCheck *fc)
             if (mc->objs[i].c.faces) {
                 char name[SAFETEXT_NAME];
                 out_printf(out, "  object %u \"%s\"\n", ++k, safetext(name, sizeof name, mc->objs[i].name));
-                text_counts(out, fc, &mc->objs[i].c, "    ");
+                check_text_counts(out, &mc->objs[i].c, mc->unit, "    ");
             }
         out_printf(out, "  all %u objects\n", nobj);
-        text_counts(out, fc, &mc->file, "    ");
+        check_text_counts(out, &mc->file, mc->unit, "    ");
     } else {
         out_printf(out, "\n");
-        text_counts(out, fc, &mc->file, "  ");
+        check_text_counts(out, &mc->file, mc->unit, "  ");
     }
 }
 
@@ -218,23 +203,18 @@ static const char *json_bool(int b)
     return b ? "true" : "false";
 }
 
-/* The figures of one object or file, as members after others. */
-static void json_counts(Out *out, const CheckCounts *c, const char *ind)
+void check_json_counts(Out *out, const CheckCounts *c, const char *ind)
 {
-    out_printf(out, ",\n%s\"faces\": %u,\n%s\"vertices\": %u,\n%s\"components\": %u", ind, c->faces, ind,
-               c->vertices, ind, c->components);
-    out_printf(out, ",\n%s\"boundary_edges\": %u,\n%s\"holes\": %u,\n%s\"nonmanifold_edges\": %u", ind,
-               c->boundary_edges, ind, c->holes, ind, c->nonmanifold_edges);
-    out_printf(out, ",\n%s\"nonmanifold_vertices\": %u,\n%s\"inconsistent_faces\": %u,\n%s\"non_orientable\": %s",
-               ind, c->nonmanifold_vertices, ind, c->inconsistent_faces, ind, json_bool(c->nonorientable > 0));
-    out_printf(out, ",\n%s\"inside_out\": %s,\n%s\"degenerate_faces\": %u,\n%s\"duplicate_faces\": %u", ind,
-               json_bool(c->inside_out), ind, c->degenerate_faces, ind, c->duplicate_faces);
-    out_printf(out, ",\n%s\"unused_vertices\": %u,\n%s\"self_intersections\": %llu", ind, c->unused_vertices, ind,
-               (unsigned long long)c->self_intersections);
-    out_printf(out, ",\n%s\"intersections_stopped\": %s,\n%s\"pair_tests\": %llu,\n%s\"pair_budget\": %llu", ind,
-               json_bool(c->intersections_stopped), ind, (unsigned long long)c->pair_tests, ind,
-               (unsigned long long)c->pair_budget);
-    out_printf(out, ",\n%s\"watertight\": %s", ind, json_bool(c->watertight));
+    for (int i = 0; i < check_nrows; i++) {     /* the rows (counts.c), then the measures */
+        const CheckRow *r = &check_rows[i];
+        uint64_t v = meshcheck_value(r, c);
+        if (!r->json)
+            continue;
+        if (r->type == CHECK_FLAG || r->json_bool)
+            out_printf(out, ",\n%s\"%s\": %s", ind, r->json, json_bool(v > 0));
+        else
+            out_printf(out, ",\n%s\"%s\": %llu", ind, r->json, (unsigned long long)v);
+    }
     out_printf(out, ",\n%s\"area\": %.9g", ind, c->area);
     double com[3];
     centre_rounded(c, com);
@@ -281,7 +261,7 @@ static void json_file(Out *out, const FileCheck *fc, int first)
         nobj += fc->mc.objs[i].c.faces > 0;
     out_printf(out, ",\n      \"ok\": %s,\n      \"object_count\": %u", json_bool(meshcheck_sound(&fc->mc.file)),
                nobj);
-    json_counts(out, &fc->mc.file, "      ");
+    check_json_counts(out, &fc->mc.file, "      ");
     out_printf(out, "\n    }");
 }
 
@@ -300,7 +280,7 @@ static void json_objects(Out *out, const FileCheck *fc, int *first)
         out_printf(out, ",\n      \"name\": ");
         json_str(out, i < mc->nobjs ? mc->objs[i].name : fc->path);
         out_printf(out, ",\n      \"ok\": %s", json_bool(meshcheck_sound(c)));
-        json_counts(out, c, "      ");
+        check_json_counts(out, c, "      ");
         out_printf(out, "\n    }");
         *first = 0;
     }

@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "backdrop.h"
+#include "check.h"
 #include "present.h"
 
 #define CH_UPPER_HALF 0x2580u
@@ -266,6 +267,9 @@ int cells_from_image_on(const Image *im, DisplayMode m, ColourDepth depth, const
     if (grid_resize(out, cols, rows) != 0)
         return -1;
     int mono = depth == COLOUR_NONE, light = backdrop_is_light(bd);
+    /* half and ascii are a pixel wide (mode_cell_pixels): they walk a
+     * row of cells by the image's width, ascii the cells by its pixels */
+    ZV_ASSERT((m == MODE_BRAILLE || cols == im->w) && (size_t)cols * (size_t)rows <= out->cap);
     switch (m) {
     case MODE_HALF:
         if (mono)

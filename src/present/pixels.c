@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check.h"
 #include "pixels.h"
 #include "present.h"
 
@@ -75,7 +76,7 @@ void base64_put(ByteBuf *o, const uint8_t *p, size_t n)
     static const char abc[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     if (bytebuf_room(o, (n + 2) / 3 * 4))
         return;
-    char *d = (char *)o->b + o->len;
+    char *d = (char *)o->b + o->len, *d0 = d;
     size_t i = 0;
     for (; i + 3 <= n; i += 3) {
         uint32_t v = (uint32_t)p[i] << 16 | (uint32_t)p[i + 1] << 8 | p[i + 2];
@@ -91,6 +92,8 @@ void base64_put(ByteBuf *o, const uint8_t *p, size_t n)
         *d++ = i + 1 < n ? abc[(v >> 6) & 63] : '=';
         *d++ = '=';
     }
+    /* what bytebuf_room made room for, no more: 4 characters a 3 bytes */
+    ZV_ASSERT((size_t)(d - d0) == (n + 2) / 3 * 4);
     o->len = (size_t)(d - (char *)o->b);
 }
 
@@ -101,9 +104,10 @@ void base64_put(ByteBuf *o, const uint8_t *p, size_t n)
  * at the end (the "$" that follows returns anyway). */
 static void sixel_line(ByteBuf *o, const uint8_t *band, int rows, int w, int c)
 {
-    int last = -1, run = 0;
+    int last = -1, run = 0, covered = 0;
     char buf[16];
     int end = w;
+    ZV_ASSERT(rows >= 1 && rows <= 6);     /* a sixel is six pixels tall */
     /* trailing pixels without c need no characters */
     while (end > 0) {
         int any = 0;
@@ -124,6 +128,9 @@ static void sixel_line(ByteBuf *o, const uint8_t *band, int rows, int w, int c)
             run++;
             continue;
         }
+        /* a character is '?' + six bits: 63 .. 126 */
+        ZV_ASSERT(run == 0 || (last >= 0 && last < 64));
+        covered += run;
         if (run > 3) {
             int n = snprintf(buf, sizeof buf, "!%d%c", run, 63 + last);
             bytebuf_put(o, buf, (size_t)n);
@@ -135,6 +142,9 @@ static void sixel_line(ByteBuf *o, const uint8_t *band, int rows, int w, int c)
         last = bits;
         run = 1;
     }
+    /* the runs cover the line's pixels up to its last of colour c,
+     * exactly: one short would shift every later pixel of the colour */
+    ZV_ASSERT(covered == end);
 }
 
 static int sixel_encode(const Image *im, ByteBuf *o)
@@ -215,6 +225,9 @@ static int kitty_encode(const Image *im, uint32_t id, int cols, int rows, ByteBu
     for (size_t at = 0; at < b64.len || at == 0; at += KITTY_CHUNK) {
         size_t n = b64.len - at < KITTY_CHUNK ? b64.len - at : KITTY_CHUNK;
         int more = at + n < b64.len;
+        /* every chunk whole base64 quanta (the terminal decodes each on
+         * its own), all but the last full */
+        ZV_ASSERT(n % 4 == 0 && (!more || n == KITTY_CHUNK));
         int k;
         /* the first chunk carries the keys: transmit and show (a=T), PNG
          * (f=100), no answer (q=2); a numbered image (the viewer's, over

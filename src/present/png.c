@@ -7,6 +7,7 @@
 #include <setjmp.h>
 #include <stdio.h>
 #include <string.h>
+#include "check.h"
 #include "pixels.h"
 #include "present.h"
 #include "safefile.h"
@@ -92,6 +93,8 @@ int write_png(const char *path, const Image *im, char *err, size_t errlen)
                  PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
+    /* libpng reads 3 w bytes a row: the image holds its w x h pixels */
+    ZV_ASSERT((size_t)im->w * (size_t)im->h <= im->cap);
     for (int y = 0; y < im->h; y++)
         png_write_row(png, im->rgb + 3 * (size_t)y * (size_t)im->w);
     png_write_end(png, info);
@@ -153,6 +156,7 @@ int png_encode(const Image *im, int level, ByteBuf *out, char *err, size_t errle
     png_set_IHDR(png, info, (png_uint_32)im->w, (png_uint_32)im->h, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
+    ZV_ASSERT((size_t)im->w * (size_t)im->h <= im->cap);      /* as write_png's */
     for (int y = 0; y < im->h; y++)
         png_write_row(png, im->rgb + 3 * (size_t)y * (size_t)im->w);
     png_write_end(png, info);

@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check.h"
 #include "present.h"
 
 #define LUT_BITS   6
@@ -84,6 +85,7 @@ int quant_init(Quantizer *q, ColourDepth depth)
         uint8_t rgb[3];
         palette_rgb(depth, i, rgb);
         int k = q->n++;
+        ZV_ASSERT(k < (int)(sizeof q->num / sizeof *q->num));  /* the palette searched fits its arrays */
         q->num[k] = (uint8_t)i;
         for (int a = 0; a < 3; a++)
             q->plin[k][a] = q->lin[rgb[a]];
@@ -160,6 +162,9 @@ static uint32_t choose_pair(const Quantizer *q, const float lab[3])
                 p2 = k;
             }
         }
+    /* the pair is stored in a byte each and indexes num[], plin[]: in
+     * the palette searched */
+    ZV_ASSERT(p1 >= 0 && p2 >= 0 && p1 < q->n && p2 < q->n && q->n <= 256);
     return LUT_FILLED | (uint32_t)p1 | (uint32_t)p2 << 8;
 }
 

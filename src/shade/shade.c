@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "bigmem.h"
+#include "check.h"
 #include "shade.h"
 #include "simd.h"
 #include "facecol.h"
@@ -282,6 +283,10 @@ static void shade_prims(const Scene *s, const FrameBufs *fb, const ShadeSettings
             int obj;
             uint32_t k;
             kind = scene_prim_of(s, id, &obj, &k);
+            /* an id past the faces names a point, segment or edge of an
+             * object (is_prim said it is in range): the mark colours and
+             * prim_base index that object's arrays by it */
+            ZV_ASSERT(kind != PRIM_NONE && kind != PRIM_FACE && obj >= 0 && obj < s->nobjs);
             if (kind == PRIM_WIRE) {
                 base[0] = base[1] = base[2] = 235;
                 own = 1;
@@ -729,6 +734,9 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
     int slots = !big && shade_slots_pay(nfaces, n);
     if (!slots && cache_grow(cache, nfaces) != 0)
         return -1;
+    /* the colour tables hold every face an id may name: face_colour
+     * reads stamp[id] and rgb[3 id] for any id below nfaces */
+    ZV_ASSERT(slots || (cache->cap >= nfaces && cache->stamp && cache->rgb));
     cache_next_frame(cache);
 
     FaceColours fc = { s, mode, cache->frame, cache->stamp, cache->rgb, 0, camera_view(&s->cam), { { 0 } }, NULL };

@@ -6,6 +6,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include "check.h"
 #include "facecol.h"
 
 /* The slot table for a frame of n pixels: a power of two at least twice
@@ -89,6 +90,9 @@ int shade_pixels_slots(FaceColours *fc, ShadeCache *cache, const int32_t *ids, s
             continue;
         }
         if (id != last) {
+            /* the hash's top bits index the table: cap is a power of
+             * two, shift 32 - log2 cap */
+            ZV_ASSERT((((uint32_t)id * 2654435769u) >> shift) < cap);
             ShadeSlot *sl = &cache->slot[((uint32_t)id * 2654435769u) >> shift];
             if (sl->id != id) {
                 face_make(fc, id, sl->rgb);

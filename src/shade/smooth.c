@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check.h"
 #include "shade.h"
 
 void smooth_free(SmoothData *sd)
@@ -289,6 +290,10 @@ int shade_smooth(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, Smo
             int base = inst % nb;
             uint32_t bface = (uint32_t)(s->objs[base].face_base + (id - s->objs[inst].face_base));
             if (inst != cached) {
+                /* the face is its instance's, and the instance a copy of
+                 * a loaded object: bface indexes that object's faces */
+                ZV_ASSERT(inst >= 0 && inst < s->nobjs && base < s->nobjs &&
+                          (uint32_t)(id - s->objs[inst].face_base) < s->objs[inst].face_count);
                 inst_mat(s, &view, inst, &im);
                 cached = inst;
             }

@@ -36,6 +36,7 @@
 #include <string.h>
 
 #include "bigmem.h"
+#include "check.h"
 #include "shade.h"
 #include "simd.h"
 
@@ -678,8 +679,15 @@ void shade_surfaces_flat(SurfFrame *f, const FrameBufs *fb, Image *out)
         }
         if (head == tail)
             break;
+        /* the ring holds what is fetched ahead (5 stages SURF_STEP
+         * apart, plus one) and no more: a lap past it would shade a
+         * polygon fetched for another */
+        ZV_ASSERT(tail - head <= SURF_RING);
         const ScreenPoly *p = &sp->polys[ring[head++ % SURF_RING]];
         int32_t id = p->face;
+        /* boxes start in the image (screen/ clips them): shade_box reads
+         * ids from (x0, y0) on, unclamped */
+        ZV_ASSERT(p->x0 >= 0 && p->y0 >= 0);
         if (s->face_surf[id] == SURF_PLAIN)
             continue;
         shade_box(f, &ic, fb, id, p->x0, p->x1 < fb->w ? p->x1 : fb->w, p->y0, p->y1 < fb->h ? p->y1 : fb->h, out);
