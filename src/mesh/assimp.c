@@ -578,8 +578,8 @@ static int import_failed(MeshCtx *c)
     const char *s = ai()->aiGetErrorString();
     if (!s || !*s)
         s = "assimp could not read it";
-    if (strstr(s, "bad_alloc"))     /* the limit of the sandbox (--max-memory) or of the machine */
-        return me_fail(&c->err, "out of memory reading it (assimp: %.100s; --max-memory sets the bound)", s);
+    if (strstr(s, "bad_alloc"))     /* the sandbox's bound (which it names) or the machine's */
+        return me_fail(&c->err, "out of memory reading it (assimp: %.100s)", s);
     size_t n = strcspn(s, "\n");
     return me_fail(&c->err, "%.*s", (int)(n < 300 ? n : 300), s);
 }
