@@ -43,7 +43,7 @@ const char *app_demo_path(void)
 
 SandboxOpts app_sandbox_opts(const Options *o)
 {
-    SandboxOpts so = { .off = o->no_sandbox, .max_memory = o->max_memory };
+    SandboxOpts so = { .off = o->no_sandbox, .max_memory = o->max_memory, .server = o->sandbox };
     return so;
 }
 

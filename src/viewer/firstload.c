@@ -382,7 +382,7 @@ Reaction app_first_poll(App *a)
                 app_warning_note(a, &a->s->meshes[i].info, a->s->meshes[i].path ? a->s->meshes[i].path : "?");
                 break;
             }
-        a->tex = texjob_start(a->s);
+        a->tex = texjob_start(a->s, a->opt);
     }
     return r;
 }
