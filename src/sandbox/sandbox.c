@@ -275,19 +275,26 @@ static int collect(const Job *j, pid_t pid, Mesh *m, char *err, size_t errlen)
 
 /* The child is ready: its result, read from its memory, or (when that
  * is not allowed) from the memfd once it has written it there. */
-static int finish(const Job *j, Child *c, Mesh *m, char *err, size_t errlen)
+static void close_fd(int *fd)
+{
+    if (*fd >= 0)
+        close(*fd);
+    *fd = -1;
+}
+
+static int finish(Job *j, Child *c, Mesh *m, char *err, size_t errlen)
 {
     int rc = collect(j, c->pid, m, err, errlen), status = 0;
     struct rusage ru = { 0 };
     if (rc == -2 && write(j->go, "w", 1) == 1) {
-        close(j->go);
+        close_fd(&j->go);
         if (reap(c, &status, &ru) == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
             rc = collect(j, 0, m, err, errlen);
         else
             died(j, CHILD_GONE, status, &ru, err, errlen);
         return rc < 0 ? -1 : rc;
     }
-    close(j->go);
+    close_fd(&j->go);
     reap(c, &status, &ru);
     return rc < 0 ? -1 : rc;
 }
@@ -336,13 +343,6 @@ static int start(Job *j, const SandboxServer *server, Child *c)
     if (c->pid == 0)
         sandbox_child_main(&j->rq);
     return c->pid > 0 ? 0 : -1;
-}
-
-static void close_fd(int *fd)
-{
-    if (*fd >= 0)
-        close(*fd);
-    *fd = -1;
 }
 
 static int run(Job *j, const SandboxServer *server, const void *data, size_t len, Mesh *m, char *err, size_t errlen)

@@ -62,6 +62,13 @@ else
             notok "allocation without bound stops at --max-memory 256M" "$n MB"; fi
     else notok "allocation without bound stops at --max-memory 256M" "status $st: $(cat "$T/err")"; fi
 
+    # the bound is the child's soft limit, raised by the parent only: the
+    # child may not lift it itself (the filter)
+    run_standin raise --no-sandbox "$S/x.fbx"
+    expect_err "unsandboxed, the stand-in lifts its memory limit" "stand-in: raised the memory limit"
+    run_standin raise "$S/x.fbx"
+    expect_err "sandboxed, it may not" "stand-in: cannot raise the memory limit: Operation not permitted"
+
     # Landlock: the stand-in opens a file read-only, as a parser taken
     # over would (the filter allows read-only opens; refopen.c is zview's
     # own code, which it skips): through a link in the model's folder to

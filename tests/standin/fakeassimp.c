@@ -2,7 +2,8 @@
  * through LD_LIBRARY_PATH. Its import does what an exploited parser
  * would, as ZV_STANDIN says: "create" a file, "exec" a shell, "socket"
  * (connect to a local port), "alloc" without bound, "spin" for ever,
- * "read" the file ZV_STANDIN_READ (its error says what it read). Each that succeeds
+ * "read" the file ZV_STANDIN_READ (its error says what it read), "raise"
+ * its memory limit to the ceiling. Each that succeeds
  * leaves a marker file in ZV_STANDIN_DIR, so that a test run without the
  * sandbox proves the attempt is real and one with it that nothing
  * happened. Without ZV_STANDIN the file's name says what to do. Exports every function zview looks up (src/mesh/assimp.c). */
@@ -15,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -74,6 +76,17 @@ static void attack(const char *file)
         else
             snprintf(error_text, sizeof error_text, "stand-in: cannot read %s: %s", p ? p : "(unset)",
                      strerror(errno));
+        return;
+    }
+    if (strstr(what, "raise")) {
+        /* lift the memory limit to its ceiling, as a parser taken over
+         * would before it allocates: the filter refuses it */
+        struct rlimit rl;
+        int r = getrlimit(RLIMIT_DATA, &rl) == 0 ? (rl.rlim_cur = rl.rlim_max, setrlimit(RLIMIT_DATA, &rl)) : -1;
+        if (r == 0)
+            snprintf(error_text, sizeof error_text, "stand-in: raised the memory limit");
+        else
+            snprintf(error_text, sizeof error_text, "stand-in: cannot raise the memory limit: %s", strerror(errno));
         return;
     }
     if (strstr(what, "spin")) {
