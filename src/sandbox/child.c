@@ -269,10 +269,12 @@ void sandbox_child_main(Req *r)
      * are confined */
     if (r->kind == REQ_LOAD)
         mesh_library_preload(r->path[0] ? r->path : NULL, r->has_format ? r->format : NULL);
+    /* the limits count from what is mapped now, read in /proc: before
+     * reads are confined */
+    limits(r);
     int abi = sandbox_landlock_abi();
     if (abi > 0 && sandbox_landlock_restrict(r->kind == REQ_LOAD && r->path[0] ? r->path : NULL, abi) != 0)
         abi = -errno;
-    limits(r);
     Mesh m;
     MeshTexture t;
     char err[512] = "";

@@ -89,11 +89,13 @@ static void say_bound(uint64_t b, char *buf, size_t len)
         snprintf(buf, len, "%.0f MB", (double)b / (double)(1 << 20));
 }
 
-/* After a failure about memory, the bound and how to raise it. */
-static void bound_note(const Job *j, int sig, long maxrss_kb, char *err, size_t errlen)
+/* After a failure about memory, the bound and how to raise it: the
+ * message says memory, or the child died (a signal, a sanitizer's
+ * exit) having come near its bound. */
+static void bound_note(const Job *j, int died, long maxrss_kb, char *err, size_t errlen)
 {
     if (!strstr(err, "memory") && !strstr(err, "available") &&
-        !(sig && (uint64_t)maxrss_kb * 1024 >= j->rq.budget / 2))
+        !(died && (uint64_t)maxrss_kb * 1024 >= j->rq.budget / 2))
         return;
     char b[32], in[32], note[160];
     say_bound(j->rq.budget, b, sizeof b);
@@ -247,8 +249,8 @@ static void died(const Job *j, int state, int status, const struct rusage *ru, c
         snprintf(err, errlen, "%s: the loader crashed (%s) in the sandbox: a malformed file", nm, strsignal(sig));
     else
         snprintf(err, errlen, "%s: the loader failed in the sandbox (exit status %d)", nm, WEXITSTATUS(status));
-    if (state != CHILD_CANCELLED && sig != SIGSYS)
-        bound_note(j, sig, ru->ru_maxrss, err, errlen);
+    if (state != CHILD_CANCELLED && state != CHILD_BAD && sig != SIGSYS)
+        bound_note(j, 1, ru->ru_maxrss, err, errlen);
 }
 
 /* Read the child's result: from its memory (pid), else from the memfd. */

@@ -178,7 +178,11 @@ static void serve(int sock)
     }
     syscall(SYS_close_range, sock + 1, ~0u, 0u);
     signal(SIGCHLD, SIG_IGN);   /* the waiters are reaped by the kernel */
-    signal(SIGPIPE, SIG_IGN);
+    /* the terminal's signals are zview's to act on (the server ends with
+     * it: the socket's end, PR_SET_PDEATHSIG); a child resets them all */
+    static const int quiet[] = { SIGPIPE, SIGINT, SIGQUIT, SIGHUP, SIGTSTP, SIGTTIN, SIGTTOU };
+    for (size_t i = 0; i < sizeof quiet / sizeof quiet[0]; i++)
+        signal(quiet[i], SIG_IGN);
     for (;;) {
         Req r;
         int fds[RQ_NFD], n;
