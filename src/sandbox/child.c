@@ -20,7 +20,9 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <link.h>
 #include <pthread.h>
+#include <stddef.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -242,6 +244,30 @@ static int do_texture(const Req *r, const Inputs *in, Mesh *m, MeshTexture *t, c
     return rc;
 }
 
+/* A library opened with dlopen (assimp, its C++ runtime, draco) has its
+ * thread-local data made at the thread's first use of it. At the bound
+ * that first use can be the throw of std::bad_alloc (the C++ runtime
+ * keeps the exception there), the data cannot be had, and glibc aborts
+ * with a line of its own ("cannot allocate memory for thread-local
+ * data") where the loader would have said "out of memory". Each block
+ * is made now, before the limits (the ABI's __tls_get_addr of each
+ * module that has one and none yet in this thread). */
+typedef struct {
+    unsigned long module, offset;
+} TlsIndex;
+extern void *__tls_get_addr(TlsIndex *ti);
+
+static int make_tls(struct dl_phdr_info *info, size_t size, void *arg)
+{
+    (void)arg;
+    if (size >= offsetof(struct dl_phdr_info, dlpi_tls_data) + sizeof info->dlpi_tls_data &&
+        info->dlpi_tls_modid && !info->dlpi_tls_data) {
+        TlsIndex ti = { info->dlpi_tls_modid, 0 };
+        __tls_get_addr(&ti);
+    }
+    return 0;
+}
+
 void sandbox_child_main(Req *r)
 {
     prctl(PR_SET_PDEATHSIG, SIGKILL);
@@ -267,8 +293,10 @@ void sandbox_child_main(Req *r)
     pthread_mutex_init(&link.mu, NULL);
     /* dlopen reads the library's files, wherever they are: before reads
      * are confined */
-    if (r->kind == REQ_LOAD)
+    if (r->kind == REQ_LOAD) {
         mesh_library_preload(r->path[0] ? r->path : NULL, r->has_format ? r->format : NULL);
+        dl_iterate_phdr(make_tls, NULL);
+    }
     /* the limits count from what is mapped now, read in /proc: before
      * reads are confined */
     limits(r);
