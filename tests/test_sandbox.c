@@ -429,11 +429,18 @@ Test(sandbox, a_hostile_jpeg_stops_at_its_bound_in_the_child)
     /* its coefficients alone would take 1.1 GB (the viewer's own 1.17 GB
      * peak before issue 28): by default the child has 512 MB */
     SandboxOpts def = { 0 }, small = { .max_memory = (uint64_t)64 << 20 };
+    /* (AddressSanitizer ends a child whose allocation fails, its own way:
+     * the bound is then not named) */
+#ifdef __SANITIZE_ADDRESS__
+    const int named = 0;
+#else
+    const int named = 1;
+#endif
     cr_assert_eq(sandbox_texture_decode(&t, &def, NULL, &out, &halved, err, sizeof err), -1);
-    cr_expect(strstr(err, "(the sandbox's bound: 512 MB for 134 bytes; --max-memory raises it)"), "%s", err);
+    cr_expect(!named || strstr(err, "(the sandbox's bound: 512 MB for 134 bytes; --max-memory raises it)"), "%s", err);
     cr_assert_null(out.rgba);
     cr_assert_eq(sandbox_texture_decode(&t, &small, NULL, &out, &halved, err, sizeof err), -1);
-    cr_expect(strstr(err, "(the sandbox's bound: 64 MB, --max-memory)"), "%s", err);
+    cr_expect(!named || strstr(err, "(the sandbox's bound: 64 MB, --max-memory)"), "%s", err);
     /* a cancel ends the child */
     int stop = 1;
     cr_assert_eq(sandbox_texture_decode(&t, &def, &stop, &out, &halved, err, sizeof err), -1);
