@@ -455,17 +455,18 @@ static int load(Mesh *m, const char *path, const MeshLoadOpts *lo, const Sandbox
         return data ? mesh_parse_buffer_ex(m, path, lo, data, len, err, errlen)
                     : mesh_load_ex(m, path, lo, err, errlen);
     memset(m, 0, sizeof *m);
+    /* the input's size: a pipe's is not known before it is read (its
+     * bound is the floor; a bigger stream is refused naming it) */
     struct stat st;
-    uint64_t input = data ? len
-                   : path && strcmp(path, "-") && stat(path, &st) == 0 && S_ISREG(st.st_mode) ? (uint64_t)st.st_size
-                   : 0;
+    int known = path && (strcmp(path, "-") ? stat(path, &st) : fstat(STDIN_FILENO, &st)) == 0 && S_ISREG(st.st_mode);
+    uint64_t input = data ? len : known ? (uint64_t)st.st_size : 0;
     const char *name = !path ? "(input)" : strcmp(path, "-") ? path : "stdin";
     Job *j = make_job(name, path, lo, so, input, mesh_format_is_native(path, lo->format));
     if (!j) {
         snprintf(err, errlen, "%s: out of memory", name);
         return -1;
     }
-    if (input && !data)         /* the model's file is counted: a library opening it again is not */
+    if (known && !data)         /* the model's file is counted: a library opening it again is not */
         j->seen[j->nseen++] = (Seen){ st.st_dev, st.st_ino, 0 };
     j->rq.kind = REQ_LOAD;
     if (data)
