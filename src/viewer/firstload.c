@@ -262,7 +262,9 @@ int app_viewer_loads_first(const Options *o)
 
 /* ZV_TEST_HOLD=FACES:PATH (tests): the loader stops after publishing
  * FACES faces until PATH exists, so that a test sees a picture of a
- * known prefix for as long as it wants. */
+ * known prefix for as long as it wants. PATH must be in the model's
+ * folder: the sandboxed child looks for it, and Landlock lets it see
+ * nothing else. */
 static void test_hold(MeshPrefix *p)
 {
     const char *h = getenv("ZV_TEST_HOLD");
