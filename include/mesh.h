@@ -108,6 +108,12 @@ typedef struct {
      * STL, PLY, OFF): "m" for glTF, "mm" for 3MF and AMF (their
      * default). --check names it beside the sizes. */
     char     unit[8];
+    /* What guarded the load (sandbox.h; all 0 in-process): a child under
+     * the seccomp filter, the Landlock ABI that confined its reads (0 or
+     * -errno: none), and the memory it could add. */
+    int32_t  sandboxed;
+    int32_t  landlock;
+    uint64_t mem_bound;
 } MeshInfo;
 
 typedef struct Mesh {
@@ -231,6 +237,12 @@ typedef struct {
     /* NULL, or where the loader publishes what it has parsed so far, for
      * a picture while it loads (meshprefix.h; OBJ only) */
     struct MeshPrefix *prefix;
+    /* NULL, or told of each file the model names (material libraries,
+     * images, buffers) once mesh_ref_open has let it through and before
+     * it is read; image: it is a texture. The sandbox's child has its
+     * parent count it in its memory bound (budget.c). */
+    void        (*on_ref)(void *arg, const char *path, int image);
+    void         *on_ref_arg;
 } MeshLoadOpts;
 
 int  mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, size_t errlen);
@@ -255,6 +267,22 @@ void mesh_free(Mesh *m);
 /* Is `name` a format this build reads (obj, stl, ply, off; with assimp
  * also "assimp" and every extension assimp reads)? */
 int  mesh_format_valid(const char *name);
+/* Open for reading `full`, a file the model at `model` names, as the
+ * loader composed it (the referring file's folder and the name, or the
+ * name alone when absolute): only a regular file beneath the model's
+ * folder (refopen.c). model NULL or "-": nothing may be opened. A
+ * descriptor, or -1 with the reason in why ("refused: ..." for a
+ * reference out of bounds, else the system's message). */
+int  mesh_ref_open(const char *model, const char *full, char *why, size_t whylen);
+
+/* Does the format forced (NULL: none), else path's extension, name a
+ * native loader (not assimp)? */
+int  mesh_format_is_native(const char *path, const char *format);
+/* Open the library a load of path (format forced, or NULL) may need now:
+ * assimp, unless the format or the extension names a native loader.
+ * Opening it reads files beside the program's: the sandbox's child does
+ * this before it confines its reads to the model's folder. */
+void mesh_library_preload(const char *path, const char *format);
 /* One line per format, for --formats: name, native or assimp, what. */
 void mesh_formats_print(FILE *f);
 /* The short list for messages: "obj stl ply off + assimp: glb gltf ...". */

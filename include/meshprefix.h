@@ -3,8 +3,8 @@
 /* meshprefix: what a load has parsed so far, for a picture while it
  * loads (the viewer's first file). The loader appends the vertices and
  * faces it has settled, in file order, to a shared mapping made before
- * the load starts (so that a sandboxed child writes where its parent
- * reads: the mapping outlives the fork); the reader takes a copy of the
+ * the load starts (a memfd, so that a sandboxed child maps and writes
+ * what its parent reads); the reader takes a copy of the
  * prefix as a Mesh built as a load builds one, checked as the sandbox's
  * wire checks what a child sends (the writer is not trusted).
  *
@@ -31,6 +31,13 @@ typedef struct MeshPrefix MeshPrefix;
  * written). NULL when it cannot be had (no picture while loading). */
 MeshPrefix *mesh_prefix_new(uint64_t bytes);
 void        mesh_prefix_free(MeshPrefix *p);
+
+/* The mapping is a memfd, for a writer in a process not forked from
+ * this one (the sandbox's fork server): its descriptor and the size
+ * given to mesh_prefix_new; there, mesh_prefix_attach(fd, bytes) is the
+ * writer's view of it (NULL when it cannot be mapped). */
+int         mesh_prefix_fd(const MeshPrefix *p, uint64_t *bytes_out);
+MeshPrefix *mesh_prefix_attach(int fd, uint64_t bytes);
 
 /* For tests (the viewer's ZV_TEST_HOLD): the writer publishes at most
  * `faces` faces, and once it has, waits until the file `path` exists

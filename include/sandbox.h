@@ -1,16 +1,21 @@
 #ifndef ZV_SANDBOX_H
 #define ZV_SANDBOX_H
-/* sandbox: mesh_load in a child process that can do nothing but read and
- * fail. A model file is input from strangers, and its parsers (assimp's
- * above all) have a long record of memory-safety bugs; whatever a
- * malformed file makes a parser do happens in a child that
+/* sandbox: mesh_load, and the decoding of a texture, in a child process
+ * that can do nothing but read and fail. A model file is input from
+ * strangers, and its parsers (assimp's above all) and image decoders
+ * have a long record of memory-safety bugs; whatever a malformed file
+ * makes a parser do happens in a child that
  *   - has a seccomp-bpf filter: it may read files, map memory, make
  *     threads and write to standard error; creating or writing files,
  *     exec, sockets, ptrace, signals to other processes and the rest are
  *     refused (the attacks kill the child, the rest fail with EPERM);
- *   - has limits: address space (the memory it may add: --max-memory, by
- *     default what the machine has available), CPU time, no core file;
- *   - hands the Mesh back: a header in a memfd says where its arrays
+ *   - reads beneath the model's folder only, where the kernel has
+ *     Landlock (landlock.c), and writes nowhere;
+ *   - has limits: the memory it may add (--max-memory, or by default a
+ *     bound proportional to its input: budget.c), CPU time, no core file;
+ *   - comes from a fork server (server.c) started before any thread, so
+ *     that no lock another thread held at the fork is inherited;
+ *   - hands its result back: a header in a memfd says where its arrays
  *     are, and the parent copies them straight out of the child's memory
  *     (process_vm_readv: one copy), or, where it may not, out of the
  *     memfd the child then fills; the error text and warnings come in
@@ -30,15 +35,34 @@
  * taken for hostile (assimp's node DAGs grow without end). */
 #define SANDBOX_CPU_SECONDS 120
 
+/* The memory a load may add by default: SANDBOX_FLOOR, or more for a
+ * big input (budget.c). */
+#define SANDBOX_FLOOR ((uint64_t)512 << 20)
+
+/* The fork server (server.c): a small process forked before any thread,
+ * which forks each sandboxed child; a plain value, copied freely. */
+typedef struct {
+    pid_t pid;              /* > 0: running */
+    int   sock;             /* where requests go */
+} SandboxServer;
+
 typedef struct {
     int      off;           /* --no-sandbox: load in this process */
-    uint64_t max_memory;    /* bytes the load may add to the address space; 0: what is available */
+    uint64_t max_memory;    /* bytes the load may add; 0: the default bound (budget.c) */
     unsigned cpu_seconds;   /* 0: SANDBOX_CPU_SECONDS */
+    SandboxServer server;   /* where children come from; pid 0: forked from this process */
 } SandboxOpts;
 
 /* Can this system sandbox a load (a kernel with seccomp filters)? When
  * it cannot, sandbox_load loads in-process (the caller warns once). */
 int sandbox_available(void);
+
+/* Start the fork server. Call it while the process has one thread: the
+ * server is a copy of it, and so is every child it forks. 0, or -1
+ * (s->pid 0: children are then forked from the caller). It ends when
+ * the process does, or at sandbox_server_stop. */
+int  sandbox_server_start(SandboxServer *s);
+void sandbox_server_stop(SandboxServer *s);
 
 /* mesh_load_ex in a child (in-process when so->off or no seccomp). Same
  * contract: 0, or -1 with "path: message" in err and *m empty. A set
@@ -52,6 +76,23 @@ int sandbox_load(Mesh *m, const char *path, const MeshLoadOpts *lo, const Sandbo
  * they reference. */
 int sandbox_parse_buffer(Mesh *m, const char *path, const MeshLoadOpts *lo, const SandboxOpts *so,
                          const void *data, size_t len, char *err, size_t errlen);
+
+/* mesh_texture_decode of a pending texture's bytes in a child (in-process
+ * when so->off or no seccomp), under a memory bound of its own: what
+ * the bytes can hold (budget.c), or --max-memory. cancel: NULL, or a
+ * flag another thread sets (atomically) to end the child. Same contract
+ * as mesh_texture_decode: 0, or -1 with the reason in err (without the
+ * texture's name). */
+int sandbox_texture_decode(const MeshTexture *t, const SandboxOpts *so, const int *cancel, Texture *out,
+                           int *halved_out, char *err, size_t errlen);
+
+/* The Landlock ABI the kernel offers, or -errno (-ENOSYS: not built in,
+ * -EOPNOTSUPP: disabled at boot). ZV_LANDLOCK_ABI (a number) plays the
+ * kernel's answer, for tests. */
+int  sandbox_landlock_abi(void);
+/* What protects a load, for --info: "seccomp, landlock (ABI 7), memory
+ * 512 MB" from a Mesh's MeshInfo (in-process: what no_sandbox says). */
+void sandbox_describe(const MeshInfo *in, int no_sandbox, char *buf, size_t len);
 
 /* ---- Used by the sandbox's own files and its tests ---- */
 

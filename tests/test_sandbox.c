@@ -1,13 +1,20 @@
-/* test_sandbox.c: the loading sandbox (issue 22). A load in the child
- * gives the very arrays a load in-process gives (the wire loses and
- * invents nothing, textures included); a result the child could have
- * forged is refused by the parent's checks; cancel ends the child; and
- * references beneath the model's folder are the only ones opened. */
+/* test_sandbox.c: the loading sandbox (issues 22, 28). A load in the
+ * child gives the very arrays a load in-process gives (the wire loses
+ * and invents nothing, textures included), whether the child is forked
+ * here or by the fork server, from any number of threads at once; a
+ * texture decoded in a child is the one decoded here, and a hostile one
+ * stops at its bound; a result the child could have forged is refused
+ * by the parent's checks; cancel ends the child; references beneath the
+ * model's folder are the only ones opened; the default bound is what
+ * budget.c says, and --info's words for it. */
 
 #define _GNU_SOURCE
 
 #include <criterion/criterion.h>
+#include <errno.h>
 #include <fcntl.h>
+#include <png.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +23,7 @@
 #include <unistd.h>
 
 #include "../src/mesh/mesh_internal.h"
+#include "../src/sandbox/sandbox_internal.h"
 #include "sandbox.h"
 
 #define SAME(a, b, n) ((!(a) && !(b)) || ((a) && (b) && memcmp((a), (b), (n)) == 0))
@@ -309,4 +317,238 @@ Test(sandbox, references_in_the_folder_open_however_they_are_written)
     cr_assert_eq(chdir(cwd), 0);
     snprintf(p, sizeof p, "rm -rf %s", dir);
     cr_assert_eq(system(p), 0);
+}
+
+/* ==== The fork server (issue 28) ==== */
+
+typedef struct {
+    const SandboxOpts *so;
+    const Mesh        *want;
+    int                ok;
+    char               err[512];
+} Loader;
+
+static void *load_five(void *arg)
+{
+    Loader *l = arg;
+    MeshLoadOpts lo = { .quiet = 1 };
+    for (int i = 0; i < 5; i++) {
+        Mesh m;
+        if (sandbox_load(&m, "assets/demo.obj", &lo, l->so, l->err, sizeof l->err) != 0)
+            return NULL;
+        int same = m.nfaces == l->want->nfaces && m.nverts == l->want->nverts &&
+                   !memcmp(m.pos, l->want->pos, (size_t)m.nverts * 12) &&
+                   !memcmp(m.corner, l->want->corner, (size_t)m.face_start[m.nfaces] * 4);
+        mesh_free(&m);
+        if (!same) {
+            snprintf(l->err, sizeof l->err, "load %d: another mesh", i);
+            return NULL;
+        }
+    }
+    l->ok = 1;
+    return NULL;
+}
+
+Test(sandbox, the_fork_server_serves_every_thread)
+{
+    SandboxOpts so = { 0 };
+    cr_assert_eq(sandbox_server_start(&so.server), 0);
+    cr_assert_gt(so.server.pid, 0);
+    Mesh in, out;
+    char err[512];
+    MeshLoadOpts lo = { .quiet = 1 };
+    SandboxOpts off = { .off = 1 };
+    cr_assert_eq(sandbox_load(&in, "assets/demo.obj", &lo, &off, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(sandbox_load(&out, "assets/demo.obj", &lo, &so, err, sizeof err), 0, "%s", err);
+    assert_same(&in, &out);
+    cr_assert_eq(out.info.sandboxed, 1);
+    mesh_free(&out);
+    /* four threads at once, five loads each, through the one server */
+    pthread_t th[4];
+    Loader l[4];
+    for (int i = 0; i < 4; i++) {
+        l[i] = (Loader){ .so = &so, .want = &in };
+        cr_assert_eq(pthread_create(&th[i], NULL, load_five, &l[i]), 0);
+    }
+    for (int i = 0; i < 4; i++) {
+        pthread_join(th[i], NULL);
+        cr_expect(l[i].ok, "thread %d: %s", i, l[i].err);
+    }
+    /* a server gone (a copy of its handle kept): the child is forked here */
+    SandboxOpts stale = so;
+    sandbox_server_stop(&so.server);
+    cr_assert_eq(so.server.pid, 0);
+    cr_assert_eq(sandbox_load(&out, "assets/demo.obj", &lo, &stale, err, sizeof err), 0, "%s", err);
+    assert_same(&in, &out);
+    mesh_free(&out);
+    mesh_free(&in);
+}
+
+Test(sandbox, a_cancel_ends_a_child_of_the_server)
+{
+    SandboxOpts so = { 0 };
+    cr_assert_eq(sandbox_server_start(&so.server), 0);
+    Mesh m;
+    char err[512];
+    int stop = 1;
+    MeshLoadOpts lo = { .cancel = &stop };
+    cr_assert_eq(sandbox_load(&m, "assets/torus.obj", &lo, &so, err, sizeof err), -1);
+    cr_assert_str_eq(err, "assets/torus.obj: cancelled");
+    sandbox_server_stop(&so.server);
+}
+
+/* ==== Textures decoded in a child (issue 28) ==== */
+
+static unsigned char *png_of(int w, int h, size_t *len)
+{
+    uint8_t *rgba = malloc((size_t)w * h * 4);
+    for (int i = 0; i < w * h; i++) {
+        rgba[4 * i] = (uint8_t)(i * 7);
+        rgba[4 * i + 1] = (uint8_t)(i / w * 5);
+        rgba[4 * i + 2] = (uint8_t)(i % w * 3);
+        rgba[4 * i + 3] = 255;
+    }
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    img.width = (png_uint_32)w;
+    img.height = (png_uint_32)h;
+    img.format = PNG_FORMAT_RGBA;
+    png_alloc_size_t n = 0;
+    cr_assert(png_image_write_to_memory(&img, NULL, &n, 0, rgba, 0, NULL));
+    unsigned char *buf = malloc(n);
+    cr_assert(png_image_write_to_memory(&img, buf, &n, 0, rgba, 0, NULL));
+    free(rgba);
+    *len = n;
+    return buf;
+}
+
+Test(sandbox, a_texture_decoded_in_the_child_is_the_one_decoded_here)
+{
+    size_t len;
+    unsigned char *png = png_of(64, 48, &len);
+    MeshTexture t = { .name = "t.png", .data = png, .len = len };
+    t.img.wrap_u = TEX_CLAMP;
+    t.img.wrap_v = TEX_MIRROR;
+    Texture a, b;
+    int ha = -1, hb = -1;
+    char e1[256], e2[256];
+    SandboxOpts off = { .off = 1 }, on = { 0 };
+    cr_assert_eq(sandbox_texture_decode(&t, &off, NULL, &a, &ha, e1, sizeof e1), 0, "%s", e1);
+    cr_assert_eq(sandbox_texture_decode(&t, &on, NULL, &b, &hb, e2, sizeof e2), 0, "%s", e2);
+    cr_assert_eq(a.w, b.w);
+    cr_assert_eq(a.h, b.h);
+    cr_assert_eq(a.levels, b.levels);
+    cr_assert_eq(ha, hb);
+    cr_assert_eq(b.wrap_u, TEX_CLAMP);
+    cr_assert_eq(b.wrap_v, TEX_MIRROR);
+    cr_assert_eq(texture_bytes(&a), texture_bytes(&b));
+    cr_assert(!memcmp(a.rgba, b.rgba, texture_bytes_for(a.w, a.h)));
+    cr_assert(a.lin && b.lin && !memcmp(a.lin, b.lin, texture_bytes(&a) - texture_bytes_for(a.w, a.h)));
+    texture_free(&a);
+    texture_free(&b);
+    /* bytes that are no image: the decoder's reason, without the name */
+    t.len = 40;
+    cr_assert_eq(sandbox_texture_decode(&t, &on, NULL, &b, &hb, e2, sizeof e2), -1);
+    cr_assert_eq(sandbox_texture_decode(&t, &off, NULL, &a, &ha, e1, sizeof e1), -1);
+    cr_assert_str_eq(e1, e2);
+    cr_assert_null(b.rgba);
+    free(png);
+}
+
+/* tests/e2e/hugejpeg.py's JPEG: progressive, one grey component, a
+ * header claiming side x side pixels, one DC scan of zero differences
+ * (sixteen bytes of it), then the end: 134 bytes. */
+static size_t hostile_jpeg(unsigned char *b, int side)
+{
+    static const unsigned char dht[] = { 0xFF, 0xC4, 0, 20, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+    static const unsigned char sos[] = { 0xFF, 0xDA, 0, 8, 1, 1, 0, 0, 0, 0 };
+    size_t n = 0;
+    b[n++] = 0xFF, b[n++] = 0xD8;
+    b[n++] = 0xFF, b[n++] = 0xDB, b[n++] = 0, b[n++] = 67, b[n++] = 0;
+    for (int i = 0; i < 64; i++)
+        b[n++] = 1;
+    unsigned char sof[] = { 0xFF, 0xC2, 0, 11, 8, (unsigned char)(side >> 8), (unsigned char)side,
+                            (unsigned char)(side >> 8), (unsigned char)side, 1, 1, 0x11, 0 };
+    memcpy(b + n, sof, sizeof sof);
+    n += sizeof sof;
+    memcpy(b + n, dht, sizeof dht);
+    n += sizeof dht;
+    memcpy(b + n, sos, sizeof sos);
+    n += sizeof sos;
+    memset(b + n, 0, 16);
+    n += 16;
+    b[n++] = 0xFF, b[n++] = 0xD9;
+    return n;
+}
+
+Test(sandbox, a_hostile_jpeg_stops_at_its_bound_in_the_child)
+{
+    unsigned char jpg[256];
+    size_t len = hostile_jpeg(jpg, 24000);
+    cr_assert_eq(len, 134);
+    int w = 0, h = 0;
+    cr_assert_eq(texture_peek(jpg, len, &w, &h), 0, "a JPEG libjpeg reads");
+    cr_assert_eq(w, 24000);
+    MeshTexture t = { .name = "mid.jpg", .data = jpg, .len = len };
+    Texture out;
+    int halved;
+    char err[512];
+    /* its coefficients alone would take 1.1 GB (the viewer's own 1.17 GB
+     * peak before issue 28): the decoder counts them before it starts
+     * (texture/jpeg.c) and refuses in the child, by default against the
+     * texture's own budget, with --max-memory against that; the child's
+     * bound (512 MB by default) stands behind it */
+    SandboxOpts def = { 0 }, small = { .max_memory = (uint64_t)64 << 20 };
+    cr_assert_eq(sandbox_texture_decode(&t, &def, NULL, &out, &halved, err, sizeof err), -1);
+    cr_expect(strstr(err, "24000x24000 progressive JPEG needs about"), "%s", err);
+    cr_assert_null(out.rgba);
+    cr_assert_eq(sandbox_texture_decode(&t, &small, NULL, &out, &halved, err, sizeof err), -1);
+    cr_expect(strstr(err, "needs about") && strstr(err, "67 MB allowed"), "%s", err);
+    /* a cancel ends the child */
+    int stop = 1;
+    cr_assert_eq(sandbox_texture_decode(&t, &def, &stop, &out, &halved, err, sizeof err), -1);
+    cr_assert_str_eq(err, "cancelled");
+}
+
+/* ==== The default bound, and --info's words (issue 28) ==== */
+
+Test(sandbox, the_default_bound)
+{
+    const uint64_t MB = (uint64_t)1 << 20;
+    cr_assert_eq(sandbox_budget_of(0), 512 * MB);
+    cr_assert_eq(sandbox_budget_of(600 * MB), 600 * MB);
+    cr_assert_eq(sandbox_input_allowance(1000, 1), 4000);
+    cr_assert_eq(sandbox_input_allowance(1000, 0), 48000);
+    cr_assert_eq(sandbox_input_allowance(UINT64_MAX / 2, 0), UINT64_MAX, "saturates");
+    /* an image: as many pixels as its bytes can hold, 8 bytes each, and 64 MB */
+    cr_assert_eq(sandbox_image_allowance(100), 100 * 8256 * 8 + 64 * MB);
+    cr_assert_eq(sandbox_image_allowance(40000), (uint64_t)16384 * 16384 * 8 + 64 * MB);
+    cr_assert_eq(sandbox_image_allowance(UINT64_MAX), (uint64_t)16384 * 16384 * 8 + 64 * MB);
+    uint64_t as, data;
+    sandbox_thread_room(1, &as, &data);
+    cr_assert_eq(as + data, 0);
+    sandbox_thread_room(3, &as, &data);
+    cr_assert_eq(as, 2 * 80 * MB);
+    cr_assert_eq(data, 2 * 8 * MB);
+}
+
+Test(sandbox, what_info_says_protected_a_load)
+{
+    MeshInfo in = { .sandboxed = 1, .landlock = 7, .mem_bound = (uint64_t)512 << 20 };
+    char b[160];
+    sandbox_describe(&in, 0, b, sizeof b);
+    cr_assert_str_eq(b, "seccomp, landlock (ABI 7), memory 512 MB");
+    in.landlock = -ENOSYS;
+    in.mem_bound = (uint64_t)5 << 30;
+    sandbox_describe(&in, 0, b, sizeof b);
+    cr_assert_str_eq(b, "seccomp, no landlock (not in this kernel), memory 5.0 GB");
+    in.landlock = -EOPNOTSUPP;
+    sandbox_describe(&in, 0, b, sizeof b);
+    cr_assert_str_eq(b, "seccomp, no landlock (disabled at boot), memory 5.0 GB");
+    in.sandboxed = 0;
+    sandbox_describe(&in, 1, b, sizeof b);
+    cr_assert_str_eq(b, "none (--no-sandbox)");
+    sandbox_describe(&in, 0, b, sizeof b);
+    cr_assert_str_eq(b, "none (this system has no seccomp filters)");
 }

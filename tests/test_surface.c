@@ -647,7 +647,7 @@ Test(surface, a_big_texture_waits_for_its_thread_and_then_shows)
     render(&p, &s, 100, 100, SHADE_LAMBERT);
     cr_expect(px_at(&p, 30, 50)[0] == 255 && px_at(&p, 70, 50)[0] == 255, "before: %d %d", px_at(&p, 30, 50)[0],
               px_at(&p, 70, 50)[0]);
-    TexJob *job = texjob_start(&s);
+    TexJob *job = texjob_start(&s, &o);
     cr_assert_not_null(job);
     char note[256] = "";
     int put = 0;

@@ -68,7 +68,7 @@ static int demo_missing(char *err, size_t errlen)
 
 SandboxOpts app_sandbox_opts(const Options *o)
 {
-    SandboxOpts so = { .off = o->no_sandbox, .max_memory = o->max_memory };
+    SandboxOpts so = { .off = o->no_sandbox, .max_memory = o->max_memory, .server = o->sandbox };
     return so;
 }
 

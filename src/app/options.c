@@ -520,7 +520,7 @@ const OptSpec cli_options[] = {
     { "no-sandbox", 0, NULL, NULL, OPTSEC_INPUT,
       "load in zview's own process, not in a sandboxed child\n(README: Security)", NULL, FLAG(no_sandbox), 0 },
     { "max-memory", 0, "SIZE", NULL, OPTSEC_INPUT,
-      "memory a load may take (512M, 2G; default: what\nthe machine has available)", set_max_memory, 0, 0 },
+      "memory a load may take (512M, 2G; default: 4 times\nthe input, 48 through assimp, at least 512M)", set_max_memory, 0, 0 },
     { "points", 0, NULL, NULL, OPTSEC_INPUT, "every vertex as a point, the faces left out", NULL, FLAG(points),
       OPT_VIEWCMD },
     /* ---- Output ---- */

@@ -76,6 +76,11 @@ int main(int argc, char **argv)
         printf("zview %s\n", ZV_VERSION);
         return finish_stdout();
     }
+    /* Sandboxed loads are forked from a server started now, while zview
+     * has one thread: a fork copies only the thread that calls it, and a
+     * lock another held would stay held in the child (server.c) */
+    if (!o.no_sandbox && sandbox_available())
+        sandbox_server_start(&o.sandbox);
     int rc;
     if (o.bench || o.bench_tty) {
         /* each model loaded on its own; --bench-tty drives the viewer */

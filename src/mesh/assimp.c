@@ -620,8 +620,8 @@ static int import_failed(MeshCtx *c)
         o += 3;
     }
     msg[o] = '\0';
-    if (strstr(msg, "bad_alloc"))   /* the limit of the sandbox (--max-memory) or of the machine */
-        return me_fail(&c->err, "out of memory reading it (assimp: %.100s; --max-memory sets the bound)", msg);
+    if (strstr(msg, "bad_alloc"))   /* the sandbox's bound (which it names) or the machine's */
+        return me_fail(&c->err, "out of memory reading it (assimp: %.100s)", msg);
     return me_fail(&c->err, "%s", msg);
 }
 

@@ -117,7 +117,7 @@ static struct aiFile *io_open(struct aiFileIO *fio, const char *name, const char
     if (io->data && !strcmp(name, io->name))
         return io_new(io, NULL);
     char why[200];
-    int fd = mesh_ref_open(io->data ? NULL : io->model, name, why, sizeof why);
+    int fd = me_ref_open(io->err, io->data ? NULL : io->model, name, 0, why, sizeof why);
     if (fd < 0) {
         /* a name that is not there is assimp looking for optional files;
          * a refusal is the model reaching out, and the user hears of it */

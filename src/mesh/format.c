@@ -171,6 +171,23 @@ int mesh_format_valid(const char *name)
     return 0;
 }
 
+int mesh_format_is_native(const char *path, const char *format)
+{
+    char ext[16];
+    extension(path && strcmp(path, "-") ? path : NULL, ext, sizeof ext);
+    return format ? native_by_name(format) != NULL : native_by_ext(ext) != NULL;
+}
+
+void mesh_library_preload(const char *path, const char *format)
+{
+#ifdef ZV_ASSIMP
+    if (!mesh_format_is_native(path, format))
+        mesh_assimp_available();
+#else
+    (void)path, (void)format;
+#endif
+}
+
 void mesh_formats_short(char *buf, size_t n)
 {
     size_t k = 0;
@@ -399,7 +416,8 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
                                    .tex_defer_side = opt ? opt->tex_defer_side : 0,
                                    .no_textures = opt && opt->no_textures, .model = path,
                                    .threads = opt ? opt->threads : 0, .piece_bytes = opt ? opt->piece_bytes : 0,
-                                   .prefix = opt ? opt->prefix : NULL },
+                                   .prefix = opt ? opt->prefix : NULL,
+                                   .on_ref = opt ? opt->on_ref : NULL, .on_ref_arg = opt ? opt->on_ref_arg : NULL },
                   .path = path };
     char ext[16];
     extension(path, ext, sizeof ext);
@@ -535,7 +553,8 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
                                    .no_textures = opt && opt->no_textures,
                                    .model = is_stdin ? NULL : path,
                                    .threads = opt ? opt->threads : 0, .piece_bytes = opt ? opt->piece_bytes : 0,
-                                   .prefix = opt ? opt->prefix : NULL },
+                                   .prefix = opt ? opt->prefix : NULL,
+                                   .on_ref = opt ? opt->on_ref : NULL, .on_ref_arg = opt ? opt->on_ref_arg : NULL },
                   .path = path };
     char ext[16];
     extension(is_stdin ? NULL : path, ext, sizeof ext);

@@ -76,14 +76,15 @@ void mb_material_no_texture(Material *mt)
 /* A file's bytes, for an image: regular files only (a FIFO would block
  * for ever), no bigger than the texels of the largest image allowed
  * (compressed images are far smaller). 0, or -1 with the reason. */
-static int read_image_file(const char *model, const char *path, void **data_out, size_t *len_out, char *why,
+static int read_image_file(MeshErr *e, const char *path, void **data_out, size_t *len_out, char *why,
                            size_t whylen)
 {
     struct stat st;
     *data_out = NULL;
     *len_out = 0;
-    /* beneath the model's folder, a regular file (mesh_ref_open) */
-    int fd = mesh_ref_open(model, path, why, whylen);
+    /* beneath the model's folder, a regular file (mesh_ref_open); no
+     * model (e NULL), no file */
+    int fd = e ? me_ref_open(e, e->model, path, 1, why, whylen) : mesh_ref_open(NULL, path, why, whylen);
     if (fd < 0)
         return -1;
     if (fstat(fd, &st) != 0) {
@@ -286,7 +287,7 @@ int32_t mb_texture(MeshBuild *b, const char *name, const char *path, const void 
     void *bytes = NULL;
     char why[160];
     if (path) {
-        if (read_image_file(b->e->model, path, &bytes, &len, why, sizeof why)) {
+        if (read_image_file(b->e, path, &bytes, &len, why, sizeof why)) {
             texture_failed(b, name, why);
             return i;
         }

@@ -247,7 +247,7 @@ static int load_library(Parser *ps, const char *name, size_t n)
      * model's to show (mesh_ref_open). */
     char why[200];
     char ref[120];
-    int fd = mesh_ref_open(ps->e->model, full, ref, sizeof ref);
+    int fd = me_ref_open(ps->e, ps->e->model, full, 0, ref, sizeof ref);
     if (fd < 0)
         snprintf(msg, sizeof msg, "%s%s", strncmp(ref, "refused", 7) ? "cannot open: " : "", ref);
     if (fd < 0 || mf_open_fd(&f, fd, MF_REGULAR_ONLY, msg, sizeof msg)) {

@@ -8,13 +8,15 @@
  * change: a face's start is where the face before it ends, the same
  * number whichever publication wrote it. */
 
-#define _DEFAULT_SOURCE
+#define _GNU_SOURCE            /* memfd_create, its seals */
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/mman.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -34,6 +36,8 @@ typedef struct {
 struct MeshPrefix {
     Shared   *sh;       /* the mapping's start */
     size_t    maplen;
+    int       fd;       /* the memfd mapped (-1: a view attached in another process) */
+    uint64_t  bytes;    /* the file's size the layout is for */
     uint64_t  vcap, fcap, ccap;         /* kept here, out of the writer's reach */
     float    *pos;
     uint32_t *fstart;   /* fcap + 1 */
@@ -46,25 +50,70 @@ static uint64_t cap32(uint64_t n)
     return n < UINT32_MAX ? n : UINT32_MAX;
 }
 
-MeshPrefix *mesh_prefix_new(uint64_t bytes)
+/* The layout for a file of `bytes` bytes over the mapping at m. */
+static void lay_out(MeshPrefix *p, uint64_t bytes)
 {
-    MeshPrefix *p = calloc(1, sizeof *p);
-    if (!p)
-        return NULL;
+    p->bytes = bytes;
     p->vcap = cap32(bytes / 8 + 1);
     p->fcap = cap32(bytes / 8 + 1);
     p->ccap = cap32(bytes / 2 + 1);
     size_t head = (sizeof(Shared) + 63) & ~(size_t)63;
     p->maplen = head + p->vcap * 12 + (p->fcap + 1) * 4 + p->ccap * 4;
-    void *m = mmap(NULL, p->maplen, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-    if (m == MAP_FAILED) {
-        free(p);
-        return NULL;
-    }
+}
+
+static int map_at(MeshPrefix *p, int fd)
+{
+    void *m = mmap(NULL, p->maplen, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_NORESERVE, fd, 0);
+    if (m == MAP_FAILED)
+        return -1;
+    size_t head = (sizeof(Shared) + 63) & ~(size_t)63;
     p->sh = m;
     p->pos = (float *)((char *)m + head);
     p->fstart = (uint32_t *)(p->pos + 3 * p->vcap);
     p->corner = p->fstart + p->fcap + 1;
+    return 0;
+}
+
+MeshPrefix *mesh_prefix_new(uint64_t bytes)
+{
+    MeshPrefix *p = calloc(1, sizeof *p);
+    if (!p)
+        return NULL;
+    lay_out(p, bytes);
+    /* a memfd, not an anonymous mapping: a child forked elsewhere (the
+     * sandbox's fork server) maps it too. Its size is sealed: the writer,
+     * not trusted, cannot shrink it under the reader (SIGBUS). Pages are
+     * only made as they are written. */
+    p->fd = memfd_create("zview-prefix", MFD_CLOEXEC | MFD_ALLOW_SEALING);
+    if (p->fd < 0 || ftruncate(p->fd, (off_t)p->maplen) != 0 ||
+        fcntl(p->fd, F_ADD_SEALS, F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_SEAL) != 0 || map_at(p, p->fd) != 0) {
+        if (p->fd >= 0)
+            close(p->fd);
+        free(p);
+        return NULL;
+    }
+    return p;
+}
+
+int mesh_prefix_fd(const MeshPrefix *p, uint64_t *bytes_out)
+{
+    *bytes_out = p->bytes;
+    return p->fd;
+}
+
+MeshPrefix *mesh_prefix_attach(int fd, uint64_t bytes)
+{
+    MeshPrefix *p = calloc(1, sizeof *p);
+    if (!p)
+        return NULL;
+    lay_out(p, bytes);
+    struct stat st;
+    /* the layout must fit in what was made for it */
+    if (fstat(fd, &st) != 0 || (uint64_t)st.st_size < p->maplen || map_at(p, fd) != 0) {
+        free(p);
+        return NULL;
+    }
+    p->fd = -1;
     return p;
 }
 
@@ -73,6 +122,8 @@ void mesh_prefix_free(MeshPrefix *p)
     if (!p)
         return;
     munmap(p->sh, p->maplen);
+    if (p->fd >= 0)
+        close(p->fd);
     free(p);
 }
 

@@ -59,6 +59,9 @@ typedef struct {
     uint64_t    piece_bytes;
     /* NULL, or where the prefix parsed so far is published (meshprefix.h) */
     struct MeshPrefix *prefix;
+    /* MeshLoadOpts.on_ref: told of each file mesh_ref_open lets through */
+    void      (*on_ref)(void *arg, const char *path, int image);
+    void       *on_ref_arg;
 } MeshErr;
 
 /* Each writes the message and returns -1, so `return me_fail(...)`. */
@@ -147,13 +150,10 @@ int  mf_open(MeshFile *f, const char *path, int flags, char *msg, size_t msglen)
  * and by mf_close): a file mesh_ref_open let through. */
 int  mf_open_fd(MeshFile *f, int fd, int flags, char *msg, size_t msglen);
 
-/* Open for reading `full`, a file the model at `model` names, as the
- * loader composed it (the referring file's folder and the name, or the
- * name alone when absolute): only a regular file beneath the model's
- * folder (refopen.c). model NULL or "-": nothing may be opened. A
- * descriptor, or -1 with the reason in why ("refused: ..." for a
- * reference out of bounds, else the system's message). */
-int  mesh_ref_open(const char *model, const char *full, char *why, size_t whylen);
+/* mesh_ref_open (mesh.h) is how a loader opens what a model names. */
+/* mesh_ref_open for a load: e->on_ref is told of the file once it is
+ * open (image: a texture). */
+int  me_ref_open(MeshErr *e, const char *model, const char *full, int image, char *why, size_t whylen);
 
 /* gzip (gzip.c): do these bytes start gzip data? Start decompressing
  * f (its fd read on from where it stands; seed: the compressed bytes

@@ -233,3 +233,11 @@ int mesh_ref_open(const char *model, const char *full, char *why, size_t whylen)
         return open_rel(root, full, why, whylen);          /* a name without the folder */
     return open_absolute(root, full, 0, why, whylen);
 }
+
+int me_ref_open(MeshErr *e, const char *model, const char *full, int image, char *why, size_t whylen)
+{
+    int fd = mesh_ref_open(model, full, why, whylen);
+    if (fd >= 0 && e->on_ref)
+        e->on_ref(e->on_ref_arg, full, image);
+    return fd;
+}

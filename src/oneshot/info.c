@@ -149,6 +149,9 @@ int app_info(const Options *o, Scene *s, const FirstView *fv)
         if (i)
             out_printf(out, "\n");
         print_mesh(out, &s->meshes[i], s->pos_exp);
+        char sb[160];
+        sandbox_describe(&s->meshes[i].info, o->no_sandbox, sb, sizeof sb);
+        out_printf(out, "sandbox:    %s\n", sb);
         print_up(out, o, s, i);
     }
     uint64_t npolys = 0;   /* grid copies share their source's polygon lists */

@@ -13,8 +13,9 @@
  * for odds and ends (ioctl on a terminal, prctl, sched_setaffinity) and
  * cope with a refusal, where killing for them would fail real files.
  *
- * Mapping executable memory stays allowed: assimp is opened with
- * dlopen in the child when the file is its first format of the run. */
+ * Mapping executable memory stays allowed (a library may map code), and
+ * so do read-only opens of any file: what may be read is Landlock's to
+ * say (landlock.c), where the kernel has it, and refopen.c's. */
 
 #define _GNU_SOURCE
 
@@ -50,7 +51,7 @@ static const int allowed[] = {
     SCMP_SYS(getgid), SCMP_SYS(getegid), SCMP_SYS(clock_gettime), SCMP_SYS(clock_getres),
     SCMP_SYS(gettimeofday), SCMP_SYS(nanosleep), SCMP_SYS(clock_nanosleep), SCMP_SYS(sched_yield),
     SCMP_SYS(sched_getaffinity), SCMP_SYS(getrandom), SCMP_SYS(getrusage), SCMP_SYS(times),
-    SCMP_SYS(sysinfo), SCMP_SYS(uname), SCMP_SYS(getrlimit), SCMP_SYS(prlimit64),
+    SCMP_SYS(sysinfo), SCMP_SYS(uname), SCMP_SYS(getrlimit),
     SCMP_SYS(membarrier), SCMP_SYS(restart_syscall), SCMP_SYS(sched_getparam),
     SCMP_SYS(sched_getscheduler), SCMP_SYS(mincore),
 };
@@ -110,6 +111,9 @@ static int add_rules(scmp_filter_ctx f, int memfd, int pipefd)
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(write), 1, SCMP_A0(SCMP_CMP_EQ, (scmp_datum_t)pipefd));
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(pwrite64), 1, SCMP_A0(SCMP_CMP_EQ, (scmp_datum_t)memfd));
     r |= seccomp_rule_add(f, SCMP_ACT_KILL_PROCESS, SCMP_SYS(pwrite64), 1, SCMP_A0(SCMP_CMP_NE, (scmp_datum_t)memfd));
+    /* limits: read, never changed (the parent raises its memory limit as
+     * the model's files are counted: sandbox.c); setrlimit is refused */
+    r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(prlimit64), 1, SCMP_A2(SCMP_CMP_EQ, 0));
     /* signals: to itself only (abort(), a sanitizer's report) */
     pid_t self = getpid();
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(tgkill), 1, SCMP_A0(SCMP_CMP_EQ, (scmp_datum_t)self));

@@ -1,10 +1,12 @@
-/* sandbox.c: a load in a child process (sandbox.h). The parent makes a
- * memfd for the result and a shared page for progress, forks, and waits
- * for the child to end, polling a pipe the child holds open so that a
- * cancel (the viewer's Esc) can kill it and progress can be copied out.
- * The child lowers its limits, closes what it does not need, installs
- * the filter (filter.c), runs the unchanged loader and writes the mesh
- * into the memfd (wire.c); the parent reads it back, checking it. */
+/* sandbox.c: a load, or a texture's decode, in a child process
+ * (sandbox.h): the parent's side. It makes a memfd for the result, two
+ * pipes to hear from the child and to answer it, a page for progress,
+ * and starts the child: from the fork server (server.c), else by a fork
+ * of its own. It waits for the child's word, polling the pipe the child
+ * holds open, so that a cancel (the viewer's Esc) can kill it, progress
+ * can be copied out, and each file the model names can be counted into
+ * the child's memory bound as the child opens it (budget.c); then reads
+ * the result back, checking it (wire.c). The child's side is child.c. */
 
 #define _GNU_SOURCE
 
@@ -20,34 +22,39 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
-#include <sys/uio.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "clock.h"
-#include "sandbox.h"
-
-#define SANDBOX_SLACK (256ull << 20)     /* bytes beyond the memory available, without --max-memory */
+#include "meshprefix.h"
+#include "sandbox_internal.h"
 #include "sysmem.h"
 
 /* How often the parent looks at the cancel flag and copies progress
  * while the child works: quick enough for Esc to feel immediate. */
 #define POLL_MS 50
+/* Files counted into one load's bound; past them, no more is granted. */
+#define MAX_REFS 256
 
 typedef struct {
-    const char         *path;   /* what is loaded */
-    const char         *name;   /* what messages call it */
-    const MeshLoadOpts *lo;
-    const void         *data;   /* the bytes, or NULL to read path */
-    size_t              len;
-    uint64_t            budget; /* address space the child may add */
-    unsigned            cpu;    /* seconds */
-    int                 memfd;
-    int                 alive;  /* the child's end: 'r' when its result is ready; closed when it ends */
-    int                 go;     /* the child's end: 'w' asks for the arrays in the memfd; EOF ends it */
-    MeshProgress       *progress;   /* shared with the parent, or NULL */
-    int                 errfd;  /* the child's end of its standard error (childerr.c), or -1 */
-    ChildErr            cerr;   /* the parent's end */
+    dev_t dev;
+    ino_t ino;
+    int   image;
+} Seen;
+
+typedef struct {
+    Req           rq;           /* what the child does */
+    const char   *name;         /* what messages call it */
+    const MeshLoadOpts *lo;     /* the caller's: cancel, progress */
+    MeshProgress *progress;     /* the child's, mapped here; NULL: none */
+    int           fixed;        /* --max-memory: the bound is not raised */
+    int           native;       /* zview's own loaders read it (budget.c) */
+    uint64_t      input;        /* bytes of input counted */
+    uint64_t      allowance;    /* what they may take */
+    int           nseen;
+    Seen          seen[MAX_REFS];
+    int           alive, go;    /* the parent's ends */
+    ChildErr      cerr;         /* the child's standard error (childerr.c): -1 when quiet */
 } Job;
 
 int sandbox_available(void)
@@ -56,301 +63,417 @@ int sandbox_available(void)
     return prctl(PR_GET_SECCOMP, 0, 0, 0, 0) >= 0;
 }
 
-/* The child's address space and its private writable part (VmData)
- * now, in bytes: its limits are these plus the budget, so that what the
- * process already maps (a viewer's scene, a sanitizer's shadow memory,
- * reserved but never touched) is not counted against the model. Both:
- * AddressSanitizer's allocator carves its heap out of space reserved at
- * start, which RLIMIT_AS never sees grow, but each piece it maps
- * writable counts in VmData (RLIMIT_DATA). */
-static void vm_now(uint64_t *as, uint64_t *data)
+static void kill_child(const Child *c)
 {
-    FILE *f = fopen("/proc/self/status", "r");
-    char line[128];
-    unsigned long long kb;
-    *as = *data = 0;
-    while (f && fgets(line, sizeof line, f)) {
-        if (sscanf(line, "VmSize: %llu kB", &kb) == 1)
-            *as = (uint64_t)kb << 10;
-        else if (sscanf(line, "VmData: %llu kB", &kb) == 1)
-            *data = (uint64_t)kb << 10;
-    }
-    if (f)
-        fclose(f);
-}
-
-static void set_limit(int what, uint64_t soft, uint64_t hard)
-{
-    struct rlimit rl;
-    if (getrlimit(what, &rl) == 0) {
-        /* never above what the parent was given */
-        rl.rlim_cur = rl.rlim_max != RLIM_INFINITY && hard > rl.rlim_max ? rl.rlim_max : soft;
-        rl.rlim_max = rl.rlim_max != RLIM_INFINITY && hard > rl.rlim_max ? rl.rlim_max : hard;
-        if (rl.rlim_cur > rl.rlim_max)
-            rl.rlim_cur = rl.rlim_max;
-        setrlimit(what, &rl);
-    }
-}
-
-static int cmp_int(const void *a, const void *b)
-{
-    return *(const int *)a - *(const int *)b;
-}
-
-/* Everything before the filter: default signal handling (the viewer's
- * handlers touch the terminal), the parent's descriptors closed but for
- * standard input (a model piped in), output, the memfd and the two
- * pipes, and the limits. */
-static void child_prepare(Job *j)
-{
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    for (int s = 1; s < NSIG; s++)
-        if (s != SIGKILL && s != SIGSTOP)
-            signal(s, SIG_DFL);
-    sigset_t none;
-    sigemptyset(&none);
-    sigprocmask(SIG_SETMASK, &none, NULL);
-    /* standard error is the parent's pipe, which passes zview's lines on
-     * made safe (childerr.c); a quiet load (the viewer's, under curses)
-     * keeps it off the terminal: a crashing library's last words, a
-     * sanitizer's report */
-    int null = j->lo->quiet ? open("/dev/null", O_WRONLY | O_CLOEXEC) : -1;
-    if (null >= 0 || j->errfd >= 0)
-        dup2(null >= 0 ? null : j->errfd, STDERR_FILENO);
-    int keep[3] = { j->memfd, j->alive, j->go };
-    qsort(keep, 3, sizeof keep[0], cmp_int);
-    unsigned from = 3;
-    for (int i = 0; i < 3; i++) {
-        if ((unsigned)keep[i] > from)
-            syscall(SYS_close_range, from, (unsigned)keep[i] - 1, 0u);
-        from = (unsigned)keep[i] + 1;
-    }
-    syscall(SYS_close_range, from, ~0u, 0u);
-    uint64_t as, data;
-    vm_now(&as, &data);
-    /* the reader maps the model's file (read-only: address space, not
-     * VmData), whatever its size, and copies windows of it: the address
-     * space has room for the file besides the budget */
-    struct stat st;
-    uint64_t file = j->path && strcmp(j->path, "-") && stat(j->path, &st) == 0 && S_ISREG(st.st_mode)
-                  ? (uint64_t)st.st_size : 0;
-    if (j->budget < (uint64_t)RLIM_INFINITY - as - file) {      /* else nothing is known of the machine's memory */
-        set_limit(RLIMIT_AS, as + file + j->budget, as + file + j->budget);
-        set_limit(RLIMIT_DATA, data + j->budget, data + j->budget);
-    }
-    set_limit(RLIMIT_CPU, j->cpu, j->cpu + 1);     /* SIGXCPU, then SIGKILL a second later */
-    set_limit(RLIMIT_CORE, 0, 0);
-}
-
-/* Load, say where the result is, and wait: the parent copies the arrays
- * out of this process's memory (one copy, none through the memfd), or,
- * where it may not read another process (ptrace rules), asks for them
- * in the memfd. */
-static void child_main(Job *j)
-{
-    child_prepare(j);
-    Mesh m;
-    char err[512] = "";
-    int rc;
-    MeshLoadOpts lo = *j->lo;
-    lo.cancel = NULL;           /* the parent kills the child instead */
-    lo.progress = j->progress;
-    if (sandbox_filter_install(j->memfd, j->alive) != 0) {
-        snprintf(err, sizeof err, "%s: the sandbox's filter cannot be installed", j->name);
-        rc = -1;
-    } else if (j->data) {
-        rc = mesh_parse_buffer_ex(&m, j->path, &lo, j->data, j->len, err, sizeof err);
-    } else {
-        rc = mesh_load_ex(&m, j->path, &lo, err, sizeof err);
-    }
-    if (sandbox_wire_write(j->memfd, &m, rc, err, 1) != 0 || write(j->alive, "r", 1) != 1)
-        _exit(3);
-    char c = 0;
-    if (read(j->go, &c, 1) == 1 && c == 'w')
-        _exit(sandbox_wire_write(j->memfd, &m, rc, err, 0) == 0 ? 0 : 3);
-    _exit(0);
-}
-
-/* The message for a child that did not finish: what ended it. */
-static void died(const Job *j, int status, const struct rusage *ru, int cancelled, char *err, size_t errlen)
-{
-    double cpu = (double)ru->ru_utime.tv_sec + (double)ru->ru_stime.tv_sec +
-                 ((double)ru->ru_utime.tv_usec + (double)ru->ru_stime.tv_usec) / 1e6;
-    int sig = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-    char mem[32];
-    sysmem_format(j->budget, mem, sizeof mem);
-    if (cancelled)
-        snprintf(err, errlen, "%s: cancelled", j->name);
-    else if (sig == SIGSYS)
-        snprintf(err, errlen, "%s: the loader tried something the sandbox forbids (writing a file, running a "
-                 "program, a network connection, ...) and was stopped", j->name);
-    else if (sig == SIGXCPU || (sig == SIGKILL && cpu >= j->cpu))
-        snprintf(err, errlen, "%s: the load took more than %u s of CPU time and was stopped", j->name, j->cpu);
-    else if (sig == SIGKILL)
-        snprintf(err, errlen, "%s: the loader was killed (out of memory?)", j->name);
-    else if (sig == SIGABRT)
-        snprintf(err, errlen, "%s: the loader gave up (aborted; more than its %s of memory, or a malformed "
-                 "file)", j->name, mem);
-    else if (sig)
-        snprintf(err, errlen, "%s: the loader crashed (%s) in the sandbox: a malformed file", j->name,
-                 strsignal(sig));
-    else
-        snprintf(err, errlen, "%s: the loader failed in the sandbox (exit status %d)", j->name,
-                 WEXITSTATUS(status));
-}
-
-enum { CHILD_GONE, CHILD_CANCELLED, CHILD_READY };
-
-/* Wait for the child's word, killing it on cancel, copying progress:
- * ready (its result waits to be read), gone (it ended: crashed, or
- * killed by a limit or the filter), or cancelled. */
-static int wait_child(Job *j, pid_t pid, int alive)
-{
-    int cancelled = 0;
-    for (;;) {
-        struct pollfd pf[2] = { { .fd = alive, .events = POLLIN }, { .fd = j->cerr.fd, .events = POLLIN } };
-        int n = poll(pf, j->cerr.fd >= 0 ? 2 : 1, j->lo->cancel || j->lo->progress ? POLL_MS : -1);
-        if (n > 0 && pf[1].revents) {
-            childerr_read(&j->cerr);
-            if (!pf[0].revents)
-                continue;
-        }
-        if (j->lo->progress && j->progress) {
-            __atomic_store_n(&j->lo->progress->done, __atomic_load_n(&j->progress->done, __ATOMIC_RELAXED),
-                             __ATOMIC_RELAXED);
-            __atomic_store_n(&j->lo->progress->total, __atomic_load_n(&j->progress->total, __ATOMIC_RELAXED),
-                             __ATOMIC_RELAXED);
-        }
-        if (!cancelled && j->lo->cancel && __atomic_load_n(j->lo->cancel, __ATOMIC_RELAXED)) {
-            kill(pid, SIGKILL);
-            cancelled = 1;
-        }
-        if (n > 0 || (n < 0 && errno != EINTR && errno != EAGAIN)) {
-            char c = 0;
-            if (!cancelled && read(alive, &c, 1) == 1 && c == 'r')
-                return CHILD_READY;
-            return cancelled ? CHILD_CANCELLED : CHILD_GONE;
-        }
-    }
+    if (c->pidfd < 0 || syscall(SYS_pidfd_send_signal, c->pidfd, SIGKILL, NULL, 0) != 0)
+        kill(c->pid, SIGKILL);
 }
 
 /* Wait for the child to end, reading its standard error meanwhile: a
  * report written as it dies (a sanitizer's) must not fill the pipe and
  * hold it up. */
-static int reap(Job *j, pid_t pid, int *status, struct rusage *ru)
+static int reap(Job *j, Child *c, int *status, struct rusage *ru)
 {
     for (;;) {
-        pid_t r = wait4(pid, status, j->cerr.fd >= 0 ? WNOHANG : 0, ru);
-        if (r == pid)
+        if (j->cerr.fd < 0) {
+            if (c->status >= 0)
+                return sandbox_server_reap(c, status, ru);
+            while (wait4(c->pid, status, 0, ru) < 0)
+                if (errno != EINTR)
+                    return -1;
             return 0;
-        if (r < 0 && errno != EINTR)
+        }
+        if (c->status < 0) {
+            pid_t r = wait4(c->pid, status, WNOHANG, ru);
+            if (r == c->pid)
+                return 0;
+            if (r < 0 && errno != EINTR)
+                return -1;
+        }
+        struct pollfd pf[2] = { { .fd = j->cerr.fd, .events = POLLIN }, { .fd = c->status, .events = POLLIN } };
+        int n = poll(pf, c->status >= 0 ? 2 : 1, POLL_MS);
+        if (n > 0 && pf[0].revents)
+            childerr_read(&j->cerr);    /* at its end it closes: the loop above then waits */
+        if (c->status >= 0 && n > 0 && pf[1].revents)
+            return sandbox_server_reap(c, status, ru);
+    }
+}
+
+/* ==== The memory bound ==== */
+
+/* A bound as --max-memory takes it (M and G of 2^20 and 2^30 bytes). */
+static void say_bound(uint64_t b, char *buf, size_t len)
+{
+    if (b >= (uint64_t)1 << 30)
+        snprintf(buf, len, "%.1f GB", (double)b / (double)(1 << 30));
+    else
+        snprintf(buf, len, "%.0f MB", (double)b / (double)(1 << 20));
+}
+
+/* After a failure about memory, the bound and how to raise it: the
+ * message says memory, or the child died (a signal, a sanitizer's
+ * exit) having come near its bound. */
+static void bound_note(const Job *j, int died, long maxrss_kb, char *err, size_t errlen)
+{
+    if (!strstr(err, "memory") && !strstr(err, "available") &&
+        !(died && (uint64_t)maxrss_kb * 1024 >= j->rq.budget / 2))
+        return;
+    char b[32], in[32], note[160];
+    say_bound(j->rq.budget, b, sizeof b);
+    if (j->fixed) {
+        snprintf(note, sizeof note, " (the sandbox's bound: %s, --max-memory)", b);
+    } else {
+        if (j->input < 10000)
+            snprintf(in, sizeof in, "%u bytes", (unsigned)j->input);
+        else
+            sysmem_format(j->input, in, sizeof in);
+        snprintf(note, sizeof note, " (the sandbox's bound: %s for %s; --max-memory raises it)", b, in);
+    }
+    size_t n = strlen(err);
+    snprintf(err + n, errlen - n, "%s", note);
+}
+
+/* A file the child opened, counted once: its bound grows by what the
+ * file may take, and its soft limits with it (prlimit: the child may not
+ * change its own). The parent opens the file as the loader does, beneath
+ * the model's folder, and trusts nothing else the child says. */
+static void count_ref(Job *j, pid_t pid, const char *path, int image)
+{
+    const char *model = j->rq.path[0] && strcmp(j->rq.path, "-") ? j->rq.path : NULL;
+    char why[160];
+    struct stat st;
+    int fd = mesh_ref_open(model, path, why, sizeof why);
+    if (fd < 0)
+        return;
+    int ok = fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
+    close(fd);
+    for (int i = 0; ok && i < j->nseen; i++)
+        if (j->seen[i].dev == st.st_dev && j->seen[i].ino == st.st_ino && j->seen[i].image == image)
+            ok = 0;
+    if (!ok || j->nseen == MAX_REFS)
+        return;
+    j->seen[j->nseen++] = (Seen){ st.st_dev, st.st_ino, image };
+    uint64_t size = (uint64_t)st.st_size;
+    j->input += size;
+    j->allowance += image ? sandbox_image_allowance(size) : sandbox_input_allowance(size, j->native);
+    uint64_t now = sandbox_budget_of(j->allowance);
+    if (now > j->rq.ceiling)
+        now = j->rq.ceiling;
+    if (now <= j->rq.budget)
+        return;
+    uint64_t more = now - j->rq.budget;
+    j->rq.budget = now;
+    static const int res[2] = { RLIMIT_AS, RLIMIT_DATA };
+    for (int i = 0; i < 2; i++) {
+        struct rlimit rl;
+        if (prlimit(pid, res[i], NULL, &rl) != 0 || rl.rlim_cur == RLIM_INFINITY)
+            continue;
+        rl.rlim_cur = rl.rlim_max - rl.rlim_cur > more ? rl.rlim_cur + more : rl.rlim_max;
+        prlimit(pid, res[i], &rl, NULL);
+    }
+}
+
+static int read_all(int fd, void *buf, size_t len)
+{
+    for (size_t got = 0; got < len;) {
+        ssize_t r = read(fd, (char *)buf + got, len - got);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
             return -1;
-        if (r == 0) {
-            struct pollfd pf = { .fd = j->cerr.fd, .events = POLLIN };
-            poll(&pf, 1, POLL_MS);
+        got += (size_t)r;
+    }
+    return 0;
+}
+
+/* The child names a file ('f' read already): count it, answer. 0, or
+ * -1 when the message is not one (the child is then killed). */
+static int ref_message(Job *j, const Child *c)
+{
+    unsigned char h[3];
+    char path[REF_PATH_MAX + 1];
+    if (j->rq.kind != REQ_LOAD || read_all(j->alive, h, sizeof h) != 0)
+        return -1;
+    size_t n = (size_t)h[1] | (size_t)h[2] << 8;
+    if (n == 0 || n > REF_PATH_MAX || read_all(j->alive, path, n) != 0)
+        return -1;
+    path[n] = '\0';
+    if (!j->fixed && strlen(path) == n)
+        count_ref(j, c->pid, path, h[0] != 0);
+    return write(j->go, "k", 1) == 1 ? 0 : -1;
+}
+
+/* ==== Waiting ==== */
+
+enum { CHILD_GONE, CHILD_CANCELLED, CHILD_READY, CHILD_BAD };
+
+static void copy_progress(const Job *j)
+{
+    if (!j->lo->progress || !j->progress)
+        return;
+    __atomic_store_n(&j->lo->progress->done, __atomic_load_n(&j->progress->done, __ATOMIC_RELAXED),
+                     __ATOMIC_RELAXED);
+    __atomic_store_n(&j->lo->progress->total, __atomic_load_n(&j->progress->total, __ATOMIC_RELAXED),
+                     __ATOMIC_RELAXED);
+}
+
+/* Wait for the child's word, killing it on cancel, copying progress,
+ * counting the files it names: ready (its result waits to be read),
+ * gone (it ended: crashed, or killed by a limit or the filter),
+ * cancelled, or bad (it broke the protocol, and is killed). */
+static int wait_child(Job *j, const Child *c)
+{
+    int cancelled = 0;
+    for (;;) {
+        struct pollfd pf[2] = { { .fd = j->alive, .events = POLLIN }, { .fd = j->cerr.fd, .events = POLLIN } };
+        int n = poll(pf, j->cerr.fd >= 0 ? 2 : 1, j->lo->cancel || j->lo->progress ? POLL_MS : -1);
+        if (n > 0 && j->cerr.fd >= 0 && pf[1].revents) {
             childerr_read(&j->cerr);
+            if (!pf[0].revents)
+                continue;
+        }
+        copy_progress(j);
+        if (!cancelled && j->lo->cancel && __atomic_load_n(j->lo->cancel, __ATOMIC_RELAXED)) {
+            kill_child(c);
+            cancelled = 1;
+        }
+        if (n > 0 || (n < 0 && errno != EINTR && errno != EAGAIN)) {
+            char w = 0;
+            if (cancelled || read(j->alive, &w, 1) != 1)
+                return cancelled ? CHILD_CANCELLED : CHILD_GONE;
+            if (w == 'r')
+                return CHILD_READY;
+            if (w != 'f' || ref_message(j, c) != 0) {
+                kill_child(c);
+                return CHILD_BAD;
+            }
         }
     }
+}
+
+/* The message for a child that did not finish: what ended it. */
+static void died(const Job *j, int state, int status, const struct rusage *ru, char *err, size_t errlen)
+{
+    double cpu = (double)ru->ru_utime.tv_sec + (double)ru->ru_stime.tv_sec +
+                 ((double)ru->ru_utime.tv_usec + (double)ru->ru_stime.tv_usec) / 1e6;
+    int sig = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+    const char *nm = j->name;
+    if (state == CHILD_CANCELLED)
+        snprintf(err, errlen, "%s: cancelled", nm);
+    else if (state == CHILD_BAD)
+        snprintf(err, errlen, "%s: the sandboxed loader broke the sandbox's protocol and was stopped", nm);
+    else if (sig == SIGSYS)
+        snprintf(err, errlen, "%s: the loader tried something the sandbox forbids (writing a file, running a "
+                 "program, a network connection, ...) and was stopped", nm);
+    else if (sig == SIGXCPU || (sig == SIGKILL && cpu >= j->rq.cpu))
+        snprintf(err, errlen, "%s: the load took more than %u s of CPU time and was stopped", nm, j->rq.cpu);
+    else if (sig == SIGKILL)
+        snprintf(err, errlen, "%s: the loader was killed (out of memory?)", nm);
+    else if (sig == SIGABRT)
+        snprintf(err, errlen, "%s: the loader gave up (aborted: out of memory, or a malformed file)", nm);
+    else if (sig)
+        snprintf(err, errlen, "%s: the loader crashed (%s) in the sandbox: a malformed file", nm, strsignal(sig));
+    else
+        snprintf(err, errlen, "%s: the loader failed in the sandbox (exit status %d)", nm, WEXITSTATUS(status));
+    if (state != CHILD_CANCELLED && state != CHILD_BAD && sig != SIGSYS)
+        bound_note(j, 1, ru->ru_maxrss, err, errlen);
 }
 
 /* Read the child's result: from its memory (pid), else from the memfd. */
 static int collect(const Job *j, pid_t pid, Mesh *m, char *err, size_t errlen)
 {
     struct stat st;
-    if (fstat(j->memfd, &st) != 0 || st.st_size <= 0) {
+    int memfd = j->rq.fd[RQ_RESULT];
+    if (fstat(memfd, &st) != 0 || st.st_size <= 0) {
         snprintf(err, errlen, "%s: the sandboxed loader returned nothing", j->name);
         return -1;
     }
     int rc = -1;
     char why[400];
-    if (sandbox_wire_read(j->memfd, (size_t)st.st_size, pid, m, &rc, why, sizeof why) != 0) {
+    if (sandbox_wire_read(memfd, (size_t)st.st_size, pid, m, &rc, why, sizeof why) != 0) {
         snprintf(err, errlen, "%s: %s", j->name, why);
         return -2;
     }
-    if (rc)
+    if (rc) {
         snprintf(err, errlen, "%s", why);
+        bound_note(j, 0, 0, err, errlen);
+    }
     return rc;
 }
 
 /* The child is ready: its result, read from its memory, or (when that
  * is not allowed) from the memfd once it has written it there. */
-static int finish(Job *j, pid_t pid, int go, Mesh *m, char *err, size_t errlen)
+static void close_fd(int *fd)
 {
-    int rc = collect(j, pid, m, err, errlen), status = 0;
+    if (*fd >= 0)
+        close(*fd);
+    *fd = -1;
+}
+
+static int finish(Job *j, Child *c, Mesh *m, char *err, size_t errlen)
+{
+    int rc = collect(j, c->pid, m, err, errlen), status = 0;
     struct rusage ru = { 0 };
-    if (rc == -2 && write(go, "w", 1) == 1) {
-        close(go);
-        if (reap(j, pid, &status, &ru) == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
+    if (rc == -2 && write(j->go, "w", 1) == 1) {
+        close_fd(&j->go);
+        if (reap(j, c, &status, &ru) == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
             rc = collect(j, 0, m, err, errlen);
         else
-            died(j, status, &ru, 0, err, errlen);
+            died(j, CHILD_GONE, status, &ru, err, errlen);
         return rc < 0 ? -1 : rc;
     }
-    close(go);
-    reap(j, pid, &status, &ru);
+    close_fd(&j->go);
+    reap(j, c, &status, &ru);
     return rc < 0 ? -1 : rc;
 }
 
-static int run(Job *j, Mesh *m, char *err, size_t errlen)
+/* ==== Starting ==== */
+
+/* A memfd holding len bytes of data, sealed, or -1. */
+static int bytes_fd(const void *data, size_t len)
 {
-    double t0 = now_ms();
-    int alive[2] = { -1, -1 }, go[2] = { -1, -1 };
-    j->memfd = memfd_create("zview-load", MFD_CLOEXEC);
-    if (j->memfd < 0 || pipe2(alive, O_CLOEXEC) != 0 || pipe2(go, O_CLOEXEC) != 0) {
-        snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->name, strerror(errno));
-        for (int i = 0; i < 2; i++) {
-            if (alive[i] >= 0)
-                close(alive[i]);
-            if (go[i] >= 0)
-                close(go[i]);
+    int fd = memfd_create("zview-bytes", MFD_CLOEXEC | MFD_ALLOW_SEALING);
+    for (size_t put = 0; fd >= 0 && put < len;) {
+        ssize_t w = write(fd, (const char *)data + put, len - put);
+        if (w <= 0) {
+            close(fd);
+            return -1;
         }
-        if (j->memfd >= 0)
-            close(j->memfd);
+        put += (size_t)w;
+    }
+    if (fd >= 0)
+        fcntl(fd, F_ADD_SEALS, F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_WRITE | F_SEAL_SEAL);
+    return fd;
+}
+
+/* The page the child writes its progress on, mapped here too. */
+static int progress_fd(Job *j)
+{
+    int fd = memfd_create("zview-progress", MFD_CLOEXEC | MFD_ALLOW_SEALING);
+    if (fd < 0 || ftruncate(fd, sizeof *j->progress) != 0 ||
+        fcntl(fd, F_ADD_SEALS, F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_SEAL) != 0) {
+        if (fd >= 0)
+            close(fd);
         return -1;
     }
-    j->progress = mmap(NULL, sizeof *j->progress, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-    if (j->progress == MAP_FAILED)
-        j->progress = NULL;
-    j->alive = alive[1];
-    j->go = go[0];
-    j->errfd = -1;
+    void *p = mmap(NULL, sizeof *j->progress, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    j->progress = p == MAP_FAILED ? NULL : p;
+    return fd;
+}
+
+/* The child, from the server, else forked here. */
+static int start(Job *j, const SandboxServer *server, Child *c)
+{
+    *c = (Child){ .pid = -1, .pidfd = -1, .status = -1 };
+    if (server && server->pid > 0 && sandbox_server_spawn(server, &j->rq, c) == 0)
+        return 0;
+    c->pid = fork();
+    if (c->pid == 0)
+        sandbox_child_main(&j->rq);
+    return c->pid > 0 ? 0 : -1;
+}
+
+static int run(Job *j, const SandboxServer *server, const void *data, size_t len, Mesh *m, char *err, size_t errlen)
+{
+    double t0 = now_ms();
+    int alive[2] = { -1, -1 }, go[2] = { -1, -1 }, *fd = j->rq.fd;
+    for (int i = 0; i < RQ_NFD; i++)
+        fd[i] = -1;
+    fd[RQ_RESULT] = memfd_create("zview-load", MFD_CLOEXEC);
+    if (data)
+        fd[RQ_DATA] = bytes_fd(data, len);
+    if (j->lo->progress)
+        fd[RQ_PROGRESS] = progress_fd(j);
+    if (j->lo->prefix)
+        fd[RQ_PREFIX] = mesh_prefix_fd(j->lo->prefix, &j->rq.prefix_bytes);
+    /* the child's standard error through a pipe here, which passes
+     * zview's lines on made safe; a quiet load's goes nowhere (child.c) */
     j->cerr.fd = -1;
-    if (!j->lo->quiet)
-        childerr_open(&j->cerr, &j->errfd);     /* none: the child writes to standard error itself */
-    pid_t pid = fork();
-    if (pid == 0) {
-        close(alive[0]);
-        close(go[1]);
-        child_main(j);
-    }
-    close(alive[1]);
-    close(go[0]);
-    if (j->errfd >= 0)
-        close(j->errfd);
-    int rc = -1;
-    if (pid < 0) {
+    if (!j->rq.quiet)
+        childerr_open(&j->cerr, &fd[RQ_STDERR]);
+    int ok = fd[RQ_RESULT] >= 0 && (!data || fd[RQ_DATA] >= 0) && pipe2(alive, O_CLOEXEC) == 0 &&
+             pipe2(go, O_CLOEXEC) == 0;
+    fd[RQ_ALIVE] = alive[1];
+    fd[RQ_GO] = go[0];
+    j->alive = alive[0];
+    j->go = go[1];
+    Child c;
+    if (ok)
+        ok = start(j, server, &c) == 0;
+    if (!ok)
         snprintf(err, errlen, "%s: cannot start the sandbox: %s", j->name, strerror(errno));
-        close(go[1]);
-    } else {
-        int state = wait_child(j, pid, alive[0]);
+    /* the child's ends are the child's (the prefix's is the caller's) */
+    fd[RQ_PREFIX] = -1;
+    for (int i = RQ_ALIVE; i < RQ_NFD; i++)
+        close_fd(&fd[i]);
+    int rc = -1;
+    if (ok) {
+        int state = wait_child(j, &c);
         if (state == CHILD_READY) {
-            rc = finish(j, pid, go[1], m, err, errlen);
+            rc = finish(j, &c, m, err, errlen);
         } else {
             int status = 0;
             struct rusage ru = { 0 };
-            close(go[1]);
-            reap(j, pid, &status, &ru);
-            died(j, status, &ru, state == CHILD_CANCELLED, err, errlen);
+            close_fd(&j->go);
+            reap(j, &c, &status, &ru);
+            died(j, state, status, &ru, err, errlen);
         }
     }
-    childerr_close(&j->cerr);
-    if (rc == 0)
+    if (rc == 0) {
         m->info.load_ms = now_ms() - t0;    /* the sandbox's cost included */
-    close(alive[0]);
-    close(j->memfd);
+        m->info.sandboxed = 1;
+        m->info.mem_bound = j->rq.budget;
+        if (m->info.landlock < -4095 || m->info.landlock > 99)
+            m->info.landlock = 0;           /* (the child's word, for --info only) */
+    }
+    childerr_close(&j->cerr);
+    close_fd(&j->go);
+    close_fd(&j->alive);
+    close_fd(&fd[RQ_RESULT]);
     if (j->progress)
         munmap(j->progress, sizeof *j->progress);
     return rc;
+}
+
+/* The job's request from the options: the bound is --max-memory, else
+ * what the input may take (budget.c), never above what the machine has. */
+static Job *make_job(const char *name, const char *path, const MeshLoadOpts *lo, const SandboxOpts *so,
+                     uint64_t input, int native)
+{
+    Job *j = calloc(1, sizeof *j);
+    if (!j)
+        return NULL;
+    Req *r = &j->rq;
+    j->name = name;
+    j->lo = lo;
+    snprintf(r->path, sizeof r->path, "%s", path ? path : "");
+    if (lo->format) {
+        r->has_format = 1;
+        snprintf(r->format, sizeof r->format, "%s", lo->format);
+    }
+    r->strict = lo->strict;
+    r->quiet = lo->quiet;
+    r->tex_defer_side = lo->tex_defer_side;
+    r->no_textures = lo->no_textures;
+    r->threads = lo->threads;
+    r->max_polys = lo->max_polys;
+    r->piece_bytes = lo->piece_bytes;
+    r->cpu = so && so->cpu_seconds ? so->cpu_seconds : SANDBOX_CPU_SECONDS;
+    uint64_t fixed = so && so->max_memory ? so->max_memory : lo->max_bytes;
+    /* the loaders' own estimates judge against the bound and refuse
+     * first, with a better message; unset, they ask the machine, which
+     * in the child is its limits, raised as files are counted */
+    r->max_bytes = fixed;
+    j->fixed = fixed != 0;
+    j->native = native;
+    j->input = input;
+    j->allowance = native < 0 ? sandbox_image_allowance(input) : sandbox_input_allowance(input, native);
+    r->ceiling = fixed ? fixed : sandbox_ceiling();
+    r->budget = fixed ? fixed : sandbox_budget_of(j->allowance);
+    if (r->budget > r->ceiling)
+        r->budget = r->ceiling;
+    r->on_ref = !j->fixed;
+    return j;
 }
 
 static int load(Mesh *m, const char *path, const MeshLoadOpts *lo, const SandboxOpts *so, const void *data,
@@ -364,19 +487,25 @@ static int load(Mesh *m, const char *path, const MeshLoadOpts *lo, const Sandbox
         return data ? mesh_parse_buffer_ex(m, path, lo, data, len, err, errlen)
                     : mesh_load_ex(m, path, lo, err, errlen);
     memset(m, 0, sizeof *m);
-    Job j = { .path = path, .name = !path ? "(input)" : strcmp(path, "-") ? path : "stdin", .lo = lo,
-              .data = data, .len = len, .cpu = so && so->cpu_seconds ? so->cpu_seconds : SANDBOX_CPU_SECONDS };
-    /* without --max-memory the bound is what is available and some slack:
-     * the loaders' own estimates judge against what is available and
-     * refuse first, with the estimate in the message; the bound is for
-     * what they cannot foresee (a parser gone wrong) */
-    j.budget = so && so->max_memory ? so->max_memory
-             : lo->max_bytes ? lo->max_bytes : sysmem_available() + SANDBOX_SLACK;
-    MeshLoadOpts lo2 = *lo;
-    if (!lo2.max_bytes && so && so->max_memory)
-        lo2.max_bytes = so->max_memory;     /* the loaders' own estimates refuse first, with a better message */
-    j.lo = &lo2;
-    return run(&j, m, err, errlen);
+    /* the input's size: a pipe's is not known before it is read (its
+     * bound is the floor; a bigger stream is refused naming it) */
+    struct stat st;
+    int known = path && (strcmp(path, "-") ? stat(path, &st) : fstat(STDIN_FILENO, &st)) == 0 && S_ISREG(st.st_mode);
+    uint64_t input = data ? len : known ? (uint64_t)st.st_size : 0;
+    const char *name = !path ? "(input)" : strcmp(path, "-") ? path : "stdin";
+    Job *j = make_job(name, path, lo, so, input, mesh_format_is_native(path, lo->format));
+    if (!j) {
+        snprintf(err, errlen, "%s: out of memory", name);
+        return -1;
+    }
+    if (known && !data)         /* the model's file is counted: a library opening it again is not */
+        j->seen[j->nseen++] = (Seen){ st.st_dev, st.st_ino, 0 };
+    j->rq.kind = REQ_LOAD;
+    if (data)
+        j->rq.data_len = len;
+    int rc = run(j, so ? &so->server : NULL, data, len, m, err, errlen);
+    free(j);
+    return rc;
 }
 
 int sandbox_load(Mesh *m, const char *path, const MeshLoadOpts *lo, const SandboxOpts *so, char *err,
@@ -389,4 +518,60 @@ int sandbox_parse_buffer(Mesh *m, const char *path, const MeshLoadOpts *lo, cons
                          const void *data, size_t len, char *err, size_t errlen)
 {
     return load(m, path, lo, so, data ? data : "", len, err, errlen);
+}
+
+int sandbox_texture_decode(const MeshTexture *t, const SandboxOpts *so, const int *cancel, Texture *out,
+                           int *halved_out, char *err, size_t errlen)
+{
+    uint64_t max = so ? so->max_memory : 0;
+    /* no bytes: nothing is decoded (a pending path opens nothing) */
+    if ((so && so->off) || !sandbox_available() || !t->data)
+        return mesh_texture_decode(t, max, out, halved_out, err, errlen);
+    memset(out, 0, sizeof *out);
+    *halved_out = 0;
+    /* quiet: the viewer decodes these under curses; what went wrong
+     * comes back as the message */
+    MeshLoadOpts lo = { .cancel = cancel, .max_bytes = max, .quiet = 1 };
+    Job *j = make_job(t->name, t->name, &lo, so, t->len, -1);
+    if (!j) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    j->rq.kind = REQ_TEXTURE;
+    j->rq.data_len = t->len;
+    j->rq.wrap_u = t->img.wrap_u;
+    j->rq.wrap_v = t->img.wrap_v;
+    j->rq.on_ref = 0;
+    Mesh m;
+    memset(&m, 0, sizeof m);
+    int rc = run(j, so ? &so->server : NULL, t->data, t->len, &m, err, errlen);
+    if (rc == 0 && m.ntex == 1 && m.tex[0].state == MTEX_OK && m.tex[0].img.rgba) {
+        *out = m.tex[0].img;
+        *halved_out = m.tex[0].halved;
+        memset(&m.tex[0].img, 0, sizeof m.tex[0].img);
+    } else if (rc == 0) {
+        snprintf(err, errlen, "the sandboxed decoder returned no image");
+        rc = -1;
+    }
+    if (rc == 0)
+        mesh_free(&m);
+    /* the messages of a child that died name the texture: the caller
+     * names it itself */
+    size_t n = strlen(t->name);
+    if (rc && strncmp(err, t->name, n) == 0 && err[n] == ':' && err[n + 1] == ' ')
+        memmove(err, err + n + 2, strlen(err + n + 2) + 1);
+    free(j);
+    return rc;
+}
+
+void sandbox_describe(const MeshInfo *in, int no_sandbox, char *buf, size_t len)
+{
+    if (!in->sandboxed) {
+        snprintf(buf, len, "%s", no_sandbox ? "none (--no-sandbox)" : "none (this system has no seccomp filters)");
+        return;
+    }
+    char ll[64], mem[32];
+    sandbox_landlock_say(in->landlock, ll, sizeof ll);
+    say_bound(in->mem_bound, mem, sizeof mem);
+    snprintf(buf, len, "seccomp, %s, memory %s", ll, mem);
 }

@@ -263,7 +263,9 @@ int app_viewer_loads_first(const Options *o)
 
 /* ZV_TEST_HOLD=FACES:PATH (tests): the loader stops after publishing
  * FACES faces until PATH exists, so that a test sees a picture of a
- * known prefix for as long as it wants. */
+ * known prefix for as long as it wants. PATH must be in the model's
+ * folder: the sandboxed child looks for it, and Landlock lets it see
+ * nothing else. */
 static void test_hold(MeshPrefix *p)
 {
     const char *h = getenv("ZV_TEST_HOLD");
@@ -383,7 +385,7 @@ Reaction app_first_poll(App *a)
                 app_warning_note(a, &a->s->meshes[i].info, a->s->meshes[i].path ? a->s->meshes[i].path : "?");
                 break;
             }
-        a->tex = texjob_start(a->s);
+        a->tex = texjob_start(a->s, a->opt);
     }
     return r;
 }

@@ -381,7 +381,7 @@ Reaction app_load_poll(App *a)
         Reaction r = reload_file(a, &part, reload, path);
         scene_free(&part);
         if (!a->tex)
-            a->tex = texjob_start(a->s);
+            a->tex = texjob_start(a->s, a->opt);
         return r;
     }
     if (rc) {
@@ -399,7 +399,7 @@ Reaction app_load_poll(App *a)
     Reaction r = add_part(a, &part, path);
     scene_free(&part);          /* empty when it went into the scene */
     if (!a->tex)
-        a->tex = texjob_start(a->s);
+        a->tex = texjob_start(a->s, a->opt);
     return r;
 }
 

@@ -3,8 +3,11 @@
  * an image longer than that a side (a 16k x 16k PNG takes seconds) is
  * left pending, its faces in their base colours, and this job decodes
  * the pending images one after the other while the viewer draws and
- * takes keys. The UI thread puts each finished one in place between
- * frames (texjob_poll) and draws again.
+ * takes keys, each in a sandboxed child of its own under its own memory
+ * bound (sandbox_texture_decode): the bytes are a stranger's, as the
+ * model's are, and an image that claims 65000 x 65000 pixels must cost
+ * the viewer nothing. The UI thread puts each finished one in place
+ * between frames (texjob_poll) and draws again.
  *
  * The job owns its work: the sources (a path, or the image's bytes) move
  * from the meshes into it when it starts, and the textures it makes stay
@@ -41,6 +44,8 @@ struct TexJob {
     int          finished;      /* under mu: the thread has ended its loop */
     int          abandoned;     /* under mu: the thread frees the job */
     int          cancelled;     /* under mu */
+    int          stop;          /* the same, atomic: ends the child decoding */
+    SandboxOpts  so;
 };
 
 static void job_free(TexJob *j)
@@ -66,7 +71,7 @@ static void *job_main(void *arg)
         if (stop)
             break;
         TexWork *w = &j->work[i];
-        w->rc = mesh_texture_decode(&w->src, 0, &w->img, &w->halved, w->err, sizeof w->err);
+        w->rc = sandbox_texture_decode(&w->src, &j->so, &j->stop, &w->img, &w->halved, w->err, sizeof w->err);
         pthread_mutex_lock(&j->mu);
         w->done = 1;
         pthread_mutex_unlock(&j->mu);
@@ -80,7 +85,7 @@ static void *job_main(void *arg)
     return NULL;
 }
 
-TexJob *texjob_start(Scene *s)
+TexJob *texjob_start(Scene *s, const Options *o)
 {
     int n = 0;
     for (int i = 0; i < s->nmeshes; i++)
@@ -95,6 +100,7 @@ TexJob *texjob_start(Scene *s)
         return NULL;            /* they stay pending: the faces keep their base colours */
     }
     j->work = w;
+    j->so = app_sandbox_opts(o);
     for (int i = 0; i < s->nmeshes; i++)
         for (uint32_t k = 0; k < s->meshes[i].ntex; k++) {
             MeshTexture *t = &s->meshes[i].tex[k];
@@ -185,6 +191,7 @@ void texjob_abandon(TexJob *j)
         return;
     pthread_mutex_lock(&j->mu);
     j->cancelled = 1;
+    __atomic_store_n(&j->stop, 1, __ATOMIC_RELAXED);
     int ended = j->finished;
     j->abandoned = !ended;
     pthread_mutex_unlock(&j->mu);

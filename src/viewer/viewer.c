@@ -70,7 +70,7 @@ int viewer_app_init(App *a, const Options *o, Scene *s, int loading)
     a->p.samples = TEXT_SAMPLES;
     pipeline_apply_options(&a->p, o);
     /* images the load left for later (tex_defer): on their own thread */
-    a->tex = texjob_start(s);
+    a->tex = texjob_start(s, a->opt);
     a->pic_cols = o->w;     /* --size fixes the picture (0: the window's size) */
     a->pic_rows = o->h;
     a->reload = -1;

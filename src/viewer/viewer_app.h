@@ -79,9 +79,10 @@ void     firstload_status(FirstLoad *f, char *buf, size_t len);
 int      firstload_now(const Options *o, Scene *s);
 
 /* texjob.c: the pending (big) textures of a scene decoded on a thread
- * of their own. NULL when there are none (or no thread). */
+ * of their own, each in a sandboxed child as o says (sandbox.h). NULL
+ * when there are none (or no thread). */
 typedef struct TexJob TexJob;
-TexJob  *texjob_start(Scene *s);
+TexJob  *texjob_start(Scene *s, const Options *o);
 /* Put the finished ones in place (on the UI thread, between frames);
  * returns 1 when one was (draw again). A texture that could not be read
  * says so in note. When every one is done the job is freed (*jp NULL). */

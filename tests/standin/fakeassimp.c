@@ -3,18 +3,22 @@
  * would, as ZV_STANDIN says: "create" a file, "exec" a shell, "socket"
  * (connect to a local port), "alloc" without bound, "spin" for ever,
  * "chatter" (write escapes to stderr and fail with a message of several
- * lines quoting them, as assimp's importers do). Each that succeeds
+ * lines quoting them, as assimp's importers do),
+ * "read" the file ZV_STANDIN_READ (its error says what it read), "raise"
+ * its memory limit to the ceiling. Each that succeeds
  * leaves a marker file in ZV_STANDIN_DIR, so that a test run without the
  * sandbox proves the attempt is real and one with it that nothing
  * happened. Without ZV_STANDIN the file's name says what to do. Exports every function zview looks up (src/mesh/assimp.c). */
 #define _GNU_SOURCE
 
 #include <arpa/inet.h>
+#include <errno.h>
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -59,6 +63,33 @@ static void attack(const char *file)
             close(s);
             mark("socket-opened");
         }
+    }
+    if (strstr(what, "read")) {
+        /* a file the model may not name, opened read-only as a parser
+         * taken over would: the filter allows it, only Landlock stops it */
+        const char *p = getenv("ZV_STANDIN_READ");
+        int fd = p ? open(p, O_RDONLY) : -1;
+        char buf[64];
+        ssize_t n = fd >= 0 ? read(fd, buf, sizeof buf) : -1;
+        if (fd >= 0)
+            close(fd);
+        if (n >= 0)
+            snprintf(error_text, sizeof error_text, "stand-in: read %zd bytes of %s", n, p);
+        else
+            snprintf(error_text, sizeof error_text, "stand-in: cannot read %s: %s", p ? p : "(unset)",
+                     strerror(errno));
+        return;
+    }
+    if (strstr(what, "raise")) {
+        /* lift the memory limit to its ceiling, as a parser taken over
+         * would before it allocates: the filter refuses it */
+        struct rlimit rl;
+        int r = getrlimit(RLIMIT_DATA, &rl) == 0 ? (rl.rlim_cur = rl.rlim_max, setrlimit(RLIMIT_DATA, &rl)) : -1;
+        if (r == 0)
+            snprintf(error_text, sizeof error_text, "stand-in: raised the memory limit");
+        else
+            snprintf(error_text, sizeof error_text, "stand-in: cannot raise the memory limit: %s", strerror(errno));
+        return;
     }
     if (strstr(what, "spin")) {
         volatile unsigned long n = 0;
