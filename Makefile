@@ -198,7 +198,7 @@ e2e: $(BIN) $(STANDIN)
 	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) sh tests/e2e/run.sh
 
 # Sanitized build in its own folder, same tests, with the invariants
-# on (-DZV_CHECKS turns ZV_ASSERT on: include/check.h).
+# on (-DZV_CHECKS turns ZV_ASSERT on: include/invariant.h).
 asan:
 	$(MAKE) BUILD=build-asan BIN=build-asan/zview \
 	    OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -DZV_CHECKS" test
@@ -337,7 +337,7 @@ FUZZ_OBJS   := $(sort $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.
                       $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o))
 SECONDS     ?= 60
 FUZZ_FLAGS  ?=
-# the invariants (ZV_ASSERT, include/check.h) are on here as in make asan:
+# the invariants (ZV_ASSERT, include/invariant.h) are on here as in make asan:
 # a fuzz input that breaks one stops where it broke
 FUZZ_CFLAGS += -DZV_CHECKS
 

@@ -19,7 +19,7 @@
  */
 
 #include <stdint.h>
-#include "check.h"
+#include "invariant.h"
 #include "screen.h"
 
 typedef struct {

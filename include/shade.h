@@ -122,19 +122,19 @@ typedef struct {
 
 /* Start a frame: 0 with f ready, 1 when the scene has no such face (f
  * unused), -1 out of memory. */
-int  surf_frame_begin(SurfFrame *f, const Scene *s, const ScreenPolys *sp, const ShadeSettings *set,
+int  texel_frame_begin(SurfFrame *f, const Scene *s, const ScreenPolys *sp, const ShadeSettings *set,
                       SurfCache *sc);
 /* The colour of face id at sample (x, y) before light, linear, into
  * out; 0 when the face's colour does not vary (its face_rgb is right). */
-int  surf_colour(SurfFrame *f, int32_t id, int x, int y, float out[3]);
+int  texel_colour(SurfFrame *f, int32_t id, int x, int y, float out[3]);
 /* Light k (the fraction Lambert gives an untextured face's bytes) as a
  * factor on linear light: a white texture lit by k shows as a white
  * material does. */
-float surf_light(float k);
+float texel_light(float k);
 /* Lambert shading's pass: every sample of such a face, lit as its face
  * is (the face's light stays one, the colour varies). */
 void shade_surfaces_flat(SurfFrame *f, const FrameBufs *fb, Image *out);
-void surf_cache_free(SurfCache *sc);
+void texel_cache_free(SurfCache *sc);
 
 /* smooth.c */
 int  smooth_prepare(SmoothData *sd, const Scene *s, float crease_deg);

@@ -7,15 +7,15 @@
 #include "app.h"
 
 /* The viewer on the terminal; without one, the one-shot output
- * (app_oneshot). Returns the exit status. */
-int  app_viewer(const Options *o, Scene *s);
+ * (oneshot_run). Returns the exit status. */
+int  viewer_run(const Options *o, Scene *s);
 /* Is the one file of the command line big enough, and the viewer sure
  * to run, to load it while the viewer shows what is parsed so far? */
-int  app_viewer_loads_first(const Options *o);
+int  viewer_loads_first(const Options *o);
 /* The viewer on the empty scene s, loading the command line's file into
  * it (firstload.c). */
-int  app_viewer_loading(const Options *o, Scene *s);
+int  viewer_run_loading(const Options *o, Scene *s);
 /* --bench-tty: the bytes per frame of a scripted rotation. */
-int  app_bench_tty(const Options *o);
+int  viewer_bench_tty(const Options *o);
 
 #endif

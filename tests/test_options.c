@@ -563,12 +563,12 @@ static void rows_name_their_keys(const KeyRow *rows, int n, const char *table)
 
 Test(keytable, each_help_row_names_its_keys_once)
 {
-    rows_name_their_keys(app_keys, app_keys_n, "action.c");
+    rows_name_their_keys(viewer_keys, viewer_keys_n, "action.c");
     rows_name_their_keys(sketch_keys, sketch_keys_n, "sketchui.c");
     /* sketch mode passes a key on only to a key the viewer has */
     for (int r = 0; r < sketch_keys_n; r++)
         for (const KeyBind *b = sketch_keys[r].bind; b < sketch_keys[r].bind + KEY_ROW_BINDS && b->key; b++)
-            cr_expect(b->act || key_find(app_keys, app_keys_n, b->key), "sketch mode passes on a key the viewer lacks");
+            cr_expect(b->act || key_find(viewer_keys, viewer_keys_n, b->key), "sketch mode passes on a key the viewer lacks");
 }
 
 /* Every key of a table has a .TP entry naming it in the man page's
@@ -593,7 +593,7 @@ static void man_lists_keys(const char *man, const char *sh, const KeyRow *rows, 
 Test(keytable, the_man_page_lists_every_key)
 {
     char *man = slurp("doc/zview.1");
-    man_lists_keys(man, "KEYS", app_keys, app_keys_n);
+    man_lists_keys(man, "KEYS", viewer_keys, viewer_keys_n);
     man_lists_keys(man, "SKETCH", sketch_keys, sketch_keys_n);
     free(man);
 }
@@ -615,8 +615,8 @@ Test(keytable, the_readme_names_only_keys_that_exist)
             char word[16];
             snprintf(word, sizeof word, "%.*s", (int)(e - b - 1), b + 1);
             int found = 0;
-            for (int r = 0; r < app_keys_n && !found; r++)
-                for (const KeyBind *k = app_keys[r].bind; k < app_keys[r].bind + KEY_ROW_BINDS && k->key; k++) {
+            for (int r = 0; r < viewer_keys_n && !found; r++)
+                for (const KeyBind *k = viewer_keys[r].bind; k < viewer_keys[r].bind + KEY_ROW_BINDS && k->key; k++) {
                     char nb[8];
                     found |= same_word_nocase(word, key_name(k->key, nb, sizeof nb));
                 }

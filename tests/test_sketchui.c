@@ -74,7 +74,7 @@ static void rect(int x0, int y0, int x1, int y1)
 
 static void start(void)
 {
-    cr_assert_eq(app_key(&app, 'D'), RE_RENDER | RE_DRAW);
+    cr_assert_eq(viewer_key(&app, 'D'), RE_RENDER | RE_DRAW);
     cr_assert(app.sk.on);
     frame();
     cr_assert_eq(app.s, &app.sk.scene, "the drawing is the scene");
@@ -118,28 +118,28 @@ Test(sketchui, keys_flip_tilt_undo_clear)
     start();
     rect(14, 3, 35, 12);
     rect(25, 8, 46, 17);
-    app_key(&app, TK_TAB);
+    viewer_key(&app, TK_TAB);
     frame();
     cr_expect_eq(seen(30, 10), 0, "flipped: the first drawn in front");
-    app_key(&app, TK_TAB);
+    viewer_key(&app, TK_TAB);
     /* tilted 45 degrees about the vertical, the second pierces the first */
     for (int i = 0; i < 3; i++)
-        app_key(&app, 't');
+        viewer_key(&app, 't');
     frame();
     cr_expect_float_eq(app.sk.k.tilt[2], 45, 1e-6);
     cr_expect_eq(seen(26, 10), 0, "its left side behind");
     cr_expect_eq(seen(34, 10), 1, "its right side in front");
-    app_key(&app, 'n');
+    viewer_key(&app, 'n');
     cr_expect_eq(app.sk.k.sel, 0, "n selects the next (wrapping)");
-    app_key(&app, 'u');
+    viewer_key(&app, 'u');
     frame();
     cr_expect_eq(app.s->nfaces, 1u, "u takes the last polygon back");
     cr_expect_eq(seen(42, 15), -1);
-    app_key(&app, ' ');
+    viewer_key(&app, ' ');
     cr_expect_eq(sketch_open_points(&app.sk.k), 1u, "space adds a corner at the cursor");
-    app_key(&app, TK_BACKSPACE);
+    viewer_key(&app, TK_BACKSPACE);
     cr_expect_eq(sketch_open_points(&app.sk.k), 0u, "Backspace takes it back");
-    app_key(&app, 'c');
+    viewer_key(&app, 'c');
     frame();
     cr_expect_eq(app.s->nfaces, 0u, "c clears all");
 }
@@ -150,24 +150,24 @@ Test(sketchui, arrows_move_the_cursor_and_marks_show_it)
     int cx = app.sk.cx, cy = app.sk.cy;
     cr_expect_eq(cx, COLS / 2);
     cr_expect_eq(cy, ROWS / 2);
-    app_key(&app, TK_LEFT);
-    app_key(&app, TK_UP);
+    viewer_key(&app, TK_LEFT);
+    viewer_key(&app, TK_UP);
     cr_expect_eq(app.sk.cx, cx - 1);
     cr_expect_eq(app.sk.cy, cy - 1);
     cr_expect(app.sk.cursor);
     for (int i = 0; i < 200; i++)
-        app_key(&app, TK_RIGHT);
+        viewer_key(&app, TK_RIGHT);
     cr_expect_eq(app.sk.cx, COLS - 1, "the cursor stays in the picture");
     for (int i = 0; i < 20; i++)
-        app_key(&app, TK_LEFT);
-    app_key(&app, ' ');
+        viewer_key(&app, TK_LEFT);
+    viewer_key(&app, ' ');
     frame();
     cr_assert_eq(cells_from_image(&app.p.img, app.mode, COLOUR_TRUE, &app.p.cells), 0);
     sketch_mode_marks(&app, &app.p.cells);
     const Cell *row = &app.p.cells.cells[(cy - 1) * COLS];
     cr_expect_eq(row[39].ch, '+', "the cursor over its corner");
-    app_key(&app, TK_LEFT);
-    app_key(&app, TK_LEFT);
+    viewer_key(&app, TK_LEFT);
+    viewer_key(&app, TK_LEFT);
     cr_assert_eq(cells_from_image(&app.p.img, app.mode, COLOUR_TRUE, &app.p.cells), 0);
     sketch_mode_marks(&app, &app.p.cells);
     cr_expect_eq(row[39].ch, 'o', "the open corner");
@@ -182,16 +182,16 @@ Test(sketchui, w_writes_the_next_free_file_and_the_command_opens_it)
     cr_assert_eq(chdir(dir), 0);
     start();
     char cmd[CMD_MAX];
-    cr_expect_eq(app_key(&app, 'w'), RE_DRAW);
+    cr_expect_eq(viewer_key(&app, 'w'), RE_DRAW);
     cr_expect(strstr(app.note, "nothing to write") != NULL, "%s", app.note);
     rect(14, 3, 35, 12);
-    cr_expect_eq(app_view_command(&app, cmd, sizeof cmd), -1, "not written yet");
+    cr_expect_eq(viewer_view_command(&app, cmd, sizeof cmd), -1, "not written yet");
     FILE *f = fopen("sketch-001.obj", "w");
     cr_assert_not_null(f);
     fclose(f);
-    app_key(&app, 'w');
+    viewer_key(&app, 'w');
     cr_expect_str_eq(app.note, "wrote sketch-002.obj", "the first number taken: the next");
-    cr_assert_eq(app_view_command(&app, cmd, sizeof cmd), 0);
+    cr_assert_eq(viewer_view_command(&app, cmd, sizeof cmd), 0);
     cr_expect(strstr(cmd, "zview sketch-002.obj --yaw 0 --pitch 0 --zoom ") == cmd, "%s", cmd);
     /* the file reads back as the scene on screen */
     Mesh *m = calloc(1, sizeof *m);
@@ -201,7 +201,7 @@ Test(sketchui, w_writes_the_next_free_file_and_the_command_opens_it)
     mesh_free(m);
     free(m);
     rect(25, 8, 46, 17);
-    cr_expect_eq(app_view_command(&app, cmd, sizeof cmd), -1, "changed since: the file no longer shows it");
+    cr_expect_eq(viewer_view_command(&app, cmd, sizeof cmd), -1, "changed since: the file no longer shows it");
     unlink("sketch-001.obj");
     unlink("sketch-002.obj");
     cr_expect_eq(rmdir(dir), 0);
@@ -212,20 +212,20 @@ Test(sketchui, D_goes_back_to_the_model_and_help_lists_the_keys)
     start();
     rect(14, 3, 35, 12);
     const char *lines[HELP_LINES_MAX];
-    app_key(&app, '?');
-    int n = app_help_layout(&app, 120, 40, lines);
+    viewer_key(&app, '?');
+    int n = viewer_help_layout(&app, 120, 40, lines);
     int found = 0;
     for (int i = 0; i < n; i++)
         found |= strstr(lines[i], "flip the depth order") != NULL;
     cr_expect(found, "the sketch's keys in its help");
-    app_key(&app, 'x');     /* closes the help */
-    cr_expect_eq(app_key(&app, 'D'), RE_RENDER | RE_DRAW);
+    viewer_key(&app, 'x');     /* closes the help */
+    cr_expect_eq(viewer_key(&app, 'D'), RE_RENDER | RE_DRAW);
     cr_expect(!app.sk.on);
     cr_expect_eq(app.s, &model);
     cr_expect_eq(app.p.scene, &model);
-    app_key(&app, 'D');
+    viewer_key(&app, 'D');
     frame();
     cr_expect_eq(app.s->nfaces, 1u, "the drawing is kept");
     app.sk.only = 1;
-    cr_expect(app_key(&app, TK_ESC) & RE_QUIT, "started with --sketch: Esc quits");
+    cr_expect(viewer_key(&app, TK_ESC) & RE_QUIT, "started with --sketch: Esc quits");
 }

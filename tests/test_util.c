@@ -12,7 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "check.h"
+#include "invariant.h"
 #include "safefile.h"
 #include "safetext.h"
 #include "sysmem.h"

@@ -56,7 +56,7 @@ Test(viewer, number_keys_are_the_named_views)
         float y, p;
         cr_assert_str_eq(view_name(i), doc[i]);
         cr_assert_eq(view_from_name(doc[i], &y, &p), 0);
-        cr_expect_eq(app_key(&app, '1' + i), RE_RENDER);
+        cr_expect_eq(viewer_key(&app, '1' + i), RE_RENDER);
         cr_expect_float_eq(scene.cam.yaw, remainderf(deg2rad(y), 2 * ZV_PI), 1e-6, "key %d yaw", i + 1);
         cr_expect_float_eq(scene.cam.pitch, deg2rad(p), 1e-6, "key %d pitch", i + 1);
         /* fitted from the view: the command line needs no --fit-from */
@@ -65,7 +65,7 @@ Test(viewer, number_keys_are_the_named_views)
     }
     FirstView fv;
     app_first_view(&scene, 1, &fv);
-    app_key(&app, '8');
+    viewer_key(&app, '8');
     cr_expect_float_eq(scene.cam.yaw, remainderf(deg2rad(fv.yaw), 2 * ZV_PI), 1e-6);
     cr_expect_float_eq(scene.cam.pitch, deg2rad(fv.pitch), 1e-6);
 }
@@ -73,31 +73,31 @@ Test(viewer, number_keys_are_the_named_views)
 Test(viewer, bracket_keys_turn_the_light)
 {
     float y0 = scene.light.yaw, p0 = scene.light.pitch;
-    app_key(&app, ']');
+    viewer_key(&app, ']');
     cr_expect_float_eq(scene.light.yaw, y0 + 15, 1e-4);
-    app_key(&app, '[');
-    app_key(&app, '[');
+    viewer_key(&app, '[');
+    viewer_key(&app, '[');
     cr_expect_float_eq(scene.light.yaw, y0 - 15, 1e-4);
-    app_key(&app, '{');
+    viewer_key(&app, '{');
     cr_expect_float_eq(scene.light.pitch, p0 + 15, 1e-4);
     for (int i = 0; i < 12; i++)
-        app_key(&app, '{');
+        viewer_key(&app, '{');
     cr_expect_float_eq(scene.light.pitch, 90, 1e-4, "the light stops straight above");
     for (int i = 0; i < 30; i++)
-        app_key(&app, ']');
+        viewer_key(&app, ']');
     cr_expect(scene.light.yaw > -180 && scene.light.yaw <= 180, "yaw wraps: %g", scene.light.yaw);
     cr_expect_float_eq(scene.light.ambient, LIGHT_AMBIENT, 1e-6, "the ambient share stays");
 }
 
 Test(viewer, e_toggles_outlines_and_S_cycles_samples)
 {
-    app_key(&app, 'e');
+    viewer_key(&app, 'e');
     cr_expect(app.p.edges);
-    app_key(&app, 'e');
+    viewer_key(&app, 'e');
     cr_expect(!app.p.edges);
     int want[] = { 9, 16, 1, 4 };
     for (int i = 0; i < 4; i++) {
-        app_key(&app, 'S');
+        viewer_key(&app, 'S');
         cr_expect_eq(app.p.samples, want[i]);
     }
 }
@@ -107,7 +107,7 @@ Test(viewer, v_cycles_every_shading)
     int seen = 0;
     for (int i = 0; i < SHADE_COUNT; i++) {
         seen |= 1 << app.p.shade;
-        app_key(&app, 'v');
+        viewer_key(&app, 'v');
     }
     cr_expect_eq(seen, (1 << SHADE_COUNT) - 1, "smooth included");
 }
@@ -116,16 +116,16 @@ Test(viewer, v_cycles_every_shading)
  * view's command line. */
 Test(viewer, command_lines_wrap_and_join_back)
 {
-    app_key(&app, '3');
-    app_key(&app, 'e');
-    app_key(&app, ']');
+    viewer_key(&app, '3');
+    viewer_key(&app, 'e');
+    viewer_key(&app, ']');
     char want[CMD_MAX];
-    cr_assert_eq(app_view_command(&app, want, sizeof want), 0);
+    cr_assert_eq(viewer_view_command(&app, want, sizeof want), 0);
     cr_expect(strstr(want, "--edges") && strstr(want, "--light -19,37"), "%s", want);
     for (int cols = 24; cols <= 120; cols += 16) {
         char buf[2 * CMD_MAX];
         const char *lines[HELP_LINES_MAX];
-        int n = app_command_layout(&app, cols, buf, sizeof buf, lines, HELP_LINES_MAX);
+        int n = viewer_command_layout(&app, cols, buf, sizeof buf, lines, HELP_LINES_MAX);
         cr_assert_gt(n, 1);
         char joined[CMD_MAX] = "";
         for (int i = 1; i < n; i++) {
@@ -143,13 +143,13 @@ Test(viewer, command_lines_wrap_and_join_back)
 
 Test(viewer, a_key_closes_the_command_line_and_does_nothing_else)
 {
-    app_key(&app, 'C');
+    viewer_key(&app, 'C');
     cr_expect(app.cmd);
     float yaw = scene.cam.yaw;
-    cr_expect_eq(app_key(&app, 'l'), RE_DRAW);
+    cr_expect_eq(viewer_key(&app, 'l'), RE_DRAW);
     cr_expect(!app.cmd);
     cr_expect_eq(scene.cam.yaw, yaw);
-    cr_expect_neq(app_key(&app, 'q') & RE_QUIT, 0, "then q quits");
+    cr_expect_neq(viewer_key(&app, 'q') & RE_QUIT, 0, "then q quits");
 }
 
 Test(viewer, frame_patterns)
@@ -221,12 +221,12 @@ Test(viewer, esc_cancels_a_load_waiting_on_a_fifo_then_quits)
     loadjob_status(app.job, st, sizeof st);
     cr_expect(strstr(st, "waiting for a writer to pipe.obj"), "status: %s", st);
     cr_expect(strstr(st, "Esc cancels"), "status: %s", st);
-    Reaction r = app_key(&app, TK_ESC);
+    Reaction r = viewer_key(&app, TK_ESC);
     cr_expect_eq(r & RE_QUIT, 0, "Esc with a load going cancels it, it does not quit");
     cr_expect_null(app.job);
     cr_expect(strstr(app.note, "cancelled loading pipe.obj"), "note: %s", app.note);
     cr_expect(!fifo_read_by_someone(fifo, 0), "the cancelled load let go of the FIFO");
-    cr_expect_neq(app_key(&app, TK_ESC) & RE_QUIT, 0, "Esc again quits");
+    cr_expect_neq(viewer_key(&app, TK_ESC) & RE_QUIT, 0, "Esc again quits");
     unlink(fifo);
     rmdir(dir);
 }
@@ -277,23 +277,23 @@ Test(viewer, devices_and_standard_input_are_refused_at_once)
 Test(viewer, page_keys_home_and_end_scroll_a_help_that_does_not_fit)
 {
     const char *lines[HELP_LINES_MAX];
-    app_key(&app, '?');
+    viewer_key(&app, '?');
     cr_assert(app.help);
-    app_help_layout(&app, 40, 12, lines);       /* a small window: the help does not fit */
+    viewer_help_layout(&app, 40, 12, lines);       /* a small window: the help does not fit */
     cr_assert_gt(app.help_hidden, 0);
     cr_assert_gt(app.help_page, 2);
-    cr_expect_eq(app_key(&app, TK_PGDN), RE_DRAW);
+    cr_expect_eq(viewer_key(&app, TK_PGDN), RE_DRAW);
     cr_expect_eq(app.help_top, app.help_page - 1, "a page down, one row kept");
-    app_key(&app, TK_END);
+    viewer_key(&app, TK_END);
     cr_expect_eq(app.help_top, app.help_hidden, "End: the last rows");
-    app_key(&app, TK_PGDN);
+    viewer_key(&app, TK_PGDN);
     cr_expect_eq(app.help_top, app.help_hidden, "no further than the end");
-    app_key(&app, TK_PGUP);
+    viewer_key(&app, TK_PGUP);
     cr_expect_eq(app.help_top, app.help_hidden - (app.help_page - 1));
-    app_key(&app, TK_HOME);
+    viewer_key(&app, TK_HOME);
     cr_expect_eq(app.help_top, 0, "Home: the first rows");
     cr_expect(app.help, "the scroll keys keep the help open");
-    app_key(&app, TK_INS);
+    viewer_key(&app, TK_INS);
     cr_expect(!app.help, "another key closes it");
 }
 
@@ -301,7 +301,7 @@ Test(viewer, the_editing_keys_do_not_quit)
 {
     static const int keys[] = { TK_HOME, TK_END, TK_INS, TK_PGUP, TK_PGDN };
     for (int i = 0; i < 5; i++)
-        cr_expect_eq(app_key(&app, keys[i]) & RE_QUIT, 0, "key %d", i);
+        cr_expect_eq(viewer_key(&app, keys[i]) & RE_QUIT, 0, "key %d", i);
 }
 
 /* The modes stack in one order: the open prompt over E's question over
@@ -318,18 +318,18 @@ Test(viewer, the_mode_on_top_takes_the_key)
     cr_expect_eq(viewer_mode(&app), VM_CONFIRM);
     /* n answers the question (and nothing under it sees the key) */
     float yaw = scene.cam.yaw;
-    app_key(&app, 'n');
+    viewer_key(&app, 'n');
     cr_expect(!app.confirm, "the question is answered");
     cr_expect(app.help && app.cmd, "the modes under it stay");
     cr_expect_str_eq(app.note, "the scene stays");
     /* then the help takes keys: l does not turn the model */
     cr_expect_eq(viewer_mode(&app), VM_HELP);
-    app_key(&app, 'l');
+    viewer_key(&app, 'l');
     cr_expect_eq(scene.cam.yaw, yaw);
     app.help = 0;
     app.cmd = 0;
     cr_expect_eq(viewer_mode(&app), VM_VIEW);
-    app_key(&app, 'l');
+    viewer_key(&app, 'l');
     cr_expect_neq(scene.cam.yaw, yaw, "with nothing on top, l turns");
     cr_expect(viewer_mode_boxed(VM_HELP) && viewer_mode_boxed(VM_COMMAND) && !viewer_mode_boxed(VM_PROMPT) &&
               !viewer_mode_boxed(VM_SKETCH));
@@ -347,11 +347,11 @@ Test(viewer, r_goes_back_to_the_opening_view)
     scene.objs[0].open_yaw = scene.objs[0].yaw = 0.25f;
     app.opening = scene.cam;
     Camera want = scene.cam;
-    app_key(&app, 'l');
-    app_key(&app, 'j');
-    app_key(&app, '+');
+    viewer_key(&app, 'l');
+    viewer_key(&app, 'j');
+    viewer_key(&app, '+');
     cr_assert(scene.cam.yaw != want.yaw || scene.cam.pitch != want.pitch, "the keys turned");
-    app_key(&app, 'r');
+    viewer_key(&app, 'r');
     cr_expect_eq(scene.cam.yaw, want.yaw);
     cr_expect_eq(scene.cam.pitch, want.pitch);
     cr_expect_eq(scene.cam.zoom, want.zoom);

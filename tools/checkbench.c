@@ -55,7 +55,7 @@ int main(int argc, char **argv)
         return 1;
     }
     double load_ms = now_ms() - t0;
-    /* as --check does (oneshot/check.c): what the check does not read
+    /* as --check does (oneshot/checkreport.c): what the check does not read
      * goes before it starts */
     free(m.face_mat);
     m.face_mat = NULL;

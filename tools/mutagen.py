@@ -38,7 +38,7 @@ ROOT = os.path.dirname(HERE)
 # read as '<'
 RELATIONAL = [('<=', '<'), ('>=', '>'), ('==', '!='), ('!=', '=='), ('<', '<='), ('>', '>=')]
 SKIP_LINE = re.compile(r'^\s*(#|//|/\*|\*|\}|\{|$)|ZV_ASSERT|assert\(|printf|fprintf|snprintf|'
-                       r'me_fail|bad\(|app_note|perror|fputs|out_printf|return me_|"[^"]*"\s*[,)]')
+                       r'me_fail|bad\(|viewer_note|perror|fputs|out_printf|return me_|"[^"]*"\s*[,)]')
 INT = re.compile(r'(?<![\w.])(\d+)(?![\w.])')
 
 

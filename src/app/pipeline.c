@@ -82,7 +82,7 @@ int app_check_size(const Options *o, const Scene *s, char *err, size_t errlen)
     }
     polys = (polys + prims) * copies;
     corners = (corners + 4 * prims) * copies;
-    /* the pixels' buffers are judged by app_check_output: against the
+    /* the pixels' buffers are judged by oneshot_check_output: against the
      * memory, only the polygons' part counts here */
     uint64_t pixels = !o->max_polys ? 0 : o->w > 0 ? (uint64_t)o->w * o->h : DEFAULT_PIXELS;
     uint64_t have = 0, avail = 0, scene = 0, need = 0;

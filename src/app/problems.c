@@ -4,7 +4,7 @@
  * files' figures summed (meshcheck_sum, as a file's objects), the
  * verdict in a word or two for the status bar and the counts for the
  * info panel. The report of --check is
- * oneshot/check.c's. */
+ * oneshot/checkreport.c's. */
 
 #include <limits.h>
 #include <stdio.h>

@@ -12,7 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "check.h"
+#include "invariant.h"
 #include "meshcheck.h"
 #include "pool.h"
 

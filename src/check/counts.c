@@ -3,7 +3,7 @@
  * member, its place and words in the text report, whether it is a
  * problem and the words of the verdicts. Everything that sums, writes
  * or judges the figures reads these rows: meshcheck_sum (a file's
- * objects, a scene's files), oneshot/check.c (the text report and the
+ * objects, a scene's files), oneshot/checkreport.c (the text report and the
  * JSON), the verdicts here and app/problems.c's status bar. A new check
  * is its pass and a row. */
 

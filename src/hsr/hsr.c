@@ -7,7 +7,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "check.h"
+#include "invariant.h"
 #include "clock.h"
 #include "hsr.h"
 #include "pool.h"

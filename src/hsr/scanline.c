@@ -55,7 +55,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
+#include "invariant.h"
 #include "clock.h"
 #include "raster.h"
 #include "grow.h"

@@ -63,7 +63,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
+#include "invariant.h"
 #include "grow.h"
 #include "clock.h"
 #include "raster.h"

@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
+#include "invariant.h"
 #include "raster.h"
 #include "hsr.h"
 #include "simd.h"

@@ -84,7 +84,7 @@ int main(int argc, char **argv)
     int rc;
     if (o.bench || o.bench_tty) {
         /* each model loaded on its own; --bench-tty drives the viewer */
-        rc = o.bench_tty ? app_bench_tty(&o) : app_bench(&o, NULL);
+        rc = o.bench_tty ? viewer_bench_tty(&o) : oneshot_bench(&o, NULL);
         return rc ? rc : finish_stdout();
     }
     if (o.formats) {
@@ -93,7 +93,7 @@ int main(int argc, char **argv)
     }
     if (o.check) {
         /* each file loaded and checked on its own; the picture, if asked, inside */
-        rc = app_check(&o);
+        rc = oneshot_check(&o);
         return rc == 1 ? rc : finish_stdout() ? 1 : rc;
     }
     Scene scene;
@@ -105,13 +105,13 @@ int main(int argc, char **argv)
             return 1;
         }
         light_set(&scene.light, o.light[0], o.light[1], o.ambient);
-        rc = app_viewer(&o, &scene);
+        rc = viewer_run(&o, &scene);
         scene_free(&scene);
         return rc ? rc : finish_stdout();
     }
     int oneshot = !o.info && (o.print || o.out || o.dump_ids || o.dump_screen ||
                               (!isatty(STDOUT_FILENO) && !o.print_view && !o.sketch));
-    if (oneshot && app_check_output(&o, err, sizeof err)) {
+    if (oneshot && oneshot_check_output(&o, err, sizeof err)) {
         safetext_line(stderr, "zview: %s", err);
         return 1;
     }
@@ -119,7 +119,7 @@ int main(int argc, char **argv)
         o.tex_skip = o.no_textures;
     else if (!o.info)
         o.tex_defer = TEX_DEFER_SIDE;
-    if (!oneshot && !o.info && app_viewer_loads_first(&o)) {
+    if (!oneshot && !o.info && viewer_loads_first(&o)) {
         /* a big file: the viewer starts at once and shows what is
          * parsed so far (firstload.c); it starts on an empty scene */
         if (scene_build(&scene, NULL, 0, err, sizeof err)) {
@@ -127,7 +127,7 @@ int main(int argc, char **argv)
             return 1;
         }
         light_set(&scene.light, o.light[0], o.light[1], o.ambient);
-        rc = app_viewer_loading(&o, &scene);
+        rc = viewer_run_loading(&o, &scene);
         scene_free(&scene);
         return rc ? rc : finish_stdout();
     }
@@ -137,11 +137,11 @@ int main(int argc, char **argv)
         return 1;
     }
     if (o.info)
-        rc = app_info(&o, &scene, &fv);
+        rc = oneshot_info(&o, &scene, &fv);
     else if (oneshot)
-        rc = app_oneshot(&o, &scene);
+        rc = oneshot_run(&o, &scene);
     else
-        rc = app_viewer(&o, &scene);
+        rc = viewer_run(&o, &scene);
     scene_free(&scene);
     /* every path checks its own writes; this catches any left in the buffer */
     return rc ? rc : finish_stdout();

@@ -192,7 +192,7 @@ static int bench_model(Out *out, const Options *o, const char *file, const AlgoL
     return rc;
 }
 
-int app_bench(const Options *o, Scene *s)
+int oneshot_bench(const Options *o, Scene *s)
 {
     (void)s;   /* models are loaded one at a time */
     AlgoList al;

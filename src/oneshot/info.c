@@ -141,7 +141,7 @@ static void print_first_view(Out *out, const FirstView *fv)
         out_printf(out, "front:      %s (nothing says: the plain front view's side)\n", dir);
 }
 
-int app_info(const Options *o, Scene *s, const FirstView *fv)
+int oneshot_info(const Options *o, Scene *s, const FirstView *fv)
 {
     Out outs, *out = &outs;
     out_init(out, stdout, "standard output");

@@ -385,7 +385,7 @@ static int turntable(const Options *o, Scene *s, Pipeline *p, Backdrops *b)
     return 0;
 }
 
-int app_check_output(const Options *o, char *err, size_t errlen)
+int oneshot_check_output(const Options *o, char *err, size_t errlen)
 {
     char what[96];
     int text = o->print || text_file(o, o->out) || (!o->out && !o->dump_ids && !o->dump_screen);
@@ -413,7 +413,7 @@ int app_check_output(const Options *o, char *err, size_t errlen)
     return 0;
 }
 
-int app_oneshot(const Options *o, Scene *s)
+int oneshot_run(const Options *o, Scene *s)
 {
     char err[512];
     /* what the check finds, on the model */

@@ -24,7 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "backdrop.h"
-#include "check.h"
+#include "invariant.h"
 #include "present.h"
 
 #define CH_UPPER_HALF 0x2580u

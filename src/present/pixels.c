@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
+#include "invariant.h"
 #include "pixels.h"
 #include "present.h"
 

@@ -7,7 +7,7 @@
 #include <setjmp.h>
 #include <stdio.h>
 #include <string.h>
-#include "check.h"
+#include "invariant.h"
 #include "pixels.h"
 #include "present.h"
 #include "safefile.h"

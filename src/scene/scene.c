@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "bigmem.h"
-#include "check.h"
+#include "invariant.h"
 #include "scene.h"
 #include "scene_internal.h"
 #include "simd.h"

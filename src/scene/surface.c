@@ -5,7 +5,7 @@
  * transform), and its polygon corners carry their coordinates. A face
  * without a material whose corners have different vertex colours has
  * them interpolated. Every other face keeps one colour. Shading reads
- * this (src/shade/surface.c); nothing here depends on the view. */
+ * this (src/shade/texel.c); nothing here depends on the view. */
 
 #include <stdlib.h>
 #include <string.h>

@@ -3,7 +3,7 @@
 
 #include <stdlib.h>
 
-#include "check.h"
+#include "invariant.h"
 #include "raster.h"
 
 int polywalk_begin(PolyWalk *w, const ScreenPolys *sp, uint32_t pi, int32_t start_row)

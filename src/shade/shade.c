@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "bigmem.h"
-#include "check.h"
+#include "invariant.h"
 #include "shade.h"
 #include "simd.h"
 #include "facecol.h"
@@ -45,7 +45,7 @@ void shade_cache_free(ShadeCache *c)
     free(c->nrm);
     smooth_free(&c->smooth);
     edges_free(&c->edges);
-    surf_cache_free(&c->surf);
+    texel_cache_free(&c->surf);
     memset(c, 0, sizeof *c);
 }
 
@@ -712,7 +712,7 @@ static int shade_mode(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb
     SurfFrame sf;
     int varying = 0;
     if (mode == SHADE_LAMBERT || mode == SHADE_SMOOTH) {
-        int r = surf_frame_begin(&sf, s, sp, set, &cache->surf);
+        int r = texel_frame_begin(&sf, s, sp, set, &cache->surf);
         if (r < 0)
             return -1;
         varying = r == 0;

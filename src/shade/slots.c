@@ -6,7 +6,7 @@
 
 #include <stdlib.h>
 #include <string.h>
-#include "check.h"
+#include "invariant.h"
 #include "facecol.h"
 
 /* The slot table for a frame of n pixels: a power of two at least twice

@@ -26,7 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
+#include "invariant.h"
 #include "shade.h"
 
 void smooth_free(SmoothData *sd)
@@ -303,9 +303,9 @@ int shade_smooth(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, Smo
             Vec3 v = v3_norm(m4_dir(&im.fwd, n));
             float k = amb + (1.0f - amb) * fabsf(v3_dot(v, s->light.dir));
             float lin[3];
-            if (sf && surf_colour(sf, id, x, y, lin)) {
+            if (sf && texel_colour(sf, id, x, y, lin)) {
                 /* a texture or corner colours: in linear light */
-                float kl = surf_light(k);
+                float kl = texel_light(k);
                 for (int a = 0; a < 3; a++)
                     px[a] = srgb_enc(sf->sc->enc, lin[a] * kl);
                 out->lit[i] = 1;

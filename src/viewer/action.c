@@ -267,7 +267,7 @@ static Reaction act_command(App *a)
 
 static Reaction act_snapshot(App *a)
 {
-    return app_snapshot(a);
+    return viewer_snapshot(a);
 }
 
 static Reaction act_persp(App *a)
@@ -342,8 +342,8 @@ static Reaction act_sketch(App *a)
 
 /* The scene edited live (live.c): open, remove, empty. Emptying asks
  * first: it cannot be undone but by opening the files again. */
-static Reaction act_open(App *a)   { return app_open_prompt(a); }
-static Reaction act_remove(App *a) { return app_remove_selected(a); }
+static Reaction act_open(App *a)   { return viewer_open_prompt(a); }
+static Reaction act_remove(App *a) { return viewer_remove_selected(a); }
 
 static Reaction act_clear(App *a)
 {
@@ -392,7 +392,7 @@ static Reaction act_quit(App *a)
  * load stuck on a FIFO nobody writes to, or one that is too slow). */
 static Reaction act_escape(App *a)
 {
-    return a->job ? app_cancel_load(a) : RE_QUIT;
+    return a->job ? viewer_cancel_load(a) : RE_QUIT;
 }
 
 /* ==== Entry points ==== */
@@ -446,17 +446,17 @@ static Reaction help_key(App *a, int key)
     return RE_DRAW;
 }
 
-Reaction app_key(App *a, int key)
+Reaction viewer_key(App *a, int key)
 {
     a->note[0] = 0;
     switch (viewer_mode(a)) {
     case VM_PROMPT:
-        return app_prompt_key(a, key);
+        return viewer_prompt_key(a, key);
     case VM_CONFIRM:
         /* the key that answers does nothing else */
         a->confirm = 0;
         if (key == 'y' || key == 'Y')
-            return app_clear_scene(a);
+            return viewer_clear_scene(a);
         snprintf(a->note, sizeof a->note, "the scene stays");
         return RE_DRAW;
     case VM_HELP:
@@ -477,13 +477,13 @@ Reaction app_key(App *a, int key)
     case VM_VIEW:
         break;
     }
-    const KeyBind *b = key_find(app_keys, app_keys_n, key);
+    const KeyBind *b = key_find(viewer_keys, viewer_keys_n, key);
     if (!b)
         return RE_NONE;
     return b->act(a) | RE_DRAW;
 }
 
-Reaction app_drag(App *a, int button, int dx, int dy)
+Reaction viewer_drag(App *a, int button, int dx, int dy)
 {
     if (button == 1)
         return turn(a, DRAG_DEG * dx, DRAG_DEG * dy, 0);
@@ -491,12 +491,12 @@ Reaction app_drag(App *a, int button, int dx, int dy)
     return move(a, 0.05f * dx, -0.1f * dy);
 }
 
-Reaction app_wheel(App *a, int dy)
+Reaction viewer_wheel(App *a, int dy)
 {
     return scale(a, dy < 0 ? SCALE_STEP : 1 / SCALE_STEP);
 }
 
-void app_spin(App *a, float radians)
+void viewer_spin(App *a, float radians)
 {
     Object *o = selected(a);
     float *y = o ? &o->yaw : &a->s->cam.yaw;
@@ -532,11 +532,11 @@ static void help_row(const KeyRow *help, int n, char *out, int r, int nrows, int
         out[--len] = 0;
 }
 
-int app_help_layout(App *a, int cols, int rows, const char **lines)
+int viewer_help_layout(App *a, int cols, int rows, const char **lines)
 {
     /* sketch mode has keys of its own */
-    const KeyRow *help = a->sk.on ? sketch_keys : app_keys;
-    const int nhelp = a->sk.on ? sketch_keys_n : app_keys_n;
+    const KeyRow *help = a->sk.on ? sketch_keys : viewer_keys;
+    const int nhelp = a->sk.on ? sketch_keys_n : viewer_keys_n;
     int kw = 0, dw = 0;
     for (int k = 0; k < nhelp; k++) {
         int n = (int)strlen(help[k].keys), m = (int)strlen(help[k].what);
@@ -580,7 +580,7 @@ int app_help_layout(App *a, int cols, int rows, const char **lines)
 }
 
 /* The key table, which is also the ? help, a row a line. */
-const KeyRow app_keys[] = {
+const KeyRow viewer_keys[] = {
     { "arrows h j k l", "turn (yaw, pitch)",
       { { TK_LEFT, act_yaw_left }, { 'h', act_yaw_left }, { TK_RIGHT, act_yaw_right }, { 'l', act_yaw_right },
         { TK_UP, act_pitch_up }, { 'k', act_pitch_up }, { TK_DOWN, act_pitch_down }, { 'j', act_pitch_down } } },
@@ -632,4 +632,4 @@ const KeyRow app_keys[] = {
     { "left drag", "turn", { { 0, NULL } } },
     { "right drag", "move", { { 0, NULL } } },
 };
-const int app_keys_n = (int)(sizeof app_keys / sizeof app_keys[0]);
+const int viewer_keys_n = (int)(sizeof viewer_keys / sizeof viewer_keys[0]);

@@ -39,7 +39,7 @@ static long file_bytes(FILE *f)
 
 /* Curses writes into a temporary file standing in for the terminal; the
  * file's growth after each update is what a terminal would receive. */
-int app_bench_tty(const Options *o)
+int viewer_bench_tty(const Options *o)
 {
     char err[512];
     Scene s;

@@ -113,7 +113,7 @@ static int wanted(const App *a)
     return (a->p.problems || a->p.parts) && !a->sk.on;
 }
 
-Reaction app_check_poll(App *a)
+Reaction viewer_check_poll(App *a)
 {
     Scene *s = a->s;
     if (!wanted(a))
@@ -151,7 +151,7 @@ Reaction app_check_poll(App *a)
     return RE_NONE;
 }
 
-void app_check_status(const App *a, int max_items, char *buf, size_t len)
+void viewer_check_status(const App *a, int max_items, char *buf, size_t len)
 {
     buf[0] = 0;
     if (!wanted(a) || a->s->nobjs == 0)
@@ -166,7 +166,7 @@ void app_check_status(const App *a, int max_items, char *buf, size_t len)
     }
 }
 
-int app_check_report(const App *a, ReportLine *lines, int max)
+int viewer_check_report(const App *a, ReportLine *lines, int max)
 {
     if (!wanted(a) || a->chk || a->check_err[0] || !a->s->marks.set)
         return 0;

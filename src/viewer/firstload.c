@@ -252,7 +252,7 @@ static void *previewer_main(void *arg)
 
 /* ==== The UI's side ==== */
 
-int app_viewer_loads_first(const Options *o)
+int viewer_loads_first(const Options *o)
 {
     struct stat st;
     const char *t = getenv("TERM");
@@ -332,7 +332,7 @@ static Reaction install(App *a, Scene *s)
 {
     if (pipeline_scene_changing(&a->p)) {
         scene_free(s);
-        app_note(a, "out of memory");
+        viewer_note(a, "out of memory");
         return RE_DRAW;
     }
     Camera cam = a->s->cam;
@@ -345,11 +345,11 @@ static Reaction install(App *a, Scene *s)
         a->opening = a->s->cam;     /* r goes back to the fitted view */
     a->first_cam = a->s->cam;
     a->sel = -1;
-    app_update_name(a);
+    viewer_update_name(a);
     return RE_RENDER;
 }
 
-Reaction app_first_poll(App *a)
+Reaction viewer_first_poll(App *a)
 {
     FirstLoad *f = a->first;
     /* sketch mode holds its own scene in a->s: the pictures wait */
@@ -382,7 +382,7 @@ Reaction app_first_poll(App *a)
         a->first = NULL;
         for (int i = 0; i < a->s->nmeshes; i++)
             if (a->s->meshes[i].info.warnings) {
-                app_warning_note(a, &a->s->meshes[i].info, a->s->meshes[i].path ? a->s->meshes[i].path : "?");
+                viewer_warning_note(a, &a->s->meshes[i].info, a->s->meshes[i].path ? a->s->meshes[i].path : "?");
                 break;
             }
         a->tex = texjob_start(a->s, a->opt);

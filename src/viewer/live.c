@@ -21,7 +21,7 @@
 
 #include "viewer_app.h"
 
-void app_note(App *a, const char *fmt, ...)
+void viewer_note(App *a, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -37,7 +37,7 @@ static const char *base_name(const char *path)
     return s && s[1] ? s + 1 : path;
 }
 
-int app_live_init(App *a, const Options *o)
+int viewer_live_init(App *a, const Options *o)
 {
     a->live = *o;
     a->opt = &a->live;
@@ -50,7 +50,7 @@ int app_live_init(App *a, const Options *o)
     return 0;
 }
 
-void app_live_free(App *a)
+void viewer_live_free(App *a)
 {
     for (int i = 0; i < MAX_FILES; i++) {
         free(a->paths[i]);
@@ -70,7 +70,7 @@ void app_live_free(App *a)
     a->watch = NULL;
 }
 
-void app_update_name(App *a)
+void viewer_update_name(App *a)
 {
     const Options *o = a->opt;
     if (a->s->nobjs == 0)
@@ -125,21 +125,21 @@ static int changing(App *a)
 {
     if (pipeline_scene_changing(&a->p) == 0)
         return 0;
-    app_note(a, "out of memory");
+    viewer_note(a, "out of memory");
     return -1;
 }
 
-void app_warning_note(App *a, const MeshInfo *info, const char *path)
+void viewer_warning_note(App *a, const MeshInfo *info, const char *path)
 {
     /* a texture that failed first: the picture looks wrong without a word */
     if (info->tex_failed)
-        app_note(a, "%s: %u texture%s could not be read (first: %s)", base_name(path), info->tex_failed,
+        viewer_note(a, "%s: %u texture%s could not be read (first: %s)", base_name(path), info->tex_failed,
                  info->tex_failed == 1 ? "" : "s", info->first_tex_failed);
     else if (info->skipped)
-        app_note(a, "%s: %u statement%s skipped (first: %s)", base_name(path), info->skipped,
+        viewer_note(a, "%s: %u statement%s skipped (first: %s)", base_name(path), info->skipped,
                  info->skipped == 1 ? "" : "s", info->first_skipped);
     else if (info->warnings)
-        app_note(a, "warning: %s", info->first_warning);
+        viewer_note(a, "warning: %s", info->first_warning);
 }
 
 /* ==== Layout ==== */
@@ -191,14 +191,14 @@ static int first_loading(App *a)
 {
     if (!a->first)
         return 0;
-    app_note(a, "still loading %s (q quits)", a->name);
+    viewer_note(a, "still loading %s (q quits)", a->name);
     return 1;
 }
 
-Reaction app_open_prompt(App *a)
+Reaction viewer_open_prompt(App *a)
 {
     if (a->job) {
-        app_note(a, "still loading %s (Esc cancels)", base_name(loadjob_path(a->job)));
+        viewer_note(a, "still loading %s (Esc cancels)", base_name(loadjob_path(a->job)));
         return RE_DRAW;
     }
     if (first_loading(a))
@@ -208,7 +208,7 @@ Reaction app_open_prompt(App *a)
     return RE_DRAW;
 }
 
-Reaction app_prompt_key(App *a, int key)
+Reaction viewer_prompt_key(App *a, int key)
 {
     PromptResult r = prompt_key(&a->prompt, key);
     if (r == PR_EDIT)
@@ -218,24 +218,24 @@ Reaction app_prompt_key(App *a, int key)
         return RE_DRAW;
     char path[PROMPT_MAX + 256], err[256];
     if (path_expand_home(a->prompt.buf, path, sizeof path)) {
-        app_note(a, "path too long");
+        viewer_note(a, "path too long");
         return RE_DRAW;
     }
     if (a->live.nfiles >= MAX_FILES) {
-        app_note(a, "the scene holds %d files already", MAX_FILES);
+        viewer_note(a, "the scene holds %d files already", MAX_FILES);
         return RE_DRAW;
     }
     a->job = loadjob_start(path, a->opt, err, sizeof err);
     if (!a->job)
-        app_note(a, "%s: %s", base_name(path), err);
+        viewer_note(a, "%s: %s", base_name(path), err);
     return RE_DRAW;
 }
 
-Reaction app_cancel_load(App *a)
+Reaction viewer_cancel_load(App *a)
 {
     if (!a->job)
         return RE_NONE;
-    app_note(a, "cancelled loading %s", base_name(loadjob_path(a->job)));
+    viewer_note(a, "cancelled loading %s", base_name(loadjob_path(a->job)));
     a->reload = -1;
     loadjob_abandon(a->job);    /* the thread ends alone; the scene is as it was */
     a->job = NULL;
@@ -260,7 +260,7 @@ static Reaction add_part(App *a, Scene *part, const char *path)
     uint64_t copies = o->grid > 1 ? (uint64_t)o->grid * o->grid * o->grid : 1;
     uint64_t total = scene_polys(s, copies) + scene_polys(part, copies);
     if (o->max_polys && total > o->max_polys) {
-        app_note(a, "%s: the scene would have %llu polygons (limit %llu; --max-polys raises it)",
+        viewer_note(a, "%s: the scene would have %llu polygons (limit %llu; --max-polys raises it)",
                  base_name(path), (unsigned long long)total, (unsigned long long)o->max_polys);
         return RE_DRAW;
     }
@@ -274,28 +274,28 @@ static Reaction add_part(App *a, Scene *part, const char *path)
         up = o->up;
     int first = (int)s->nbase_objs;
     if (name_the_demo(a) || add_path(a, path)) {
-        app_note(a, "out of memory");
+        viewer_note(a, "out of memory");
         return RE_DRAW;
     }
     if (changing(a) || scene_add(s, part, err, sizeof err)) {
         drop_path(a, a->live.nfiles - 1);
         if (!a->note[0])
-            app_note(a, "%s: %s", base_name(path), err);
+            viewer_note(a, "%s: %s", base_name(path), err);
         return RE_RENDER;
     }
     for (int i = first; i < s->nobjs; i++)
         if (up >= 0)
             s->objs[i].up = up;
     if (relayout(a, err, sizeof err))
-        app_note(a, "%s", err);
+        viewer_note(a, "%s", err);
     else if (info.warnings)
-        app_warning_note(a, &info, path);
+        viewer_warning_note(a, &info, path);
     else if (points || segs)
-        app_note(a, "opened %s: %u faces, %u points, %u segments", base_name(path), faces,
+        viewer_note(a, "opened %s: %u faces, %u points, %u segments", base_name(path), faces,
                  points, segs);
     else
-        app_note(a, "opened %s: %u faces", base_name(path), faces);
-    app_update_name(a);
+        viewer_note(a, "opened %s: %u faces", base_name(path), faces);
+    viewer_update_name(a);
     return RE_RENDER;
 }
 
@@ -314,7 +314,7 @@ static Reaction reload_file(App *a, Scene *part, int f, const char *path)
         }
     Object *was = malloc((size_t)(count ? count : 1) * sizeof *was);
     if (!was) {
-        app_note(a, "out of memory");
+        viewer_note(a, "out of memory");
         return RE_DRAW;
     }
     if (count)
@@ -324,7 +324,7 @@ static Reaction reload_file(App *a, Scene *part, int f, const char *path)
     uint32_t faces = part->nfaces;
     if (changing(a) || scene_replace_file(s, f, part, err, sizeof err)) {
         if (!a->note[0])
-            app_note(a, "%s: %s", base_name(path), err);
+            viewer_note(a, "%s: %s", base_name(path), err);
         free(was);
         return RE_RENDER;
     }
@@ -339,23 +339,23 @@ static Reaction reload_file(App *a, Scene *part, int f, const char *path)
             o->up = was[k].up;
         }
         if (a->opt->grid > 1 && s->nobjs > 0 && scene_make_grid(s, a->opt->grid, err, sizeof err))
-            app_note(a, "%s", err);
+            viewer_note(a, "%s", err);
     } else {
         for (int i = 0; i < s->nobjs; i++)
             if (up >= 0 && scene_object_file(s, i) == f)
                 s->objs[i].up = up;
         if (relayout(a, err, sizeof err))
-            app_note(a, "%s", err);
+            viewer_note(a, "%s", err);
     }
     free(was);
     s->cam = cam;           /* the view stays as it was */
     if (!same || a->sel >= (int)s->nbase_objs)
         a->sel = -1;
-    app_note(a, "read %s again: %u faces", base_name(path), faces);
+    viewer_note(a, "read %s again: %u faces", base_name(path), faces);
     return RE_RENDER;
 }
 
-Reaction app_load_poll(App *a)
+Reaction viewer_load_poll(App *a)
 {
     if (!a->job)
         return RE_NONE;
@@ -374,7 +374,7 @@ Reaction app_load_poll(App *a)
         /* --watch: a file written halfway, or broken: what was read last stays */
         size_t n = strlen(path);
         const char *why = strncmp(err, path, n) == 0 && err[n] == ':' ? err + n : NULL;
-        app_note(a, "kept the last good model: %s%s", why ? base_name(path) : "", why ? why : err);
+        viewer_note(a, "kept the last good model: %s%s", why ? base_name(path) : "", why ? why : err);
         return RE_DRAW;
     }
     if (reload >= 0) {
@@ -391,9 +391,9 @@ Reaction app_load_poll(App *a)
         size_t n = strlen(path);
         const char *why = strncmp(err, path, n) == 0 && err[n] == ':' ? err + n : NULL;
         if (why)
-            app_note(a, "%s%s", base_name(path), why);
+            viewer_note(a, "%s%s", base_name(path), why);
         else
-            app_note(a, "%s", err);
+            viewer_note(a, "%s", err);
         return RE_DRAW;
     }
     Reaction r = add_part(a, &part, path);
@@ -405,46 +405,46 @@ Reaction app_load_poll(App *a)
 
 /* ==== Remove and clear ==== */
 
-Reaction app_remove_selected(App *a)
+Reaction viewer_remove_selected(App *a)
 {
     if (first_loading(a))
         return RE_DRAW;
     Scene *s = a->s;
     int nb = (int)s->nbase_objs;
     if (nb == 0) {
-        app_note(a, "nothing to remove");
+        viewer_note(a, "nothing to remove");
         return RE_DRAW;
     }
     if (a->sel < 0 && nb > 1) {
-        app_note(a, "select an object first (Tab), or E empties the scene");
+        viewer_note(a, "select an object first (Tab), or E empties the scene");
         return RE_DRAW;
     }
     int i = a->sel < 0 ? 0 : a->sel % nb;   /* a --grid copy: its loaded object, copies and all */
     char name[MESH_NAME_MAX], err[256];
     snprintf(name, sizeof name, "%s", s->objs[i].name);
     if (name_the_demo(a)) {
-        app_note(a, "out of memory");
+        viewer_note(a, "out of memory");
         return RE_DRAW;
     }
     int f = scene_object_file(s, i), files = s->nmeshes;
     if (changing(a) || scene_remove(s, i, err, sizeof err)) {
         if (!a->note[0])
-            app_note(a, "%s", err);
+            viewer_note(a, "%s", err);
         return RE_RENDER;
     }
     if (s->nmeshes < files)
         drop_path(a, f);        /* its file's last object */
     if (s->nobjs > 0 && relayout(a, err, sizeof err))
-        app_note(a, "%s", err);
+        viewer_note(a, "%s", err);
     else
-        app_note(a, "removed %s", name);
+        viewer_note(a, "removed %s", name);
     nb = (int)s->nbase_objs;
     a->sel = nb > 1 ? (i < nb ? i : nb - 1) : -1;
-    app_update_name(a);
+    viewer_update_name(a);
     return RE_RENDER;
 }
 
-Reaction app_clear_scene(App *a)
+Reaction viewer_clear_scene(App *a)
 {
     if (first_loading(a) || changing(a))
         return RE_DRAW;
@@ -452,6 +452,6 @@ Reaction app_clear_scene(App *a)
     while (a->live.nfiles > 0)
         drop_path(a, a->live.nfiles - 1);
     a->sel = -1;
-    app_update_name(a);
+    viewer_update_name(a);
     return RE_RENDER;
 }

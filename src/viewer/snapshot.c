@@ -135,7 +135,7 @@ static void note(App *a, const char *fmt, ...)
     va_end(ap);
 }
 
-Reaction app_snapshot(App *a)
+Reaction viewer_snapshot(App *a)
 {
     const CellGrid *g = &a->p.cells;
     if (g->cols <= 0 || g->rows <= 0) {

@@ -153,7 +153,7 @@ void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, in
     bar_field(&f[BUSY], 0, "%s", busy);
     /* the check's verdict in a word or two (--problems, --parts, !) */
     char verdict[96];
-    app_check_status(a, INT_MAX, verdict, sizeof verdict);
+    viewer_check_status(a, INT_MAX, verdict, sizeof verdict);
     bar_field(&f[CHECK], 0, "%s", verdict);
     for (int rank = 1; rank < BAR_NOTE && bar_join(f, buf, len) > width; rank++)
         for (int i = 0; i < BAR_FIELDS; i++)
@@ -166,7 +166,7 @@ void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, in
     /* the verdict gives way by whole problems ("6 holes · +3"), before
      * the file name is cut */
     for (int items = 8; items >= 1 && bar_join(f, buf, len) > width; items--) {
-        app_check_status(a, items, verdict, sizeof verdict);
+        viewer_check_status(a, items, verdict, sizeof verdict);
         snprintf(f[CHECK].text, sizeof f[CHECK].text, "%s", verdict);
     }
     /* a note outranks the rest while it shows: the file name gives way
@@ -187,7 +187,7 @@ void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, in
     /* still too wide: the verdict as a count, then gone, so that "?"
      * (help) always shows and nothing is cut mid-word by the edge */
     if (bar_join(f, buf, len) > width) {
-        app_check_status(a, 0, verdict, sizeof verdict);
+        viewer_check_status(a, 0, verdict, sizeof verdict);
         snprintf(f[CHECK].text, sizeof f[CHECK].text, "%s", verdict);
     }
     if (bar_join(f, buf, len) > width)

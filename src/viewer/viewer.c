@@ -55,14 +55,14 @@ int viewer_app_init(App *a, const Options *o, Scene *s, int loading)
     for (int i = 0; i < hsr_nalgos; i++)
         if (hsr_algos[i] == algo)
             a->algo = i;
-    if (app_live_init(a, o))
+    if (viewer_live_init(a, o))
         goto fail;
-    app_update_name(a);
+    viewer_update_name(a);
     /* a lenient load's warnings went to stderr, which the screen is
      * about to cover: the first file's that had any shows in the bar */
     for (int i = 0; i < s->nmeshes; i++)
         if (s->meshes[i].info.warnings) {
-            app_warning_note(a, &s->meshes[i].info, s->meshes[i].path ? s->meshes[i].path : "?");
+            viewer_warning_note(a, &s->meshes[i].info, s->meshes[i].path ? s->meshes[i].path : "?");
             break;
         }
     if (pipeline_init(&a->p, s, algo, o->threads))
@@ -79,7 +79,7 @@ int viewer_app_init(App *a, const Options *o, Scene *s, int loading)
     if (loading && !(a->first = firstload_start(o, err, sizeof err)))
         goto fail;              /* (out of memory, or of threads: the caller says so) */
     if (o->watch && !(a->watch = watch_start(err, sizeof err)))
-        app_note(a, "%s", err);
+        viewer_note(a, "%s", err);
     return 0;
 fail:
     viewer_app_free(a);         /* what was made so far; the rest is zero */
@@ -90,7 +90,7 @@ void viewer_app_free(App *a)
 {
     pipeline_free(&a->p);       /* its runner first: it may read the sketch's scene */
     sketch_mode_free(a);
-    app_live_free(a);
+    viewer_live_free(a);
 }
 
 /* ==== One frame ==== */
@@ -122,7 +122,7 @@ int viewer_render(App *a, int cols, int rows)
 
 /* ==== The view's command line ==== */
 
-ViewSettings app_view_settings(const App *a)
+ViewSettings viewer_view_settings(const App *a)
 {
     ViewSettings v = {
         .mode = a->mode,
@@ -142,9 +142,9 @@ ViewSettings app_view_settings(const App *a)
     return v;
 }
 
-int app_view_command(const App *a, char *buf, size_t len)
+int viewer_view_command(const App *a, char *buf, size_t len)
 {
-    ViewSettings v = app_view_settings(a);
+    ViewSettings v = viewer_view_settings(a);
     if (a->sk.on) {
         /* the drawing as written: the file opens with this very view */
         const char *file = sketch_mode_file(a);
@@ -159,10 +159,10 @@ int app_view_command(const App *a, char *buf, size_t len)
     return view_command(buf, len, a->opt, a->s, &v);
 }
 
-int app_command_layout(const App *a, int cols, char *buf, size_t len, const char **lines, int max)
+int viewer_command_layout(const App *a, int cols, char *buf, size_t len, const char **lines, int max)
 {
     char cmd[CMD_MAX];
-    if (max < 2 || app_view_command(a, cmd, sizeof cmd)) {
+    if (max < 2 || viewer_view_command(a, cmd, sizeof cmd)) {
         snprintf(buf, len, a->sk.on && !sketch_mode_file(a) ? "write the sketch first (w): the command line opens the file"
                                                              : "the command line is too long to show");
         lines[0] = buf;
@@ -272,7 +272,7 @@ static void draw_info(App *a, int cols, int rows, double out_ms)
 {
     ReportLine rl[REPORT_LINES + 6];
     int n = frame_report(&a->p, out_ms, rl, REPORT_LINES);
-    n += app_check_report(a, rl + n, 5);
+    n += viewer_check_report(a, rl + n, 5);
     if (term_pixels() != PIX_CELLS) {
         rl[n].label = "pixels:";
         if (a->pix_bytes)
@@ -348,10 +348,10 @@ static void draw_overlay(App *a, ViewerMode m, int cols, int rows)
             draw_candidates(a, cols, rows);
         break;
     case VM_HELP:
-        term_draw_box(lines, app_help_layout(a, cols, rows, lines));
+        term_draw_box(lines, viewer_help_layout(a, cols, rows, lines));
         break;
     case VM_COMMAND:
-        term_draw_box(lines, app_command_layout(a, cols, buf, sizeof buf, lines,
+        term_draw_box(lines, viewer_command_layout(a, cols, buf, sizeof buf, lines,
                                                 rows - 3 < HELP_LINES_MAX ? rows - 3 : HELP_LINES_MAX));
         break;
     default:
@@ -484,13 +484,13 @@ static int draw_pixels(App *a, DrawState *d, int fps_cap)
 static Reaction dispatch(App *a, const TermEvent *ev)
 {
     switch (ev->type) {
-    case TE_KEY:    return app_key(a, ev->key);
+    case TE_KEY:    return viewer_key(a, ev->key);
     case TE_RESIZE: return RE_RENDER;
     /* the pointer turns and moves the model under any box, but not under
      * sketch mode, whose canvas stays put; a click draws only when sketch
      * mode is on top */
-    case TE_DRAG:   return a->sk.on ? RE_NONE : app_drag(a, ev->button, ev->dx, ev->dy);
-    case TE_WHEEL:  return a->sk.on ? RE_NONE : app_wheel(a, ev->dy);
+    case TE_DRAG:   return a->sk.on ? RE_NONE : viewer_drag(a, ev->button, ev->dx, ev->dy);
+    case TE_WHEEL:  return a->sk.on ? RE_NONE : viewer_wheel(a, ev->dy);
     case TE_CLICK:
         return viewer_mode(a) == VM_SKETCH ? sketch_mode_click(a, ev->button, ev->x, ev->y) : RE_NONE;
     case TE_READY:  return RE_NONE;     /* the loop sends what waits */
@@ -563,10 +563,10 @@ static int run(App *a, int fps)
         if (got < 0)
             return RUN_INPUT_ENDED;     /* no key will come: waiting would spin */
         if (!a->first)
-            todo |= app_check_poll(a);  /* a key asked for the check, or it is done */
+            todo |= viewer_check_poll(a);  /* a key asked for the check, or it is done */
         if (busy && now_ms() >= tick) {
             /* a finished load joins the scene here, on this thread */
-            todo |= app_load_poll(a) | app_watch_poll(a) | app_first_poll(a);
+            todo |= viewer_load_poll(a) | viewer_watch_poll(a) | viewer_first_poll(a);
             if (todo & RE_QUIT)
                 return RUN_QUIT;    /* the first file failed to load */
             if (a->chk)
@@ -584,7 +584,7 @@ static int run(App *a, int fps)
             double now = now_ms();
             if (now >= next) {
                 /* by elapsed time: the turn keeps its speed when frames are slow */
-                app_spin(a, deg2rad(SPIN_DEG_PER_S) * (float)((now - last_spin) / 1000.0));
+                viewer_spin(a, deg2rad(SPIN_DEG_PER_S) * (float)((now - last_spin) / 1000.0));
                 last_spin = now;
                 next = next + period > now ? next + period : now + period;
                 todo |= RE_RENDER;
@@ -623,7 +623,7 @@ static int no_viewer(const Options *o, Scene *s, int loading)
         safetext_line(stderr, "zview: --print-view: no terminal to show the viewer on");
         return 1;
     }
-    return app_oneshot(o, s);
+    return oneshot_run(o, s);
 }
 
 /* The view's command line on standard output (--print-view); 0, or -1
@@ -642,12 +642,12 @@ static int print_line(const char *line)
 
 static int viewer_main(const Options *o, Scene *s, int loading);
 
-int app_viewer(const Options *o, Scene *s)
+int viewer_run(const Options *o, Scene *s)
 {
     return viewer_main(o, s, 0);
 }
 
-int app_viewer_loading(const Options *o, Scene *s)
+int viewer_run_loading(const Options *o, Scene *s)
 {
     return viewer_main(o, s, 1);
 }
@@ -724,7 +724,7 @@ static int viewer_main(const Options *o, Scene *s, int loading)
     term_restore();
     /* --print-view: the command line of the view as it was left */
     char cmd[CMD_MAX];
-    int cmd_ok = o->print_view && run_rc == RUN_QUIT && app_view_command(&a, cmd, sizeof cmd) == 0;
+    int cmd_ok = o->print_view && run_rc == RUN_QUIT && viewer_view_command(&a, cmd, sizeof cmd) == 0;
     int unsaved = a.sk.on && !sketch_mode_file(&a);
     if (a.load_err[0])
         safetext_line(stderr, "zview: %s", a.load_err);

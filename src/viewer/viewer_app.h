@@ -165,7 +165,7 @@ typedef struct App {
  * help box, the view's command line box, sketch mode (its marks and its
  * own keys, some of the viewer's shared), or the plain viewer. The info
  * panel is not a mode: it stays beside or under whatever is on top,
- * hidden only by a box. app_key, draw and dispatch all ask this one
+ * hidden only by a box. viewer_key, draw and dispatch all ask this one
  * function, so the order is written once. */
 typedef enum { VM_PROMPT, VM_CONFIRM, VM_HELP, VM_COMMAND, VM_SKETCH, VM_VIEW } ViewerMode;
 
@@ -187,27 +187,27 @@ static inline int viewer_mode_boxed(ViewerMode m)
 
 /* The effect of a key (term.h codes), a drag of dx, dy cells with button
  * 1 (left: turn) or 3 (right: move), or a wheel step (dy < 0: up). */
-Reaction app_key(App *a, int key);
-Reaction app_drag(App *a, int button, int dx, int dy);
-Reaction app_wheel(App *a, int dy);
+Reaction viewer_key(App *a, int key);
+Reaction viewer_drag(App *a, int button, int dx, int dy);
+Reaction viewer_wheel(App *a, int dy);
 /* Turn the scene (or the selected object) about the vertical axis. */
-void     app_spin(App *a, float radians);
+void     viewer_spin(App *a, float radians);
 
 /* The settings of the picture on screen, for view_command(). */
-ViewSettings app_view_settings(const App *a);
+ViewSettings viewer_view_settings(const App *a);
 /* The command line giving the view on screen back, into buf. Returns 0,
  * or -1 when it does not fit. */
-int      app_view_command(const App *a, char *buf, size_t len);
+int      viewer_view_command(const App *a, char *buf, size_t len);
 /* The view's command line wrapped to cols columns for the screen: a
  * title, then lines that end in " \\" where the command goes on (pasted
  * into a shell, it stays one command). Fills lines[] (at most max) with
  * pointers into buf and returns how many. */
-int      app_command_layout(const App *a, int cols, char *buf, size_t len, const char **lines, int max);
+int      viewer_command_layout(const App *a, int cols, char *buf, size_t len, const char **lines, int max);
 /* Snapshot (snapshot.c): the picture as a PNG and as the --print text,
  * under the next free zview-<model>-NNN name in the current directory
  * (or the model's when that cannot be written); the note says what was
  * written. Returns what to redo. */
-Reaction app_snapshot(App *a);
+Reaction viewer_snapshot(App *a);
 
 /* ==== Sketch mode (sketchui.c) ==== */
 
@@ -246,8 +246,8 @@ typedef struct {
     const char *what;       /* "turn (yaw, pitch)" */
     KeyBind     bind[KEY_ROW_BINDS];    /* ended by key 0; none for the mouse's rows */
 } KeyRow;
-extern const KeyRow app_keys[];
-extern const int    app_keys_n;
+extern const KeyRow viewer_keys[];
+extern const int    viewer_keys_n;
 extern const KeyRow sketch_keys[];
 extern const int    sketch_keys_n;
 /* The binding of key in rows[0..n), NULL when there is none. */
@@ -256,38 +256,38 @@ const KeyBind *key_find(const KeyRow *rows, int n, int key);
  * "Shift-Tab", "Ctrl-L", "Space", or the character ("q"). */
 const char *key_name(int key, char *buf, size_t len);
 /* live.c: the scene edited while the viewer runs. */
-Reaction app_open_prompt(App *a);           /* O: ask for a file */
-Reaction app_prompt_key(App *a, int key);   /* a key while the prompt is up */
-Reaction app_load_poll(App *a);             /* a background load finished? join its part */
-Reaction app_first_poll(App *a);            /* a new picture of the first file, or the whole */
-Reaction app_cancel_load(App *a);           /* Esc while loading: drop the load, note it */
-Reaction app_remove_selected(App *a);       /* X, Delete */
-Reaction app_clear_scene(App *a);           /* E */
+Reaction viewer_open_prompt(App *a);           /* O: ask for a file */
+Reaction viewer_prompt_key(App *a, int key);   /* a key while the prompt is up */
+Reaction viewer_load_poll(App *a);             /* a background load finished? join its part */
+Reaction viewer_first_poll(App *a);            /* a new picture of the first file, or the whole */
+Reaction viewer_cancel_load(App *a);           /* Esc while loading: drop the load, note it */
+Reaction viewer_remove_selected(App *a);       /* X, Delete */
+Reaction viewer_clear_scene(App *a);           /* E */
 /* checkjob.c: start the check when it is wanted and the scene changed,
  * set its marks when it is done; the verdict for the status bar (""
  * when not wanted), the counts for the info panel. */
-Reaction app_check_poll(App *a);
-void     app_check_status(const App *a, int max_items, char *buf, size_t len);
-int      app_check_report(const App *a, ReportLine *lines, int max);
+Reaction viewer_check_poll(App *a);
+void     viewer_check_status(const App *a, int max_items, char *buf, size_t len);
+int      viewer_check_report(const App *a, ReportLine *lines, int max);
 /* watch.c: a watched file changed: read it again (a load job). */
-Reaction app_watch_poll(App *a);
+Reaction viewer_watch_poll(App *a);
 /* The files of the command line copied so that they can change; the
  * status line's name from them. */
-int      app_live_init(App *a, const Options *o);
-void     app_live_free(App *a);
-void     app_update_name(App *a);
+int      viewer_live_init(App *a, const Options *o);
+void     viewer_live_free(App *a);
+void     viewer_update_name(App *a);
 /* A loaded file's warnings (statements skipped, else the first) as the
  * status line's note. */
-void     app_warning_note(App *a, const MeshInfo *info, const char *path);
+void     viewer_warning_note(App *a, const MeshInfo *info, const char *path);
 /* Set the status line's note (cut to its size). */
-void     app_note(App *a, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void     viewer_note(App *a, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The help overlay laid out for a window of cols x rows (the status bar
  * included): a title and as many rows of keys as fit, in as few columns
  * as fit (keys over their meaning when even one column is too wide);
  * a->help_top is clamped and a->help_hidden set. Fills lines[] (pointers
  * into a->help_text) and returns how many. */
-int      app_help_layout(App *a, int cols, int rows, const char **lines);
+int      viewer_help_layout(App *a, int cols, int rows, const char **lines);
 
 /* The status bar's text for a window width columns wide (statusbar.c):
  * frame_ms the last frame's time, fps_cap the auto-rotate cap. */

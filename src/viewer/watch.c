@@ -12,7 +12,7 @@
  * The viewer polls (every BUSY_TICK_MS): the descriptor is non-blocking
  * and its events are read until none is left. A file whose change is
  * due is read again through a load job (loadjob.c), whose part then
- * takes the old file's place (live.c: app_reload_file). Only a regular
+ * takes the old file's place (live.c: reload_file). Only a regular
  * file is read again: a FIFO (or a device, a folder) put in the model's
  * place is passed over with a note, never opened (a FIFO would wait for
  * a writer, and the changes after it would wait behind that load); the
@@ -147,7 +147,7 @@ void watch_again(Watch *w, int i, double now)
 
 /* ==== The viewer's side ==== */
 
-Reaction app_watch_poll(App *a)
+Reaction viewer_watch_poll(App *a)
 {
     if (!a->watch)
         return RE_NONE;
@@ -173,7 +173,7 @@ Reaction app_watch_poll(App *a)
     if (!a->job) {
         /* the short name: a narrow bar would cut a path before the reason */
         const char *slash = strrchr(a->live.files[f], '/');
-        app_note(a, "%s: %s; still watching", slash && slash[1] ? slash + 1 : a->live.files[f], err);
+        viewer_note(a, "%s: %s; still watching", slash && slash[1] ? slash + 1 : a->live.files[f], err);
         return RE_DRAW;
     }
     a->reload = f;

@@ -1,4 +1,4 @@
-/* check.c: --check FILE...: is each model right? Every file is loaded on
+/* checkreport.c: --check FILE...: is each model right? Every file is loaded on
  * its own, checked (check/: meshcheck_run) and freed before the next, so
  * that the memory is one model's; the picture, when --print or -o asks
  * for one, comes first, then the report: a block per file (and per
@@ -60,11 +60,11 @@ static int picture(const Options *o)
 {
     char err[512];
     Scene s;
-    if (app_check_output(o, err, sizeof err) || app_load_scene(o, &s, err, sizeof err)) {
+    if (oneshot_check_output(o, err, sizeof err) || app_load_scene(o, &s, err, sizeof err)) {
         safetext_line(stderr, "zview: %s", err);
         return 1;
     }
-    int rc = app_oneshot(o, &s);
+    int rc = oneshot_run(o, &s);
     scene_free(&s);
     fflush(stdout);
     return rc;
@@ -304,7 +304,7 @@ static void json_report(Out *out, const FileCheck *fcs, int n)
 
 /* ==== The front door ==== */
 
-int app_check(const Options *o)
+int oneshot_check(const Options *o)
 {
     FileCheck *fcs = calloc((size_t)o->nfiles + 1, sizeof *fcs);
     if (!fcs) {

@@ -1,4 +1,4 @@
-/* marks.c: what --check found, in colour (Scene.marks, shade.h).
+/* markcolour.c: what --check found, in colour (Scene.marks, shade.h).
  *
  * The warning colours are fully saturated, unlike the muted colours
  * objects get (layout.c) and the greys of a model without any, so that a

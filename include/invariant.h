@@ -1,6 +1,6 @@
-#ifndef ZV_CHECK_H
-#define ZV_CHECK_H
-/* check: ZV_ASSERT(cond), the invariants one stage promises another at
+#ifndef ZV_INVARIANT_H
+#define ZV_INVARIANT_H
+/* invariant: ZV_ASSERT(cond), the invariants one stage promises another at
  * an internal boundary (mesh indices, screen polygon boxes, band rows,
  * edge walks). On in the builds that hunt bugs: make asan and the
  * fuzzers define ZV_CHECKS, and a broken invariant then stops the

@@ -1,9 +1,9 @@
-/* check.c: what a broken invariant does in a checked build (check.h). */
+/* invariant.c: what a broken invariant does in a checked build (invariant.h). */
 
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "check.h"
+#include "invariant.h"
 
 /* Defined in every build (release builds never call it), so a library
  * built with checks links with code built without. */

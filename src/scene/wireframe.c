@@ -1,4 +1,4 @@
-/* wire.c: the wireframe (--wireframe, the viewer's W): every edge of
+/* wireframe.c: the wireframe (--wireframe, the viewer's W): every edge of
  * every object's faces once, as a pair of vertex indices, drawn as a
  * line hidden where the faces hide it. Edges are found per object
  * through a hash table of vertex pairs, so an edge two faces share is

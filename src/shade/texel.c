@@ -1,4 +1,4 @@
-/* surface.c: colours that vary across a face, per sample: a base-colour
+/* texel.c: colours that vary across a face, per sample: a base-colour
  * texture times its material's base colour, or the face's corner
  * colours interpolated. The hidden-surface step is not involved: it has
  * left a face id per sample, and shading finds where in that face the
@@ -22,7 +22,7 @@
  * Colour maths is in linear light: texels and corner colours are
  * decoded from sRGB, filtered, interpolated and multiplied (texture x
  * base colour x light), and encoded once at the end. The light is the
- * one untextured faces get, as a factor on linear light (surf_light),
+ * one untextured faces get, as a factor on linear light (texel_light),
  * so that a white texture looks as a white material does.
  *
  * Perspective-correct interpolation as homogeneous (rational linear)
@@ -36,7 +36,7 @@
 #include <string.h>
 
 #include "bigmem.h"
-#include "check.h"
+#include "invariant.h"
 #include "shade.h"
 #include "simd.h"
 
@@ -66,7 +66,7 @@ struct SurfSetup {
     TriSetup tri[SURF_TRI];
 };
 
-void surf_cache_free(SurfCache *sc)
+void texel_cache_free(SurfCache *sc)
 {
     free(sc->face_poly);
     free(sc->slot);
@@ -74,7 +74,7 @@ void surf_cache_free(SurfCache *sc)
     memset(sc, 0, sizeof *sc);
 }
 
-float surf_light(float k)
+float texel_light(float k)
 {
     /* k scales an untextured face's sRGB bytes; on linear light the same
      * picture is the decoded k (sRGB is close to a power law, and
@@ -260,7 +260,7 @@ static float face_klin(const SurfFrame *f, int32_t id, const Mat4 *fwd)
     scene_face_normal(f->s, (uint32_t)id, n);
     Vec3 v = v3_norm(m4_dir(fwd, v3(n[0], n[1], n[2])));
     float amb = f->s->light.ambient;
-    return surf_light(amb + (1.0f - amb) * fabsf(v3_dot(v, f->s->light.dir)));
+    return texel_light(amb + (1.0f - amb) * fabsf(v3_dot(v, f->s->light.dir)));
 }
 
 /* Face id set up in st for this frame; NULL when its colour does not
@@ -448,7 +448,7 @@ static void eval_face(SurfFrame *f, InstCache *ic, const SurfSetup *st, int32_t 
     eval_tris(st, &best, 1, X, Y, f->simd, out);
 }
 
-int surf_frame_begin(SurfFrame *f, const Scene *s, const ScreenPolys *sp, const ShadeSettings *set,
+int texel_frame_begin(SurfFrame *f, const Scene *s, const ScreenPolys *sp, const ShadeSettings *set,
                      SurfCache *sc)
 {
     if (!s->face_surf || !sp || !s->nfaces)
@@ -492,7 +492,7 @@ int surf_frame_begin(SurfFrame *f, const Scene *s, const ScreenPolys *sp, const 
     return 0;
 }
 
-int surf_colour(SurfFrame *f, int32_t id, int x, int y, float out[3])
+int texel_colour(SurfFrame *f, int32_t id, int x, int y, float out[3])
 {
     if (id < 0 || (uint32_t)id >= f->s->nfaces || f->s->face_surf[id] == SURF_PLAIN)
         return 0;
