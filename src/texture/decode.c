@@ -1,4 +1,4 @@
-/* decode.c: the front door of the image decoders: PNG (png.c), JPEG
+/* decode.c: the front door of the image decoders: PNG (pngread.c), JPEG
  * (jpeg.c) and TGA (tga.c), told apart by their first bytes (TGA, which
  * has no magic, when its header makes sense); each halves the image to
  * the size asked as its rows arrive (shrink.c), then the chain is

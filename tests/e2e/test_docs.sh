@@ -164,3 +164,7 @@ elif [ "$(cat "$T/curses")" = "$named" ]; then
 else
     notok "curses only in $named, as doc/design.md says" "curses or terminfo in: $(tr '\n' ' ' <"$T/curses")"
 fi
+
+# ==== one name per file: a file name alone finds its file ====
+dups=$(find src include -name '*.[ch]' -printf '%f\n' | sort | uniq -d | tr '\n' ' ')
+if [ -z "$dups" ]; then ok "no two files under src/ and include/ share a name"; else notok "no two files under src/ and include/ share a name" "$dups"; fi

@@ -1,4 +1,4 @@
-/* png.c: PNG images through libpng, a row at a time into shrink.c, so
+/* pngread.c: PNG images through libpng, a row at a time into shrink.c, so
  * that an image kept at a quarter of its size never lies whole in
  * memory (a 16k x 16k PNG took 1.4 GB for its own chain before halving).
  *
