@@ -168,3 +168,7 @@ fi
 # ==== one name per file: a file name alone finds its file ====
 dups=$(find src include -name '*.[ch]' -printf '%f\n' | sort | uniq -d | tr '\n' ' ')
 if [ -z "$dups" ]; then ok "no two files under src/ and include/ share a name"; else notok "no two files under src/ and include/ share a name" "$dups"; fi
+
+# ==== one prefix per room: app_ is app/'s ====
+stray=$(grep -ln '^[A-Za-z][A-Za-z0-9_ *]*[ *]app_[a-z0-9_]*(' $(find src -name '*.c' ! -path 'src/app/*') 2>/dev/null | tr '\n' ' ')
+if [ -z "$stray" ]; then ok "only src/app/ defines app_ functions"; else notok "only src/app/ defines app_ functions" "$stray"; fi
