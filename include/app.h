@@ -193,6 +193,13 @@ int   app_standin(const Scene *s, Scene *out);
 int  app_load_scene(const Options *o, Scene *s, char *err, size_t errlen);
 /* How the options say loads are sandboxed (--no-sandbox, --max-memory),
  * and the warning, once a run, of a system that cannot sandbox them. */
+/* The loader's options from the command line, written once for every
+ * path that loads (the command line's files, --check, the viewer's
+ * first load, O and --watch): the caller adds only what is its own
+ * (quiet, progress, cancel). And what applies to a mesh once loaded
+ * (--flip, --points), the same on every path. */
+MeshLoadOpts app_load_opts(const Options *o);
+void         app_after_load(const Options *o, Mesh *m);
 SandboxOpts app_sandbox_opts(const Options *o);
 void app_sandbox_warn(const Options *o);
 int  app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size_t errlen);

@@ -66,6 +66,21 @@ static int demo_missing(char *err, size_t errlen)
     return -1;
 }
 
+MeshLoadOpts app_load_opts(const Options *o)
+{
+    MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys, .threads = o->threads,
+                        .max_bytes = o->max_memory, .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
+    return lo;
+}
+
+void app_after_load(const Options *o, Mesh *m)
+{
+    if (o->flip)
+        mesh_flip_winding(m);
+    if (o->points)
+        mesh_as_points(m);
+}
+
 SandboxOpts app_sandbox_opts(const Options *o)
 {
     SandboxOpts so = { .off = o->no_sandbox, .max_memory = o->max_memory, .server = o->sandbox };
@@ -94,8 +109,7 @@ static int read_files(const Options *o, const char *const *files, int nfiles, Me
 {
     int from_stdin = 0;
     app_sandbox_warn(o);
-    MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys, .threads = o->threads,
-                        .max_bytes = o->max_memory, .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
+    MeshLoadOpts lo = app_load_opts(o);
     SandboxOpts so = app_sandbox_opts(o);
     int nread = 0, nfailed = 0;
     char left_out[256] = "";
@@ -113,10 +127,7 @@ static int read_files(const Options *o, const char *const *files, int nfiles, Me
                 mesh_free(&meshes[k]);
             return -1;
         }
-        if (o->flip)
-            mesh_flip_winding(&meshes[nread]);
-        if (o->points)
-            mesh_as_points(&meshes[nread]);
+        app_after_load(o, &meshes[nread]);
         nread++;
     }
     err[0] = '\0';

@@ -30,14 +30,13 @@ typedef struct {
 
 static int check_file(const Options *o, FileCheck *fc)
 {
-    MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys,
-                        .max_bytes = o->max_memory };
+    MeshLoadOpts lo = app_load_opts(o);
+    lo.no_textures = 1;         /* the check reads positions and faces only */
     SandboxOpts so = app_sandbox_opts(o);
     Mesh m;
     if (sandbox_load(&m, fc->path, &lo, &so, fc->err, sizeof fc->err))
         return -1;
-    if (o->flip)
-        mesh_flip_winding(&m);
+    app_after_load(o, &m);
     /* the check reads positions and faces only: what else it holds goes
      * first, so that the check's memory comes out of the model's */
     free(m.face_mat);

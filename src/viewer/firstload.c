@@ -98,10 +98,7 @@ static int is_cancelled(FirstLoad *f)
 /* One mesh into a scene as the command line places and views it. */
 static int build(FirstLoad *f, Mesh *m, Scene *s, char *err, size_t errlen)
 {
-    if (f->o.flip)
-        mesh_flip_winding(m);
-    if (f->o.points)
-        mesh_as_points(m);
+    app_after_load(&f->o, m);
     return app_scene_from_meshes(&f->o, m, 1, s, NULL, err, errlen);
 }
 
@@ -285,9 +282,10 @@ FirstLoad *firstload_start(const Options *o, char *err, size_t errlen)
     }
     app_sandbox_warn(o);        /* before the screen covers standard error */
     f->o = *o;
-    f->lo = (MeshLoadOpts){ .format = o->format, .strict = o->strict, .max_polys = o->max_polys,
-                            .threads = o->threads, .max_bytes = o->max_memory, .tex_defer_side = o->tex_defer,
-                            .no_textures = o->tex_skip, .quiet = 1, .progress = &f->prog, .cancel = &f->stop };
+    f->lo = app_load_opts(o);
+    f->lo.quiet = 1;            /* curses owns the terminal: warnings go to the status bar */
+    f->lo.progress = &f->prog;
+    f->lo.cancel = &f->stop;
     f->so = app_sandbox_opts(o);
     struct stat st;
     if (stat(f->path, &st) == 0)

@@ -52,7 +52,7 @@ struct LoadJob {
     MeshLoadOpts lo;
     SandboxOpts  so;            /* the load runs in a child (sandbox.h): Esc kills it */
     MeshProgress prog;
-    int          flip, points;
+    Options      o;             /* the command line's (app_after_load) */
     uint64_t     size;          /* the file's size, 0 unknown */
     double       t0;            /* now_ms() at the start */
     /* the result, read after JOB_DONE */
@@ -201,10 +201,7 @@ static void *job_main(void *arg)
         mesh_free(m);           /* nobody wants it: no scene built */
         free(m);
     } else {
-        if (j->flip)
-            mesh_flip_winding(m);
-        if (j->points)
-            mesh_as_points(m);
+        app_after_load(&j->o, m);
         set_phase(j, JOB_BUILDING);
         if (scene_build(&j->part, m, 1, j->err, sizeof j->err)) {
             mesh_free(m);
@@ -291,18 +288,13 @@ static LoadJob *job_start(const char *path, const Options *o, int regular, char 
     j->phase = j->fifo ? JOB_WAITING : JOB_READING;
     if (S_ISREG(st.st_mode))
         j->size = (uint64_t)st.st_size;
-    j->lo.format = o->format;
-    j->lo.strict = o->strict;
-    j->lo.max_polys = o->max_polys;
-    j->lo.max_bytes = o->max_memory;
+    j->o = *o;
+    j->lo = app_load_opts(o);   /* the viewer's: big images after the file shows (texjob.c) */
     j->so = app_sandbox_opts(o);
     j->lo.quiet = 1;            /* curses owns the terminal: warnings go to the status bar */
-    j->lo.tex_defer_side = TEX_DEFER_SIDE;  /* big images after the file shows (texjob.c) */
     j->lo.progress = &j->prog;
     j->lo.cancel = &j->stop;
     j->lo.regular_only = regular;   /* replaced since the look above: refused, not waited on */
-    j->flip = o->flip;
-    j->points = o->points;
     j->t0 = now_ms();
     pthread_mutex_init(&j->mu, NULL);
     if (start_thread(j)) {
