@@ -8,8 +8,8 @@
 # - the example commands of the ```sh blocks whose model files are in
 #   assets/ run with status 0 (standard output is no terminal, so a
 #   viewer example prints one frame);
-# - the README's layout map names every file under src/ and include/,
-#   and no file that is not there.
+# - the layout map (doc/design.md) names every file under src/ and
+#   include/, and no file that is not there.
 . "$(dirname "$0")/lib.sh"
 Z=${ZVIEW:-$ROOT/zview}
 DOCS="README.md CONTRIBUTING.md doc/design.md doc/benchmarks.md"
@@ -117,8 +117,8 @@ if [ "$nex" -ge 4 ]; then ok "$nex example commands ran"; else notok "only $nex 
 
 # ==== The layout map ====
 
-# The map is the first ```text block after the line that names this test.
-awk '/tests\/e2e\/test_docs.sh/ { seen = 1 }
+# The map is the first ```text block after the comment that names this test.
+awk '/<!-- tests\/e2e\/test_docs.sh/ { seen = 1 }
      seen && /^```text$/ { inmap = 1; next }
      inmap && /^```/ { exit }
      inmap {
@@ -126,10 +126,10 @@ awk '/tests\/e2e\/test_docs.sh/ { seen = 1 }
          if (dir != "") cur = dir
          n = split(substr($0, 16), w, " ")
          for (i = 1; i <= n && w[i] ~ /^[A-Za-z0-9_]+\.[ch]$/; i++) print cur w[i]
-     }' README.md | sort >"$T/map"
+     }' doc/design.md | sort >"$T/map"
 find src include -name '*.[ch]' | sort >"$T/tree"
 if [ ! -s "$T/map" ]; then
-    notok "the README has a layout map" "no \`\`\`text block after the line naming tests/e2e/test_docs.sh"
+    notok "doc/design.md has a layout map" "no \`\`\`text block after the line naming tests/e2e/test_docs.sh"
 else
     missing=$(comm -13 "$T/map" "$T/tree" | tr '\n' ' ')
     extra=$(comm -23 "$T/map" "$T/tree" | tr '\n' ' ')
