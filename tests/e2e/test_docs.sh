@@ -172,3 +172,7 @@ if [ -z "$dups" ]; then ok "no two files under src/ and include/ share a name"; 
 # ==== one prefix per room: app_ is app/'s ====
 stray=$(grep -ln '^[A-Za-z][A-Za-z0-9_ *]*[ *]app_[a-z0-9_]*(' $(find src -name '*.c' ! -path 'src/app/*') 2>/dev/null | tr '\n' ' ')
 if [ -z "$stray" ]; then ok "only src/app/ defines app_ functions"; else notok "only src/app/ defines app_ functions" "$stray"; fi
+
+# ==== the README stays a newcomer's page (issue 29: at most 400 lines) ====
+n=$(wc -l <README.md)
+if [ "$n" -le 400 ]; then ok "README.md is $n lines (at most 400)"; else notok "README.md is $n lines (at most 400)" "the detail goes in doc/design.md"; fi
