@@ -91,6 +91,8 @@ typedef struct {
     int         problems;       /* --problems: what the check finds, drawn on the model */
     int         parts;          /* --parts: each connected part its own colour */
     int         watch;          /* --watch: the files read again when they change */
+    int         max_locations;  /* --max-locations: --check --json locates so many problems of each kind */
+    int         problem;        /* --problem K: the picture framed on the K-th problem (1 the first), 0 none */
 } Options;
 
 /* The viewer decodes images longer than this a side on a thread of its
