@@ -267,6 +267,51 @@ const CheckRow *meshcheck_loc_row(CheckLocKind k);
 uint64_t meshcheck_loc_total(const CheckCounts *c, CheckLocKind k);
 uint32_t meshcheck_loc_located(const CheckLocations *l, CheckLocKind k);
 
+/* ==== The problems one by one (items.c) ====
+ *
+ * The located problems of checks as one list to step through (the
+ * viewer's . and , keys, --problem K): kind by kind in the verdict's
+ * order, each kind file by file, object by object, as located. Each item
+ * is a shape in its mesh's coordinates, to frame and to draw over the
+ * model: lines (a hole's loop, a non-manifold edge and the outlines of
+ * its faces, a face's outline, a crossing pair's two) and a point to
+ * ring (a non-manifold vertex, the middle of a degenerate or duplicate
+ * face, where a pair crosses). */
+typedef struct {
+    CheckLocKind kind;
+    int         file;           /* the caller's number of its mesh */
+    uint32_t    face_first;     /* its object's first face (which object of the mesh it is on) */
+    uint32_t    num;            /* its number among the list's items of its kind, from 1 */
+    uint32_t    line0, nlines;  /* its lines: CheckItems lines [line0, line0 + nlines) */
+    int         has_ring;
+    float       ring[3];
+    uint32_t    count;          /* a hole's edges, a non-manifold edge's faces */
+    double      length;         /* a hole's perimeter (the mesh's units) */
+    uint32_t    face[2];        /* the face it is (flipped, degenerate, duplicate), the pair's two */
+} CheckItem;
+
+typedef struct {
+    CheckItem *item;
+    uint32_t   n;
+    size_t     cap;
+    uint32_t  *line_start;      /* nlines + 1: line k's points are pt[line_start[k] .. line_start[k + 1]) */
+    uint8_t   *line_closed;     /* per line: its last point joined to its first */
+    uint32_t   nlines;
+    size_t     cap_lines, cap_closed;
+    float     *pt;              /* 3 per point */
+    size_t     npt, cap_pt;     /* floats */
+} CheckItems;
+
+/* Add the located problems of mc (a check of m, with CheckOpts.locations)
+ * as file `file`; then meshcheck_items_order once every file is in:
+ * the items kind by kind (files and objects in the order added) and
+ * numbered within each kind. 0, or -1 out of memory. */
+int  meshcheck_items_add(CheckItems *it, const MeshCheck *mc, const Mesh *m, int file);
+void meshcheck_items_order(CheckItems *it);
+void meshcheck_items_free(CheckItems *it);
+/* The box of item i's points (lines and ring), the mesh's coordinates. */
+void meshcheck_item_box(const CheckItems *it, uint32_t i, float lo[3], float hi[3]);
+
 /* The text report's lines of the rows (the measures before them are
  * the caller's): a label and the phrases. Returns how many. */
 #define CHECK_LINE_LEN   256

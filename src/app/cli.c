@@ -350,5 +350,6 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
     }
     if (take_files(argc, argv, o, err, errlen))
         return -1;
+    o->problems |= o->problem > 0;  /* a problem in focus is drawn with the rest */
     return check_combinations(o, err, errlen);
 }
