@@ -15,7 +15,10 @@
  * points show wins (else the one that shows most; none shows, as inside
  * a closed cavity: the direction stays). A point shows when it is not
  * behind what the render drew within a pixel of it, or when there is
- * background there (a hole's rim against the inside seen through it).
+ * background there (a hole's rim against the inside seen through it); a
+ * face is tested by its middle and its corners drawn a quarter of the
+ * way in, and a hole or a face seen nearly edge on (FOCUS_EDGE_ON) does
+ * not show.
  *
  * Drawing is on the finished picture (shade/overlay.c), after the
  * contrast rule, so the colour is the warning colour itself: each line
@@ -33,6 +36,7 @@
 #define FOCUS_TEST_W     96     /* pixels across the visibility test's renders */
 #define FOCUS_ANCHORS    64     /* points of a problem tested at most */
 #define FOCUS_SHOWS      0.5    /* the share of them that must show */
+#define FOCUS_EDGE_ON    0.25   /* a hole or face seen closer to edge on than this cosine does not */
 
 /* ==== Which object ==== */
 
@@ -53,22 +57,61 @@ int app_focus_object(const Scene *s, const CheckItems *it, uint32_t i)
 typedef struct {
     Vec3     p[FOCUS_ANCHORS];  /* world */
     int      n;
+    Vec3     normal;            /* unit, world: a hole's or a face's; zero for the rest */
 } Anchors;
 
+/* The unit normal of line l of the item (Newell's), in world space. */
+static Vec3 line_normal(const CheckItems *it, uint32_t l, const Mat4 *om)
+{
+    uint32_t b0 = it->line_start[l], b1 = it->line_start[l + 1];
+    double n[3] = { 0, 0, 0 };
+    for (uint32_t k = b0; k < b1; k++) {
+        const float *p = it->pt + 3 * (size_t)k, *q = it->pt + 3 * (size_t)(k + 1 < b1 ? k + 1 : b0);
+        n[0] += ((double)p[1] - q[1]) * ((double)p[2] + q[2]);
+        n[1] += ((double)p[2] - q[2]) * ((double)p[0] + q[0]);
+        n[2] += ((double)p[0] - q[0]) * ((double)p[1] + q[1]);
+    }
+    Vec3 w = m4_dir(om, v3((float)n[0], (float)n[1], (float)n[2]));
+    float len = sqrtf(v3_dot(w, w));
+    return len > 0 && isfinite(len) ? v3_scale(w, 1 / len) : v3(0, 0, 0);
+}
+
+/* The points tested: a hole's loop and an edge as they are (a rim
+ * against the inside seen through it shows); a face by its middle and
+ * its corners drawn a quarter of the way in (its corners may lie on the
+ * outline of what hides it); the ring's point. */
 static void anchors_of(const Scene *s, const CheckItems *it, uint32_t i, int obj, Anchors *a)
 {
     const CheckItem *e = &it->item[i];
     Mat4 om = object_matrix(&s->objs[obj]);
     uint32_t p0 = it->line_start[e->line0], p1 = it->line_start[e->line0 + e->nlines];
-    uint32_t n = p1 - p0, room = e->has_ring ? FOCUS_ANCHORS - 1 : FOCUS_ANCHORS;
-    uint32_t step = n > room ? (n + room - 1) / room : 1;
+    uint32_t n = p1 - p0 + e->nlines, room = e->has_ring ? FOCUS_ANCHORS - 1 : FOCUS_ANCHORS;
+    uint32_t step = n > room ? (n + room - 1) / room : 1, seen = 0;
     a->n = 0;
-    for (uint32_t k = p0; k < p1 && a->n < (int)room; k += step) {
-        const float *q = it->pt + 3 * (size_t)k;
-        a->p[a->n++] = m4_point(&om, v3(q[0], q[1], q[2]));
+    for (uint32_t l = e->line0; l < e->line0 + e->nlines; l++) {
+        uint32_t b0 = it->line_start[l], b1 = it->line_start[l + 1];
+        int face = it->line_closed[l] && e->kind != CHECK_LOC_HOLES && b1 - b0 > 2;
+        double mid[3] = { 0, 0, 0 };
+        for (uint32_t k = b0; k < b1; k++)
+            for (int c = 0; c < 3; c++)
+                mid[c] += it->pt[3 * (size_t)k + c] / (double)(b1 - b0);
+        if (face && a->n < (int)room)
+            a->p[a->n++] = m4_point(&om, v3((float)mid[0], (float)mid[1], (float)mid[2]));
+        for (uint32_t k = b0; k < b1 && a->n < (int)room; k++, seen++) {
+            if (seen % step)
+                continue;
+            double q[3];
+            for (int c = 0; c < 3; c++)
+                q[c] = face ? 0.75 * it->pt[3 * (size_t)k + c] + 0.25 * mid[c] : it->pt[3 * (size_t)k + c];
+            a->p[a->n++] = m4_point(&om, v3((float)q[0], (float)q[1], (float)q[2]));
+        }
     }
     if (e->has_ring)
         a->p[a->n++] = m4_point(&om, v3(e->ring[0], e->ring[1], e->ring[2]));
+    /* a hole or a face seen edge on does not show, whatever its points
+     * do (a degenerate face has no side to see) */
+    int sided = e->kind == CHECK_LOC_HOLES || e->kind == CHECK_LOC_FLIPPED || e->kind == CHECK_LOC_DUPLICATE;
+    a->normal = sided && e->nlines ? line_normal(it, e->line0, &om) : v3(0, 0, 0);
 }
 
 /* ==== Framing from the current turn ==== */
@@ -120,6 +163,11 @@ static void frame_here(Scene *s, const Anchors *a, int w, int h, float aspect)
  * memory. */
 static double shows(Pipeline *tp, const Anchors *a, int w, int h, float aspect)
 {
+    const Camera *c = &tp->scene->cam;
+    Mat4 turn = m4_rotate_ypr(c->yaw, c->pitch, c->roll);
+    if (fabsf(v3_dot(a->normal, v3(turn.m[2][0], turn.m[2][1], turn.m[2][2]))) < FOCUS_EDGE_ON &&
+        v3_dot(a->normal, a->normal) > 0)
+        return 0;
     int tw = FOCUS_TEST_W;
     double ratio = (double)h * (aspect > 0 ? aspect : 1) / (w > 0 ? w : 1);
     int th = (int)lround(tw * ratio);
