@@ -100,8 +100,15 @@ void check_text_locations(Out *out, const CheckLocations *l, const CheckCounts *
             item_text(l, (CheckLocKind)k, i, unit, text, sizeof text);
             out_printf(out, "%s%-14s%s\n", ind, "", text);
         }
+        static const char *const more[CHECK_LOC_KINDS][2] = {
+            [CHECK_LOC_HOLES] = { "hole", "holes" },
+            [CHECK_LOC_NM_EDGES] = { "non-manifold edge", "non-manifold edges" },
+            [CHECK_LOC_NM_VERTICES] = { "non-manifold vertex", "non-manifold vertices" },
+            [CHECK_LOC_CROSSING] = { "pair", "pairs" },
+        };
         if (total > n)
-            out_printf(out, "%s%-14s(and %llu more)\n", ind, "", (unsigned long long)(total - n));
+            out_printf(out, "%s%-14s(and %llu more %s)\n", ind, "", (unsigned long long)(total - n),
+                       more[k][total - n != 1]);
     }
 }
 
