@@ -116,6 +116,37 @@ Test(focus, items_come_kind_by_kind_numbered_within_each)
     scene_free(&s);
 }
 
+Test(focus, kinds_come_first_whatever_the_objects_order)
+{
+    /* a flipped face in the first object, then two open cubes: the
+     * holes go first, numbered 1 and 2, then the flip */
+    Scene s;
+    SceneCheck sc;
+    char text[2048];
+    snprintf(text, sizeof text, "%s%s%s",
+             "v 3 0 0\nv 4 0 0\nv 4 1 0\nv 3 1 0\nv 3 0 1\nv 4 0 1\nv 4 1 1\nv 3 1 1\n"
+             "f 1 2 3 4\nf 5 6 7 8\nf 1 2 6 5\nf 4 1 5 8\nf 2 3 7 6\nf 3 4 8 7\n",
+             "o a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+             "f 9 12 11 10\nf 13 14 15 16\nf 9 10 14 13\nf 12 9 13 16\nf 10 11 15 14\n",
+             "o b\nv 6 0 0\nv 7 0 0\nv 7 1 0\nv 6 1 0\nv 6 0 1\nv 7 0 1\nv 7 1 1\nv 6 1 1\n"
+             "f 17 20 19 18\nf 21 22 23 24\nf 17 18 22 21\nf 20 17 21 24\nf 18 19 23 22\n");
+    checked(&s, &sc, text);
+    cr_assert_eq(sc.items.n, 3);
+    cr_assert_eq(sc.items.item[0].kind, CHECK_LOC_HOLES);
+    cr_assert_eq(sc.items.item[0].num, 1);
+    cr_assert_eq(sc.items.item[0].face_first, 6, "the first hole is object a's");
+    cr_assert_eq(sc.items.item[1].kind, CHECK_LOC_HOLES);
+    cr_assert_eq(sc.items.item[1].num, 2);
+    cr_assert_eq(sc.items.item[1].face_first, 11);
+    cr_assert_eq(sc.items.item[2].kind, CHECK_LOC_FLIPPED);
+    cr_assert_eq(sc.items.item[2].num, 1);
+    char words[128];
+    check_item_words(&sc.items, 1, &sc.all, "", 1, ", ", 0, words, sizeof words);
+    cr_assert_str_eq(words, "hole 2 of 2, 4 edges, 4");
+    scene_check_free(&sc);
+    scene_free(&s);
+}
+
 /* ==== Framing ==== */
 
 static void framed_in_the_middle(int persp)

@@ -99,7 +99,11 @@ static void run(uint32_t locations)
     cr_assert_eq(meshcheck_run(&C, &M, &o, E, sizeof E), 0, "%s", E);
 }
 
-/* ==== The reference: faces on positions ==== */
+/* ==== The reference: faces on positions ====
+ *
+ * Its own weld (the vertices sorted by position, -0 as +0) and its own
+ * table of the steps faces take from point to point, sorted by edge,
+ * for one object at a time: what uses an edge is a binary search. */
 
 static int same_pos(const float *a, const float *b)
 {
@@ -122,9 +126,12 @@ static int on_one_line(const Mesh *m, uint32_t f)
 {
     uint32_t n = corners(m, f);
     const float *a = corner_pos(m, f, 0);
-    for (uint32_t i = 1; i < n; i++)
-        for (uint32_t j = i + 1; j < n; j++) {
-            const float *b = corner_pos(m, f, i), *c = corner_pos(m, f, j);
+    for (uint32_t i = 1; i < n; i++) {
+        const float *b = corner_pos(m, f, i);
+        if (same_pos(a, b))
+            continue;
+        for (uint32_t j = 1; j < n; j++) {
+            const float *c = corner_pos(m, f, j);
             double u[3], v[3];
             for (int k = 0; k < 3; k++) {
                 u[k] = (double)b[k] - a[k];
@@ -133,32 +140,120 @@ static int on_one_line(const Mesh *m, uint32_t f)
             if (u[1] * v[2] - u[2] * v[1] != 0 || u[2] * v[0] - u[0] * v[2] != 0 || u[0] * v[1] - u[1] * v[0] != 0)
                 return 0;
         }
+        return 1;
+    }
     return 1;
 }
 
-/* How many steps of faces [f0, f1) (not on one line) run from a to b,
- * and from b to a; *faces_out, when given, gets the faces (each once). */
-static void edge_uses(const Mesh *m, uint32_t f0, uint32_t f1, const float *a, const float *b, int *ab, int *ba,
-                      uint32_t *faces_out, uint32_t *nfaces)
+static int cmp_pos(const void *x, const void *y)
 {
-    *ab = *ba = 0;
-    if (nfaces)
-        *nfaces = 0;
-    for (uint32_t f = f0; f < f1; f++) {
-        if (on_one_line(m, f))
-            continue;
-        uint32_t n = corners(m, f);
-        int used = 0;
-        for (uint32_t k = 0; k < n; k++) {
-            const float *p = corner_pos(m, f, k), *q = corner_pos(m, f, (k + 1) % n);
-            if (same_pos(p, a) && same_pos(q, b))
-                (*ab)++, used = 1;
-            else if (same_pos(p, b) && same_pos(q, a))
-                (*ba)++, used = 1;
-        }
-        if (used && faces_out)
-            faces_out[(*nfaces)++] = f;
+    const float *a = M.pos + 3 * (size_t)*(const uint32_t *)x, *b = M.pos + 3 * (size_t)*(const uint32_t *)y;
+    for (int k = 0; k < 3; k++) {
+        float p = a[k] + 0.0f, q = b[k] + 0.0f;    /* -0 as +0 */
+        if (p != q)
+            return p < q ? -1 : 1;
     }
+    return 0;
+}
+
+typedef struct {
+    uint32_t lo, hi;        /* the edge: its points, lo < hi */
+    uint32_t face;
+    int      fwd;           /* the face runs it lo -> hi */
+} Step;
+
+static int cmp_step(const void *x, const void *y)
+{
+    const Step *a = x, *b = y;
+    if (a->lo != b->lo)
+        return a->lo < b->lo ? -1 : 1;
+    if (a->hi != b->hi)
+        return a->hi < b->hi ? -1 : 1;
+    return a->face < b->face ? -1 : a->face > b->face;
+}
+
+typedef struct {
+    uint32_t *sorted;       /* vertices by position */
+    uint32_t *pt;           /* vertex -> its point */
+    Step     *step;         /* the object's faces' steps, not degenerate faces', by edge */
+    size_t    nstep;
+} Ref;
+
+static Ref R;
+
+static void ref_free(void)
+{
+    free(R.sorted);
+    free(R.pt);
+    free(R.step);
+    memset(&R, 0, sizeof R);
+}
+
+static void ref_build(const CheckObject *o)
+{
+    ref_free();
+    R.sorted = malloc(((size_t)M.nverts + 1) * sizeof *R.sorted);
+    R.pt = malloc(((size_t)M.nverts + 1) * sizeof *R.pt);
+    for (uint32_t v = 0; v < M.nverts; v++)
+        R.sorted[v] = v;
+    qsort(R.sorted, M.nverts, sizeof *R.sorted, cmp_pos);
+    for (uint32_t i = 0, id = 0; i < M.nverts; i++) {
+        if (i && cmp_pos(&R.sorted[i - 1], &R.sorted[i]))
+            id++;
+        R.pt[R.sorted[i]] = id;
+    }
+    size_t cap = 0;
+    for (uint32_t f = o->face_first; f < o->face_first + o->face_count; f++)
+        cap += corners(&M, f);
+    R.step = malloc((cap + 1) * sizeof *R.step);
+    for (uint32_t f = o->face_first; f < o->face_first + o->face_count; f++) {
+        if (on_one_line(&M, f))
+            continue;
+        uint32_t n = corners(&M, f);
+        for (uint32_t k = 0; k < n; k++) {
+            uint32_t a = R.pt[M.corner[M.face_start[f] + k]], b = R.pt[M.corner[M.face_start[f] + (k + 1) % n]];
+            if (a != b)
+                R.step[R.nstep++] = (Step){ a < b ? a : b, a < b ? b : a, f, a < b };
+        }
+    }
+    qsort(R.step, R.nstep, sizeof *R.step, cmp_step);
+}
+
+/* The point at position p (CHECK_NONE: no vertex there). */
+static uint32_t point_at(const float *p)
+{
+    size_t lo = 0, hi = M.nverts;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        const float *q = M.pos + 3 * (size_t)R.sorted[mid];
+        int c = 0;
+        for (int k = 0; k < 3 && !c; k++)
+            c = q[k] + 0.0f < p[k] + 0.0f ? -1 : q[k] + 0.0f > p[k] + 0.0f ? 1 : 0;
+        if (c < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < M.nverts && same_pos(M.pos + 3 * (size_t)R.sorted[lo], p) ? R.pt[R.sorted[lo]] : UINT32_MAX;
+}
+
+/* The steps on the edge between points a and b: [*first, *first + n). */
+static size_t steps_on(uint32_t a, uint32_t b, size_t *first)
+{
+    Step key = { a < b ? a : b, a < b ? b : a, 0, 0 };
+    size_t lo = 0, hi = R.nstep;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (cmp_step(&R.step[mid], &key) < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    size_t e = lo;
+    while (e < R.nstep && R.step[e].lo == key.lo && R.step[e].hi == key.hi)
+        e++;
+    *first = lo;
+    return e - lo;
 }
 
 static const CheckObject *object_of(uint32_t f)
@@ -182,17 +277,16 @@ static double dist(const float *a, const float *b)
 static void holes_hold(const CheckObject *o)
 {
     const CheckLocations *l = &o->loc;
-    uint32_t f0 = o->face_first, f1 = f0 + o->face_count;
     for (uint32_t i = 0; i < l->nloops; i++) {
         uint32_t s = l->loop_start[i], e = l->loop_start[i + 1];
         cr_assert_geq(e - s, 3, "loop %u of %u points", i, e - s);
         double len = 0;
         for (uint32_t p = s; p < e; p++) {
             const float *a = l->loop_pt + 3 * (size_t)p, *b = l->loop_pt + 3 * (size_t)(p + 1 < e ? p + 1 : s);
-            int ab, ba;
-            edge_uses(&M, f0, f1, a, b, &ab, &ba, NULL, NULL);
-            cr_assert_eq(ab + ba, 1, "loop %u step %u: (%g %g %g)-(%g %g %g) is used %d times, not once", i, p - s,
-                         a[0], a[1], a[2], b[0], b[1], b[2], ab + ba);
+            size_t first;
+            size_t uses = steps_on(point_at(a), point_at(b), &first);
+            cr_assert_eq(uses, 1, "loop %u step %u: (%g %g %g)-(%g %g %g) is used %zu times, not once", i, p - s,
+                         a[0], a[1], a[2], b[0], b[1], b[2], uses);
             for (uint32_t q = s; q < p; q++)
                 cr_assert(!same_pos(a, l->loop_pt + 3 * (size_t)q), "loop %u passes a point twice", i);
             len += dist(a, b);
@@ -205,19 +299,21 @@ static void holes_hold(const CheckObject *o)
 static void nm_edges_hold(const CheckObject *o)
 {
     const CheckLocations *l = &o->loc;
-    uint32_t f0 = o->face_first, f1 = f0 + o->face_count;
-    uint32_t *faces = malloc(((size_t)o->face_count + 1) * sizeof *faces);
     for (uint32_t i = 0; i < l->nedges; i++) {
-        int ab, ba;
-        uint32_t n;
-        edge_uses(&M, f0, f1, l->edge_pt + 6 * (size_t)i, l->edge_pt + 6 * (size_t)i + 3, &ab, &ba, faces, &n);
-        cr_assert_geq(ab + ba, 3, "non-manifold edge %u has %d faces", i, ab + ba);
-        cr_assert_eq(l->edge_start[i + 1] - l->edge_start[i], n, "edge %u: %u faces listed, %u use it", i,
-                     l->edge_start[i + 1] - l->edge_start[i], n);
-        for (uint32_t k = 0; k < n; k++)
-            cr_assert_eq(l->edge_face[l->edge_start[i] + k], faces[k], "edge %u: face %u", i, k);
+        size_t first, n = steps_on(point_at(l->edge_pt + 6 * (size_t)i), point_at(l->edge_pt + 6 * (size_t)i + 3),
+                                   &first);
+        cr_assert_geq(n, 3, "non-manifold edge %u has %zu faces", i, n);
+        /* the faces on it, each once, in order (the steps are by face) */
+        uint32_t k = l->edge_start[i];
+        for (size_t j = first; j < first + n; j++) {
+            if (j > first && R.step[j].face == R.step[j - 1].face)
+                continue;
+            cr_assert(k < l->edge_start[i + 1] && l->edge_face[k] == R.step[j].face,
+                      "edge %u: face %u is on it but not listed where it should be", i, R.step[j].face);
+            k++;
+        }
+        cr_assert_eq(k, l->edge_start[i + 1], "edge %u lists faces that are not on it", i);
     }
-    free(faces);
 }
 
 static uint32_t find(uint32_t *p, uint32_t i)
@@ -227,50 +323,25 @@ static uint32_t find(uint32_t *p, uint32_t i)
     return i;
 }
 
-/* Faces of [f0, f1) at point x, in fans: joined when they share an edge
- * at x. Returns the number of fans. */
-static uint32_t fans_at(uint32_t f0, uint32_t f1, const float *x)
+/* The faces at point x, in fans: joined when they share an edge at x.
+ * Returns the number of fans. */
+static uint32_t fans_at(const CheckObject *o, uint32_t x)
 {
-    uint32_t nf = f1 - f0, *uf = malloc(((size_t)nf + 1) * sizeof *uf), *at = malloc(((size_t)nf + 1) * sizeof *at);
-    uint32_t n = 0;
-    for (uint32_t f = f0; f < f1; f++) {
-        if (on_one_line(&M, f))
+    uint32_t *uf = malloc(((size_t)o->face_count + 1) * sizeof *uf);
+    uint8_t *at = calloc((size_t)o->face_count + 1, 1);
+    for (uint32_t i = 0; i < o->face_count; i++)
+        uf[i] = i;
+    for (size_t j = 0; j < R.nstep; j++) {
+        const Step *s = &R.step[j];
+        if (s->lo != x && s->hi != x)
             continue;
-        for (uint32_t k = 0; k < corners(&M, f); k++)
-            if (same_pos(corner_pos(&M, f, k), x)) {
-                at[n] = f;
-                uf[n] = n;
-                n++;
-                break;
-            }
+        at[s->face - o->face_first] = 1;
+        if (j > 0 && R.step[j - 1].lo == s->lo && R.step[j - 1].hi == s->hi)
+            uf[find(uf, s->face - o->face_first)] = find(uf, R.step[j - 1].face - o->face_first);
     }
-    /* two faces at x share an edge at x when a neighbour of x in one is
-     * a neighbour of x in the other */
-    for (uint32_t i = 0; i < n; i++)
-        for (uint32_t j = i + 1; j < n; j++) {
-            int shared = 0;
-            for (uint32_t a = 0; a < corners(&M, at[i]) && !shared; a++) {
-                uint32_t na = corners(&M, at[i]);
-                if (!same_pos(corner_pos(&M, at[i], a), x))
-                    continue;
-                const float *nb[2] = { corner_pos(&M, at[i], (a + 1) % na), corner_pos(&M, at[i], (a + na - 1) % na) };
-                for (uint32_t b = 0; b < corners(&M, at[j]) && !shared; b++) {
-                    uint32_t nbn = corners(&M, at[j]);
-                    if (!same_pos(corner_pos(&M, at[j], b), x))
-                        continue;
-                    const float *nc[2] = { corner_pos(&M, at[j], (b + 1) % nbn),
-                                           corner_pos(&M, at[j], (b + nbn - 1) % nbn) };
-                    for (int u = 0; u < 2; u++)
-                        for (int v = 0; v < 2; v++)
-                            shared |= same_pos(nb[u], nc[v]);
-                }
-            }
-            if (shared)
-                uf[find(uf, i)] = find(uf, j);
-        }
     uint32_t fans = 0;
-    for (uint32_t i = 0; i < n; i++)
-        fans += find(uf, i) == i;
+    for (uint32_t i = 0; i < o->face_count; i++)
+        fans += at[i] && find(uf, i) == i;
     free(uf);
     free(at);
     return fans;
@@ -281,7 +352,9 @@ static void nm_vertices_hold(const CheckObject *o)
     const CheckLocations *l = &o->loc;
     for (uint32_t i = 0; i < l->nverts; i++) {
         const float *x = l->vert_pt + 3 * (size_t)i;
-        uint32_t fans = fans_at(o->face_first, o->face_first + o->face_count, x);
+        uint32_t p = point_at(x);
+        cr_assert_neq(p, UINT32_MAX, "non-manifold vertex (%g %g %g) is no vertex", x[0], x[1], x[2]);
+        uint32_t fans = fans_at(o, p);
         cr_assert_geq(fans, 2, "non-manifold vertex (%g %g %g): %u fans", x[0], x[1], x[2], fans);
     }
 }
@@ -291,42 +364,20 @@ static void nm_vertices_hold(const CheckObject *o)
 static void flips_hold(const CheckObject *o)
 {
     const CheckLocations *l = &o->loc;
-    uint32_t f0 = o->face_first, f1 = f0 + o->face_count;
     if (l->nfaces[0] < o->c.inconsistent_faces || o->c.nonorientable)
         return;
     uint8_t *flip = calloc((size_t)M.nfaces + 1, 1);
     for (uint32_t i = 0; i < l->nfaces[0]; i++)
         flip[l->face[0][i]] = 1;
-    for (uint32_t f = f0; f < f1; f++) {
-        if (on_one_line(&M, f))
-            continue;
-        uint32_t n = corners(&M, f);
-        for (uint32_t k = 0; k < n; k++) {
-            const float *a = corner_pos(&M, f, k), *b = corner_pos(&M, f, (k + 1) % n);
-            if (same_pos(a, b))
-                continue;
-            int same = 0, opp = 0;
-            for (uint32_t g = f0; g < f1; g++) {
-                if (on_one_line(&M, g))
-                    continue;
-                uint32_t m = corners(&M, g);
-                for (uint32_t j = 0; j < m; j++) {
-                    const float *p = corner_pos(&M, g, j), *q = corner_pos(&M, g, (j + 1) % m);
-                    int run_ab = same_pos(p, a) && same_pos(q, b), run_ba = same_pos(p, b) && same_pos(q, a);
-                    /* g as it will be, f as it will be */
-                    if (flip[g] != flip[f]) {
-                        int t = run_ab;
-                        run_ab = run_ba;
-                        run_ba = t;
-                    }
-                    same += run_ab;
-                    opp += run_ba;
-                }
-            }
-            if (same + opp == 2)
-                cr_assert_eq(opp, 1, "face %u: its edge %u is run the same way by its neighbour once the "
-                                     "listed faces are flipped", f, k);
+    for (size_t j = 0; j < R.nstep;) {
+        size_t first, n = steps_on(R.step[j].lo, R.step[j].hi, &first);
+        if (n == 2) {
+            const Step *a = &R.step[first], *b = &R.step[first + 1];
+            int fa = a->fwd ^ flip[a->face], fb = b->fwd ^ flip[b->face];
+            cr_assert_neq(fa, fb, "faces %u and %u run one edge the same way once the listed faces are flipped",
+                          a->face, b->face);
         }
+        j = first + n;
     }
     free(flip);
 }
@@ -440,6 +491,7 @@ static void all_hold(uint32_t asked)
 {
     for (uint32_t i = 0; i < C.nobjs; i++) {
         const CheckObject *o = &C.objs[i];
+        ref_build(o);
         for (int k = 0; k < CHECK_LOC_KINDS; k++) {
             uint64_t total = meshcheck_loc_total(&o->c, (CheckLocKind)k);
             uint32_t n = meshcheck_loc_located(&o->loc, (CheckLocKind)k);
@@ -453,6 +505,7 @@ static void all_hold(uint32_t asked)
         faces_hold(o);
         crossings_hold(o);
     }
+    ref_free();
 }
 
 /* ==== Meshes made here ==== */

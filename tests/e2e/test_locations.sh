@@ -110,6 +110,11 @@ check "... the first three of a kind" 'grep -q "^ *hole 3:" "$T/out" && ! grep -
 printf 'v 20 0 0\nv 21 0 0\nv 20 1 0\nf 10 11 12\n' >>"$T/three.obj"
 "$Z" --check "$T/three.obj" >"$T/out" 2>&1
 check "... then how many more" '! grep -q "^ *hole 4:" "$T/out" && grep -q "^ *(and 1 more hole)$" "$T/out"' "$(cat "$T/out")"
+if need_python "--check --json lists more than the text report's three"; then
+    "$Z" --check --json "$T/three.obj" >"$T/four.json"
+    out=$(python3 tests/e2e/locations.py "$T/three.obj" "$T/four.json" 2>&1)
+    check "--check --json lists more than the text report's three: all 4 holes" 'echo "$out" | grep -q "^ok .*holes=4"' "$out"
+fi
 
 # ==== --problem K ====
 # the open cube beside a closed one: unframed, the hole is off the middle
