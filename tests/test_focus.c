@@ -274,7 +274,7 @@ Test(focus, the_keys_step_through_and_wrap)
     viewer_key(&a, '.');
     cr_assert_eq(a.p.problems, 1, ". turns --problems on");
     cr_assert_eq(a.focus, -1, "the check is not done yet");
-    for (int i = 0; i < 400 && a.focus < 0; i++) {
+    for (int i = 0; i < 2000 && a.focus < 0; i++) {
         viewer_check_poll(&a);
         usleep(5000);
     }
@@ -293,6 +293,29 @@ Test(focus, the_keys_step_through_and_wrap)
     viewer_key(&a, '!');
     cr_assert_eq(a.focus, -1, "! off: nothing in focus");
     cr_assert_null(a.p.focus.items);
+    viewer_app_free(&a);
+    scene_free(&s);
+}
+
+Test(focus, problem_k_goes_there_once_checked)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "t.obj", two_cubes), 0);
+    Options o;
+    char *argv[] = { "zview", "--problem", "2", "t.obj" };
+    char err[256];
+    cr_assert_eq(cli_parse(4, argv, &o, err, sizeof err), 0, "%s", err);
+    cr_assert(o.problems, "--problem turns --problems on");
+    o.threads = 1;
+    App a;
+    cr_assert_eq(viewer_app_init(&a, &o, &s, 0), 0);
+    cr_assert_eq(viewer_render(&a, 80, 24), 0);
+    for (int i = 0; i < 2000 && a.focus < 0; i++) {
+        viewer_check_poll(&a);
+        usleep(5000);
+    }
+    cr_assert_eq(a.focus, 1, "--problem 2: the second, the flipped face");
+    cr_assert_eq(a.p.focus.item, 1);
     viewer_app_free(&a);
     scene_free(&s);
 }

@@ -146,6 +146,9 @@ static void text_file(Out *out, const FileCheck *fc)
     uint32_t nobj = 0;
     for (uint32_t i = 0; i < mc->nobjs; i++)
         nobj += mc->objs[i].c.faces > 0;
+    /* the unit came from the loader's child, as the names did */
+    char unit[4 * sizeof mc->unit];
+    safetext(unit, sizeof unit, mc->unit);
     char format[4 * sizeof fc->format];
     out_printf(out, "%s (%s)", path, safetext(format, sizeof format, fc->format));
     if (nobj > 1) {
@@ -154,10 +157,10 @@ static void text_file(Out *out, const FileCheck *fc)
             if (mc->objs[i].c.faces) {
                 char name[SAFETEXT_NAME];
                 out_printf(out, "  object %u \"%s\"\n", ++k, safetext(name, sizeof name, mc->objs[i].name));
-                check_text_counts(out, &mc->objs[i].c, &mc->objs[i].loc, mc->unit, "    ");
+                check_text_counts(out, &mc->objs[i].c, &mc->objs[i].loc, unit, "    ");
             }
         out_printf(out, "  all %u objects\n", nobj);
-        check_text_counts(out, &mc->file, NULL, mc->unit, "    ");
+        check_text_counts(out, &mc->file, NULL, unit, "    ");
     } else {
         /* one object with faces (or none): the file's figures are its */
         const CheckLocations *loc = NULL;
@@ -165,7 +168,7 @@ static void text_file(Out *out, const FileCheck *fc)
             if (mc->objs[i].c.faces)
                 loc = &mc->objs[i].loc;
         out_printf(out, "\n");
-        check_text_counts(out, &mc->file, loc, mc->unit, "  ");
+        check_text_counts(out, &mc->file, loc, unit, "  ");
     }
 }
 
