@@ -3,9 +3,9 @@
  * check on it and prints one line: the load's wall time, the check's
  * wall time and its phases, and the process's peak resident memory.
  *
- *   checkbench [-j THREADS] [--no-cross] [--locations N] [--load-only] MODEL
+ *   checkbench [-j THREADS] [--no-cross] [-l N] [--load-only] MODEL
  *
- * --locations N locates the first N problems of each kind, as --check
+ * -l N locates the first N problems of each kind, as --check
  * does (3 for the text report, --max-locations for --json: 100).
  * --load-only stops after the load: its peak memory is "loading alone",
  * what the check's peak is compared with. */
@@ -38,7 +38,7 @@ int main(int argc, char **argv)
             opt.threads = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--no-cross"))
             opt.intersections = 0;
-        else if (!strcmp(argv[i], "--locations") && i + 1 < argc)
+        else if (!strcmp(argv[i], "-l") && i + 1 < argc)
             opt.locations = (uint32_t)atoi(argv[++i]);
         else if (!strcmp(argv[i], "--load-only"))
             load_only = 1;
@@ -46,7 +46,7 @@ int main(int argc, char **argv)
             path = argv[i];
     }
     if (!path) {
-        fprintf(stderr, "usage: checkbench [-j THREADS] [--no-cross] [--locations N] [--load-only] MODEL\n");
+        fprintf(stderr, "usage: checkbench [-j THREADS] [--no-cross] [-l N] [--load-only] MODEL\n");
         return 2;
     }
     /* as zview's main does: big arrays go back to the system when freed */
