@@ -624,7 +624,7 @@ const KeyRow viewer_keys[] = {
     { "( )", "line width", { { '(', act_line_thinner }, { ')', act_line_wider } } },
     { "W ! @", "wireframe, problems, parts",
       { { 'W', act_wireframe }, { '!', act_problems }, { '@', act_parts } } },
-    { ". ,", "next / previous problem, framed", { { '.', act_next_problem }, { ',', act_prev_problem } } },
+    { ". ,", "next / previous problem", { { '.', act_next_problem }, { ',', act_prev_problem } } },
     { "space", "auto-rotate", { { ' ', act_spin } } },
     { "O", "open a file (Tab completes)", { { 'O', act_open } } },
     { "X Delete", "remove the selected object", { { 'X', act_remove }, { TK_DEL, act_remove } } },
