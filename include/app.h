@@ -91,6 +91,8 @@ typedef struct {
     int         problems;       /* --problems: what the check finds, drawn on the model */
     int         parts;          /* --parts: each connected part its own colour */
     int         watch;          /* --watch: the files read again when they change */
+    int         max_locations;  /* --max-locations: --check --json locates so many problems of each kind */
+    int         problem;        /* --problem K: the picture framed on the K-th problem (1 the first), 0 none */
 } Options;
 
 /* The viewer decodes images longer than this a side on a thread of its
@@ -219,6 +221,14 @@ int  app_check_size(const Options *o, const Scene *s, char *err, size_t errlen);
 /* Path of the bundled demo scene (next to the binary or installed). */
 const char *app_demo_path(void);
 
+/* The problem in focus (focus.c): one of a check's items, on a scene
+ * object, drawn over the picture by pipeline_render. */
+typedef struct {
+    const CheckItems *items;    /* NULL: none */
+    uint32_t    item;
+    int         obj;            /* the scene object it is on */
+} ProblemFocus;
+
 typedef struct {
     Scene       *scene;
     const HsrAlgo *algo;
@@ -249,6 +259,7 @@ typedef struct {
     int          problems;      /* problem edges drawn, faces seen from inside or crossing coloured */
     int          parts;         /* each part its own colour */
     MarkColours  markcol;       /* the faces' colours for those */
+    ProblemFocus focus;         /* a problem drawn over the picture (items NULL: none) */
     Scene        shade_view;    /* the scene with those colours, as shading reads it */
     PrimWork    *prims;
     /* the background and the contrast rule (backdrop.h), applied to img
@@ -301,6 +312,22 @@ int  pipeline_check_frame(int w, int h, int samples, uint64_t cells, const char 
  * with the arrow keys"); NULL when something was drawn. */
 const char *frame_empty_reason(const Pipeline *p);
 
+/* focus.c: one problem in focus (the viewer's . and , keys, --problem
+ * K). app_focus_object: the scene object item i of `it` is on (the
+ * items of a check of the scene's files, file i its meshes[i]), -1 when
+ * the scene has none such. app_focus_frame: the camera framed on it for
+ * a w x h picture of pixel_aspect: the turn kept, moved and zoomed so
+ * that it is in the middle at about a third of the picture; turned (to
+ * the nearest of 26 directions where it shows) only when faces hide it
+ * from there, as small renders on `threads` threads say. *turned_out
+ * (may be NULL) says whether it turned. 0, or -1 out of memory.
+ * app_focus_draw: the focus over the picture pipeline_render just made
+ * (pipeline_render calls it). */
+int  app_focus_object(const Scene *s, const CheckItems *it, uint32_t i);
+int  app_focus_frame(Scene *s, const CheckItems *it, uint32_t i, int obj, int w, int h, float pixel_aspect,
+                     int threads, int *turned_out);
+void app_focus_draw(Pipeline *p);
+
 /* report.c: what one rendered frame did, as --info --algo prints it and
  * the viewer's info panel (i) shows it: lines of a label ("polygons:")
  * and its text. out_ms is the time the frame took to reach the
@@ -320,14 +347,20 @@ typedef struct {
     MeshCheck  *files;
     int         nfiles;
     CheckCounts all;            /* the files' figures summed */
+    CheckItems  items;          /* the problems located, one by one (file i of the items is files[i]) */
 } SceneCheck;
+/* The most problems of one kind of one object the picture's check
+ * locates (the viewer's . and , keys step through them). */
+#define APP_CHECK_LOCATIONS 10000
 /* Check meshes m[0..n) (scene_check_meshes' copies of the files; on any
  * thread; cancel as CheckOpts.cancel). 0, or -1 with the message. */
 int  app_check_meshes(const Mesh *m, int n, int threads, const int *cancel, SceneCheck *out, char *err,
                       size_t errlen);
 /* The same on the scene's files, then what it found set as the scene's
- * marks (on the calling thread: --print and -o). */
-int  app_check_scene(Scene *s, int threads, char *err, size_t errlen);
+ * marks (on the calling thread: --print and -o); the problems one by
+ * one and the figures into *keep when it is not NULL (the caller frees
+ * it with scene_check_free). */
+int  app_check_scene(Scene *s, int threads, SceneCheck *keep, char *err, size_t errlen);
 void scene_check_free(SceneCheck *sc);
 /* The verdict in a word or two for the status bar: "watertight", "3
  * holes · 12 flipped" (sep between the problems). Returns the number of
@@ -337,6 +370,13 @@ int  check_verdict_short(const CheckCounts *c, const char *sep, char *buf, size_
  * holes · +3"; max 0: "4 problems"), so that a narrow status bar gives
  * way by whole items, never mid-word. */
 int  check_verdict_items(const CheckCounts *c, const char *sep, int max, char *buf, size_t len);
+/* Item i of `it` in words for the status bar: "hole 2 of 6 · 34 edges
+ * · 1.2 mm", "crossing 3 of 161 · faces 920 and 3202" (sep between the
+ * parts; of N: all of its kind in `all`, the figures the items come
+ * from; lengths times scale, in unit when there is one); brief: "hole
+ * 2/6". */
+void check_item_words(const CheckItems *it, uint32_t i, const CheckCounts *all, const char *unit, double scale,
+                      const char *sep, int brief, char *buf, size_t len);
 /* The counts as lines of the info panel (labels as report.c's). */
 int  check_report(const SceneCheck *sc, ReportLine *lines, int max);
 

@@ -22,4 +22,12 @@ void image_free(Image *im);
  * colour is the terminal's, unknown here, so it is not mixed in). */
 int  image_downsample(const Image *src, int k, Image *dst);
 
+/* overlay.c: drawn over a finished picture, no depth test (the
+ * problem in focus): a line from (x0, y0) to (x1, y1) and a circle of
+ * radius r about (cx, cy), in pixels (y down), `width` pixels wide, in
+ * one colour, the pixels lit. What falls outside the picture is left
+ * out. */
+void image_line(Image *im, double x0, double y0, double x1, double y1, const uint8_t rgb[3], int width);
+void image_ring(Image *im, double cx, double cy, double r, const uint8_t rgb[3], int width);
+
 #endif

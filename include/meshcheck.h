@@ -69,12 +69,55 @@ typedef struct {
     float    lo[3], hi[3];          /* bounding box of the positions its faces use; lo > hi: none */
 } CheckCounts;
 
+/* Where one object's problems are (CheckOpts.locations): of each kind
+ * the first `locations` of them, so that a script (--check --json), the
+ * text report and the viewer's problem keys can go to each. Faces are
+ * mesh face indices: the file's faces from 0 in file order across its
+ * objects. Points are positions as the file gives them (welded points
+ * have no one vertex index). The kinds, in the verdict's order: */
+typedef enum {
+    CHECK_LOC_HOLES,            /* a closed loop of boundary edges a hole */
+    CHECK_LOC_NM_EDGES,         /* an edge of three or more faces: its ends and the faces on it */
+    CHECK_LOC_NM_VERTICES,      /* a point where separate fans of faces meet */
+    CHECK_LOC_FLIPPED,          /* a face among the fewest whose flip makes the winding agree */
+    CHECK_LOC_DEGENERATE,       /* a face of zero area */
+    CHECK_LOC_DUPLICATE,        /* a face on the same points as an earlier one */
+    CHECK_LOC_CROSSING,         /* a pair of faces that cross, and a point on both */
+    CHECK_LOC_KINDS
+} CheckLocKind;
+
+typedef struct {
+    /* holes: the independent cycles of the boundary edges (one per
+     * closed loop; where loops touch at a point, one each), c.holes of
+     * them; each loop its points in order, the last joined to the first */
+    uint32_t  nloops;
+    uint32_t *loop_start;       /* nloops + 1: loop i's points are [loop_start[i], loop_start[i + 1]) */
+    float    *loop_pt;          /* 3 per point */
+    double   *loop_length;      /* per loop: its perimeter, file units */
+    /* non-manifold edges: both ends, and the faces on the edge (ascending) */
+    uint32_t  nedges;
+    float    *edge_pt;          /* 6 per edge */
+    uint32_t *edge_start;       /* nedges + 1 into edge_face */
+    uint32_t *edge_face;
+    /* non-manifold vertices */
+    uint32_t  nverts;
+    float    *vert_pt;          /* 3 per vertex */
+    /* flipped, degenerate and duplicate faces, ascending */
+    uint32_t  nfaces[3];        /* [k - CHECK_LOC_FLIPPED] */
+    uint32_t *face[3];
+    /* crossing pairs, as c.self_intersections counts them (the lower face first, pairs ascending) */
+    uint32_t  npairs;
+    uint32_t *pair_face;        /* 2 per pair */
+    double   *pair_pt;          /* 3 per pair: a point on both faces */
+} CheckLocations;
+
 /* One object: its counts, and (CheckOpts.detail) where the problems are,
  * as mesh vertex and face indices an overlay can draw. */
 typedef struct {
     char        name[MESH_NAME_MAX];
     uint32_t    face_first, face_count;     /* its faces in the mesh */
     CheckCounts c;
+    CheckLocations loc;         /* CheckOpts.locations */
     uint32_t   *boundary;       /* 2 vertex indices per boundary edge (c.boundary_edges) */
     uint32_t   *nm_edges;       /* 2 vertex indices per non-manifold edge (c.nonmanifold_edges) */
     uint32_t   *nm_verts;       /* a vertex index per non-manifold vertex (c.nonmanifold_vertices) */
@@ -99,6 +142,7 @@ typedef struct {
     int        threads;         /* for the intersection tests; <= 1: the caller alone */
     int        intersections;   /* test pairs of faces for crossing */
     int        detail;          /* keep the lists and per-face arrays */
+    uint32_t   locations;       /* locate the first this many problems of each kind (CheckObject.loc); 0 none */
     const int *cancel;          /* NULL, or set (atomically) to stop: meshcheck_run fails "cancelled" */
 } CheckOpts;
 
@@ -112,6 +156,11 @@ typedef struct {
     char         unit[8];       /* the unit the format states ("mm", "m"), "" none */
     double       ms[CHECK_T_COUNT];
 } MeshCheck;
+
+/* The most problems of one kind --check --json locates by default
+ * (--max-locations), and the text report lists. */
+#define CHECK_LOCATIONS_JSON 100
+#define CHECK_LOCATIONS_TEXT 3
 
 /* Check every object of m. Returns 0, or -1 out of memory or cancelled
  * (the message in err, *mc left empty). m is not changed. */
@@ -208,12 +257,68 @@ void meshcheck_say(const CheckRow *r, const CheckCounts *c, CheckSay form, char 
  * caller sets them after. */
 void meshcheck_sum(CheckCounts *total, const CheckCounts *first, size_t n, size_t stride);
 
+/* The kinds of location by their rows: kind k's count is the row
+ * meshcheck_loc_row(k) (holes, nonmanifold_edges, ..., inconsistent_faces,
+ * ..., self_intersections), whose --json member names its locations too
+ * and whose text line lists them. meshcheck_loc_total is that count (a
+ * lower bound where the crossing test stopped), meshcheck_loc_located
+ * how many of them l holds. */
+const CheckRow *meshcheck_loc_row(CheckLocKind k);
+uint64_t meshcheck_loc_total(const CheckCounts *c, CheckLocKind k);
+uint32_t meshcheck_loc_located(const CheckLocations *l, CheckLocKind k);
+
+/* ==== The problems one by one (items.c) ====
+ *
+ * The located problems of checks as one list to step through (the
+ * viewer's . and , keys, --problem K): kind by kind in the verdict's
+ * order, each kind file by file, object by object, as located. Each item
+ * is a shape in its mesh's coordinates, to frame and to draw over the
+ * model: lines (a hole's loop, a non-manifold edge and the outlines of
+ * its faces, a face's outline, a crossing pair's two) and a point to
+ * ring (a non-manifold vertex, the middle of a degenerate or duplicate
+ * face, where a pair crosses). */
+typedef struct {
+    CheckLocKind kind;
+    int         file;           /* the caller's number of its mesh */
+    uint32_t    face_first;     /* its object's first face (which object of the mesh it is on) */
+    uint32_t    num;            /* its number among the list's items of its kind, from 1 */
+    uint32_t    line0, nlines;  /* its lines: CheckItems lines [line0, line0 + nlines) */
+    int         has_ring;
+    float       ring[3];
+    uint32_t    count;          /* a hole's edges, a non-manifold edge's faces */
+    double      length;         /* a hole's perimeter (the mesh's units) */
+    uint32_t    face[2];        /* the face it is (flipped, degenerate, duplicate), the pair's two */
+} CheckItem;
+
+typedef struct {
+    CheckItem *item;
+    uint32_t   n;
+    size_t     cap;
+    uint32_t  *line_start;      /* nlines + 1: line k's points are pt[line_start[k] .. line_start[k + 1]) */
+    uint8_t   *line_closed;     /* per line: its last point joined to its first */
+    uint32_t   nlines;
+    size_t     cap_lines, cap_closed;
+    float     *pt;              /* 3 per point */
+    size_t     npt, cap_pt;     /* floats */
+} CheckItems;
+
+/* Add the located problems of mc (a check of m, with CheckOpts.locations)
+ * as file `file`; then meshcheck_items_order once every file is in:
+ * the items kind by kind (files and objects in the order added) and
+ * numbered within each kind. 0, or -1 out of memory. */
+int  meshcheck_items_add(CheckItems *it, const MeshCheck *mc, const Mesh *m, int file);
+void meshcheck_items_order(CheckItems *it);
+void meshcheck_items_free(CheckItems *it);
+/* The box of item i's points (lines and ring), the mesh's coordinates. */
+void meshcheck_item_box(const CheckItems *it, uint32_t i, float lo[3], float hi[3]);
+
 /* The text report's lines of the rows (the measures before them are
  * the caller's): a label and the phrases. Returns how many. */
 #define CHECK_LINE_LEN   256
 #define CHECK_LINES_MAX  16
 typedef struct {
     const char *label;
+    int         line;           /* the rows' line number (CheckRow.line) */
     char        text[CHECK_LINE_LEN];
 } CheckLine;
 int  meshcheck_lines(const CheckCounts *c, CheckLine *line, int max);

@@ -20,8 +20,14 @@ int  oneshot_check(const Options *o);
 /* The figures of one object or file: the text report's block (unit as
  * MeshCheck.unit, ind before each line), and the JSON members (each
  * after ",\n" and ind). Every row of counts.c's table is in them. */
-void check_text_counts(Out *out, const CheckCounts *c, const char *unit, const char *ind);
+void check_text_counts(Out *out, const CheckCounts *c, const CheckLocations *loc, const char *unit, const char *ind);
 void check_json_counts(Out *out, const CheckCounts *c, const char *ind);
+/* checkwhere.c: where the problems are. The text report's lines of the
+ * locations whose count is on text line `line` (CheckLine.line), and the
+ * JSON member "locations" (after ",\n" and ind). */
+void check_text_locations(Out *out, const CheckLocations *l, const CheckCounts *c, int line, const char *unit,
+                          const char *ind);
+void check_json_locations(Out *out, const CheckLocations *l, const CheckCounts *c, const char *ind);
 /* Refuse (-1, the reason in err) a --print, -o or dump frame that has
  * more than SCREEN_MAX pixels on a side or more memory than is left,
  * before anything is loaded. */

@@ -154,6 +154,12 @@ typedef struct {
 
 typedef struct PrimWork PrimWork;   /* per-frame scratch, kept across frames */
 
+/* A view-space point (x right, y up, z to the viewer) through the
+ * projection of sp's last frame: out = pixels x, y (y down) and depth,
+ * as the front end maps the corners of polygons. -1 when it is behind
+ * the near plane (perspective). */
+int  screen_view_point(const ScreenPolys *sp, double x, double y, double z, double out[3]);
+
 /* Append the scene's points, segments (and wireframe edges) to sp, as
  * screen_project left it for the same scene and viewport. Of the points
  * whose squares cover the same samples only the nearest (by depth, then

@@ -163,6 +163,11 @@ void shade_face_polys(const Scene *s, uint32_t *face_poly);
 void shade_mark_edge_colour(int kind, uint8_t rgb_out[3]);
 void shade_mark_face_colour(int bits, uint8_t rgb_out[3]);
 void shade_part_colour(uint32_t part, uint8_t rgb_out[3]);
+/* The colour a problem in focus is drawn in over the picture (a
+ * CheckLocKind): a hole red and a non-manifold edge or vertex magenta
+ * as their edges, a flipped face blue and a crossing pair yellow as
+ * their faces, a degenerate or duplicate face orange. */
+void shade_problem_colour(int kind, uint8_t rgb_out[3]);
 /* The faces' colours and surfaces a frame shades with instead of the
  * scene's, made again only when the scene, its marks or the mode
  * change. */

@@ -40,7 +40,7 @@ static char *written(const CheckCounts *c, int json)
     if (json)
         check_json_counts(&out, c, "  ");
     else
-        check_text_counts(&out, c, "", "  ");
+        check_text_counts(&out, c, NULL, "", "  ");
     cr_assert_eq(out_flush(&out), 0);
     long n = ftell(f);
     cr_assert(n > 0);

@@ -542,10 +542,16 @@ static int names_key(const char *text, int key)
     int shift_arrow = key == TK_SLEFT || key == TK_SRIGHT || key == TK_SUP || key == TK_SDOWN;
     snprintf(buf, sizeof buf, "%s", text);
     char *save = NULL;
-    for (char *w = strtok_r(buf, " \t,", &save); w; w = strtok_r(NULL, " \t,", &save))
+    /* words apart by blanks; a comma after a word parts it from the
+     * next ("Tab, n"), a comma alone is the key , */
+    for (char *w = strtok_r(buf, " \t", &save); w; w = strtok_r(NULL, " \t", &save)) {
+        size_t n = strlen(w);
+        if (n > 1 && w[n - 1] == ',')
+            w[n - 1] = 0;
         if (same_word_nocase(w, name) || (arrow && same_word_nocase(w, "arrows"))
             || (shift_arrow && same_word_nocase(w, "Shift-arrows")))
             return 1;
+    }
     return 0;
 }
 

@@ -44,7 +44,7 @@ static void checked_scene(Scene *s, const char *text)
 {
     char err[256];
     cr_assert_eq(tl_scene_from_text(s, "t.obj", text), 0);
-    cr_assert_eq(app_check_scene(s, 1, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(app_check_scene(s, 1, NULL, err, sizeof err), 0, "%s", err);
     cr_assert(s->marks.set);
 }
 
@@ -278,7 +278,7 @@ Test(problems, every_algorithm_agrees_with_the_problems_drawn)
         Scene s;
         char err[256];
         cr_assert_eq(i ? tl_scene_from_file(&s, files[i]) : tl_scene_from_text(&s, "open.obj", t), 0);
-        cr_assert_eq(app_check_scene(&s, 1, err, sizeof err), 0, "%s", err);
+        cr_assert_eq(app_check_scene(&s, 1, NULL, err, sizeof err), 0, "%s", err);
         TlAgree a = { 0 };
         a.style.marks = 1;
         for (uint32_t seed = 1; seed <= 6; seed++) {

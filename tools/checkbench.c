@@ -3,8 +3,10 @@
  * check on it and prints one line: the load's wall time, the check's
  * wall time and its phases, and the process's peak resident memory.
  *
- *   checkbench [-j THREADS] [--no-cross] [--load-only] MODEL
+ *   checkbench [-j THREADS] [--no-cross] [-l N] [--load-only] MODEL
  *
+ * -l N locates the first N problems of each kind, as --check
+ * does (3 for the text report, --max-locations for --json: 100).
  * --load-only stops after the load: its peak memory is "loading alone",
  * what the check's peak is compared with. */
 
@@ -36,13 +38,15 @@ int main(int argc, char **argv)
             opt.threads = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--no-cross"))
             opt.intersections = 0;
+        else if (!strcmp(argv[i], "-l") && i + 1 < argc)
+            opt.locations = (uint32_t)atoi(argv[++i]);
         else if (!strcmp(argv[i], "--load-only"))
             load_only = 1;
         else
             path = argv[i];
     }
     if (!path) {
-        fprintf(stderr, "usage: checkbench [-j THREADS] [--no-cross] [--load-only] MODEL\n");
+        fprintf(stderr, "usage: checkbench [-j THREADS] [--no-cross] [-l N] [--load-only] MODEL\n");
         return 2;
     }
     /* as zview's main does: big arrays go back to the system when freed */
@@ -78,10 +82,10 @@ int main(int argc, char **argv)
     char verdict[256];
     meshcheck_verdict(&mc.file, verdict, sizeof verdict);
     printf("%-28s faces %9u  load %7.1f ms  check %7.1f ms, cpu %7.1f ms (weld %.0f, edges %.0f, shape %.0f, dups %.0f, "
-           "cross %.0f)  threads %d%s  peak %7.1f MB  [%s]\n",
+           "cross %.0f)  threads %d%s%s  peak %7.1f MB  [%s]\n",
            path, m.nfaces, load_ms, ms, cpu, mc.ms[CHECK_T_WELD], mc.ms[CHECK_T_EDGES], mc.ms[CHECK_T_SHAPE],
            mc.ms[CHECK_T_DUPS], mc.ms[CHECK_T_CROSS], opt.threads, opt.intersections ? "" : ", no crossings",
-           peak_kb() / 1024.0, verdict);
+           opt.locations ? ", located" : "", peak_kb() / 1024.0, verdict);
     meshcheck_free(&mc);
     mesh_free(&m);
     return 0;

@@ -127,6 +127,7 @@ void cli_defaults(Options *o)
     o->line_width = 1;
     o->up = -1;
     o->contrast = CONTRAST_DEFAULT;
+    o->max_locations = CHECK_LOCATIONS_JSON;
 }
 
 /* getopt's tables from the option table: a long option with a letter
@@ -303,6 +304,12 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
     }
     if (o->check && check_with(o, err, errlen))
         return -1;
+    if (o->problem && (o->turntable || o->info || o->bench || o->bench_tty || o->sketch)) {
+        snprintf(err, errlen, "--problem frames one picture (or the viewer): it does not go with %s",
+                 o->turntable ? "--turntable" : o->info ? "--info" : o->bench ? "--bench"
+                 : o->bench_tty ? "--bench-tty" : "--sketch");
+        return -1;
+    }
     if (o->json && !o->check && !o->bench) {
         /* a script that asked for JSON would read a picture instead */
         snprintf(err, errlen, "--json goes with --check or --bench");
@@ -343,5 +350,6 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
     }
     if (take_files(argc, argv, o, err, errlen))
         return -1;
+    o->problems |= o->problem > 0;  /* a problem in focus is drawn with the rest */
     return check_combinations(o, err, errlen);
 }

@@ -9,6 +9,7 @@
  * two completion files, which the test names when they lag. */
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -448,6 +449,16 @@ static int set_turntable(Options *o, const OptCall *c)
     return set_int(&o->turntable, c, 1, 3600, "1 to 3600 frames");
 }
 
+static int set_max_locations(Options *o, const OptCall *c)
+{
+    return set_int(&o->max_locations, c, 0, 10000000, "0 to 10000000");
+}
+
+static int set_problem(Options *o, const OptCall *c)
+{
+    return set_int(&o->problem, c, 1, INT_MAX, "a problem's number, 1 the first");
+}
+
 static int set_fps(Options *o, const OptCall *c)
 {
     return set_int(&o->fps, c, 1, 1000, "1 to 1000");
@@ -584,6 +595,12 @@ const OptSpec cli_options[] = {
       "draw what the check finds on the model: holes and\nnon-manifold edges as lines, faces seen from\n"
       "inside and crossing faces coloured (! in the viewer)",
       NULL, FLAG(problems), OPT_VIEWCMD },
+    { "max-locations", 0, "N", NULL, OPTSEC_OUTPUT,
+      "with --check --json: where the first N problems of\neach kind are (default 100; the counts are whole)",
+      set_max_locations, 0, 0 },
+    { "problem", 0, "K", NULL, OPTSEC_OUTPUT,
+      "the picture framed on the K-th problem the check\nfinds, drawn over the model (. and , in the viewer)",
+      set_problem, 0, 0 },
     { "parts", 0, NULL, NULL, OPTSEC_OUTPUT, "each connected part of the model its own colour\n(@ in the viewer)",
       NULL, FLAG(parts), OPT_VIEWCMD },
     { "watch", 0, NULL, NULL, OPTSEC_INPUT,

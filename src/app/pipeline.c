@@ -327,6 +327,8 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
         /* on the final pixels, so that what is shown keeps the minimum */
         if (p->has_bd && contrast_apply(&p->rule, &p->bd, p->contrast, &p->img))
             return -1;
+        /* the problem in focus over it all, in its own colour */
+        app_focus_draw(p);
         p->shade_ms = now_ms() - t2;
     }
     return 0;

@@ -23,14 +23,21 @@ int app_check_meshes(const Mesh *m, int n, int threads, const int *cancel, Scene
         return -1;
     }
     CheckOpts co = { .threads = threads > 0 ? threads : default_threads(), .intersections = 1, .detail = 1,
-                     .cancel = cancel };
+                     .locations = APP_CHECK_LOCATIONS, .cancel = cancel };
     for (int i = 0; i < n; i++) {
         if (meshcheck_run(&out->files[i], &m[i], &co, err, errlen)) {
             scene_check_free(out);
             return -1;
         }
         out->nfiles = i + 1;
+        /* the problems as shapes, while the mesh's faces are at hand */
+        if (meshcheck_items_add(&out->items, &out->files[i], &m[i], i)) {
+            scene_check_free(out);
+            snprintf(err, errlen, "out of memory");
+            return -1;
+        }
     }
+    meshcheck_items_order(&out->items);
     out->nfiles = n;
     meshcheck_sum(&out->all, &out->files[0].file, (size_t)n, sizeof *out->files);   /* as a file's objects */
     return 0;
@@ -41,13 +48,16 @@ void scene_check_free(SceneCheck *sc)
     for (int i = 0; sc->files && i < sc->nfiles; i++)
         meshcheck_free(&sc->files[i]);
     free(sc->files);
+    meshcheck_items_free(&sc->items);
     memset(sc, 0, sizeof *sc);
 }
 
-int app_check_scene(Scene *s, int threads, char *err, size_t errlen)
+int app_check_scene(Scene *s, int threads, SceneCheck *keep, char *err, size_t errlen)
 {
     Mesh *m;
     int n;
+    if (keep)
+        memset(keep, 0, sizeof *keep);
     if (scene_check_meshes(s, &m, &n, err, errlen))
         return -1;
     SceneCheck sc;
@@ -56,6 +66,12 @@ int app_check_scene(Scene *s, int threads, char *err, size_t errlen)
     if (rc)
         return -1;
     rc = scene_marks_set(s, sc.files, sc.nfiles, err, errlen);
+    if (rc == 0 && keep) {
+        /* the items and the figures; the files' lists are the marks' now */
+        keep->all = sc.all;
+        keep->items = sc.items;
+        memset(&sc.items, 0, sizeof sc.items);
+    }
     scene_check_free(&sc);
     return rc;
 }
@@ -139,4 +155,51 @@ int check_report(const SceneCheck *sc, ReportLine *lines, int max)
                      c->area);
     }
     return n;
+}
+
+/* ==== A problem in words ==== */
+
+void check_item_words(const CheckItems *it, uint32_t i, const CheckCounts *all, const char *unit, double scale,
+                      const char *sep, int brief, char *buf, size_t len)
+{
+    static const char *const name[CHECK_LOC_KINDS] = {
+        [CHECK_LOC_HOLES] = "hole",
+        [CHECK_LOC_NM_EDGES] = "non-manifold edge",
+        [CHECK_LOC_NM_VERTICES] = "non-manifold vertex",
+        [CHECK_LOC_FLIPPED] = "flipped face",
+        [CHECK_LOC_DEGENERATE] = "degenerate face",
+        [CHECK_LOC_DUPLICATE] = "duplicate face",
+        [CHECK_LOC_CROSSING] = "crossing",
+    };
+    buf[0] = 0;
+    if (i >= it->n)
+        return;
+    const CheckItem *e = &it->item[i];
+    unsigned long long total = meshcheck_loc_total(all, e->kind);
+    total = total > e->num ? total : e->num;
+    if (brief) {
+        snprintf(buf, len, "%s %u/%llu", name[e->kind], e->num, total);
+        return;
+    }
+    int n = snprintf(buf, len, "%s %u of %llu", name[e->kind], e->num, total);
+    size_t o = n > 0 && (size_t)n < len ? (size_t)n : len - 1;
+    switch (e->kind) {
+    case CHECK_LOC_HOLES:
+        snprintf(buf + o, len - o, "%s%u edges%s%.3g%s%s", sep, e->count, sep, e->length * scale, unit[0] ? " " : "",
+                 unit);
+        break;
+    case CHECK_LOC_NM_EDGES:
+        snprintf(buf + o, len - o, "%s%u faces", sep, e->count);
+        break;
+    case CHECK_LOC_FLIPPED:
+    case CHECK_LOC_DEGENERATE:
+    case CHECK_LOC_DUPLICATE:
+        snprintf(buf + o, len - o, "%sface %u", sep, e->face[0]);
+        break;
+    case CHECK_LOC_CROSSING:
+        snprintf(buf + o, len - o, "%sfaces %u and %u", sep, e->face[0], e->face[1]);
+        break;
+    default:
+        break;
+    }
 }

@@ -103,7 +103,7 @@ static int obj_passes(Run *r, ObjCheck *o, double *ms)
         return -1;
     t = now_ms();
     ms[CHECK_T_SHAPE] += t - t2;
-    if (cancelled(r) || check_duplicates(o))
+    if (cancelled(r) || check_duplicates(o) || check_locate_faces(o))
         return -1;
     free(o->mate);
     free(o->nm_half);
@@ -116,7 +116,7 @@ static int obj_passes(Run *r, ObjCheck *o, double *ms)
     t2 = now_ms();
     ms[CHECK_T_DUPS] += t2 - t;
     if (r->opt->intersections) {
-        if (cancelled(r) || check_crossings(o))
+        if (cancelled(r) || check_crossings(o) || check_locate_crossings(o))
             return -1;
         o->c->intersections_tested = 1;
         ms[CHECK_T_CROSS] += now_ms() - t2;
@@ -274,6 +274,7 @@ void meshcheck_free(MeshCheck *mc)
         free(mc->objs[i].nm_edges);
         free(mc->objs[i].nm_verts);
         free(mc->objs[i].pairs);
+        check_locations_free(&mc->objs[i].loc);
     }
     free(mc->objs);
     free(mc->face_flags);

@@ -113,4 +113,21 @@ int  check_crossings(ObjCheck *o);
 #define CHECK_SAME_TRI 2
 int  check_tri_pair(const float *const a[3], const uint32_t ia[3], const float *const b[3], const uint32_t ib[3]);
 
+/* locate.c: where the problems are, when CheckOpts.locations asks
+ * (each a no-op otherwise). check_locate_topology at the end of the
+ * topology (the holes' loops from mate[], the non-manifold edges from
+ * their groups); check_locate_vertex for each non-manifold point p as
+ * count_fans finds it (*cap: its list's room, 0 at first);
+ * check_locate_faces after the duplicates; check_locate_crossings after
+ * the crossings (a point on each pair; the pairs list dropped then
+ * unless detail keeps it). 0, or -1 out of memory. */
+int  check_locate_topology(ObjCheck *o);
+int  check_locate_vertex(ObjCheck *o, uint32_t p, size_t *cap);
+int  check_locate_faces(ObjCheck *o);
+int  check_locate_crossings(ObjCheck *o);
+/* A point on both of the triangles a and b, which meet (check_tri_pair
+ * said so): in double, on both within rounding. */
+void check_tri_point(const float *const a[3], const float *const b[3], double out[3]);
+void check_locations_free(CheckLocations *l);
+
 #endif

@@ -255,6 +255,7 @@ int meshcheck_lines(const CheckCounts *c, CheckLine *line, int max)
     for (int l = 1; l <= last && n < max; l++) {
         CheckLine *out = &line[n];
         out->label = NULL;
+        out->line = l;
         out->text[0] = 0;
         const CheckRow *alone = NULL;
         for (int i = 0; i < check_nrows; i++) {
@@ -326,4 +327,50 @@ int meshcheck_verdict(const CheckCounts *c, char *buf, size_t n)
         len = w > 0 && len + (size_t)w < n ? len + (size_t)w : n - 1;
     }
     return k;
+}
+
+/* ==== The kinds of location ==== */
+
+const CheckRow *meshcheck_loc_row(CheckLocKind k)
+{
+    static const char *const field[CHECK_LOC_KINDS] = {
+        [CHECK_LOC_HOLES] = "holes",
+        [CHECK_LOC_NM_EDGES] = "nonmanifold_edges",
+        [CHECK_LOC_NM_VERTICES] = "nonmanifold_vertices",
+        [CHECK_LOC_FLIPPED] = "inconsistent_faces",
+        [CHECK_LOC_DEGENERATE] = "degenerate_faces",
+        [CHECK_LOC_DUPLICATE] = "duplicate_faces",
+        [CHECK_LOC_CROSSING] = "self_intersections",
+    };
+    for (int i = 0; k < CHECK_LOC_KINDS && i < check_nrows; i++)
+        if (!strcmp(check_rows[i].field, field[k]))
+            return &check_rows[i];
+    return NULL;
+}
+
+uint64_t meshcheck_loc_total(const CheckCounts *c, CheckLocKind k)
+{
+    const CheckRow *r = meshcheck_loc_row(k);
+    return r ? meshcheck_value(r, c) : 0;
+}
+
+uint32_t meshcheck_loc_located(const CheckLocations *l, CheckLocKind k)
+{
+    switch (k) {
+    case CHECK_LOC_HOLES:
+        return l->nloops;
+    case CHECK_LOC_NM_EDGES:
+        return l->nedges;
+    case CHECK_LOC_NM_VERTICES:
+        return l->nverts;
+    case CHECK_LOC_FLIPPED:
+    case CHECK_LOC_DEGENERATE:
+    case CHECK_LOC_DUPLICATE:
+        return l->nfaces[k - CHECK_LOC_FLIPPED];
+    case CHECK_LOC_CROSSING:
+        return l->npairs;
+    case CHECK_LOC_KINDS:
+        break;
+    }
+    return 0;
 }

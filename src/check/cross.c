@@ -63,7 +63,7 @@ typedef struct {
 typedef struct {
     uint64_t  count;            /* crossing pairs found */
     uint64_t  tests, boxes;     /* exact pair tests and leaf box comparisons, not yet in the total */
-    uint64_t *pairs;            /* (face a << 32 | face b), mesh indices, a < b (detail) */
+    uint64_t *pairs;            /* (face a << 32 | face b), mesh indices, a < b (detail, locations) */
     size_t    n, cap;
     int       oom;
 } Found;
@@ -444,7 +444,7 @@ static void found(Cross *x, Found *fd, uint32_t fa, uint32_t fb)
     fd->count++;
     __atomic_fetch_or(&o->flags[fa], CHECK_INTERSECTS, __ATOMIC_RELAXED);
     __atomic_fetch_or(&o->flags[fb], CHECK_INTERSECTS, __ATOMIC_RELAXED);
-    if (!o->opt->detail || fd->oom || fd->n >= CHECK_PAIRS_MAX)
+    if (!(o->opt->detail || o->opt->locations) || fd->oom || fd->n >= CHECK_PAIRS_MAX)
         return;
     if (fd->n == fd->cap) {
         size_t cap = fd->cap ? fd->cap * 2 : 256;
@@ -622,7 +622,7 @@ static int gather(Cross *x)
         if (x->found[t].oom)
             return -1;
     }
-    if (!o->opt->detail || total == 0)
+    if (!(o->opt->detail || o->opt->locations) || total == 0)
         return 0;
     uint64_t *all = malloc(total * sizeof *all);
     if (!all)

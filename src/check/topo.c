@@ -303,13 +303,15 @@ static int count_fans(ObjCheck *o)
                 fans[p]++;
         }
     free(uf);
-    size_t n = 0, cap = 0;
+    size_t n = 0, cap = 0, loc_cap = 0;
     int r = 0;
     for (uint32_t p = 0; p < o->npts && !r; p++)
         if (fans[p] >= 2) {
             o->c->nonmanifold_vertices++;
             if (o->opt->detail)
                 r = check_push(&o->out->nm_verts, &n, &cap, o->prep[p]);
+            if (!r && o->opt->locations)
+                r = check_locate_vertex(o, p, &loc_cap);
         }
     free(fans);
     return r;
@@ -334,5 +336,5 @@ int check_topology(ObjCheck *o)
         return -1;
     }
     buckets_free(&b);
-    return count_holes(o) || count_fans(o) ? -1 : 0;
+    return count_holes(o) || count_fans(o) || check_locate_topology(o) ? -1 : 0;
 }

@@ -44,7 +44,9 @@ static int check_file(const Options *o, FileCheck *fc)
     free(m.rgb);
     m.rgb = NULL;
     snprintf(fc->format, sizeof fc->format, "%s", m.info.format);
-    CheckOpts co = { .threads = o->threads > 0 ? o->threads : default_threads(), .intersections = 1 };
+    /* where the problems are: the JSON's locations, or the text's few */
+    CheckOpts co = { .threads = o->threads > 0 ? o->threads : default_threads(), .intersections = 1,
+                     .locations = o->json ? o->max_locations : CHECK_LOCATIONS_TEXT };
     int r = meshcheck_run(&fc->mc, &m, &co, fc->err, sizeof fc->err);
     mesh_free(&m);
     if (r)
@@ -97,7 +99,7 @@ static void centre_rounded(const CheckCounts *c, double out[3])
         out[k] = fabs(c->centre[k]) <= 1e-9 * size ? 0 : c->centre[k];
 }
 
-void check_text_counts(Out *out, const CheckCounts *c, const char *unit, const char *ind)
+void check_text_counts(Out *out, const CheckCounts *c, const CheckLocations *loc, const char *unit, const char *ind)
 {
     char u1[16], u2[16], u3[16], words[512];
     if (!c->faces) {
@@ -118,8 +120,11 @@ void check_text_counts(Out *out, const CheckCounts *c, const char *unit, const c
         out_printf(out, "%svolume        none: %s\n", ind, c->closed ? "not orientable" : "not closed");
     CheckLine line[CHECK_LINES_MAX];
     int n = meshcheck_lines(c, line, CHECK_LINES_MAX);
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
         out_printf(out, "%s%-14s%s\n", ind, line[i].label, line[i].text);
+        if (loc)
+            check_text_locations(out, loc, c, line[i].line, unit, ind);
+    }
     meshcheck_verdict(c, words, sizeof words);
     out_printf(out, "%s%-14s%s\n", ind, meshcheck_sound(c) ? "verdict" : "problems", words);
 }
@@ -141,6 +146,9 @@ static void text_file(Out *out, const FileCheck *fc)
     uint32_t nobj = 0;
     for (uint32_t i = 0; i < mc->nobjs; i++)
         nobj += mc->objs[i].c.faces > 0;
+    /* the unit came from the loader's child, as the names did */
+    char unit[4 * sizeof mc->unit];
+    safetext(unit, sizeof unit, mc->unit);
     char format[4 * sizeof fc->format];
     out_printf(out, "%s (%s)", path, safetext(format, sizeof format, fc->format));
     if (nobj > 1) {
@@ -149,13 +157,18 @@ static void text_file(Out *out, const FileCheck *fc)
             if (mc->objs[i].c.faces) {
                 char name[SAFETEXT_NAME];
                 out_printf(out, "  object %u \"%s\"\n", ++k, safetext(name, sizeof name, mc->objs[i].name));
-                check_text_counts(out, &mc->objs[i].c, mc->unit, "    ");
+                check_text_counts(out, &mc->objs[i].c, &mc->objs[i].loc, unit, "    ");
             }
         out_printf(out, "  all %u objects\n", nobj);
-        check_text_counts(out, &mc->file, mc->unit, "    ");
+        check_text_counts(out, &mc->file, NULL, unit, "    ");
     } else {
+        /* one object with faces (or none): the file's figures are its */
+        const CheckLocations *loc = NULL;
+        for (uint32_t i = 0; i < mc->nobjs; i++)
+            if (mc->objs[i].c.faces)
+                loc = &mc->objs[i].loc;
         out_printf(out, "\n");
-        check_text_counts(out, &mc->file, mc->unit, "  ");
+        check_text_counts(out, &mc->file, loc, unit, "  ");
     }
 }
 
@@ -280,6 +293,8 @@ static void json_objects(Out *out, const FileCheck *fc, int *first)
         json_str(out, i < mc->nobjs ? mc->objs[i].name : fc->path);
         out_printf(out, ",\n      \"ok\": %s", json_bool(meshcheck_sound(c)));
         check_json_counts(out, c, "      ");
+        CheckLocations none = { 0 };
+        check_json_locations(out, i < mc->nobjs ? &mc->objs[i].loc : &none, c, "      ");
         out_printf(out, "\n    }");
         *first = 0;
     }

@@ -413,11 +413,51 @@ int oneshot_check_output(const Options *o, char *err, size_t errlen)
     return 0;
 }
 
+/* --problem K: the camera framed on the K-th problem the check found
+ * (found), for the picture -o writes, else the text's, and the problem
+ * put in focus. 0, or 1 after a message. */
+static int focus_problem(const Options *o, Scene *s, Pipeline *p, const SceneCheck *found)
+{
+    uint32_t k = (uint32_t)o->problem - 1;
+    if (k >= found->items.n) {
+        if (found->items.n)
+            safetext_line(stderr, "zview: --problem %d: the check found %u problem%s", o->problem,
+                          found->items.n, found->items.n == 1 ? "" : "s");
+        else
+            safetext_line(stderr, "zview: --problem %d: the check found no problem to show", o->problem);
+        return 1;
+    }
+    int obj = app_focus_object(s, &found->items, k);
+    int w, h;
+    float aspect = 1.0f;
+    if (o->out && !text_file(o, o->out)) {
+        w = o->w > 0 ? o->w : 640;
+        h = o->h > 0 ? o->h : 480;
+    } else {
+        DisplayMode mode = o->mode >= 0 ? (DisplayMode)o->mode : mode_from_locale();
+        int cols, rows, pw, ph;
+        print_size(o, &cols, &rows);
+        mode_cell_pixels(mode, &pw, &ph);
+        w = cols * pw;
+        h = rows * ph;
+        aspect = mode_pixel_aspect(mode);
+    }
+    if (obj < 0 || app_focus_frame(s, &found->items, k, obj, w, h, aspect, o->threads, NULL)) {
+        safetext_line(stderr, "zview: %s", obj < 0 ? "--problem: the problem is on no object" : "out of memory");
+        return 1;
+    }
+    p->problems = 1;
+    p->focus = (ProblemFocus){ &found->items, k, obj };
+    return 0;
+}
+
 int oneshot_run(const Options *o, Scene *s)
 {
     char err[512];
-    /* what the check finds, on the model */
-    if ((o->problems || o->parts) && !s->marks.set && app_check_scene(s, o->threads, err, sizeof err)) {
+    SceneCheck found = { 0 };
+    /* what the check finds, on the model (--problem: one by one too) */
+    if ((o->problems || o->parts || o->problem) && !s->marks.set &&
+        app_check_scene(s, o->threads, o->problem ? &found : NULL, err, sizeof err)) {
         safetext_line(stderr, "zview: %s", err);
         return 1;
     }
@@ -425,10 +465,13 @@ int oneshot_run(const Options *o, Scene *s)
     Pipeline p;
     if (pipeline_init(&p, s, algo, o->threads)) {
         safetext_line(stderr, "zview: out of memory");
+        scene_check_free(&found);
         return 1;
     }
     pipeline_apply_options(&p, o);     /* images: 1 sample unless asked, full resolution already */
     int rc = 0;
+    if (o->problem && (rc = focus_problem(o, s, &p, &found)))
+        goto out;
     Backdrops b = { .image_known = 0, .text_known = 0, .proto = -1 };
     if (o->turntable) {
         rc = turntable(o, s, &p, &b);
@@ -457,5 +500,6 @@ int oneshot_run(const Options *o, Scene *s)
         rc = 1;
 out:
     pipeline_free(&p);
+    scene_check_free(&found);
     return rc;
 }

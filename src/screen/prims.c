@@ -130,6 +130,16 @@ static inline void pproj_point(const PProj *p, double x, double y, double z, dou
     }
 }
 
+int screen_view_point(const ScreenPolys *sp, double x, double y, double z, double out[3])
+{
+    PProj p;
+    pproj_from(&p, sp);
+    if (p.persp && !(p.eye - z >= p.n))
+        return -1;
+    pproj_point(&p, x, y, z, out);
+    return 0;
+}
+
 /* Round to the nearest 1/256 pixel, halves up (the front end's rule);
  * callers keep v within a few screens of the image. The floor by hand:
  * without SSE4.1 floor() is a call, and a line makes six of these (the

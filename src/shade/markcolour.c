@@ -38,6 +38,16 @@ void shade_mark_face_colour(int bits, uint8_t rgb_out[3])
     memcpy(rgb_out, bits & MARK_CROSSING ? crossing_rgb : flipped_rgb, 3);
 }
 
+void shade_problem_colour(int kind, uint8_t rgb_out[3])
+{
+    static const uint8_t orange[3] = { 255, 140, 0 };
+    const uint8_t *c = kind == CHECK_LOC_HOLES ? edge_rgb[0]
+                     : kind == CHECK_LOC_NM_EDGES || kind == CHECK_LOC_NM_VERTICES ? edge_rgb[1]
+                     : kind == CHECK_LOC_FLIPPED ? flipped_rgb
+                     : kind == CHECK_LOC_CROSSING ? crossing_rgb : orange;
+    memcpy(rgb_out, c, 3);
+}
+
 void shade_part_colour(uint32_t part, uint8_t rgb_out[3])
 {
     const uint8_t *c = part_rgb[part % 12];

@@ -324,9 +324,15 @@ static Reaction act_wireframe(App *a)
 static Reaction act_problems(App *a)
 {
     a->p.problems = !a->p.problems;
+    if (!a->p.problems)
+        viewer_focus_clear(a);
     snprintf(a->note, sizeof a->note, "problems %s", a->p.problems ? "shown" : "hidden");
     return RE_RENDER;
 }
+
+/* The next and previous problem in focus (checkjob.c). */
+static Reaction act_next_problem(App *a) { return viewer_problem_step(a, 1); }
+static Reaction act_prev_problem(App *a) { return viewer_problem_step(a, -1); }
 
 static Reaction act_parts(App *a)
 {
@@ -618,6 +624,7 @@ const KeyRow viewer_keys[] = {
     { "( )", "line width", { { '(', act_line_thinner }, { ')', act_line_wider } } },
     { "W ! @", "wireframe, problems, parts",
       { { 'W', act_wireframe }, { '!', act_problems }, { '@', act_parts } } },
+    { ". ,", "next / previous problem", { { '.', act_next_problem }, { ',', act_prev_problem } } },
     { "space", "auto-rotate", { { ' ', act_spin } } },
     { "O", "open a file (Tab completes)", { { 'O', act_open } } },
     { "X Delete", "remove the selected object", { { 'X', act_remove }, { TK_DEL, act_remove } } },

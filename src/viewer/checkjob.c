@@ -13,6 +13,7 @@
 
 #define _DEFAULT_SOURCE
 
+#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -113,6 +114,77 @@ static int wanted(const App *a)
     return (a->p.problems || a->p.parts) && !a->sk.on;
 }
 
+/* ==== The problem in focus ==== */
+
+void viewer_focus_clear(App *a)
+{
+    a->focus = -1;
+    a->p.focus.items = NULL;
+}
+
+/* Item i in focus, the camera framed on it for the picture as last
+ * drawn. */
+static Reaction focus_go(App *a, uint32_t i)
+{
+    int obj = app_focus_object(a->s, &a->items, i), turned = 0;
+    if (obj < 0)
+        return RE_NONE;
+    int w = a->p.vp.w > 0 ? a->p.vp.w : 80, h = a->p.vp.h > 0 ? a->p.vp.h : 48;
+    float aspect = a->p.vp.pixel_aspect > 0 ? a->p.vp.pixel_aspect : 1;
+    if (app_focus_frame(a->s, &a->items, i, obj, w, h, aspect, a->opt->threads, &turned)) {
+        viewer_note(a, "out of memory framing the problem");
+        return RE_DRAW;
+    }
+    a->focus = (int)i;
+    a->p.focus = (ProblemFocus){ &a->items, i, obj };
+    if (turned)
+        viewer_note(a, "turned: hidden from the view before");
+    return RE_RENDER;
+}
+
+/* A step asked before the check was done, or --problem K's. */
+static Reaction focus_pending(App *a)
+{
+    Reaction r = RE_NONE;
+    if (a->focus_want >= 0 || a->focus_step)
+        a->note[0] = 0;         /* "checking: ..." said what is done now */
+    if (a->focus_want >= 0 && (uint32_t)a->focus_want < a->items.n)
+        r = focus_go(a, (uint32_t)a->focus_want);
+    else if (a->focus_want >= 0)
+        viewer_note(a, "--problem %d: the check found %u", a->focus_want + 1, a->items.n);
+    else if (a->focus_step && a->items.n)
+        r = focus_go(a, a->focus_step > 0 ? 0 : a->items.n - 1);
+    else if (a->focus_step)
+        viewer_note(a, "no problem to go to");
+    a->focus_want = -1;
+    a->focus_step = 0;
+    return r;
+}
+
+Reaction viewer_problem_step(App *a, int step)
+{
+    if (a->sk.on)
+        return RE_NONE;
+    Reaction r = RE_NONE;
+    if (!a->p.problems) {
+        a->p.problems = 1;
+        r = RE_RENDER;
+    }
+    /* the check of this scene not done yet: the step waits for it */
+    if (a->chk || !a->s->marks.set || a->check_gen != a->s->gen) {
+        a->focus_step = step;
+        viewer_note(a, "checking: the problem comes when it is done");
+        return r | RE_DRAW;
+    }
+    if (!a->items.n) {
+        viewer_note(a, "no problem to go to");
+        return r | RE_DRAW;
+    }
+    int n = (int)a->items.n;
+    int i = a->focus < 0 ? (step > 0 ? 0 : n - 1) : ((a->focus + step) % n + n) % n;
+    return r | focus_go(a, (uint32_t)i);
+}
+
 Reaction viewer_check_poll(App *a)
 {
     Scene *s = a->s;
@@ -129,7 +201,12 @@ Reaction viewer_check_poll(App *a)
                 snprintf(a->check_err, sizeof a->check_err, "%.150s", j->err);
             else if (scene_marks_set(s, j->res.files, j->res.nfiles, a->check_err, sizeof a->check_err) == 0) {
                 a->check = j->res.all;
-                r = RE_RENDER;
+                /* the problems one by one are the viewer's now */
+                viewer_focus_clear(a);
+                meshcheck_items_free(&a->items);
+                a->items = j->res.items;
+                memset(&j->res.items, 0, sizeof j->res.items);
+                r = RE_RENDER | focus_pending(a);
             }
         }
         job_free(j);
@@ -145,6 +222,9 @@ Reaction viewer_check_poll(App *a)
         a->check_started = 1;
         a->check_gen = s->gen;
         a->check_err[0] = 0;
+        /* what was found is of a scene that is gone */
+        viewer_focus_clear(a);
+        meshcheck_items_free(&a->items);
         a->chk = job_start(s, a->opt->threads, a->check_err, sizeof a->check_err);
         return RE_DRAW;
     }
@@ -161,6 +241,11 @@ void viewer_check_status(const App *a, int max_items, char *buf, size_t len)
         snprintf(buf, len, "checking %.1fs", t);
     } else if (a->check_err[0]) {
         snprintf(buf, len, "check: %s", a->check_err);
+    } else if (a->s->marks.set && a->focus >= 0 && (uint32_t)a->focus < a->items.n) {
+        const CheckItem *e = &a->items.item[a->focus];
+        const char *unit = e->file >= 0 && e->file < a->s->nmeshes ? a->s->meshes[e->file].info.unit : "";
+        check_item_words(&a->items, (uint32_t)a->focus, &a->check, unit, ldexp(1, a->s->pos_exp),
+                         a->utf8 ? " \xc2\xb7 " : ", ", max_items <= 0, buf, len);
     } else if (a->s->marks.set) {
         check_verdict_items(&a->check, a->utf8 ? " \xc2\xb7 " : ", ", max_items, buf, len);
     }

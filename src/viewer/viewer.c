@@ -74,6 +74,8 @@ int viewer_app_init(App *a, const Options *o, Scene *s, int loading)
     a->pic_cols = o->w;     /* --size fixes the picture (0: the window's size) */
     a->pic_rows = o->h;
     a->reload = -1;
+    a->focus = -1;
+    a->focus_want = o->problem > 0 ? o->problem - 1 : -1;
     char err[160];
     a->first_cam = s->cam;
     if (loading && !(a->first = firstload_start(o, err, sizeof err)))
@@ -89,6 +91,7 @@ fail:
 void viewer_app_free(App *a)
 {
     pipeline_free(&a->p);       /* its runner first: it may read the sketch's scene */
+    meshcheck_items_free(&a->items);
     sketch_mode_free(a);
     viewer_live_free(a);
 }

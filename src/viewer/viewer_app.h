@@ -151,6 +151,10 @@ typedef struct App {
     uint32_t    check_gen;  /* the scene generation checked (its marks are set when it went well) */
     CheckCounts check;      /* its figures */
     char        check_err[160];     /* why it failed, "" none */
+    CheckItems  items;      /* its problems one by one (the . and , keys) */
+    int         focus;      /* the item in focus, -1 none */
+    int         focus_step; /* . or , pressed before the check was done: +1, -1; 0 none */
+    int         focus_want; /* --problem K: item K - 1 once the check is done; -1 none */
     Watch      *watch;      /* --watch, or NULL */
     int         watch_set;  /* the files are watched as of watch_gen */
     uint32_t    watch_gen;
@@ -268,6 +272,12 @@ Reaction viewer_clear_scene(App *a);           /* E */
  * when not wanted), the counts for the info panel. */
 Reaction viewer_check_poll(App *a);
 void     viewer_check_status(const App *a, int max_items, char *buf, size_t len);
+/* . and ,: the next (step 1) or previous (-1) problem in focus, the
+ * camera framed on it; --problems turned on first when it is off, and
+ * the step taken when the check is done. viewer_focus_clear: none in
+ * focus (the items stay). */
+Reaction viewer_problem_step(App *a, int step);
+void     viewer_focus_clear(App *a);
 int      viewer_check_report(const App *a, ReportLine *lines, int max);
 /* watch.c: a watched file changed: read it again (a load job). */
 Reaction viewer_watch_poll(App *a);

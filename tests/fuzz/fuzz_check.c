@@ -6,6 +6,7 @@
  *   bit 3      lenient (skip what cannot be read) instead of strict
  *   bit 4      the crossing tests on three threads instead of one
  *   bit 5      --flip: every face wound the other way
+ *   bit 7      locate the first 5 problems of each kind, not 1 (issue 30)
  *   bit 6      generated (issue 28): no file, but the inputs that once
  *              kept --check busy for hours, built from the next bytes
  *              (gen_obj): a planar fan around one vertex, coincident
@@ -24,8 +25,10 @@
  * test: then the count is a lower bound, and where it stopped depends on
  * the threads). Small meshes are also counted by brute force here (the
  * boundary and non-manifold edges, each pair of corners against every
- * other, degenerate faces left out). Aborts on the first thing that does
- * not hold. */
+ * other, degenerate faces left out). Where the problems are (the first 1
+ * or 5 of each kind) must be what the flags and lists say: each step of
+ * a hole's loop an edge of the boundary list, the faces listed flagged
+ * so. Aborts on the first thing that does not hold. */
 
 #define _DEFAULT_SOURCE
 
@@ -133,6 +136,67 @@ static void check_object(const Mesh *m, const MeshCheck *mc, uint32_t i)
         CHECK(p[0] < p[1] && p[0] >= o->face_first && p[1] < o->face_first + o->face_count);
         CHECK(mc->face_flags[p[0]] & mc->face_flags[p[1]] & CHECK_INTERSECTS);
         CHECK(k == 0 || p[-2] < p[0] || (p[-2] == p[0] && p[-1] < p[1]));
+    }
+}
+
+/* Does the boundary (or non-manifold) list of o hold the edge between
+ * positions a and b, either way? */
+static int listed_edge(const Mesh *m, const uint32_t *list, uint32_t n, const float *a, const float *b)
+{
+    for (uint32_t k = 0; k < n; k++) {
+        const float *p = m->pos + 3 * (size_t)list[2 * k], *q = m->pos + 3 * (size_t)list[2 * k + 1];
+        int pa = p[0] == a[0] && p[1] == a[1] && p[2] == a[2], qb = q[0] == b[0] && q[1] == b[1] && q[2] == b[2];
+        int pb = p[0] == b[0] && p[1] == b[1] && p[2] == b[2], qa = q[0] == a[0] && q[1] == a[1] && q[2] == a[2];
+        if ((pa && qb) || (pb && qa))
+            return 1;
+    }
+    return 0;
+}
+
+/* Where the problems are (CheckOpts.locations = want): of each kind the
+ * first want of them, each what the lists and flags of the check say. */
+static void check_locations(const Mesh *m, const MeshCheck *mc, uint32_t i, uint32_t want)
+{
+    const CheckObject *o = &mc->objs[i];
+    const CheckLocations *l = &o->loc;
+    const CheckCounts *c = &o->c;
+    for (int k = 0; k < CHECK_LOC_KINDS; k++) {
+        uint64_t total = meshcheck_loc_total(c, (CheckLocKind)k);
+        CHECK(meshcheck_loc_located(l, (CheckLocKind)k) == (total < want ? total : want));
+    }
+    int small = c->boundary_edges + c->nonmanifold_edges <= 300;
+    for (uint32_t h = 0; h < l->nloops; h++) {
+        uint32_t s = l->loop_start[h], e = l->loop_start[h + 1];
+        CHECK(e >= s + 3 && e - s <= c->boundary_edges);
+        CHECK(l->loop_length[h] >= 0);
+        for (uint32_t p = s; p < e && small; p++)
+            CHECK(listed_edge(m, o->boundary, c->boundary_edges, l->loop_pt + 3 * (size_t)p,
+                              l->loop_pt + 3 * (size_t)(p + 1 < e ? p + 1 : s)));
+    }
+    for (uint32_t k = 0; k < l->nedges; k++) {
+        CHECK(!small || listed_edge(m, o->nm_edges, c->nonmanifold_edges, l->edge_pt + 6 * (size_t)k,
+                                    l->edge_pt + 6 * (size_t)k + 3));
+        CHECK(l->edge_start[k + 1] > l->edge_start[k]);
+        for (uint32_t f = l->edge_start[k]; f < l->edge_start[k + 1]; f++) {
+            CHECK(l->edge_face[f] >= o->face_first && l->edge_face[f] < o->face_first + o->face_count);
+            CHECK(f == l->edge_start[k] || l->edge_face[f - 1] < l->edge_face[f]);
+            CHECK(mc->face_flags[l->edge_face[f]] & CHECK_NONMANIFOLD);
+        }
+    }
+    /* the points in the order of the detail's list */
+    for (uint32_t k = 0; k < l->nverts; k++)
+        CHECK(!memcmp(l->vert_pt + 3 * (size_t)k, m->pos + 3 * (size_t)o->nm_verts[k], 3 * sizeof(float)));
+    static const uint8_t flag[3] = { CHECK_FLIPPED, CHECK_DEGENERATE, CHECK_DUPLICATE };
+    for (int k = 0; k < 3; k++)
+        for (uint32_t j = 0; j < l->nfaces[k]; j++) {
+            uint32_t f = l->face[k][j];
+            CHECK(f >= o->face_first && f < o->face_first + o->face_count && (mc->face_flags[f] & flag[k]));
+            CHECK(j == 0 || l->face[k][j - 1] < f);
+        }
+    for (uint32_t k = 0; k < l->npairs; k++) {
+        CHECK(l->pair_face[2 * k] == o->pairs[2 * k] && l->pair_face[2 * k + 1] == o->pairs[2 * k + 1]);
+        for (int d = 0; d < 3; d++)
+            CHECK(isfinite(l->pair_pt[3 * k + d]));
     }
 }
 
@@ -308,12 +372,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (sel & 32)
         mesh_flip_winding(&m);
     int threads = sel & 16 ? 3 : 1;
-    CheckOpts co = { .threads = threads, .intersections = 1, .detail = 1 };
+    uint32_t want = 1 + (sel >> 7) * 4;         /* where the first 1 or 5 of each kind are */
+    CheckOpts co = { .threads = threads, .intersections = 1, .detail = 1, .locations = want };
     MeshCheck mc, plain;
     CHECK(meshcheck_run(&mc, &m, &co, err, sizeof err) == 0);
     CHECK(mc.nobjs == m.nobjs);
     for (uint32_t i = 0; i < mc.nobjs; i++) {
         check_object(&m, &mc, i);
+        check_locations(&m, &mc, i, want);
         brute_edges(&m, &mc.objs[i]);
     }
     check_file(&mc);
@@ -323,8 +389,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     CHECK(meshcheck_run(&plain, &m, &co, err, sizeof err) == 0);
     CHECK(plain.face_flags == NULL && plain.face_part == NULL);
     CHECK(same_counts(&plain.file, &mc.file));
-    for (uint32_t i = 0; i < mc.nobjs; i++)
+    for (uint32_t i = 0; i < mc.nobjs; i++) {
         CHECK(same_counts(&plain.objs[i].c, &mc.objs[i].c));
+        /* located alike without the lists, which are not kept for it */
+        const CheckLocations *a = &plain.objs[i].loc, *b = &mc.objs[i].loc;
+        for (int k = 0; k < CHECK_LOC_KINDS; k++)
+            CHECK(plain.objs[i].c.intersections_stopped ||
+                  meshcheck_loc_located(a, (CheckLocKind)k) == meshcheck_loc_located(b, (CheckLocKind)k));
+        CHECK(plain.objs[i].pairs == NULL && plain.objs[i].boundary == NULL);
+        CHECK(a->nloops == 0 || !memcmp(a->loop_pt, b->loop_pt, 3 * sizeof(float) * a->loop_start[a->nloops]));
+    }
     meshcheck_free(&plain);
     meshcheck_free(&mc);
     mesh_free(&m);

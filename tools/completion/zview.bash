@@ -43,7 +43,7 @@ _zview()
             return ;;
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
             --scale | --persp | --grid | --max-polys | --max-memory | --views | -j | --threads | --fps | --max-rate | --crease | \
-            --light | --ambient | --turntable | --point-size | --line-width | --contrast)
+            --light | --ambient | --turntable | --point-size | --line-width | --contrast | --problem | --max-locations)
             return ;;
     esac
     $split && return
@@ -55,7 +55,7 @@ _zview()
             --views --threads --json --fps --max-rate --format --formats --up --flip --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
             --turntable --point-size --line-width --wireframe --points --strict --no-sandbox --max-memory --bg --contrast --no-textures
-            --problems --parts --watch" -- "$cur"))
+            --problems --problem --max-locations --parts --watch" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
     fi
