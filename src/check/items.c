@@ -135,6 +135,8 @@ int meshcheck_items_add(CheckItems *it, const MeshCheck *mc, const Mesh *m, int 
 
 void meshcheck_items_order(CheckItems *it)
 {
+    if (it->n == 0)
+        return; /* nothing to order, and item may be NULL */
     /* a stable counting sort by kind: files and objects stay in order */
     uint32_t count[CHECK_LOC_KINDS + 1] = { 0 };
     for (uint32_t i = 0; i < it->n; i++)
