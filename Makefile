@@ -240,6 +240,9 @@ $(BUILD)/memframes: tools/memframes.c $(LIBOBJS)
 $(BUILD)/checkbench: tools/checkbench.c $(LIBOBJS)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
+$(BUILD)/repairbench: tools/repairbench.c $(LIBOBJS)
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
 # Loading big OBJ files (issue 21): the first picture against wc -l, and
 # memory per triangle, for the dragon and its 5.2M and 31M subdivisions
 # (written to a temporary folder and deleted). BEFORE=path/to/zview adds
