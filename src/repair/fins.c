@@ -515,19 +515,23 @@ int rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cu, const Fill *fills, uint32_t nfi
     /* the copies on cuts left open go back to the vertex they copy, when
      * no fill uses them: the edge is the fin it was */
     uint32_t undone = 0;
+    uint8_t *gone = calloc(cu->n + 1, 1);
+    if (!gone) {
+        free(ks.key);
+        return -1;
+    }
     for (uint32_t k = 0; k < cu->n; k++) {
         uint32_t a = cu->v[2 * k], b = cu->v[2 * k + 1];
         if (key_has(&ks, vpair(a, b)))
             continue;
-        int any = 0;
         for (int j = 0; j < 2; j++) {
             uint32_t v = j ? b : a;
             if (v >= cu->vbase && !key_has(&ks, (uint64_t)UINT32_MAX << 32 | v)) {
                 key_put(&ks, (uint64_t)(UINT32_MAX - 1) << 32 | v);
-                any = 1;
+                gone[k] = 1;
             }
         }
-        undone += any;
+        undone += gone[k];
     }
     uint32_t moved = 0;
     for (uint32_t c = 0; undone && c < t->nc; c++) {
@@ -537,14 +541,29 @@ int rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cu, const Fill *fills, uint32_t nfi
             moved++;
         }
     }
+    /* the loops left open along a cut: listed if it stays; an open
+     * boundary listed at a copy put back names the vertex it copied */
+    int rc = 0;
+    for (uint32_t i = 0; i < cu->npend && rc == 0; i++)
+        if (!gone[cu->pend_cut[i]])
+            rc = rp_hole_open(r, cu->pend[i].object, cu->pend[i].edges, cu->pend[i].vertex, cu->pend[i].why);
+    for (uint32_t i = 0; i < r->rep->nholes; i++) {
+        uint32_t *v = &r->rep->holes[i].vertex;
+        if (r->rep->holes[i].object == t->obj && *v >= cu->vbase &&
+            key_has(&ks, (uint64_t)(UINT32_MAX - 1) << 32 | *v))
+            *v = r->anchor[*v];
+    }
+    free(gone);
     free(ks.key);
     r->rep->nm_edges -= undone < r->rep->nm_edges ? undone : r->rep->nm_edges;
     r->rep->cuts_undone += undone;
-    return moved ? rp_topo_pair(r, t, 1) : 0;
+    return rc ? rc : moved ? rp_topo_pair(r, t, 1) : 0;
 }
 
 void rp_cuts_free(Cuts *cu)
 {
     free(cu->v);
+    free(cu->pend);
+    free(cu->pend_cut);
     memset(cu, 0, sizeof *cu);
 }

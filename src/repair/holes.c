@@ -48,6 +48,8 @@ static FillMethod first_method(uint32_t n)
 }
 
 typedef struct {
+    Cuts     *cuts;
+    uint32_t *loop_cut;         /* per loop: a cut it runs along, RP_NONE */
     Fill     *fill;             /* the fills taken first, then the candidates */
     uint32_t  ntaken;
     uint32_t *cand;             /* the loops with a candidate */
@@ -55,6 +57,57 @@ typedef struct {
     FillMethod *method;         /* per loop */
     uint8_t  *bad;
 } Rounds;
+
+/* Loop k is left open: listed now, or when it runs along a cut, only if
+ * the cut stays (fins.c puts back the cuts no fill closed). */
+static int loop_open(Rep *r, const ObjTopo *t, const Loops *l, Rounds *rd, uint32_t k, RepairOpenWhy why)
+{
+    RepairHole h = { .object = t->obj, .edges = l->start[k + 1] - l->start[k], .vertex = l->vert[l->start[k]],
+                     .why = why };
+    uint32_t cut = rd->loop_cut ? rd->loop_cut[k] : RP_NONE;
+    if (cut == RP_NONE)
+        return rp_hole_open(r, h.object, h.edges, h.vertex, why);
+    Cuts *cu = rd->cuts;
+    if (cu->npend == cu->pendcap) {
+        uint32_t c = cu->pendcap ? cu->pendcap * 2 : 16;
+        RepairHole *p = realloc(cu->pend, c * sizeof *p);
+        if (!p)
+            return -1;
+        cu->pend = p;
+        uint32_t *q = realloc(cu->pend_cut, c * sizeof *q);
+        if (!q)
+            return -1;
+        cu->pend_cut = q;
+        cu->pendcap = c;
+    }
+    cu->pend[cu->npend] = h;
+    cu->pend_cut[cu->npend++] = cut;
+    return 0;
+}
+
+/* Which loops run along a cut (an edge of theirs is a cut's). */
+static int loops_on_cuts(const Loops *l, Rounds *rd)
+{
+    const Cuts *cu = rd->cuts;
+    if (!cu || !cu->n)
+        return 0;
+    if (!(rd->loop_cut = malloc(l->nloops * sizeof *rd->loop_cut)))
+        return -1;
+    for (uint32_t k = 0; k < l->nloops; k++) {
+        rd->loop_cut[k] = RP_NONE;
+        uint32_t s = l->start[k], n = l->start[k + 1] - s;
+        for (uint32_t i = 0; i < n && rd->loop_cut[k] == RP_NONE; i++) {
+            uint32_t a = l->vert[s + i], b = l->vert[s + (i + 1) % n];
+            /* few cuts: a fin of an odd number is rare */
+            for (uint32_t c = 0; c < cu->n; c++)
+                if ((cu->v[2 * c] == a && cu->v[2 * c + 1] == b) || (cu->v[2 * c] == b && cu->v[2 * c + 1] == a)) {
+                    rd->loop_cut[k] = c;
+                    break;
+                }
+        }
+    }
+    return 0;
+}
 
 /* A candidate for every loop still open from its current method on;
  * the loops no method fills are listed open. */
@@ -72,12 +125,10 @@ static int candidates(Rep *r, ObjTopo *t, const Loops *l, const EdgeSet *es, uin
                 break;
             rd->method[k]++;
         }
-        if (f->ntri) {
+        if (f->ntri)
             rd->cand[kept++] = k;
-        } else if (rp_hole_open(r, t->obj, l->start[k + 1] - l->start[k], l->vert[l->start[k]],
-                                REPAIR_OPEN_CROSSING)) {
+        else if (loop_open(r, t, l, rd, k, REPAIR_OPEN_CROSSING))
             return -1;
-        }
     }
     rd->ncand = kept;
     return 0;
@@ -108,7 +159,7 @@ static void settle(Rep *r, Rounds *rd)
     rd->ncand = left;
 }
 
-int rp_holes(Rep *r, ObjTopo *t, Fill **out, uint32_t *out_n, uint64_t *budget)
+int rp_holes(Rep *r, ObjTopo *t, Cuts *cuts, Fill **out, uint32_t *out_n, uint64_t *budget)
 {
     Loops l;
     *out = NULL;
@@ -116,7 +167,7 @@ int rp_holes(Rep *r, ObjTopo *t, Fill **out, uint32_t *out_n, uint64_t *budget)
     if (rp_loops_find(r, t, &l))
         return -1;
     int rc = -1;
-    Rounds rd = { 0 };
+    Rounds rd = { .cuts = cuts };
     EdgeSet *es = NULL;
     for (uint32_t g = 0; g < l.nstray; g++)
         if (rp_hole_open(r, t->obj, l.stray_edges[g], l.stray_vertex[g], REPAIR_OPEN_UNORIENTED))
@@ -130,16 +181,16 @@ int rp_holes(Rep *r, ObjTopo *t, Fill **out, uint32_t *out_n, uint64_t *budget)
     rd.method = malloc(l.nloops * sizeof *rd.method);
     rd.bad = malloc(l.nloops);
     es = rp_edges_new(t, r);
-    if (!rd.fill || !rd.cand || !rd.method || !rd.bad || !es)
+    if (!rd.fill || !rd.cand || !rd.method || !rd.bad || !es || loops_on_cuts(&l, &rd))
         goto out;
     for (uint32_t k = 0; k < l.nloops; k++) {
         uint32_t n = l.start[k + 1] - l.start[k];
         rd.method[k] = first_method(n);
         if (r->opt->max_hole && n > r->opt->max_hole) {
-            if (rp_hole_open(r, t->obj, n, l.vert[l.start[k]], REPAIR_OPEN_TOO_BIG))
+            if (loop_open(r, t, &l, &rd, k, REPAIR_OPEN_TOO_BIG))
                 goto out;
         } else if (lone_face(r, &l, k)) {
-            if (rp_hole_open(r, t->obj, n, l.vert[l.start[k]], REPAIR_OPEN_LONE_FACE))
+            if (loop_open(r, t, &l, &rd, k, REPAIR_OPEN_LONE_FACE))
                 goto out;
         } else {
             rd.cand[rd.ncand++] = k;
@@ -169,6 +220,7 @@ out:
     free(rd.cand);
     free(rd.method);
     free(rd.bad);
+    free(rd.loop_cut);
     rp_edges_free(es);
     rp_loops_free(&l);
     return rc;

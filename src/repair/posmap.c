@@ -168,10 +168,13 @@ uint32_t rp_vertex_add(Rep *r, const float p[3], const float *rgb, uint32_t anch
         memcpy(r->w.rgb + 3 * (size_t)v, rgb ? rgb : white, 3 * sizeof *rgb);
     }
     size_t h = slot_of(&r->ph, r->w.pos, p);
-    /* a new vertex is a new point: the callers move it until it is */
-    ZV_ASSERT(r->ph.slot[h] == RP_NONE);
-    r->ph.slot[h] = v;
-    r->pid[v] = r->npts++;
+    if (r->ph.slot[h] == RP_NONE) {
+        r->ph.slot[h] = v;
+        r->pid[v] = r->npts++;
+    } else {
+        /* the copies of a fan's vertices (a colour seam) share its new point */
+        r->pid[v] = r->pid[r->ph.slot[h]];
+    }
     r->anchor[v] = anchor;
     r->w.nverts++;
     return v;

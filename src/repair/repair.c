@@ -235,7 +235,7 @@ static int object_steps(Rep *r, uint32_t i, Filled *fd)
     if (rc == 0 && (steps & REPAIR_WINDING))
         rc = rp_winding(r, &t);
     if (rc == 0 && split && (steps & REPAIR_HOLES) && t.nboundary)
-        rc = rp_holes(r, &t, &fd->fills[i], &fd->nfills[i], &fd->dp_budget);
+        rc = rp_holes(r, &t, &cuts, &fd->fills[i], &fd->nfills[i], &fd->dp_budget);
     if (rc == 0)
         rc = rp_cuts_settle(r, &t, &cuts, fd->fills[i], fd->nfills[i]);
     if (rc == 0 && (steps & REPAIR_WINDING) && !fd->nfills[i])

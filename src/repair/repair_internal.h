@@ -95,10 +95,11 @@ int  rp_points_build(Rep *r);
 uint32_t rp_point_find(Rep *r, const float p[3]);
 /* Free the table until a new vertex needs it again. */
 void rp_points_drop_table(Rep *r);
-/* A new vertex at p (a position no point has yet: the caller made sure)
- * with colour rgb (NULL: white where the mesh has colours), placed
- * after vertex anchor in the output. Its index, or RP_NONE (out of
- * memory, or 32-bit indices full). */
+/* A new vertex at p (on the point there, if there is one: the callers
+ * see that a new position is free first) with colour rgb (NULL: white
+ * where the mesh has colours), placed after vertex anchor in the
+ * output. Its index, or RP_NONE (out of memory, or 32-bit indices
+ * full). */
 uint32_t rp_vertex_add(Rep *r, const float p[3], const float *rgb, uint32_t anchor);
 void rp_points_free(Rep *r);
 
@@ -203,6 +204,10 @@ typedef struct {
     uint32_t *v;                /* 2 per cut */
     uint32_t  n, cap;
     uint32_t  vbase;            /* vertices from here on are the split's copies */
+    /* loops left open that run along a cut: listed only if the cut stays */
+    RepairHole *pend;
+    uint32_t   *pend_cut;
+    uint32_t    npend, pendcap;
 } Cuts;
 int  rp_manifold(Rep *r, ObjTopo *t, Cuts *cuts);
 /* orient.c: flip the fewest faces so that each orientable patch
@@ -244,7 +249,7 @@ void rp_loops_free(Loops *l);
 
 /* Fill the loops of one object; the fills that pass (fillcheck.c) go
  * to *out (out_n of them), the rest are counted open. */
-int  rp_holes(Rep *r, ObjTopo *t, Fill **out, uint32_t *out_n, uint64_t *dp_budget);
+int  rp_holes(Rep *r, ObjTopo *t, Cuts *cuts, Fill **out, uint32_t *out_n, uint64_t *dp_budget);
 
 /* How a loop is filled: the methods in the order tried. */
 typedef enum { FILL_DP, FILL_EAR, FILL_FAN, FILL_NONE } FillMethod;

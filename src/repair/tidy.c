@@ -250,8 +250,11 @@ static int remap(Rep *r, const uint32_t *idx, uint32_t k)
         m->point[i] = idx[m->point[i]];
     for (uint32_t c = 0; c < nl; c++)
         m->line_corner[c] = idx[m->line_corner[c]];
-    for (uint32_t h = 0; h < r->rep->nholes; h++)
+    for (uint32_t h = 0; h < r->rep->nholes; h++) {
+        /* a hole's vertex is on its loop: used, so kept */
+        ZV_ASSERT(idx[r->rep->holes[h].vertex] != RP_NONE);
         r->rep->holes[h].vertex = idx[r->rep->holes[h].vertex];
+    }
     if (point)
         m->point = point;
     free(m->pos);
