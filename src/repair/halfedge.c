@@ -65,9 +65,15 @@ void rp_face_normal(const Rep *r, uint32_t f, double n[3])
 
 /* ==== Points ==== */
 
-/* The object's points from its corners' vertices. */
+/* The object's points from its corners' vertices: numbered from 0 for
+ * the object (cpt), or the mesh's own (no array) when the object is a
+ * large part of the mesh. */
 static int topo_points(Rep *r, ObjTopo *t)
 {
+    if (!t->cpt) {
+        t->npts = r->npts;
+        return 0;
+    }
     if (r->loccap < r->npts) {
         uint32_t *l = realloc(r->loc, ((size_t)r->npts + 1) * sizeof *l);
         if (!l)
@@ -78,10 +84,9 @@ static int topo_points(Rep *r, ObjTopo *t)
     }
     t->npts = 0;
     for (uint32_t c = 0; c < t->nc; c++) {
-        uint32_t v = rp_cvert(r, t, c), g = r->pid[v];
+        uint32_t g = r->pid[rp_cvert(r, t, c)];
         if (r->loc[g] == RP_NONE) {
             r->loc[g] = t->npts;
-            t->prep[t->npts] = v;
             t->gpt[t->npts++] = g;
         }
         t->cpt[c] = r->loc[g];
@@ -103,7 +108,7 @@ static int cmp_u64(const void *x, const void *y)
  * is sorted by. */
 static inline uint32_t far_point(const Rep *r, const ObjTopo *t, uint32_t h)
 {
-    uint32_t p = t->cpt[h], q = t->cpt[rp_next(r, t, h)];
+    uint32_t p = rp_cpt(r, t, h), q = rp_cpt(r, t, rp_next(r, t, h));
     return p < q ? q : p;
 }
 
@@ -184,7 +189,7 @@ static int pairing_fill(Rep *r, ObjTopo *t, Pairing *pg)
     if (!(pg->off = calloc((size_t)np + 2, sizeof *pg->off)))
         return -1;
     for (uint32_t c = 0; c < t->nc; c++) {
-        uint32_t p = t->cpt[c], q = t->cpt[rp_next(r, t, c)];
+        uint32_t p = rp_cpt(r, t, c), q = rp_cpt(r, t, rp_next(r, t, c));
         if (t->skip[rp_cface(t, c)]) {
             t->mate[c] = RP_SKIPPED;
         } else if (p == q) {
@@ -206,7 +211,7 @@ static int pairing_fill(Rep *r, ObjTopo *t, Pairing *pg)
         return -1;
     for (uint32_t c = 0; c < t->nc; c++)
         if (t->mate[c] == RP_BOUNDARY) {
-            uint32_t p = t->cpt[c], q = t->cpt[rp_next(r, t, c)];
+            uint32_t p = rp_cpt(r, t, c), q = rp_cpt(r, t, rp_next(r, t, c));
             pg->he[pg->off[p < q ? p : q]++] = c;
         }
     /* the cursors went one bucket on: back */
@@ -267,12 +272,13 @@ int rp_topo_build(Rep *r, uint32_t i, ObjTopo *t)
     for (uint32_t f = 0; t->tris && f < t->nf; f++)
         t->tris = m->face_start[t->f0 + f + 1] - m->face_start[t->f0 + f] == 3;
     t->cface = t->tris ? NULL : malloc(n * sizeof *t->cface);
-    t->cpt = malloc(n * sizeof *t->cpt);
-    t->prep = malloc(n * sizeof *t->prep);
-    t->gpt = malloc(n * sizeof *t->gpt);
+    /* the mesh's points when the object is a quarter of its corners or more */
+    int local = (uint64_t)t->nc * 4 < r->npts;
+    t->cpt = local ? malloc(n * sizeof *t->cpt) : NULL;
+    t->gpt = local ? malloc(n * sizeof *t->gpt) : NULL;
     t->mate = malloc(n * sizeof *t->mate);
     t->skip = calloc((size_t)t->nf + 1, 1);
-    if ((!t->tris && !t->cface) || !t->cpt || !t->prep || !t->gpt || !t->mate || !t->skip)
+    if ((!t->tris && !t->cface) || (local && (!t->cpt || !t->gpt)) || !t->mate || !t->skip)
         goto fail;
     for (uint32_t f = 0; f < t->nf; f++) {
         for (uint32_t c = rp_start(r, t, f); !t->tris && c < rp_start(r, t, f + 1); c++)
@@ -292,7 +298,6 @@ void rp_topo_free(Rep *r, ObjTopo *t)
     (void)r;
     free(t->cface);
     free(t->cpt);
-    free(t->prep);
     free(t->gpt);
     free(t->mate);
     free(t->skip);

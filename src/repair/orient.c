@@ -70,15 +70,15 @@ static double face_volume(const Rep *r, uint32_t f, const double ref[3])
 static void object_ref(const Rep *r, const ObjTopo *t, double ref[3])
 {
     float lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-    for (uint32_t p = 0; p < t->npts; p++) {
-        const float *q = rp_vpos(r, t->prep[p]);
+    for (uint32_t c = 0; c < t->nc; c++) {
+        const float *q = rp_vpos(r, rp_cvert(r, t, c));
         for (int k = 0; k < 3; k++) {
             lo[k] = q[k] < lo[k] ? q[k] : lo[k];
             hi[k] = q[k] > hi[k] ? q[k] : hi[k];
         }
     }
     for (int k = 0; k < 3; k++)
-        ref[k] = t->npts ? ((double)lo[k] + hi[k]) / 2 : 0;
+        ref[k] = t->nc ? ((double)lo[k] + hi[k]) / 2 : 0;
 }
 
 /* ==== Agreeing ==== */
@@ -137,7 +137,7 @@ int rp_winding(Rep *r, ObjTopo *t)
     for (uint32_t c = 0; c < t->nc; c++) {
         uint32_t m = t->mate[c];
         if (m < RP_SPECIAL && c < m)
-            punion(&u, rp_cface(t, c), rp_cface(t, m), t->cpt[c] == t->cpt[m]);
+            punion(&u, rp_cface(t, c), rp_cface(t, m), rp_cpt(r, t, c) == rp_cpt(r, t, m));
     }
     int p;
     for (uint32_t f = 0; f < nf; f++) {
@@ -338,7 +338,7 @@ int rp_outward(Rep *r, ObjTopo *t)
         Part *q = &pt[label[f]];
         if (m == RP_BOUNDARY || m == RP_NONMANIF)
             q->closed &= m != RP_BOUNDARY;
-        else if (m < RP_SPECIAL && t->cpt[c] == t->cpt[m])
+        else if (m < RP_SPECIAL && rp_cpt(r, t, c) == rp_cpt(r, t, m))
             q->agrees = 0;
         if (m == RP_NONMANIF)
             q->agrees = 0;      /* no winding to agree on across a fin */

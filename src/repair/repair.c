@@ -322,12 +322,9 @@ static int steps(Rep *r)
     return rc;
 }
 
-/* One go at every object at its level: the repaired copy in r, the
- * check of it in *after. 0, or -1 (out of memory, cancelled). */
-static int attempt(Rep *r, const Mesh *m, MeshCheck *after)
+/* The check of r's repaired copy into *after. */
+static int check_after(Rep *r, MeshCheck *after)
 {
-    if (copy_in(r, m) || steps(r))
-        return -1;
     double t = now_ms();
     CheckOpts co = { .threads = r->opt->threads, .intersections = r->opt->intersections, .cancel = r->opt->cancel };
     char err[256];
@@ -346,24 +343,58 @@ static void report_again(RepairReport *rep)
     memcpy(rep->ms_phase, ms, sizeof ms);
 }
 
+/* Did the repair do anything that could make a figure of the check
+ * worse? Welds at one position, repeated corners and degenerate faces
+ * dropped (the check sets them aside) and flips that make a patch agree
+ * (the check makes it agree the same way before it measures) cannot;
+ * splits, fills, turns outward, dropped duplicates, moved positions and
+ * an object left without faces might. */
+static int risky(const Rep *r, const Mesh *m)
+{
+    const RepairReport *rep = r->rep;
+    if (rep->split_vertices || rep->cuts_undone || rep->filled || rep->outward || rep->duplicate || rep->flaps ||
+        (r->opt->weld_eps > 0 && rep->welded))
+        return 1;
+    for (uint32_t i = 0; i < m->nobjs; i++)
+        if (m->objs[i].face_count && !r->w.objs[i].face_count)
+            return 1;
+    return 0;
+}
+
 /* Repair m into r's copy, object by object as boldly as the check of
- * the result allows (guard.c); *after: the check of what it made. */
+ * the result allows (guard.c): the input is checked only when the
+ * repair did something that might make a figure worse (on a helper
+ * thread, beside the check of the result, when two threads are
+ * allowed). *after: the check of what it made. */
 static int repair_guarded(Rep *r, const Mesh *m, uint8_t *level, MeshCheck *after)
 {
-    Before b;
-    int rc = rp_before_start(&b, m, r->opt);
-    for (int go = 0; rc == 0; go++) {
+    Before b = { .rc = -1 };
+    int rc = 0, have = 0;
+    for (;;) {
         report_again(r->rep);
-        rc = attempt(r, m, after);
-        if (rc == 0 && go == 0)
-            rc = rp_before_wait(&b);
+        if ((rc = copy_in(r, m) || steps(r) ? -1 : 0))
+            break;
+        int check = risky(r, m);
+        if (check && !have) {
+            have = 1;
+            if ((rc = rp_before_start(&b, m, r->opt)))
+                break;
+        }
+        if ((rc = check_after(r, after)))
+            break;
+        if (!check)
+            break;
+        double t = now_ms();
+        rc = rp_before_wait(&b);
+        r->rep->ms_phase[REPAIR_T_CHECK] += now_ms() - t;
         if (rc || !rp_worse(&b.mc, after, level))
             break;
         meshcheck_free(after);
         free_copy(r);
         *r = (Rep){ .opt = r->opt, .rep = r->rep, .level = level };
     }
-    rp_before_free(&b);
+    if (have)
+        rp_before_free(&b);
     return rc;
 }
 

@@ -133,10 +133,13 @@ typedef struct {
     uint32_t  c0, nc;           /* its corners */
     int       tris;             /* every face a triangle: the face of corner c is c / 3 */
     uint32_t *cface;            /* relative corner -> relative face (NULL when tris: rp_cface) */
-    uint32_t *cpt;              /* relative corner -> its point, numbered from 0 for the object */
-    uint32_t  npts;
-    uint32_t *prep;             /* the object's point -> a mesh vertex there */
-    uint32_t *gpt;              /* the object's point -> the mesh's point */
+    /* relative corner -> its point (rp_cpt): numbered from 0 for the
+     * object (cpt) when it is a small part of the mesh; the mesh's own
+     * points (cpt NULL: no array) when it is most of it, where arrays of
+     * the mesh's points cost no more than the object's */
+    uint32_t *cpt;
+    uint32_t  npts;             /* its points (the mesh's when cpt is NULL) */
+    uint32_t *gpt;              /* the object's point -> the mesh's point (cpt only) */
     uint8_t  *skip;             /* per relative face: degenerate, out of the topology */
     uint32_t *mate;             /* relative corner -> the other half-edge of its edge, or RP_* */
     uint32_t *nm_half;          /* the half-edges of the non-manifold edges, edge by edge */
@@ -182,8 +185,13 @@ static inline uint32_t rp_prev(const Rep *r, const ObjTopo *t, uint32_t c)
     return c > s ? c - 1 : rp_start(r, t, f + 1) - 1;
 }
 
-/* Mesh vertex of relative corner c. */
+/* Mesh vertex of relative corner c, and its point. */
 static inline uint32_t rp_cvert(const Rep *r, const ObjTopo *t, uint32_t c) { return r->w.corner[t->c0 + c]; }
+
+static inline uint32_t rp_cpt(const Rep *r, const ObjTopo *t, uint32_t c)
+{
+    return t->cpt ? t->cpt[c] : r->pid[r->w.corner[t->c0 + c]];
+}
 
 /* Union-find over [0, n) (the smaller root wins, path halving). */
 uint32_t *rp_uf_new(size_t n);
@@ -280,6 +288,15 @@ void rp_edges_free(EdgeSet *es);
  * the fills and the faces near them): bad[i - nfixed] set for each. 0
  * or -1 (out of memory, cancelled). */
 int  rp_fills_cross(Rep *r, const ObjTopo *t, Fill *fills, uint32_t nfixed, uint32_t n, uint8_t *bad);
+
+/* The crossing pairs each group of faces moved by a split takes part in
+ * (against the object's other faces near them and the other groups;
+ * face: relative faces, group[i] face i's group), with the faces where
+ * they are (original 0) or where they were (original 1: each vertex
+ * from vbase on at the vertex it copies, its anchor). count[g] for each
+ * group; *unsure when the crossing test stopped on its budget. */
+int  rp_moved_cross(Rep *r, const ObjTopo *t, const uint32_t *face, const uint32_t *group, uint32_t n,
+                    uint32_t vbase, int original, uint32_t *count, uint32_t ngroup, int *unsure);
 
 /* holes.c: the open loops found so far are listed here (up to
  * REPAIR_HOLES_MAX). */
