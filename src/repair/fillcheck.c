@@ -291,6 +291,8 @@ int rp_fills_cross(Rep *r, const ObjTopo *t, Fill *fills, uint32_t nfixed, uint3
     const Mesh *m = &r->w;
     for (uint32_t f = 0; f < t->nf; f++) {
         uint32_t a = m->face_start[t->f0 + f], e = m->face_start[t->f0 + f + 1];
+        if (t->skip[f])
+            continue;           /* degenerate, or a duplicate that goes */
         Box b;
         box_empty(&b);
         for (uint32_t c = a; c < e; c++)

@@ -108,7 +108,10 @@ static int snap(Rep *r, uint8_t *moved)
         uint32_t w = grid_near(&g, r, p, k, eps);
         if (w != RP_NONE) {
             if (memcmp(p, rp_vpos(r, w), 3 * sizeof *p)) {
-                memcpy(m->pos + 3 * (size_t)v, rp_vpos(r, w), 3 * sizeof *p);
+                if (rp_pos_own(r))
+                    goto out;
+                p = rp_vpos(r, v);
+                memcpy(r->w.pos + 3 * (size_t)v, rp_vpos(r, w), 3 * sizeof *p);
                 moved[v] = 1;
             }
             continue;

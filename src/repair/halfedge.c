@@ -305,3 +305,53 @@ void rp_topo_free(Rep *r, ObjTopo *t)
     free(t->nm_group);
     memset(t, 0, sizeof *t);
 }
+
+/* ==== Faces leaving ==== */
+
+int rp_topo_unpair(Rep *r, ObjTopo *t)
+{
+    /* their own half-edges leave; a manifold partner left alone is a
+     * boundary edge (twins.c lets none be) */
+    for (uint32_t f = 0; f < t->nf; f++) {
+        if (!t->skip[f])
+            continue;
+        for (uint32_t c = rp_start(r, t, f); c < rp_start(r, t, f + 1); c++) {
+            uint32_t m = t->mate[c];
+            if (m == RP_SKIPPED)
+                break;          /* out before: the whole face */
+            if (m < RP_SPECIAL && !t->skip[rp_cface(t, m)]) {
+                t->mate[m] = RP_BOUNDARY;
+                t->nboundary++;
+            }
+            t->nboundary -= m == RP_BOUNDARY;
+            t->mate[c] = RP_SKIPPED;
+        }
+    }
+    /* each non-manifold edge without them: two left pair, one is boundary */
+    uint32_t ng = 0, nh = 0;
+    for (uint32_t g = 0; g < t->nm_ngroup; g++) {
+        uint32_t start = nh;
+        for (uint32_t k = t->nm_group[g]; k < t->nm_group[g + 1]; k++) {
+            uint32_t h = t->nm_half[k];
+            if (!t->skip[rp_cface(t, h)])
+                t->nm_half[nh++] = h;
+        }
+        uint32_t n = nh - start;
+        if (n >= 3) {
+            t->nm_group[ng++] = start;
+            continue;
+        }
+        if (n == 2) {
+            t->mate[t->nm_half[start]] = t->nm_half[start + 1];
+            t->mate[t->nm_half[start + 1]] = t->nm_half[start];
+        } else if (n == 1) {
+            t->mate[t->nm_half[start]] = RP_BOUNDARY;
+            t->nboundary++;
+        }
+        nh = start;
+    }
+    t->nm_group[ng] = nh;
+    t->nm_ngroup = ng;
+    t->nm_nhalf = nh;
+    return 0;
+}

@@ -313,7 +313,7 @@ static uint32_t *parts_label(const Rep *r, const ObjTopo *t, uint32_t *np)
     return uf;
 }
 
-int rp_outward(Rep *r, ObjTopo *t)
+int rp_outward(Rep *r, ObjTopo *t, int *settled)
 {
     uint32_t np = 0, *label = parts_label(r, t, &np);
     Part *pt = label ? calloc((size_t)np + 1, sizeof *pt) : NULL;
@@ -355,9 +355,13 @@ int rp_outward(Rep *r, ObjTopo *t)
             q->nfaces++;
             q->vol += face_volume(r, t->f0 + f, ref);
         }
-    uint32_t closed = 0;
-    for (uint32_t p = 0; p < np; p++)
+    uint32_t closed = 0, agree = 0;
+    for (uint32_t p = 0; p < np; p++) {
         closed += pt[p].closed && pt[p].agrees;
+        agree += pt[p].agrees;
+    }
+    if (settled)
+        *settled = agree == np;
     int rc = closed > 1 ? nesting(r, t, pt, np, label) : 0;
     for (uint32_t p = 0; rc == 0 && p < np; p++) {
         Part *q = &pt[p];

@@ -125,9 +125,31 @@ static int table_grow(Rep *r)
     return 0;
 }
 
+int rp_pos_own(Rep *r)
+{
+    if (!r->pos_borrowed)
+        return 0;
+    size_t n = 3 * (r->vcap > r->w.nverts ? r->vcap : r->w.nverts);
+    float *pos = malloc((n ? n : 1) * sizeof *pos), *rgb = r->w.rgb ? malloc((n ? n : 1) * sizeof *rgb) : NULL;
+    if (!pos || (r->w.rgb && !rgb)) {
+        free(pos);
+        free(rgb);
+        return -1;
+    }
+    memcpy(pos, r->w.pos, 3 * (size_t)r->w.nverts * sizeof *pos);
+    if (rgb)
+        memcpy(rgb, r->w.rgb, 3 * (size_t)r->w.nverts * sizeof *rgb);
+    r->w.pos = pos;
+    r->w.rgb = rgb;
+    r->pos_borrowed = 0;
+    return 0;
+}
+
 /* Room for one more vertex in every per-vertex array. */
 static int vertex_room(Rep *r)
 {
+    if (rp_pos_own(r))
+        return -1;
     if (r->w.nverts < r->vcap)
         return 0;
     if (r->vcap >= UINT32_MAX - 2)

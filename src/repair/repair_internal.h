@@ -55,6 +55,10 @@ typedef struct {
     uint32_t *loc;              /* point -> the current object's point, RP_NONE (reset after each object) */
     size_t    loccap;
     int       clean;            /* no degenerate face is left (the clean ran) */
+    uint32_t  dup_unsettled;    /* objects that lost duplicates and do not end settled (rp_outward) */
+    /* w.pos and w.rgb are the input's own until something changes them
+     * (rp_pos_own): most repairs move and add no vertex */
+    int       pos_borrowed;
 } Rep;
 
 /* ==== Not worse (guard.c) ==== */
@@ -85,6 +89,10 @@ int  rp_cancelled(const Rep *r);
 static inline const float *rp_vpos(const Rep *r, uint32_t v) { return r->w.pos + 3 * (size_t)v; }
 
 /* ==== Points (posmap.c) ==== */
+
+/* Make w.pos and w.rgb the repair's own copies (room for vcap
+ * vertices), before they change. 0 or -1 out of memory. */
+int  rp_pos_own(Rep *r);
 
 /* The coordinate's bits with -0 made +0. */
 uint32_t rp_coord_bits(float f);
@@ -118,8 +126,6 @@ int  rp_pos_degenerate(const float *const *p, uint32_t n);
 
 int  rp_weld(Rep *r);                           /* fuse.c */
 int  rp_clean(Rep *r);                          /* tidy.c */
-/* twins.c: which duplicate faces go (dup[f] set), counted in the report. */
-int  rp_duplicates(Rep *r, uint8_t *dup);
 /* The vertices in output order: new ones after their anchors, unused
  * ones dropped when drop_unused (counted in rep->unused); every index
  * renumbered, object vertex ranges made exact. */
@@ -156,6 +162,9 @@ int  rp_topo_build(Rep *r, uint32_t i, ObjTopo *t);
  * again first when points is set). */
 int  rp_topo_pair(Rep *r, ObjTopo *t, int points);
 void rp_topo_free(Rep *r, ObjTopo *t);
+/* The faces newly marked skip leave the pairing (their edges' other
+ * faces pair again), without building it again. */
+int  rp_topo_unpair(Rep *r, ObjTopo *t);
 
 static inline uint32_t rp_start(const Rep *r, const ObjTopo *t, uint32_t f)
 {
@@ -203,6 +212,10 @@ void rp_face_normal(const Rep *r, uint32_t f, double n[3]);
 
 /* ==== The steps on one object ==== */
 
+/* twins.c: the duplicate faces that go leave t's topology (skip) and are
+ * marked in drop[] (per mesh face), counted in the report. */
+int  rp_twins(Rep *r, ObjTopo *t, uint8_t *drop);
+
 /* fins.c: split the non-manifold edges and vertices; t's pairing is
  * rebuilt when anything changed. The faces cut loose from a fin of an
  * odd number are listed in *cuts (each by the two vertices its cut edge
@@ -222,7 +235,9 @@ int  rp_manifold(Rep *r, ObjTopo *t, Cuts *cuts);
  * agrees (t's pairing follows the flips); rp_outward turns the closed
  * parts that are inside out. */
 int  rp_winding(Rep *r, ObjTopo *t);
-int  rp_outward(Rep *r, ObjTopo *t);
+/* *settled (when not NULL): every part agrees (no non-manifold edge, no
+ * non-orientable patch), so that the check can find none inside out */
+int  rp_outward(Rep *r, ObjTopo *t, int *settled);
 /* Flip face f (mesh index), keeping its first corner: the same fan of
  * triangles, each the other way round. */
 void rp_flip_face(Rep *r, uint32_t f);
@@ -305,7 +320,8 @@ int  rp_hole_open(Rep *r, uint32_t obj, uint32_t edges, uint32_t vertex, RepairO
 int  rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cuts, const Fill *fills, uint32_t nfills);
 void rp_cuts_free(Cuts *cuts);
 
-/* repair.c: the fills in place, each after its object's faces. */
-int  rp_faces_append(Rep *r, Fill *const *fills, const uint32_t *nfills);
+/* repair.c: the faces marked in drop (NULL: none) gone, and the fills
+ * in place, each after its object's faces. */
+int  rp_faces_rebuild(Rep *r, const uint8_t *drop, Fill *const *fills, const uint32_t *nfills);
 
 #endif
