@@ -431,9 +431,9 @@ static int split_points(Rep *r, ObjTopo *t, const uint32_t *uf, const uint8_t *n
     uint32_t maxf = 0, maxdeg = 0;
     for (uint32_t f = 0; f < t->nf; f++)
         maxf = rp_start(r, t, f + 1) - rp_start(r, t, f) > maxf ? rp_start(r, t, f + 1) - rp_start(r, t, f) : maxf;
-    s.off = calloc((size_t)t->npts + 2, sizeof *s.off);
-    s.list = malloc(((size_t)t->nc + 1) * sizeof *s.list);
-    s.in = calloc((size_t)t->nc + 1, 1);
+    s.off = rp_big(((size_t)t->npts + 2) * sizeof *s.off, 1);
+    s.list = rp_big(((size_t)t->nc + 1) * sizeof *s.list, 0);
+    s.in = rp_big((size_t)t->nc + 1, 1);
     s.fp = malloc(((size_t)maxf + 1) * sizeof *s.fp);
     int rc = -1;
     if (!s.off || !s.list || !s.in || !s.fp)
@@ -542,7 +542,7 @@ out:
 /* Points with two fans or more in uf: nm[p] set (when nm), and how many. */
 static int multi_fans(const Rep *r, const ObjTopo *t, const uint32_t *uf, uint8_t *nm, uint32_t *count)
 {
-    uint32_t *first = malloc(((size_t)t->npts + 1) * sizeof *first), n = 0;
+    uint32_t *first = rp_big(((size_t)t->npts + 1) * sizeof *first, 0), n = 0;
     if (!first)
         return -1;
     memset(first, 0xff, ((size_t)t->npts + 1) * sizeof *first);
@@ -567,7 +567,7 @@ static int multi_fans(const Rep *r, const ObjTopo *t, const uint32_t *uf, uint8_
 int rp_manifold(Rep *r, ObjTopo *t, Cuts *cu)
 {
     uint32_t groups = t->nm_ngroup, added = r->w.nverts, multi = 0;
-    uint8_t *nmv = calloc((size_t)t->npts + 1, 1);
+    uint8_t *nmv = rp_big((size_t)t->npts + 1, 1);
     Moved mv = { 0 };
     /* the points the check calls non-manifold: two fans or more with
      * the corners at each end of a non-manifold edge joined */

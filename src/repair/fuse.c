@@ -209,7 +209,7 @@ static int weld_object(Rep *r, uint32_t i, uint8_t *moved, uint32_t *minv)
 
 int rp_weld(Rep *r)
 {
-    uint8_t *moved = calloc((size_t)r->w.nverts + 1, 1);
+    uint8_t *moved = rp_big((size_t)r->w.nverts + 1, 1);
     if (!moved)
         return -1;
     int rc = 0;
@@ -218,7 +218,7 @@ int rp_weld(Rep *r)
     /* every vertex its own point: nothing to weld */
     uint32_t *minv = NULL;
     if (rc == 0 && r->npts < r->w.nverts && !r->w.rgb) {
-        if (!(minv = malloc(((size_t)r->npts + 1) * sizeof *minv)))
+        if (!(minv = rp_big(((size_t)r->npts + 1) * sizeof *minv, 0)))
             rc = -1;
         else
             memset(minv, 0xff, ((size_t)r->npts + 1) * sizeof *minv);

@@ -11,13 +11,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bigmem.h"
 #include "repair_internal.h"
 
 /* ==== Shared helpers ==== */
 
+void *rp_big(size_t bytes, int zero)
+{
+    void *p = zero ? calloc(bytes ? bytes : 1, 1) : malloc(bytes ? bytes : 1);
+    bigmem_advise(p, bytes, 1);
+    return p;
+}
+
 uint32_t *rp_uf_new(size_t n)
 {
-    uint32_t *p = malloc((n ? n : 1) * sizeof *p);
+    uint32_t *p = rp_big(n * sizeof *p, 0);
     if (p)
         for (size_t i = 0; i < n; i++)
             p[i] = (uint32_t)i;
@@ -186,7 +194,7 @@ static int edge_run(ObjTopo *t, Pairing *pg, const uint32_t *he, uint32_t n)
 static int pairing_fill(Rep *r, ObjTopo *t, Pairing *pg)
 {
     uint32_t np = t->npts, nhe = 0, maxdeg = 0;
-    if (!(pg->off = calloc((size_t)np + 2, sizeof *pg->off)))
+    if (!(pg->off = rp_big(((size_t)np + 2) * sizeof *pg->off, 1)))
         return -1;
     for (uint32_t c = 0; c < t->nc; c++) {
         uint32_t p = rp_cpt(r, t, c), q = rp_cpt(r, t, rp_next(r, t, c));
@@ -204,7 +212,7 @@ static int pairing_fill(Rep *r, ObjTopo *t, Pairing *pg)
         maxdeg = pg->off[p + 1] > maxdeg ? pg->off[p + 1] : maxdeg;
         pg->off[p + 1] += pg->off[p];
     }
-    pg->he = malloc(((size_t)nhe + 1) * sizeof *pg->he);
+    pg->he = rp_big(((size_t)nhe + 1) * sizeof *pg->he, 0);
     pg->hi = malloc(((size_t)maxdeg + 1) * sizeof *pg->hi);
     pg->scratch = maxdeg > 32 ? malloc((size_t)maxdeg * sizeof *pg->scratch) : NULL;
     if (!pg->hi || !pg->he || (maxdeg > 32 && !pg->scratch))
@@ -271,13 +279,13 @@ int rp_topo_build(Rep *r, uint32_t i, ObjTopo *t)
     t->tris = t->nc == 3 * (uint64_t)t->nf;
     for (uint32_t f = 0; t->tris && f < t->nf; f++)
         t->tris = m->face_start[t->f0 + f + 1] - m->face_start[t->f0 + f] == 3;
-    t->cface = t->tris ? NULL : malloc(n * sizeof *t->cface);
+    t->cface = t->tris ? NULL : rp_big(n * sizeof *t->cface, 0);
     /* the mesh's points when the object is a quarter of its corners or more */
     int local = (uint64_t)t->nc * 4 < r->npts;
-    t->cpt = local ? malloc(n * sizeof *t->cpt) : NULL;
+    t->cpt = local ? rp_big(n * sizeof *t->cpt, 0) : NULL;
     t->gpt = local ? malloc(n * sizeof *t->gpt) : NULL;
-    t->mate = malloc(n * sizeof *t->mate);
-    t->skip = calloc((size_t)t->nf + 1, 1);
+    t->mate = rp_big(n * sizeof *t->mate, 0);
+    t->skip = rp_big((size_t)t->nf + 1, 1);
     if ((!t->tris && !t->cface) || (local && (!t->cpt || !t->gpt)) || !t->mate || !t->skip)
         goto fail;
     for (uint32_t f = 0; f < t->nf; f++) {

@@ -126,8 +126,8 @@ static void punion(ParityFind *u, uint32_t f, uint32_t g, int rel)
 int rp_winding(Rep *r, ObjTopo *t)
 {
     uint32_t nf = t->nf;
-    ParityFind u = { malloc(((size_t)nf + 1) * sizeof *u.up), calloc((size_t)nf + 1, 1) };
-    uint32_t *count = calloc(2 * ((size_t)nf + 1), sizeof *count);
+    ParityFind u = { rp_big(((size_t)nf + 1) * sizeof *u.up, 0), rp_big((size_t)nf + 1, 1) };
+    uint32_t *count = rp_big(2 * ((size_t)nf + 1) * sizeof *count, 1);
     double *vol = NULL, ref[3];
     int rc = -1;
     if (!u.up || !u.bits || !count)
@@ -316,7 +316,7 @@ static uint32_t *parts_label(const Rep *r, const ObjTopo *t, uint32_t *np)
 int rp_outward(Rep *r, ObjTopo *t, int *settled)
 {
     uint32_t np = 0, *label = parts_label(r, t, &np);
-    Part *pt = label ? calloc((size_t)np + 1, sizeof *pt) : NULL;
+    Part *pt = label ? rp_big(((size_t)np + 1) * sizeof *pt, 1) : NULL;
     if (!pt) {
         free(label);
         return -1;

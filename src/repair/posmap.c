@@ -51,7 +51,7 @@ static int table_alloc(PosHash *ph, size_t points)
     size_t size = 64;
     while (size < 2 * points + 2)
         size *= 2;
-    ph->slot = malloc(size * sizeof *ph->slot);
+    ph->slot = rp_big(size * sizeof *ph->slot, 0);
     if (!ph->slot)
         return -1;
     memset(ph->slot, 0xff, size * sizeof *ph->slot);
@@ -63,7 +63,7 @@ int rp_points_build(Rep *r)
 {
     free(r->ph.slot);
     r->ph.slot = NULL;
-    if (!r->pid && !(r->pid = malloc((r->vcap ? r->vcap : 1) * sizeof *r->pid)))
+    if (!r->pid && !(r->pid = rp_big((r->vcap ? r->vcap : 1) * sizeof *r->pid, 0)))
         return -1;
     if (table_alloc(&r->ph, r->w.nverts))
         return -1;

@@ -34,7 +34,7 @@ int rp_cancelled(const Rep *r)
 
 static void *dup_array(const void *p, size_t bytes)
 {
-    void *q = malloc(bytes ? bytes : 1);
+    void *q = rp_big(bytes, 0);
     if (q && p && bytes)
         memcpy(q, p, bytes);
     return q;
@@ -74,7 +74,7 @@ static int copy_in(Rep *r, const Mesh *m)
         if (!(w->corner_uv = dup_array(m->corner_uv, nc * sizeof *m->corner_uv)))
             return -1;
     } else if (m->uv) {
-        if (!(w->corner_uv = malloc((nc ? nc : 1) * sizeof *w->corner_uv)))
+        if (!(w->corner_uv = rp_big(nc * sizeof *w->corner_uv, 0)))
             return -1;
         for (size_t c = 0; c < nc; c++)
             w->corner_uv[c] = m->corner[c] < m->nuv ? m->corner[c] : MESH_NO_UV;
@@ -156,9 +156,9 @@ int rp_faces_rebuild(Rep *r, const uint8_t *drop, Fill *const *fills, const uint
     if ((uint64_t)w->nfaces + addf >= UINT32_MAX - 1 || nc + addc >= UINT32_MAX - 1)
         return -1;
     uint32_t nf = w->nfaces + (uint32_t)addf;
-    uint32_t *fs = malloc(((size_t)nf + 1) * sizeof *fs), *cr = malloc((nc + addc + 1) * sizeof *cr);
-    uint32_t *uv = w->corner_uv ? malloc((nc + addc + 1) * sizeof *uv) : NULL;
-    int32_t *fm = mats ? malloc(((size_t)nf + 1) * sizeof *fm) : NULL;
+    uint32_t *fs = rp_big(((size_t)nf + 1) * sizeof *fs, 0), *cr = rp_big((nc + addc + 1) * sizeof *cr, 0);
+    uint32_t *uv = w->corner_uv ? rp_big((nc + addc + 1) * sizeof *uv, 0) : NULL;
+    int32_t *fm = mats ? rp_big(((size_t)nf + 1) * sizeof *fm, 0) : NULL;
     if (!fs || !cr || (w->corner_uv && !uv) || (mats && !fm)) {
         free(fs);
         free(cr);
@@ -275,7 +275,7 @@ static int objects(Rep *r)
 {
     uint32_t n = r->w.nobjs;
     Filled fd = { calloc((size_t)n + 1, sizeof *fd.fills), calloc((size_t)n + 1, sizeof *fd.nfills),
-                  calloc((size_t)r->w.nfaces + 1, 1), calloc((size_t)n + 1, 1), RP_DP_BUDGET };
+                  rp_big((size_t)r->w.nfaces + 1, 1), calloc((size_t)n + 1, 1), RP_DP_BUDGET };
     int rc = -1;
     if (!fd.fills || !fd.nfills || !fd.drop || !fd.dups)
         goto out;

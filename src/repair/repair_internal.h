@@ -202,6 +202,12 @@ static inline uint32_t rp_cpt(const Rep *r, const ObjTopo *t, uint32_t c)
     return t->cpt ? t->cpt[c] : r->pid[r->w.corner[t->c0 + c]];
 }
 
+/* A big array: malloc (or calloc when zero) and, as a loaded mesh's
+ * arrays are, huge pages asked for and the pages faulted in by one call
+ * (bigmem.h): a first touch a page costs more than the work on it.
+ * Free with free(). */
+void *rp_big(size_t bytes, int zero);
+
 /* Union-find over [0, n) (the smaller root wins, path halving). */
 uint32_t *rp_uf_new(size_t n);
 uint32_t rp_uf_find(uint32_t *p, uint32_t i);

@@ -109,7 +109,7 @@ int rp_clean(Rep *r)
 /* Which vertices faces, points and lines use. */
 static uint8_t *vertices_used(const Mesh *m)
 {
-    uint8_t *used = calloc((size_t)m->nverts + 1, 1);
+    uint8_t *used = rp_big((size_t)m->nverts + 1, 1);
     if (!used)
         return NULL;
     uint32_t nc = m->nfaces ? m->face_start[m->nfaces] : 0, nl = m->nlines ? m->line_start[m->nlines] : 0;
@@ -182,7 +182,8 @@ static void object_range(Mesh *m, MeshObject *o)
 static int remap(Rep *r, const uint32_t *idx, uint32_t k)
 {
     Mesh *m = &r->w;
-    float *pos = malloc(3 * ((size_t)k + 1) * sizeof *pos), *rgb = m->rgb ? malloc(3 * ((size_t)k + 1) * sizeof *rgb) : NULL;
+    float *pos = rp_big(3 * ((size_t)k + 1) * sizeof *pos, 0);
+    float *rgb = m->rgb ? rp_big(3 * ((size_t)k + 1) * sizeof *rgb, 0) : NULL;
     uint32_t *point = NULL;
     if (!m->point && m->npoints) {
         /* a cloud's points are its first vertices: kept so only if they stay put */
@@ -239,7 +240,7 @@ int rp_renumber(Rep *r, int drop_unused)
 {
     Mesh *m = &r->w;
     uint8_t *used = vertices_used(m);
-    uint32_t *idx = malloc(((size_t)m->nverts + 1) * sizeof *idx);
+    uint32_t *idx = rp_big(((size_t)m->nverts + 1) * sizeof *idx, 0);
     int rc = -1;
     if (!used || !idx)
         goto out;
