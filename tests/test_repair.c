@@ -621,6 +621,46 @@ Test(repair, degenerate_and_duplicate_faces_are_dropped)
     assert_check_sound();
 }
 
+Test(repair, a_point_twice_in_a_row_is_dropped_from_its_face)
+{
+    start();
+    uint32_t v = cube_verts(0, 0, 0, 1);
+    for (int f = 0; f < 6; f++) {
+        const uint32_t *q = CUBE_FACES[f];
+        if (f == 1)
+            face(5, (uint32_t[]){ v + q[0], v + q[1], v + q[1], v + q[2], v + q[3] });
+        else
+            face(4, (uint32_t[]){ v + q[0], v + q[1], v + q[2], v + q[3] });
+    }
+    repair();
+    cr_assert_eq(R.repeated, 1);
+    cr_assert_eq(M.face_start[2] - M.face_start[1], 4, "the top keeps four corners");
+    for (uint32_t k = 0; k < 4; k++)
+        cr_assert_eq(M.corner[M.face_start[1] + k], CUBE_FACES[1][k]);
+    Ref r;
+    reference(&M, &r);
+    assert_watertight(&r);
+}
+
+Test(repair, minus_zero_is_the_same_point_as_zero)
+{
+    start();
+    cube_ex(0, 0, 0, 1, -1, 0);
+    /* the bottom on a corner of its own at -0: the same position */
+    uint32_t z = vert(-0.0f, -0.0f, -0.0f);
+    for (uint32_t k = 0; k < 4; k++)
+        if (M.corner[k] == 0)
+            M.corner[k] = z;
+    repair();
+    cr_assert_eq(R.welded, 1);
+    cr_assert_eq(R.unused, 1);
+    cr_assert_eq(M.nverts, 8);
+    Ref r;
+    reference(&M, &r);
+    assert_watertight(&r);
+    cr_assert_eq(r.points, 8);
+}
+
 Test(repair, a_two_sided_flap_goes_whole)
 {
     start();
