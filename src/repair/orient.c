@@ -32,6 +32,9 @@ void rp_flip_face(Rep *r, uint32_t f)
 {
     Mesh *m = &r->w;
     uint32_t s = m->face_start[f], e = m->face_start[f + 1];
+    /* a polygon's first edge changes: the check finds a duplicate
+     * through its first edge (repair.c: risky) */
+    r->poly_flips += e - s > 3;
     for (uint32_t *a = m->corner + s + 1, *z = m->corner + e - 1; a < z; a++, z--) {
         uint32_t x = *a;
         *a = *z;

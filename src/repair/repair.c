@@ -382,12 +382,18 @@ static void report_again(RepairReport *rep)
  * a flip left, and the turn outward leaves none inside out). Splits,
  * fills, turns outward, moved positions, an object left without faces
  * and duplicates dropped elsewhere might (a duplicate gone can make an
- * edge manifold that joins two patches whose windings disagree). */
+ * edge manifold that joins two patches whose windings disagree), and so
+ * might repeated corners dropped when a duplicate is kept (a b b c and
+ * a b c c are one face once each is a b c), and flips of polygons of
+ * four corners or more: the check looks for a face's duplicate across
+ * its first edge, which a flip changes (quads 1 2 6 5 and 5 2 1 6 are
+ * on the same points; flipped, 5 6 1 2 shares the other's edge 6 5,
+ * and the check finds what it did not before). */
 static int risky(const Rep *r, const Mesh *m)
 {
     const RepairReport *rep = r->rep;
-    if (rep->split_vertices || rep->cuts_undone || rep->filled || rep->outward || r->dup_unsettled ||
-        (r->opt->weld_eps > 0 && rep->welded))
+    if (rep->split_vertices || rep->cuts_undone || rep->filled || rep->outward || r->dup_unsettled || r->poly_flips ||
+        (r->opt->weld_eps > 0 && rep->welded) || (rep->repeated && rep->dup_kept))
         return 1;
     for (uint32_t i = 0; i < m->nobjs; i++)
         if (m->objs[i].face_count && !r->w.objs[i].face_count)

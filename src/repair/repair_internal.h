@@ -56,6 +56,7 @@ typedef struct {
     size_t    loccap;
     int       clean;            /* no degenerate face is left (the clean ran) */
     uint32_t  dup_unsettled;    /* objects that lost duplicates and do not end settled (rp_outward) */
+    uint32_t  poly_flips;       /* faces of four corners or more flipped */
     /* w.pos and w.rgb are the input's own until something changes them
      * (rp_pos_own): most repairs move and add no vertex */
     int       pos_borrowed;
