@@ -159,7 +159,7 @@ extern const int       repair_nrows;
 uint64_t repair_value(const RepairRow *r, const RepairReport *rep);
 /* "3 vertices welded" ("" when the figure is 0). */
 void repair_say(const RepairRow *r, const RepairReport *rep, char *buf, size_t n);
-/* Why a loop stayed open, in words ("more than --max-hole edges"). */
+/* Why a loop stayed open, in words ("more edges than the limit on holes"). */
 const char *repair_open_why(RepairOpenWhy why);
 
 #endif

@@ -94,7 +94,7 @@ const char *repair_open_why(RepairOpenWhy why)
 {
     switch (why) {
     case REPAIR_OPEN_TOO_BIG:
-        return "more edges than the limit (--max-hole)";
+        return "more edges than the limit on holes";
     case REPAIR_OPEN_CROSSING:
         return "every fill tried would cross the model or put three faces on an edge";
     case REPAIR_OPEN_UNORIENTED:
