@@ -8,8 +8,10 @@
  * of its object):
  *
  *   weld      vertices at one position (within weld_eps, when set) become one
- *   clean     degenerate and duplicate faces, a point repeated in a row
- *             within a face, and vertices nothing uses are dropped
+ *   clean     degenerate faces, a point repeated in a row within a
+ *             face, and vertices nothing uses are dropped, and duplicate
+ *             faces where no edge is left with one face (a two-sided
+ *             flap goes whole)
  *   manifold  an edge of three or more faces is split so that each edge
  *             has at most two, and a point where separate fans of faces
  *             meet gets a vertex per fan
@@ -20,11 +22,16 @@
  *             end of its object), unless it has more than max_hole edges
  *             or no fill of it avoids crossing the model
  *
- * Crossing faces are reported (the check's count after the repair), not
- * changed. Positions of the vertices kept are kept bit for bit; the
+ * They run weld, clean, manifold, winding, holes, outward. Crossing
+ * faces are reported (the check's count after the repair), not changed.
+ * No figure of the check comes out worse than it was: an object the
+ * full repair would make worse is repaired again less boldly
+ * (RepairReport.held_back). Positions of the vertices kept are kept bit
+ * for bit (a split's copies and a fan's centre are new vertices); the
  * faces that were not dropped keep their order, material, colours and
- * texture coordinates; object ranges stay valid. doc/design.md (Repair)
- * says why the steps run in this order and which algorithm each uses. */
+ * texture coordinates; object ranges stay valid. doc/design.md (The
+ * repair) says why the steps run in this order and which algorithm
+ * each uses. */
 
 #include <stddef.h>
 #include <stdint.h>
