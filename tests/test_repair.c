@@ -752,6 +752,37 @@ Test(repair, weld_within_a_distance)
     cr_assert_eq(R.welded, 0);
 }
 
+/* ==== Never worse ==== */
+
+Test(repair, an_object_the_repair_would_make_worse_is_held_back)
+{
+    /* two quads on the same points in other orders (1 2 6 5 and
+     * 5 2 1 6): the check, looking across a face's first edge, sees no
+     * duplicate; flipped to agree, the second (5 6 1 2) shares an edge
+     * with the first and the check would see one. The object is
+     * repaired again without the winding, and nothing counts worse. */
+    static const char obj[] = "v 0 6 7\nv 2 6 7\nv 2 8 7\nv 0 8 7\nv 0 6 9\nv 2 6 9\nv 2 8 9\nv 0 8 9\n"
+                              "f 1 4 3 2\nf 1 2 6 5\nf 3 4 8 7\nf 4 8 5 1\nf 2 3 7 6\nf 6 2 1 3\nf 5 2 1 6\n";
+    cr_assert_eq(mesh_parse(&M, "t.obj", obj, sizeof obj - 1, E, sizeof E), 0, "%s", E);
+    MeshCheck b, a;
+    CheckOpts co = { .threads = 1, .intersections = 1 };
+    cr_assert_eq(meshcheck_run(&b, &M, &co, E, sizeof E), 0, "%s", E);
+    cr_assert_eq(b.file.duplicate_faces, 0);
+    RepairOpts o = { .steps = REPAIR_DEFAULT, .threads = 1, .intersections = 1 };
+    cr_assert_eq(repair_mesh(&M, &o, &R, E, sizeof E), 0, "%s", E);
+    cr_assert_eq(R.held_back, 1);
+    cr_assert(R.counted);
+    cr_assert_eq(meshcheck_run(&a, &M, &co, E, sizeof E), 0, "%s", E);
+    for (int k = 0; k < check_nrows; k++) {
+        const CheckRow *r = &check_rows[k];
+        if (r->bad == CHECK_BAD_SET)
+            cr_assert_leq(meshcheck_value(r, &a.file), meshcheck_value(r, &b.file), "%s worse", r->field);
+    }
+    cr_assert_eq(R.left_duplicate, a.file.duplicate_faces);
+    meshcheck_free(&a);
+    meshcheck_free(&b);
+}
+
 /* ==== What is kept ==== */
 
 Test(repair, materials_colours_and_texture_coordinates_are_kept)
