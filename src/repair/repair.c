@@ -32,9 +32,10 @@ int rp_cancelled(const Rep *r)
 
 /* ==== The working copy ==== */
 
-static void *dup_array(const void *p, size_t bytes)
+/* A copy of the first `bytes` of p in an array of `room` bytes. */
+static void *dup_array(const void *p, size_t bytes, size_t room)
 {
-    void *q = rp_big(bytes, 0);
+    void *q = rp_big(room > bytes ? room : bytes, 0);
     if (q && p && bytes)
         memcpy(q, p, bytes);
     return q;
@@ -57,21 +58,25 @@ static int copy_in(Rep *r, const Mesh *m)
     w->pos = m->pos;
     w->rgb = m->rgb;
     r->pos_borrowed = 1;
-    w->face_start = dup_array(m->face_start, ((size_t)m->nfaces + 1) * sizeof *m->face_start);
-    w->corner = dup_array(m->corner, nc * sizeof *m->corner);
-    w->objs = dup_array(m->objs, m->nobjs * sizeof *m->objs);
+    size_t fs = ((size_t)m->nfaces + 1) * sizeof *m->face_start;
+    w->face_start = dup_array(m->face_start, m->face_start ? fs : 0, fs);
+    w->corner = dup_array(m->corner, nc * sizeof *m->corner, nc * sizeof *m->corner);
+    w->objs = dup_array(m->objs, m->nobjs * sizeof *m->objs, m->nobjs * sizeof *m->objs);
     if (!w->face_start || !w->corner || !w->objs)
         return -1;
     if (!m->face_start)
         w->face_start[0] = 0;
-    if (m->face_mat && !(w->face_mat = dup_array(m->face_mat, ((size_t)m->nfaces + 1) * sizeof *m->face_mat)))
+    /* a loader's face_mat has nfaces entries, no more */
+    if (m->face_mat &&
+        !(w->face_mat = dup_array(m->face_mat, m->nfaces * sizeof *m->face_mat, ((size_t)m->nfaces + 1) * sizeof *m->face_mat)))
         return -1;
-    if (m->point && !(w->point = dup_array(m->point, m->npoints * sizeof *m->point)))
+    if (m->point && !(w->point = dup_array(m->point, m->npoints * sizeof *m->point, m->npoints * sizeof *m->point)))
         return -1;
-    if (m->nlines && !(w->line_corner = dup_array(m->line_corner, m->line_start[m->nlines] * sizeof *m->line_corner)))
+    size_t nl = m->nlines ? m->line_start[m->nlines] : 0;
+    if (m->nlines && !(w->line_corner = dup_array(m->line_corner, nl * sizeof *m->line_corner, nl * sizeof *m->line_corner)))
         return -1;
     if (m->corner_uv) {
-        if (!(w->corner_uv = dup_array(m->corner_uv, nc * sizeof *m->corner_uv)))
+        if (!(w->corner_uv = dup_array(m->corner_uv, nc * sizeof *m->corner_uv, nc * sizeof *m->corner_uv)))
             return -1;
     } else if (m->uv) {
         if (!(w->corner_uv = rp_big(nc * sizeof *w->corner_uv, 0)))
