@@ -349,20 +349,59 @@ static void same_materials(const Mesh *a, const Mesh *b, const char *what)
     }
 }
 
-/* The same face at every pixel (through tri_face, when the faces were
- * cut into triangles); nfaces >= 0: the format dropped the points and
- * lines (ids from nfaces on), and where one was seen nothing is known. */
-static void ids_equal(const int32_t *want, const int32_t *got, const uint32_t *tri_face, int64_t nfaces,
-                      const char *what)
+/* Do faces f and g lie in one plane (within 1e-6 of their size)? */
+static int coplanar(const Mesh *m, uint32_t f, uint32_t g)
 {
-    for (size_t i = 0; i < (size_t)NVIEWS * VIEW_W * VIEW_H; i++) {
+    double n[3] = { 0, 0, 0 };
+    uint32_t c0 = m->face_start[f], nf = m->face_start[f + 1] - c0;
+    for (uint32_t k = 0; k < nf; k++) {
+        const float *p = m->pos + 3 * (size_t)m->corner[c0 + k], *q = m->pos + 3 * (size_t)m->corner[c0 + (k + 1) % nf];
+        n[0] += ((double)p[1] - q[1]) * ((double)p[2] + q[2]);
+        n[1] += ((double)p[2] - q[2]) * ((double)p[0] + q[0]);
+        n[2] += ((double)p[0] - q[0]) * ((double)p[1] + q[1]);
+    }
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), size = 0, off = 0;
+    if (len == 0)
+        return 0;
+    const float *o = m->pos + 3 * (size_t)m->corner[c0];
+    for (int pass = 0; pass < 2; pass++) {
+        uint32_t h = pass ? g : f, a = m->face_start[h], b = m->face_start[h + 1];
+        for (uint32_t k = a; k < b; k++) {
+            const float *p = m->pos + 3 * (size_t)m->corner[k];
+            double d[3] = { (double)p[0] - o[0], (double)p[1] - o[1], (double)p[2] - o[2] };
+            size = fmax(size, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+            off = fmax(off, fabs(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]) / len);
+        }
+    }
+    return off <= 1e-6 * size;
+}
+
+/* The same face at every pixel of the views; tri_face: b's faces are a's
+ * cut into triangles (STL), and b's face t is a's face tri_face[t]. A
+ * polygon drawn whole has one depth plane and its triangles each their
+ * own, which differ in the last bits: where two faces of a overlap in
+ * one plane (a rug on a floor) that decides which shows, so there a
+ * coplanar face may stand for the other (at most 1% of the pixels).
+ * nfaces >= 0: the format dropped the points and lines (ids from nfaces
+ * on), and where one was seen nothing is known. */
+static void ids_equal(const Mesh *a, const int32_t *want, const int32_t *got, const uint32_t *tri_face,
+                      int64_t nfaces, const char *what)
+{
+    size_t npx = (size_t)NVIEWS * VIEW_W * VIEW_H, fights = 0;
+    for (size_t i = 0; i < npx; i++) {
         if (nfaces >= 0 && want[i] >= nfaces)
             continue;
         int32_t g = got[i] >= 0 && tri_face ? (int32_t)tri_face[got[i]] : got[i];
-        if (g != want[i])
-            cr_assert_fail("%s: view %zu pixel (%zu, %zu): face %d, read back %d", what, i / (VIEW_W * VIEW_H),
-                           i % VIEW_W, i / VIEW_W % VIEW_H, want[i], g);
+        if (g == want[i])
+            continue;
+        if (tri_face && g >= 0 && want[i] >= 0 && want[i] < (int32_t)a->nfaces && coplanar(a, (uint32_t)want[i], (uint32_t)g)) {
+            fights++;
+            continue;
+        }
+        cr_assert_fail("%s: view %zu pixel (%zu, %zu): face %d, read back %d", what, i / (VIEW_W * VIEW_H),
+                       i % VIEW_W, i / VIEW_W % VIEW_H, want[i], g);
     }
+    cr_assert_leq(fights, npx / 100, "%s: %zu pixels show another face of the same plane", what, fights);
 }
 
 /* Is every vertex colour a byte's k/255 (as a reader divides it)? */
@@ -399,10 +438,10 @@ static void through_writers(const char *in, const char *name)
         views_of(out, got);
         if (fmt == SAVE_STL) {
             same_triangles(&a, &b, what, tri_face);
-            ids_equal(want, got, tri_face, a.nfaces, what);
+            ids_equal(&a, want, got, tri_face, a.nfaces, what);
         } else {
             same_polygons(&a, &b, what);
-            ids_equal(want, got, NULL, rep.points_dropped || rep.lines_dropped ? (int64_t)a.nfaces : -1, what);
+            ids_equal(&a, want, got, NULL, rep.points_dropped || rep.lines_dropped ? (int64_t)a.nfaces : -1, what);
             cr_assert(same_floats(a.rgb, b.rgb, 3 * (size_t)a.nverts), "%s: vertex colours", what);
         }
         if (fmt == SAVE_PLY && a.face_mat && rep.materials_dropped == 0) {
@@ -624,4 +663,40 @@ Test(save, a_full_disk_leaves_nothing_and_the_old_file_as_it_was)
     cr_assert(f && fread(buf, 1, sizeof buf, f) == 4 && !memcmp(buf, "old\n", 4), "old.stl as it was");
     fclose(f);
     mesh_free(&m);
+}
+
+/* ==== The shared models (suite "models": make test-models) ==== */
+
+static void shared_folder(int dragon)
+{
+    const char *dir = "../shared/models";
+    DIR *d = opendir(dir);
+    if (!d)
+        cr_skip_test("../shared/models not found");
+    int files = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        size_t n = strlen(e->d_name);
+        if (n < 5 || strcmp(e->d_name + n - 4, ".obj") || (strcmp(e->d_name, "dragon.obj") == 0) != dragon)
+            continue;
+        char path[600], name[200];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        snprintf(name, sizeof name, "%.*s", (int)(n - 4), e->d_name);
+        every_reader(path, name);
+        files++;
+    }
+    closedir(d);
+    cr_assert_gt(files, 0, "no models in %s", dir);
+}
+
+Test(models, shared_models_through_every_reader_and_writer, .init = setup, .fini = teardown, .timeout = 3000)
+{
+    shared_folder(0);
+}
+
+Test(models, dragon_through_every_reader_and_writer, .init = setup, .fini = teardown, .timeout = 3000)
+{
+    if (!getenv("ZV_MODELS"))
+        cr_skip_test("set ZV_MODELS=1 with ../shared/models present (make test-models)");
+    shared_folder(1);
 }
