@@ -1,0 +1,147 @@
+#ifndef ZV_REPAIR_H
+#define ZV_REPAIR_H
+/* repair: fix a loaded Mesh in place, so that --check finds the
+ * problems it can fix gone (issue 30). The steps, each optional through
+ * RepairOpts.steps, on each object alone (the check's definitions:
+ * topology on positions bit for bit, -0 = +0; degenerate = every corner
+ * on one line, exactly; duplicate = the same points as an earlier face
+ * of its object):
+ *
+ *   weld      vertices at one position (within weld_eps, when set) become one
+ *   clean     degenerate and duplicate faces, a point repeated in a row
+ *             within a face, and vertices nothing uses are dropped
+ *   manifold  an edge of three or more faces is split so that each edge
+ *             has at most two, and a point where separate fans of faces
+ *             meet gets a vertex per fan
+ *   winding   the fewest faces flipped so that each part agrees; then,
+ *             after the holes, closed parts that are inside out turned
+ *             outward
+ *   holes     every boundary loop filled (its own faces, added at the
+ *             end of its object), unless it has more than max_hole edges
+ *             or no fill of it avoids crossing the model
+ *
+ * Crossing faces are reported (the check's count after the repair), not
+ * changed. Positions of the vertices kept are kept bit for bit; the
+ * faces that were not dropped keep their order, material, colours and
+ * texture coordinates; object ranges stay valid. doc/design.md (Repair)
+ * says why the steps run in this order and which algorithm each uses. */
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "mesh.h"
+
+enum {
+    REPAIR_WELD     = 1,
+    REPAIR_CLEAN    = 2,
+    REPAIR_WINDING  = 4,
+    REPAIR_HOLES    = 8,
+    REPAIR_MANIFOLD = 16,
+    REPAIR_DEFAULT  = 31,
+};
+
+typedef struct {
+    unsigned steps;             /* REPAIR_* or'ed; 0 changes nothing */
+    double   weld_eps;          /* file units; 0: bit-identical positions only */
+    uint32_t max_hole;          /* 0: no limit; else loops of more edges stay open */
+    int      threads;           /* <= 1: the caller alone */
+    int      intersections;     /* count the crossing pairs left (the check's crossing test) */
+    const int *cancel;          /* NULL, or set (atomically) to stop: repair_mesh fails "cancelled" */
+} RepairOpts;
+
+/* Why a loop was left open. */
+typedef enum {
+    REPAIR_OPEN_TOO_BIG = 1,    /* more edges than max_hole */
+    REPAIR_OPEN_CROSSING,       /* every fill tried crossed the model or made an edge of three faces */
+    REPAIR_OPEN_UNORIENTED,     /* its edges do not run one way round (a non-orientable part's rim) */
+} RepairOpenWhy;
+
+/* A loop left open: its object, its length and a vertex on it. */
+typedef struct {
+    uint32_t object;
+    uint32_t edges;
+    uint32_t vertex;            /* a mesh vertex of the repaired mesh on the loop */
+    RepairOpenWhy why;
+} RepairHole;
+
+#define REPAIR_HOLES_MAX 1000u   /* open loops listed (all are counted) */
+
+/* What each step did, and what is left. */
+typedef struct {
+    /* weld */
+    uint32_t welded;            /* vertices merged into an earlier one */
+    /* clean */
+    uint32_t degenerate;        /* degenerate faces dropped */
+    uint32_t duplicate;         /* duplicate faces dropped */
+    uint32_t repeated;          /* corners dropped: a point again right after itself */
+    uint32_t unused;            /* vertices dropped that nothing used */
+    /* manifold */
+    uint32_t nm_edges;          /* edges of three or more faces split */
+    uint32_t nm_vertices;       /* points where separate fans met, split */
+    uint32_t split_vertices;    /* vertices the splits added */
+    /* winding */
+    uint32_t flipped;           /* faces flipped to agree with their part */
+    uint32_t outward;           /* closed parts turned outward */
+    /* holes */
+    uint32_t filled;            /* loops filled */
+    uint32_t fill_faces;        /* triangles the fills added */
+    uint32_t fill_vertices;     /* vertices they added (the centres of fans) */
+    uint32_t fans;              /* loops filled by a fan from a new centre */
+    uint32_t open;              /* loops left open */
+    uint32_t open_largest;      /* edges of the largest of them */
+    uint32_t open_too_big;      /* of them, for max_hole */
+    /* what is left, as the check counts it in the repaired mesh */
+    uint32_t left_holes;
+    uint32_t left_nm_edges;
+    uint32_t left_nm_vertices;
+    uint32_t left_flipped;
+    uint32_t left_nonorientable; /* parts no flip can make agree (a Moebius strip) */
+    uint32_t left_inside_out;   /* objects */
+    uint32_t left_degenerate;
+    uint32_t left_duplicate;
+    uint64_t left_crossings;    /* pairs of faces that cross (RepairOpts.intersections) */
+    int      crossings_tested;
+    int      crossings_stopped; /* the crossing test stopped on its budget: at least left_crossings */
+    /* the mesh before and after */
+    uint32_t faces_before, faces_after, verts_before, verts_after;
+    /* the loops left open, the first REPAIR_HOLES_MAX (repair_report_free) */
+    RepairHole *holes;
+    uint32_t    nholes;
+    double      ms;             /* wall time of repair_mesh, the check of what is left included */
+} RepairReport;
+
+/* Repair m in place by opt's steps (NULL: REPAIR_DEFAULT, no weld
+ * distance, no hole limit, one thread), filling *rep (zeroed first).
+ * Returns 0, or -1 with "path: reason" in err (out of memory,
+ * cancelled, a mesh too big for 32-bit indices after the repair): m is
+ * then unchanged. */
+int  repair_mesh(Mesh *m, const RepairOpts *opt, RepairReport *rep, char *err, size_t errlen);
+void repair_report_free(RepairReport *rep);
+
+/* ==== The figures as data ====
+ *
+ * Every count of RepairReport is one row of repair_rows (repairrows.c), in
+ * the order a report says them: its member, its step (a REPAIR_* bit;
+ * 0: what is left), its JSON name and its words after the number. A
+ * report (text or JSON) reads the rows. */
+
+typedef struct {
+    const char *field;          /* the RepairReport member */
+    size_t      offset, size;   /* offsetof and sizeof (4: uint32_t, 8: uint64_t) */
+    unsigned    step;           /* REPAIR_* it belongs to; 0: left after the repair */
+    const char *json;           /* the JSON member */
+    const char *one, *many;     /* "vertex welded", "vertices welded" */
+    int         problem;        /* left: a problem the check reports */
+} RepairRow;
+
+extern const RepairRow repair_rows[];
+extern const int       repair_nrows;
+
+/* Row r's figure in rep. */
+uint64_t repair_value(const RepairRow *r, const RepairReport *rep);
+/* "3 vertices welded" ("" when the figure is 0). */
+void repair_say(const RepairRow *r, const RepairReport *rep, char *buf, size_t n);
+/* Why a loop stayed open, in words ("more than --max-hole edges"). */
+const char *repair_open_why(RepairOpenWhy why);
+
+#endif
