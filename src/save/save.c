@@ -166,7 +166,7 @@ int save_mesh(const Mesh *m, const char *path, SaveFormat fmt, SaveReport *rep, 
             break;
         }
         if (so_finish(&model.out)) {
-            snprintf(err, errlen, "%s: %s", path, strerror(model.out.err));
+            snprintf(err, errlen, "%s: %s", model.to_stdout ? "standard output" : path, strerror(model.out.err));
             failed = 1;
         } else if (with_mtl && so_finish(&mtl.out)) {
             snprintf(err, errlen, "%s: %s", rep->mtl_path, strerror(mtl.out.err));
