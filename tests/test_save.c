@@ -132,7 +132,11 @@ Test(save, floats_read_back_bit_for_bit_in_the_fewest_digits)
     static const float special[] = { 0.0f, -0.0f, 1.0f, -1.0f, 0.1f, 0.2f, 0.3f, 1e-5f, 1.5e-5f, 123456789.0f,
                                      1e9f, 1e10f, 3.0e38f, FLT_MAX, -FLT_MAX, FLT_MIN, 1e-45f, -1e-45f,
                                      1.17549421e-38f, 16777216.0f, 16777215.0f, 0.5f, 9.5f, 99.5f, 0.0001f,
-                                     0.00001f, 7.0e-10f, 1.0e-6f, 8388608.5f };
+                                     0.00001f, 7.0e-10f, 1.0e-6f, 8388608.5f,
+                                     /* 8.06588e+08 lies halfway to the next float: its last bit is 0, so
+                                      * a reader takes it to this one; 33554450 lies halfway below
+                                      * 33554452, whose last bit is 1: it needs all 8 digits */
+                                     806588032.0f, 33554452.0f, 33554448.0f };
     for (size_t i = 0; i < sizeof special / sizeof special[0]; i++)
         cr_assert_eq(round_trip(special[i]), special[i] == 0 ? 0 : shortest(special[i]), "%a",
                      (double)special[i]);
