@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview
+.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-repair
 
 all: $(BIN)
 
@@ -82,6 +82,7 @@ help:
 	@echo '  make bench-textures textured frames against untextured; the first picture of a 16k image'
 	@echo '  make bench-pixels  bytes a picture costs in sixel, kitty and iTerm2 images against text'
 	@echo '  make bench-check   --check of the dragon and the 5.2M model beyond loading, and its peak memory'
+	@echo '  make bench-repair  --repair of the dragon and the 5.2M model, writing included, and its peak memory'
 	@echo '  make bench-sandbox the loading sandbox against --no-sandbox on the dragon'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
@@ -227,6 +228,11 @@ bench: $(BIN) $(BUILD)/subdiv $(BUILD)/memframes
 # alone (issue 19; doc/benchmarks.md: The check).
 bench-check: $(BIN) $(BUILD)/checkbench $(BUILD)/subdiv
 	ZVIEW=$(abspath $(BIN)) CHECKBENCH=$(BUILD)/checkbench SUBDIV=$(BUILD)/subdiv sh tools/bench-check.sh
+
+# What --repair costs, writing included, and its peak memory against
+# loading alone (issue 30; doc/benchmarks.md: The repair).
+bench-repair: $(BIN) $(BUILD)/checkbench $(BUILD)/subdiv
+	ZVIEW=$(abspath $(BIN)) CHECKBENCH=$(BUILD)/checkbench SUBDIV=$(BUILD)/subdiv sh tools/bench-repair.sh
 
 # Memory while the view turns (issue 21): resident and malloc'd bytes
 # after frame 100 and after frame 10,000 of the dragon (the bundled

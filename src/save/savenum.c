@@ -10,10 +10,13 @@
  * neighbours) with a margin far above double's error (a few 1e-16 of
  * the value), so that a correctly rounding reader (the project's own,
  * strtof) turns it back into x whatever the double arithmetic rounded.
+ * The value is scaled to 9 digits once; the shorter ones are that
+ * integer rounded, compared with the interval in the same units.
  * Close calls go on to more digits (9 digits never are one), but for a
  * decimal exactly halfway, computed exactly, which such a reader takes
  * to the neighbour whose last bit is 0. */
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -115,6 +118,23 @@ static int lay_out(char *buf, uint64_t n, int p, int k)
     return o;
 }
 
+/* Is n (p digits, the first at place kk) exactly halfway to a
+ * neighbour of ax, lo or hi, and so read as ax? Only where n * 10^q is
+ * exact in double (an integer of 53 bits at most); elsewhere it is no
+ * tie a double could see, and the caller takes more digits. */
+static int tie_to_ax(uint64_t n, int p, int kk, float ax, double lo, double hi)
+{
+    int q = kk - (p - 1);
+    if (q < 0 || q > 22)
+        return 0;
+    double back = (double)n * pow10_of(q);
+    if (back > 9007199254740992.0 || (back != lo && back != hi))
+        return 0;
+    uint32_t bits;
+    memcpy(&bits, &ax, 4);
+    return (bits & 1) == 0;     /* halfway goes to the neighbour whose last bit is 0 */
+}
+
 int save_float(char *buf, float x)
 {
     int o = 0;
@@ -130,36 +150,55 @@ int save_float(char *buf, float x)
     }
     float ax = fabsf(x);
     double d = ax;
-    /* the rounding interval: halfway to each neighbour (exact in double) */
-    double below = nextafterf(ax, 0), above = nextafterf(ax, INFINITY);
-    if (isinf(above))           /* past FLT_MAX: the gap goes on, and its midpoint rounds to infinity */
+    /* the rounding interval: halfway to each neighbour (exact in double);
+     * a positive float's neighbours are its bits less and plus one */
+    uint32_t bits;
+    memcpy(&bits, &ax, 4);
+    float fb, fa;
+    uint32_t b1 = bits - 1, a1 = bits + 1;
+    memcpy(&fb, &b1, 4);
+    memcpy(&fa, &a1, 4);
+    double below = fb, above = fa;
+    if (isinf(fa))              /* past FLT_MAX: the gap goes on, and its midpoint rounds to infinity */
         above = d + (d - below);
     double lo = (d + below) / 2, hi = (d + above) / 2;
-    double margin = d * 1e-13;
-    int k = (int)floor(log10(d));       /* the first digit's place, to within one */
-    if (scale10(d, -k) >= 10)
-        k++;
-    else if (scale10(d, -k) < 1)
-        k--;
-    for (int p = 1; p <= 9; p++) {
-        double n = nearbyint(scale10(d, p - 1 - k));
-        int kk = k;
-        if (n >= pow10_of(p)) {         /* 9.96 to 2 digits is 10.0: one place up */
-            n = nearbyint(n / 10);
-            kk++;
+    /* k, the first digit's place: from the binary exponent (floor of
+     * its log10, within one), made exact by the 9-digit scaling landing
+     * in [1e8, 1e9) */
+    int e2 = (int)(bits >> 23) - 127;
+    int k = e2 > -127 ? (int)floor(e2 * 0.30102999566398120) : (int)floor(log10(d));   /* subnormal: rare */
+    double s9 = scale10(d, 8 - k);
+    while (s9 >= 1e9)
+        s9 = scale10(d, 8 - ++k);
+    while (s9 < 1e8)
+        s9 = scale10(d, 8 - --k);
+    /* everything in units of the 9th digit: the value, the interval */
+    double lo9 = scale10(lo, 8 - k), hi9 = scale10(hi, 8 - k), margin9 = s9 * 1e-13;
+    uint64_t n9 = (uint64_t)nearbyint(s9);
+    /* A normal float's rounding interval is at most 6e-8 of it wide on
+     * each side, and decimals of 6 digits at least 1e-6 of it apart: of
+     * those, only the nearest can be inside, and a shorter decimal
+     * inside is one of them (its trailing zeros then go). A subnormal's
+     * interval is wider: every length is tried. */
+    for (int p = ax < FLT_MIN ? 1 : 6; p <= 9; p++) {
+        /* n9 rounded to p digits, and its neighbour on the value's other
+         * side: rounding twice may land one off the nearest */
+        uint64_t q = (uint64_t)pow10_of(9 - p), n0 = (n9 + q / 2) / q;
+        uint64_t cand[2] = { n0, (double)(n0 * q) < s9 ? n0 + 1 : n0 - 1 };
+        for (int c = 0; c < 2; c++) {
+            uint64_t n = cand[c];
+            double v = (double)(n * q);     /* exact: at most 1e9 */
+            int kk = k;
+            int inside = v > lo9 + margin9 && v < hi9 - margin9;
+            if (n >= (uint64_t)pow10_of(p)) {   /* 9.96 to 2 digits is 10: one place up */
+                n /= 10;
+                kk++;
+            }
+            if (!inside && n && (fabs(v - lo9) <= margin9 || fabs(v - hi9) <= margin9))
+                inside = tie_to_ax(n, p, kk, ax, lo, hi);
+            if (inside || (p == 9 && c == 1))
+                return o + lay_out(buf + o, inside ? n : n9, p, inside ? kk : k);
         }
-        int q = kk - (p - 1);
-        double back = scale10(n, q);
-        int inside = back > lo + margin && back < hi - margin;
-        /* exactly halfway (back is exact: an integer of 53 bits at most)
-         * goes to the even neighbour, as correctly rounding readers do */
-        if (!inside && q >= 0 && q <= 22 && back <= 9007199254740992.0 && (back == lo || back == hi)) {
-            uint32_t bits;
-            memcpy(&bits, &ax, 4);
-            inside = (bits & 1) == 0;
-        }
-        if (inside || p == 9)
-            return o + lay_out(buf + o, (uint64_t)n, p, kk);
     }
     return o;   /* not reached */
 }
