@@ -54,6 +54,7 @@ typedef enum {
     REPAIR_OPEN_TOO_BIG = 1,    /* more edges than max_hole */
     REPAIR_OPEN_CROSSING,       /* every fill tried crossed the model or made an edge of three faces */
     REPAIR_OPEN_UNORIENTED,     /* its edges do not run one way round (a non-orientable part's rim) */
+    REPAIR_OPEN_LONE_FACE,      /* the rim of one face alone: its fill would be the face again */
 } RepairOpenWhy;
 
 /* A loop left open: its object, its length and a vertex on it. */
@@ -66,6 +67,11 @@ typedef struct {
 
 #define REPAIR_HOLES_MAX 1000u   /* open loops listed (all are counted) */
 
+/* Phases timed (wall ms), for the benchmark: the weld, the clean, the
+ * splits, winding and holes object by object, the vertices put in
+ * order, and the check of what is left. */
+enum { REPAIR_T_WELD, REPAIR_T_CLEAN, REPAIR_T_OBJECTS, REPAIR_T_ORDER, REPAIR_T_CHECK, REPAIR_T_COUNT };
+
 /* What each step did, and what is left. */
 typedef struct {
     /* weld */
@@ -73,12 +79,15 @@ typedef struct {
     /* clean */
     uint32_t degenerate;        /* degenerate faces dropped */
     uint32_t duplicate;         /* duplicate faces dropped */
+    uint32_t flaps;             /* faces dropped with their copies: a two-sided flap, either alone would leave an edge of one face */
+    uint32_t dup_kept;          /* duplicate faces kept: dropping them would leave an edge of one face */
     uint32_t repeated;          /* corners dropped: a point again right after itself */
     uint32_t unused;            /* vertices dropped that nothing used */
     /* manifold */
     uint32_t nm_edges;          /* edges of three or more faces split */
     uint32_t nm_vertices;       /* points where separate fans met, split */
     uint32_t split_vertices;    /* vertices the splits added */
+    uint32_t cuts_undone;       /* faces of an odd fin cut loose, then put back: no fill closed the cut */
     /* winding */
     uint32_t flipped;           /* faces flipped to agree with their part */
     uint32_t outward;           /* closed parts turned outward */
@@ -90,6 +99,9 @@ typedef struct {
     uint32_t open;              /* loops left open */
     uint32_t open_largest;      /* edges of the largest of them */
     uint32_t open_too_big;      /* of them, for max_hole */
+    /* objects repaired less boldly: the full repair left a figure of
+     * the check worse than before (src/repair/guard.c) */
+    uint32_t held_back;
     /* what is left, as the check counts it in the repaired mesh */
     uint32_t left_holes;
     uint32_t left_nm_edges;
@@ -108,6 +120,7 @@ typedef struct {
     RepairHole *holes;
     uint32_t    nholes;
     double      ms;             /* wall time of repair_mesh, the check of what is left included */
+    double      ms_phase[REPAIR_T_COUNT];
 } RepairReport;
 
 /* Repair m in place by opt's steps (NULL: REPAIR_DEFAULT, no weld

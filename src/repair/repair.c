@@ -1,21 +1,408 @@
 /* repair.c: repair_mesh, the steps in order (include/repair.h).
  *
- * Not built yet: this first version refuses every mesh, so that the
- * command line can be built on the interface while the steps are
- * written. */
+ * The order: weld, clean, then object by object the non-manifold
+ * splits, the winding, the holes, and last the turn outward. The splits
+ * come before the winding, because a fin's faces have no winding to
+ * agree on until it is split, and before the holes, because a split can
+ * open a boundary (a fin's odd face cut loose) that the holes then
+ * fill, and a fill must not put a third face on an edge. The winding
+ * comes before the holes so that each loop runs one way round and its
+ * fill is wound to agree; the turn outward comes after them, because a
+ * part is closed, and has an inside, only once its holes are filled.
+ *
+ * The repair works on copies of the arrays it changes (the positions,
+ * colours, faces, corners, their texture coordinates and materials,
+ * the objects, points and lines); on success they replace the mesh's,
+ * on failure the mesh is as it was. What is left is counted by the
+ * check itself (meshcheck_run) on the repaired mesh. */
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "repair.h"
+#include "clock.h"
+#include "meshcheck.h"
+#include "repair_internal.h"
+
+int rp_cancelled(const Rep *r)
+{
+    return r->opt->cancel && __atomic_load_n(r->opt->cancel, __ATOMIC_RELAXED);
+}
+
+/* ==== The working copy ==== */
+
+static void *dup_array(const void *p, size_t bytes)
+{
+    void *q = malloc(bytes ? bytes : 1);
+    if (q && p && bytes)
+        memcpy(q, p, bytes);
+    return q;
+}
+
+/* The arrays the repair changes, copied; per-vertex texture coordinates
+ * become the corners' (the vertices are renumbered and split). */
+static int copy_in(Rep *r, const Mesh *m)
+{
+    Mesh *w = &r->w;
+    *w = *m;
+    w->pos = w->rgb = NULL;
+    w->face_start = w->corner = w->corner_uv = w->point = w->line_corner = NULL;
+    w->face_mat = NULL;
+    w->objs = NULL;
+    size_t nv = m->nverts, nc = m->nfaces ? m->face_start[m->nfaces] : 0;
+    r->vcap = nv;
+    r->nverts0 = m->nverts;
+    w->pos = dup_array(m->pos, 3 * nv * sizeof *m->pos);
+    w->face_start = dup_array(m->face_start, ((size_t)m->nfaces + 1) * sizeof *m->face_start);
+    w->corner = dup_array(m->corner, nc * sizeof *m->corner);
+    w->objs = dup_array(m->objs, m->nobjs * sizeof *m->objs);
+    if (!w->pos || !w->face_start || !w->corner || !w->objs)
+        return -1;
+    if (!m->face_start)
+        w->face_start[0] = 0;
+    if (m->rgb && !(w->rgb = dup_array(m->rgb, 3 * nv * sizeof *m->rgb)))
+        return -1;
+    if (m->face_mat && !(w->face_mat = dup_array(m->face_mat, ((size_t)m->nfaces + 1) * sizeof *m->face_mat)))
+        return -1;
+    if (m->point && !(w->point = dup_array(m->point, m->npoints * sizeof *m->point)))
+        return -1;
+    if (m->nlines && !(w->line_corner = dup_array(m->line_corner, m->line_start[m->nlines] * sizeof *m->line_corner)))
+        return -1;
+    if (m->corner_uv) {
+        if (!(w->corner_uv = dup_array(m->corner_uv, nc * sizeof *m->corner_uv)))
+            return -1;
+    } else if (m->uv) {
+        if (!(w->corner_uv = malloc((nc ? nc : 1) * sizeof *w->corner_uv)))
+            return -1;
+        for (size_t c = 0; c < nc; c++)
+            w->corner_uv[c] = m->corner[c] < m->nuv ? m->corner[c] : MESH_NO_UV;
+    }
+    return 0;
+}
+
+static void free_copy(Rep *r)
+{
+    Mesh *w = &r->w;
+    free(w->pos);
+    free(w->rgb);
+    free(w->face_start);
+    free(w->corner);
+    free(w->corner_uv);
+    free(w->face_mat);
+    free(w->objs);
+    free(w->point);
+    free(w->line_corner);
+    free(r->pid);
+    free(r->anchor);
+    free(r->loc);
+    rp_points_free(r);
+}
+
+/* The copy in place of the mesh's arrays. */
+static void install(Rep *r, Mesh *m)
+{
+    Mesh *w = &r->w;
+    free(m->pos);
+    free(m->rgb);
+    free(m->face_start);
+    free(m->corner);
+    free(m->corner_uv);
+    free(m->face_mat);
+    free(m->objs);
+    free(m->point);
+    free(m->line_corner);
+    m->pos = w->pos;
+    m->rgb = w->rgb;
+    m->nverts = w->nverts;
+    m->face_start = w->face_start;
+    m->corner = w->corner;
+    m->corner_uv = w->corner_uv;
+    m->face_mat = w->face_mat;
+    m->nfaces = w->nfaces;
+    m->objs = w->objs;
+    m->point = w->point;
+    m->line_corner = w->line_corner;
+    uint64_t tris = 0;
+    for (uint32_t f = 0; f < m->nfaces; f++)
+        tris += m->face_start[f + 1] - m->face_start[f] - 2;
+    m->info.triangles = tris > UINT32_MAX ? UINT32_MAX : (uint32_t)tris;
+    memset(w, 0, sizeof *w);
+}
+
+/* ==== Faces added ==== */
+
+int rp_faces_append(Rep *r, Fill *const *fills, const uint32_t *nfills)
+{
+    Mesh *w = &r->w;
+    uint64_t addf = 0, nc = w->nfaces ? w->face_start[w->nfaces] : 0;
+    int mats = w->face_mat != NULL;
+    for (uint32_t i = 0; i < w->nobjs; i++)
+        for (uint32_t k = 0; k < nfills[i]; k++) {
+            addf += fills[i][k].ntri;
+            mats |= fills[i][k].mat >= 0;
+        }
+    if (!addf)
+        return 0;
+    if ((uint64_t)w->nfaces + addf >= UINT32_MAX - 1 || nc + 3 * addf >= UINT32_MAX - 1)
+        return -1;
+    uint32_t nf = w->nfaces + (uint32_t)addf;
+    uint32_t *fs = malloc(((size_t)nf + 1) * sizeof *fs), *cr = malloc((nc + 3 * addf) * sizeof *cr);
+    uint32_t *uv = w->corner_uv ? malloc((nc + 3 * addf) * sizeof *uv) : NULL;
+    int32_t *fm = mats ? malloc(((size_t)nf + 1) * sizeof *fm) : NULL;
+    if (!fs || !cr || (w->corner_uv && !uv) || (mats && !fm)) {
+        free(fs);
+        free(cr);
+        free(uv);
+        free(fm);
+        return -1;
+    }
+    uint32_t f = 0, c = 0;
+    for (uint32_t i = 0; i < w->nobjs; i++) {
+        MeshObject *o = &w->objs[i];
+        uint32_t first = f;
+        for (uint32_t g = o->face_first; g < o->face_first + o->face_count; g++, f++) {
+            uint32_t s = w->face_start[g], n = w->face_start[g + 1] - s;
+            fs[f] = c;
+            memcpy(cr + c, w->corner + s, n * sizeof *cr);
+            if (uv)
+                memcpy(uv + c, w->corner_uv + s, n * sizeof *uv);
+            if (fm)
+                fm[f] = mesh_face_mat(w, g);
+            c += n;
+        }
+        for (uint32_t k = 0; k < nfills[i]; k++)
+            for (uint32_t j = 0; j < fills[i][k].ntri; j++, f++) {
+                fs[f] = c;
+                for (int q = 0; q < 3; q++) {
+                    if (uv)
+                        uv[c] = MESH_NO_UV;
+                    cr[c++] = fills[i][k].tri[3 * j + q];
+                }
+                if (fm)
+                    fm[f] = fills[i][k].mat;
+            }
+        o->face_first = first;
+        o->face_count = f - first;
+    }
+    fs[f] = c;
+    free(w->face_start);
+    free(w->corner);
+    free(w->corner_uv);
+    free(w->face_mat);
+    w->face_start = fs;
+    w->corner = cr;
+    w->corner_uv = uv;
+    w->face_mat = fm;
+    w->nfaces = f;
+    return 0;
+}
+
+/* ==== Object by object ==== */
+
+typedef struct {
+    Fill     **fills;           /* per object */
+    uint32_t  *nfills;
+    uint64_t   dp_budget;
+} Filled;
+
+static void filled_free(Filled *fd, uint32_t nobjs)
+{
+    for (uint32_t i = 0; fd->fills && i < nobjs; i++) {
+        for (uint32_t k = 0; fd->fills[i] && k < fd->nfills[i]; k++)
+            free(fd->fills[i][k].tri);
+        free(fd->fills[i]);
+    }
+    free(fd->fills);
+    free(fd->nfills);
+}
+
+/* The splits, the winding and the holes of object i; outward too when
+ * no hole was filled (else after the fills are in place). */
+static int object_steps(Rep *r, uint32_t i, Filled *fd)
+{
+    unsigned steps = r->opt->steps, lv = r->level[i];
+    if (lv >= RP_LEVEL_NO_WINDING)
+        return 0;
+    int split = lv < RP_LEVEL_NO_SPLITS;
+    ObjTopo t;
+    Cuts cuts = { 0 };
+    if (rp_topo_build(r, i, &t))
+        return -1;
+    int rc = 0;
+    if (split && (steps & REPAIR_MANIFOLD))
+        rc = rp_manifold(r, &t, &cuts);
+    if (rc == 0 && (steps & REPAIR_WINDING))
+        rc = rp_winding(r, &t);
+    if (rc == 0 && split && (steps & REPAIR_HOLES) && t.nboundary)
+        rc = rp_holes(r, &t, &cuts, &fd->fills[i], &fd->nfills[i], &fd->dp_budget);
+    if (rc == 0)
+        rc = rp_cuts_settle(r, &t, &cuts, fd->fills[i], fd->nfills[i]);
+    if (rc == 0 && (steps & REPAIR_WINDING) && !fd->nfills[i])
+        rc = rp_outward(r, &t);
+    rp_cuts_free(&cuts);
+    rp_topo_free(r, &t);
+    return rc || rp_cancelled(r) ? -1 : 0;
+}
+
+static int objects(Rep *r)
+{
+    uint32_t n = r->w.nobjs;
+    Filled fd = { calloc((size_t)n + 1, sizeof *fd.fills), calloc((size_t)n + 1, sizeof *fd.nfills), RP_DP_BUDGET };
+    int rc = -1, any = 0;
+    if (!fd.fills || !fd.nfills)
+        goto out;
+    for (uint32_t i = 0; i < n; i++) {
+        if (object_steps(r, i, &fd))
+            goto out;
+        any |= fd.nfills[i] > 0;
+    }
+    if (any && rp_faces_append(r, (Fill *const *)fd.fills, fd.nfills))
+        goto out;
+    for (uint32_t i = 0; i < n && (r->opt->steps & REPAIR_WINDING); i++) {
+        if (!fd.nfills[i])
+            continue;
+        ObjTopo t;
+        if (rp_topo_build(r, i, &t))
+            goto out;
+        int bad = rp_outward(r, &t);
+        rp_topo_free(r, &t);
+        if (bad)
+            goto out;
+    }
+    rc = 0;
+out:
+    filled_free(&fd, n);
+    return rc;
+}
+
+/* ==== What is left ==== */
+
+static void left(RepairReport *rep, const MeshCheck *mc)
+{
+    const CheckCounts *c = &mc->file;
+    rep->left_holes = c->holes;
+    rep->left_nm_edges = c->nonmanifold_edges;
+    rep->left_nm_vertices = c->nonmanifold_vertices;
+    rep->left_flipped = c->inconsistent_faces;
+    rep->left_nonorientable = c->nonorientable;
+    rep->left_degenerate = c->degenerate_faces;
+    rep->left_duplicate = c->duplicate_faces;
+    rep->left_crossings = c->self_intersections;
+    rep->crossings_tested = c->intersections_tested;
+    rep->crossings_stopped = c->intersections_stopped;
+    for (uint32_t i = 0; i < mc->nobjs; i++)
+        rep->left_inside_out += mc->objs[i].c.inside_out != 0;
+}
+
+/* ==== The repair ==== */
+
+static int steps(Rep *r)
+{
+    unsigned s = r->opt->steps;
+    double *ms = r->rep->ms_phase, t = now_ms();
+    if (rp_points_build(r) || ((s & REPAIR_WELD) && rp_weld(r)) || rp_cancelled(r))
+        return -1;
+    rp_points_drop_table(r);
+    ms[REPAIR_T_WELD] += now_ms() - t;
+    t = now_ms();
+    if (s & REPAIR_CLEAN) {
+        if (rp_clean(r) || rp_cancelled(r))
+            return -1;
+        r->clean = 1;
+    }
+    ms[REPAIR_T_CLEAN] += now_ms() - t;
+    t = now_ms();
+    if ((s & (REPAIR_MANIFOLD | REPAIR_WINDING | REPAIR_HOLES)) && objects(r))
+        return -1;
+    ms[REPAIR_T_OBJECTS] += now_ms() - t;
+    t = now_ms();
+    int rc = rp_renumber(r, (s & REPAIR_CLEAN) != 0);
+    ms[REPAIR_T_ORDER] += now_ms() - t;
+    return rc;
+}
+
+/* One go at every object at its level: the repaired copy in r, the
+ * check of it in *after. 0, or -1 (out of memory, cancelled). */
+static int attempt(Rep *r, const Mesh *m, MeshCheck *after)
+{
+    if (copy_in(r, m) || steps(r))
+        return -1;
+    double t = now_ms();
+    CheckOpts co = { .threads = r->opt->threads, .intersections = r->opt->intersections, .cancel = r->opt->cancel };
+    char err[256];
+    int rc = meshcheck_run(after, &r->w, &co, err, sizeof err);
+    r->rep->ms_phase[REPAIR_T_CHECK] += now_ms() - t;
+    return rc;
+}
+
+/* A fresh report for another go, keeping its times. */
+static void report_again(RepairReport *rep)
+{
+    double ms[REPAIR_T_COUNT];
+    memcpy(ms, rep->ms_phase, sizeof ms);
+    repair_report_free(rep);
+    memset(rep, 0, sizeof *rep);
+    memcpy(rep->ms_phase, ms, sizeof ms);
+}
+
+/* Repair m into r's copy, object by object as boldly as the check of
+ * the result allows (guard.c); *after: the check of what it made. */
+static int repair_guarded(Rep *r, const Mesh *m, uint8_t *level, MeshCheck *after)
+{
+    Before b;
+    int rc = rp_before_start(&b, m, r->opt);
+    for (int go = 0; rc == 0; go++) {
+        report_again(r->rep);
+        rc = attempt(r, m, after);
+        if (rc == 0 && go == 0)
+            rc = rp_before_wait(&b);
+        if (rc || !rp_worse(&b.mc, after, level))
+            break;
+        meshcheck_free(after);
+        free_copy(r);
+        *r = (Rep){ .opt = r->opt, .rep = r->rep, .level = level };
+    }
+    rp_before_free(&b);
+    return rc;
+}
 
 int repair_mesh(Mesh *m, const RepairOpts *opt, RepairReport *rep, char *err, size_t errlen)
 {
-    (void)opt;
+    RepairOpts dflt = { .steps = REPAIR_DEFAULT };
+    const char *name = m->path ? m->path : "(input)";
+    double t0 = now_ms();
     memset(rep, 0, sizeof *rep);
-    snprintf(err, errlen, "%s: repair is not built yet", m->path ? m->path : "(input)");
-    return -1;
+    opt = opt ? opt : &dflt;
+    if (!(opt->weld_eps >= 0) || !isfinite(opt->weld_eps)) {
+        snprintf(err, errlen, "%s: the weld distance must be a finite number >= 0", name);
+        return -1;
+    }
+    uint8_t *level = calloc((size_t)m->nobjs + 1, 1);
+    Rep r = { .opt = opt, .rep = rep, .level = level };
+    MeshCheck after;
+    int rc = level ? repair_guarded(&r, m, level, &after) : -1;
+    if (rc) {
+        snprintf(err, errlen, "%s: %s", name,
+                 rp_cancelled(&r) ? "cancelled" : "out of memory repairing the model (or more than 2^32 vertices)");
+        free_copy(&r);
+        free(level);
+        repair_report_free(rep);
+        return -1;
+    }
+    left(rep, &after);
+    meshcheck_free(&after);
+    for (uint32_t i = 0; i < m->nobjs; i++)
+        rep->held_back += level[i] > 0;
+    free(level);
+    rep->faces_before = m->nfaces;
+    rep->verts_before = m->nverts;
+    install(&r, m);
+    free_copy(&r);
+    rep->faces_after = m->nfaces;
+    rep->verts_after = m->nverts;
+    rep->ms = now_ms() - t0;
+    return 0;
 }
 
 void repair_report_free(RepairReport *rep)

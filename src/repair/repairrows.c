@@ -14,6 +14,11 @@ const RepairRow repair_rows[] = {
       .one = "degenerate face dropped", .many = "degenerate faces dropped" },
     { FIELD(duplicate), .step = REPAIR_CLEAN, .json = "duplicate_dropped",
       .one = "duplicate face dropped", .many = "duplicate faces dropped" },
+    { FIELD(flaps), .step = REPAIR_CLEAN, .json = "flaps_dropped",
+      .one = "face dropped with its copy (a two-sided flap)", .many = "faces dropped with their copies (two-sided flaps)" },
+    { FIELD(dup_kept), .step = REPAIR_CLEAN, .json = "duplicate_kept",
+      .one = "duplicate face kept (dropping it would open an edge)",
+      .many = "duplicate faces kept (dropping them would open edges)" },
     { FIELD(repeated), .step = REPAIR_CLEAN, .json = "repeated_corners_dropped",
       .one = "repeated corner dropped", .many = "repeated corners dropped" },
     { FIELD(unused), .step = REPAIR_CLEAN, .json = "unused_dropped",
@@ -24,6 +29,9 @@ const RepairRow repair_rows[] = {
       .one = "non-manifold vertex split", .many = "non-manifold vertices split" },
     { FIELD(split_vertices), .step = REPAIR_MANIFOLD, .json = "split_vertices_added",
       .one = "vertex added by the splits", .many = "vertices added by the splits" },
+    { FIELD(cuts_undone), .step = REPAIR_MANIFOLD, .json = "fin_cuts_undone",
+      .one = "face of a fin of three or five faces left on it (cut loose, no fill could close the cut)",
+      .many = "faces of fins of three or five faces left on them (cut loose, no fill could close the cut)" },
     { FIELD(flipped), .step = REPAIR_WINDING, .json = "faces_flipped", .one = "face flipped", .many = "faces flipped" },
     { FIELD(outward), .step = REPAIR_WINDING, .json = "parts_turned_outward",
       .one = "inside-out part turned outward", .many = "inside-out parts turned outward" },
@@ -40,6 +48,9 @@ const RepairRow repair_rows[] = {
     { FIELD(open_too_big), .step = REPAIR_HOLES, .json = "holes_over_max",
       .one = "hole open for having more edges than the limit",
       .many = "holes open for having more edges than the limit" },
+    { FIELD(held_back), .json = "objects_held_back",
+      .one = "object repaired less (the full repair made a figure of the check worse)",
+      .many = "objects repaired less (the full repair made a figure of the check worse)" },
     { FIELD(left_holes), .json = "left_holes", .one = "hole left", .many = "holes left", .problem = 1 },
     { FIELD(left_nm_edges), .json = "left_nonmanifold_edges",
       .one = "non-manifold edge left", .many = "non-manifold edges left", .problem = 1 },
@@ -88,6 +99,8 @@ const char *repair_open_why(RepairOpenWhy why)
         return "every fill tried would cross the model or put three faces on an edge";
     case REPAIR_OPEN_UNORIENTED:
         return "its edges do not run one way round (the rim of a non-orientable part)";
+    case REPAIR_OPEN_LONE_FACE:
+        return "the rim of one face alone (its fill would be the face again, the other way round)";
     }
     return "open";
 }

@@ -1,0 +1,569 @@
+/* fins.c: the non-manifold edges and vertices, split.
+ *
+ * An edge of three or more faces (a fin, two solids sharing an edge) is
+ * resolved by choosing which of its faces go together: they are sorted
+ * by angle around the edge, and two neighbours in that order go
+ * together when the wedge between them lies behind both (the inside of
+ * one solid), the pairing a solid's faces make when they are wound
+ * consistently; faces left over are paired with a neighbour of the
+ * other direction, then with any neighbour, and an odd one out is cut
+ * loose (its edge becomes a boundary). Then, as in the check, the
+ * corners around each point fall into fans (corners joined across each
+ * paired edge); a point where two fans or more meet keeps its vertex
+ * for the first fan and gets a new vertex for each other, which splits
+ * the fins and the points where solids touch (two cones tip to tip).
+ *
+ * The check takes vertices at one position as one point, so a copy at
+ * the same place would change nothing: each copy is moved off the
+ * point, by the least that makes it a point of its own (a few units in
+ * the last place, growing by fours up to an eighth of its shortest
+ * edge), behind its fan (against the sum of the fan's face normals:
+ * into the solid whose corner it is), and only where no face of the fan
+ * becomes degenerate. MeshLab's "split non-manifold vertices" moves its
+ * copies likewise (by a fraction of the edges). A fan no move fits
+ * keeps its point (the check still reports it). */
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "repair_internal.h"
+
+/* ==== Pairing the faces around a non-manifold edge ==== */
+
+typedef struct {
+    double   angle;             /* of the face around the edge */
+    uint32_t he;                /* its half-edge */
+    int      dir;               /* +1: runs from the edge's smaller point */
+    int      paired;
+} Wing;
+
+static int cmp_wing(const void *x, const void *y)
+{
+    const Wing *a = x, *b = y;
+    return a->angle < b->angle ? -1 : a->angle > b->angle ? 1 : a->he < b->he ? -1 : a->he > b->he;
+}
+
+static void sub3(const float *a, const float *b, double d[3])
+{
+    for (int i = 0; i < 3; i++)
+        d[i] = (double)a[i] - b[i];
+}
+
+static void cross3(const double a[3], const double b[3], double c[3])
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* The faces' angles around the edge from point a to point b. */
+static void wings_measure(const Rep *r, const ObjTopo *t, uint32_t a, uint32_t b, Wing *w, uint32_t k)
+{
+    const float *pa = rp_vpos(r, t->prep[a]), *pb = rp_vpos(r, t->prep[b]);
+    double d[3], axis[3] = { 0, 0, 0 }, e1[3], e2[3];
+    sub3(pb, pa, d);
+    int least = fabs(d[0]) <= fabs(d[1]) && fabs(d[0]) <= fabs(d[2]) ? 0 : fabs(d[1]) <= fabs(d[2]) ? 1 : 2;
+    axis[least] = 1;
+    cross3(d, axis, e1);
+    cross3(d, e1, e2);
+    for (uint32_t i = 0; i < k; i++) {
+        uint32_t h = w[i].he, wing = rp_next(r, t, rp_next(r, t, h));
+        double u[3];
+        sub3(rp_vpos(r, rp_cvert(r, t, wing)), pa, u);
+        w[i].angle = atan2(dot3(u, e2), dot3(u, e1));
+        w[i].dir = t->cpt[h] == a ? 1 : -1;
+        w[i].paired = 0;
+    }
+}
+
+static void pair_two(ObjTopo *t, Wing *x, Wing *y)
+{
+    x->paired = y->paired = 1;
+    t->mate[x->he] = y->he;
+    t->mate[y->he] = x->he;
+}
+
+/* The faces of one non-manifold edge paired (mates), the rest cut loose. */
+static int cut_add(Cuts *cu, uint32_t a, uint32_t b)
+{
+    if (cu->n == cu->cap) {
+        uint32_t c = cu->cap ? cu->cap * 2 : 16;
+        uint32_t *v = realloc(cu->v, 2 * (size_t)c * sizeof *v);
+        if (!v)
+            return -1;
+        cu->v = v;
+        cu->cap = c;
+    }
+    cu->v[2 * cu->n] = a;
+    cu->v[2 * cu->n++ + 1] = b;
+    return 0;
+}
+
+static int pair_group(const Rep *r, ObjTopo *t, const uint32_t *he, uint32_t k, Wing *w, uint32_t *rest, Cuts *cu)
+{
+    uint32_t p = t->cpt[he[0]], q = t->cpt[rp_next(r, t, he[0])];
+    for (uint32_t i = 0; i < k; i++)
+        w[i].he = he[i];
+    wings_measure(r, t, p < q ? p : q, p < q ? q : p, w, k);
+    qsort(w, k, sizeof *w, cmp_wing);
+    /* the wedges behind both their faces: a face whose back faces the
+     * way the angle grows (dir -1), then one whose back faces back */
+    for (uint32_t i = 0; i < k; i++) {
+        Wing *x = &w[i], *y = &w[(i + 1) % k];
+        if (!x->paired && !y->paired && x->dir < 0 && y->dir > 0)
+            pair_two(t, x, y);
+    }
+    for (int pass = 0; pass < 2; pass++) {
+        uint32_t n = 0;
+        for (uint32_t i = 0; i < k; i++)
+            if (!w[i].paired)
+                rest[n++] = i;
+        for (uint32_t i = 0; i + 1 < n;) {
+            Wing *x = &w[rest[i]], *y = &w[rest[i + 1]];
+            if (pass == 1 || x->dir != y->dir) {
+                pair_two(t, x, y);
+                i += 2;
+            } else {
+                i++;
+            }
+        }
+    }
+    /* the odd one out (one at most): its half-edge, until the split says
+     * which vertices it ends on */
+    for (uint32_t i = 0; i < k; i++)
+        if (!w[i].paired) {
+            t->mate[w[i].he] = RP_BOUNDARY;
+            if (cut_add(cu, w[i].he, RP_NONE))
+                return -1;
+        }
+    return 0;
+}
+
+static int pair_groups(const Rep *r, ObjTopo *t, Cuts *cu)
+{
+    uint32_t maxk = 0;
+    for (uint32_t g = 0; g < t->nm_ngroup; g++)
+        if (t->nm_group[g + 1] - t->nm_group[g] > maxk)
+            maxk = t->nm_group[g + 1] - t->nm_group[g];
+    Wing *w = malloc(((size_t)maxk + 1) * sizeof *w);
+    uint32_t *rest = malloc(((size_t)maxk + 1) * sizeof *rest);
+    if (!w || !rest) {
+        free(w);
+        free(rest);
+        return -1;
+    }
+    int rc = 0, odd_whole = r->level[t->obj] >= RP_LEVEL_NO_CUTS;
+    for (uint32_t g = 0; rc == 0 && g < t->nm_ngroup; g++) {
+        uint32_t k = t->nm_group[g + 1] - t->nm_group[g];
+        /* held back (guard.c): a fin of an odd number stays whole */
+        if (!(odd_whole && k % 2))
+            rc = pair_group(r, t, t->nm_half + t->nm_group[g], k, w, rest, cu);
+    }
+    free(w);
+    free(rest);
+    return rc;
+}
+
+/* ==== Fans ==== */
+
+/* Join the corners at each end of the paired edge of half-edges c and m. */
+static void join_pair(const Rep *r, const ObjTopo *t, uint32_t *uf, uint32_t c, uint32_t m)
+{
+    uint32_t n1 = rp_next(r, t, c), n2 = rp_next(r, t, m);
+    if (t->cpt[c] != t->cpt[m]) {
+        rp_uf_union(uf, c, n2);
+        rp_uf_union(uf, n1, m);
+    } else {
+        rp_uf_union(uf, c, m);
+        rp_uf_union(uf, n1, n2);
+    }
+}
+
+/* The fans: corners joined across every paired edge (and, with groups,
+ * all the corners at each end of each non-manifold edge still unpaired,
+ * as the check counts non-manifold vertices). */
+static uint32_t *fans(const Rep *r, const ObjTopo *t, int groups)
+{
+    uint32_t *uf = rp_uf_new(t->nc);
+    if (!uf)
+        return NULL;
+    for (uint32_t c = 0; c < t->nc; c++) {
+        uint32_t m = t->mate[c];
+        if (m < RP_SPECIAL && c < m)
+            join_pair(r, t, uf, c, m);
+        else if (m == RP_SELF)
+            rp_uf_union(uf, c, rp_next(r, t, c));
+    }
+    for (uint32_t g = 0; groups && g < t->nm_ngroup; g++) {
+        const uint32_t *h = t->nm_half + t->nm_group[g];
+        if (t->mate[h[0]] != RP_NONMANIF)
+            continue;           /* paired: its faces are joined pair by pair */
+        uint32_t n = t->nm_group[g + 1] - t->nm_group[g], a = t->cpt[h[0]];
+        for (uint32_t k = 1; k < n; k++) {
+            uint32_t nk = rp_next(r, t, h[k]), n0 = rp_next(r, t, h[0]);
+            int from_a = t->cpt[h[k]] == a;
+            rp_uf_union(uf, h[0], from_a ? h[k] : nk);
+            rp_uf_union(uf, n0, from_a ? nk : h[k]);
+        }
+    }
+    for (uint32_t c = 0; c < t->nc; c++)
+        uf[c] = rp_uf_find(uf, c);
+    return uf;
+}
+
+/* ==== Splitting a point ==== */
+
+typedef struct {
+    uint32_t *off, *list;       /* each point's corners (counting sort) */
+    uint64_t *key;              /* scratch: (fan, corner) of one point's corners */
+    uint8_t  *in;               /* per corner: in the fan being moved */
+    const float **fp;           /* scratch: one face's corner positions */
+    uint32_t *verts;            /* scratch: a fan's distinct vertices and their copies */
+} Split;
+
+/* Does every face of the fan (corners c[0..n)) keep three points off one
+ * line with its point at q? */
+static int fan_faces_sound(const Rep *r, const ObjTopo *t, Split *s, const uint32_t *c, uint32_t n, const float *q)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t f = rp_cface(t, c[i]), a = rp_start(r, t, f), e = rp_start(r, t, f + 1);
+        for (uint32_t k = a; k < e; k++)
+            s->fp[k - a] = s->in[k] ? q : rp_vpos(r, rp_cvert(r, t, k));
+        if (rp_pos_degenerate(s->fp, e - a))
+            return 0;
+    }
+    return 1;
+}
+
+/* Where the fan's copy of point P goes: *out, or 0 when no move fits. */
+static int fan_place(Rep *r, const ObjTopo *t, Split *s, const uint32_t *c, uint32_t n, float out[3])
+{
+    const float *P = rp_vpos(r, rp_cvert(r, t, c[0]));
+    double dir[3] = { 0, 0, 0 }, cen[3] = { 0, 0, 0 }, shortest = INFINITY;
+    for (uint32_t i = 0; i < n; i++) {
+        double a[3], b[3], x[3];
+        sub3(rp_vpos(r, rp_cvert(r, t, rp_next(r, t, c[i]))), P, a);
+        sub3(rp_vpos(r, rp_cvert(r, t, rp_prev(r, t, c[i]))), P, b);
+        cross3(a, b, x);
+        for (int k = 0; k < 3; k++) {
+            dir[k] -= x[k];
+            cen[k] += a[k] + b[k];
+        }
+        double la = sqrt(dot3(a, a)), lb = sqrt(dot3(b, b));
+        shortest = la > 0 && la < shortest ? la : shortest;
+        shortest = lb > 0 && lb < shortest ? lb : shortest;
+    }
+    double len = sqrt(dot3(dir, dir));
+    if (!(len > 0)) {
+        memcpy(dir, cen, sizeof dir);   /* a flat fan: towards its middle */
+        len = sqrt(dot3(dir, dir));
+    }
+    if (!(len > 0) || !isfinite(shortest))
+        return 0;
+    double big = fmax(fabs(P[0]), fmax(fabs(P[1]), fabs(P[2])));
+    double ulp = big > 0 ? ldexp(1.0, ilogb(big) - 23) : FLT_TRUE_MIN;
+    double step = fmax(4 * ulp, shortest * 0x1p-24);
+    for (int tries = 0; tries < 16 && step <= shortest / 8; tries++, step *= 4) {
+        for (int k = 0; k < 3; k++)
+            out[k] = (float)(P[k] + step * dir[k] / len);
+        if ((out[0] != P[0] || out[1] != P[1] || out[2] != P[2]) && isfinite(out[0]) && isfinite(out[1]) &&
+            isfinite(out[2]) && rp_point_find(r, out) == RP_NONE && fan_faces_sound(r, t, s, c, n, out))
+            return 1;
+    }
+    return 0;
+}
+
+/* Give the fan of corners c[0..n) (all at one point) a new point:
+ * each vertex of it a copy there. 1 split, 0 no move fits, -1 out of memory. */
+static int fan_split(Rep *r, ObjTopo *t, Split *s, const uint32_t *c, uint32_t n)
+{
+    float q[3];
+    for (uint32_t i = 0; i < n; i++)
+        s->in[c[i]] = 1;
+    int ok = fan_place(r, t, s, c, n, q);
+    uint32_t nv = 0;
+    for (uint32_t i = 0; ok && i < n; i++) {
+        uint32_t v = rp_cvert(r, t, c[i]), k = 0;
+        while (k < nv && s->verts[2 * k] != v)
+            k++;
+        if (k == nv) {
+            uint32_t copy = rp_vertex_add(r, q, r->w.rgb ? r->w.rgb + 3 * (size_t)v : NULL, v);
+            if (copy == RP_NONE) {
+                ok = -1;
+                break;
+            }
+            s->verts[2 * k] = v;
+            s->verts[2 * k + 1] = copy;
+            nv++;
+            r->rep->split_vertices++;
+        }
+        r->w.corner[t->c0 + c[i]] = s->verts[2 * k + 1];
+    }
+    for (uint32_t i = 0; i < n; i++)
+        s->in[c[i]] = 0;
+    return ok;
+}
+
+static int cmp_u64(const void *x, const void *y)
+{
+    uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
+    return a < b ? -1 : a > b;
+}
+
+/* Point p's corners by fan; every fan but the first split off. 1 when
+ * any was, -1 out of memory. */
+static int point_split(Rep *r, ObjTopo *t, Split *s, const uint32_t *uf, uint32_t p)
+{
+    const uint32_t *c = s->list + s->off[p];
+    uint32_t n = s->off[p + 1] - s->off[p], i = 1;
+    while (i < n && uf[c[i]] == uf[c[0]])
+        i++;
+    if (i >= n)
+        return 0;
+    for (uint32_t k = 0; k < n; k++)
+        s->key[k] = (uint64_t)uf[c[k]] << 32 | c[k];
+    qsort(s->key, n, sizeof *s->key, cmp_u64);
+    for (uint32_t k = 0; k < n; k++)
+        s->list[s->off[p] + k] = (uint32_t)s->key[k];
+    int any = 0;
+    /* the fan of the smallest root (the first in corner order) stays */
+    for (uint32_t a = 0; a < n;) {
+        uint32_t b = a + 1;
+        while (b < n && s->key[b] >> 32 == s->key[a] >> 32)
+            b++;
+        if (a > 0) {
+            int rc = fan_split(r, t, s, s->list + s->off[p] + a, b - a);
+            if (rc < 0)
+                return -1;
+            any |= rc;
+        }
+        a = b;
+    }
+    return any;
+}
+
+static int split_points(Rep *r, ObjTopo *t, const uint32_t *uf, const uint8_t *nmv)
+{
+    Split s = { 0 };
+    uint32_t maxf = 0, maxdeg = 0;
+    for (uint32_t f = 0; f < t->nf; f++)
+        maxf = rp_start(r, t, f + 1) - rp_start(r, t, f) > maxf ? rp_start(r, t, f + 1) - rp_start(r, t, f) : maxf;
+    s.off = calloc((size_t)t->npts + 2, sizeof *s.off);
+    s.list = malloc(((size_t)t->nc + 1) * sizeof *s.list);
+    s.in = calloc((size_t)t->nc + 1, 1);
+    s.fp = malloc(((size_t)maxf + 1) * sizeof *s.fp);
+    int rc = -1;
+    if (!s.off || !s.list || !s.in || !s.fp)
+        goto out;
+    for (uint32_t c = 0; c < t->nc; c++)
+        if (t->mate[c] != RP_SKIPPED)
+            s.off[t->cpt[c] + 1]++;
+    for (uint32_t p = 0; p < t->npts; p++) {
+        maxdeg = s.off[p + 1] > maxdeg ? s.off[p + 1] : maxdeg;
+        s.off[p + 1] += s.off[p];
+    }
+    for (uint32_t c = 0; c < t->nc; c++)
+        if (t->mate[c] != RP_SKIPPED)
+            s.list[s.off[t->cpt[c]]++] = c;
+    memmove(s.off + 1, s.off, (size_t)t->npts * sizeof *s.off);
+    s.off[0] = 0;
+    s.key = malloc(((size_t)maxdeg + 1) * sizeof *s.key);
+    s.verts = malloc(2 * ((size_t)maxdeg + 1) * sizeof *s.verts);
+    if (!s.key || !s.verts)
+        goto out;
+    rc = 0;
+    for (uint32_t p = 0; p < t->npts && rc >= 0; p++) {
+        rc = point_split(r, t, &s, uf, p);
+        if (rc > 0 && nmv[p])
+            r->rep->nm_vertices++;
+    }
+    rc = rc < 0 ? -1 : 0;
+out:
+    free(s.off);
+    free(s.list);
+    free(s.in);
+    free(s.fp);
+    free(s.key);
+    free(s.verts);
+    return rc;
+}
+
+/* ==== The step ==== */
+
+/* Points with two fans or more in uf: nm[p] set (when nm), and how many. */
+static int multi_fans(const ObjTopo *t, const uint32_t *uf, uint8_t *nm, uint32_t *count)
+{
+    uint32_t *first = malloc(((size_t)t->npts + 1) * sizeof *first), n = 0;
+    if (!first)
+        return -1;
+    memset(first, 0xff, ((size_t)t->npts + 1) * sizeof *first);
+    for (uint32_t c = 0; c < t->nc; c++) {
+        if (t->mate[c] == RP_SKIPPED)
+            continue;
+        uint32_t p = t->cpt[c];
+        if (first[p] == RP_NONE) {
+            first[p] = uf[c];
+        } else if (first[p] != uf[c] && first[p] != RP_NONE - 1) {
+            first[p] = RP_NONE - 1;     /* counted */
+            n++;
+            if (nm)
+                nm[p] = 1;
+        }
+    }
+    free(first);
+    *count = n;
+    return 0;
+}
+
+int rp_manifold(Rep *r, ObjTopo *t, Cuts *cu)
+{
+    uint32_t groups = t->nm_ngroup, added = r->w.nverts, multi = 0;
+    uint8_t *nmv = calloc((size_t)t->npts + 1, 1);
+    /* the points the check calls non-manifold: two fans or more with
+     * the corners at each end of a non-manifold edge joined */
+    uint32_t *uf = nmv ? fans(r, t, 1) : NULL;
+    int rc = -1;
+    memset(cu, 0, sizeof *cu);
+    cu->vbase = r->w.nverts;
+    if (!uf || multi_fans(t, uf, nmv, &multi))
+        goto out;
+    if (groups) {
+        free(uf);
+        uf = NULL;
+        if (pair_groups(r, t, cu) || !(uf = fans(r, t, 1)) || multi_fans(t, uf, NULL, &multi))
+            goto out;
+    }
+    if (multi && split_points(r, t, uf, nmv))
+        goto out;
+    /* each cut half-edge by the vertices it now ends on */
+    for (uint32_t k = 0; k < cu->n; k++) {
+        uint32_t h = cu->v[2 * k];
+        cu->v[2 * k] = rp_cvert(r, t, h);
+        cu->v[2 * k + 1] = rp_cvert(r, t, rp_next(r, t, h));
+    }
+    rc = 0;
+    if (r->w.nverts != added || groups) {
+        rc = rp_topo_pair(r, t, 1);
+        if (rc == 0 && groups > t->nm_ngroup)
+            r->rep->nm_edges += groups - t->nm_ngroup;
+    }
+out:
+    free(uf);
+    free(nmv);
+    return rc;
+}
+
+/* ==== Cuts the holes did not close ==== */
+
+typedef struct {
+    uint64_t *key;
+    size_t    size;
+} KeySet;
+
+static size_t key_slot(const KeySet *ks, uint64_t k)
+{
+    size_t mask = ks->size - 1, h = (size_t)((k * 0x9E3779B97F4A7C15ull) >> 21) & mask;
+    /* invariant: at most half full */
+    while (ks->key[h] != UINT64_MAX && ks->key[h] != k)
+        h = (h + 1) & mask;
+    return h;
+}
+
+static void key_put(KeySet *ks, uint64_t k)
+{
+    ks->key[key_slot(ks, k)] = k;
+}
+
+static int key_has(const KeySet *ks, uint64_t k)
+{
+    return ks->key[key_slot(ks, k)] == k;
+}
+
+static uint64_t vpair(uint32_t a, uint32_t b)
+{
+    return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+}
+
+int rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cu, const Fill *fills, uint32_t nfills)
+{
+    if (!cu->n)
+        return 0;
+    uint64_t nkeys = 4 * (uint64_t)cu->n;
+    for (uint32_t i = 0; i < nfills; i++)
+        nkeys += 6 * (uint64_t)fills[i].ntri;
+    KeySet ks = { NULL, 64 };
+    while (ks.size < 2 * nkeys + 2)
+        ks.size *= 2;
+    ks.key = malloc(ks.size * sizeof *ks.key);
+    if (!ks.key)
+        return -1;
+    memset(ks.key, 0xff, ks.size * sizeof *ks.key);
+    /* the fills' edges (vertex pairs) and vertices (UINT32_MAX << 32 | v) */
+    for (uint32_t i = 0; i < nfills; i++)
+        for (uint32_t k = 0; k < 3 * fills[i].ntri; k++) {
+            uint32_t a = fills[i].tri[k], b = fills[i].tri[k % 3 == 2 ? k - 2 : k + 1];
+            key_put(&ks, vpair(a, b));
+            key_put(&ks, (uint64_t)UINT32_MAX << 32 | a);
+        }
+    /* the copies on cuts left open go back to the vertex they copy, when
+     * no fill uses them: the edge is the fin it was */
+    uint32_t undone = 0;
+    uint8_t *gone = calloc(cu->n + 1, 1);
+    if (!gone) {
+        free(ks.key);
+        return -1;
+    }
+    for (uint32_t k = 0; k < cu->n; k++) {
+        uint32_t a = cu->v[2 * k], b = cu->v[2 * k + 1];
+        if (key_has(&ks, vpair(a, b)))
+            continue;
+        for (int j = 0; j < 2; j++) {
+            uint32_t v = j ? b : a;
+            if (v >= cu->vbase && !key_has(&ks, (uint64_t)UINT32_MAX << 32 | v)) {
+                key_put(&ks, (uint64_t)(UINT32_MAX - 1) << 32 | v);
+                gone[k] = 1;
+            }
+        }
+        undone += gone[k];
+    }
+    uint32_t moved = 0;
+    for (uint32_t c = 0; undone && c < t->nc; c++) {
+        uint32_t *v = &r->w.corner[t->c0 + c];
+        if (*v >= cu->vbase && key_has(&ks, (uint64_t)(UINT32_MAX - 1) << 32 | *v)) {
+            *v = r->anchor[*v];
+            moved++;
+        }
+    }
+    /* the loops left open along a cut: listed if it stays; an open
+     * boundary listed at a copy put back names the vertex it copied */
+    int rc = 0;
+    for (uint32_t i = 0; i < cu->npend && rc == 0; i++)
+        if (!gone[cu->pend_cut[i]])
+            rc = rp_hole_open(r, cu->pend[i].object, cu->pend[i].edges, cu->pend[i].vertex, cu->pend[i].why);
+    for (uint32_t i = 0; i < r->rep->nholes; i++) {
+        uint32_t *v = &r->rep->holes[i].vertex;
+        if (r->rep->holes[i].object == t->obj && *v >= cu->vbase &&
+            key_has(&ks, (uint64_t)(UINT32_MAX - 1) << 32 | *v))
+            *v = r->anchor[*v];
+    }
+    free(gone);
+    free(ks.key);
+    r->rep->nm_edges -= undone < r->rep->nm_edges ? undone : r->rep->nm_edges;
+    r->rep->cuts_undone += undone;
+    return rc ? rc : moved ? rp_topo_pair(r, t, 1) : 0;
+}
+
+void rp_cuts_free(Cuts *cu)
+{
+    free(cu->v);
+    free(cu->pend);
+    free(cu->pend_cut);
+    memset(cu, 0, sizeof *cu);
+}
