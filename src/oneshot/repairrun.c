@@ -140,29 +140,47 @@ static const char *const step_names[] = { "weld", "clean", "manifold", "winding"
 static const unsigned step_bits[] = { REPAIR_WELD, REPAIR_CLEAN, REPAIR_MANIFOLD, REPAIR_WINDING, REPAIR_HOLES };
 #define NSTEPS 5
 
-/* One step's line: its rows' words, or that it found nothing to do. */
-static void text_step(Out *out, const RepairRun *r, int s)
+static void text_open_holes(Out *out, const RepairRun *r);
+
+/* A step's words: its rows' that are not zero, joined (n: how long). */
+static size_t step_words(const RepairRun *r, int s, char *line, size_t cap)
 {
-    char line[1024] = "", words[256];
+    char words[256];
     size_t n = 0;
-    if (!(r->o->repair & step_bits[s])) {
-        out_printf(out, "  %-10s not asked (--repair=STEPS)\n", step_names[s]);
-        return;
-    }
+    line[0] = 0;
     for (int i = 0; i < repair_nrows; i++)
         if (repair_rows[i].step == step_bits[s]) {
             repair_say(&repair_rows[i], &r->rep, words, sizeof words);
-            if (words[0] && n < sizeof line)
-                n += (size_t)snprintf(line + n, sizeof line - n, "%s%s", n ? ", " : "", words);
+            if (words[0] && n < cap)
+                n += (size_t)snprintf(line + n, cap - n, "%s%s", n ? ", " : "", words);
         }
-    out_printf(out, "  %-10s %s", step_names[s], line[0] ? line : "nothing to do");
-    if (step_bits[s] == REPAIR_WELD) {
-        if (r->o->weld > 0)
+    return n;
+}
+
+/* The steps: a line for each that did something (the weld's too when
+ * --weld gave it a distance, which it says), then those that found
+ * nothing to do, then those not asked, a line each. */
+static void text_steps(Out *out, const RepairRun *r)
+{
+    char line[1024], idle[128] = "", skipped[128] = "";
+    for (int s = 0; s < NSTEPS; s++) {
+        char *list = !(r->o->repair & step_bits[s]) ? skipped : idle;
+        int weld = step_bits[s] == REPAIR_WELD && r->o->weld > 0;
+        if (list == skipped || (!step_words(r, s, line, sizeof line) && !weld)) {
+            snprintf(list + strlen(list), sizeof idle - strlen(list), "%s%s", list[0] ? ", " : "", step_names[s]);
+            continue;
+        }
+        out_printf(out, "  %-10s %s", step_names[s], line[0] ? line : "nothing to weld");
+        if (weld)
             out_printf(out, " (vertices up to %g apart: --weld %g)", r->o->weld, r->o->weld);
-        else
-            out_printf(out, " (at one position, bit for bit)");
+        out_printf(out, "\n");
+        if (step_bits[s] == REPAIR_HOLES)
+            text_open_holes(out, r);
     }
-    out_printf(out, "\n");
+    if (idle[0])
+        out_printf(out, "  %-10s %s: nothing to do\n", "unchanged", idle);
+    if (skipped[0])
+        out_printf(out, "  %-10s %s (--repair=STEPS)\n", "not asked", skipped);
 }
 
 /* The loops the hole filling left open, the first few. */
@@ -253,11 +271,7 @@ static void text_report(Out *out, const RepairRun *r)
     out_printf(out, "%s (%s) -> %s (%s)\n", safetext(in, sizeof in, r->in), safetext(fmt, sizeof fmt, r->in_format),
                strcmp(r->out, "-") ? safetext(outp, sizeof outp, r->out) : "standard output",
                save_format_name(r->fmt));
-    for (int s = 0; s < NSTEPS; s++) {
-        text_step(out, r, s);
-        if (step_bits[s] == REPAIR_HOLES)
-            text_open_holes(out, r);
-    }
+    text_steps(out, r);
     const CheckCounts *a = &r->after.file;
     if (a->self_intersections)
         out_printf(out, "  %-10s %llu%s pairs of faces cross: reported, not changed (a repair moves no face)\n",
