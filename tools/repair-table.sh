@@ -4,8 +4,9 @@
 # `admesh` (every fix it has: its default), and each result counted by
 # tests/e2e/meshcount.py, not by either tool: watertight (no boundary,
 # non-manifold or misoriented edge, no pinched vertex, no degenerate
-# face, every part's volume positive), and the volume by the divergence
-# theorem. Prints a Markdown table after the stamp line.
+# face, every part's volume positive), the volume by the divergence
+# theorem, and the faces of the part a tool deleted. Prints a Markdown
+# table after the stamp line.
 #   sh tools/repair-table.sh
 set -u
 ZV=${ZVIEW:-./zview}
@@ -24,6 +25,8 @@ import glob, os, sys
 sys.path.insert(0, "tests/e2e")
 from meshcount import count
 d = sys.argv[1]
+order = ["open-box", "flipped", "inside-out", "twisted", "fin", "hole-200", "moebius", "wavy-hole", "part-inside-out",
+         "edge-touching", "corner-touching"]
 what = {
     "open-box": "a cube missing a face",
     "flipped": "a cube, one triangle flipped",
@@ -37,24 +40,28 @@ what = {
     "corner-touching": "two cubes on one corner",
     "wavy-hole": "a hole of 48 edges far from a plane",
 }
-def cell(path):
+def cell(path, faces_in):
     if not os.path.exists(path):
         return "no output"
     c = count(path)
+    gone = faces_in - c["faces"]
     if c["watertight"]:
-        return "watertight, volume %.4g" % c["volume"]
+        return "watertight, volume %.4g" % c["volume"] + (", %d face%s deleted" % (gone, "s" if gone > 1 else "") if gone > 0 else "")
     left = []
-    for k, w in (("boundary", "boundary edges"), ("nonmanifold", "non-manifold edges"), ("pinched", "pinched vertices"),
-                 ("misoriented", "misoriented edges"), ("inside_out_parts", "parts inside out"), ("degenerate", "degenerate")):
+    for k, one, many in (("boundary", "boundary edge", "boundary edges"),
+                         ("nonmanifold", "non-manifold edge", "non-manifold edges"),
+                         ("pinched", "pinched vertex", "pinched vertices"),
+                         ("misoriented", "misoriented edge", "misoriented edges"),
+                         ("inside_out_parts", "part inside out", "parts inside out"),
+                         ("degenerate", "degenerate face", "degenerate faces")):
         if c[k]:
-            left.append("%d %s" % (c[k], w))
+            left.append("%d %s" % (c[k], one if c[k] == 1 else many))
     return "not: " + ", ".join(left)
 print("| broken part | admesh | zview --repair |")
 print("|---|---|---|")
-for f in sorted(glob.glob(d + "/*.stl")):
-    name = os.path.basename(f)[:-4]
-    if name.endswith(".out"):
-        continue
-    print("| %s (`%s`) | %s | %s |" % (what.get(name, name), name, cell(d + "/" + name + ".admesh.out.stl"),
-                                    cell(d + "/" + name + ".zview.out.stl")))
+names = [os.path.basename(f)[:-4] for f in glob.glob(d + "/*.stl") if not f.endswith(".out.stl")]
+for name in sorted(names, key=lambda n: (order.index(n) if n in order else len(order), n)):
+    n = count(d + "/" + name + ".stl")["faces"]
+    print("| %s (`%s`) | %s | %s |" % (what.get(name, name), name, cell(d + "/" + name + ".admesh.out.stl", n),
+                                    cell(d + "/" + name + ".zview.out.stl", n)))
 EOF

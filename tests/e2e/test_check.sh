@@ -101,7 +101,7 @@ if need_python "--check --json parses"; then
     cp "$T/out" "$T/missing.json"
     expect_status "--json of a sound cube exits 0" 0 "$Z" --check --json "$T/cube.obj"
     cp "$T/out" "$T/sound.json"
-    # names, types and values as the README and the man page document them
+    # names, types and values as the man page documents them
     cat >"$T/schema.py" <<'EOF'
 import json, sys
 T = sys.argv[1]
