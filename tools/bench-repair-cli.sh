@@ -8,7 +8,8 @@
 # Each row is the median wall time of RUNS processes under
 # /usr/bin/time, with their CPU time (user + system: a crowded
 # machine's wall clock counts waiting) and --json's phases (load, check
-# before, repair, write, read back and check after; ms).
+# before, repair, write, check after; then the repair's own: weld,
+# clean, objects, order, and its check of what it made; ms).
 set -u
 ZV=${ZVIEW:-./zview}
 CB=${CHECKBENCH:-build/checkbench}
@@ -41,7 +42,7 @@ row() {
         /usr/bin/time -f "%e %U %S %M" -o "$TMP/time" "$ZV" "$@" --json >"$TMP/json" 2>"$TMP/err"
         rc=$?
         [ "$rc" -eq 0 ] || [ "$rc" -eq 3 ] || { echo "$label: status $rc: $(head -c 300 "$TMP/err")"; return; }
-        ms=$(sed -n 's/.*"ms": { \(.*\) }.*/\1/p' "$TMP/json" | tr -d '"' | sed 's/check_after/after/')
+        ms=$(sed -n 's/.*"ms": { \(.*\) }.*/\1/p' "$TMP/json" | tr -d '"' | sed 's/check_after/after/; s/repair_//g')
         echo "$(tail -n 1 "$TMP/time") $ms" >>"$TMP/runs"
         i=$((i + 1))
     done

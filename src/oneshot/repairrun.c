@@ -361,8 +361,12 @@ static void json_report(Out *out, const RepairRun *r)
     check_json_counts(out, &r->before.file, "    ");
     out_printf(out, "\n  },\n  \"after\": {\n    \"ok\": %s", meshcheck_sound(&r->after.file) ? "true" : "false");
     check_json_counts(out, &r->after.file, "    ");
+    const double *ph = r->rep.ms_phase;
     out_printf(out, "\n  },\n  \"ms\": { \"load\": %.1f, \"check\": %.1f, \"repair\": %.1f, \"write\": %.1f, "
-               "\"check_after\": %.1f }\n}\n", r->ms_load, r->ms_check, r->ms_repair, r->ms_write, r->ms_after);
+               "\"check_after\": %.1f, \"repair_weld\": %.1f, \"repair_clean\": %.1f, \"repair_objects\": %.1f, "
+               "\"repair_order\": %.1f, \"repair_check\": %.1f }\n}\n",
+               r->ms_load, r->ms_check, r->ms_repair, r->ms_write, r->ms_after, ph[REPAIR_T_WELD], ph[REPAIR_T_CLEAN],
+               ph[REPAIR_T_OBJECTS], ph[REPAIR_T_ORDER], ph[REPAIR_T_CHECK]);
 }
 
 /* ==== The front door ==== */
