@@ -704,3 +704,42 @@ Test(models, dragon_through_every_reader_and_writer, .init = setup, .fini = tear
         cr_skip_test("set ZV_MODELS=1 with ../shared/models present (make test-models)");
     shared_folder(1);
 }
+
+/* Materials of one name (assimp gives such), of none, and two of the
+ * longest name a reader keeps (63 bytes): each written under a name of
+ * its own that reads back whole (the suffix of the second long one fits
+ * within the 63), so that every face finds its own. */
+Test(save, material_names_made_unique_and_whole)
+{
+    Mesh m;
+    cr_assert_eq(tl_mesh_init(&m, tmp("names.obj")), 0);
+    for (int i = 0; i < 7; i++)
+        cr_assert_eq(tl_mesh_vertex(&m, (float)i, (float)(i % 2), 0), 0);
+    for (uint32_t f = 0; f < 5; f++)
+        cr_assert_eq(tl_mesh_face(&m, (uint32_t[]){ f, f + 1, f + 2 }, 3), 0);
+    cr_assert_eq(tl_mesh_finish(&m), 0);
+    char longest[MESH_NAME_MAX];
+    memset(longest, 'x', MESH_NAME_MAX - 1);
+    longest[MESH_NAME_MAX - 1] = 0;
+    const char *const names[5] = { "wood", "wood", "", longest, longest };
+    m.nmats = 5;
+    m.mats = calloc(5, sizeof *m.mats);
+    m.face_mat = malloc(5 * sizeof *m.face_mat);
+    cr_assert(m.mats && m.face_mat);
+    for (int i = 0; i < 5; i++) {
+        snprintf(m.mats[i].name, sizeof m.mats[i].name, "%s", names[i]);
+        m.mats[i].kd[0] = (float)i / 8;
+        m.mats[i].alpha = 1;
+        m.mats[i].tex = -1;
+        m.face_mat[i] = 4 - i;
+    }
+    SaveReport rep;
+    cr_assert_eq(save_mesh(&m, tmp("names.obj"), SAVE_OBJ, &rep, E, sizeof E), 0, "%s", E);
+    Mesh b;
+    cr_assert_eq(mesh_load(&b, tmp("names.obj"), E, sizeof E), 0, "%s", E);
+    cr_assert_eq(b.nmats, 5, "every material a name of its own (%u read back)", b.nmats);
+    for (uint32_t f = 0; f < 5; f++)
+        cr_assert_eq(b.mats[b.face_mat[f]].kd[0], m.mats[m.face_mat[f]].kd[0], "face %u's material", f);
+    mesh_free(&b);
+    mesh_free(&m);
+}

@@ -68,7 +68,7 @@ static int refuse_in_place(RepairRun *r)
     const char *same = is_input(r->out, &in) ? r->out : mtl[0] && is_input(mtl, &in) ? mtl : NULL;
     if (!same)
         return 0;
-    snprintf(r->err, sizeof r->err, "%s is the model being repaired (%s): --repair writes a copy, never the "
+    snprintf(r->err, sizeof r->err, "%.400s is the model being repaired (%.400s): --repair writes a copy, never the "
              "input; name another -o", same, r->in);
     return 2;
 }

@@ -89,10 +89,13 @@ int save_obj_names(const Mesh *m, char (*names)[SAVE_NAME])
         while (b < m->nmats && !strcmp(names[idx[a]], names[idx[b]]))
             b++;
         for (uint32_t k = a + 1; k < b; k++) {
-            char base[SAVE_NAME];
-            memcpy(base, names[idx[k]], SAVE_NAME);
+            char base[MESH_NAME_MAX];
+            snprintf(base, sizeof base, "%s", names[idx[k]]);
             for (uint32_t s = k - a + 1;; s++) {
-                snprintf(names[idx[k]], SAVE_NAME, "%s_%u", base, s);
+                /* within the MESH_NAME_MAX - 1 bytes a reader keeps of a name */
+                char suffix[16];
+                int sl = snprintf(suffix, sizeof suffix, "_%u", s);
+                snprintf(names[idx[k]], SAVE_NAME, "%.*s%s", MESH_NAME_MAX - 1 - sl, base, suffix);
                 int taken = 0;
                 for (uint32_t j = 0; j < m->nmats && !taken; j++)
                     taken = j != idx[k] && !strcmp(names[j], names[idx[k]]);
