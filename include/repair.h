@@ -102,7 +102,10 @@ typedef struct {
     /* objects repaired less boldly: the full repair left a figure of
      * the check worse than before (src/repair/guard.c) */
     uint32_t held_back;
-    /* what is left, as the check counts it in the repaired mesh */
+    /* what is left, as the check counts it in the repaired mesh; counted
+     * 0: that check could not run (out of memory, cancelled: the mesh is
+     * repaired all the same) and the left_ figures are 0 */
+    int      counted;
     uint32_t left_holes;
     uint32_t left_nm_edges;
     uint32_t left_nm_vertices;
@@ -127,7 +130,9 @@ typedef struct {
  * distance, no hole limit, one thread), filling *rep (zeroed first).
  * Returns 0, or -1 with "path: reason" in err (out of memory,
  * cancelled, a mesh too big for 32-bit indices after the repair): m is
- * then unchanged. */
+ * then unchanged. Memory: the input, a copy of its faces and corners
+ * (positions are copied only when they change) and about 12 bytes a
+ * corner of work (doc/benchmarks.md: The repair). */
 int  repair_mesh(Mesh *m, const RepairOpts *opt, RepairReport *rep, char *err, size_t errlen);
 void repair_report_free(RepairReport *rep);
 

@@ -66,7 +66,7 @@ EdgeSet *rp_edges_new(const ObjTopo *t, const Rep *r)
     memset(es->key, 0xff, es->size * sizeof *es->key);
     for (uint32_t c = 0; c < t->nc; c++)
         if (t->mate[c] != RP_SKIPPED && t->mate[c] != RP_SELF) {
-            uint64_t k = edge_key(t->cpt[c], t->cpt[rp_next(r, t, c)]);
+            uint64_t k = edge_key(rp_cpt(r, t, c), rp_cpt(r, t, rp_next(r, t, c)));
             es->key[edge_slot(es, k)] = k;
         }
     return es;

@@ -291,6 +291,8 @@ int rp_fills_cross(Rep *r, const ObjTopo *t, Fill *fills, uint32_t nfixed, uint3
     const Mesh *m = &r->w;
     for (uint32_t f = 0; f < t->nf; f++) {
         uint32_t a = m->face_start[t->f0 + f], e = m->face_start[t->f0 + f + 1];
+        if (t->skip[f])
+            continue;           /* degenerate, or a duplicate that goes */
         Box b;
         box_empty(&b);
         for (uint32_t c = a; c < e; c++)
@@ -329,6 +331,89 @@ int rp_fills_cross(Rep *r, const ObjTopo *t, Fill *fills, uint32_t nfixed, uint3
 out:
     free(box);
     free(near);
+    grid_free(&gr);
+    sub_free(&s);
+    return rc;
+}
+
+/* ==== Moved faces ==== */
+
+int rp_moved_cross(Rep *r, const ObjTopo *t, const uint32_t *face, const uint32_t *group, uint32_t n,
+                   uint32_t vbase, int original, uint32_t *count, uint32_t ngroup, int *unsure)
+{
+    const Mesh *m = &r->w;
+    uint32_t *cand = calloc((size_t)t->nf + 1, sizeof *cand), maxc = 0;
+    Box *box = malloc(((size_t)n + 1) * sizeof *box);
+    uint8_t *near = calloc((size_t)t->nf + 1, 1);
+    uint32_t *vs = NULL;
+    Grid gr = { 0 };
+    Sub s = { 0 };
+    int rc = -1;
+    if (!cand || !box || !near)
+        goto out;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t f = t->f0 + face[i];
+        cand[face[i]] = group[i] + 1;
+        box_empty(&box[i]);
+        for (uint32_t c = m->face_start[f]; c < m->face_start[f + 1]; c++) {
+            uint32_t v = m->corner[c];
+            box_add(&box[i], rp_vpos(r, v));
+            box_add(&box[i], rp_vpos(r, v >= vbase ? r->anchor[v] : v));
+        }
+        maxc = m->face_start[f + 1] - m->face_start[f] > maxc ? m->face_start[f + 1] - m->face_start[f] : maxc;
+    }
+    if (!(vs = malloc(((size_t)maxc + 1) * sizeof *vs)) || grid_build(&gr, box, n))
+        goto out;
+    uint32_t faces = 0, corners = 0;
+    for (uint32_t f = 0; f < t->nf; f++) {
+        uint32_t a = m->face_start[t->f0 + f], e = m->face_start[t->f0 + f + 1];
+        if (t->skip[f])
+            continue;
+        Box b;
+        box_empty(&b);
+        for (uint32_t c = a; c < e; c++)
+            box_add(&b, rp_vpos(r, m->corner[c]));
+        if (cand[f] || grid_near(&gr, &b, n)) {
+            near[f] = 1;
+            faces++;
+            corners += e - a;
+        }
+    }
+    if (sub_alloc(&s, faces, corners))
+        goto out;
+    for (uint32_t f = 0; f < t->nf; f++)
+        if (near[f]) {
+            uint32_t a = m->face_start[t->f0 + f], k = m->face_start[t->f0 + f + 1] - a;
+            for (uint32_t j = 0; j < k; j++) {
+                uint32_t v = m->corner[a + j];
+                vs[j] = original && cand[f] && v >= vbase ? r->anchor[v] : v;
+            }
+            sub_face(&s, r, vs, k, cand[f] ? cand[f] - 1 : RP_NONE);
+        }
+    s.m.objs[0].face_count = s.m.nfaces;
+    s.m.objs[0].vert_max = s.m.nverts ? s.m.nverts - 1 : 0;
+    MeshCheck mc;
+    CheckOpts co = { .threads = r->opt->threads, .intersections = 1, .detail = 1, .cancel = r->opt->cancel };
+    char err[256];
+    if (meshcheck_run(&mc, &s.m, &co, err, sizeof err))
+        goto out;
+    const CheckObject *o = &mc.objs[0];
+    *unsure = o->c.intersections_stopped || o->npairs < o->c.self_intersections;
+    memset(count, 0, ngroup * sizeof *count);
+    for (uint32_t k = 0; k < o->npairs; k++) {
+        uint32_t a = s.owner[o->pairs[2 * k]], b = s.owner[o->pairs[2 * k + 1]];
+        if (a != RP_NONE)
+            count[a]++;
+        if (b != RP_NONE && b != a)
+            count[b]++;
+    }
+    meshcheck_free(&mc);
+    rc = 0;
+out:
+    free(cand);
+    free(box);
+    free(near);
+    free(vs);
     grid_free(&gr);
     sub_free(&s);
     return rc;

@@ -17,11 +17,14 @@
  * the same place would change nothing: each copy is moved off the
  * point, by the least that makes it a point of its own (a few units in
  * the last place, growing by fours up to an eighth of its shortest
- * edge), behind its fan (against the sum of the fan's face normals:
- * into the solid whose corner it is), and only where no face of the fan
- * becomes degenerate. MeshLab's "split non-manifold vertices" moves its
- * copies likewise (by a fraction of the edges). A fan no move fits
- * keeps its point (the check still reports it). */
+ * edge), towards the middle of the fan's other corners (the fan shrinks
+ * into itself, away from the fans it met: into the solid whose corner
+ * it is), and only where no face of the fan becomes degenerate.
+ * MeshLab's "split non-manifold vertices" moves its copies likewise (by
+ * a fraction of the edges). A fan no move fits keeps its point (the
+ * check still reports it). The check's crossing test is exact, so a
+ * move of next to nothing can still make faces cross: moves_settle
+ * puts back every fan whose faces cross more pairs than before. */
 
 #include <float.h>
 #include <math.h>
@@ -63,10 +66,13 @@ static double dot3(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* The faces' angles around the edge from point a to point b. */
-static void wings_measure(const Rep *r, const ObjTopo *t, uint32_t a, uint32_t b, Wing *w, uint32_t k)
+/* The faces' angles around the edge of half-edge h0, from its smaller
+ * point a. */
+static void wings_measure(const Rep *r, const ObjTopo *t, uint32_t h0, Wing *w, uint32_t k)
 {
-    const float *pa = rp_vpos(r, t->prep[a]), *pb = rp_vpos(r, t->prep[b]);
+    uint32_t n0 = rp_next(r, t, h0), a = rp_cpt(r, t, h0) < rp_cpt(r, t, n0) ? rp_cpt(r, t, h0) : rp_cpt(r, t, n0);
+    const float *pa = rp_vpos(r, rp_cvert(r, t, rp_cpt(r, t, h0) == a ? h0 : n0));
+    const float *pb = rp_vpos(r, rp_cvert(r, t, rp_cpt(r, t, h0) == a ? n0 : h0));
     double d[3], axis[3] = { 0, 0, 0 }, e1[3], e2[3];
     sub3(pb, pa, d);
     int least = fabs(d[0]) <= fabs(d[1]) && fabs(d[0]) <= fabs(d[2]) ? 0 : fabs(d[1]) <= fabs(d[2]) ? 1 : 2;
@@ -78,7 +84,7 @@ static void wings_measure(const Rep *r, const ObjTopo *t, uint32_t a, uint32_t b
         double u[3];
         sub3(rp_vpos(r, rp_cvert(r, t, wing)), pa, u);
         w[i].angle = atan2(dot3(u, e2), dot3(u, e1));
-        w[i].dir = t->cpt[h] == a ? 1 : -1;
+        w[i].dir = rp_cpt(r, t, h) == a ? 1 : -1;
         w[i].paired = 0;
     }
 }
@@ -108,10 +114,9 @@ static int cut_add(Cuts *cu, uint32_t a, uint32_t b)
 
 static int pair_group(const Rep *r, ObjTopo *t, const uint32_t *he, uint32_t k, Wing *w, uint32_t *rest, Cuts *cu)
 {
-    uint32_t p = t->cpt[he[0]], q = t->cpt[rp_next(r, t, he[0])];
     for (uint32_t i = 0; i < k; i++)
         w[i].he = he[i];
-    wings_measure(r, t, p < q ? p : q, p < q ? q : p, w, k);
+    wings_measure(r, t, he[0], w, k);
     qsort(w, k, sizeof *w, cmp_wing);
     /* the wedges behind both their faces: a face whose back faces the
      * way the angle grows (dir -1), then one whose back faces back */
@@ -177,7 +182,7 @@ static int pair_groups(const Rep *r, ObjTopo *t, Cuts *cu)
 static void join_pair(const Rep *r, const ObjTopo *t, uint32_t *uf, uint32_t c, uint32_t m)
 {
     uint32_t n1 = rp_next(r, t, c), n2 = rp_next(r, t, m);
-    if (t->cpt[c] != t->cpt[m]) {
+    if (rp_cpt(r, t, c) != rp_cpt(r, t, m)) {
         rp_uf_union(uf, c, n2);
         rp_uf_union(uf, n1, m);
     } else {
@@ -205,10 +210,10 @@ static uint32_t *fans(const Rep *r, const ObjTopo *t, int groups)
         const uint32_t *h = t->nm_half + t->nm_group[g];
         if (t->mate[h[0]] != RP_NONMANIF)
             continue;           /* paired: its faces are joined pair by pair */
-        uint32_t n = t->nm_group[g + 1] - t->nm_group[g], a = t->cpt[h[0]];
+        uint32_t n = t->nm_group[g + 1] - t->nm_group[g], a = rp_cpt(r, t, h[0]);
         for (uint32_t k = 1; k < n; k++) {
             uint32_t nk = rp_next(r, t, h[k]), n0 = rp_next(r, t, h[0]);
-            int from_a = t->cpt[h[k]] == a;
+            int from_a = rp_cpt(r, t, h[k]) == a;
             rp_uf_union(uf, h[0], from_a ? h[k] : nk);
             rp_uf_union(uf, n0, from_a ? nk : h[k]);
         }
@@ -220,7 +225,17 @@ static uint32_t *fans(const Rep *r, const ObjTopo *t, int groups)
 
 /* ==== Splitting a point ==== */
 
+/* The fans moved: each one's faces, and the copies it made. */
 typedef struct {
+    uint32_t *face, *group;     /* per entry: a relative face of a fan, and the fan */
+    uint32_t  n, cap;
+    uint32_t *first, *count;    /* per fan: its copies (consecutive vertices) */
+    uint8_t  *dead;             /* per fan: put back */
+    uint32_t  nfans, fcap;
+} Moved;
+
+typedef struct {
+    Moved    *mv;
     uint32_t *off, *list;       /* each point's corners (counting sort) */
     uint64_t *key;              /* scratch: (fan, corner) of one point's corners */
     uint8_t  *in;               /* per corner: in the fan being moved */
@@ -260,9 +275,13 @@ static int fan_place(Rep *r, const ObjTopo *t, Split *s, const uint32_t *c, uint
         shortest = la > 0 && la < shortest ? la : shortest;
         shortest = lb > 0 && lb < shortest ? lb : shortest;
     }
-    double len = sqrt(dot3(dir, dir));
-    if (!(len > 0)) {
-        memcpy(dir, cen, sizeof dir);   /* a flat fan: towards its middle */
+    /* towards the middle of the fan's own corners: the fan shrinks into
+     * itself, away from the fans it met; behind it (against its normals)
+     * when its corners balance out */
+    double len = sqrt(dot3(cen, cen));
+    if (len > 0) {
+        memcpy(dir, cen, sizeof dir);
+    } else {
         len = sqrt(dot3(dir, dir));
     }
     if (!(len > 0) || !isfinite(shortest))
@@ -280,6 +299,58 @@ static int fan_place(Rep *r, const ObjTopo *t, Split *s, const uint32_t *c, uint
     return 0;
 }
 
+static int moved_add(Moved *mv, uint32_t face, uint32_t group)
+{
+    if (mv->n == mv->cap) {
+        uint32_t c = mv->cap ? mv->cap * 2 : 64;
+        uint32_t *a = realloc(mv->face, (size_t)c * sizeof *a);
+        if (!a)
+            return -1;
+        mv->face = a;
+        uint32_t *b = realloc(mv->group, (size_t)c * sizeof *b);
+        if (!b)
+            return -1;
+        mv->group = b;
+        mv->cap = c;
+    }
+    mv->face[mv->n] = face;
+    mv->group[mv->n++] = group;
+    return 0;
+}
+
+static int moved_fan(Moved *mv, uint32_t first)
+{
+    if (mv->nfans == mv->fcap) {
+        uint32_t c = mv->fcap ? mv->fcap * 2 : 16;
+        uint32_t *a = realloc(mv->first, (size_t)c * sizeof *a);
+        if (!a)
+            return -1;
+        mv->first = a;
+        uint32_t *b = realloc(mv->count, (size_t)c * sizeof *b);
+        if (!b)
+            return -1;
+        mv->count = b;
+        uint8_t *d = realloc(mv->dead, c);
+        if (!d)
+            return -1;
+        mv->dead = d;
+        mv->fcap = c;
+    }
+    mv->first[mv->nfans] = first;
+    mv->count[mv->nfans] = 0;
+    mv->dead[mv->nfans++] = 0;
+    return 0;
+}
+
+static void moved_free(Moved *mv)
+{
+    free(mv->face);
+    free(mv->group);
+    free(mv->first);
+    free(mv->count);
+    free(mv->dead);
+}
+
 /* Give the fan of corners c[0..n) (all at one point) a new point:
  * each vertex of it a copy there. 1 split, 0 no move fits, -1 out of memory. */
 static int fan_split(Rep *r, ObjTopo *t, Split *s, const uint32_t *c, uint32_t n)
@@ -288,7 +359,9 @@ static int fan_split(Rep *r, ObjTopo *t, Split *s, const uint32_t *c, uint32_t n
     for (uint32_t i = 0; i < n; i++)
         s->in[c[i]] = 1;
     int ok = fan_place(r, t, s, c, n, q);
-    uint32_t nv = 0;
+    if (ok > 0 && moved_fan(s->mv, r->w.nverts))
+        ok = -1;
+    uint32_t nv = 0, g = s->mv->nfans - 1;
     for (uint32_t i = 0; ok && i < n; i++) {
         uint32_t v = rp_cvert(r, t, c[i]), k = 0;
         while (k < nv && s->verts[2 * k] != v)
@@ -302,9 +375,12 @@ static int fan_split(Rep *r, ObjTopo *t, Split *s, const uint32_t *c, uint32_t n
             s->verts[2 * k] = v;
             s->verts[2 * k + 1] = copy;
             nv++;
+            s->mv->count[g]++;
             r->rep->split_vertices++;
         }
         r->w.corner[t->c0 + c[i]] = s->verts[2 * k + 1];
+        if (moved_add(s->mv, rp_cface(t, c[i]), g))
+            ok = -1;
     }
     for (uint32_t i = 0; i < n; i++)
         s->in[c[i]] = 0;
@@ -349,29 +425,29 @@ static int point_split(Rep *r, ObjTopo *t, Split *s, const uint32_t *uf, uint32_
     return any;
 }
 
-static int split_points(Rep *r, ObjTopo *t, const uint32_t *uf, const uint8_t *nmv)
+static int split_points(Rep *r, ObjTopo *t, const uint32_t *uf, const uint8_t *nmv, Moved *mv)
 {
-    Split s = { 0 };
+    Split s = { .mv = mv };
     uint32_t maxf = 0, maxdeg = 0;
     for (uint32_t f = 0; f < t->nf; f++)
         maxf = rp_start(r, t, f + 1) - rp_start(r, t, f) > maxf ? rp_start(r, t, f + 1) - rp_start(r, t, f) : maxf;
-    s.off = calloc((size_t)t->npts + 2, sizeof *s.off);
-    s.list = malloc(((size_t)t->nc + 1) * sizeof *s.list);
-    s.in = calloc((size_t)t->nc + 1, 1);
+    s.off = rp_big(((size_t)t->npts + 2) * sizeof *s.off, 1);
+    s.list = rp_big(((size_t)t->nc + 1) * sizeof *s.list, 0);
+    s.in = rp_big((size_t)t->nc + 1, 1);
     s.fp = malloc(((size_t)maxf + 1) * sizeof *s.fp);
     int rc = -1;
     if (!s.off || !s.list || !s.in || !s.fp)
         goto out;
     for (uint32_t c = 0; c < t->nc; c++)
         if (t->mate[c] != RP_SKIPPED)
-            s.off[t->cpt[c] + 1]++;
+            s.off[rp_cpt(r, t, c) + 1]++;
     for (uint32_t p = 0; p < t->npts; p++) {
         maxdeg = s.off[p + 1] > maxdeg ? s.off[p + 1] : maxdeg;
         s.off[p + 1] += s.off[p];
     }
     for (uint32_t c = 0; c < t->nc; c++)
         if (t->mate[c] != RP_SKIPPED)
-            s.list[s.off[t->cpt[c]]++] = c;
+            s.list[s.off[rp_cpt(r, t, c)]++] = c;
     memmove(s.off + 1, s.off, (size_t)t->npts * sizeof *s.off);
     s.off[0] = 0;
     s.key = malloc(((size_t)maxdeg + 1) * sizeof *s.key);
@@ -395,19 +471,85 @@ out:
     return rc;
 }
 
+/* ==== Moves that cross ==== */
+
+/* Fan g's copies back to the vertices they copy. */
+static void fan_back(Rep *r, ObjTopo *t, Moved *mv, uint32_t g)
+{
+    for (uint32_t i = 0; i < mv->n; i++) {
+        if (mv->group[i] != g)
+            continue;
+        uint32_t f = mv->face[i];
+        for (uint32_t c = rp_start(r, t, f); c < rp_start(r, t, f + 1); c++) {
+            uint32_t *v = &r->w.corner[t->c0 + c];
+            if (*v >= mv->first[g] && *v - mv->first[g] < mv->count[g])
+                *v = r->anchor[*v];
+        }
+    }
+    mv->dead[g] = 1;
+    r->rep->split_vertices -= mv->count[g];
+}
+
+/* A copy moves by next to nothing, but the check's crossing test is
+ * exact: each fan whose faces cross more pairs (the object's faces near
+ * them, the other fans) where they are now than where they were goes
+ * back, fans at a time, until none does (four rounds, then every fan
+ * left goes back). */
+static int moves_settle(Rep *r, ObjTopo *t, Moved *mv, uint32_t vbase)
+{
+    uint32_t *face = malloc(((size_t)mv->n + 1) * sizeof *face), *group = malloc(((size_t)mv->n + 1) * sizeof *group);
+    uint32_t *was = malloc(((size_t)mv->nfans + 1) * sizeof *was), *now = malloc(((size_t)mv->nfans + 1) * sizeof *now);
+    int rc = -1;
+    if (!face || !group || !was || !now)
+        goto out;
+    for (int round = 0; round < 5; round++) {
+        uint32_t n = 0, alive = 0;
+        for (uint32_t i = 0; i < mv->n; i++)
+            if (!mv->dead[mv->group[i]]) {
+                face[n] = mv->face[i];
+                group[n++] = mv->group[i];
+            }
+        for (uint32_t g = 0; g < mv->nfans; g++)
+            alive += !mv->dead[g];
+        if (!alive)
+            break;
+        int unsure0 = 0, unsure1 = 0, worse = 0;
+        if (round == 4 || rp_moved_cross(r, t, face, group, n, vbase, 1, was, mv->nfans, &unsure0) ||
+            rp_moved_cross(r, t, face, group, n, vbase, 0, now, mv->nfans, &unsure1)) {
+            if (round < 4)
+                goto out;
+            unsure0 = 1;        /* the last round: whatever is left goes back */
+        }
+        for (uint32_t g = 0; g < mv->nfans; g++)
+            if (!mv->dead[g] && (unsure0 || unsure1 || now[g] > was[g])) {
+                fan_back(r, t, mv, g);
+                worse = 1;
+            }
+        if (!worse)
+            break;
+    }
+    rc = 0;
+out:
+    free(face);
+    free(group);
+    free(was);
+    free(now);
+    return rc;
+}
+
 /* ==== The step ==== */
 
 /* Points with two fans or more in uf: nm[p] set (when nm), and how many. */
-static int multi_fans(const ObjTopo *t, const uint32_t *uf, uint8_t *nm, uint32_t *count)
+static int multi_fans(const Rep *r, const ObjTopo *t, const uint32_t *uf, uint8_t *nm, uint32_t *count)
 {
-    uint32_t *first = malloc(((size_t)t->npts + 1) * sizeof *first), n = 0;
+    uint32_t *first = rp_big(((size_t)t->npts + 1) * sizeof *first, 0), n = 0;
     if (!first)
         return -1;
     memset(first, 0xff, ((size_t)t->npts + 1) * sizeof *first);
     for (uint32_t c = 0; c < t->nc; c++) {
         if (t->mate[c] == RP_SKIPPED)
             continue;
-        uint32_t p = t->cpt[c];
+        uint32_t p = rp_cpt(r, t, c);
         if (first[p] == RP_NONE) {
             first[p] = uf[c];
         } else if (first[p] != uf[c] && first[p] != RP_NONE - 1) {
@@ -425,22 +567,23 @@ static int multi_fans(const ObjTopo *t, const uint32_t *uf, uint8_t *nm, uint32_
 int rp_manifold(Rep *r, ObjTopo *t, Cuts *cu)
 {
     uint32_t groups = t->nm_ngroup, added = r->w.nverts, multi = 0;
-    uint8_t *nmv = calloc((size_t)t->npts + 1, 1);
+    uint8_t *nmv = rp_big((size_t)t->npts + 1, 1);
+    Moved mv = { 0 };
     /* the points the check calls non-manifold: two fans or more with
      * the corners at each end of a non-manifold edge joined */
     uint32_t *uf = nmv ? fans(r, t, 1) : NULL;
     int rc = -1;
     memset(cu, 0, sizeof *cu);
     cu->vbase = r->w.nverts;
-    if (!uf || multi_fans(t, uf, nmv, &multi))
+    if (!uf || multi_fans(r, t, uf, nmv, &multi))
         goto out;
     if (groups) {
         free(uf);
         uf = NULL;
-        if (pair_groups(r, t, cu) || !(uf = fans(r, t, 1)) || multi_fans(t, uf, NULL, &multi))
+        if (pair_groups(r, t, cu) || !(uf = fans(r, t, 1)) || multi_fans(r, t, uf, NULL, &multi))
             goto out;
     }
-    if (multi && split_points(r, t, uf, nmv))
+    if (multi && (split_points(r, t, uf, nmv, &mv) || (mv.nfans && moves_settle(r, t, &mv, cu->vbase))))
         goto out;
     /* each cut half-edge by the vertices it now ends on */
     for (uint32_t k = 0; k < cu->n; k++) {
@@ -457,6 +600,7 @@ int rp_manifold(Rep *r, ObjTopo *t, Cuts *cu)
 out:
     free(uf);
     free(nmv);
+    moved_free(&mv);
     return rc;
 }
 

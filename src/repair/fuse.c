@@ -108,7 +108,10 @@ static int snap(Rep *r, uint8_t *moved)
         uint32_t w = grid_near(&g, r, p, k, eps);
         if (w != RP_NONE) {
             if (memcmp(p, rp_vpos(r, w), 3 * sizeof *p)) {
-                memcpy(m->pos + 3 * (size_t)v, rp_vpos(r, w), 3 * sizeof *p);
+                if (rp_pos_own(r))
+                    goto out;
+                p = rp_vpos(r, v);
+                memcpy(r->w.pos + 3 * (size_t)v, rp_vpos(r, w), 3 * sizeof *p);
                 moved[v] = 1;
             }
             continue;
@@ -206,7 +209,7 @@ static int weld_object(Rep *r, uint32_t i, uint8_t *moved, uint32_t *minv)
 
 int rp_weld(Rep *r)
 {
-    uint8_t *moved = calloc((size_t)r->w.nverts + 1, 1);
+    uint8_t *moved = rp_big((size_t)r->w.nverts + 1, 1);
     if (!moved)
         return -1;
     int rc = 0;
@@ -215,7 +218,7 @@ int rp_weld(Rep *r)
     /* every vertex its own point: nothing to weld */
     uint32_t *minv = NULL;
     if (rc == 0 && r->npts < r->w.nverts && !r->w.rgb) {
-        if (!(minv = malloc(((size_t)r->npts + 1) * sizeof *minv)))
+        if (!(minv = rp_big(((size_t)r->npts + 1) * sizeof *minv, 0)))
             rc = -1;
         else
             memset(minv, 0xff, ((size_t)r->npts + 1) * sizeof *minv);

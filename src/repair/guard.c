@@ -1,10 +1,12 @@
 /* guard.c: the repair must not leave the check worse.
  *
- * The check of the input (the "before", on a helper thread while the
- * repair works when it may use two threads or more: it reads the input,
- * which the repair only copies) and the check of the repaired mesh are
- * compared object by object, figure by figure: a problem the check
- * reports that is new or counts more is worse. An object that came out
+ * The check of the input (the "before", on a helper thread beside the
+ * check of the result when the repair may use two threads or more: it
+ * reads the input, which the repair only copies) and the check of the
+ * repaired mesh are compared object by object, figure by figure: a
+ * problem the check reports that is new or counts more is worse. The
+ * input is checked only when the repair did something that could make
+ * a figure worse (repair.c says what cannot). An object that came out
  * worse is repaired again less boldly (repair.c runs every object
  * again, each at its level):
  *

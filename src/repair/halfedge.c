@@ -11,13 +11,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bigmem.h"
 #include "repair_internal.h"
 
 /* ==== Shared helpers ==== */
 
+void *rp_big(size_t bytes, int zero)
+{
+    void *p = zero ? calloc(bytes ? bytes : 1, 1) : malloc(bytes ? bytes : 1);
+    bigmem_advise(p, bytes, 1);
+    return p;
+}
+
 uint32_t *rp_uf_new(size_t n)
 {
-    uint32_t *p = malloc((n ? n : 1) * sizeof *p);
+    uint32_t *p = rp_big(n * sizeof *p, 0);
     if (p)
         for (size_t i = 0; i < n; i++)
             p[i] = (uint32_t)i;
@@ -65,9 +73,15 @@ void rp_face_normal(const Rep *r, uint32_t f, double n[3])
 
 /* ==== Points ==== */
 
-/* The object's points from its corners' vertices. */
+/* The object's points from its corners' vertices: numbered from 0 for
+ * the object (cpt), or the mesh's own (no array) when the object is a
+ * large part of the mesh. */
 static int topo_points(Rep *r, ObjTopo *t)
 {
+    if (!t->cpt) {
+        t->npts = r->npts;
+        return 0;
+    }
     if (r->loccap < r->npts) {
         uint32_t *l = realloc(r->loc, ((size_t)r->npts + 1) * sizeof *l);
         if (!l)
@@ -78,10 +92,9 @@ static int topo_points(Rep *r, ObjTopo *t)
     }
     t->npts = 0;
     for (uint32_t c = 0; c < t->nc; c++) {
-        uint32_t v = rp_cvert(r, t, c), g = r->pid[v];
+        uint32_t g = r->pid[rp_cvert(r, t, c)];
         if (r->loc[g] == RP_NONE) {
             r->loc[g] = t->npts;
-            t->prep[t->npts] = v;
             t->gpt[t->npts++] = g;
         }
         t->cpt[c] = r->loc[g];
@@ -103,7 +116,7 @@ static int cmp_u64(const void *x, const void *y)
  * is sorted by. */
 static inline uint32_t far_point(const Rep *r, const ObjTopo *t, uint32_t h)
 {
-    uint32_t p = t->cpt[h], q = t->cpt[rp_next(r, t, h)];
+    uint32_t p = rp_cpt(r, t, h), q = rp_cpt(r, t, rp_next(r, t, h));
     return p < q ? q : p;
 }
 
@@ -181,10 +194,10 @@ static int edge_run(ObjTopo *t, Pairing *pg, const uint32_t *he, uint32_t n)
 static int pairing_fill(Rep *r, ObjTopo *t, Pairing *pg)
 {
     uint32_t np = t->npts, nhe = 0, maxdeg = 0;
-    if (!(pg->off = calloc((size_t)np + 2, sizeof *pg->off)))
+    if (!(pg->off = rp_big(((size_t)np + 2) * sizeof *pg->off, 1)))
         return -1;
     for (uint32_t c = 0; c < t->nc; c++) {
-        uint32_t p = t->cpt[c], q = t->cpt[rp_next(r, t, c)];
+        uint32_t p = rp_cpt(r, t, c), q = rp_cpt(r, t, rp_next(r, t, c));
         if (t->skip[rp_cface(t, c)]) {
             t->mate[c] = RP_SKIPPED;
         } else if (p == q) {
@@ -199,14 +212,14 @@ static int pairing_fill(Rep *r, ObjTopo *t, Pairing *pg)
         maxdeg = pg->off[p + 1] > maxdeg ? pg->off[p + 1] : maxdeg;
         pg->off[p + 1] += pg->off[p];
     }
-    pg->he = malloc(((size_t)nhe + 1) * sizeof *pg->he);
+    pg->he = rp_big(((size_t)nhe + 1) * sizeof *pg->he, 0);
     pg->hi = malloc(((size_t)maxdeg + 1) * sizeof *pg->hi);
     pg->scratch = maxdeg > 32 ? malloc((size_t)maxdeg * sizeof *pg->scratch) : NULL;
     if (!pg->hi || !pg->he || (maxdeg > 32 && !pg->scratch))
         return -1;
     for (uint32_t c = 0; c < t->nc; c++)
         if (t->mate[c] == RP_BOUNDARY) {
-            uint32_t p = t->cpt[c], q = t->cpt[rp_next(r, t, c)];
+            uint32_t p = rp_cpt(r, t, c), q = rp_cpt(r, t, rp_next(r, t, c));
             pg->he[pg->off[p < q ? p : q]++] = c;
         }
     /* the cursors went one bucket on: back */
@@ -266,13 +279,14 @@ int rp_topo_build(Rep *r, uint32_t i, ObjTopo *t)
     t->tris = t->nc == 3 * (uint64_t)t->nf;
     for (uint32_t f = 0; t->tris && f < t->nf; f++)
         t->tris = m->face_start[t->f0 + f + 1] - m->face_start[t->f0 + f] == 3;
-    t->cface = t->tris ? NULL : malloc(n * sizeof *t->cface);
-    t->cpt = malloc(n * sizeof *t->cpt);
-    t->prep = malloc(n * sizeof *t->prep);
-    t->gpt = malloc(n * sizeof *t->gpt);
-    t->mate = malloc(n * sizeof *t->mate);
-    t->skip = calloc((size_t)t->nf + 1, 1);
-    if ((!t->tris && !t->cface) || !t->cpt || !t->prep || !t->gpt || !t->mate || !t->skip)
+    t->cface = t->tris ? NULL : rp_big(n * sizeof *t->cface, 0);
+    /* the mesh's points when the object is a quarter of its corners or more */
+    int local = (uint64_t)t->nc * 4 < r->npts;
+    t->cpt = local ? rp_big(n * sizeof *t->cpt, 0) : NULL;
+    t->gpt = local ? malloc(n * sizeof *t->gpt) : NULL;
+    t->mate = rp_big(n * sizeof *t->mate, 0);
+    t->skip = rp_big((size_t)t->nf + 1, 1);
+    if ((!t->tris && !t->cface) || (local && (!t->cpt || !t->gpt)) || !t->mate || !t->skip)
         goto fail;
     for (uint32_t f = 0; f < t->nf; f++) {
         for (uint32_t c = rp_start(r, t, f); !t->tris && c < rp_start(r, t, f + 1); c++)
@@ -292,11 +306,60 @@ void rp_topo_free(Rep *r, ObjTopo *t)
     (void)r;
     free(t->cface);
     free(t->cpt);
-    free(t->prep);
     free(t->gpt);
     free(t->mate);
     free(t->skip);
     free(t->nm_half);
     free(t->nm_group);
     memset(t, 0, sizeof *t);
+}
+
+/* ==== Faces leaving ==== */
+
+int rp_topo_unpair(Rep *r, ObjTopo *t)
+{
+    /* their own half-edges leave; a manifold partner left alone is a
+     * boundary edge (twins.c lets none be) */
+    for (uint32_t f = 0; f < t->nf; f++) {
+        if (!t->skip[f])
+            continue;
+        for (uint32_t c = rp_start(r, t, f); c < rp_start(r, t, f + 1); c++) {
+            uint32_t m = t->mate[c];
+            if (m == RP_SKIPPED)
+                break;          /* out before: the whole face */
+            if (m < RP_SPECIAL && !t->skip[rp_cface(t, m)]) {
+                t->mate[m] = RP_BOUNDARY;
+                t->nboundary++;
+            }
+            t->nboundary -= m == RP_BOUNDARY;
+            t->mate[c] = RP_SKIPPED;
+        }
+    }
+    /* each non-manifold edge without them: two left pair, one is boundary */
+    uint32_t ng = 0, nh = 0;
+    for (uint32_t g = 0; g < t->nm_ngroup; g++) {
+        uint32_t start = nh;
+        for (uint32_t k = t->nm_group[g]; k < t->nm_group[g + 1]; k++) {
+            uint32_t h = t->nm_half[k];
+            if (!t->skip[rp_cface(t, h)])
+                t->nm_half[nh++] = h;
+        }
+        uint32_t n = nh - start;
+        if (n >= 3) {
+            t->nm_group[ng++] = start;
+            continue;
+        }
+        if (n == 2) {
+            t->mate[t->nm_half[start]] = t->nm_half[start + 1];
+            t->mate[t->nm_half[start + 1]] = t->nm_half[start];
+        } else if (n == 1) {
+            t->mate[t->nm_half[start]] = RP_BOUNDARY;
+            t->nboundary++;
+        }
+        nh = start;
+    }
+    t->nm_group[ng] = nh;
+    t->nm_ngroup = ng;
+    t->nm_nhalf = nh;
+    return 0;
 }

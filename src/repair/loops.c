@@ -69,11 +69,11 @@ static int emit(const Rep *r, const ObjTopo *t, Loops *l, Walk *w, uint32_t from
     uint32_t n = w->npath - from, *h = w->path + from;
     for (uint32_t i = 0; i < n; i++) {
         uint32_t a = h[(n - i) % n], e = h[n - 1 - i];
-        if (loop_point(l, t->cpt[a], t->f0 + rp_cface(t, e), rp_cvert(r, t, a)))
+        if (loop_point(l, rp_cpt(r, t, a), t->f0 + rp_cface(t, e), rp_cvert(r, t, a)))
             return -1;
     }
     for (uint32_t i = 0; i < n; i++)
-        w->pos[t->cpt[h[i]]] = RP_NONE;
+        w->pos[rp_cpt(r, t, h[i])] = RP_NONE;
     w->npath = from;
     return loop_end(l);
 }
@@ -82,7 +82,7 @@ static int emit(const Rep *r, const ObjTopo *t, Loops *l, Walk *w, uint32_t from
 static int stray(const Rep *r, const ObjTopo *t, Loops *l, Walk *w)
 {
     for (uint32_t i = 0; i < w->npath; i++)
-        w->pos[t->cpt[w->path[i]]] = RP_NONE;
+        w->pos[rp_cpt(r, t, w->path[i])] = RP_NONE;
     if (l->nstray == l->straycap) {
         uint32_t c = l->straycap ? l->straycap * 2 : 16;
         uint32_t *a = realloc(l->stray_edges, (size_t)c * sizeof *a);
@@ -106,13 +106,13 @@ static int walk(const Rep *r, const ObjTopo *t, Loops *l, Walk *w)
     for (uint32_t s = 0; s < t->npts; s++)
         while (w->cur[s] < w->off[s + 1] || w->npath) {
             /* on from the end of the last half-edge, or a new walk from s */
-            uint32_t p = w->npath ? t->cpt[rp_next(r, t, w->path[w->npath - 1])] : s;
+            uint32_t p = w->npath ? rp_cpt(r, t, rp_next(r, t, w->path[w->npath - 1])) : s;
             if (w->cur[p] == w->off[p + 1]) {
                 if (stray(r, t, l, w))
                     return -1;
                 continue;
             }
-            uint32_t h = w->he[w->cur[p]++], q = t->cpt[rp_next(r, t, h)];
+            uint32_t h = w->he[w->cur[p]++], q = rp_cpt(r, t, rp_next(r, t, h));
             w->pos[p] = w->npath;
             w->path[w->npath++] = h;
             /* back at a point of the walk: the cycle from there */
@@ -141,13 +141,13 @@ int rp_loops_find(Rep *r, ObjTopo *t, Loops *l)
     memset(w.pos, 0xff, np * sizeof *w.pos);
     for (uint32_t c = 0; c < t->nc; c++)
         if (t->mate[c] == RP_BOUNDARY)
-            w.off[t->cpt[c] + 1]++;
+            w.off[rp_cpt(r, t, c) + 1]++;
     for (uint32_t p = 0; p < t->npts; p++)
         w.off[p + 1] += w.off[p];
     memcpy(w.cur, w.off, np * sizeof *w.cur);
     for (uint32_t c = 0; c < t->nc; c++)
         if (t->mate[c] == RP_BOUNDARY)
-            w.he[w.cur[t->cpt[c]]++] = c;
+            w.he[w.cur[rp_cpt(r, t, c)]++] = c;
     memcpy(w.cur, w.off, np * sizeof *w.cur);
     rc = walk(r, t, l, &w);
 out:

@@ -70,15 +70,15 @@ static double face_volume(const Rep *r, uint32_t f, const double ref[3])
 static void object_ref(const Rep *r, const ObjTopo *t, double ref[3])
 {
     float lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-    for (uint32_t p = 0; p < t->npts; p++) {
-        const float *q = rp_vpos(r, t->prep[p]);
+    for (uint32_t c = 0; c < t->nc; c++) {
+        const float *q = rp_vpos(r, rp_cvert(r, t, c));
         for (int k = 0; k < 3; k++) {
             lo[k] = q[k] < lo[k] ? q[k] : lo[k];
             hi[k] = q[k] > hi[k] ? q[k] : hi[k];
         }
     }
     for (int k = 0; k < 3; k++)
-        ref[k] = t->npts ? ((double)lo[k] + hi[k]) / 2 : 0;
+        ref[k] = t->nc ? ((double)lo[k] + hi[k]) / 2 : 0;
 }
 
 /* ==== Agreeing ==== */
@@ -126,8 +126,8 @@ static void punion(ParityFind *u, uint32_t f, uint32_t g, int rel)
 int rp_winding(Rep *r, ObjTopo *t)
 {
     uint32_t nf = t->nf;
-    ParityFind u = { malloc(((size_t)nf + 1) * sizeof *u.up), calloc((size_t)nf + 1, 1) };
-    uint32_t *count = calloc(2 * ((size_t)nf + 1), sizeof *count);
+    ParityFind u = { rp_big(((size_t)nf + 1) * sizeof *u.up, 0), rp_big((size_t)nf + 1, 1) };
+    uint32_t *count = rp_big(2 * ((size_t)nf + 1) * sizeof *count, 1);
     double *vol = NULL, ref[3];
     int rc = -1;
     if (!u.up || !u.bits || !count)
@@ -137,7 +137,7 @@ int rp_winding(Rep *r, ObjTopo *t)
     for (uint32_t c = 0; c < t->nc; c++) {
         uint32_t m = t->mate[c];
         if (m < RP_SPECIAL && c < m)
-            punion(&u, rp_cface(t, c), rp_cface(t, m), t->cpt[c] == t->cpt[m]);
+            punion(&u, rp_cface(t, c), rp_cface(t, m), rp_cpt(r, t, c) == rp_cpt(r, t, m));
     }
     int p;
     for (uint32_t f = 0; f < nf; f++) {
@@ -313,10 +313,10 @@ static uint32_t *parts_label(const Rep *r, const ObjTopo *t, uint32_t *np)
     return uf;
 }
 
-int rp_outward(Rep *r, ObjTopo *t)
+int rp_outward(Rep *r, ObjTopo *t, int *settled)
 {
     uint32_t np = 0, *label = parts_label(r, t, &np);
-    Part *pt = label ? calloc((size_t)np + 1, sizeof *pt) : NULL;
+    Part *pt = label ? rp_big(((size_t)np + 1) * sizeof *pt, 1) : NULL;
     if (!pt) {
         free(label);
         return -1;
@@ -338,7 +338,7 @@ int rp_outward(Rep *r, ObjTopo *t)
         Part *q = &pt[label[f]];
         if (m == RP_BOUNDARY || m == RP_NONMANIF)
             q->closed &= m != RP_BOUNDARY;
-        else if (m < RP_SPECIAL && t->cpt[c] == t->cpt[m])
+        else if (m < RP_SPECIAL && rp_cpt(r, t, c) == rp_cpt(r, t, m))
             q->agrees = 0;
         if (m == RP_NONMANIF)
             q->agrees = 0;      /* no winding to agree on across a fin */
@@ -355,9 +355,13 @@ int rp_outward(Rep *r, ObjTopo *t)
             q->nfaces++;
             q->vol += face_volume(r, t->f0 + f, ref);
         }
-    uint32_t closed = 0;
-    for (uint32_t p = 0; p < np; p++)
+    uint32_t closed = 0, agree = 0;
+    for (uint32_t p = 0; p < np; p++) {
         closed += pt[p].closed && pt[p].agrees;
+        agree += pt[p].agrees;
+    }
+    if (settled)
+        *settled = agree == np;
     int rc = closed > 1 ? nesting(r, t, pt, np, label) : 0;
     for (uint32_t p = 0; rc == 0 && p < np; p++) {
         Part *q = &pt[p];

@@ -51,7 +51,7 @@ static int table_alloc(PosHash *ph, size_t points)
     size_t size = 64;
     while (size < 2 * points + 2)
         size *= 2;
-    ph->slot = malloc(size * sizeof *ph->slot);
+    ph->slot = rp_big(size * sizeof *ph->slot, 0);
     if (!ph->slot)
         return -1;
     memset(ph->slot, 0xff, size * sizeof *ph->slot);
@@ -63,7 +63,7 @@ int rp_points_build(Rep *r)
 {
     free(r->ph.slot);
     r->ph.slot = NULL;
-    if (!r->pid && !(r->pid = malloc((r->vcap ? r->vcap : 1) * sizeof *r->pid)))
+    if (!r->pid && !(r->pid = rp_big((r->vcap ? r->vcap : 1) * sizeof *r->pid, 0)))
         return -1;
     if (table_alloc(&r->ph, r->w.nverts))
         return -1;
@@ -125,9 +125,31 @@ static int table_grow(Rep *r)
     return 0;
 }
 
+int rp_pos_own(Rep *r)
+{
+    if (!r->pos_borrowed)
+        return 0;
+    size_t n = 3 * (r->vcap > r->w.nverts ? r->vcap : r->w.nverts);
+    float *pos = malloc((n ? n : 1) * sizeof *pos), *rgb = r->w.rgb ? malloc((n ? n : 1) * sizeof *rgb) : NULL;
+    if (!pos || (r->w.rgb && !rgb)) {
+        free(pos);
+        free(rgb);
+        return -1;
+    }
+    memcpy(pos, r->w.pos, 3 * (size_t)r->w.nverts * sizeof *pos);
+    if (rgb)
+        memcpy(rgb, r->w.rgb, 3 * (size_t)r->w.nverts * sizeof *rgb);
+    r->w.pos = pos;
+    r->w.rgb = rgb;
+    r->pos_borrowed = 0;
+    return 0;
+}
+
 /* Room for one more vertex in every per-vertex array. */
 static int vertex_room(Rep *r)
 {
+    if (rp_pos_own(r))
+        return -1;
     if (r->w.nverts < r->vcap)
         return 0;
     if (r->vcap >= UINT32_MAX - 2)

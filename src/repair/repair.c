@@ -34,7 +34,7 @@ int rp_cancelled(const Rep *r)
 
 static void *dup_array(const void *p, size_t bytes)
 {
-    void *q = malloc(bytes ? bytes : 1);
+    void *q = rp_big(bytes, 0);
     if (q && p && bytes)
         memcpy(q, p, bytes);
     return q;
@@ -50,19 +50,20 @@ static int copy_in(Rep *r, const Mesh *m)
     w->face_start = w->corner = w->corner_uv = w->point = w->line_corner = NULL;
     w->face_mat = NULL;
     w->objs = NULL;
-    size_t nv = m->nverts, nc = m->nfaces ? m->face_start[m->nfaces] : 0;
-    r->vcap = nv;
+    size_t nc = m->nfaces ? m->face_start[m->nfaces] : 0;
+    r->vcap = m->nverts;
     r->nverts0 = m->nverts;
-    w->pos = dup_array(m->pos, 3 * nv * sizeof *m->pos);
+    /* the positions and colours are borrowed until they change */
+    w->pos = m->pos;
+    w->rgb = m->rgb;
+    r->pos_borrowed = 1;
     w->face_start = dup_array(m->face_start, ((size_t)m->nfaces + 1) * sizeof *m->face_start);
     w->corner = dup_array(m->corner, nc * sizeof *m->corner);
     w->objs = dup_array(m->objs, m->nobjs * sizeof *m->objs);
-    if (!w->pos || !w->face_start || !w->corner || !w->objs)
+    if (!w->face_start || !w->corner || !w->objs)
         return -1;
     if (!m->face_start)
         w->face_start[0] = 0;
-    if (m->rgb && !(w->rgb = dup_array(m->rgb, 3 * nv * sizeof *m->rgb)))
-        return -1;
     if (m->face_mat && !(w->face_mat = dup_array(m->face_mat, ((size_t)m->nfaces + 1) * sizeof *m->face_mat)))
         return -1;
     if (m->point && !(w->point = dup_array(m->point, m->npoints * sizeof *m->point)))
@@ -73,7 +74,7 @@ static int copy_in(Rep *r, const Mesh *m)
         if (!(w->corner_uv = dup_array(m->corner_uv, nc * sizeof *m->corner_uv)))
             return -1;
     } else if (m->uv) {
-        if (!(w->corner_uv = malloc((nc ? nc : 1) * sizeof *w->corner_uv)))
+        if (!(w->corner_uv = rp_big(nc * sizeof *w->corner_uv, 0)))
             return -1;
         for (size_t c = 0; c < nc; c++)
             w->corner_uv[c] = m->corner[c] < m->nuv ? m->corner[c] : MESH_NO_UV;
@@ -84,8 +85,10 @@ static int copy_in(Rep *r, const Mesh *m)
 static void free_copy(Rep *r)
 {
     Mesh *w = &r->w;
-    free(w->pos);
-    free(w->rgb);
+    if (!r->pos_borrowed) {
+        free(w->pos);
+        free(w->rgb);
+    }
     free(w->face_start);
     free(w->corner);
     free(w->corner_uv);
@@ -103,8 +106,10 @@ static void free_copy(Rep *r)
 static void install(Rep *r, Mesh *m)
 {
     Mesh *w = &r->w;
-    free(m->pos);
-    free(m->rgb);
+    if (!r->pos_borrowed) {
+        free(m->pos);
+        free(m->rgb);
+    }
     free(m->face_start);
     free(m->corner);
     free(m->corner_uv);
@@ -128,28 +133,32 @@ static void install(Rep *r, Mesh *m)
         tris += m->face_start[f + 1] - m->face_start[f] - 2;
     m->info.triangles = tris > UINT32_MAX ? UINT32_MAX : (uint32_t)tris;
     memset(w, 0, sizeof *w);
+    r->pos_borrowed = 0;
 }
 
-/* ==== Faces added ==== */
+/* ==== Faces dropped and added ==== */
 
-int rp_faces_append(Rep *r, Fill *const *fills, const uint32_t *nfills)
+int rp_faces_rebuild(Rep *r, const uint8_t *drop, Fill *const *fills, const uint32_t *nfills)
 {
     Mesh *w = &r->w;
-    uint64_t addf = 0, nc = w->nfaces ? w->face_start[w->nfaces] : 0;
+    uint64_t addf = 0, addc = 0, nc = w->nfaces ? w->face_start[w->nfaces] : 0, gone = 0;
     int mats = w->face_mat != NULL;
     for (uint32_t i = 0; i < w->nobjs; i++)
         for (uint32_t k = 0; k < nfills[i]; k++) {
             addf += fills[i][k].ntri;
             mats |= fills[i][k].mat >= 0;
         }
-    if (!addf)
+    for (uint32_t f = 0; drop && f < w->nfaces; f++)
+        gone += drop[f];
+    if (!addf && !gone)
         return 0;
-    if ((uint64_t)w->nfaces + addf >= UINT32_MAX - 1 || nc + 3 * addf >= UINT32_MAX - 1)
+    addc = 3 * addf;
+    if ((uint64_t)w->nfaces + addf >= UINT32_MAX - 1 || nc + addc >= UINT32_MAX - 1)
         return -1;
     uint32_t nf = w->nfaces + (uint32_t)addf;
-    uint32_t *fs = malloc(((size_t)nf + 1) * sizeof *fs), *cr = malloc((nc + 3 * addf) * sizeof *cr);
-    uint32_t *uv = w->corner_uv ? malloc((nc + 3 * addf) * sizeof *uv) : NULL;
-    int32_t *fm = mats ? malloc(((size_t)nf + 1) * sizeof *fm) : NULL;
+    uint32_t *fs = rp_big(((size_t)nf + 1) * sizeof *fs, 0), *cr = rp_big((nc + addc + 1) * sizeof *cr, 0);
+    uint32_t *uv = w->corner_uv ? rp_big((nc + addc + 1) * sizeof *uv, 0) : NULL;
+    int32_t *fm = mats ? rp_big(((size_t)nf + 1) * sizeof *fm, 0) : NULL;
     if (!fs || !cr || (w->corner_uv && !uv) || (mats && !fm)) {
         free(fs);
         free(cr);
@@ -161,7 +170,9 @@ int rp_faces_append(Rep *r, Fill *const *fills, const uint32_t *nfills)
     for (uint32_t i = 0; i < w->nobjs; i++) {
         MeshObject *o = &w->objs[i];
         uint32_t first = f;
-        for (uint32_t g = o->face_first; g < o->face_first + o->face_count; g++, f++) {
+        for (uint32_t g = o->face_first; g < o->face_first + o->face_count; g++) {
+            if (drop && drop[g])
+                continue;
             uint32_t s = w->face_start[g], n = w->face_start[g + 1] - s;
             fs[f] = c;
             memcpy(cr + c, w->corner + s, n * sizeof *cr);
@@ -170,6 +181,7 @@ int rp_faces_append(Rep *r, Fill *const *fills, const uint32_t *nfills)
             if (fm)
                 fm[f] = mesh_face_mat(w, g);
             c += n;
+            f++;
         }
         for (uint32_t k = 0; k < nfills[i]; k++)
             for (uint32_t j = 0; j < fills[i][k].ntri; j++, f++) {
@@ -203,6 +215,8 @@ int rp_faces_append(Rep *r, Fill *const *fills, const uint32_t *nfills)
 typedef struct {
     Fill     **fills;           /* per object */
     uint32_t  *nfills;
+    uint8_t   *drop;            /* per mesh face: a duplicate that goes */
+    uint8_t   *dups;            /* per object: duplicates went */
     uint64_t   dp_budget;
 } Filled;
 
@@ -215,31 +229,43 @@ static void filled_free(Filled *fd, uint32_t nobjs)
     }
     free(fd->fills);
     free(fd->nfills);
+    free(fd->drop);
+    free(fd->dups);
 }
 
-/* The splits, the winding and the holes of object i; outward too when
- * no hole was filled (else after the fills are in place). */
+/* The duplicates, splits, winding and holes of object i, each as its
+ * level allows; outward too when no hole was filled (else after the
+ * fills are in place). */
 static int object_steps(Rep *r, uint32_t i, Filled *fd)
 {
     unsigned steps = r->opt->steps, lv = r->level[i];
-    if (lv >= RP_LEVEL_NO_WINDING)
+    if (lv >= RP_LEVEL_UNTOUCHED || !(steps & (REPAIR_CLEAN | REPAIR_MANIFOLD | REPAIR_WINDING | REPAIR_HOLES)))
         return 0;
-    int split = lv < RP_LEVEL_NO_SPLITS;
+    int split = lv < RP_LEVEL_NO_SPLITS, turn = lv < RP_LEVEL_NO_WINDING && (steps & REPAIR_WINDING);
     ObjTopo t;
     Cuts cuts = { 0 };
     if (rp_topo_build(r, i, &t))
         return -1;
     int rc = 0;
-    if (split && (steps & REPAIR_MANIFOLD))
+    uint32_t had = r->rep->duplicate + r->rep->flaps;
+    if (steps & REPAIR_CLEAN)
+        rc = rp_twins(r, &t, fd->drop);
+    fd->dups[i] = r->rep->duplicate + r->rep->flaps > had;
+    if (rc == 0 && split && (steps & REPAIR_MANIFOLD))
         rc = rp_manifold(r, &t, &cuts);
-    if (rc == 0 && (steps & REPAIR_WINDING))
+    if (rc == 0 && turn)
         rc = rp_winding(r, &t);
     if (rc == 0 && split && (steps & REPAIR_HOLES) && t.nboundary)
         rc = rp_holes(r, &t, &cuts, &fd->fills[i], &fd->nfills[i], &fd->dp_budget);
     if (rc == 0)
         rc = rp_cuts_settle(r, &t, &cuts, fd->fills[i], fd->nfills[i]);
-    if (rc == 0 && (steps & REPAIR_WINDING) && !fd->nfills[i])
-        rc = rp_outward(r, &t);
+    int settled = 0;
+    if (rc == 0 && turn && !fd->nfills[i])
+        rc = rp_outward(r, &t, &settled);
+    /* duplicates gone from an object that does not end settled: the
+     * guard checks it (repair.c: risky) */
+    if (!fd->nfills[i] && fd->dups[i] && !settled)
+        r->dup_unsettled++;
     rp_cuts_free(&cuts);
     rp_topo_free(r, &t);
     return rc || rp_cancelled(r) ? -1 : 0;
@@ -248,27 +274,31 @@ static int object_steps(Rep *r, uint32_t i, Filled *fd)
 static int objects(Rep *r)
 {
     uint32_t n = r->w.nobjs;
-    Filled fd = { calloc((size_t)n + 1, sizeof *fd.fills), calloc((size_t)n + 1, sizeof *fd.nfills), RP_DP_BUDGET };
-    int rc = -1, any = 0;
-    if (!fd.fills || !fd.nfills)
+    Filled fd = { calloc((size_t)n + 1, sizeof *fd.fills), calloc((size_t)n + 1, sizeof *fd.nfills),
+                  rp_big((size_t)r->w.nfaces + 1, 1), calloc((size_t)n + 1, 1), RP_DP_BUDGET };
+    int rc = -1;
+    if (!fd.fills || !fd.nfills || !fd.drop || !fd.dups)
         goto out;
-    for (uint32_t i = 0; i < n; i++) {
+    for (uint32_t i = 0; i < n; i++)
         if (object_steps(r, i, &fd))
             goto out;
-        any |= fd.nfills[i] > 0;
-    }
-    if (any && rp_faces_append(r, (Fill *const *)fd.fills, fd.nfills))
+    if (rp_faces_rebuild(r, fd.drop, (Fill *const *)fd.fills, fd.nfills))
         goto out;
-    for (uint32_t i = 0; i < n && (r->opt->steps & REPAIR_WINDING); i++) {
+    for (uint32_t i = 0; i < n; i++) {
         if (!fd.nfills[i])
             continue;
+        if (!(r->opt->steps & REPAIR_WINDING) || r->level[i] >= RP_LEVEL_NO_WINDING) {
+            r->dup_unsettled += fd.dups[i];
+            continue;
+        }
         ObjTopo t;
         if (rp_topo_build(r, i, &t))
             goto out;
-        int bad = rp_outward(r, &t);
+        int settled = 0, bad = rp_outward(r, &t, &settled);
         rp_topo_free(r, &t);
         if (bad)
             goto out;
+        r->dup_unsettled += fd.dups[i] && !settled;
     }
     rc = 0;
 out:
@@ -313,7 +343,7 @@ static int steps(Rep *r)
     }
     ms[REPAIR_T_CLEAN] += now_ms() - t;
     t = now_ms();
-    if ((s & (REPAIR_MANIFOLD | REPAIR_WINDING | REPAIR_HOLES)) && objects(r))
+    if ((s & (REPAIR_CLEAN | REPAIR_MANIFOLD | REPAIR_WINDING | REPAIR_HOLES)) && objects(r))
         return -1;
     ms[REPAIR_T_OBJECTS] += now_ms() - t;
     t = now_ms();
@@ -322,12 +352,9 @@ static int steps(Rep *r)
     return rc;
 }
 
-/* One go at every object at its level: the repaired copy in r, the
- * check of it in *after. 0, or -1 (out of memory, cancelled). */
-static int attempt(Rep *r, const Mesh *m, MeshCheck *after)
+/* The check of r's repaired copy into *after. */
+static int check_after(Rep *r, MeshCheck *after)
 {
-    if (copy_in(r, m) || steps(r))
-        return -1;
     double t = now_ms();
     CheckOpts co = { .threads = r->opt->threads, .intersections = r->opt->intersections, .cancel = r->opt->cancel };
     char err[256];
@@ -346,24 +373,78 @@ static void report_again(RepairReport *rep)
     memcpy(rep->ms_phase, ms, sizeof ms);
 }
 
-/* Repair m into r's copy, object by object as boldly as the check of
- * the result allows (guard.c); *after: the check of what it made. */
-static int repair_guarded(Rep *r, const Mesh *m, uint8_t *level, MeshCheck *after)
+/* Did the repair do anything that could make a figure of the check
+ * worse? Welds at one position, repeated corners and degenerate faces
+ * dropped (the check sets them aside) and flips that make a patch agree
+ * (the check makes it agree the same way before it measures) cannot,
+ * nor can duplicates dropped from an object that ends settled (twins.c
+ * opens no edge; every part agreeing, none is non-orientable, none has
+ * a flip left, and the turn outward leaves none inside out). Splits,
+ * fills, turns outward, moved positions, an object left without faces
+ * and duplicates dropped elsewhere might (a duplicate gone can make an
+ * edge manifold that joins two patches whose windings disagree). */
+static int risky(const Rep *r, const Mesh *m)
 {
-    Before b;
-    int rc = rp_before_start(&b, m, r->opt);
-    for (int go = 0; rc == 0; go++) {
+    const RepairReport *rep = r->rep;
+    if (rep->split_vertices || rep->cuts_undone || rep->filled || rep->outward || r->dup_unsettled ||
+        (r->opt->weld_eps > 0 && rep->welded))
+        return 1;
+    for (uint32_t i = 0; i < m->nobjs; i++)
+        if (m->objs[i].face_count && !r->w.objs[i].face_count)
+            return 1;
+    return 0;
+}
+
+/* Repair m, object by object as boldly as the check of the result
+ * allows (guard.c): the input is checked only when the repair did
+ * something that might make a figure worse (on a helper thread, beside
+ * the check of the result, when two threads are allowed), and then the
+ * result is checked before it replaces m's arrays. Else it replaces
+ * them first (the input's arrays go before the check of the result
+ * needs its memory), and *counted says whether that check ran. *after:
+ * the check of the repaired mesh (when counted). */
+static int repair_guarded(Rep *r, Mesh *m, uint8_t *level, MeshCheck *after, int *counted)
+{
+    Before b = { .rc = -1 };
+    int rc = 0, have = 0;
+    *counted = 0;
+    for (;;) {
         report_again(r->rep);
-        rc = attempt(r, m, after);
-        if (rc == 0 && go == 0)
-            rc = rp_before_wait(&b);
-        if (rc || !rp_worse(&b.mc, after, level))
+        if ((rc = copy_in(r, m) || steps(r) ? -1 : 0))
             break;
+        if (!risky(r, m)) {
+            install(r, m);
+            double t = now_ms();
+            CheckOpts co = { .threads = r->opt->threads, .intersections = r->opt->intersections,
+                             .cancel = r->opt->cancel };
+            char err[256];
+            *counted = meshcheck_run(after, m, &co, err, sizeof err) == 0;
+            r->rep->ms_phase[REPAIR_T_CHECK] += now_ms() - t;
+            break;
+        }
+        if (!have) {
+            have = 1;
+            if ((rc = rp_before_start(&b, m, r->opt)))
+                break;
+        }
+        if ((rc = check_after(r, after)))
+            break;
+        double t = now_ms();
+        rc = rp_before_wait(&b);
+        r->rep->ms_phase[REPAIR_T_CHECK] += now_ms() - t;
+        if (rc)
+            break;
+        if (!rp_worse(&b.mc, after, level)) {
+            install(r, m);
+            *counted = 1;
+            break;
+        }
         meshcheck_free(after);
         free_copy(r);
         *r = (Rep){ .opt = r->opt, .rep = r->rep, .level = level };
     }
-    rp_before_free(&b);
+    if (have)
+        rp_before_free(&b);
     return rc;
 }
 
@@ -378,27 +459,29 @@ int repair_mesh(Mesh *m, const RepairOpts *opt, RepairReport *rep, char *err, si
         snprintf(err, errlen, "%s: the weld distance must be a finite number >= 0", name);
         return -1;
     }
+    uint32_t faces = m->nfaces, verts = m->nverts;
     uint8_t *level = calloc((size_t)m->nobjs + 1, 1);
     Rep r = { .opt = opt, .rep = rep, .level = level };
     MeshCheck after;
-    int rc = level ? repair_guarded(&r, m, level, &after) : -1;
+    int counted = 0, rc = level ? repair_guarded(&r, m, level, &after, &counted) : -1;
+    free_copy(&r);
     if (rc) {
         snprintf(err, errlen, "%s: %s", name,
                  rp_cancelled(&r) ? "cancelled" : "out of memory repairing the model (or more than 2^32 vertices)");
-        free_copy(&r);
         free(level);
         repair_report_free(rep);
         return -1;
     }
-    left(rep, &after);
-    meshcheck_free(&after);
+    if (counted) {
+        left(rep, &after);
+        meshcheck_free(&after);
+    }
+    rep->counted = counted;
     for (uint32_t i = 0; i < m->nobjs; i++)
         rep->held_back += level[i] > 0;
     free(level);
-    rep->faces_before = m->nfaces;
-    rep->verts_before = m->nverts;
-    install(&r, m);
-    free_copy(&r);
+    rep->faces_before = faces;
+    rep->verts_before = verts;
     rep->faces_after = m->nfaces;
     rep->verts_after = m->nverts;
     rep->ms = now_ms() - t0;

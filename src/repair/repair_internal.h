@@ -55,6 +55,10 @@ typedef struct {
     uint32_t *loc;              /* point -> the current object's point, RP_NONE (reset after each object) */
     size_t    loccap;
     int       clean;            /* no degenerate face is left (the clean ran) */
+    uint32_t  dup_unsettled;    /* objects that lost duplicates and do not end settled (rp_outward) */
+    /* w.pos and w.rgb are the input's own until something changes them
+     * (rp_pos_own): most repairs move and add no vertex */
+    int       pos_borrowed;
 } Rep;
 
 /* ==== Not worse (guard.c) ==== */
@@ -85,6 +89,10 @@ int  rp_cancelled(const Rep *r);
 static inline const float *rp_vpos(const Rep *r, uint32_t v) { return r->w.pos + 3 * (size_t)v; }
 
 /* ==== Points (posmap.c) ==== */
+
+/* Make w.pos and w.rgb the repair's own copies (room for vcap
+ * vertices), before they change. 0 or -1 out of memory. */
+int  rp_pos_own(Rep *r);
 
 /* The coordinate's bits with -0 made +0. */
 uint32_t rp_coord_bits(float f);
@@ -118,8 +126,6 @@ int  rp_pos_degenerate(const float *const *p, uint32_t n);
 
 int  rp_weld(Rep *r);                           /* fuse.c */
 int  rp_clean(Rep *r);                          /* tidy.c */
-/* twins.c: which duplicate faces go (dup[f] set), counted in the report. */
-int  rp_duplicates(Rep *r, uint8_t *dup);
 /* The vertices in output order: new ones after their anchors, unused
  * ones dropped when drop_unused (counted in rep->unused); every index
  * renumbered, object vertex ranges made exact. */
@@ -133,10 +139,13 @@ typedef struct {
     uint32_t  c0, nc;           /* its corners */
     int       tris;             /* every face a triangle: the face of corner c is c / 3 */
     uint32_t *cface;            /* relative corner -> relative face (NULL when tris: rp_cface) */
-    uint32_t *cpt;              /* relative corner -> its point, numbered from 0 for the object */
-    uint32_t  npts;
-    uint32_t *prep;             /* the object's point -> a mesh vertex there */
-    uint32_t *gpt;              /* the object's point -> the mesh's point */
+    /* relative corner -> its point (rp_cpt): numbered from 0 for the
+     * object (cpt) when it is a small part of the mesh; the mesh's own
+     * points (cpt NULL: no array) when it is most of it, where arrays of
+     * the mesh's points cost no more than the object's */
+    uint32_t *cpt;
+    uint32_t  npts;             /* its points (the mesh's when cpt is NULL) */
+    uint32_t *gpt;              /* the object's point -> the mesh's point (cpt only) */
     uint8_t  *skip;             /* per relative face: degenerate, out of the topology */
     uint32_t *mate;             /* relative corner -> the other half-edge of its edge, or RP_* */
     uint32_t *nm_half;          /* the half-edges of the non-manifold edges, edge by edge */
@@ -153,6 +162,9 @@ int  rp_topo_build(Rep *r, uint32_t i, ObjTopo *t);
  * again first when points is set). */
 int  rp_topo_pair(Rep *r, ObjTopo *t, int points);
 void rp_topo_free(Rep *r, ObjTopo *t);
+/* The faces newly marked skip leave the pairing (their edges' other
+ * faces pair again), without building it again. */
+int  rp_topo_unpair(Rep *r, ObjTopo *t);
 
 static inline uint32_t rp_start(const Rep *r, const ObjTopo *t, uint32_t f)
 {
@@ -182,8 +194,19 @@ static inline uint32_t rp_prev(const Rep *r, const ObjTopo *t, uint32_t c)
     return c > s ? c - 1 : rp_start(r, t, f + 1) - 1;
 }
 
-/* Mesh vertex of relative corner c. */
+/* Mesh vertex of relative corner c, and its point. */
 static inline uint32_t rp_cvert(const Rep *r, const ObjTopo *t, uint32_t c) { return r->w.corner[t->c0 + c]; }
+
+static inline uint32_t rp_cpt(const Rep *r, const ObjTopo *t, uint32_t c)
+{
+    return t->cpt ? t->cpt[c] : r->pid[r->w.corner[t->c0 + c]];
+}
+
+/* A big array: malloc (or calloc when zero) and, as a loaded mesh's
+ * arrays are, huge pages asked for and the pages faulted in by one call
+ * (bigmem.h): a first touch a page costs more than the work on it.
+ * Free with free(). */
+void *rp_big(size_t bytes, int zero);
 
 /* Union-find over [0, n) (the smaller root wins, path halving). */
 uint32_t *rp_uf_new(size_t n);
@@ -194,6 +217,10 @@ int      rp_uf_union(uint32_t *p, uint32_t a, uint32_t b);
 void rp_face_normal(const Rep *r, uint32_t f, double n[3]);
 
 /* ==== The steps on one object ==== */
+
+/* twins.c: the duplicate faces that go leave t's topology (skip) and are
+ * marked in drop[] (per mesh face), counted in the report. */
+int  rp_twins(Rep *r, ObjTopo *t, uint8_t *drop);
 
 /* fins.c: split the non-manifold edges and vertices; t's pairing is
  * rebuilt when anything changed. The faces cut loose from a fin of an
@@ -214,7 +241,9 @@ int  rp_manifold(Rep *r, ObjTopo *t, Cuts *cuts);
  * agrees (t's pairing follows the flips); rp_outward turns the closed
  * parts that are inside out. */
 int  rp_winding(Rep *r, ObjTopo *t);
-int  rp_outward(Rep *r, ObjTopo *t);
+/* *settled (when not NULL): every part agrees (no non-manifold edge, no
+ * non-orientable patch), so that the check can find none inside out */
+int  rp_outward(Rep *r, ObjTopo *t, int *settled);
 /* Flip face f (mesh index), keeping its first corner: the same fan of
  * triangles, each the other way round. */
 void rp_flip_face(Rep *r, uint32_t f);
@@ -281,6 +310,15 @@ void rp_edges_free(EdgeSet *es);
  * or -1 (out of memory, cancelled). */
 int  rp_fills_cross(Rep *r, const ObjTopo *t, Fill *fills, uint32_t nfixed, uint32_t n, uint8_t *bad);
 
+/* The crossing pairs each group of faces moved by a split takes part in
+ * (against the object's other faces near them and the other groups;
+ * face: relative faces, group[i] face i's group), with the faces where
+ * they are (original 0) or where they were (original 1: each vertex
+ * from vbase on at the vertex it copies, its anchor). count[g] for each
+ * group; *unsure when the crossing test stopped on its budget. */
+int  rp_moved_cross(Rep *r, const ObjTopo *t, const uint32_t *face, const uint32_t *group, uint32_t n,
+                    uint32_t vbase, int original, uint32_t *count, uint32_t ngroup, int *unsure);
+
 /* holes.c: the open loops found so far are listed here (up to
  * REPAIR_HOLES_MAX). */
 int  rp_hole_open(Rep *r, uint32_t obj, uint32_t edges, uint32_t vertex, RepairOpenWhy why);
@@ -288,7 +326,8 @@ int  rp_hole_open(Rep *r, uint32_t obj, uint32_t edges, uint32_t vertex, RepairO
 int  rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cuts, const Fill *fills, uint32_t nfills);
 void rp_cuts_free(Cuts *cuts);
 
-/* repair.c: the fills in place, each after its object's faces. */
-int  rp_faces_append(Rep *r, Fill *const *fills, const uint32_t *nfills);
+/* repair.c: the faces marked in drop (NULL: none) gone, and the fills
+ * in place, each after its object's faces. */
+int  rp_faces_rebuild(Rep *r, const uint8_t *drop, Fill *const *fills, const uint32_t *nfills);
 
 #endif

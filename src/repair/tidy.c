@@ -1,12 +1,12 @@
 /* tidy.c: the clean (what the check counts as degenerate or duplicate
  * goes) and the vertices put in their final order.
  *
- * The clean runs over the faces in place, in two passes that only
- * shrink the arrays. The first drops a point repeated right after
+ * The clean runs over the faces in place, in one pass that only
+ * shrinks the arrays: it drops a point repeated right after
  * itself within a face (the last corner against the first too: a face
  * a b b c is the triangle a b c) and the degenerate faces (every corner
- * on one line, decided exactly: exactsign.c). The second drops the
- * duplicate faces twins.c chose. Face order, materials and texture
+ * on one line, decided exactly: exactsign.c). The duplicates go later,
+ * object by object (twins.c). Face order, materials and texture
  * coordinates of the faces kept are kept. */
 
 #include <stdlib.h>
@@ -99,43 +99,9 @@ static int drop_degenerate(Rep *r)
     return 0;
 }
 
-/* Pass two: every face marked dropped. */
-static int drop_marked(Rep *r, const uint8_t *dup)
-{
-    Mesh *m = &r->w;
-    uint32_t *first_new = malloc(((size_t)m->nobjs + 1) * sizeof *first_new);
-    if (!first_new)
-        return -1;
-    Writer wr = { 0, 0 };
-    uint32_t obj = 0, s = m->nfaces ? m->face_start[0] : 0;
-    for (uint32_t f = 0; f < m->nfaces; f++) {
-        while (obj < m->nobjs && m->objs[obj].face_first <= f)
-            first_new[obj++] = wr.nf;
-        uint32_t e = m->face_start[f + 1], n = e - s;
-        if (!dup[f]) {
-            memmove(m->corner + wr.wc, m->corner + s, n * sizeof *m->corner);
-            face_keep(m, &wr, f, n, m->corner_uv ? m->corner_uv + s : NULL);
-        }
-        s = e;
-    }
-    while (obj < m->nobjs)
-        first_new[obj++] = wr.nf;
-    objects_after(m, &wr, first_new);
-    free(first_new);
-    return 0;
-}
-
 int rp_clean(Rep *r)
 {
-    if (drop_degenerate(r))
-        return -1;
-    uint8_t *dup = calloc((size_t)r->w.nfaces + 1, 1);
-    uint32_t before = r->rep->duplicate + r->rep->flaps;
-    int rc = !dup || rp_duplicates(r, dup) ? -1 : 0;
-    if (rc == 0 && r->rep->duplicate + r->rep->flaps > before)
-        rc = drop_marked(r, dup);
-    free(dup);
-    return rc;
+    return drop_degenerate(r);
 }
 
 /* ==== The vertices in their final order ==== */
@@ -143,7 +109,7 @@ int rp_clean(Rep *r)
 /* Which vertices faces, points and lines use. */
 static uint8_t *vertices_used(const Mesh *m)
 {
-    uint8_t *used = calloc((size_t)m->nverts + 1, 1);
+    uint8_t *used = rp_big((size_t)m->nverts + 1, 1);
     if (!used)
         return NULL;
     uint32_t nc = m->nfaces ? m->face_start[m->nfaces] : 0, nl = m->nlines ? m->line_start[m->nlines] : 0;
@@ -216,7 +182,8 @@ static void object_range(Mesh *m, MeshObject *o)
 static int remap(Rep *r, const uint32_t *idx, uint32_t k)
 {
     Mesh *m = &r->w;
-    float *pos = malloc(3 * ((size_t)k + 1) * sizeof *pos), *rgb = m->rgb ? malloc(3 * ((size_t)k + 1) * sizeof *rgb) : NULL;
+    float *pos = rp_big(3 * ((size_t)k + 1) * sizeof *pos, 0);
+    float *rgb = m->rgb ? rp_big(3 * ((size_t)k + 1) * sizeof *rgb, 0) : NULL;
     uint32_t *point = NULL;
     if (!m->point && m->npoints) {
         /* a cloud's points are its first vertices: kept so only if they stay put */
@@ -257,8 +224,11 @@ static int remap(Rep *r, const uint32_t *idx, uint32_t k)
     }
     if (point)
         m->point = point;
-    free(m->pos);
-    free(m->rgb);
+    if (!r->pos_borrowed) {
+        free(m->pos);
+        free(m->rgb);
+    }
+    r->pos_borrowed = 0;
     m->pos = pos;
     m->rgb = rgb;
     m->nverts = k;
@@ -270,7 +240,7 @@ int rp_renumber(Rep *r, int drop_unused)
 {
     Mesh *m = &r->w;
     uint8_t *used = vertices_used(m);
-    uint32_t *idx = malloc(((size_t)m->nverts + 1) * sizeof *idx);
+    uint32_t *idx = rp_big(((size_t)m->nverts + 1) * sizeof *idx, 0);
     int rc = -1;
     if (!used || !idx)
         goto out;
