@@ -56,7 +56,7 @@ echo
 echo "| case | wall s | CPU s | peak MB | of loading alone | phases (ms) | goal |"
 echo "|---|---:|---:|---:|---:|---|---|"
 base=$(load_mb "$D")
-echo "| dragon, loading alone (checkbench --load-only) | | | $base | 1.00x | | |"
+echo "| dragon, loading alone (checkbench, its load-only mode) | | | $base | 1.00x | | |"
 row "dragon --repair -o .obj" "<= 1.5 s, <= 3x" "$base" --repair "$D" -o "$TMP/dragon.obj"
 row "dragon --repair -o .stl" "<= 1.5 s, <= 3x" "$base" --repair "$D" -o "$TMP/dragon.stl"
 if [ -s "$big5m" ]; then
