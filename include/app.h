@@ -93,6 +93,10 @@ typedef struct {
     int         watch;          /* --watch: the files read again when they change */
     int         max_locations;  /* --max-locations: --check --json locates so many problems of each kind */
     int         problem;        /* --problem K: the picture framed on the K-th problem (1 the first), 0 none */
+    /* --repair (oneshot/repairrun.c) */
+    unsigned    repair;         /* --repair[=STEPS]: the REPAIR_* steps (repair.h), 0 = not asked */
+    double      weld;           /* --weld EPS: file units, 0 = positions bit for bit */
+    uint32_t    max_hole;       /* --max-hole N: edges, 0 = no limit */
 } Options;
 
 /* The viewer decodes images longer than this a side on a thread of its
@@ -115,6 +119,7 @@ typedef enum {
 enum {
     OPT_ALIAS   = 1 << 0,       /* another spelling (--colour): not listed in --help or the man page */
     OPT_VIEWCMD = 1 << 1,       /* the view command (C, --print-view) writes it when it is not the default */
+    OPT_OPTIONAL = 1 << 2,      /* its value is optional, given as --name=VALUE only (--repair=STEPS) */
 };
 
 /* One option's value as the setter sees it: the value, the option as
@@ -146,7 +151,8 @@ extern const int     cli_noptions;
 extern const char *const cli_section_names[OPTSEC_COUNT];
 /* The option of that long name, NULL when there is none. */
 const OptSpec *cli_option(const char *name);
-/* Whether the option takes a value: one that does names it or its words. */
+/* Whether the option takes a value: one that does names it or its words
+ * (OPT_OPTIONAL: may take one). */
 static inline int opt_has_value(const OptSpec *s) { return s->arg || s->values; }
 
 /* Parse argv. Returns 0, or -1 with a message in err (a usage error). */

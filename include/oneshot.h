@@ -28,6 +28,16 @@ void check_json_counts(Out *out, const CheckCounts *c, const char *ind);
 void check_text_locations(Out *out, const CheckLocations *l, const CheckCounts *c, int line, const char *unit,
                           const char *ind);
 void check_json_locations(Out *out, const CheckLocations *l, const CheckCounts *c, const char *ind);
+/* A JSON string: quotes, backslashes and controls escaped, a byte that
+ * is not UTF-8 (an object name in Latin-1) as U+FFFD (safetext.h). */
+void oneshot_json_str(Out *out, const char *s);
+/* --repair IN -o OUT: IN loaded, checked, repaired (repair.h), written
+ * (save.h), OUT read back and checked; what each step did and the two
+ * checks side by side (--json: JSON), on standard output (standard
+ * error when OUT is -). Returns 0 when OUT is sound, 3 when problems
+ * remain, 1 when IN could not be read or OUT not written, 2 when OUT
+ * would be IN. */
+int  oneshot_repair(const Options *o);
 /* Refuse (-1, the reason in err) a --print, -o or dump frame that has
  * more than SCREEN_MAX pixels on a side or more memory than is left,
  * before anything is loaded. */

@@ -7,6 +7,7 @@
 #include "app.h"
 #include "hsr.h"
 #include "pixels.h"
+#include "repair.h"
 
 static int parse(Options *o, char *err, int n, const char **args)
 {
@@ -182,4 +183,33 @@ Test(cli, an_unknown_algorithm_lists_every_algorithm)
     cr_assert_neq(PARSE(&o, err, "--algo", "nope", "--print", "m.obj"), 0);
     for (int i = 0; i < hsr_nalgos; i++)
         cr_assert(strstr(err, hsr_algos[i]->name), "%s missing from: %s", hsr_algos[i]->name, err);
+}
+
+/* --repair[=STEPS]: the value only after '=' (the word after --repair is
+ * the model), the steps as bits, --weld and --max-hole beside it. */
+Test(cli, repair_steps_and_its_options)
+{
+    Options o;
+    char err[256];
+    cr_assert_eq(PARSE(&o, err, "--repair", "in.stl", "-o", "out.obj"), 0, "%s", err);
+    cr_assert_eq(o.repair, REPAIR_DEFAULT);
+    cr_assert_eq(o.nfiles, 1);
+    cr_assert_str_eq(o.files[0], "in.stl");
+    cr_assert_eq(PARSE(&o, err, "--repair=holes,weld", "in.stl", "-o", "out.ply", "--weld", "0.5", "--max-hole", "40"),
+                 0, "%s", err);
+    cr_assert_eq(o.repair, REPAIR_HOLES | REPAIR_WELD);
+    cr_assert_eq(o.weld, 0.5);
+    cr_assert_eq(o.max_hole, 40);
+    cr_assert_eq(PARSE(&o, err, "--repair=all", "in.stl", "-o", "-", "--format", "stl"), 0, "%s", err);
+    cr_assert_eq(o.repair, REPAIR_DEFAULT);
+    cr_assert_eq(PARSE(&o, err, "--repair=manifold,clean,winding", "in.stl", "-o", "x.STL"), 0, "%s", err);
+    cr_assert_eq(o.repair, REPAIR_MANIFOLD | REPAIR_CLEAN | REPAIR_WINDING);
+    cr_assert_eq(PARSE(&o, err, "--repair=", "in.stl", "-o", "x.stl"), -1);
+    cr_assert_eq(PARSE(&o, err, "--repair=weld,", "in.stl", "-o", "x.stl"), -1);
+    cr_assert_not_null(strstr(err, "bad value 'weld,' for --repair"), "%s", err);
+    cr_assert_eq(PARSE(&o, err, "--repair", "in.stl", "-o", "x.off"), -1);
+    cr_assert_eq(PARSE(&o, err, "--repair", "in.stl", "-o", "x.obj", "--format", "stl"), -1);
+    cr_assert_not_null(strstr(err, "-o x.obj names a .obj file, but --format says stl"), "%s", err);
+    cr_assert_eq(PARSE(&o, err, "--max-hole", "0", "--repair", "in.stl", "-o", "x.stl"), -1);
+    cr_assert_eq(PARSE(&o, err, "--weld", "nan", "--repair", "in.stl", "-o", "x.stl"), -1);
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "app.h"
+#include "save.h"
 
 /* ==== --help, from the option table ==== */
 
@@ -32,7 +33,9 @@ static int usage_left(const OptSpec *s, char *buf, size_t n)
     if (s->letter)
         k += snprintf(buf + k, n - (size_t)k, "-%c, ", s->letter);
     k += snprintf(buf + k, n - (size_t)k, "--%s", s->name);
-    if (s->arg)
+    if (s->arg && (s->traits & OPT_OPTIONAL))
+        k += snprintf(buf + k, n - (size_t)k, "[=%s]", s->arg);
+    else if (s->arg)
         k += snprintf(buf + k, n - (size_t)k, " %s", s->arg);
     else if (s->values) {
         k += snprintf(buf + k, n - (size_t)k, " %s", s->values);
@@ -74,7 +77,8 @@ void cli_usage(FILE *f)
             if (cli_options[i].section == (OptSection)sec && !(cli_options[i].traits & OPT_ALIAS))
                 usage_option(f, &cli_options[i]);
     }
-    fputs("\nExit status: 0 ok, 1 runtime error, 2 usage error, 3 --check found problems.\n"
+    fputs("\nExit status: 0 ok, 1 runtime error, 2 usage error, 3 --check found problems\n"
+          "(--repair: problems remain).\n"
           "Every option and key in full: man zview (doc/zview.1 in the source).\n", f);
 }
 
@@ -155,11 +159,13 @@ static void getopt_tables(struct option *lo, char *shorts)
     *sp++ = ':';
     for (int i = 0; i < cli_noptions; i++) {
         const OptSpec *s = &cli_options[i];
-        int val = opt_has_value(s) ? required_argument : no_argument;
+        int val = !opt_has_value(s) ? no_argument : s->traits & OPT_OPTIONAL ? optional_argument : required_argument;
         lo[i] = (struct option){ s->name, val, NULL, s->letter ? s->letter : OPT_FIRST + row_of(i) };
         if (s->letter) {
             *sp++ = s->letter;
-            if (val == required_argument)
+            if (val != no_argument)
+                *sp++ = ':';
+            if (val == optional_argument)
                 *sp++ = ':';
         }
     }
@@ -250,9 +256,60 @@ static int check_with(const Options *o, char *err, size_t errlen)
     return 0;
 }
 
+/* --repair: one file, -o OUT in a format zview writes (by its name, or
+ * --format, which here names the format written), no other mode. */
+static int repair_with(const Options *o, char *err, size_t errlen)
+{
+    const char *other = o->check ? "--check" : o->info ? "--info" : o->bench ? "--bench"
+                      : o->bench_tty ? "--bench-tty" : o->print ? "--print" : o->sketch ? "--sketch"
+                      : o->turntable ? "--turntable" : o->points ? "--points" : o->dump_ids ? "--dump-ids"
+                      : o->dump_screen ? "--dump-screen" : o->image_format ? "--image-format"
+                      : o->watch ? "--watch" : NULL;
+    if (other) {
+        snprintf(err, errlen, "--repair does not go with %s", other);
+        return -1;
+    }
+    if (o->nfiles != 1) {
+        snprintf(err, errlen, "--repair takes one model (%d given): zview --repair IN -o OUT", o->nfiles);
+        return -1;
+    }
+    if (!o->out) {
+        snprintf(err, errlen, "--repair needs -o OUT, the repaired copy (.stl, .obj or .ply; - with --format "
+                              "for standard output): the input is never written");
+        return -1;
+    }
+    int named = o->format ? save_format_from_name(o->format) : -1;
+    int ext = strcmp(o->out, "-") ? save_format_of_path(o->out) : -1;
+    if (o->format && named < 0) {
+        snprintf(err, errlen, "--repair writes stl, obj or ply: --format %s is none of them", o->format);
+        return -1;
+    }
+    if (o->format && ext >= 0 && ext != named) {
+        snprintf(err, errlen, "-o %s names a .%s file, but --format says %s", o->out, save_format_name(ext),
+                 o->format);
+        return -1;
+    }
+    if (!o->format && !strcmp(o->out, "-")) {
+        snprintf(err, errlen, "-o - needs --format stl, obj or ply: the format written to standard output");
+        return -1;
+    }
+    if (!o->format && ext < 0) {
+        snprintf(err, errlen, "bad value '%s' for -o (the repaired copy's name ends in .stl, .obj or .ply, "
+                              "or give --format)", o->out);
+        return -1;
+    }
+    return 0;
+}
+
 /* What a single option cannot see: the options that go together or not. */
 static int check_combinations(const Options *o, char *err, size_t errlen)
 {
+    if (!o->repair && (o->weld > 0 || o->max_hole)) {
+        snprintf(err, errlen, "%s goes with --repair", o->weld > 0 ? "--weld" : "--max-hole");
+        return -1;
+    }
+    if (o->repair)
+        return repair_with(o, err, errlen);
     if (o->out) {
         size_t len = strlen(o->out);
         int ext = len >= 5 && (!strcmp(o->out + len - 4, ".png") || !strcmp(o->out + len - 4, ".ppm") ||
@@ -312,7 +369,7 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
     }
     if (o->json && !o->check && !o->bench) {
         /* a script that asked for JSON would read a picture instead */
-        snprintf(err, errlen, "--json goes with --check or --bench");
+        snprintf(err, errlen, "--json goes with --check, --bench or --repair");
         return -1;
     }
     if (o->algo && !o->bench && !hsr_find(o->algo)) {

@@ -18,6 +18,7 @@
 
 #include "app.h"
 #include "pixels.h"
+#include "repair.h"
 
 /* ==== Reading values ==== */
 
@@ -499,6 +500,58 @@ static int set_contrast(Options *o, const OptCall *c)
     return set_float(&o->contrast, c, 0, CONTRAST_MAX, "an OKLab lightness from 0 (off) to 0.4");
 }
 
+/* --repair[=STEPS]: the steps named (a comma list), or all of them. */
+static int set_repair(Options *o, const OptCall *c)
+{
+    static const struct {
+        const char *name;
+        unsigned    bit;
+    } steps[] = {
+        { "weld", REPAIR_WELD },   { "clean", REPAIR_CLEAN },       { "winding", REPAIR_WINDING },
+        { "holes", REPAIR_HOLES }, { "manifold", REPAIR_MANIFOLD }, { "all", REPAIR_DEFAULT },
+    };
+    static const char words[] = "a comma list of weld, clean, winding, holes, manifold, or all";
+    if (!c->val) {
+        o->repair = REPAIR_DEFAULT;
+        return 0;
+    }
+    unsigned got = 0;
+    for (const char *p = c->val;;) {
+        size_t n = strcspn(p, ",");
+        size_t i = 0;
+        while (i < sizeof steps / sizeof steps[0] && (strlen(steps[i].name) != n || strncmp(steps[i].name, p, n)))
+            i++;
+        if (i == sizeof steps / sizeof steps[0])
+            return bad(c, words);
+        got |= steps[i].bit;
+        if (!p[n])
+            break;
+        p += n + 1;
+    }
+    o->repair = got;
+    return 0;
+}
+
+static int set_weld(Options *o, const OptCall *c)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(c->val, &end);
+    if (end == c->val || *end || errno || !(v > 0 && v <= 1e9))
+        return bad(c, "a distance in file units, more than 0 and at most 1e9");
+    o->weld = v;
+    return 0;
+}
+
+static int set_max_hole(Options *o, const OptCall *c)
+{
+    long n;
+    if (parse_int(c->val, 1, 2000000000L, &n))
+        return bad(c, "edges, 1 to 2000000000");
+    o->max_hole = (uint32_t)n;
+    return 0;
+}
+
 /* ==== The table ==== */
 
 const char *const cli_section_names[OPTSEC_COUNT] = {
@@ -591,6 +644,15 @@ const OptSpec cli_options[] = {
       "is each model right: holes, flipped, non-manifold\nand crossing faces, parts, size, volume (exit 3\n"
       "on problems); with --print or -o the picture too",
       NULL, FLAG(check), 0 },
+    { "repair", 0, "STEPS", NULL, OPTSEC_OUTPUT,
+      "write a repaired copy of FILE to -o OUT (.stl, .obj,\n.ply): STEPS a comma list of weld, clean,\n"
+      "winding, holes, manifold (default all); says what\nit did, and the check before and after (exit 3\n"
+      "when problems remain)",
+      set_repair, 0, OPT_OPTIONAL },
+    { "weld", 0, "EPS", NULL, OPTSEC_OUTPUT, "--repair: weld vertices up to EPS apart (file\nunits; default: at one position only)",
+      set_weld, 0, 0 },
+    { "max-hole", 0, "N", NULL, OPTSEC_OUTPUT, "--repair: leave holes of more than N edges open", set_max_hole, 0,
+      0 },
     { "problems", 0, NULL, NULL, OPTSEC_OUTPUT,
       "draw what the check finds on the model: holes and\nnon-manifold edges as lines, faces seen from\n"
       "inside and crossing faces coloured (! in the viewer)",
@@ -651,7 +713,8 @@ const OptSpec cli_options[] = {
     { "bench-tty", 0, NULL, NULL, OPTSEC_BENCH, "bytes written per frame for a scripted rotation", NULL,
       FLAG(bench_tty), 0 },
     { "views", 0, "N", NULL, OPTSEC_BENCH, "with --bench: views per model (default 8)", set_views, 0, 0 },
-    { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench or --check: JSON instead of text", NULL, FLAG(json), 0 },
+    { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench, --check or --repair: JSON, not text",
+      NULL, FLAG(json), 0 },
     { "threads", 'j', "N", NULL, OPTSEC_BENCH, "threads for every stage (default: all cores)", set_threads, 0, 0 },
     { "fps", 0, "N", NULL, OPTSEC_BENCH, "auto-rotate frame cap in the viewer (default 30)", set_fps, 0, 0 },
     { "max-rate", 0, "KB", NULL, OPTSEC_BENCH,

@@ -91,6 +91,11 @@ int main(int argc, char **argv)
         mesh_formats_print(stdout);
         return finish_stdout();
     }
+    if (o.repair) {
+        /* IN loaded, repaired, written to OUT, OUT read back and checked */
+        rc = oneshot_repair(&o);
+        return rc == 1 || rc == 2 ? rc : finish_stdout() ? 1 : rc;
+    }
     if (o.check) {
         /* each file loaded and checked on its own; the picture, if asked, inside */
         rc = oneshot_check(&o);

@@ -197,9 +197,7 @@ static void text_verdict(Out *out, const FileCheck *fcs, int n)
 
 /* ==== JSON ==== */
 
-/* A JSON string: quotes, backslashes and controls escaped, a byte that
- * is not UTF-8 (an object name in Latin-1) as U+FFFD (safetext.h). */
-static void json_str(Out *out, const char *s)
+void oneshot_json_str(Out *out, const char *s)
 {
     out_write(out, "\"", 1);
     while (*s) {
@@ -246,7 +244,7 @@ void check_json_counts(Out *out, const CheckCounts *c, const char *ind)
     out_printf(out, ",\n%s\"problems\": [", ind);
     for (int i = 0; i < k; i++) {
         out_printf(out, "%s", i ? ", " : "");
-        json_str(out, item[i]);
+        oneshot_json_str(out, item[i]);
     }
     out_printf(out, "]");
 }
@@ -254,18 +252,18 @@ void check_json_counts(Out *out, const CheckCounts *c, const char *ind)
 static void json_file(Out *out, const FileCheck *fc, int first)
 {
     out_printf(out, "%s\n    {\n      \"path\": ", first ? "" : ",");
-    json_str(out, fc->path);
+    oneshot_json_str(out, fc->path);
     if (!fc->read) {
         out_printf(out, ",\n      \"ok\": false,\n      \"error\": ");
-        json_str(out, fc->err);
+        oneshot_json_str(out, fc->err);
         out_printf(out, "\n    }");
         return;
     }
     out_printf(out, ",\n      \"format\": ");
-    json_str(out, fc->format);
+    oneshot_json_str(out, fc->format);
     out_printf(out, ",\n      \"unit\": ");
     if (fc->mc.unit[0])
-        json_str(out, fc->mc.unit);
+        oneshot_json_str(out, fc->mc.unit);
     else
         out_printf(out, "null");
     uint32_t nobj = 0;
@@ -288,9 +286,9 @@ static void json_objects(Out *out, const FileCheck *fc, int *first)
             continue;
         any = 1;
         out_printf(out, "%s\n    {\n      \"file\": ", *first ? "" : ",");
-        json_str(out, fc->path);
+        oneshot_json_str(out, fc->path);
         out_printf(out, ",\n      \"name\": ");
-        json_str(out, i < mc->nobjs ? mc->objs[i].name : fc->path);
+        oneshot_json_str(out, i < mc->nobjs ? mc->objs[i].name : fc->path);
         out_printf(out, ",\n      \"ok\": %s", json_bool(meshcheck_sound(c)));
         check_json_counts(out, c, "      ");
         CheckLocations none = { 0 };

@@ -69,7 +69,7 @@ expect_status "--check without files is a usage error" 2 "$Z" --check
 expect_err "... that says what is missing" "--check"
 expect_status "--check with a bad option is a usage error" 2 "$Z" --check --frobnicate "$T/cube.obj"
 expect_status "--json without --check or --bench is a usage error (not a picture where JSON was asked)" 2 "$Z" --json -p "$T/cube.obj"
-expect_err "... that says what it goes with" "--json goes with --check or --bench"
+expect_err "... that says what it goes with" "--json goes with --check, --bench or --repair"
 
 expect_status "several files: one verdict line" 3 "$Z" --check "$T/cube.obj" "$T/open.obj" "$T/flip.obj"
 n=$(grep -c '^verdict' "$T/out")
@@ -101,7 +101,7 @@ if need_python "--check --json parses"; then
     cp "$T/out" "$T/missing.json"
     expect_status "--json of a sound cube exits 0" 0 "$Z" --check --json "$T/cube.obj"
     cp "$T/out" "$T/sound.json"
-    # names, types and values as the README and the man page document them
+    # names, types and values as the man page documents them
     cat >"$T/schema.py" <<'EOF'
 import json, sys
 T = sys.argv[1]

@@ -4,7 +4,8 @@
 #   doc/*.md whose first line is "$ zview ARGS") equals what zview ARGS
 #   prints, line for line (trailing blanks aside); captures use --print,
 #   --size and --color none, so that they are the same on every machine,
-#   or are --check reports (text alone; status 3 allowed);
+#   or are --check or --repair reports (text alone; status 3 allowed;
+#   --repair writes its copy in a temporary folder);
 # - the example commands of the ```sh blocks whose model files are in
 #   assets/ run with status 0 (standard output is no terminal, so a
 #   viewer example prints one frame);
@@ -37,6 +38,11 @@ split_captures() {
         END { print n > (dir "/ncap") }' "$1"
 }
 
+# where examples run (and --repair writes): the bundled models beside them
+mkdir "$T/run"
+ln -s "$ROOT/assets" "$T/run/assets"
+ln -s "$ROOT/tests" "$T/run/tests"
+
 ncap=0
 for doc in $DOCS; do
     [ -f "$doc" ] || continue
@@ -53,16 +59,18 @@ for doc in $DOCS; do
         case " $args " in *" --size "*) fixed=$((fixed + 1)) ;; esac
         case " $args " in *" --color none "*) fixed=$((fixed + 1)) ;; esac
         # --check's report is text alone, the same everywhere; its status
-        # 3 (a problem found) is what the capture shows
-        check=0
+        # 3 (a problem found) is what the capture shows; so is --repair's,
+        # which writes its copy in a folder of its own
+        check=0 here=$ROOT
         case " $args " in *" --check "*) check=1 fixed=3 ;; esac
+        case " $args " in *" --repair "* | *" --repair="*) check=1 fixed=3 here=$T/run ;; esac
         if [ "$fixed" -ne 3 ]; then
             notok "$name" "a capture needs --print, --size and --color none (or --check), to be the same everywhere"
             continue
         fi
         set -f
         # shellcheck disable=SC2086
-        "$Z" $args >"$T/got" 2>"$T/err" </dev/null
+        (cd "$here" && "$Z" $args >"$T/got" 2>"$T/err" </dev/null)
         rc=$?
         set +f
         sed 's/[[:space:]]*$//' "$T/got" >"$T/got.s"
@@ -86,8 +94,6 @@ awk_examples() {
          insh && ($1 == "zview" || $1 == "./zview") { sub(/[ \t][ \t]+#.*$/, ""); print }' "$@"
 }
 
-mkdir "$T/run"
-ln -s "$ROOT/assets" "$T/run/assets"
 nex=0
 # shellcheck disable=SC2086
 awk_examples $(for d in $DOCS; do [ -f "$d" ] && echo "$d"; done) >"$T/examples"

@@ -38,12 +38,21 @@ _zview()
         --image-format) COMPREPLY=($(compgen -W "png ppm" -- "$cur")); return ;;
         --bg) COMPREPLY=($(compgen -W "default black white grey" -- "$cur")); return ;;
         --format) COMPREPLY=($(compgen -W "$(_zview_formats) assimp" -- "$cur")); return ;;
+        --repair)
+            # --repair=STEPS: a comma list; --repair IN: the model (below)
+            if $split; then
+                local done=
+                [[ $cur == *,* ]] && done=${cur%,*},
+                COMPREPLY=($(compgen -P "$done" -W "weld clean manifold winding holes all" -- "${cur##*,}"))
+                compopt -o nospace 2>/dev/null
+                return
+            fi ;;
         -o | --output | --dump-ids | --dump-screen)
             COMPREPLY=($(compgen -f -- "$cur"))
             return ;;
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
             --scale | --persp | --grid | --max-polys | --max-memory | --views | -j | --threads | --fps | --max-rate | --crease | \
-            --light | --ambient | --turntable | --point-size | --line-width | --contrast | --problem | --max-locations)
+            --light | --ambient | --turntable | --point-size | --line-width | --contrast | --problem | --max-locations | --weld | --max-hole)
             return ;;
     esac
     $split && return
@@ -55,7 +64,7 @@ _zview()
             --views --threads --json --fps --max-rate --format --formats --up --flip --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
             --turntable --point-size --line-width --wireframe --points --strict --no-sandbox --max-memory --bg --contrast --no-textures
-            --problems --problem --max-locations --parts --watch" -- "$cur"))
+            --problems --problem --max-locations --parts --watch --repair --weld --max-hole" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
     fi
