@@ -91,6 +91,12 @@ typedef struct {
     int         problems;       /* --problems: what the check finds, drawn on the model */
     int         parts;          /* --parts: each connected part its own colour */
     int         watch;          /* --watch: the files read again when they change */
+    /* --diff A B (diff.h) */
+    int         diff;           /* how B differs from A: the picture, or a report */
+    double      tolerance;      /* --tolerance: distances up to it are the same; < 0: the default */
+    int         show;           /* --show: what the picture shows (DiffShow: both a b heat) */
+    int         quiet;          /* --quiet: no report, the exit status says */
+    int         textconv;       /* --textconv: --check as git's textconv driver wants it */
 } Options;
 
 /* The viewer decodes images longer than this a side on a thread of its
@@ -355,6 +361,7 @@ typedef struct {
     int         no_textures;    /* textures hidden (--no-textures, t) */
     int         problems;       /* --problems (!) */
     int         parts;          /* --parts */
+    int         diff_show;      /* --diff's --show (DiffShow), -1: no diff */
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

@@ -127,6 +127,7 @@ void cli_defaults(Options *o)
     o->line_width = 1;
     o->up = -1;
     o->contrast = CONTRAST_DEFAULT;
+    o->tolerance = -1;
 }
 
 /* getopt's tables from the option table: a long option with a letter
@@ -249,6 +250,29 @@ static int check_with(const Options *o, char *err, size_t errlen)
     return 0;
 }
 
+/* --diff: two files, a picture or a report, none of the other modes. */
+static int diff_with(const Options *o, char *err, size_t errlen)
+{
+    const char *other = o->check ? "--check" : o->info ? "--info" : o->bench ? "--bench" : o->bench_tty ? "--bench-tty"
+                      : o->sketch ? "--sketch" : o->watch ? "--watch" : o->points ? "--points"
+                      : o->grid > 1 ? "--grid" : o->problems ? "--problems" : o->parts ? "--parts"
+                      : o->dump_ids ? "--dump-ids" : o->dump_screen ? "--dump-screen" : NULL;
+    if (other) {
+        snprintf(err, errlen, "--diff does not go with %s", other);
+        return -1;
+    }
+    if (o->nfiles != 2) {
+        snprintf(err, errlen, "--diff compares two files (zview --diff A B), not %d", o->nfiles);
+        return -1;
+    }
+    if (o->json && (o->print || (o->out && !strcmp(o->out, "-")))) {
+        snprintf(err, errlen, "--diff --json writes one JSON document to standard output: the picture "
+                              "would go into it (use -o FILE)");
+        return -1;
+    }
+    return 0;
+}
+
 /* What a single option cannot see: the options that go together or not. */
 static int check_combinations(const Options *o, char *err, size_t errlen)
 {
@@ -303,9 +327,20 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
     }
     if (o->check && check_with(o, err, errlen))
         return -1;
-    if (o->json && !o->check && !o->bench) {
+    if (o->diff && diff_with(o, err, errlen))
+        return -1;
+    const char *diff_only = o->tolerance >= 0 ? "--tolerance" : o->show ? "--show" : o->quiet ? "--quiet" : NULL;
+    if (diff_only && !o->diff) {
+        snprintf(err, errlen, "%s goes with --diff", diff_only);
+        return -1;
+    }
+    if (o->textconv && !o->check) {
+        snprintf(err, errlen, "--textconv goes with --check");
+        return -1;
+    }
+    if (o->json && !o->check && !o->bench && !o->diff) {
         /* a script that asked for JSON would read a picture instead */
-        snprintf(err, errlen, "--json goes with --check or --bench");
+        snprintf(err, errlen, "--json goes with --check, --diff or --bench");
         return -1;
     }
     if (o->algo && !o->bench && !hsr_find(o->algo)) {

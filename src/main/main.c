@@ -91,6 +91,20 @@ int main(int argc, char **argv)
         mesh_formats_print(stdout);
         return finish_stdout();
     }
+    if (o.diff) {
+        /* the two files loaded, checked and measured; the viewer on a
+         * terminal, else the picture asked for and the report */
+        int view = !o.quiet && !o.json && !o.print && !o.out && isatty(STDOUT_FILENO);
+        DiffSet ds;
+        if (diff_load(&ds, &o, view || o.print || o.out, err, sizeof err)) {
+            safetext_line(stderr, "zview: %s", err);
+            diff_set_free(&ds);
+            return 1;
+        }
+        rc = view ? viewer_run_diff(&o, &ds) : oneshot_diff(&o, &ds);
+        diff_set_free(&ds);
+        return rc == 1 ? rc : finish_stdout() ? 1 : rc;
+    }
     if (o.check) {
         /* each file loaded and checked on its own; the picture, if asked, inside */
         rc = oneshot_check(&o);
