@@ -361,7 +361,6 @@ typedef struct {
     int         no_textures;    /* textures hidden (--no-textures, t) */
     int         problems;       /* --problems (!) */
     int         parts;          /* --parts */
-    int         diff_show;      /* --diff's --show (DiffShow), -1: no diff */
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

@@ -14,22 +14,23 @@
  * every sample is exact but for double rounding (the nearest point of
  * every triangle of the other model, passed over only where a box
  * proves it farther). The samples of a surface are every vertex a face
- * uses, and DIFF_SAMPLES more spread over its faces by area: each
- * triangle of a face (a fan from its first corner, as the picture draws
- * it) is cut into r x r similar small ones, r the largest whole number
- * with r^2 of them no bigger than the surface's area / DIFF_SAMPLES,
- * and each small triangle's centre is a sample, and for r > 1 the r - 1
- * points that cut each side of the triangle. A triangle smaller than
- * that (r = 0: most of a scan's) is sampled at its corners alone. The
- * maximum over the samples is a lower bound of the one-sided Hausdorff
- * distance; since a point's distance to a surface changes no faster than
- * the point moves, no point of a small triangle is farther than its
- * centre's distance plus the centre's distance to its corners, nor a
- * point of a triangle of r = 0 farther than its farthest corner's
- * distance plus its circumradius (or its longest side), which gives the
- * upper bound reported beside it. The mean weights each small
- * triangle's centre by its area (the midpoint rule), and a triangle of r
- * = 0 by its area times its corners' mean (the linear interpolant's). */
+ * uses, and about DIFF_SAMPLES more spread over its faces by area:
+ * each triangle of a face (a fan from its first corner, as the picture
+ * draws it) is cut into r x r similar small ones, r the whole number
+ * nearest to the square root of its area times DIFF_SAMPLES / the
+ * surface's area; each small triangle's centre is a sample, and for r >
+ * 1 the r - 1 points that cut each side of the triangle. A triangle of
+ * less than a quarter of its share (r = 0: most of a scan's) is sampled
+ * at its corners alone. The maximum over the samples is a lower bound of
+ * the one-sided Hausdorff distance; since a point's distance to a
+ * surface changes no faster than the point moves, no point of a small
+ * triangle is farther than its centre's distance plus the centre's
+ * distance to its corners, nor a point of a triangle of r = 0 farther
+ * than its farthest corner's distance plus its circumradius (or its
+ * longest side), which gives the upper bound reported beside it. The
+ * mean weights each small triangle's centre by its area (the midpoint
+ * rule), and a triangle of r = 0 by its area times its corners' mean
+ * (the linear interpolant's). */
 
 #include <stdint.h>
 

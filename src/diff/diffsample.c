@@ -181,7 +181,7 @@ static void tri_samples(const SideWork *w, Acc *a, FaceAcc *fa, BvhHit *hit, con
     double area = 0.5 * len3(n);
     fa->area += area;
     a->tris++;
-    double r = w->unit > 0 && area > 0 ? floor(sqrt(area / w->unit)) : 0;
+    double r = w->unit > 0 && area > 0 ? floor(sqrt(area / w->unit) + 0.5) : 0;
     uint32_t cuts = r > R_MAX ? R_MAX : (uint32_t)r;
     if (cuts == 0) {
         /* its corners cover it: no point of it is farther from them than

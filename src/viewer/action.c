@@ -347,6 +347,7 @@ static Reaction act_diff_show(App *a)
     int show = (a->diff->show + 1) % DIFF_SHOW_COUNT;
     if (diff_show(a->diff, &a->p, show))
         return RE_RENDER;       /* out of memory: the frame says so */
+    a->live.show = show;        /* the view's command line (C) shows it */
     snprintf(a->note, sizeof a->note, "%s", says[show]);
     return RE_RENDER;
 }

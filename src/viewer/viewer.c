@@ -138,7 +138,6 @@ ViewSettings viewer_view_settings(const App *a)
         .no_textures = a->p.no_textures,
         .problems = a->p.problems,
         .parts = a->p.parts,
-        .diff_show = a->diff ? a->diff->show : -1,
     };
     return v;
 }
