@@ -363,7 +363,7 @@ static Reaction act_sketch(App *a)
 static int diff_fixed(App *a)
 {
     if (a->diff)
-        snprintf(a->note, sizeof a->note, "--diff compares its two files: O, X and E are off");
+        snprintf(a->note, sizeof a->note, "--diff: O, X and E are off");
     return a->diff != NULL;
 }
 
