@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview
+.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-dist fuzz-seeds replay bench-check bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff
 
 all: $(BIN)
 
@@ -66,9 +66,10 @@ help:
 	@echo '  make mutate        each mutant of tests/mutants.txt must fail make test (about 15 minutes)'
 	@echo '  make mutate-rooms  mechanical mutants, PER_ROOM=10 lines of each room (SEED=1): the kill rate per room (hours)'
 	@echo 'Fuzzing (clang + libFuzzer: sh tools/deps.sh installs them)'
-	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh, fuzz-check, fuzz-tex (the image decoders)'
+	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh, fuzz-check, fuzz-tex (the image decoders),'
+	@echo '                     fuzz-dist (--diff against a brute-force reference)'
 	@echo '  make fuzz-run SECONDS=N   run each for N seconds; failures go to build-fuzz/artifacts/'
-	@echo '  make fuzz-run-mesh, fuzz-run-check, fuzz-run-tex   one of them alone'
+	@echo '  make fuzz-run-mesh, fuzz-run-check, fuzz-run-tex, fuzz-run-dist   one of them alone'
 	@echo '  make fuzz-seeds    rewrite the differential fuzzer seed scenes'
 	@echo 'Benchmarks (never timed tests: compare medians and ratios within one run)'
 	@echo '  make bench         the speed table (tools/bench.sh), single-thread rows pinned to a core'
@@ -82,6 +83,7 @@ help:
 	@echo '  make bench-textures textured frames against untextured; the first picture of a 16k image'
 	@echo '  make bench-pixels  bytes a picture costs in sixel, kitty and iTerm2 images against text'
 	@echo '  make bench-check   --check of the dragon and the 5.2M model beyond loading, and its peak memory'
+	@echo '  make bench-diff    --diff of the dragon and the 5.2M model against edited copies, 1 and 2 threads, memory'
 	@echo '  make bench-sandbox the loading sandbox against --no-sandbox on the dragon'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
@@ -111,11 +113,12 @@ FUZZ_DIFF_SRCS := tests/fuzz/fuzz_diff.c tests/fuzz/scenecode.c tests/fuzz/scene
 FUZZ_MESH_SRCS := tests/fuzz/fuzz_mesh.c tests/testlib.c
 FUZZ_CHECK_SRCS := tests/fuzz/fuzz_check.c
 FUZZ_TEX_SRCS  := tests/fuzz/fuzz_tex.c
+FUZZ_DIST_SRCS := tests/fuzz/fuzz_dist.c tests/fuzz/scenebig.c tests/testlib.c
 REPLAY_OBJS    := $(sort $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) \
                   $(FUZZ_MESH_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_CHECK_SRCS:%.c=$(BUILD)/%.o) \
-                  $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
+                  $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIST_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
 REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff $(BUILD)/replay-mesh $(BUILD)/replay-check \
-                  $(BUILD)/replay-tex
+                  $(BUILD)/replay-tex $(BUILD)/replay-dist
 
 $(BUILD)/tests/fuzz/%.o: CFLAGS += -Itests
 
@@ -134,6 +137,9 @@ $(BUILD)/replay-check: $(LIBOBJS) $(FUZZ_CHECK_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/t
 $(BUILD)/replay-tex: $(LIBOBJS) $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
+$(BUILD)/replay-dist: $(LIBOBJS) $(FUZZ_DIST_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
 # Every input that ever failed, and the seeds (pending/ is not replayed).
 # fuzz-mesh's loaders warn about what they skip: that goes to /dev/null.
 replay: $(REPLAYS)
@@ -142,6 +148,7 @@ replay: $(REPLAYS)
 	$(BUILD)/replay-mesh tests/fuzz/seeds/mesh tests/fuzz/regress/mesh 2>/dev/null
 	$(BUILD)/replay-check tests/fuzz/seeds/check tests/fuzz/regress/check 2>/dev/null
 	$(BUILD)/replay-tex tests/fuzz/seeds/tex tests/fuzz/regress/tex
+	$(BUILD)/replay-dist tests/fuzz/seeds/dist tests/fuzz/regress/dist
 
 # The stand-in assimp library of the sandbox's tests (tests/standin):
 # its import tries what an exploited parser would. Named as the real one
@@ -220,8 +227,8 @@ run: $(BIN)
 
 # tools/subdiv writes the many-triangle models into /tmp at bench time;
 # memframes measures memory over 10,000 frames (issue 21's targets)
-bench: $(BIN) $(BUILD)/subdiv $(BUILD)/memframes
-	SUBDIV=$(BUILD)/subdiv MEMFRAMES=$(BUILD)/memframes sh tools/bench.sh
+bench: $(BIN) $(BUILD)/subdiv $(BUILD)/memframes $(BUILD)/perturb
+	SUBDIV=$(BUILD)/subdiv MEMFRAMES=$(BUILD)/memframes PERTURB=$(BUILD)/perturb sh tools/bench.sh
 
 # What --check costs beyond loading, and its peak memory against loading
 # alone (issue 19; doc/benchmarks.md: The check).
@@ -254,6 +261,15 @@ bench-preview: $(BIN) $(BUILD)/subdiv
 $(BUILD)/subdiv: tools/subdiv.c
 	@mkdir -p $(BUILD)
 	$(CC) $(CFLAGS) -o $@ $<
+
+# --diff against edited copies of the dragon and its 5.2M subdivision
+# (issue 31; doc/benchmarks.md: The diff); tools/perturb writes them
+bench-diff: $(BIN) $(BUILD)/subdiv $(BUILD)/perturb
+	ZVIEW=$(abspath $(BIN)) SUBDIV=$(BUILD)/subdiv PERTURB=$(BUILD)/perturb sh tools/bench-diff.sh
+
+$(BUILD)/perturb: tools/perturb.c
+	@mkdir -p $(BUILD)
+	$(CC) $(CFLAGS) -o $@ $< -lm
 
 # How far 256/16/8-colour pictures are from truecolor, before and after
 # the perceptual quantizer (README: Colour).
@@ -334,14 +350,15 @@ FUZZ_CFLAGS := -O1 -g $(EXTRA_CFLAGS) $(COMMON_CFLAGS) -Itests $(FUZZ_SAN)
 FUZZ_LIBOBJS := $(LIBSRCS:%.c=$(FUZZ_BUILD)/%.o)
 FUZZ_OBJS   := $(sort $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o) \
                       $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_CHECK_SRCS:%.c=$(FUZZ_BUILD)/%.o) \
-                      $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o))
+                      $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIST_SRCS:%.c=$(FUZZ_BUILD)/%.o))
 SECONDS     ?= 60
 FUZZ_FLAGS  ?=
 # the invariants (ZV_ASSERT, include/invariant.h) are on here as in make asan:
 # a fuzz input that breaks one stops where it broke
 FUZZ_CFLAGS += -DZV_CHECKS
 
-fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff $(FUZZ_BUILD)/fuzz-mesh $(FUZZ_BUILD)/fuzz-check $(FUZZ_BUILD)/fuzz-tex
+fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff $(FUZZ_BUILD)/fuzz-mesh $(FUZZ_BUILD)/fuzz-check $(FUZZ_BUILD)/fuzz-tex \
+      $(FUZZ_BUILD)/fuzz-dist
 
 # Rewrite the differential fuzzer's seed scenes (they are committed).
 fuzz-seeds: $(BUILD)/mkseeds
@@ -379,12 +396,15 @@ $(FUZZ_BUILD)/fuzz-tex: $(FUZZ_LIBOBJS) $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 $(FUZZ_BUILD)/fuzz-check: $(FUZZ_LIBOBJS) $(FUZZ_CHECK_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
 
+$(FUZZ_BUILD)/fuzz-dist: $(FUZZ_LIBOBJS) $(FUZZ_DIST_SRCS:%.c=$(FUZZ_BUILD)/%.o)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+
 # fuzz-obj's, fuzz-mesh's and fuzz-check's stderr is closed
 # (-close_fd_mask=2): the loaders' warnings would drown their output;
 # crash reports still get through. make fuzz-run-mesh runs fuzz-mesh
 # alone, make fuzz-run-check fuzz-check (the --check analysis on what
 # the loaders make of the bytes; the mesh dictionary serves it too).
-fuzz-run: fuzz fuzz-run-mesh fuzz-run-check fuzz-run-tex
+fuzz-run: fuzz fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-dist
 	@mkdir -p $(FUZZ_BUILD)/corpus/obj $(FUZZ_BUILD)/corpus/diff $(FUZZ_BUILD)/artifacts/obj $(FUZZ_BUILD)/artifacts/diff
 	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
 	    -dict=tests/fuzz/obj.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/obj/ $(FUZZ_FLAGS) \
@@ -411,6 +431,13 @@ fuzz-run-tex: $(FUZZ_BUILD)/fuzz-tex
 	nice $(FUZZ_BUILD)/fuzz-tex -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=65536 \
 	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/tex/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/tex tests/fuzz/seeds/tex tests/fuzz/regress/tex
+
+# --diff's measure against a brute-force reference: make fuzz-run-dist
+fuzz-run-dist: $(FUZZ_BUILD)/fuzz-dist
+	@mkdir -p $(FUZZ_BUILD)/corpus/dist $(FUZZ_BUILD)/artifacts/dist
+	nice $(FUZZ_BUILD)/fuzz-dist -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=64 \
+	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/dist/ $(FUZZ_FLAGS) \
+	    $(FUZZ_BUILD)/corpus/dist tests/fuzz/seeds/dist tests/fuzz/regress/dist
 
 clean:
 	rm -rf build build-asan build-noassimp build-nosimd $(FUZZ_BUILD) $(BIN)

@@ -83,6 +83,7 @@ typedef struct {
     int        threads;             /* <= 0: one per core */
     double     tolerance;           /* >= 0: given; < 0: DIFF_TOL_FRACTION of the diagonal */
     const int *cancel;              /* NULL, or set (atomically) to stop: diff_compute fails "cancelled" */
+    uint32_t   samples;             /* face samples a side about; 0: DIFF_SAMPLES (the fuzzer asks fewer) */
 } DiffOpts;
 
 typedef struct {
@@ -95,6 +96,7 @@ typedef struct {
     DiffRegion *regions;            /* sorted by max, the farthest first */
     uint32_t    nregions;
     double      ms;                 /* wall time of diff_compute */
+    uint32_t    samples;            /* face samples a side about (DiffOpts.samples) */
 } Diff;
 
 /* Measure a against b and b against a. The meshes are read, not

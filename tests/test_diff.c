@@ -80,7 +80,7 @@ static void copy_mesh(Mesh *dst, const Mesh *src, void (*f)(float *p, const void
 
 static const Diff *run_tol(double tol)
 {
-    DiffOpts o = { 2, tol, NULL };
+    DiffOpts o = { 2, tol, NULL, 0 };
     diff_free(&D);
     cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), 0, "%s", E);
     return &D;

@@ -3,11 +3,12 @@
  * committed). Every line is copied as it is but the vertices: each is
  * moved out from the model's centre by a bump, the vertices within
  * RADIUS (a fraction of the bounding box's diagonal) of the vertex in the
- * middle of the file raised by up to AMOUNT of the diagonal, smoothly to
- * nothing at the bump's edge; and every vertex by a pseudo-random
- * wobble of up to NOISE of the diagonal, so that no distance is 0.
+ * middle of the file (or vertex AT, counted from 1) raised by up to
+ * AMOUNT of the diagonal, smoothly to nothing at the bump's edge; and
+ * every vertex by a pseudo-random wobble of up to NOISE of the
+ * diagonal, so that no distance is 0.
  *
- *   perturb IN.obj OUT.obj [AMOUNT [RADIUS [NOISE]]]
+ *   perturb IN.obj OUT.obj [AMOUNT [RADIUS [NOISE [AT]]]]
  *
  * Defaults: 0.01, 0.1, 0.0001. Only `v x y z` lines are changed. */
 
@@ -25,7 +26,7 @@ static int is_vertex(const char *line)
 int main(int argc, char **argv)
 {
     if (argc < 3) {
-        fprintf(stderr, "usage: perturb IN.obj OUT.obj [AMOUNT [RADIUS [NOISE]]]\n");
+        fprintf(stderr, "usage: perturb IN.obj OUT.obj [AMOUNT [RADIUS [NOISE [AT]]]]\n");
         return 2;
     }
     double amount = argc > 3 ? atof(argv[3]) : 0.01, radius = argc > 4 ? atof(argv[4]) : 0.1,
@@ -53,11 +54,12 @@ int main(int argc, char **argv)
     double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                        (hi[2] - lo[2]) * (hi[2] - lo[2]));
     double c[3] = { (lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2 }, bump[3] = { 0, 0, 0 };
-    /* the bump's centre: the middle vertex of the file */
+    /* the bump's centre: the middle vertex of the file, or AT */
+    uint64_t at = argc > 6 && atoll(argv[6]) > 0 ? (uint64_t)atoll(argv[6]) - 1 : nv / 2;
     rewind(in);
     uint64_t k = 0;
     while (fgets(line, sizeof line, in))
-        if (is_vertex(line) && k++ == nv / 2) {
+        if (is_vertex(line) && k++ == at) {
             sscanf(line + 2, "%lf %lf %lf", &bump[0], &bump[1], &bump[2]);
             break;
         }

@@ -671,7 +671,7 @@ const OptSpec cli_options[] = {
     { "bench-tty", 0, NULL, NULL, OPTSEC_BENCH, "bytes written per frame for a scripted rotation", NULL,
       FLAG(bench_tty), 0 },
     { "views", 0, "N", NULL, OPTSEC_BENCH, "with --bench: views per model (default 8)", set_views, 0, 0 },
-    { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench or --check: JSON instead of text", NULL, FLAG(json), 0 },
+    { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench, --check or --diff: JSON instead of\ntext", NULL, FLAG(json), 0 },
     { "threads", 'j', "N", NULL, OPTSEC_BENCH, "threads for every stage (default: all cores)", set_threads, 0, 0 },
     { "fps", 0, "N", NULL, OPTSEC_BENCH, "auto-rotate frame cap in the viewer (default 30)", set_fps, 0, 0 },
     { "max-rate", 0, "KB", NULL, OPTSEC_BENCH,

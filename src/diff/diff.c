@@ -88,6 +88,7 @@ int diff_compute(Diff *d, const Mesh *a, const Mesh *b, const DiffOpts *o, char 
     d->zero = ldexp(mag + d->diag, -40);
     d->tol_given = o->tolerance >= 0;
     d->tolerance = d->tol_given ? o->tolerance : DIFF_TOL_FRACTION * d->diag;
+    d->samples = o->samples ? o->samples : DIFF_SAMPLES;
     int threads = o->threads > 0 ? o->threads : default_threads();
     float box[6];
     for (int k = 0; k < 3; k++) {

@@ -137,7 +137,7 @@ int diff_load(DiffSet *ds, const Options *o, int scene, char *err, size_t errlen
         ds->nfaces[i] = m[i].nfaces;
     }
     int threads = o->threads > 0 ? o->threads : default_threads();
-    DiffOpts dop = { threads, o->tolerance, NULL };
+    DiffOpts dop = { threads, o->tolerance, NULL, 0 };
     int rc = check_both(ds, m, threads, err, errlen) || diff_compute(&ds->d, &m[0], &m[1], &dop, err, errlen);
     if (!rc && scene)
         return make_scene(ds, o, m, err, errlen) ? -1 : 0;      /* the scene took the meshes */

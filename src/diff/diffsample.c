@@ -372,7 +372,7 @@ int diff_side(DiffSide *s, const Mesh *m, const DiffVerts *verts, const Bvh *bvh
     for (uint32_t v = 0; v < m->nverts; v++)
         s->vert_dist[v] = -1;
     s->area = mesh_area(m);
-    w.unit = s->area / DIFF_SAMPLES;
+    w.unit = s->area / d->samples;
     pool_run(pool, (int)nvc, vert_task, &w);
     pool_run(pool, (int)nfc, face_task, &w);
     pool_free(pool);

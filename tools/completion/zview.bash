@@ -37,13 +37,14 @@ _zview()
         --up) COMPREPLY=($(compgen -W "y z x -y -z -x" -- "$cur")); return ;;
         --image-format) COMPREPLY=($(compgen -W "png ppm" -- "$cur")); return ;;
         --bg) COMPREPLY=($(compgen -W "default black white grey" -- "$cur")); return ;;
+        --show) COMPREPLY=($(compgen -W "both a b heat" -- "$cur")); return ;;
         --format) COMPREPLY=($(compgen -W "$(_zview_formats) assimp" -- "$cur")); return ;;
         -o | --output | --dump-ids | --dump-screen)
             COMPREPLY=($(compgen -f -- "$cur"))
             return ;;
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
             --scale | --persp | --grid | --max-polys | --max-memory | --views | -j | --threads | --fps | --max-rate | --crease | \
-            --light | --ambient | --turntable | --point-size | --line-width | --contrast)
+            --light | --ambient | --turntable | --point-size | --line-width | --contrast | --tolerance)
             return ;;
     esac
     $split && return
@@ -55,7 +56,7 @@ _zview()
             --views --threads --json --fps --max-rate --format --formats --up --flip --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
             --turntable --point-size --line-width --wireframe --points --strict --no-sandbox --max-memory --bg --contrast --no-textures
-            --problems --parts --watch" -- "$cur"))
+            --problems --parts --watch --diff --tolerance --show --quiet --textconv" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
     fi
