@@ -84,6 +84,7 @@ typedef struct {
     double     tolerance;           /* >= 0: given; < 0: DIFF_TOL_FRACTION of the diagonal */
     const int *cancel;              /* NULL, or set (atomically) to stop: diff_compute fails "cancelled" */
     uint32_t   samples;             /* face samples a side about; 0: DIFF_SAMPLES (the fuzzer asks fewer) */
+    int        checks;              /* check each model too (Diff.check) */
 } DiffOpts;
 
 typedef struct {
@@ -97,12 +98,19 @@ typedef struct {
     uint32_t    nregions;
     double      ms;                 /* wall time of diff_compute */
     uint32_t    samples;            /* face samples a side about (DiffOpts.samples) */
+    CheckCounts check[2];           /* DiffOpts.checks: --check's figures of each, the crossing test left out
+                                       (it is the check's costly part; zview --check runs it) */
 } Diff;
 
-/* Measure a against b and b against a. The meshes are read, not
- * changed. 0, or -1 with the reason in err (out of memory, cancelled,
- * more than 2^32 - 1 triangles); a model without faces has nothing to
- * measure: the caller refuses it first. */
+/* Measure a against b and b against a (and check each, when asked).
+ * On one thread the work runs in turn, one hierarchy at a time (B's
+ * while A is measured, then A's): the memory beyond the models is one
+ * hierarchy and the figures. On more, the checks, both hierarchies and
+ * the vertices' match are built side by side, then each model's samples
+ * are shared between the threads. The meshes are read, not changed. 0,
+ * or -1 with the reason in err (out of memory, cancelled, more than
+ * 2^32 - 1 triangles); a model without faces has nothing to measure:
+ * the caller refuses it first. */
 int  diff_compute(Diff *d, const Mesh *a, const Mesh *b, const DiffOpts *o, char *err, size_t errlen);
 void diff_free(Diff *d);
 /* The changed regions of d (diffregion.c), from its sides and the two
@@ -162,7 +170,6 @@ typedef struct DiffSet {
     char        format[2][32];      /* what read each */
     char        unit[2][8];         /* the unit each format states, "" none */
     uint32_t    nverts[2], nfaces[2];   /* as loaded */
-    CheckCounts check[2];           /* --check's figures of each, the crossing test left out */
     Diff        d;
     /* the picture: both models in one scene, each in its own
      * coordinates (no layout), A's objects first, standing as A's format

@@ -182,7 +182,24 @@ static void against_brute(const Soup *s, int nq, double off, double span)
     tree_sound(&b, s);
     for (int i = 0; i < nq; i++) {
         double q[3];
-        if (i % 3 == 0 && s->nt) {
+        if (i % 3 == 1 && s->nt) {
+            /* inside a triangle, then off it along its normal by up to
+             * span / 200: near enough that float's rounding of the point
+             * (1/16 at 1e6) decides between boxes */
+            uint32_t t = (uint32_t)(urand() * s->nt) % s->nt;
+            double u = urand(), v = urand() * (1 - u), c[3][3], n[3];
+            for (int k = 0; k < 3; k++)
+                for (int j = 0; j < 3; j++)
+                    c[k][j] = s->pos[3 * s->tri[3 * t + k] + j];
+            double e1[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
+            double e2[3] = { c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2] };
+            n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), h = urand() * span / 200;
+            for (int k = 0; k < 3; k++)
+                q[k] = c[0][k] + u * e1[k] + v * e2[k] + (l > 0 ? n[k] / l * h : 0);
+        } else if (i % 3 == 0 && s->nt) {
             /* on or just off a corner or the inside of a triangle */
             uint32_t t = (uint32_t)(urand() * s->nt) % s->nt, v = s->tri[3 * t + i % 9 / 3];
             for (int k = 0; k < 3; k++)
@@ -229,6 +246,27 @@ Test(bvh, nearest_far_from_the_origin)
     soup(&s, 3000, 1e6, 10, 0.5);
     against_brute(&s, 400, 1e6, 10);
     soup_free(&s);
+}
+
+Test(bvh, the_box_test_covers_the_points_rounding)
+{
+    /* at x = 1e6 floats are 1/16 apart: the query's x rounds 0.04 away
+     * from T1's side, to 1/16 from it, past T2, which is 0.05 away in y
+     * (where floats are fine): T2's box comes first, and T1's, truly
+     * nearer, must not be passed over for its rounded distance */
+    const float X = 1e6f;
+    float pos[18] = { X, 0, 0, X + 1, 0, 0, X, 1, 0,                      /* T1: x from X */
+                      X - 8, 0.55f, -1, X + 8, 0.55f, -1, X, 0.55f, 1 };  /* T2: the plane y = 0.55 */
+    uint32_t tri[6] = { 0, 1, 2, 3, 4, 5 };
+    Bvh b;
+    char err[64];
+    cr_assert_eq(bvh_build(&b, pos, 6, tri, NULL, 2, err, sizeof err), 0);
+    double q[3] = { (double)X - 0.04, 0.5, 0 };
+    BvhHit h;
+    bvh_closest(&b, q, &h);
+    cr_assert_eq(b.id[h.tri], 0, "T1 is the nearer");
+    cr_assert_float_eq(sqrt(h.d2), 0.04, 1e-9, "%.17g", sqrt(h.d2));
+    bvh_free(&b);
 }
 
 Test(bvh, degenerate_builds_stay_shallow_and_exact)

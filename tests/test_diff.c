@@ -80,7 +80,7 @@ static void copy_mesh(Mesh *dst, const Mesh *src, void (*f)(float *p, const void
 
 static const Diff *run_tol(double tol)
 {
-    DiffOpts o = { 2, tol, NULL, 0 };
+    DiffOpts o = { 2, tol, NULL, 0, 1 };
     diff_free(&D);
     cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), 0, "%s", E);
     return &D;
@@ -211,6 +211,9 @@ Test(diff, a_cube_added)
     cr_assert_eq(d->a.area_over, 0);
     cr_assert_eq(d->a.max, 0);
     cr_assert_eq(d->hausdorff, 3);
+    /* the mean of B's surface: 0 on the first cube, 2 and 3 on the
+     * second's near and far sides, 2 to 3 along its other four: 15 / 12 */
+    cr_assert_float_eq(d->b.mean, 1.25, 1e-9, "%.12g", d->b.mean);
     cr_assert_eq(d->nregions, 1);
     cr_assert_float_eq(d->regions[0].added, 6, 1e-9);
     cr_assert_eq(d->regions[0].removed, 0);
@@ -417,7 +420,7 @@ Test(diff, a_hole_made_is_the_headline)
     snprintf(closed, sizeof closed, "%sf 4 1 5 8\n", CUBE);
     snprintf(open, sizeof open, "%s", CUBE);
     load_set(closed, open, "both", 0);
-    cr_assert(S.check[0].watertight && !S.check[1].watertight);
+    cr_assert(S.d.check[0].watertight && !S.d.check[1].watertight);
     char h[256];
     diff_headline(&S, 0, " | ", h, sizeof h);
     cr_assert_str_eq(h, "no longer watertight (1 hole) | max 0.5 | 1 region changed");

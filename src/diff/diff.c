@@ -1,9 +1,7 @@
 /* diff.c: how two models differ: each model's surface against the
- * other's (diffsample.c, include/diff.h), then the changed regions
- * (diffregion.c). One hierarchy at a time is kept (the other model's,
- * whose triangles carry their face): B's while A is measured, then A's,
- * so the memory beyond the two models is one hierarchy and the per-face
- * and per-vertex figures. */
+ * other's (diffsample.c, include/diff.h), each model's check, then the
+ * changed regions (diffregion.c). The hierarchy a model is measured
+ * against is the other's, its triangles carrying their face. */
 
 #include <math.h>
 #include <stdio.h>
@@ -13,6 +11,7 @@
 #include "app.h"
 #include "clock.h"
 #include "diff.h"
+#include "pool.h"
 
 void diff_free(Diff *d)
 {
@@ -50,23 +49,115 @@ static int all_triangles(const Mesh *m)
     return 1;
 }
 
-/* Side s: mesh m against the other mesh's hierarchy, built here and
- * freed before returning. */
-static int measure_side(DiffSide *s, const Mesh *m, const DiffVerts *verts, const Mesh *other, Diff *d,
-                        const DiffOpts *o, int threads, char *err, size_t errlen)
+/* The hierarchy of m's triangles, each carrying its face. */
+static int build_of(Bvh *bvh, const Mesh *m, char *err, size_t errlen)
 {
-    uint32_t *tri = NULL, *face = NULL, n = other->nfaces;
-    if (!all_triangles(other) && diff_fan(other, &tri, &face, &n, err, errlen))
+    uint32_t *tri = NULL, *face = NULL, n = m->nfaces;
+    if (!all_triangles(m) && diff_fan(m, &tri, &face, &n, err, errlen))
         return -1;
-    Bvh bvh;
-    int rc = bvh_build(&bvh, other->pos, other->nverts, tri ? tri : other->corner, face, n, err, errlen);
+    int rc = bvh_build(bvh, m->pos, m->nverts, tri ? tri : m->corner, face, n, err, errlen);
     free(tri);
     free(face);
-    if (rc)
-        return -1;
-    rc = diff_side(s, m, verts, &bvh, d, threads, o->cancel, err, errlen);
-    bvh_free(&bvh);
     return rc;
+}
+
+static int check_of(CheckCounts *out, const Mesh *m, char *err, size_t errlen)
+{
+    MeshCheck mc;
+    CheckOpts co = { .threads = 1, .intersections = 0 };
+    if (meshcheck_run(&mc, m, &co, err, errlen))
+        return -1;
+    *out = mc.file;
+    meshcheck_free(&mc);
+    return 0;
+}
+
+/* What comes before the samples, as tasks: each model's check, each
+ * hierarchy (B's, against which A is measured, then A's), the
+ * vertices' match; the biggest first, so that two threads end together. */
+enum { PREP_CHECK_A, PREP_CHECK_B, PREP_BVH_B, PREP_BVH_A, PREP_MATCH, PREP_TASKS };
+
+typedef struct {
+    const Mesh *m[2];
+    Diff       *d;
+    const float *box;
+    int         checks;
+    Bvh         bvh[2];         /* [0]: B's; [1]: A's */
+    DiffVerts   v[2];
+    int         rc[PREP_TASKS];
+    char        err[PREP_TASKS][256];
+} Prep;
+
+static void prep_task(void *arg, int task, int worker)
+{
+    (void)worker;
+    Prep *p = arg;
+    char *err = p->err[task];
+    switch (task) {
+    case PREP_CHECK_A:
+    case PREP_CHECK_B:
+        if (p->checks)
+            p->rc[task] = check_of(&p->d->check[task == PREP_CHECK_B], p->m[task == PREP_CHECK_B], err, 256);
+        break;
+    case PREP_BVH_B:
+    case PREP_BVH_A:
+        p->rc[task] = build_of(&p->bvh[task == PREP_BVH_A], p->m[task == PREP_BVH_B], err, 256);
+        break;
+    default:
+        if ((p->rc[task] = diff_match(&p->v[0], &p->v[1], p->m[0], p->m[1], p->box)))
+            snprintf(err, 256, "out of memory");
+        break;
+    }
+}
+
+/* The first failure's message. */
+static int prep_failed(const Prep *p, char *err, size_t errlen)
+{
+    for (int i = 0; i < PREP_TASKS; i++)
+        if (p->rc[i]) {
+            snprintf(err, errlen, "%s", p->err[i]);
+            return 1;
+        }
+    return 0;
+}
+
+/* One thread: one hierarchy at a time. */
+static int measure_in_turn(Prep *p, const DiffOpts *o, char *err, size_t errlen)
+{
+    Diff *d = p->d;
+    for (int t = PREP_CHECK_A; t <= PREP_CHECK_B; t++)
+        prep_task(p, t, 0);
+    prep_task(p, PREP_MATCH, 0);
+    if (prep_failed(p, err, errlen))
+        return -1;
+    for (int side = 0; side < 2; side++) {
+        prep_task(p, side ? PREP_BVH_A : PREP_BVH_B, 0);
+        if (prep_failed(p, err, errlen))
+            return -1;
+        int rc = diff_side(side ? &d->b : &d->a, p->m[side], &p->v[side], &p->bvh[side], d, 1, o->cancel, err, errlen);
+        bvh_free(&p->bvh[side]);
+        if (rc)
+            return -1;
+    }
+    return 0;
+}
+
+/* More threads: everything before the samples side by side, then each
+ * model's samples shared out. */
+static int measure_together(Prep *p, const DiffOpts *o, int threads, char *err, size_t errlen)
+{
+    Pool *pool = pool_create(threads - 1);
+    if (!pool) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    pool_run(pool, PREP_TASKS, prep_task, p);
+    pool_free(pool);
+    if (prep_failed(p, err, errlen))
+        return -1;
+    Diff *d = p->d;
+    return diff_side(&d->a, p->m[0], &p->v[0], &p->bvh[0], d, threads, o->cancel, err, errlen) ||
+           diff_side(&d->b, p->m[1], &p->v[1], &p->bvh[1], d, threads, o->cancel, err, errlen);
 }
 
 int diff_compute(Diff *d, const Mesh *a, const Mesh *b, const DiffOpts *o, char *err, size_t errlen)
@@ -95,14 +186,19 @@ int diff_compute(Diff *d, const Mesh *a, const Mesh *b, const DiffOpts *o, char 
         box[k] = (float)lo[k];
         box[3 + k] = (float)hi[k];
     }
-    DiffVerts va, vb;
-    int rc = diff_match(&va, &vb, a, b, box);
-    if (rc)
-        snprintf(err, errlen, "out of memory");
-    rc = rc || measure_side(&d->a, a, &va, b, d, o, threads, err, errlen) ||
-         measure_side(&d->b, b, &vb, a, d, o, threads, err, errlen) || diff_regions(d, a, b, err, errlen);
-    diff_verts_free(&va);
-    diff_verts_free(&vb);
+    Prep p;
+    memset(&p, 0, sizeof p);
+    p.m[0] = a;
+    p.m[1] = b;
+    p.d = d;
+    p.box = box;
+    p.checks = o->checks;
+    int rc = threads > 1 ? measure_together(&p, o, threads, err, errlen) : measure_in_turn(&p, o, err, errlen);
+    rc = rc || diff_regions(d, a, b, err, errlen);
+    for (int i = 0; i < 2; i++) {
+        bvh_free(&p.bvh[i]);
+        diff_verts_free(&p.v[i]);
+    }
     if (rc) {
         diff_free(d);
         return -1;

@@ -157,7 +157,7 @@ void diff_length(const DiffSet *ds, double v, char *buf, size_t len)
 /* "no longer watertight (2 holes) · ", "now watertight · " or "". */
 static void watertight_change(const DiffSet *ds, const char *sep, char *buf, size_t len)
 {
-    const CheckCounts *a = &ds->check[0], *b = &ds->check[1];
+    const CheckCounts *a = &ds->d.check[0], *b = &ds->d.check[1];
     buf[0] = 0;
     if (a->watertight && !b->watertight) {
         if (b->holes)

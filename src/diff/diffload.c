@@ -1,7 +1,6 @@
 /* diffload.c: --diff A B from the command line to a DiffSet: each file
  * loaded through the one load path (sandboxed, app_load_opts), checked
- * (--check's figures, without the crossing test: it is the check's
- * costly part, and `zview --check` runs it), measured (diff.c) and,
+ * and measured (diff.c) and,
  * for a picture, put with the other in one scene: each in its own
  * coordinates (no layout: a model and its edited copy overlap where
  * they agree), fitted once to the union, standing as A's format says. */
@@ -11,7 +10,6 @@
 #include <string.h>
 
 #include "diff.h"
-#include "pool.h"
 
 const char *const diff_show_names[DIFF_SHOW_COUNT] = { "both", "a", "b", "heat" };
 
@@ -37,41 +35,6 @@ static int load_one(const Options *o, const char *path, Mesh *m, char *err, size
         mesh_free(m);
         return 1;
     }
-    return 0;
-}
-
-/* The two checks, one a task. */
-typedef struct {
-    const Mesh  *m;
-    CheckCounts *out;
-    int          rc;
-    char         err[256];
-} CheckTask;
-
-static void check_task(void *arg, int task, int worker)
-{
-    (void)worker;
-    CheckTask *t = &((CheckTask *)arg)[task];
-    MeshCheck mc;
-    CheckOpts co = { .threads = 1, .intersections = 0 };
-    t->rc = meshcheck_run(&mc, t->m, &co, t->err, sizeof t->err);
-    if (!t->rc) {
-        *t->out = mc.file;
-        meshcheck_free(&mc);
-    }
-}
-
-static int check_both(DiffSet *ds, const Mesh *m, int threads, char *err, size_t errlen)
-{
-    CheckTask t[2] = { { &m[0], &ds->check[0], 0, "" }, { &m[1], &ds->check[1], 0, "" } };
-    Pool *pool = threads > 1 ? pool_create(1) : NULL;
-    pool_run(pool, 2, check_task, t);
-    pool_free(pool);
-    for (int i = 0; i < 2; i++)
-        if (t[i].rc) {
-            snprintf(err, errlen, "%s", t[i].err);
-            return -1;
-        }
     return 0;
 }
 
@@ -136,9 +99,8 @@ int diff_load(DiffSet *ds, const Options *o, int scene, char *err, size_t errlen
         ds->nverts[i] = m[i].nverts;
         ds->nfaces[i] = m[i].nfaces;
     }
-    int threads = o->threads > 0 ? o->threads : default_threads();
-    DiffOpts dop = { threads, o->tolerance, NULL, 0 };
-    int rc = check_both(ds, m, threads, err, errlen) || diff_compute(&ds->d, &m[0], &m[1], &dop, err, errlen);
+    DiffOpts dop = { o->threads, o->tolerance, NULL, 0, 1 };
+    int rc = diff_compute(&ds->d, &m[0], &m[1], &dop, err, errlen);
     if (!rc && scene)
         return make_scene(ds, o, m, err, errlen) ? -1 : 0;      /* the scene took the meshes */
     mesh_free(&m[0]);

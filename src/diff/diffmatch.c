@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bigmem.h"
 #include "diff.h"
 
 void diff_verts_free(DiffVerts *v)
@@ -34,10 +35,10 @@ static void pos_bits(const float *p, uint32_t k[3])
 static int verts_order(DiffVerts *v, const Mesh *m, const float box[6])
 {
     size_t n = m->nverts ? m->nverts : 1;
-    v->order = malloc(n * sizeof *v->order);
-    v->code = malloc(n * sizeof *v->code);
-    v->first = malloc(n * sizeof *v->first);
-    v->on = malloc(n * sizeof *v->on);
+    v->order = bigmem_alloc(n * sizeof *v->order);
+    v->code = bigmem_alloc(n * sizeof *v->code);
+    v->first = bigmem_alloc(n * sizeof *v->first);
+    v->on = bigmem_alloc(n * sizeof *v->on);
     if (!v->order || !v->code || !v->first || !v->on || bvh_order(m->pos, m->nverts, box, v->order, v->code))
         return -1;
     memset(v->first, 0xff, (size_t)m->nverts * sizeof *v->first);

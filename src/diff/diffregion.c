@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bigmem.h"
 #include "diff.h"
 
 static uint32_t find(uint32_t *parent, uint32_t i)
@@ -100,6 +101,19 @@ static int weld_faces(const Mesh *m, const DiffSide *s, double tol, uint32_t bas
     return 0;
 }
 
+/* Join each changed face of side s (its faces from base in parent) to
+ * the other's face nearest to its farthest sample, when that one is
+ * changed too (the other's faces from obase). */
+static void join_across(const DiffSide *s, const DiffSide *other, double tol, uint32_t base, uint32_t obase,
+                        uint32_t *parent)
+{
+    for (uint32_t f = 0; f < s->nfaces; f++) {
+        uint32_t g = s->face_link[f];
+        if (s->face_dist[f] > tol && g < other->nfaces && other->face_dist[g] > tol)
+            join(parent, base + f, obase + g);
+    }
+}
+
 /* Grow region r by face f of m (side s; added: it is B's). */
 static void region_add(DiffRegion *r, const Mesh *m, const DiffSide *s, uint32_t f, int added)
 {
@@ -146,19 +160,15 @@ int diff_regions(Diff *d, const Mesh *a, const Mesh *b, char *err, size_t errlen
         snprintf(err, errlen, "%llu faces in the two models (at most %u)", (unsigned long long)n, UINT32_MAX - 1);
         return -1;
     }
-    uint32_t *parent = malloc((n ? n : 1) * sizeof *parent), *region = malloc((n ? n : 1) * sizeof *region);
+    uint32_t *parent = bigmem_alloc((n ? n : 1) * sizeof *parent), *region = bigmem_alloc((n ? n : 1) * sizeof *region);
     if (!parent || !region)
         goto oom;
     for (uint32_t i = 0; i < n; i++)
         parent[i] = i;
     if (weld_faces(a, &d->a, tol, 0, parent) || weld_faces(b, &d->b, tol, na, parent))
         goto oom;
-    for (uint32_t f = 0; f < na; f++)
-        if (d->a.face_dist[f] > tol && d->a.face_link[f] < nb && d->b.face_dist[d->a.face_link[f]] > tol)
-            join(parent, f, na + d->a.face_link[f]);
-    for (uint32_t f = 0; f < nb; f++)
-        if (d->b.face_dist[f] > tol && d->b.face_link[f] < na && d->a.face_dist[d->b.face_link[f]] > tol)
-            join(parent, na + f, d->b.face_link[f]);
+    join_across(&d->a, &d->b, tol, 0, na, parent);
+    join_across(&d->b, &d->a, tol, na, 0, parent);
     /* number the regions by their root, in face order */
     uint32_t count = 0;
     for (uint32_t i = 0; i < n; i++) {

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bigmem.h"
 #include "diff.h"
 #include "pool.h"
 
@@ -351,12 +352,12 @@ int diff_side(DiffSide *s, const Mesh *m, const DiffVerts *verts, const Bvh *bvh
     s->nverts = m->nverts;
     s->nfaces = m->nfaces;
     size_t nv = m->nverts ? m->nverts : 1, nf = m->nfaces ? m->nfaces : 1;
-    s->vert_dist = malloc(nv * sizeof *s->vert_dist);
-    s->vert_link = calloc(nv, sizeof *s->vert_link);
-    s->face_dist = malloc(nf * sizeof *s->face_dist);
-    s->face_link = malloc(nf * sizeof *s->face_link);
-    s->face_over = malloc(nf * sizeof *s->face_over);
-    s->face_class = malloc(nf);
+    s->vert_dist = bigmem_alloc(nv * sizeof *s->vert_dist);
+    s->vert_link = bigmem_alloc(nv * sizeof *s->vert_link);
+    s->face_dist = bigmem_alloc(nf * sizeof *s->face_dist);
+    s->face_link = bigmem_alloc(nf * sizeof *s->face_link);
+    s->face_over = bigmem_alloc(nf * sizeof *s->face_over);
+    s->face_class = bigmem_alloc(nf);
     uint32_t nvc = (verts->nused + VERT_CHUNK - 1) / VERT_CHUNK, nfc = (m->nfaces + FACE_CHUNK - 1) / FACE_CHUNK;
     SideWork w = { m, bvh, verts, d, s, 0, cancel, calloc((size_t)nvc + nfc + 1, sizeof(Acc)), nvc };
     Pool *pool = threads > 1 ? pool_create(threads - 1) : NULL;
@@ -369,8 +370,10 @@ int diff_side(DiffSide *s, const Mesh *m, const DiffVerts *verts, const Bvh *bvh
         return -1;
     }
     /* the vertices no face uses stay -1 */
-    for (uint32_t v = 0; v < m->nverts; v++)
+    for (uint32_t v = 0; v < m->nverts; v++) {
         s->vert_dist[v] = -1;
+        s->vert_link[v] = 0;
+    }
     s->area = mesh_area(m);
     w.unit = s->area / d->samples;
     pool_run(pool, (int)nvc, vert_task, &w);

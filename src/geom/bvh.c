@@ -424,7 +424,7 @@ int bvh_order(const float *pos, uint32_t n, const float *box, uint32_t *order, u
 {
     if (n == 0)
         return 0;
-    Keyed *a = malloc((size_t)n * sizeof *a), *tmp = malloc((size_t)n * sizeof *tmp);
+    Keyed *a = bigmem_alloc((size_t)n * sizeof *a), *tmp = bigmem_alloc((size_t)n * sizeof *tmp);
     if (!a || !tmp) {
         free(a);
         free(tmp);
@@ -599,13 +599,10 @@ int bvh_build(Bvh *b, const float *pos, uint32_t nverts, const uint32_t *tri, co
             snprintf(err, errlen, "triangle %llu names vertex %u of %u", (unsigned long long)(i / 3), tri[i], nverts);
             return -1;
         }
-    Keyed *a = malloc((size_t)ntris * sizeof *a), *tmp = malloc((size_t)ntris * sizeof *tmp);
-    float *c = malloc((size_t)ntris * 3 * sizeof *c);
+    Keyed *a = bigmem_alloc((size_t)ntris * sizeof *a), *tmp = bigmem_alloc((size_t)ntris * sizeof *tmp);
+    float *c = bigmem_alloc((size_t)ntris * 3 * sizeof *c);
     if (!a || !tmp || !c)
         goto oom;
-    bigmem_advise(a, (size_t)ntris * sizeof *a, 1);
-    bigmem_advise(tmp, (size_t)ntris * sizeof *tmp, 1);
-    bigmem_advise(c, (size_t)ntris * 3 * sizeof *c, 1);
     /* each box's centre (halfway, in float: the order it gives is all
      * that matters), and the box of the centres */
     float clo[3] = { INFINITY, INFINITY, INFINITY }, chi[3] = { -INFINITY, -INFINITY, -INFINITY };
@@ -636,12 +633,10 @@ int bvh_build(Bvh *b, const float *pos, uint32_t nverts, const uint32_t *tri, co
         goto oom;
     free(c);
     c = NULL;
-    b->id = malloc((size_t)ntris * sizeof *b->id);
-    b->corner = malloc((size_t)ntris * 9 * sizeof *b->corner);
+    b->id = bigmem_alloc((size_t)ntris * sizeof *b->id);
+    b->corner = bigmem_alloc((size_t)ntris * 9 * sizeof *b->corner);
     if (!b->id || !b->corner)
         goto oom;
-    bigmem_advise(b->id, (size_t)ntris * sizeof *b->id, 1);
-    bigmem_advise(b->corner, (size_t)ntris * 9 * sizeof *b->corner, 1);
     for (uint32_t i = 0; i < ntris; i++) {
         uint32_t t = sorted[i].t;
         for (int v = 0; v < 3; v++)

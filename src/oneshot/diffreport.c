@@ -35,7 +35,7 @@ static const char *count(uint64_t v, char *buf, size_t len)
 static void text_side(Out *out, const DiffSet *ds, int i)
 {
     char path[SAFETEXT_NAME], format[4 * sizeof ds->format[0]], words[512], f[32], v[32];
-    const CheckCounts *c = &ds->check[i];
+    const CheckCounts *c = &ds->d.check[i];
     meshcheck_verdict(c, words, sizeof words);
     out_printf(out, "%c  %s (%s): %s faces, %s vertices, %s\n", 'A' + i, safetext(path, sizeof path, ds->path[i]),
                safetext(format, sizeof format, ds->format[i]), count(c->faces, f, sizeof f),
@@ -69,7 +69,7 @@ static void text_report(Out *out, const DiffSet *ds)
         out_printf(out, "%-14s%s (--tolerance)\n", "tolerance", t);
     else
         out_printf(out, "%-14s%s (0.1%% of the bounding box's diagonal; --tolerance sets it)\n", "tolerance", t);
-    const CheckCounts *a = &ds->check[0], *b = &ds->check[1];
+    const CheckCounts *a = &ds->d.check[0], *b = &ds->d.check[1];
     out_printf(out, "%-14s%.6g x %.6g x %.6g -> %.6g x %.6g x %.6g\n", "size", (double)a->hi[0] - a->lo[0],
                (double)a->hi[1] - a->lo[1], (double)a->hi[2] - a->lo[2], (double)b->hi[0] - b->lo[0],
                (double)b->hi[1] - b->lo[1], (double)b->hi[2] - b->lo[2]);
@@ -125,7 +125,7 @@ static void json_xyz(Out *out, const char *name, double x, double y, double z)
 static void json_side(Out *out, const DiffSet *ds, int i)
 {
     const DiffSide *s = i ? &ds->d.b : &ds->d.a;
-    const CheckCounts *c = &ds->check[i];
+    const CheckCounts *c = &ds->d.check[i];
     out_printf(out, "  \"%c\": {\n      \"path\": ", 'a' + i);
     json_str(out, ds->path[i]);
     out_printf(out, ",\n      \"format\": ");
@@ -149,7 +149,7 @@ static void json_side(Out *out, const DiffSet *ds, int i)
 static void json_report(Out *out, const DiffSet *ds)
 {
     const Diff *d = &ds->d;
-    const CheckCounts *a = &ds->check[0], *b = &ds->check[1];
+    const CheckCounts *a = &ds->d.check[0], *b = &ds->d.check[1];
     out_printf(out, "{\n  \"same\": %s,\n  \"tolerance\": %.9g,\n  \"tolerance_given\": %s,\n",
                diff_differ(d) ? "false" : "true", d->tolerance, d->tol_given ? "true" : "false");
     out_printf(out, "  \"hausdorff\": %.9g,\n  \"hausdorff_bound\": %.9g,\n", d->hausdorff, fmax(d->a.bound, d->b.bound));
