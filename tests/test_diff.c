@@ -12,7 +12,8 @@
  * diagonal, the same model as STL and OBJ, and the model with its
  * vertices and faces shuffled are 0. Every vertex's distance equals the
  * least over every triangle of the other model; the two directions
- * swap when the models do; the sampled maximum lies within its bound.
+ * swap when the models do; the sampled maximum lies within its bound
+ * (and, in the suite "models", on the dragon and an edited copy).
  * Then the files through diff_load: the check's verdicts, the
  * headline, and the picture's colours: every algorithm gives the same
  * face ids for each of --show's pictures. */
@@ -512,4 +513,69 @@ Test(diff, the_ramp_rises_in_lightness)
     diff_ramp(1, hi);
     cr_assert(lo[2] > lo[0] && hi[0] > hi[2], "blue to yellow: %d %d %d, %d %d %d", lo[0], lo[1], lo[2], hi[0], hi[1],
               hi[2]);
+}
+
+/* ==== The shared models (make test-models) ==== */
+
+/* Every vertex moved by up to 1e-4 of the diagonal, pseudo-randomly. */
+static void wobble(float *p, const void *ctx)
+{
+    uint64_t *st = (uint64_t *)ctx;
+    for (int k = 0; k < 3; k++) {
+        *st ^= *st << 13;
+        *st ^= *st >> 7;
+        *st ^= *st << 17;
+        p[k] = (float)(p[k] + ((double)(*st >> 11) / 9007199254740992.0 - 0.5) * 5e-5);
+    }
+}
+
+/* The dragon against itself (0, at once: every vertex is the other's)
+ * and against a copy with every vertex moved: a sample of its vertices
+ * against every triangle, and the same figures on one thread and two. */
+Test(models, diff_of_the_dragon, .timeout = 900)
+{
+    const char *p = tl_shared_model("dragon.obj");
+    if (!p)
+        cr_skip_test("no ../shared/models/dragon.obj");
+    load(&MA, p);
+    load(&MB, p);
+    const Diff *d = run();
+    cr_assert_eq(d->hausdorff, 0);
+    mesh_free(&MB);
+    static uint64_t st = 0x9E3779B97F4A7C15ull;
+    copy_mesh(&MB, &MA, wobble, &st);
+    DiffOpts o1 = { 1, -1, NULL, 0, 1 };
+    Diff one;
+    cr_assert_eq(diff_compute(&one, &MA, &MB, &o1, E, sizeof E), 0, "%s", E);
+    d = run();
+    cr_assert(one.hausdorff == d->hausdorff && one.a.mean == d->a.mean && one.b.mean == d->b.mean &&
+              one.nregions == d->nregions && one.a.bound == d->a.bound,
+              "one thread and two give the same figures");
+    cr_assert(!memcmp(one.a.face_dist, d->a.face_dist, MA.nfaces * sizeof *d->a.face_dist));
+    diff_free(&one);
+    cr_assert_gt(d->hausdorff, 0);
+    cr_assert_leq(d->hausdorff, 5e-5 * sqrt(3) / 2 * 1.01, "no point moved farther than its wobble");
+    /* 60 vertices of each against every triangle of the other */
+    for (int side = 0; side < 2; side++) {
+        const Mesh *m = side ? &MB : &MA, *other = side ? &MA : &MB;
+        const DiffSide *s = side ? &d->b : &d->a;
+        for (uint32_t i = 0; i < 60; i++) {
+            uint32_t v = (uint32_t)(((uint64_t)i * 2654435761u) % m->nverts);
+            if (s->vert_dist[v] < 0)
+                continue;
+            double q[3] = { m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2] }, best = INFINITY, pt[3];
+            for (uint32_t f = 0; f < other->nfaces; f++) {
+                double a[3], b[3], c[3];
+                for (int k = 0; k < 3; k++) {
+                    a[k] = other->pos[3 * other->corner[3 * f] + k];
+                    b[k] = other->pos[3 * other->corner[3 * f + 1] + k];
+                    c[k] = other->pos[3 * other->corner[3 * f + 2] + k];
+                }
+                best = fmin(best, bvh_point_triangle(q, a, b, c, pt));
+            }
+            double want = sqrt(best) < d->zero ? 0 : sqrt(best);
+            cr_assert(s->vert_dist[v] == (float)want, "side %d vertex %u: %.9g, every triangle says %.9g", side, v,
+                      s->vert_dist[v], want);
+        }
+    }
 }
