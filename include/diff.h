@@ -205,6 +205,9 @@ void diff_headline(const DiffSet *ds, int brief, const char *sep, char *buf, siz
 /* The status bar's: the headline, and the heat map's scale after it
  * when it shows ("heat: blue 0 to yellow 1.2 mm"). */
 void diff_status(const DiffSet *ds, int brief, const char *sep, char *buf, size_t len);
+/* The figures as lines of the viewer's info panel (report.c's
+ * labels): the distance each way, the regions, each model's verdict. */
+int  diff_report_lines(const DiffSet *ds, ReportLine *lines, int max);
 /* A distance in the shortest words ("1.2 mm", "0.0035"). */
 void diff_length(const DiffSet *ds, double v, char *buf, size_t len);
 /* The heat map's colour of t in [0, 1] (dark blue to light yellow,

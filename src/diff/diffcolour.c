@@ -201,3 +201,31 @@ void diff_status(const DiffSet *ds, int brief, const char *sep, char *buf, size_
         snprintf(buf + n, len - n, "%s%s alone", sep, ds->show == DIFF_SHOW_A ? "A" : "B");
     }
 }
+
+int diff_report_lines(const DiffSet *ds, ReportLine *lines, int max)
+{
+    const Diff *d = &ds->d;
+    char mx[48], t[48], ma[48], mb[48];
+    diff_length(ds, d->hausdorff, mx, sizeof mx);
+    diff_length(ds, d->tolerance, t, sizeof t);
+    diff_length(ds, d->b.mean, mb, sizeof mb);
+    diff_length(ds, d->a.mean, ma, sizeof ma);
+    int n = 0;
+    if (n < max) {
+        lines[n].label = "diff:";
+        snprintf(lines[n++].text, REPORT_TEXT, "max %s, tolerance %s, mean B to A %s, A to B %s", mx, t, mb, ma);
+    }
+    if (n < max) {
+        lines[n].label = "changed:";
+        snprintf(lines[n++].text, REPORT_TEXT, "%u region%s, area added %.6g, removed %.6g", d->nregions,
+                 d->nregions == 1 ? "" : "s", d->b.area_over, d->a.area_over);
+    }
+    for (int i = 0; i < 2 && n < max; i++) {
+        char words[REPORT_TEXT - 16];
+        meshcheck_verdict(&d->check[i], words, sizeof words);
+        lines[n].label = i ? "B:" : "A:";
+        snprintf(lines[n++].text, REPORT_TEXT, "%u faces, %s", d->check[i].faces,
+                 d->check[i].watertight && !strcmp(words, "sound") ? "watertight" : words);
+    }
+    return n;
+}

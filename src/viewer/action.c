@@ -645,7 +645,7 @@ const KeyRow viewer_keys[] = {
     { "( )", "line width", { { '(', act_line_thinner }, { ')', act_line_wider } } },
     { "W ! @", "wireframe, problems, parts",
       { { 'W', act_wireframe }, { '!', act_problems }, { '@', act_parts } } },
-    { "V", "diff: both, A, B, heat map (--diff)", { { 'V', act_diff_show } } },
+    { "V", "diff: A, B, heat map, both", { { 'V', act_diff_show } } },
     { "space", "auto-rotate", { { ' ', act_spin } } },
     { "O", "open a file (Tab completes)", { { 'O', act_open } } },
     { "X Delete", "remove the selected object", { { 'X', act_remove }, { TK_DEL, act_remove } } },

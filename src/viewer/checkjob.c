@@ -172,6 +172,8 @@ void viewer_check_status(const App *a, int max_items, char *buf, size_t len)
 
 int viewer_check_report(const App *a, ReportLine *lines, int max)
 {
+    if (a->diff && a->diff->gen == a->s->gen)
+        return diff_report_lines(a->diff, lines, max);
     if (!wanted(a) || a->chk || a->check_err[0] || !a->s->marks.set)
         return 0;
     SceneCheck sc = { .all = a->check };

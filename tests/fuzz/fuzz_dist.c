@@ -13,8 +13,9 @@
  *   u8  amount                    2^(amount % 32 - 24) of A's half extent
  *
  * Every input decodes (reads past the end give 0). What must hold, each
- * way: every vertex's distance is the least over every triangle of the
- * other (bvh_point_triangle's, bit for bit, then to float), the largest
+ * way: a vertex's distance is the least over every triangle of the
+ * other (bvh_point_triangle's, bit for bit, then to float: up to 128
+ * vertices a model are compared, the brute force being the time), the largest
  * sample is at least every vertex's and at most the bound, the
  * Hausdorff distance is the larger of the two ways, swapping the models
  * swaps the ways exactly, a face is at least as far as its corners, the
@@ -100,8 +101,14 @@ static double brute(const Mesh *m, const double q[3])
 static void side_holds(const Diff *d, const DiffSide *s, const Mesh *m, const Mesh *other)
 {
     double vmax = 0;
+    /* at most 128 vertices against every triangle (every one's distance
+     * bounds the maximum below, so those are all compared there) */
+    uint32_t step = m->nverts > 128 ? m->nverts / 128 : 1;
     for (uint32_t v = 0; v < m->nverts; v++) {
         if (s->vert_dist[v] < 0)
+            continue;
+        vmax = fmax(vmax, s->vert_dist[v] > d->zero ? (double)s->vert_dist[v] * (1 - 0x1p-23) : 0);
+        if (v % step)
             continue;
         double q[3] = { m->pos[3 * (size_t)v], m->pos[3 * (size_t)v + 1], m->pos[3 * (size_t)v + 2] };
         double want = sqrt(brute(other, q));
