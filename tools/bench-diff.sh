@@ -73,7 +73,7 @@ if [ -s "$m5" ]; then
     row "5.2M --diff: report + picture, 2 threads" "$w" "$c" "<= 15 s"
     set -- $(run "" --threads 2 --info "$m5" "$TMP/dragon-5m-edited.obj")
     row "5.2M --diff: peak MB against loading both" "$mem" "$3" \
-        "<= 3x: $(awk -v d="$mem" -v l="$3" 'BEGIN { printf "%.2fx", l > 0 ? d / l : 0 }') (--diff, --info A B)"
+        "<= 3x: $(awk -v d="$mem" -v l="$3" 'BEGIN { printf "%.2fx", (l > 0 ? d / l : 0) }') (--diff, --info A B)"
 else
     row "5.2M --diff" "(no model)" "" "$SUBDIV could not write it"
 fi

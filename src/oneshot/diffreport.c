@@ -54,8 +54,10 @@ static void text_side_distance(Out *out, const DiffSet *ds, const DiffSide *s, c
     diff_length(ds, s->max, mx, sizeof mx);
     diff_length(ds, s->mean, mean, sizeof mean);
     diff_length(ds, s->bound, bound, sizeof bound);
-    out_printf(out, "  %s  max %s at %.6g %.6g %.6g (at most %s), mean %s\n", what, mx, s->max_at[0], s->max_at[1],
-               s->max_at[2], bound, mean);
+    char at[96] = "";
+    if (s->max > 0)
+        snprintf(at, sizeof at, " at %.6g %.6g %.6g", s->max_at[0], s->max_at[1], s->max_at[2]);
+    out_printf(out, "  %s  max %s%s (at most %s), mean %s\n", what, mx, at, bound, mean);
 }
 
 static void text_report(Out *out, const DiffSet *ds)
