@@ -227,7 +227,7 @@ run: $(BIN)
 
 # tools/subdiv writes the many-triangle models into /tmp at bench time;
 # memframes measures memory over 10,000 frames (issue 21's targets)
-bench: $(BIN) $(BUILD)/subdiv $(BUILD)/memframes $(BUILD)/perturb
+bench: $(BIN) $(BUILD)/subdiv $(BUILD)/memframes $(BUILD)/perturb $(BUILD)/checkbench
 	SUBDIV=$(BUILD)/subdiv MEMFRAMES=$(BUILD)/memframes PERTURB=$(BUILD)/perturb sh tools/bench.sh
 
 # What --check costs beyond loading, and its peak memory against loading
@@ -264,8 +264,9 @@ $(BUILD)/subdiv: tools/subdiv.c
 
 # --diff against edited copies of the dragon and its 5.2M subdivision
 # (issue 31; doc/benchmarks.md: The diff); tools/perturb writes them
-bench-diff: $(BIN) $(BUILD)/subdiv $(BUILD)/perturb
-	ZVIEW=$(abspath $(BIN)) SUBDIV=$(BUILD)/subdiv PERTURB=$(BUILD)/perturb sh tools/bench-diff.sh
+bench-diff: $(BIN) $(BUILD)/subdiv $(BUILD)/perturb $(BUILD)/checkbench
+	ZVIEW=$(abspath $(BIN)) SUBDIV=$(BUILD)/subdiv PERTURB=$(BUILD)/perturb CHECKBENCH=$(BUILD)/checkbench \
+	    sh tools/bench-diff.sh
 
 $(BUILD)/perturb: tools/perturb.c
 	@mkdir -p $(BUILD)

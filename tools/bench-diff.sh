@@ -7,7 +7,9 @@
 # one thread pinned to a core and two; the 5.2M-triangle model
 # (tools/subdiv) against its edited copy on two threads; and the peak
 # memory of the 5.2M diff against zview --info of both files (loading
-# both). Each row is the median of RUNS runs (wall seconds, and CPU
+# both), beside a yardstick measured in the same run (--check's passes on
+# the dragon, whose CPU time quiet is documented). Each row is the
+# median of RUNS runs (wall seconds, and CPU
 # seconds of the process, user and system, which a shared machine's
 # other jobs do not inflate as they do the wall clock). BIG_DIR: where
 # make bench wrote the big models (else they are written here, into a
@@ -58,6 +60,14 @@ if [ "${HEADER:-1}" = 1 ]; then
     echo
     echo "## --diff (issue 31): medians of $RUNS runs; wall s, CPU s (user + system)"
     printf "%-46s %9s %9s %8s %8s %8s   %s\n" "case" "wall_s" "cpu_s" "" "" "" "target"
+fi
+# a yardstick measured in the same run: --check's passes on the dragon,
+# one thread, no crossing test (doc/benchmarks.md: The check, 217 ms of
+# CPU on a quiet machine): how much slower this machine runs just now
+if [ -x "${CHECKBENCH:-build/checkbench}" ]; then
+    $PIN "${CHECKBENCH:-build/checkbench}" -j 1 --no-cross "$D" |
+        awk '{ for (i = 1; i < NF; i++) if ($i == "cpu") c = $(i + 1) }
+             END { printf "%-46s %9s %9.2f %8s %8s %8s   %s\n", "yardstick: --check dragon, no crossings, 1 thread", "", c / 1000, "", "", "", "0.22 s of CPU quiet" }'
 fi
 out="-o $TMP/diff.png --size 640x480"
 # shellcheck disable=SC2086
