@@ -67,7 +67,7 @@ fi
 if [ -x "${CHECKBENCH:-build/checkbench}" ]; then
     $PIN "${CHECKBENCH:-build/checkbench}" -j 1 --no-cross "$D" |
         awk '{ for (i = 1; i < NF; i++) if ($i == "cpu") c = $(i + 1) }
-             END { printf "%-46s %9s %9.2f %8s %8s %8s   %s\n", "yardstick: --check dragon, no crossings, 1 thread", "", c / 1000, "", "", "", "0.22 s of CPU quiet" }'
+             END { printf "%-46s %9s %9.2f %8s %8s %8s   %s\n", "yardstick: --check dragon, no crossing test", "", c / 1000, "", "", "", "0.22 s of CPU quiet" }'
 fi
 out="-o $TMP/diff.png --size 640x480"
 # shellcheck disable=SC2086
