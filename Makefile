@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview
+.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff
 
 all: $(BIN)
 
@@ -66,9 +66,10 @@ help:
 	@echo '  make mutate        each mutant of tests/mutants.txt must fail make test (about 15 minutes)'
 	@echo '  make mutate-rooms  mechanical mutants, PER_ROOM=10 lines of each room (SEED=1): the kill rate per room (hours)'
 	@echo 'Fuzzing (clang + libFuzzer: sh tools/deps.sh installs them)'
-	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh, fuzz-check, fuzz-tex (the image decoders), fuzz-repair'
+	@echo '  make fuzz          build-fuzz/fuzz-obj, fuzz-diff, fuzz-mesh, fuzz-check, fuzz-tex (the image decoders),'
+	@echo '                     fuzz-repair, fuzz-dist (--diff against a brute-force reference)'
 	@echo '  make fuzz-run SECONDS=N   run each for N seconds; failures go to build-fuzz/artifacts/'
-	@echo '  make fuzz-run-mesh, fuzz-run-check, fuzz-run-tex, fuzz-run-repair   one of them alone'
+	@echo '  make fuzz-run-mesh, fuzz-run-check, fuzz-run-tex, fuzz-run-repair, fuzz-run-dist   one of them alone'
 	@echo '  make fuzz-seeds    rewrite the differential fuzzer seed scenes'
 	@echo 'Benchmarks (never timed tests: compare medians and ratios within one run)'
 	@echo '  make bench         the speed table (tools/bench.sh), single-thread rows pinned to a core'
@@ -84,6 +85,7 @@ help:
 	@echo '  make bench-check   --check of the dragon and the 5.2M model beyond loading, and its peak memory'
 	@echo '  make bench-repair  the repair of the dragon and the 5.2M model beyond loading, and its peak memory'
 	@echo '  make bench-repair-cli the whole zview --repair IN -o OUT, writing included: wall, CPU, peak, phases'
+	@echo '  make bench-diff    --diff of the dragon and the 5.2M model against edited copies, 1 and 2 threads, memory'
 	@echo '  make bench-sandbox the loading sandbox against --no-sandbox on the dragon'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
@@ -114,11 +116,13 @@ FUZZ_MESH_SRCS := tests/fuzz/fuzz_mesh.c tests/testlib.c
 FUZZ_CHECK_SRCS := tests/fuzz/fuzz_check.c
 FUZZ_TEX_SRCS  := tests/fuzz/fuzz_tex.c
 FUZZ_REPAIR_SRCS := tests/fuzz/fuzz_repair.c tests/testlib.c
+FUZZ_DIST_SRCS := tests/fuzz/fuzz_dist.c tests/fuzz/scenebig.c tests/testlib.c
 REPLAY_OBJS    := $(sort $(FUZZ_OBJ_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(BUILD)/%.o) \
                   $(FUZZ_MESH_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_CHECK_SRCS:%.c=$(BUILD)/%.o) \
-                  $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_REPAIR_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
+                  $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(FUZZ_REPAIR_SRCS:%.c=$(BUILD)/%.o) \
+                  $(FUZZ_DIST_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o)
 REPLAYS        := $(BUILD)/replay-obj $(BUILD)/replay-diff $(BUILD)/replay-mesh $(BUILD)/replay-check \
-                  $(BUILD)/replay-tex $(BUILD)/replay-repair
+                  $(BUILD)/replay-tex $(BUILD)/replay-repair $(BUILD)/replay-dist
 
 $(BUILD)/tests/fuzz/%.o: CFLAGS += -Itests
 
@@ -140,6 +144,9 @@ $(BUILD)/replay-tex: $(LIBOBJS) $(FUZZ_TEX_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests
 $(BUILD)/replay-repair: $(LIBOBJS) $(FUZZ_REPAIR_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
+$(BUILD)/replay-dist: $(LIBOBJS) $(FUZZ_DIST_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
 # Every input that ever failed, and the seeds (pending/ is not replayed).
 # fuzz-mesh's loaders warn about what they skip: that goes to /dev/null.
 replay: $(REPLAYS)
@@ -149,6 +156,7 @@ replay: $(REPLAYS)
 	$(BUILD)/replay-check tests/fuzz/seeds/check tests/fuzz/regress/check 2>/dev/null
 	$(BUILD)/replay-tex tests/fuzz/seeds/tex tests/fuzz/regress/tex
 	$(BUILD)/replay-repair tests/fuzz/seeds/repair tests/fuzz/regress/repair 2>/dev/null
+	$(BUILD)/replay-dist tests/fuzz/seeds/dist tests/fuzz/regress/dist
 
 # The stand-in assimp library of the sandbox's tests (tests/standin):
 # its import tries what an exploited parser would. Named as the real one
@@ -227,8 +235,8 @@ run: $(BIN)
 
 # tools/subdiv writes the many-triangle models into /tmp at bench time;
 # memframes measures memory over 10,000 frames (issue 21's targets)
-bench: $(BIN) $(BUILD)/subdiv $(BUILD)/memframes
-	SUBDIV=$(BUILD)/subdiv MEMFRAMES=$(BUILD)/memframes sh tools/bench.sh
+bench: $(BIN) $(BUILD)/subdiv $(BUILD)/memframes $(BUILD)/perturb $(BUILD)/checkbench
+	SUBDIV=$(BUILD)/subdiv MEMFRAMES=$(BUILD)/memframes PERTURB=$(BUILD)/perturb sh tools/bench.sh
 
 # What --check costs beyond loading, and its peak memory against loading
 # alone (issue 19; doc/benchmarks.md: The check).
@@ -275,6 +283,16 @@ bench-preview: $(BIN) $(BUILD)/subdiv
 $(BUILD)/subdiv: tools/subdiv.c
 	@mkdir -p $(BUILD)
 	$(CC) $(CFLAGS) -o $@ $<
+
+# --diff against edited copies of the dragon and its 5.2M subdivision
+# (issue 31; doc/benchmarks.md: The diff); tools/perturb writes them
+bench-diff: $(BIN) $(BUILD)/subdiv $(BUILD)/perturb $(BUILD)/checkbench
+	ZVIEW=$(abspath $(BIN)) SUBDIV=$(BUILD)/subdiv PERTURB=$(BUILD)/perturb CHECKBENCH=$(BUILD)/checkbench \
+	    sh tools/bench-diff.sh
+
+$(BUILD)/perturb: tools/perturb.c
+	@mkdir -p $(BUILD)
+	$(CC) $(CFLAGS) -o $@ $< -lm
 
 # How far 256/16/8-colour pictures are from truecolor, before and after
 # the perceptual quantizer (README: Colour).
@@ -355,7 +373,8 @@ FUZZ_CFLAGS := -O1 -g $(EXTRA_CFLAGS) $(COMMON_CFLAGS) -Itests $(FUZZ_SAN)
 FUZZ_LIBOBJS := $(LIBSRCS:%.c=$(FUZZ_BUILD)/%.o)
 FUZZ_OBJS   := $(sort $(FUZZ_OBJ_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_DIFF_SRCS:%.c=$(FUZZ_BUILD)/%.o) \
                       $(FUZZ_MESH_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_CHECK_SRCS:%.c=$(FUZZ_BUILD)/%.o) \
-                      $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_REPAIR_SRCS:%.c=$(FUZZ_BUILD)/%.o))
+                      $(FUZZ_TEX_SRCS:%.c=$(FUZZ_BUILD)/%.o) $(FUZZ_REPAIR_SRCS:%.c=$(FUZZ_BUILD)/%.o) \
+                      $(FUZZ_DIST_SRCS:%.c=$(FUZZ_BUILD)/%.o))
 SECONDS     ?= 60
 FUZZ_FLAGS  ?=
 # the invariants (ZV_ASSERT, include/invariant.h) are on here as in make asan:
@@ -363,7 +382,8 @@ FUZZ_FLAGS  ?=
 FUZZ_CFLAGS += -DZV_CHECKS
 
 fuzz: $(FUZZ_BUILD)/fuzz-obj $(FUZZ_BUILD)/fuzz-diff $(FUZZ_BUILD)/fuzz-mesh $(FUZZ_BUILD)/fuzz-check $(FUZZ_BUILD)/fuzz-tex \
-      $(FUZZ_BUILD)/fuzz-repair
+      $(FUZZ_BUILD)/fuzz-repair \
+      $(FUZZ_BUILD)/fuzz-dist
 
 # Rewrite the differential fuzzer's seed scenes (they are committed).
 fuzz-seeds: $(BUILD)/mkseeds
@@ -404,12 +424,15 @@ $(FUZZ_BUILD)/fuzz-check: $(FUZZ_LIBOBJS) $(FUZZ_CHECK_SRCS:%.c=$(FUZZ_BUILD)/%.
 $(FUZZ_BUILD)/fuzz-repair: $(FUZZ_LIBOBJS) $(FUZZ_REPAIR_SRCS:%.c=$(FUZZ_BUILD)/%.o)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
 
+$(FUZZ_BUILD)/fuzz-dist: $(FUZZ_LIBOBJS) $(FUZZ_DIST_SRCS:%.c=$(FUZZ_BUILD)/%.o)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+
 # fuzz-obj's, fuzz-mesh's and fuzz-check's stderr is closed
 # (-close_fd_mask=2): the loaders' warnings would drown their output;
 # crash reports still get through. make fuzz-run-mesh runs fuzz-mesh
 # alone, make fuzz-run-check fuzz-check (the --check analysis on what
 # the loaders make of the bytes; the mesh dictionary serves it too).
-fuzz-run: fuzz fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair
+fuzz-run: fuzz fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist
 	@mkdir -p $(FUZZ_BUILD)/corpus/obj $(FUZZ_BUILD)/corpus/diff $(FUZZ_BUILD)/artifacts/obj $(FUZZ_BUILD)/artifacts/diff
 	nice $(FUZZ_BUILD)/fuzz-obj -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=16384 -close_fd_mask=2 \
 	    -dict=tests/fuzz/obj.dict -artifact_prefix=$(FUZZ_BUILD)/artifacts/obj/ $(FUZZ_FLAGS) \
@@ -443,6 +466,13 @@ fuzz-run-tex: $(FUZZ_BUILD)/fuzz-tex
 	nice $(FUZZ_BUILD)/fuzz-tex -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=65536 \
 	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/tex/ $(FUZZ_FLAGS) \
 	    $(FUZZ_BUILD)/corpus/tex tests/fuzz/seeds/tex tests/fuzz/regress/tex
+
+# --diff's measure against a brute-force reference: make fuzz-run-dist
+fuzz-run-dist: $(FUZZ_BUILD)/fuzz-dist
+	@mkdir -p $(FUZZ_BUILD)/corpus/dist $(FUZZ_BUILD)/artifacts/dist
+	nice $(FUZZ_BUILD)/fuzz-dist -max_total_time=$(SECONDS) -timeout=20 -print_final_stats=1 -max_len=64 \
+	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/dist/ $(FUZZ_FLAGS) \
+	    $(FUZZ_BUILD)/corpus/dist tests/fuzz/seeds/dist tests/fuzz/regress/dist
 
 clean:
 	rm -rf build build-asan build-noassimp build-nosimd $(FUZZ_BUILD) $(BIN)

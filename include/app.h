@@ -97,6 +97,12 @@ typedef struct {
     unsigned    repair;         /* --repair[=STEPS]: the REPAIR_* steps (repair.h), 0 = not asked */
     double      weld;           /* --weld EPS: file units, 0 = positions bit for bit */
     uint32_t    max_hole;       /* --max-hole N: edges, 0 = no limit */
+    /* --diff A B (diff.h) */
+    int         diff;           /* how B differs from A: the picture, or a report */
+    double      tolerance;      /* --tolerance: distances up to it are the same; < 0: the default */
+    int         show;           /* --show: what the picture shows (DiffShow: both a b heat) */
+    int         quiet;          /* --quiet: no report, the exit status says */
+    int         textconv;       /* --textconv: --check as git's textconv driver wants it */
 } Options;
 
 /* The viewer decodes images longer than this a side on a thread of its

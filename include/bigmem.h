@@ -9,6 +9,11 @@
  * populate, fault it all in with one call (its size is final). */
 void bigmem_advise(void *p, size_t bytes, int populate);
 
+/* malloc(bytes), and for a big block huge pages faulted in at once
+ * (bigmem_advise with populate): an array about to be written whole
+ * costs a few faults instead of one every 4 KB. free() frees it. */
+void *bigmem_alloc(size_t bytes);
+
 /* An array of zero bytes whose pages become resident only when written
  * (straight from the kernel: calloc of a block the heap reuses would
  * write every byte), for a table indexed by face of which a frame

@@ -5,6 +5,7 @@
  * status. */
 
 #include "app.h"
+#include "diff.h"
 
 /* --info: what was loaded, how the first view was chosen (fv, from
  * app_load_scene_ex), and (with --algo) what a render did. */
@@ -17,6 +18,10 @@ int  oneshot_run(const Options *o, Scene *s);
  * when --print or -o asks for one, then the report (--json: JSON).
  * Returns 0 sound, 3 problems found, 1 a file not read. */
 int  oneshot_check(const Options *o);
+/* --diff A B without the viewer: the picture when --print or -o asks,
+ * then the report (--json: JSON; --quiet: none). Returns 0 the same
+ * within the tolerance, 3 they differ, 1 an output not written. */
+int  oneshot_diff(const Options *o, DiffSet *ds);
 /* The figures of one object or file: the text report's block (unit as
  * MeshCheck.unit, ind before each line), and the JSON members (each
  * after ",\n" and ind). Every row of counts.c's table is in them. */

@@ -145,10 +145,12 @@ Test(options, every_value_word_parses)
         char words[256], opt[64], err[256];
         snprintf(words, sizeof words, "%s", s->values);
         snprintf(opt, sizeof opt, "--%s", s->name);
+        /* an option "with --diff" is parsed with it (and its two files) */
+        int diff = s->help && !strncmp(s->help, "with --diff", 11);
         for (char *w = strtok(words, " "); w; w = strtok(NULL, " ")) {
-            char *argv[] = { "zview", "--bench", opt, w, NULL };
+            char *argv[] = { "zview", diff ? "--diff" : "--bench", opt, w, "a", "b", NULL };
             Options o;
-            cr_expect_eq(cli_parse(4, argv, &o, err, sizeof err), 0, "--%s %s: %s", s->name, w, err);
+            cr_expect_eq(cli_parse(diff ? 6 : 4, argv, &o, err, sizeof err), 0, "--%s %s: %s", s->name, w, err);
         }
     }
     /* --algo's words are the registry's names, and all */
@@ -485,6 +487,9 @@ Test(options, the_view_command_writes_the_options_marked_for_it)
     o.grid = 2;
     o.bg = "white";
     o.contrast = 0.3f;
+    o.diff = 1;
+    o.tolerance = 0.5;
+    o.show = 3;
     s.cam.persp = 1;
     s.cam.fov_deg = 40;
     s.cam.yaw = 0.5f;

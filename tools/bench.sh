@@ -128,6 +128,11 @@ if [ -f "$D" ]; then
         other "memory over $MEM_FRAMES frames" "(no tool)" "0: $MEMFRAMES is not built (make bench builds it)"
     fi
 
+    # --diff of the dragon and of the 5.2M model against edited copies
+    # (tools/bench-diff.sh, same columns)
+    BIG_DIR=$TMP HEADER=0 RUNS=${DIFF_RUNS:-3} ZVIEW="$ZV" SUBDIV="$SUBDIV" PERTURB="${PERTURB:-build/perturb}" \
+        sh "$HERE/bench-diff.sh"
+
     # ==== HOOK (preview21): the preview's time to its first partial picture ====
     # tools/bench-preview.sh, when present, prints its own rows of this
     # table (same columns) for the models in BIG_DIR.

@@ -132,6 +132,7 @@ void cli_defaults(Options *o)
     o->up = -1;
     o->contrast = CONTRAST_DEFAULT;
     o->max_locations = CHECK_LOCATIONS_JSON;
+    o->tolerance = -1;
 }
 
 /* getopt's tables from the option table: a long option with a letter
@@ -264,7 +265,7 @@ static int repair_with(const Options *o, char *err, size_t errlen)
                       : o->bench_tty ? "--bench-tty" : o->print ? "--print" : o->sketch ? "--sketch"
                       : o->turntable ? "--turntable" : o->points ? "--points" : o->dump_ids ? "--dump-ids"
                       : o->dump_screen ? "--dump-screen" : o->image_format ? "--image-format"
-                      : o->watch ? "--watch" : NULL;
+                      : o->watch ? "--watch" : o->diff ? "--diff" : NULL;
     if (other) {
         snprintf(err, errlen, "--repair does not go with %s", other);
         return -1;
@@ -296,6 +297,29 @@ static int repair_with(const Options *o, char *err, size_t errlen)
     if (!o->format && ext < 0) {
         snprintf(err, errlen, "bad value '%s' for -o (the repaired copy's name ends in .stl, .obj or .ply, "
                               "or give --format)", o->out);
+        return -1;
+    }
+    return 0;
+}
+
+/* --diff: two files, a picture or a report, none of the other modes. */
+static int diff_with(const Options *o, char *err, size_t errlen)
+{
+    const char *other = o->check ? "--check" : o->info ? "--info" : o->bench ? "--bench" : o->bench_tty ? "--bench-tty"
+                      : o->sketch ? "--sketch" : o->watch ? "--watch" : o->points ? "--points"
+                      : o->grid > 1 ? "--grid" : o->problems ? "--problems" : o->parts ? "--parts"
+                      : o->dump_ids ? "--dump-ids" : o->dump_screen ? "--dump-screen" : NULL;
+    if (other) {
+        snprintf(err, errlen, "--diff does not go with %s", other);
+        return -1;
+    }
+    if (o->nfiles != 2) {
+        snprintf(err, errlen, "--diff compares two files (zview --diff A B), not %d", o->nfiles);
+        return -1;
+    }
+    if (o->json && (o->print || (o->out && !strcmp(o->out, "-")))) {
+        snprintf(err, errlen, "--diff --json writes one JSON document to standard output: the picture "
+                              "would go into it (use -o FILE)");
         return -1;
     }
     return 0;
@@ -367,9 +391,20 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
                  : o->bench_tty ? "--bench-tty" : "--sketch");
         return -1;
     }
-    if (o->json && !o->check && !o->bench) {
+    if (o->diff && diff_with(o, err, errlen))
+        return -1;
+    const char *diff_only = o->tolerance >= 0 ? "--tolerance" : o->show ? "--show" : o->quiet ? "--quiet" : NULL;
+    if (diff_only && !o->diff) {
+        snprintf(err, errlen, "%s goes with --diff", diff_only);
+        return -1;
+    }
+    if (o->textconv && !o->check) {
+        snprintf(err, errlen, "--textconv goes with --check");
+        return -1;
+    }
+    if (o->json && !o->check && !o->bench && !o->diff) {
         /* a script that asked for JSON would read a picture instead */
-        snprintf(err, errlen, "--json goes with --check, --bench or --repair");
+        snprintf(err, errlen, "--json goes with --check, --diff, --bench or --repair");
         return -1;
     }
     if (o->algo && !o->bench && !hsr_find(o->algo)) {

@@ -552,6 +552,29 @@ static int set_max_hole(Options *o, const OptCall *c)
     return 0;
 }
 
+static int set_tolerance(Options *o, const OptCall *c)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(c->val, &end);
+    if (end == c->val || *end || errno || !isfinite(v) || v < 0)
+        return bad(c, "a distance in the files' units, 0 or more");
+    o->tolerance = v;
+    return 0;
+}
+
+/* --show's words, in DiffShow's order (diff.h) */
+static int set_show(Options *o, const OptCall *c)
+{
+    static const char *const words[] = { "both", "a", "b", "heat" };
+    for (int i = 0; i < (int)(sizeof words / sizeof *words); i++)
+        if (!strcmp(c->val, words[i])) {
+            o->show = i;
+            return 0;
+        }
+    return bad(c, "both, a, b or heat");
+}
+
 /* ==== The table ==== */
 
 const char *const cli_section_names[OPTSEC_COUNT] = {
@@ -665,6 +688,20 @@ const OptSpec cli_options[] = {
       set_problem, 0, 0 },
     { "parts", 0, NULL, NULL, OPTSEC_OUTPUT, "each connected part of the model its own colour\n(@ in the viewer)",
       NULL, FLAG(parts), OPT_VIEWCMD },
+    { "diff", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "how B differs from A (zview --diff A B): both in\none frame, coloured by the distance to the other\n"
+      "(V in the viewer), or a report; exit 3 when they\ndiffer beyond the tolerance",
+      NULL, FLAG(diff), OPT_VIEWCMD },
+    { "tolerance", 0, "D", NULL, OPTSEC_OUTPUT,
+      "with --diff: distances up to D are the same\n(default 0.1% of the bounding box's diagonal)", set_tolerance,
+      0, OPT_VIEWCMD },
+    { "show", 0, NULL, "both a b heat", OPTSEC_OUTPUT,
+      "with --diff: both models, A or B alone, or a heat\nmap of the distance (default both)", set_show, 0,
+      OPT_VIEWCMD },
+    { "quiet", 0, NULL, NULL, OPTSEC_OUTPUT, "with --diff: no report, the exit status alone", NULL, FLAG(quiet), 0 },
+    { "textconv", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "with --check: the report as git's textconv wants\nit (the file unnamed, exit status 0 once read)", NULL,
+      FLAG(textconv), 0 },
     { "watch", 0, NULL, NULL, OPTSEC_INPUT,
       "the viewer reads the files again when they change\n(an exporter's rename too), keeping the view", NULL,
       FLAG(watch), 0 },
@@ -713,7 +750,7 @@ const OptSpec cli_options[] = {
     { "bench-tty", 0, NULL, NULL, OPTSEC_BENCH, "bytes written per frame for a scripted rotation", NULL,
       FLAG(bench_tty), 0 },
     { "views", 0, "N", NULL, OPTSEC_BENCH, "with --bench: views per model (default 8)", set_views, 0, 0 },
-    { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench, --check or --repair: JSON, not text",
+    { "json", 0, NULL, NULL, OPTSEC_BENCH, "with --bench, --check, --diff or --repair: JSON, not\ntext",
       NULL, FLAG(json), 0 },
     { "threads", 'j', "N", NULL, OPTSEC_BENCH, "threads for every stage (default: all cores)", set_threads, 0, 0 },
     { "fps", 0, "N", NULL, OPTSEC_BENCH, "auto-rotate frame cap in the viewer (default 30)", set_fps, 0, 0 },

@@ -233,5 +233,11 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --layout %s", layout_names[opt->layout]);
     if (opt->grid > 1)
         put(&o, " --grid %d", opt->grid);
+    if (opt->diff)
+        put(&o, " --diff");
+    if (opt->diff && opt->tolerance >= 0)
+        put(&o, " --tolerance %.17g", opt->tolerance);
+    if (opt->diff && opt->show > 0 && opt->show < 4)
+        put(&o, " --show %s", (const char *const[]){ "both", "a", "b", "heat" }[opt->show]);
     return o.full ? -1 : 0;
 }

@@ -96,6 +96,20 @@ int main(int argc, char **argv)
         rc = oneshot_repair(&o);
         return rc == 1 || rc == 2 ? rc : finish_stdout() ? 1 : rc;
     }
+    if (o.diff) {
+        /* the two files loaded, checked and measured; the viewer on a
+         * terminal, else the picture asked for and the report */
+        int view = !o.quiet && !o.json && !o.print && !o.out && isatty(STDOUT_FILENO);
+        DiffSet ds;
+        if (diff_load(&ds, &o, view || o.print || o.out, err, sizeof err)) {
+            safetext_line(stderr, "zview: %s", err);
+            diff_set_free(&ds);
+            return 1;
+        }
+        rc = view ? viewer_run_diff(&o, &ds) : oneshot_diff(&o, &ds);
+        diff_set_free(&ds);
+        return rc == 1 ? rc : finish_stdout() ? 1 : rc;
+    }
     if (o.check) {
         /* each file loaded and checked on its own; the picture, if asked, inside */
         rc = oneshot_check(&o);

@@ -5,7 +5,8 @@
  * object when a file has several), then one verdict line. --json
  * prints one JSON document instead (the schema is in the man page and
  * the README). Exit status: 0 sound, 3 problems found, 1 a file could
- * not be read (or the output not written). */
+ * not be read (or the output not written); with --textconv (git's
+ * textconv driver) 0 once read, and the file named "model". */
 
 #define _DEFAULT_SOURCE
 
@@ -20,6 +21,7 @@
 
 typedef struct {
     const char *path;
+    const char *name;           /* as the report names it: the path, or "model" (--textconv) */
     int         read;           /* loaded and checked; else err says why */
     char        err[512];
     char        format[32];
@@ -133,7 +135,7 @@ static void text_file(Out *out, const FileCheck *fc)
 {
     /* the file's name and what its loader said, made safe (safetext.h) */
     char path[SAFETEXT_NAME];
-    safetext(path, sizeof path, fc->path);
+    safetext(path, sizeof path, fc->name);
     if (!fc->read) {
         /* the message names the file already */
         size_t n = strlen(fc->path);
@@ -189,7 +191,7 @@ static void text_verdict(Out *out, const FileCheck *fcs, int n)
             continue;
         if (fcs[i].read)
             meshcheck_verdict(&fcs[i].mc.file, words, sizeof words);
-        out_printf(out, "%s%s: %s", k++ ? "; " : "", safetext(path, sizeof path, fcs[i].path),
+        out_printf(out, "%s%s: %s", k++ ? "; " : "", safetext(path, sizeof path, fcs[i].name),
                    fcs[i].read ? words : "not read");
     }
     out_printf(out, "\n");
@@ -252,7 +254,7 @@ void check_json_counts(Out *out, const CheckCounts *c, const char *ind)
 static void json_file(Out *out, const FileCheck *fc, int first)
 {
     out_printf(out, "%s\n    {\n      \"path\": ", first ? "" : ",");
-    oneshot_json_str(out, fc->path);
+    oneshot_json_str(out, fc->name);
     if (!fc->read) {
         out_printf(out, ",\n      \"ok\": false,\n      \"error\": ");
         oneshot_json_str(out, fc->err);
@@ -286,9 +288,9 @@ static void json_objects(Out *out, const FileCheck *fc, int *first)
             continue;
         any = 1;
         out_printf(out, "%s\n    {\n      \"file\": ", *first ? "" : ",");
-        oneshot_json_str(out, fc->path);
+        oneshot_json_str(out, fc->name);
         out_printf(out, ",\n      \"name\": ");
-        oneshot_json_str(out, i < mc->nobjs ? mc->objs[i].name : fc->path);
+        oneshot_json_str(out, i < mc->nobjs ? mc->objs[i].name : fc->name);
         out_printf(out, ",\n      \"ok\": %s", json_bool(meshcheck_sound(c)));
         check_json_counts(out, c, "      ");
         CheckLocations none = { 0 };
@@ -326,6 +328,9 @@ int oneshot_check(const Options *o)
     int unread = 0, bad = 0, rc = 0;
     for (int i = 0; i < o->nfiles; i++) {
         fcs[i].path = o->files[i];
+        /* git's textconv runs the report on a temporary copy whose name
+         * changes every time: the report names no file */
+        fcs[i].name = o->textconv ? "model" : o->files[i];
         if (check_file(o, &fcs[i])) {
             safetext_line(stderr, "zview: %s", fcs[i].err);
             unread++;
@@ -350,5 +355,7 @@ int oneshot_check(const Options *o)
     for (int i = 0; i < o->nfiles; i++)
         meshcheck_free(&fcs[i].mc);
     free(fcs);
-    return rc || unread ? 1 : bad ? 3 : 0;
+    /* --textconv: the problems are in the text; git takes any other
+     * status than 0 for a failure to convert */
+    return rc || unread ? 1 : bad && !o->textconv ? 3 : 0;
 }

@@ -7,6 +7,7 @@
 #define _DEFAULT_SOURCE
 
 #include <stdint.h>
+#include <stdlib.h>
 #include <sys/mman.h>
 
 #include "bigmem.h"
@@ -29,6 +30,13 @@ void bigmem_advise(void *p, size_t bytes, int populate)
     (void)populate;
     (void)page;
 #endif
+}
+
+void *bigmem_alloc(size_t bytes)
+{
+    void *p = malloc(bytes ? bytes : 1);
+    bigmem_advise(p, bytes, 1);
+    return p;
 }
 
 void *bigmem_zalloc(size_t bytes)

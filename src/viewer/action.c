@@ -341,6 +341,23 @@ static Reaction act_parts(App *a)
     return RE_RENDER;
 }
 
+/* --diff: both models, A alone, B alone, the heat map, and round again. */
+static Reaction act_diff_show(App *a)
+{
+    static const char *const says[DIFF_SHOW_COUNT] = { "both models", "A alone (red: far from B)",
+                                                       "B alone (green: far from A)", "heat map of the distance" };
+    if (!a->diff) {
+        snprintf(a->note, sizeof a->note, "V shows a diff's models in turn (zview --diff A B)");
+        return RE_DRAW;
+    }
+    int show = (a->diff->show + 1) % DIFF_SHOW_COUNT;
+    if (diff_show(a->diff, &a->p, show))
+        return RE_RENDER;       /* out of memory: the frame says so */
+    a->live.show = show;        /* the view's command line (C) shows it */
+    snprintf(a->note, sizeof a->note, "%s", says[show]);
+    return RE_RENDER;
+}
+
 static Reaction act_sketch(App *a)
 {
     return sketch_mode_enter(a);
@@ -348,11 +365,21 @@ static Reaction act_sketch(App *a)
 
 /* The scene edited live (live.c): open, remove, empty. Emptying asks
  * first: it cannot be undone but by opening the files again. */
-static Reaction act_open(App *a)   { return viewer_open_prompt(a); }
-static Reaction act_remove(App *a) { return viewer_remove_selected(a); }
+/* --diff's scene is its two files: nothing joins or leaves it. */
+static int diff_fixed(App *a)
+{
+    if (a->diff)
+        snprintf(a->note, sizeof a->note, "--diff: O, X and E are off");
+    return a->diff != NULL;
+}
+
+static Reaction act_open(App *a)   { return diff_fixed(a) ? RE_DRAW : viewer_open_prompt(a); }
+static Reaction act_remove(App *a) { return diff_fixed(a) ? RE_DRAW : viewer_remove_selected(a); }
 
 static Reaction act_clear(App *a)
 {
+    if (diff_fixed(a))
+        return RE_DRAW;
     if (a->s->nobjs == 0)
         return RE_NONE;     /* empty already (a file still loading comes in all the same) */
     a->confirm = 1;
@@ -625,6 +652,7 @@ const KeyRow viewer_keys[] = {
     { "W ! @", "wireframe, problems, parts",
       { { 'W', act_wireframe }, { '!', act_problems }, { '@', act_parts } } },
     { ". ,", "next / previous problem", { { '.', act_next_problem }, { ',', act_prev_problem } } },
+    { "V", "diff: A, B, heat map, both", { { 'V', act_diff_show } } },
     { "space", "auto-rotate", { { ' ', act_spin } } },
     { "O", "open a file (Tab completes)", { { 'O', act_open } } },
     { "X Delete", "remove the selected object", { { 'X', act_remove }, { TK_DEL, act_remove } } },

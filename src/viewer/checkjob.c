@@ -234,6 +234,10 @@ Reaction viewer_check_poll(App *a)
 void viewer_check_status(const App *a, int max_items, char *buf, size_t len)
 {
     buf[0] = 0;
+    if (a->diff && a->diff->gen == a->s->gen) {     /* --diff: its headline, while the scene is its own */
+        diff_status(a->diff, max_items == 0, a->utf8 ? " \xc2\xb7 " : ", ", buf, len);
+        return;
+    }
     if (!wanted(a) || a->s->nobjs == 0)
         return;
     if (a->chk) {
@@ -253,6 +257,8 @@ void viewer_check_status(const App *a, int max_items, char *buf, size_t len)
 
 int viewer_check_report(const App *a, ReportLine *lines, int max)
 {
+    if (a->diff && a->diff->gen == a->s->gen)
+        return diff_report_lines(a->diff, lines, max);
     if (!wanted(a) || a->chk || a->check_err[0] || !a->s->marks.set)
         return 0;
     SceneCheck sc = { .all = a->check };

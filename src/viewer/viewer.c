@@ -614,8 +614,10 @@ static FILE *open_keys(FILE **opened, const char **name)
 /* No viewer after all: one frame as --print gives, or, when the view's
  * command line was wanted on standard output, an error rather than a
  * frame in its place. */
-static int no_viewer(const Options *o, Scene *s, int loading)
+static int no_viewer(const Options *o, Scene *s, int loading, DiffSet *diff)
 {
+    if (diff)
+        return oneshot_diff(o, diff);
     if (loading && firstload_now(o, s))
         return 1;
     if (o->sketch) {
@@ -643,19 +645,25 @@ static int print_line(const char *line)
     return 0;
 }
 
-static int viewer_main(const Options *o, Scene *s, int loading);
+static int viewer_main(const Options *o, Scene *s, int loading, DiffSet *diff);
 
 int viewer_run(const Options *o, Scene *s)
 {
-    return viewer_main(o, s, 0);
+    return viewer_main(o, s, 0, NULL);
 }
 
 int viewer_run_loading(const Options *o, Scene *s)
 {
-    return viewer_main(o, s, 1);
+    return viewer_main(o, s, 1, NULL);
 }
 
-static int viewer_main(const Options *o, Scene *s, int loading)
+int viewer_run_diff(const Options *o, DiffSet *ds)
+{
+    int rc = viewer_main(o, &ds->scene, 0, ds);
+    return rc ? rc : diff_differ(&ds->d) ? 3 : 0;
+}
+
+static int viewer_main(const Options *o, Scene *s, int loading, DiffSet *diff)
 {
     const char *t = getenv("TERM");
     if (!t || !*t || !strcmp(t, "dumb")) {
@@ -664,7 +672,7 @@ static int viewer_main(const Options *o, Scene *s, int loading)
         safetext_line(stderr, "zview: TERM=%s cannot show the viewer (it needs a terminal that moves its "
                         "cursor: set TERM, e.g. TERM=xterm-256color)%s",
                 t ? t : "", o->print_view || o->sketch ? "" : "; one frame instead, as --print gives");
-        return no_viewer(o, s, loading);
+        return no_viewer(o, s, loading, diff);
     }
     /* what is made below is unmade in one place, at the end */
     App a;
@@ -690,6 +698,7 @@ static int viewer_main(const Options *o, Scene *s, int loading)
         goto done;
     }
     made = 1;
+    a.diff = diff;
     /* an unknown TERM (or xterm-direct without its entry): a description
      * we have does better than one frame */
     const char *use = term_resolve(t);
@@ -752,5 +761,5 @@ done:
         fclose(tty);
     if (screen_tty)
         fclose(screen_tty);
-    return fallback ? no_viewer(o, s, loading) : rc;
+    return fallback ? no_viewer(o, s, loading, diff) : rc;
 }

@@ -159,6 +159,7 @@ typedef struct App {
     int         watch_set;  /* the files are watched as of watch_gen */
     uint32_t    watch_gen;
     int         reload;     /* the load job reads file reload again (--watch), -1 none */
+    DiffSet    *diff;       /* --diff: the two models' diff, whose scene this is; NULL none */
     char        help_text[HELP_LINES_MAX][HELP_LINE_MAX];
     SketchMode  sk;
 } App;

@@ -69,7 +69,7 @@ expect_status "--check without files is a usage error" 2 "$Z" --check
 expect_err "... that says what is missing" "--check"
 expect_status "--check with a bad option is a usage error" 2 "$Z" --check --frobnicate "$T/cube.obj"
 expect_status "--json without --check or --bench is a usage error (not a picture where JSON was asked)" 2 "$Z" --json -p "$T/cube.obj"
-expect_err "... that says what it goes with" "--json goes with --check, --bench or --repair"
+expect_err "... that says what it goes with" "--json goes with --check, --diff, --bench or --repair"
 
 expect_status "several files: one verdict line" 3 "$Z" --check "$T/cube.obj" "$T/open.obj" "$T/flip.obj"
 n=$(grep -c '^verdict' "$T/out")

@@ -1,0 +1,110 @@
+/* diffload.c: --diff A B from the command line to a DiffSet: each file
+ * loaded through the one load path (sandboxed, app_load_opts), checked
+ * and measured (diff.c) and,
+ * for a picture, put with the other in one scene: each in its own
+ * coordinates (no layout: a model and its edited copy overlap where
+ * they agree), fitted once to the union, standing as A's format says. */
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "diff.h"
+
+const char *const diff_show_names[DIFF_SHOW_COUNT] = { "both", "a", "b", "heat" };
+
+int diff_show_from_name(const char *name)
+{
+    for (int i = 0; i < DIFF_SHOW_COUNT; i++)
+        if (!strcmp(name, diff_show_names[i]))
+            return i;
+    return -1;
+}
+
+/* One file; 1 with the message when it cannot be read or has no faces. */
+static int load_one(const Options *o, const char *path, Mesh *m, char *err, size_t errlen)
+{
+    MeshLoadOpts lo = app_load_opts(o);
+    lo.no_textures = 1;         /* the picture's colours are the distances */
+    SandboxOpts so = app_sandbox_opts(o);
+    if (sandbox_load(m, path, &lo, &so, err, errlen))
+        return 1;
+    app_after_load(o, m);
+    if (!m->nfaces) {
+        snprintf(err, errlen, "%s: no faces (--diff compares surfaces)", path);
+        mesh_free(m);
+        return 1;
+    }
+    return 0;
+}
+
+void diff_set_free(DiffSet *ds)
+{
+    diff_free(&ds->d);
+    if (ds->has_scene)
+        scene_free(&ds->scene);
+    free(ds->obj_counts);
+    memset(ds, 0, sizeof *ds);
+}
+
+/* The scene of both, each object's counts kept for diff_show. */
+static int make_scene(DiffSet *ds, const Options *o, Mesh *meshes, char *err, size_t errlen)
+{
+    Options so = *o;
+    so.layout = LAYOUT_NONE;
+    so.up = o->up >= 0 ? o->up : meshes[0].info.up >= 0 && meshes[0].info.up < UP_COUNT ? meshes[0].info.up : UP_Y;
+    if (app_scene_from_meshes(&so, meshes, 2, &ds->scene, NULL, err, errlen))
+        return -1;
+    ds->has_scene = 1;
+    Scene *s = &ds->scene;
+    ds->obj_counts = malloc((size_t)(s->nobjs ? s->nobjs : 1) * 3 * sizeof *ds->obj_counts);
+    if (!ds->obj_counts) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    ds->nobjs_a = 0;
+    for (int i = 0; i < s->nobjs; i++) {
+        const Object *ob = &s->objs[i];
+        ds->nobjs_a += ob->mesh == &s->meshes[0];
+        ds->obj_counts[3 * i] = ob->poly_count;
+        ds->obj_counts[3 * i + 1] = ob->point_count;
+        ds->obj_counts[3 * i + 2] = ob->seg_count;
+    }
+    return diff_show(ds, NULL, o->show);
+}
+
+int diff_load(DiffSet *ds, const Options *o, int scene, char *err, size_t errlen)
+{
+    memset(ds, 0, sizeof *ds);
+    ds->path[0] = o->files[0];
+    ds->path[1] = o->files[1];
+    app_sandbox_warn(o);
+    Mesh *m = calloc(2, sizeof *m);
+    if (!m) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    if (load_one(o, o->files[0], &m[0], err, errlen)) {
+        free(m);
+        return 1;
+    }
+    if (load_one(o, o->files[1], &m[1], err, errlen)) {
+        mesh_free(&m[0]);
+        free(m);
+        return 1;
+    }
+    for (int i = 0; i < 2; i++) {
+        snprintf(ds->format[i], sizeof ds->format[i], "%s", m[i].info.format);
+        snprintf(ds->unit[i], sizeof ds->unit[i], "%s", m[i].info.unit);
+        ds->nverts[i] = m[i].nverts;
+        ds->nfaces[i] = m[i].nfaces;
+    }
+    DiffOpts dop = { o->threads, o->tolerance, NULL, 0, 1 };
+    int rc = diff_compute(&ds->d, &m[0], &m[1], &dop, err, errlen);
+    if (!rc && scene)
+        return make_scene(ds, o, m, err, errlen) ? -1 : 0;      /* the scene took the meshes */
+    mesh_free(&m[0]);
+    mesh_free(&m[1]);
+    free(m);
+    return rc ? -1 : 0;
+}

@@ -1,0 +1,581 @@
+/* test_diff.c: --diff's measure (src/diff/): known answers, and a
+ * brute-force reference.
+ *
+ * A model against itself is 0 and the same; a copy with one convex
+ * vertex moved by d along its normal is d away at that vertex, one
+ * region; a cube against the cube with a second cube added has 6 added
+ * (the second's area), nothing removed, one region, 3 away (its far
+ * side from the first's); a model scaled by 1.01 about its centre is
+ * 0.01 times its farthest point's distance from the centre away (the
+ * Stanford bunny when ../shared/models has it, the bundled knot
+ * always); a planar quad against its two triangles on the other
+ * diagonal, the same model as STL and OBJ, and the model with its
+ * vertices and faces shuffled are 0. Every vertex's distance equals the
+ * least over every triangle of the other model; the two directions
+ * swap when the models do; the sampled maximum lies within its bound
+ * (and, in the suite "models", on the dragon and an edited copy).
+ * Then the files through diff_load: the check's verdicts, the
+ * headline, and the picture's colours: every algorithm gives the same
+ * face ids for each of --show's pictures. */
+#define _DEFAULT_SOURCE
+
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "diff.h"
+#include "testlib.h"
+#include "writers.h"
+
+static Mesh MA, MB;
+static Diff D;
+static char E[512];
+
+static void teardown(void)
+{
+    diff_free(&D);
+    mesh_free(&MA);
+    mesh_free(&MB);
+}
+TestSuite(diff, .fini = teardown);
+
+/* ==== Models ==== */
+
+/* The unit cube at (x, y, z), six quads wound outwards, appended. */
+static void cube(Mesh *m, float x, float y, float z)
+{
+    uint32_t v0 = m->nverts;
+    for (int i = 0; i < 8; i++)
+        cr_assert_eq(tl_mesh_vertex(m, x + (i & 1), y + (i >> 1 & 1), z + (i >> 2 & 1)), 0);
+    static const uint32_t q[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
+                                      { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
+    for (int f = 0; f < 6; f++) {
+        uint32_t c[4] = { v0 + q[f][0], v0 + q[f][1], v0 + q[f][2], v0 + q[f][3] };
+        cr_assert_eq(tl_mesh_face(m, c, 4), 0);
+    }
+}
+
+static void load(Mesh *m, const char *path)
+{
+    cr_assert_eq(mesh_load(m, path, E, sizeof E), 0, "%s", E);
+}
+
+/* A copy of src: positions through f (NULL: as they are). */
+static void copy_mesh(Mesh *dst, const Mesh *src, void (*f)(float *p, const void *ctx), const void *ctx)
+{
+    cr_assert_eq(tl_mesh_init(dst, "copy.obj"), 0);
+    for (uint32_t v = 0; v < src->nverts; v++) {
+        float p[3] = { src->pos[3 * v], src->pos[3 * v + 1], src->pos[3 * v + 2] };
+        if (f)
+            f(p, ctx);
+        cr_assert_eq(tl_mesh_vertex(dst, p[0], p[1], p[2]), 0);
+    }
+    for (uint32_t fc = 0; fc < src->nfaces; fc++)
+        cr_assert_eq(tl_mesh_face(dst, &src->corner[src->face_start[fc]], src->face_start[fc + 1] - src->face_start[fc]),
+                     0);
+    cr_assert_eq(tl_mesh_finish(dst), 0);
+}
+
+static const Diff *run_tol(double tol)
+{
+    DiffOpts o = { 2, tol, NULL, 0, 1 };
+    diff_free(&D);
+    cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), 0, "%s", E);
+    return &D;
+}
+
+static const Diff *run(void)
+{
+    return run_tol(-1);
+}
+
+/* Every used vertex's distance is the least over the other's triangles. */
+static void vertices_against_brute(const DiffSide *s, const Mesh *m, const Mesh *other)
+{
+    for (uint32_t v = 0; v < m->nverts; v++) {
+        if (s->vert_dist[v] < 0)
+            continue;
+        double q[3] = { m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2] }, best = INFINITY, p[3];
+        for (uint32_t f = 0; f < other->nfaces; f++) {
+            uint32_t c0 = other->face_start[f];
+            for (uint32_t c = c0 + 1; c + 1 < other->face_start[f + 1]; c++) {
+                double a[3], b[3], cc[3];
+                for (int k = 0; k < 3; k++) {
+                    a[k] = other->pos[3 * other->corner[c0] + k];
+                    b[k] = other->pos[3 * other->corner[c] + k];
+                    cc[k] = other->pos[3 * other->corner[c + 1] + k];
+                }
+                best = fmin(best, bvh_point_triangle(q, a, b, cc, p));
+            }
+        }
+        double d = sqrt(best);
+        d = d < D.zero ? 0 : d;
+        cr_assert(s->vert_dist[v] == (float)d, "vertex %u: %.9g, every triangle says %.9g", v, s->vert_dist[v], d);
+        cr_assert_leq(d, s->max);
+    }
+    cr_assert_leq(s->max, s->bound);
+}
+
+/* ==== Known answers ==== */
+
+Test(diff, a_model_against_itself_is_the_same)
+{
+    load(&MA, "assets/knot.obj");
+    load(&MB, "assets/knot.obj");
+    const Diff *d = run();
+    cr_assert_eq(d->hausdorff, 0);
+    cr_assert_eq(d->a.mean, 0);
+    cr_assert_eq(d->nregions, 0);
+    cr_assert(!diff_differ(d));
+    cr_assert_float_eq(d->tolerance, DIFF_TOL_FRACTION * d->diag, 1e-12);
+    cr_assert_gt(d->a.vertex_samples, 0);
+    cr_assert_geq(d->a.face_samples, DIFF_SAMPLES / 2, "%llu", (unsigned long long)d->a.face_samples);
+}
+
+/* The outer equator's vertex of the torus (farthest from its axis),
+ * and its normal: the mean of its faces' (locally convex there, so the
+ * normal's line meets the surface first at the vertex). */
+static uint32_t outer_vertex(const Mesh *m, double n[3])
+{
+    uint32_t best = 0;
+    double far = -1;
+    for (uint32_t v = 0; v < m->nverts; v++) {
+        double r = hypot(m->pos[3 * v], m->pos[3 * v + 2]);
+        if (r > far) {
+            far = r;
+            best = v;
+        }
+    }
+    n[0] = n[1] = n[2] = 0;
+    for (uint32_t f = 0; f < m->nfaces; f++) {
+        int has = 0;
+        for (uint32_t c = m->face_start[f]; c < m->face_start[f + 1]; c++)
+            has |= m->corner[c] == best;
+        if (!has)
+            continue;
+        const float *a = &m->pos[3 * m->corner[m->face_start[f]]], *b = &m->pos[3 * m->corner[m->face_start[f] + 1]],
+                    *c = &m->pos[3 * m->corner[m->face_start[f] + 2]];
+        double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] }, w[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+        double x[3] = { u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0] };
+        double l = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        for (int k = 0; k < 3; k++)
+            n[k] += x[k] / l;
+    }
+    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; k++)
+        n[k] /= l;
+    return best;
+}
+
+Test(diff, one_vertex_moved_along_its_normal)
+{
+    load(&MA, "assets/torus.obj");
+    copy_mesh(&MB, &MA, NULL, NULL);
+    double n[3];
+    uint32_t v = outer_vertex(&MA, n);
+    double dmove = 0.05;
+    for (int k = 0; k < 3; k++)
+        MB.pos[3 * v + k] = (float)(MA.pos[3 * v + k] + dmove * n[k]);
+    /* the distance the float position really moved */
+    double moved = 0;
+    for (int k = 0; k < 3; k++)
+        moved += ((double)MB.pos[3 * v + k] - MA.pos[3 * v + k]) * ((double)MB.pos[3 * v + k] - MA.pos[3 * v + k]);
+    moved = sqrt(moved);
+    const Diff *d = run();
+    double size = d->diag;
+    cr_assert(fabs(d->hausdorff - moved) <= 1e-6 * size, "max %.9g, moved %.9g", d->hausdorff, moved);
+    cr_assert(fabs(d->b.max - moved) <= 1e-6 * size);
+    for (int k = 0; k < 3; k++)
+        cr_assert_float_eq(d->b.max_at[k], MB.pos[3 * v + k], 1e-6 * size, "the farthest point is the vertex");
+    cr_assert_lt(d->a.max, d->b.max, "A's surface under the bump is nearer to B than the bump's top to A");
+    cr_assert_eq(d->nregions, 1, "%u regions", d->nregions);
+    cr_assert(d->regions[0].faces_a > 0 && d->regions[0].faces_b > 0, "the bump and what it covers: one region");
+    cr_assert(diff_differ(d));
+    vertices_against_brute(&d->a, &MA, &MB);
+    vertices_against_brute(&d->b, &MB, &MA);
+}
+
+Test(diff, a_cube_added)
+{
+    cr_assert_eq(tl_mesh_init(&MA, "a.obj"), 0);
+    cube(&MA, 0, 0, 0);
+    cr_assert_eq(tl_mesh_finish(&MA), 0);
+    cr_assert_eq(tl_mesh_init(&MB, "b.obj"), 0);
+    cube(&MB, 0, 0, 0);
+    cube(&MB, 3, 0, 0);
+    cr_assert_eq(tl_mesh_finish(&MB), 0);
+    const Diff *d = run();
+    cr_assert_float_eq(d->b.area_over, 6, 1e-9, "added %.12g", d->b.area_over);
+    cr_assert_eq(d->a.area_over, 0);
+    cr_assert_eq(d->a.max, 0);
+    cr_assert_eq(d->hausdorff, 3);
+    /* the mean of B's surface: 0 on the first cube, 2 and 3 on the
+     * second's near and far sides, 2 to 3 along its other four: 15 / 12 */
+    cr_assert_float_eq(d->b.mean, 1.25, 1e-9, "%.12g", d->b.mean);
+    cr_assert_eq(d->nregions, 1);
+    cr_assert_float_eq(d->regions[0].added, 6, 1e-9);
+    cr_assert_eq(d->regions[0].removed, 0);
+    cr_assert_eq(d->regions[0].faces_b, 6);
+    cr_assert_eq(d->regions[0].lo[0], 3);
+    cr_assert_eq(d->regions[0].hi[0], 4);
+    for (uint32_t f = 0; f < 12; f++)
+        cr_assert_eq(d->b.face_class[f], f < 6 ? DIFF_SAME : DIFF_OVER, "face %u", f);
+    vertices_against_brute(&d->b, &MB, &MA);
+    /* the other way round: removed, the sides swapped */
+    Mesh t = MA;
+    MA = MB;
+    MB = t;
+    d = run();
+    cr_assert_float_eq(d->a.area_over, 6, 1e-9);
+    cr_assert_eq(d->b.area_over, 0);
+    cr_assert_eq(d->hausdorff, 3);
+}
+
+/* Positions scaled by 1.01 about a centre. */
+static void scale_about(float *p, const void *ctx)
+{
+    const double *c = ctx;
+    for (int k = 0; k < 3; k++)
+        p[k] = (float)(c[k] + 1.01 * ((double)p[k] - c[k]));
+}
+
+static void scaled_by_1_01(const char *path)
+{
+    load(&MA, path);
+    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY }, c[3], far = 0;
+    for (uint32_t v = 0; v < MA.nverts; v++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], MA.pos[3 * v + k]);
+            hi[k] = fmax(hi[k], MA.pos[3 * v + k]);
+        }
+    for (int k = 0; k < 3; k++)
+        c[k] = (lo[k] + hi[k]) / 2;
+    for (uint32_t v = 0; v < MA.nverts; v++) {
+        double r = 0;
+        for (int k = 0; k < 3; k++)
+            r += ((double)MA.pos[3 * v + k] - c[k]) * ((double)MA.pos[3 * v + k] - c[k]);
+        far = fmax(far, sqrt(r));
+    }
+    copy_mesh(&MB, &MA, scale_about, c);
+    const Diff *d = run();
+    cr_assert(fabs(d->hausdorff - 0.01 * far) <= 0.01 * 0.01 * far, "%s: max %.9g, 0.01 x farthest %.9g", path,
+              d->hausdorff, 0.01 * far);
+    cr_assert_leq(d->a.max, d->b.max * 1.0001, "nothing moved more than the farthest point");
+}
+
+Test(diff, scaled_by_1_01_about_its_centre)
+{
+    scaled_by_1_01("assets/knot.obj");
+    teardown();
+    const char *bunny = tl_shared_model("stanford-bunny.obj");
+    if (bunny)
+        scaled_by_1_01(bunny);
+}
+
+Test(diff, a_quad_against_its_two_triangles)
+{
+    cr_assert_eq(tl_mesh_init(&MA, "quad.obj"), 0);
+    cr_assert_eq(tl_mesh_init(&MB, "tris.obj"), 0);
+    float p[4][3] = { { 0, 0, 0 }, { 3, 0, 1 }, { 3, 2, 1 }, { 0, 2, 0 } };    /* planar, tilted */
+    for (int i = 0; i < 4; i++) {
+        cr_assert_eq(tl_mesh_vertex(&MA, p[i][0], p[i][1], p[i][2]), 0);
+        cr_assert_eq(tl_mesh_vertex(&MB, p[i][0], p[i][1], p[i][2]), 0);
+    }
+    uint32_t q[4] = { 0, 1, 2, 3 }, t1[3] = { 1, 2, 3 }, t2[3] = { 1, 3, 0 };    /* the other diagonal */
+    cr_assert_eq(tl_mesh_face(&MA, q, 4), 0);
+    cr_assert_eq(tl_mesh_face(&MB, t1, 3), 0);
+    cr_assert_eq(tl_mesh_face(&MB, t2, 3), 0);
+    cr_assert_eq(tl_mesh_finish(&MA), 0);
+    cr_assert_eq(tl_mesh_finish(&MB), 0);
+    const Diff *d = run_tol(0);
+    cr_assert_eq(d->hausdorff, 0, "%.17g", d->hausdorff);
+    cr_assert(!diff_differ(d), "the same even at tolerance 0");
+    cr_assert_gt(d->a.face_samples + d->a.edge_samples, 1000, "the faces' insides were sampled");
+}
+
+Test(diff, stl_against_the_obj_it_came_from)
+{
+    load(&MA, "assets/knot.obj");
+    size_t len;
+    char *stl = w_stl_binary(&MA, &len);
+    cr_assert(stl);
+    cr_assert_eq(mesh_parse_buffer(&MB, "knot.stl", "stl", stl, len, E, sizeof E), 0, "%s", E);
+    free(stl);
+    cr_assert_neq(MB.nverts, MA.nverts * 3, "STL's corners were merged into vertices");
+    const Diff *d = run_tol(0);
+    cr_assert_eq(d->hausdorff, 0);
+    cr_assert_eq(d->nregions, 0);
+}
+
+Test(diff, another_vertex_and_face_order_is_the_same)
+{
+    load(&MA, "assets/torus.obj");
+    cr_assert_eq(tl_mesh_init(&MB, "shuffled.obj"), 0);
+    uint32_t n = MA.nverts, *perm = malloc(n * sizeof *perm), *inv = malloc(n * sizeof *inv);
+    for (uint32_t i = 0; i < n; i++)
+        perm[i] = i;
+    srand(7);
+    for (uint32_t i = n - 1; i > 0; i--) {
+        uint32_t j = (uint32_t)rand() % (i + 1), t = perm[i];
+        perm[i] = perm[j];
+        perm[j] = t;
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        inv[perm[i]] = i;
+        cr_assert_eq(tl_mesh_vertex(&MB, MA.pos[3 * perm[i]], MA.pos[3 * perm[i] + 1], MA.pos[3 * perm[i] + 2]), 0);
+    }
+    for (uint32_t f = MA.nfaces; f-- > 0;) {     /* the faces backwards, each turned one corner on */
+        uint32_t c0 = MA.face_start[f], k = MA.face_start[f + 1] - c0, c[16];
+        for (uint32_t i = 0; i < k; i++)
+            c[i] = inv[MA.corner[c0 + (i + 1) % k]];
+        cr_assert_eq(tl_mesh_face(&MB, c, k), 0);
+    }
+    cr_assert_eq(tl_mesh_finish(&MB), 0);
+    free(perm);
+    free(inv);
+    const Diff *d = run_tol(0);
+    cr_assert_eq(d->hausdorff, 0, "%.17g", d->hausdorff);
+}
+
+Test(diff, the_directions_swap_with_the_models)
+{
+    load(&MA, "assets/knot.obj");
+    double c[3] = { 0.3, -0.2, 0.1 };
+    copy_mesh(&MB, &MA, scale_about, c);
+    const Diff *d = run();
+    double ab = d->a.max, ba = d->b.max, h = d->hausdorff, ma = d->a.mean;
+    vertices_against_brute(&d->a, &MA, &MB);
+    vertices_against_brute(&d->b, &MB, &MA);
+    Mesh t = MA;
+    MA = MB;
+    MB = t;
+    d = run();
+    cr_assert_eq(d->a.max, ba);
+    cr_assert_eq(d->b.max, ab);
+    cr_assert_eq(d->b.mean, ma);
+    cr_assert_eq(d->hausdorff, h);
+}
+
+Test(diff, two_bumps_are_two_regions)
+{
+    load(&MA, "assets/torus.obj");
+    copy_mesh(&MB, &MA, NULL, NULL);
+    /* the outer vertex and the one opposite it, moved out */
+    double n[3];
+    uint32_t v = outer_vertex(&MA, n), w = 0;
+    double far = -1;
+    for (uint32_t i = 0; i < MA.nverts; i++) {
+        double dx = MA.pos[3 * i] + MA.pos[3 * v], dz = MA.pos[3 * i + 2] + MA.pos[3 * v + 2], y = MA.pos[3 * i + 1];
+        double r = -(dx * dx + dz * dz) - y * y;    /* nearest to the opposite point */
+        if (r > far || far < -1e29) {
+            far = r;
+            w = i;
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+        MB.pos[3 * v + k] = (float)(MA.pos[3 * v + k] + 0.05 * n[k]);
+        MB.pos[3 * w + k] = (float)(MA.pos[3 * w + k] * 1.05);
+    }
+    const Diff *d = run();
+    cr_assert_eq(d->nregions, 2, "%u regions", d->nregions);
+    cr_assert_geq(d->regions[0].max, d->regions[1].max, "the farthest first");
+}
+
+/* ==== The files, the headline, the picture ==== */
+
+static DiffSet S;
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    cr_assert(f);
+    fputs(text, f);
+    cr_assert_eq(fclose(f), 0);
+}
+
+static const char *const CUBE = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n";
+
+static void load_set(const char *a, const char *b, const char *show, int scene)
+{
+    char pa[64], pb[64];
+    snprintf(pa, sizeof pa, "/tmp/zv-diff-%d-a.obj", (int)getpid());
+    snprintf(pb, sizeof pb, "/tmp/zv-diff-%d-b.obj", (int)getpid());
+    write_file(pa, a);
+    write_file(pb, b);
+    char *argv[] = { "zview", "--diff", "--show", (char *)show, pa, pb, NULL };
+    Options o;
+    cr_assert_eq(cli_parse(6, argv, &o, E, sizeof E), 0, "%s", E);
+    o.no_sandbox = 1;
+    cr_assert_eq(diff_load(&S, &o, scene, E, sizeof E), 0, "%s", E);
+    unlink(pa);
+    unlink(pb);
+}
+
+Test(diff, a_hole_made_is_the_headline)
+{
+    char closed[512], open[512];
+    snprintf(closed, sizeof closed, "%sf 4 1 5 8\n", CUBE);
+    snprintf(open, sizeof open, "%s", CUBE);
+    load_set(closed, open, "both", 0);
+    cr_assert(S.d.check[0].watertight && !S.d.check[1].watertight);
+    char h[256];
+    diff_headline(&S, 0, " | ", h, sizeof h);
+    cr_assert_str_eq(h, "no longer watertight (1 hole) | max 0.5 | 1 region changed");
+    cr_assert(diff_differ(&S.d), "A's face B lacks is half a side from B's others");
+    cr_assert_float_eq(S.d.a.area_over, 1, 0.02, "%g: the face, but a band along its sides within the tolerance",
+                       S.d.a.area_over);
+    diff_set_free(&S);
+    load_set(open, closed, "both", 0);
+    diff_headline(&S, 0, " | ", h, sizeof h);
+    cr_assert(!strncmp(h, "now watertight | max 0.5", 24), "%s", h);
+    diff_headline(&S, 1, " | ", h, sizeof h);
+    cr_assert_str_eq(h, "1 changed");
+    diff_set_free(&S);
+}
+
+/* The picture's ids: every algorithm's the z-buffer's, for a view. */
+static void algorithms_agree(Scene *s, int show)
+{
+    FrameBufs ref = { 0 }, fb = { 0 };
+    ScreenPolys sp = { 0 };
+    HsrStats st;
+    cr_assert_eq(tl_render(s, hsr_algos[0], 1, 96, 64, 0, &sp, &ref, &st), 0);
+    long drawn = 0;
+    for (size_t i = 0; i < (size_t)ref.w * ref.h; i++)
+        drawn += ref.ids[i] >= 0;
+    cr_assert_gt(drawn, 100, "show %d: something is drawn", show);
+    for (int a = 1; a < hsr_nalgos; a++)
+        for (int threads = 1; threads <= 2; threads++) {
+            cr_assert_eq(tl_render(s, hsr_algos[a], threads, 96, 64, 0, &sp, &fb, &st), 0);
+            int x, y;
+            cr_assert_eq(tl_diff(&ref, &fb, &x, &y), 0, "show %d: %s differs at %d,%d", show, hsr_algos[a]->name, x,
+                         y);
+        }
+    fbuf_free(&ref);
+    fbuf_free(&fb);
+    screen_free(&sp);
+}
+
+Test(diff, the_picture_colours_and_every_algorithm_agrees)
+{
+    char two[1024];
+    snprintf(two, sizeof two,
+             "%sf 4 1 5 8\nv 3 0 0\nv 4 0 0\nv 4 1 0\nv 3 1 0\nv 3 0 1\nv 4 0 1\nv 4 1 1\nv 3 1 1\n"
+             "f 9 12 11 10\nf 13 14 15 16\nf 9 10 14 13\nf 10 11 15 14\nf 11 12 16 15\nf 12 9 13 16\n",
+             CUBE);
+    char one[512];
+    snprintf(one, sizeof one, "%sf 4 1 5 8\n", CUBE);
+    load_set(one, two, "both", 1);
+    Scene *s = &S.scene;
+    cr_assert_eq(s->nfaces, 18);
+    cr_assert_eq(S.nobjs_a, 1);
+    /* A's faces and B's first cube grey, B's second cube green */
+    for (uint32_t g = 0; g < 18; g++) {
+        const uint8_t *c = &s->face_rgb[3 * g];
+        int green = c[1] > c[0] + 60 && c[1] > c[2] + 60;
+        cr_assert_eq(green, g >= 12, "face %u: %d %d %d", g, c[0], c[1], c[2]);
+        cr_assert_eq(s->face_surf[g], SURF_PLAIN);
+    }
+    for (int show = 0; show < DIFF_SHOW_COUNT; show++) {
+        cr_assert_eq(diff_show(&S, NULL, show), 0);
+        cr_assert_eq(s->gen, S.gen);
+        uint32_t polys_a = 0, polys_b = 0;
+        for (int i = 0; i < s->nobjs; i++)
+            *(i < S.nobjs_a ? &polys_a : &polys_b) += s->objs[i].poly_count;
+        cr_assert_eq(polys_a > 0, show != DIFF_SHOW_B, "show %d", show);
+        cr_assert_eq(polys_b > 0, show != DIFF_SHOW_A, "show %d", show);
+        if (show == DIFF_SHOW_HEAT)
+            for (uint32_t g = 0; g < 18; g++)
+                cr_assert_eq(s->face_surf[g], SURF_VCOLOUR, "the heat map varies across each face");
+        tl_random_view(s, 11 + (uint32_t)show, show & 1);
+        algorithms_agree(s, show);
+    }
+    diff_set_free(&S);
+}
+
+Test(diff, the_ramp_rises_in_lightness)
+{
+    double last = -1;
+    for (int i = 0; i <= 20; i++) {
+        uint8_t c[3];
+        diff_ramp(i / 20.0, c);
+        /* luma of the sRGB bytes: a rough lightness, enough for the order */
+        double y = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+        cr_assert_gt(y, last, "step %d", i);
+        last = y;
+    }
+    uint8_t lo[3], hi[3];
+    diff_ramp(0, lo);
+    diff_ramp(1, hi);
+    cr_assert(lo[2] > lo[0] && hi[0] > hi[2], "blue to yellow: %d %d %d, %d %d %d", lo[0], lo[1], lo[2], hi[0], hi[1],
+              hi[2]);
+}
+
+/* ==== The shared models (make test-models) ==== */
+
+/* Every vertex moved by up to 1e-4 of the diagonal, pseudo-randomly. */
+static void wobble(float *p, const void *ctx)
+{
+    uint64_t *st = (uint64_t *)ctx;
+    for (int k = 0; k < 3; k++) {
+        *st ^= *st << 13;
+        *st ^= *st >> 7;
+        *st ^= *st << 17;
+        p[k] = (float)(p[k] + ((double)(*st >> 11) / 9007199254740992.0 - 0.5) * 5e-5);
+    }
+}
+
+/* The dragon against itself (0, at once: every vertex is the other's)
+ * and against a copy with every vertex moved: a sample of its vertices
+ * against every triangle, and the same figures on one thread and two. */
+Test(models, diff_of_the_dragon, .timeout = 900)
+{
+    const char *p = tl_shared_model("dragon.obj");
+    if (!p)
+        cr_skip_test("no ../shared/models/dragon.obj");
+    load(&MA, p);
+    load(&MB, p);
+    const Diff *d = run();
+    cr_assert_eq(d->hausdorff, 0);
+    mesh_free(&MB);
+    static uint64_t st = 0x9E3779B97F4A7C15ull;
+    copy_mesh(&MB, &MA, wobble, &st);
+    DiffOpts o1 = { 1, -1, NULL, 0, 1 };
+    Diff one;
+    cr_assert_eq(diff_compute(&one, &MA, &MB, &o1, E, sizeof E), 0, "%s", E);
+    d = run();
+    cr_assert(one.hausdorff == d->hausdorff && one.a.mean == d->a.mean && one.b.mean == d->b.mean &&
+              one.nregions == d->nregions && one.a.bound == d->a.bound,
+              "one thread and two give the same figures");
+    cr_assert(!memcmp(one.a.face_dist, d->a.face_dist, MA.nfaces * sizeof *d->a.face_dist));
+    diff_free(&one);
+    cr_assert_gt(d->hausdorff, 0);
+    cr_assert_leq(d->hausdorff, 5e-5 * sqrt(3) / 2 * 1.01, "no point moved farther than its wobble");
+    /* 60 vertices of each against every triangle of the other */
+    for (int side = 0; side < 2; side++) {
+        const Mesh *m = side ? &MB : &MA, *other = side ? &MA : &MB;
+        const DiffSide *s = side ? &d->b : &d->a;
+        for (uint32_t i = 0; i < 60; i++) {
+            uint32_t v = (uint32_t)(((uint64_t)i * 2654435761u) % m->nverts);
+            if (s->vert_dist[v] < 0)
+                continue;
+            double q[3] = { m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2] }, best = INFINITY, pt[3];
+            for (uint32_t f = 0; f < other->nfaces; f++) {
+                double a[3], b[3], c[3];
+                for (int k = 0; k < 3; k++) {
+                    a[k] = other->pos[3 * other->corner[3 * f] + k];
+                    b[k] = other->pos[3 * other->corner[3 * f + 1] + k];
+                    c[k] = other->pos[3 * other->corner[3 * f + 2] + k];
+                }
+                best = fmin(best, bvh_point_triangle(q, a, b, c, pt));
+            }
+            double want = sqrt(best) < d->zero ? 0 : sqrt(best);
+            cr_assert(s->vert_dist[v] == (float)want, "side %d vertex %u: %.9g, every triangle says %.9g", side, v,
+                      s->vert_dist[v], want);
+        }
+    }
+}
