@@ -55,8 +55,9 @@ prompt_back() {
     wait_for '^back-in-42$'
 }
 
-# cap: the pane's text, trailing blanks dropped
-cap() { tm capture-pane -p -t zv | sed 's/[[:space:]]*$//' >"$T/screen"; }
+# cap: the pane's text, trailing blanks dropped (by tmux itself: -N
+# would keep them; a sed after it cost a third of a poll's processes)
+cap() { tm capture-pane -p -t zv >"$T/screen"; }
 # wait_for EXTENDED-REGEX: poll the pane (up to about 10 s, WAIT_POLLS
 # polls of 0.05 s and a capture each) until it matches
 wait_for() {
