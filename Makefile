@@ -147,16 +147,9 @@ $(BUILD)/replay-repair: $(LIBOBJS) $(FUZZ_REPAIR_SRCS:%.c=$(BUILD)/%.o) $(BUILD)
 $(BUILD)/replay-dist: $(LIBOBJS) $(FUZZ_DIST_SRCS:%.c=$(BUILD)/%.o) $(BUILD)/tests/fuzz/replay.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
-# Every input that ever failed, and the seeds (pending/ is not replayed).
-# fuzz-mesh's loaders warn about what they skip: that goes to /dev/null.
+# Every input that ever failed, and the seeds (tests/fuzz/replay.sh).
 replay: $(REPLAYS)
-	$(BUILD)/replay-obj tests/fuzz/seeds/obj tests/fuzz/regress/obj
-	$(BUILD)/replay-diff tests/fuzz/seeds/diff tests/fuzz/regress/diff
-	$(BUILD)/replay-mesh tests/fuzz/seeds/mesh tests/fuzz/regress/mesh 2>/dev/null
-	$(BUILD)/replay-check tests/fuzz/seeds/check tests/fuzz/regress/check 2>/dev/null
-	$(BUILD)/replay-tex tests/fuzz/seeds/tex tests/fuzz/regress/tex
-	$(BUILD)/replay-repair tests/fuzz/seeds/repair tests/fuzz/regress/repair 2>/dev/null
-	$(BUILD)/replay-dist tests/fuzz/seeds/dist tests/fuzz/regress/dist
+	sh tests/fuzz/replay.sh $(BUILD)
 
 # The stand-in assimp library of the sandbox's tests (tests/standin):
 # its import tries what an exploited parser would. Named as the real one
@@ -167,18 +160,19 @@ $(STANDIN): tests/standin/fakeassimp.c
 	@mkdir -p $(dir $@)
 	$(CC) -O1 -g -Wall -Wextra -fPIC -shared -Wl,-soname,$(notdir $@) $(filter-out -D%,$(shell pkg-config --cflags assimp 2>/dev/null)) -o $@ $<
 
-# The whole suite: unit tests (Criterion), the fuzz corpora, then
-# end-to-end shell tests. Both runners count the checks that skipped
-# themselves (no tmux, no python3, no assimp) and fail on them: the run
-# has not tested what it says. ZV_ALLOW_SKIPS=1 lets a local run pass
-# with them; under CI=true nothing does (tests/skips.sh). The unit suites
-# "models" (needs ../shared/models: make test-models) and "tools" (run by
-# tools/ scripts) are not part of it.
+# The whole suite: unit tests (Criterion), the fuzz corpora and the
+# end-to-end shell tests, the first two beside the third at a lower
+# priority (tests/suite.sh: the scripts mostly wait). Both runners count
+# the checks that skipped themselves (no tmux, no python3, no assimp)
+# and fail on them: the run has not tested what it says.
+# ZV_ALLOW_SKIPS=1 lets a local run pass with them; under CI=true
+# nothing does (tests/skips.sh). The unit suites "models" (needs
+# ../shared/models: make test-models) and "tools" (run by tools/
+# scripts) are not part of it.
 UNIT_FILTER := !(models/*|tools/*)
 test: $(BIN) $(TESTBIN) $(REPLAYS) $(STANDIN)
-	ZVIEW=$(abspath $(BIN)) sh tests/unit.sh $(TESTBIN) --jobs 2 --filter '$(UNIT_FILTER)'
-	$(MAKE) --no-print-directory replay
-	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) sh tests/e2e/run.sh
+	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) \
+	    sh tests/suite.sh $(TESTBIN) '$(UNIT_FILTER)' $(BUILD)
 
 unit: $(TESTBIN)
 	ZVIEW=$(abspath $(BIN)) sh tests/unit.sh $(TESTBIN) --jobs 2 --filter '$(UNIT_FILTER)'

@@ -109,6 +109,12 @@ long tl_diff(const FrameBufs *ref, const FrameBufs *fb, int *first_x, int *first
 {
     long n = 0;
     *first_x = *first_y = -1;
+    /* equal buffers, the usual case, told by two memcmp (the loop below
+     * took a tenth of the agreement matrix's time) */
+    size_t all = (size_t)ref->w * ref->h;
+    if (all == 0 || (memcmp(ref->ids, fb->ids, all * sizeof *ref->ids) == 0 &&
+                     memcmp(ref->depth, fb->depth, all * sizeof *ref->depth) == 0))
+        return 0;
     for (int j = 0; j < ref->h; j++)
         for (int i = 0; i < ref->w; i++) {
             size_t k = (size_t)j * ref->w + i;

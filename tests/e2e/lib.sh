@@ -3,6 +3,21 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$ROOT" || exit 1
+# python3, as the scripts call it (hundreds of times, some in polling
+# loops): the interpreter itself, not a launcher that picks one at every
+# call (pyenv's shim took 0.5 s a call here), found once (run.sh finds
+# it for every script: ZV_PYTHON), and started with -S: the scripts use
+# the standard library alone, and site's .pth files took 70 ms of each
+# start here. By the same name, first in PATH, so that the tmux panes
+# and python's own children get it too.
+if [ -z "${ZV_PYTHON:-}" ] && command -v python3 >/dev/null 2>&1; then
+    ZV_PYTHON=$(python3 -c 'import sys; print(sys.executable)' 2>/dev/null)
+fi
+if [ -x "${ZV_PYTHON:-}" ] && mkdir "$T/bin" &&
+    printf '#!/bin/sh\nexec "%s" -S "$@"\n' "$ZV_PYTHON" >"$T/bin/python3" && chmod +x "$T/bin/python3"; then
+    PATH=$T/bin:$PATH
+    export PATH ZV_PYTHON
+fi
 # the terminal's background as some terminals export it would change
 # what --print draws (backdrop.h): the tests say it where they need one
 unset COLORFGBG

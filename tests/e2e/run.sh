@@ -18,6 +18,11 @@ here=$(cd "$(dirname "$0")" && pwd)
 : "${E2E_JOBS:=2}"
 : "${E2E_TIMES:=$here/../../build/e2e-times}"
 export ZVIEW
+# the python3 interpreter, found once for every script (lib.sh)
+if [ -z "${ZV_PYTHON:-}" ] && command -v python3 >/dev/null 2>&1; then
+    ZV_PYTHON=$(python3 -c 'import sys; print(sys.executable)' 2>/dev/null)
+    export ZV_PYTHON
+fi
 pass=0
 fail=0
 skipped=0

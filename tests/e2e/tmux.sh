@@ -55,17 +55,31 @@ prompt_back() {
     wait_for '^back-in-42$'
 }
 
-# cap: the pane's text, trailing blanks dropped
-cap() { tm capture-pane -p -t zv | sed 's/[[:space:]]*$//' >"$T/screen"; }
-# wait_for EXTENDED-REGEX: poll the pane (up to about 10 s, WAIT_POLLS
-# polls of 0.05 s and a capture each) until it matches
+# cap: the pane's text, trailing blanks dropped (by tmux itself: -N
+# would keep them; a sed after it cost a third of a poll's processes)
+cap() { tm capture-pane -p -t zv >"$T/screen"; }
+# pause: the pause between two polls of a wait, counted in $i in steps
+# of 0.05 s: 0.05 s for the first second, then 0.2 s. Most waits end at
+# the first or second poll; the long ones (a big file loading) wait
+# seconds, and polling them every 0.05 s cost a process or three each
+# time for nothing. A wait's bound stays WAIT_POLLS steps of 0.05 s.
+pause() {
+    if [ "$i" -lt 20 ]; then
+        sleep 0.05
+        i=$((i + 1))
+    else
+        sleep 0.2
+        i=$((i + 4))
+    fi
+}
+# wait_for EXTENDED-REGEX: poll the pane (up to about 10 s: WAIT_POLLS
+# steps of 0.05 s, pause) until it matches
 wait_for() {
     i=0
     while [ $i -lt "${WAIT_POLLS:-200}" ]; do
         cap
         grep -Eq -- "$1" "$T/screen" && return 0
-        sleep 0.05
-        i=$((i + 1))
+        pause
     done
     return 1
 }
@@ -78,8 +92,7 @@ wait_change() {
     while [ $i -lt "${WAIT_POLLS:-200}" ]; do
         cap
         picture "$2" | cmp -s - "$1" || return 0
-        sleep 0.05
-        i=$((i + 1))
+        pause
     done
     return 1
 }
@@ -104,8 +117,7 @@ wait_gone() {
     while [ $i -lt "${WAIT_POLLS:-200}" ]; do
         cap
         grep -Eq -- "$1" "$T/screen" || return 0
-        sleep 0.05
-        i=$((i + 1))
+        pause
     done
     return 1
 }
@@ -116,14 +128,20 @@ check() { if eval "$2"; then ok "$1"; else notok "$1" "$3"; fi; }
 looks() { tm capture-pane -p -e -N -t zv | head -n "$1" | python3 tests/e2e/looks.py; }
 # print_looks ARGS...: the same for a --print frame
 print_looks() { "$Z" --print "$@" | python3 tests/e2e/looks.py; }
-# wait_looks ROWS FILE: poll until the pane's looks equal FILE
+# wait_looks ROWS FILE: poll until the pane's looks equal FILE (in
+# $T/looks, the last looks read); looks.py reads a capture only when it
+# differs from the last one read (each python costs ten captures)
 wait_looks() {
     i=0
+    : >"$T/looks.cap"
     while [ $i -lt "${WAIT_POLLS:-200}" ]; do
-        looks "$1" >"$T/looks"
-        cmp -s "$T/looks" "$2" && return 0
-        sleep 0.05
-        i=$((i + 1))
+        tm capture-pane -p -e -N -t zv | head -n "$1" >"$T/looks.new"
+        if ! cmp -s "$T/looks.new" "$T/looks.cap"; then
+            mv "$T/looks.new" "$T/looks.cap"
+            python3 tests/e2e/looks.py <"$T/looks.cap" >"$T/looks"
+            cmp -s "$T/looks" "$2" && return 0
+        fi
+        pause
     done
     return 1
 }
