@@ -28,7 +28,9 @@
 # A stage that fails is run again (a unit test alone, the e2e scripts
 # that failed first) and the mutant is killed only when it fails again:
 # several runs share this machine, and a check that waits on a clock can
-# fail once under load; a kill that does not repeat is no kill.
+# fail once under load; a kill that does not repeat is no kill. An e2e
+# script that fails twice in the unmutated copy is left out of the run,
+# and the run says so: its survivors were not held to that script.
 #
 #   MUTANTS="a b"        run only these (names from the list)
 #   MUTATE_TIMEOUT=1800  seconds a stage may take (then killed: a mutant
@@ -174,7 +176,7 @@ unit_stage() {
 # counts when it repeats. Sets by. Status 0 passed, 1 failed.
 e2e_stage() {
     for try in 1 2; do
-        (cd "$copy" && E2E_FIRST="$1" E2E_FAIL_FAST=1 exec timeout "$MUTATE_TIMEOUT" make --no-print-directory e2e) >"$work/stage" 2>&1
+        (cd "$copy" && E2E_FIRST="$1" E2E_FAIL_FAST=1 E2E_EXCLUDE="$exclude" exec timeout "$MUTATE_TIMEOUT" make --no-print-directory e2e) >"$work/stage" 2>&1
         rc=$?
         cat "$work/stage" >>"$2"
         [ $rc -eq 0 ] && return 0
@@ -296,6 +298,8 @@ main() {
     bins_rest="$(makevar REPLAYS) $(makevar STANDIN)"
     : >"$work/kills"
     suites=
+    exclude=
+    by=
 
     t0=$(date +%s)
     if [ -n "$MUTATE_CMD" ]; then
@@ -303,12 +307,23 @@ main() {
         (cd "$copy" && sh -c "$MUTATE_CMD") >"$MUTATE_LOGS/baseline.log" 2>&1
     else
         echo "mutate: the unmutated copy first (make test's checks, in stages, in $copy)"
-        make -C "$copy" -j2 $bins $bins_rest >"$MUTATE_LOGS/baseline.log" 2>&1 && staged "" src/none "$MUTATE_LOGS/baseline.log"
+        make -C "$copy" -j2 $bins $bins_rest >"$MUTATE_LOGS/baseline.log" 2>&1 && {
+            staged "" src/none "$MUTATE_LOGS/baseline.log" || {
+                # an e2e script that fails twice without any mutant: the
+                # machine is too loaded for its clock (test_kitty's 200 ms
+                # for the terminal's answer). It is left out, and said.
+                case $by in "e2e "*) ;; *) false ;; esac &&
+                    exclude=$(echo $failed) && [ -n "$exclude" ] &&
+                    echo "mutate: $exclude failed twice without any mutant: left out of every run below (a survivor was not held to it)" &&
+                    e2e_stage "" "$MUTATE_LOGS/baseline.log"
+            }
+        }
     fi || {
         echo "mutate: the unmutated copy fails its tests: see $MUTATE_LOGS/baseline.log" >&2
         exit 2
     }
     echo "mutate: baseline green in $(($(date +%s) - t0)) s"
+    : >"$work/kills"
     # the code of every object, to tell a mutant that changes no code
     suites=$(cd "$copy" && "$bin_tests" --list 2>/dev/null | sed -n 's/^\([A-Za-z0-9_]*\): [0-9]* tests*$/\1/p')
     (cd "$copy" && find build -name '*.o') | while read -r o; do
@@ -379,6 +394,7 @@ main() {
     pct=0
     [ $total -gt 0 ] && pct=$((100 * killed / total))
     echo "mutate: $killed of $total mutants killed ($pct%), $same the same code as the original; $(( ($(date +%s) - start) / 60 )) minutes"
+    [ -z "$exclude" ] || echo "mutate: left out of every run: $exclude (failed twice without any mutant)"
     [ -z "$survivors" ] || echo "mutate: survived:$survivors (each is a test we lack, or an equivalent mutant; logs in $MUTATE_LOGS)"
     [ -z "$broken" ] || { echo "mutate: do not build:$broken" >&2; exit 2; }
     [ -z "$survivors" ]
