@@ -183,25 +183,30 @@ test-models: $(TESTBIN)
 	ZV_MODELS=1 sh tests/unit.sh $(TESTBIN) --jobs 2 --filter 'models/*'
 
 # Mutation testing: each mutant of tests/mutants.txt (a small meaningful
-# change to src/) applied alone to a copy of the tree, then make test in
-# the copy; prints what killed each and the kill rate, and fails when one
-# survives (a test we lack). Long (a baseline make test, then 10 to 70 s a
-# mutant, a whole make test for a survivor: about 15 minutes), so
-# not part of make test, which only checks that every mutant still applies.
-# MUTANTS="a b" runs only those; see tools/mutate.sh for the rest.
+# change to src/) applied alone to a copy of the tree, then make test's
+# checks in the copy; prints what killed each and the kill rate, and
+# fails when one survives (a test we lack). A mutant costs what it takes
+# to kill it (tools/mutate.sh: the unit suites that killed its room's
+# mutants first, each stage stopping at its first failure, e2e only for
+# what the unit tests let through); a survivor has passed every check of
+# make test. Long, so not part of make test, which only checks that
+# every mutant still applies. MUTANTS="a b" runs only those; see
+# tools/mutate.sh for the rest.
 mutate:
 	sh tools/mutate.sh tests/mutants.txt
 
 # The mechanical mutants (tools/mutagen.py): PER_ROOM lines of each room
 # drawn at random (SEED), one operator or constant changed on each, run
-# as make mutate runs its list; then the kill rate per room. Hours: a
-# mutant costs 30 s to 3 min here.
+# as make mutate runs its list; then per room the mutants run, killed,
+# survived and equivalent (the same code, or explained in
+# tests/equivalents.txt), and the kill rate. Hours (doc/design.md:
+# Mutation testing has the last run's table and time).
 PER_ROOM ?= 10
 SEED ?= 1
 mutate-rooms:
 	python3 tools/mutagen.py --per-room $(PER_ROOM) --seed $(SEED) >$(BUILD)/mutants-auto.txt
 	-MUTATE_LOGS=$(BUILD)/mutate-rooms sh tools/mutate.sh $(BUILD)/mutants-auto.txt | tee $(BUILD)/mutate-rooms.log
-	python3 tools/mutagen.py --summary $(BUILD)/mutate-rooms.log
+	python3 tools/mutagen.py --summary $(BUILD)/mutate-rooms.log --list $(BUILD)/mutants-auto.txt --equivalent tests/equivalents.txt
 
 e2e: $(BIN) $(STANDIN)
 	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) sh tests/e2e/run.sh

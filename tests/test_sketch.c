@@ -106,6 +106,36 @@ Test(sketch, undo_clear_and_bad_points)
     sketch_free(&k);
 }
 
+Test(sketch, two_corners_do_not_close)
+{
+    /* a polygon needs an area: two corners are a line */
+    Sketch k;
+    sketch_init(&k);
+    cr_assert_eq(sketch_add_point(&k, -0.5f, -0.5f), 0);
+    cr_assert_eq(sketch_add_point(&k, 0.5f, -0.5f), 0);
+    cr_expect_eq(sketch_close(&k), -1);
+    cr_expect_eq(k.npolys, 0u);
+    cr_assert_eq(sketch_add_point(&k, 0.5f, 0.5f), 0);
+    cr_expect_eq(sketch_close(&k), 0, "the third corner closes it");
+    cr_expect_eq(k.npolys, 1u);
+    sketch_free(&k);
+}
+
+Test(sketch, undoing_the_selected_polygon_selects_the_last_one_left)
+{
+    /* the tilt keys act on the selection: after the selected polygon is
+     * undone they reach the one that is now last, not a polygon gone */
+    Sketch k;
+    two_squares(&k);
+    cr_assert_eq(k.sel, 1);
+    cr_assert_eq(sketch_undo(&k), 0);
+    cr_assert_eq(k.npolys, 1u);
+    cr_expect_eq(k.sel, 0);
+    cr_expect_eq(sketch_tilt(&k, 10, 0), 0, "the polygon left tilts");
+    cr_expect_gt(sketch_depth_at(&k, 0, 0.1f, 0), sketch_depth_at(&k, 0, -0.1f, 0), "and leans");
+    sketch_free(&k);
+}
+
 Test(sketch, obj_text_reloads_with_one_object_per_polygon)
 {
     Sketch k;

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "invariant.h"
+#include "pool.h"
 #include "safefile.h"
 #include "safetext.h"
 #include "sysmem.h"
@@ -114,6 +115,70 @@ Test(util, a_safe_file_writes_a_device_as_it_is)
     cr_expect_eq(safefile_close(&sf, f, 0), 0);
     struct stat st;
     cr_expect(stat("/dev/null", &st) == 0 && S_ISCHR(st.st_mode));
+}
+
+Test(util, a_safe_file_over_a_symlink_replaces_the_file_it_names)
+{
+    /* the link keeps pointing where it did; the file it names is the new
+     * one (a plain file in the link's place would leave the target old) */
+    char dir[] = "/tmp/zv-safe-XXXXXX", target[64], link[64];
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(target, sizeof target, "%s/real.txt", dir);
+    snprintf(link, sizeof link, "%s/link.txt", dir);
+    FILE *f = fopen(target, "w");
+    fputs("old", f);
+    fclose(f);
+    cr_assert_eq(symlink("real.txt", link), 0);
+    SafeFile sf;
+    f = safefile_open(&sf, link, "w");
+    cr_assert_not_null(f);
+    fputs("new", f);
+    cr_expect_eq(safefile_close(&sf, f, 0), 0);
+    struct stat st;
+    cr_expect(lstat(link, &st) == 0 && S_ISLNK(st.st_mode), "the link is still a link");
+    cr_expect_str_eq(slurp(target), "new");
+    unlink(link);
+    unlink(target);
+    rmdir(dir);
+}
+
+/* ==== The helper pool ==== */
+
+typedef struct {
+    int  ntasks, helpers;
+    int *runs;          /* ntasks + 1 counts: the last catches a task past the end */
+    int  bad;           /* a task or worker number out of range */
+} PoolTally;
+
+static void tally_task(void *arg, int task, int worker)
+{
+    PoolTally *c = arg;
+    if (task < 0 || task > c->ntasks || worker < 0 || worker > c->helpers)
+        __atomic_store_n(&c->bad, 1, __ATOMIC_RELAXED);
+    else
+        __atomic_add_fetch(&c->runs[task], 1, __ATOMIC_RELAXED);
+}
+
+Test(util, a_pool_runs_every_task_once_and_no_other)
+{
+    /* pool.h's contract: fn for every task in [0, ntasks), once, on
+     * worker 0 (the caller) .. helpers; run after run on the same pool,
+     * and without one */
+    Pool *pools[2] = { pool_create(3), NULL };
+    cr_assert_not_null(pools[0]);
+    cr_expect(pool_helpers(pools[0]) >= 1 && pool_helpers(pools[0]) <= 3);
+    for (int q = 0; q < 2; q++)
+        for (int ntasks = 0; ntasks <= 40; ntasks++)
+            for (int round = 0; round < 3; round++) {
+                int runs[41] = { 0 };
+                PoolTally c = { ntasks, pool_helpers(pools[q]), runs, 0 };
+                pool_run(pools[q], ntasks, tally_task, &c);
+                cr_assert_eq(c.bad, 0, "a task or worker out of range (%d tasks)", ntasks);
+                for (int t = 0; t < ntasks; t++)
+                    cr_assert_eq(runs[t], 1, "task %d of %d ran %d times", t, ntasks, runs[t]);
+                cr_assert_eq(runs[ntasks], 0, "a task past the last ran (%d tasks)", ntasks);
+            }
+    pool_free(pools[0]);
 }
 
 /* ZV_ASSERT is on exactly in the checked builds (make asan, the

@@ -114,28 +114,77 @@ def candidates(path):
             yield n, line, found
 
 
-def summary(log):
-    """Per room: killed of run, the rate, and the survivors by name."""
+def read_list(path):
+    """name -> ((file, from, to), why) of a list in the format of tests/mutants.txt."""
+    out, cur = {}, None
+    with open(path, encoding='utf-8', errors='replace') as f:
+        for line in f:
+            line = line.rstrip('\n')
+            if line.startswith('name:'):
+                cur = line.split()[1]
+                out[cur] = ['', [], [], []]
+            elif cur and line.startswith('file:'):
+                out[cur][0] = line[5:].strip()
+            elif cur and line.startswith('from:'):
+                out[cur][1].append(line[5:].strip())
+            elif cur and line.startswith('to:'):
+                out[cur][2].append(line[3:].strip())
+            elif cur and line.startswith('why:'):
+                out[cur][3].append(line[4:].strip())
+    return {n: ((v[0], '\n'.join(v[1]), '\n'.join(v[2])), ' '.join(v[3])) for n, v in out.items()}
+
+
+def summary(log, mutants=None, equivalents=None):
+    """Per room: the mutants run, killed, survived and equivalent, and the
+    kill rate of the others (killed / (run - equivalent)). Equivalent: the
+    compiler made the same code of it (SAME in the log), or the list
+    EQUIVALENTS explains why no behaviour can change (a mutant is matched
+    by its file, text and replacement, not its name, which is only the
+    draw's)."""
+    explained = {}
+    if mutants and equivalents:
+        eq = dict(read_list(equivalents).values())
+        explained = {n: eq[v] for n, (v, _) in read_list(mutants).items() if v in eq}
     rooms = {}
     with open(log, encoding='utf-8', errors='replace') as f:
         for line in f:
-            m = re.match(r'^(killed|SURVIVED) +auto-([a-z]+)-(\d+)', line)
-            if m:
-                r = rooms.setdefault(m.group(2), [0, 0, []])
-                r[1] += 1
-                if m.group(1) == 'killed':
-                    r[0] += 1
-                else:
-                    r[2].append('auto-%s-%s' % (m.group(2), m.group(3)))
-    worst = 100
+            m = re.match(r'^(killed|SURVIVED|SAME) +auto-([a-z]+)-(\d+)', line)
+            if not m:
+                continue
+            name = 'auto-%s-%s' % (m.group(2), m.group(3))
+            r = rooms.setdefault(m.group(2), {'run': 0, 'killed': 0, 'same': [], 'explained': [], 'survived': []})
+            r['run'] += 1
+            if m.group(1) == 'killed':
+                r['killed'] += 1
+            elif m.group(1) == 'SAME':
+                r['same'].append(name)
+            elif name in explained:
+                r['explained'].append(name)
+            else:
+                r['survived'].append(name)
+    print('room      run killed survived equivalent  rate')
+    worst = 100.0
+    tot = {'run': 0, 'killed': 0, 'surv': 0, 'eq': 0}
     for room in sorted(rooms):
-        k, n, surv = rooms[room]
-        pct = 100 * k // n
+        r = rooms[room]
+        eq = len(r['same']) + len(r['explained'])
+        live = r['run'] - eq
+        pct = 100.0 * r['killed'] / live if live else 100.0
         worst = min(worst, pct)
-        print('%-8s %3d of %3d killed (%3d%%)%s' % (room, k, n, pct, ('  survived: ' + ' '.join(surv)) if surv else ''))
-    k = sum(r[0] for r in rooms.values())
-    n = sum(r[1] for r in rooms.values())
-    print('all      %3d of %3d killed (%3d%%); the weakest room %d%%' % (k, n, 100 * k // max(n, 1), worst))
+        print('%-8s %4d %6d %8d %10d %5.0f%%%s' % (room, r['run'], r['killed'], len(r['survived']), eq, pct,
+              ('  survived: ' + ' '.join(r['survived'])) if r['survived'] else ''))
+        tot['run'] += r['run']
+        tot['killed'] += r['killed']
+        tot['surv'] += len(r['survived'])
+        tot['eq'] += eq
+    live = tot['run'] - tot['eq']
+    print('%-8s %4d %6d %8d %10d %5.0f%%  (the weakest room %.0f%%)' % (
+        'all', tot['run'], tot['killed'], tot['surv'], tot['eq'], 100.0 * tot['killed'] / max(live, 1), worst))
+    for room in sorted(rooms):
+        for n in rooms[room]['same']:
+            print('equivalent %s: the same code' % n)
+        for n in rooms[room]['explained']:
+            print('equivalent %s: %s' % (n, explained[n]))
     return 0
 
 
@@ -144,10 +193,12 @@ def main():
     ap.add_argument('--per-room', type=int, default=10)
     ap.add_argument('--seed', type=int, default=1)
     ap.add_argument('--summary', metavar='LOG', help="the kill rate per room from tools/mutate.sh's output")
+    ap.add_argument('--list', metavar='MUTANTS', help='with --summary: the list the run applied')
+    ap.add_argument('--equivalent', metavar='LIST', help='with --summary: the mutants explained as equivalent')
     ap.add_argument('rooms', nargs='*')
     a = ap.parse_args()
     if a.summary:
-        return summary(a.summary)
+        return summary(a.summary, a.list, a.equivalent)
     src = os.path.join(ROOT, 'src')
     rooms = a.rooms or sorted(d for d in os.listdir(src) if os.path.isdir(os.path.join(src, d)))
     rng = random.Random(a.seed)
