@@ -62,6 +62,8 @@ typedef struct {
     FILE       *out, *in;       /* NULL: stdout, stdin */
     const char *termname;       /* NULL: $TERM */
     ColourDepth  colour;          /* wanted; lowered to what the terminal has */
+    int         colour_env;     /* colour is the environment's guess (no --color): below 24 bits,
+                                   the terminal is asked what it draws (termbg.c) */
     int         mouse;          /* report clicks, drags and the wheel */
     int         signals;        /* restore on SIGINT/SIGTERM/SIGHUP, handle SIGTSTP */
     int         ask_bg;         /* ask the terminal for its background (termbg.c) */
@@ -84,6 +86,7 @@ int  term_open(const TermConfig *cfg, char *err, size_t errlen);
 void term_restore(void);
 
 ColourDepth term_colour(void);            /* the depth actually used */
+int  term_colour_answered(void);          /* ... is what the terminal answered, above its environment's */
 /* Pixels: the protocol the terminal takes (PIX_CELLS: none, or not
  * wanted), its cell size in pixels (0 when it does not say), an image
  * drawn from the top left over the picture, and taken away again (the
@@ -207,21 +210,33 @@ typedef struct {
     char     body[TERMBG_BODY_MAX + 1];
     size_t   len;
     int      csi_private;       /* the CSI sequence began with '?' */
+    int      dcs;               /* the string is a DCS (P), not an OSC (]) */
     int      got_bg;            /* an OSC 11 answer with a colour came: bg */
     uint8_t  bg[3];
+    ColourDepth colour;         /* the SGR report (DECRQSS) after a 24-bit colour was set: COLOUR_TRUE
+                                   when it came back as set, COLOUR_256 as a palette index, else 0 */
     int      got_da;            /* the attributes' answer came: no other will */
 } BgScan;
 
 void termbg_scan_init(BgScan *s);
 void termbg_scan(BgScan *s, const unsigned char *b, size_t n);
 
-/* Ask the terminal on out_fd, read its answers from in_fd until the
- * attributes' answer or wait_ms; every byte read goes on to kp (NULL:
- * dropped), so the key parser sees the keys typed meanwhile and drops
- * the answers. The input must not echo (the viewer's curses mode).
- * Returns 1 with rgb_out when the terminal said its background, else 0;
- * waited_ms_out (may be NULL): how long it took. */
-int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, uint8_t rgb_out[3], double *waited_ms_out);
+/* What the terminal said to termbg_ask. */
+typedef struct {
+    int         got_bg;         /* it said its background: bg */
+    uint8_t     bg[3];
+    ColourDepth colour;         /* asked: the colours its SGR report showed (0: no answer) */
+    double      waited_ms;      /* how long the questions took */
+} TermAnswers;
+
+/* Ask the terminal on out_fd its background (and, with ask_colour, the
+ * colours it draws: a 24-bit colour set, the SGR asked back with DECRQSS,
+ * then reset), all in one write, and read its answers from in_fd until
+ * the attributes' answer or wait_ms; every byte read goes on to kp
+ * (NULL: dropped), so the key parser sees the keys typed meanwhile and
+ * drops the answers. The input must not echo (the viewer's curses mode).
+ * Returns 1 when the terminal said its background, else 0. */
+int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, int ask_colour, TermAnswers *ans);
 /* The same on the controlling terminal (/dev/tty) for --print, put in a
  * mode without echo for the question and back; not from a job in the
  * background, nor on TERM=dumb (or none). Returns 1 with rgb_out, else 0. */

@@ -29,6 +29,7 @@ typedef struct {
     int         mouse_on;
     int         cols, rows;     /* the window */
     ColourDepth depth;
+    int         depth_answered; /* depth is what the terminal answered, more than its environment said */
     Quantizer   quant;
     Vt          vt;
     int         out_errno;      /* a write failed (sticky): the next update says so */
