@@ -87,6 +87,10 @@ expect_out "info triangles" "triangles:  12"
 expect_out "info speed" "MB/s"
 expect_status "--info --algo" 0 "$Z" --info --algo zbuffer --size 64x48 assets/cube.obj
 expect_out "info render stats" "overdraw"
+# --info draws no picture: a --size too big for a printed one (16384
+# rows of half blocks are 32768 pixels) is no error there
+expect_status "--info takes a --size no printed picture could" 0 "$Z" --info --size 16384x16384 assets/cube.obj
+expect_out "... and gives the counts" "faces:      6"
 
 # ZV_SIMD (include/simd.h): --info names the level in use; a level that
 # cannot run is said once, naming the variable and the level used; every
