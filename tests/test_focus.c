@@ -147,6 +147,46 @@ Test(focus, kinds_come_first_whatever_the_objects_order)
     scene_free(&s);
 }
 
+/* A flipped face shows, so its outline is enough; a degenerate face has
+ * no area and a duplicate lies on its original, so each gets a ring at
+ * its corners' mean as well (check/items.c). */
+Test(focus, a_degenerate_or_duplicate_face_gets_a_ring_a_flipped_one_does_not)
+{
+    Scene s;
+    SceneCheck sc;
+    /* the closed cube of two_cubes with its first face flipped, a
+     * triangle on one line, and a triangle twice */
+    checked(&s, &sc,
+            "v 3 0 0\nv 4 0 0\nv 4 1 0\nv 3 1 0\nv 3 0 1\nv 4 0 1\nv 4 1 1\nv 3 1 1\n"
+            "f 1 2 3 4\nf 5 6 7 8\nf 1 2 6 5\nf 4 1 5 8\nf 2 3 7 6\nf 3 4 8 7\n"
+            "o flat\nv 10 0 0\nv 11 0 0\nv 13 0 0\nf 9 10 11\n"
+            "o twice\nv 20 0 0\nv 21 0 0\nv 20 1 0\nf 12 13 14\nf 12 13 14\n");
+    int seen[CHECK_LOC_KINDS] = { 0 };
+    for (uint32_t i = 0; i < sc.items.n; i++) {
+        const CheckItem *e = &sc.items.item[i];
+        seen[e->kind]++;
+        if (e->kind == CHECK_LOC_FLIPPED)
+            cr_expect_eq(e->has_ring, 0, "a flipped face needs no ring");
+        if (e->kind == CHECK_LOC_DEGENERATE) {
+            cr_expect_eq(e->has_ring, 1, "a degenerate face has no area to show: a ring");
+            /* the mean of (10,0,0), (11,0,0) and (13,0,0) */
+            cr_expect(fabsf(e->ring[0] - 34.0f / 3) < 1e-5f && e->ring[1] == 0 && e->ring[2] == 0,
+                      "ring at (%g %g %g)", (double)e->ring[0], (double)e->ring[1], (double)e->ring[2]);
+        }
+        if (e->kind == CHECK_LOC_DUPLICATE) {
+            cr_expect_eq(e->has_ring, 1, "a duplicate lies on its original: a ring");
+            cr_expect(fabsf(e->ring[0] - 61.0f / 3) < 1e-5f && fabsf(e->ring[1] - 1.0f / 3) < 1e-6f && e->ring[2] == 0,
+                      "ring at (%g %g %g)",
+                      (double)e->ring[0], (double)e->ring[1], (double)e->ring[2]);
+        }
+    }
+    cr_assert(seen[CHECK_LOC_FLIPPED] >= 1 && seen[CHECK_LOC_DEGENERATE] == 1 && seen[CHECK_LOC_DUPLICATE] == 1,
+              "flipped %d, degenerate %d, duplicate %d", seen[CHECK_LOC_FLIPPED], seen[CHECK_LOC_DEGENERATE],
+              seen[CHECK_LOC_DUPLICATE]);
+    scene_check_free(&sc);
+    scene_free(&s);
+}
+
 /* ==== Framing ==== */
 
 static void framed_in_the_middle(int persp)

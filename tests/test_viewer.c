@@ -359,3 +359,28 @@ Test(viewer, r_goes_back_to_the_opening_view)
     cr_expect_eq(memcmp(&scene.cam.centre, &want.centre, sizeof want.centre), 0, "fitted as it opened");
     cr_expect_eq(scene.objs[0].yaw, 0.25f, "the object turned as it opened");
 }
+
+/* A selected object moves along the screen's axes whatever the turn of
+ * the camera: through the camera's own view matrix, w moves it straight
+ * up the screen and d straight right, neither toward the eye. */
+Test(viewer, w_and_d_move_the_selected_object_up_and_right_on_the_screen)
+{
+    app.sel = 0;
+    scene.cam.yaw = 0.5f;
+    scene.cam.pitch = 0.7f;
+    scene.cam.roll = 0.3f;
+    const int keys[2] = { 'w', 'd' };
+    for (int k = 0; k < 2; k++) {
+        Vec3 before = scene.objs[0].offset;
+        cr_assert_eq(viewer_key(&app, keys[k]) & RE_RENDER, RE_RENDER);
+        Vec3 d = v3_sub(scene.objs[0].offset, before);
+        Mat4 view = camera_view(&scene.cam);
+        Vec3 v = m4_dir(&view, d);
+        float len = sqrtf(v3_dot(d, d));
+        cr_assert(len > 0, "key %c moved nothing", keys[k]);
+        float along = k == 0 ? v.y : v.x, across = k == 0 ? v.x : v.y;
+        cr_expect(along > 0.999f * len && fabsf(across) < 1e-3f * len && fabsf(v.z) < 1e-3f * len,
+                  "key %c: (%g %g %g) on the screen, %g long", keys[k], (double)v.x, (double)v.y, (double)v.z,
+                  (double)len);
+    }
+}

@@ -87,6 +87,10 @@ expect_out "info triangles" "triangles:  12"
 expect_out "info speed" "MB/s"
 expect_status "--info --algo" 0 "$Z" --info --algo zbuffer --size 64x48 assets/cube.obj
 expect_out "info render stats" "overdraw"
+# --info draws no picture: a --size too big for a printed one (16384
+# rows of half blocks are 32768 pixels) is no error there
+expect_status "--info takes a --size no printed picture could" 0 "$Z" --info --size 16384x16384 assets/cube.obj
+expect_out "... and gives the counts" "faces:      6"
 
 # ZV_SIMD (include/simd.h): --info names the level in use; a level that
 # cannot run is said once, naming the variable and the level used; every
@@ -132,7 +136,9 @@ if grep -q "$(printf '\033')" "$T/nc"; then notok "NO_COLOR gives no escapes"; e
 # the benchmark: a table, and JSON with the documented keys
 expect_status "--bench" 0 "$Z" --bench --views 2 --size 64x48 --algo zbuffer,span assets/cube.obj
 expect_out "bench table names the algorithm" "span"
+t0=$(date +%s%N)
 "$Z" --bench --json --views 2 --size 64x48 --algo all --grid 2 assets/cube.obj >"$T/b.json" 2>"$T/err"
+wall_ms=$(( ($(date +%s%N) - t0) / 1000000 ))
 n=$(grep -c '"algo": ' "$T/b.json")
 if [ "$n" -eq 5 ]; then ok "bench --json has one object per algorithm"; else notok "bench --json has one object per algorithm" "$n"; fi
 for key in model polygons algo width height threads views median_ms min_ms frame_median_ms culled_pct overdraw; do
@@ -140,6 +146,12 @@ for key in model polygons algo width height threads views median_ms min_ms frame
 done
 if grep -q '"polygons": 48,' "$T/b.json"; then ok "grid polygons count every copy"; else notok "grid polygons count every copy" "$(head -c 300 "$T/b.json")"; fi
 if head -c 1 "$T/b.json" | grep -q '\[' && tail -n 1 "$T/b.json" | grep -q '^\]$'; then ok "bench --json is one array"; else notok "bench --json is one array"; fi
+# each algorithm's first frame and its time to ready are spans of this
+# run: from 0 to the whole run's time as the shell measured it, first <= ready
+bad=$(tr ',' '\n' <"$T/b.json" | awk -v wall="$wall_ms" '
+    /"first_frame_ms": / { f = $2 + 0; if (f < 0 || f > wall) print "first_frame_ms " f }
+    /"ready_ms": / { r = $2 + 0; if (r < f || r > wall) print "ready_ms " r " (first " f ")" }')
+if [ -z "$bad" ]; then ok "bench first_frame_ms and ready_ms lie within the run"; else notok "bench first_frame_ms and ready_ms lie within the run" "$bad; the run took $wall_ms ms"; fi
 
 # the view state from the command line (what the viewer's keys change)
 "$Z" --print --size=40x12 --mode ascii --color none assets/cube.obj >"$T/nopan.txt"
