@@ -8,6 +8,7 @@
 
 #include "backdrop.h"
 #include "hsr.h"
+#include "printq.h"
 #include "present.h"
 #include "sandbox.h"
 #include "scene.h"
@@ -103,6 +104,15 @@ typedef struct {
     int         show;           /* --show: what the picture shows (DiffShow: both a b heat) */
     int         quiet;          /* --quiet: no report, the exit status says */
     int         textconv;       /* --textconv: --check as git's textconv driver wants it */
+    /* will it print, and its measures (printq.h) */
+    double      bed[3];         /* --bed W x D x H, in the report's unit; 0: not given */
+    const char *unit;           /* --unit mm|in|m: the files' unit (the figures then in mm); NULL: as stated */
+    int         overhang;       /* --overhang[=DEG]: overhanging faces coloured, their area in --check */
+    float       overhang_deg;   /* its angle from the vertical, degrees (45) */
+    int         thickness;      /* --thickness: the faces coloured by wall thickness */
+    double      min_thickness;  /* --min-thickness T: --check reports what is thinner; 0: not given */
+    PrintqPoint measure[3];     /* --measure A B [C]: points or vertices */
+    int         nmeasure;       /* points given (0: no --measure) */
 } Options;
 
 /* The viewer decodes images longer than this a side on a thread of its
@@ -407,6 +417,9 @@ typedef struct {
     int         no_textures;    /* textures hidden (--no-textures, t) */
     int         problems;       /* --problems (!) */
     int         parts;          /* --parts */
+    int         overhang;       /* --overhang */
+    float       overhang_deg;
+    int         thickness;      /* --thickness */
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,
