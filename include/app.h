@@ -251,7 +251,32 @@ typedef struct {
     int         obj;            /* the scene object it is on */
 } ProblemFocus;
 
+/* The colours of --overhang and --thickness over the scene's faces
+ * (printtint.c), and what they were made for. */
 typedef struct {
+    FaceTint     ft;
+    const Scene *key;
+    uint32_t     key_gen;
+    int          key_up, key_overhang, key_thickness;
+    float        key_deg;
+    double       key_limit;
+    /* what the status bar and the report say of them */
+    double       overhang_area; /* file units squared, over the loaded faces */
+    double       thick_scale;   /* the ramp's blue end, file units (0: nothing measured) */
+    double       thick_min;     /* the thinnest, file units */
+} PrintTint;
+
+/* Make p->tint for the scene and the pipeline's --overhang and
+ * --thickness when either changed: 1 when the frame shades with it, 0
+ * when neither is asked, -1 with the reason in err. */
+struct Pipeline;
+int  app_print_tint(struct Pipeline *p, char *err, size_t errlen);
+void print_tint_free(PrintTint *t);
+/* The ramp's scale in words for the status bar ("thickness red 0 to
+ * blue 4 mm"), or "" when there is none. */
+void print_tint_status(const struct Pipeline *p, char *buf, size_t len);
+
+typedef struct Pipeline {
     Scene       *scene;
     const HsrAlgo *algo;
     HsrRunner    run;
@@ -281,6 +306,14 @@ typedef struct {
     int          problems;      /* problem edges drawn, faces seen from inside or crossing coloured */
     int          parts;         /* each part its own colour */
     MarkColours  markcol;       /* the faces' colours for those */
+    /* will it print, on the model (printtint.c): faces coloured by a
+     * question asked of the scene's meshes, made again when the scene
+     * or the question changes */
+    int          overhang;      /* --overhang: the faces past overhang_deg red */
+    float        overhang_deg;
+    int          thickness;     /* --thickness: the faces on the thickness ramp */
+    double       thick_limit;   /* --min-thickness, file units (0: none): the ramp's middle */
+    PrintTint    tint;
     ProblemFocus focus;         /* a problem drawn over the picture (items NULL: none) */
     Scene        shade_view;    /* the scene with those colours, as shading reads it */
     PrimWork    *prims;

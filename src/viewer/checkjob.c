@@ -231,7 +231,26 @@ Reaction viewer_check_poll(App *a)
     return RE_NONE;
 }
 
+static void check_status(const App *a, int max_items, char *buf, size_t len);
+
+/* --overhang's and --thickness's figures first (printtint.c), then the
+ * check's */
 void viewer_check_status(const App *a, int max_items, char *buf, size_t len)
+{
+    print_tint_status(&a->p, buf, len);
+    size_t o = strlen(buf);
+    if (o && max_items == 0)
+        return;
+    if (o + 4 < len) {
+        check_status(a, max_items, buf + o + (o ? 2 : 0), len - o - (o ? 2 : 0));
+        if (o && buf[o + 2])
+            memcpy(buf + o, ", ", 2);
+        else
+            buf[o] = 0;
+    }
+}
+
+static void check_status(const App *a, int max_items, char *buf, size_t len)
 {
     buf[0] = 0;
     if (a->diff && a->diff->gen == a->s->gen) {     /* --diff: its headline, while the scene is its own */
