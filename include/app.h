@@ -28,6 +28,19 @@ typedef struct {
     float     v[3];             /* x y z, yaw pitch roll (degrees), or the scale in v[0] */
 } Placement;
 
+/* Points marked on the model (the viewer's measuring mode, --marks):
+ * vertices of the scene's objects, drawn over the picture with the
+ * lines between them (measuremarks.c), and the cursor that picks them. */
+#define MEASURE_MARKS 3
+typedef struct {
+    int      n;                         /* marks, 0 to 3 */
+    int      obj[MEASURE_MARKS];        /* the scene object each is on */
+    uint32_t v[MEASURE_MARKS];          /* its vertex, 0-based, of the object's mesh */
+    int      cursor;                    /* the cursor shown (the measuring mode) */
+    int      cur_obj;
+    uint32_t cur_v;
+} MeasureMarks;
+
 typedef struct {
     const char *files[MAX_FILES];
     int         nfiles;
@@ -113,6 +126,7 @@ typedef struct {
     double      min_thickness;  /* --min-thickness T: --check reports what is thinner; 0: not given */
     PrintqPoint measure[3];     /* --measure A B [C]: points or vertices */
     int         nmeasure;       /* points given (0: no --measure) */
+    MeasureMarks marks;         /* --marks: the points marked on the model */
 } Options;
 
 /* The viewer decodes images longer than this a side on a thread of its
@@ -276,6 +290,22 @@ void print_tint_free(PrintTint *t);
  * blue 4 mm"), or "" when there is none. */
 void print_tint_status(const struct Pipeline *p, char *buf, size_t len);
 
+/* measuremarks.c: the measuring mode's marks on the picture. Draw the
+ * marks, the lines between them and the cursor over p's last frame. */
+struct Pipeline;
+void app_measure_draw(struct Pipeline *p);
+/* The cursor moved from where it is (none: the picture's middle) to
+ * the nearest vertex visible in the last frame in the direction dx, dy
+ * (screen, y down; 0, 0: the nearest to where it is): 0, or -1 when
+ * there is none that way (the cursor stays). */
+int  app_measure_step(struct Pipeline *p, int dx, int dy);
+/* What the marks measure, in words: the cursor's vertex and position,
+ * the distance and dx dy dz of two marks, the angle of three; in file
+ * units (each object's file's coordinates). */
+void app_measure_words(const Scene *s, const MeasureMarks *m, char *buf, size_t len);
+/* The marks as --marks writes them ("v12,2:v40"), "" none. */
+void app_measure_option(const MeasureMarks *m, char *buf, size_t len);
+
 typedef struct Pipeline {
     Scene       *scene;
     const HsrAlgo *algo;
@@ -314,6 +344,7 @@ typedef struct Pipeline {
     int          thickness;     /* --thickness: the faces on the thickness ramp */
     double       thick_limit;   /* --min-thickness, file units (0: none): the ramp's middle */
     PrintTint    tint;
+    MeasureMarks marks;         /* the points measured, drawn over the picture */
     ProblemFocus focus;         /* a problem drawn over the picture (items NULL: none) */
     Scene        shade_view;    /* the scene with those colours, as shading reads it */
     PrimWork    *prims;
@@ -453,6 +484,7 @@ typedef struct {
     int         overhang;       /* --overhang */
     float       overhang_deg;
     int         thickness;      /* --thickness */
+    const MeasureMarks *marks;  /* the points measured (NULL: none) */
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

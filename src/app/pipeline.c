@@ -199,6 +199,7 @@ void pipeline_apply_options(Pipeline *p, const Options *o)
     p->overhang_deg = o->overhang_deg;
     p->thickness = o->thickness;
     p->thick_limit = o->min_thickness;
+    p->marks = o->marks;
 }
 
 void pipeline_set_backdrop(Pipeline *p, const Backdrop *b)
@@ -339,6 +340,7 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
             return -1;
         /* the problem in focus over it all, in its own colour */
         app_focus_draw(p);
+        app_measure_draw(p);
         p->shade_ms = now_ms() - t2;
     }
     return 0;

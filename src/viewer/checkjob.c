@@ -237,6 +237,12 @@ static void check_status(const App *a, int max_items, char *buf, size_t len);
  * check's */
 void viewer_check_status(const App *a, int max_items, char *buf, size_t len)
 {
+    /* the measuring mode's figures outrank the rest */
+    if (a->measuring || a->p.marks.n) {
+        app_measure_words(a->s, &a->p.marks, buf, len);
+        if (buf[0])
+            return;
+    }
     print_tint_status(&a->p, buf, len);
     size_t o = strlen(buf);
     if (o && max_items == 0)

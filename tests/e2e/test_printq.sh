@@ -137,3 +137,25 @@ if wait_for 'overhang past 45: 256'; then ok "... and the overhanging area"; els
     notok "... and the overhanging area" "$(tail -2 "$T/screen")"; fi
 tm send-keys -t zv q
 wait_for 'zv-exit=0' >/dev/null || notok "the viewer quits" "$(tail -3 "$T/screen")"
+
+# the measuring mode: M, the cursor on a vertex, two marks, the
+# distance along a cube's edge or diagonal, C writing them as --marks
+start 120 30 "$T/cube.obj"
+wait_for 'faces 6 drawn' >/dev/null || notok "the viewer starts" "$(tail -2 "$T/screen")"
+tm send-keys -t zv M
+if wait_for 'v[1-8] (0|10) (0|10) (0|10)'; then ok "M: the cursor on a vertex, its coordinates"; else
+    notok "M: the cursor on a vertex, its coordinates" "$(tail -2 "$T/screen")"; fi
+tm send-keys -t zv Enter Right Enter
+if wait_for 'AB (10|14\.1421|17\.3205) \(dx'; then ok "two marks: the distance along an edge or a diagonal"; else
+    notok "two marks: the distance along an edge or a diagonal" "$(tail -2 "$T/screen")"; fi
+tm send-keys -t zv Down Enter
+if wait_for 'angle ABC (45|54\.74|90|35\.26|60)'; then ok "three marks: the angle"; else
+    notok "three marks: the angle" "$(tail -2 "$T/screen")"; fi
+tm send-keys -t zv h
+if wait_for 'angle ABC'; then ok "the marks stay while it turns"; else notok "the marks stay while it turns" "$(tail -2 "$T/screen")"; fi
+tm send-keys -t zv C
+if wait_for '--marks v[1-8],v[1-8],v[1-8]'; then ok "C writes the marks"; else notok "C writes the marks" "$(cat "$T/screen")"; fi
+tm send-keys -t zv x M
+if wait_for 'measuring off'; then ok "M leaves"; else notok "M leaves" "$(tail -2 "$T/screen")"; fi
+tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null || notok "the viewer quits" "$(tail -3 "$T/screen")"
