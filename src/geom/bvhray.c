@@ -1,9 +1,10 @@
 /* bvhray.c: a ray's first hit through the BVH of bvh.c (include/bvh.h),
  * for wall thickness. A depth-first walk, nearer child first, passing
  * over any child whose box the ray enters past the best hit so far (the
- * slab test of Kay and Kajiya, 1986, in double, on boxes padded by a
- * margin that covers the floats' rounding), and each triangle by Moller
- * and Trumbore's test (1997) in double from the float corners. */
+ * slab test of Kay and Kajiya, 1986, in float, four children at a time,
+ * on boxes padded by a margin that covers the float's rounding), and
+ * each triangle by Moller and Trumbore's test (1997) in double from the
+ * float corners. */
 
 #include <math.h>
 #include <string.h>
@@ -37,51 +38,65 @@ static double ray_triangle(const Bvh *b, uint32_t t, const double o[3], const do
     return tt > 0 && tt <= tmax ? tt : INFINITY;
 }
 
-/* Where the ray enters child c's box (its t, at least 0), +inf when it
- * misses it or enters past best. The box is padded by 2^-20 of its
- * coordinates' size: a hit on a triangle lies within its float box, and
- * the padding keeps rounding from losing it. */
-static double enter_box(const BvhNode *n, int c, const double o[3], const double inv[3], double best)
+/* The ray in float for the box tests, and the margin they keep. */
+typedef struct {
+    float o[3], inv[3];         /* origin; 1 / direction (1e30 for a 0: the slab is never left) */
+    float pad;                  /* the boxes grown by this: covers the origin's rounding and the
+                                   slabs' (2^-20 of the largest coordinate of the root's box) */
+} RayF;
+
+/* Where the ray enters each of a node's four children's boxes (its t,
+ * at least 0) into t_out; the mask of those it enters at most at best.
+ * In float, four at a time: the boxes padded by f->pad and the entry
+ * and exit compared with a relative margin of 2^-20, so that rounding
+ * never passes over a box the exact ray enters (the triangle test, in
+ * double, then decides). */
+static inline int enter_boxes(const BvhNode *n, const RayF *f, float best, float t_out[BVH_WIDTH])
 {
-    double t0 = 0, t1 = best;
-    for (int k = 0; k < 3; k++) {
-        double lo = n->lo[k][c], hi = n->hi[k][c];
-        if (lo > hi)
-            return INFINITY;
-        double pad = (fabs(lo) + fabs(hi)) * 0x1p-20 + 0x1p-100;
-        lo -= pad;
-        hi += pad;
-        if (isinf(inv[k])) {        /* parallel to this slab: inside it or never */
-            if (o[k] < lo || o[k] > hi)
-                return INFINITY;
-            continue;
-        }
-        double a = (lo - o[k]) * inv[k], z = (hi - o[k]) * inv[k];
-        if (a > z) {
-            double tmp = a;
-            a = z;
-            z = tmp;
-        }
-        t0 = a > t0 ? a : t0;
-        t1 = z < t1 ? z : t1;
-        if (t0 > t1)
-            return INFINITY;
+    float t0[BVH_WIDTH], t1[BVH_WIDTH];
+    for (int c = 0; c < BVH_WIDTH; c++) {
+        t0[c] = 0;
+        t1[c] = best;
     }
-    return t0;
+    for (int k = 0; k < 3; k++)
+        for (int c = 0; c < BVH_WIDTH; c++) {
+            float a = (n->lo[k][c] - f->pad - f->o[k]) * f->inv[k];
+            float z = (n->hi[k][c] + f->pad - f->o[k]) * f->inv[k];
+            float lo = a < z ? a : z, hi = a < z ? z : a;
+            t0[c] = lo > t0[c] ? lo : t0[c];
+            t1[c] = hi < t1[c] ? hi : t1[c];
+        }
+    int mask = 0;
+    for (int c = 0; c < BVH_WIDTH; c++) {
+        t_out[c] = t0[c];
+        mask |= (t0[c] * (1 - 0x1p-20f) <= t1[c] * (1 + 0x1p-20f) && n->child[c] != BVH_NONE) << c;
+    }
+    return mask;
 }
 
 void bvh_ray(const Bvh *b, const double origin[3], const double dir[3], double tmax, uint32_t skip,
              BvhRayHit *hit)
 {
-    double best = tmax, inv[3];
+    double best = tmax;
     uint32_t bt = BVH_NONE;
-    for (int k = 0; k < 3; k++)
-        inv[k] = dir[k] != 0 ? 1 / dir[k] : INFINITY;
+    RayF f;
+    float big = 0;
+    if (b->nnodes)
+        for (int k = 0; k < 3; k++)
+            for (int c = 0; c < BVH_WIDTH; c++)
+                if (b->node[0].child[c] != BVH_NONE)
+                    big = fmaxf(big, fmaxf(fabsf(b->node[0].lo[k][c]), fabsf(b->node[0].hi[k][c])));
+    for (int k = 0; k < 3; k++) {
+        f.o[k] = (float)origin[k];
+        f.inv[k] = dir[k] != 0 ? (float)(1 / dir[k]) : 1e30f;
+        big = fmaxf(big, fabsf(f.o[k]));
+    }
+    f.pad = big * 0x1p-20f + 0x1p-100f;
     /* invariant: each entry is a child the ray enters at t, which was at
      * most the best hit when it was pushed */
     struct {
         uint32_t child, count;
-        double   t;
+        float    t;
     } stack[STACK_MAX];
     int top = 0;
     if (b->nnodes) {
@@ -92,7 +107,7 @@ void bvh_ray(const Bvh *b, const double origin[3], const double dir[3], double t
     }
     while (top > 0) {
         top--;
-        if (stack[top].t > best)
+        if (stack[top].t * (1 - 0x1p-20f) > best)
             continue;
         if (stack[top].count) {
             uint32_t t0 = stack[top].child;
@@ -108,10 +123,11 @@ void bvh_ray(const Bvh *b, const double origin[3], const double dir[3], double t
             continue;
         }
         const BvhNode *n = &b->node[stack[top].child];
-        double e[BVH_WIDTH];
+        float e[BVH_WIDTH];
         int k = 0, idx[BVH_WIDTH];
+        int mask = enter_boxes(n, &f, best < 3e38 ? (float)best * (1 + 0x1p-20f) : 3e38f, e);
         for (int c = 0; c < BVH_WIDTH; c++) {
-            if (n->child[c] == BVH_NONE || isinf(e[c] = enter_box(n, c, origin, inv, best)))
+            if (!(mask >> c & 1))
                 continue;
             int j = k++;                /* farthest first on the stack: nearest popped first */
             while (j > 0 && e[idx[j - 1]] < e[c]) {
