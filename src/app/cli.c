@@ -359,6 +359,11 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
         snprintf(err, errlen, "%s goes with --repair", o->weld > 0 ? "--weld" : "--max-hole");
         return -1;
     }
+    if ((o->bed[0] > 0 || o->min_thickness > 0) && (o->repair || o->diff || o->nmeasure)) {
+        snprintf(err, errlen, "%s goes with --check, not %s", o->bed[0] > 0 ? "--bed" : "--min-thickness",
+                 o->repair ? "--repair" : o->diff ? "--diff" : "--measure");
+        return -1;
+    }
     if (o->repair)
         return repair_with(o, err, errlen);
     if (o->nmeasure)

@@ -46,6 +46,8 @@ import json; f = json.load(open('$T/j'))['files'][0]['bed']
 print(f['fits'], f['size'], [o['axes'] for o in f['orders'] if o['fits']], len(f['orders']))")
     check "--bed in JSON: fits and the six orders" '[ "$got" = "True [21, 11, 6] ['"'"'y x z'"'"'] 6" ]' "got $got"
 fi
+expect_status "--bed with --diff is refused" 2 "$Z" --diff "$T/cube.obj" "$T/part.obj" --bed 5x5x5
+expect_err "... saying it goes with --check" "--bed goes with --check, not --diff"
 expect_status "--bed 10x10 is refused" 2 "$Z" "$T/cube.obj" --bed 10x10
 expect_err "... naming what it wants" "bad value '10x10' for --bed (WxDxH"
 
