@@ -144,3 +144,54 @@ Test(measure, marks_measure_and_are_drawn_on_their_vertices)
     pipeline_free(&p);
     scene_free(&s);
 }
+
+/* ==== --overhang and --thickness on the picture (app/printtint.c) ==== */
+
+Test(measure, the_tint_colours_the_overhanging_faces_only)
+{
+    /* the 3-4-5 plate of test_printq (z up): only its underside (face
+     * 3) overhangs past 45 degrees; past 30 its low end (face 6) too */
+    static const char *plate =
+        "v 0 0 0\nv 8 0 6\nv 5 0 10\nv -3 0 4\nv 0 10 0\nv 8 10 6\nv 5 10 10\nv -3 10 4\n"
+        "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n";
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "plate.obj", plate), 0);
+    scene_set_up(&s, UP_Z);
+    Pipeline p;
+    cr_assert_eq(pipeline_init(&p, &s, hsr_algos[0], 1), 0);
+    p.overhang = 1;
+    p.overhang_deg = 45;
+    char err[160];
+    cr_assert_eq(app_print_tint(&p, err, sizeof err), 1, "%s", err);
+    cr_assert_eq(p.tint.ft.nfaces, 6);
+    uint8_t red[3];
+    shade_overhang_colour(red);
+    for (int f = 0; f < 6; f++) {
+        const uint8_t *c = &p.tint.ft.rgba[4 * f];
+        cr_assert_eq(c[3], f == 2, "face %d", f + 1);
+        if (c[3])
+            cr_assert(!memcmp(c, red, 3));
+    }
+    cr_assert_float_eq(p.tint.overhang_area, 100, 1e-9);
+    p.overhang_deg = 30;        /* made again for the new angle */
+    cr_assert_eq(app_print_tint(&p, err, sizeof err), 1, "%s", err);
+    cr_assert_eq(p.tint.ft.rgba[4 * 5 + 3], 1, "the low end past 30");
+    cr_assert_float_eq(p.tint.overhang_area, 150, 1e-9);
+    p.overhang = 0;
+    cr_assert_eq(app_print_tint(&p, err, sizeof err), 0, "nothing asked: no tint");
+    pipeline_free(&p);
+    scene_free(&s);
+}
+
+Test(measure, the_thickness_ramp_runs_red_to_blue)
+{
+    uint8_t c[3];
+    shade_thickness_colour(0, c);
+    cr_assert(c[0] > 200 && c[1] < 80 && c[2] < 80, "0 red: %d %d %d", c[0], c[1], c[2]);
+    shade_thickness_colour(1, c);
+    cr_assert(c[2] > 200 && c[0] < 80, "1 blue: %d %d %d", c[0], c[1], c[2]);
+    shade_thickness_colour(5, c);
+    cr_assert(c[2] > 200 && c[0] < 80, "past 1 blue");
+    shade_thickness_colour(2 / 3.0, c);
+    cr_assert(c[1] > 150 && c[0] < 80 && c[2] < 100, "2/3 green: %d %d %d", c[0], c[1], c[2]);
+}
