@@ -13,11 +13,20 @@
 
 #include "app.h"
 
+/* Is vertex v of object o there? Marks outlive edits of the scene
+ * (O, X) and come from the command line (--marks): every use asks. */
+static int exists(const Scene *s, int o, uint32_t v)
+{
+    return o >= 0 && o < s->nobjs && s->objs[o].mesh && v < s->objs[o].mesh->nverts;
+}
+
 /* Vertex v of object o in samples of the last frame (x, y, depth):
- * 0, or -1 behind the eye. */
+ * 0, or -1 behind the eye or not there. */
 static int on_screen(const Pipeline *p, int o, uint32_t v, double out[3])
 {
     const Scene *s = p->scene;
+    if (!exists(s, o, v))
+        return -1;
     const Object *ob = &s->objs[o];
     const float *q = &ob->mesh->pos[3 * (size_t)v];
     Mat4 mv = m4_mul(camera_view(&s->cam), object_matrix(ob));
@@ -44,7 +53,7 @@ int app_measure_step(Pipeline *p, int dx, int dy)
     if (!p->fb.depth || !p->fb.w)
         return -1;
     double c[3] = { p->fb.w / 2.0, p->fb.h / 2.0, 0 };
-    int from = m->cursor && m->cur_obj < s->nobjs && on_screen(p, m->cur_obj, m->cur_v, c) == 0;
+    int from = m->cursor && on_screen(p, m->cur_obj, m->cur_v, c) == 0;
     if (!from)
         dx = dy = 0;        /* no cursor yet: the vertex nearest the middle */
     double best = INFINITY;
@@ -98,9 +107,16 @@ void app_measure_words(const Scene *s, const MeasureMarks *m, char *buf, size_t 
 {
     size_t o = 0;
     buf[0] = 0;
-    if (m->cursor && m->cur_obj < s->nobjs) {
+    if (m->cursor && exists(s, m->cur_obj, m->cur_v)) {
         PrintqPoint c = point_of(s, m->cur_obj, m->cur_v);
         o += (size_t)snprintf(buf, len, "v%u %.4g %.4g %.4g", c.vertex, c.p[0], c.p[1], c.p[2]);
+    }
+    int there = 1;
+    for (int i = 0; i < m->n; i++)
+        there &= exists(s, m->obj[i], m->v[i]);
+    if (!there) {
+        snprintf(buf + o, len - o, "%sa mark is on no vertex of the scene", o ? ", " : "");
+        return;
     }
     if (m->n >= 2 && o < len) {
         PrintqPoint pt[MEASURE_MARKS];
@@ -143,8 +159,7 @@ void app_measure_draw(Pipeline *p)
     double prev[3] = { 0, 0, 0 };
     for (int i = 0; i < m->n; i++) {
         double q[3];
-        int ok = m->obj[i] < s->nobjs && m->v[i] < s->objs[m->obj[i]].mesh->nverts &&
-                 on_screen(p, m->obj[i], m->v[i], q) == 0;
+        int ok = on_screen(p, m->obj[i], m->v[i], q) == 0;
         if (ok && i > 0)
             image_line(&p->img, prev[0] / k, prev[1] / k, q[0] / k, q[1] / k, line_rgb, width);
         if (ok)
@@ -155,7 +170,7 @@ void app_measure_draw(Pipeline *p)
             break;
     }
     double c[3];
-    if (m->cursor && m->cur_obj < s->nobjs && on_screen(p, m->cur_obj, m->cur_v, c) == 0) {
+    if (m->cursor && on_screen(p, m->cur_obj, m->cur_v, c) == 0) {
         image_ring(&p->img, c[0] / k, c[1] / k, r * 1.6, cur_rgb, width);
         image_line(&p->img, c[0] / k - 2 * r, c[1] / k, c[0] / k + 2 * r, c[1] / k, cur_rgb, 1);
         image_line(&p->img, c[0] / k, c[1] / k - 2 * r, c[0] / k, c[1] / k + 2 * r, cur_rgb, 1);

@@ -247,9 +247,11 @@ void viewer_check_status(const App *a, int max_items, char *buf, size_t len)
     size_t o = strlen(buf);
     if (o && max_items == 0)
         return;
-    if (o + 4 < len) {
-        check_status(a, max_items, buf + o + (o ? 2 : 0), len - o - (o ? 2 : 0));
-        if (o && buf[o + 2])
+    if (!o) {
+        check_status(a, max_items, buf, len);
+    } else if (o + 4 < len) {
+        check_status(a, max_items, buf + o + 2, len - o - 2);
+        if (buf[o + 2])
             memcpy(buf + o, ", ", 2);
         else
             buf[o] = 0;

@@ -130,6 +130,11 @@ expect_status "a vertex past the model's" 2 "$Z" "$T/cube.obj" --measure v1 v9
 expect_err "... is named" "v9: the model has 8 vertices"
 expect_status "--measure with --check is refused" 2 "$Z" --check "$T/cube.obj" --measure v1 v2
 
+# ==== --marks ====
+expect_status "--marks past the model's vertices draws no mark" 0 "$Z" -o "$T/m.png" --size 80x60 --marks v1,v99 "$T/cube.obj"
+expect_status "--marks v0 is refused" 2 "$Z" -o "$T/m.png" --marks v0 "$T/cube.obj"
+expect_err "... saying what it takes" "up to three vertices vN or I:vN"
+
 # ==== the viewer ====
 . "$(dirname "$0")/tmux.sh"
 start 120 30 "$T/hollow.obj" --thickness --overhang
