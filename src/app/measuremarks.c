@@ -148,7 +148,6 @@ void app_measure_option(const MeasureMarks *m, char *buf, size_t len)
 void app_measure_draw(Pipeline *p)
 {
     const MeasureMarks *m = &p->marks;
-    const Scene *s = p->scene;
     if (!p->img.w || (!m->n && !m->cursor))
         return;
     static const uint8_t line_rgb[3] = { 0, 230, 230 }, cur_rgb[3] = { 255, 255, 255 };
