@@ -44,7 +44,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff
+.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq
 
 all: $(BIN)
 
@@ -87,6 +87,7 @@ help:
 	@echo '  make bench-repair  the repair of the dragon and the 5.2M model beyond loading, and its peak memory'
 	@echo '  make bench-repair-cli the whole zview --repair IN -o OUT, writing included: wall, CPU, peak, phases'
 	@echo '  make bench-diff    --diff of the dragon and the 5.2M model against edited copies, 1 and 2 threads, memory'
+	@echo '  make bench-printq  --thickness on the dragon (the BVH and a ray a face), 1 and 2 threads; --check with it'
 	@echo '  make bench-sandbox the loading sandbox against --no-sandbox on the dragon'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
@@ -289,6 +290,10 @@ $(BUILD)/subdiv: tools/subdiv.c
 bench-diff: $(BIN) $(BUILD)/subdiv $(BUILD)/perturb $(BUILD)/checkbench
 	ZVIEW=$(abspath $(BIN)) SUBDIV=$(BUILD)/subdiv PERTURB=$(BUILD)/perturb CHECKBENCH=$(BUILD)/checkbench \
 	    sh tools/bench-diff.sh
+
+# --thickness and --overhang on the dragon (issue 32; doc/benchmarks.md)
+bench-printq: $(BIN)
+	ZVIEW=$(abspath $(BIN)) sh tools/bench-printq.sh
 
 $(BUILD)/perturb: tools/perturb.c
 	@mkdir -p $(BUILD)

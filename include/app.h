@@ -8,6 +8,7 @@
 
 #include "backdrop.h"
 #include "hsr.h"
+#include "printq.h"
 #include "present.h"
 #include "sandbox.h"
 #include "scene.h"
@@ -26,6 +27,19 @@ typedef struct {
     int       obj;              /* 0-based object index */
     float     v[3];             /* x y z, yaw pitch roll (degrees), or the scale in v[0] */
 } Placement;
+
+/* Points marked on the model (the viewer's measuring mode, --marks):
+ * vertices of the scene's objects, drawn over the picture with the
+ * lines between them (measuremarks.c), and the cursor that picks them. */
+#define MEASURE_MARKS 3
+typedef struct {
+    int      n;                         /* marks, 0 to 3 */
+    int      obj[MEASURE_MARKS];        /* the scene object each is on */
+    uint32_t v[MEASURE_MARKS];          /* its vertex, 0-based, of the object's mesh */
+    int      cursor;                    /* the cursor shown (the measuring mode) */
+    int      cur_obj;
+    uint32_t cur_v;
+} MeasureMarks;
 
 typedef struct {
     const char *files[MAX_FILES];
@@ -103,6 +117,16 @@ typedef struct {
     int         show;           /* --show: what the picture shows (DiffShow: both a b heat) */
     int         quiet;          /* --quiet: no report, the exit status says */
     int         textconv;       /* --textconv: --check as git's textconv driver wants it */
+    /* will it print, and its measures (printq.h) */
+    double      bed[3];         /* --bed W x D x H, in the report's unit; 0: not given */
+    const char *unit;           /* --unit mm|in|m: the files' unit (the figures then in mm); NULL: as stated */
+    int         overhang;       /* --overhang[=DEG]: overhanging faces coloured, their area in --check */
+    float       overhang_deg;   /* its angle from the vertical, degrees (45) */
+    int         thickness;      /* --thickness: the faces coloured by wall thickness */
+    double      min_thickness;  /* --min-thickness T: --check reports what is thinner; 0: not given */
+    PrintqPoint measure[3];     /* --measure A B [C]: points or vertices */
+    int         nmeasure;       /* points given (0: no --measure) */
+    MeasureMarks marks;         /* --marks: the points marked on the model */
 } Options;
 
 /* The viewer decodes images longer than this a side on a thread of its
@@ -241,7 +265,48 @@ typedef struct {
     int         obj;            /* the scene object it is on */
 } ProblemFocus;
 
+/* The colours of --overhang and --thickness over the scene's faces
+ * (printtint.c), and what they were made for. */
 typedef struct {
+    FaceTint     ft;
+    const Scene *key;
+    uint32_t     key_gen;
+    int          key_up, key_overhang, key_thickness;
+    float        key_deg;
+    double       key_limit;
+    /* what the status bar and the report say of them */
+    double       overhang_area; /* file units squared, over the loaded faces */
+    double       thick_scale;   /* the ramp's blue end, file units (0: nothing measured) */
+    double       thick_min;     /* the thinnest, file units */
+} PrintTint;
+
+/* Make p->tint for the scene and the pipeline's --overhang and
+ * --thickness when either changed: 1 when the frame shades with it, 0
+ * when neither is asked, -1 with the reason in err. */
+struct Pipeline;
+int  app_print_tint(struct Pipeline *p, char *err, size_t errlen);
+void print_tint_free(PrintTint *t);
+/* The ramp's scale in words for the status bar ("thickness red 0 to
+ * blue 4 mm"), or "" when there is none. */
+void print_tint_status(const struct Pipeline *p, char *buf, size_t len);
+
+/* measuremarks.c: the measuring mode's marks on the picture. Draw the
+ * marks, the lines between them and the cursor over p's last frame. */
+struct Pipeline;
+void app_measure_draw(struct Pipeline *p);
+/* The cursor moved from where it is (none: the picture's middle) to
+ * the nearest vertex visible in the last frame in the direction dx, dy
+ * (screen, y down; 0, 0: the nearest to where it is): 0, or -1 when
+ * there is none that way (the cursor stays). */
+int  app_measure_step(struct Pipeline *p, int dx, int dy);
+/* What the marks measure, in words: the cursor's vertex and position,
+ * the distance and dx dy dz of two marks, the angle of three; in file
+ * units (each object's file's coordinates). */
+void app_measure_words(const Scene *s, const MeasureMarks *m, char *buf, size_t len);
+/* The marks as --marks writes them ("v12,2:v40"), "" none. */
+void app_measure_option(const MeasureMarks *m, char *buf, size_t len);
+
+typedef struct Pipeline {
     Scene       *scene;
     const HsrAlgo *algo;
     HsrRunner    run;
@@ -271,6 +336,15 @@ typedef struct {
     int          problems;      /* problem edges drawn, faces seen from inside or crossing coloured */
     int          parts;         /* each part its own colour */
     MarkColours  markcol;       /* the faces' colours for those */
+    /* will it print, on the model (printtint.c): faces coloured by a
+     * question asked of the scene's meshes, made again when the scene
+     * or the question changes */
+    int          overhang;      /* --overhang: the faces past overhang_deg red */
+    float        overhang_deg;
+    int          thickness;     /* --thickness: the faces on the thickness ramp */
+    double       thick_limit;   /* --min-thickness, file units (0: none): the ramp's middle */
+    PrintTint    tint;
+    MeasureMarks marks;         /* the points measured, drawn over the picture */
     ProblemFocus focus;         /* a problem drawn over the picture (items NULL: none) */
     Scene        shade_view;    /* the scene with those colours, as shading reads it */
     PrimWork    *prims;
@@ -407,6 +481,10 @@ typedef struct {
     int         no_textures;    /* textures hidden (--no-textures, t) */
     int         problems;       /* --problems (!) */
     int         parts;          /* --parts */
+    int         overhang;       /* --overhang */
+    float       overhang_deg;
+    int         thickness;      /* --thickness */
+    const MeasureMarks *marks;  /* the points measured (NULL: none) */
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

@@ -67,6 +67,21 @@ typedef struct {
  * the same least distance, the first in leaf order. */
 void bvh_closest(const Bvh *b, const double q[3], BvhHit *hit);
 
+/* A ray's first hit (bvhray.c). */
+typedef struct {
+    double   t;                 /* the hit at origin + t dir; +inf: none */
+    uint32_t tri;               /* its triangle in leaf order, BVH_NONE: none */
+} BvhRayHit;
+
+/* The first triangle the ray origin + t dir meets for t in (0, tmax],
+ * passing over the triangles whose id is skip (BVH_NONE: none; a face
+ * cast from itself). Triangles parallel to the ray and of zero area are
+ * never met. Moller and Trumbore's test (1997) in double from the float
+ * corners, with a margin of 2^-30 of the barycentric range, so that a
+ * ray through an edge two triangles share meets one of them. */
+void bvh_ray(const Bvh *b, const double origin[3], const double dir[3], double tmax, uint32_t skip,
+             BvhRayHit *hit);
+
 /* The n points pos (3 floats each) in the order of a Morton curve
  * (10 bits an axis) through box (low x y z, high x y z; NULL: their
  * own box) into order, and each one's code into code (NULL: not

@@ -33,6 +33,31 @@ void check_json_counts(Out *out, const CheckCounts *c, const char *ind);
 void check_text_locations(Out *out, const CheckLocations *l, const CheckCounts *c, int line, const char *unit,
                           const char *ind);
 void check_json_locations(Out *out, const CheckLocations *l, const CheckCounts *c, const char *ind);
+/* printreport.c: will it print, in --check's report. The figures of one
+ * file, worked out while its mesh is at hand (after the check): the
+ * unit (stated, given with --unit, or what the size suggests), the fit
+ * on --bed, the overhanging area (--overhang), the walls' thickness
+ * (--thickness, --min-thickness). */
+typedef struct {
+    char         unit_given[4];     /* --unit's word ("" none): the figures are in mm */
+    const char  *unit_guess;        /* printq_unit_guess, when the format states none and --unit is not given */
+    int          has_bed;
+    double       bed[3];
+    PrintqOrders orders;
+    int          fits[PRINTQ_ORDERS];
+    int          fit;               /* the first order that fits, -1 none */
+    int          has_overhang;
+    double       overhang_deg, overhang_area;
+    int          has_thickness;
+    PrintqThickness thick;          /* its face array freed once summed */
+    double       thin_limit, thin_area;
+} PrintFigures;
+int  print_figures_run(const Options *o, const Mesh *m, const CheckCounts *c, PrintFigures *pf, char *err,
+                       size_t errlen);
+void print_figures_text(Out *out, const PrintFigures *pf, const char *unit, const char *ind);
+void print_figures_json(Out *out, const PrintFigures *pf, const char *ind);
+/* --measure A B [C] FILE: the figures, text or --json. */
+int  oneshot_measure(const Options *o);
 /* A JSON string: quotes, backslashes and controls escaped, a byte that
  * is not UTF-8 (an object name in Latin-1) as U+FFFD (safetext.h). */
 void oneshot_json_str(Out *out, const char *s);

@@ -176,13 +176,28 @@ typedef struct {
     uint16_t    *surf;          /* per face, NULL: every face plain */
     uint32_t     cap;           /* faces the arrays hold */
     const Scene *key;
-    uint32_t     key_gen, key_marks, key_nfaces;
+    uint32_t     key_gen, key_marks, key_nfaces, key_tint;
     int          key_mode;
 } MarkColours;
-/* Make them for mode (1 problems, 2 parts, 3 both): 1 when the frame
- * should shade with them, 0 when the scene's own colours are right (no
- * marks, or --problems with no face marked), -1 out of memory. */
-int  shade_mark_colours(MarkColours *mc, const Scene *s, int mode);
+/* Colours laid over the loaded faces by a question asked of the model
+ * (--overhang, --thickness; app/printtint.c): per loaded face r, g, b
+ * and 1 when it is coloured (0: its own colour). Grid copies repeat
+ * them. gen changes whenever they do. */
+typedef struct {
+    uint8_t  *rgba;
+    uint32_t  nfaces;
+    uint32_t  gen;
+} FaceTint;
+/* Make them for mode (1 problems, 2 parts, 3 both) and the tint (NULL
+ * or none: no tint; over the parts' colours, under the problems'): 1
+ * when the frame should shade with them, 0 when the scene's own
+ * colours are right (no marks and no tint, or --problems with no face
+ * marked), -1 out of memory. */
+int  shade_mark_colours(MarkColours *mc, const Scene *s, int mode, const FaceTint *tint);
+/* The ramp of --thickness: t 0 red, 1/3 yellow, 2/3 green, 1 and past
+ * it blue; and the colour of an overhanging face. */
+void shade_thickness_colour(double t, uint8_t rgb_out[3]);
+void shade_overhang_colour(uint8_t rgb_out[3]);
 void mark_colours_free(MarkColours *mc);
 
 /* Distinct colour for a face id (also used by tests). */

@@ -501,7 +501,8 @@ Test(options, the_view_command_writes_the_options_marked_for_it)
     s.objs[0].scale = s.objs[0].home_scale * 2;
     s.objs[0].up = UP_Z;
     light_set(&s.light, 10, 20, 0.5f);
-    ViewSettings v = { MODE_ASCII, SHADE_SMOOTH, 45, 1, 9, "span", 1, 1, 3, 2, 1, 1, 1 };
+    MeasureMarks mk = { .n = 2, .obj = { 0, 1 }, .v = { 4, 2 } };
+    ViewSettings v = { MODE_ASCII, SHADE_SMOOTH, 45, 1, 9, "span", 1, 1, 3, 2, 1, 1, 1, 1, 30, 1, &mk };
     char cmd[4096];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     scene_free(&s);
@@ -513,6 +514,9 @@ Test(options, the_view_command_writes_the_options_marked_for_it)
             break;          /* the files */
         if (strncmp(w, "--", 2))
             continue;       /* a value */
+        char *eq = strchr(w, '=');
+        if (eq)
+            *eq = 0;        /* --overhang=30: an optional value */
         const OptSpec *sp = cli_option(w + 2);
         cr_assert_not_null(sp, "the view command writes %s, which is no option", w);
         cr_expect(sp->traits & OPT_VIEWCMD, "the view command writes %s: mark it OPT_VIEWCMD", w);

@@ -250,12 +250,12 @@ Test(problems, parts_take_their_colours_and_flipped_faces_theirs)
     Scene s;
     checked_scene(&s, t);
     MarkColours mc = { 0 };
-    cr_assert_eq(shade_mark_colours(&mc, &s, 1), 1);
+    cr_assert_eq(shade_mark_colours(&mc, &s, 1, NULL), 1);
     uint8_t blue[3], part0[3];
     shade_mark_face_colour(MARK_FLIPPED, blue);
     for (uint32_t f = 0; f < 6; f++)
         cr_assert_eq(memcmp(&mc.rgb[3 * f], blue, 3), 0, "face %u", f);
-    cr_assert_eq(shade_mark_colours(&mc, &s, 2), 1);
+    cr_assert_eq(shade_mark_colours(&mc, &s, 2, NULL), 1);
     shade_part_colour(0, part0);
     for (uint32_t f = 0; f < 6; f++)
         cr_assert_eq(memcmp(&mc.rgb[3 * f], part0, 3), 0, "face %u", f);
@@ -264,7 +264,7 @@ Test(problems, parts_take_their_colours_and_flipped_faces_theirs)
     /* a sound cube under --problems keeps the scene's own colours */
     cube_text(t, sizeof t, 6, -1, 0);
     checked_scene(&s, t);
-    cr_assert_eq(shade_mark_colours(&mc, &s, 1), 0);
+    cr_assert_eq(shade_mark_colours(&mc, &s, 1, NULL), 0);
     mark_colours_free(&mc);
     scene_free(&s);
 }

@@ -87,7 +87,8 @@ static void round_trip(int persp)
     s.objs[2].roll = -1.2f;
     s.objs[0].scale = s.objs[0].home_scale * 1.15f;
     light_set(&s.light, 20, 10, 0.3f);
-    ViewSettings v = { MODE_HALF, SHADE_SMOOTH, 45, 1, 9, "span", 1, 1, 3, 2, 1, 0, 0 };
+    MeasureMarks mk = { .n = 3, .obj = { 0, 1, 0 }, .v = { 6, 2, 11 } };
+    ViewSettings v = { MODE_HALF, SHADE_SMOOTH, 45, 1, 9, "span", 1, 1, 3, 2, 1, 0, 0, 1, 20, 1, &mk };
     char cmd[4096];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_assert(strncmp(cmd, "zview ", 6) == 0, "%s", cmd);
@@ -108,6 +109,10 @@ static void round_trip(int persp)
     cr_expect_eq(o2.point_size, 3);
     cr_expect_eq(o2.line_width, 2);
     cr_expect(o2.no_textures, "textures hidden");
+    cr_expect(o2.overhang && o2.overhang_deg == 20, "overhangs past 20 degrees: %s", cmd);
+    cr_expect(o2.thickness, "thickness");
+    cr_expect(o2.marks.n == 3 && o2.marks.obj[1] == 1 && o2.marks.v[1] == 2 && o2.marks.v[2] == 11 &&
+              o2.marks.obj[2] == 0, "the marks: %s", cmd);
     cr_assert_eq(o2.nfiles, 2);
     Scene t;
     load(&o2, &t);
@@ -156,7 +161,7 @@ Test(viewcmd, defaults_are_left_out_and_odd_file_names_quoted)
     memset(&s, 0, sizeof s);
     s.cam.zoom = 1;
     light_set(&s.light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
-    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0, 0, 0, 0 };
+    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL };
     char cmd[512];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_expect_str_eq(cmd, "zview 'it'\\''s here.obj' --yaw 0 --pitch 0");
@@ -186,7 +191,7 @@ Test(viewcmd, numbers_are_the_shortest_that_come_back)
     s.cam.zoom = 1.15f;
     s.cam.pan = v3(0.1f, -0.3f, 0);
     light_set(&s.light, -34.5f, LIGHT_PITCH, 0.3f);
-    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0, 0, 0, 0 };
+    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL };
     char cmd[512];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_expect_str_eq(cmd, "zview m.obj --yaw -25 --pitch 30 --zoom 1.15 --pan 0.1,-0.3 --light -34.5,37 --ambient 0.3");

@@ -225,6 +225,11 @@ static int take_files(int argc, char **argv, Options *o, char *err, size_t errle
             snprintf(err, errlen, "too many files (at most %d)", MAX_FILES);
             return -1;
         }
+        /* --measure A B [C]: the points after its first are words too */
+        if (o->nmeasure && o->nmeasure < 3 && printq_point_parse(argv[i], &o->measure[o->nmeasure]) == 0) {
+            o->nmeasure++;
+            continue;
+        }
         if (strcmp(argv[i], "-") == 0 && stdin_files++) {
             snprintf(err, errlen, "- (standard input) given twice");
             return -1;
@@ -325,6 +330,28 @@ static int diff_with(const Options *o, char *err, size_t errlen)
     return 0;
 }
 
+/* --measure A B [C]: one file, two or three points, nothing else. */
+static int measure_with(const Options *o, char *err, size_t errlen)
+{
+    const char *other = o->check ? "--check" : o->info ? "--info" : o->bench ? "--bench" : o->bench_tty ? "--bench-tty"
+                      : o->print ? "--print" : o->out ? "-o" : o->sketch ? "--sketch" : o->diff ? "--diff"
+                      : o->turntable ? "--turntable" : o->dump_ids ? "--dump-ids" : o->dump_screen ? "--dump-screen"
+                      : o->watch ? "--watch" : NULL;
+    if (other) {
+        snprintf(err, errlen, "--measure prints its figures alone: it does not go with %s", other);
+        return -1;
+    }
+    if (o->nmeasure < 2) {
+        snprintf(err, errlen, "--measure needs two or three points (X,Y,Z or vN): --measure A B [C]");
+        return -1;
+    }
+    if (o->nfiles != 1) {
+        snprintf(err, errlen, "--measure measures one model (%d given)", o->nfiles);
+        return -1;
+    }
+    return 0;
+}
+
 /* What a single option cannot see: the options that go together or not. */
 static int check_combinations(const Options *o, char *err, size_t errlen)
 {
@@ -332,8 +359,15 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
         snprintf(err, errlen, "%s goes with --repair", o->weld > 0 ? "--weld" : "--max-hole");
         return -1;
     }
+    if ((o->bed[0] > 0 || o->min_thickness > 0) && (o->repair || o->diff || o->nmeasure)) {
+        snprintf(err, errlen, "%s goes with --check, not %s", o->bed[0] > 0 ? "--bed" : "--min-thickness",
+                 o->repair ? "--repair" : o->diff ? "--diff" : "--measure");
+        return -1;
+    }
     if (o->repair)
         return repair_with(o, err, errlen);
+    if (o->nmeasure)
+        return measure_with(o, err, errlen);
     if (o->out) {
         size_t len = strlen(o->out);
         int ext = len >= 5 && (!strcmp(o->out + len - 4, ".png") || !strcmp(o->out + len - 4, ".ppm") ||
@@ -402,7 +436,7 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
         snprintf(err, errlen, "--textconv goes with --check");
         return -1;
     }
-    if (o->json && !o->check && !o->bench && !o->diff) {
+    if (o->json && !o->check && !o->bench && !o->diff && !o->nmeasure) {
         /* a script that asked for JSON would read a picture instead */
         snprintf(err, errlen, "--json goes with --check, --diff, --bench or --repair");
         return -1;
@@ -443,5 +477,7 @@ int cli_parse(int argc, char **argv, Options *o, char *err, size_t errlen)
     if (take_files(argc, argv, o, err, errlen))
         return -1;
     o->problems |= o->problem > 0;  /* a problem in focus is drawn with the rest */
+    /* --bed and --min-thickness are figures of the check's report */
+    o->check |= (o->bed[0] > 0 || o->min_thickness > 0) && !o->repair && !o->diff && !o->nmeasure;
     return check_combinations(o, err, errlen);
 }

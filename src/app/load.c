@@ -79,6 +79,14 @@ void app_after_load(const Options *o, Mesh *m)
         mesh_flip_winding(m);
     if (o->points)
         mesh_as_points(m);
+    /* --unit: the file's lengths taken as that unit, in millimetres from
+     * here on (said in the report: never done without --unit) */
+    double k = o->unit ? printq_unit_mm(o->unit) : 1;
+    if (k != 1)
+        for (size_t i = 0; i < 3 * (size_t)m->nverts; i++)
+            m->pos[i] = (float)(m->pos[i] * k);
+    if (o->unit)
+        snprintf(m->info.unit, sizeof m->info.unit, "mm");
 }
 
 SandboxOpts app_sandbox_opts(const Options *o)

@@ -575,6 +575,90 @@ static int set_show(Options *o, const OptCall *c)
     return bad(c, "both, a, b or heat");
 }
 
+/* ==== Will it print, and its measures (printq.h) ==== */
+
+static int set_bed(Options *o, const OptCall *c)
+{
+    char *end;
+    const char *p = c->val;
+    for (int k = 0; k < 3; k++) {
+        errno = 0;
+        double v = strtod(p, &end);
+        if (end == p || errno || !(v > 0 && v <= 1e9) || (k < 2 ? *end != 'x' && *end != 'X' : *end != 0))
+            return bad(c, "WxDxH: the bed's width, depth and height, more than 0 (e.g. 220x220x250)");
+        o->bed[k] = v;
+        p = end + 1;
+    }
+    return 0;
+}
+
+static int set_unit(Options *o, const OptCall *c)
+{
+    if (printq_unit_mm(c->val) == 0)
+        return bad(c, "mm, in or m");
+    o->unit = c->val;
+    return 0;
+}
+
+/* --overhang[=DEG]: 45 when given without a value. */
+static int set_overhang(Options *o, const OptCall *c)
+{
+    o->overhang = 1;
+    o->overhang_deg = 45;
+    if (c->val && (parse_float(c->val, &o->overhang_deg) || !(o->overhang_deg > 0 && o->overhang_deg < 90)))
+        return bad(c, "degrees from the vertical, more than 0 and less than 90");
+    return 0;
+}
+
+static int set_min_thickness(Options *o, const OptCall *c)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(c->val, &end);
+    if (end == c->val || *end || errno || !(v > 0 && v <= 1e9))
+        return bad(c, "a thickness in the report's unit, more than 0");
+    o->min_thickness = v;
+    return 0;
+}
+
+/* --measure A: the first point; the next ones follow as words (cli.c). */
+static int set_measure(Options *o, const OptCall *c)
+{
+    if (o->nmeasure || printq_point_parse(c->val, &o->measure[0]))
+        return bad(c, "a point X,Y,Z or a vertex vN, then one or two more: --measure A B [C]");
+    o->nmeasure = 1;
+    return 0;
+}
+
+/* --marks A,B,C: vertices vN (of the first object) or I:vN (of object I). */
+static int set_marks(Options *o, const OptCall *c)
+{
+    static const char what[] = "up to three vertices vN or I:vN, comma apart (e.g. v12,2:v40)";
+    MeasureMarks *m = &o->marks;
+    m->n = 0;
+    for (const char *p = c->val; *p;) {
+        char *end;
+        long obj = 1;
+        if (*p != 'v') {
+            errno = 0;
+            obj = strtol(p, &end, 10);
+            if (end == p || *end != ':' || errno || obj < 1 || obj > 65535)
+                return bad(c, what);
+            p = end + 1;
+        }
+        if (*p != 'v' || p[1] < '1' || p[1] > '9' || m->n == MEASURE_MARKS)
+            return bad(c, what);
+        errno = 0;
+        unsigned long long v = strtoull(p + 1, &end, 10);
+        if (errno || v > UINT32_MAX || (*end && *end != ','))
+            return bad(c, what);
+        m->obj[m->n] = (int)obj - 1;
+        m->v[m->n++] = (uint32_t)(v - 1);
+        p = *end ? end + 1 : end;
+    }
+    return m->n ? 0 : bad(c, what);
+}
+
 /* ==== The table ==== */
 
 const char *const cli_section_names[OPTSEC_COUNT] = {
@@ -699,6 +783,29 @@ const OptSpec cli_options[] = {
       "with --diff: both models, A or B alone, or a heat\nmap of the distance (default both)", set_show, 0,
       OPT_VIEWCMD },
     { "quiet", 0, NULL, NULL, OPTSEC_OUTPUT, "with --diff: no report, the exit status alone", NULL, FLAG(quiet), 0 },
+    { "bed", 0, "WxDxH", NULL, OPTSEC_OUTPUT,
+      "with --check (which it turns on): does the model\nfit a bed of W x D x H, and in which of the six\n"
+      "orders of its axes",
+      set_bed, 0, 0 },
+    { "unit", 0, NULL, "mm in m", OPTSEC_OUTPUT,
+      "the files' length unit, when the format states\nnone (or another): the figures then in mm",
+      set_unit, 0, 0 },
+    { "overhang", 0, "DEG", NULL, OPTSEC_OUTPUT,
+      "colour the faces leaning out past DEG from the\nvertical (default 45; --up is up); --check gives\n"
+      "their area",
+      set_overhang, 0, OPT_OPTIONAL | OPT_VIEWCMD },
+    { "thickness", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "colour the faces by wall thickness (a ray inward\nfrom each face), red thin to blue thick",
+      NULL, FLAG(thickness), OPT_VIEWCMD },
+    { "min-thickness", 0, "T", NULL, OPTSEC_OUTPUT,
+      "with --check (which it turns on): the area of the\nwalls thinner than T, and the thinnest point",
+      set_min_thickness, 0, 0 },
+    { "measure", 0, "A B [C]", NULL, OPTSEC_OUTPUT,
+      "print the distance and dx, dy, dz from A to B (and\nthe angle ABC): points X,Y,Z or vertices vN",
+      set_measure, 0, 0 },
+    { "marks", 0, "A,B,C", NULL, OPTSEC_OUTPUT,
+      "mark up to three vertices (vN, or I:vN of object\nI) on the picture, joined (the viewer's M keeps\nthem)",
+      set_marks, 0, OPT_VIEWCMD },
     { "textconv", 0, NULL, NULL, OPTSEC_OUTPUT,
       "with --check: the report as git's textconv wants\nit (the file unnamed, exit status 0 once read)", NULL,
       FLAG(textconv), 0 },

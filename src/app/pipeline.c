@@ -195,6 +195,11 @@ void pipeline_apply_options(Pipeline *p, const Options *o)
     p->no_textures = o->no_textures;
     p->problems = o->problems;
     p->parts = o->parts;
+    p->overhang = o->overhang;
+    p->overhang_deg = o->overhang_deg;
+    p->thickness = o->thickness;
+    p->thick_limit = o->min_thickness;
+    p->marks = o->marks;
 }
 
 void pipeline_set_backdrop(Pipeline *p, const Backdrop *b)
@@ -249,6 +254,7 @@ void pipeline_free(Pipeline *p)
     prims_free(&p->prims);
     contrast_free(&p->rule);
     mark_colours_free(&p->markcol);
+    print_tint_free(&p->tint);
     memset(p, 0, sizeof *p);
 }
 
@@ -267,7 +273,12 @@ int pipeline_samples_side(int samples)
 static const Scene *shade_scene(Pipeline *p)
 {
     int mode = (p->problems ? 1 : 0) | (p->parts ? 2 : 0);
-    int r = mode ? shade_mark_colours(&p->markcol, p->scene, mode) : 0;
+    char err[160];
+    int tinted = app_print_tint(p, err, sizeof err);
+    if (tinted < 0)
+        return NULL;
+    const FaceTint *ft = tinted ? &p->tint.ft : NULL;
+    int r = mode || ft ? shade_mark_colours(&p->markcol, p->scene, mode, ft) : 0;
     if (r <= 0)
         return r < 0 ? NULL : p->scene;
     p->shade_view = *p->scene;
@@ -329,6 +340,7 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
             return -1;
         /* the problem in focus over it all, in its own colour */
         app_focus_draw(p);
+        app_measure_draw(p);
         p->shade_ms = now_ms() - t2;
     }
     return 0;

@@ -200,6 +200,17 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --problems");
     if (v->parts)
         put(&o, " --parts");
+    if (v->overhang && v->overhang_deg == 45)
+        put(&o, " --overhang");
+    else if (v->overhang)
+        put(&o, " --overhang=%s", num(v->overhang_deg).s);
+    if (v->thickness)
+        put(&o, " --thickness");
+    if (v->marks && v->marks->n) {
+        char marks[64];
+        app_measure_option(v->marks, marks, sizeof marks);
+        put(&o, " --marks %s", marks);
+    }
     if (v->point_size > 1)
         put(&o, " --point-size %d", v->point_size);
     if (v->line_width > 1)

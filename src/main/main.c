@@ -110,6 +110,11 @@ int main(int argc, char **argv)
         diff_set_free(&ds);
         return rc == 1 ? rc : finish_stdout() ? 1 : rc;
     }
+    if (o.nmeasure) {
+        /* the model loaded, the points' figures printed */
+        rc = oneshot_measure(&o);
+        return rc ? rc : finish_stdout();
+    }
     if (o.check) {
         /* each file loaded and checked on its own; the picture, if asked, inside */
         rc = oneshot_check(&o);

@@ -26,6 +26,7 @@ typedef struct {
     char        err[512];
     char        format[32];
     MeshCheck   mc;
+    PrintFigures pf;            /* will it print (printreport.c) */
 } FileCheck;
 
 /* ==== Checking ==== */
@@ -50,6 +51,10 @@ static int check_file(const Options *o, FileCheck *fc)
     CheckOpts co = { .threads = o->threads > 0 ? o->threads : default_threads(), .intersections = 1,
                      .locations = o->json ? o->max_locations : CHECK_LOCATIONS_TEXT };
     int r = meshcheck_run(&fc->mc, &m, &co, fc->err, sizeof fc->err);
+    if (r == 0 && print_figures_run(o, &m, &fc->mc.file, &fc->pf, fc->err, sizeof fc->err)) {
+        meshcheck_free(&fc->mc);
+        r = -1;
+    }
     mesh_free(&m);
     if (r)
         return -1;
@@ -163,6 +168,7 @@ static void text_file(Out *out, const FileCheck *fc)
             }
         out_printf(out, "  all %u objects\n", nobj);
         check_text_counts(out, &mc->file, NULL, unit, "    ");
+        print_figures_text(out, &fc->pf, unit, "    ");
     } else {
         /* one object with faces (or none): the file's figures are its */
         const CheckLocations *loc = NULL;
@@ -171,6 +177,7 @@ static void text_file(Out *out, const FileCheck *fc)
                 loc = &mc->objs[i].loc;
         out_printf(out, "\n");
         check_text_counts(out, &mc->file, loc, unit, "  ");
+        print_figures_text(out, &fc->pf, unit, "  ");
     }
 }
 
@@ -274,6 +281,7 @@ static void json_file(Out *out, const FileCheck *fc, int first)
     out_printf(out, ",\n      \"ok\": %s,\n      \"object_count\": %u", json_bool(meshcheck_sound(&fc->mc.file)),
                nobj);
     check_json_counts(out, &fc->mc.file, "      ");
+    print_figures_json(out, &fc->pf, "      ");
     out_printf(out, "\n    }");
 }
 

@@ -84,19 +84,22 @@ static int grow(MarkColours *mc, uint32_t n, int surf)
     return 0;
 }
 
-int shade_mark_colours(MarkColours *mc, const Scene *s, int mode)
+int shade_mark_colours(MarkColours *mc, const Scene *s, int mode, const FaceTint *tint)
 {
     const SceneMarks *mk = &s->marks;
     int problems = mode & 1, parts = mode & 2;
-    if (!mk->set || !mk->nfaces || (!parts && !mk->nflagged))
+    int tinted = tint && tint->rgba && tint->nfaces;
+    int marked = mk->set && mk->nfaces && (parts || mk->nflagged);
+    if (!marked && !tinted)
         return 0;
+    uint32_t tgen = tinted ? tint->gen : 0;
     if (mc->key == s && mc->key_gen == s->gen && mc->key_marks == mk->gen && mc->key_mode == mode &&
-        mc->key_nfaces == s->nfaces)
+        mc->key_nfaces == s->nfaces && mc->key_tint == tgen)
         return 1;
     uint32_t n = s->nfaces;
     /* parts: every face plain, in its part's colour; problems alone: the
      * marked faces plain, the others as they were */
-    int keep_surf = !parts && s->face_surf;
+    int keep_surf = !(parts && marked) && s->face_surf;
     mc->key = NULL;
     if (grow(mc, n, keep_surf))
         return -1;
@@ -113,11 +116,17 @@ int shade_mark_colours(MarkColours *mc, const Scene *s, int mode)
             memcpy(&mc->rgb[3 * (size_t)g], scene_default_rgb, 3);     /* the compact form's one colour */
     /* grid copies repeat the loaded faces in order */
     for (uint32_t g = 0; g < n; g++) {
-        uint32_t f = g % mk->nfaces;
-        if (parts)
-            shade_part_colour(mk->face_part[f], &mc->rgb[3 * (size_t)g]);
-        if (problems && mk->face[f]) {
-            shade_mark_face_colour(mk->face[f], &mc->rgb[3 * (size_t)g]);
+        uint8_t *rgb = &mc->rgb[3 * (size_t)g];
+        if (marked && parts)
+            shade_part_colour(mk->face_part[g % mk->nfaces], rgb);
+        const uint8_t *t = tinted ? &tint->rgba[4 * (size_t)(g % tint->nfaces)] : NULL;
+        if (t && t[3]) {
+            memcpy(rgb, t, 3);
+            if (mc->surf)
+                mc->surf[g] = SURF_PLAIN;
+        }
+        if (marked && problems && mk->face[g % mk->nfaces]) {
+            shade_mark_face_colour(mk->face[g % mk->nfaces], rgb);
             if (mc->surf)
                 mc->surf[g] = SURF_PLAIN;
         }
@@ -127,5 +136,24 @@ int shade_mark_colours(MarkColours *mc, const Scene *s, int mode)
     mc->key_marks = mk->gen;
     mc->key_mode = mode;
     mc->key_nfaces = n;
+    mc->key_tint = tgen;
     return 1;
+}
+
+void shade_thickness_colour(double t, uint8_t rgb_out[3])
+{
+    /* red, yellow, green, blue at 0, 1/3, 2/3, 1: saturated, as the
+     * warnings are, so that no object's muted colour passes for one */
+    static const uint8_t stop[4][3] = { { 235, 40, 30 }, { 240, 220, 40 }, { 40, 190, 70 }, { 40, 90, 235 } };
+    double x = !(t > 0) ? 0 : t >= 1 ? 3 : 3 * t;
+    int i = x >= 3 ? 2 : (int)x;
+    double f = x - i;
+    for (int a = 0; a < 3; a++)
+        rgb_out[a] = (uint8_t)(stop[i][a] + (stop[i + 1][a] - stop[i][a]) * f + 0.5);
+}
+
+void shade_overhang_colour(uint8_t rgb_out[3])
+{
+    static const uint8_t red[3] = { 225, 30, 60 };
+    memcpy(rgb_out, red, 3);
 }

@@ -335,6 +335,8 @@ static Reaction act_problems(App *a)
 static Reaction act_next_problem(App *a) { return viewer_problem_step(a, 1); }
 static Reaction act_prev_problem(App *a) { return viewer_problem_step(a, -1); }
 
+static Reaction act_measure(App *a) { return viewer_measure_toggle(a); }
+
 static Reaction act_parts(App *a)
 {
     a->p.parts = !a->p.parts;
@@ -509,6 +511,11 @@ Reaction viewer_key(App *a, int key)
         break;
     }
     case VM_VIEW:
+        if (a->measuring) {     /* the measuring mode's keys first (measureui.c) */
+            Reaction r = viewer_measure_key(a, key);
+            if (r != RE_NONE)
+                return r | RE_DRAW;
+        }
         break;
     }
     const KeyBind *b = key_find(viewer_keys, viewer_keys_n, key);
@@ -654,6 +661,7 @@ const KeyRow viewer_keys[] = {
       { { 'W', act_wireframe }, { '!', act_problems }, { '@', act_parts } } },
     { ". ,", "next / previous problem", { { '.', act_next_problem }, { ',', act_prev_problem } } },
     { "V", "diff: A, B, heat map, both", { { 'V', act_diff_show } } },
+    { "M", "measure: arrows Enter Bksp", { { 'M', act_measure } } },
     { "space", "auto-rotate", { { ' ', act_spin } } },
     { "O", "open a file (Tab completes)", { { 'O', act_open } } },
     { "X Delete", "remove the selected object", { { 'X', act_remove }, { TK_DEL, act_remove } } },

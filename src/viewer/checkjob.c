@@ -231,7 +231,34 @@ Reaction viewer_check_poll(App *a)
     return RE_NONE;
 }
 
+static void check_status(const App *a, int max_items, char *buf, size_t len);
+
+/* --overhang's and --thickness's figures first (printtint.c), then the
+ * check's */
 void viewer_check_status(const App *a, int max_items, char *buf, size_t len)
+{
+    /* the measuring mode's figures outrank the rest */
+    if (a->measuring || a->p.marks.n) {
+        app_measure_words(a->s, &a->p.marks, buf, len);
+        if (buf[0])
+            return;
+    }
+    print_tint_status(&a->p, buf, len);
+    size_t o = strlen(buf);
+    if (o && max_items == 0)
+        return;
+    if (!o) {
+        check_status(a, max_items, buf, len);
+    } else if (o + 4 < len) {
+        check_status(a, max_items, buf + o + 2, len - o - 2);
+        if (buf[o + 2])
+            memcpy(buf + o, ", ", 2);
+        else
+            buf[o] = 0;
+    }
+}
+
+static void check_status(const App *a, int max_items, char *buf, size_t len)
 {
     buf[0] = 0;
     if (a->diff && a->diff->gen == a->s->gen) {     /* --diff: its headline, while the scene is its own */

@@ -141,6 +141,10 @@ ViewSettings viewer_view_settings(const App *a)
         .no_textures = a->p.no_textures,
         .problems = a->p.problems,
         .parts = a->p.parts,
+        .overhang = a->p.overhang,
+        .overhang_deg = a->p.overhang_deg,
+        .thickness = a->p.thickness,
+        .marks = &a->p.marks,
     };
     return v;
 }

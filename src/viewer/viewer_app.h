@@ -162,6 +162,7 @@ typedef struct App {
     DiffSet    *diff;       /* --diff: the two models' diff, whose scene this is; NULL none */
     char        help_text[HELP_LINES_MAX][HELP_LINE_MAX];
     SketchMode  sk;
+    int         measuring;  /* the measuring mode (M): arrows move the cursor (measureui.c) */
 } App;
 
 /* The viewer's modes, from the one on top. The first that is on takes
@@ -213,6 +214,11 @@ int      viewer_command_layout(const App *a, int cols, char *buf, size_t len, co
  * (or the model's when that cannot be written); the note says what was
  * written. Returns what to redo. */
 Reaction viewer_snapshot(App *a);
+/* measureui.c: the measuring mode. M turns it on and off; while on, a
+ * key it takes (arrows, Enter, Backspace, Esc) is its own (RE_NONE:
+ * not one of them). */
+Reaction viewer_measure_toggle(App *a);
+Reaction viewer_measure_key(App *a, int key);
 
 /* ==== Sketch mode (sketchui.c) ==== */
 

@@ -38,6 +38,7 @@ _zview()
         --image-format) COMPREPLY=($(compgen -W "png ppm" -- "$cur")); return ;;
         --bg) COMPREPLY=($(compgen -W "default black white grey" -- "$cur")); return ;;
         --show) COMPREPLY=($(compgen -W "both a b heat" -- "$cur")); return ;;
+        --unit) COMPREPLY=($(compgen -W "mm in m" -- "$cur")); return ;;
         --format) COMPREPLY=($(compgen -W "$(_zview_formats) assimp" -- "$cur")); return ;;
         --repair)
             # --repair=STEPS: a comma list; --repair IN: the model (below)
@@ -53,7 +54,8 @@ _zview()
             return ;;
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
             --scale | --persp | --grid | --max-polys | --max-memory | --views | -j | --threads | --fps | --max-rate | --crease | \
-            --light | --ambient | --turntable | --point-size | --line-width | --contrast | --problem | --max-locations | --weld | --max-hole | --tolerance)
+            --light | --ambient | --turntable | --point-size | --line-width | --contrast | --problem | --max-locations | --weld | --max-hole | --tolerance | \
+            --bed | --min-thickness | --measure | --overhang | --marks)
             return ;;
     esac
     $split && return
@@ -65,7 +67,8 @@ _zview()
             --views --threads --json --fps --max-rate --format --formats --up --flip --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
             --turntable --point-size --line-width --wireframe --points --strict --no-sandbox --max-memory --bg --contrast --no-textures
-            --problems --problem --max-locations --parts --watch --repair --weld --max-hole --diff --tolerance --show --quiet --textconv" -- "$cur"))
+            --problems --problem --max-locations --parts --watch --repair --weld --max-hole --diff --tolerance --show --quiet --textconv
+            --bed --unit --overhang --thickness --min-thickness --measure --marks" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
     fi
