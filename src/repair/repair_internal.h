@@ -60,6 +60,7 @@ typedef struct {
     /* w.pos and w.rgb are the input's own until something changes them
      * (rp_pos_own): most repairs move and add no vertex */
     int       pos_borrowed;
+    int       pos_changed;      /* a position moved or a vertex was added (rp_pos_own) */
 } Rep;
 
 /* ==== Not worse (guard.c) ==== */
@@ -75,8 +76,10 @@ typedef struct {
 } Before;
 
 /* The check of the input: on a helper thread when opt allows two
- * threads or more, else now. rp_before_wait returns its result. */
-int  rp_before_start(Before *b, const Mesh *m, const RepairOpts *opt);
+ * threads or more and now is 0 (its crossing test on that thread
+ * alone), else now (on opt's threads). rp_before_wait returns its
+ * result. */
+int  rp_before_start(Before *b, const Mesh *m, const RepairOpts *opt, int now);
 int  rp_before_wait(Before *b);
 void rp_before_free(Before *b);
 /* Each object whose figures are worse after than before goes up a
@@ -92,7 +95,7 @@ static inline const float *rp_vpos(const Rep *r, uint32_t v) { return r->w.pos +
 /* ==== Points (posmap.c) ==== */
 
 /* Make w.pos and w.rgb the repair's own copies (room for vcap
- * vertices), before they change. 0 or -1 out of memory. */
+ * vertices), before they change (pos_changed set). 0 or -1 out of memory. */
 int  rp_pos_own(Rep *r);
 
 /* The coordinate's bits with -0 made +0. */
