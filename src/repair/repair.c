@@ -263,7 +263,7 @@ static int object_steps(Rep *r, uint32_t i, Filled *fd)
     if (rc == 0 && split && (steps & REPAIR_HOLES) && t.nboundary)
         rc = rp_holes(r, &t, &cuts, &fd->fills[i], &fd->nfills[i], &fd->dp_budget);
     if (rc == 0)
-        rc = rp_cuts_settle(r, &t, &cuts, fd->fills[i], fd->nfills[i]);
+        rc = rp_cuts_settle(r, &t, &cuts, fd->fills[i], fd->nfills[i], fd->drop);
     int settled = 0;
     if (rc == 0 && turn && !fd->nfills[i])
         rc = rp_outward(r, &t, &settled);

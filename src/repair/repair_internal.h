@@ -230,9 +230,11 @@ int  rp_twins(Rep *r, ObjTopo *t, uint8_t *drop);
  * rebuilt when anything changed. The faces cut loose from a fin of an
  * odd number are listed in *cuts (each by the two vertices its cut edge
  * ends on): rp_cuts_settle puts back those the holes did not close
- * (fills: the object's fills taken). */
+ * (fills: the object's fills taken), or drops them with their part when
+ * it is a stray fin. */
 typedef struct {
     uint32_t *v;                /* 2 per cut */
+    uint32_t *he;               /* per cut: the half-edge cut loose (relative corner) */
     uint32_t  n, cap;
     uint32_t  vbase;            /* vertices from here on are the split's copies */
     /* loops left open that run along a cut: listed only if the cut stays */
@@ -327,7 +329,14 @@ int  rp_moved_cross(Rep *r, const ObjTopo *t, const uint32_t *face, const uint32
  * REPAIR_HOLES_MAX). */
 int  rp_hole_open(Rep *r, uint32_t obj, uint32_t edges, uint32_t vertex, RepairOpenWhy why);
 
-int  rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cuts, const Fill *fills, uint32_t nfills);
+/* The most faces a stray fin has (fins.c: a small open part cut loose
+ * from a non-manifold edge, that no fill closes, is dropped). */
+#define RP_FIN_FACES 4u
+
+/* After the holes: the cuts no fill closed are put back, or, where what
+ * was cut loose is a stray fin, its faces marked in drop[] (per mesh
+ * face) and skipped in t. */
+int  rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cuts, const Fill *fills, uint32_t nfills, uint8_t *drop);
 void rp_cuts_free(Cuts *cuts);
 
 /* repair.c: the faces marked in drop (NULL: none) gone, and the fills
