@@ -1,15 +1,17 @@
 #!/bin/sh
 # make bench-repair-cli: what zview --repair costs (issue 30's targets):
 # the dragon (871k triangles) repaired and written as OBJ and as STL on
-# the default threads (goal: 1.5 s, writing included), the 5.2M-triangle
+# one thread (goal: 1.5 s, writing included), the 5.2M-triangle
 # model (tools/subdiv, as make bench makes it) on two threads (goal:
 # 10 s), and the peak resident memory of each against loading alone
 # (checkbench --load-only: mesh_load and nothing else; goal: within 3x).
 # Each row is the median wall time of RUNS processes under
 # /usr/bin/time, with their CPU time (user + system: a crowded
-# machine's wall clock counts waiting) and --json's phases (load, check
-# before, repair, write, check after; then the repair's own: weld,
-# clean, objects, order, and its check of what it made; ms). The
+# machine's wall clock counts waiting) and --json's phases (load, the
+# check of the input, the repair less its checks, write, the check of
+# what OUT holds; then the repair's own: weld, clean, objects, order,
+# and its check of what it made, which is the check after unless OUT
+# was read back; ms). The
 # dragon's rows are on one thread pinned to a core (PIN), the 5.2M
 # model's on two. HEADER=0 (make bench) prints the same figures as rows
 # of make bench's table instead, without the stamp; BIG_DIR: where the
@@ -53,7 +55,7 @@ row() {
         /usr/bin/time -f "%e %U %S %M" -o "$TMP/time" $pin "$ZV" "$@" --json >"$TMP/json" 2>"$TMP/err"
         rc=$?
         [ "$rc" -eq 0 ] || [ "$rc" -eq 3 ] || { echo "$label: status $rc: $(head -c 300 "$TMP/err")"; return; }
-        ms=$(sed -n 's/.*"ms": { \(.*\) }.*/\1/p' "$TMP/json" | tr -d '"' | sed 's/check_after/after/; s/repair_//g')
+        ms=$(sed -n 's/.*"ms": { \(.*\) }.*/\1/p' "$TMP/json" | tr -d '"' | sed 's/check_after/after/; s/repair_check/its check/; s/repair_//g')
         echo "$(tail -n 1 "$TMP/time") $ms" >>"$TMP/runs"
         i=$((i + 1))
     done
