@@ -628,6 +628,20 @@ Test(repair, a_stray_fin_triangle_is_dropped)
     assert_check_sound();
 }
 
+Test(repair, a_stray_fin_goes_without_the_holes_step_too)
+{
+    start();
+    cube_ex(0, 0, 0, 1, -1, 0);
+    fin_fan(1);
+    RepairOpts o = { .steps = REPAIR_CLEAN | REPAIR_MANIFOLD, .threads = 1, .intersections = 1 };
+    repair_opts(&o);
+    Ref r;
+    reference(&M, &r);
+    assert_watertight(&r);
+    cr_assert_eq(R.fins, 1);
+    cr_assert_eq(r.faces, 6);
+}
+
 Test(repair, a_stray_fin_of_four_faces_is_dropped_of_five_kept)
 {
     for (int n = 2; n <= 5; n++) {

@@ -648,7 +648,7 @@ static uint64_t vpair(uint32_t a, uint32_t b)
  * at most), has no edge of three faces left, and is open all round: its
  * every boundary edge is on a loop left open along its cuts (the loops
  * holes.c put aside for them), none closed by a fill and none listed
- * open apart. Such a part encloses nothing and stands on what it was cut
+ * open apart (with the holes step not asked, no loop is either). Such a part encloses nothing and stands on what it was cut
  * from by an edge alone: the cube's fin of tests/e2e/brokenstl.py, a
  * stray triangle on an edge, as admesh deletes it. It is dropped, and
  * what it stood on is as if it had never been there; put back, it
@@ -706,14 +706,15 @@ static void stray_fins(Rep *r, ObjTopo *t, const Cuts *cu, const KeySet *ks, uin
         uint32_t nb, n = fin_part(r, t, cu, k, ks, part, &nb), open = 0;
         if (!n || t->skip[part[0]])
             continue;
-        /* its rim: the loops left open along its cuts, all of it */
+        /* its rim: the loops left open along its cuts, all of it (the
+         * holes not asked, no loop was filled or listed) */
         for (uint32_t i = 0; i < cu->npend; i++) {
             uint32_t f = rp_cface(t, cu->he[cu->pend_cut[i]]), j = 0;
             while (j < n && part[j] != f)
                 j++;
             open += j < n ? cu->pend[i].edges : 0;
         }
-        if (open != nb)
+        if ((r->opt->steps & REPAIR_HOLES) && open != nb)
             continue;
         for (uint32_t q = 0; q < cu->n; q++)
             for (uint32_t j = 0; j < n; j++)
