@@ -235,16 +235,7 @@ int  termbg_ask_tty(int wait_ms, uint8_t rgb_out[3]);
  * WezTerm and others fill); 0 when it does not say. */
 int  pixels_cell_size(int fd, int *cw, int *ch);
 
-/* Which protocol the terminal on out_fd/in_fd takes (PIX_CELLS: none
- * known). Inside tmux or screen, cells without asking (they pass no
- * images by default); else the kitty query and the primary device
- * attributes (attribute 4: sixel) are asked, and the answers read until
- * the attributes' answer or wait_ms. Every byte read is handed to sink
- * (NULL: dropped), so that keys typed meanwhile are not lost. */
-typedef void (*PixelSink)(void *ctx, const unsigned char *b, size_t n);
-PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx);
-
-/* The answers' reader, byte by byte (any split), for tests. */
+/* The answers' reader, byte by byte (any split). */
 typedef struct {
     int    state;
     char   body[64];
@@ -253,9 +244,24 @@ typedef struct {
     int    sixel;           /* ... and it lists 4 */
     int    kitty;           /* the kitty query was answered OK */
     int    iterm;           /* the terminal's name is iTerm2 */
+    int    c1;              /* 8-bit controls too (a locale that is not UTF-8, where they are no
+                               text): 0x9b CSI, 0x90 DCS, 0x9f APC, 0x9c ST */
 } PixelScan;
 
-void pixels_scan_init(PixelScan *s);
+/* Which protocol the terminal on out_fd/in_fd takes (PIX_CELLS: none
+ * known). Inside tmux or screen, cells without asking (they pass no
+ * images by default); else the kitty query and the primary device
+ * attributes (attribute 4: sixel) are asked, and the answers read until
+ * the attributes' answer or wait_ms. Every byte read is handed to sink
+ * (NULL: dropped), so that keys typed meanwhile are not lost. */
+typedef void (*PixelSink)(void *ctx, const unsigned char *b, size_t n);
+/* s (made by pixels_scan_init) keeps what was read: answers that come
+ * after the wait (a slow link) can still be fed to it (term.c does). */
+PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx, PixelScan *s);
+/* What the answers read so far say (PIX_CELLS: no images). */
+PixelProto pixels_scanned(const PixelScan *s);
+
+void pixels_scan_init(PixelScan *s, int c1);
 void pixels_scan(PixelScan *s, const unsigned char *b, size_t n);
 /* What the environment says before any question: PIX_CELLS inside a
  * multiplexer or on a terminal that would show the questions, else

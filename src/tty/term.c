@@ -492,8 +492,15 @@ static void ask_terminal(Term *t, const TermConfig *cfg)
     int ask_pix = cfg->pixels == PIX_AUTO && t->ask && isatty(t->in_fd);
     if (ask_pix && pixels_from_env() != PIX_CELLS)
         kp_expect(&t->kp, 1, now_ms());
-    t->pix = ask_pix ? pixels_detect(t->q.fd, t->in_fd, TERMBG_WAIT_MS, answers_to_keys, &t->kp)
+    pixels_scan_init(&t->pix_scan, !t->kp.utf8);
+    t->pix_asked_ms = now_ms();
+    t->pix = ask_pix ? pixels_detect(t->q.fd, t->in_fd, TERMBG_WAIT_MS, answers_to_keys, &t->kp, &t->pix_scan)
                      : cfg->pixels == PIX_AUTO ? PIX_CELLS : (PixelProto)cfg->pixels;
+    /* a slow link (or a loaded terminal) answers after the wait, or the
+     * background's answer, late, ended it: what comes is still read for
+     * pixels until kitty's (the best) or KP_LATE_MS */
+    t->pix_late = ask_pix && pixels_from_env() != PIX_CELLS && t->pix != PIX_KITTY;
+    t->pix_news = 0;
     t->pix_shown = 0;
     t->ack_wait = t->ack_told = t->acks_seen = t->unanswered = 0;
     t->pace_ms = PACE_MIN_MS;

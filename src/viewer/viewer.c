@@ -722,7 +722,8 @@ static int viewer_main(const Options *o, Scene *s, int loading, DiffSet *diff)
         fallback = 1;
         goto done;
     }
-    a.pixels = a.pixels && term_pixels() != PIX_CELLS;     /* none there: cells */
+    /* a.pixels stays what was asked: a terminal on a slow link names its
+     * pixels after the start's wait (term_read then says TE_RESIZE) */
     /* the picture is kept visible on the terminal's background */
     uint8_t asked[3];
     Backdrop bd = pipeline_text_backdrop(o, term_background(asked, NULL) ? asked : NULL);

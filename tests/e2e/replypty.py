@@ -23,7 +23,8 @@ the answers and keys down one line, in order, as a link does:
              ST 0x9c), in a Latin-1 locale
 
 Checks, printed as "ok - ..." / "not ok - ...": the viewer is still
-running once every answer is in (the answers read as Esc quit it);
+running once every answer is in (the answers read as Esc quit it); the
+still model is drawn in the pixels the answers name, however late;
 a key that turns the model draws again; q quits with status 0 and the
 terminal put back (the alternate screen left). Exit status 0 when every
 check passed.
@@ -91,6 +92,11 @@ PROFILES = {
     'slowxterm': (XTERM, [], 0, True, {}),
     'xterm8': (XTERM8, [], 0, False, {'LC_ALL': 'C', 'LANG': 'C'}),
 }
+
+# the pixels each profile's answers name, and how each image begins
+PIXELS = {'kitty': 'kitty', 'xterm': 'sixel', 'foot': 'sixel', 'tmux': 'cells', 'late': 'kitty',
+          'slow': 'kitty', 'slowxterm': 'sixel', 'xterm8': 'sixel'}
+IMAGE_HEADS = {'kitty': ESC + b'_Ga=T', 'sixel': ESC + b'P0;1;0q'}
 
 ESC_GAPS = [0.03, 0.12, 0.3]    # the leading ESC alone before the rest, in turn
 BYTE_GAP = 0.03
@@ -244,6 +250,13 @@ def main():
               'exited with status %r; asked: %s' % (v.status, asked))
         if v.status is not None:
             return 1
+        # the still model in the pixels the terminal said it draws, late
+        # answers too (a slow link's come after the viewer's wait, and the
+        # cells it drew first give way to them); tmux passes no images
+        want = PIXELS[profile]
+        got = [name for name, head in IMAGE_HEADS.items() if head in v.out]
+        check('the still model drawn in %s (images seen: %s)' % (want, ', '.join(got) or 'none'),
+              got == ([want] if want != 'cells' else []))
         # a key that turns the model: the viewer, quiet until now, draws
         # again (cells, or the image a still model is shown in)
         before = len(v.out)
