@@ -14,7 +14,9 @@
  *             flap goes whole)
  *   manifold  an edge of three or more faces is split so that each edge
  *             has at most two, and a point where separate fans of faces
- *             meet gets a vertex per fan
+ *             meet gets a vertex per fan; a stray fin (a part of at
+ *             most RP_FIN_FACES faces cut loose from such an edge, that
+ *             no fill closes) is dropped
  *   winding   the fewest faces flipped so that each part agrees; then,
  *             after the holes, closed parts that are inside out turned
  *             outward
@@ -26,9 +28,10 @@
  * faces are reported (the check's count after the repair), not changed.
  * No figure of the check comes out worse than it was: an object the
  * full repair would make worse is repaired again less boldly
- * (RepairReport.held_back). Positions of the vertices kept are kept bit
- * for bit (a split's copies and a fan's centre are new vertices); the
- * faces that were not dropped keep their order, material, colours and
+ * (RepairReport.held_back); a stray fin dropped lowers the count of
+ * faces, which is no problem figure. Positions of the vertices kept are
+ * kept bit for bit (a split's copies and a fan's centre are new
+ * vertices); the faces that were not dropped keep their order, material, colours and
  * texture coordinates; object ranges stay valid. doc/design.md (The
  * repair) says why the steps run in this order and which algorithm
  * each uses. */
@@ -37,6 +40,7 @@
 #include <stdint.h>
 
 #include "mesh.h"
+#include "meshcheck.h"
 
 enum {
     REPAIR_WELD     = 1,
@@ -52,7 +56,10 @@ typedef struct {
     double   weld_eps;          /* file units; 0: bit-identical positions only */
     uint32_t max_hole;          /* 0: no limit; else loops of more edges stay open */
     int      threads;           /* <= 1: the caller alone */
-    int      intersections;     /* count the crossing pairs left (the check's crossing test) */
+    int      intersections;     /* count the crossing pairs (the check's crossing test), before and after */
+    int      keep_checks;       /* check the input first and keep that check and the check of the
+                                 * result in the report (RepairReport.before, .after): a caller
+                                 * that shows both need not check again */
     const int *cancel;          /* NULL, or set (atomically) to stop: repair_mesh fails "cancelled" */
 } RepairOpts;
 
@@ -76,8 +83,10 @@ typedef struct {
 
 /* Phases timed (wall ms), for the benchmark: the weld, the clean, the
  * splits, winding and holes object by object, the vertices put in
- * order, and the check of what is left. */
-enum { REPAIR_T_WELD, REPAIR_T_CLEAN, REPAIR_T_OBJECTS, REPAIR_T_ORDER, REPAIR_T_CHECK, REPAIR_T_COUNT };
+ * order, the check of what is left, and the check of the input (when
+ * the guard or RepairOpts.keep_checks asked for it). */
+enum { REPAIR_T_WELD, REPAIR_T_CLEAN, REPAIR_T_OBJECTS, REPAIR_T_ORDER, REPAIR_T_CHECK, REPAIR_T_BEFORE,
+       REPAIR_T_COUNT };
 
 /* What each step did, and what is left. */
 typedef struct {
@@ -95,6 +104,7 @@ typedef struct {
     uint32_t nm_vertices;       /* points where separate fans met, split */
     uint32_t split_vertices;    /* vertices the splits added */
     uint32_t cuts_undone;       /* faces of an odd fin cut loose, then put back: no fill closed the cut */
+    uint32_t fins;              /* faces of stray fins dropped (fins.c: a small open part cut loose) */
     /* winding */
     uint32_t flipped;           /* faces flipped to agree with their part */
     uint32_t outward;           /* closed parts turned outward */
@@ -124,6 +134,8 @@ typedef struct {
     uint64_t left_crossings;    /* pairs of faces that cross (RepairOpts.intersections) */
     int      crossings_tested;
     int      crossings_stopped; /* the crossing test stopped on its budget: at least left_crossings */
+    int      crossings_same;    /* the repair changed none of the triangles the crossing test reads:
+                                 * the input's crossing figures are the result's, not counted again */
     /* the mesh before and after */
     uint32_t faces_before, faces_after, verts_before, verts_after;
     /* the loops left open, the first REPAIR_HOLES_MAX (repair_report_free) */
@@ -131,6 +143,11 @@ typedef struct {
     uint32_t    nholes;
     double      ms;             /* wall time of repair_mesh, the check of what is left included */
     double      ms_phase[REPAIR_T_COUNT];
+    /* RepairOpts.keep_checks: the check of the input (has_before) and of
+     * the result (counted), with the crossing test when
+     * RepairOpts.intersections; repair_report_free frees them */
+    int         has_before;
+    MeshCheck   before, after;
 } RepairReport;
 
 /* Repair m in place by opt's steps (NULL: REPAIR_DEFAULT, no weld
@@ -141,6 +158,7 @@ typedef struct {
  * (positions are copied only when they change) and about 12 bytes a
  * corner of work (doc/benchmarks.md: The repair). */
 int  repair_mesh(Mesh *m, const RepairOpts *opt, RepairReport *rep, char *err, size_t errlen);
+/* Frees the holes listed and the checks kept. */
 void repair_report_free(RepairReport *rep);
 
 /* ==== The figures as data ====

@@ -12,8 +12,10 @@
  * area 6 once filled), with a face flipped, inside out, with a twisted
  * four-edge hole, two cubes on one edge (the fin), two touching at a
  * corner, a hole of 200 edges, a Moebius strip (reported, not fixed),
- * degenerate, duplicate and two-sided faces, split vertices, a fin's
- * odd face; what is kept (positions bit for bit, face order, materials,
+ * degenerate, duplicate and two-sided faces, split vertices, a stray
+ * fin dropped (up to four faces) or kept (five, or closed by a fill);
+ * the checks kept for the caller and the crossing figures taken from
+ * the input's only where they are the result's; what is kept (positions bit for bit, face order, materials,
  * colours, texture coordinates); then the bundled assets, and the
  * shared models in the suite "models" (the teapot's holes). */
 #define _DEFAULT_SOURCE
@@ -578,23 +580,116 @@ Test(repair, two_cubes_at_a_corner_get_a_vertex_each)
     assert_check_sound();
 }
 
-Test(repair, a_lone_fin_triangle_is_left_whole_not_cut_open)
+/* A fin of n triangles standing on the cube's top edge from (0,1,1) to
+ * (1,1,1), flat, at 45 degrees: a fan from (0,1,1) through (1,1,1) and
+ * n points above it (every coordinate exact in float). */
+static void fin_fan(int n)
+{
+    uint32_t a = vert(0, 1, 1), prev = vert(1, 1, 1);
+    for (int k = 1; k <= n; k++) {
+        uint32_t q = vert(1, 1 + 0.5f * (float)k, 1 + 0.5f * (float)k);
+        tri(a, prev, q);
+        prev = q;
+    }
+}
+
+Test(repair, a_stray_fin_triangle_is_dropped)
 {
     start();
     cube_ex(0, 0, 0, 1, -1, 0);
-    /* a triangle standing on the cube's top edge from (0,1,1) to (1,1,1) */
-    uint32_t a = vert(0, 1, 1), b = vert(1, 1, 1), c = vert(0.5f, 1.5f, 1.5f);
-    tri(a, b, c);
+    float cube[8][3];
+    memcpy(cube, M.pos, sizeof cube);
+    fin_fan(1);
     Ref before;
     reference(&M, &before);
+    cr_assert_eq(before.nonmanifold, 1);
+    cr_assert_eq(before.boundary, 2);
     repair();
+    /* what admesh makes of it: the cube alone, watertight, volume 1,
+     * area 6, its eight corners where they were */
     Ref r;
     reference(&M, &r);
-    /* cutting it loose would make it a lone triangle, a hole no fill
-     * closes: it stays on its edge, and nothing counts worse */
-    cr_assert_leq(r.boundary, before.boundary);
-    cr_assert_leq(r.nonmanifold, before.nonmanifold);
-    cr_assert_eq(r.faces, before.faces);
+    assert_watertight(&r);
+    NEAR(r.volume, 1);
+    NEAR(r.area, 6);
+    cr_assert_eq(r.faces, 6);
+    cr_assert_eq(r.parts, 1);
+    cr_assert_eq(R.fins, 1);
+    cr_assert_eq(R.nm_edges, 0, "the edge was not split: its fin went");
+    cr_assert_eq(R.cuts_undone, 0);
+    cr_assert_eq(R.split_vertices, 0, "the copies went back");
+    cr_assert_eq(R.filled, 0);
+    cr_assert_eq(R.open, 0);
+    cr_assert_eq(M.nverts, 8);
+    cr_assert_eq(memcmp(M.pos, cube, sizeof cube), 0, "the cube's corners moved");
+    for (uint32_t f = 0; f < 6; f++)
+        for (uint32_t k = 0; k < 4; k++)
+            cr_assert_eq(M.corner[M.face_start[f] + k], CUBE_FACES[f][k]);
+    assert_check_sound();
+}
+
+Test(repair, a_stray_fin_goes_without_the_holes_step_too)
+{
+    start();
+    cube_ex(0, 0, 0, 1, -1, 0);
+    fin_fan(1);
+    RepairOpts o = { .steps = REPAIR_CLEAN | REPAIR_MANIFOLD, .threads = 1, .intersections = 1 };
+    repair_opts(&o);
+    Ref r;
+    reference(&M, &r);
+    assert_watertight(&r);
+    cr_assert_eq(R.fins, 1);
+    cr_assert_eq(r.faces, 6);
+}
+
+Test(repair, a_stray_fin_of_four_faces_is_dropped_of_five_kept)
+{
+    for (int n = 2; n <= 5; n++) {
+        mesh_free(&M);
+        repair_report_free(&R);
+        start();
+        cube_ex(0, 0, 0, 1, -1, 0);
+        fin_fan(n);
+        Ref before;
+        reference(&M, &before);
+        repair();
+        Ref r;
+        reference(&M, &r);
+        if (n <= (int)4) {  /* RP_FIN_FACES */
+            /* a small open part on the edge alone: dropped whole */
+            assert_watertight(&r);
+            NEAR(r.volume, 1);
+            cr_assert_eq(r.faces, 6, "a fin of %d", n);
+            cr_assert_eq(R.fins, (uint32_t)n);
+        } else {
+            /* more than a stray fin: kept, on its edge, nothing worse */
+            cr_assert_eq(R.fins, 0);
+            cr_assert_eq(r.faces, before.faces);
+            cr_assert_leq(r.boundary, before.boundary);
+            cr_assert_leq(r.nonmanifold, before.nonmanifold);
+        }
+    }
+}
+
+Test(repair, a_fin_a_fill_closes_is_kept)
+{
+    /* three triangles of a tetrahedron standing on the cube's top edge
+     * by one of them: its open side is filled, a tiny solid of its own,
+     * no stray fin */
+    start();
+    cube_ex(0, 0, 0, 1, -1, 0);
+    uint32_t a = vert(0, 1, 1), b = vert(1, 1, 1), c = vert(0.5f, 1.5f, 1.5f), d = vert(0.5f, 2, 1);
+    tri(a, b, c);
+    tri(b, d, c);
+    tri(a, c, d);
+    repair();
+    cr_assert_eq(R.fins, 0);
+    cr_assert_eq(R.filled, 1);
+    Ref r;
+    reference(&M, &r);
+    cr_assert_eq(r.faces, 6 + 4);
+    cr_assert_eq(r.parts, 2);
+    assert_watertight(&r);
 }
 
 /* ==== Clean and weld ==== */
@@ -781,6 +876,81 @@ Test(repair, an_object_the_repair_would_make_worse_is_held_back)
     cr_assert_eq(R.left_duplicate, a.file.duplicate_faces);
     meshcheck_free(&a);
     meshcheck_free(&b);
+}
+
+/* ==== The checks handed over ==== */
+
+/* Every figure of the check the same in a and b, object by object. */
+static void assert_same_check(const MeshCheck *a, const MeshCheck *b, const char *what)
+{
+    cr_assert_eq(a->nobjs, b->nobjs);
+    for (uint32_t i = 0; i < a->nobjs; i++)
+        for (int k = 0; k < check_nrows; k++) {
+            const CheckRow *r = &check_rows[k];
+            cr_assert_eq(meshcheck_value(r, &a->objs[i].c), meshcheck_value(r, &b->objs[i].c), "%s, object %u: %s",
+                         what, i, r->field);
+        }
+    for (int k = 0; k < check_nrows; k++)
+        cr_assert_eq(meshcheck_value(&check_rows[k], &a->file), meshcheck_value(&check_rows[k], &b->file), "%s: %s",
+                     what, check_rows[k].field);
+}
+
+/* The unit cube, a degenerate triangle, and apart from them a triangle
+ * B that pierces triangle A near A's corner at the origin, its own
+ * corner `off` from it (below A's plane). */
+static void pierced(float off)
+{
+    start();
+    cube_ex(3, 3, 3, 1, -1, 0);
+    uint32_t d0 = vert(10, 0, 0), d1 = vert(11, 0, 0), d2 = vert(12, 0, 0);
+    tri(d0, d1, d2);
+    uint32_t a0 = vert(0, 0, 0), a1 = vert(2, 0, 0), a2 = vert(0, 2, 0);
+    tri(a0, a1, a2);
+    uint32_t b0 = vert(off, off, -off), b1 = vert(1, 1, 1), b2 = vert(0.5f, 1.5f, 1);
+    tri(b0, b1, b2);
+}
+
+/* repair_mesh with keep_checks: the input's check and the result's, the
+ * same as checking each apart. */
+static void repair_kept(double weld)
+{
+    cr_assert_eq(tl_mesh_finish(&M), 0);
+    MeshCheck in, out;
+    CheckOpts co = { .threads = 1, .intersections = 1 };
+    cr_assert_eq(meshcheck_run(&in, &M, &co, E, sizeof E), 0, "%s", E);
+    RepairOpts o = { .steps = REPAIR_DEFAULT, .threads = 1, .intersections = 1, .keep_checks = 1, .weld_eps = weld };
+    cr_assert_eq(repair_mesh(&M, &o, &R, E, sizeof E), 0, "%s", E);
+    cr_assert(R.has_before && R.counted);
+    cr_assert_eq(meshcheck_run(&out, &M, &co, E, sizeof E), 0, "%s", E);
+    assert_same_check(&R.before, &in, "the input");
+    assert_same_check(&R.after, &out, "the result");
+    cr_assert_eq(R.left_crossings, out.file.self_intersections);
+    meshcheck_free(&in);
+    meshcheck_free(&out);
+}
+
+Test(repair, the_checks_are_handed_over_crossings_taken_when_unchanged)
+{
+    /* the degenerate face dropped, the rest as it was: the crossing
+     * pair is the input's, not counted again */
+    pierced(0.01f);
+    repair_kept(0);
+    cr_assert_eq(R.degenerate, 1);
+    cr_assert_eq(R.before.file.self_intersections, 1);
+    cr_assert_eq(R.after.file.self_intersections, 1);
+    cr_assert(R.crossings_same);
+}
+
+Test(repair, crossings_are_counted_again_when_a_weld_moves_a_corner)
+{
+    /* B's corner welded onto A's: the two touch at a corner, no longer
+     * cross; taking the input's count would say they do */
+    pierced(0.01f);
+    repair_kept(0.05);
+    cr_assert_geq(R.welded, 1);
+    cr_assert_eq(R.before.file.self_intersections, 1);
+    cr_assert_eq(R.after.file.self_intersections, 0);
+    cr_assert(!R.crossings_same);
 }
 
 /* ==== What is kept ==== */

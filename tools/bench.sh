@@ -133,6 +133,12 @@ if [ -f "$D" ]; then
     BIG_DIR=$TMP HEADER=0 RUNS=${DIFF_RUNS:-3} ZVIEW="$ZV" SUBDIV="$SUBDIV" PERTURB="${PERTURB:-build/perturb}" \
         sh "$HERE/bench-diff.sh"
 
+    # zview --repair of the dragon (one thread, pinned) and of the 5.2M
+    # model (two), writing included, and their peaks against loading
+    # alone (tools/bench-repair-cli.sh, same columns)
+    BIG_DIR=$TMP HEADER=0 RUNS=${REPAIR_RUNS:-3} ZVIEW="$ZV" SUBDIV="$SUBDIV" CHECKBENCH="${CHECKBENCH:-build/checkbench}" \
+        sh "$HERE/bench-repair-cli.sh"
+
     # ==== HOOK (preview21): the preview's time to its first partial picture ====
     # tools/bench-preview.sh, when present, prints its own rows of this
     # table (same columns) for the models in BIG_DIR.

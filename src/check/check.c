@@ -51,7 +51,7 @@ static int obj_prepare(Run *r, ObjCheck *o, const MeshObject *mo, char *err, siz
         o->max_corners = n > o->max_corners ? n : o->max_corners;
     }
     if (!o->tris) {
-        o->cface = malloc(((size_t)o->nc + 1) * sizeof *o->cface);
+        o->cface = check_big(((size_t)o->nc + 1) * sizeof *o->cface, 0);
         if (!o->cface)
             return -1;
         for (uint32_t f = 0; f < o->nf; f++)
@@ -94,7 +94,7 @@ static int cancelled(const Run *r)
 static int obj_passes(Run *r, ObjCheck *o, double *ms)
 {
     double t = now_ms();
-    o->mate = malloc(((size_t)o->nc + 1) * sizeof *o->mate);
+    o->mate = check_big(((size_t)o->nc + 1) * sizeof *o->mate, 0);
     if (!o->mate || check_topology(o))
         return -1;
     double t2 = now_ms();
@@ -138,8 +138,8 @@ static int check_object(Run *r, MeshCheck *mc, uint32_t i, char *err, size_t err
         o.flags = mc->face_flags + mo->face_first;
         o.part = mc->face_part + mo->face_first;
     } else {
-        o.flags = calloc((size_t)mo->face_count + 1, 1);
-        o.part = malloc(((size_t)mo->face_count + 1) * sizeof *o.part);
+        o.flags = check_big((size_t)mo->face_count + 1, 1);
+        o.part = check_big(((size_t)mo->face_count + 1) * sizeof *o.part, 0);
         if (!o.flags || !o.part)
             goto out;
     }
@@ -215,14 +215,14 @@ static int run_start(Run *r, MeshCheck *mc)
     const Mesh *m = r->m;
     size_t nv = (size_t)m->nverts + 1;
     double t = now_ms();
-    r->pid = malloc(nv * sizeof *r->pid);
+    r->pid = check_big(nv * sizeof *r->pid, 0);
     if (!r->pid || check_weld(m, r->pid, &r->np))
         return -1;
     mc->ms[CHECK_T_WELD] = now_ms() - t;
-    r->loc = malloc(((size_t)r->np + 1) * sizeof *r->loc);
-    r->prep = malloc(((size_t)r->np + 1) * sizeof *r->prep);
-    r->used = calloc((size_t)r->np + 1, 1);
-    r->vpt = malloc(nv * sizeof *r->vpt);
+    r->loc = check_big(((size_t)r->np + 1) * sizeof *r->loc, 0);
+    r->prep = check_big(((size_t)r->np + 1) * sizeof *r->prep, 0);
+    r->used = check_big((size_t)r->np + 1, 1);
+    r->vpt = check_big(nv * sizeof *r->vpt, 0);
     if (!r->loc || !r->prep || !r->used || !r->vpt)
         return -1;
     memset(r->loc, 0xff, ((size_t)r->np + 1) * sizeof *r->loc);

@@ -79,6 +79,10 @@ int  check_push(uint32_t **a, size_t *n, size_t *cap, uint32_t v);
 /* Union-find over [0, n) in one array: p[i] = its parent; a new one
  * (every element alone), NULL out of memory. */
 uint32_t *check_identity(size_t n);
+/* A big array, malloc'ed (zero: calloc'ed), with huge pages asked for
+ * and its pages faulted in by one call (bigmem.h): in a VM a first
+ * touch a page costs more than the pass's work on it. free() frees it. */
+void *check_big(size_t bytes, int zero);
 uint32_t check_find(uint32_t *p, uint32_t i);
 /* Join the sets of a and b; 1 when they were apart. */
 int      check_union(uint32_t *p, uint32_t a, uint32_t b);

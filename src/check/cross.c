@@ -202,8 +202,8 @@ static int collect(Cross *x, uint32_t **face_out, uint32_t **fan_out)
     uint32_t n = 0, c[3];
     for (int pass = 0; pass < 2; pass++) {
         if (pass) {
-            *face_out = malloc(((size_t)n + 1) * sizeof **face_out);
-            *fan_out = o->tris ? NULL : malloc(((size_t)n + 1) * sizeof **fan_out);
+            *face_out = check_big(((size_t)n + 1) * sizeof **face_out, 0);
+            *fan_out = o->tris ? NULL : check_big(((size_t)n + 1) * sizeof **fan_out, 0);
             if (!*face_out || (!o->tris && !*fan_out))
                 return -1;
             n = 0;
@@ -234,8 +234,8 @@ static int sort_tris(Cross *x, uint32_t *uface, uint32_t *ufan)
 {
     ObjCheck *o = x->o;
     size_t n = (size_t)x->n + 1;
-    uint32_t *key = malloc(n * sizeof *key), *idx = malloc(n * sizeof *idx);
-    uint32_t *k2 = malloc(n * sizeof *k2), *v2 = malloc(n * sizeof *v2);
+    uint32_t *key = check_big(n * sizeof *key, 0), *idx = check_big(n * sizeof *idx, 0);
+    uint32_t *k2 = check_big(n * sizeof *k2, 0), *v2 = check_big(n * sizeof *v2, 0);
     int r = -1;
     if (!key || !idx || !k2 || !v2)
         goto out;
@@ -276,9 +276,9 @@ out:
 static int renumber(Cross *x)
 {
     ObjCheck *o = x->o;
-    uint32_t *newid = malloc(((size_t)o->npts + 1) * sizeof *newid);
-    x->id = malloc((3 * (size_t)x->n + 1) * sizeof *x->id);
-    x->pos = malloc((3 * (size_t)o->npts + 1) * sizeof *x->pos);
+    uint32_t *newid = check_big(((size_t)o->npts + 1) * sizeof *newid, 0);
+    x->id = check_big((3 * (size_t)x->n + 1) * sizeof *x->id, 0);
+    x->pos = check_big((3 * (size_t)o->npts + 1) * sizeof *x->pos, 0);
     if (!newid || !x->id || !x->pos) {
         free(newid);
         return -1;
@@ -308,7 +308,7 @@ static int renumber(Cross *x)
 /* Every triangle's box, quantized. */
 static int tri_boxes(Cross *x)
 {
-    x->qbox = malloc((6 * (size_t)x->n + 1) * sizeof *x->qbox);
+    x->qbox = check_big((6 * (size_t)x->n + 1) * sizeof *x->qbox, 0);
     if (!x->qbox)
         return -1;
     for (uint32_t i = 0; i < x->n; i++) {
@@ -689,7 +689,7 @@ int check_crossings(ObjCheck *o)
         cross_free(&x);
         return r;
     }
-    x.node = malloc((2 * (((size_t)x.n + LEAF - 1) / LEAF)) * sizeof *x.node);
+    x.node = check_big((2 * (((size_t)x.n + LEAF - 1) / LEAF)) * sizeof *x.node, 0);
     if (renumber(&x) || tri_boxes(&x) || !x.node) {
         cross_free(&x);
         return -1;

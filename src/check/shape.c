@@ -165,9 +165,9 @@ static int patches_find(ObjCheck *o, ParityFind *u, Patches *pt)
         n += pfind(u, f, &p) == f;
     }
     pt->npatches = n;
-    pt->count = calloc(2 * (size_t)n + 1, sizeof *pt->count);
-    pt->conflict = calloc((size_t)n + 1, 1);
-    pt->flip = calloc((size_t)n + 1, 1);
+    pt->count = check_big((2 * (size_t)n + 1) * sizeof *pt->count, 1);
+    pt->conflict = check_big((size_t)n + 1, 1);
+    pt->flip = check_big((size_t)n + 1, 1);
     if (!pt->count || !pt->conflict || !pt->flip)
         return -1;
     /* every face now names its root, the root its smallest face: label
@@ -267,7 +267,7 @@ static int join_patches(ObjCheck *o, uint32_t npatches)
 
 static int winding(ObjCheck *o)
 {
-    ParityFind u = { o->part, calloc((size_t)o->nf + 1, 1) };
+    ParityFind u = { o->part, check_big((size_t)o->nf + 1, 1) };
     Patches pt = { 0 };
     int r = -1;
     if (u.bits && patches_find(o, &u, &pt) == 0 && patches_settle(o, &u, &pt) == 0)

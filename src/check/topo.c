@@ -81,7 +81,7 @@ static void bucket_sort(uint32_t *to, uint32_t *he, uint32_t n, uint64_t *scratc
 static int buckets_build(ObjCheck *o, Buckets *b)
 {
     uint32_t np = o->npts, nc = o->nc, *pt = o->mate;
-    b->off = calloc((size_t)np + 1, sizeof *b->off);
+    b->off = check_big(((size_t)np + 1) * sizeof *b->off, 1);
     if (!b->off)
         return -1;
     for (uint32_t c = 0; c < nc; c++)
@@ -98,8 +98,8 @@ static int buckets_build(ObjCheck *o, Buckets *b)
             maxdeg = b->off[p + 1];
         b->off[p + 1] += b->off[p];
     }
-    b->to = malloc(((size_t)nhe + 1) * sizeof *b->to);
-    b->he = malloc(((size_t)nhe + 1) * sizeof *b->he);
+    b->to = check_big(((size_t)nhe + 1) * sizeof *b->to, 0);
+    b->he = check_big(((size_t)nhe + 1) * sizeof *b->he, 0);
     uint64_t *scratch = maxdeg > 32 ? malloc((size_t)maxdeg * sizeof *scratch) : NULL;
     if (!b->to || !b->he || (maxdeg > 32 && !scratch)) {
         free(scratch);
@@ -279,7 +279,7 @@ static void join_group(ObjCheck *o, uint32_t *uf, const uint32_t *h, uint32_t n)
 static int count_fans(ObjCheck *o)
 {
     uint32_t *uf = check_identity(o->nc);
-    uint8_t *fans = calloc((size_t)o->npts + 1, 1);
+    uint8_t *fans = check_big((size_t)o->npts + 1, 1);
     if (!uf || !fans) {
         free(uf);
         free(fans);

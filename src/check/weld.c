@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bigmem.h"
 #include "check_internal.h"
 
 /* ==== Shared helpers ==== */
@@ -28,9 +29,16 @@ int check_push(uint32_t **a, size_t *n, size_t *cap, uint32_t v)
     return 0;
 }
 
+void *check_big(size_t bytes, int zero)
+{
+    void *p = zero ? calloc(bytes ? bytes : 1, 1) : malloc(bytes ? bytes : 1);
+    bigmem_advise(p, bytes, 1);
+    return p;
+}
+
 uint32_t *check_identity(size_t n)
 {
-    uint32_t *p = malloc((n ? n : 1) * sizeof *p);
+    uint32_t *p = check_big((n ? n : 1) * sizeof *p, 0);
     if (p)
         for (size_t i = 0; i < n; i++)
             p[i] = (uint32_t)i;
@@ -103,7 +111,7 @@ int check_weld(const Mesh *m, uint32_t *pid, uint32_t *npts_out)
     size_t size = 64;
     while (size < 2 * (size_t)nv)
         size *= 2;
-    uint32_t *slot = malloc(size * sizeof *slot);   /* a vertex of each point, CHECK_NONE empty */
+    uint32_t *slot = check_big(size * sizeof *slot, 0);   /* a vertex of each point, CHECK_NONE empty */
     if (!slot)
         return -1;
     memset(slot, 0xff, size * sizeof *slot);

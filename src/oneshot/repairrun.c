@@ -1,11 +1,14 @@
 /* repairrun.c: --repair IN -o OUT. IN is loaded as every model is (the
- * sandboxed load path, app_load_opts), checked, repaired in memory by
- * the steps asked (repair/), written to OUT (save/: whole or not at all)
- * and checked again as OUT holds it: read back the same way when the
- * format changed what the check reads (an STL's triangles; objects
- * written as one, whose faces are then checked together), else the
- * repaired mesh itself, which the file holds exactly (test_save.c). The
- * report says what each step did
+ * sandboxed load path, app_load_opts), checked and repaired in memory
+ * by the steps asked (repair/: repair_mesh checks the input and the
+ * result, crossing tests included, and keeps both checks for the
+ * report), written to OUT (save/: whole or not at all) and checked as
+ * OUT holds it: read back the same way when the format changed what the
+ * check reads (an STL's triangles; objects written as one, whose faces
+ * are then checked together), else the repaired mesh itself, which the
+ * file holds exactly (test_save.c; the e2e tests count every file
+ * written on their own, tests/e2e/meshcount.py): repair_mesh's check of
+ * it is that check. The report says what each step did
  * with its counts, what the format could not carry, and the two checks
  * side by side; --json says the same as one document. With -o - the
  * model goes to standard output, the report to standard error.
@@ -91,8 +94,9 @@ static int check(RepairRun *r, const Mesh *m, MeshCheck *mc)
     return meshcheck_run(mc, m, &co, r->err, sizeof r->err);
 }
 
-/* Load, check, repair, write, read back and check. 0, or 1 with the
- * message in r->err. */
+/* Load, repair (repair_mesh checks the input first and the result,
+ * crossing tests included, and hands both checks over), write, and
+ * check what OUT holds. 0, or 1 with the message in r->err. */
 static int run(RepairRun *r)
 {
     Mesh m;
@@ -103,20 +107,30 @@ static int run(RepairRun *r)
     app_after_load(r->o, &m);
     snprintf(r->in_format, sizeof r->in_format, "%s", m.info.format);
     double t1 = now_ms();
-    int rc = check(r, &m, &r->before);
-    double t2 = now_ms();
     RepairOpts ro = { .steps = r->o->repair, .weld_eps = r->o->weld, .max_hole = r->o->max_hole,
-                      .threads = r->threads };
-    rc = rc || repair_mesh(&m, &ro, &r->rep, r->err, sizeof r->err);
-    double t3 = now_ms();
+                      .threads = r->threads, .intersections = 1, .keep_checks = 1 };
+    int rc = repair_mesh(&m, &ro, &r->rep, r->err, sizeof r->err);
+    if (rc == 0) {
+        r->before = r->rep.before;
+        memset(&r->rep.before, 0, sizeof r->rep.before);
+    }
+    double t2 = now_ms();
     rc = rc || save_mesh(&m, r->out, r->fmt, &r->saved, r->err, sizeof r->err);
-    double t4 = now_ms();
+    double t3 = now_ms();
     /* the check after is of what OUT holds: the repaired mesh itself
-     * when the format keeps every polygon and object (an OBJ always: the
-     * writers' tests read it back the same), else OUT read back */
+     * (repair_mesh's check of it) when the format keeps every polygon
+     * and object (an OBJ always: the writers' tests read it back the
+     * same), else OUT read back */
     const SaveReport *sr = &r->saved;
+    double ms_after = 0;
     if (!rc && (!strcmp(r->out, "-") || !(sr->polygons_split || sr->objects_merged || sr->faces_dropped))) {
-        rc = check(r, &m, &r->after);
+        if (r->rep.counted) {
+            r->after = r->rep.after;
+            memset(&r->rep.after, 0, sizeof r->rep.after);
+            ms_after = r->rep.ms_phase[REPAIR_T_CHECK];
+        } else {
+            rc = check(r, &m, &r->after);   /* its check could not run: again */
+        }
         mesh_free(&m);
     } else {
         mesh_free(&m);          /* one model in memory at a time */
@@ -126,11 +140,12 @@ static int run(RepairRun *r)
             mesh_free(&back);
         }
     }
+    double *ph = r->rep.ms_phase;
     r->ms_load = t1 - t0;
-    r->ms_check = t2 - t1;
-    r->ms_repair = t3 - t2;
-    r->ms_write = t4 - t3;
-    r->ms_after = now_ms() - t4;
+    r->ms_check = ph[REPAIR_T_BEFORE];
+    r->ms_repair = t2 - t1 - ph[REPAIR_T_BEFORE] - ph[REPAIR_T_CHECK];
+    r->ms_write = t3 - t2;
+    r->ms_after = ms_after + now_ms() - t3;
     return rc ? 1 : 0;
 }
 

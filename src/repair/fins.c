@@ -96,8 +96,9 @@ static void pair_two(ObjTopo *t, Wing *x, Wing *y)
     t->mate[y->he] = x->he;
 }
 
-/* The faces of one non-manifold edge paired (mates), the rest cut loose. */
-static int cut_add(Cuts *cu, uint32_t a, uint32_t b)
+/* The faces of one non-manifold edge paired (mates), the rest cut loose:
+ * half-edge h cut, its ends a and b. */
+static int cut_add(Cuts *cu, uint32_t h, uint32_t a, uint32_t b)
 {
     if (cu->n == cu->cap) {
         uint32_t c = cu->cap ? cu->cap * 2 : 16;
@@ -105,8 +106,13 @@ static int cut_add(Cuts *cu, uint32_t a, uint32_t b)
         if (!v)
             return -1;
         cu->v = v;
+        uint32_t *he = realloc(cu->he, (size_t)c * sizeof *he);
+        if (!he)
+            return -1;
+        cu->he = he;
         cu->cap = c;
     }
+    cu->he[cu->n] = h;
     cu->v[2 * cu->n] = a;
     cu->v[2 * cu->n++ + 1] = b;
     return 0;
@@ -145,7 +151,7 @@ static int pair_group(const Rep *r, ObjTopo *t, const uint32_t *he, uint32_t k, 
     for (uint32_t i = 0; i < k; i++)
         if (!w[i].paired) {
             t->mate[w[i].he] = RP_BOUNDARY;
-            if (cut_add(cu, w[i].he, RP_NONE))
+            if (cut_add(cu, w[i].he, w[i].he, RP_NONE))
                 return -1;
         }
     return 0;
@@ -635,7 +641,93 @@ static uint64_t vpair(uint32_t a, uint32_t b)
     return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
 }
 
-int rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cu, const Fill *fills, uint32_t nfills)
+/* ==== Stray fins ====
+ *
+ * A cut loose face that no fill closed is a stray fin when the part it
+ * is in (its faces joined by paired edges) is small (RP_FIN_FACES faces
+ * at most), has no edge of three faces left, and is open all round: its
+ * every boundary edge is on a loop left open along its cuts (the loops
+ * holes.c put aside for them), none closed by a fill and none listed
+ * open apart (with the holes step not asked, no loop is either). Such a part encloses nothing and stands on what it was cut
+ * from by an edge alone: the cube's fin of tests/e2e/brokenstl.py, a
+ * stray triangle on an edge, as admesh deletes it. It is dropped, and
+ * what it stood on is as if it had never been there; put back, it
+ * would leave the edge non-manifold and its rim open. A part of more
+ * faces, or one that a fill closed, is kept (a model's own thin wall,
+ * a tiny solid). */
+
+/* The faces of cut k's part into part[] (room for RP_FIN_FACES) and
+ * its boundary half-edges into *nb, when it is small, manifold and
+ * no fill closes an edge of it: how many faces, else 0. */
+static uint32_t fin_part(const Rep *r, const ObjTopo *t, const Cuts *cu, uint32_t k, const KeySet *ks, uint32_t *part,
+                         uint32_t *nb)
+{
+    uint32_t n = 0;
+    part[n++] = rp_cface(t, cu->he[k]);
+    *nb = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t f = part[i];
+        for (uint32_t c = rp_start(r, t, f); c < rp_start(r, t, f + 1); c++) {
+            uint32_t m = t->mate[c];
+            if (m == RP_SELF)
+                continue;
+            if (m == RP_NONMANIF || m == RP_SKIPPED)
+                return 0;
+            if (m == RP_BOUNDARY) {
+                if (key_has(ks, vpair(rp_cvert(r, t, c), rp_cvert(r, t, rp_next(r, t, c)))))
+                    return 0;
+                (*nb)++;
+                continue;
+            }
+            uint32_t g = rp_cface(t, m), j = 0;
+            while (j < n && part[j] != g)
+                j++;
+            if (j < n)
+                continue;
+            if (n == RP_FIN_FACES)
+                return 0;
+            part[n++] = g;
+        }
+    }
+    return n;
+}
+
+/* Mark fin[k] for each cut no fill closed whose part is a stray fin
+ * (every cut of that part), and its faces in t->skip and drop[]; the
+ * faces marked are counted in *faces. */
+static void stray_fins(Rep *r, ObjTopo *t, const Cuts *cu, const KeySet *ks, uint8_t *fin, uint8_t *drop,
+                       uint32_t *faces)
+{
+    uint32_t part[RP_FIN_FACES];
+    *faces = 0;
+    for (uint32_t k = 0; k < cu->n; k++) {
+        if (fin[k] || key_has(ks, vpair(cu->v[2 * k], cu->v[2 * k + 1])))
+            continue;
+        uint32_t nb, n = fin_part(r, t, cu, k, ks, part, &nb), open = 0;
+        if (!n || t->skip[part[0]])
+            continue;
+        /* its rim: the loops left open along its cuts, all of it (the
+         * holes not asked, no loop was filled or listed) */
+        for (uint32_t i = 0; i < cu->npend; i++) {
+            uint32_t f = rp_cface(t, cu->he[cu->pend_cut[i]]), j = 0;
+            while (j < n && part[j] != f)
+                j++;
+            open += j < n ? cu->pend[i].edges : 0;
+        }
+        if ((r->opt->steps & REPAIR_HOLES) && open != nb)
+            continue;
+        for (uint32_t q = 0; q < cu->n; q++)
+            for (uint32_t j = 0; j < n; j++)
+                fin[q] |= rp_cface(t, cu->he[q]) == part[j];
+        for (uint32_t j = 0; j < n; j++) {
+            t->skip[part[j]] = 1;
+            drop[t->f0 + part[j]] = 1;
+        }
+        *faces += n;
+    }
+}
+
+int rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cu, const Fill *fills, uint32_t nfills, uint8_t *drop)
 {
     if (!cu->n)
         return 0;
@@ -646,8 +738,13 @@ int rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cu, const Fill *fills, uint32_t nfi
     while (ks.size < 2 * nkeys + 2)
         ks.size *= 2;
     ks.key = malloc(ks.size * sizeof *ks.key);
-    if (!ks.key)
+    uint8_t *gone = calloc(cu->n + 1, 1), *fin = calloc(cu->n + 1, 1);
+    if (!ks.key || !gone || !fin) {
+        free(ks.key);
+        free(gone);
+        free(fin);
         return -1;
+    }
     memset(ks.key, 0xff, ks.size * sizeof *ks.key);
     /* the fills' edges (vertex pairs) and vertices (UINT32_MAX << 32 | v) */
     for (uint32_t i = 0; i < nfills; i++)
@@ -656,29 +753,31 @@ int rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cu, const Fill *fills, uint32_t nfi
             key_put(&ks, vpair(a, b));
             key_put(&ks, (uint64_t)UINT32_MAX << 32 | a);
         }
+    /* the stray fins go (their faces skipped from here on) */
+    uint32_t fin_faces = 0;
+    stray_fins(r, t, cu, &ks, fin, drop, &fin_faces);
     /* the copies on cuts left open go back to the vertex they copy, when
-     * no fill uses them: the edge is the fin it was */
-    uint32_t undone = 0;
-    uint8_t *gone = calloc(cu->n + 1, 1);
-    if (!gone) {
-        free(ks.key);
-        return -1;
-    }
+     * no fill uses them: the edge is the fin it was (or, the fin
+     * dropped, the edge it stood on) */
+    uint32_t undone = 0, fins = 0, back = 0;
     for (uint32_t k = 0; k < cu->n; k++) {
         uint32_t a = cu->v[2 * k], b = cu->v[2 * k + 1];
+        fins += fin[k];
         if (key_has(&ks, vpair(a, b)))
             continue;
         for (int j = 0; j < 2; j++) {
             uint32_t v = j ? b : a;
             if (v >= cu->vbase && !key_has(&ks, (uint64_t)UINT32_MAX << 32 | v)) {
-                key_put(&ks, (uint64_t)(UINT32_MAX - 1) << 32 | v);
+                uint64_t key = (uint64_t)(UINT32_MAX - 1) << 32 | v;
+                back += !key_has(&ks, key);
+                key_put(&ks, key);
                 gone[k] = 1;
             }
         }
-        undone += gone[k];
+        undone += gone[k] && !fin[k];
     }
     uint32_t moved = 0;
-    for (uint32_t c = 0; undone && c < t->nc; c++) {
+    for (uint32_t c = 0; back && c < t->nc; c++) {
         uint32_t *v = &r->w.corner[t->c0 + c];
         if (*v >= cu->vbase && key_has(&ks, (uint64_t)(UINT32_MAX - 1) << 32 | *v)) {
             *v = r->anchor[*v];
@@ -689,7 +788,7 @@ int rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cu, const Fill *fills, uint32_t nfi
      * boundary listed at a copy put back names the vertex it copied */
     int rc = 0;
     for (uint32_t i = 0; i < cu->npend && rc == 0; i++)
-        if (!gone[cu->pend_cut[i]])
+        if (!gone[cu->pend_cut[i]] && !fin[cu->pend_cut[i]])
             rc = rp_hole_open(r, cu->pend[i].object, cu->pend[i].edges, cu->pend[i].vertex, cu->pend[i].why);
     for (uint32_t i = 0; i < r->rep->nholes; i++) {
         uint32_t *v = &r->rep->holes[i].vertex;
@@ -698,15 +797,26 @@ int rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cu, const Fill *fills, uint32_t nfi
             *v = r->anchor[*v];
     }
     free(gone);
+    free(fin);
     free(ks.key);
-    r->rep->nm_edges -= undone < r->rep->nm_edges ? undone : r->rep->nm_edges;
+    /* an edge a fin was cut from and put back on, or whose fin went, was
+     * not split; the copies put back were not added */
+    uint32_t unsplit = undone + fins;
+    r->rep->nm_edges -= unsplit < r->rep->nm_edges ? unsplit : r->rep->nm_edges;
+    r->rep->split_vertices -= back < r->rep->split_vertices ? back : r->rep->split_vertices;
     r->rep->cuts_undone += undone;
-    return rc ? rc : moved ? rp_topo_pair(r, t, 1) : 0;
+    r->rep->fins += fin_faces;
+    if (rc)
+        return rc;
+    /* the pairing again: the copies put back (the fins' faces out of it,
+     * skipped), or only the fins' faces leaving it */
+    return moved ? rp_topo_pair(r, t, 1) : fin_faces ? rp_topo_unpair(r, t) : 0;
 }
 
 void rp_cuts_free(Cuts *cu)
 {
     free(cu->v);
+    free(cu->he);
     free(cu->pend);
     free(cu->pend_cut);
     memset(cu, 0, sizeof *cu);

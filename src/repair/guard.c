@@ -33,12 +33,13 @@ static void *before_main(void *arg)
     return NULL;
 }
 
-int rp_before_start(Before *b, const Mesh *m, const RepairOpts *opt)
+int rp_before_start(Before *b, const Mesh *m, const RepairOpts *opt, int now)
 {
     memset(b, 0, sizeof *b);
     b->m = m;
-    b->co = (CheckOpts){ .threads = 1, .intersections = opt->intersections, .cancel = opt->cancel };
-    if (opt->threads > 1 && thread_start(&b->th, before_main, b) == 0) {
+    b->co = (CheckOpts){ .threads = now ? opt->threads : 1, .intersections = opt->intersections,
+                         .cancel = opt->cancel };
+    if (!now && opt->threads > 1 && thread_start(&b->th, before_main, b) == 0) {
         b->threaded = 1;
         return 0;
     }

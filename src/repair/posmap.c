@@ -127,6 +127,7 @@ static int table_grow(Rep *r)
 
 int rp_pos_own(Rep *r)
 {
+    r->pos_changed = 1;
     if (!r->pos_borrowed)
         return 0;
     size_t n = 3 * (r->vcap > r->w.nverts ? r->vcap : r->w.nverts);

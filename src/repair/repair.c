@@ -263,7 +263,7 @@ static int object_steps(Rep *r, uint32_t i, Filled *fd)
     if (rc == 0 && split && (steps & REPAIR_HOLES) && t.nboundary)
         rc = rp_holes(r, &t, &cuts, &fd->fills[i], &fd->nfills[i], &fd->dp_budget);
     if (rc == 0)
-        rc = rp_cuts_settle(r, &t, &cuts, fd->fills[i], fd->nfills[i]);
+        rc = rp_cuts_settle(r, &t, &cuts, fd->fills[i], fd->nfills[i], fd->drop);
     int settled = 0;
     if (rc == 0 && turn && !fd->nfills[i])
         rc = rp_outward(r, &t, &settled);
@@ -357,13 +357,65 @@ static int steps(Rep *r)
     return rc;
 }
 
-/* The check of r's repaired copy into *after. */
-static int check_after(Rep *r, MeshCheck *after)
+/* ==== The checks ==== */
+
+/* Can the input's crossing figures stand for the result's? The crossing
+ * test reads each object's triangles (the fans of its faces that are
+ * not degenerate and duplicate no earlier face of it) by their points.
+ * A repair that moved and added no position (welds at one position
+ * only: the check takes a position as one point however many vertices
+ * are there), dropped no face but degenerate ones (which the test
+ * leaves out; a degenerate face can be the original only of a
+ * degenerate duplicate), dropped no repeated corner and flipped no
+ * polygon (a flip keeps a face's first corner, so its fan, but a
+ * polygon's first edge is where the check looks for its duplicate)
+ * leaves those triangles as they were, object by object, and their
+ * count too. A count that stopped on its budget is not taken: where it
+ * stopped depends on the order of the work. The fuzzer
+ * (tests/fuzz/fuzz_repair.c) counts the result again to hold this. */
+static int crossings_same(const Rep *r, const Before *b)
+{
+    const RepairReport *rep = r->rep;
+    return r->opt->intersections && b && b->rc == 0 && !b->threaded && b->mc.file.intersections_tested &&
+           !b->mc.file.intersections_stopped && !r->pos_changed && !rep->fill_faces && !rep->duplicate &&
+           !rep->flaps && !rep->fins && !rep->repeated && !r->poly_flips;
+}
+
+/* The input's crossing figures, object by object, as the result's. */
+static void crossings_take(MeshCheck *after, const MeshCheck *before)
+{
+    for (uint32_t i = 0; i < after->nobjs && i < before->nobjs; i++) {
+        CheckCounts *a = &after->objs[i].c;
+        const CheckCounts *b = &before->objs[i].c;
+        a->self_intersections = b->self_intersections;
+        a->intersections_tested = b->intersections_tested;
+        a->intersections_stopped = b->intersections_stopped;
+        a->pair_tests = b->pair_tests;
+        a->pair_budget = b->pair_budget;
+    }
+    after->file.self_intersections = before->file.self_intersections;
+    after->file.intersections_tested = before->file.intersections_tested;
+    after->file.intersections_stopped = before->file.intersections_stopped;
+    after->file.pair_tests = before->file.pair_tests;
+    after->file.pair_budget = before->file.pair_budget;
+}
+
+/* The check of mesh w (the repaired copy, or m once it is in place)
+ * into *after: the crossing test's figures the input's when the repair
+ * left the triangles it reads as they were (b: the input's check, when
+ * it is done; else NULL). */
+static int check_result(Rep *r, const Mesh *w, const Before *b, MeshCheck *after)
 {
     double t = now_ms();
-    CheckOpts co = { .threads = r->opt->threads, .intersections = r->opt->intersections, .cancel = r->opt->cancel };
+    int same = crossings_same(r, b);
+    CheckOpts co = { .threads = r->opt->threads, .intersections = r->opt->intersections && !same,
+                     .cancel = r->opt->cancel };
     char err[256];
-    int rc = meshcheck_run(after, &r->w, &co, err, sizeof err);
+    int rc = meshcheck_run(after, w, &co, err, sizeof err);
+    if (rc == 0 && same) {
+        crossings_take(after, &b->mc);
+        r->rep->crossings_same = 1;
+    }
     r->rep->ms_phase[REPAIR_T_CHECK] += now_ms() - t;
     return rc;
 }
@@ -385,20 +437,21 @@ static void report_again(RepairReport *rep)
  * nor can duplicates dropped from an object that ends settled (twins.c
  * opens no edge; every part agreeing, none is non-orientable, none has
  * a flip left, and the turn outward leaves none inside out). Splits,
- * fills, turns outward, moved positions, an object left without faces
- * and duplicates dropped elsewhere might (a duplicate gone can make an
- * edge manifold that joins two patches whose windings disagree), and so
- * might repeated corners dropped when a duplicate is kept (a b b c and
- * a b c c are one face once each is a b c), and flips of polygons of
- * four corners or more: the check looks for a face's duplicate across
- * its first edge, which a flip changes (quads 1 2 6 5 and 5 2 1 6 are
- * on the same points; flipped, 5 6 1 2 shares the other's edge 6 5,
- * and the check finds what it did not before). */
+ * fills, stray fins dropped, turns outward, moved positions, an object
+ * left without faces and duplicates dropped elsewhere might (a
+ * duplicate gone can make an edge manifold that joins two patches
+ * whose windings disagree), and so might repeated corners dropped when
+ * a duplicate is kept (a b b c and a b c c are one face once each is a
+ * b c), and flips of polygons of four corners or more: the check looks
+ * for a face's duplicate across its first edge, which a flip changes
+ * (quads 1 2 6 5 and 5 2 1 6 are on the same points; flipped, 5 6 1 2
+ * shares the other's edge 6 5, and the check finds what it did not
+ * before). */
 static int risky(const Rep *r, const Mesh *m)
 {
     const RepairReport *rep = r->rep;
-    if (rep->split_vertices || rep->cuts_undone || rep->filled || rep->outward || r->dup_unsettled || r->poly_flips ||
-        (r->opt->weld_eps > 0 && rep->welded) || (rep->repeated && rep->dup_kept))
+    if (rep->split_vertices || rep->cuts_undone || rep->fins || rep->filled || rep->outward || r->dup_unsettled ||
+        r->poly_flips || (r->opt->weld_eps > 0 && rep->welded) || (rep->repeated && rep->dup_kept))
         return 1;
     for (uint32_t i = 0; i < m->nobjs; i++)
         if (m->objs[i].face_count && !r->w.objs[i].face_count)
@@ -407,17 +460,18 @@ static int risky(const Rep *r, const Mesh *m)
 }
 
 /* Repair m, object by object as boldly as the check of the result
- * allows (guard.c): the input is checked only when the repair did
- * something that might make a figure worse (on a helper thread, beside
- * the check of the result, when two threads are allowed), and then the
- * result is checked before it replaces m's arrays. Else it replaces
- * them first (the input's arrays go before the check of the result
- * needs its memory), and *counted says whether that check ran. *after:
- * the check of the repaired mesh (when counted). */
-static int repair_guarded(Rep *r, Mesh *m, uint8_t *level, MeshCheck *after, int *counted)
+ * allows (guard.c). The input is checked (b) when *have is set already
+ * (RepairOpts.keep_checks: before the repair, on every thread), or when
+ * the repair did something that might make a figure worse (then on a
+ * helper thread, beside the check of the result, when two threads are
+ * allowed), and then the result is checked before it replaces m's
+ * arrays. Else it replaces them first (the input's arrays go before the
+ * check of the result needs its memory), and *counted says whether
+ * that check ran. *after: the check of the repaired mesh (when
+ * counted). */
+static int repair_guarded(Rep *r, Mesh *m, uint8_t *level, Before *b, int *have, MeshCheck *after, int *counted)
 {
-    Before b = { .rc = -1 };
-    int rc = 0, have = 0;
+    int rc = 0;
     *counted = 0;
     for (;;) {
         report_again(r->rep);
@@ -425,27 +479,24 @@ static int repair_guarded(Rep *r, Mesh *m, uint8_t *level, MeshCheck *after, int
             break;
         if (!risky(r, m)) {
             install(r, m);
-            double t = now_ms();
-            CheckOpts co = { .threads = r->opt->threads, .intersections = r->opt->intersections,
-                             .cancel = r->opt->cancel };
-            char err[256];
-            *counted = meshcheck_run(after, m, &co, err, sizeof err) == 0;
-            r->rep->ms_phase[REPAIR_T_CHECK] += now_ms() - t;
+            *counted = check_result(r, m, *have ? b : NULL, after) == 0;
             break;
         }
-        if (!have) {
-            have = 1;
-            if ((rc = rp_before_start(&b, m, r->opt)))
+        if (!*have) {
+            *have = 1;
+            if ((rc = rp_before_start(b, m, r->opt, 0)))
                 break;
         }
-        if ((rc = check_after(r, after)))
+        /* the input's check is done when it ran first (on one thread, or
+         * before the repair): else it runs beside this one */
+        if ((rc = check_result(r, &r->w, b->threaded ? NULL : b, after)))
             break;
         double t = now_ms();
-        rc = rp_before_wait(&b);
+        rc = rp_before_wait(b);
         r->rep->ms_phase[REPAIR_T_CHECK] += now_ms() - t;
         if (rc)
             break;
-        if (!rp_worse(&b.mc, after, level)) {
+        if (!rp_worse(&b->mc, after, level)) {
             install(r, m);
             *counted = 1;
             break;
@@ -454,8 +505,6 @@ static int repair_guarded(Rep *r, Mesh *m, uint8_t *level, MeshCheck *after, int
         free_copy(r);
         *r = (Rep){ .opt = r->opt, .rep = r->rep, .level = level };
     }
-    if (have)
-        rp_before_free(&b);
     return rc;
 }
 
@@ -473,21 +522,42 @@ int repair_mesh(Mesh *m, const RepairOpts *opt, RepairReport *rep, char *err, si
     uint32_t faces = m->nfaces, verts = m->nverts;
     uint8_t *level = calloc((size_t)m->nobjs + 1, 1);
     Rep r = { .opt = opt, .rep = rep, .level = level };
+    Before b = { .rc = -1 };
     MeshCheck after;
-    int counted = 0, rc = level ? repair_guarded(&r, m, level, &after, &counted) : -1;
+    int counted = 0, have = 0, rc = level ? 0 : -1;
+    if (rc == 0 && opt->keep_checks) {
+        /* first, on every thread: the repair has its memory to itself */
+        double t = now_ms();
+        have = 1;
+        rc = rp_before_start(&b, m, opt, 1);
+        rep->ms_phase[REPAIR_T_BEFORE] = now_ms() - t;
+    }
+    if (rc == 0)
+        rc = repair_guarded(&r, m, level, &b, &have, &after, &counted);
     free_copy(&r);
     if (rc) {
         snprintf(err, errlen, "%s: %s", name,
                  rp_cancelled(&r) ? "cancelled" : "out of memory repairing the model (or more than 2^32 vertices)");
+        if (have)
+            rp_before_free(&b);
         free(level);
         repair_report_free(rep);
         return -1;
     }
     if (counted) {
         left(rep, &after);
-        meshcheck_free(&after);
+        if (opt->keep_checks)
+            rep->after = after;
+        else
+            meshcheck_free(&after);
     }
     rep->counted = counted;
+    if (opt->keep_checks) {
+        rep->before = b.mc;     /* b.rc is 0: the repair ran */
+        rep->has_before = 1;
+    } else if (have) {
+        rp_before_free(&b);
+    }
     for (uint32_t i = 0; i < m->nobjs; i++)
         rep->held_back += level[i] > 0;
     free(level);
@@ -504,4 +574,7 @@ void repair_report_free(RepairReport *rep)
     free(rep->holes);
     rep->holes = NULL;
     rep->nholes = 0;
+    meshcheck_free(&rep->before);
+    meshcheck_free(&rep->after);
+    rep->has_before = 0;
 }

@@ -60,6 +60,7 @@ typedef struct {
     /* w.pos and w.rgb are the input's own until something changes them
      * (rp_pos_own): most repairs move and add no vertex */
     int       pos_borrowed;
+    int       pos_changed;      /* a position moved or a vertex was added (rp_pos_own) */
 } Rep;
 
 /* ==== Not worse (guard.c) ==== */
@@ -75,8 +76,10 @@ typedef struct {
 } Before;
 
 /* The check of the input: on a helper thread when opt allows two
- * threads or more, else now. rp_before_wait returns its result. */
-int  rp_before_start(Before *b, const Mesh *m, const RepairOpts *opt);
+ * threads or more and now is 0 (its crossing test on that thread
+ * alone), else now (on opt's threads). rp_before_wait returns its
+ * result. */
+int  rp_before_start(Before *b, const Mesh *m, const RepairOpts *opt, int now);
 int  rp_before_wait(Before *b);
 void rp_before_free(Before *b);
 /* Each object whose figures are worse after than before goes up a
@@ -92,7 +95,7 @@ static inline const float *rp_vpos(const Rep *r, uint32_t v) { return r->w.pos +
 /* ==== Points (posmap.c) ==== */
 
 /* Make w.pos and w.rgb the repair's own copies (room for vcap
- * vertices), before they change. 0 or -1 out of memory. */
+ * vertices), before they change (pos_changed set). 0 or -1 out of memory. */
 int  rp_pos_own(Rep *r);
 
 /* The coordinate's bits with -0 made +0. */
@@ -227,9 +230,11 @@ int  rp_twins(Rep *r, ObjTopo *t, uint8_t *drop);
  * rebuilt when anything changed. The faces cut loose from a fin of an
  * odd number are listed in *cuts (each by the two vertices its cut edge
  * ends on): rp_cuts_settle puts back those the holes did not close
- * (fills: the object's fills taken). */
+ * (fills: the object's fills taken), or drops them with their part when
+ * it is a stray fin. */
 typedef struct {
     uint32_t *v;                /* 2 per cut */
+    uint32_t *he;               /* per cut: the half-edge cut loose (relative corner) */
     uint32_t  n, cap;
     uint32_t  vbase;            /* vertices from here on are the split's copies */
     /* loops left open that run along a cut: listed only if the cut stays */
@@ -324,7 +329,14 @@ int  rp_moved_cross(Rep *r, const ObjTopo *t, const uint32_t *face, const uint32
  * REPAIR_HOLES_MAX). */
 int  rp_hole_open(Rep *r, uint32_t obj, uint32_t edges, uint32_t vertex, RepairOpenWhy why);
 
-int  rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cuts, const Fill *fills, uint32_t nfills);
+/* The most faces a stray fin has (fins.c: a small open part cut loose
+ * from a non-manifold edge, that no fill closes, is dropped). */
+#define RP_FIN_FACES 4u
+
+/* After the holes: the cuts no fill closed are put back, or, where what
+ * was cut loose is a stray fin, its faces marked in drop[] (per mesh
+ * face) and skipped in t. */
+int  rp_cuts_settle(Rep *r, ObjTopo *t, Cuts *cuts, const Fill *fills, uint32_t nfills, uint8_t *drop);
 void rp_cuts_free(Cuts *cuts);
 
 /* repair.c: the faces marked in drop (NULL: none) gone, and the fills

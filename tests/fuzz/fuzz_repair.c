@@ -11,6 +11,8 @@
  *                     corners, copies of faces either way round, copies
  *                     of vertices, objects), on a coarse grid so that
  *                     points, edges and faces coincide
+ *           bit 7     keep_checks: repair_mesh checks the input first
+ *                     and hands over both checks
  *   byte 1  bits 0-4  the steps (REPAIR_*); 0 reads as REPAIR_DEFAULT
  *           bit 5     weld within 1/8 (positions within it made one)
  *           bit 6     --max-hole 6
@@ -23,8 +25,11 @@
  * unless it stopped on its budget either time); on small objects the
  * boundary and non-manifold edges are also counted by brute force here
  * (each corner pair against every other) and must not grow. The
- * report's "left" figures are the check's. Aborts on the first thing
- * that does not hold. */
+ * report's "left" figures are the check's, its crossing pairs too
+ * (counted again or, where the repair left the triangles the test reads
+ * as they were, taken from the input's); with keep_checks, the checks
+ * it hands over are figure for figure the ones made here (but the work
+ * figure pair_tests). Aborts on the first thing that does not hold. */
 
 #define _DEFAULT_SOURCE
 
@@ -204,6 +209,29 @@ static int brute(const Mesh *m, uint32_t f0, uint32_t f1, uint32_t *boundary, ui
     return 1;
 }
 
+/* Every figure of a the same as b's (but the crossing test's work; and
+ * its bound figures when a count stopped on its budget). */
+static int same_check(const MeshCheck *a, const MeshCheck *b, int unsure)
+{
+    if (a->nobjs != b->nobjs)
+        return 0;
+    for (uint32_t i = 0; i <= a->nobjs; i++) {
+        const CheckCounts *x = i < a->nobjs ? &a->objs[i].c : &a->file, *y = i < a->nobjs ? &b->objs[i].c : &b->file;
+        for (int k = 0; k < check_nrows; k++) {
+            const CheckRow *r = &check_rows[k];
+            if (!strcmp(r->field, "pair_tests") ||
+                (unsure && (r->bound || !strcmp(r->field, "intersections_stopped"))))
+                continue;
+            if (meshcheck_value(r, x) != meshcheck_value(r, y)) {
+                fprintf(stderr, "fuzz_repair: a check handed over differs: %s %llu, counted %llu\n", r->field,
+                        (unsigned long long)meshcheck_value(r, x), (unsigned long long)meshcheck_value(r, y));
+                return 0;
+            }
+        }
+    }
+    return 1;
+}
+
 /* Is the problem figure of row r worse in after than in before? */
 static int worse(const CheckRow *r, const CheckCounts *before, const CheckCounts *after)
 {
@@ -239,7 +267,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         mesh_flip_winding(&m);
     int cross = !(how & 128), threads = sel & 16 ? 2 : 1;
     RepairOpts ro = { .steps = how & 31 ? how & 31 : REPAIR_DEFAULT, .weld_eps = how & 32 ? 0.125 : 0,
-                      .max_hole = how & 64 ? 6 : 0, .threads = threads, .intersections = cross };
+                      .max_hole = how & 64 ? 6 : 0, .threads = threads, .intersections = cross,
+                      .keep_checks = (sel & 128) != 0 };
     CheckOpts co = { .threads = threads, .intersections = cross };
     MeshCheck before, after;
     CHECK(meshcheck_run(&before, &m, &co, err, sizeof err) == 0);
@@ -291,6 +320,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     CHECK(rep.left_holes == after.file.holes && rep.left_nm_edges == after.file.nonmanifold_edges);
     CHECK(rep.left_duplicate == after.file.duplicate_faces && rep.left_degenerate == after.file.degenerate_faces);
     CHECK(rep.left_flipped == after.file.inconsistent_faces);
+    if (cross && !unsure)
+        CHECK(rep.left_crossings == after.file.self_intersections);
+    if (ro.keep_checks) {
+        CHECK(rep.has_before && rep.counted);
+        CHECK(same_check(&rep.before, &before, unsure) && same_check(&rep.after, &after, unsure));
+    }
     meshcheck_free(&before);
     meshcheck_free(&after);
     repair_report_free(&rep);
