@@ -26,6 +26,7 @@
 
 #define SECTION_MAX   4         /* planes at once */
 #define SECTION_TEXT  128       /* a plane as text, with room to spare */
+#define SECTION_ENDS  8         /* open chains whose ends a section keeps */
 
 /* One plane: the removed side is where (p - q) . n > 0. */
 typedef struct {
@@ -90,6 +91,8 @@ typedef struct {
     double   perimeter;         /* every loop's and open chain's length */
     uint32_t loops;             /* closed loops */
     uint32_t chains;            /* open chains: where the cut does not close (an open model) */
+    uint32_t nends;             /* the first SECTION_ENDS chains' two ends are in ends[] */
+    float    ends[SECTION_ENDS][2][3];
 } SectionFigures;
 
 /* The polygons to cut: polygon k of [first, first + count) has corners

@@ -64,6 +64,10 @@ void section_work_free(SectionWork **w)
 
 static int add_seg(SectionWork *w, const float a[3], const float b[3])
 {
+    /* a face that touches the plane at a corner only (its other corners
+     * removed) crosses it at that corner twice: no segment */
+    if (memcmp(a, b, 3 * sizeof(float)) == 0)
+        return 0;
     if (grow_array((void **)&w->seg, &w->seg_room, w->nseg + 1, sizeof *w->seg))
         return -1;
     Seg *s = &w->seg[w->nseg++];
@@ -307,6 +311,10 @@ int section_loops(const SectionPolys *in, const SectionPlane *planes, int np, in
             if (closed < 0)
                 return -1;
             if (!closed) {
+                if (fig->nends < SECTION_ENDS) {
+                    memcpy(fig->ends[fig->nends][0], chain->pts, 3 * sizeof(float));
+                    memcpy(fig->ends[fig->nends++][1], chain->pts + 3 * (size_t)(chain->npts - 1), 3 * sizeof(float));
+                }
                 fig->chains++;
                 continue;
             }
