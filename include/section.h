@@ -56,6 +56,12 @@ int  section_side(const SectionPlane *pl, const float p[3]);
  * crosses the plane. Callers pass the kept end first, so every face
  * and cap that meets the edge gets the same bits. */
 void section_edge_point(const SectionPlane *pl, const float a[3], const float b[3], float out[3]);
+/* The part [*lo, *hi] (fractions of the way from a to b) of the
+ * segment a b that lies on the removed side of every plane: 1, or 0
+ * when none does. For points and lines (screen/prims.c), which are
+ * drawn as quads and need no exact crossing. */
+int  section_segment_cut(const SectionPlane *planes, int np, const float a[3], const float b[3], double *lo,
+                         double *hi);
 /* mask[v] of positions pos[0 .. n): bit i set where pos lies on the
  * removed side of planes[i]. */
 void section_masks(const SectionPlane *planes, int np, const float *pos, uint32_t n, uint8_t *mask);

@@ -263,3 +263,51 @@ Test(section, five_algorithms_agree)
     fbuf_free(&ref);
     fbuf_free(&fb);
 }
+
+/* Points and lines are cut too: a line from x = -1 to 1 and a point at
+ * each end, cut at x = 0.25, seen from the front: the line's samples
+ * stop a quarter of the way past the middle, the point at x = 1 is gone. */
+Test(section, points_and_lines_are_cut)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "line.obj", "v -1 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\np 1\np 2\np 3\n"), 0);
+    TlView v = { 0 };
+    v.zoom = 1;
+    tl_set_view(&s, &v);
+    SectionPlane pl = plane("x=0.25");
+    SectionCut c = { 0 };
+    ScreenPolys sp = { 0 };
+    FrameBufs fb = { 0 };
+    int32_t seg = -1, pt_right = -1;
+    for (int32_t id = (int32_t)s.nfaces; id < (int32_t)(s.nfaces + s.nprims); id++) {
+        int obj;
+        uint32_t k;
+        PrimKind kind = scene_prim_of(&s, id, &obj, &k);
+        if (kind == PRIM_SEG)
+            seg = id;
+        if (kind == PRIM_POINT && k == 1)
+            pt_right = id;
+    }
+    cr_assert(seg >= 0 && pt_right >= 0);
+    int xmax[2] = { -1, -1 }, right_seen[2] = { 0, 0 };
+    for (int cut = 0; cut < 2; cut++) {
+        render_cut(&s, &c, &pl, cut, &hsr_zbuffer, 1, 200, 100, 0, &sp, &fb);
+        for (int y = 0; y < fb.h; y++)
+            for (int x = 0; x < fb.w; x++) {
+                int32_t id = fb.ids[y * fb.w + x];
+                if (id == seg && x > xmax[cut])
+                    xmax[cut] = x;
+                right_seen[cut] |= id == pt_right;
+            }
+    }
+    cr_assert(right_seen[0] && !right_seen[1], "the point at x = 1: seen %d uncut, %d cut", right_seen[0],
+              right_seen[1]);
+    /* the whole line spans [xl, xmax[0]] about the middle: cut, it ends
+     * five eighths of the way across */
+    int mid = fb.w / 2, want = mid + (xmax[0] - mid) / 4;
+    cr_assert(abs(xmax[1] - want) <= 2, "the cut line ends at column %d, want about %d", xmax[1], want);
+    section_cut_free(&c);
+    screen_free(&sp);
+    fbuf_free(&fb);
+    scene_free(&s);
+}

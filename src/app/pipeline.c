@@ -298,6 +298,9 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     double t0 = now_ms();
     p->sp.no_map = !p->algo->uses_map;
     char err[160];
+    /* the wireframe's ids before the caps', which follow every line's */
+    if (p->wireframe && !p->scene->wire_built && scene_wire_build(p->scene, err, sizeof err))
+        return -1;
     p->sp.cut = NULL;
     if (p->nplanes && !p->cut_off) {
         if (section_cut_update(&p->cut, p->scene, p->planes, p->nplanes, err, sizeof err))
@@ -310,8 +313,6 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
         return -1;
     /* points and lines after the faces (and after --order's reordering,
      * which they need not take part in) */
-    if (p->wireframe && !p->scene->wire_built && scene_wire_build(p->scene, err, sizeof err))
-        return -1;
     int ps = p->point_size > 0 ? p->point_size : 1, lw = p->line_width > 0 ? p->line_width : 1;
     PrimStyle style = { ps * k, lw * k, p->wireframe, 0, k, p->problems && p->scene->marks.set };
     if (screen_prims(&p->sp, p->scene, &style, &p->prims))

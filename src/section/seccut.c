@@ -111,7 +111,8 @@ int section_cut_update(SectionCut *c, const Scene *s, const SectionPlane *planes
         const Object *o = &s->objs[oi];
         const uint8_t *mask = c->mask[o->mesh - s->meshes];
         uint8_t any = 0;
-        for (uint32_t v = o->vert_min; np && o->poly_count && v <= o->vert_max; v++)
+        /* faces, points and lines alike: the front end cuts all of them */
+        for (uint32_t v = o->vert_min; np && o->mesh->nverts && v <= o->vert_max && v < o->mesh->nverts; v++)
             any |= mask[v];
         c->touched[oi] = any != 0;
         for (int i = 0; i < np; i++) {

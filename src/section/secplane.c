@@ -227,3 +227,26 @@ void section_masks(const SectionPlane *planes, int np, const float *pos, uint32_
         mask[v] = m;
     }
 }
+
+int section_segment_cut(const SectionPlane *planes, int np, const float a[3], const float b[3], double *lo_out,
+                        double *hi_out)
+{
+    double lo = 0, hi = 1;
+    for (int i = 0; i < np; i++) {
+        double fa = plane_f(&planes[i], a), fb = plane_f(&planes[i], b);
+        if (fa > 0 && fb > 0)
+            continue;
+        if (fa <= 0 && fb <= 0)
+            return 0;
+        double t = fa / (fa - fb);
+        if (fa > 0)
+            hi = t < hi ? t : hi;
+        else
+            lo = t > lo ? t : lo;
+    }
+    if (!(lo < hi))
+        return 0;
+    *lo_out = lo;
+    *hi_out = hi;
+    return 1;
+}
