@@ -28,7 +28,7 @@ static const char *depth_label(ColourDepth d)
  * fps, 2 picture size, 3 display mode, shading and colours, 4 view flags
  * (persp, cull, spin), 5 selection. Rank 0 stays: the file, the
  * polygons (points and lines too when there are some), the algorithm and
- * its time, work going on in the background (a file loading, the octree
+ * its time, the section cut (cutkeys.c), work going on in the background (a file loading, the octree
  * building), and "? help"; in a window still
  * too narrow they take their brief forms ("drawn/faces", "?"), then the
  * file name is cut to a dozen columns, then the note is cut at its end or

@@ -93,10 +93,10 @@ if wait_for 'cut off'; then ok "/ again: the model whole"; else notok "/ again" 
 tm send-keys -t zv '?'
 wait_for 'zview keys' >/dev/null
 # on the first page, or past it when the help scrolls (End: the last)
-if ! WAIT_POLLS=20 wait_for '/ +section cut' && grep -q 'Up/Down' "$T/screen"; then
+if ! WAIT_POLLS=20 wait_for "/ ; ' .* +cut: on, slide" && grep -q 'Up/Down' "$T/screen"; then
     tm send-keys -t zv End
 fi
-if wait_for '/ +section cut on / off'; then ok "? lists /"; else notok "? lists /" "$(cat "$T/screen")"; fi
+if wait_for "/ ; ' .* +cut: on, slide, turn, next"; then ok "? lists / ; ' \\ |"; else notok "? lists the cut's keys" "$(cat "$T/screen")"; fi
 tm send-keys -t zv Escape
 wait_gone 'zview keys' >/dev/null
 tm send-keys -t zv q
