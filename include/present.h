@@ -23,6 +23,8 @@ const char *colour_name(ColourDepth c);
  * COLORTERM truecolor/24bit or TERM *-direct -> true; TERM *256colour* ->
  * 256; other TERM -> 16; TERM unset or dumb -> none. */
 ColourDepth colour_from_env(void);
+/* Which variable colour_from_env went by: "NO_COLOR", "COLORTERM" or "TERM". */
+const char *colour_env_reason(void);
 /* Default display mode: half on a UTF-8 locale, else ascii. Call after
  * setlocale(LC_ALL, ""). */
 DisplayMode mode_from_locale(void);

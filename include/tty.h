@@ -62,6 +62,8 @@ typedef struct {
     FILE       *out, *in;       /* NULL: stdout, stdin */
     const char *termname;       /* NULL: $TERM */
     ColourDepth  colour;          /* wanted; lowered to what the terminal has */
+    int         colour_env;     /* colour is the environment's guess (no --color): below 24 bits,
+                                   the terminal is asked what it draws (termbg.c) */
     int         mouse;          /* report clicks, drags and the wheel */
     int         signals;        /* restore on SIGINT/SIGTERM/SIGHUP, handle SIGTSTP */
     int         ask_bg;         /* ask the terminal for its background (termbg.c) */
@@ -84,6 +86,7 @@ int  term_open(const TermConfig *cfg, char *err, size_t errlen);
 void term_restore(void);
 
 ColourDepth term_colour(void);            /* the depth actually used */
+int  term_colour_answered(void);          /* ... is what the terminal answered, above its environment's */
 /* Pixels: the protocol the terminal takes (PIX_CELLS: none, or not
  * wanted), its cell size in pixels (0 when it does not say), an image
  * drawn from the top left over the picture, and taken away again (the
@@ -207,21 +210,33 @@ typedef struct {
     char     body[TERMBG_BODY_MAX + 1];
     size_t   len;
     int      csi_private;       /* the CSI sequence began with '?' */
+    int      dcs;               /* the string is a DCS (P), not an OSC (]) */
     int      got_bg;            /* an OSC 11 answer with a colour came: bg */
     uint8_t  bg[3];
+    ColourDepth colour;         /* the SGR report (DECRQSS) after a 24-bit colour was set: COLOUR_TRUE
+                                   when it came back as set, COLOUR_256 as a palette index, else 0 */
     int      got_da;            /* the attributes' answer came: no other will */
 } BgScan;
 
 void termbg_scan_init(BgScan *s);
 void termbg_scan(BgScan *s, const unsigned char *b, size_t n);
 
-/* Ask the terminal on out_fd, read its answers from in_fd until the
- * attributes' answer or wait_ms; every byte read goes on to kp (NULL:
- * dropped), so the key parser sees the keys typed meanwhile and drops
- * the answers. The input must not echo (the viewer's curses mode).
- * Returns 1 with rgb_out when the terminal said its background, else 0;
- * waited_ms_out (may be NULL): how long it took. */
-int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, uint8_t rgb_out[3], double *waited_ms_out);
+/* What the terminal said to termbg_ask. */
+typedef struct {
+    int         got_bg;         /* it said its background: bg */
+    uint8_t     bg[3];
+    ColourDepth colour;         /* asked: the colours its SGR report showed (0: no answer) */
+    double      waited_ms;      /* how long the questions took */
+} TermAnswers;
+
+/* Ask the terminal on out_fd its background (and, with ask_colour, the
+ * colours it draws: a 24-bit colour set, the SGR asked back with DECRQSS,
+ * then reset), all in one write, and read its answers from in_fd until
+ * the attributes' answer or wait_ms; every byte read goes on to kp
+ * (NULL: dropped), so the key parser sees the keys typed meanwhile and
+ * drops the answers. The input must not echo (the viewer's curses mode).
+ * Returns 1 when the terminal said its background, else 0. */
+int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, int ask_colour, TermAnswers *ans);
 /* The same on the controlling terminal (/dev/tty) for --print, put in a
  * mode without echo for the question and back; not from a job in the
  * background, nor on TERM=dumb (or none). Returns 1 with rgb_out, else 0. */
@@ -235,16 +250,7 @@ int  termbg_ask_tty(int wait_ms, uint8_t rgb_out[3]);
  * WezTerm and others fill); 0 when it does not say. */
 int  pixels_cell_size(int fd, int *cw, int *ch);
 
-/* Which protocol the terminal on out_fd/in_fd takes (PIX_CELLS: none
- * known). Inside tmux or screen, cells without asking (they pass no
- * images by default); else the kitty query and the primary device
- * attributes (attribute 4: sixel) are asked, and the answers read until
- * the attributes' answer or wait_ms. Every byte read is handed to sink
- * (NULL: dropped), so that keys typed meanwhile are not lost. */
-typedef void (*PixelSink)(void *ctx, const unsigned char *b, size_t n);
-PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx);
-
-/* The answers' reader, byte by byte (any split), for tests. */
+/* The answers' reader, byte by byte (any split). */
 typedef struct {
     int    state;
     char   body[64];
@@ -253,9 +259,24 @@ typedef struct {
     int    sixel;           /* ... and it lists 4 */
     int    kitty;           /* the kitty query was answered OK */
     int    iterm;           /* the terminal's name is iTerm2 */
+    int    c1;              /* 8-bit controls too (a locale that is not UTF-8, where they are no
+                               text): 0x9b CSI, 0x90 DCS, 0x9f APC, 0x9c ST */
 } PixelScan;
 
-void pixels_scan_init(PixelScan *s);
+/* Which protocol the terminal on out_fd/in_fd takes (PIX_CELLS: none
+ * known). Inside tmux or screen, cells without asking (they pass no
+ * images by default); else the kitty query and the primary device
+ * attributes (attribute 4: sixel) are asked, and the answers read until
+ * the attributes' answer or wait_ms. Every byte read is handed to sink
+ * (NULL: dropped), so that keys typed meanwhile are not lost. */
+typedef void (*PixelSink)(void *ctx, const unsigned char *b, size_t n);
+/* s (made by pixels_scan_init) keeps what was read: answers that come
+ * after the wait (a slow link) can still be fed to it (term.c does). */
+PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx, PixelScan *s);
+/* What the answers read so far say (PIX_CELLS: no images). */
+PixelProto pixels_scanned(const PixelScan *s);
+
+void pixels_scan_init(PixelScan *s, int c1);
 void pixels_scan(PixelScan *s, const unsigned char *b, size_t n);
 /* What the environment says before any question: PIX_CELLS inside a
  * multiplexer or on a terminal that would show the questions, else

@@ -351,7 +351,7 @@ Test(pixels, a_view_in_each_protocol_is_the_o_image)
 static PixelScan scan_split(const char *answer, size_t at)
 {
     PixelScan s;
-    pixels_scan_init(&s);
+    pixels_scan_init(&s, 0);
     size_t n = strlen(answer);
     pixels_scan(&s, (const unsigned char *)answer, at < n ? at : n);
     if (at < n)
@@ -430,7 +430,10 @@ static PixelProto detect_with(const char *answer, Sink *sink, char *question, si
     cr_assert_eq(pipe(in), 0);
     if (answer)
         cr_assert_eq(write(in[1], answer, strlen(answer)), (ssize_t)strlen(answer));
-    PixelProto p = pixels_detect(out[1], in[0], 60, sink_keep, sink);
+    PixelScan scan;
+    pixels_scan_init(&scan, 0);
+    PixelProto p = pixels_detect(out[1], in[0], 60, sink_keep, sink, &scan);
+    cr_expect_eq(pixels_scanned(&scan), p, "the scan says what detect returned");
     close(out[1]);
     out[1] = -1;
     ssize_t n = read(out[0], question, qlen - 1);       /* the end, at once, when nothing was asked */

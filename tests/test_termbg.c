@@ -79,6 +79,30 @@ Test(termbg, other_answers_are_not_the_background)
     cr_expect(s.got_da && !s.got_bg, "tmux's answer when it does not know the colour");
 }
 
+Test(termbg, the_sgr_report_says_the_colours)
+{
+    /* real xterm's answer (its direct colour), the same with ';' and no
+     * colour-space field, a palette index, a refusal, an SGR without the
+     * colour, and a colour that is not the one set */
+    static const struct {
+        const char *in;
+        ColourDepth want;
+    } cases[] = {
+        { "\033P1$r0;38:2::1:2:3m\033\\", COLOUR_TRUE },  { "\033P1$r38;2;1;2;3m\033\\", COLOUR_TRUE },
+        { "\033P1$r0;38:2:0:1:2:3m\033\\", COLOUR_TRUE }, { "\033P1$r0;38;5;16m\033\\", COLOUR_256 },
+        { "\033P0$r\033\\", 0 },                        { "\033P1$r0m\033\\", 0 },
+        { "\033P1$r38;2;1;2;4m\033\\", 0 },              { "\033]1$r38;2;1;2;3m\033\\", 0 },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
+        for (size_t piece = 1; piece <= 5; piece += 4) {
+            BgScan s = scan_all(cases[i].in, piece);
+            cr_expect_eq(s.colour, cases[i].want, "case %zu in pieces of %zu: %d", i, piece, (int)s.colour);
+            cr_expect(!s.got_bg, "the SGR report taken for the background");
+        }
+    BgScan s = scan_all("\033P1$r0;38:2::1:2:3m\033\\\033]11;rgb:0/0/0\007\033[?64;1c", 2);
+    cr_expect(s.colour == COLOUR_TRUE && s.got_bg && s.got_da, "all three answers in one read");
+}
+
 /* ==== Asking a fake terminal ==== */
 
 /* ANSWER_LATE: both answers after the wait, each with its ESC alone 40 ms

@@ -250,7 +250,9 @@ static PixelProto print_protocol(const Options *o)
         raw.c_cc[VMIN] = 1;
         raw.c_cc[VTIME] = 0;
         if (tcsetattr(fd, TCSANOW, &raw) == 0) {
-            p = pixels_detect(fd, fd, TERMBG_WAIT_MS, NULL, NULL);
+            PixelScan scan;
+            pixels_scan_init(&scan, 0);
+            p = pixels_detect(fd, fd, TERMBG_WAIT_MS, NULL, NULL, &scan);
             tcsetattr(fd, TCSANOW, &old);
         }
     }

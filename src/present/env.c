@@ -66,6 +66,18 @@ ColourDepth colour_from_env(void)
     return COLOUR_16;
 }
 
+const char *colour_env_reason(void)
+{
+    /* colour_from_env's branches, in its order */
+    const char *no = getenv("NO_COLOR");
+    if (no && *no)
+        return "NO_COLOR";
+    const char *ct = getenv("COLORTERM");
+    if (ct && (strcmp(ct, "truecolor") == 0 || strcmp(ct, "24bit") == 0))
+        return "COLORTERM";
+    return "TERM";
+}
+
 DisplayMode mode_from_locale(void)
 {
     const char *cs = nl_langinfo(CODESET);

@@ -476,24 +476,55 @@ static void answers_to_keys(void *ctx, const unsigned char *b, size_t n)
     kp_push(ctx, b, n, now_ms());
 }
 
-/* What the terminal is asked before the first frame (its background,
- * the pixels it draws), and the mouse turned on. */
+/* The terminal said it draws more colours than the environment did:
+ * the quantizer for them (kept as it was when there is no memory). */
+static void colour_answered(Term *t, ColourDepth said)
+{
+    if (said <= t->depth)
+        return;
+    Quantizer q;
+    if (quant_init(&q, said))
+        return;
+    quant_free(&t->quant);
+    t->quant = q;
+    t->depth = said;
+    t->depth_answered = 1;
+}
+
+/* What the terminal is asked before the first frame (its background, the
+ * colours it draws when the environment did not say 24 bits, the pixels
+ * it draws), and the mouse turned on. */
 static void ask_terminal(Term *t, const TermConfig *cfg)
 {
     t->ask = isatty(t->q.fd);
-    /* its background, before the first frame; the answers go through the
-     * key parser, which drops them */
+    /* its background and colours, before the first frame; the answers go
+     * through the key parser, which drops them */
     fflush(t->out);
     t->bg_wait_ms = 0;
-    t->bg_known = cfg->ask_bg && t->ask && isatty(t->in_fd) &&
-                  termbg_ask(t->q.fd, t->in_fd, TERMBG_WAIT_MS, &t->kp, t->bg, &t->bg_wait_ms);
+    t->bg_known = t->depth_answered = 0;
+    int ask_colour = cfg->colour_env && t->depth > COLOUR_NONE && t->depth < COLOUR_TRUE;
+    if ((cfg->ask_bg || ask_colour) && t->ask && isatty(t->in_fd)) {
+        TermAnswers ans;
+        termbg_ask(t->q.fd, t->in_fd, TERMBG_WAIT_MS, &t->kp, ask_colour, &ans);
+        t->bg_wait_ms = ans.waited_ms;
+        t->bg_known = cfg->ask_bg && ans.got_bg;
+        memcpy(t->bg, ans.bg, 3);
+        colour_answered(t, ans.colour);
+    }
     /* which pixels it draws: asked the same way, the answers dropped by
      * the key parser (which waits for them: a late one is no Esc) */
     int ask_pix = cfg->pixels == PIX_AUTO && t->ask && isatty(t->in_fd);
     if (ask_pix && pixels_from_env() != PIX_CELLS)
         kp_expect(&t->kp, 1, now_ms());
-    t->pix = ask_pix ? pixels_detect(t->q.fd, t->in_fd, TERMBG_WAIT_MS, answers_to_keys, &t->kp)
+    pixels_scan_init(&t->pix_scan, !t->kp.utf8);
+    t->pix_asked_ms = now_ms();
+    t->pix = ask_pix ? pixels_detect(t->q.fd, t->in_fd, TERMBG_WAIT_MS, answers_to_keys, &t->kp, &t->pix_scan)
                      : cfg->pixels == PIX_AUTO ? PIX_CELLS : (PixelProto)cfg->pixels;
+    /* a slow link (or a loaded terminal) answers after the wait, or the
+     * background's answer, late, ended it: what comes is still read for
+     * pixels until kitty's (the best) or KP_LATE_MS */
+    t->pix_late = ask_pix && pixels_from_env() != PIX_CELLS && t->pix != PIX_KITTY;
+    t->pix_news = 0;
     t->pix_shown = 0;
     t->ack_wait = t->ack_told = t->acks_seen = t->unanswered = 0;
     t->pace_ms = PACE_MIN_MS;
@@ -610,6 +641,8 @@ int term_signalled(Term *t, TermEvent *ev)
 /* Without a session: what a session that was never opened says (no
  * colour, cells, no size, no background). */
 ColourDepth term_colour(void) { return S.t ? S.t->depth : COLOUR_NONE; }
+
+int term_colour_answered(void) { return S.t && S.t->depth_answered; }
 
 PixelProto term_pixels(void) { return S.t ? S.t->pix : PIX_CELLS; }
 

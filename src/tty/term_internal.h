@@ -29,6 +29,7 @@ typedef struct {
     int         mouse_on;
     int         cols, rows;     /* the window */
     ColourDepth depth;
+    int         depth_answered; /* depth is what the terminal answered, more than its environment said */
     Quantizer   quant;
     Vt          vt;
     int         out_errno;      /* a write failed (sticky): the next update says so */
@@ -49,6 +50,10 @@ typedef struct {
     uint8_t     bg[3];
     double      bg_wait_ms;     /* how long the question took */
     PixelProto  pix;            /* the pixels it takes (PIX_CELLS: none, or not wanted) */
+    PixelScan   pix_scan;       /* its answers to the pixels' questions, read so far */
+    int         pix_late;       /* the input is read for them too (a slow link's come late) */
+    double      pix_asked_ms;   /* when they were asked */
+    int         pix_news;       /* they came late and named pixels: the viewer is told (TE_RESIZE) */
     int         pix_shown;      /* an image is on the screen */
 } Term;
 

@@ -33,7 +33,11 @@
 #include "tty.h"
 
 #define ESC 0x1b
-#define QUESTION "\033]11;?\033\\\033[c"
+#define Q_BG     "\033]11;?\033\\"
+/* a 24-bit colour set, the SGR asked back (DECRQSS), the SGR reset: a
+ * terminal that draws 24 bits answers DCS 1 $ r ... 38:2::1:2:3 m ST */
+#define Q_COLOUR "\033[38;2;1;2;3m\033P$qm\033\\\033[m"
+#define Q_DA     "\033[c"
 
 /* ==== The answer ==== */
 
@@ -97,12 +101,52 @@ void termbg_scan_init(BgScan *s)
     memset(s, 0, sizeof *s);
 }
 
-/* A string has ended: is it the colour's answer? */
+/* The SGR report "1$r0;38:2::1:2:3m" (or with ';', with or without the
+ * colour space's empty field): the 24-bit colour set before came back
+ * as set (COLOUR_TRUE), as a palette index (38;5;N: COLOUR_256), or not
+ * at all (0). */
+static ColourDepth sgr_report(const char *body)
+{
+    if (strncmp(body, "1$r", 3))
+        return 0;
+    long tok[16];
+    int n = 0;
+    for (const char *p = body + 3; *p && *p != 'm' && n < 16;) {
+        char *end;
+        long v = strtol(p, &end, 10);
+        tok[n++] = end == p ? -1 : v;       /* an empty field: -1 */
+        p = end;
+        if (*p == ';' || *p == ':')
+            p++;
+        else if (*p != 'm')
+            return 0;                       /* not an SGR list */
+    }
+    for (int i = 0; i + 1 < n; i++) {
+        if (tok[i] != 38)
+            continue;
+        if (tok[i + 1] == 5)
+            return COLOUR_256;
+        if (tok[i + 1] != 2)
+            continue;
+        /* 38:2::1:2:3 has the colour space's field (empty or a number) */
+        for (int at = i + 2; at <= i + 3 && at + 2 < n; at++)
+            if (tok[at] == 1 && tok[at + 1] == 2 && tok[at + 2] == 3)
+                return COLOUR_TRUE;
+    }
+    return 0;
+}
+
+/* A string has ended: is it the background's answer, or the SGR's? */
 static void osc_done(BgScan *s)
 {
     s->body[s->len] = 0;
-    if (!strncmp(s->body, "11;", 3) && termbg_parse_colour(s->body + 3, s->bg) == 0)
+    if (s->dcs) {
+        ColourDepth c = sgr_report(s->body);
+        if (c > s->colour)
+            s->colour = c;
+    } else if (!strncmp(s->body, "11;", 3) && termbg_parse_colour(s->body + 3, s->bg) == 0) {
         s->got_bg = 1;
+    }
 }
 
 /* One byte of the input. A CSI sequence that starts with '?' and ends in
@@ -117,7 +161,8 @@ static void scan_byte(BgScan *s, unsigned char c)
     case S_ESC:
         s->len = 0;
         s->csi_private = 0;
-        s->state = c == '[' ? S_CSI : c == ']' ? S_OSC : c == ESC ? S_ESC : S_GROUND;
+        s->dcs = c == 'P';
+        s->state = c == '[' ? S_CSI : c == ']' || c == 'P' ? S_OSC : c == ESC ? S_ESC : S_GROUND;
         break;
     case S_CSI:
         if (s->len++ == 0 && c == '?')
@@ -147,7 +192,8 @@ static void scan_byte(BgScan *s, unsigned char c)
             osc_done(s);
         s->len = 0;
         s->csi_private = 0;
-        s->state = c == '\\' ? S_GROUND : c == '[' ? S_CSI : c == ']' ? S_OSC : S_GROUND;
+        s->dcs = c == 'P';
+        s->state = c == '\\' ? S_GROUND : c == '[' ? S_CSI : c == ']' || c == 'P' ? S_OSC : S_GROUND;
         break;
     }
 }
@@ -160,11 +206,12 @@ void termbg_scan(BgScan *s, const unsigned char *b, size_t n)
 
 /* ==== Asking ==== */
 
-/* The question, whole, to a descriptor that may be non-blocking. */
-static int send_question(int fd, int wait_ms)
+/* The questions, whole, to a descriptor that may be non-blocking. */
+static int send_question(int fd, int wait_ms, int ask_colour)
 {
-    const char *p = QUESTION;
-    size_t left = sizeof QUESTION - 1;
+    static const char with[] = Q_BG Q_COLOUR Q_DA, without[] = Q_BG Q_DA;
+    const char *p = ask_colour ? with : without;
+    size_t left = strlen(p);
     while (left) {
         ssize_t w = write(fd, p, left);
         if (w > 0) {
@@ -182,12 +229,12 @@ static int send_question(int fd, int wait_ms)
     return 0;
 }
 
-int termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, uint8_t rgb_out[3], double *waited_ms_out)
+int termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, int ask_colour, TermAnswers *ans)
 {
     double t0 = now_ms(), until = t0 + wait_ms;
     BgScan s;
     termbg_scan_init(&s);
-    int sent = send_question(out_fd, wait_ms) == 0;
+    int sent = send_question(out_fd, wait_ms, ask_colour) == 0;
     if (sent && kp)
         kp_expect(kp, 1, now_ms());     /* the attributes' answer, however late, is no Esc */
     while (sent && !s.got_da) {
@@ -207,10 +254,11 @@ int termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, uint8_t rgb_ou
         if (kp)
             kp_push(kp, buf, (size_t)r, now_ms());
     }
-    if (waited_ms_out)
-        *waited_ms_out = now_ms() - t0;
-    if (s.got_bg)
-        memcpy(rgb_out, s.bg, 3);
+    memset(ans, 0, sizeof *ans);
+    ans->waited_ms = now_ms() - t0;
+    ans->got_bg = s.got_bg;
+    memcpy(ans->bg, s.bg, 3);
+    ans->colour = s.colour;
     return s.got_bg;
 }
 
@@ -233,7 +281,10 @@ int termbg_ask_tty(int wait_ms, uint8_t rgb_out[3])
         raw.c_cc[VMIN] = 1;
         raw.c_cc[VTIME] = 0;
         if (tcsetattr(fd, TCSANOW, &raw) == 0) {
-            got = termbg_ask(fd, fd, wait_ms, NULL, rgb_out, NULL);
+            TermAnswers ans;
+            got = termbg_ask(fd, fd, wait_ms, NULL, 0, &ans);
+            if (got)
+                memcpy(rgb_out, ans.bg, 3);
             tcsetattr(fd, TCSANOW, &old);
         }
     }

@@ -40,9 +40,10 @@ int pixels_cell_size(int fd, int *cw, int *ch)
     return *cw > 0 && *ch > 0;
 }
 
-void pixels_scan_init(PixelScan *s)
+void pixels_scan_init(PixelScan *s, int c1)
 {
     memset(s, 0, sizeof *s);
+    s->c1 = c1;
 }
 
 /* The attributes' answer "ESC [ ? 6 2 ; 4 ; 2 2 c": is 4 among them? */
@@ -75,7 +76,8 @@ static void scan_byte(PixelScan *s, unsigned char c)
 {
     switch (s->state) {
     case S_GROUND:
-        s->state = c == 0x1b ? S_ESC : S_GROUND;
+        s->len = 0;
+        s->state = c == 0x1b ? S_ESC : !s->c1 ? S_GROUND : c == 0x9b ? S_CSI : c == 0x90 || c == 0x9f ? S_APC : S_GROUND;
         break;
     case S_ESC:
         s->len = 0;
@@ -93,8 +95,12 @@ static void scan_byte(PixelScan *s, unsigned char c)
         }
         break;
     case S_APC:
-        if (c == 0x1b)
+        if (c == 0x1b) {
             s->state = S_APC_ESC;
+        } else if (c == 0x9c && s->c1) {
+            apc_done(s);
+            s->state = S_GROUND;
+        }
         else if (c == 0x18 || c == 0x1a)
             s->state = S_GROUND;
         else if (s->len < sizeof s->body - 1)
@@ -126,7 +132,12 @@ PixelProto pixels_from_env(void)
     return PIX_AUTO;
 }
 
-PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx)
+PixelProto pixels_scanned(const PixelScan *s)
+{
+    return s->kitty ? PIX_KITTY : s->iterm ? PIX_ITERM : s->sixel ? PIX_SIXEL : PIX_CELLS;
+}
+
+PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx, PixelScan *s)
 {
     if (pixels_from_env() == PIX_CELLS)
         return PIX_CELLS;
@@ -142,9 +153,7 @@ PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, voi
             return PIX_CELLS;
         }
     }
-    PixelScan s;
-    pixels_scan_init(&s);
-    while (!s.got_da) {
+    while (!s->got_da) {
         double rest = until - now_ms();
         struct pollfd pf = { .fd = in_fd, .events = POLLIN };
         if (rest <= 0 || poll(&pf, 1, (int)rest + 1) <= 0)
@@ -156,9 +165,9 @@ PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, voi
                 continue;
             break;
         }
-        pixels_scan(&s, buf, (size_t)r);
+        pixels_scan(s, buf, (size_t)r);
         if (sink)
             sink(ctx, buf, (size_t)r);
     }
-    return s.kitty ? PIX_KITTY : s.iterm ? PIX_ITERM : s.sixel ? PIX_SIXEL : PIX_CELLS;
+    return pixels_scanned(s);
 }

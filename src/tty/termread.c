@@ -19,6 +19,27 @@
 
 #define LAST_ANSWER_MS 250      /* on quit, the wait for the answer still to come */
 
+/* The answers to the pixels' questions after the start's wait (a slow
+ * link), up to KP_LATE_MS after the questions: the pixels an answer names
+ * (only ever better: kitty's before iTerm2's before sixel) replace what
+ * was chosen, and the viewer hears of it as of a new window (everything
+ * drawn again). A DA answer is no end here: the background's, late too,
+ * may come before kitty's. */
+static void late_pixels(Term *t, const unsigned char *b, size_t n)
+{
+    if (now_ms() - t->pix_asked_ms > KP_LATE_MS) {
+        t->pix_late = 0;
+        return;
+    }
+    pixels_scan(&t->pix_scan, b, n);
+    PixelProto p = pixels_scanned(&t->pix_scan);
+    if (p != PIX_CELLS && p != t->pix) {
+        t->pix = p;
+        t->pix_news = 1;
+    }
+    t->pix_late = p != PIX_KITTY;
+}
+
 /* Read what the input has (poll said so, with these revents) into the
  * parser. */
 static void read_input(Term *t, short revents)
@@ -32,6 +53,8 @@ static void read_input(Term *t, short revents)
     ssize_t r = read(t->in_fd, buf, room);
     if (r > 0) {
         kp_push(&t->kp, buf, (size_t)r, now_ms());
+        if (t->pix_late)
+            late_pixels(t, buf, (size_t)r);
     } else if (r == 0 || (errno != EINTR && errno != EAGAIN && errno != EWOULDBLOCK) ||
                (revents & (POLLERR | POLLNVAL))) {
         /* end of file, a hung-up terminal (EIO), or an input in error
@@ -144,6 +167,11 @@ int term_read(TermEvent *ev, int timeout_ms)
         memset(ev, 0, sizeof *ev);
         if (term_signalled(t, ev) || parsed(t, ev))
             return 1;
+        if (t->pix_news) {
+            t->pix_news = 0;
+            ev->type = TE_RESIZE;       /* drawn again, in the pixels that came late */
+            return 1;
+        }
         if (t->in_ended)
             return -1;
         int ms = wait_ms(t, until);

@@ -156,12 +156,13 @@ static Reaction act_mode(App *a)
     /* where the terminal draws pixels: stills in pixels (cells, half
      * blocks, while the model moves), then each text mode alone */
     PixelProto px = term_pixels();
-    if (a->pixels) {
+    if (a->pixels && px != PIX_CELLS) {
         a->pixels = 0;
     } else if (px != PIX_CELLS && a->mode == MODE_COUNT - 1) {
         a->pixels = 1;
         a->mode = MODE_HALF;
     } else {
+        a->pixels = 0;          /* a text mode chosen: pixels named late do not take over */
         a->mode = (DisplayMode)((a->mode + 1) % MODE_COUNT);
     }
     /* every key that changes a setting says so: at 80 columns the

@@ -273,9 +273,16 @@ static void draw_candidates(App *a, int cols, int rows)
  * of INFO_BESIDE_MIN columns), each line wrapped after a comma to fit. */
 static void draw_info(App *a, int cols, int rows, double out_ms)
 {
-    ReportLine rl[REPORT_LINES + 6];
+    ReportLine rl[REPORT_LINES + 7];
     int n = frame_report(&a->p, out_ms, rl, REPORT_LINES);
     n += viewer_check_report(a, rl + n, 5);
+    /* the colours, and what decided them (the terminal may draw more than
+     * its environment says: COLORTERM does not cross ssh) */
+    rl[n].label = "colours:";
+    snprintf(rl[n].text, REPORT_TEXT, "%s (%s)", colour_name(term_colour()),
+             a->opt->colour >= 0 ? "--color" : term_colour_answered() ? "the terminal answered"
+             : term_colour() < colour_from_env() ? "TERM's description" : colour_env_reason());
+    n++;
     if (term_pixels() != PIX_CELLS) {
         rl[n].label = "pixels:";
         if (a->pix_bytes)
@@ -709,6 +716,7 @@ static int viewer_main(const Options *o, Scene *s, int loading, DiffSet *diff)
         .in = keys,
         .termname = use,
         .colour = o->colour >= 0 ? (ColourDepth)o->colour : colour_from_env(),
+        .colour_env = o->colour < 0,
         .mouse = 1,
         .signals = 1,
         .ask_bg = !o->bg,       /* --bg given: nothing to ask */
@@ -722,7 +730,8 @@ static int viewer_main(const Options *o, Scene *s, int loading, DiffSet *diff)
         fallback = 1;
         goto done;
     }
-    a.pixels = a.pixels && term_pixels() != PIX_CELLS;     /* none there: cells */
+    /* a.pixels stays what was asked: a terminal on a slow link names its
+     * pixels after the start's wait (term_read then says TE_RESIZE) */
     /* the picture is kept visible on the terminal's background */
     uint8_t asked[3];
     Backdrop bd = pipeline_text_backdrop(o, term_background(asked, NULL) ? asked : NULL);

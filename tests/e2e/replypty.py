@@ -23,13 +23,15 @@ the answers and keys down one line, in order, as a link does:
              ST 0x9c), in a Latin-1 locale
 
 Checks, printed as "ok - ..." / "not ok - ...": the viewer is still
-running once every answer is in (the answers read as Esc quit it);
+running once every answer is in (the answers read as Esc quit it); the
+still model is drawn in the pixels the answers name, however late;
 a key that turns the model draws again; q quits with status 0 and the
 terminal put back (the alternate screen left). Exit status 0 when every
 check passed.
 """
 import os
 import pty
+import re
 import select
 import signal
 import struct
@@ -51,6 +53,8 @@ Q_DA = ESC + b'[c'
 Q_KITTY = ESC + b'_Gi=31,'
 Q_NAME = ESC + b'[>0q'
 Q_STATUS = ESC + b'[5n'
+Q_SGR = ESC + b'P$qm' + ST      # DECRQSS for the SGR, after a 24-bit colour was set
+Q_SGR_SET = ESC + b'[38;2;1;2;3m'
 
 KITTY = {
     Q_BG: ESC + b']11;rgb:0000/0000/0000' + ST,
@@ -78,6 +82,11 @@ XTERM8 = {
     Q_NAME: b'\x90>|XTerm(379)\x9c',
 }
 
+# xterm over ssh: TERM=xterm (8 colours), no COLORTERM; it says the
+# 24-bit colour it was given back as set (xterm's direct colour)
+XTERM_SGR = dict(XTERM)
+XTERM_SGR[Q_SGR] = ESC + b'P1$r0;38:2::1:2:3m' + ST
+
 PROFILES = {
     # name: answers, extra answers nobody asked for, delay (s), slow, env
     'kitty': (KITTY, [], 0, False, {}),
@@ -90,7 +99,18 @@ PROFILES = {
     'slow': (KITTY, [], 0, True, {}),
     'slowxterm': (XTERM, [], 0, True, {}),
     'xterm8': (XTERM8, [], 0, False, {'LC_ALL': 'C', 'LANG': 'C'}),
+    'xtermssh': (XTERM_SGR, [], 0, False, {'TERM': 'xterm', 'COLORTERM': ''}),
+    'xterm16': (XTERM, [], 0, False, {'TERM': 'xterm', 'COLORTERM': ''}),
 }
+
+# the colours each profile's frames are drawn in: 24-bit where COLORTERM
+# says so or the terminal answered the SGR report, else TERM's (xterm: 8)
+COLOURS = {'xtermssh': 'truecolor', 'xterm16': '8'}
+
+# the pixels each profile's answers name, and how each image begins
+PIXELS = {'kitty': 'kitty', 'xterm': 'sixel', 'foot': 'sixel', 'tmux': 'cells', 'late': 'kitty',
+          'slow': 'kitty', 'slowxterm': 'sixel', 'xterm8': 'sixel', 'xtermssh': 'sixel', 'xterm16': 'sixel'}
+IMAGE_HEADS = {'kitty': ESC + b'_Ga=T', 'sixel': ESC + b'P0;1;0q'}
 
 ESC_GAPS = [0.03, 0.12, 0.3]    # the leading ESC alone before the rest, in turn
 BYTE_GAP = 0.03
@@ -244,6 +264,22 @@ def main():
               'exited with status %r; asked: %s' % (v.status, asked))
         if v.status is not None:
             return 1
+        # the still model in the pixels the terminal said it draws, late
+        # answers too (a slow link's come after the viewer's wait, and the
+        # cells it drew first give way to them); tmux passes no images
+        want = PIXELS[profile]
+        got = [name for name, head in IMAGE_HEADS.items() if head in v.out]
+        check('the still model drawn in %s (images seen: %s)' % (want, ', '.join(got) or 'none'),
+              got == ([want] if want != 'cells' else []))
+        # the cells' colours: 24-bit SGR (38;2 / 48;2) or none of it
+        # (in SGR sequences alone: a sixel palette reads "#38;2;..."; and
+        # not the question's own colour, 38;2;1;2;3)
+        sgr = re.findall(rb'\x1b\[([0-9;:]*)m', v.out.replace(Q_SGR_SET, b''))
+        direct = any(re.search(rb'(^|;)[34]8;2;', s) for s in sgr)
+        palette = any(re.search(rb'(^|;)[34]8;5;', s) for s in sgr)
+        want = COLOURS.get(profile, 'truecolor')
+        check('the cells drawn in %s colours (24-bit SGR %s, 256 %s)' % (want, direct, palette),
+              direct if want == 'truecolor' else not direct and not palette)
         # a key that turns the model: the viewer, quiet until now, draws
         # again (cells, or the image a still model is shown in)
         before = len(v.out)
