@@ -13,6 +13,7 @@
 #include "sandbox.h"
 #include "scene.h"
 #include "screen.h"
+#include "section.h"
 #include "shade.h"
 
 #define ZV_VERSION "0.1.0"
@@ -106,6 +107,8 @@ typedef struct {
     int         parts;          /* --parts: each connected part its own colour */
     int         watch;          /* --watch: the files read again when they change */
     int         max_locations;  /* --max-locations: --check --json locates so many problems of each kind */
+    SectionPlane section[SECTION_MAX];  /* --section: the planes the model is cut by */
+    int         nsections;
     int         problem;        /* --problem K: the picture framed on the K-th problem (1 the first), 0 none */
     /* --repair (oneshot/repairrun.c) */
     unsigned    repair;         /* --repair[=STEPS]: the REPAIR_* steps (repair.h), 0 = not asked */
@@ -346,6 +349,11 @@ typedef struct Pipeline {
     PrintTint    tint;
     MeasureMarks marks;         /* the points measured, drawn over the picture */
     ProblemFocus focus;         /* a problem drawn over the picture (items NULL: none) */
+    /* the section planes (--section; the viewer's / ' \\ keys) */
+    SectionPlane planes[SECTION_MAX];
+    int          nplanes;
+    int          cut_off;       /* the planes are kept but do not cut */
+    SectionCut   cut;
     Scene        shade_view;    /* the scene with those colours, as shading reads it */
     PrimWork    *prims;
     /* the background and the contrast rule (backdrop.h), applied to img

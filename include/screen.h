@@ -48,6 +48,10 @@ typedef struct {
     int         simd;           /* a SimdLevel (simd.h) for the vertex, screening and
                                    point loops: SIMD_AUTO (0) = the level in use, else at
                                    most that one (every level gives the same bits) */
+    /* The section planes' cut (section.h), NULL: none. The polygons it
+     * cuts are projected as their kept parts, in their places; its caps
+     * follow the faces, before the points and lines (cut.c). */
+    const struct SectionCut *cut;
     int         no_map;         /* keep no map below (nmap 0): the algorithms that do
                                    not read it (HsrAlgo.uses_map) save 4 bytes a polygon
                                    written every frame (issue 21) */

@@ -103,6 +103,12 @@ typedef struct {
 int  shade_frame(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, const ShadeSettings *set,
                  ShadeCache *cache, Image *out);
 
+/* capshade.c: the caps of a section cut (ids from section_cap_id0) in
+ * their own colour under the light, outlined; c NULL or no planes:
+ * nothing. After shade_frame, on the same buffers. */
+struct SectionCut;
+void shade_caps(const Scene *s, const struct SectionCut *c, const FrameBufs *fb, Image *out);
+
 /* edges.c: outlines over a shaded image (creases sharper than crease). */
 int  shade_edges(const Scene *s, const ScreenPolys *sp, const FrameBufs *fb, float crease_deg, EdgeData *ed,
                  Image *out);

@@ -460,6 +460,21 @@ static int set_problem(Options *o, const OptCall *c)
     return set_int(&o->problem, c, 1, INT_MAX, "a problem's number, 1 the first");
 }
 
+static int set_section(Options *o, const OptCall *c)
+{
+    char why[160];
+    if (o->nsections >= SECTION_MAX) {
+        snprintf(c->err, c->errlen, "%s: at most %d planes", c->name, SECTION_MAX);
+        return -1;
+    }
+    if (section_parse(c->val, &o->section[o->nsections], why, sizeof why)) {
+        snprintf(c->err, c->errlen, "%s '%.40s': %s", c->name, c->val, why);
+        return -1;
+    }
+    o->nsections++;
+    return 0;
+}
+
 static int set_fps(Options *o, const OptCall *c)
 {
     return set_int(&o->fps, c, 1, 1000, "1 to 1000");
@@ -770,6 +785,11 @@ const OptSpec cli_options[] = {
     { "problem", 0, "K", NULL, OPTSEC_OUTPUT,
       "the picture framed on the K-th problem the check\nfinds, drawn over the model (. and , in the viewer)",
       set_problem, 0, 0 },
+    { "section", 0, "PLANE", NULL, OPTSEC_OUTPUT,
+      "cut the model open: AXIS=V (x, y or z at V, file\nunits; -x=V keeps what lies above V) or\n"
+      "X,Y,Z:NX,NY,NZ (a point and a normal); what lies\nbeyond every plane given goes, the cut is capped;\n"
+      "with --check --json each plane's area, perimeter\nand loops (/ in the viewer)",
+      set_section, 0, 0 },
     { "parts", 0, NULL, NULL, OPTSEC_OUTPUT, "each connected part of the model its own colour\n(@ in the viewer)",
       NULL, FLAG(parts), OPT_VIEWCMD },
     { "diff", 0, NULL, NULL, OPTSEC_OUTPUT,

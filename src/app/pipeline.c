@@ -200,6 +200,8 @@ void pipeline_apply_options(Pipeline *p, const Options *o)
     p->thickness = o->thickness;
     p->thick_limit = o->min_thickness;
     p->marks = o->marks;
+    memcpy(p->planes, o->section, sizeof p->planes);
+    p->nplanes = o->nsections;
 }
 
 void pipeline_set_backdrop(Pipeline *p, const Backdrop *b)
@@ -237,6 +239,7 @@ int pipeline_scene_changing(Pipeline *p)
     /* a fresh runner: the old one's shared state (trees, builder thread)
      * is joined and freed with it */
     shade_cache_free(&p->shade_cache);
+    p->cut.key = NULL;          /* the cut is made again */
     return pipeline_set_algo(p, p->algo);
 }
 
@@ -255,6 +258,7 @@ void pipeline_free(Pipeline *p)
     contrast_free(&p->rule);
     mark_colours_free(&p->markcol);
     print_tint_free(&p->tint);
+    section_cut_free(&p->cut);
     memset(p, 0, sizeof *p);
 }
 
@@ -304,15 +308,22 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
     p->sp.simd = simd;
     double t0 = now_ms();
     p->sp.no_map = !p->algo->uses_map;
+    char err[160];
+    /* the wireframe's ids before the caps', which follow every line's */
+    if (p->wireframe && !p->scene->wire_built && scene_wire_build(p->scene, err, sizeof err))
+        return -1;
+    p->sp.cut = NULL;
+    if (p->nplanes && !p->cut_off) {
+        if (section_cut_update(&p->cut, p->scene, p->planes, p->nplanes, err, sizeof err))
+            return -1;
+        p->sp.cut = &p->cut;
+    }
     if (screen_project(&p->sp, p->scene, &p->vp))
         return -1;
     if (p->order != ORDER_FILE && screen_reorder(&p->sp, p->order, 1, &p->reorder))
         return -1;
     /* points and lines after the faces (and after --order's reordering,
      * which they need not take part in) */
-    char err[160];
-    if (p->wireframe && !p->scene->wire_built && scene_wire_build(p->scene, err, sizeof err))
-        return -1;
     int ps = p->point_size > 0 ? p->point_size : 1, lw = p->line_width > 0 ? p->line_width : 1;
     PrimStyle style = { ps * k, lw * k, p->wireframe, 0, k, p->problems && p->scene->marks.set };
     if (screen_prims(&p->sp, p->scene, &style, &p->prims))
@@ -331,9 +342,11 @@ int pipeline_render(Pipeline *p, int w, int h, float pixel_aspect, int cull, int
         const Scene *ss = shade_scene(p);
         if (!ss)
             return -1;
-        if (k == 1 ? shade_frame(ss, &p->sp, &p->fb, &set, &p->shade_cache, &p->img)
-                   : shade_frame(ss, &p->sp, &p->fb, &set, &p->shade_cache, &p->img_ss) ||
-                         image_downsample(&p->img_ss, k, &p->img))
+        Image *to = k == 1 ? &p->img : &p->img_ss;
+        if (shade_frame(ss, &p->sp, &p->fb, &set, &p->shade_cache, to))
+            return -1;
+        shade_caps(p->scene, p->sp.cut, &p->fb, to);
+        if (k > 1 && image_downsample(&p->img_ss, k, &p->img))
             return -1;
         /* on the final pixels, so that what is shown keeps the minimum */
         if (p->has_bd && contrast_apply(&p->rule, &p->bd, p->contrast, &p->img))

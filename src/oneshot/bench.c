@@ -6,6 +6,7 @@
 
 #define _POSIX_C_SOURCE 200809L     /* strtok_r */
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,6 +34,22 @@ static double median(double *v, int n)
 }
 
 /* View k of n: a turn around the model with a gentle nod. */
+/* --section: view k of n has the planes slid along their normals, from
+ * a quarter of the first object's size before where they were given to
+ * a quarter past it, so that every frame cuts the model again (what
+ * sliding the cut in the viewer costs). */
+static void slide_planes(Pipeline *p, const Options *o, const Scene *s, int k, int n)
+{
+    if (!o->nsections || !s->nobjs)
+        return;
+    const Object *ob = &s->objs[0];
+    double size = 2 * fmax(ob->half.x, fmax(ob->half.y, ob->half.z)) * ldexp(1, s->pos_exp);
+    for (int i = 0; i < o->nsections; i++) {
+        p->planes[i] = o->section[i];
+        section_slide(&p->planes[i], size * (0.5 * k / (n > 1 ? n - 1 : 1) - 0.25));
+    }
+}
+
 static void set_view(Scene *s, const Options *o, int k, int n)
 {
     s->cam.yaw = deg2rad(o->yaw + 360.0f * k / n + 17.0f);
@@ -138,6 +155,7 @@ static int bench_model(Out *out, const Options *o, const char *file, const AlgoL
         uint64_t culled = 0, given = 0, written = 0, covered = 0;
         for (int k = 0; k < views; k++) {
             set_view(&s, o, k, views);
+            slide_planes(&p, o, &s, k, views);
             double t1 = now_ms(), c1 = process_cpu_ms();
             if (pipeline_render(&p, w, h, 1.0f, o->cull, 1)) {
                 safetext_line(stderr, "zview: out of memory");

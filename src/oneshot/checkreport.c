@@ -27,9 +27,28 @@ typedef struct {
     char        format[32];
     MeshCheck   mc;
     PrintFigures pf;            /* will it print (printreport.c) */
+    SectionFigures sec[SECTION_MAX];    /* --section: each plane's section of the file */
 } FileCheck;
 
 /* ==== Checking ==== */
+
+/* Each --section plane's section of the whole file (sections.c's
+ * figures: area, perimeter, loops, the open chains' ends). */
+static int sections(const Options *o, const Mesh *m, FileCheck *fc)
+{
+    uint8_t *mask = malloc((size_t)m->nverts + 1);
+    if (!mask)
+        return -1;
+    section_masks(o->section, o->nsections, m->pos, m->nverts, mask);
+    SectionPolys in = { m->pos, m->face_start, m->corner, 0, m->nfaces, mask };
+    SectionWork *w = NULL;
+    int rc = 0;
+    for (int i = 0; i < o->nsections && !rc; i++)
+        rc = section_loops(&in, o->section, o->nsections, i, &w, &fc->sec[i], NULL);
+    section_work_free(&w);
+    free(mask);
+    return rc;
+}
 
 static int check_file(const Options *o, FileCheck *fc)
 {
@@ -53,6 +72,10 @@ static int check_file(const Options *o, FileCheck *fc)
     int r = meshcheck_run(&fc->mc, &m, &co, fc->err, sizeof fc->err);
     if (r == 0 && print_figures_run(o, &m, &fc->mc.file, &fc->pf, fc->err, sizeof fc->err)) {
         meshcheck_free(&fc->mc);
+        r = -1;
+    }
+    if (!r && o->nsections && sections(o, &m, fc)) {
+        snprintf(fc->err, sizeof fc->err, "%s: out of memory cutting it", fc->path);
         r = -1;
     }
     mesh_free(&m);
@@ -258,7 +281,39 @@ void check_json_counts(Out *out, const CheckCounts *c, const char *ind)
     out_printf(out, "]");
 }
 
-static void json_file(Out *out, const FileCheck *fc, int first)
+static void json_point(Out *out, const float p[3])
+{
+    out_printf(out, "[%.9g, %.9g, %.9g]", (double)p[0], (double)p[1], (double)p[2]);
+}
+
+/* --section's figures: each plane's area, perimeter, loops, and where
+ * the open chains (an open model) end. */
+static void json_sections(Out *out, const Options *o, const FileCheck *fc)
+{
+    if (!o->nsections)
+        return;
+    out_printf(out, ",\n      \"sections\": [");
+    for (int i = 0; i < o->nsections; i++) {
+        const SectionFigures *f = &fc->sec[i];
+        char text[SECTION_TEXT];
+        section_text(&o->section[i], text, sizeof text);
+        out_printf(out, "%s\n        { \"plane\": ", i ? "," : "");
+        oneshot_json_str(out, text);
+        out_printf(out, ", \"area\": %.9g, \"perimeter\": %.9g, \"loops\": %u, \"open_chains\": %u, \"open_ends\": [",
+                   f->area, f->perimeter, f->loops, f->chains);
+        for (uint32_t k = 0; k < f->nends; k++) {
+            out_printf(out, "%s[", k ? ", " : "");
+            json_point(out, f->ends[k][0]);
+            out_printf(out, ", ");
+            json_point(out, f->ends[k][1]);
+            out_printf(out, "]");
+        }
+        out_printf(out, "] }");
+    }
+    out_printf(out, "\n      ]");
+}
+
+static void json_file(Out *out, const Options *o, const FileCheck *fc, int first)
 {
     out_printf(out, "%s\n    {\n      \"path\": ", first ? "" : ",");
     oneshot_json_str(out, fc->name);
@@ -282,6 +337,7 @@ static void json_file(Out *out, const FileCheck *fc, int first)
                nobj);
     check_json_counts(out, &fc->mc.file, "      ");
     print_figures_json(out, &fc->pf, "      ");
+    json_sections(out, o, fc);
     out_printf(out, "\n    }");
 }
 
@@ -308,14 +364,14 @@ static void json_objects(Out *out, const FileCheck *fc, int *first)
     }
 }
 
-static void json_report(Out *out, const FileCheck *fcs, int n)
+static void json_report(Out *out, const Options *o, const FileCheck *fcs, int n)
 {
     int ok = 1;
     for (int i = 0; i < n; i++)
         ok &= fcs[i].read && meshcheck_sound(&fcs[i].mc.file);
     out_printf(out, "{\n  \"ok\": %s,\n  \"files\": [", json_bool(ok));
     for (int i = 0; i < n; i++)
-        json_file(out, &fcs[i], i == 0);
+        json_file(out, o, &fcs[i], i == 0);
     out_printf(out, "\n  ],\n  \"objects\": [");
     int first = 1;
     for (int i = 0; i < n; i++)
@@ -350,7 +406,7 @@ int oneshot_check(const Options *o)
     Out out;
     out_init(&out, stdout, "standard output");
     if (o->json)
-        json_report(&out, fcs, o->nfiles);
+        json_report(&out, o, fcs, o->nfiles);
     else {
         for (int i = 0; i < o->nfiles; i++)
             text_file(&out, &fcs[i]);

@@ -35,18 +35,9 @@ static uint32_t clip_poly(const CVert *in, uint32_t n, CVert *out, int axis, dou
     return m;
 }
 
-/* Clip polygon k (corners c0 .. c1) against the near plane in view space
- * (recomputed from the mesh exactly as pass 1 computed it), then the
- * guard band in screen space (depth is affine there), and append its
- * snapped outline. Returns 0, 1 to skip it, or vert_room's error. */
-int project_clip(RangeJob *j, uint32_t c0, uint32_t c1)
+/* Room in the clip buffers for an outline of nc corners; 1: too many. */
+static int clip_room(ClipBuf *cb, uint32_t nc)
 {
-    ScreenPolys *sp = j->out;
-    const Scene *s = j->s;
-    const Object *o = j->o;
-    const Proj *pj = j->pj;
-    ClipBuf *cb = j->cb;
-    uint32_t nc = c1 - c0;
     /* Each clip stage at most doubles the outline (a concave or
      * self-crossing one can gain a vertex per edge): room for five
      * stages. */
@@ -63,15 +54,17 @@ int project_clip(RangeJob *j, uint32_t c0, uint32_t c1)
             return -1;
         cb->cap = need;
     }
-    CVert *in = cb->buf[0], *out = cb->buf[1];
-    uint32_t n = 0;
-    const float *pos = o->mesh->pos;
-    for (uint32_t c = c0; c < c1; c++) {
-        const float *p = pos + 3 * (size_t)s->poly_corner[c];
-        Vec3 q = m4_point(j->mv, v3(p[0], p[1], p[2]));
-        in[n].x = q.x; in[n].y = q.y; in[n].z = q.z;
-        n++;
-    }
+    return 0;
+}
+
+/* The view-space outline cb->buf[0][0 .. n) clipped against the near
+ * plane, projected, clipped against the guard band and appended
+ * snapped. */
+static int clip_view(RangeJob *j, uint32_t n)
+{
+    ScreenPolys *sp = j->out;
+    const Proj *pj = j->pj;
+    CVert *in = j->cb->buf[0], *out = j->cb->buf[1];
     if (pj->persp) {
         /* keep eye - z >= near, i.e. z <= eye - near */
         n = clip_poly(in, n, out, 2, pj->eye - pj->n, -1);
@@ -96,4 +89,41 @@ int project_clip(RangeJob *j, uint32_t c0, uint32_t c1)
         d->z = (float)in[i].z;
     }
     return 0;
+}
+
+/* Clip polygon k (corners c0 .. c1) against the near plane in view space
+ * (recomputed from the mesh exactly as pass 1 computed it), then the
+ * guard band in screen space (depth is affine there), and append its
+ * snapped outline. Returns 0, 1 to skip it, or vert_room's error. */
+int project_clip(RangeJob *j, uint32_t c0, uint32_t c1)
+{
+    int rv = clip_room(j->cb, c1 - c0);
+    if (rv)
+        return rv;
+    CVert *in = j->cb->buf[0];
+    uint32_t n = 0;
+    const float *pos = j->o->mesh->pos;
+    for (uint32_t c = c0; c < c1; c++) {
+        const float *p = pos + 3 * (size_t)j->s->poly_corner[c];
+        Vec3 q = m4_point(j->mv, v3(p[0], p[1], p[2]));
+        in[n].x = q.x; in[n].y = q.y; in[n].z = q.z;
+        n++;
+    }
+    return clip_view(j, n);
+}
+
+/* project.h */
+int project_clip_points(RangeJob *j, const float *pts, uint32_t n)
+{
+    int rv = clip_room(j->cb, n);
+    if (rv)
+        return rv;
+    CVert *in = j->cb->buf[0];
+    for (uint32_t c = 0; c < n; c++) {
+        const float *p = pts + 3 * (size_t)c;
+        /* as pass 1 takes a vertex: the same bits where it is a mesh's */
+        Vec3 q = m4_point(j->mv, v3(p[0], p[1], p[2]));
+        in[c].x = q.x; in[c].y = q.y; in[c].z = q.z;
+    }
+    return clip_view(j, n);
 }

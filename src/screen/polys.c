@@ -237,6 +237,12 @@ static int finish_poly(ScreenPolys *sp, uint32_t first)
 }
 
 /* project.h */
+int project_finish(ScreenPolys *sp, uint32_t first)
+{
+    return finish_poly(sp, first);
+}
+
+/* project.h */
 int project_emit_poly(RangeJob *j, uint32_t k, uint32_t c0, uint32_t c1, uint32_t inst)
 {
     ScreenPolys *sp = j->out;
@@ -325,6 +331,20 @@ int project_range(RangeJob *j)
                 nk += scene_poly_c0(s, k + i + 1) - a != 3 || tri_keeps(s->poly_corner + a, idx, vmin, sp->w, sp->h);
             }
             empty += n - nk;
+        }
+        if (j->cmask) {
+            /* the polygons a plane cuts or removes, in their places in
+             * the map (cut.c) */
+            uint32_t cutk[CHUNK], ncut = 0;
+            nk = project_cut_split(j, k, keep, nk, cutk, &ncut);
+            for (uint32_t i = 0; i < ncut; i++) {
+                uint32_t q = k + cutk[i];
+                int rv = project_emit_cut(j, q, scene_poly_c0(s, q), scene_poly_c0(s, q + 1), inst + cutk[i]);
+                if (rv) {
+                    sp->culled_empty += empty;
+                    return rv;
+                }
+            }
         }
 #ifdef ZV_AVX2
         if (tris && j->simd >= SIMD_AVX2) {

@@ -63,6 +63,7 @@
 #include "grow.h"
 #include "raster.h"
 #include "screen.h"
+#include "section.h"
 #include "simd.h"
 
 /* Points worth a helper thread each (below it, starting one costs more). */
@@ -376,7 +377,17 @@ typedef struct {
     uint32_t     g0, g1;    /* global point numbers this job takes */
     uint32_t     in;        /* points that reached a box */
     int          simd;      /* the frame's SimdLevel, resolved (simd_use) */
+    const SectionCut *cut;  /* a section cut: its removed points are left out */
 } PointJob;
+
+/* The cut's masks of object oi's mesh when a plane removes some of it,
+ * else NULL. */
+static const uint8_t *cut_mask(const SectionCut *c, const Scene *s, int oi)
+{
+    if (!c || !c->nplanes || c->key != s || !c->touched[oi])
+        return NULL;
+    return c->mask[s->objs[oi].mesh - s->meshes];
+}
 
 /* Keep the least key per box over points g0 .. g1 (numbered over all
  * objects in order, as their ids are). */
@@ -396,6 +407,8 @@ static void points_reduce(PointJob *j)
         point_map(&pm, j->pj, &mv, size, j->align);
         const float *pos = o->mesh->pos;
         const uint32_t *pt = o->mesh->point;
+        const uint8_t *cm = cut_mask(j->cut, s, oi);
+        uint8_t all = cm ? section_all(j->cut) : 0;
         /* A chunk at a time: first each point's box and key, its box's
          * line asked for ahead (boxes are met in no order a cache can
          * guess), then the minima, by then mostly in L1. */
@@ -406,7 +419,7 @@ static void points_reduce(PointJob *j)
             uint32_t g = g0;
 #ifdef ZV_SSE2
             /* a cloud (consecutive vertices): four at a time */
-            for (; !pt && j->simd >= SIMD_SSE2 && g + 4 <= g1; g += 4) {
+            for (; !pt && !cm && j->simd >= SIMD_SSE2 && g + 4 <= g1; g += 4) {
                 uint32_t k = g - a;
                 int32_t i4[4], j4[4];
                 float z4[4];
@@ -424,7 +437,7 @@ static void points_reduce(PointJob *j)
                 uint32_t k = g - a, v = pt ? pt[o->point_first + k] : o->point_first + k;
                 int32_t i0, j0;
                 float z;
-                if (!point_box(&pm, &pos[3 * (size_t)v], &i0, &j0, &z))
+                if ((cm && cm[v] == all) || !point_box(&pm, &pos[3 * (size_t)v], &i0, &j0, &z))
                     continue;
                 cell[n] = (uint32_t)((j0 + size - 1) * j->gw + (i0 + size - 1));
                 keys[n] = point_key(z, o->point_id0 + (int32_t)k);
@@ -457,10 +470,12 @@ static int points_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Ma
         Mat4 mv = m4_mul(*view, object_matrix(o));
         PointMap pm;
         point_map(&pm, pj, &mv, size, align);
+        const uint8_t *cm = cut_mask(sp->cut, s, oi);
         for (uint32_t k = 0; k < o->point_count; k++) {
             int32_t i0, j0;
             float z;
-            if (!point_box(&pm, &o->mesh->pos[3 * (size_t)object_point_vert(o, k)], &i0, &j0, &z))
+            uint32_t v = object_point_vert(o, k);
+            if ((cm && cm[v] == section_all(sp->cut)) || !point_box(&pm, &o->mesh->pos[3 * (size_t)v], &i0, &j0, &z))
                 continue;
             sp->points_in++;
             if (grow_array((void **)&sp->polys, &sp->cap_polys, sp->npolys + 2, sizeof *sp->polys) ||
@@ -497,7 +512,7 @@ static int points_reduced(ScreenPolys *sp, const Scene *s, const PProj *pj, cons
         memset(w->box[i], 0xff, nbox * sizeof *w->box[i]);
         job[i] = (PointJob){ s, pj, *view, w->box[i], gw, gh, size, align,
                              (uint32_t)((uint64_t)s->npoints * (uint32_t)i / (uint32_t)t),
-                             (uint32_t)((uint64_t)s->npoints * (uint32_t)(i + 1) / (uint32_t)t), 0, simd };
+                             (uint32_t)((uint64_t)s->npoints * (uint32_t)(i + 1) / (uint32_t)t), 0, simd, sp->cut };
     }
     for (int i = 1; i < t; i++)
         started[i] = thread_start(&th[i], points_thread, &job[i]) == 0;
@@ -803,6 +818,38 @@ static uint64_t *sample_keys(PrimWork *w, uint32_t n)
 
 /* Every segment, wireframe edge and problem edge: a quad kept whole, or
  * given as its samples (see SMALL_QUAD, SAMPLES_PER_QUAD). */
+/* The pieces of segment a b (mesh vertices v) that a section cut keeps,
+ * into piece[]: 0, 1 (a b itself when nothing is removed) or 2. */
+static int cut_segment(const SectionCut *c, const Scene *s, int oi, const uint32_t v[2], const float *a,
+                       const float *b, float piece[2][2][3])
+{
+    memcpy(piece[0][0], a, sizeof piece[0][0]);
+    memcpy(piece[0][1], b, sizeof piece[0][1]);
+    const uint8_t *m = cut_mask(c, s, oi);
+    if (!m)
+        return 1;
+    uint8_t all = section_all(c);
+    if ((m[v[0]] | m[v[1]]) != all)
+        return 1;                   /* some plane keeps both ends: all of it */
+    if ((m[v[0]] & m[v[1]]) == all)
+        return 0;                   /* both ends removed: all of it (the region is convex) */
+    double lo, hi;
+    if (!section_segment_cut(c->plane, c->nplanes, a, b, &lo, &hi))
+        return 1;
+    int n = 0;
+    for (int e = 0; e < 2; e++) {
+        double t0 = e ? hi : 0, t1 = e ? 1 : lo;
+        if (!(t1 > t0))
+            continue;
+        for (int k = 0; k < 3; k++) {
+            piece[n][0][k] = (float)(a[k] + t0 * ((double)b[k] - a[k]));
+            piece[n][1][k] = (float)(a[k] + t1 * ((double)b[k] - a[k]));
+        }
+        n++;
+    }
+    return n;
+}
+
 static int edges_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat4 *view, const PrimStyle *st,
                      PrimWork *w)
 {
@@ -826,18 +873,29 @@ static int edges_all(ScreenPolys *sp, const Scene *s, const PProj *pj, const Mat
                 scene_edge_verts(s, o, (PrimKind)kind, k, v);
                 const float *a = &pos[3 * (size_t)v[0]], *b = &pos[3 * (size_t)v[1]];
                 Vec3 p = m4_point(&mv, v3(a[0], a[1], a[2])), q = m4_point(&mv, v3(b[0], b[1], b[2]));
-                EdgeQuad eq;
                 sp->edges_in++;
-                if (!edge_quad(sp, pj, p, q, st->line_width, bias, id0 + (int32_t)k, &eq))
-                    continue;
-                const ScreenPoly *qp = &eq.p;
-                if (!st->all_prims && quad_samplable(qp) &&
-                    ((qp->x1 - qp->x0) * (qp->y1 - qp->y0) <= SMALL_QUAD || sp->edges_drawn >= most) &&
-                    (sk.key || (sk.key = sample_keys(w, nkeys)))) {
-                    quad_samples(&sk, &eq);
-                    sp->edges_sampled++;
-                } else {
-                    rc = emit_quad(sp, &eq);
+                /* a section cut (section.h): the part on the removed side
+                 * goes, what is left is one or two pieces */
+                float piece[2][2][3];
+                int npiece = cut_segment(sp->cut, s, oi, v, a, b, piece);
+                for (int c = 0; c < npiece && !rc; c++) {
+                    Vec3 pc = p, qc = q;
+                    if (npiece != 1 || memcmp(piece[0][0], a, sizeof piece[0][0]) || memcmp(piece[0][1], b, sizeof piece[0][1])) {
+                        pc = m4_point(&mv, v3(piece[c][0][0], piece[c][0][1], piece[c][0][2]));
+                        qc = m4_point(&mv, v3(piece[c][1][0], piece[c][1][1], piece[c][1][2]));
+                    }
+                    EdgeQuad eq;
+                    if (!edge_quad(sp, pj, pc, qc, st->line_width, bias, id0 + (int32_t)k, &eq))
+                        continue;
+                    const ScreenPoly *qp = &eq.p;
+                    if (!st->all_prims && quad_samplable(qp) &&
+                        ((qp->x1 - qp->x0) * (qp->y1 - qp->y0) <= SMALL_QUAD || sp->edges_drawn >= most) &&
+                        (sk.key || (sk.key = sample_keys(w, nkeys)))) {
+                        quad_samples(&sk, &eq);
+                        sp->edges_sampled++;
+                    } else {
+                        rc = emit_quad(sp, &eq);
+                    }
                 }
             }
         }

@@ -93,6 +93,9 @@ static void work_free(ScreenWork *w)
     for (int i = 0; i < SCREEN_MAX_THREADS; i++) {
         free(w->clip[i].buf[0]);
         free(w->clip[i].buf[1]);
+        section_clip_free(&w->clip[i].sec);
+        free(w->clip[i].cpts);
+        free(w->clip[i].cmask);
     }
     free(w);
 }
@@ -101,6 +104,7 @@ static void work_free(ScreenWork *w)
 void screen_free(ScreenPolys *sp)
 {
     int threads = sp->threads, simd = sp->simd;
+    const struct SectionCut *cut = sp->cut;
     free(sp->verts);
     free(sp->polys);
     free(sp->map);
@@ -109,6 +113,7 @@ void screen_free(ScreenPolys *sp)
     memset(sp, 0, sizeof *sp);
     sp->threads = threads;
     sp->simd = simd;
+    sp->cut = cut;
 }
 
 /* ==== projection parameters ==== */
@@ -251,6 +256,17 @@ static Pool *work_pool(ScreenWork *w, int parts)
     return w->pool;
 }
 
+/* The cut of object o, when a plane cuts it, for its polygons' job. */
+static void object_cut(RangeJob *j, const ScreenPolys *sp, const Scene *s, const Object *o)
+{
+    const SectionCut *c = sp->cut;
+    int oi = (int)(o - s->objs);
+    if (c && c->nplanes && c->key == s && c->touched[oi]) {
+        j->cut = c;
+        j->cmask = c->mask[o->mesh - s->meshes];
+    }
+}
+
 /* Part `part` (its window and clip buffers are its own, whichever worker
  * takes it). */
 static void range_part(void *arg, int part, int worker)
@@ -298,7 +314,9 @@ static int project_parts(ScreenPolys *sp, const Scene *s, const Object *o, const
             win[i].in_polys = win[i].culled_back = win[i].culled_empty = 0;
         }
         job[i] = (RangeJob){ &win[i], s, o, pj, mv, &w->sc, &w->clip[i], k[i], k[i + 1],
-                             inst + (k[i] - o->poly_first), sp->no_map ? NULL : sp->map, 1, simd, 0, &w->lut };
+                             inst + (k[i] - o->poly_first), sp->no_map ? NULL : sp->map, 1, simd, 0, &w->lut,
+                             NULL, NULL };
+        object_cut(&job[i], sp, s, o);
     }
     pool_run(pool, parts, range_part, job);
     int rc = 0;
@@ -428,12 +446,16 @@ int screen_project(ScreenPolys *sp, const Scene *s, const Viewport *vp)
             return -1;
         if (rc) {
             RangeJob j = { sp, s, o, &pj, &vj.mv, sc, &w->clip[0], o->poly_first,
-                           o->poly_first + o->poly_count, inst, sp->no_map ? NULL : sp->map, 0, simd, 0, &w->lut };
+                           o->poly_first + o->poly_count, inst, sp->no_map ? NULL : sp->map, 0, simd, 0, &w->lut,
+                           NULL, NULL };
+            object_cut(&j, sp, s, o);
             if (project_range(&j))
                 return -1;
         }
         inst += o->poly_count;
     }
+    if (sp->cut && sp->cut->nplanes && project_caps(sp, s, &pj, &w->clip[0]))
+        return -1;
     sp->polys[sp->npolys].first = sp->nverts;   /* sentinel */
     sp->nmap = sp->no_map ? 0 : inst;
     sp->face_sorted = 1;

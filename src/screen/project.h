@@ -14,6 +14,7 @@
 #include "grow.h"
 #include "raster.h"
 #include "screen.h"
+#include "section.h"
 #include "simd.h"
 
 /* x and y of a vertex that is behind the near plane or outside the guard
@@ -40,10 +41,15 @@ typedef struct {
     uint32_t    cap_sv, cap_idx;
 } Scratch;
 
-/* Clip polygon buffers, one set per worker. */
+/* Clip polygon buffers, one set per worker; and its scratch for the
+ * polygons a section plane cuts (cut.c). */
 typedef struct {
     CVert   *buf[2];
     uint32_t cap;
+    SectionClip sec;        /* the kept part of a cut polygon */
+    float   *cpts;          /* its corners, 3 floats each */
+    uint8_t *cmask;         /* and their masks */
+    uint32_t ccap;
 } ClipBuf;
 
 /* For each 8-bit mask, the numbers of its set bits in order, one a byte,
@@ -220,6 +226,8 @@ typedef struct {
     int            simd;
     int            rc;          /* 0, -1 out of memory, -2 window full */
     const KeepLut *lut;
+    const SectionCut *cut;      /* NULL: the object is not cut (ScreenPolys.cut) */
+    const uint8_t *cmask;       /* the cut's masks of the object's mesh */
 } RangeJob;
 
 /* Room for `need` vertices in j->out: grow, or in a fixed window report
@@ -257,6 +265,26 @@ int project_emit_poly(RangeJob *j, uint32_t k, uint32_t c0, uint32_t c1, uint32_
  * near plane and the guard band and append its snapped outline to
  * j->out. Returns 0, 1 to skip it, or vert_room's error. */
 int project_clip(RangeJob *j, uint32_t c0, uint32_t c1);
+/* The same of an outline of object-space points pts[0 .. n) (3 floats
+ * each), each taken as pass 1 takes a vertex. */
+int project_clip_points(RangeJob *j, const float *pts, uint32_t n);
+
+/* cut.c: the polygons a section cuts. keep[0 .. nk) (chunk indices from
+ * polygon k, KEEP_HIT marks allowed) loses the polygons with a corner on
+ * a removed side, which go to cutk[0 .. *ncut) (indices alone); the
+ * count left is returned. */
+uint32_t project_cut_split(const RangeJob *j, uint32_t k, uint32_t *keep, uint32_t nk, uint32_t *cutk,
+                           uint32_t *ncut);
+/* Polygon k (corners c0 .. c1, instance inst) less its removed part:
+ * dropped, or one outline appended and finished (polys.c's
+ * project_finish) in its place. 0 or an error of vert_room. */
+int project_emit_cut(RangeJob *j, uint32_t k, uint32_t c0, uint32_t c1, uint32_t inst);
+/* polys.c: finish the outline verts[first .. nverts) (sample box,
+ * culling, plane); 1 if kept. */
+int project_finish(ScreenPolys *sp, uint32_t first);
+/* The caps of sp->cut after the faces, ids section_cap_id0 on. 0, or -1
+ * out of memory. */
+int project_caps(ScreenPolys *sp, const Scene *s, const Proj *pj, ClipBuf *cb);
 
 /* A mark on a keep[] entry (project_avx2.c's second screening). */
 #define KEEP_HIT 0x80000000u

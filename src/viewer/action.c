@@ -331,6 +331,13 @@ static Reaction act_problems(App *a)
     return RE_RENDER;
 }
 
+/* The section planes (cutkeys.c). */
+static Reaction act_cut(App *a) { return viewer_cut_toggle(a); }
+static Reaction act_cut_back(App *a) { return viewer_cut_slide(a, -1); }
+static Reaction act_cut_on(App *a) { return viewer_cut_slide(a, 1); }
+static Reaction act_cut_turn(App *a) { return viewer_cut_turn(a); }
+static Reaction act_cut_next(App *a) { return viewer_cut_next(a); }
+
 /* The next and previous problem in focus (checkjob.c). */
 static Reaction act_next_problem(App *a) { return viewer_problem_step(a, 1); }
 static Reaction act_prev_problem(App *a) { return viewer_problem_step(a, -1); }
@@ -660,6 +667,8 @@ const KeyRow viewer_keys[] = {
     { "W ! @", "wireframe, problems, parts",
       { { 'W', act_wireframe }, { '!', act_problems }, { '@', act_parts } } },
     { ". ,", "next / previous problem", { { '.', act_next_problem }, { ',', act_prev_problem } } },
+    { "/ ; ' \\ |", "cut: on, slide, turn, next",
+      { { '/', act_cut }, { ';', act_cut_back }, { '\'', act_cut_on }, { '\\', act_cut_turn }, { '|', act_cut_next } } },
     { "V", "diff: A, B, heat map, both", { { 'V', act_diff_show } } },
     { "M", "measure: arrows Enter Bksp", { { 'M', act_measure } } },
     { "space", "auto-rotate", { { ' ', act_spin } } },

@@ -28,16 +28,16 @@ static const char *depth_label(ColourDepth d)
  * fps, 2 picture size, 3 display mode, shading and colours, 4 view flags
  * (persp, cull, spin), 5 selection. Rank 0 stays: the file, the
  * polygons (points and lines too when there are some), the algorithm and
- * its time, work going on in the background (a file loading, the octree
+ * its time, the section cut (cutkeys.c), work going on in the background (a file loading, the octree
  * building), and "? help"; in a window still
  * too narrow they take their brief forms ("drawn/faces", "?"), then the
  * file name is cut to a dozen columns, then the note is cut at its end or
  * goes (rank 6: it answers a key, so it outlasts everything else but the
  * name's last columns; without one, why the frame is empty), and last of
  * all the file name is cut further. The man page gives the same order. */
-#define BAR_FIELDS 12
+#define BAR_FIELDS 13
 #define BAR_NOTE   6
-enum { CHECK = 8, BUSY = 9, NOTE = 10, HELP = 11 };     /* the last fields' places */
+enum { CUT = 8, CHECK = 9, BUSY = 10, NOTE = 11, HELP = 12 };     /* the last fields' places */
 
 typedef struct {
     char text[96];
@@ -136,6 +136,10 @@ void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, in
               s->cam.persp && (a->cull || a->spin) ? " " : "", a->cull ? "cull" : "",
               a->cull && a->spin ? " " : "", spin);
     bar_field(&f[7], 2, "%dx%dpx", a->p.img.w, a->p.img.h);
+    /* the section plane in use and its area (--section, /) */
+    viewer_cut_status(a, f[CUT].text, sizeof f[CUT].text, f[CUT].brief, sizeof f[CUT].brief);
+    f[CUT].rank = 0;
+    f[CUT].glued = 0;
     /* a note answers a key; without one, why the frame is empty */
     bar_field(&f[NOTE], BAR_NOTE, "%s", a->note[0] ? a->note : a->empty_why && !a->first ? a->empty_why : "");
     bar_field(&f[HELP], 0, "? help");

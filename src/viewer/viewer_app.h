@@ -134,6 +134,7 @@ typedef struct App {
     int         pic_cols, pic_rows; /* --size: the picture's cells (0 = the window's) */
     char        name[96];   /* file name(s) for the status line */
     char        note[160];  /* a one-off note for the status line */
+    int         cut_plane;  /* the section plane the ; ' \\ keys move (cutkeys.c) */
     /* live editing of the scene (live.c) */
     int         prompting;  /* the open prompt is in the status line */
     Prompt      prompt;
@@ -284,6 +285,18 @@ void     viewer_check_status(const App *a, int max_items, char *buf, size_t len)
  * the step taken when the check is done. viewer_focus_clear: none in
  * focus (the items stay). */
 Reaction viewer_problem_step(App *a, int step);
+
+/* cutkeys.c: the section planes in the viewer. / cuts and uncuts (with
+ * no plane yet: z through the middle of the model), ; and ' slide the
+ * plane by a fiftieth of the model's size along its normal, \ turns it
+ * to the next axis (x, y, z) through the middle, | picks the next plane
+ * of several. viewer_cut_status: the plane's position and the
+ * section's area, for the status bar ("" when there is no cut). */
+Reaction viewer_cut_toggle(App *a);
+Reaction viewer_cut_slide(App *a, int dir);
+Reaction viewer_cut_turn(App *a);
+Reaction viewer_cut_next(App *a);
+void     viewer_cut_status(const App *a, char *buf, size_t len, char *brief, size_t brief_len);
 void     viewer_focus_clear(App *a);
 int      viewer_check_report(const App *a, ReportLine *lines, int max);
 /* watch.c: a watched file changed: read it again (a load job). */

@@ -10,6 +10,8 @@
  *    input's order, at the input's SIMD level (or at each), gives the
  *    face-id and depth buffers of the z-buffer on one thread at the
  *    scalar level in the file's order;
+ *  - with section planes (the input's last part), all of this holds of
+ *    the cut polygons and the caps too;
  *  - the reductions: with the points and lines reduced (one square per
  *    point box, small and surplus quads given as their samples), the
  *    z-buffer's buffers are those of every point and quad drawn whole.
@@ -38,8 +40,9 @@ typedef struct {
  * so no leak. ref: file order, scalar, one thread; at[level]: the
  * input's order and threads at that level. */
 static struct {
-    Front     ref, at[SIMD_LEVELS], whole;
-    FrameBufs ref_fb, fb;
+    Front      ref, at[SIMD_LEVELS], whole;
+    FrameBufs  ref_fb, fb;
+    SectionCut cut;
 } bufs;
 
 /* The front end as pipeline_render runs it: project, reorder, then the
@@ -101,6 +104,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (sc_decode_run(data, size, &s, &vp, &threads, &style, &run))
         return 0;
     char msg[512];
+    /* the section planes: one cut of this scene for every front end (made
+     * again: a new scene may sit where the last one did) */
+    bufs.cut.key = NULL;
+    if (section_cut_update(&bufs.cut, &s, run.plane, run.nplanes, msg, sizeof msg))
+        goto out;
+    for (int level = 0; level < SIMD_LEVELS; level++)
+        bufs.at[level].sp.cut = &bufs.cut;
+    bufs.ref.sp.cut = bufs.whole.sp.cut = &bufs.cut;
     ScRun file = run;
     file.order = ORDER_FILE;
     int best = simd_best();
@@ -118,8 +129,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     }
     if (getenv("FUZZ_DIFF_SAY"))   /* what a seed decodes to, for whoever writes one */
-        fprintf(stderr, "%dx%d, %d thread(s), order %s, hidden surfaces at %s: %u objects, %u polygons on screen\n",
-                vp.w, vp.h, threads, order_names[run.order], run.hsr_simd ? simd_name(run.hsr_simd) : "every level",
+        fprintf(stderr, "%dx%d, %d thread(s), order %s, hidden surfaces at %s, %d section plane(s): %u objects, %u polygons on screen\n",
+                vp.w, vp.h, threads, order_names[run.order], run.hsr_simd ? simd_name(run.hsr_simd) : "every level", run.nplanes,
                 (unsigned)s.nobjs, bufs.ref.sp.npolys);
     for (int k = 0; getenv("FUZZ_DIFF_SAY") && k < s.nobjs; k++)
         fprintf(stderr, "  object %d: %u polygons%s\n", k, (unsigned)s.objs[k].poly_count, k ? "" : style.wire ? ", wireframe" : "");

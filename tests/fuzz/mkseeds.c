@@ -220,6 +220,16 @@ static void wrun(Out *o, int order, int hsr_simd, int seed, int kind, int n, int
     w8(o, (unsigned)size);
 }
 
+/* Section planes after the run part (scenecode.h): n planes, each
+ * kind, the point across the first mesh's box, a slanted one's normal. */
+static void wplanes(Out *o, int n, const uint8_t (*pl)[7])
+{
+    w8(o, (unsigned)n);
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 7; k++)
+            w8(o, pl[i][k]);
+}
+
 static int save(const char *dir, const char *name, const Out *o)
 {
     char path[1024];
@@ -490,5 +500,30 @@ int main(int argc, char **argv)
         wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ord, 0, 99, -1, 0, 0, origin, 0);
         rc |= save(dir, gen_names[ord - ORDER_FRONT], &o);
     }
+    /* 18: section planes: the cube's corner cut away by three axis
+     * planes through its middle; the star and the piercing triangles by
+     * a slanted plane, perspective, culled; the bumpy sphere cut by two,
+     * shuffled on two threads; the generated scene by a plane seen from
+     * its removed side */
+    static const uint8_t corner3[3][7] = { { 0, 128, 128, 128 }, { 2, 128, 128, 128 }, { 4, 128, 128, 128 } };
+    static const uint8_t slant[1][7] = { { 1, 120, 140, 100, 5, (uint8_t)-3, 7 } };
+    static const uint8_t two[2][7] = { { 8 | 2, 0, 100, 0 }, { 1, 150, 128, 128, 1, 1, 0 } };
+    h = (Head){ 160, 120, 0, 0, 50, 35, 25, 0, { 0 }, 1, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &cube);
+    wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ORDER_FILE, 0, 0, -1, 0, 0, origin, 0); wplanes(&o, 3, corner3);
+    rc |= save(dir, "section-cube-corner", &o);
+    h = (Head){ 200, 150, SC_PERSP | SC_CULL | SC_THREADS2, 0, 60, 40, 30, 10, { 0 }, 1.3, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 1); wobj(&o, &star); wobj(&o, &pierce);
+    wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ORDER_FRONT, 0, 0, -1, 0, 0, origin, 0); wplanes(&o, 1, slant);
+    rc |= save(dir, "section-star-pierce-slanted", &o);
+    h = (Head){ 160, 80, SC_PERSP | SC_THREADS2 | 1 << 5, 0, 50, 30, 20, 0, { 0 }, 1, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 0); wobj(&o, &cube);
+    wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ORDER_SHUFFLE, 0, 5, 1, 15 + 16, 9, aside, 32); wplanes(&o, 2, two);
+    rc |= save(dir, "section-sphere-two-shuffle", &o);
+    h = (Head){ 180, 120, SC_PERSP | SC_THREADS2, 0, 60, 200, 25, 0, { 0 }, 1.2, 0, 0, 0 };
+    o.n = 0; whead(&o, &h); w8(&o, 0); w8(&o, 2);
+    wobj(&o, &sphere); wobj(&o, &field); wobj(&o, &cloud);
+    wstyle(&o, 1, 1, 0, 0); w8(&o, 0); wrun(&o, ORDER_BACK, 0, 99, -1, 0, 0, origin, 0); wplanes(&o, 1, slant);
+    rc |= save(dir, "section-generated-back", &o);
     return rc ? 1 : 0;
 }

@@ -287,6 +287,34 @@ static int decode_big(Rd *r, Mesh *m, int part)
     return 0;
 }
 
+/* The section planes' bytes, placed across the first mesh's box. */
+static void decode_planes(const Scene *s, uint8_t pl[][7], ScRun *run)
+{
+    const Mesh *m = &s->meshes[0];
+    double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+    for (uint32_t v = 0; v < m->nverts; v++)
+        for (int k = 0; k < 3; k++) {
+            double c = m->pos[3 * (size_t)v + k];
+            lo[k] = v == 0 || c < lo[k] ? c : lo[k];
+            hi[k] = v == 0 || c > hi[k] ? c : hi[k];
+        }
+    for (int i = 0; i < run->nplanes; i++) {
+        const uint8_t *b = pl[i];
+        double q[3];
+        for (int k = 0; k < 3; k++)     /* in the mesh's units: file units past 2^pos_exp */
+            q[k] = ldexp(lo[k] + (hi[k] - lo[k]) * b[1 + k] / 255.0, s->pos_exp);
+        if (!(b[0] & 1)) {
+            int axis = (b[0] >> 1) % 3;
+            run->plane[i] = section_axis_plane(axis, b[0] >> 3 & 1, q[axis]);
+            continue;
+        }
+        SectionPlane p = { { q[0], q[1], q[2] }, { (int8_t)b[4], (int8_t)b[5], (int8_t)b[6] }, -1 };
+        if (p.n[0] == 0 && p.n[1] == 0 && p.n[2] == 0)
+            p.n[2] = 1;
+        run->plane[i] = p;
+    }
+}
+
 int sc_decode_run(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int *threads, PrimStyle *style,
                   ScRun *run)
 {
@@ -402,6 +430,11 @@ int sc_decode_run(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int 
     if (rc < 0)
         goto fail;
     place[nplace++].placed = 0;
+    uint8_t pl[SECTION_MAX][7];
+    run->nplanes = (int)(rd_u8(&r) % 5);
+    for (int i = 0; i < run->nplanes; i++)
+        for (int k = 0; k < 7; k++)
+            pl[i][k] = rd_u8(&r);
     if (rc > 0 || tl_mesh_finish(big)) {
         mesh_free(big);
         memset(big, 0, sizeof *big);
@@ -431,6 +464,7 @@ int sc_decode_run(const uint8_t *data, size_t size, Scene *s, Viewport *vp, int 
         o->scale = place[i].scale;
     }
     tl_set_view(s, &v);
+    decode_planes(s, pl, run);
     return 0;
 
 fail:

@@ -97,13 +97,22 @@
  *                                 at 64x59 took a minute under the
  *                                 fuzzer); n its size
  *     coord x, y, z               its centre, as for objects (not raw)
- *     u8  size                    its half extent, 2^(v % 64 - 32) */
+ *     u8  size                    its half extent, 2^(v % 64 - 32)
+ *   u8  planes                    section planes (section.h), v % 5 (an
+ *                                 input that ends before: none), each:
+ *     u8 kind                     bit 0: slanted, else an axis plane of
+ *                                 axis (v >> 1) % 3, bit 3: its negative;
+ *     u8 x, y, z                  the point, across the first mesh's box
+ *                                 (0 its least, 255 its most; an axis
+ *                                 plane reads its own axis's)
+ *     i8 nx, ny, nz               a slanted plane's normal (0, 0, 0: +z) */
 
 #include <stddef.h>
 #include <stdint.h>
 
 #include "scene.h"
 #include "screen.h"
+#include "section.h"
 
 enum {
     SC_PERSP = 1, SC_CULL = 2, SC_THREADS2 = 4, SC_REFIT = 8, SC_GRID = 16
@@ -137,6 +146,8 @@ typedef struct {
     int      order;         /* a PolyOrder */
     uint32_t seed;          /* for ORDER_SHUFFLE */
     int      hsr_simd;      /* SIMD_AUTO: every level; else that SimdLevel */
+    SectionPlane plane[SECTION_MAX];    /* the section planes (nplanes 0: no cut) */
+    int      nplanes;
 } ScRun;
 
 /* The same, with how the frame is run. */

@@ -54,7 +54,7 @@ _zview()
             return ;;
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
             --scale | --persp | --grid | --max-polys | --max-memory | --views | -j | --threads | --fps | --max-rate | --crease | \
-            --light | --ambient | --turntable | --point-size | --line-width | --contrast | --problem | --max-locations | --weld | --max-hole | --tolerance | \
+            --light | --ambient | --turntable | --point-size | --line-width | --contrast | --problem | --section | --max-locations | --weld | --max-hole | --tolerance | \
             --bed | --min-thickness | --measure | --overhang | --marks)
             return ;;
     esac
@@ -67,7 +67,7 @@ _zview()
             --views --threads --json --fps --max-rate --format --formats --up --flip --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
             --turntable --point-size --line-width --wireframe --points --strict --no-sandbox --max-memory --bg --contrast --no-textures
-            --problems --problem --max-locations --parts --watch --repair --weld --max-hole --diff --tolerance --show --quiet --textconv
+            --problems --problem --section --max-locations --parts --watch --repair --weld --max-hole --diff --tolerance --show --quiet --textconv
             --bed --unit --overhang --thickness --min-thickness --measure --marks" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
