@@ -228,10 +228,22 @@ static inline void child_dist2(const BvhNode *n, const float q[3], float out[BVH
 
 void bvh_closest(const Bvh *b, const double q[3], BvhHit *hit)
 {
+    bvh_closest_from(b, q, BVH_NONE, hit);
+}
+
+void bvh_closest_from(const Bvh *b, const double q[3], uint32_t hint, BvhHit *hit)
+{
     double best = INFINITY, p[3];
     uint32_t bt = BVH_NONE;
     QueryF qf;
     query_f(q, &qf);
+    if (hint < b->ntris) {
+        /* the guess first: its distance bounds the walk from the root
+         * on, and the walk still meets every triangle as near (below),
+         * so the answer is the one without it */
+        best = tri_dist2(b, hint, q, hit->p);
+        bt = hint;
+    }
     float lim = box_limit(best, &qf);
     /* invariant: each entry on the stack is a child (a node, or a leaf's
      * first triangle and count) with its box's distance, which was within
@@ -254,7 +266,7 @@ void bvh_closest(const Bvh *b, const double q[3], BvhHit *hit)
         if (stack[top].count) {
             uint32_t t0 = stack[top].child;
             for (uint32_t t = t0; t < t0 + stack[top].count; t++) {
-                if (plane_beyond(b, t, q, prune_at(best)))
+                if (t == hint || plane_beyond(b, t, q, prune_at(best)))
                     continue;
                 double d = tri_dist2(b, t, q, p);
                 if (d < best || (d == best && t < bt)) {
