@@ -452,6 +452,25 @@ Test(diff, the_same_bits_on_any_threads)
     diff_free(&one);
 }
 
+Test(diff, a_vertex_not_a_finite_point_is_refused)
+{
+    /* a NaN, then an infinity, at the third corner of the first face */
+    const float bad[2] = { NAN, INFINITY };
+    for (int i = 0; i < 2; i++) {
+        load(&MA, "assets/knot.obj");
+        copy_mesh(&MB, &MA, NULL, NULL);
+        MB.pos[3 * MB.corner[2] + 1] = bad[i];
+        DiffOpts o = { 2, -1, NULL, 0, 1 };
+        diff_free(&D);
+        cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), -1);
+        char want[64];
+        snprintf(want, sizeof want, "vertex %u is not a finite point", MB.corner[2] + 1);
+        cr_assert(strstr(E, want), "%s", E);
+        mesh_free(&MA);
+        mesh_free(&MB);
+    }
+}
+
 /* ==== The files, the headline, the picture ==== */
 
 static DiffSet S;

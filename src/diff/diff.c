@@ -3,6 +3,7 @@
  * changed regions (diffregion.c). The hierarchy a model is measured
  * against is the other's, its triangles carrying their face. */
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,20 +25,30 @@ void diff_free(Diff *d)
 }
 
 /* The box of the vertices m's faces use into lo, hi (grown); -1 with
- * the reason for a vertex that is not a finite point. */
+ * the reason for a vertex that is not a finite point. In float, in
+ * locals (the arrays written through pointers would make every corner
+ * read m's fields again): the box of floats is floats. */
 static int faces_box(const Mesh *m, double lo[3], double hi[3], char *err, size_t errlen)
 {
-    for (uint32_t c = 0; m->face_start && c < m->face_start[m->nfaces]; c++) {
-        const float *p = &m->pos[3 * (size_t)m->corner[c]];
-        for (int k = 0; k < 3; k++) {
-            if (!isfinite(p[k])) {
-                snprintf(err, errlen, "%s: vertex %u is not a finite point", m->path ? m->path : "?",
-                         m->corner[c] + 1);
-                return -1;
-            }
-            lo[k] = p[k] < lo[k] ? p[k] : lo[k];
-            hi[k] = p[k] > hi[k] ? p[k] : hi[k];
+    const float *pos = m->pos;
+    const uint32_t *corner = m->corner;
+    uint32_t n = m->face_start ? m->face_start[m->nfaces] : 0;
+    float l[3] = { INFINITY, INFINITY, INFINITY }, h[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (uint32_t c = 0; c < n; c++) {
+        const float *p = &pos[3 * (size_t)corner[c]];
+        /* a NaN fails every comparison, an infinity the bound */
+        if (!(fabsf(p[0]) <= FLT_MAX && fabsf(p[1]) <= FLT_MAX && fabsf(p[2]) <= FLT_MAX)) {
+            snprintf(err, errlen, "%s: vertex %u is not a finite point", m->path ? m->path : "?", corner[c] + 1);
+            return -1;
         }
+        for (int k = 0; k < 3; k++) {
+            l[k] = p[k] < l[k] ? p[k] : l[k];
+            h[k] = p[k] > h[k] ? p[k] : h[k];
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+        lo[k] = l[k] < lo[k] ? l[k] : lo[k];
+        hi[k] = h[k] > hi[k] ? h[k] : hi[k];
     }
     return 0;
 }
