@@ -66,6 +66,14 @@ typedef struct {
 /* The nearest point of the triangles to q into hit; of triangles at
  * the same least distance, the first in leaf order. */
 void bvh_closest(const Bvh *b, const double q[3], BvhHit *hit);
+/* The same answer, bit for bit, the walk started from a guess: hint, a
+ * triangle in leaf order (BVH_NONE: none) thought near q, such as the
+ * answer for a point near q. Its distance bounds the walk from the
+ * root on, so a good guess passes over most boxes at their first test;
+ * every triangle as near as the best so far is still met, so the least
+ * distance and the first of its triangles in leaf order are found
+ * whatever the guess. */
+void bvh_closest_from(const Bvh *b, const double q[3], uint32_t hint, BvhHit *hit);
 
 /* A ray's first hit (bvhray.c). */
 typedef struct {

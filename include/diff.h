@@ -105,9 +105,10 @@ typedef struct {
 /* Measure a against b and b against a (and check each, when asked).
  * On one thread the work runs in turn, one hierarchy at a time (B's
  * while A is measured, then A's): the memory beyond the models is one
- * hierarchy and the figures. On more, the checks, both hierarchies and
- * the vertices' match are built side by side, then each model's samples
- * are shared between the threads. The meshes are read, not changed. 0,
+ * hierarchy and the figures. On more, everything is one queue of tasks
+ * (diff.c): the hierarchies and the vertices' match, the checks beside
+ * them and beside the samples, the samples in chunks; the figures are
+ * the same bit for bit whatever the threads. The meshes are read, not changed. 0,
  * or -1 with the reason in err (out of memory, cancelled, more than
  * 2^32 - 1 triangles); a model without faces has nothing to measure:
  * the caller refuses it first. */
@@ -148,6 +149,32 @@ void diff_verts_free(DiffVerts *v);
  * 0, or -1 out of memory or cancelled. */
 int  diff_side(DiffSide *s, const Mesh *m, const DiffVerts *verts, const Bvh *bvh, const Diff *d, int threads,
                const int *cancel, char *err, size_t errlen);
+
+/* The same in pieces, for a scheduler that runs other work beside them
+ * (diff.c): diff_side_begin (the arrays, the area; no hierarchy needed
+ * yet), then with bvh set, every chunk of the vertices
+ * (diff_side_verts, 0 .. nvchunks - 1, in any order, on any threads),
+ * then, once all of those are done, every chunk of the faces; then
+ * diff_side_end (the sums, in chunk order: the same figures however the
+ * chunks ran), or diff_side_abort. */
+typedef struct {
+    const Mesh      *m;
+    const Bvh       *bvh;           /* the other model's hierarchy: set before the chunks run */
+    const DiffVerts *verts;         /* m's vertices in curve order, and those on the other */
+    const Diff      *d;
+    DiffSide        *s;
+    double           unit;          /* the area a face sample stands for, at most */
+    const int       *cancel;
+    struct DiffAcc  *acc;           /* one a chunk: vertex chunks, then face chunks */
+    uint32_t         nvchunks, nfchunks;
+} DiffSideRun;
+void diff_side_chunks(const Mesh *m, uint32_t *nvchunks, uint32_t *nfchunks);   /* how many of each, for m */
+int  diff_side_begin(DiffSideRun *w, DiffSide *s, const Mesh *m, const DiffVerts *verts, const Diff *d,
+                     const int *cancel, char *err, size_t errlen);
+void diff_side_verts(DiffSideRun *w, uint32_t chunk);
+void diff_side_faces(DiffSideRun *w, uint32_t chunk);
+int  diff_side_end(DiffSideRun *w, char *err, size_t errlen);     /* 0, or -1 "cancelled" (s freed) */
+void diff_side_abort(DiffSideRun *w);                              /* s freed */
 void diff_side_free(DiffSide *s);
 /* The fan triangles of m's faces, 3 corners each, and the face of each
  * (malloc'd; *n of them). 0, or -1 with the reason. A mesh of triangles

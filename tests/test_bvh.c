@@ -9,7 +9,9 @@
  * a build degenerate (every triangle on one point, on one line, a
  * single triangle); its depth stays within BVH_DEPTH_MAX, every
  * triangle is in exactly one leaf, and every leaf's box holds its
- * triangles. */
+ * triangles. A query started from a guess (bvh_closest_from) gives the
+ * same answer, bit for bit and triangle for triangle, whatever the
+ * guess. */
 
 #include <criterion/criterion.h>
 #include <math.h>
@@ -180,6 +182,7 @@ static void against_brute(const Soup *s, int nq, double off, double span)
     char err[128];
     cr_assert_eq(bvh_build(&b, s->pos, s->nv, s->tri, NULL, s->nt, err, sizeof err), 0, "%s", err);
     tree_sound(&b, s);
+    uint32_t last = BVH_NONE;
     for (int i = 0; i < nq; i++) {
         double q[3];
         if (i % 3 == 1 && s->nt) {
@@ -222,6 +225,20 @@ static void against_brute(const Soup *s, int nq, double off, double span)
         }
         cr_assert(bvh_point_triangle(q, a, bb, c, p) == h.d2);
         cr_assert(p[0] == h.p[0] && p[1] == h.p[1] && p[2] == h.p[2]);
+        /* started from any guess (the answer, the last query's, one at
+         * random, none, one out of range), the same answer bit for bit:
+         * of triangles at the least distance (many, where all lie on one
+         * point), the first in leaf order */
+        uint32_t hints[5] = { h.tri, last, b.ntris ? (uint32_t)(urand() * b.ntris) % b.ntris : 0, BVH_NONE,
+                              b.ntris };
+        for (int k = 0; k < 5; k++) {
+            BvhHit g;
+            bvh_closest_from(&b, q, hints[k], &g);
+            cr_assert(g.d2 == h.d2 && g.tri == h.tri, "query %d from %u: %.17g at %u, not %.17g at %u", i, hints[k],
+                      g.d2, g.tri, h.d2, h.tri);
+            cr_assert(g.p[0] == h.p[0] && g.p[1] == h.p[1] && g.p[2] == h.p[2]);
+        }
+        last = h.tri;
     }
     bvh_free(&b);
 }
@@ -294,6 +311,8 @@ Test(bvh, degenerate_builds_stay_shallow_and_exact)
     double q[3] = { 0, 0, 0 };
     bvh_closest(&b, q, &h);
     cr_assert(isinf(h.d2) && h.tri == BVH_NONE);
+    bvh_closest_from(&b, q, 0, &h);
+    cr_assert(isinf(h.d2) && h.tri == BVH_NONE, "a guess past the triangles is no guess");
     bvh_free(&b);
 }
 

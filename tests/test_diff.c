@@ -13,7 +13,8 @@
  * vertices and faces shuffled are 0. Every vertex's distance equals the
  * least over every triangle of the other model; the two directions
  * swap when the models do; the sampled maximum lies within its bound
- * (and, in the suite "models", on the dragon and an edited copy).
+ * (and, in the suite "models", on the dragon and an edited copy); every
+ * figure is the same bit for bit on one thread and several.
  * Then the files through diff_load: the check's verdicts, the
  * headline, and the picture's colours: every algorithm gives the same
  * face ids for each of --show's pictures. */
@@ -382,6 +383,92 @@ Test(diff, two_bumps_are_two_regions)
     const Diff *d = run();
     cr_assert_eq(d->nregions, 2, "%u regions", d->nregions);
     cr_assert_geq(d->regions[0].max, d->regions[1].max, "the farthest first");
+}
+
+/* A wavy sheet of n x n quads, each corner raised by h(x, y) and the
+ * mesh's own wobble (seeded by st, 0: none): big enough for several
+ * chunks of vertices and faces. */
+static void sheet(Mesh *m, uint32_t n, uint64_t st)
+{
+    cr_assert_eq(tl_mesh_init(m, "sheet.obj"), 0);
+    for (uint32_t j = 0; j <= n; j++)
+        for (uint32_t i = 0; i <= n; i++) {
+            double x = (double)i / n, y = (double)j / n, z = 0.05 * sin(9 * x) * cos(7 * y);
+            if (st) {
+                st ^= st << 13;
+                st ^= st >> 7;
+                st ^= st << 17;
+                z += ((double)(st >> 11) / 9007199254740992.0 - 0.5) * 2e-3;
+                if (i > n / 3 && i < n / 2 && j > n / 3 && j < n / 2)
+                    z += 0.01;     /* a raised patch: a region */
+            }
+            cr_assert_eq(tl_mesh_vertex(m, (float)x, (float)y, (float)z), 0);
+        }
+    for (uint32_t j = 0; j < n; j++)
+        for (uint32_t i = 0; i < n; i++) {
+            uint32_t v = j * (n + 1) + i, c[4] = { v, v + 1, v + n + 2, v + n + 1 };
+            cr_assert_eq(tl_mesh_face(m, c, 4), 0);
+        }
+    cr_assert_eq(tl_mesh_finish(m), 0);
+}
+
+static void same_side(const DiffSide *x, const DiffSide *y, const char *what)
+{
+    cr_assert(x->max == y->max && x->bound == y->bound && x->mean == y->mean && x->area_over == y->area_over &&
+              !memcmp(x->max_at, y->max_at, sizeof x->max_at), "%s: the figures", what);
+    cr_assert(x->vertex_samples == y->vertex_samples && x->edge_samples == y->edge_samples &&
+              x->face_samples == y->face_samples, "%s: the samples", what);
+    cr_assert(!memcmp(x->vert_dist, y->vert_dist, x->nverts * sizeof *x->vert_dist), "%s: vertex distances", what);
+    cr_assert(!memcmp(x->vert_link, y->vert_link, x->nverts * sizeof *x->vert_link), "%s: vertex links", what);
+    cr_assert(!memcmp(x->face_dist, y->face_dist, x->nfaces * sizeof *x->face_dist), "%s: face distances", what);
+    cr_assert(!memcmp(x->face_link, y->face_link, x->nfaces * sizeof *x->face_link), "%s: face links", what);
+    cr_assert(!memcmp(x->face_over, y->face_over, x->nfaces * sizeof *x->face_over), "%s: face areas over", what);
+    cr_assert(!memcmp(x->face_class, y->face_class, x->nfaces), "%s: face classes", what);
+}
+
+Test(diff, the_same_bits_on_any_threads)
+{
+    /* 40,401 vertices and 40,000 quads a side: several chunks of
+     * vertices and of faces, handed out beside the checks and the
+     * builds; every figure, every vertex's and face's distance and link
+     * and every region the same on 1, 2, 3 and 4 threads */
+    sheet(&MA, 200, 0);
+    sheet(&MB, 200, 0x2545F4914F6CDD1Dull);
+    Diff one;
+    DiffOpts o1 = { 1, -1, NULL, 0, 1 };
+    cr_assert_eq(diff_compute(&one, &MA, &MB, &o1, E, sizeof E), 0, "%s", E);
+    cr_assert_gt(one.hausdorff, 0.005);
+    cr_assert_geq(one.nregions, 1);
+    for (int threads = 2; threads <= 4; threads++) {
+        DiffOpts o = { threads, -1, NULL, 0, 1 };
+        diff_free(&D);
+        cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), 0, "%s", E);
+        same_side(&one.a, &D.a, "A");
+        same_side(&one.b, &D.b, "B");
+        cr_assert(D.hausdorff == one.hausdorff && D.nregions == one.nregions, "%d threads", threads);
+        cr_assert(!memcmp(D.regions, one.regions, one.nregions * sizeof *one.regions), "%d threads: regions", threads);
+        cr_assert(!memcmp(D.check, one.check, sizeof one.check), "%d threads: the checks", threads);
+    }
+    diff_free(&one);
+}
+
+Test(diff, a_vertex_not_a_finite_point_is_refused)
+{
+    /* a NaN, then an infinity, at the third corner of the first face */
+    const float bad[2] = { NAN, INFINITY };
+    for (int i = 0; i < 2; i++) {
+        load(&MA, "assets/knot.obj");
+        copy_mesh(&MB, &MA, NULL, NULL);
+        MB.pos[3 * MB.corner[2] + 1] = bad[i];
+        DiffOpts o = { 2, -1, NULL, 0, 1 };
+        diff_free(&D);
+        cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), -1);
+        char want[64];
+        snprintf(want, sizeof want, "vertex %u is not a finite point", MB.corner[2] + 1);
+        cr_assert(strstr(E, want), "%s", E);
+        mesh_free(&MA);
+        mesh_free(&MB);
+    }
 }
 
 /* ==== The files, the headline, the picture ==== */

@@ -3,6 +3,7 @@
  * changed regions (diffregion.c). The hierarchy a model is measured
  * against is the other's, its triangles carrying their face. */
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +14,8 @@
 #include "diff.h"
 #include "pool.h"
 
+#include <pthread.h>
+
 void diff_free(Diff *d)
 {
     diff_side_free(&d->a);
@@ -22,20 +25,30 @@ void diff_free(Diff *d)
 }
 
 /* The box of the vertices m's faces use into lo, hi (grown); -1 with
- * the reason for a vertex that is not a finite point. */
+ * the reason for a vertex that is not a finite point. In float, in
+ * locals (the arrays written through pointers would make every corner
+ * read m's fields again): the box of floats is floats. */
 static int faces_box(const Mesh *m, double lo[3], double hi[3], char *err, size_t errlen)
 {
-    for (uint32_t c = 0; m->face_start && c < m->face_start[m->nfaces]; c++) {
-        const float *p = &m->pos[3 * (size_t)m->corner[c]];
-        for (int k = 0; k < 3; k++) {
-            if (!isfinite(p[k])) {
-                snprintf(err, errlen, "%s: vertex %u is not a finite point", m->path ? m->path : "?",
-                         m->corner[c] + 1);
-                return -1;
-            }
-            lo[k] = p[k] < lo[k] ? p[k] : lo[k];
-            hi[k] = p[k] > hi[k] ? p[k] : hi[k];
+    const float *pos = m->pos;
+    const uint32_t *corner = m->corner;
+    uint32_t n = m->face_start ? m->face_start[m->nfaces] : 0;
+    float l[3] = { INFINITY, INFINITY, INFINITY }, h[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (uint32_t c = 0; c < n; c++) {
+        const float *p = &pos[3 * (size_t)corner[c]];
+        /* a NaN fails every comparison, an infinity the bound */
+        if (!(fabsf(p[0]) <= FLT_MAX && fabsf(p[1]) <= FLT_MAX && fabsf(p[2]) <= FLT_MAX)) {
+            snprintf(err, errlen, "%s: vertex %u is not a finite point", m->path ? m->path : "?", corner[c] + 1);
+            return -1;
         }
+        for (int k = 0; k < 3; k++) {
+            l[k] = p[k] < l[k] ? p[k] : l[k];
+            h[k] = p[k] > h[k] ? p[k] : h[k];
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+        lo[k] = l[k] < lo[k] ? l[k] : lo[k];
+        hi[k] = h[k] > hi[k] ? h[k] : hi[k];
     }
     return 0;
 }
@@ -72,92 +85,205 @@ static int check_of(CheckCounts *out, const Mesh *m, char *err, size_t errlen)
     return 0;
 }
 
-/* What comes before the samples, as tasks: each model's check, each
- * hierarchy (B's, against which A is measured, then A's), the
- * vertices' match; the biggest first, so that two threads end together. */
-enum { PREP_CHECK_A, PREP_CHECK_B, PREP_BVH_B, PREP_BVH_A, PREP_MATCH, PREP_TASKS };
+/* The work of a diff, as tasks: each model's check, each hierarchy (B's,
+ * against which A is measured, and A's), the vertices' match, the
+ * sides' arrays, then the chunks of samples (diffsample.c): A's
+ * vertices, B's, A's faces, B's. On several threads they are taken in
+ * that order from one queue (pool.h), each after what it needs: the
+ * checks need nothing and run beside the rest, so the threads stay busy
+ * until the last chunk. A task that needs another waits for it, and
+ * what it waits for was taken before it (every need comes earlier in
+ * the queue), so the wait ends. */
+enum {
+    T_BVH_B,        /* first: A's vertices need it */
+    T_MATCH,
+    T_SIDES,        /* both sides' arrays and areas */
+    T_CHECK_A,
+    T_CHECK_B,
+    T_BVH_A,
+    T_CHUNKS,       /* then the chunks: the groups below */
+    G_VERTS_A = T_CHUNKS,
+    G_VERTS_B,
+    G_FACES_A,
+    G_FACES_B,
+    NGROUPS
+};
 
 typedef struct {
     const Mesh *m[2];
     Diff       *d;
     const float *box;
     int         checks;
-    Bvh         bvh[2];         /* [0]: B's; [1]: A's */
+    const int  *cancel;
+    Bvh         bvh[2];         /* [0]: B's, for A's samples; [1]: A's */
     DiffVerts   v[2];
-    int         rc[PREP_TASKS];
-    char        err[PREP_TASKS][256];
-} Prep;
+    DiffSideRun side[2];
+    int         rc[T_CHUNKS];
+    char        err[T_CHUNKS][256];
+    /* several threads: who is done */
+    uint32_t    first[NGROUPS + 1]; /* the queue: group g's tasks are [first[g], first[g + 1]) */
+    uint32_t    left[NGROUPS];      /* tasks of each group not yet done */
+    pthread_mutex_t mu;
+    pthread_cond_t  cv;
+} Work;
 
-static void prep_task(void *arg, int task, int worker)
+static void prep_task(Work *w, int task)
 {
-    (void)worker;
-    Prep *p = arg;
-    char *err = p->err[task];
+    char *err = w->err[task];
     switch (task) {
-    case PREP_CHECK_A:
-    case PREP_CHECK_B:
-        if (p->checks)
-            p->rc[task] = check_of(&p->d->check[task == PREP_CHECK_B], p->m[task == PREP_CHECK_B], err, 256);
+    case T_CHECK_A:
+    case T_CHECK_B:
+        if (w->checks)
+            w->rc[task] = check_of(&w->d->check[task == T_CHECK_B], w->m[task == T_CHECK_B], err, 256);
         break;
-    case PREP_BVH_B:
-    case PREP_BVH_A:
-        p->rc[task] = build_of(&p->bvh[task == PREP_BVH_A], p->m[task == PREP_BVH_B], err, 256);
+    case T_BVH_B:
+    case T_BVH_A:
+        w->rc[task] = build_of(&w->bvh[task == T_BVH_A], w->m[task == T_BVH_B], err, 256);
+        break;
+    case T_SIDES:
+        for (int i = 0; i < 2 && !w->rc[task]; i++)
+            w->rc[task] = diff_side_begin(&w->side[i], i ? &w->d->b : &w->d->a, w->m[i], &w->v[i], w->d,
+                                          w->cancel, err, 256);
+        w->side[0].bvh = &w->bvh[0];
+        w->side[1].bvh = &w->bvh[1];
         break;
     default:
-        if ((p->rc[task] = diff_match(&p->v[0], &p->v[1], p->m[0], p->m[1], p->box)))
+        if ((w->rc[task] = diff_match(&w->v[0], &w->v[1], w->m[0], w->m[1], w->box)))
             snprintf(err, 256, "out of memory");
         break;
     }
 }
 
 /* The first failure's message. */
-static int prep_failed(const Prep *p, char *err, size_t errlen)
+static int work_failed(const Work *w, char *err, size_t errlen)
 {
-    for (int i = 0; i < PREP_TASKS; i++)
-        if (p->rc[i]) {
-            snprintf(err, errlen, "%s", p->err[i]);
+    for (int i = 0; i < T_CHUNKS; i++)
+        if (w->rc[i]) {
+            snprintf(err, errlen, "%s", w->err[i]);
             return 1;
         }
     return 0;
 }
 
-/* One thread: one hierarchy at a time. */
-static int measure_in_turn(Prep *p, const DiffOpts *o, char *err, size_t errlen)
+/* One thread: in turn, one hierarchy at a time (B's while A is
+ * measured, then A's): the memory beyond the models is one hierarchy
+ * and the figures. */
+static int measure_in_turn(Work *w, char *err, size_t errlen)
 {
-    Diff *d = p->d;
-    for (int t = PREP_CHECK_A; t <= PREP_CHECK_B; t++)
-        prep_task(p, t, 0);
-    prep_task(p, PREP_MATCH, 0);
-    if (prep_failed(p, err, errlen))
+    prep_task(w, T_CHECK_A);
+    prep_task(w, T_CHECK_B);
+    prep_task(w, T_MATCH);
+    if (work_failed(w, err, errlen))
+        return -1;
+    prep_task(w, T_SIDES);
+    if (work_failed(w, err, errlen))
         return -1;
     for (int side = 0; side < 2; side++) {
-        prep_task(p, side ? PREP_BVH_A : PREP_BVH_B, 0);
-        if (prep_failed(p, err, errlen))
+        prep_task(w, side ? T_BVH_A : T_BVH_B);
+        if (work_failed(w, err, errlen))
             return -1;
-        int rc = diff_side(side ? &d->b : &d->a, p->m[side], &p->v[side], &p->bvh[side], d, 1, o->cancel, err, errlen);
-        bvh_free(&p->bvh[side]);
-        if (rc)
+        DiffSideRun *r = &w->side[side];
+        for (uint32_t c = 0; c < r->nvchunks; c++)
+            diff_side_verts(r, c);
+        for (uint32_t c = 0; c < r->nfchunks; c++)
+            diff_side_faces(r, c);
+        bvh_free(&w->bvh[side]);
+        if (diff_side_end(r, err, errlen))
             return -1;
     }
     return 0;
 }
 
-/* More threads: everything before the samples side by side, then each
- * model's samples shared out. */
-static int measure_together(Prep *p, const DiffOpts *o, int threads, char *err, size_t errlen)
+/* Wait until the groups in need (a bit each) are done; 0, or -1 when
+ * one of the tasks before failed (nothing to measure with). */
+static int wait_for(Work *w, unsigned need)
 {
+    pthread_mutex_lock(&w->mu);
+    for (int g = 0; g < NGROUPS; g++)
+        while ((need >> g & 1) && w->left[g])
+            pthread_cond_wait(&w->cv, &w->mu);
+    pthread_mutex_unlock(&w->mu);
+    for (int t = 0; t < T_CHUNKS; t++)
+        if ((need >> t & 1) && w->rc[t])
+            return -1;
+    return 0;
+}
+
+static void task_done(Work *w, int g)
+{
+    pthread_mutex_lock(&w->mu);
+    if (--w->left[g] == 0)
+        pthread_cond_broadcast(&w->cv);
+    pthread_mutex_unlock(&w->mu);
+}
+
+#define NEED(g) (1u << (g))
+
+static void queue_task(void *arg, int task, int worker)
+{
+    (void)worker;
+    Work *w = arg;
+    int g = 0;
+    while ((uint32_t)task >= w->first[g + 1])
+        g++;
+    uint32_t chunk = (uint32_t)task - w->first[g];
+    /* what each needs: a side's vertices the other's hierarchy, the
+     * match and its arrays; its faces all its vertices */
+    static const unsigned need[NGROUPS] = {
+        [G_VERTS_A] = NEED(T_BVH_B) | NEED(T_MATCH) | NEED(T_SIDES),
+        [G_VERTS_B] = NEED(T_BVH_A) | NEED(T_MATCH) | NEED(T_SIDES),
+        [G_FACES_A] = NEED(G_VERTS_A) | NEED(T_BVH_B) | NEED(T_MATCH) | NEED(T_SIDES),
+        [G_FACES_B] = NEED(G_VERTS_B) | NEED(T_BVH_A) | NEED(T_MATCH) | NEED(T_SIDES),
+    };
+    if (g < T_CHUNKS)
+        prep_task(w, g);
+    else if (!wait_for(w, need[g])) {
+        DiffSideRun *r = &w->side[g == G_VERTS_B || g == G_FACES_B];
+        if (g == G_VERTS_A || g == G_VERTS_B)
+            diff_side_verts(r, chunk);
+        else
+            diff_side_faces(r, chunk);
+    }
+    task_done(w, g);
+}
+/* Several threads: the one queue. */
+static int measure_together(Work *w, int threads, char *err, size_t errlen)
+{
+    uint32_t nv[2], nf[2];
+    for (int i = 0; i < 2; i++)
+        diff_side_chunks(w->m[i], &nv[i], &nf[i]);
+    uint32_t count[NGROUPS];
+    for (int g = 0; g < T_CHUNKS; g++)
+        count[g] = 1;
+    count[G_VERTS_A] = nv[0];
+    count[G_VERTS_B] = nv[1];
+    count[G_FACES_A] = nf[0];
+    count[G_FACES_B] = nf[1];
+    uint64_t total = 0;
+    for (int g = 0; g < NGROUPS; g++) {
+        w->first[g] = (uint32_t)total;
+        w->left[g] = count[g];
+        total += count[g];
+    }
+    w->first[NGROUPS] = (uint32_t)total;
+    if (total > INT32_MAX) {
+        snprintf(err, errlen, "too many faces");
+        return -1;
+    }
     Pool *pool = pool_create(threads - 1);
     if (!pool) {
         snprintf(err, errlen, "out of memory");
         return -1;
     }
-    pool_run(pool, PREP_TASKS, prep_task, p);
+    pthread_mutex_init(&w->mu, NULL);
+    pthread_cond_init(&w->cv, NULL);
+    pool_run(pool, (int)total, queue_task, w);
     pool_free(pool);
-    if (prep_failed(p, err, errlen))
+    pthread_cond_destroy(&w->cv);
+    pthread_mutex_destroy(&w->mu);
+    if (work_failed(w, err, errlen))
         return -1;
-    Diff *d = p->d;
-    return diff_side(&d->a, p->m[0], &p->v[0], &p->bvh[0], d, threads, o->cancel, err, errlen) ||
-           diff_side(&d->b, p->m[1], &p->v[1], &p->bvh[1], d, threads, o->cancel, err, errlen);
+    return diff_side_end(&w->side[0], err, errlen) || diff_side_end(&w->side[1], err, errlen) ? -1 : 0;
 }
 
 int diff_compute(Diff *d, const Mesh *a, const Mesh *b, const DiffOpts *o, char *err, size_t errlen)
@@ -186,19 +312,26 @@ int diff_compute(Diff *d, const Mesh *a, const Mesh *b, const DiffOpts *o, char 
         box[k] = (float)lo[k];
         box[3 + k] = (float)hi[k];
     }
-    Prep p;
-    memset(&p, 0, sizeof p);
-    p.m[0] = a;
-    p.m[1] = b;
-    p.d = d;
-    p.box = box;
-    p.checks = o->checks;
-    int rc = threads > 1 ? measure_together(&p, o, threads, err, errlen) : measure_in_turn(&p, o, err, errlen);
+    Work *w = calloc(1, sizeof *w);
+    if (!w) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    w->m[0] = a;
+    w->m[1] = b;
+    w->d = d;
+    w->box = box;
+    w->checks = o->checks;
+    w->cancel = o->cancel;
+    int rc = threads > 1 ? measure_together(w, threads, err, errlen) : measure_in_turn(w, err, errlen);
     rc = rc || diff_regions(d, a, b, err, errlen);
     for (int i = 0; i < 2; i++) {
-        bvh_free(&p.bvh[i]);
-        diff_verts_free(&p.v[i]);
+        if (w->side[i].acc)
+            diff_side_abort(&w->side[i]);   /* a failure before the sums */
+        bvh_free(&w->bvh[i]);
+        diff_verts_free(&w->v[i]);
     }
+    free(w);
     if (rc) {
         diff_free(d);
         return -1;

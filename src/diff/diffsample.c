@@ -4,9 +4,11 @@
  * Morton curve (queries near one another walk the same nodes), a
  * vertex at the very position of a vertex of the other model's faces
  * being at distance 0 without a query; then the faces. Each pass runs in
- * chunks of a fixed size on the helper threads; a chunk's sums are its
- * own and are added in chunk order, so the figures do not depend on the
- * threads. */
+ * chunks of a fixed size, as tasks for any thread (diff.c hands them
+ * out); a chunk's sums are its own and are added in chunk order, so the
+ * figures do not depend on the threads. Each query starts from the
+ * answer of the one before it in the chunk (the samples of a chunk are
+ * near one another): the answer is the same, found sooner. */
 
 #include <math.h>
 #include <stdio.h>
@@ -22,24 +24,12 @@
 #define R_MAX      4096         /* a triangle's cuts a side at most: 16M samples */
 
 /* What a chunk adds up. */
-typedef struct {
+typedef struct DiffAcc {
     double   sum_dw, sum_w;     /* distance times area, and area */
     double   max, max_at[3], bound, over;
     uint64_t vs, es, fs;
     uint32_t tris;
 } Acc;
-
-typedef struct {
-    const Mesh *m;
-    const Bvh  *bvh;
-    const DiffVerts *verts;     /* its vertices in curve order, and those on the other */
-    const Diff *d;
-    DiffSide   *s;
-    double      unit;           /* the area a face sample stands for, at most */
-    const int  *cancel;
-    Acc        *acc;            /* one a chunk: vertex chunks, then face chunks */
-    uint32_t    nvchunks;
-} SideWork;
 
 static int cancelled(const int *cancel)
 {
@@ -63,18 +53,16 @@ static void acc_max(Acc *a, double d, const double p[3])
 /* ==== The vertices ==== */
 
 /* The distance of point p to the other model; *link its face. */
-static double measure(const SideWork *w, const double p[3], BvhHit *hit, uint32_t *link)
+static double measure(const DiffSideRun *w, const double p[3], BvhHit *hit, uint32_t *link)
 {
-    bvh_closest(w->bvh, p, hit);
+    bvh_closest_from(w->bvh, p, hit->tri, hit);
     *link = hit->tri < w->bvh->ntris ? w->bvh->id[hit->tri] : 0;
     double d = sqrt(hit->d2);
     return d < w->d->zero ? 0 : d;
 }
 
-static void vert_task(void *arg, int task, int worker)
+void diff_side_verts(DiffSideRun *w, uint32_t task)
 {
-    (void)worker;
-    SideWork *w = arg;
     const Mesh *m = w->m;
     DiffSide *s = w->s;
     Acc *a = &w->acc[task];
@@ -82,7 +70,7 @@ static void vert_task(void *arg, int task, int worker)
     if (cancelled(w->cancel))
         return;
     const DiffVerts *vs = w->verts;
-    uint32_t i0 = (uint32_t)task * VERT_CHUNK, i1 = i0 + VERT_CHUNK < vs->nused ? i0 + VERT_CHUNK : vs->nused;
+    uint32_t i0 = task * VERT_CHUNK, i1 = i0 + VERT_CHUNK < vs->nused ? i0 + VERT_CHUNK : vs->nused;
     BvhHit hit = { .tri = BVH_NONE };
     for (uint32_t i = i0; i < i1; i++) {
         uint32_t v = vs->order[i];
@@ -108,7 +96,7 @@ typedef struct {
     double   over, area;
 } FaceAcc;
 
-static void sample(const SideWork *w, Acc *a, FaceAcc *fa, BvhHit *hit, const double p[3], double weight, double rho)
+static void sample(const DiffSideRun *w, Acc *a, FaceAcc *fa, BvhHit *hit, const double p[3], double weight, double rho)
 {
     uint32_t link;
     double d = measure(w, p, hit, &link);
@@ -169,7 +157,7 @@ static double share_above(double d0, double d1, double d2, double t)
 /* Triangle of corners V[] (their distances dv[]): the centres of its
  * r x r small triangles and the points that cut its sides, r for its
  * share of the samples by area; r = 0, its corners alone. */
-static void tri_samples(const SideWork *w, Acc *a, FaceAcc *fa, BvhHit *hit, const double *V[3], const double dv[3])
+static void tri_samples(const DiffSideRun *w, Acc *a, FaceAcc *fa, BvhHit *hit, const double *V[3], const double dv[3])
 {
     double ab[3], ac[3], bc[3], g[3];
     for (int k = 0; k < 3; k++) {
@@ -238,17 +226,15 @@ static inline void vert_of(const Mesh *m, uint32_t v, double out[3])
     out[2] = f[2];
 }
 
-static void face_task(void *arg, int task, int worker)
+void diff_side_faces(DiffSideRun *w, uint32_t task)
 {
-    (void)worker;
-    SideWork *w = arg;
     const Mesh *m = w->m;
     DiffSide *s = w->s;
-    Acc *a = &w->acc[w->nvchunks + (uint32_t)task];
+    Acc *a = &w->acc[w->nvchunks + task];
     acc_init(a);
     if (cancelled(w->cancel))
         return;
-    uint32_t f0 = (uint32_t)task * FACE_CHUNK, f1 = f0 + FACE_CHUNK < m->nfaces ? f0 + FACE_CHUNK : m->nfaces;
+    uint32_t f0 = task * FACE_CHUNK, f1 = f0 + FACE_CHUNK < m->nfaces ? f0 + FACE_CHUNK : m->nfaces;
     double tol = w->d->tolerance;
     BvhHit hit = { .tri = BVH_NONE };
     for (uint32_t f = f0; f < f1; f++) {
@@ -345,9 +331,19 @@ static void side_sums(DiffSide *s, const Acc *acc, uint32_t n)
     s->triangles = all.tris;
 }
 
-int diff_side(DiffSide *s, const Mesh *m, const DiffVerts *verts, const Bvh *bvh, const Diff *d, int threads,
-              const int *cancel, char *err, size_t errlen)
+void diff_side_chunks(const Mesh *m, uint32_t *nvchunks, uint32_t *nfchunks)
 {
+    /* as many vertex chunks as the vertices could fill, so that the
+     * count is known before the match says which are used: those past
+     * the used ones are empty, and add nothing */
+    *nvchunks = (uint32_t)(((uint64_t)m->nverts + VERT_CHUNK - 1) / VERT_CHUNK);
+    *nfchunks = (uint32_t)(((uint64_t)m->nfaces + FACE_CHUNK - 1) / FACE_CHUNK);
+}
+
+int diff_side_begin(DiffSideRun *w, DiffSide *s, const Mesh *m, const DiffVerts *verts, const Diff *d,
+                    const int *cancel, char *err, size_t errlen)
+{
+    memset(w, 0, sizeof *w);
     memset(s, 0, sizeof *s);
     s->nverts = m->nverts;
     s->nfaces = m->nfaces;
@@ -358,36 +354,84 @@ int diff_side(DiffSide *s, const Mesh *m, const DiffVerts *verts, const Bvh *bvh
     s->face_link = bigmem_alloc(nf * sizeof *s->face_link);
     s->face_over = bigmem_alloc(nf * sizeof *s->face_over);
     s->face_class = bigmem_alloc(nf);
-    uint32_t nvc = (verts->nused + VERT_CHUNK - 1) / VERT_CHUNK, nfc = (m->nfaces + FACE_CHUNK - 1) / FACE_CHUNK;
-    SideWork w = { m, bvh, verts, d, s, 0, cancel, calloc((size_t)nvc + nfc + 1, sizeof(Acc)), nvc };
-    Pool *pool = threads > 1 ? pool_create(threads - 1) : NULL;
+    diff_side_chunks(m, &w->nvchunks, &w->nfchunks);
+    w->acc = calloc((size_t)w->nvchunks + w->nfchunks + 1, sizeof(Acc));
     if (!s->vert_dist || !s->vert_link || !s->face_dist || !s->face_link || !s->face_over || !s->face_class ||
-        !w.acc || (threads > 1 && !pool)) {
-        free(w.acc);
-        pool_free(pool);
+        !w->acc) {
+        free(w->acc);
+        w->acc = NULL;
         diff_side_free(s);
         snprintf(err, errlen, "out of memory");
         return -1;
     }
+    w->m = m;
+    w->verts = verts;
+    w->d = d;
+    w->s = s;
+    w->cancel = cancel;
     /* the vertices no face uses stay -1 */
     for (uint32_t v = 0; v < m->nverts; v++) {
         s->vert_dist[v] = -1;
         s->vert_link[v] = 0;
     }
     s->area = mesh_area(m);
-    w.unit = s->area / d->samples;
-    pool_run(pool, (int)nvc, vert_task, &w);
-    pool_run(pool, (int)nfc, face_task, &w);
-    pool_free(pool);
-    if (cancelled(cancel)) {
-        free(w.acc);
+    w->unit = s->area / d->samples;
+    return 0;
+}
+
+int diff_side_end(DiffSideRun *w, char *err, size_t errlen)
+{
+    DiffSide *s = w->s;
+    if (cancelled(w->cancel)) {
+        free(w->acc);
+        w->acc = NULL;
         diff_side_free(s);
         snprintf(err, errlen, "cancelled");
         return -1;
     }
-    side_sums(s, w.acc, nvc + nfc);
-    free(w.acc);
+    side_sums(s, w->acc, w->nvchunks + w->nfchunks);
+    free(w->acc);
+    w->acc = NULL;
     return 0;
+}
+
+void diff_side_abort(DiffSideRun *w)
+{
+    free(w->acc);
+    w->acc = NULL;
+    if (w->s)
+        diff_side_free(w->s);
+}
+
+static void vert_task(void *arg, int task, int worker)
+{
+    (void)worker;
+    diff_side_verts(arg, (uint32_t)task);
+}
+
+static void face_task(void *arg, int task, int worker)
+{
+    (void)worker;
+    diff_side_faces(arg, (uint32_t)task);
+}
+
+int diff_side(DiffSide *s, const Mesh *m, const DiffVerts *verts, const Bvh *bvh, const Diff *d, int threads,
+              const int *cancel, char *err, size_t errlen)
+{
+    DiffSideRun w;
+    if (diff_side_begin(&w, s, m, verts, d, cancel, err, errlen))
+        return -1;
+    Pool *pool = threads > 1 ? pool_create(threads - 1) : NULL;
+    if (threads > 1 && !pool) {
+        diff_side_abort(&w);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    w.bvh = bvh;
+    pool_run(pool, (int)w.nvchunks, vert_task, &w);
+    pool_run(pool, (int)w.nfchunks, face_task, &w);
+    pool_free(pool);
+    return diff_side_end(&w, err, errlen);
 }
 
 int diff_fan(const Mesh *m, uint32_t **tri_out, uint32_t **face_out, uint32_t *n, char *err, size_t errlen)

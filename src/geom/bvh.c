@@ -226,12 +226,60 @@ static inline void child_dist2(const BvhNode *n, const float q[3], float out[BVH
 #endif
 }
 
+/* The children of n whose boxes' distances e[] are within lim into idx,
+ * the farthest first (the nearest is popped first), those at one
+ * distance in child order; returns how many. Mostly one or two: a mask
+ * and a swap, not a sort. */
+static inline int children_within(const BvhNode *n, const float e[BVH_WIDTH], float lim, int idx[BVH_WIDTH])
+{
+    unsigned mask;
+#ifdef ZV_SSE2
+    mask = (unsigned)_mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(e), _mm_set1_ps(lim)));
+    __m128i none = _mm_cmpeq_epi32(_mm_loadu_si128((const __m128i *)(const void *)n->child), _mm_set1_epi32(-1));
+    mask &= ~(unsigned)_mm_movemask_ps(_mm_castsi128_ps(none));
+#else
+    mask = 0;
+    for (int c = 0; c < BVH_WIDTH; c++)
+        mask |= (unsigned)(e[c] <= lim && n->child[c] != BVH_NONE) << c;
+#endif
+    int k = 0;
+    for (; mask; mask &= mask - 1)
+        idx[k++] = __builtin_ctz(mask);
+    if (k == 2) {
+        if (e[idx[0]] < e[idx[1]]) {
+            int t = idx[0];
+            idx[0] = idx[1];
+            idx[1] = t;
+        }
+    } else if (k > 2) {
+        for (int i = 1; i < k; i++) {
+            int c = idx[i], j = i;
+            for (; j > 0 && e[idx[j - 1]] < e[c]; j--)
+                idx[j] = idx[j - 1];
+            idx[j] = c;
+        }
+    }
+    return k;
+}
+
 void bvh_closest(const Bvh *b, const double q[3], BvhHit *hit)
+{
+    bvh_closest_from(b, q, BVH_NONE, hit);
+}
+
+void bvh_closest_from(const Bvh *b, const double q[3], uint32_t hint, BvhHit *hit)
 {
     double best = INFINITY, p[3];
     uint32_t bt = BVH_NONE;
     QueryF qf;
     query_f(q, &qf);
+    if (hint < b->ntris) {
+        /* the guess first: its distance bounds the walk from the root
+         * on, and the walk still meets every triangle as near (below),
+         * so the answer is the one without it */
+        best = tri_dist2(b, hint, q, hit->p);
+        bt = hint;
+    }
     float lim = box_limit(best, &qf);
     /* invariant: each entry on the stack is a child (a node, or a leaf's
      * first triangle and count) with its box's distance, which was within
@@ -254,7 +302,7 @@ void bvh_closest(const Bvh *b, const double q[3], BvhHit *hit)
         if (stack[top].count) {
             uint32_t t0 = stack[top].child;
             for (uint32_t t = t0; t < t0 + stack[top].count; t++) {
-                if (plane_beyond(b, t, q, prune_at(best)))
+                if (t == hint || plane_beyond(b, t, q, prune_at(best)))
                     continue;
                 double d = tri_dist2(b, t, q, p);
                 if (d < best || (d == best && t < bt)) {
@@ -269,17 +317,7 @@ void bvh_closest(const Bvh *b, const double q[3], BvhHit *hit)
         const BvhNode *n = &b->node[stack[top].child];
         float e[BVH_WIDTH];
         child_dist2(n, qf.q, e);
-        /* the children within the limit, pushed farthest first */
-        int k = 0, idx[BVH_WIDTH];
-        for (int c = 0; c < BVH_WIDTH; c++)
-            if (e[c] <= lim && n->child[c] != BVH_NONE) {
-                int j = k++;
-                while (j > 0 && e[idx[j - 1]] < e[c]) {
-                    idx[j] = idx[j - 1];
-                    j--;
-                }
-                idx[j] = c;
-            }
+        int idx[BVH_WIDTH], k = children_within(n, e, lim, idx);
         for (int j = 0; j < k; j++) {
             stack[top].child = n->child[idx[j]];
             stack[top].count = n->count[idx[j]];

@@ -8,7 +8,8 @@
 # (-x 'zview --diff') and a textconv driver (zview --check --textconv)
 # in a real repository; and the viewer under tmux: the headline in the
 # status bar, V cycling A, B and the heat map, the picture the --print
-# of the same view, O refused.
+# of the same view, O refused. The report the same bytes on 1, 2 and 3
+# threads.
 . "$(dirname "$0")/lib.sh"
 Z=$ZVIEW
 check() { if eval "$2"; then ok "$1"; else notok "$1" "$3"; fi; }
@@ -104,6 +105,40 @@ EOF
         "$T/cube.obj"
     expect_out "... max 0" "verdict: the same (max 0)"
 fi
+
+# ==== the same on any threads ====
+# a wavy sheet of 150 x 150 quads against a copy with every vertex moved
+# and a raised patch: several chunks of samples on each side, shared
+# between the threads beside the checks; the report and the JSON the
+# same bytes on 1, 2 and 3 threads
+sheet() {
+    awk -v bump="$1" 'BEGIN {
+        n = 150; s = 12345
+        for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) {
+            x = i / n; y = j / n; z = 0.05 * sin(9 * x) * cos(7 * y)
+            if (bump) { s = (s * 1103515245 + 12345) % 2147483648; z += (s / 2147483648 - 0.5) * 2e-3
+                        if (i > 50 && i < 75 && j > 50 && j < 75) z += 0.01 }
+            printf "v %.7g %.7g %.7g\n", x, y, z
+        }
+        for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
+            v = j * (n + 1) + i + 1
+            printf "f %d %d %d %d\n", v, v + 1, v + n + 2, v + n + 1
+        }
+    }'
+}
+sheet 0 >"$T/sheet.obj"
+sheet 1 >"$T/sheet2.obj"
+for j in 1 2 3; do
+    "$Z" --diff -j $j "$T/sheet.obj" "$T/sheet2.obj" >"$T/sheet-$j.txt"
+    "$Z" --diff --json -j $j "$T/sheet.obj" "$T/sheet2.obj" >"$T/sheet-$j.json"
+done
+check "-j 1, 2 and 3: the same report, byte for byte" \
+    'cmp -s "$T/sheet-1.txt" "$T/sheet-2.txt" && cmp -s "$T/sheet-1.txt" "$T/sheet-3.txt"' \
+    "$(diff "$T/sheet-1.txt" "$T/sheet-2.txt" | head -5)"
+check "... and the same JSON" 'cmp -s "$T/sheet-1.json" "$T/sheet-2.json" && cmp -s "$T/sheet-1.json" "$T/sheet-3.json"' \
+    "$(diff "$T/sheet-1.json" "$T/sheet-2.json" | head -5)"
+check "... which finds the raised patch: one region or more" 'grep -q "regions  *[1-9]" "$T/sheet-1.txt"' \
+    "$(cat "$T/sheet-1.txt")"
 
 # ==== the picture ====
 if need_python "-o: the diff's colours, pixel by pixel"; then
