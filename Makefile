@@ -58,7 +58,7 @@ help:
 	@echo '  make nosimd        SIMD compiled out (-DZV_NO_SIMD), in build-nosimd/, and its unit tests'
 	@echo 'Tests'
 	@echo '  make test          every test: unit (Criterion), fuzz replays, end-to-end; about 4 min of CPU'
-	@echo '                     (12 to 21 min on 2 cores shared at load 12 to 34; 3 min 40 s at low load before issue 30)'
+	@echo '                     (8 to 21 min on 2 cores shared at load 14 to 34; 3 min 40 s at low load before issue 30)'
 	@echo '                     a check skipped for want of a tool fails it; ZV_ALLOW_SKIPS=1 allows that outside CI'
 	@echo '  make unit          the unit tests alone; make e2e the end-to-end ones alone'
 	@echo '  make asan          make test under AddressSanitizer + UBSan, in build-asan/ (about 3 minutes)'
