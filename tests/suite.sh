@@ -5,8 +5,8 @@
 # priority (nice), the unit tests (tests/unit.sh TESTBIN --jobs 2
 # --filter FILTER) and then the fuzz replays (tests/fuzz/replay.sh BUILD) fill
 # the cores, and yield them whenever a script wants one. Run one after
-# the other, the parts took 3 min 40 s here; see the Makefile's help for
-# what they take now.
+# the other, the parts took 3 min 40 s here (before issue 30's suites);
+# see the Makefile's help for what they take now.
 #
 # Each part's output is kept and printed whole when it has ended, the
 # unit tests' and the replays' first; the run fails when any part did.

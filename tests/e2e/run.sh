@@ -46,8 +46,9 @@ trap 'rm -rf "$work"' EXIT
 one() {
     name=$(basename "$1" .sh)
     start=$(date +%s)
-    sh "$1" >"$2/$name.out" 2>&1
-    echo $? >"$2/$name.rc"
+    # the script in a shell of its own, whose "times" gives the CPU its
+    # children spent (not the tmux servers': they leave it)
+    sh -c 'sh "$1" >"$2" 2>&1; echo $? >"$3"; times >"$4"' sh "$1" "$2/$name.out" "$2/$name.rc" "$2/$name.cpu"
     echo $(($(date +%s) - start)) >"$2/$name.sec"
     # xargs starts nothing more after a command's status 255
     if [ -n "$E2E_FAIL_FAST" ] && { [ "$(cat "$2/$name.rc")" -ne 0 ] || grep -q '^not ok ' "$2/$name.out"; }; then
@@ -100,7 +101,9 @@ for t in "$here"/test_*.sh; do
     fi
     cat "$out"
     rc=$(cat "$work/$n.rc" 2>/dev/null || echo 1)
-    echo "$n $(cat "$work/$n.sec" 2>/dev/null || echo 999)" >>"$work/times"
+    # seconds, then the CPU seconds (user + system) of its processes
+    cpu=$(sed -n 2p "$work/$n.cpu" 2>/dev/null | tr 'ms' '  ' | awk '{ printf "%.1f", $1 * 60 + $2 + $3 * 60 + $4 }')
+    echo "$n $(cat "$work/$n.sec" 2>/dev/null || echo 999) ${cpu:-?}" >>"$work/times"
     s=$(grep -ci '^ok .*# skip' "$out")
     p=$(($(grep -c '^ok ' "$out") - s))
     f=$(grep -c '^not ok ' "$out")

@@ -29,16 +29,26 @@ d=$(cat "$T/display")
 [ -n "$d" ] || { notok "Xvfb starts" "no display number in 10 s"; exit 1; }
 
 # run ARGS: the viewer with ARGS in a fresh kitty filling the display; its
-# pid in $T/pid, its exit status in $T/rc when it ends
+# pid in $T/pid, its exit status in $T/rc when it ends. The viewer starts
+# once kitty answers its remote control (up to 60 s): its question about
+# pixels waits 200 ms for the answer (TERMBG_WAIT_MS), which a kitty
+# still starting on a loaded machine missed.
 run() {
     stop_kitty
-    rm -f "$T/rc" "$T/pid" "$T/sock"
+    rm -f "$T/rc" "$T/pid" "$T/sock" "$T/go"
     mkdir -p "$T/cache" "$T/conf"
     DISPLAY=:$d LIBGL_ALWAYS_SOFTWARE=1 XDG_CACHE_HOME="$T/cache" KITTY_CONFIG_DIRECTORY="$T/conf" \
         kitty --config NONE -o allow_remote_control=yes --listen-on "unix:$T/sock" \
         -o initial_window_width=800 -o initial_window_height=600 -o remember_window_size=no \
-        sh -c "echo \$\$ >$T/pid; $Z $*; echo \$? >$T/rc; sleep 60" >>"$T/kitty.log" 2>&1 &
+        sh -c "echo \$\$ >$T/pid; while [ ! -e $T/go ]; do sleep 0.05; done; $Z $*; echo \$? >$T/rc; sleep 60" >>"$T/kitty.log" 2>&1 &
     kpid=$!
+    i=0
+    while [ $i -lt 120 ]; do
+        [ -s "$T/pid" ] && kitty @ --to "unix:$T/sock" ls >/dev/null 2>&1 && break
+        sleep 0.5
+        i=$((i + 1))
+    done
+    : >"$T/go"
 }
 shot() { DISPLAY=:$d import -window root "$T/shot.ppm"; }
 # changes: in the screenshot's top 540 rows (above the status line), the
@@ -67,18 +77,18 @@ for y in range(0, min(h, 540), 2):
 print(len(cols))
 PY
 }
-# settle MIN: screenshots until changes is above MIN (or 20 s); n the last
+# settle MIN: screenshots until changes is above MIN, for up to 60 s (a
+# loaded machine draws late); n the last
 settle() {
-    i=0
-    while [ $i -lt 40 ]; do
+    end=$(($(date +%s) + 60))
+    while :; do
         shot
         n=$(changes 2>/dev/null)
         n=${n:-0}
         [ "$n" -gt "$1" ] && return 0
+        [ "$(date +%s)" -lt $end ] || return 1
         sleep 0.5
-        i=$((i + 1))
     done
-    return 1
 }
 alive() { [ ! -s "$T/rc" ] && [ -s "$T/pid" ] && kill -0 "$(cat "$T/pid")" 2>/dev/null; }
 quit_viewer() {
