@@ -135,7 +135,8 @@ int section_cut_update(SectionCut *c, const Scene *s, const SectionPlane *planes
     c->key = s;
     c->key_gen = s->gen;
     c->key_np = np;
-    memcpy(c->key_plane, planes, (size_t)np * sizeof *planes);
+    if (np)
+        memcpy(c->key_plane, planes, (size_t)np * sizeof *planes);
     c->ms = now_ms() - t0;
     return 0;
 }

@@ -193,7 +193,8 @@ static int link_segs(SectionWork *w)
         grow_array((void **)&w->state, &w->state_room, w->nseg, 1))
         return -1;
     memset(w->table, 0, size * sizeof *w->table);
-    memset(w->state, 0, w->nseg);
+    if (w->nseg)
+        memset(w->state, 0, w->nseg);     /* (no segments: state may be unmade) */
     uint32_t mask = size - 1;
     for (uint32_t s = 0; s < w->nseg; s++) {
         uint32_t h = point_hash(w->seg[s].a) & mask;
