@@ -117,6 +117,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int best = simd_best();
     if (front(&bufs.ref, &s, &vp, &style, SIMD_SCALAR, 1, &file))
         goto out;
+    if (getenv("FUZZ_DIFF_SAY"))   /* what a seed decodes to, for whoever writes one */
+        fprintf(stderr, "%dx%d, %d thread(s), order %s, hidden surfaces at %s, %d section plane(s): %u objects, %u polygons on screen\n",
+                vp.w, vp.h, threads, order_names[run.order], run.hsr_simd ? simd_name(run.hsr_simd) : "every level", run.nplanes,
+                (unsigned)s.nobjs, bufs.ref.sp.npolys);
+    for (int k = 0; getenv("FUZZ_DIFF_SAY") && k < s.nobjs; k++)
+        fprintf(stderr, "  object %d: %u polygons%s\n", k, (unsigned)s.objs[k].poly_count, k ? "" : style.wire ? ", wireframe" : "");
     for (int level = SIMD_SCALAR; level <= best; level++) {
         if (front(&bufs.at[level], &s, &vp, &style, level, threads, &run))
             goto out;
@@ -128,12 +134,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             fail(msg, &vp, threads, &run);
         }
     }
-    if (getenv("FUZZ_DIFF_SAY"))   /* what a seed decodes to, for whoever writes one */
-        fprintf(stderr, "%dx%d, %d thread(s), order %s, hidden surfaces at %s, %d section plane(s): %u objects, %u polygons on screen\n",
-                vp.w, vp.h, threads, order_names[run.order], run.hsr_simd ? simd_name(run.hsr_simd) : "every level", run.nplanes,
-                (unsigned)s.nobjs, bufs.ref.sp.npolys);
-    for (int k = 0; getenv("FUZZ_DIFF_SAY") && k < s.nobjs; k++)
-        fprintf(stderr, "  object %d: %u polygons%s\n", k, (unsigned)s.objs[k].poly_count, k ? "" : style.wire ? ", wireframe" : "");
     HsrInput in = { .sp = &bufs.ref.sp, .scene = &s, .vp = &vp, .simd = SIMD_SCALAR };
     if (tl_render_poisoned(&hsr_zbuffer, 1, &in, &bufs.ref_fb))
         goto out;
