@@ -30,12 +30,22 @@ static int bad(const OptCall *c, const char *what)
     return -1;
 }
 
-static int parse_float(const char *s, float *out)
+/* The whole of s as a finite number. */
+static int parse_double(const char *s, double *out)
 {
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (end == s || *end || errno || !isfinite(v) || fabs(v) > 1e9)
+    if (end == s || *end || errno || !isfinite(v))
+        return -1;
+    *out = v;
+    return 0;
+}
+
+static int parse_float(const char *s, float *out)
+{
+    double v;
+    if (parse_double(s, &v) || fabs(v) > 1e9)
         return -1;
     *out = (float)v;
     return 0;
@@ -549,10 +559,8 @@ static int set_repair(Options *o, const OptCall *c)
 
 static int set_weld(Options *o, const OptCall *c)
 {
-    char *end;
-    errno = 0;
-    double v = strtod(c->val, &end);
-    if (end == c->val || *end || errno || !(v > 0 && v <= 1e9))
+    double v;
+    if (parse_double(c->val, &v) || !(v > 0 && v <= 1e9))
         return bad(c, "a distance in file units, more than 0 and at most 1e9");
     o->weld = v;
     return 0;
@@ -569,10 +577,8 @@ static int set_max_hole(Options *o, const OptCall *c)
 
 static int set_tolerance(Options *o, const OptCall *c)
 {
-    char *end;
-    errno = 0;
-    double v = strtod(c->val, &end);
-    if (end == c->val || *end || errno || !isfinite(v) || v < 0)
+    double v;
+    if (parse_double(c->val, &v) || v < 0)
         return bad(c, "a distance in the files' units, 0 or more");
     o->tolerance = v;
     return 0;
@@ -627,10 +633,8 @@ static int set_overhang(Options *o, const OptCall *c)
 
 static int set_min_thickness(Options *o, const OptCall *c)
 {
-    char *end;
-    errno = 0;
-    double v = strtod(c->val, &end);
-    if (end == c->val || *end || errno || !(v > 0 && v <= 1e9))
+    double v;
+    if (parse_double(c->val, &v) || !(v > 0 && v <= 1e9))
         return bad(c, "a thickness in the report's unit, more than 0");
     o->min_thickness = v;
     return 0;
