@@ -120,6 +120,7 @@ typedef struct {
     int         show;           /* --show: what the picture shows (DiffShow: both a b heat) */
     int         quiet;          /* --quiet: no report, the exit status says */
     int         textconv;       /* --textconv: --check as git's textconv driver wants it */
+    int         preview;        /* --preview WxH: a file manager's preview (w, h: its cells) */
     /* will it print, and its measures (printq.h) */
     double      bed[3];         /* --bed W x D x H, in the report's unit; 0: not given */
     const char *unit;           /* --unit mm|in|m: the files' unit (the figures then in mm); NULL: as stated */

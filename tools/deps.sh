@@ -22,7 +22,9 @@ set -e
 # query, and draws the viewer's pictures in its pixels (test_kitty.sh).
 # admesh: the STL repair tool --repair is held against on broken parts
 # (tests/e2e/test_repair_parts.sh, tools/repair-table.sh).
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick kitty libgl1 libgl1-mesa-dri fonts-dejavu-core admesh"
+# lf and fzf: the file manager and the finder whose previews
+# doc/previewers.md's recipes give (tests/e2e/test_previewers.sh).
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick kitty libgl1 libgl1-mesa-dri fonts-dejavu-core admesh lf fzf"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive

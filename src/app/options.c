@@ -223,6 +223,13 @@ static int set_size(Options *o, const OptCall *c)
     return 0;
 }
 
+/* --preview WxH: a file manager's pane of W x H cells. */
+static int set_preview(Options *o, const OptCall *c)
+{
+    o->preview = 1;
+    return set_size(o, c);
+}
+
 static int set_view(Options *o, const OptCall *c)
 {
     float y, p;
@@ -830,6 +837,10 @@ const OptSpec cli_options[] = {
     { "marks", 0, "A,B,C", NULL, OPTSEC_OUTPUT,
       "mark up to three vertices (vN, or I:vN of object\nI) on the picture, joined (the viewer's M keeps\nthem)",
       set_marks, 0, OPT_VIEWCMD },
+    { "preview", 0, "WxH", NULL, OPTSEC_OUTPUT,
+      "as a file manager's previewer (lf, fzf, ranger,\nyazi): FILE in W x H cells, the last row the\n"
+      "check's verdict; a file not read says why there",
+      set_preview, 0, 0 },
     { "textconv", 0, NULL, NULL, OPTSEC_OUTPUT,
       "with --check: the report as git's textconv wants\nit (the file unnamed, exit status 0 once read)", NULL,
       FLAG(textconv), 0 },
