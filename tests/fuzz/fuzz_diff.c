@@ -45,7 +45,8 @@ static struct {
     SectionCut cut;
 } bufs;
 
-/* The front end as pipeline_render runs it: project, reorder, then the
+/* The front end as pipeline_render runs it: the wireframe's lines (once:
+ * the caps' ids come after every line's), project, reorder, then the
  * points and lines. */
 static int front(Front *f, Scene *s, const Viewport *vp, const PrimStyle *style, int level, int threads,
                  const ScRun *run)
@@ -53,9 +54,8 @@ static int front(Front *f, Scene *s, const Viewport *vp, const PrimStyle *style,
     f->sp.simd = level;
     f->sp.threads = threads;
     char err[160];
-    if (screen_project(&f->sp, s, vp) ||
-        (run->order != ORDER_FILE && screen_reorder(&f->sp, (PolyOrder)run->order, run->seed, &f->rs)) ||
-        (style->wire && scene_wire_build(s, err, sizeof err)))
+    if ((style->wire && !s->wire_built && scene_wire_build(s, err, sizeof err)) || screen_project(&f->sp, s, vp) ||
+        (run->order != ORDER_FILE && screen_reorder(&f->sp, (PolyOrder)run->order, run->seed, &f->rs)))
         return -1;
     PrimStyle st = *style;
     st.point_size = st.point_size > 0 ? st.point_size : 1;
@@ -104,10 +104,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (sc_decode_run(data, size, &s, &vp, &threads, &style, &run))
         return 0;
     char msg[512];
-    /* the section planes: one cut of this scene for every front end (made
-     * again: a new scene may sit where the last one did) */
+    /* the wireframe's lines, then the section planes: one cut of this
+     * scene for every front end (made again: a new scene may sit where
+     * the last one did), as pipeline_render orders them (the caps' ids
+     * come after every line's) */
     bufs.cut.key = NULL;
-    if (section_cut_update(&bufs.cut, &s, run.plane, run.nplanes, msg, sizeof msg))
+    char werr[160];
+    if ((style.wire && scene_wire_build(&s, werr, sizeof werr)) ||
+        section_cut_update(&bufs.cut, &s, run.plane, run.nplanes, msg, sizeof msg))
         goto out;
     for (int level = 0; level < SIMD_LEVELS; level++)
         bufs.at[level].sp.cut = &bufs.cut;
