@@ -87,11 +87,16 @@ static void round_trip(int persp)
     s.objs[2].roll = -1.2f;
     s.objs[0].scale = s.objs[0].home_scale * 1.15f;
     light_set(&s.light, 20, 10, 0.3f);
-    MeasureMarks mk = { .n = 3, .obj = { 0, 1, 0 }, .v = { 6, 2, 11 } };
+    /* a vertex, an edge's midpoint on the second object, a face's centre */
+    MeasureMarks mk = { .n = 3,
+                        .mark = { { .a = 6 },
+                                  { .obj = 1, .kind = MEASURE_EDGE, .a = 2, .b = 7 },
+                                  { .kind = MEASURE_FACE, .a = 11 } } };
     ViewSettings v = { MODE_HALF, SHADE_SMOOTH, 45, 1, 9, "span", 1, 1, 3, 2, 1, 0, 0, 1, 20, 1, &mk };
     char cmd[4096];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_assert(strncmp(cmd, "zview ", 6) == 0, "%s", cmd);
+    cr_expect(strstr(cmd, " --marks v7,2:e3-8,f12 "), "the marks in words: %s", cmd);
 
     char *argv[128];
     int argc = split(cmd, argv, 128);
@@ -111,8 +116,7 @@ static void round_trip(int persp)
     cr_expect(o2.no_textures, "textures hidden");
     cr_expect(o2.overhang && o2.overhang_deg == 20, "overhangs past 20 degrees: %s", cmd);
     cr_expect(o2.thickness, "thickness");
-    cr_expect(o2.marks.n == 3 && o2.marks.obj[1] == 1 && o2.marks.v[1] == 2 && o2.marks.v[2] == 11 &&
-              o2.marks.obj[2] == 0, "the marks: %s", cmd);
+    cr_expect(o2.marks.n == 3 && memcmp(o2.marks.mark, mk.mark, sizeof mk.mark) == 0, "the marks: %s", cmd);
     cr_assert_eq(o2.nfiles, 2);
     Scene t;
     load(&o2, &t);

@@ -207,7 +207,7 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
     if (v->thickness)
         put(&o, " --thickness");
     if (v->marks && v->marks->n) {
-        char marks[64];
+        char marks[128];
         app_measure_option(v->marks, marks, sizeof marks);
         put(&o, " --marks %s", marks);
     }
