@@ -514,6 +514,9 @@ typedef struct {
     float       overhang_deg;
     int         thickness;      /* --thickness */
     const MeasureMarks *marks;  /* the points measured (NULL: none) */
+    const SectionPlane *planes; /* the section planes that cut the picture (none when the
+                                   viewer's cut is off) */
+    int         nplanes;
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

@@ -145,6 +145,8 @@ ViewSettings viewer_view_settings(const App *a)
         .overhang_deg = a->p.overhang_deg,
         .thickness = a->p.thickness,
         .marks = &a->p.marks,
+        .planes = a->p.planes,
+        .nplanes = a->p.cut_off ? 0 : a->p.nplanes,
     };
     return v;
 }

@@ -88,6 +88,23 @@ tm send-keys -t zv '\;'
 if wait_for 'cut z=0.48 area 1'; then ok "; slides it back"; else notok "; slides it back" "$(status 30)"; fi
 tm send-keys -t zv '\'
 if wait_for 'cut x=0.5 area 1'; then ok "\\ turns it to x through the middle"; else notok "\\ turns it" "$(status 30)"; fi
+# C: the view's command line cuts as the viewer does, and gives the
+# same picture back
+wait_stable
+if need_python "C gives the cut picture back"; then looks 29 >"$T/before"; fi
+tm send-keys -t zv C
+wait_for 'command line of this view' >/dev/null || notok "C shows the command line" "$(cat "$T/screen")"
+sed -n 's/^ *| \(.*\) *| *$/\1/p' "$T/screen" | sed 's/[[:space:]]*$//' | sed -n '/^zview /,$p' |
+    sed -e ':a' -e '/ \\$/{N; s/ \\\n/ /; ba' -e '}' >"$T/cmd"
+check "C writes the plane: --section x=0.5" 'grep -q -- " --section x=0.5" "$T/cmd"' "$(cat "$T/cmd")"
+if need_python "C gives the cut picture back"; then
+    sh -c "$(sed "s|^zview|\"$Z\" --print --size 100x29 --color 256|" "$T/cmd")" | python3 tests/e2e/looks.py >"$T/again"
+    check "the command C wrote gives the cut picture back" 'cmp -s "$T/before" "$T/again"' "$(diff "$T/before" "$T/again" | head -3)"
+    "$Z" --print --size 100x29 --color 256 --view iso "$T/cube.obj" | python3 tests/e2e/looks.py >"$T/whole"
+    check "... which is not the whole cube's" '! cmp -s "$T/whole" "$T/again"' ""
+fi
+tm send-keys -t zv Escape
+wait_gone 'command line of this view' >/dev/null
 tm send-keys -t zv '/'
 if wait_for 'cut off'; then ok "/ again: the model whole"; else notok "/ again" "$(status 30)"; fi
 tm send-keys -t zv '?'
