@@ -776,7 +776,7 @@ const OptSpec cli_options[] = {
     { "section", 0, "PLANE", NULL, OPTSEC_OUTPUT,
       "cut the model open: AXIS=V (x, y or z at V, file\nunits; -x=V keeps what lies above V) or\n"
       "X,Y,Z:NX,NY,NZ (a point and a normal); what lies\nbeyond every plane given goes, the cut is capped;\n"
-      "with --check --json each plane's area, perimeter\nand loops (/ in the viewer)",
+      "with --check each plane's area, perimeter and\nloops (/ in the viewer)",
       set_section, 0, OPT_VIEWCMD },
     { "parts", 0, NULL, NULL, OPTSEC_OUTPUT, "each connected part of the model its own colour\n(@ in the viewer)",
       NULL, FLAG(parts), OPT_VIEWCMD },
