@@ -165,7 +165,7 @@ void check_text_counts(Out *out, const CheckCounts *c, const CheckLocations *loc
 #define TEXT_ENDS 3
 static void text_sections(Out *out, const Options *o, const FileCheck *fc, const char *unit, const char *ind)
 {
-    char u1[16], u2[16];
+    char u1[48], u2[48];
     for (int i = 0; i < o->nsections; i++) {
         const SectionFigures *f = &fc->sec[i];
         char text[SECTION_TEXT];
