@@ -683,7 +683,7 @@ const KeyRow viewer_keys[] = {
     { "?", "this help", { { '?', act_help } } },
     { "Ctrl-L", "redraw", { { TK_CTRL_L, act_redraw } } },
     { "q Esc", "quit (Esc: stop a load)", { { 'q', act_quit }, { TK_ESC, act_escape } } },
-    { "left drag", "turn", { { 0, NULL } } },
+    { "left drag", "turn (in M: the cursor)", { { 0, NULL } } },
     { "right drag", "move", { { 0, NULL } } },
 };
 const int viewer_keys_n = (int)(sizeof viewer_keys / sizeof viewer_keys[0]);
