@@ -656,31 +656,19 @@ static int set_measure(Options *o, const OptCall *c)
     return 0;
 }
 
-/* --marks A,B,C: vertices vN (of the first object) or I:vN (of object I). */
+/* --marks A,B,C: vertices vN, edge midpoints eA-B and face centres fN
+ * of the first object, or after I: of object I. */
 static int set_marks(Options *o, const OptCall *c)
 {
-    static const char what[] = "up to three vertices vN or I:vN, comma apart (e.g. v12,2:v40)";
+    static const char what[] =
+        "up to three points, comma apart: vertices vN, edge midpoints eA-B, face centres fN, or I:vN of object I";
     MeasureMarks *m = &o->marks;
     m->n = 0;
     for (const char *p = c->val; *p;) {
-        char *end;
-        long obj = 1;
-        if (*p != 'v') {
-            errno = 0;
-            obj = strtol(p, &end, 10);
-            if (end == p || *end != ':' || errno || obj < 1 || obj > 65535)
-                return bad(c, what);
-            p = end + 1;
-        }
-        if (*p != 'v' || p[1] < '1' || p[1] > '9' || m->n == MEASURE_MARKS)
+        if (m->n == MEASURE_MARKS || app_measure_pick_parse(&p, &m->mark[m->n]) || (*p && *p != ','))
             return bad(c, what);
-        errno = 0;
-        unsigned long long v = strtoull(p + 1, &end, 10);
-        if (errno || v > UINT32_MAX || (*end && *end != ','))
-            return bad(c, what);
-        m->obj[m->n] = (int)obj - 1;
-        m->v[m->n++] = (uint32_t)(v - 1);
-        p = *end ? end + 1 : end;
+        m->n++;
+        p += *p == ',';
     }
     return m->n ? 0 : bad(c, what);
 }
@@ -799,8 +787,8 @@ const OptSpec cli_options[] = {
     { "section", 0, "PLANE", NULL, OPTSEC_OUTPUT,
       "cut the model open: AXIS=V (x, y or z at V, file\nunits; -x=V keeps what lies above V) or\n"
       "X,Y,Z:NX,NY,NZ (a point and a normal); what lies\nbeyond every plane given goes, the cut is capped;\n"
-      "with --check --json each plane's area, perimeter\nand loops (/ in the viewer)",
-      set_section, 0, 0 },
+      "with --check each plane's area, perimeter and\nloops (/ in the viewer)",
+      set_section, 0, OPT_VIEWCMD },
     { "parts", 0, NULL, NULL, OPTSEC_OUTPUT, "each connected part of the model its own colour\n(@ in the viewer)",
       NULL, FLAG(parts), OPT_VIEWCMD },
     { "diff", 0, NULL, NULL, OPTSEC_OUTPUT,
@@ -835,7 +823,7 @@ const OptSpec cli_options[] = {
       "print the distance and dx, dy, dz from A to B (and\nthe angle ABC): points X,Y,Z or vertices vN",
       set_measure, 0, 0 },
     { "marks", 0, "A,B,C", NULL, OPTSEC_OUTPUT,
-      "mark up to three vertices (vN, or I:vN of object\nI) on the picture, joined (the viewer's M keeps\nthem)",
+      "mark up to three points (vertices vN, edge\nmidpoints eA-B, face centres fN; I:vN of object I)\non the picture, joined (the viewer's M keeps them)",
       set_marks, 0, OPT_VIEWCMD },
     { "preview", 0, "WxH", NULL, OPTSEC_OUTPUT,
       "as a file manager's previewer (lf, fzf, ranger,\nyazi): FILE in W x H cells, the last row the\n"
