@@ -1,0 +1,105 @@
+// occtgen: the STEP, IGES and BREP files of the tests (tests/e2e/test_step.sh),
+// written through OpenCASCADE itself, with known shapes:
+//   box.step box.igs box.brep   a 10 x 20 x 30 box at the origin (volume 6000)
+//   cylinder.step               radius 5, height 20 (volume pi r^2 h = 500 pi)
+//   assembly.step               two parts, "bracket" red and "shaft" blue (XCAF)
+//   inch.step                   a 1 x 2 x 3 inch box, the file's unit inches (volume 6 in^3)
+// usage: occtgen DIR. Built by the Makefile when OCCT's headers are there.
+
+#include <cstdio>
+#include <string>
+
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepTools.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Writer.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <Quantity_Color.hxx>
+#include <STEPCAFControl_Writer.hxx>
+#include <STEPControl_Controller.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TDataStd_Name.hxx>
+#include <TDocStd_Document.hxx>
+#include <XCAFApp_Application.hxx>
+#include <XCAFDoc_ColorTool.hxx>
+#include <XCAFDoc_DocumentTool.hxx>
+#include <XCAFDoc_ShapeTool.hxx>
+#include <gp_Trsf.hxx>
+
+static bool write_step(const TopoDS_Shape &s, const std::string &path, const char *unit)
+{
+    STEPControl_Writer w;
+    if (unit)
+        Interface_Static::SetCVal("write.step.unit", unit);
+    bool ok = w.Transfer(s, STEPControl_AsIs) == IFSelect_RetDone && w.Write(path.c_str()) == IFSelect_RetDone;
+    Interface_Static::SetCVal("write.step.unit", "MM");
+    return ok;
+}
+
+static bool write_iges(const TopoDS_Shape &s, const std::string &path)
+{
+    IGESControl_Writer w("MM", 1);   // BRep mode: the solid as MSBO
+    if (!w.AddShape(s))
+        return false;
+    w.ComputeModel();
+    return w.Write(path.c_str());
+}
+
+static TDF_Label add_part(const Handle(XCAFDoc_ShapeTool) &st, const Handle(XCAFDoc_ColorTool) &ct,
+                          const TopoDS_Shape &s, const char *name, double r, double g, double b)
+{
+    TDF_Label l = st->AddShape(s, Standard_False);
+    TDataStd_Name::Set(l, name);
+    ct->SetColor(l, Quantity_Color(r, g, b, Quantity_TOC_sRGB), XCAFDoc_ColorSurf);
+    return l;
+}
+
+static bool write_assembly(const std::string &path)
+{
+    Handle(TDocStd_Document) doc;
+    XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
+    Handle(XCAFDoc_ShapeTool) st = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+    Handle(XCAFDoc_ColorTool) ct = XCAFDoc_DocumentTool::ColorTool(doc->Main());
+    TDF_Label assy = st->NewShape();
+    TDataStd_Name::Set(assy, "machine");
+    TDF_Label bracket = add_part(st, ct, BRepPrimAPI_MakeBox(40, 10, 5).Shape(), "bracket", 1, 0, 0);
+    TDF_Label shaft = add_part(st, ct, BRepPrimAPI_MakeCylinder(3, 30).Shape(), "shaft", 0, 0, 1);
+    gp_Trsf t;
+    st->AddComponent(assy, bracket, TopLoc_Location(t));
+    t.SetTranslation(gp_Vec(20, 5, 5));
+    st->AddComponent(assy, shaft, TopLoc_Location(t));
+    st->UpdateAssemblies();
+    STEPCAFControl_Writer w;
+    w.SetColorMode(true);
+    w.SetNameMode(true);
+    return w.Transfer(doc, STEPControl_AsIs) && w.Write(path.c_str()) == IFSelect_RetDone;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: occtgen DIR\n");
+        return 2;
+    }
+    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+    STEPControl_Controller::Init();
+    IGESControl_Controller::Init();
+    std::string d = std::string(argv[1]) + "/";
+    TopoDS_Shape box = BRepPrimAPI_MakeBox(10, 20, 30).Shape();
+    TopoDS_Shape cyl = BRepPrimAPI_MakeCylinder(5, 20).Shape();
+    // OCCT 7.6 writes the coordinates as they are under the unit it is
+    // told to name: a 1 x 2 x 3 box in a file that says inches
+    TopoDS_Shape inch = BRepPrimAPI_MakeBox(1, 2, 3).Shape();
+    bool ok = write_step(box, d + "box.step", NULL) && write_iges(box, d + "box.igs") &&
+              BRepTools::Write(box, (d + "box.brep").c_str()) && write_step(cyl, d + "cylinder.step", NULL) &&
+              write_step(inch, d + "inch.step", "INCH") && write_assembly(d + "assembly.step");
+    if (!ok) {
+        fprintf(stderr, "occtgen: a file could not be written in %s\n", argv[1]);
+        return 1;
+    }
+    return 0;
+}
