@@ -59,7 +59,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq
+.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq bench-step
 
 all: $(BIN) $(if $(filter 1,$(OCCT)),$(OCCT_SHIM))
 
@@ -106,6 +106,7 @@ help:
 	@echo '  make bench-diff    --diff of the dragon and the 5.2M model against edited copies, 1 and 2 threads, memory'
 	@echo '  make bench-printq  --thickness on the dragon (the BVH and a ray a face), 1 and 2 threads; --check with it'
 	@echo '  make bench-sandbox the loading sandbox against --no-sandbox on the dragon'
+	@echo '  make bench-step    a 1 MB STEP part to its first picture, against f3d (needs OCCT and f3d)'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
 	@echo '  make assets        regenerate the bundled models (they are committed)'
@@ -134,7 +135,7 @@ $(OCCT_SHIM): src/mesh/occt/occtshim.cpp src/mesh/occt/occtshim.h
 
 $(BUILD)/occtgen: tools/occtgen.cpp
 	@mkdir -p $(BUILD)
-	$(CXX) $(OCCT_CXXFLAGS) -Wl,--as-needed -o $@ $< -lTKPrim $(OCCT_LIBS)
+	$(CXX) $(OCCT_CXXFLAGS) -Wl,--as-needed -o $@ $< -lTKPrim -lTKBO $(OCCT_LIBS)
 OCCTGEN := $(if $(filter 1,$(OCCT)),$(BUILD)/occtgen)
 
 $(TESTBIN): $(LIBOBJS) $(TOBJS) $(CONFIG)
@@ -321,6 +322,11 @@ $(BUILD)/subdiv: tools/subdiv.c
 bench-diff: $(BIN) $(BUILD)/subdiv $(BUILD)/perturb $(BUILD)/checkbench
 	ZVIEW=$(abspath $(BIN)) SUBDIV=$(BUILD)/subdiv PERTURB=$(BUILD)/perturb CHECKBENCH=$(BUILD)/checkbench \
 	    sh tools/bench-diff.sh
+
+# A STEP part's first picture against f3d's on the same 1 MB file
+# (issue 34; doc/benchmarks.md: STEP). Needs OCCT (build/occtgen) and f3d.
+bench-step: all $(OCCTGEN)
+	ZVIEW=$(abspath $(BIN)) OCCTGEN=$(OCCTGEN) sh tools/bench-step.sh
 
 # --thickness and --overhang on the dragon (issue 32; doc/benchmarks.md)
 bench-printq: $(BIN)

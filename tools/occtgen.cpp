@@ -5,10 +5,16 @@
 //   assembly.step               two parts, "bracket" red and "shaft" blue (XCAF)
 //   inch.step                   a 1 x 2 x 3 inch box, the file's unit inches (volume 6 in^3)
 // usage: occtgen DIR. Built by the Makefile when OCCT's headers are there.
+// occtgen --bench DIR N writes plate.step instead: a 10 mm plate with
+// N x N holes and a boss on every one, about 1 MB at N = 16
+// (tools/bench-step.sh, make bench-step).
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepTools.hxx>
@@ -28,6 +34,8 @@
 #include <XCAFDoc_ColorTool.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <gp_Ax2.hxx>
 #include <gp_Trsf.hxx>
 
 static bool write_step(const TopoDS_Shape &s, const std::string &path, const char *unit)
@@ -79,15 +87,54 @@ static bool write_assembly(const std::string &path)
     return w.Transfer(doc, STEPControl_AsIs) && w.Write(path.c_str()) == IFSelect_RetDone;
 }
 
+// A plate of n x n holes, each with a ring standing around it: curved
+// faces, seams and trimmed planes, as a machined part has.
+static bool write_plate(const std::string &path, int n)
+{
+    double pitch = 12, side = pitch * n + pitch;
+    TopoDS_Shape plate = BRepPrimAPI_MakeBox(side, side, 10).Shape();
+    TopTools_ListOfShape rings, holes;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            gp_Ax2 at(gp_Pnt(pitch * (i + 1), pitch * (j + 1), 10), gp_Dir(0, 0, 1));
+            rings.Append(BRepPrimAPI_MakeCylinder(at, 5, 4).Shape());
+            gp_Ax2 down(gp_Pnt(pitch * (i + 1), pitch * (j + 1), -1), gp_Dir(0, 0, 1));
+            holes.Append(BRepPrimAPI_MakeCylinder(down, 3, 20).Shape());
+        }
+    TopTools_ListOfShape args;
+    args.Append(plate);
+    BRepAlgoAPI_Fuse fuse;
+    fuse.SetArguments(args);
+    fuse.SetTools(rings);
+    fuse.Build();
+    if (!fuse.IsDone())
+        return false;
+    TopTools_ListOfShape body;
+    body.Append(fuse.Shape());
+    BRepAlgoAPI_Cut cut;
+    cut.SetArguments(body);
+    cut.SetTools(holes);
+    cut.Build();
+    return cut.IsDone() && write_step(cut.Shape(), path, NULL);
+}
+
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: occtgen DIR\n");
-        return 2;
-    }
     Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
     STEPControl_Controller::Init();
     IGESControl_Controller::Init();
+    if (argc == 4 && std::string(argv[1]) == "--bench") {
+        int n = atoi(argv[3]);
+        if (n < 1 || n > 200 || !write_plate(std::string(argv[2]) + "/plate.step", n)) {
+            fprintf(stderr, "occtgen: the plate could not be written in %s\n", argv[2]);
+            return 1;
+        }
+        return 0;
+    }
+    if (argc != 2) {
+        fprintf(stderr, "usage: occtgen DIR | occtgen --bench DIR N\n");
+        return 2;
+    }
     std::string d = std::string(argv[1]) + "/";
     TopoDS_Shape box = BRepPrimAPI_MakeBox(10, 20, 30).Shape();
     TopoDS_Shape cyl = BRepPrimAPI_MakeCylinder(5, 20).Shape();
