@@ -399,7 +399,7 @@ static void report_skipped(MeshCtx *c)
 static int run(const MeshLoader *l, MeshCtx *c, const char *data, size_t len)
 {
     if (!l->parse)
-        return me_fail(&c->err, "%s cannot be read from memory", l->name);
+        return me_fail(&c->err, "%s is read from a named file only, not standard input", l->name);
     int r = l->parse(c, data, len);
     if (r)
         mesh_free(c->m);

@@ -98,6 +98,11 @@ for f in cut.step garbage.step stub.step; do
         "$(cat "$T/err")"
 done
 
+# ==== Standard input: OCCT reads files by name ====
+check "a STEP on standard input: status 1, one line saying why" \
+    '! "$Z" -o "$T/x.png" - <"$D/box.step" 2>"$T/err" && [ "$(wc -l <"$T/err")" -eq 1 ] &&
+     grep -q "stdin: step is read from a named file only, not standard input$" "$T/err"' "$(cat "$T/err")"
+
 # ==== Without the shim ====
 expect_status "the shim hidden (ZV_OCCT_SHIM): status 1" 1 env ZV_OCCT_SHIM="$T/none.so" "$Z" -o "$T/x.png" "$D/box.step"
 check "one line: STEP needs OpenCASCADE" '[ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "box.step: STEP needs OpenCASCADE" "$T/err"' \
