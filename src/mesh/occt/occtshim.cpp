@@ -77,8 +77,14 @@ struct Part {
     int          colour;    // index into Collect::colours, -1 none
 };
 
+// An assembly is a DAG: a few kilobytes can place a part 2^60 times
+// (each level two instances of the next). The walk stops at the most
+// objects a scene holds (65535: scene.c), all it could show.
+const size_t MAX_PARTS = 65535;
+
 struct Collect {
     std::vector<Part>  parts;
+    bool               too_many = false;
     std::vector<float> colours;   // 4 a colour
     Handle(XCAFDoc_ShapeTool) st;
     Handle(XCAFDoc_ColorTool) ct;
@@ -137,6 +143,10 @@ void visit(Collect &c, const TDF_Label &l, const TopLoc_Location &loc, int colou
 {
     if (depth > 64)
         return;   // a cycle or an absurd tree: what was reached is shown
+    if (c.parts.size() >= MAX_PARTS) {
+        c.too_many = true;
+        return;
+    }
     TDF_Label ref = l;
     TopLoc_Location here = loc;
     if (c.st->IsReference(l)) {
@@ -332,6 +342,10 @@ int read_any(const char *path, int kind, double rel, ZvOcctMesh *out, char *err,
         p.colour = -1;
         c.parts.push_back(p);
     } else if (read_xcaf(path, kind, c, out, err, errlen)) {
+        return -1;
+    }
+    if (c.too_many) {
+        snprintf(err, errlen, "an assembly that places more than %zu parts", MAX_PARTS);
         return -1;
     }
     if (c.parts.empty()) {
