@@ -19,6 +19,21 @@ AI_CFLAGS := -DZV_ASSIMP $(if $(AI_SONAME),-DZV_ASSIMP_SONAME='"$(AI_SONAME)"') 
 AI_LIBS   := -ldl
 endif
 
+# Optional: OpenCASCADE for STEP, IGES and BREP. OCCT has no C API: a
+# C++ shim (src/mesh/occt/occtshim.cpp) is built into its own shared
+# library beside the binary, which src/mesh/step.c opens at run time, so
+# the binary neither links OCCT nor needs it. On when OCCT's headers are
+# found; `make OCCT=0` builds without the shim (zview then says, for
+# these files, that OpenCASCADE is not installed for it).
+OCCT_INC ?= /usr/include/opencascade
+OCCT    ?= $(shell test -f $(OCCT_INC)/STEPCAFControl_Reader.hxx && echo 1 || echo 0)
+CXX     ?= g++
+OCCT_LIBS := -lTKXDESTEP -lTKXDEIGES -lTKSTEP -lTKSTEPBase -lTKIGES -lTKXCAF -lTKLCAF -lTKCAF -lTKCDF -lTKVCAF \
+             -lTKXSBase -lTKMesh -lTKShHealing -lTKTopAlgo -lTKBRep -lTKG3d -lTKGeomBase -lTKMath -lTKernel
+OCCT_CXXFLAGS := -O2 -g -std=c++17 -Wall -Wextra -fPIC -isystem $(OCCT_INC)
+OCCT_SHIM := $(dir $(BIN))libzview-occt.so
+LIBDIR  ?= $(PREFIX)/lib/zview
+
 OPT     ?= -O2
 EXTRA_CFLAGS ?=
 # -ffp-contract=off: no fused multiply-add where the source has a multiply
@@ -44,9 +59,9 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq
+.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq bench-step
 
-all: $(BIN)
+all: $(BIN) $(if $(filter 1,$(OCCT)),$(OCCT_SHIM))
 
 # make help: the targets, what each is for, and how long it takes here.
 help:
@@ -55,6 +70,7 @@ help:
 	@echo '  make run           build, then open the bundled demo scene'
 	@echo '  make install       to $$(PREFIX) (default /usr/local), with the man page and completions'
 	@echo '  make noassimp      the build without assimp, in build-noassimp/'
+	@echo '  make OCCT=0        without the OpenCASCADE shim (libzview-occt.so: STEP, IGES, BREP)'
 	@echo '  make nosimd        SIMD compiled out (-DZV_NO_SIMD), in build-nosimd/, and its unit tests'
 	@echo 'Tests'
 	@echo '  make test          every test: unit (Criterion), fuzz replays, end-to-end; about 4 min of CPU'
@@ -90,6 +106,7 @@ help:
 	@echo '  make bench-diff    --diff of the dragon and the 5.2M model against edited copies, 1 and 2 threads, memory'
 	@echo '  make bench-printq  --thickness on the dragon (the BVH and a ray a face), 1 and 2 threads; --check with it'
 	@echo '  make bench-sandbox the loading sandbox against --no-sandbox on the dragon'
+	@echo '  make bench-step    a 1 MB STEP part to its first picture, against f3d (needs OCCT and f3d)'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
 	@echo '  make assets        regenerate the bundled models (they are committed)'
@@ -107,6 +124,19 @@ $(BIN): $(OBJS) $(CONFIG)
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c -o $@ $<
+
+# where an installed zview finds the shim (step.c)
+$(BUILD)/src/mesh/step.o: CFLAGS += -DZV_OCCT_LIBDIR='"$(LIBDIR)"'
+
+# The OpenCASCADE shim, and the generator of the STEP, IGES and BREP
+# test files (tests/e2e/test_step.sh), both in C++ against OCCT.
+$(OCCT_SHIM): src/mesh/occt/occtshim.cpp src/mesh/occt/occtshim.h
+	$(CXX) $(OCCT_CXXFLAGS) -shared -Wl,--as-needed -o $@ $< $(OCCT_LIBS)
+
+$(BUILD)/occtgen: tools/occtgen.cpp
+	@mkdir -p $(BUILD)
+	$(CXX) $(OCCT_CXXFLAGS) -Wl,--as-needed -o $@ $< -lTKPrim -lTKBO $(OCCT_LIBS)
+OCCTGEN := $(if $(filter 1,$(OCCT)),$(BUILD)/occtgen)
 
 $(TESTBIN): $(LIBOBJS) $(TOBJS) $(CONFIG)
 	$(CC) $(CFLAGS) -o $@ $(filter %.o,$^) $(LDLIBS) -lcriterion
@@ -173,8 +203,8 @@ $(STANDIN): tests/standin/fakeassimp.c
 # ../shared/models: make test-models) and "tools" (run by tools/
 # scripts) are not part of it.
 UNIT_FILTER := !(models/*|tools/*)
-test: $(BIN) $(TESTBIN) $(REPLAYS) $(STANDIN)
-	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) \
+test: all $(TESTBIN) $(REPLAYS) $(STANDIN) $(OCCTGEN)
+	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) ZV_OCCTGEN=$(abspath $(OCCTGEN)) \
 	    sh tests/suite.sh $(TESTBIN) '$(UNIT_FILTER)' $(BUILD)
 
 unit: $(TESTBIN)
@@ -211,8 +241,9 @@ mutate-rooms:
 	-MUTATE_LOGS=$(BUILD)/mutate-rooms sh tools/mutate.sh $(BUILD)/mutants-auto.txt | tee $(BUILD)/mutate-rooms.log
 	python3 tools/mutagen.py --summary $(BUILD)/mutate-rooms.log --list $(BUILD)/mutants-auto.txt --equivalent tests/equivalents.txt
 
-e2e: $(BIN) $(STANDIN)
-	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) sh tests/e2e/run.sh
+e2e: all $(STANDIN) $(OCCTGEN)
+	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) ZV_OCCTGEN=$(abspath $(OCCTGEN)) \
+	    sh tests/e2e/run.sh
 
 # Sanitized build in its own folder, same tests, with the invariants
 # on (-DZV_CHECKS turns ZV_ASSERT on: include/invariant.h).
@@ -292,6 +323,11 @@ bench-diff: $(BIN) $(BUILD)/subdiv $(BUILD)/perturb $(BUILD)/checkbench
 	ZVIEW=$(abspath $(BIN)) SUBDIV=$(BUILD)/subdiv PERTURB=$(BUILD)/perturb CHECKBENCH=$(BUILD)/checkbench \
 	    sh tools/bench-diff.sh
 
+# A STEP part's first picture against f3d's on the same 1 MB file
+# (issue 34; doc/benchmarks.md: STEP). Needs OCCT (build/occtgen) and f3d.
+bench-step: all $(OCCTGEN)
+	ZVIEW=$(abspath $(BIN)) OCCTGEN=$(OCCTGEN) sh tools/bench-step.sh
+
 # --thickness and --overhang on the dragon (issue 32; doc/benchmarks.md)
 bench-printq: $(BIN)
 	ZVIEW=$(abspath $(BIN)) sh tools/bench-printq.sh
@@ -357,7 +393,7 @@ $(BUILD)/genassets: tools/genassets.c
 	@mkdir -p $(BUILD)
 	$(CC) $(CFLAGS) -o $@ $< -lm
 
-install: $(BIN)
+install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/zview \
 	    $(DESTDIR)$(PREFIX)/share/bash-completion/completions $(DESTDIR)$(PREFIX)/share/zsh/site-functions
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/zview
@@ -365,6 +401,7 @@ install: $(BIN)
 	install -m 644 tools/completion/zview.bash $(DESTDIR)$(PREFIX)/share/bash-completion/completions/zview
 	install -m 644 tools/completion/_zview $(DESTDIR)$(PREFIX)/share/zsh/site-functions/_zview
 	install -m 644 assets/demo.obj assets/demo.mtl $(DESTDIR)$(PREFIX)/share/zview/
+	if [ -f $(OCCT_SHIM) ]; then install -d $(DESTDIR)$(LIBDIR) && install -m 755 $(OCCT_SHIM) $(DESTDIR)$(LIBDIR)/; fi
 
 # ==== Fuzzing: clang + libFuzzer (sh tools/deps.sh installs both) ====
 # make fuzz builds build-fuzz/fuzz-obj, fuzz-diff and fuzz-mesh; make
@@ -481,6 +518,6 @@ fuzz-run-dist: $(FUZZ_BUILD)/fuzz-dist
 	    $(FUZZ_BUILD)/corpus/dist tests/fuzz/seeds/dist tests/fuzz/regress/dist
 
 clean:
-	rm -rf build build-asan build-noassimp build-nosimd $(FUZZ_BUILD) $(BIN)
+	rm -rf build build-asan build-noassimp build-nosimd $(FUZZ_BUILD) $(BIN) $(OCCT_SHIM)
 
 -include $(OBJS:.o=.d) $(TOBJS:.o=.d) $(REPLAY_OBJS:.o=.d) $(FUZZ_LIBOBJS:.o=.d) $(FUZZ_OBJS:.o=.d)

@@ -81,6 +81,7 @@ typedef struct {
     Placement   place[MAX_PLACE];
     int         nplace;
     uint64_t    max_polys;      /* refuse bigger scenes; 0: what memory holds */
+    double      tessellation;   /* --tessellation: CAD deflection over the diagonal; 0: the default */
     uint64_t    max_memory;     /* --max-memory: bytes a load may take (0: the default bound, sandbox.h) */
     int         no_sandbox;     /* --no-sandbox: load in this process (sandbox.h) */
     SandboxServer sandbox;      /* where sandboxed loads are forked (main starts it); pid 0: from here */

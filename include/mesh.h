@@ -234,6 +234,9 @@ typedef struct {
      * own) is for tests, which make pieces small. */
     int           threads;
     uint64_t      piece_bytes;
+    /* CAD formats (STEP, IGES, BREP): the tessellation's linear
+     * deflection over the bounding box's diagonal; 0: the default (0.001) */
+    double        tessellation;
     /* NULL, or where the loader publishes what it has parsed so far, for
      * a picture while it loads (meshprefix.h; OBJ only) */
     struct MeshPrefix *prefix;

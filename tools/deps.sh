@@ -24,7 +24,13 @@ set -e
 # (tests/e2e/test_repair_parts.sh, tools/repair-table.sh).
 # lf and fzf: the file manager and the finder whose previews
 # doc/previewers.md's recipes give (tests/e2e/test_previewers.sh).
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick kitty libgl1 libgl1-mesa-dri fonts-dejavu-core admesh lf fzf"
+# OpenCASCADE 7.6 (libocct-*-dev): STEP, IGES and BREP, optional for the
+# build (the Makefile builds the shim libzview-occt.so when its headers
+# are there; make OCCT=0 builds without), not for the tests: the data
+# exchange readers (STEP, IGES, XCAF), the modelling algorithms (the
+# mesher; the primitives tools/occtgen.cpp writes the test files with)
+# and OCAF (the XCAF document the readers fill): tests/e2e/test_step.sh.
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick kitty libgl1 libgl1-mesa-dri fonts-dejavu-core admesh lf fzf libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-ocaf-dev"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive
@@ -38,4 +44,11 @@ if $SUDO apt-get install -y -qq --no-install-recommends $FUZZ_PKGS >/dev/null; t
     echo "deps: installed $FUZZ_PKGS"
 else
     echo "deps: could not install $FUZZ_PKGS (needed by make fuzz only)"
+fi
+# make bench-step only: f3d, the viewer a STEP part's first picture is
+# timed against (tools/bench-step.sh); no test needs it
+if $SUDO apt-get install -y -qq --no-install-recommends f3d >/dev/null; then
+    echo "deps: installed f3d"
+else
+    echo "deps: could not install f3d (needed by make bench-step only)"
 fi

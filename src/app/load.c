@@ -69,7 +69,8 @@ static int demo_missing(char *err, size_t errlen)
 MeshLoadOpts app_load_opts(const Options *o)
 {
     MeshLoadOpts lo = { .format = o->format, .strict = o->strict, .max_polys = o->max_polys, .threads = o->threads,
-                        .max_bytes = o->max_memory, .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip };
+                        .max_bytes = o->max_memory, .tex_defer_side = o->tex_defer, .no_textures = o->tex_skip,
+                        .tessellation = o->tessellation };
     return lo;
 }
 

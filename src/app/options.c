@@ -573,6 +573,16 @@ static int set_weld(Options *o, const OptCall *c)
     return 0;
 }
 
+/* --tessellation D: the CAD formats' deflection over the model's diagonal */
+static int set_tessellation(Options *o, const OptCall *c)
+{
+    double v;
+    if (parse_double(c->val, &v) || !(v >= 1e-6 && v <= 0.5))
+        return bad(c, "a fraction of the model's diagonal, 0.000001 to 0.5");
+    o->tessellation = v;
+    return 0;
+}
+
 static int set_max_hole(Options *o, const OptCall *c)
 {
     long n;
@@ -695,10 +705,13 @@ const OptSpec cli_options[] = {
     { "formats", 0, NULL, NULL, OPTSEC_GENERAL, "list the formats this build reads and exit", NULL, FLAG(formats), 0 },
     /* ---- Input ---- */
     { "format", 0, "NAME", NULL, OPTSEC_INPUT,
-      "read FILE as NAME (obj, stl, ply, off, xyz, or an\nassimp format; see --formats)", set_format, 0, OPT_VIEWCMD },
+      "read FILE as NAME (obj, stl, ply, off, xyz, step,\niges, brep, or an assimp format; see --formats)", set_format, 0, OPT_VIEWCMD },
     { "up", 0, NULL, "y z x -y -z -x", OPTSEC_INPUT,
       "the model's up axis (default: as the file's\nformat says: z for STL, 3MF, Blender, ...; else y)", set_up, 0, OPT_VIEWCMD },
     { "flip", 0, NULL, NULL, OPTSEC_INPUT, "reverse every face's winding (inside out)", NULL, FLAG(flip), OPT_VIEWCMD },
+    { "tessellation", 0, "D", NULL, OPTSEC_INPUT,
+      "STEP, IGES, BREP: the surfaces' deviation from the\ntriangles, over the model's diagonal (default 0.001)",
+      set_tessellation, 0, 0 },
     { "strict", 0, NULL, NULL, OPTSEC_INPUT,
       "refuse a file with a statement zview cannot read\n(default: skip those, show the rest, warn once)",
       NULL, FLAG(strict), 0 },

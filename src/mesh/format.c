@@ -17,6 +17,7 @@
 
 static const MeshLoader *const natives[] = {
     &mesh_loader_obj, &mesh_loader_stl, &mesh_loader_ply, &mesh_loader_off, &mesh_loader_xyz,
+    &mesh_loader_step, &mesh_loader_iges, &mesh_loader_brep,
 };
 #define NNATIVE (sizeof natives / sizeof natives[0])
 
@@ -171,20 +172,31 @@ int mesh_format_valid(const char *name)
     return 0;
 }
 
-int mesh_format_is_native(const char *path, const char *format)
+/* The loader of this --format, or this path's extension; NULL: none of
+ * zview's own. */
+static const MeshLoader *named_loader(const char *path, const char *format)
 {
     char ext[16];
     extension(path && strcmp(path, "-") ? path : NULL, ext, sizeof ext);
-    return format ? native_by_name(format) != NULL : native_by_ext(ext) != NULL;
+    return format ? native_by_name(format) : native_by_ext(ext);
+}
+
+int mesh_format_is_native(const char *path, const char *format)
+{
+    const MeshLoader *l = named_loader(path, format);
+    return l && !l->library;
 }
 
 void mesh_library_preload(const char *path, const char *format)
 {
+    const MeshLoader *l = named_loader(path, format);
+    if (l && l->library) {
+        mesh_occt_available();
+        return;
+    }
 #ifdef ZV_ASSIMP
-    if (!mesh_format_is_native(path, format))
+    if (!l)
         mesh_assimp_available();
-#else
-    (void)path, (void)format;
 #endif
 }
 
@@ -239,8 +251,13 @@ static int row_cmp(const void *a, const void *b)
 
 void mesh_formats_print(FILE *f)
 {
+    char occtv[48];
     for (size_t i = 0; i < NNATIVE; i++)
-        fprintf(f, "%-8s native  %s\n", natives[i]->name, natives[i]->what);
+        if (natives[i]->library)
+            fprintf(f, "%-8s occt    %s (%s)\n", natives[i]->name, natives[i]->what,
+                    mesh_occt_version(occtv, sizeof occtv));
+        else
+            fprintf(f, "%-8s native  %s\n", natives[i]->name, natives[i]->what);
 #ifdef ZV_ASSIMP
     char ver[32];
     ExtList l = { 0 };
@@ -382,7 +399,7 @@ static void report_skipped(MeshCtx *c)
 static int run(const MeshLoader *l, MeshCtx *c, const char *data, size_t len)
 {
     if (!l->parse)
-        return me_fail(&c->err, "%s cannot be read from memory", l->name);
+        return me_fail(&c->err, "%s is read from a named file only, not standard input", l->name);
     int r = l->parse(c, data, len);
     if (r)
         mesh_free(c->m);
@@ -418,7 +435,7 @@ int mesh_parse_buffer_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, con
                                    .threads = opt ? opt->threads : 0, .piece_bytes = opt ? opt->piece_bytes : 0,
                                    .prefix = opt ? opt->prefix : NULL,
                                    .on_ref = opt ? opt->on_ref : NULL, .on_ref_arg = opt ? opt->on_ref_arg : NULL },
-                  .path = path };
+                  .path = path, .tessellation = opt ? opt->tessellation : 0 };
     char ext[16];
     extension(path, ext, sizeof ext);
     c.hint = format ? format : ext;
@@ -555,7 +572,7 @@ int mesh_load_ex(Mesh *m, const char *path, const MeshLoadOpts *opt, char *err, 
                                    .threads = opt ? opt->threads : 0, .piece_bytes = opt ? opt->piece_bytes : 0,
                                    .prefix = opt ? opt->prefix : NULL,
                                    .on_ref = opt ? opt->on_ref : NULL, .on_ref_arg = opt ? opt->on_ref_arg : NULL },
-                  .path = path };
+                  .path = path, .tessellation = opt ? opt->tessellation : 0 };
     char ext[16];
     extension(is_stdin ? NULL : path, ext, sizeof ext);
     c.hint = format ? format : ext;

@@ -24,6 +24,7 @@ typedef struct MeshCtx {
     const char *path;      /* the file on disk, against which files it names
                               (mtllib, glTF buffers) resolve; NULL: open none */
     const char *hint;      /* --format name or the file's extension (assimp) */
+    double      tessellation; /* --tessellation: CAD surfaces' deflection over the diagonal, 0 default */
 } MeshCtx;
 
 /* PROBE_FAIR: the bytes read as this format but prove it less than a
@@ -46,10 +47,18 @@ typedef struct MeshLoader {
     int  (*parse_path)(MeshCtx *c, const char *path);
     int  text;             /* a text format: streams are read up to a NUL only */
     int  needs_magic;      /* chosen by extension only when the probe agrees */
+    /* read by a library opened at run time (OCCT: step.c): the sandbox's
+     * child opens it before it confines itself, and budgets its memory
+     * as a library's (budget.c) */
+    int  library;
 } MeshLoader;
 
 extern const MeshLoader mesh_loader_obj, mesh_loader_stl, mesh_loader_ply, mesh_loader_off,
-    mesh_loader_xyz;
+    mesh_loader_xyz, mesh_loader_step, mesh_loader_iges, mesh_loader_brep;
+/* step.c: can OpenCASCADE's shim be opened (it is opened on first use)?
+ * Its version ("OCCT 7.6.3"), or "OCCT not found". */
+int  mesh_occt_available(void);
+const char *mesh_occt_version(char *buf, size_t n);
 #ifdef ZV_ASSIMP
 extern const MeshLoader mesh_loader_assimp;
 /* Can the library be opened (it is opened on first use)? */

@@ -5,12 +5,43 @@
 #include <stdio.h>
 
 #include "oneshot.h"
+#include "printq.h"
 #include "safetext.h"
 #include "simd.h"
 
+/* The objects of a model of several (an assembly's parts, OBJ's o and
+ * g): each one's name, faces and the colour of its first face when that
+ * colour is its own (a material, a CAD part's colour), the first
+ * INFO_OBJECTS of them. */
+#define INFO_OBJECTS 16
+static void print_objects(Out *out, const Scene *s, const Mesh *m)
+{
+    if (m->nobjs < 2)
+        return;
+    uint32_t shown = 0;
+    for (int k = 0; k < s->nobjs; k++) {
+        const Object *ob = &s->objs[k];
+        if (ob->mesh != m)
+            continue;
+        if (shown++ == INFO_OBJECTS)
+            break;
+        uint32_t f = (uint32_t)ob->face_base;
+        int own = ob->face_count && s->face_rgb && f < s->nfaces && (!s->face_own || s->face_own[f]);
+        if (own) {
+            const uint8_t *c = s->face_rgb + 3 * (size_t)f;
+            out_line(out, "            %s: %u faces, colour #%02x%02x%02x", ob->name, ob->face_count, c[0], c[1],
+                     c[2]);
+        } else {
+            out_line(out, "            %s: %u faces", ob->name, ob->face_count);
+        }
+    }
+    if (m->nobjs > INFO_OBJECTS)
+        out_line(out, "            ... and %u more", m->nobjs - INFO_OBJECTS);
+}
+
 /* pos_exp: the scene scaled the positions by 2^-pos_exp (scene.h); the
  * bounds are given in the file's units. */
-static void print_mesh(Out *out, const Mesh *m, int pos_exp)
+static void print_mesh(Out *out, const Scene *s, const Mesh *m, int pos_exp)
 {
     float lo[3] = { FLT_MAX, FLT_MAX, FLT_MAX }, hi[3] = { -FLT_MAX, -FLT_MAX, -FLT_MAX };
     for (uint32_t v = 0; v < m->nverts; v++)
@@ -32,9 +63,12 @@ static void print_mesh(Out *out, const Mesh *m, int pos_exp)
     out_line(out, "faces:      %u", m->nfaces);
     out_line(out, "triangles:  %u", m->info.triangles);
     out_line(out, "objects:    %u", m->nobjs);
+    print_objects(out, s, m);
     double u = ldexp(1, pos_exp);
     out_line(out, "bounds:     %g %g %g .. %g %g %g", lo[0] * u, lo[1] * u, lo[2] * u, hi[0] * u, hi[1] * u,
                hi[2] * u);
+    if (m->info.unit[0])
+        out_line(out, "unit:       %s (%s, as the file states)", m->info.unit, printq_unit_words(m->info.unit));
     out_line(out, "materials:  %u", m->nmats);
     out_line(out, "texcoords:  %u   normals: %u   vertex colours: %s", m->info.texcoords,
            m->info.normals, m->rgb ? "yes" : "no");
@@ -148,7 +182,7 @@ int oneshot_info(const Options *o, Scene *s, const FirstView *fv)
     for (int i = 0; i < s->nmeshes; i++) {
         if (i)
             out_printf(out, "\n");
-        print_mesh(out, &s->meshes[i], s->pos_exp);
+        print_mesh(out, s, &s->meshes[i], s->pos_exp);
         char sb[160];
         sandbox_describe(&s->meshes[i].info, o->no_sandbox, sb, sizeof sb);
         out_printf(out, "sandbox:    %s\n", sb);

@@ -209,7 +209,7 @@ static int do_load(const Req *r, const Inputs *in, RefLink *link, Mesh *m, char 
     MeshLoadOpts lo = { .format = r->has_format ? r->format : NULL, .strict = r->strict, .quiet = r->quiet,
                         .max_polys = r->max_polys, .max_bytes = r->max_bytes, .tex_defer_side = r->tex_defer_side,
                         .no_textures = r->no_textures, .threads = r->threads, .piece_bytes = r->piece_bytes,
-                        .progress = in->progress, .prefix = in->prefix,
+                        .tessellation = r->tessellation, .progress = in->progress, .prefix = in->prefix,
                         .on_ref = r->on_ref ? tell_ref : NULL, .on_ref_arg = link };
     const char *path = r->path[0] ? r->path : NULL;
     if (!in->has_data)

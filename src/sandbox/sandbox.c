@@ -458,6 +458,7 @@ static Job *make_job(const char *name, const char *path, const MeshLoadOpts *lo,
     r->threads = lo->threads;
     r->max_polys = lo->max_polys;
     r->piece_bytes = lo->piece_bytes;
+    r->tessellation = lo->tessellation;
     r->cpu = so && so->cpu_seconds ? so->cpu_seconds : SANDBOX_CPU_SECONDS;
     uint64_t fixed = so && so->max_memory ? so->max_memory : lo->max_bytes;
     /* the loaders' own estimates judge against the bound and refuse

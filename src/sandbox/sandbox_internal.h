@@ -36,6 +36,7 @@ typedef struct {
     int32_t  strict, quiet, tex_defer_side, no_textures, threads;
     int32_t  wrap_u, wrap_v;    /* a texture's */
     uint64_t max_polys, max_bytes, piece_bytes;
+    double   tessellation;      /* MeshLoadOpts's */
     uint64_t budget;            /* bytes the child may add (its soft limits) */
     uint64_t ceiling;           /* what the parent may raise them to (hard limits) */
     uint32_t cpu;               /* seconds */

@@ -55,7 +55,7 @@ _zview()
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
             --scale | --persp | --grid | --max-polys | --max-memory | --views | -j | --threads | --fps | --max-rate | --crease | \
             --light | --ambient | --turntable | --point-size | --line-width | --contrast | --problem | --section | --max-locations | --weld | --max-hole | --tolerance | \
-            --bed | --min-thickness | --measure | --overhang | --marks | --preview)
+            --bed | --min-thickness | --measure | --overhang | --marks | --preview | --tessellation)
             return ;;
     esac
     $split && return
@@ -64,7 +64,7 @@ _zview()
         COMPREPLY=($(compgen -W "--help --version --print --output --size --mode --color --shade
             --info --check --dump-ids --dump-screen --algo --yaw --pitch --roll --zoom --pan --fit-from
             --move --turn --scale --persp --ortho --cull --grid --max-polys --bench --bench-tty
-            --views --threads --json --fps --max-rate --format --formats --up --flip --image-format --sketch
+            --views --threads --json --fps --max-rate --format --formats --up --flip --tessellation --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
             --turntable --point-size --line-width --wireframe --points --strict --no-sandbox --max-memory --bg --contrast --no-textures
             --problems --problem --section --max-locations --parts --watch --repair --weld --max-hole --diff --tolerance --show --quiet --textconv
