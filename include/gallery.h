@@ -24,6 +24,8 @@
 typedef enum {
     GS_PENDING,                 /* not made yet */
     GS_WORKING,                 /* a worker is making it */
+    GS_PICTURED,                /* its picture made, its check to come (a tile the screen shows) */
+    GS_CHECKING,                /* ... a worker is checking it */
     GS_SOUND,                   /* read, and the check found nothing wrong */
     GS_PROBLEM,                 /* read, and the check found problems */
     GS_UNREADABLE,              /* not read: the verdict says why */
@@ -80,10 +82,15 @@ typedef struct {
 } GalleryLook;
 
 /* Make tile t (its path read) as look says, on the calling thread:
- * loaded in the sandbox, checked (one thread), pictured, the mesh
- * freed. Fills faces, problems, state, verdict and pic. An unreadable
- * file is a tile too (state GS_UNREADABLE); -1 only out of memory. */
-int  gallery_tile_make(GalleryTile *t, const GalleryLook *look);
+ * loaded in the sandbox, then as `what` says pictured, checked (one
+ * thread), or both, and the mesh freed. Fills faces, then pic (state
+ * GS_PICTURED when the check is still to come), or problems, verdict
+ * and state. A picture alone is what the screen waits for: a check
+ * (about twice the load's time) comes after, its file loaded again.
+ * An unreadable file is a tile too (GS_UNREADABLE); -1 only when there
+ * is no memory for the picture. */
+enum { TILE_PICTURE = 1, TILE_CHECK = 2, TILE_BOTH = 3 };
+int  gallery_tile_make(GalleryTile *t, const GalleryLook *look, int what);
 /* The check's verdict in a word or two: "sound", "no faces", the first
  * problem in the status bar's words ("3 holes", "12 flipped"), "+N"
  * after it when there are more kinds. */

@@ -103,16 +103,20 @@ static void spin_stop(Ui *u)
     memset(sp, 0, sizeof *sp);
 }
 
-/* The selected tile starts to turn (its scene loading), once its own
- * picture is made. */
+/* The selected tile starts to turn (its scene loading), once every
+ * picture on the screen is made: its load and frames would otherwise
+ * take a core from the first screen. */
 static void spin_start(Ui *u)
 {
     if (!u->n || u->spin.running)
         return;
     int i = u->order[u->sel];
+    int first = u->top * u->grid.cols, last = first + (u->grid.rows + 1) * u->grid.cols;
     gallery_jobs_lock(u->jobs);
-    int ready = u->l.tile[i].state == GS_SOUND || u->l.tile[i].state == GS_PROBLEM;
+    int ready = u->l.tile[i].state >= GS_PICTURED && u->l.tile[i].state != GS_UNREADABLE;
     ready = ready && u->l.tile[i].pic.w;
+    for (int k = first; k < last && k < u->n && ready; k++)
+        ready = u->l.tile[u->order[k]].state != GS_PENDING && u->l.tile[u->order[k]].state != GS_WORKING;
     gallery_jobs_unlock(u->jobs);
     Spin *sp = &u->spin;
     if (!ready || !(sp->path = strdup(u->l.tile[i].path)))
@@ -196,7 +200,7 @@ static int layout(Ui *u)
 
 static void want_screen(Ui *u)
 {
-    int first = u->top * u->grid.cols, n = u->grid.rows * u->grid.cols;
+    int first = u->top * u->grid.cols, n = (u->grid.rows + 1) * u->grid.cols;   /* a part row shows too */
     if (first + n > u->n)
         n = u->n - first;
     gallery_jobs_want(u->jobs, u->order, first, n > 0 ? n : 0);
@@ -220,10 +224,9 @@ static void status(Ui *u, char *buf, size_t len)
     if (u->typing || u->filter[0])
         snprintf(filter, sizeof filter, " · /%s%s", u->filter, u->typing ? "_" : "");
     char raw[1024];
-    snprintf(raw, sizeof raw, " %d/%d loaded · %d sound · %d problem%s · sort %s%s%s%s%s", made, u->l.n, sound, bad,
-             bad == 1 ? "" : "s", gallery_sort_names[u->sort], filter, u->note[0] ? " · " : "", u->note,
-             u->n ? "" : " · nothing matches");
-    (void)verdict;
+    snprintf(raw, sizeof raw, " %d/%d loaded · %d sound · %d problem%s · sort %s%s · %s%s", made, u->l.n, sound, bad,
+             bad == 1 ? "" : "s", gallery_sort_names[u->sort], filter, u->note[0] ? u->note : u->n ? verdict : "",
+             u->n ? "" : "nothing matches");
     safetext(buf, len, raw);
 }
 

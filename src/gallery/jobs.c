@@ -31,19 +31,25 @@ struct GalleryJobs {
     int             made;       /* tiles made (the unreadable ones of the listing too) */
 };
 
-/* The next tile to make, marked GS_WORKING; -1 none. Under mu. */
-static int pick(GalleryJobs *j)
+/* The next tile to work on, marked GS_WORKING or GS_CHECKING, with
+ * what to do in *what; -1 none. The screen's tiles are pictured first,
+ * then checked, then the rest each in one go. Under mu. */
+static int pick(GalleryJobs *j, int *what)
 {
-    for (int k = 0; k < j->nwant; k++) {
-        int i = j->want[k];
-        if (i >= 0 && i < j->l->n && j->l->tile[i].state == GS_PENDING) {
-            j->l->tile[i].state = GS_WORKING;
+    GalleryTile *t = j->l->tile;
+    for (int pass = 0; pass < 2; pass++)
+        for (int k = 0; k < j->nwant; k++) {
+            int i = j->want[k];
+            if (i < 0 || i >= j->l->n || t[i].state != (pass ? GS_PICTURED : GS_PENDING))
+                continue;
+            t[i].state = pass ? GS_CHECKING : GS_WORKING;
+            *what = pass ? TILE_CHECK : TILE_PICTURE;
             return i;
         }
-    }
     for (; j->next < j->l->n; j->next++)
-        if (j->l->tile[j->next].state == GS_PENDING) {
-            j->l->tile[j->next].state = GS_WORKING;
+        if (t[j->next].state == GS_PENDING || t[j->next].state == GS_PICTURED) {
+            *what = t[j->next].state == GS_PENDING ? TILE_BOTH : TILE_CHECK;
+            t[j->next].state = t[j->next].state == GS_PENDING ? GS_WORKING : GS_CHECKING;
             return j->next++;
         }
     return -1;
@@ -54,27 +60,33 @@ static void *worker(void *arg)
     GalleryJobs *j = arg;
     pthread_mutex_lock(&j->mu);
     while (!j->stop) {
-        int i = pick(j);
+        int what, i = pick(j, &what);
         if (i < 0) {
             pthread_cond_wait(&j->work, &j->mu);
             continue;
         }
+        int back = j->l->tile[i].state == GS_CHECKING ? GS_PICTURED : GS_PENDING;
         GalleryTile t = j->l->tile[i];      /* the path stays put: the list does not grow */
         memset(&t.pic, 0, sizeof t.pic);
         pthread_mutex_unlock(&j->mu);
-        int rc = gallery_tile_make(&t, &j->look);
+        int rc = gallery_tile_make(&t, &j->look, what);
         pthread_mutex_lock(&j->mu);
         GalleryTile *dst = &j->l->tile[i];
         if (j->stop && t.state == GS_UNREADABLE && strstr(t.verdict, "cancelled")) {
-            dst->state = GS_PENDING;        /* stopped, not unreadable */
+            dst->state = back;              /* stopped, not unreadable */
             image_free(&t.pic);
             continue;
         }
-        if (rc && t.state != GS_UNREADABLE)
-            snprintf(t.verdict + strlen(t.verdict), sizeof t.verdict - strlen(t.verdict), " (no picture)");
-        image_free(&dst->pic);
+        if (rc && t.state >= GS_SOUND && t.state != GS_UNREADABLE) {
+            size_t len = strlen(t.verdict);
+            snprintf(t.verdict + len, sizeof t.verdict - len, " (no picture)");
+        }
+        if (what == TILE_CHECK)
+            t.pic = dst->pic;               /* the picture made before stays */
+        else
+            image_free(&dst->pic);
         *dst = t;
-        j->made++;
+        j->made += t.state >= GS_SOUND;
         pthread_cond_broadcast(&j->done);
     }
     pthread_mutex_unlock(&j->mu);

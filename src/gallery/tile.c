@@ -110,7 +110,7 @@ int gallery_tile_render(Scene *s, const GalleryLook *look, float yaw, Image *pic
     return rc ? -1 : 0;
 }
 
-int gallery_tile_make(GalleryTile *t, const GalleryLook *look)
+int gallery_tile_make(GalleryTile *t, const GalleryLook *look, int what)
 {
     char err[512];
     Options to;
@@ -122,25 +122,33 @@ int gallery_tile_make(GalleryTile *t, const GalleryLook *look)
         return 0;
     }
     t->faces = m->nfaces;
-    /* the check first: the scene takes the mesh over */
-    MeshCheck mc;
-    CheckOpts co = { .threads = 1, .intersections = 1 };
-    if (meshcheck_run(&mc, m, &co, err, sizeof err)) {
+    if (what & TILE_CHECK) {
+        /* the check first: the scene takes the mesh over */
+        MeshCheck mc;
+        CheckOpts co = { .threads = 1, .intersections = 1 };
+        if (meshcheck_run(&mc, m, &co, err, sizeof err)) {
+            mesh_free(m);
+            free(m);
+            t->state = GS_UNREADABLE;
+            gallery_unreadable(t->path, err, t->verdict, sizeof t->verdict);
+            return 0;
+        }
+        gallery_verdict(&mc.file, t->verdict, sizeof t->verdict);
+        t->problems = (uint32_t)meshcheck_problems(&mc.file, NULL, 0);
+        t->state = meshcheck_sound(&mc.file) ? GS_SOUND : GS_PROBLEM;
+        meshcheck_free(&mc);
+    } else {
+        t->state = GS_PICTURED;
+        snprintf(t->verdict, sizeof t->verdict, "checking");
+    }
+    if (!(what & TILE_PICTURE)) {
         mesh_free(m);
         free(m);
-        t->state = GS_UNREADABLE;
-        gallery_unreadable(t->path, err, t->verdict, sizeof t->verdict);
         return 0;
     }
-    gallery_verdict(&mc.file, t->verdict, sizeof t->verdict);
-    t->problems = (uint32_t)meshcheck_problems(&mc.file, NULL, 0);
-    t->state = meshcheck_sound(&mc.file) ? GS_SOUND : GS_PROBLEM;
-    meshcheck_free(&mc);
     Scene s;
-    if (app_scene_from_meshes(&to, m, 1, &s, NULL, err, sizeof err)) {
-        /* too big to picture (--max-polys, memory): the verdict stands */
-        return 0;
-    }
+    if (app_scene_from_meshes(&to, m, 1, &s, NULL, err, sizeof err))
+        return 0;       /* too big to picture (--max-polys, memory): the verdict stands */
     int rc = gallery_tile_render(&s, look, t->yaw, &t->pic);
     scene_free(&s);
     return rc;
