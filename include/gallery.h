@@ -108,9 +108,10 @@ int  gallery_tile_render(Scene *s, const GalleryLook *look, float yaw, Image *pi
 
 typedef struct GalleryJobs GalleryJobs;
 /* Workers (nthreads, 0: one per core) making the list's pending tiles:
- * the ones gallery_jobs_want names first, then the rest in order. The
- * list is shared: read tiles under gallery_jobs_lock. */
-GalleryJobs *gallery_jobs_start(GalleryList *l, const GalleryLook *look, int nthreads);
+ * the ones asked for first (want[0..nwant), list indices, as
+ * gallery_jobs_want after), then the rest in order. The list is shared:
+ * read tiles under gallery_jobs_lock. */
+GalleryJobs *gallery_jobs_start(GalleryList *l, const GalleryLook *look, int nthreads, const int *want, int nwant);
 /* The tiles order[first..first+n) first (the screen's), in that order. */
 void gallery_jobs_want(GalleryJobs *j, const int *order, int first, int n);
 void gallery_jobs_lock(GalleryJobs *j);

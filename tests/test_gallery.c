@@ -346,6 +346,64 @@ Test(gallery, a_tile_says_the_checks_verdict_and_has_a_picture)
     cr_assert_eq(system(q), 0);
 }
 
+/* One worker, six tiles of one file, the last two asked for: they are
+ * pictured first, then checked, and only then does the worker take the
+ * others (the screen's tiles before the rest of the folder). */
+Test(gallery, the_tiles_asked_for_are_pictured_then_checked_before_the_rest, .timeout = 60)
+{
+    char dir[] = "/tmp/zv-gallery-XXXXXX", q[600];
+    cr_assert(mkdtemp(dir));
+    GalleryList l = { 0 };
+    l.tile = calloc(6, sizeof *l.tile);
+    cr_assert(l.tile);
+    static char paths[6][640];
+    for (int i = 0; i < 6; i++) {
+        char name[16];
+        snprintf(name, sizeof name, "m%d.obj", i);
+        touch(dir, name, cube_obj);
+        snprintf(paths[i], sizeof paths[i], "%s/%s", dir, name);
+        l.tile[i].path = strdup(paths[i]);
+        l.tile[i].name = strrchr(l.tile[i].path, '/') + 1;
+    }
+    l.n = l.cap = 6;
+    Options o;
+    cli_defaults(&o);
+    o.no_sandbox = 1;
+    GalleryLook look = { .o = &o, .w = 16, .h = 12, .aspect = 1.0f, .samples = 1 };
+    int want[2] = { 5, 4 };
+    GalleryJobs *j = gallery_jobs_start(&l, &look, 1, want, 2);
+    cr_assert(j);
+    int saw_pictured = 0, saw_rest = 0;
+    for (int spin = 0; spin < 200000 && !saw_rest; spin++) {
+        gallery_jobs_lock(j);
+        int rest = 0, pictured = 0, checked = 0;
+        for (int i = 0; i < 4; i++)
+            rest += l.tile[i].state != GS_PENDING;
+        for (int i = 4; i < 6; i++) {
+            pictured += l.tile[i].state >= GS_PICTURED;
+            checked += l.tile[i].state >= GS_SOUND;
+        }
+        if (pictured == 2 && checked < 2 && !rest)
+            saw_pictured = 1;   /* both pictured, a check still to come, the rest untouched */
+        if (rest) {
+            saw_rest = 1;
+            cr_assert_eq(checked, 2, "a tile not asked for was taken before those asked for were checked");
+        }
+        gallery_jobs_unlock(j);
+        usleep(200);
+    }
+    gallery_jobs_wait(j);
+    gallery_jobs_stop(j);
+    cr_assert(saw_pictured, "the tiles asked for were not pictured before their checks");
+    cr_assert(saw_rest);
+    for (int i = 0; i < 6; i++)
+        cr_assert(l.tile[i].state == GS_PROBLEM && !strcmp(l.tile[i].verdict, "1 hole") && l.tile[i].pic.w == 16,
+                  "tile %d: %s", i, l.tile[i].verdict);
+    gallery_list_free(&l);
+    snprintf(q, sizeof q, "rm -rf '%s'", dir);
+    cr_assert_eq(system(q), 0);
+}
+
 Test(gallery, unreadable_drops_the_path_and_line_the_tile_names_already)
 {
     char buf[128];

@@ -168,9 +168,11 @@ static void reorder(Ui *u)
     int keep = u->n ? u->order[u->sel] : -1;
     for (int i = 0; i < u->l.n; i++)
         u->order[i] = i;
-    gallery_jobs_lock(u->jobs);
+    if (u->jobs)
+        gallery_jobs_lock(u->jobs);
     gallery_sort(u->order, u->l.n, u->l.tile, u->sort);
-    gallery_jobs_unlock(u->jobs);
+    if (u->jobs)
+        gallery_jobs_unlock(u->jobs);
     u->n = gallery_filter(u->order, u->l.n, u->l.tile, u->filter);
     u->sel = 0;
     for (int k = 0; k < u->n; k++)
@@ -431,12 +433,14 @@ int gallery_run(const Options *o)
     u.look = (GalleryLook){ .o = o, .w = u.grid.pic_cols * pw, .h = u.grid.pic_rows * ph,
                             .aspect = mode_pixel_aspect(u.mode), .samples = TEXT_SAMPLES,
                             .bd = pipeline_text_backdrop(o, term_background(asked, NULL) ? asked : NULL) };
-    if (!(u.jobs = gallery_jobs_start(&u.l, &u.look, o->threads))) {
+    /* the first screen asked for before any worker starts */
+    reorder(&u);
+    int screen = (u.grid.rows + 1) * u.grid.cols;
+    if (!(u.jobs = gallery_jobs_start(&u.l, &u.look, o->threads, u.order, screen < u.n ? screen : u.n))) {
         term_restore();
         safetext_line(stderr, "zview: no thread to make the tiles with");
         goto out;
     }
-    reorder(&u);
     u.sel_since = now_ms();
     rc = loop(&u, &cfg);
     spin_stop(&u);

@@ -93,7 +93,7 @@ static void *worker(void *arg)
     return NULL;
 }
 
-GalleryJobs *gallery_jobs_start(GalleryList *l, const GalleryLook *look, int nthreads)
+GalleryJobs *gallery_jobs_start(GalleryList *l, const GalleryLook *look, int nthreads, const int *want, int nwant)
 {
     GalleryJobs *j = calloc(1, sizeof *j);
     if (!j)
@@ -111,6 +111,8 @@ GalleryJobs *gallery_jobs_start(GalleryList *l, const GalleryLook *look, int nth
         nthreads = c > 0 ? (int)c : 1;
     }
     nthreads = nthreads > JOBS_MAX ? JOBS_MAX : nthreads;
+    if (nwant > 0)
+        gallery_jobs_want(j, want, 0, nwant);   /* before any worker picks */
     for (int k = 0; k < nthreads; k++)
         if (thread_start(&j->th[j->nth], worker, j) == 0)
             j->nth++;

@@ -57,7 +57,7 @@ static int make_all(GalleryList *l, const GalleryLook *look, int threads)
             l->tile[i].state = GS_PENDING;
             image_free(&l->tile[i].pic);
         }
-    GalleryJobs *j = gallery_jobs_start(l, look, threads);
+    GalleryJobs *j = gallery_jobs_start(l, look, threads, NULL, 0);
     if (!j)
         return -1;
     gallery_jobs_wait(j);
