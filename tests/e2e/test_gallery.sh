@@ -98,6 +98,15 @@ tm send-keys -t zv Enter
 if wait_for "cube.obj \| faces 6 "; then ok "Enter opens the model in the viewer"; else notok "Enter opens the model in the viewer" "$(status 30)"; fi
 tm send-keys -t zv q
 if wait_for "> cube.obj" && wait_for "loaded ·"; then ok "q comes back to the grid at the same place"; else notok "q comes back to the grid at the same place" "$(cat "$T/screen")"; fi
+tm send-keys -t zv Left Enter
+if wait_for "concave.obj .*\| faces "; then ok "Enter opens another"; else notok "Enter opens another" "$(status 30)"; fi
+tm send-keys -t zv Escape
+if wait_for "> concave.obj" && wait_for "loaded ·"; then ok "Esc comes back to the grid too"; else notok "Esc comes back to the grid too" "$(cat "$T/screen")"; fi
+tm send-keys -t zv End
+if wait_for "> torus.obj"; then ok "End scrolls to the last tile"; else notok "End scrolls to the last tile" "$(cat "$T/screen")"; fi
+check "... the first row scrolled off" '! grep -q "broken.obj" "$T/screen"' "$(cat "$T/screen")"
+tm send-keys -t zv Home
+wait_for "> broken.obj"
 tm send-keys -t zv / t o r
 if wait_for "/tor_"; then ok "/ opens the filter"; else notok "/ opens the filter" "$(status 30)"; fi
 cap
