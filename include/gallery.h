@@ -99,8 +99,9 @@ void gallery_verdict(const CheckCounts *c, char *buf, size_t len);
 void gallery_unreadable(const char *path, const char *err, char *buf, size_t len);
 
 /* A scene of one file for the spin of the selected tile (galleryui.c):
- * 0, or -1 (the file is unreadable now). */
-int  gallery_tile_scene(const char *path, const Options *o, Scene *out);
+ * 0, or -1 (the file is unreadable now, or cancel was set: the load's
+ * child is ended at once). */
+int  gallery_tile_scene(const char *path, const Options *o, const int *cancel, Scene *out);
 /* Render scene s turned by yaw radians into t->pic as look says. */
 int  gallery_tile_render(Scene *s, const GalleryLook *look, float yaw, Image *pic);
 

@@ -37,6 +37,7 @@
 typedef struct {
     pthread_t   th;
     int         running;        /* th started, not joined */
+    int         stop;           /* set (atomically): the load is no longer wanted */
     int         done;           /* under the jobs' lock: the thread has finished */
     int         ok;
     int         tile;           /* the list index it is for */
@@ -75,7 +76,7 @@ typedef struct {
 static void *spin_load(void *arg)
 {
     Spin *sp = arg;
-    int ok = gallery_tile_scene(sp->path, sp->o, &sp->s) == 0;
+    int ok = gallery_tile_scene(sp->path, sp->o, &sp->stop, &sp->s) == 0;
     gallery_jobs_lock(sp->jobs);
     sp->ok = ok;
     sp->done = 1;
@@ -88,6 +89,8 @@ static void *spin_load(void *arg)
 static void spin_stop(Ui *u)
 {
     Spin *sp = &u->spin;
+    /* a big model still loading: its child is ended, not waited for */
+    __atomic_store_n(&sp->stop, 1, __ATOMIC_RELAXED);
     if (sp->running)
         pthread_join(sp->th, NULL);
     if (sp->running && sp->ok)

@@ -77,13 +77,13 @@ static int load(const char *path, const Options *o, const int *cancel, Mesh **m,
     return 0;
 }
 
-int gallery_tile_scene(const char *path, const Options *o, Scene *out)
+int gallery_tile_scene(const char *path, const Options *o, const int *cancel, Scene *out)
 {
     char err[512];
     Options to;
     tile_options(o, &to);
     Mesh *m;
-    if (load(path, &to, NULL, &m, err, sizeof err))
+    if (load(path, &to, cancel, &m, err, sizeof err))
         return -1;
     return app_scene_from_meshes(&to, m, 1, out, NULL, err, sizeof err);
 }
