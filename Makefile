@@ -59,7 +59,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq bench-step
+.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq bench-step bench-gallery
 
 all: $(BIN) $(if $(filter 1,$(OCCT)),$(OCCT_SHIM))
 
@@ -107,6 +107,7 @@ help:
 	@echo '  make bench-printq  --thickness on the dragon (the BVH and a ray a face), 1 and 2 threads; --check with it'
 	@echo '  make bench-sandbox the loading sandbox against --no-sandbox on the dragon'
 	@echo '  make bench-step    a 1 MB STEP part to its first picture, against f3d (needs OCCT and f3d)'
+	@echo '  make bench-gallery zview DIR on 100 bunnies: the first screen of tiles (target 1 s), the verdicts, all checked'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
 	@echo '  make assets        regenerate the bundled models (they are committed)'
@@ -310,6 +311,9 @@ bench-load: $(BIN) $(BUILD)/subdiv
 	SUBDIV=$(BUILD)/subdiv sh tools/bench-load.sh
 
 # the picture while a big file loads, and keys meanwhile, in tmux (issue 21)
+bench-gallery: $(BIN)
+	ZVIEW=$(abspath $(BIN)) sh tools/bench-gallery.sh
+
 bench-preview: $(BIN) $(BUILD)/subdiv
 	ZVIEW=$(abspath $(BIN)) SUBDIV=$(BUILD)/subdiv sh tools/bench-preview.sh
 

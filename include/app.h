@@ -120,6 +120,8 @@ typedef struct {
     SectionPlane section[SECTION_MAX];  /* --section: the planes the model is cut by */
     int         nsections;
     int         problem;        /* --problem K: the picture framed on the K-th problem (1 the first), 0 none */
+    int         gallery;        /* --gallery: the files, or the folders' models, as tiles (gallery.h) */
+    int         all;            /* --all: a folder's every file, not only its models */
     /* --repair (oneshot/repairrun.c) */
     unsigned    repair;         /* --repair[=STEPS]: the REPAIR_* steps (repair.h), 0 = not asked */
     double      weld;           /* --weld EPS: file units, 0 = positions bit for bit */

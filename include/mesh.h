@@ -281,6 +281,10 @@ int  mesh_ref_open(const char *model, const char *full, char *why, size_t whylen
 /* Does the format forced (NULL: none), else path's extension, name a
  * native loader (not assimp)? */
 int  mesh_format_is_native(const char *path, const char *format);
+/* Does path's extension (under a .gz, the one before it) name a format
+ * this build reads, natively or through assimp? (The gallery's listing:
+ * by name alone, nothing opened.) */
+int  mesh_path_is_model(const char *path);
 /* Open the library a load of path (format forced, or NULL) may need now:
  * assimp, unless the format or the extension names a native loader.
  * Opening it reads files beside the program's: the sandbox's child does

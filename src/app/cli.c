@@ -262,6 +262,30 @@ static int check_with(const Options *o, char *err, size_t errlen)
     return 0;
 }
 
+/* --gallery: files or folders, no other mode; a picture as a sheet
+ * (-o FILE.png or .ppm) or text (--print). */
+static int gallery_with(const Options *o, char *err, size_t errlen)
+{
+    const char *other = o->check ? "--check" : o->info ? "--info" : o->bench ? "--bench"
+                      : o->bench_tty ? "--bench-tty" : o->sketch ? "--sketch" : o->turntable ? "--turntable"
+                      : o->diff ? "--diff" : o->dump_ids ? "--dump-ids" : o->dump_screen ? "--dump-screen"
+                      : o->watch ? "--watch" : o->json ? "--json" : NULL;
+    if (other) {
+        snprintf(err, errlen, "--gallery does not go with %s", other);
+        return -1;
+    }
+    if (o->nfiles == 0) {
+        snprintf(err, errlen, "--gallery needs a folder or the files to show");
+        return -1;
+    }
+    size_t n = o->out ? strlen(o->out) : 0;
+    if (o->out && (!strcmp(o->out, "-") || (n >= 4 && !strcmp(o->out + n - 4, ".txt")))) {
+        snprintf(err, errlen, "--gallery -o writes a contact sheet to a .png or .ppm file (--print: text)");
+        return -1;
+    }
+    return 0;
+}
+
 /* --repair: one file, -o OUT in a format zview writes (by its name, or
  * --format, which here names the format written), no other mode. */
 static int repair_with(const Options *o, char *err, size_t errlen)
@@ -418,6 +442,8 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
         return -1;
     }
     if (o->check && check_with(o, err, errlen))
+        return -1;
+    if (o->gallery && gallery_with(o, err, errlen))
         return -1;
     if (o->problem && (o->turntable || o->info || o->bench || o->bench_tty || o->sketch)) {
         snprintf(err, errlen, "--problem frames one picture (or the viewer): it does not go with %s",

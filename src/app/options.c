@@ -778,6 +778,12 @@ const OptSpec cli_options[] = {
       "is each model right: holes, flipped, non-manifold\nand crossing faces, parts, size, volume (exit 3\n"
       "on problems); with --print or -o the picture too",
       NULL, FLAG(check), 0 },
+    { "gallery", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "the files, or each folder's models, as a grid of\ntiles with the check's verdict (zview DIR: the\n"
+      "same); with -o FILE.png a contact sheet, with\n--print the grid as text",
+      NULL, FLAG(gallery), 0 },
+    { "all", 0, NULL, NULL, OPTSEC_OUTPUT, "a folder's every file in the gallery, not only\nthose named as models",
+      NULL, FLAG(all), 0 },
     { "repair", 0, "STEPS", NULL, OPTSEC_OUTPUT,
       "write a repaired copy of FILE to -o OUT (.stl, .obj,\n.ply): STEPS a comma list of weld, clean,\n"
       "winding, holes, manifold (default all); says what\nit did, and the check before and after (exit 3\n"

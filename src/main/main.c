@@ -9,8 +9,10 @@
 #include <malloc.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include "gallery.h"
 #include "oneshot.h"
 #include "safetext.h"
 #include "simd.h"
@@ -47,6 +49,20 @@ static int finish_stdout(void)
     if (out.err == EIO && e)
         out.err = e;
     safetext_line(stderr, "zview: standard output: %s", out_error(&out));
+    return 1;
+}
+
+/* zview DIR: every file of the command line a folder, and no mode that
+ * reads files its own way: the gallery (gallery.h). */
+static int names_folders(const Options *o)
+{
+    if (o->nfiles == 0 || o->check || o->diff || o->repair || o->nmeasure || o->info || o->bench || o->bench_tty)
+        return 0;
+    for (int i = 0; i < o->nfiles; i++) {
+        struct stat st;
+        if (stat(o->files[i], &st) != 0 || !S_ISDIR(st.st_mode))
+            return 0;
+    }
     return 1;
 }
 
@@ -94,6 +110,12 @@ int main(int argc, char **argv)
     if (o.preview) {
         /* a file manager's pane: the picture and the verdict, or why not */
         rc = oneshot_preview(&o);
+        return rc ? rc : finish_stdout();
+    }
+    if (o.gallery || names_folders(&o)) {
+        /* a grid of tiles: on the terminal, else the sheet or the text */
+        int ui = !o.print && !o.out && isatty(STDOUT_FILENO);
+        rc = ui ? gallery_run(&o) : gallery_oneshot(&o);
         return rc ? rc : finish_stdout();
     }
     if (o.repair) {

@@ -187,6 +187,19 @@ int mesh_format_is_native(const char *path, const char *format)
     return l && !l->library;
 }
 
+int mesh_path_is_model(const char *path)
+{
+    char ext[16];
+    extension(path, ext, sizeof ext);
+    if (native_by_ext(ext))
+        return 1;
+#ifdef ZV_ASSIMP
+    if (ext[0] && mesh_assimp_has_ext(ext))
+        return 1;
+#endif
+    return 0;
+}
+
 void mesh_library_preload(const char *path, const char *format)
 {
     const MeshLoader *l = named_loader(path, format);

@@ -61,6 +61,12 @@ static struct {
     int         wake_wr;        /* the write end of the reader's wake pipe (t->wake_fd reads it) */
     int         signals_on;     /* our handlers are in: the ones they replaced below */
     int         atexit_done;    /* term_restore is registered with atexit (once a process) */
+    /* the last session's curses screen and its terminal entry, kept
+     * past endwin until the next session replaces them (the gallery
+     * opens one again after the viewer: each newterm would leak the
+     * last; delscreen leaves the entry) */
+    SCREEN     *screen;
+    struct term *screen_term;
     struct sigaction old_int, old_term, old_hup, old_tstp, old_winch;
     /* crashes: bytes prepared at open */
     char        crash_reset[256];
@@ -445,6 +451,8 @@ static void open_failed(Term *t, SCREEN *s, const char *why, char *err, size_t e
     if (s) {
         endwin();
         delscreen(s);
+        if (S.screen == s)
+            S.screen = NULL;    /* its entry, current, goes with the next setupterm's */
     }
     restore_handlers();
     free(t);
@@ -570,12 +578,21 @@ int term_open(const TermConfig *cfg, char *err, size_t errlen)
     if (cfg->signals)
         crash_prepare(fileno(out));   /* termios as the shell left it (newterm changes it) */
     del_curterm(set_curterm(NULL));
+    if (S.screen) {
+        delscreen(S.screen);    /* ended (endwin) by the last term_restore */
+        del_curterm(S.screen_term);
+        S.screen = NULL;
+        S.screen_term = NULL;
+    }
     SCREEN *s = newterm(name, out, in);
     if (!s) {
         open_failed(t, NULL, why, err, errlen);
         return -1;
     }
     set_term(s);
+    S.screen = s;
+    S.screen_term = set_curterm(NULL);      /* newterm made it the current one */
+    set_curterm(S.screen_term);
     /* the screen is written with ANSI cursor addressing */
     if (!caps_is("cup", "\033[%i%p1%d;%p2%dH")) {
         open_failed(t, s, "the terminal cannot move the cursor the ANSI way", err, errlen);

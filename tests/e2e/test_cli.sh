@@ -15,8 +15,11 @@ expect_status "unknown algorithm is a usage error" 2 "$Z" --algo painter assets/
 
 expect_status "missing file fails" 1 "$Z" --print no/such/file.obj
 expect_err "missing file is named" "no/such/file.obj"
-expect_status "a directory fails" 1 "$Z" --print assets
-expect_err "the directory is named" "assets"
+# a folder alone is the gallery (issue 34); beside a model it is no model
+expect_status "a folder alone is the gallery" 0 "$Z" --print --size 80x12 --color none assets
+expect_out "... of its models" "models: "
+expect_status "a folder beside a model is left out" 0 "$Z" --print assets/cube.obj assets
+expect_err "... named as a folder" "assets: is a directory"
 # A bad statement: --strict refuses the file with file:line; by default
 # it is skipped, and a file with nothing else left still fails, naming it
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n' >"$T/zero.obj"
