@@ -1,12 +1,15 @@
 /* checkreport.c: --check FILE...: is each model right? Every file is loaded on
- * its own, checked (check/: meshcheck_run) and freed before the next, so
- * that the memory is one model's; the picture, when --print or -o asks
+ * its own, checked (check/: meshcheck_run) and freed; several files (a
+ * folder's: app/folder.c) are checked on the threads -j allows, a file a
+ * thread, one file on all of them. The picture, when --print or -o asks
  * for one, comes first, then the report: a block per file (and per
  * object when a file has several), then one verdict line. --json
  * prints one JSON document instead (the schema is in the man page and
- * the README). Exit status: 0 sound, 3 problems found, 1 a file could
- * not be read (or the output not written); with --textconv (git's
- * textconv driver) 0 once read, and the file named "model". */
+ * the README), --jsonl a line of JSON a file as the files are done. A
+ * folder given adds one summary line on standard error. Exit status: 0
+ * sound, 3 problems found, 1 a file could not be read (or the output
+ * not written); with --textconv (git's textconv driver) 0 once read, and
+ * the file named "model". */
 
 #define _DEFAULT_SOURCE
 
