@@ -122,6 +122,9 @@ typedef struct {
     int         problem;        /* --problem K: the picture framed on the K-th problem (1 the first), 0 none */
     int         gallery;        /* --gallery: the files, or the folders' models, as tiles (gallery.h) */
     int         all;            /* --all: a folder's every file, not only its models */
+    int         recursive;      /* -r: --check enters a folder's subfolders too */
+    int         jsonl;          /* --jsonl: --check streams a JSON object a file, a line each */
+    int         summary;        /* --summary: the files are --jsonl output, summed up */
     /* --repair (oneshot/repairrun.c) */
     unsigned    repair;         /* --repair[=STEPS]: the REPAIR_* steps (repair.h), 0 = not asked */
     double      weld;           /* --weld EPS: file units, 0 = positions bit for bit */
@@ -529,5 +532,23 @@ typedef struct {
 int  view_command(char *buf, size_t len, const Options *o, const Scene *s, const ViewSettings *v);
 
 int  default_threads(void);
+
+/* folder.c: the command line's files, each folder replaced by the model
+ * files in it (by name, or every regular file with all), sorted by name
+ * folder by folder, its subfolders entered when recursive. Each folder
+ * is entered once, however many links lead to it, at most
+ * FOLDER_MAX_DEPTH deep. 0, or -1 with "DIR: reason" in err (a folder
+ * named that cannot be read, no memory). */
+#define FOLDER_MAX_DEPTH 64
+typedef struct {
+    char   **path;              /* owned */
+    int      n, cap;
+    int      folders;           /* folders named on the command line */
+    uint64_t skipped;           /* entries that are no model file, or no regular file */
+    uint64_t loops;             /* folders reached again (links), not entered again */
+} FolderList;
+int  folder_list(FolderList *l, const char *const *args, int nargs, int recursive, int all, char *err,
+                 size_t errlen);
+void folder_list_free(FolderList *l);
 
 #endif

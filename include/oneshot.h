@@ -22,6 +22,10 @@ int  oneshot_check(const Options *o);
  * check's verdict in it; a file not read says why in one line there.
  * Returns 0, or 1 when the file was not read or a write failed. */
 int  oneshot_preview(const Options *o);
+/* --summary FILE.jsonl...: what --check --jsonl wrote, summed up: the
+ * files by verdict and by kind of problem, the worst named. Returns 0
+ * all sound, 3 problems, 1 a file or line not read. */
+int  oneshot_summary(const Options *o);
 /* --diff A B without the viewer: the picture when --print or -o asks,
  * then the report (--json: JSON; --quiet: none). Returns 0 the same
  * within the tolerance, 3 they differ, 1 an output not written. */

@@ -463,6 +463,20 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
         snprintf(err, errlen, "--preview WxH shows one FILE%s", o->nfiles != 1 ? "" : ", alone (no other output)");
         return -1;
     }
+    if ((o->recursive || o->jsonl) && !o->check) {
+        snprintf(err, errlen, "%s goes with --check", o->recursive ? "-r" : "--jsonl");
+        return -1;
+    }
+    if (o->jsonl && (o->json || o->textconv || o->print || o->out)) {
+        snprintf(err, errlen, "--jsonl writes its lines alone: %s goes without it",
+                 o->json ? "--json" : o->textconv ? "--textconv" : o->print ? "--print" : "-o");
+        return -1;
+    }
+    if (o->summary && (o->check || o->gallery || o->diff || o->repair || o->info || o->bench || o->print ||
+                       o->out || o->nfiles == 0)) {
+        snprintf(err, errlen, "--summary reads the files --check --jsonl wrote, alone");
+        return -1;
+    }
     if (o->textconv && !o->check) {
         snprintf(err, errlen, "--textconv goes with --check");
         return -1;

@@ -782,8 +782,19 @@ const OptSpec cli_options[] = {
       "the files, or each folder's models, as a grid of\ntiles with the check's verdict (zview DIR: the\n"
       "same); with -o FILE.png a contact sheet, with\n--print the grid as text",
       NULL, FLAG(gallery), 0 },
-    { "all", 0, NULL, NULL, OPTSEC_OUTPUT, "a folder's every file in the gallery, not only\nthose named as models",
+    { "all", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "a folder's every file in the gallery and --check,\nnot only those named as models",
       NULL, FLAG(all), 0 },
+    { "recursive", 'r', NULL, NULL, OPTSEC_OUTPUT,
+      "with --check of a folder: its subfolders too (each\nentered once, however many links lead to it)",
+      NULL, FLAG(recursive), 0 },
+    { "jsonl", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "with --check: a JSON object a file, a line each, as\nthe files are done (--json's members, and its\n"
+      "objects), for runs split, resumed and merged",
+      NULL, FLAG(jsonl), 0 },
+    { "summary", 0, NULL, NULL, OPTSEC_OUTPUT,
+      "the files are --check --jsonl output: the files\ncounted by verdict and by problem, the worst\nnamed",
+      NULL, FLAG(summary), 0 },
     { "repair", 0, "STEPS", NULL, OPTSEC_OUTPUT,
       "write a repaired copy of FILE to -o OUT (.stl, .obj,\n.ply): STEPS a comma list of weld, clean,\n"
       "winding, holes, manifold (default all); says what\nit did, and the check before and after (exit 3\n"

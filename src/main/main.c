@@ -142,6 +142,11 @@ int main(int argc, char **argv)
         rc = oneshot_measure(&o);
         return rc ? rc : finish_stdout();
     }
+    if (o.summary) {
+        /* --check --jsonl's lines summed up */
+        rc = oneshot_summary(&o);
+        return rc == 1 ? rc : finish_stdout() ? 1 : rc;
+    }
     if (o.check) {
         /* each file loaded and checked on its own; the picture, if asked, inside */
         rc = oneshot_check(&o);

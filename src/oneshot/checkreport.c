@@ -1,16 +1,21 @@
 /* checkreport.c: --check FILE...: is each model right? Every file is loaded on
- * its own, checked (check/: meshcheck_run) and freed before the next, so
- * that the memory is one model's; the picture, when --print or -o asks
+ * its own, checked (check/: meshcheck_run) and freed; several files (a
+ * folder's: app/folder.c) are checked on the threads -j allows, a file a
+ * thread, one file on all of them. The picture, when --print or -o asks
  * for one, comes first, then the report: a block per file (and per
  * object when a file has several), then one verdict line. --json
  * prints one JSON document instead (the schema is in the man page and
- * the README). Exit status: 0 sound, 3 problems found, 1 a file could
- * not be read (or the output not written); with --textconv (git's
- * textconv driver) 0 once read, and the file named "model". */
+ * the README), --jsonl a line of JSON a file as the files are done. A
+ * folder given adds one summary line on standard error. Exit status: 0
+ * sound, 3 problems found, 1 a file could not be read (or the output
+ * not written); with --textconv (git's textconv driver) 0 once read, and
+ * the file named "model". */
 
 #define _DEFAULT_SOURCE
 
+#include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +23,7 @@
 #include "meshcheck.h"
 #include "oneshot.h"
 #include "safetext.h"
+#include "thread.h"
 
 typedef struct {
     const char *path;
@@ -405,45 +411,229 @@ static void json_report(Out *out, const Options *o, const FileCheck *fcs, int n)
     out_printf(out, "\n  ]\n}\n");
 }
 
+/* ==== Many files (a folder) ==== */
+
+/* Files checked on several threads, each file's check on one; the
+ * results come in the files' order. With --jsonl each is printed and
+ * freed as soon as it and those before it are done, and no worker runs
+ * more than CHECK_WINDOW files ahead of the printing: the memory is a
+ * window's, however many files a folder holds. */
+#define CHECK_WINDOW 64
+
+typedef struct {
+    const Options  *o;
+    char *const    *paths;
+    FileCheck      *fcs;        /* a slot a file (--jsonl: a slot a file of the window) */
+    int             n, next, printed, threads;
+    uint8_t        *done;
+    pthread_mutex_t mu;
+    pthread_cond_t  cv;
+} Many;
+
+/* File i into its slot, checked (its path and name set first). */
+static void check_one(Many *m, const Options *one, int i)
+{
+    FileCheck *fc = &m->fcs[m->o->jsonl ? i % CHECK_WINDOW : i];
+    fc->path = m->paths[i];
+    /* git's textconv runs the report on a temporary copy whose name
+     * changes every time: the report names no file */
+    fc->name = m->o->textconv ? "model" : m->paths[i];
+    check_file(one, fc);
+}
+
+static void *many_worker(void *arg)
+{
+    Many *m = arg;
+    Options one = *m->o;
+    one.threads = m->threads;
+    pthread_mutex_lock(&m->mu);
+    for (;;) {
+        while (m->next < m->n && m->o->jsonl && m->next >= m->printed + CHECK_WINDOW)
+            pthread_cond_wait(&m->cv, &m->mu);
+        if (m->next >= m->n)
+            break;
+        int i = m->next++;
+        pthread_mutex_unlock(&m->mu);
+        check_one(m, &one, i);
+        pthread_mutex_lock(&m->mu);
+        m->done[i] = 1;
+        pthread_cond_broadcast(&m->cv);
+    }
+    pthread_mutex_unlock(&m->mu);
+    return NULL;
+}
+
+/* One file as one line of JSON: its members as --json gives them, and
+ * its objects in "objects" (each without "file"). */
+static void jsonl_file(Out *out, const Options *o, const FileCheck *fc)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&buf, &len);
+    if (!mem) {
+        out->err = out->err ? out->err : ENOMEM;
+        return;
+    }
+    Out m;
+    out_init(&m, mem, "memory");
+    json_file(&m, o, fc, 1);
+    if (fc->read) {
+        /* the file's closing brace reopened for its objects */
+        fflush(mem);
+        while (len && buf[len - 1] != '}')
+            len--;
+        if (len)
+            fseeko(mem, (off_t)len - 1, SEEK_SET);
+        out_printf(&m, ",\n      \"objects\": [");
+        int first = 1;
+        json_objects(&m, fc, &first);
+        out_printf(&m, "\n      ]\n    }");
+    }
+    if (out_flush(&m) || fclose(mem)) {
+        out->err = out->err ? out->err : ENOMEM;
+        free(buf);
+        return;
+    }
+    /* one line: the pretty layout's newlines and the indent after them
+     * go (a JSON string holds no raw newline: they are all layout) */
+    size_t k = 0;
+    for (size_t i = 0; i < len; i++) {
+        if (buf[i] == '\n') {
+            while (i + 1 < len && buf[i + 1] == ' ')
+                i++;
+            if (k && buf[k - 1] != '[' && buf[k - 1] != '{' && i + 1 < len && buf[i + 1] != ']' &&
+                buf[i + 1] != '}')
+                buf[k++] = ' ';
+            continue;
+        }
+        buf[k++] = buf[i];
+    }
+    out_write(out, buf, k);
+    out_printf(out, "\n");
+    free(buf);
+}
+
 /* ==== The front door ==== */
+
+/* "checked 12 files in 2 folders: 9 sound, 2 with problems, 1 not read" */
+static void summary_line(const FolderList *fl, int sound, int bad, int unread)
+{
+    char extra[96] = "";
+    if (fl->loops)
+        snprintf(extra, sizeof extra, "; %llu folder%s reached again by a link, not entered again",
+                 (unsigned long long)fl->loops, fl->loops == 1 ? "" : "s");
+    safetext_line(stderr, "zview: checked %d file%s in %d folder%s: %d sound, %d with problems, %d not read%s",
+                  fl->n, fl->n == 1 ? "" : "s", fl->folders, fl->folders == 1 ? "" : "s", sound, bad, unread,
+                  extra);
+}
+
+/* What a file's check found, said once it is done: its reading error
+ * on standard error, and its tally. */
+static void tally(const FileCheck *fc, int *sound, int *bad, int *unread)
+{
+    if (!fc->read) {
+        safetext_line(stderr, "zview: %s", fc->err);
+        (*unread)++;
+    } else if (meshcheck_sound(&fc->mc.file))
+        (*sound)++;
+    else
+        (*bad)++;
+}
 
 int oneshot_check(const Options *o)
 {
-    FileCheck *fcs = calloc((size_t)o->nfiles + 1, sizeof *fcs);
-    if (!fcs) {
-        safetext_line(stderr, "zview: out of memory");
+    char err[512];
+    FolderList fl;
+    if (folder_list(&fl, o->files, o->nfiles, o->recursive, o->all, err, sizeof err)) {
+        safetext_line(stderr, "zview: %s", err);
         return 1;
     }
-    int unread = 0, bad = 0, rc = 0;
-    for (int i = 0; i < o->nfiles; i++) {
-        fcs[i].path = o->files[i];
-        /* git's textconv runs the report on a temporary copy whose name
-         * changes every time: the report names no file */
-        fcs[i].name = o->textconv ? "model" : o->files[i];
-        if (check_file(o, &fcs[i])) {
-            safetext_line(stderr, "zview: %s", fcs[i].err);
-            unread++;
-        } else
-            bad += !meshcheck_sound(&fcs[i].mc.file);
+    if (fl.folders && (o->print || o->out)) {
+        safetext_line(stderr, "zview: --check of a folder draws no picture (--gallery DIR -o sheet.png does)");
+        folder_list_free(&fl);
+        return 2;
     }
-    if ((o->print || o->out) && picture(o))
-        rc = 1;
+    int n = fl.n, threads = o->threads > 0 ? o->threads : default_threads();
+    int workers = n < threads ? n : threads;
+    if (workers > SCREEN_MAX_THREADS)
+        workers = SCREEN_MAX_THREADS;
+    int slots = o->jsonl && n > CHECK_WINDOW ? CHECK_WINDOW : n;
+    /* one file: its check on every thread; several: a file a thread */
+    Many m = { .o = o, .paths = fl.path, .fcs = calloc((size_t)slots + 1, sizeof *m.fcs), .n = n,
+               .threads = workers > 1 ? 1 : threads, .done = calloc((size_t)n + 1, 1) };
+    if (!m.fcs || !m.done) {
+        safetext_line(stderr, "zview: out of memory");
+        free(m.fcs);
+        free(m.done);
+        folder_list_free(&fl);
+        return 1;
+    }
+    pthread_mutex_init(&m.mu, NULL);
+    pthread_cond_init(&m.cv, NULL);
+    /* -j 1 (or one file): no thread, the files checked here in turn */
+    pthread_t th[SCREEN_MAX_THREADS];
+    int started = 0;
+    for (int k = 0; workers > 1 && k < workers; k++)
+        started += thread_start(&th[started], many_worker, &m) == 0;
+    Options here = *o;
+    here.threads = m.threads;
+    for (int i = 0; !started && !o->jsonl && i < n; i++)
+        check_one(&m, &here, i);
     Out out;
     out_init(&out, stdout, "standard output");
-    if (o->json)
-        json_report(&out, o, fcs, o->nfiles);
-    else {
-        for (int i = 0; i < o->nfiles; i++)
-            text_file(&out, o, &fcs[i]);
-        text_verdict(&out, fcs, o->nfiles);
+    int sound = 0, unread = 0, bad = 0, rc = 0;
+    if (o->jsonl) {
+        /* each file printed and freed once it and those before it are done */
+        for (int i = 0; i < n; i++) {
+            if (!started)
+                check_one(&m, &here, i);
+            pthread_mutex_lock(&m.mu);
+            while (started && !m.done[i])
+                pthread_cond_wait(&m.cv, &m.mu);
+            pthread_mutex_unlock(&m.mu);
+            FileCheck *fc = &m.fcs[i % CHECK_WINDOW];
+            tally(fc, &sound, &bad, &unread);
+            jsonl_file(&out, o, fc);
+            if (out_flush(&out) && !rc) {
+                safetext_line(stderr, "zview: standard output: %s", out_error(&out));
+                rc = 1;
+            }
+            meshcheck_free(&fc->mc);
+            memset(fc, 0, sizeof *fc);
+            pthread_mutex_lock(&m.mu);
+            m.printed = i + 1;
+            pthread_cond_broadcast(&m.cv);
+            pthread_mutex_unlock(&m.mu);
+        }
     }
-    if (out_flush(&out)) {
-        safetext_line(stderr, "zview: standard output: %s", out_error(&out));
-        rc = 1;
+    for (int k = 0; k < started; k++)
+        pthread_join(th[k], NULL);
+    if (!o->jsonl) {
+        for (int i = 0; i < n; i++)
+            tally(&m.fcs[i], &sound, &bad, &unread);
+        if ((o->print || o->out) && picture(o))
+            rc = 1;
+        if (o->json)
+            json_report(&out, o, m.fcs, n);
+        else {
+            for (int i = 0; i < n; i++)
+                text_file(&out, o, &m.fcs[i]);
+            text_verdict(&out, m.fcs, n);
+        }
+        if (out_flush(&out)) {
+            safetext_line(stderr, "zview: standard output: %s", out_error(&out));
+            rc = 1;
+        }
+        for (int i = 0; i < n; i++)
+            meshcheck_free(&m.fcs[i].mc);
     }
-    for (int i = 0; i < o->nfiles; i++)
-        meshcheck_free(&fcs[i].mc);
-    free(fcs);
+    if (fl.folders)
+        summary_line(&fl, sound, bad, unread);
+    pthread_mutex_destroy(&m.mu);
+    pthread_cond_destroy(&m.cv);
+    free(m.fcs);
+    free(m.done);
+    folder_list_free(&fl);
     /* --textconv: the problems are in the text; git takes any other
      * status than 0 for a failure to convert */
     return rc || unread ? 1 : bad && !o->textconv ? 3 : 0;

@@ -62,7 +62,7 @@ _zview()
 
     if [[ $cur == -* && $cur != - ]]; then
         COMPREPLY=($(compgen -W "--help --version --print --output --size --mode --color --shade
-            --info --check --gallery --all --dump-ids --dump-screen --algo --yaw --pitch --roll --zoom --pan --fit-from
+            --info --check --gallery --all --recursive --jsonl --summary --dump-ids --dump-screen --algo --yaw --pitch --roll --zoom --pan --fit-from
             --move --turn --scale --persp --ortho --cull --grid --max-polys --bench --bench-tty
             --views --threads --json --fps --max-rate --format --formats --up --flip --tessellation --image-format --sketch
             --samples --crease --light --ambient --view --layout --edges --order --print-view
