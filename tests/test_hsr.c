@@ -683,3 +683,39 @@ Test(octree, small_scenes_build_at_once)
     screen_free(&sp);
     scene_free(&s);
 }
+
+/* The statistic --info --algo and --bench give: with polygons that do not
+ * overlap, every algorithm writes each covered sample once, so its count
+ * of samples written is the brute force's count of samples inside. */
+Test(hsr, samples_written_are_the_samples_covered)
+{
+    Polys p;
+    polys_init(&p, 48, 32);
+    /* a concave hexagon (a general polygon, not a triangle), a triangle
+     * apart from it, and a quad */
+    ScreenVert hex[6] = { { 256 * 2, 256 * 2, 0.5f }, { 256 * 20, 256 * 3, 0.5f }, { 256 * 12, 256 * 10, 0.5f },
+                          { 256 * 22, 256 * 28, 0.5f }, { 256 * 3, 256 * 30, 0.5f }, { 256 * 8, 256 * 12, 0.5f } };
+    ScreenVert tri[3] = { { 256 * 26 + 77, 256 * 2, 0.4f }, { 256 * 46, 256 * 5 + 31, 0.4f }, { 256 * 30, 256 * 14, 0.4f } };
+    ScreenVert quad[4] = { { 256 * 28, 256 * 18, 0.3f }, { 256 * 45, 256 * 17, 0.3f }, { 256 * 44, 256 * 30, 0.3f },
+                           { 256 * 27, 256 * 29, 0.3f } };
+    cr_assert(polys_add(&p, hex, 6, 0, 0.5f) && polys_add(&p, tri, 3, 1, 0.4f) && polys_add(&p, quad, 4, 2, 0.3f));
+    uint64_t inside = 0;
+    for (int j = 0; j < 32; j++)
+        for (int i = 0; i < 48; i++)
+            inside += brute_inside(hex, 6, i, j) + brute_inside(tri, 3, i, j) + brute_inside(quad, 4, i, j);
+    cr_assert_gt(inside, 300);
+    for (int k = 0; k < hsr_nalgos; k++) {
+        FrameBufs fb = { 0 };
+        HsrRunner r;
+        cr_assert_eq(hsr_runner_init(&r, hsr_algos[k], 1), 0);
+        Viewport vp = { 48, 32, 1, 0 };
+        HsrInput in = { .sp = &p.sp, .scene = NULL, .vp = &vp };
+        HsrStats st;
+        cr_assert_eq(hsr_run(&r, &in, &fb, &st), 0);
+        cr_expect_eq(st.pixels_written, inside, "%s: %llu written, %llu inside", hsr_algos[k]->name,
+                     (unsigned long long)st.pixels_written, (unsigned long long)inside);
+        hsr_runner_free(&r);
+        fbuf_free(&fb);
+    }
+    polys_free(&p);
+}
