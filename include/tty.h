@@ -96,6 +96,15 @@ PixelProto term_pixels(void);
 int  term_cell_pixels(int *cw, int *ch);
 int  term_show_image(const ByteBuf *b);
 void term_hide_image(void);
+/* Images through tmux's passthrough: has the pane moved, or come to show
+ * or stopped showing (another window, another pane zoomed), since tmux
+ * was last asked? Asks at most every MUX_POLL_MS (else 0). */
+int  term_pane_moved(void);
+/* The ms until term_pane_moved asks again, -1 when it never does. */
+int  term_pane_poll_ms(void);
+/* Why the pixels are cells when a multiplexer is the reason (and how to
+ * change it), else NULL. */
+const char *term_mux_hint(void);
 int  term_image_shown(void);
 /* The terminal's background as it answered at open: 1 with rgb_out, 0
  * when it did not (or was not asked); waited_ms_out (may be NULL): how
@@ -259,6 +268,9 @@ typedef struct {
     int    sixel;           /* ... and it lists 4 */
     int    kitty;           /* the kitty query was answered OK */
     int    iterm;           /* the terminal's name is iTerm2 */
+    int    mux_das;         /* attributes' answers still to come from tmux itself (not the outer terminal) */
+    int    mux_sixel;       /* ... and tmux's own listed 4: it draws sixel itself */
+    int    via_mux;         /* the other answers are the outer terminal's, through tmux's passthrough */
     int    c1;              /* 8-bit controls too (a locale that is not UTF-8, where they are no
                                text): 0x9b CSI, 0x90 DCS, 0x9f APC, 0x9c ST */
 } PixelScan;
@@ -273,8 +285,15 @@ typedef void (*PixelSink)(void *ctx, const unsigned char *b, size_t n);
 /* s (made by pixels_scan_init) keeps what was read: answers that come
  * after the wait (a slow link) can still be fed to it (term.c does). */
 PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx, PixelScan *s);
+/* Inside tmux: its own attributes asked (a tmux that draws sixel says
+ * so), and with pass (allow-passthrough is on) the same questions as
+ * pixels_detect's through the passthrough, for the outer terminal. */
+PixelProto pixels_detect_tmux(int out_fd, int in_fd, int wait_ms, int pass, PixelSink sink, void *ctx,
+                              PixelScan *s);
 /* What the answers read so far say (PIX_CELLS: no images). */
 PixelProto pixels_scanned(const PixelScan *s);
+/* Those pixels are the outer terminal's, drawn through tmux's passthrough. */
+int pixels_through_mux(const PixelScan *s);
 
 void pixels_scan_init(PixelScan *s, int c1);
 void pixels_scan(PixelScan *s, const unsigned char *b, size_t n);
@@ -282,6 +301,37 @@ void pixels_scan(PixelScan *s, const unsigned char *b, size_t n);
  * multiplexer or on a terminal that would show the questions, else
  * PIX_AUTO (ask). */
 PixelProto pixels_from_env(void);
+
+/* ==== Multiplexers (mux.c) ====
+ * tmux and GNU screen, and images through tmux's passthrough. */
+
+#define MUX_ASK_MS  200         /* tmux's answer about its pane (a few ms) is waited for this long */
+#define MUX_POLL_MS 500         /* how often the viewer asks again whether the pane moved or shows */
+
+typedef enum { MUX_NONE, MUX_TMUX, MUX_SCREEN } MuxKind;
+
+/* What tmux says of the pane zview runs in. */
+typedef struct {
+    int top, left;              /* its top left corner on the outer terminal, cells from 0 */
+    int pass;                   /* allow-passthrough is on for it */
+    int shows;                  /* its window is the current one and no other pane is zoomed */
+} MuxPane;
+
+/* The multiplexer the environment names (TMUX, STY, TERM). */
+MuxKind mux_from_env(void);
+/* Ask tmux (the program, with TMUX_PANE's pane) about the pane, waiting
+ * at most wait_ms. Returns 0, or -1 when tmux did not say. */
+int  mux_tmux_pane(MuxPane *m, int wait_ms);
+/* tmux's answer "top left passthrough window_active zoomed pane_active"
+ * -> m. Returns 0, or -1 when it is not that. */
+int  mux_parse_pane(const char *s, MuxPane *m);
+/* b[0..n) for the outer terminal, wrapped in tmux's passthrough (ESCs
+ * doubled), drawn from the pane's top left corner, the outer cursor put
+ * back after. Appends to out; returns 0, or -1 out of memory. */
+int  mux_wrap(ByteBuf *out, const MuxPane *m, const unsigned char *b, size_t n);
+/* Why there are cells and not pixels in this multiplexer (what to do
+ * about it), or NULL when it is not the multiplexer's doing. */
+const char *mux_why_cells(MuxKind k, const MuxPane *m);
 
 /* ==== The screen model (vt.c) ====
  * What the terminal should show (want) and what it shows (shown), cell

@@ -514,16 +514,26 @@ static void ask_terminal(Term *t, const TermConfig *cfg)
     /* which pixels it draws: asked the same way, the answers dropped by
      * the key parser (which waits for them: a late one is no Esc) */
     int ask_pix = cfg->pixels == PIX_AUTO && t->ask && isatty(t->in_fd);
-    if (ask_pix && pixels_from_env() != PIX_CELLS)
-        kp_expect(&t->kp, 1, now_ms());
+    /* inside tmux: tmux itself says where the pane is and whether
+     * images pass (mux.c) */
+    t->mux = mux_from_env();
+    t->pix_wanted = cfg->pixels != PIX_CELLS;
+    t->pane_known = t->mux == MUX_TMUX && cfg->pixels != PIX_CELLS && t->ask &&
+                    mux_tmux_pane(&t->pane, TERMBG_WAIT_MS) == 0;
+    t->pane_asked_ms = now_ms();
+    int asks = ask_pix && (t->mux == MUX_NONE ? pixels_from_env() != PIX_CELLS : t->pane_known);
+    if (asks)
+        kp_expect(&t->kp, 1 + (t->pane_known && t->pane.pass), now_ms());
     pixels_scan_init(&t->pix_scan, !t->kp.utf8);
     t->pix_asked_ms = now_ms();
-    t->pix = ask_pix ? pixels_detect(t->q.fd, t->in_fd, TERMBG_WAIT_MS, answers_to_keys, &t->kp, &t->pix_scan)
-                     : cfg->pixels == PIX_AUTO ? PIX_CELLS : (PixelProto)cfg->pixels;
+    t->pix = !asks ? (cfg->pixels == PIX_AUTO ? PIX_CELLS : (PixelProto)cfg->pixels)
+             : t->mux == MUX_TMUX ? pixels_detect_tmux(t->q.fd, t->in_fd, TERMBG_WAIT_MS, t->pane.pass, answers_to_keys,
+                                                       &t->kp, &t->pix_scan)
+                                  : pixels_detect(t->q.fd, t->in_fd, TERMBG_WAIT_MS, answers_to_keys, &t->kp, &t->pix_scan);
     /* a slow link (or a loaded terminal) answers after the wait, or the
      * background's answer, late, ended it: what comes is still read for
      * pixels until kitty's (the best) or KP_LATE_MS */
-    t->pix_late = ask_pix && pixels_from_env() != PIX_CELLS && t->pix != PIX_KITTY;
+    t->pix_late = asks && t->pix != PIX_KITTY;
     t->pix_news = 0;
     t->pix_shown = 0;
     t->ack_wait = t->ack_told = t->acks_seen = t->unanswered = 0;
@@ -645,6 +655,13 @@ ColourDepth term_colour(void) { return S.t ? S.t->depth : COLOUR_NONE; }
 int term_colour_answered(void) { return S.t && S.t->depth_answered; }
 
 PixelProto term_pixels(void) { return S.t ? S.t->pix : PIX_CELLS; }
+
+const char *term_mux_hint(void)
+{
+    if (!S.t || !S.t->pix_wanted || S.t->pix != PIX_CELLS || (S.t->mux == MUX_TMUX && !S.t->pane_known))
+        return NULL;
+    return mux_why_cells(S.t->mux, &S.t->pane);
+}
 
 int term_cell_pixels(int *cw, int *ch)
 {

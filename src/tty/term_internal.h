@@ -55,6 +55,11 @@ typedef struct {
     double      pix_asked_ms;   /* when they were asked */
     int         pix_news;       /* they came late and named pixels: the viewer is told (TE_RESIZE) */
     int         pix_shown;      /* an image is on the screen */
+    int         pix_wanted;     /* pixels were not turned off (--mode) */
+    MuxKind     mux;            /* the multiplexer zview runs in */
+    MuxPane     pane;           /* inside tmux: its pane, as tmux last said (pane_known) */
+    int         pane_known;
+    double      pane_asked_ms;  /* when tmux was last asked */
 } Term;
 
 /* term.c: the open session, NULL when there is none. */
