@@ -104,7 +104,7 @@ int  term_pane_moved(void);
 int  term_pane_poll_ms(void);
 /* Why the pixels are cells when a multiplexer is the reason (and how to
  * change it), else NULL. */
-const char *term_mux_hint(void);
+const char *term_mux_hint(int brief);
 int  term_image_shown(void);
 /* The terminal's background as it answered at open: 1 with rgb_out, 0
  * when it did not (or was not asked); waited_ms_out (may be NULL): how
@@ -330,8 +330,9 @@ int  mux_parse_pane(const char *s, MuxPane *m);
  * back after. Appends to out; returns 0, or -1 out of memory. */
 int  mux_wrap(ByteBuf *out, const MuxPane *m, const unsigned char *b, size_t n);
 /* Why there are cells and not pixels in this multiplexer (what to do
- * about it), or NULL when it is not the multiplexer's doing. */
-const char *mux_why_cells(MuxKind k, const MuxPane *m);
+ * about it), or NULL when it is not the multiplexer's doing; brief: in
+ * few words, for the status bar. */
+const char *mux_why_cells(MuxKind k, const MuxPane *m, int brief);
 
 /* ==== The screen model (vt.c) ====
  * What the terminal should show (want) and what it shows (shown), cell

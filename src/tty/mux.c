@@ -37,13 +37,14 @@ extern char **environ;
 
 MuxKind mux_from_env(void)
 {
+    /* screen first: inside or outside tmux, it passes no images on */
     const char *term = getenv("TERM"), *tmux = getenv("TMUX"), *sty = getenv("STY");
-    if (tmux && *tmux)
-        return MUX_TMUX;
-    if ((sty && *sty) || (term && !strncmp(term, "screen", 6)))
+    if (sty && *sty)
         return MUX_SCREEN;
-    if (term && !strncmp(term, "tmux", 4))
+    if ((tmux && *tmux) || (term && !strncmp(term, "tmux", 4)))
         return MUX_TMUX;
+    if (term && !strncmp(term, "screen", 6))
+        return MUX_SCREEN;
     return MUX_NONE;
 }
 
@@ -139,11 +140,11 @@ int mux_wrap(ByteBuf *out, const MuxPane *m, const unsigned char *b, size_t n)
     return out->err ? -1 : 0;
 }
 
-const char *mux_why_cells(MuxKind k, const MuxPane *m)
+const char *mux_why_cells(MuxKind k, const MuxPane *m, int brief)
 {
     if (k == MUX_SCREEN)
-        return "GNU screen passes no images: cells";
+        return brief ? "screen: cells, no images" : "GNU screen passes no images to the terminal";
     if (k == MUX_TMUX && m && !m->pass)
-        return "tmux passes no images: set -g allow-passthrough on";
+        return brief ? "tmux: set -g allow-passthrough on" : "tmux passes no images: set -g allow-passthrough on";
     return NULL;
 }

@@ -656,11 +656,11 @@ int term_colour_answered(void) { return S.t && S.t->depth_answered; }
 
 PixelProto term_pixels(void) { return S.t ? S.t->pix : PIX_CELLS; }
 
-const char *term_mux_hint(void)
+const char *term_mux_hint(int brief)
 {
     if (!S.t || !S.t->pix_wanted || S.t->pix != PIX_CELLS || (S.t->mux == MUX_TMUX && !S.t->pane_known))
         return NULL;
-    return mux_why_cells(S.t->mux, &S.t->pane);
+    return mux_why_cells(S.t->mux, &S.t->pane, brief);
 }
 
 int term_cell_pixels(int *cw, int *ch)

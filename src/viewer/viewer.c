@@ -287,9 +287,9 @@ static void draw_info(App *a, int cols, int rows, double out_ms)
              a->opt->colour >= 0 ? "--color" : term_colour_answered() ? "the terminal answered"
              : term_colour() < colour_from_env() ? "TERM's description" : colour_env_reason());
     n++;
-    if (term_pixels() == PIX_CELLS && term_mux_hint()) {
+    if (term_pixels() == PIX_CELLS && term_mux_hint(0)) {
         rl[n].label = "pixels:";
-        snprintf(rl[n].text, REPORT_TEXT, "cells (%s)", term_mux_hint());
+        snprintf(rl[n].text, REPORT_TEXT, "cells (%s)", term_mux_hint(0));
         n++;
     } else if (term_pixels() != PIX_CELLS) {
         rl[n].label = "pixels:";
@@ -750,7 +750,7 @@ static int viewer_main(const Options *o, Scene *s, int loading, DiffSet *diff)
     /* a.pixels stays what was asked: a terminal on a slow link names its
      * pixels after the start's wait (term_read then says TE_RESIZE) */
     /* cells because of tmux or screen: said once, with what to do */
-    const char *mux = term_mux_hint();
+    const char *mux = term_mux_hint(1);
     if (mux && !a.note[0])
         snprintf(a.note, sizeof a.note, "%s", mux);
     /* the picture is kept visible on the terminal's background */
