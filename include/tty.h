@@ -110,6 +110,10 @@ int  term_image_shown(void);
  * when it did not (or was not asked); waited_ms_out (may be NULL): how
  * long the question took. */
 int  term_background(uint8_t rgb_out[3], double *waited_ms_out);
+/* The start's questions: 1 when their last answer came within the wait
+ * (*waited_ms_out: how long they took), 0 when it did not, -1 when none
+ * were asked (not a terminal, nothing to ask). */
+int  term_answered(double *waited_ms_out);
 void term_size(int *cols_out, int *rows_out);
 /* Pretend the window is cols x rows (the tty benchmark writes to a file). */
 void term_set_size(int cols, int rows);
@@ -207,6 +211,7 @@ int    kp_awaiting(const KeyParser *p, double now_ms);
  * whose answer says that no other is coming. */
 
 #define TERMBG_WAIT_MS  200     /* a terminal that answers neither (none known) costs this once */
+#define TERM_ASK_MS     100     /* the viewer's start: every question at once, answered within this or late */
 #define TERMBG_BODY_MAX 63      /* a string's bytes kept: "11;rgba:ffff/ffff/ffff/ffff" fits */
 
 /* "rgb:RRRR/GGGG/BBBB" (1 to 4 hex digits a channel) or rgba: with an
@@ -236,16 +241,30 @@ typedef struct {
     uint8_t     bg[3];
     ColourDepth colour;         /* asked: the colours its SGR report showed (0: no answer) */
     double      waited_ms;      /* how long the questions took */
+    int         answered;       /* the last answer came within the wait */
 } TermAnswers;
 
-/* Ask the terminal on out_fd its background (and, with ask_colour, the
- * colours it draws: a 24-bit colour set, the SGR asked back with DECRQSS,
- * then reset), all in one write, and read its answers from in_fd until
- * the attributes' answer or wait_ms; every byte read goes on to kp
- * (NULL: dropped), so the key parser sees the keys typed meanwhile and
- * drops the answers. The input must not echo (the viewer's curses mode).
- * Returns 1 when the terminal said its background, else 0. */
-int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, int ask_colour, TermAnswers *ans);
+/* Which of the pixels' questions (termgfx.c) go with the rest: none,
+ * the terminal's, tmux's own attributes, tmux's and (through its
+ * passthrough) the outer terminal's. */
+typedef enum { PIXQ_NONE, PIXQ_PLAIN, PIXQ_TMUX, PIXQ_TMUX_PASS } PixelAsk;
+struct PixelScan;
+
+typedef struct {
+    int               ask_bg;           /* its background (OSC 11) */
+    int               ask_colour;       /* the colours it draws (a 24-bit colour set, the SGR asked
+                                           back with DECRQSS, then reset) */
+    PixelAsk          pix;
+    struct PixelScan *scan;             /* pix's answers are read into it (pixels_scan_init'd) */
+} TermQuestions;
+
+/* Ask the terminal on out_fd the questions q, all in one write, and read
+ * its answers from in_fd until the attributes' answer (the last: with
+ * PIXQ_TMUX_PASS the outer terminal's) or wait_ms; every byte read goes
+ * on to kp (NULL: dropped), so the key parser sees the keys typed
+ * meanwhile and drops the answers. The input must not echo (the viewer's
+ * curses mode). Returns 1 when the terminal said its background, else 0. */
+int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, const TermQuestions *q, TermAnswers *ans);
 /* The same on the controlling terminal (/dev/tty) for --print, put in a
  * mode without echo for the question and back; not from a job in the
  * background, nor on TERM=dumb (or none). Returns 1 with rgb_out, else 0. */
@@ -260,7 +279,7 @@ int  termbg_ask_tty(int wait_ms, uint8_t rgb_out[3]);
 int  pixels_cell_size(int fd, int *cw, int *ch);
 
 /* The answers' reader, byte by byte (any split). */
-typedef struct {
+typedef struct PixelScan {
     int    state;
     char   body[64];
     size_t len;
@@ -285,11 +304,11 @@ typedef void (*PixelSink)(void *ctx, const unsigned char *b, size_t n);
 /* s (made by pixels_scan_init) keeps what was read: answers that come
  * after the wait (a slow link) can still be fed to it (term.c does). */
 PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx, PixelScan *s);
-/* Inside tmux: its own attributes asked (a tmux that draws sixel says
- * so), and with pass (allow-passthrough is on) the same questions as
- * pixels_detect's through the passthrough, for the outer terminal. */
-PixelProto pixels_detect_tmux(int out_fd, int in_fd, int wait_ms, int pass, PixelSink sink, void *ctx,
-                              PixelScan *s);
+/* The pixels' questions for how, the attributes' last (for termbg_ask's
+ * one write). */
+const char *pixels_question(PixelAsk how);
+/* s is to read the answers to how's questions (tmux's own first). */
+void pixels_scan_expect(PixelScan *s, PixelAsk how);
 /* What the answers read so far say (PIX_CELLS: no images). */
 PixelProto pixels_scanned(const PixelScan *s);
 /* Those pixels are the outer terminal's, drawn through tmux's passthrough. */

@@ -189,8 +189,8 @@ Test(mux, the_environment_names_the_multiplexer)
 
 /* ==== The questions inside tmux ==== */
 
-/* pixels_detect_tmux over pipes: the answers waiting, the questions
- * asked back in q. */
+/* The pixels' questions inside tmux (termbg_ask, as the viewer asks
+ * them) over pipes: the answers waiting, the questions asked back in q. */
 static PixelProto detect_tmux(const char *answer, int pass, PixelScan *scan, char *q, size_t qlen)
 {
     int out[2], in[2];
@@ -199,7 +199,10 @@ static PixelProto detect_tmux(const char *answer, int pass, PixelScan *scan, cha
     if (answer)
         cr_assert_eq(write(in[1], answer, strlen(answer)), (ssize_t)strlen(answer));
     pixels_scan_init(scan, 0);
-    PixelProto p = pixels_detect_tmux(out[1], in[0], 60, pass, NULL, NULL, scan);
+    TermQuestions tq = { .pix = pass ? PIXQ_TMUX_PASS : PIXQ_TMUX, .scan = scan };
+    TermAnswers ans;
+    termbg_ask(out[1], in[0], 60, NULL, &tq, &ans);
+    PixelProto p = pixels_scanned(scan);
     close(out[1]);
     ssize_t n = read(out[0], q, qlen - 1);
     q[n > 0 ? n : 0] = 0;

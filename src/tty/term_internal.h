@@ -49,6 +49,7 @@ typedef struct {
     int         bg_known;       /* it told its background (termbg.c) */
     uint8_t     bg[3];
     double      bg_wait_ms;     /* how long the question took */
+    int         answered;       /* the questions' last answer came within the wait; -1: none asked */
     PixelProto  pix;            /* the pixels it takes (PIX_CELLS: none, or not wanted) */
     PixelScan   pix_scan;       /* its answers to the pixels' questions, read so far */
     int         pix_late;       /* the input is read for them too (a slow link's come late) */

@@ -202,12 +202,12 @@ PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, voi
 #define TMUX_OWN  "\033[c"
 #define TMUX_PASS "\033Ptmux;\033\033_Gi=31,s=1,v=1,a=q,t=d,f=24;AAAA\033\033\\\033\033[>0q\033\033[c\033\\"
 
-PixelProto pixels_detect_tmux(int out_fd, int in_fd, int wait_ms, int pass, PixelSink sink, void *ctx,
-                              PixelScan *s)
+const char *pixels_question(PixelAsk how)
 {
-    s->mux_das = pass;
-    s->via_mux = pass;
-    if (!pass)
-        return ask(out_fd, in_fd, TMUX_OWN, sizeof TMUX_OWN - 1, wait_ms, sink, ctx, s);
-    return ask(out_fd, in_fd, TMUX_OWN TMUX_PASS, sizeof TMUX_OWN TMUX_PASS - 1, wait_ms, sink, ctx, s);
+    return how == PIXQ_TMUX_PASS ? TMUX_OWN TMUX_PASS : how == PIXQ_TMUX ? TMUX_OWN : QUESTION;
+}
+
+void pixels_scan_expect(PixelScan *s, PixelAsk how)
+{
+    s->mux_das = s->via_mux = how == PIXQ_TMUX_PASS;
 }

@@ -277,7 +277,7 @@ static void draw_candidates(App *a, int cols, int rows)
  * of INFO_BESIDE_MIN columns), each line wrapped after a comma to fit. */
 static void draw_info(App *a, int cols, int rows, double out_ms)
 {
-    ReportLine rl[REPORT_LINES + 7];
+    ReportLine rl[REPORT_LINES + 8];
     int n = frame_report(&a->p, out_ms, rl, REPORT_LINES);
     n += viewer_check_report(a, rl + n, 5);
     /* the colours, and what decided them (the terminal may draw more than
@@ -287,6 +287,17 @@ static void draw_info(App *a, int cols, int rows, double out_ms)
              a->opt->colour >= 0 ? "--color" : term_colour_answered() ? "the terminal answered"
              : term_colour() < colour_from_env() ? "TERM's description" : colour_env_reason());
     n++;
+    /* the start's questions: at once, one wait (a silent terminal costs
+     * TERM_ASK_MS once) */
+    double waited;
+    int said = term_answered(&waited);
+    if (said >= 0) {
+        rl[n].label = "asked:";
+        snprintf(rl[n].text, REPORT_TEXT, said ? "the terminal, once: answered in %.0f ms"
+                                               : "the terminal, once: no answer in %.0f ms (a late one still counts)",
+                 waited);
+        n++;
+    }
     if (term_pixels() == PIX_CELLS && term_mux_hint(0)) {
         rl[n].label = "pixels:";
         snprintf(rl[n].text, REPORT_TEXT, "cells (%s)", term_mux_hint(0));
