@@ -334,6 +334,7 @@ typedef struct {
     int top, left;              /* its top left corner on the outer terminal, cells from 0 */
     int pass;                   /* allow-passthrough is on for it */
     int shows;                  /* its window is the current one and no other pane is zoomed */
+    int attached;               /* a client (an outer terminal) is attached to its session */
 } MuxPane;
 
 /* The multiplexer the environment names (TMUX, STY, TERM). */
@@ -341,8 +342,8 @@ MuxKind mux_from_env(void);
 /* Ask tmux (the program, with TMUX_PANE's pane) about the pane, waiting
  * at most wait_ms. Returns 0, or -1 when tmux did not say. */
 int  mux_tmux_pane(MuxPane *m, int wait_ms);
-/* tmux's answer "top left passthrough window_active zoomed pane_active"
- * -> m. Returns 0, or -1 when it is not that. */
+/* tmux's answer "top left passthrough window_active zoomed pane_active
+ * clients" -> m. Returns 0, or -1 when it is not that. */
 int  mux_parse_pane(const char *s, MuxPane *m);
 /* b[0..n) for the outer terminal, wrapped in tmux's passthrough (ESCs
  * doubled), drawn from the pane's top left corner, the outer cursor put

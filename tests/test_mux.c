@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "../src/tty/term_internal.h"
 #include "clock.h"
 #include "tty.h"
 
@@ -91,22 +92,34 @@ Test(mux, the_wrapped_image_reaches_the_outer_terminal_at_the_pane)
     bytebuf_free(&b);
 }
 
+Test(mux, kitty_images_are_deleted_through_the_passthrough)
+{
+    /* the viewer's end and a hidden image: kitty's delete, which tmux
+     * drops unless passed through */
+    ByteBuf b = { .b = (uint8_t *)KITTY_DELETE_ALL_TMUX, .len = sizeof KITTY_DELETE_ALL_TMUX - 1 };
+    char body[64];
+    cr_assert_gt(unwrap(&b, body, sizeof body), 0);
+    cr_expect_str_eq(body, KITTY_DELETE_ALL);
+}
+
 /* ==== tmux's answer about the pane ==== */
 
 Test(mux, the_pane_answer_is_parsed)
 {
     MuxPane m;
-    cr_assert_eq(mux_parse_pane("11 40 1 1 0 1\n", &m), 0);
-    cr_expect(m.top == 11 && m.left == 40 && m.pass && m.shows);
-    cr_assert_eq(mux_parse_pane("0 0 0 1 0 0", &m), 0);
-    cr_expect(!m.pass && m.shows, "passthrough off; a pane not active shows when nothing is zoomed");
-    cr_assert_eq(mux_parse_pane("0 0 1 0 0 1", &m), 0);
+    cr_assert_eq(mux_parse_pane("11 40 1 1 0 1 1\n", &m), 0);
+    cr_expect(m.top == 11 && m.left == 40 && m.pass && m.shows && m.attached);
+    cr_assert_eq(mux_parse_pane("0 0 0 1 0 0 2", &m), 0);
+    cr_expect(!m.pass && m.shows && m.attached, "passthrough off; a pane not active shows when nothing is zoomed");
+    cr_assert_eq(mux_parse_pane("0 0 1 0 0 1 1", &m), 0);
     cr_expect(!m.shows, "its window is not the current one");
-    cr_assert_eq(mux_parse_pane("0 0 1 1 1 0", &m), 0);
+    cr_assert_eq(mux_parse_pane("0 0 1 1 1 0 1", &m), 0);
     cr_expect(!m.shows, "another pane zoomed");
-    cr_assert_eq(mux_parse_pane("0 0 1 1 1 1", &m), 0);
+    cr_assert_eq(mux_parse_pane("0 0 1 1 1 1 1", &m), 0);
     cr_expect(m.shows, "this pane zoomed");
-    const char *bad[] = { "", "1 2 3", "a b c d e f", "-1 0 1 1 0 1", "0 0 1 1 0 1 junk", "0 99999 1 1 0 1" };
+    cr_assert_eq(mux_parse_pane("0 0 1 1 0 1 0", &m), 0);
+    cr_expect(!m.attached, "no client attached");
+    const char *bad[] = { "", "1 2 3", "a b c d e f g", "-1 0 1 1 0 1 1", "0 0 1 1 0 1 1 junk", "0 99999 1 1 0 1 1" };
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
         cr_expect_eq(mux_parse_pane(bad[i], &m), -1, "'%s' is no answer", bad[i]);
 }
@@ -141,7 +154,7 @@ Test(mux, tmux_is_asked_about_its_pane)
     EnvSaved e = env_save();
     char dir[64];
     /* the script answers only when asked about the pane in TMUX_PANE */
-    fake_tmux(dir, sizeof dir, "[ \"$4\" = '%7' ] && [ \"$1\" = display-message ] && echo '3 41 1 1 0 1'");
+    fake_tmux(dir, sizeof dir, "[ \"$4\" = '%7' ] && [ \"$1\" = display-message ] && echo '3 41 1 1 0 1 1'");
     setenv("TMUX_PANE", "%7", 1);
     MuxPane m = { 0 };
     cr_expect_eq(mux_tmux_pane(&m, 2000), 0);
@@ -178,10 +191,11 @@ Test(mux, the_environment_names_the_multiplexer)
     cr_expect_eq(mux_from_env(), MUX_SCREEN);
     setenv("TERM", "tmux-256color", 1);
     cr_expect_eq(mux_from_env(), MUX_TMUX);
-    MuxPane off = { .pass = 0 }, on = { .pass = 1 };
+    MuxPane off = { .pass = 0, .attached = 1 }, on = { .pass = 1, .attached = 1 }, alone = { .pass = 0 };
     cr_expect_not_null(strstr(mux_why_cells(MUX_TMUX, &off, 0), "set -g allow-passthrough on"));
     cr_expect_not_null(strstr(mux_why_cells(MUX_TMUX, &off, 1), "set -g allow-passthrough on"));
     cr_expect_null(mux_why_cells(MUX_TMUX, &on, 0), "passthrough on: not tmux's doing");
+    cr_expect_null(mux_why_cells(MUX_TMUX, &alone, 0), "no client: no terminal to draw pixels, nothing to say");
     cr_expect_not_null(strstr(mux_why_cells(MUX_SCREEN, NULL, 0), "screen"));
     cr_expect_null(mux_why_cells(MUX_NONE, NULL, 0));
     env_restore(&e);

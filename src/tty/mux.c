@@ -33,7 +33,7 @@ extern char **environ;
 
 /* What tmux is asked: the pane's place, the option, whether it shows */
 #define MUX_FORMAT "#{pane_top} #{pane_left} #{allow-passthrough} #{window_active} " \
-                   "#{window_zoomed_flag} #{pane_active}"
+                   "#{window_zoomed_flag} #{pane_active} #{session_attached}"
 
 MuxKind mux_from_env(void)
 {
@@ -48,17 +48,17 @@ MuxKind mux_from_env(void)
     return MUX_NONE;
 }
 
-/* "11 40 1 1 0 1" -> m. Returns 0, or -1 when it is not that. */
 int mux_parse_pane(const char *s, MuxPane *m)
 {
-    int top, left, pass, active, zoomed, pane_active, used = 0;
-    if (sscanf(s, "%d %d %d %d %d %d%n", &top, &left, &pass, &active, &zoomed, &pane_active, &used) != 6 ||
+    int top, left, pass, active, zoomed, pane_active, clients, used = 0;
+    if (sscanf(s, "%d %d %d %d %d %d %d%n", &top, &left, &pass, &active, &zoomed, &pane_active, &clients, &used) != 7 ||
         top < 0 || left < 0 || top > 9999 || left > 9999 || (s[used] && s[used] != '\n'))
         return -1;
     m->top = top;
     m->left = left;
     m->pass = pass == 1;
     m->shows = active == 1 && (zoomed != 1 || pane_active == 1);
+    m->attached = clients > 0;
     return 0;
 }
 
@@ -144,7 +144,7 @@ const char *mux_why_cells(MuxKind k, const MuxPane *m, int brief)
 {
     if (k == MUX_SCREEN)
         return brief ? "screen: cells, no images" : "GNU screen passes no images to the terminal";
-    if (k == MUX_TMUX && m && !m->pass)
+    if (k == MUX_TMUX && m && !m->pass && m->attached)
         return brief ? "tmux: set -g allow-passthrough on" : "tmux passes no images: set -g allow-passthrough on";
     return NULL;
 }

@@ -183,7 +183,7 @@ static void blank_terminal(Term *t)
     send_cap(tigetstr("sgr0"));
     send_cap(tigetstr("clear"));
     if (t->pix == PIX_KITTY)
-        send_cap(KITTY_DELETE_ALL);
+        send_cap(pixels_through_mux(&t->pix_scan) ? KITTY_DELETE_ALL_TMUX : KITTY_DELETE_ALL);
     t->pix_shown = 0;
 }
 
@@ -510,7 +510,8 @@ static void ask_terminal(Term *t, const TermConfig *cfg)
     TermQuestions q = {
         .ask_bg = cfg->ask_bg,
         .ask_colour = ask_colour,
-        .pix = !asks ? PIXQ_NONE : t->mux == MUX_NONE ? PIXQ_PLAIN : t->pane.pass ? PIXQ_TMUX_PASS : PIXQ_TMUX,
+        .pix = !asks ? PIXQ_NONE : t->mux == MUX_NONE ? PIXQ_PLAIN
+             : t->pane.pass && t->pane.attached ? PIXQ_TMUX_PASS : PIXQ_TMUX,
         .scan = &t->pix_scan,
     };
     /* all in one write, one wait (TERM_ASK_MS at most); the answers, and

@@ -17,6 +17,8 @@
 /* Every kitty image placed, gone (kitty's images are not cells: a clear
  * leaves them). */
 #define KITTY_DELETE_ALL "\033_Ga=d,q=2\033\\"
+/* ... through tmux's passthrough (mux.c), its ESCs doubled */
+#define KITTY_DELETE_ALL_TMUX "\033Ptmux;\033\033_Ga=d,q=2\033\033\\\033\\"
 /* The first wait for a busy line; it doubles up to termdraw.c's
  * PACE_MAX_MS, and is back here after each frame. */
 #define PACE_MIN_MS 4

@@ -111,14 +111,10 @@ void term_hide_image(void)
     Term *t = term_session();
     if (!t || !t->pix_shown)
         return;
-    if (t->pix == PIX_KITTY && pixels_through_mux(&t->pix_scan)) {
-        ByteBuf w = { 0 };
-        if (!mux_wrap(&w, &t->pane, (const unsigned char *)KITTY_DELETE_ALL, sizeof KITTY_DELETE_ALL - 1))
-            out_add(t, (const char *)w.b, w.len);
-        bytebuf_free(&w);
-    } else if (t->pix == PIX_KITTY) {
+    if (t->pix == PIX_KITTY && pixels_through_mux(&t->pix_scan))
+        out_add(t, KITTY_DELETE_ALL_TMUX, sizeof KITTY_DELETE_ALL_TMUX - 1);
+    else if (t->pix == PIX_KITTY)
         out_add(t, KITTY_DELETE_ALL, sizeof KITTY_DELETE_ALL - 1);
-    }
     vt_invalidate(&t->vt);      /* sixel and iTerm2 images are covered by the cells, all of them */
     t->pix_shown = 0;
 }
