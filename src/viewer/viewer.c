@@ -293,8 +293,8 @@ static void draw_info(App *a, int cols, int rows, double out_ms)
     int said = term_answered(&waited);
     if (said >= 0) {
         rl[n].label = "asked:";
-        snprintf(rl[n].text, REPORT_TEXT, said ? "the terminal, once: answered in %.0f ms"
-                                               : "the terminal, once: no answer in %.0f ms (a late one still counts)",
+        snprintf(rl[n].text, REPORT_TEXT, said ? "once at start: answered in %.0f ms"
+                                               : "once at start: no answer in %.0f ms (a late one still counts)",
                  waited);
         n++;
     }
