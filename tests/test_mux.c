@@ -253,3 +253,46 @@ Test(mux, tmux_and_the_outer_terminal_are_told_apart)
     cr_expect_eq(detect_tmux("\033[?1;2;4c", 0, &s, q, sizeof q), PIX_SIXEL, "tmux 3.4 with sixel, passthrough off");
     cr_expect(!pixels_through_mux(&s));
 }
+
+/* ==== The start's one write ==== */
+
+Test(mux, the_start_asks_everything_in_one_write_and_waits_once)
+{
+    int out[2], in[2];
+    cr_assert_eq(pipe(out), 0);
+    cr_assert_eq(pipe(in), 0);
+    /* xterm over ssh answering all: its background, the SGR as set,
+     * its name and attributes (sixel) */
+    const char *answer = "\033]11;rgb:ffff/ffff/ffff\007\033P1$r0;38:2::1:2:3m\033\\"
+                         "\033P>|XTerm(379)\033\\\033[?63;1;2;4;6c";
+    cr_assert_eq(write(in[1], answer, strlen(answer)), (ssize_t)strlen(answer));
+    PixelScan scan;
+    pixels_scan_init(&scan, 0);
+    TermQuestions q = { .ask_bg = 1, .ask_colour = 1, .pix = PIXQ_PLAIN, .scan = &scan };
+    TermAnswers ans;
+    cr_expect_eq(termbg_ask(out[1], in[0], 2000, NULL, &q, &ans), 1, "the background said");
+    cr_expect(ans.answered && ans.waited_ms < 1000, "the attributes' answer ended the wait (%.0f ms)", ans.waited_ms);
+    cr_expect_eq(ans.colour, COLOUR_TRUE);
+    cr_expect_eq(pixels_scanned(&scan), PIX_SIXEL);
+    close(out[1]);
+    char asked[512];
+    ssize_t n = read(out[0], asked, sizeof asked - 1);
+    asked[n > 0 ? n : 0] = 0;
+    cr_expect_eq(strncmp(asked, "\033]11;?", 6), 0, "the background first");
+    const char *da = strstr(asked, "\033[c");
+    cr_expect(da && !strstr(da + 1, "\033[c") && da[3] == 0, "one attributes' question, last");
+    cr_expect_not_null(strstr(asked, "\033P$qm"), "the SGR asked back");
+    cr_expect_not_null(strstr(asked, "a=q"), "kitty's query");
+    close(out[0]);
+    /* silence: the wait once, no more */
+    cr_assert_eq(pipe(out), 0);
+    pixels_scan_init(&scan, 0);
+    double t0 = now_ms();
+    termbg_ask(out[1], in[0], TERM_ASK_MS, NULL, &q, &ans);
+    cr_expect(!ans.answered);
+    cr_expect(now_ms() - t0 < TERM_ASK_MS + 150, "a silent terminal: one wait of %d ms", TERM_ASK_MS);
+    close(out[0]);
+    close(out[1]);
+    close(in[0]);
+    close(in[1]);
+}
