@@ -563,7 +563,7 @@ static int run(App *a, int fps)
         }
         /* through tmux: asked now and then whether the pane moved or
          * shows again (another window was current) */
-        int pane = !a->spin && !todo ? term_pane_poll_ms() : -1;
+        int pane = a->pixels && !a->spin && !todo ? term_pane_poll_ms() : -1;
         if (pane >= 0 && (timeout < 0 || pane < timeout))
             timeout = pane;
         if (d.pix_due > 0) {
@@ -596,7 +596,7 @@ static int run(App *a, int fps)
         }
         if (got < 0)
             return RUN_INPUT_ENDED;     /* no key will come: waiting would spin */
-        if (!a->spin && !todo && term_pane_moved()) {
+        if (a->pixels && !a->spin && !todo && term_pane_moved()) {
             term_hide_image();
             todo |= RE_RENDER;          /* the cells again, then the image where the pane is now */
         }
