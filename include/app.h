@@ -30,16 +30,25 @@ typedef struct {
 } Placement;
 
 /* Points marked on the model (the viewer's measuring mode, --marks):
- * vertices of the scene's objects, drawn over the picture with the
- * lines between them (measuremarks.c), and the cursor that picks them. */
+ * points of the scene's objects (a vertex, an edge's midpoint or a
+ * face's centre), drawn over the picture with the lines between them
+ * (measuremarks.c), and the cursor that picks them. */
 #define MEASURE_MARKS 3
+enum { MEASURE_VERTEX, MEASURE_EDGE, MEASURE_FACE };
+typedef struct {
+    int      obj;                       /* the scene object it is on */
+    int      kind;                      /* MEASURE_VERTEX, MEASURE_EDGE or MEASURE_FACE */
+    uint32_t a, b;                      /* 0-based: vertex a of the object's mesh; the midpoint
+                                           of the edge from its vertex a to b (a < b); the centre
+                                           (corners' mean) of the object's own face a */
+} MeasurePick;
 typedef struct {
     int      n;                         /* marks, 0 to 3 */
-    int      obj[MEASURE_MARKS];        /* the scene object each is on */
-    uint32_t v[MEASURE_MARKS];          /* its vertex, 0-based, of the object's mesh */
+    MeasurePick mark[MEASURE_MARKS];
     int      cursor;                    /* the cursor shown (the measuring mode) */
-    int      cur_obj;
-    uint32_t cur_v;
+    MeasurePick cur;
+    int      wide;                      /* the cursor snaps to edge midpoints and face centres
+                                           too, not to vertices only (the viewer's S in M) */
 } MeasureMarks;
 
 typedef struct {
@@ -120,6 +129,7 @@ typedef struct {
     int         show;           /* --show: what the picture shows (DiffShow: both a b heat) */
     int         quiet;          /* --quiet: no report, the exit status says */
     int         textconv;       /* --textconv: --check as git's textconv driver wants it */
+    int         preview;        /* --preview WxH: a file manager's preview (w, h: its cells) */
     /* will it print, and its measures (printq.h) */
     double      bed[3];         /* --bed W x D x H, in the report's unit; 0: not given */
     const char *unit;           /* --unit mm|in|m: the files' unit (the figures then in mm); NULL: as stated */
@@ -298,15 +308,27 @@ void print_tint_status(const struct Pipeline *p, char *buf, size_t len);
 struct Pipeline;
 void app_measure_draw(struct Pipeline *p);
 /* The cursor moved from where it is (none: the picture's middle) to
- * the nearest vertex visible in the last frame in the direction dx, dy
+ * the nearest point visible in the last frame in the direction dx, dy
  * (screen, y down; 0, 0: the nearest to where it is): 0, or -1 when
- * there is none that way (the cursor stays). */
+ * there is none that way (the cursor stays). The points are vertices,
+ * and with marks.wide edge midpoints and face centres too. */
 int  app_measure_step(struct Pipeline *p, int dx, int dy);
-/* What the marks measure, in words: the cursor's vertex and position,
- * the distance and dx dy dz of two marks, the angle of three; in file
- * units (each object's file's coordinates). */
-void app_measure_words(const Scene *s, const MeasureMarks *m, char *buf, size_t len);
-/* The marks as --marks writes them ("v12,2:v40"), "" none. */
+/* The cursor moved to the visible point nearest the last frame's
+ * sample (x, y) (a click; wide: edge midpoints and face centres too,
+ * whatever marks.wide says): 0, or -1 when none is visible (the cursor
+ * stays). */
+int  app_measure_pick(struct Pipeline *p, double x, double y, int wide);
+/* What the marks measure, in words: the cursor's point ("wide snap: "
+ * first when it takes edge midpoints and face centres) and position
+ * (not when brief), the distance and dx dy dz of two marks, the angle of
+ * three; in file units (each object's file's coordinates). */
+void app_measure_words(const Scene *s, const MeasureMarks *m, int brief, char *buf, size_t len);
+/* One point as --marks writes it: "v12", "2:e3-4" (an edge's
+ * midpoint), "f7" (a face's centre). */
+void app_measure_pick_word(const MeasurePick *k, char *buf, size_t len);
+/* One point of --marks' words at *s (vN, eA-B, fN, each optionally
+ * after I: for object I): 0 with *out and *s past it, or -1. */
+int  app_measure_pick_parse(const char **s, MeasurePick *out);
 void app_measure_option(const MeasureMarks *m, char *buf, size_t len);
 
 typedef struct Pipeline {
@@ -493,6 +515,9 @@ typedef struct {
     float       overhang_deg;
     int         thickness;      /* --thickness */
     const MeasureMarks *marks;  /* the points measured (NULL: none) */
+    const SectionPlane *planes; /* the section planes that cut the picture (none when the
+                                   viewer's cut is off) */
+    int         nplanes;
 } ViewSettings;
 
 /* viewcmd.c: the command line that reproduces the view (the files of o,

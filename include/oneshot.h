@@ -18,6 +18,10 @@ int  oneshot_run(const Options *o, Scene *s);
  * when --print or -o asks for one, then the report (--json: JSON).
  * Returns 0 sound, 3 problems found, 1 a file not read. */
 int  oneshot_check(const Options *o);
+/* --preview WxH FILE: the picture in the cells above the last row, the
+ * check's verdict in it; a file not read says why in one line there.
+ * Returns 0, or 1 when the file was not read or a write failed. */
+int  oneshot_preview(const Options *o);
 /* --diff A B without the viewer: the picture when --print or -o asks,
  * then the report (--json: JSON; --quiet: none). Returns 0 the same
  * within the tolerance, 3 they differ, 1 an output not written. */

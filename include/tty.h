@@ -55,8 +55,13 @@ typedef struct {
     int key;            /* TE_KEY */
     int button;         /* TE_DRAG: 1 left, 3 right */
     int dx, dy;         /* TE_DRAG, TE_WHEEL */
-    int x, y;           /* TE_CLICK: the cell, from the window's top left */
+    int x, y;           /* TE_CLICK, TE_DRAG: the cell (a drag's: where it reached),
+                           from the window's top left */
+    int mods;           /* TE_CLICK, TE_DRAG: TE_SHIFT | TE_META | TE_CTRL, as the
+                           terminal reports them (many keep Shift for selecting) */
 } TermEvent;
+
+enum { TE_SHIFT = 1, TE_META = 2, TE_CTRL = 4 };
 
 typedef struct {
     FILE       *out, *in;       /* NULL: stdout, stdin */

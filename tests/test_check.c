@@ -66,46 +66,19 @@ static void quad(uint32_t a, uint32_t b, uint32_t c, uint32_t d)
     face(4, (uint32_t[]){ a, b, c, d });
 }
 
-/* The six faces of the axis-aligned cube at (x, y, z) of side s, wound
- * counter-clockwise seen from outside, as quads from corner indices. */
-static const uint32_t CUBE_FACES[6][4] = {
-    { 0, 3, 2, 1 },     /* z = 0, seen from -z */
-    { 4, 5, 6, 7 },     /* z = s */
-    { 0, 1, 5, 4 },     /* y = 0 */
-    { 2, 3, 7, 6 },     /* y = s */
-    { 0, 4, 7, 3 },     /* x = 0 */
-    { 1, 2, 6, 5 },     /* x = s */
-};
-
-/* Its eight corners: bit 0 of the index is x, the corners go round the
- * bottom then the top. */
+/* The cube of testlib (tl_mesh_cube): its corners' first index; whole,
+ * less face `skip` (-1 none), faces of mask `flip` turned, as triangles
+ * when tris. */
 static uint32_t cube_verts(float x, float y, float z, float s)
 {
-    uint32_t v0 = M.nverts;
-    static const float c[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 },
-                                   { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
-    for (int i = 0; i < 8; i++)
-        vert(x + s * c[i][0], y + s * c[i][1], z + s * c[i][2]);
-    return v0;
+    uint32_t v;
+    cr_assert_eq(tl_mesh_cube_verts(&M, x, y, z, s, &v), 0);
+    return v;
 }
 
-/* A cube; `skip` a face left out (-1 none), `flip` a mask of faces wound
- * the other way, as triangles when tris. */
 static void cube_ex(float x, float y, float z, float s, int skip, unsigned flip, int tris)
 {
-    uint32_t v = cube_verts(x, y, z, s);
-    for (int f = 0; f < 6; f++) {
-        if (f == skip)
-            continue;
-        uint32_t q[4];
-        for (int k = 0; k < 4; k++)
-            q[k] = v + CUBE_FACES[f][flip >> f & 1 ? 3 - k : k];
-        if (tris) {
-            tri(q[0], q[1], q[2]);
-            tri(q[0], q[2], q[3]);
-        } else
-            face(4, q);
-    }
+    cr_assert_eq(tl_mesh_cube(&M, x, y, z, s, skip, flip, tris), 0);
 }
 
 static void cube(float x, float y, float z, float s)
@@ -246,7 +219,7 @@ Test(check, open_box_with_two_holes)
     /* top and bottom both missing: a tube, two loops */
     uint32_t v = cube_verts(0, 0, 0, 1);
     for (int f = 2; f < 6; f++)
-        quad(v + CUBE_FACES[f][0], v + CUBE_FACES[f][1], v + CUBE_FACES[f][2], v + CUBE_FACES[f][3]);
+        quad(v + tl_cube_faces[f][0], v + tl_cube_faces[f][1], v + tl_cube_faces[f][2], v + tl_cube_faces[f][3]);
     const CheckCounts *c = run();
     cr_assert_eq(c->boundary_edges, 8);
     cr_assert_eq(c->holes, 2);
@@ -626,7 +599,7 @@ Test(check, uv_seam_cube_is_watertight)
     for (int f = 0; f < 6; f++) {
         uint32_t q[4];
         for (int k = 0; k < 4; k++) {
-            const float *p = M.pos + 3 * (size_t)(v + CUBE_FACES[f][k]);
+            const float *p = M.pos + 3 * (size_t)(v + tl_cube_faces[f][k]);
             q[k] = vert(p[0], p[1], p[2]);
         }
         face(4, q);

@@ -330,6 +330,21 @@ Test(keys, sgr_press_drag_release)
     EXPECT_NONE("motion after the release is no drag", "\033[<35;20;20M");
 }
 
+/* The modifiers a report carries (+4 Shift, +8 Meta, +16 Ctrl: the
+ * measuring mode's wide snap), and where a drag has reached */
+Test(keys, clicks_and_drags_carry_their_modifiers_and_cell)
+{
+    Events e = FEED("\033[<16;10;5M\033[<16;10;5m\033[<4;3;2M\033[<36;6;9M\033[<4;6;9m\033[<24;1;1M\033[<0;7;7M");
+    cr_assert_eq(e.n, 5, "%s", show(&e));
+    cr_expect(e.ev[0].type == TE_CLICK && e.ev[0].button == 1 && e.ev[0].mods == TE_CTRL && e.ev[0].x == 9,
+              "Ctrl: %s", show(&e));
+    cr_expect(e.ev[1].type == TE_CLICK && e.ev[1].mods == TE_SHIFT, "Shift: %s", show(&e));
+    cr_expect(e.ev[2].type == TE_DRAG && e.ev[2].x == 5 && e.ev[2].y == 8 && e.ev[2].dx == 3 && e.ev[2].dy == 7,
+              "the drag's cell: %s", show(&e));
+    cr_expect(e.ev[3].type == TE_CLICK && e.ev[3].mods == (TE_CTRL | TE_META), "Ctrl-Meta: %s", show(&e));
+    cr_expect(e.ev[4].type == TE_CLICK && e.ev[4].mods == 0, "none: %s", show(&e));
+}
+
 Test(keys, the_right_button_drags_and_the_middle_means_nothing)
 {
     Events e = FEED("\033[<2;1;1M\033[<34;3;1M\033[<2;3;1m\033[<1;5;5M\033[<33;9;9M\033[<1;9;9m");

@@ -69,27 +69,11 @@ static void tri(uint32_t a, uint32_t b, uint32_t c)
     face(3, (uint32_t[]){ a, b, c });
 }
 
-static const uint32_t CUBE_FACES[6][4] = {
-    { 0, 3, 2, 1 }, { 4, 5, 6, 7 }, { 0, 1, 5, 4 }, { 2, 3, 7, 6 }, { 0, 4, 7, 3 }, { 1, 2, 6, 5 },
-};
-
-/* A cube of side s at (x, y, z); `skip` a face left out (-1 none),
- * `flip` a mask of faces wound the other way. */
+/* A cube of side s at (x, y, z) (testlib's); `skip` a face left out (-1
+ * none), `flip` a mask of faces wound the other way. */
 static void cube(float x, float y, float z, float s, int skip, unsigned flip)
 {
-    static const float c[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 },
-                                   { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
-    uint32_t v = M.nverts;
-    for (int i = 0; i < 8; i++)
-        vert(x + s * c[i][0], y + s * c[i][1], z + s * c[i][2]);
-    for (int f = 0; f < 6; f++) {
-        if (f == skip)
-            continue;
-        uint32_t q[4];
-        for (int k = 0; k < 4; k++)
-            q[k] = v + CUBE_FACES[f][flip >> f & 1 ? 3 - k : k];
-        face(4, q);
-    }
+    cr_assert_eq(tl_mesh_cube(&M, x, y, z, s, skip, flip, 0), 0);
 }
 
 static void run(uint32_t locations)

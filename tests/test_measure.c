@@ -84,7 +84,7 @@ Test(measure, the_cursor_reaches_every_shown_vertex_and_no_hidden_one)
         int nshown = facing_vertices(&s, shown);
         cr_assert_eq(nshown, 7, "three faces turned to the viewer: %d vertices", nshown);
         cr_assert_eq(app_measure_step(&p, 0, 0), 0);
-        reached[p.marks.cur_v] = 1;
+        reached[p.marks.cur.a] = 1;
         /* from every vertex reached, every arrow, until nothing new */
         for (int round = 0; round < 8; round++)
             for (uint32_t v = 0; v < 8; v++) {
@@ -92,15 +92,15 @@ Test(measure, the_cursor_reaches_every_shown_vertex_and_no_hidden_one)
                     continue;
                 static const int dir[4][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 } };
                 for (int d = 0; d < 4; d++) {
-                    p.marks.cur_v = v;
+                    p.marks.cur.a = v;
                     double a[2], b[2];
                     screen_of(&p, v, a);
                     if (app_measure_step(&p, dir[d][0], dir[d][1]))
                         continue;
-                    screen_of(&p, p.marks.cur_v, b);
+                    screen_of(&p, p.marks.cur.a, b);
                     cr_assert_gt((b[0] - a[0]) * dir[d][0] + (b[1] - a[1]) * dir[d][1], 0.5,
                                  "view %d: a step from v%u goes the arrow's way", vi, v + 1);
-                    reached[p.marks.cur_v] = 1;
+                    reached[p.marks.cur.a] = 1;
                 }
             }
         for (int i = 0; i < 8; i++)
@@ -118,9 +118,9 @@ Test(measure, marks_measure_and_are_drawn_on_their_vertices)
     look(&s, 30, 25);
     Pipeline p;
     cr_assert_eq(pipeline_init(&p, &s, hsr_algos[0], 1), 0);
-    p.marks = (MeasureMarks){ .n = 3, .obj = { 0, 0, 0 }, .v = { 1, 0, 3 } };     /* (1,0,0) (0,0,0) (0,1,0) */
+    p.marks = (MeasureMarks){ .n = 3, .mark = { { .a = 1 }, { .a = 0 }, { .a = 3 } } };     /* (1,0,0) (0,0,0) (0,1,0) */
     char words[160];
-    app_measure_words(&s, &p.marks, words, sizeof words);
+    app_measure_words(&s, &p.marks, 0, words, sizeof words);
     cr_assert(strstr(words, "AB 1 (dx -1 dy 0 dz 0), BC 1, angle ABC 90"), "%s", words);
     char opt[64];
     app_measure_option(&p.marks, opt, sizeof opt);
@@ -140,6 +140,134 @@ Test(measure, marks_measure_and_are_drawn_on_their_vertices)
         cr_assert_eq(cyan[0], 0);
         cr_assert_gt(cyan[1], 40, "turn %d: %d cyan pixels", turn, cyan[1]);
         look(&s, 100, 10);      /* turned: the marks follow their vertices */
+    }
+    pipeline_free(&p);
+    scene_free(&s);
+}
+
+/* A point of the cube (model space) in samples of the last frame. */
+static void screen_of_point(Pipeline *p, const double q[3], double out[2])
+{
+    const Scene *s = p->scene;
+    Mat4 mv = m4_mul(camera_view(&s->cam), object_matrix(&s->objs[0]));
+    Vec3 w = m4_point(&mv, v3((float)q[0], (float)q[1], (float)q[2]));
+    double sp[3];
+    cr_assert_eq(screen_view_point(&p->sp, w.x, w.y, w.z, sp), 0);
+    out[0] = sp[0];
+    out[1] = sp[1];
+}
+
+/* The cube's face f (0-based) faces the viewer: from the normals, not
+ * from the depth buffer the cursor reads. */
+static int face_facing(const Scene *s, uint32_t f)
+{
+    Mat4 mv = m4_mul(camera_view(&s->cam), object_matrix(&s->objs[0]));
+    const Mesh *m = &s->meshes[0];
+    Vec3 p[3];
+    for (int k = 0; k < 3; k++) {
+        const float *q = &m->pos[3 * s->poly_corner[scene_poly_c0(s, f) + (uint32_t)k]];
+        p[k] = m4_point(&mv, v3(q[0], q[1], q[2]));
+    }
+    return v3_cross(v3_sub(p[1], p[0]), v3_sub(p[2], p[0])).z > 1e-6f;
+}
+
+/* A click (app_measure_pick) on a face's centre or an edge's midpoint
+ * of a cube seen from three quarters: wide, the cursor lands on that
+ * very point when a face of it faces the viewer, and never on a hidden
+ * one; narrow (vertices only) it lands on a vertex. The centres of the
+ * bottom and top faces are 1 apart, straight up. */
+Test(measure, a_wide_click_snaps_to_shown_face_centres_and_edge_midpoints)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "c.obj", cube), 0);
+    look(&s, 30, 25);
+    Pipeline p;
+    cr_assert_eq(pipeline_init(&p, &s, hsr_algos[0], 1), 0);
+    cr_assert_eq(pipeline_render(&p, 160, 120, 1, 0, 1), 0);
+    const Mesh *m = &s.meshes[0];
+    int faces_seen = 0, edges_seen = 0;
+    for (uint32_t f = 0; f < 6; f++) {
+        const uint32_t *c = &s.poly_corner[scene_poly_c0(&s, f)];     /* the cube's quads stay whole */
+        double q[3] = { 0, 0, 0 }, at[2];
+        for (int k = 0; k < 4; k++)
+            for (int j = 0; j < 3; j++)
+                q[j] += m->pos[3 * c[k] + (uint32_t)j] / 4.0;
+        screen_of_point(&p, q, at);
+        cr_assert_eq(app_measure_pick(&p, at[0], at[1], 0), 0);
+        cr_expect_eq(p.marks.cur.kind, MEASURE_VERTEX, "narrow: a vertex");
+        cr_assert_eq(app_measure_pick(&p, at[0], at[1], 1), 0);
+        int facing = face_facing(&s, f);
+        int got = p.marks.cur.kind == MEASURE_FACE && p.marks.cur.a == f;
+        cr_expect_eq(got, facing, "face %u: %s", f + 1, facing ? "shown, its centre not taken" : "hidden, taken");
+        faces_seen += got;
+        /* its edges' midpoints: shown when this face or its neighbour faces the viewer */
+        for (int k = 0; k < 4; k++) {
+            uint32_t a = c[k], b = c[(k + 1) % 4], lo = a < b ? a : b, hi = a < b ? b : a;
+            int other_facing = 0;
+            for (uint32_t g = 0; g < 6; g++) {
+                const uint32_t *d = &s.poly_corner[scene_poly_c0(&s, g)];
+                for (int i = 0; g != f && i < 4; i++)
+                    if ((d[i] == a && d[(i + 1) % 4] == b) || (d[i] == b && d[(i + 1) % 4] == a))
+                        other_facing = face_facing(&s, g);
+            }
+            double e[3];
+            for (int j = 0; j < 3; j++)
+                e[j] = (m->pos[3 * a + (uint32_t)j] + m->pos[3 * b + (uint32_t)j]) / 2.0;
+            screen_of_point(&p, e, at);
+            cr_assert_eq(app_measure_pick(&p, at[0], at[1], 1), 0);
+            int on = p.marks.cur.kind == MEASURE_EDGE && p.marks.cur.a == lo && p.marks.cur.b == hi;
+            cr_expect_eq(on, facing || other_facing, "edge v%u-v%u of face %u", lo + 1, hi + 1, f + 1);
+            edges_seen += on;
+        }
+    }
+    cr_expect_eq(faces_seen, 3, "three faces turned to the viewer");
+    cr_expect_eq(edges_seen, 2 * 9, "nine edges shown, each met from both of its faces");
+    /* the centres of the bottom (f1, z 0) and top (f2, z 1) faces */
+    p.marks = (MeasureMarks){ .n = 2, .mark = { { .kind = MEASURE_FACE, .a = 0 }, { .kind = MEASURE_FACE, .a = 1 } },
+                              .cursor = 1, .cur = { .kind = MEASURE_EDGE, .a = 0, .b = 1 }, .wide = 1 };
+    char words[200];
+    app_measure_words(&s, &p.marks, 0, words, sizeof words);
+    cr_expect_str_eq(words, "wide snap: e1-2 0.5 0 0, AB 1 (dx 0 dy 0 dz 1)");
+    app_measure_words(&s, &p.marks, 1, words, sizeof words);
+    cr_expect_str_eq(words, "wide snap: e1-2, AB 1 (dx 0 dy 0 dz 1)");
+    char opt[64];
+    app_measure_option(&p.marks, opt, sizeof opt);
+    cr_expect_str_eq(opt, "f1,f2");
+    pipeline_free(&p);
+    scene_free(&s);
+}
+
+/* Cut at z = 0.5, the cube's top vertices are gone: a click where one
+ * shows uncut never lands on it (the depth buffer alone would take it:
+ * it is in front of the cap). */
+Test(measure, a_click_never_lands_on_a_cut_away_vertex)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "c.obj", cube), 0);
+    look(&s, 30, 25);
+    Pipeline p;
+    cr_assert_eq(pipeline_init(&p, &s, hsr_algos[0], 1), 0);
+    char err[160];
+    cr_assert_eq(section_parse("z=0.5", &p.planes[0], err, sizeof err), 0, "%s", err);
+    for (int cut = 0; cut < 2; cut++) {
+        p.nplanes = cut;
+        cr_assert_eq(pipeline_render(&p, 160, 120, 1, 0, 1), 0);
+        int top = 0;
+        for (uint32_t v = 4; v < 8; v++) {
+            double at[2];
+            screen_of(&p, v, at);
+            for (int wide = 0; wide < 2; wide++) {
+                cr_assert_eq(app_measure_pick(&p, at[0], at[1], wide), 0);
+                if (p.marks.cur.kind == MEASURE_VERTEX)
+                    top += p.marks.cur.a == v;
+            }
+        }
+        int shown[8], top_shown = 0;
+        facing_vertices(&s, shown);
+        for (int v = 4; v < 8; v++)
+            top_shown += shown[v];
+        cr_assert_gt(top_shown, 2);
+        cr_expect_eq(top, cut ? 0 : 2 * top_shown, "cut %d: %d clicks on a top vertex land on it", cut, top);
     }
     pipeline_free(&p);
     scene_free(&s);

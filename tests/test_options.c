@@ -501,8 +501,9 @@ Test(options, the_view_command_writes_the_options_marked_for_it)
     s.objs[0].scale = s.objs[0].home_scale * 2;
     s.objs[0].up = UP_Z;
     light_set(&s.light, 10, 20, 0.5f);
-    MeasureMarks mk = { .n = 2, .obj = { 0, 1 }, .v = { 4, 2 } };
-    ViewSettings v = { MODE_ASCII, SHADE_SMOOTH, 45, 1, 9, "span", 1, 1, 3, 2, 1, 1, 1, 1, 30, 1, &mk };
+    MeasureMarks mk = { .n = 2, .mark = { { .a = 4 }, { .obj = 1, .a = 2 } } };
+    SectionPlane plane = section_axis_plane(2, 0, 0.5);
+    ViewSettings v = { MODE_ASCII, SHADE_SMOOTH, 45, 1, 9, "span", 1, 1, 3, 2, 1, 1, 1, 1, 30, 1, &mk, &plane, 1 };
     char cmd[4096];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     scene_free(&s);

@@ -272,6 +272,53 @@ Test(printq, a_solid_box_is_as_thick_as_it_is_across)
     mesh_free(&m);
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The median of the faces measured, against a sort: two solid boxes
+ * (10 x 20 x 5 and 3 x 7 x 1 apart: 1 1 3 3 5 5 7 7 10 10 20 20, the
+ * median between 5 and 7: 6), and the first with a lone square 3 above
+ * it, facing up (3 5 5 10 10 20 20: the middle one, 10). */
+Test(printq, the_median_is_the_middle_of_the_faces_measured)
+{
+    const double lo1[3] = { 0, 0, 0 }, hi1[3] = { 10, 20, 5 }, lo2[3] = { 30, 0, 0 }, hi2[3] = { 33, 7, 1 };
+    const double want[2] = { 6, 10 };
+    for (int c = 0; c < 2; c++) {
+        Mesh m;
+        tl_mesh_init(&m, "boxes.obj");
+        add_box(&m, lo1, hi1, 1, 0);
+        if (c == 0) {
+            add_box(&m, lo2, hi2, 1, 0);
+        } else {
+            uint32_t b = m.nverts, q[4] = { b, b + 1, b + 2, b + 3 };
+            cr_assert_eq(tl_mesh_vertex(&m, 2, 2, 8), 0);
+            cr_assert_eq(tl_mesh_vertex(&m, 8, 2, 8), 0);
+            cr_assert_eq(tl_mesh_vertex(&m, 8, 8, 8), 0);
+            cr_assert_eq(tl_mesh_vertex(&m, 2, 8, 8), 0);
+            cr_assert_eq(tl_mesh_face(&m, q, 4), 0);
+        }
+        cr_assert_eq(tl_mesh_finish(&m), 0);
+        PrintqThickness t;
+        char err[160];
+        cr_assert_eq(printq_thickness(&m, 2, &t, err, sizeof err), 0, "%s", err);
+        double v[16];
+        uint32_t k = 0;
+        for (uint32_t f = 0; f < t.nfaces && k < 16; f++)
+            if (t.face[f] >= 0)
+                v[k++] = t.face[f];
+        cr_assert_eq(k, c ? 7u : 12u, "faces measured: %u", k);
+        qsort(v, k, sizeof *v, cmp_double);
+        double ref = k % 2 ? v[k / 2] : (v[k / 2 - 1] + v[k / 2]) / 2;
+        cr_expect_float_eq(ref, want[c], 1e-5, "case %d: the sort's median %g", c, ref);
+        cr_expect_eq(t.median, ref, "case %d: median %g, the sort's %g", c, t.median, ref);
+        printq_thickness_free(&t);
+        mesh_free(&m);
+    }
+}
+
 Test(printq, an_open_face_has_no_thickness)
 {
     Mesh m;
@@ -319,6 +366,15 @@ Test(printq, ray_meets_the_triangle_every_triangle_tried_says)
     Bvh b;
     char err[160];
     cr_assert_eq(bvh_build(&b, pos, 3 * NT, tri, NULL, NT, err, sizeof err), 0, "%s", err);
+    /* the brute force: the same test on every triangle (a soup with no
+     * bvh ids: id is the index) through a BVH of one triangle each, made
+     * once for every ray */
+    Bvh *one = calloc(NT, sizeof *one);
+    cr_assert_not_null(one);
+    for (int t = 0; t < NT; t++) {
+        uint32_t c3[3] = { 0, 1, 2 };
+        cr_assert_eq(bvh_build(&one[t], &pos[9 * t], 3, c3, NULL, 1, err, sizeof err), 0);
+    }
     int hits = 0;
     for (int r = 0; r < NR; r++) {
         double o[3] = { urand() * 10, urand() * 10, urand() * 10 }, d[3];
@@ -334,19 +390,13 @@ Test(printq, ray_meets_the_triangle_every_triangle_tried_says)
         uint32_t skip = r % 5 == 0 ? (uint32_t)(r % NT) : BVH_NONE;
         BvhRayHit h;
         bvh_ray(&b, o, d, INFINITY, skip, &h);
-        /* the brute force: the same test on every triangle (a soup with
-         * no bvh ids: id is the index) through a BVH of one triangle */
         double best = INFINITY;
         for (int t = 0; t < NT; t++) {
             if ((uint32_t)t == skip)
                 continue;
-            Bvh one;
-            uint32_t c3[3] = { 0, 1, 2 };
-            cr_assert_eq(bvh_build(&one, &pos[9 * t], 3, c3, NULL, 1, err, sizeof err), 0);
             BvhRayHit h1;
-            bvh_ray(&one, o, d, INFINITY, BVH_NONE, &h1);
+            bvh_ray(&one[t], o, d, INFINITY, BVH_NONE, &h1);
             best = fmin(best, h1.t);
-            bvh_free(&one);
         }
         cr_assert(h.t == best, "ray %d: %.17g against %.17g", r, h.t, best);
         hits += isfinite(best);
@@ -354,6 +404,9 @@ Test(printq, ray_meets_the_triangle_every_triangle_tried_says)
             cr_assert(b.id[h.tri] != skip);
     }
     cr_assert(hits > NR / 4, "the test meets something: %d", hits);
+    for (int t = 0; t < NT; t++)
+        bvh_free(&one[t]);
+    free(one);
     bvh_free(&b);
     free(pos);
     free(tri);

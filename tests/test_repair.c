@@ -66,34 +66,19 @@ static void tri(uint32_t a, uint32_t b, uint32_t c)
     face(3, (uint32_t[]){ a, b, c });
 }
 
-/* The six faces of the unit cube, counter-clockwise seen from outside. */
-static const uint32_t CUBE_FACES[6][4] = {
-    { 0, 3, 2, 1 }, { 4, 5, 6, 7 }, { 0, 1, 5, 4 }, { 2, 3, 7, 6 }, { 0, 4, 7, 3 }, { 1, 2, 6, 5 },
-};
-
+/* testlib's cube (tl_mesh_cube): its corners' first index; a cube at
+ * (x, y, z) of side s, face `skip` left out (-1: none), the faces of
+ * mask `flip` wound the other way. */
 static uint32_t cube_verts(float x, float y, float z, float s)
 {
-    uint32_t v0 = M.nverts;
-    static const float c[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 },
-                                   { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
-    for (int i = 0; i < 8; i++)
-        vert(x + s * c[i][0], y + s * c[i][1], z + s * c[i][2]);
-    return v0;
+    uint32_t v;
+    cr_assert_eq(tl_mesh_cube_verts(&M, x, y, z, s, &v), 0);
+    return v;
 }
 
-/* A cube at (x, y, z) of side s: face `skip` left out (-1: none), the
- * faces of mask `flip` wound the other way. */
 static void cube_ex(float x, float y, float z, float s, int skip, unsigned flip)
 {
-    uint32_t v = cube_verts(x, y, z, s);
-    for (int f = 0; f < 6; f++) {
-        if (f == skip)
-            continue;
-        uint32_t q[4];
-        for (int k = 0; k < 4; k++)
-            q[k] = v + CUBE_FACES[f][flip >> f & 1 ? 3 - k : k];
-        face(4, q);
-    }
+    cr_assert_eq(tl_mesh_cube(&M, x, y, z, s, skip, flip, 0), 0);
 }
 
 static void repair_opts(const RepairOpts *o)
@@ -295,7 +280,7 @@ Test(repair, cube_without_a_face_is_closed_with_volume_1_and_area_6)
     for (uint32_t f = 0; f < 5; f++) {
         int skip = f >= 1;
         for (uint32_t k = 0; k < 4; k++)
-            cr_assert_eq(M.corner[M.face_start[f] + k], CUBE_FACES[f + skip][k]);
+            cr_assert_eq(M.corner[M.face_start[f] + k], tl_cube_faces[f + skip][k]);
     }
     cr_assert_eq(memcmp(M.pos, before, sizeof before), 0, "positions moved");
     cr_assert_eq(R.left_holes, 0);
@@ -440,7 +425,7 @@ Test(repair, cube_with_one_face_flipped)
     cr_assert_eq(R.flipped, 1);
     cr_assert_eq(R.outward, 0);
     /* the face flipped keeps its first corner: the same triangles */
-    cr_assert_eq(M.corner[M.face_start[3]], CUBE_FACES[3][3]);
+    cr_assert_eq(M.corner[M.face_start[3]], tl_cube_faces[3][3]);
     assert_check_sound();
 }
 
@@ -624,7 +609,7 @@ Test(repair, a_stray_fin_triangle_is_dropped)
     cr_assert_eq(memcmp(M.pos, cube, sizeof cube), 0, "the cube's corners moved");
     for (uint32_t f = 0; f < 6; f++)
         for (uint32_t k = 0; k < 4; k++)
-            cr_assert_eq(M.corner[M.face_start[f] + k], CUBE_FACES[f][k]);
+            cr_assert_eq(M.corner[M.face_start[f] + k], tl_cube_faces[f][k]);
     assert_check_sound();
 }
 
@@ -721,7 +706,7 @@ Test(repair, a_point_twice_in_a_row_is_dropped_from_its_face)
     start();
     uint32_t v = cube_verts(0, 0, 0, 1);
     for (int f = 0; f < 6; f++) {
-        const uint32_t *q = CUBE_FACES[f];
+        const uint32_t *q = tl_cube_faces[f];
         if (f == 1)
             face(5, (uint32_t[]){ v + q[0], v + q[1], v + q[1], v + q[2], v + q[3] });
         else
@@ -731,7 +716,7 @@ Test(repair, a_point_twice_in_a_row_is_dropped_from_its_face)
     cr_assert_eq(R.repeated, 1);
     cr_assert_eq(M.face_start[2] - M.face_start[1], 4, "the top keeps four corners");
     for (uint32_t k = 0; k < 4; k++)
-        cr_assert_eq(M.corner[M.face_start[1] + k], CUBE_FACES[1][k]);
+        cr_assert_eq(M.corner[M.face_start[1] + k], tl_cube_faces[1][k]);
     Ref r;
     reference(&M, &r);
     assert_watertight(&r);
@@ -798,7 +783,7 @@ Test(repair, split_vertices_are_welded)
     for (int f = 0; f < 6; f++) {
         uint32_t q[4];
         for (int k = 0; k < 4; k++) {
-            const float *p = c[CUBE_FACES[f][k]];
+            const float *p = c[tl_cube_faces[f][k]];
             q[k] = vert(p[0], p[1], p[2]);
         }
         face(4, q);
@@ -820,7 +805,7 @@ Test(repair, weld_within_a_distance)
     /* the top, on corners of its own a millionth off */
     uint32_t q[4];
     for (int k = 0; k < 4; k++) {
-        const float *p = M.pos + 3 * CUBE_FACES[1][k];
+        const float *p = M.pos + 3 * tl_cube_faces[1][k];
         q[k] = vert(p[0] + 1e-6f, p[1], p[2] - 1e-6f);
     }
     face(4, q);
@@ -839,7 +824,7 @@ Test(repair, weld_within_a_distance)
     start();
     cube_ex(0, 0, 0, 1, 1, 0);
     for (int k = 0; k < 4; k++) {
-        const float *p = M.pos + 3 * CUBE_FACES[1][k];
+        const float *p = M.pos + 3 * tl_cube_faces[1][k];
         q[k] = vert(p[0] + 1e-6f, p[1], p[2] - 1e-6f);
     }
     face(4, q);

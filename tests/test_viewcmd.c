@@ -51,10 +51,12 @@ static void load(Options *o, Scene *s)
     cr_assert_eq(app_load_scene(o, s, err, sizeof err), 0, "%s", err);
 }
 
-static void render_ids(Scene *s, int cull, int32_t *out)
+static void render_ids(Scene *s, int cull, const SectionPlane *planes, int nplanes, int32_t *out)
 {
     Pipeline p;
     cr_assert_eq(pipeline_init(&p, s, hsr_find("zbuffer"), 1), 0);
+    memcpy(p.planes, planes, (size_t)nplanes * sizeof *planes);
+    p.nplanes = nplanes;
     cr_assert_eq(pipeline_render(&p, 160, 96, 1.0f, cull, 0), 0);
     memcpy(out, p.fb.ids, 160 * 96 * sizeof *out);
     pipeline_free(&p);
@@ -87,17 +89,34 @@ static void round_trip(int persp)
     s.objs[2].roll = -1.2f;
     s.objs[0].scale = s.objs[0].home_scale * 1.15f;
     light_set(&s.light, 20, 10, 0.3f);
-    MeasureMarks mk = { .n = 3, .obj = { 0, 1, 0 }, .v = { 6, 2, 11 } };
-    ViewSettings v = { MODE_HALF, SHADE_SMOOTH, 45, 1, 9, "span", 1, 1, 3, 2, 1, 0, 0, 1, 20, 1, &mk };
+    /* a vertex, an edge's midpoint on the second object, a face's centre */
+    MeasureMarks mk = { .n = 3,
+                        .mark = { { .a = 6 },
+                                  { .obj = 1, .kind = MEASURE_EDGE, .a = 2, .b = 7 },
+                                  { .kind = MEASURE_FACE, .a = 11 } } };
+    /* the cut: an axis plane, one that keeps what lies above it (its
+     * words start with '-'), a slanted one */
+    SectionPlane planes[3];
+    char err[160];
+    const char *words[3] = { "z=0.25", "-x=-0.5", "0,0.1,0:0,1,0.25" };
+    for (int i = 0; i < 3; i++)
+        cr_assert_eq(section_parse(words[i], &planes[i], err, sizeof err), 0, "%s", err);
+    ViewSettings v = { MODE_HALF, SHADE_SMOOTH, 45, 1, 9, "span", 1, 1, 3, 2, 1, 0, 0, 1, 20, 1, &mk, planes, 3 };
     char cmd[4096];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_assert(strncmp(cmd, "zview ", 6) == 0, "%s", cmd);
+    cr_expect(strstr(cmd, " --marks v7,2:e3-8,f12 "), "the marks in words: %s", cmd);
+    cr_expect(strstr(cmd, " --section z=0.25 --section=-x=-0.5 --section 0,0.1,0:0,1,0.25 "), "the planes: %s", cmd);
 
     char *argv[128];
     int argc = split(cmd, argv, 128);
     Options o2;
-    char err[256];
     cr_assert_eq(cli_parse(argc, argv, &o2, err, sizeof err), 0, "%s: %s", err, cmd);
+    cr_assert_eq(o2.nsections, 3, "%s", cmd);
+    for (int i = 0; i < 3; i++)
+        cr_expect(memcmp(o2.section[i].q, planes[i].q, sizeof planes[i].q) == 0 &&
+                      memcmp(o2.section[i].n, planes[i].n, sizeof planes[i].n) == 0 && o2.section[i].axis == planes[i].axis,
+                  "plane %d comes back: %s", i, cmd);
     cr_expect_eq(o2.mode, MODE_HALF);
     cr_expect_eq(o2.shade, SHADE_SMOOTH);
     cr_expect_eq(o2.crease, 45);
@@ -111,8 +130,7 @@ static void round_trip(int persp)
     cr_expect(o2.no_textures, "textures hidden");
     cr_expect(o2.overhang && o2.overhang_deg == 20, "overhangs past 20 degrees: %s", cmd);
     cr_expect(o2.thickness, "thickness");
-    cr_expect(o2.marks.n == 3 && o2.marks.obj[1] == 1 && o2.marks.v[1] == 2 && o2.marks.v[2] == 11 &&
-              o2.marks.obj[2] == 0, "the marks: %s", cmd);
+    cr_expect(o2.marks.n == 3 && memcmp(o2.marks.mark, mk.mark, sizeof mk.mark) == 0, "the marks: %s", cmd);
     cr_assert_eq(o2.nfiles, 2);
     Scene t;
     load(&o2, &t);
@@ -131,12 +149,15 @@ static void round_trip(int persp)
         cr_expect(memcmp(&p->offset, &q->offset, sizeof p->offset) == 0, "object %d place: %s", i, cmd);
         cr_expect(p->scale == q->scale, "object %d scale: %s", i, cmd);
     }
-    int32_t *ia = malloc(160 * 96 * 4), *ib = malloc(160 * 96 * 4);
-    render_ids(&s, 1, ia);
-    render_ids(&t, 1, ib);
+    int32_t *ia = malloc(160 * 96 * 4), *ib = malloc(160 * 96 * 4), *ic = malloc(160 * 96 * 4);
+    render_ids(&s, 1, planes, 3, ia);
+    render_ids(&t, 1, o2.section, o2.nsections, ib);
+    render_ids(&s, 1, planes, 0, ic);
     cr_expect_eq(memcmp(ia, ib, 160 * 96 * 4), 0, "the same picture from: %s", cmd);
+    cr_expect_neq(memcmp(ia, ic, 160 * 96 * 4), 0, "the cut shows in the picture");
     free(ia);
     free(ib);
+    free(ic);
     scene_free(&s);
     scene_free(&t);
 }
@@ -161,7 +182,7 @@ Test(viewcmd, defaults_are_left_out_and_odd_file_names_quoted)
     memset(&s, 0, sizeof s);
     s.cam.zoom = 1;
     light_set(&s.light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
-    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL };
+    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL, NULL, 0 };
     char cmd[512];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_expect_str_eq(cmd, "zview 'it'\\''s here.obj' --yaw 0 --pitch 0");
@@ -191,7 +212,7 @@ Test(viewcmd, numbers_are_the_shortest_that_come_back)
     s.cam.zoom = 1.15f;
     s.cam.pan = v3(0.1f, -0.3f, 0);
     light_set(&s.light, -34.5f, LIGHT_PITCH, 0.3f);
-    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL };
+    ViewSettings v = { -1, SHADE_LAMBERT, SHADE_CREASE_DEFAULT, 0, 0, NULL, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL, NULL, 0 };
     char cmd[512];
     cr_assert_eq(view_command(cmd, sizeof cmd, &o, &s, &v), 0);
     cr_expect_str_eq(cmd, "zview m.obj --yaw -25 --pitch 30 --zoom 1.15 --pan 0.1,-0.3 --light -34.5,37 --ambient 0.3");

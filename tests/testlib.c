@@ -213,6 +213,43 @@ int tl_mesh_face(Mesh *m, const uint32_t *corner, uint32_t n)
     return 0;
 }
 
+const uint32_t tl_cube_faces[6][4] = {
+    { 0, 3, 2, 1 },     /* z = 0, seen from -z */
+    { 4, 5, 6, 7 },     /* z = s */
+    { 0, 1, 5, 4 },     /* y = 0 */
+    { 2, 3, 7, 6 },     /* y = s */
+    { 0, 4, 7, 3 },     /* x = 0 */
+    { 1, 2, 6, 5 },     /* x = s */
+};
+
+int tl_mesh_cube_verts(Mesh *m, float x, float y, float z, float s, uint32_t *first)
+{
+    static const float c[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 },
+                                   { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
+    *first = m->nverts;
+    for (int i = 0; i < 8; i++)
+        if (tl_mesh_vertex(m, x + s * c[i][0], y + s * c[i][1], z + s * c[i][2]))
+            return -1;
+    return 0;
+}
+
+int tl_mesh_cube(Mesh *m, float x, float y, float z, float s, int skip, unsigned flip, int tris)
+{
+    uint32_t v;
+    if (tl_mesh_cube_verts(m, x, y, z, s, &v))
+        return -1;
+    for (int f = 0; f < 6; f++) {
+        if (f == skip)
+            continue;
+        uint32_t q[4];
+        for (int k = 0; k < 4; k++)
+            q[k] = v + tl_cube_faces[f][flip >> f & 1 ? 3 - k : k];
+        if (tris ? tl_mesh_face(m, q, 3) || tl_mesh_face(m, (uint32_t[]){ q[0], q[2], q[3] }, 3) : tl_mesh_face(m, q, 4))
+            return -1;
+    }
+    return 0;
+}
+
 int tl_mesh_point(Mesh *m, uint32_t v)
 {
     uint32_t *pt = grown(m->point, (size_t)m->npoints + 1, sizeof *pt);

@@ -44,6 +44,15 @@ int  tl_mesh_line(Mesh *m, const uint32_t *corner, uint32_t n);
  * mesh with vertices and nothing else becomes a point cloud (every
  * vertex a point, no index array), as loaded clouds are. */
 int  tl_mesh_finish(Mesh *m);
+/* The axis-aligned cube at (x, y, z) of side s: its eight corners (bit 0
+ * of the index is x, round the bottom then the top; the first's index in
+ * *first) and its faces as quads of those (tl_cube_faces: counter-
+ * clockwise seen from outside), face `skip` left out (-1: none), the
+ * faces of the mask `flip` wound the other way, as two triangles each
+ * when tris. 0 or -1 as above. */
+extern const uint32_t tl_cube_faces[6][4];
+int  tl_mesh_cube_verts(Mesh *m, float x, float y, float z, float s, uint32_t *first);
+int  tl_mesh_cube(Mesh *m, float x, float y, float z, float s, int skip, unsigned flip, int tris);
 
 /* A view as the command line gives it (app_load_scene): fitted at one
  * turn, then turned, zoomed and panned. */

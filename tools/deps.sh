@@ -25,7 +25,9 @@ set -e
 # (test_mux.sh, which also runs tmux inside xterm -ti vt340).
 # admesh: the STL repair tool --repair is held against on broken parts
 # (tests/e2e/test_repair_parts.sh, tools/repair-table.sh).
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick kitty libgl1 libgl1-mesa-dri fonts-dejavu-core admesh mlterm screen"
+# lf and fzf: the file manager and the finder whose previews
+# doc/previewers.md's recipes give (tests/e2e/test_previewers.sh).
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick kitty libgl1 libgl1-mesa-dri fonts-dejavu-core admesh lf fzf mlterm screen"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive

@@ -111,12 +111,6 @@ mutate() {
         }' "$list" "$2"
 }
 
-# the first line of a mutant's snippet, to say where it went
-first_from() {
-    awk -v n="$1" '/^name:/ { cur = $2; next }
-        cur == n && index($0, "from:") == 1 { v = substr($0, 6); sub(/^[ \t]+/, "", v); print v; exit }' "$list"
-}
-
 # killer LOG: the first test a log names as failed (a unit test, an
 # end-to-end check, a fuzz harness), else make's last word
 killer() {
@@ -250,41 +244,16 @@ main() {
     work=$(mktemp -d "${TMPDIR:-/tmp}/zview-mutate.XXXXXX") || exit 2
     trap 'rm -rf "$work"' EXIT
     trap 'exit 130' INT TERM HUP
-    tmpf=$work/mutated
     src=$here
     if [ -n "$MUTATE_REV" ]; then
         src=$work/rev
         mkdir -p "$src"
         git archive "$MUTATE_REV" | tar -C "$src" -xf - || exit 2
     fi
-    bad=0
-    for m in $names; do
-        f=$(field "$m" file)
-        # the copy a mutant's make test runs in holds that mutant: its
-        # text is gone from there by design
-        [ "$m" = "${ZV_MUTANT:-}" ] && continue
-        # nor has any mutant of its file to be found there: the line it
-        # changed may be another mutant's text
-        [ -n "${ZV_MUTANT_FILE:-}" ] && [ "$f" = "$ZV_MUTANT_FILE" ] && continue
-        if ! echo "$all" | grep -qx -- "$m"; then
-            echo "mutate: $m: no such mutant in $list" >&2
-            bad=1
-        elif [ -z "$f" ] || [ ! -f "$src/$f" ]; then
-            echo "mutate: $m: no file '$f'" >&2
-            bad=1
-        elif [ -z "$(field "$m" why)" ]; then
-            echo "mutate: $m: no why: (what a user would see if it went in)" >&2
-            bad=1
-        elif ! n=$(mutate "$m" "$src/$f" 2>&1 >"$tmpf"); then
-            where=$(cd "$src" && grep -rlF -- "$(first_from "$m")" src include 2>/dev/null | tr '\n' ' ')
-            echo "mutate: $m: its text occurs ${n:-0} times in $f, not once (its first line is in: ${where:-no file})" >&2
-            bad=1
-        elif cmp -s "$tmpf" "$src/$f"; then
-            echo "mutate: $m: changes nothing" >&2
-            bad=1
-        fi
-    done
-    [ $bad = 0 ] || exit 2
+    # every one at once (tools/mutcheck.py: the file, the why, the text
+    # found once, a change), but ZV_MUTANT and ZV_MUTANT_FILE's
+    # shellcheck disable=SC2086
+    python3 "$here/tools/mutcheck.py" "$list" "$src" $names || exit 2
     if [ $check = 1 ]; then
         echo "mutate: all $(echo "$names" | wc -w) mutants apply${ZV_MUTANT:+ (but those of $ZV_MUTANT_FILE, where $ZV_MUTANT is applied)}"
         exit 0

@@ -432,6 +432,11 @@ static int check_combinations(const Options *o, char *err, size_t errlen)
         snprintf(err, errlen, "%s goes with --diff", diff_only);
         return -1;
     }
+    if (o->preview && (o->nfiles != 1 || o->check || o->info || o->bench || o->diff || o->repair || o->out ||
+                       o->turntable || o->dump_ids || o->dump_screen || o->nmeasure || o->json)) {
+        snprintf(err, errlen, "--preview WxH shows one FILE%s", o->nfiles != 1 ? "" : ", alone (no other output)");
+        return -1;
+    }
     if (o->textconv && !o->check) {
         snprintf(err, errlen, "--textconv goes with --check");
         return -1;

@@ -30,12 +30,22 @@ static int bad(const OptCall *c, const char *what)
     return -1;
 }
 
-static int parse_float(const char *s, float *out)
+/* The whole of s as a finite number. */
+static int parse_double(const char *s, double *out)
 {
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (end == s || *end || errno || !isfinite(v) || fabs(v) > 1e9)
+    if (end == s || *end || errno || !isfinite(v))
+        return -1;
+    *out = v;
+    return 0;
+}
+
+static int parse_float(const char *s, float *out)
+{
+    double v;
+    if (parse_double(s, &v) || fabs(v) > 1e9)
         return -1;
     *out = (float)v;
     return 0;
@@ -211,6 +221,13 @@ static int set_size(Options *o, const OptCall *c)
         return -1;
     }
     return 0;
+}
+
+/* --preview WxH: a file manager's pane of W x H cells. */
+static int set_preview(Options *o, const OptCall *c)
+{
+    o->preview = 1;
+    return set_size(o, c);
 }
 
 static int set_view(Options *o, const OptCall *c)
@@ -549,10 +566,8 @@ static int set_repair(Options *o, const OptCall *c)
 
 static int set_weld(Options *o, const OptCall *c)
 {
-    char *end;
-    errno = 0;
-    double v = strtod(c->val, &end);
-    if (end == c->val || *end || errno || !(v > 0 && v <= 1e9))
+    double v;
+    if (parse_double(c->val, &v) || !(v > 0 && v <= 1e9))
         return bad(c, "a distance in file units, more than 0 and at most 1e9");
     o->weld = v;
     return 0;
@@ -569,10 +584,8 @@ static int set_max_hole(Options *o, const OptCall *c)
 
 static int set_tolerance(Options *o, const OptCall *c)
 {
-    char *end;
-    errno = 0;
-    double v = strtod(c->val, &end);
-    if (end == c->val || *end || errno || !isfinite(v) || v < 0)
+    double v;
+    if (parse_double(c->val, &v) || v < 0)
         return bad(c, "a distance in the files' units, 0 or more");
     o->tolerance = v;
     return 0;
@@ -627,10 +640,8 @@ static int set_overhang(Options *o, const OptCall *c)
 
 static int set_min_thickness(Options *o, const OptCall *c)
 {
-    char *end;
-    errno = 0;
-    double v = strtod(c->val, &end);
-    if (end == c->val || *end || errno || !(v > 0 && v <= 1e9))
+    double v;
+    if (parse_double(c->val, &v) || !(v > 0 && v <= 1e9))
         return bad(c, "a thickness in the report's unit, more than 0");
     o->min_thickness = v;
     return 0;
@@ -645,31 +656,19 @@ static int set_measure(Options *o, const OptCall *c)
     return 0;
 }
 
-/* --marks A,B,C: vertices vN (of the first object) or I:vN (of object I). */
+/* --marks A,B,C: vertices vN, edge midpoints eA-B and face centres fN
+ * of the first object, or after I: of object I. */
 static int set_marks(Options *o, const OptCall *c)
 {
-    static const char what[] = "up to three vertices vN or I:vN, comma apart (e.g. v12,2:v40)";
+    static const char what[] =
+        "up to three points, comma apart: vertices vN, edge midpoints eA-B, face centres fN, or I:vN of object I";
     MeasureMarks *m = &o->marks;
     m->n = 0;
     for (const char *p = c->val; *p;) {
-        char *end;
-        long obj = 1;
-        if (*p != 'v') {
-            errno = 0;
-            obj = strtol(p, &end, 10);
-            if (end == p || *end != ':' || errno || obj < 1 || obj > 65535)
-                return bad(c, what);
-            p = end + 1;
-        }
-        if (*p != 'v' || p[1] < '1' || p[1] > '9' || m->n == MEASURE_MARKS)
+        if (m->n == MEASURE_MARKS || app_measure_pick_parse(&p, &m->mark[m->n]) || (*p && *p != ','))
             return bad(c, what);
-        errno = 0;
-        unsigned long long v = strtoull(p + 1, &end, 10);
-        if (errno || v > UINT32_MAX || (*end && *end != ','))
-            return bad(c, what);
-        m->obj[m->n] = (int)obj - 1;
-        m->v[m->n++] = (uint32_t)(v - 1);
-        p = *end ? end + 1 : end;
+        m->n++;
+        p += *p == ',';
     }
     return m->n ? 0 : bad(c, what);
 }
@@ -788,8 +787,8 @@ const OptSpec cli_options[] = {
     { "section", 0, "PLANE", NULL, OPTSEC_OUTPUT,
       "cut the model open: AXIS=V (x, y or z at V, file\nunits; -x=V keeps what lies above V) or\n"
       "X,Y,Z:NX,NY,NZ (a point and a normal); what lies\nbeyond every plane given goes, the cut is capped;\n"
-      "with --check --json each plane's area, perimeter\nand loops (/ in the viewer)",
-      set_section, 0, 0 },
+      "with --check each plane's area, perimeter and\nloops (/ in the viewer)",
+      set_section, 0, OPT_VIEWCMD },
     { "parts", 0, NULL, NULL, OPTSEC_OUTPUT, "each connected part of the model its own colour\n(@ in the viewer)",
       NULL, FLAG(parts), OPT_VIEWCMD },
     { "diff", 0, NULL, NULL, OPTSEC_OUTPUT,
@@ -824,8 +823,12 @@ const OptSpec cli_options[] = {
       "print the distance and dx, dy, dz from A to B (and\nthe angle ABC): points X,Y,Z or vertices vN",
       set_measure, 0, 0 },
     { "marks", 0, "A,B,C", NULL, OPTSEC_OUTPUT,
-      "mark up to three vertices (vN, or I:vN of object\nI) on the picture, joined (the viewer's M keeps\nthem)",
+      "mark up to three points (vertices vN, edge\nmidpoints eA-B, face centres fN; I:vN of object I)\non the picture, joined (the viewer's M keeps them)",
       set_marks, 0, OPT_VIEWCMD },
+    { "preview", 0, "WxH", NULL, OPTSEC_OUTPUT,
+      "as a file manager's previewer (lf, fzf, ranger,\nyazi): FILE in W x H cells, the last row the\n"
+      "check's verdict; a file not read says why there",
+      set_preview, 0, 0 },
     { "textconv", 0, NULL, NULL, OPTSEC_OUTPUT,
       "with --check: the report as git's textconv wants\nit (the file unnamed, exit status 0 once read)", NULL,
       FLAG(textconv), 0 },

@@ -206,8 +206,15 @@ int view_command(char *buf, size_t len, const Options *opt, const Scene *s, cons
         put(&o, " --overhang=%s", num(v->overhang_deg).s);
     if (v->thickness)
         put(&o, " --thickness");
+    /* the cut: a plane whose words start with '-' (-x=2) is joined to
+     * its option, which no parser then takes for an option of its own */
+    for (int i = 0; i < v->nplanes; i++) {
+        char t[SECTION_TEXT];
+        section_text(&v->planes[i], t, sizeof t);
+        put(&o, " --section%c%s", t[0] == '-' ? '=' : ' ', t);
+    }
     if (v->marks && v->marks->n) {
-        char marks[64];
+        char marks[128];
         app_measure_option(v->marks, marks, sizeof marks);
         put(&o, " --marks %s", marks);
     }

@@ -91,6 +91,11 @@ int main(int argc, char **argv)
         mesh_formats_print(stdout);
         return finish_stdout();
     }
+    if (o.preview) {
+        /* a file manager's pane: the picture and the verdict, or why not */
+        rc = oneshot_preview(&o);
+        return rc ? rc : finish_stdout();
+    }
     if (o.repair) {
         /* IN loaded, repaired, written to OUT, OUT read back and checked */
         rc = oneshot_repair(&o);

@@ -159,7 +159,30 @@ void check_text_counts(Out *out, const CheckCounts *c, const CheckLocations *loc
     out_printf(out, "%s%-14s%s\n", ind, meshcheck_sound(c) ? "verdict" : "problems", words);
 }
 
-static void text_file(Out *out, const FileCheck *fc)
+/* --section's figures, a line a plane: area, perimeter, closed loops,
+ * open chains and where the first few end (the figures of the JSON's
+ * "sections"). */
+#define TEXT_ENDS 3
+static void text_sections(Out *out, const Options *o, const FileCheck *fc, const char *unit, const char *ind)
+{
+    char u1[48], u2[48];
+    for (int i = 0; i < o->nsections; i++) {
+        const SectionFigures *f = &fc->sec[i];
+        char text[SECTION_TEXT];
+        section_text(&o->section[i], text, sizeof text);
+        out_printf(out, "%s%-14s%s: area %g%s, perimeter %g%s, %u closed loop%s, %u open chain%s", ind, "section", text,
+                   f->area, unit_of(unit, 2, u2, sizeof u2), f->perimeter, unit_of(unit, 1, u1, sizeof u1), f->loops,
+                   f->loops == 1 ? "" : "s", f->chains, f->chains == 1 ? "" : "s");
+        for (uint32_t k = 0; k < f->nends && k < TEXT_ENDS; k++) {
+            const float *a = f->ends[k][0], *b = f->ends[k][1];
+            out_printf(out, "%s%g %g %g to %g %g %g", k ? "; " : " (from ", (double)a[0], (double)a[1], (double)a[2],
+                       (double)b[0], (double)b[1], (double)b[2]);
+        }
+        out_printf(out, "%s\n", f->nends > TEXT_ENDS ? "; ...)" : f->nends ? ")" : "");
+    }
+}
+
+static void text_file(Out *out, const Options *o, const FileCheck *fc)
 {
     /* the file's name and what its loader said, made safe (safetext.h) */
     char path[SAFETEXT_NAME];
@@ -192,6 +215,7 @@ static void text_file(Out *out, const FileCheck *fc)
         out_printf(out, "  all %u objects\n", nobj);
         check_text_counts(out, &mc->file, NULL, unit, "    ");
         print_figures_text(out, &fc->pf, unit, "    ");
+        text_sections(out, o, fc, unit, "    ");
     } else {
         /* one object with faces (or none): the file's figures are its */
         const CheckLocations *loc = NULL;
@@ -201,6 +225,7 @@ static void text_file(Out *out, const FileCheck *fc)
         out_printf(out, "\n");
         check_text_counts(out, &mc->file, loc, unit, "  ");
         print_figures_text(out, &fc->pf, unit, "  ");
+        text_sections(out, o, fc, unit, "  ");
     }
 }
 
@@ -409,7 +434,7 @@ int oneshot_check(const Options *o)
         json_report(&out, o, fcs, o->nfiles);
     else {
         for (int i = 0; i < o->nfiles; i++)
-            text_file(&out, &fcs[i]);
+            text_file(&out, o, &fcs[i]);
         text_verdict(&out, fcs, o->nfiles);
     }
     if (out_flush(&out)) {

@@ -279,6 +279,27 @@ int project_emit_poly(RangeJob *j, uint32_t k, uint32_t c0, uint32_t c1, uint32_
     return 0;
 }
 
+/* The kept polygons keep[0 .. nk) of the chunk from polygon k
+ * (instance inst): triangles at corners c0 + 3 keep[i] when c0 is not
+ * UINT32_MAX (AVX2 takes them four at a time), else any polygons. */
+static int emit_kept(RangeJob *j, uint32_t k, uint32_t c0, uint32_t inst, const uint32_t *keep, uint32_t nk)
+{
+    const Scene *s = j->s;
+#ifdef ZV_AVX2
+    if (c0 != UINT32_MAX && j->simd >= SIMD_AVX2)
+        return project_emit_tris_avx2(j, k, c0, inst, keep, nk);
+#endif
+    for (uint32_t i = 0; i < nk; i++) {
+        uint32_t q = k + keep[i];
+        uint32_t a = c0 != UINT32_MAX ? c0 + 3 * keep[i] : scene_poly_c0(s, q);
+        uint32_t b = c0 != UINT32_MAX ? a + 3 : scene_poly_c0(s, q + 1);
+        int rv = project_emit_poly(j, q, a, b, inst + keep[i]);
+        if (rv)
+            return rv;
+    }
+    return 0;
+}
+
 /* project.h */
 int project_range(RangeJob *j)
 {
@@ -312,22 +333,13 @@ int project_range(RangeJob *j)
             }
             empty += n - nk;
         }
-        if (j->cmask) {
-            /* the polygons a plane cuts or removes, in their places in
-             * the map (cut.c); before the second screening, which would
-             * judge a triangle whole where its kept part, with corners
-             * of its own, may cover a sample it misses */
-            uint32_t cutk[CHUNK], ncut = 0;
+        uint32_t cutk[CHUNK], ncut = 0;
+        if (j->cmask)
+            /* the polygons a plane cuts or removes, drawn below in their
+             * places (cut.c); taken out before the second screening,
+             * which would judge a triangle whole where its kept part,
+             * with corners of its own, may cover a sample it misses */
             nk = project_cut_split(j, k, keep, nk, cutk, &ncut);
-            for (uint32_t i = 0; i < ncut; i++) {
-                uint32_t q = k + cutk[i];
-                int rv = project_emit_cut(j, q, scene_poly_c0(s, q), scene_poly_c0(s, q + 1), inst + cutk[i]);
-                if (rv) {
-                    sp->culled_empty += empty;
-                    return rv;
-                }
-            }
-        }
         if (tris) {
             /* the kept ones' points are read next, scattered over an
              * array too big for the caches: ask for all of them at once
@@ -350,24 +362,23 @@ int project_range(RangeJob *j)
             for (uint32_t i = 0; s->poly_lface && i < nk; i++)
                 __builtin_prefetch(&s->poly_lface[k + (keep[i] & ~KEEP_HIT)]);
         }
-#ifdef ZV_AVX2
-        if (tris && j->simd >= SIMD_AVX2) {
-            int rv = project_emit_tris_avx2(j, k, c0, inst, keep, nk);
+        /* in polygon order, every thread count alike (a part's chunks
+         * start where the part does): the kept ones up to each cut one,
+         * then the cut one's kept part */
+        for (uint32_t c = 0, at = 0;; c++) {
+            uint32_t lim = c < ncut ? cutk[c] : UINT32_MAX, e = c < ncut ? at : nk;
+            while (e < nk && (keep[e] & ~KEEP_HIT) < lim)
+                e++;
+            int rv = emit_kept(j, k, tris ? c0 : UINT32_MAX, inst, keep + at, e - at);
+            if (!rv && c < ncut)
+                rv = project_emit_cut(j, k + lim, scene_poly_c0(s, k + lim), scene_poly_c0(s, k + lim + 1), inst + lim);
             if (rv) {
                 sp->culled_empty += empty;
                 return rv;
             }
-            continue;
-        }
-#endif
-        for (uint32_t i = 0; i < nk; i++) {
-            uint32_t q = k + keep[i];
-            uint32_t a = tris ? c0 + 3 * keep[i] : scene_poly_c0(s, q), b = tris ? a + 3 : scene_poly_c0(s, q + 1);
-            int rv = project_emit_poly(j, q, a, b, inst + keep[i]);
-            if (rv) {
-                sp->culled_empty += empty;
-                return rv;
-            }
+            if (c == ncut)
+                break;
+            at = e;
         }
     }
     sp->culled_empty += empty;

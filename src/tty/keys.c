@@ -156,13 +156,15 @@ static int plain(KeyParser *p, TermEvent *ev, size_t *used)
 
 /* A report, as xterm numbers it: b the button code (low two bits the
  * button, 0 left, 1 middle, 2 right, 3 released in the X10 form; +32
- * motion; +64 the wheel), x and y the cell from 0. A press is a click
- * (the sketch places a corner there) and starts a drag; motion with the
+ * motion; +64 the wheel; +4 Shift, +8 Meta, +16 Ctrl held), x and y
+ * the cell from 0. A press is a click (the sketch places a corner there,
+ * the measuring mode its cursor) and starts a drag; motion with the
  * button held moves it by whole cells; the release ends it. */
 static int mouse(KeyParser *p, int b, int x, int y, int release, TermEvent *ev)
 {
     x = x < 0 ? 0 : x;          /* a report of cell 0 (none is) reads as the first */
     y = y < 0 ? 0 : y;
+    ev->mods = (b & 4 ? TE_SHIFT : 0) | (b & 8 ? TE_META : 0) | (b & 16 ? TE_CTRL : 0);
     if (b & 64) {
         if (release || (b & 3) > 1)
             return R_DROP;      /* wheels report no release; 66, 67 are the sideways wheel */
@@ -177,8 +179,8 @@ static int mouse(KeyParser *p, int b, int x, int y, int release, TermEvent *ev)
         ev->button = p->drag_button;
         ev->dx = x - p->drag_x;
         ev->dy = y - p->drag_y;
-        p->drag_x = x;
-        p->drag_y = y;
+        p->drag_x = ev->x = x;
+        p->drag_y = ev->y = y;
         if (!(b & 32))
             p->drag_button = 0;         /* the release: the drag ends where it is */
         return ev->dx || ev->dy ? R_EVENT : R_DROP;

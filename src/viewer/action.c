@@ -670,7 +670,8 @@ const KeyRow viewer_keys[] = {
     { "/ ; ' \\ |", "cut: on, slide, turn, next",
       { { '/', act_cut }, { ';', act_cut_back }, { '\'', act_cut_on }, { '\\', act_cut_turn }, { '|', act_cut_next } } },
     { "V", "diff: A, B, heat map, both", { { 'V', act_diff_show } } },
-    { "M", "measure: arrows Enter Bksp", { { 'M', act_measure } } },
+    { "M", "measure: arrows click Enter", { { 'M', act_measure } } },
+    { "S (in M)", "snap to edge mids, centres", { { 0, NULL } } },
     { "space", "auto-rotate", { { ' ', act_spin } } },
     { "O", "open a file (Tab completes)", { { 'O', act_open } } },
     { "X Delete", "remove the selected object", { { 'X', act_remove }, { TK_DEL, act_remove } } },
@@ -682,7 +683,7 @@ const KeyRow viewer_keys[] = {
     { "?", "this help", { { '?', act_help } } },
     { "Ctrl-L", "redraw", { { TK_CTRL_L, act_redraw } } },
     { "q Esc", "quit (Esc: stop a load)", { { 'q', act_quit }, { TK_ESC, act_escape } } },
-    { "left drag", "turn", { { 0, NULL } } },
+    { "left drag", "turn (in M: the cursor)", { { 0, NULL } } },
     { "right drag", "move", { { 0, NULL } } },
 };
 const int viewer_keys_n = (int)(sizeof viewer_keys / sizeof viewer_keys[0]);

@@ -237,9 +237,10 @@ static void check_status(const App *a, int max_items, char *buf, size_t len);
  * check's */
 void viewer_check_status(const App *a, int max_items, char *buf, size_t len)
 {
-    /* the measuring mode's figures outrank the rest */
+    /* the measuring mode's figures outrank the rest (brief: the
+     * cursor's coordinates give way) */
     if (a->measuring || a->p.marks.n) {
-        app_measure_words(a->s, &a->p.marks, buf, len);
+        app_measure_words(a->s, &a->p.marks, max_items == 0, buf, len);
         if (buf[0])
             return;
     }

@@ -145,6 +145,8 @@ ViewSettings viewer_view_settings(const App *a)
         .overhang_deg = a->p.overhang_deg,
         .thickness = a->p.thickness,
         .marks = &a->p.marks,
+        .planes = a->p.planes,
+        .nplanes = a->p.cut_off ? 0 : a->p.nplanes,
     };
     return v;
 }
@@ -518,9 +520,15 @@ static Reaction dispatch(App *a, const TermEvent *ev)
     /* the pointer turns and moves the model under any box, but not under
      * sketch mode, whose canvas stays put; a click draws only when sketch
      * mode is on top */
-    case TE_DRAG:   return a->sk.on ? RE_NONE : viewer_drag(a, ev->button, ev->dx, ev->dy);
+    case TE_DRAG:
+        /* the measuring mode's left drag moves its cursor, not the model */
+        if (viewer_mode(a) == VM_VIEW && a->measuring && ev->button == 1)
+            return viewer_measure_mouse(a, ev->x, ev->y, ev->mods, 1);
+        return a->sk.on ? RE_NONE : viewer_drag(a, ev->button, ev->dx, ev->dy);
     case TE_WHEEL:  return a->sk.on ? RE_NONE : viewer_wheel(a, ev->dy);
     case TE_CLICK:
+        if (viewer_mode(a) == VM_VIEW && a->measuring && ev->button == 1)
+            return viewer_measure_mouse(a, ev->x, ev->y, ev->mods, 0);
         return viewer_mode(a) == VM_SKETCH ? sketch_mode_click(a, ev->button, ev->x, ev->y) : RE_NONE;
     case TE_READY:  return RE_NONE;     /* the loop sends what waits */
     }

@@ -216,10 +216,14 @@ int      viewer_command_layout(const App *a, int cols, char *buf, size_t len, co
  * written. Returns what to redo. */
 Reaction viewer_snapshot(App *a);
 /* measureui.c: the measuring mode. M turns it on and off; while on, a
- * key it takes (arrows, Enter, Backspace, Esc) is its own (RE_NONE:
+ * key it takes (arrows, Enter, Backspace, S, Esc) is its own (RE_NONE:
  * not one of them). */
 Reaction viewer_measure_toggle(App *a);
 Reaction viewer_measure_key(App *a, int key);
+/* A left click (drag 0) or drag (1) on cell x, y of the window with
+ * mods (TE_CTRL ...) held: the cursor to the nearest visible point
+ * there; a click on the cursor's own point marks it. */
+Reaction viewer_measure_mouse(App *a, int x, int y, int mods, int drag);
 
 /* ==== Sketch mode (sketchui.c) ==== */
 

@@ -21,12 +21,13 @@ expect_status "--info gives its bounds in the file's units" 0 "$Z" --info "$T/bi
 expect_out "... 3e38, not the scaled-down value" "bounds:     0 0 0 .. 3e+38 3e+38 0"
 
 # one face of 120,000 corners (a triangle listed 40,000 times): the
-# crossings of a row are many; hangs before (12.7 s at 80x24), so a
-# generous bound is no timing test (120 s: each takes 3 s of CPU, and
-# took 19 s of wall at load 20 on 2 cores; quadratic, 1280x720 takes minutes)
+# crossings of a row are many; hung before (12.7 s at 80x24, half a
+# second a row), so a generous bound is no timing test (60 s: each takes
+# 1.6 s of CPU at 320x180, most of it sorting the crossings of its rows;
+# quadratic, the 180 rows took a minute and a half)
 awk 'BEGIN { print "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0"; printf "f"; for (i = 0; i < 40000; i++) printf " 1 2 4"; print "" }' >"$T/many.obj"
 for a in zbuffer scanline span hzb hzb-octree; do
-    expect_status "a 120,000-corner face with $a" 0 timeout 120 "$Z" -o "$T/many.png" --size 1280x720 -a "$a" "$T/many.obj"
+    expect_status "a 120,000-corner face with $a" 0 timeout 60 "$Z" -o "$T/many.png" --size 320x180 -a "$a" "$T/many.obj"
 done
 
 # sizes: the limit is named, and a frame that cannot fit is refused before

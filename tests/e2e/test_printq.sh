@@ -133,7 +133,9 @@ expect_status "--measure with --check is refused" 2 "$Z" --check "$T/cube.obj" -
 # ==== --marks ====
 expect_status "--marks past the model's vertices draws no mark" 0 "$Z" -o "$T/m.png" --size 80x60 --marks v1,v99 "$T/cube.obj"
 expect_status "--marks v0 is refused" 2 "$Z" -o "$T/m.png" --marks v0 "$T/cube.obj"
-expect_err "... saying what it takes" "up to three vertices vN or I:vN"
+expect_err "... saying what it takes" "up to three points, comma apart: vertices vN, edge midpoints eA-B, face centres fN"
+expect_status "--marks takes edge midpoints and face centres" 0 "$Z" -o "$T/m.png" --size 80x60 --marks e1-2,f3,1:v4 "$T/cube.obj"
+expect_status "--marks e1-1 (no edge) is refused" 2 "$Z" -o "$T/m.png" --marks e1-1 "$T/cube.obj"
 
 # ==== the viewer ====
 . "$(dirname "$0")/tmux.sh"
@@ -165,4 +167,42 @@ if wait_for '--marks v[1-8],v[1-8],v[1-8]'; then ok "C writes the marks"; else n
 tm send-keys -t zv x M
 if wait_for 'measuring off'; then ok "M leaves"; else notok "M leaves" "$(tail -2 "$T/screen")"; fi
 tm send-keys -t zv q
+wait_for 'zv-exit=0' >/dev/null || notok "the viewer quits" "$(tail -3 "$T/screen")"
+
+# the measuring mode by mouse (SGR reports, cells from 1): a click puts
+# the cursor on the nearest visible vertex, a click on the cursor's own
+# point marks it; Ctrl (or Shift) with a click, or S, snaps to edge
+# midpoints and face centres too; a left drag moves the cursor, not the
+# model (C still writes the opening turn)
+mouse() { tm send-keys -t zv -l "$(printf '\033[<%d;%d;%dM\033[<%d;%d;%dm' "$1" "$2" "$3" "$1" "$2" "$3")"; }
+start 120 30 "$T/cube.obj"
+wait_for 'faces 6 drawn' >/dev/null || notok "the viewer starts" "$(tail -2 "$T/screen")"
+tm send-keys -t zv M
+wait_for '\| v[1-8] ' >/dev/null || notok "M: the cursor" "$(tail -2 "$T/screen")"
+mouse 0 40 26
+if wait_for '\| v[1-8] (0|10) (0|10) (0|10) \|'; then ok "a click: the cursor on a vertex"; else
+    notok "a click: the cursor on a vertex" "$(tail -2 "$T/screen")"; fi
+mouse 0 40 26
+if wait_for 'v[1-8] (0|10) (0|10) (0|10), A marked'; then ok "a click on the cursor's vertex marks it"; else
+    notok "a click on the cursor's vertex marks it" "$(tail -2 "$T/screen")"; fi
+mouse 0 100 20
+mouse 0 100 20
+if wait_for 'AB (10|14\.1421|17\.3205) \(dx'; then ok "two clicks elsewhere: the second mark, the distance"; else
+    notok "two clicks elsewhere: the second mark, the distance" "$(tail -2 "$T/screen")"; fi
+mouse 16 60 8
+if wait_for '\| (f[1-6] |e[1-8]-[1-8] )[0-9. ]+, AB'; then ok "Ctrl with a click: a face centre or an edge midpoint"; else
+    notok "Ctrl with a click: a face centre or an edge midpoint" "$(tail -2 "$T/screen")"; fi
+mouse 4 60 8
+if wait_for 'angle ABC'; then ok "Shift with a click on it: the third mark"; else
+    notok "Shift with a click on it: the third mark" "$(tail -2 "$T/screen")"; fi
+tm send-keys -t zv S
+if wait_for 'wide snap: '; then ok "S: the wide snap, in the status bar"; else notok "S: the wide snap, in the status bar" "$(tail -2 "$T/screen")"; fi
+tm send-keys -t zv -l "$(printf '\033[<0;62;14M\033[<32;50;6M\033[<32;40;6M\033[<0;40;6m')"
+if wait_for 'wide snap: (f[1-6]|e[1-8]-[1-8]|v[1-8]) .*angle ABC'; then ok "a drag moves the cursor and keeps the marks"; else
+    notok "a drag moves the cursor and keeps the marks" "$(tail -2 "$T/screen")"; fi
+tm send-keys -t zv C
+if wait_for '--yaw -30 --pitch 25 .*--marks v[1-8],v[1-8],(f[1-6]|e[1-8]-[1-8])'; then
+    ok "C: the marks with the face or edge, the model not turned by the drag"; else
+    notok "C: the marks with the face or edge, the model not turned by the drag" "$(cat "$T/screen")"; fi
+tm send-keys -t zv x q
 wait_for 'zv-exit=0' >/dev/null || notok "the viewer quits" "$(tail -3 "$T/screen")"

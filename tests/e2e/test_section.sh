@@ -1,8 +1,8 @@
 #!/bin/sh
 # Section planes (issue 32): --section's words and refusals; --check
-# --json's figures of each plane (the unit cube at z = 0.5: area 1,
-# perimeter 4, one loop; a box less a face: its open chain and where it
-# ends); -o and --print cut and capped (the cap's colour where the top
+# --json's and the text report's figures of each plane (the unit cube at
+# z = 0.5: area 1, perimeter 4, one loop; a box less a face: its open
+# chain and where it ends); -o and --print cut and capped (the cap's colour where the top
 # was); and in the viewer / cutting, ; and ' sliding the plane with the
 # status bar following it, \ turning it, ? listing the keys.
 . "$(dirname "$0")/lib.sh"
@@ -44,6 +44,17 @@ fi
 check "a box less its x=1 face: no loop, one open chain from (1,1,0.5) to (1,0,0.5), perimeter 3" \
     '[ $st -eq 3 ] && grep -q "\"area\": 0, \"perimeter\": 3, \"loops\": 0, \"open_chains\": 1, \"open_ends\": \[\[\[1, 1, 0.5\], \[1, 0, 0.5\]\]\]" "$T/open.json"' \
     "status $st: $(grep -A3 sections "$T/open.json")"
+# the text report says the same, a line a plane
+"$Z" --check --section z=0.5 "$T/cube.obj" >"$T/cube.txt" 2>"$T/err"; st=$?
+check "--check --section (text): the unit cube at z=0.5, area 1, perimeter 4, one loop" \
+    '[ $st -eq 0 ] && grep -qx "  section       z=0.5: area 1, perimeter 4, 1 closed loop, 0 open chains" "$T/cube.txt"' \
+    "status $st: $(cat "$T/cube.txt" "$T/err")"
+"$Z" --check --section z=0.5 --section 0.5,0.5,0.5:1,0,0 "$T/open.obj" >"$T/open.txt" 2>"$T/err"; st=$?
+check "... the open box: no loop, one open chain and its ends; the second plane on its own line" \
+    '[ $st -eq 3 ] && grep -qx "  section       z=0.5: area 0, perimeter 3, 0 closed loops, 1 open chain (from 1 1 0.5 to 1 0 0.5)" "$T/open.txt" &&
+     grep -q "^  section       0.5,0.5,0.5:1,0,0: area " "$T/open.txt"' "status $st: $(cat "$T/open.txt" "$T/err")"
+"$Z" --check "$T/cube.obj" >"$T/plain.txt"
+check "... and without --section no section line" '! grep -q "section" "$T/plain.txt"' "$(cat "$T/plain.txt")"
 "$Z" --check --json "$T/cube.obj" >"$T/plain.json"
 check "without --section no sections member" '! grep -q "\"sections\"" "$T/plain.json"' ""
 
@@ -88,6 +99,23 @@ tm send-keys -t zv '\;'
 if wait_for 'cut z=0.48 area 1'; then ok "; slides it back"; else notok "; slides it back" "$(status 30)"; fi
 tm send-keys -t zv '\'
 if wait_for 'cut x=0.5 area 1'; then ok "\\ turns it to x through the middle"; else notok "\\ turns it" "$(status 30)"; fi
+# C: the view's command line cuts as the viewer does, and gives the
+# same picture back
+wait_stable
+if need_python "C gives the cut picture back"; then looks 29 >"$T/before"; fi
+tm send-keys -t zv C
+wait_for 'command line of this view' >/dev/null || notok "C shows the command line" "$(cat "$T/screen")"
+sed -n 's/^ *| \(.*\) *| *$/\1/p' "$T/screen" | sed 's/[[:space:]]*$//' | sed -n '/^zview /,$p' |
+    sed -e ':a' -e '/ \\$/{N; s/ \\\n/ /; ba' -e '}' >"$T/cmd"
+check "C writes the plane: --section x=0.5" 'grep -q -- " --section x=0.5" "$T/cmd"' "$(cat "$T/cmd")"
+if need_python "C gives the cut picture back"; then
+    sh -c "$(sed "s|^zview|\"$Z\" --print --size 100x29 --color 256|" "$T/cmd")" | python3 tests/e2e/looks.py >"$T/again"
+    check "the command C wrote gives the cut picture back" 'cmp -s "$T/before" "$T/again"' "$(diff "$T/before" "$T/again" | head -3)"
+    "$Z" --print --size 100x29 --color 256 --view iso "$T/cube.obj" | python3 tests/e2e/looks.py >"$T/whole"
+    check "... which is not the whole cube's" '! cmp -s "$T/whole" "$T/again"' ""
+fi
+tm send-keys -t zv Escape
+wait_gone 'command line of this view' >/dev/null
 tm send-keys -t zv '/'
 if wait_for 'cut off'; then ok "/ again: the model whole"; else notok "/ again" "$(status 30)"; fi
 tm send-keys -t zv '?'

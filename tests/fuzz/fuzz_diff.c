@@ -45,7 +45,8 @@ static struct {
     SectionCut cut;
 } bufs;
 
-/* The front end as pipeline_render runs it: project, reorder, then the
+/* The front end as pipeline_render runs it: the wireframe's lines (once:
+ * the caps' ids come after every line's), project, reorder, then the
  * points and lines. */
 static int front(Front *f, Scene *s, const Viewport *vp, const PrimStyle *style, int level, int threads,
                  const ScRun *run)
@@ -53,9 +54,8 @@ static int front(Front *f, Scene *s, const Viewport *vp, const PrimStyle *style,
     f->sp.simd = level;
     f->sp.threads = threads;
     char err[160];
-    if (screen_project(&f->sp, s, vp) ||
-        (run->order != ORDER_FILE && screen_reorder(&f->sp, (PolyOrder)run->order, run->seed, &f->rs)) ||
-        (style->wire && scene_wire_build(s, err, sizeof err)))
+    if ((style->wire && !s->wire_built && scene_wire_build(s, err, sizeof err)) || screen_project(&f->sp, s, vp) ||
+        (run->order != ORDER_FILE && screen_reorder(&f->sp, (PolyOrder)run->order, run->seed, &f->rs)))
         return -1;
     PrimStyle st = *style;
     st.point_size = st.point_size > 0 ? st.point_size : 1;
@@ -104,10 +104,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (sc_decode_run(data, size, &s, &vp, &threads, &style, &run))
         return 0;
     char msg[512];
-    /* the section planes: one cut of this scene for every front end (made
-     * again: a new scene may sit where the last one did) */
+    /* the wireframe's lines, then the section planes: one cut of this
+     * scene for every front end (made again: a new scene may sit where
+     * the last one did), as pipeline_render orders them (the caps' ids
+     * come after every line's) */
     bufs.cut.key = NULL;
-    if (section_cut_update(&bufs.cut, &s, run.plane, run.nplanes, msg, sizeof msg))
+    char werr[160];
+    if ((style.wire && scene_wire_build(&s, werr, sizeof werr)) ||
+        section_cut_update(&bufs.cut, &s, run.plane, run.nplanes, msg, sizeof msg))
         goto out;
     for (int level = 0; level < SIMD_LEVELS; level++)
         bufs.at[level].sp.cut = &bufs.cut;
@@ -117,6 +121,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int best = simd_best();
     if (front(&bufs.ref, &s, &vp, &style, SIMD_SCALAR, 1, &file))
         goto out;
+    if (getenv("FUZZ_DIFF_SAY"))   /* what a seed decodes to, for whoever writes one */
+        fprintf(stderr, "%dx%d, %d thread(s), order %s, hidden surfaces at %s, %d section plane(s): %u objects, %u polygons on screen\n",
+                vp.w, vp.h, threads, order_names[run.order], run.hsr_simd ? simd_name(run.hsr_simd) : "every level", run.nplanes,
+                (unsigned)s.nobjs, bufs.ref.sp.npolys);
+    for (int k = 0; getenv("FUZZ_DIFF_SAY") && k < s.nobjs; k++)
+        fprintf(stderr, "  object %d: %u polygons%s\n", k, (unsigned)s.objs[k].poly_count, k ? "" : style.wire ? ", wireframe" : "");
     for (int level = SIMD_SCALAR; level <= best; level++) {
         if (front(&bufs.at[level], &s, &vp, &style, level, threads, &run))
             goto out;
@@ -128,12 +138,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             fail(msg, &vp, threads, &run);
         }
     }
-    if (getenv("FUZZ_DIFF_SAY"))   /* what a seed decodes to, for whoever writes one */
-        fprintf(stderr, "%dx%d, %d thread(s), order %s, hidden surfaces at %s, %d section plane(s): %u objects, %u polygons on screen\n",
-                vp.w, vp.h, threads, order_names[run.order], run.hsr_simd ? simd_name(run.hsr_simd) : "every level", run.nplanes,
-                (unsigned)s.nobjs, bufs.ref.sp.npolys);
-    for (int k = 0; getenv("FUZZ_DIFF_SAY") && k < s.nobjs; k++)
-        fprintf(stderr, "  object %d: %u polygons%s\n", k, (unsigned)s.objs[k].poly_count, k ? "" : style.wire ? ", wireframe" : "");
     HsrInput in = { .sp = &bufs.ref.sp, .scene = &s, .vp = &vp, .simd = SIMD_SCALAR };
     if (tl_render_poisoned(&hsr_zbuffer, 1, &in, &bufs.ref_fb))
         goto out;

@@ -55,7 +55,7 @@ _zview()
         -s | --size | --yaw | --pitch | --roll | --zoom | --pan | --fit-from | --move | --turn | \
             --scale | --persp | --grid | --max-polys | --max-memory | --views | -j | --threads | --fps | --max-rate | --crease | \
             --light | --ambient | --turntable | --point-size | --line-width | --contrast | --problem | --section | --max-locations | --weld | --max-hole | --tolerance | \
-            --bed | --min-thickness | --measure | --overhang | --marks)
+            --bed | --min-thickness | --measure | --overhang | --marks | --preview)
             return ;;
     esac
     $split && return
@@ -68,7 +68,7 @@ _zview()
             --samples --crease --light --ambient --view --layout --edges --order --print-view
             --turntable --point-size --line-width --wireframe --points --strict --no-sandbox --max-memory --bg --contrast --no-textures
             --problems --problem --section --max-locations --parts --watch --repair --weld --max-hole --diff --tolerance --show --quiet --textconv
-            --bed --unit --overhang --thickness --min-thickness --measure --marks" -- "$cur"))
+            --bed --unit --overhang --thickness --min-thickness --measure --marks --preview" -- "$cur"))
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace 2>/dev/null
         return
     fi
