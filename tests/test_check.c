@@ -289,6 +289,23 @@ Test(check, three_of_six_flipped_is_three_and_outward)
         cr_assert_eq(!!(C.face_flags[f] & CHECK_FLIPPED), (0x15 >> f) & 1, "face %u", f);
 }
 
+Test(check, ties_settled_in_each_part_of_an_object)
+{
+    start();
+    /* three cubes, one object: the second and third each a tie (three of
+     * six faces flipped), each settled by its own volume */
+    cube_ex(0, 0, 0, 1, -1, 0, 0);
+    cube_ex(3, 0, 0, 1, -1, 0x15, 0);
+    cube_ex(6, 0, 0, 1, -1, 0x2a, 0);
+    const CheckCounts *c = run();
+    cr_assert_eq(c->inconsistent_faces, 6);
+    cr_assert(!c->inside_out);
+    NEAR(c->volume, 3);
+    for (uint32_t f = 0; f < 18; f++)
+        cr_assert_eq(!!(C.face_flags[f] & CHECK_FLIPPED), f < 6 ? 0 : f < 12 ? (0x15 >> (f - 6)) & 1 : (0x2a >> (f - 12)) & 1,
+                     "face %u", f);
+}
+
 Test(check, cube_inside_out)
 {
     start();

@@ -101,6 +101,12 @@ Test(cli, errors_name_the_option_and_the_limit)
     cr_assert(strstr(err, "--frobnicate"), "%s", err);
     cr_assert_neq(PARSE(&o, err, "--max-polys", "0"), 0);
     cr_assert_neq(PARSE(&o, err, "--scale", "1:0"), 0);
+    /* a number is the whole value: nothing after it, nor nothing at all */
+    const char *junk[] = { "--ambient", "0.5x", "--ambient", "", "--weld", "0.1mm", "--tolerance", "", "--zoom", "2 " };
+    for (int i = 0; i < 10; i += 2) {
+        cr_assert_neq(PARSE(&o, err, junk[i], junk[i + 1]), 0, "%s '%s' taken", junk[i], junk[i + 1]);
+        cr_assert(strstr(err, junk[i]), "%s", err);
+    }
     /* the parser starts afresh each time */
     cr_assert_eq(PARSE(&o, err, "--print", "x.obj"), 0, "%s", err);
     cr_assert_eq(o.nfiles, 1);
