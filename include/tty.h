@@ -101,11 +101,24 @@ PixelProto term_pixels(void);
 int  term_cell_pixels(int *cw, int *ch);
 int  term_show_image(const ByteBuf *b);
 void term_hide_image(void);
+/* Images through tmux's passthrough: has the pane moved, or come to show
+ * or stopped showing (another window, another pane zoomed), since tmux
+ * was last asked? Asks at most every MUX_POLL_MS (else 0). */
+int  term_pane_moved(void);
+/* The ms until term_pane_moved asks again, -1 when it never does. */
+int  term_pane_poll_ms(void);
+/* Why the pixels are cells when a multiplexer is the reason (and how to
+ * change it), else NULL. */
+const char *term_mux_hint(int brief);
 int  term_image_shown(void);
 /* The terminal's background as it answered at open: 1 with rgb_out, 0
  * when it did not (or was not asked); waited_ms_out (may be NULL): how
  * long the question took. */
 int  term_background(uint8_t rgb_out[3], double *waited_ms_out);
+/* The start's questions: 1 when their last answer came within the wait
+ * (*waited_ms_out: how long they took), 0 when it did not, -1 when none
+ * were asked (not a terminal, nothing to ask). */
+int  term_answered(double *waited_ms_out);
 void term_size(int *cols_out, int *rows_out);
 /* Pretend the window is cols x rows (the tty benchmark writes to a file). */
 void term_set_size(int cols, int rows);
@@ -203,6 +216,7 @@ int    kp_awaiting(const KeyParser *p, double now_ms);
  * whose answer says that no other is coming. */
 
 #define TERMBG_WAIT_MS  200     /* a terminal that answers neither (none known) costs this once */
+#define TERM_ASK_MS     100     /* the viewer's start: every question at once, answered within this or late */
 #define TERMBG_BODY_MAX 63      /* a string's bytes kept: "11;rgba:ffff/ffff/ffff/ffff" fits */
 
 /* "rgb:RRRR/GGGG/BBBB" (1 to 4 hex digits a channel) or rgba: with an
@@ -232,16 +246,30 @@ typedef struct {
     uint8_t     bg[3];
     ColourDepth colour;         /* asked: the colours its SGR report showed (0: no answer) */
     double      waited_ms;      /* how long the questions took */
+    int         answered;       /* the last answer came within the wait */
 } TermAnswers;
 
-/* Ask the terminal on out_fd its background (and, with ask_colour, the
- * colours it draws: a 24-bit colour set, the SGR asked back with DECRQSS,
- * then reset), all in one write, and read its answers from in_fd until
- * the attributes' answer or wait_ms; every byte read goes on to kp
- * (NULL: dropped), so the key parser sees the keys typed meanwhile and
- * drops the answers. The input must not echo (the viewer's curses mode).
- * Returns 1 when the terminal said its background, else 0. */
-int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, int ask_colour, TermAnswers *ans);
+/* Which of the pixels' questions (termgfx.c) go with the rest: none,
+ * the terminal's, tmux's own attributes, tmux's and (through its
+ * passthrough) the outer terminal's. */
+typedef enum { PIXQ_NONE, PIXQ_PLAIN, PIXQ_TMUX, PIXQ_TMUX_PASS } PixelAsk;
+struct PixelScan;
+
+typedef struct {
+    int               ask_bg;           /* its background (OSC 11) */
+    int               ask_colour;       /* the colours it draws (a 24-bit colour set, the SGR asked
+                                           back with DECRQSS, then reset) */
+    PixelAsk          pix;
+    struct PixelScan *scan;             /* pix's answers are read into it (pixels_scan_init'd) */
+} TermQuestions;
+
+/* Ask the terminal on out_fd the questions q, all in one write, and read
+ * its answers from in_fd until the attributes' answer (the last: with
+ * PIXQ_TMUX_PASS the outer terminal's) or wait_ms; every byte read goes
+ * on to kp (NULL: dropped), so the key parser sees the keys typed
+ * meanwhile and drops the answers. The input must not echo (the viewer's
+ * curses mode). Returns 1 when the terminal said its background, else 0. */
+int  termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, const TermQuestions *q, TermAnswers *ans);
 /* The same on the controlling terminal (/dev/tty) for --print, put in a
  * mode without echo for the question and back; not from a job in the
  * background, nor on TERM=dumb (or none). Returns 1 with rgb_out, else 0. */
@@ -256,7 +284,7 @@ int  termbg_ask_tty(int wait_ms, uint8_t rgb_out[3]);
 int  pixels_cell_size(int fd, int *cw, int *ch);
 
 /* The answers' reader, byte by byte (any split). */
-typedef struct {
+typedef struct PixelScan {
     int    state;
     char   body[64];
     size_t len;
@@ -264,6 +292,9 @@ typedef struct {
     int    sixel;           /* ... and it lists 4 */
     int    kitty;           /* the kitty query was answered OK */
     int    iterm;           /* the terminal's name is iTerm2 */
+    int    mux_das;         /* attributes' answers still to come from tmux itself (not the outer terminal) */
+    int    mux_sixel;       /* ... and tmux's own listed 4: it draws sixel itself */
+    int    via_mux;         /* the other answers are the outer terminal's, through tmux's passthrough */
     int    c1;              /* 8-bit controls too (a locale that is not UTF-8, where they are no
                                text): 0x9b CSI, 0x90 DCS, 0x9f APC, 0x9c ST */
 } PixelScan;
@@ -278,8 +309,15 @@ typedef void (*PixelSink)(void *ctx, const unsigned char *b, size_t n);
 /* s (made by pixels_scan_init) keeps what was read: answers that come
  * after the wait (a slow link) can still be fed to it (term.c does). */
 PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx, PixelScan *s);
+/* The pixels' questions for how, the attributes' last (for termbg_ask's
+ * one write). */
+const char *pixels_question(PixelAsk how);
+/* s is to read the answers to how's questions (tmux's own first). */
+void pixels_scan_expect(PixelScan *s, PixelAsk how);
 /* What the answers read so far say (PIX_CELLS: no images). */
 PixelProto pixels_scanned(const PixelScan *s);
+/* Those pixels are the outer terminal's, drawn through tmux's passthrough. */
+int pixels_through_mux(const PixelScan *s);
 
 void pixels_scan_init(PixelScan *s, int c1);
 void pixels_scan(PixelScan *s, const unsigned char *b, size_t n);
@@ -287,6 +325,39 @@ void pixels_scan(PixelScan *s, const unsigned char *b, size_t n);
  * multiplexer or on a terminal that would show the questions, else
  * PIX_AUTO (ask). */
 PixelProto pixels_from_env(void);
+
+/* ==== Multiplexers (mux.c) ====
+ * tmux and GNU screen, and images through tmux's passthrough. */
+
+#define MUX_ASK_MS  200         /* tmux's answer about its pane (a few ms) is waited for this long */
+#define MUX_POLL_MS 500         /* how often the viewer asks again whether the pane moved or shows */
+
+typedef enum { MUX_NONE, MUX_TMUX, MUX_SCREEN } MuxKind;
+
+/* What tmux says of the pane zview runs in. */
+typedef struct {
+    int top, left;              /* its top left corner on the outer terminal, cells from 0 */
+    int pass;                   /* allow-passthrough is on for it */
+    int shows;                  /* its window is the current one and no other pane is zoomed */
+    int attached;               /* a client (an outer terminal) is attached to its session */
+} MuxPane;
+
+/* The multiplexer the environment names (TMUX, STY, TERM). */
+MuxKind mux_from_env(void);
+/* Ask tmux (the program, with TMUX_PANE's pane) about the pane, waiting
+ * at most wait_ms. Returns 0, or -1 when tmux did not say. */
+int  mux_tmux_pane(MuxPane *m, int wait_ms);
+/* tmux's answer "top left passthrough window_active zoomed pane_active
+ * clients" -> m. Returns 0, or -1 when it is not that. */
+int  mux_parse_pane(const char *s, MuxPane *m);
+/* b[0..n) for the outer terminal, wrapped in tmux's passthrough (ESCs
+ * doubled), drawn from the pane's top left corner, the outer cursor put
+ * back after. Appends to out; returns 0, or -1 out of memory. */
+int  mux_wrap(ByteBuf *out, const MuxPane *m, const unsigned char *b, size_t n);
+/* Why there are cells and not pixels in this multiplexer (what to do
+ * about it), or NULL when it is not the multiplexer's doing; brief: in
+ * few words, for the status bar. */
+const char *mux_why_cells(MuxKind k, const MuxPane *m, int brief);
 
 /* ==== The screen model (vt.c) ====
  * What the terminal should show (want) and what it shows (shown), cell

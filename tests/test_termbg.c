@@ -264,8 +264,9 @@ Test(termbg, a_silent_terminal_costs_the_timeout_once, .timeout = 30)
 {
     Outcome o = open_and_ask(SILENT);
     cr_expect(!o.told);
-    cr_expect(o.waited_ms >= TERMBG_WAIT_MS - 5 && o.waited_ms < TERMBG_WAIT_MS + 150,
-              "a silent terminal kept us %.1f ms (timeout %d)", o.waited_ms, TERMBG_WAIT_MS);
+    /* every question of the start in one write, one wait (issue 33) */
+    cr_expect(o.waited_ms >= TERM_ASK_MS - 5 && o.waited_ms < TERM_ASK_MS + 150,
+              "a silent terminal kept us %.1f ms (timeout %d)", o.waited_ms, TERM_ASK_MS);
     expect_only_x(&o);
 }
 

@@ -20,6 +20,9 @@ set -e
 # software OpenGL it draws with under Xvfb (libgl1, libgl1-mesa-dri) and
 # a monospace font: a real terminal that answers the kitty graphics
 # query, and draws the viewer's pictures in its pixels (test_kitty.sh).
+# mlterm: a second real terminal that draws sixel (test_mlterm.sh);
+# screen: GNU screen, in which the viewer keeps cells and says why
+# (test_mux.sh, which also runs tmux inside xterm -ti vt340).
 # admesh: the STL repair tool --repair is held against on broken parts
 # (tests/e2e/test_repair_parts.sh, tools/repair-table.sh).
 # lf and fzf: the file manager and the finder whose previews
@@ -30,7 +33,7 @@ set -e
 # exchange readers (STEP, IGES, XCAF), the modelling algorithms (the
 # mesher; the primitives tools/occtgen.cpp writes the test files with)
 # and OCAF (the XCAF document the readers fill): tests/e2e/test_step.sh.
-PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick kitty libgl1 libgl1-mesa-dri fonts-dejavu-core admesh lf fzf libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-ocaf-dev"
+PKGS="build-essential pkg-config libncurses-dev libpng-dev libjpeg-dev zlib1g-dev libseccomp-dev libcriterion-dev tmux python3 strace libassimp-dev assimp-testmodels xvfb xterm imagemagick kitty libgl1 libgl1-mesa-dri fonts-dejavu-core admesh lf fzf libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-ocaf-dev mlterm screen"
 SUDO=
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive

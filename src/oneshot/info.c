@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "oneshot.h"
+#include "pixels.h"
 #include "printq.h"
 #include "safetext.h"
 #include "simd.h"
@@ -175,6 +176,27 @@ static void print_first_view(Out *out, const FirstView *fv)
         out_printf(out, "front:      %s (nothing says: the plain front view's side)\n", dir);
 }
 
+/* What the picture just rendered costs as one still image in each
+ * terminal protocol, on its background as the viewer sends it: the
+ * bytes a pixel frame puts on the link (an SSH session's budget). */
+static void print_image_bytes(Out *out, Pipeline *p)
+{
+    if (p->has_bd)
+        backdrop_paint(&p->img, &p->bd);
+    char text[160];
+    int len = 0;
+    for (int proto = PIX_SIXEL; proto <= PIX_ITERM && len < (int)sizeof text; proto++) {
+        ByteBuf b = { 0 };
+        int bad = pixels_encode((PixelProto)proto, &p->img, 0, 0, 0, &b) || b.err;
+        len += snprintf(text + len, sizeof text - (size_t)len, "%s%s %s", len ? ", " : "",
+                        pixel_proto_names[proto], bad ? "?" : "");
+        if (!bad && len < (int)sizeof text)
+            len += snprintf(text + len, sizeof text - (size_t)len, "%zu bytes", b.len);
+        bytebuf_free(&b);
+    }
+    out_line(out, "%-12s%s (a still image of this picture)", "image:", text);
+}
+
 int oneshot_info(const Options *o, Scene *s, const FirstView *fv)
 {
     Out outs, *out = &outs;
@@ -225,6 +247,7 @@ int oneshot_info(const Options *o, Scene *s, const FirstView *fv)
     out_printf(out, "\n");
     for (int i = 0; i < n; i++)
         out_line(out, "%-12s%s", lines[i].label, lines[i].text);
+    print_image_bytes(out, &p);
     pipeline_free(&p);
     return report_ok(out) ? 0 : 1;
 }

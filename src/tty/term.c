@@ -189,7 +189,7 @@ static void blank_terminal(Term *t)
     send_cap(tigetstr("sgr0"));
     send_cap(tigetstr("clear"));
     if (t->pix == PIX_KITTY)
-        send_cap(KITTY_DELETE_ALL);
+        send_cap(pixels_through_mux(&t->pix_scan) ? KITTY_DELETE_ALL_TMUX : KITTY_DELETE_ALL);
     t->pix_shown = 0;
 }
 
@@ -477,13 +477,6 @@ static void set_modes(Term *t)
     t->vt.caps.lf = tcgetattr(t->q.fd, &tio) != 0 || !(tio.c_oflag & OPOST) || !(tio.c_oflag & ONLCR);
 }
 
-/* The answers to the pixels' questions, and keys typed meanwhile, go to
- * the key parser (which drops the answers). */
-static void answers_to_keys(void *ctx, const unsigned char *b, size_t n)
-{
-    kp_push(ctx, b, n, now_ms());
-}
-
 /* The terminal said it draws more colours than the environment did:
  * the quantizer for them (kept as it was when there is no memory). */
 static void colour_answered(Term *t, ColourDepth said)
@@ -511,27 +504,43 @@ static void ask_terminal(Term *t, const TermConfig *cfg)
     t->bg_wait_ms = 0;
     t->bg_known = t->depth_answered = 0;
     int ask_colour = cfg->colour_env && t->depth > COLOUR_NONE && t->depth < COLOUR_TRUE;
-    if ((cfg->ask_bg || ask_colour) && t->ask && isatty(t->in_fd)) {
+    int tty = t->ask && isatty(t->in_fd);
+    /* which pixels it draws: inside tmux, tmux itself says first where
+     * the pane is and whether images pass (mux.c) */
+    int ask_pix = cfg->pixels == PIX_AUTO && tty;
+    t->mux = mux_from_env();
+    t->pix_wanted = cfg->pixels != PIX_CELLS;
+    t->pane_known = t->mux == MUX_TMUX && cfg->pixels != PIX_CELLS && t->ask &&
+                    mux_tmux_pane(&t->pane, MUX_ASK_MS) == 0;
+    t->pane_asked_ms = now_ms();
+    int asks = ask_pix && (t->mux == MUX_NONE ? pixels_from_env() != PIX_CELLS : t->pane_known);
+    pixels_scan_init(&t->pix_scan, !t->kp.utf8);
+    TermQuestions q = {
+        .ask_bg = cfg->ask_bg,
+        .ask_colour = ask_colour,
+        .pix = !asks ? PIXQ_NONE : t->mux == MUX_NONE ? PIXQ_PLAIN
+             : t->pane.pass && t->pane.attached ? PIXQ_TMUX_PASS : PIXQ_TMUX,
+        .scan = &t->pix_scan,
+    };
+    /* all in one write, one wait (TERM_ASK_MS at most); the answers, and
+     * keys typed meanwhile, go through the key parser, which drops the
+     * answers (and waits for them: a late one is no Esc) */
+    t->pix_asked_ms = now_ms();
+    t->answered = -1;
+    if ((q.ask_bg || q.ask_colour || asks) && tty) {
         TermAnswers ans;
-        termbg_ask(t->q.fd, t->in_fd, TERMBG_WAIT_MS, &t->kp, ask_colour, &ans);
+        termbg_ask(t->q.fd, t->in_fd, TERM_ASK_MS, &t->kp, &q, &ans);
+        t->answered = ans.answered;
         t->bg_wait_ms = ans.waited_ms;
         t->bg_known = cfg->ask_bg && ans.got_bg;
         memcpy(t->bg, ans.bg, 3);
         colour_answered(t, ans.colour);
     }
-    /* which pixels it draws: asked the same way, the answers dropped by
-     * the key parser (which waits for them: a late one is no Esc) */
-    int ask_pix = cfg->pixels == PIX_AUTO && t->ask && isatty(t->in_fd);
-    if (ask_pix && pixels_from_env() != PIX_CELLS)
-        kp_expect(&t->kp, 1, now_ms());
-    pixels_scan_init(&t->pix_scan, !t->kp.utf8);
-    t->pix_asked_ms = now_ms();
-    t->pix = ask_pix ? pixels_detect(t->q.fd, t->in_fd, TERMBG_WAIT_MS, answers_to_keys, &t->kp, &t->pix_scan)
-                     : cfg->pixels == PIX_AUTO ? PIX_CELLS : (PixelProto)cfg->pixels;
-    /* a slow link (or a loaded terminal) answers after the wait, or the
-     * background's answer, late, ended it: what comes is still read for
-     * pixels until kitty's (the best) or KP_LATE_MS */
-    t->pix_late = ask_pix && pixels_from_env() != PIX_CELLS && t->pix != PIX_KITTY;
+    t->pix = asks ? pixels_scanned(&t->pix_scan) : cfg->pixels == PIX_AUTO ? PIX_CELLS : (PixelProto)cfg->pixels;
+    /* a slow link (or a loaded terminal) answers after the wait: what
+     * comes is still read for pixels until kitty's (the best) or
+     * KP_LATE_MS */
+    t->pix_late = asks && t->pix != PIX_KITTY;
     t->pix_news = 0;
     t->pix_shown = 0;
     t->ack_wait = t->ack_told = t->acks_seen = t->unanswered = 0;
@@ -663,6 +672,13 @@ int term_colour_answered(void) { return S.t && S.t->depth_answered; }
 
 PixelProto term_pixels(void) { return S.t ? S.t->pix : PIX_CELLS; }
 
+const char *term_mux_hint(int brief)
+{
+    if (!S.t || !S.t->pix_wanted || S.t->pix != PIX_CELLS || (S.t->mux == MUX_TMUX && !S.t->pane_known))
+        return NULL;
+    return mux_why_cells(S.t->mux, &S.t->pane, brief);
+}
+
 int term_cell_pixels(int *cw, int *ch)
 {
     return pixels_cell_size(S.t ? S.t->q.fd : -1, cw, ch);
@@ -676,6 +692,13 @@ int term_background(uint8_t rgb_out[3], double *waited_ms_out)
     if (t && t->bg_known)
         memcpy(rgb_out, t->bg, 3);
     return t && t->bg_known;
+}
+
+int term_answered(double *waited_ms_out)
+{
+    Term *t = S.t;
+    *waited_ms_out = t ? t->bg_wait_ms : 0;
+    return t ? t->answered : -1;
 }
 
 void term_size(int *cols_out, int *rows_out)

@@ -17,6 +17,8 @@
 /* Every kitty image placed, gone (kitty's images are not cells: a clear
  * leaves them). */
 #define KITTY_DELETE_ALL "\033_Ga=d,q=2\033\\"
+/* ... through tmux's passthrough (mux.c), its ESCs doubled */
+#define KITTY_DELETE_ALL_TMUX "\033Ptmux;\033\033_Ga=d,q=2\033\033\\\033\\"
 /* The first wait for a busy line; it doubles up to termdraw.c's
  * PACE_MAX_MS, and is back here after each frame. */
 #define PACE_MIN_MS 4
@@ -49,12 +51,18 @@ typedef struct {
     int         bg_known;       /* it told its background (termbg.c) */
     uint8_t     bg[3];
     double      bg_wait_ms;     /* how long the question took */
+    int         answered;       /* the questions' last answer came within the wait; -1: none asked */
     PixelProto  pix;            /* the pixels it takes (PIX_CELLS: none, or not wanted) */
     PixelScan   pix_scan;       /* its answers to the pixels' questions, read so far */
     int         pix_late;       /* the input is read for them too (a slow link's come late) */
     double      pix_asked_ms;   /* when they were asked */
     int         pix_news;       /* they came late and named pixels: the viewer is told (TE_RESIZE) */
     int         pix_shown;      /* an image is on the screen */
+    int         pix_wanted;     /* pixels were not turned off (--mode) */
+    MuxKind     mux;            /* the multiplexer zview runs in */
+    MuxPane     pane;           /* inside tmux: its pane, as tmux last said (pane_known) */
+    int         pane_known;
+    double      pane_asked_ms;  /* when tmux was last asked */
 } Term;
 
 /* term.c: the open session, NULL when there is none. */

@@ -207,11 +207,8 @@ void termbg_scan(BgScan *s, const unsigned char *b, size_t n)
 /* ==== Asking ==== */
 
 /* The questions, whole, to a descriptor that may be non-blocking. */
-static int send_question(int fd, int wait_ms, int ask_colour)
+static int send_question(int fd, int wait_ms, const char *p, size_t left)
 {
-    static const char with[] = Q_BG Q_COLOUR Q_DA, without[] = Q_BG Q_DA;
-    const char *p = ask_colour ? with : without;
-    size_t left = strlen(p);
     while (left) {
         ssize_t w = write(fd, p, left);
         if (w > 0) {
@@ -229,36 +226,49 @@ static int send_question(int fd, int wait_ms, int ask_colour)
     return 0;
 }
 
-int termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, int ask_colour, TermAnswers *ans)
+int termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, const TermQuestions *q, TermAnswers *ans)
 {
     double t0 = now_ms(), until = t0 + wait_ms;
     BgScan s;
     termbg_scan_init(&s);
-    int sent = send_question(out_fd, wait_ms, ask_colour) == 0;
+    /* one write: the background, the colours, the pixels' questions,
+     * whose last is the attributes' (else the attributes alone) */
+    char buf[512];
+    const char *pq = q->pix != PIXQ_NONE ? pixels_question(q->pix) : Q_DA;
+    int n = snprintf(buf, sizeof buf, "%s%s%s", q->ask_bg ? Q_BG : "", q->ask_colour ? Q_COLOUR : "", pq);
+    PixelScan *pix = q->pix != PIXQ_NONE ? q->scan : NULL;
+    if (pix)
+        pixels_scan_expect(pix, q->pix);
+    int sent = n > 0 && (size_t)n < sizeof buf && send_question(out_fd, wait_ms, buf, (size_t)n) == 0;
+    /* the attributes' answers (tmux's and the outer terminal's), however
+     * late, are no Esc */
     if (sent && kp)
-        kp_expect(kp, 1, now_ms());     /* the attributes' answer, however late, is no Esc */
-    while (sent && !s.got_da) {
+        kp_expect(kp, 1 + (q->pix == PIXQ_TMUX_PASS), now_ms());
+    while (sent && !(pix ? pix->got_da : s.got_da)) {
         double left = until - now_ms();
         struct pollfd pf = { .fd = in_fd, .events = POLLIN };
         if (left <= 0 || poll(&pf, 1, (int)left + 1) <= 0)
             break;
-        unsigned char buf[256];
-        size_t room = kp ? sizeof kp->b - kp->len : sizeof buf;
-        ssize_t r = read(in_fd, buf, room < sizeof buf ? room : sizeof buf);
+        unsigned char rb[256];
+        size_t room = kp ? sizeof kp->b - kp->len : sizeof rb;
+        ssize_t r = read(in_fd, rb, room < sizeof rb ? room : sizeof rb);
         if (r <= 0) {
             if (r < 0 && (errno == EINTR || errno == EAGAIN))
                 continue;
             break;              /* the input's end: term_read finds it too */
         }
-        termbg_scan(&s, buf, (size_t)r);
+        termbg_scan(&s, rb, (size_t)r);
+        if (pix)
+            pixels_scan(pix, rb, (size_t)r);
         if (kp)
-            kp_push(kp, buf, (size_t)r, now_ms());
+            kp_push(kp, rb, (size_t)r, now_ms());
     }
     memset(ans, 0, sizeof *ans);
     ans->waited_ms = now_ms() - t0;
     ans->got_bg = s.got_bg;
     memcpy(ans->bg, s.bg, 3);
     ans->colour = s.colour;
+    ans->answered = pix ? pix->got_da : s.got_da;
     return s.got_bg;
 }
 
@@ -282,7 +292,8 @@ int termbg_ask_tty(int wait_ms, uint8_t rgb_out[3])
         raw.c_cc[VTIME] = 0;
         if (tcsetattr(fd, TCSANOW, &raw) == 0) {
             TermAnswers ans;
-            got = termbg_ask(fd, fd, wait_ms, NULL, 0, &ans);
+            TermQuestions q = { .ask_bg = 1 };
+            got = termbg_ask(fd, fd, wait_ms, NULL, &q, &ans);
             if (got)
                 memcpy(rgb_out, ans.bg, 3);
             tcsetattr(fd, TCSANOW, &old);

@@ -73,10 +73,25 @@ int term_show_image(const ByteBuf *b)
     }
     if (t->out_errno || b->err)
         return -1;
-    /* from the top left. The cells under the image stay as the screen
-     * model has them (the status bar's changes still go out alone); only
-     * the cursor and the colours are unknown after it */
-    if (out_add(t, "\033[H\033[0m", 7) || out_add(t, (const char *)b->b, b->len)) {
+    if (pixels_through_mux(&t->pix_scan)) {
+        /* through tmux to the outer terminal, at the pane's place now,
+         * and only when the pane shows (term_pane_moved says when it
+         * shows again) */
+        t->pane_known = mux_tmux_pane(&t->pane, MUX_ASK_MS) == 0;
+        t->pane_asked_ms = now_ms();
+        if (!t->pane_known || !t->pane.pass || !t->pane.shows)
+            return 0;
+        ByteBuf w = { 0 };
+        int bad = mux_wrap(&w, &t->pane, b->b, b->len) || out_add(t, (const char *)w.b, w.len);
+        bytebuf_free(&w);
+        if (bad) {
+            errno = ENOMEM;
+            return -1;
+        }
+    } else if (out_add(t, "\033[H\033[0m", 7) || out_add(t, (const char *)b->b, b->len)) {
+        /* from the top left. The cells under the image stay as the screen
+         * model has them (the status bar's changes still go out alone); only
+         * the cursor and the colours are unknown after it */
         errno = ENOMEM;
         return -1;
     }
@@ -96,10 +111,36 @@ void term_hide_image(void)
     Term *t = term_session();
     if (!t || !t->pix_shown)
         return;
-    if (t->pix == PIX_KITTY)
+    if (t->pix == PIX_KITTY && pixels_through_mux(&t->pix_scan))
+        out_add(t, KITTY_DELETE_ALL_TMUX, sizeof KITTY_DELETE_ALL_TMUX - 1);
+    else if (t->pix == PIX_KITTY)
         out_add(t, KITTY_DELETE_ALL, sizeof KITTY_DELETE_ALL - 1);
     vt_invalidate(&t->vt);      /* sixel and iTerm2 images are covered by the cells, all of them */
     t->pix_shown = 0;
+}
+
+int term_pane_moved(void)
+{
+    Term *t = term_session();
+    if (!t || !pixels_through_mux(&t->pix_scan) || now_ms() - t->pane_asked_ms < MUX_POLL_MS)
+        return 0;
+    MuxPane was = t->pane;
+    int known = t->pane_known;
+    t->pane_known = mux_tmux_pane(&t->pane, MUX_ASK_MS) == 0;
+    t->pane_asked_ms = now_ms();
+    if (!t->pane_known)
+        return 0;
+    return !known || was.top != t->pane.top || was.left != t->pane.left || was.shows != t->pane.shows ||
+           was.pass != t->pane.pass;
+}
+
+int term_pane_poll_ms(void)
+{
+    Term *t = term_session();
+    if (!t || !pixels_through_mux(&t->pix_scan))
+        return -1;
+    double left = t->pane_asked_ms + MUX_POLL_MS - now_ms();
+    return left > 0 ? (int)(left + 0.999) : 0;
 }
 
 int term_image_shown(void)

@@ -10,8 +10,10 @@
  * iTerm2's, then sixel. The attributes' answer comes last, so once
  * it is in, the kitty answer is in too or is not coming: one round trip.
  * Multiplexers are the exception: tmux and screen answer the attributes
- * themselves and pass no images by default, so inside them the answer
- * is cells without a question. */
+ * themselves and pass no images by default. Inside screen the answer is
+ * cells without a question; inside tmux, tmux's own attributes are asked
+ * (3.4 built with sixel draws it) and, when its passthrough is on, the
+ * questions go through it to the outer terminal (mux.c). */
 
 #include <errno.h>
 #include <poll.h>
@@ -49,16 +51,25 @@ void pixels_scan_init(PixelScan *s, int c1)
 /* The attributes' answer "ESC [ ? 6 2 ; 4 ; 2 2 c": is 4 among them? */
 static void da_done(PixelScan *s)
 {
-    s->got_da = 1;
     s->body[s->len < sizeof s->body ? s->len : sizeof s->body - 1] = 0;
+    int four = 0;
     const char *p = s->body + (s->body[0] == '?');
     while (*p) {
         char *end;
         long v = strtol(p, &end, 10);
         if (end != p && v == 4)
-            s->sixel = 1;
+            four = 1;
         p = *end ? end + 1 : end;
     }
+    /* tmux answers its own question at once, before the outer terminal's
+     * answer to the one passed through can be back */
+    if (s->mux_das > 0) {
+        s->mux_das--;
+        s->mux_sixel |= four;
+        return;
+    }
+    s->got_da = 1;
+    s->sixel |= four;
 }
 
 /* A kitty answer "ESC _ G i=31 ; OK ESC \", or the name's "ESC P > |
@@ -134,15 +145,21 @@ PixelProto pixels_from_env(void)
 
 PixelProto pixels_scanned(const PixelScan *s)
 {
+    if (s->mux_sixel)
+        return PIX_SIXEL;       /* a tmux that draws sixel itself: no passthrough needed */
     return s->kitty ? PIX_KITTY : s->iterm ? PIX_ITERM : s->sixel ? PIX_SIXEL : PIX_CELLS;
 }
 
-PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx, PixelScan *s)
+int pixels_through_mux(const PixelScan *s)
 {
-    if (pixels_from_env() == PIX_CELLS)
-        return PIX_CELLS;
-    const char *q = QUESTION;
-    size_t left = sizeof QUESTION - 1;
+    return s->via_mux && !s->mux_sixel && pixels_scanned(s) != PIX_CELLS;
+}
+
+/* Write the questions q[0..left) and read the answers until the
+ * attributes' (the last) or wait_ms. */
+static PixelProto ask(int out_fd, int in_fd, const char *q, size_t left, int wait_ms, PixelSink sink, void *ctx,
+                      PixelScan *s)
+{
     double until = now_ms() + wait_ms;
     while (left) {
         ssize_t w = write(out_fd, q, left);
@@ -170,4 +187,27 @@ PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, voi
             sink(ctx, buf, (size_t)r);
     }
     return pixels_scanned(s);
+}
+
+PixelProto pixels_detect(int out_fd, int in_fd, int wait_ms, PixelSink sink, void *ctx, PixelScan *s)
+{
+    if (pixels_from_env() == PIX_CELLS)
+        return PIX_CELLS;
+    return ask(out_fd, in_fd, QUESTION, sizeof QUESTION - 1, wait_ms, sink, ctx, s);
+}
+
+/* tmux's own attributes first (3.4 built with sixel lists 4), then, with
+ * passthrough, the questions again for the outer terminal, its ESCs
+ * doubled: one write */
+#define TMUX_OWN  "\033[c"
+#define TMUX_PASS "\033Ptmux;\033\033_Gi=31,s=1,v=1,a=q,t=d,f=24;AAAA\033\033\\\033\033[>0q\033\033[c\033\\"
+
+const char *pixels_question(PixelAsk how)
+{
+    return how == PIXQ_TMUX_PASS ? TMUX_OWN TMUX_PASS : how == PIXQ_TMUX ? TMUX_OWN : QUESTION;
+}
+
+void pixels_scan_expect(PixelScan *s, PixelAsk how)
+{
+    s->mux_das = s->via_mux = how == PIXQ_TMUX_PASS;
 }

@@ -279,7 +279,7 @@ static void draw_candidates(App *a, int cols, int rows)
  * of INFO_BESIDE_MIN columns), each line wrapped after a comma to fit. */
 static void draw_info(App *a, int cols, int rows, double out_ms)
 {
-    ReportLine rl[REPORT_LINES + 7];
+    ReportLine rl[REPORT_LINES + 8];
     int n = frame_report(&a->p, out_ms, rl, REPORT_LINES);
     n += viewer_check_report(a, rl + n, 5);
     /* the colours, and what decided them (the terminal may draw more than
@@ -289,7 +289,22 @@ static void draw_info(App *a, int cols, int rows, double out_ms)
              a->opt->colour >= 0 ? "--color" : term_colour_answered() ? "the terminal answered"
              : term_colour() < colour_from_env() ? "TERM's description" : colour_env_reason());
     n++;
-    if (term_pixels() != PIX_CELLS) {
+    /* the start's questions: at once, one wait (a silent terminal costs
+     * TERM_ASK_MS once) */
+    double waited;
+    int said = term_answered(&waited);
+    if (said >= 0) {
+        rl[n].label = "asked:";
+        snprintf(rl[n].text, REPORT_TEXT, said ? "once at start: answered in %.0f ms"
+                                               : "once at start: no answer in %.0f ms (a late one still counts)",
+                 waited);
+        n++;
+    }
+    if (term_pixels() == PIX_CELLS && term_mux_hint(0)) {
+        rl[n].label = "pixels:";
+        snprintf(rl[n].text, REPORT_TEXT, "cells (%s)", term_mux_hint(0));
+        n++;
+    } else if (term_pixels() != PIX_CELLS) {
         rl[n].label = "pixels:";
         if (a->pix_bytes)
             snprintf(rl[n].text, REPORT_TEXT, "%s when still, last image %zu KB%s", pixel_proto_names[term_pixels()],
@@ -554,6 +569,11 @@ static int run(App *a, int fps)
             if (timeout < 0 || pace < timeout)
                 timeout = pace;
         }
+        /* through tmux: asked now and then whether the pane moved or
+         * shows again (another window was current) */
+        int pane = a->pixels && !a->spin && !todo ? term_pane_poll_ms() : -1;
+        if (pane >= 0 && (timeout < 0 || pane < timeout))
+            timeout = pane;
         if (d.pix_due > 0) {
             double now = now_ms();
             int t = d.pix_due > now ? (int)(d.pix_due - now + 0.999) : 0;
@@ -584,6 +604,10 @@ static int run(App *a, int fps)
         }
         if (got < 0)
             return RUN_INPUT_ENDED;     /* no key will come: waiting would spin */
+        if (a->pixels && !a->spin && !todo && term_pane_moved()) {
+            term_hide_image();
+            todo |= RE_RENDER;          /* the cells again, then the image where the pane is now */
+        }
         if (!a->first)
             todo |= viewer_check_poll(a);  /* a key asked for the check, or it is done */
         if (busy && now_ms() >= tick) {
@@ -744,6 +768,10 @@ static int viewer_main(const Options *o, Scene *s, int loading, DiffSet *diff)
     }
     /* a.pixels stays what was asked: a terminal on a slow link names its
      * pixels after the start's wait (term_read then says TE_RESIZE) */
+    /* cells because of tmux or screen: said once, with what to do */
+    const char *mux = term_mux_hint(1);
+    if (mux && !a.note[0])
+        snprintf(a.note, sizeof a.note, "%s", mux);
     /* the picture is kept visible on the terminal's background */
     uint8_t asked[3];
     Backdrop bd = pipeline_text_backdrop(o, term_background(asked, NULL) ? asked : NULL);

@@ -90,6 +90,20 @@ expect_out "info triangles" "triangles:  12"
 expect_out "info speed" "MB/s"
 expect_status "--info --algo" 0 "$Z" --info --algo zbuffer --size 64x48 assets/cube.obj
 expect_out "info render stats" "overdraw"
+# the bytes of a still image in each protocol (issue 33): what --print
+# writes for the same 640x480 pixels (64x24 cells of 10x20 without a
+# terminal), within 5% (--print's picture keeps the text's background)
+"$Z" --info --algo zbuffer --size 640x480 assets/knot.obj >"$T/info" 2>&1
+for proto in sixel kitty iterm; do
+    said=$(sed -n "s/^image: .*$proto \([0-9]*\) bytes.*/\1/p" "$T/info")
+    wrote=$("$Z" --print --mode $proto --size 64x24 assets/knot.obj </dev/null 2>/dev/null | wc -c)
+    if [ -n "$said" ] && [ "$wrote" -gt 1000 ] && [ $((said * 100)) -ge $((wrote * 95)) ] &&
+        [ $((said * 100)) -le $((wrote * 105)) ]; then
+        ok "--info --algo: a still $proto image's bytes ($said) as --print writes them ($wrote)"
+    else
+        notok "--info --algo: a still $proto image's bytes ($said) as --print writes them ($wrote)" "$(tail -2 "$T/info")"
+    fi
+done
 # --info draws no picture: a --size too big for a printed one (16384
 # rows of half blocks are 32768 pixels) is no error there
 expect_status "--info takes a --size no printed picture could" 0 "$Z" --info --size 16384x16384 assets/cube.obj

@@ -31,7 +31,7 @@ d=$(cat "$T/display")
 # run ARGS: the viewer with ARGS in a fresh kitty filling the display; its
 # pid in $T/pid, its exit status in $T/rc when it ends. The viewer starts
 # once kitty answers its remote control (up to 60 s): its question about
-# pixels waits 200 ms for the answer (TERMBG_WAIT_MS), which a kitty
+# pixels waits 100 ms for the answer (TERM_ASK_MS), which a kitty
 # still starting on a loaded machine missed.
 run() {
     stop_kitty

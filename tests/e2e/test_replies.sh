@@ -10,7 +10,7 @@
 need_python "the viewer answered by terminals" || exit 0
 Z=$ZVIEW
 here=$(dirname "$0")
-profiles="kitty xterm foot tmux late slow slowxterm xterm8 xtermssh xterm16"
+profiles="kitty xterm foot tmux late slow slowxterm xterm8 xtermssh xterm16 silent"
 for p in $profiles; do
     python3 "$here/replypty.py" "$p" -- "$Z" assets/knot.obj >"$T/$p.out" 2>&1 &
 done
