@@ -249,7 +249,7 @@ e2e: all $(STANDIN) $(OCCTGEN)
 # Sanitized build in its own folder, same tests, with the invariants
 # on (-DZV_CHECKS turns ZV_ASSERT on: include/invariant.h).
 asan:
-	$(MAKE) BUILD=build-asan BIN=build-asan/zview \
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 $(MAKE) BUILD=build-asan BIN=build-asan/zview \
 	    OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -DZV_CHECKS" test
 
 # The build without assimp, in its own folder (both must compile).
