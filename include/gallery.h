@@ -123,6 +123,12 @@ int  gallery_jobs_made(GalleryJobs *j);
 void gallery_jobs_wait(GalleryJobs *j);
 /* Stop the workers (after the tile each is making) and free the jobs. */
 void gallery_jobs_stop(GalleryJobs *j);
+/* The workers' choice, under the lock: the next tile to work on, marked
+ * GS_WORKING or GS_CHECKING, with what to make in *what; -1 none. The
+ * tiles in want[0..nwant) are pictured first, in that order, then
+ * checked; then the rest from *next on (which it moves), each in one go
+ * (a tile pictured before is only checked). */
+int  gallery_pick(GalleryList *l, const int *want, int nwant, int *next, int *what);
 
 /* ==== The grid (grid.c): layout, order, filter ==== */
 

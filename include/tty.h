@@ -73,6 +73,8 @@ typedef struct {
     int         signals;        /* restore on SIGINT/SIGTERM/SIGHUP, handle SIGTSTP */
     int         ask_bg;         /* ask the terminal for its background (termbg.c) */
     int         pixels;         /* PixelProto to draw stills in; PIX_AUTO: ask (pixels.h) */
+    int         ask_ms;         /* the one wait for the answers; 0: TERM_ASK_MS (the tests
+                                   give a loaded machine longer) */
 } TermConfig;
 
 /* The terminal description to use for name (NULL: $TERM): name itself

@@ -314,7 +314,7 @@ Test(focus, the_keys_step_through_and_wrap)
     viewer_key(&a, '.');
     cr_assert_eq(a.p.problems, 1, ". turns --problems on");
     cr_assert_eq(a.focus, -1, "the check is not done yet");
-    for (int i = 0; i < 2000 && a.focus < 0; i++) {
+    for (int i = 0; i < 6000 && a.focus < 0; i++) {     /* 30 s at least */
         viewer_check_poll(&a);
         usleep(5000);
     }
@@ -350,7 +350,7 @@ Test(focus, problem_k_goes_there_once_checked)
     App a;
     cr_assert_eq(viewer_app_init(&a, &o, &s, 0), 0);
     cr_assert_eq(viewer_render(&a, 80, 24), 0);
-    for (int i = 0; i < 2000 && a.focus < 0; i++) {
+    for (int i = 0; i < 6000 && a.focus < 0; i++) {     /* 30 s at least */
         viewer_check_poll(&a);
         usleep(5000);
     }

@@ -54,7 +54,7 @@ Test(load, progress_and_quiet_warnings)
 /* Wait (bounded) for a job to finish. */
 static int wait_job(LoadJob *j)
 {
-    for (int i = 0; i < 2000; i++) {
+    for (int i = 0; i < 6000; i++) {        /* 30 s at least */
         if (loadjob_done(j))
             return 1;
         struct timespec ts = { 0, 5000000 };

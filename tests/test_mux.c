@@ -164,12 +164,13 @@ Test(mux, tmux_is_asked_about_its_pane)
     setenv("TMUX_PANE", "7; rm -rf", 1);
     cr_expect_eq(mux_tmux_pane(&m, 2000), -1, "TMUX_PANE that is not a pane: tmux is not asked");
     fake_tmux_gone(dir);
-    /* a tmux that hangs costs the wait, no more */
-    fake_tmux(dir, sizeof dir, "exec sleep 5");
+    /* a tmux that hangs costs the wait, not its 10 s (the bound leaves a
+     * loaded machine seconds) */
+    fake_tmux(dir, sizeof dir, "exec sleep 10");
     setenv("TMUX_PANE", "%7", 1);
     double t0 = now_ms();
     cr_expect_eq(mux_tmux_pane(&m, 100), -1);
-    cr_expect_lt(now_ms() - t0, 1500, "a hung tmux is given up after the wait");
+    cr_expect_lt(now_ms() - t0, 5000, "a hung tmux is given up after the wait");
     fake_tmux_gone(dir);
     env_restore(&e);
 }
@@ -270,8 +271,8 @@ Test(mux, the_start_asks_everything_in_one_write_and_waits_once)
     pixels_scan_init(&scan, 0);
     TermQuestions q = { .ask_bg = 1, .ask_colour = 1, .pix = PIXQ_PLAIN, .scan = &scan };
     TermAnswers ans;
-    cr_expect_eq(termbg_ask(out[1], in[0], 2000, NULL, &q, &ans), 1, "the background said");
-    cr_expect(ans.answered && ans.waited_ms < 1000, "the attributes' answer ended the wait (%.0f ms)", ans.waited_ms);
+    cr_expect_eq(termbg_ask(out[1], in[0], 5000, NULL, &q, &ans), 1, "the background said");
+    cr_expect(ans.answered && ans.waited_ms < 2500, "the attributes' answer ended the wait (%.0f ms)", ans.waited_ms);
     cr_expect_eq(ans.colour, COLOUR_TRUE);
     cr_expect_eq(pixels_scanned(&scan), PIX_SIXEL);
     close(out[1]);
@@ -287,10 +288,12 @@ Test(mux, the_start_asks_everything_in_one_write_and_waits_once)
     /* silence: the wait once, no more */
     cr_assert_eq(pipe(out), 0);
     pixels_scan_init(&scan, 0);
+    /* the whole wait, and not a second (the slack is a loaded machine's) */
     double t0 = now_ms();
-    termbg_ask(out[1], in[0], TERM_ASK_MS, NULL, &q, &ans);
+    termbg_ask(out[1], in[0], 400, NULL, &q, &ans);
+    double took = now_ms() - t0;
     cr_expect(!ans.answered);
-    cr_expect(now_ms() - t0 < TERM_ASK_MS + 150, "a silent terminal: one wait of %d ms", TERM_ASK_MS);
+    cr_expect(took >= 399 && took < 800, "a silent terminal: one wait of 400 ms, not %.0f", took);
     close(out[0]);
     close(out[1]);
     close(in[0]);

@@ -183,10 +183,10 @@ static void make_fifo(char *dir_out, size_t dlen, char *fifo_out, size_t flen)
  * open? Read from /proc/self/fd: a probe that opened the FIFO to write
  * would be a writer, and its close the end of the stream the job waits
  * for (the job would then go on, or not, as the threads happen to run).
- * Waits up to 2 s for `want`. */
+ * Waits 10 s at least for `want` (a loaded machine may be slow to run the job). */
 static int fifo_read_by_someone(const char *fifo, int want)
 {
-    for (int k = 0; k < 200; k++) {
+    for (int k = 0; k < 1000; k++) {
         int has = 0;
         DIR *d = opendir("/proc/self/fd");
         cr_assert_not_null(d, "/proc/self/fd: %s", strerror(errno));
@@ -242,7 +242,7 @@ Test(viewer, a_fifo_loads_once_its_writer_comes, .timeout = 30)
     static const char obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
     cr_assert_eq(write(fd, obj, sizeof obj - 1), (ssize_t)(sizeof obj - 1));
     close(fd);
-    for (int k = 0; k < 500 && !loadjob_done(j); k++) {
+    for (int k = 0; k < 2000 && !loadjob_done(j); k++) {      /* 20 s at least */
         struct timespec ts = { 0, 10 * 1000 * 1000 };
         nanosleep(&ts, NULL);
     }

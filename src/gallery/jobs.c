@@ -31,26 +31,24 @@ struct GalleryJobs {
     int             made;       /* tiles made (the unreadable ones of the listing too) */
 };
 
-/* The next tile to work on, marked GS_WORKING or GS_CHECKING, with
- * what to do in *what; -1 none. The screen's tiles are pictured first,
- * then checked, then the rest each in one go. Under mu. */
-static int pick(GalleryJobs *j, int *what)
+/* The scheduling alone (the policy the tests replay step by step). */
+int gallery_pick(GalleryList *l, const int *want, int nwant, int *next, int *what)
 {
-    GalleryTile *t = j->l->tile;
+    GalleryTile *t = l->tile;
     for (int pass = 0; pass < 2; pass++)
-        for (int k = 0; k < j->nwant; k++) {
-            int i = j->want[k];
-            if (i < 0 || i >= j->l->n || t[i].state != (pass ? GS_PICTURED : GS_PENDING))
+        for (int k = 0; k < nwant; k++) {
+            int i = want[k];
+            if (i < 0 || i >= l->n || t[i].state != (pass ? GS_PICTURED : GS_PENDING))
                 continue;
             t[i].state = pass ? GS_CHECKING : GS_WORKING;
             *what = pass ? TILE_CHECK : TILE_PICTURE;
             return i;
         }
-    for (; j->next < j->l->n; j->next++)
-        if (t[j->next].state == GS_PENDING || t[j->next].state == GS_PICTURED) {
-            *what = t[j->next].state == GS_PENDING ? TILE_BOTH : TILE_CHECK;
-            t[j->next].state = t[j->next].state == GS_PENDING ? GS_WORKING : GS_CHECKING;
-            return j->next++;
+    for (; *next < l->n; ++*next)
+        if (t[*next].state == GS_PENDING || t[*next].state == GS_PICTURED) {
+            *what = t[*next].state == GS_PENDING ? TILE_BOTH : TILE_CHECK;
+            t[*next].state = t[*next].state == GS_PENDING ? GS_WORKING : GS_CHECKING;
+            return (*next)++;
         }
     return -1;
 }
@@ -60,7 +58,7 @@ static void *worker(void *arg)
     GalleryJobs *j = arg;
     pthread_mutex_lock(&j->mu);
     while (!j->stop) {
-        int what, i = pick(j, &what);
+        int what, i = gallery_pick(j->l, j->want, j->nwant, &j->next, &what);
         if (i < 0) {
             pthread_cond_wait(&j->work, &j->mu);
             continue;

@@ -529,7 +529,7 @@ static void ask_terminal(Term *t, const TermConfig *cfg)
     t->answered = -1;
     if ((q.ask_bg || q.ask_colour || asks) && tty) {
         TermAnswers ans;
-        termbg_ask(t->q.fd, t->in_fd, TERM_ASK_MS, &t->kp, &q, &ans);
+        termbg_ask(t->q.fd, t->in_fd, cfg->ask_ms > 0 ? cfg->ask_ms : TERM_ASK_MS, &t->kp, &q, &ans);
         t->answered = ans.answered;
         t->bg_wait_ms = ans.waited_ms;
         t->bg_known = cfg->ask_bg && ans.got_bg;
