@@ -15,7 +15,9 @@
  * swap when the models do; the sampled maximum lies within its bound
  * (and, in the suite "models", on the dragon and an edited copy); every
  * figure is the same bit for bit on one thread and several.
- * Then the files through diff_load: the check's verdicts, the
+ * A plane against a tilted one has the mean of its middle, and the
+ * corners alone measure its area over the tolerance exactly, whatever
+ * the sampling. Then the files through diff_load: the check's verdicts, the
  * headline, and the picture's colours: every algorithm gives the same
  * face ids for each of --show's pictures. */
 #define _DEFAULT_SOURCE
@@ -332,6 +334,67 @@ Test(diff, scaled_by_1_01_about_its_centre)
     const char *bunny = tl_shared_model("stanford-bunny.obj");
     if (bunny)
         scaled_by_1_01(bunny);
+}
+
+/* A's surface: the unit square z = 0 cut into 16 x 16 cells of two
+ * triangles; B's: the plane z = H + S x over a square far wider, so
+ * that every point of A is nearest to B's inside. A point (x, y, 0) is
+ * (H + S x) / sqrt(1 + S^2) from B: linear in x, so its mean over A is
+ * its value at x = 1/2, and it passes tol on the strip x > X0, of area
+ * 1 - X0. Every sampling holds that mean (the corners' mean over a
+ * triangle and a small triangle's centre are both exact for a linear
+ * function); the corners' share above tol is exact too. */
+#define TILT_H 0.5
+#define TILT_S 0.25
+#define TILT_N 16
+static void tilted_planes(void)
+{
+    cr_assert_eq(tl_mesh_init(&MA, "grid.obj"), 0);
+    for (int j = 0; j <= TILT_N; j++)
+        for (int i = 0; i <= TILT_N; i++)
+            cr_assert_eq(tl_mesh_vertex(&MA, (float)i / TILT_N, (float)j / TILT_N, 0), 0);
+    for (uint32_t j = 0; j < TILT_N; j++)
+        for (uint32_t i = 0; i < TILT_N; i++) {
+            uint32_t v = j * (TILT_N + 1) + i;
+            uint32_t t1[3] = { v, v + 1, v + TILT_N + 2 }, t2[3] = { v, v + TILT_N + 2, v + TILT_N + 1 };
+            cr_assert_eq(tl_mesh_face(&MA, t1, 3), 0);
+            cr_assert_eq(tl_mesh_face(&MA, t2, 3), 0);
+        }
+    cr_assert_eq(tl_mesh_finish(&MA), 0);
+    cr_assert_eq(tl_mesh_init(&MB, "plane.obj"), 0);
+    for (int k = 0; k < 4; k++) {
+        float x = k & 1 ? 11 : -10, y = k & 2 ? 11 : -10;
+        cr_assert_eq(tl_mesh_vertex(&MB, x, y, (float)(TILT_H + TILT_S * x)), 0);
+    }
+    uint32_t q[4] = { 0, 1, 3, 2 };
+    cr_assert_eq(tl_mesh_face(&MB, q, 4), 0);
+    cr_assert_eq(tl_mesh_finish(&MB), 0);
+}
+
+Test(diff, a_tilted_plane_has_the_mean_of_its_middle_at_any_sampling)
+{
+    tilted_planes();
+    double slope = sqrt(1 + TILT_S * TILT_S), x0 = 0.3;
+    double tol = (TILT_H + TILT_S * x0) / slope, mean = (TILT_H + TILT_S * 0.5) / slope;
+    /* 512 triangles of area 1/512: a sample budget of 64 gives each
+     * r = 0 (its corners alone), 512 gives r = 1 (its centre), 4608
+     * r = 3 */
+    static const uint32_t budget[3] = { 64, 512, 4608 };
+    for (int k = 0; k < 3; k++) {
+        DiffOpts o = { 1, tol, NULL, budget[k], 0 };
+        diff_free(&D);
+        cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), 0, "%s", E);
+        cr_assert_float_eq(D.a.area, 1.0, 1e-9);
+        cr_assert(fabs(D.a.mean - mean) <= 1e-6 * mean, "%u samples: mean %.9g, the middle's distance %.9g",
+                  budget[k], D.a.mean, mean);
+        cr_assert(fabs(D.a.max - (TILT_H + TILT_S) / slope) <= 1e-6, "%u samples: max %.9g", budget[k], D.a.max);
+        if (k == 0)
+            cr_assert(fabs(D.a.area_over - (1 - x0)) <= 1e-6, "corners alone: area over %.9g, the strip's %.9g",
+                      D.a.area_over, 1 - x0);
+        else
+            cr_assert(fabs(D.a.area_over - (1 - x0)) <= 1.0 / TILT_N, "%u samples: area over %.9g", budget[k],
+                      D.a.area_over);
+    }
 }
 
 Test(diff, a_quad_against_its_two_triangles)
