@@ -9,7 +9,9 @@
  * seeded views the same face-id buffer, which every algorithm gives
  * (tl_agree). Failures: /dev/full, a file size limit (a full disk):
  * one message naming the file, nothing left behind, an old file as it
- * was. The shared models go through the same in the "models" suite. */
+ * was. A PLY polygon of 255, 256 or 300 corners reads back whole (its
+ * count a byte, then a word). The shared models go through the same in
+ * the "models" suite. */
 #define _DEFAULT_SOURCE
 
 #include <criterion/criterion.h>
@@ -742,4 +744,35 @@ Test(save, material_names_made_unique_and_whole)
         cr_assert_eq(b.mats[b.face_mat[f]].kd[0], m.mats[m.face_mat[f]].kd[0], "face %u's material", f);
     mesh_free(&b);
     mesh_free(&m);
+}
+
+/* A PLY face's corner count is a byte up to 255 corners and a 32-bit
+ * word past it: a regular polygon of 255, 256 or 300 corners (the
+ * byte's last count and the first two past it), beside a triangle,
+ * reads back as it was, every corner of every face. */
+Test(save, ply_polygons_of_255_256_and_300_corners_read_back)
+{
+    static const uint32_t sizes[3] = { 255, 256, 300 };
+    for (int k = 0; k < 3; k++) {
+        Mesh m;
+        cr_assert_eq(tl_mesh_init(&m, tmp("ngon.ply")), 0);
+        uint32_t n = sizes[k], c[300];
+        for (uint32_t i = 0; i < n; i++) {
+            double a = 2 * M_PI * i / n;
+            cr_assert_eq(tl_mesh_vertex(&m, (float)cos(a), (float)sin(a), (float)k), 0);
+            c[i] = i;
+        }
+        cr_assert_eq(tl_mesh_face(&m, c, n), 0);
+        cr_assert_eq(tl_mesh_face(&m, (uint32_t[]){ 0, 1, 2 }, 3), 0);
+        cr_assert_eq(tl_mesh_finish(&m), 0);
+        SaveReport rep;
+        cr_assert_eq(save_mesh(&m, tmp("ngon.ply"), SAVE_PLY, &rep, E, sizeof E), 0, "%s", E);
+        Mesh b;
+        cr_assert_eq(mesh_load(&b, tmp("ngon.ply"), E, sizeof E), 0, "%u corners: %s", n, E);
+        char what[32];
+        snprintf(what, sizeof what, "a %u-gon", n);
+        same_polygons(&m, &b, what);
+        mesh_free(&b);
+        mesh_free(&m);
+    }
 }
