@@ -88,6 +88,8 @@ Test(section, side_is_exact)
     float a[3] = { 0.25f, -0.25f, 0 };
     SectionPlane o = plane("0,0,0:1,1,1");
     cr_assert_eq(section_side(&o, a), 0);
+    /* the plane's own point: every term 0, so is the bound of its error */
+    cr_assert_eq(section_side(&o, (float[3]){ 0, 0, 0 }), 0);
     /* a sum that cancels in double: 1e8 + 1 - 1e8 on a normal 1, 1e-8 */
     SectionPlane big = plane("0,0,0:1,1e-08,0");
     float b[3] = { -1e-8f, 1, 0 };
