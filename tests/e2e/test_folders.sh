@@ -101,4 +101,7 @@ expect_status "-r without --check" 2 "$Z" -r "$D"
 expect_status "--jsonl with --json" 2 "$Z" --check --jsonl --json "$D"
 expect_status "--check DIR with -o" 2 "$Z" --check -o "$T/x.png" "$D"
 expect_err "... says the gallery draws a folder" "--gallery DIR -o sheet.png"
+# a mode that reads its file its own way takes no folder: not the gallery
+expect_status "--info DIR is no gallery" 1 "$Z" --info "$D"
+expect_err "... it says the file is a folder" "$D: is a directory"
 expect_status "a folder that cannot be read" 1 "$Z" --check "$T/none"
