@@ -208,6 +208,33 @@ Test(sandbox, a_forged_result_is_refused)
     mesh_free(&m);
 }
 
+/* A texture whose first level's size is not its image's is refused:
+ * the parent would read its texels past the bytes sent. The levels'
+ * widths are w, w / 2, ... 1 (texture.h); the first made one less. */
+Test(sandbox, a_forged_texture_level_is_refused)
+{
+    const char *p = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+    cr_assert_eq(access(p, R_OK), 0, "assimp-testmodels is missing (tools/deps.sh)");
+    Mesh m;
+    size_t len;
+    char err[256];
+    int fd;
+    char *map = wire_of(p, &len, &m, &fd);
+    cr_assert_eq(m.ntex, 1);
+    const Texture *t = &m.tex[0].img;
+    cr_assert(t->rgba && t->levels > 1 && t->w > 1, "the texture decoded, with its levels");
+    cr_assert_eq(read_back(fd, len, err, sizeof err), 0, "%s", err);
+    size_t at = find(map, len, t->lw, (size_t)t->levels * sizeof *t->lw);
+    int lw0 = t->w - 1;
+    memcpy(map + at, &lw0, sizeof lw0);
+    cr_assert_eq(read_back(fd, len, err, sizeof err), -1, "a first level %d texels wide for an image of %d", lw0,
+                 t->w);
+    cr_assert(strstr(err, "malformed mesh (textures)"), "%s", err);
+    munmap(map, len);
+    close(fd);
+    mesh_free(&m);
+}
+
 /* ==== References beneath the model's folder ==== */
 
 Test(sandbox, references_stay_beneath_the_folder)
