@@ -1014,6 +1014,39 @@ Test(repair, objects_are_repaired_each_on_its_own)
     cr_assert_eq(R.outward, 1);
 }
 
+/* Each object's vertex range after the repair is the least and the
+ * greatest vertex its faces, points and lines use, counted here: an
+ * object of one point at vertex 0 before a cube with a hole. */
+Test(repair, each_object_spans_the_vertices_it_uses)
+{
+    start();
+    vert(-2, 0, 0);
+    cr_assert_eq(tl_mesh_point(&M, 0), 0);
+    cr_assert_eq(tl_mesh_object(&M, "cube"), 0);
+    cube_ex(0, 0, 0, 1, 0, 0);
+    repair();
+    cr_assert_eq(R.filled, 1);
+    cr_assert_eq(M.nobjs, 2);
+    for (uint32_t i = 0; i < M.nobjs; i++) {
+        const MeshObject *o = &M.objs[i];
+        uint32_t lo = UINT32_MAX, hi = 0;
+        for (uint32_t f = o->face_first; f < o->face_first + o->face_count; f++)
+            for (uint32_t c = M.face_start[f]; c < M.face_start[f + 1]; c++) {
+                lo = M.corner[c] < lo ? M.corner[c] : lo;
+                hi = M.corner[c] > hi ? M.corner[c] : hi;
+            }
+        for (uint32_t q = o->point_first; q < o->point_first + o->point_count; q++) {
+            uint32_t v = M.point ? M.point[q] : q;
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+        cr_assert_eq(o->line_count, 0);
+        cr_assert_eq(o->vert_min, lo, "object %u: first vertex %u, it uses from %u", i, o->vert_min, lo);
+        cr_assert_eq(o->vert_max, hi, "object %u: last vertex %u, it uses up to %u", i, o->vert_max, hi);
+    }
+    cr_assert_eq(M.objs[0].vert_max, 0, "the point's object holds its one vertex");
+}
+
 Test(repair, steps_mask_zero_changes_nothing)
 {
     start();
