@@ -499,7 +499,8 @@ static void leaf_pairs(Cross *x, Found *fd, const Node *a, const Node *b)
         uint32_t j0 = a == b ? i + 1 : b->first;
         fd->boxes += b->end - j0;
         for (uint32_t j = j0; j < b->end; j++)
-            if (qboxes_meet(bi, x->qbox + 6 * (size_t)j) && x->face[i] != x->face[j])
+            /* without fans (every face a triangle) i and j are two faces */
+            if (qboxes_meet(bi, x->qbox + 6 * (size_t)j) && (!x->fan || x->face[i] != x->face[j]))
                 test_pair(x, fd, i, j);
     }
 }

@@ -126,7 +126,7 @@ static void exp_add_det3(Expansion *e, int s, const float *p, const float *q, co
 /* Shewchuk's bounds on the double evaluation's error, relative to the
  * permanent (the sum of the absolute products): eps = 2^-53. */
 #define EPS (DBL_EPSILON / 2)
-#define O3D_BOUND ((7.0 + 56.0 * EPS) * EPS)
+#define O3D_BOUND EXACT_O3D_BOUND
 #define O2D_BOUND ((3.0 + 16.0 * EPS) * EPS)
 
 /* The same determinant in 128-bit integers, when the coordinates allow:
