@@ -182,7 +182,8 @@ static void query_f(const double q[3], QueryF *f)
     f->err = 0;
     for (int k = 0; k < 3; k++) {
         f->q[k] = (float)q[k];
-        f->err = fmax(f->err, fabs(q[k] - f->q[k]));
+        double e = fabs(q[k] - f->q[k]);      /* never NaN: the points are finite */
+        f->err = e > f->err ? e : f->err;
     }
 }
 
@@ -196,7 +197,18 @@ static float box_limit(double best, const QueryF *f)
         return INFINITY;
     double r = sqrt(best) * (1 + 0x1p-19) + 2 * f->err;
     double lim = r * r * (1 + 0x1p-18) + 0x1p-120;
-    return lim >= 0x1p127 ? INFINITY : nextafterf((float)lim, INFINITY);
+    if (lim >= 0x1p127)
+        return INFINITY;
+    /* nextafterf((float)lim, INFINITY) without the call (a query asks
+     * this at each nearer triangle): lim is at least 2^-120, so its
+     * float is positive, normal and finite, and the next float up is
+     * the next bit pattern */
+    float f32 = (float)lim;
+    uint32_t u;
+    memcpy(&u, &f32, sizeof u);
+    u++;
+    memcpy(&f32, &u, sizeof f32);
+    return f32;
 }
 
 /* The squared distances from the point to a node's four children's
