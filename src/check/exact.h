@@ -72,4 +72,21 @@ int exact_orient2d(const float *a, const float *b, const float *c, int i, int j)
  * have zero orientation. */
 int exact_collinear(const float *a, const float *b, const float *c);
 
+/* Shewchuk's bound for orient2d's double evaluation (his "A" bound). */
+#define EXACT_O2D_BOUND ((3.0 + 16.0 * (DBL_EPSILON / 2)) * (DBL_EPSILON / 2))
+
+/* exact_collinear, its commonest answer without the call: the first
+ * projection's orientation evaluated as exact_orient2d's filter does
+ * (the same operations), nonzero for sure when past the bound. Every
+ * face of the model asks this once. */
+static inline int exact_collinear_quick(const float *a, const float *b, const float *c)
+{
+    double l = ((double)a[0] - c[0]) * ((double)b[1] - c[1]);
+    double r = ((double)a[1] - c[1]) * ((double)b[0] - c[0]);
+    double det = l - r, bound = EXACT_O2D_BOUND * (fabs(l) + fabs(r));
+    if (det > bound || det < -bound)
+        return 0;
+    return exact_collinear(a, b, c);
+}
+
 #endif
