@@ -311,12 +311,13 @@ else notok "O: allocation without bound ends at --max-memory, the scene stays" "
 open_file "$S/spin.fbx"
 wait_for 'loading spin.fbx' >/dev/null
 zpid=$(cat "$T/pid")
-# zview's one child is the fork server (server.c); each load is a waiter
-# of the server's and the waiter's child
+# zview's one child is the fork server (server.c); each load is a child
+# of the server's (it forks no waiter between them: issue 34)
 server=$(ps -o pid= --ppid "$zpid" | tr -d ' ')
 loads() { ps -o pid= --ppid "$server" | wc -l; }
 kids=$(loads)
-spinning=$(ps -o pid= --ppid "$(ps -o pid= --ppid "$server" | head -1 | tr -d ' ')" | wc -l)
+load=$(ps -o pid= --ppid "$server" | head -1 | tr -d ' ')
+spinning=$(ps -o pid= -p "${load:-0}" | wc -l)
 tm send-keys -t zv Escape
 left=1
 i=0
