@@ -61,6 +61,13 @@ typedef struct {
                                  * result in the report (RepairReport.before, .after): a caller
                                  * that shows both need not check again */
     const int *cancel;          /* NULL, or set (atomically) to stop: repair_mesh fails "cancelled" */
+    /* NULL, or called once the repaired arrays are in the mesh for good
+     * (repair_mesh then succeeds, and changes the mesh no more), before
+     * the check of the result when that check reads the mesh in place:
+     * a caller may start writing the mesh beside that check (--repair
+     * on two threads or more) */
+    void (*installed)(const Mesh *m, void *arg);
+    void    *installed_arg;
 } RepairOpts;
 
 /* Why a loop was left open. */

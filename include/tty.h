@@ -249,6 +249,7 @@ typedef struct {
     ColourDepth colour;         /* asked: the colours its SGR report showed (0: no answer) */
     double      waited_ms;      /* how long the questions took */
     int         answered;       /* the last answer came within the wait */
+    BgScan      scan;           /* the answers as read so far: a late one's start may be in it */
 } TermAnswers;
 
 /* Which of the pixels' questions (termgfx.c) go with the rest: none,

@@ -1227,6 +1227,52 @@ Test(check, orient3d_sign_is_exact_at_every_scale)
     cr_assert_gt(tested, 50000);
 }
 
+/* One plane asked about many points (ExactPlane, the crossing test's
+ * triangles) gives orient3d's sign: points of up to 2^22 on a random
+ * plane through three others, or a step off it, whose determinant
+ * (three factors of 22 bits) doubles cannot hold, so the double
+ * evaluation is noise where the true sign is 0 or tiny, against the
+ * sign in 128-bit integers. */
+Test(check, plane_side_is_orient3d_where_doubles_round)
+{
+    uint32_t seed = 777;
+    int tested = 0, zeros = 0;
+    for (int round = 0; round < 20000; round++) {
+        int64_t g[4][3];
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++) {
+                seed = seed * 1103515245u + 12345u;
+                g[i][k] = (int64_t)(seed >> 8 & 0x1fffff) - 0x100000;      /* |.| <= 2^20 */
+            }
+        seed = seed * 1103515245u + 12345u;
+        int64_t s = (int64_t)(seed >> 16 & 3) - 1, t = (int64_t)(seed >> 20 & 3) - 1;
+        for (int k = 0; k < 3; k++)
+            g[3][k] = g[0][k] + s * (g[1][k] - g[0][k]) + t * (g[2][k] - g[0][k]);    /* |.| < 2^23 */
+        if (round % 3 == 1)
+            g[3][round % 7 % 3] += (round & 8) ? 1 : -1;
+        __int128 m[3][3];
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++)
+                m[i][k] = g[i][k] - g[3][k];
+        __int128 det = m[0][2] * (m[1][0] * m[2][1] - m[2][0] * m[1][1]) +
+                       m[1][2] * (m[2][0] * m[0][1] - m[0][0] * m[2][1]) +
+                       m[2][2] * (m[0][0] * m[1][1] - m[1][0] * m[0][1]);
+        int want = det > 0 ? 1 : det < 0 ? -1 : 0;
+        float f[4][3];
+        for (int i = 0; i < 4; i++)
+            for (int k = 0; k < 3; k++)
+                f[i][k] = (float)g[i][k];       /* exact: below 2^24 */
+        ExactPlane pl;
+        exact_plane(&pl, f[0], f[1], f[2]);
+        int got = exact_plane_side(&pl, f[3]);
+        cr_assert_eq(got, want, "round %d: %d, wanted %d", round, got, want);
+        tested++;
+        zeros += want == 0;
+    }
+    cr_assert_gt(zeros, 5000, "points on the plane, where doubles leave noise");
+    cr_assert_eq(tested, 20000);
+}
+
 /* ==== An independent reference ==== */
 
 /* Counted here without meshcheck's code: points by sorting positions,

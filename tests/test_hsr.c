@@ -719,3 +719,44 @@ Test(hsr, samples_written_are_the_samples_covered)
     }
     polys_free(&p);
 }
+
+/* ==== a row's crossings, sorted ==== */
+
+static int cmp_int32(const void *a, const void *b)
+{
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* raster_sort_crossings against the C library's qsort, on the rows a
+ * rasterizer meets (a few crossings, or tens of thousands at a handful
+ * of places) and the orders that break naive quicksorts: sorted,
+ * reversed, all equal, organ pipe, sawtooth, random over the full range. */
+Test(hsr, crossings_sort_as_qsort_does)
+{
+    static const int sizes[] = { 0, 1, 2, 3, 24, 25, 26, 100, 1001, 100000 };
+    int32_t *a = malloc(100000 * sizeof *a), *ref = malloc(100000 * sizeof *ref);
+    cr_assert(a && ref);
+    uint32_t r = 12345;
+    for (size_t si = 0; si < sizeof sizes / sizeof sizes[0]; si++)
+        for (int pat = 0; pat < 8; pat++) {
+            int n = sizes[si];
+            for (int i = 0; i < n; i++) {
+                r = r * 1664525u + 1013904223u;
+                int32_t v = pat == 0 ? (int32_t)r                       /* the full range, negatives too */
+                          : pat == 1 ? (int32_t)(r >> 30)               /* four values: a face listed over and over */
+                          : pat == 2 ? i
+                          : pat == 3 ? n - i
+                          : pat == 4 ? 7
+                          : pat == 5 ? (i < n / 2 ? i : n - i)          /* organ pipe */
+                          : pat == 6 ? i % 17
+                                     : (i & 1 ? i : -i);
+                a[i] = ref[i] = v;
+            }
+            qsort(ref, (size_t)n, sizeof *ref, cmp_int32);
+            raster_sort_crossings(a, n);
+            cr_assert(n == 0 || !memcmp(a, ref, (size_t)n * sizeof *a), "n %d, pattern %d", n, pat);
+        }
+    free(a);
+    free(ref);
+}

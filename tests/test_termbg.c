@@ -107,7 +107,9 @@ Test(termbg, the_sgr_report_says_the_colours)
 
 /* ANSWER_LATE: both answers after the wait, each with its ESC alone 40 ms
  * before the rest, as a slow ssh link brings them */
-typedef enum { ANSWER_BOTH, ANSWER_DA, SILENT, ANSWER_LATE } Reply;
+/* COLOUR_LATE: the SGR report and the attributes after the wait, as an
+ * ssh link slower than the wait brings every answer */
+typedef enum { ANSWER_BOTH, ANSWER_DA, SILENT, ANSWER_LATE, COLOUR_LATE } Reply;
 
 typedef struct {
     int     m;              /* the pty's master: the terminal's side */
@@ -129,6 +131,14 @@ static void *fake_terminal(void *arg)
         ssize_t r = read(t->m, t->seen + t->nseen, sizeof t->seen - 1 - t->nseen);
         if (r > 0)
             t->nseen += (size_t)r;
+    }
+    if (t->reply == COLOUR_LATE) {
+        ssize_t w = write(t->m, "x", 1);
+        usleep((useconds_t)(TERM_ASK_MS + 200) * 1000);
+        const char *late = "\033P1$r0;38:2::1:2:3m\033\\\033[?1;2c";
+        w = write(t->m, late, strlen(late));
+        (void)w;
+        return NULL;
     }
     if (t->reply == ANSWER_LATE) {
         static const char *const pieces[] = { "x", "\033", "]11;rgb:ffff/ffff/ffff\033\\\033", "[?1;2c" };
@@ -303,4 +313,49 @@ Test(termbg, an_answer_after_the_wait_is_dropped_whole, .timeout = 30)
         keys[n++] = ev.type == TE_KEY ? ev.key : -1;
     cr_expect_eq(n, 2, "%d events from a late answer between two keys", n);
     cr_expect(n == 2 && keys[0] == 'a' && keys[1] == 'b');
+}
+
+/* The colour question's answer after the wait (a link slower than
+ * TERM_ASK_MS): the frames before it are in the environment's 256
+ * colours; when it comes, the viewer hears of it as of a new window and
+ * draws in 24 bits from then on. Nothing of it is a key. */
+Test(termbg, a_late_colour_answer_is_taken_when_it_comes, .timeout = 30)
+{
+    Pty p;
+    pty_make(&p);
+    FakeTerm t = { .m = p.m, .reply = COLOUR_LATE };
+    pthread_t th;
+    cr_assert_eq(pthread_create(&th, NULL, fake_terminal, &t), 0);
+    char err[128];
+    TermConfig cfg = { .out = p.out, .in = p.in, .termname = "xterm-256color", .colour = COLOUR_256,
+                       .colour_env = 1 };
+    if (term_open(&cfg, err, sizeof err)) {
+        pthread_join(th, NULL);
+        cr_skip_test("no xterm-256color description: %s", err);
+    }
+    cr_expect(memmem(t.seen, t.nseen, "\033P$qm", 5), "the SGR was asked back");
+    cr_expect_eq(term_colour(), COLOUR_256, "before the answer: the environment's");
+    TermEvent ev;
+    int keys = 0, resized = 0, other = 0;
+    while (term_read(&ev, 1500) == 1 && !resized) {
+        if (ev.type == TE_KEY)
+            keys += ev.key == 'x' ? 1 : 100;
+        else if (ev.type == TE_RESIZE)
+            resized = 1;
+        else if (ev.type != TE_READY)
+            other++;
+    }
+    pthread_join(th, NULL);
+    cr_expect(resized, "the late answer is told as a new window");
+    cr_expect_eq(term_colour(), COLOUR_TRUE, "after it: 24 bits");
+    cr_expect(term_colour_answered());
+    while (term_read(&ev, 200) == 1)
+        if (ev.type == TE_KEY)
+            keys += ev.key == 'x' ? 1 : 100;
+    cr_expect_eq(keys, 1, "the key typed, and no key of the answer (%d)", keys);
+    cr_expect_eq(other, 0);
+    term_restore();
+    fclose(p.out);
+    fclose(p.in);
+    close(p.m);
 }

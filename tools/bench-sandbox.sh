@@ -4,8 +4,10 @@
 # medians of the load as --info reports it (wall time from the load's
 # start to a Mesh in hand: for the sandbox that is the fork, the child's
 # load, the filter and the copy back) and of the whole command; then the
-# CPU time (user + system, the child's included) of RUNS commands of
-# each, which a busy machine disturbs far less than wall time.
+# CPU time of RUNS commands of each (perf's task-clock of the whole
+# tree, the sandboxed child's included; without perf, user + system of
+# zview and its waited children, which misses the child), which a busy
+# machine disturbs far less than wall time.
 # MODEL=... another model; RUNS=N (default 21).
 set -u
 Z=${ZVIEW:-./zview}
@@ -34,7 +36,16 @@ ron=$(med "$T/run-on"); roff=$(med "$T/run-off")
 echo "model: $MODEL, $RUNS runs each, pinned to CPU $CPU, medians"
 awk -v a="$lon" -v b="$loff" 'BEGIN { printf "load (--info):  sandboxed %.1f ms, --no-sandbox %.1f ms: %+.1f%%\n", a, b, 100 * (a - b) / b }'
 awk -v a="$ron" -v b="$roff" 'BEGIN { printf "whole command:  sandboxed %.1f ms, --no-sandbox %.1f ms: %+.1f%%\n", a / 1000, b / 1000, 100 * (a - b) / b }'
+# CPU of the whole process tree: perf stat's task-clock counts every
+# descendant, the fork server's children too, which /usr/bin/time
+# misses (the server is not waited for when zview exits)
 cpu() {
+    if perf stat -e task-clock true >/dev/null 2>&1; then
+        perf stat -x, -e task-clock -o "$T/cpu" taskset -c "$CPU" sh -c \
+            "i=0; while [ \$i -lt $RUNS ]; do '$Z' --info $1 '$MODEL' >/dev/null 2>&1; i=\$((i + 1)); done"
+        sed -n 's/^\([0-9.]*\),.*task-clock.*/\1/p' "$T/cpu" | awk -v n="$RUNS" '{ printf "%.1f", $1 / n }'
+        return
+    fi
     /usr/bin/time -f "%U %S" -o "$T/cpu" taskset -c "$CPU" sh -c \
         "i=0; while [ \$i -lt $RUNS ]; do '$Z' --info $1 '$MODEL' >/dev/null 2>&1; i=\$((i + 1)); done"
     awk -v n="$RUNS" '{ printf "%.1f", ($1 + $2) * 1000 / n }' "$T/cpu"

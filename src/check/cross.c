@@ -191,8 +191,10 @@ static void corners_box(const ObjCheck *o, const uint32_t c[3], float *lo, float
 /* Triangle i (Morton order), from the renumbered points. */
 static inline void tri_pos(const Cross *x, uint32_t i, const float *p[3])
 {
-    for (int k = 0; k < 3; k++)
-        p[k] = x->pos + 3 * (size_t)x->id[3 * (size_t)i + k];
+    const uint32_t *id = x->id + 3 * (size_t)i;
+    p[0] = x->pos + 3 * (size_t)id[0];
+    p[1] = x->pos + 3 * (size_t)id[1];
+    p[2] = x->pos + 3 * (size_t)id[2];
 }
 
 /* The triangles to test, as (face, fan triangle) in file order; n set. */
@@ -496,10 +498,16 @@ static void leaf_pairs(Cross *x, Found *fd, const Node *a, const Node *b)
         const uint16_t *bi = x->qbox + 6 * (size_t)i;
         if (a != b && !qboxes_meet(bi, b->lo))
             continue;
-        uint32_t j0 = a == b ? i + 1 : b->first;
-        fd->boxes += b->end - j0;
-        for (uint32_t j = j0; j < b->end; j++)
-            if (qboxes_meet(bi, x->qbox + 6 * (size_t)j) && x->face[i] != x->face[j])
+        uint32_t j0 = a == b ? i + 1 : b->first, end = b->end;
+        fd->boxes += end - j0;
+        /* i's box in locals: a found pair writes face flags (bytes, which
+         * may alias anything), and the box would be read again */
+        uint16_t lo0 = bi[0], lo1 = bi[1], lo2 = bi[2], hi0 = bi[3], hi1 = bi[4], hi2 = bi[5];
+        const uint16_t *bj = x->qbox + 6 * (size_t)j0;
+        for (uint32_t j = j0; j < end; j++, bj += 6)
+            /* without fans (every face a triangle) i and j are two faces */
+            if (lo0 <= bj[3] && bj[0] <= hi0 && lo1 <= bj[4] && bj[1] <= hi1 && lo2 <= bj[5] && bj[2] <= hi2 &&
+                (!x->fan || x->face[i] != x->face[j]))
                 test_pair(x, fd, i, j);
     }
 }

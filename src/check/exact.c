@@ -124,10 +124,10 @@ static void exp_add_det3(Expansion *e, int s, const float *p, const float *q, co
 /* ==== Predicates ==== */
 
 /* Shewchuk's bounds on the double evaluation's error, relative to the
- * permanent (the sum of the absolute products): eps = 2^-53. */
-#define EPS (DBL_EPSILON / 2)
-#define O3D_BOUND ((7.0 + 56.0 * EPS) * EPS)
-#define O2D_BOUND ((3.0 + 16.0 * EPS) * EPS)
+ * permanent (the sum of the absolute products): exact.h, which the
+ * callers' own filters share. */
+#define O3D_BOUND EXACT_O3D_BOUND
+#define O2D_BOUND EXACT_O2D_BOUND
 
 /* The same determinant in 128-bit integers, when the coordinates allow:
  * a float is M 2^(e-150) with M < 2^24 (e its exponent field), so when

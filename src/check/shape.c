@@ -48,7 +48,7 @@ int check_face_degenerate(const ObjCheck *o, uint32_t f)
             qc = c;
             continue;
         }
-        if (!exact_collinear(oc_vpos(o, oc_vert(o, s)), oc_vpos(o, oc_vert(o, qc)), oc_vpos(o, oc_vert(o, c))))
+        if (!exact_collinear_quick(oc_vpos(o, oc_vert(o, s)), oc_vpos(o, oc_vert(o, qc)), oc_vpos(o, oc_vert(o, c))))
             return 0;
     }
     return 1;

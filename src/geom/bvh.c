@@ -150,23 +150,31 @@ static inline double prune_at(double best)
     return best + best * 0x1p-20;
 }
 
-static inline double tri_dist2(const Bvh *b, uint32_t t, const double q[3], double out[3])
+/* Triangle t's corners in double (exact: they are floats). */
+static inline void tri_corners(const Bvh *b, uint32_t t, double A[3], double B[3], double C[3])
 {
     const float *c = &b->corner[9 * (size_t)t];
-    double A[3] = { c[0], c[1], c[2] }, B[3] = { c[3], c[4], c[5] }, C[3] = { c[6], c[7], c[8] };
+    A[0] = c[0], A[1] = c[1], A[2] = c[2];
+    B[0] = c[3], B[1] = c[4], B[2] = c[5];
+    C[0] = c[6], C[1] = c[7], C[2] = c[8];
+}
+
+static inline double tri_dist2(const Bvh *b, uint32_t t, const double q[3], double out[3])
+{
+    double A[3], B[3], C[3];
+    tri_corners(b, t, A, B, C);
     return bvh_point_triangle(q, A, B, C, out);
 }
 
-/* Is triangle t's plane farther from q than the squared distance lim?
- * Then so is the triangle: a cheap test before the exact one, with a
- * margin that rounding cannot close. */
-static inline int plane_beyond(const Bvh *b, uint32_t t, const double q[3], double lim)
+/* Is the plane of triangle A B C farther from q than the squared
+ * distance lim? Then so is the triangle: a cheap test before the exact
+ * one, with a margin that rounding cannot close. */
+static inline int plane_beyond(const double A[3], const double B[3], const double C[3], const double q[3], double lim)
 {
-    const float *c = &b->corner[9 * (size_t)t];
-    double u[3] = { (double)c[3] - c[0], (double)c[4] - c[1], (double)c[5] - c[2] };
-    double v[3] = { (double)c[6] - c[0], (double)c[7] - c[1], (double)c[8] - c[2] };
+    double u[3] = { B[0] - A[0], B[1] - A[1], B[2] - A[2] };
+    double v[3] = { C[0] - A[0], C[1] - A[1], C[2] - A[2] };
     double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
-    double h = (q[0] - c[0]) * n[0] + (q[1] - c[1]) * n[1] + (q[2] - c[2]) * n[2];
+    double h = (q[0] - A[0]) * n[0] + (q[1] - A[1]) * n[1] + (q[2] - A[2]) * n[2];
     double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     return h * h > lim * nn * (1 + 0x1p-16);
 }
@@ -182,7 +190,8 @@ static void query_f(const double q[3], QueryF *f)
     f->err = 0;
     for (int k = 0; k < 3; k++) {
         f->q[k] = (float)q[k];
-        f->err = fmax(f->err, fabs(q[k] - f->q[k]));
+        double e = fabs(q[k] - f->q[k]);      /* never NaN: the points are finite */
+        f->err = e > f->err ? e : f->err;
     }
 }
 
@@ -196,7 +205,18 @@ static float box_limit(double best, const QueryF *f)
         return INFINITY;
     double r = sqrt(best) * (1 + 0x1p-19) + 2 * f->err;
     double lim = r * r * (1 + 0x1p-18) + 0x1p-120;
-    return lim >= 0x1p127 ? INFINITY : nextafterf((float)lim, INFINITY);
+    if (lim >= 0x1p127)
+        return INFINITY;
+    /* nextafterf((float)lim, INFINITY) without the call (a query asks
+     * this at each nearer triangle): lim is at least 2^-120, so its
+     * float is positive, normal and finite, and the next float up is
+     * the next bit pattern */
+    float f32 = (float)lim;
+    uint32_t u;
+    memcpy(&u, &f32, sizeof u);
+    u++;
+    memcpy(&f32, &u, sizeof f32);
+    return f32;
 }
 
 /* The squared distances from the point to a node's four children's
@@ -302,9 +322,14 @@ void bvh_closest_from(const Bvh *b, const double q[3], uint32_t hint, BvhHit *hi
         if (stack[top].count) {
             uint32_t t0 = stack[top].child;
             for (uint32_t t = t0; t < t0 + stack[top].count; t++) {
-                if (t == hint || plane_beyond(b, t, q, prune_at(best)))
+                if (t == hint)
                     continue;
-                double d = tri_dist2(b, t, q, p);
+                /* the corners read once for both tests */
+                double A[3], B[3], C[3];
+                tri_corners(b, t, A, B, C);
+                if (plane_beyond(A, B, C, q, prune_at(best)))
+                    continue;
+                double d = bvh_point_triangle(q, A, B, C, p);
                 if (d < best || (d == best && t < bt)) {
                     best = d;
                     bt = t;

@@ -479,6 +479,8 @@ static int repair_guarded(Rep *r, Mesh *m, uint8_t *level, Before *b, int *have,
             break;
         if (!risky(r, m)) {
             install(r, m);
+            if (r->opt->installed)
+                r->opt->installed(m, r->opt->installed_arg);
             *counted = check_result(r, m, *have ? b : NULL, after) == 0;
             break;
         }
@@ -498,6 +500,8 @@ static int repair_guarded(Rep *r, Mesh *m, uint8_t *level, Before *b, int *have,
             break;
         if (!rp_worse(&b->mc, after, level)) {
             install(r, m);
+            if (r->opt->installed)
+                r->opt->installed(m, r->opt->installed_arg);
             *counted = 1;
             break;
         }

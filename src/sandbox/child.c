@@ -268,7 +268,7 @@ static int make_tls(struct dl_phdr_info *info, size_t size, void *arg)
     return 0;
 }
 
-void sandbox_child_main(Req *r)
+void sandbox_child_main(Req *r, const SandboxFilter *filter)
 {
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     /* default signal handling (the viewer's handlers touch the terminal) */
@@ -307,7 +307,7 @@ void sandbox_child_main(Req *r)
     MeshTexture t;
     char err[512] = "";
     int rc;
-    if (sandbox_filter_install(r->fd[RQ_RESULT], r->fd[RQ_ALIVE]) != 0) {
+    if (sandbox_filter_apply(filter, r->fd[RQ_RESULT], r->fd[RQ_ALIVE]) != 0) {
         memset(&m, 0, sizeof m);
         snprintf(err, sizeof err, "%.300s: the sandbox's filter cannot be installed",
                  r->path[0] ? r->path : "(input)");

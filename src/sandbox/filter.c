@@ -15,19 +15,34 @@
  *
  * Mapping executable memory stays allowed (a library may map code), and
  * so do read-only opens of any file: what may be read is Landlock's to
- * say (landlock.c), where the kernel has it, and refopen.c's. */
+ * say (landlock.c), where the kernel has it, and refopen.c's.
+ *
+ * The rules name three numbers of the child's own: the result's memfd,
+ * the pipe it may write, its pid. libseccomp's compiling of the rules
+ * cost each child 1.4 ms and 48 page faults (issue 34), so the fork
+ * server compiles them once with a marker in place of each number
+ * (sandbox_filter_make), and each child puts its numbers in place of
+ * the markers in a copy and installs that (sandbox_filter_apply): the
+ * very program libseccomp makes for those numbers, which the unit
+ * tests compare instruction by instruction. */
 
 #define _GNU_SOURCE
 
 #include <errno.h>
 #include <fcntl.h>
+#include <linux/filter.h>
+#include <linux/seccomp.h>
 #include <sched.h>
 #include <seccomp.h>
 #include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/prctl.h>
+#include <sys/syscall.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
-#include "sandbox.h"
+#include "sandbox_internal.h"
 
 /* O_TMPFILE without the O_DIRECTORY it includes (a read-only open of a
  * folder is fine) */
@@ -73,7 +88,7 @@ static const int fatal[] = {
     SCMP_SYS(io_uring_setup), SCMP_SYS(userfaultfd), SCMP_SYS(keyctl), SCMP_SYS(add_key),
 };
 
-static int add_rules(scmp_filter_ctx f, int memfd, int pipefd)
+static int add_rules(scmp_filter_ctx f, uint32_t memfd, uint32_t pipefd, uint32_t self)
 {
     int r = 0;
     for (size_t i = 0; i < sizeof allowed / sizeof allowed[0]; i++)
@@ -115,21 +130,124 @@ static int add_rules(scmp_filter_ctx f, int memfd, int pipefd)
      * the model's files are counted: sandbox.c); setrlimit is refused */
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(prlimit64), 1, SCMP_A2(SCMP_CMP_EQ, 0));
     /* signals: to itself only (abort(), a sanitizer's report) */
-    pid_t self = getpid();
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(tgkill), 1, SCMP_A0(SCMP_CMP_EQ, (scmp_datum_t)self));
     r |= seccomp_rule_add(f, SCMP_ACT_ALLOW, SCMP_SYS(kill), 1, SCMP_A0(SCMP_CMP_EQ, (scmp_datum_t)self));
     r |= seccomp_rule_add(f, SCMP_ACT_KILL_PROCESS, SCMP_SYS(kill), 1, SCMP_A0(SCMP_CMP_NE, (scmp_datum_t)self));
     return r;
 }
 
-int sandbox_filter_install(int memfd, int pipefd)
+/* The rules for these numbers, compiled: a context, or NULL. */
+static scmp_filter_ctx rules(uint32_t memfd, uint32_t pipefd, uint32_t self)
 {
     scmp_filter_ctx f = seccomp_init(SCMP_ACT_ERRNO(EPERM));
+    if (f && add_rules(f, memfd, pipefd, self) != 0) {
+        seccomp_release(f);
+        f = NULL;
+    }
+    return f;
+}
+
+int sandbox_filter_install(int memfd, int pipefd)
+{
+    scmp_filter_ctx f = rules((uint32_t)memfd, (uint32_t)pipefd, (uint32_t)getpid());
     if (!f)
         return -1;
-    int r = add_rules(f, memfd, pipefd);
-    if (r == 0)
-        r = seccomp_load(f);    /* sets no_new_privs first (libseccomp's default) */
+    int r = seccomp_load(f);    /* sets no_new_privs first (libseccomp's default) */
     seccomp_release(f);
     return r == 0 ? 0 : -1;
+}
+
+int sandbox_filter_compile(SandboxFilter *out, uint32_t memfd, uint32_t pipefd, uint32_t self)
+{
+    memset(out, 0, sizeof *out);
+    scmp_filter_ctx f = rules(memfd, pipefd, self);
+    /* libseccomp 2.5 writes the program to a descriptor only */
+    int fd = f ? memfd_create("zview-filter", MFD_CLOEXEC) : -1;
+    int ok = fd >= 0 && seccomp_export_bpf(f, fd) == 0;
+    if (f)
+        seccomp_release(f);
+    off_t len = ok ? lseek(fd, 0, SEEK_END) : -1;
+    size_t n = len > 0 ? (size_t)len / sizeof(struct sock_filter) : 0;
+    ok = ok && n > 0 && n <= BPF_MAXINSNS && (size_t)len == n * sizeof(struct sock_filter);
+    out->ins = ok ? malloc((size_t)len) : NULL;
+    ok = out->ins && pread(fd, out->ins, (size_t)len, 0) == len;
+    if (fd >= 0)
+        close(fd);
+    if (!ok) {
+        free(out->ins);
+        out->ins = NULL;
+        return -1;
+    }
+    out->len = n;
+    return 0;
+}
+
+/* What stands for each number in the program made once; none is a
+ * constant the rules have otherwise (system call numbers, flags, the
+ * architecture's token), nor a pid or descriptor the kernel gives. */
+#define MARK_MEMFD 0x7a760001u
+#define MARK_PIPE  0x7a760002u
+#define MARK_SELF  0x7a760003u
+
+/* A comparison with a marker (the program's only use of them). */
+static int is_mark(const struct sock_filter *in)
+{
+    return BPF_CLASS(in->code) == BPF_JMP && BPF_SRC(in->code) == BPF_K && in->k - MARK_MEMFD < 3;
+}
+
+int sandbox_filter_make(SandboxFilter *f)
+{
+    if (sandbox_filter_compile(f, MARK_MEMFD, MARK_PIPE, MARK_SELF) != 0)
+        return -1;
+    /* each marker is there (else the program does not say what the
+     * rules do once patched: it is not used) */
+    int seen[3] = { 0, 0, 0 };
+    for (size_t i = 0; i < f->len; i++)
+        if (is_mark(&f->ins[i]))
+            seen[f->ins[i].k - MARK_MEMFD] = 1;
+    if (seen[0] && seen[1] && seen[2])
+        return 0;
+    sandbox_filter_free(f);
+    return -1;
+}
+
+int sandbox_filter_patch(const SandboxFilter *f, SandboxFilter *out, uint32_t memfd, uint32_t pipefd, uint32_t self)
+{
+    out->len = 0;
+    out->ins = f->len ? malloc(f->len * sizeof *out->ins) : NULL;
+    if (!out->ins)
+        return -1;
+    const uint32_t value[3] = { memfd, pipefd, self };
+    for (size_t i = 0; i < f->len; i++) {
+        out->ins[i] = f->ins[i];
+        if (is_mark(&f->ins[i]))
+            out->ins[i].k = value[f->ins[i].k - MARK_MEMFD];
+    }
+    out->len = f->len;
+    return 0;
+}
+
+int sandbox_filter_apply(const SandboxFilter *f, int memfd, int pipefd)
+{
+    SandboxFilter mine;
+    if (!f || !f->len)
+        return sandbox_filter_install(memfd, pipefd);
+    if (sandbox_filter_patch(f, &mine, (uint32_t)memfd, (uint32_t)pipefd, (uint32_t)getpid()) != 0)
+        return -1;
+    struct sock_fprog prog = { .len = (unsigned short)mine.len, .filter = mine.ins };
+    /* as seccomp_load does it: no_new_privs, then the filter, no flags */
+    int r = prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0);
+    if (r == 0)
+        r = (int)syscall(SYS_seccomp, SECCOMP_SET_MODE_FILTER, 0, &prog);
+    if (r != 0 && errno == ENOSYS)
+        r = prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &prog, 0, 0);
+    sandbox_filter_free(&mine);
+    return r == 0 ? 0 : -1;
+}
+
+void sandbox_filter_free(SandboxFilter *f)
+{
+    free(f->ins);
+    f->ins = NULL;
+    f->len = 0;
 }

@@ -369,7 +369,7 @@ static int start(Job *j, const SandboxServer *server, Child *c)
         return 0;
     c->pid = fork();
     if (c->pid == 0)
-        sandbox_child_main(&j->rq);
+        sandbox_child_main(&j->rq, NULL);  /* it compiles its filter */
     return c->pid > 0 ? 0 : -1;
 }
 

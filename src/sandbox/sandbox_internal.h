@@ -7,6 +7,7 @@
  * files the child names into its memory bound (budget.c) and reads the
  * result back (wire.c). */
 
+#include <linux/filter.h>
 #include <stdint.h>
 #include <sys/resource.h>
 #include <sys/types.h>
@@ -46,8 +47,28 @@ typedef struct {
     int      fd[RQ_NFD];
 } Req;
 
-/* The child: never returns. */
-void sandbox_child_main(Req *r) __attribute__((noreturn));
+/* A seccomp program (filter.c), its instructions malloc'd. */
+typedef struct {
+    struct sock_filter *ins;
+    size_t              len;
+} SandboxFilter;
+
+/* The filter (filter.c), compiled once: make, with markers for the
+ * child's numbers (0, or -1: the child then compiles its own); apply,
+ * in the child, with its numbers in place (f NULL or empty: compiled
+ * there, sandbox_filter_install): 0, or -1. compile: libseccomp's
+ * program for these very numbers; patch: a copy of a made program with
+ * them in place (the tests compare the two). */
+int  sandbox_filter_make(SandboxFilter *f);
+int  sandbox_filter_apply(const SandboxFilter *f, int memfd, int pipefd);
+int  sandbox_filter_compile(SandboxFilter *out, uint32_t memfd, uint32_t pipefd, uint32_t self);
+int  sandbox_filter_patch(const SandboxFilter *f, SandboxFilter *out, uint32_t memfd, uint32_t pipefd,
+                          uint32_t self);
+void sandbox_filter_free(SandboxFilter *f);
+
+/* The child: never returns. filter: the program made once (NULL: the
+ * child compiles its own). */
+void sandbox_child_main(Req *r, const SandboxFilter *filter) __attribute__((noreturn));
 
 /* A started child: its pid, and from the server a pidfd to signal it
  * by (-1: by pid) and the socket the server's waiter reports its end on

@@ -477,9 +477,9 @@ static void set_modes(Term *t)
     t->vt.caps.lf = tcgetattr(t->q.fd, &tio) != 0 || !(tio.c_oflag & OPOST) || !(tio.c_oflag & ONLCR);
 }
 
-/* The terminal said it draws more colours than the environment did:
- * the quantizer for them (kept as it was when there is no memory). */
-static void colour_answered(Term *t, ColourDepth said)
+/* The quantizer for the colours the terminal said (kept as it was when
+ * there is no memory). */
+void term_colour_said(Term *t, ColourDepth said)
 {
     if (said <= t->depth)
         return;
@@ -534,7 +534,10 @@ static void ask_terminal(Term *t, const TermConfig *cfg)
         t->bg_wait_ms = ans.waited_ms;
         t->bg_known = cfg->ask_bg && ans.got_bg;
         memcpy(t->bg, ans.bg, 3);
-        colour_answered(t, ans.colour);
+        term_colour_said(t, ans.colour);
+        /* its answer not in yet (a link slower than the wait): read on */
+        t->colour_scan = ans.scan;
+        t->colour_late = ask_colour && !ans.scan.got_da && !ans.colour;
     }
     t->pix = asks ? pixels_scanned(&t->pix_scan) : cfg->pixels == PIX_AUTO ? PIX_CELLS : (PixelProto)cfg->pixels;
     /* a slow link (or a loaded terminal) answers after the wait: what

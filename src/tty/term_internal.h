@@ -56,7 +56,10 @@ typedef struct {
     PixelScan   pix_scan;       /* its answers to the pixels' questions, read so far */
     int         pix_late;       /* the input is read for them too (a slow link's come late) */
     double      pix_asked_ms;   /* when they were asked */
-    int         pix_news;       /* they came late and named pixels: the viewer is told (TE_RESIZE) */
+    int         pix_news;       /* they came late and named pixels, or colours: the viewer is told
+                                   (TE_RESIZE) */
+    BgScan      colour_scan;    /* the colour question's answers, read on when it came late */
+    int         colour_late;    /* the input is read for it too (until the attributes' answer) */
     int         pix_shown;      /* an image is on the screen */
     int         pix_wanted;     /* pixels were not turned off (--mode) */
     MuxKind     mux;            /* the multiplexer zview runs in */
@@ -65,6 +68,9 @@ typedef struct {
     double      pane_asked_ms;  /* when tmux was last asked */
 } Term;
 
+/* term.c: the terminal said it draws more colours than the environment
+ * did: their quantizer from now on. */
+void  term_colour_said(Term *t, ColourDepth said);
 /* term.c: the open session, NULL when there is none. */
 Term *term_session(void);
 /* term.c: back from Ctrl-Z, or a new window size (the handlers noted

@@ -269,6 +269,7 @@ int termbg_ask(int out_fd, int in_fd, int wait_ms, KeyParser *kp, const TermQues
     memcpy(ans->bg, s.bg, 3);
     ans->colour = s.colour;
     ans->answered = pix ? pix->got_da : s.got_da;
+    ans->scan = s;
     return s.got_bg;
 }
 

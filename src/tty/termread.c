@@ -40,6 +40,27 @@ static void late_pixels(Term *t, const unsigned char *b, size_t n)
     t->pix_late = p != PIX_KITTY;
 }
 
+/* The answer to the colour question after the start's wait (an ssh
+ * link slower than TERM_ASK_MS: every answer comes late), up to
+ * KP_LATE_MS after it or until the attributes' answer, the last: more
+ * colours than drawn so far are taken, and the viewer hears of it as of
+ * a new window (everything drawn again, in them). */
+static void late_colour(Term *t, const unsigned char *b, size_t n)
+{
+    if (now_ms() - t->pix_asked_ms > KP_LATE_MS) {
+        t->colour_late = 0;
+        return;
+    }
+    termbg_scan(&t->colour_scan, b, n);
+    if (t->colour_scan.colour > t->depth) {
+        term_colour_said(t, t->colour_scan.colour);
+        if (t->depth == t->colour_scan.colour)
+            t->pix_news = 1;
+    }
+    if (t->colour_scan.got_da || t->colour_scan.colour)
+        t->colour_late = 0;
+}
+
 /* Read what the input has (poll said so, with these revents) into the
  * parser. */
 static void read_input(Term *t, short revents)
@@ -55,6 +76,8 @@ static void read_input(Term *t, short revents)
         kp_push(&t->kp, buf, (size_t)r, now_ms());
         if (t->pix_late)
             late_pixels(t, buf, (size_t)r);
+        if (t->colour_late)
+            late_colour(t, buf, (size_t)r);
     } else if (r == 0 || (errno != EINTR && errno != EAGAIN && errno != EWOULDBLOCK) ||
                (revents & (POLLERR | POLLNVAL))) {
         /* end of file, a hung-up terminal (EIO), or an input in error

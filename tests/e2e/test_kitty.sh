@@ -15,18 +15,14 @@ for tool in Xvfb kitty import; do
 done
 need_python "zview in kitty" || exit 0
 
-Xvfb -displayfd 3 -screen 0 800x600x24 -nolisten tcp 3>"$T/display" >/dev/null 2>&1 &
-xvfb=$!
+. "$(dirname "$0")/xshot.sh"
+x_start 800x600
 kpid=
 stop_kitty() {
     [ -n "$kpid" ] && kill "$kpid" 2>/dev/null && wait "$kpid" 2>/dev/null
     kpid=
 }
 trap 'stop_kitty; kill $xvfb 2>/dev/null; rm -rf "$T"' EXIT INT TERM HUP PIPE
-i=0
-while [ ! -s "$T/display" ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
-d=$(cat "$T/display")
-[ -n "$d" ] || { notok "Xvfb starts" "no display number in 10 s"; exit 1; }
 
 # run ARGS: the viewer with ARGS in a fresh kitty filling the display; its
 # pid in $T/pid, its exit status in $T/rc when it ends. The viewer starts
@@ -50,40 +46,17 @@ run() {
     done
     : >"$T/go"
 }
-shot() { DISPLAY=:$d import -window root "$T/shot.ppm"; }
-# changes: in the screenshot's top 540 rows (above the status line), the
-# columns at which the colour changes along some row. Cells change only
-# at their edges (one column in 8 or so: at most 100 in 800 pixels);
-# a picture in pixels changes almost anywhere along the model.
-changes() {
-    python3 - "$T/shot.ppm" <<'PY'
-import sys
-data = open(sys.argv[1], 'rb').read()
-parts, pos = [], 0
-while len(parts) < 4:
-    while data[pos:pos + 1].isspace(): pos += 1
-    start = pos
-    while not data[pos:pos + 1].isspace(): pos += 1
-    parts.append(data[start:pos])
-w, h = int(parts[1]), int(parts[2])
-b = 6 if int(parts[3]) > 255 else 3     # import writes 16 bits a sample
-px = data[pos + 1:]
-cols = set()
-for y in range(0, min(h, 540), 2):
-    row = px[y * w * b:(y + 1) * w * b]
-    for x in range(1, w):
-        if row[x * b:x * b + b] != row[x * b - b:x * b]:
-            cols.add(x)
-print(len(cols))
-PY
-}
+# the picture: the top 540 rows, above the status line. Cells change
+# colour only at their edges (one column in 8 or so: at most 100 in 800
+# pixels); a picture in pixels changes almost anywhere along the model.
+ROWS=540
 # settle MIN: screenshots until changes is above MIN, for up to 60 s (a
 # loaded machine draws late); n the last
 settle() {
     end=$(($(date +%s) + 60))
     while :; do
         shot
-        n=$(changes 2>/dev/null)
+        n=$(changes $ROWS 2>/dev/null)
         n=${n:-0}
         [ "$n" -gt "$1" ] && return 0
         [ "$(date +%s)" -lt $end ] || return 1
@@ -104,7 +77,7 @@ run --mode half assets/knot.obj
 settle 20
 sleep 1
 shot
-cells=$(changes)
+cells=$(changes $ROWS)
 [ -n "$ZV_KITTY_SHOT" ] && convert "$T/shot.ppm" "${ZV_KITTY_SHOT%.png}-cells.png"
 check "kitty, --mode half: the knot in cells (colour changes at $cells columns)" \
     '[ "$cells" -gt 20 ] && [ "$cells" -le 110 ]' "$cells columns; $(tail -3 "$T/kitty.log")"

@@ -15,49 +15,15 @@ for tool in Xvfb xterm import tmux screen; do
 done
 need_python "pixels through tmux" || exit 0
 
-Xvfb -displayfd 3 -screen 0 700x500x24 -nolisten tcp 3>"$T/display" >/dev/null 2>&1 &
-xvfb=$!
+. "$(dirname "$0")/xshot.sh"
+x_start 700x500
 xt=
 sock=zv-mux-$$
 TM="tmux -L $sock"
 trap '$TM kill-server 2>/dev/null; [ -n "$xt" ] && kill $xt 2>/dev/null; kill $xvfb 2>/dev/null; rm -rf "$T"' EXIT INT TERM HUP
-i=0
-while [ ! -s "$T/display" ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
-d=$(cat "$T/display")
-[ -n "$d" ] || { notok "Xvfb starts" "no display number in 10 s"; exit 1; }
 
-shot() { DISPLAY=:$d import -window root "$T/shot.ppm"; }
-# colours: the distinct colours of the screenshot's top 280 rows (the
-# pane's picture, above the viewer's status bar)
-colours() {
-    python3 - "$T/shot.ppm" <<'PY'
-import sys
-data = open(sys.argv[1], 'rb').read()
-parts, pos = [], 0
-while len(parts) < 4:
-    while data[pos:pos + 1].isspace(): pos += 1
-    start = pos
-    while not data[pos:pos + 1].isspace(): pos += 1
-    parts.append(data[start:pos])
-w, h = int(parts[1]), int(parts[2])
-b = 6 if int(parts[3]) > 255 else 3
-px = data[pos + 1:]
-print(len({px[i:i + b] for i in range(0, w * min(280, h) * b, b)}))
-PY
-}
-# until CMP N: screenshots until `colours CMP N` holds (up to 10 s); n the last count
-until_colours() {
-    i=0
-    while [ $i -lt 40 ]; do
-        shot
-        n=$(colours 2>/dev/null)
-        n=${n:-0}
-        [ "$n" "$1" "$2" ] && return 0
-        sleep 0.25
-        i=$((i + 1))
-    done
-    return 1
-}
+# the pane's picture: the top 280 rows, above the viewer's status bar
+ROWS=280
 # screen_has TEXT: the viewer's pane shows TEXT (up to 10 s)
 screen_has() {
     i=0
@@ -74,20 +40,20 @@ VIEW="$Z --color 16 assets/demo.obj; echo \$? >$T/rc; sleep 60"
 printf 'set -g allow-passthrough on\nset -g status off\n' >"$T/tmux.conf"
 DISPLAY=:$d xterm -ti vt340 -geometry 80x24 -e $TM -f "$T/tmux.conf" new-session -s zv "$VIEW" >"$T/xterm.log" 2>&1 &
 xt=$!
-until_colours -gt 14
+until_colours -gt 30 $ROWS
 check "tmux with allow-passthrough on in xterm -ti vt340: the still model in sixel pixels ($n colours)" \
-    '[ "$n" -gt 14 ]' "$n colours; $($TM capture-pane -p -t zv:0 2>&1 | tail -1)"
+    '[ "$n" -gt 30 ]' "$n colours; $($TM capture-pane -p -t zv:0 2>&1 | tail -1)"
 $TM new-window -t zv:1 "sleep 60"
-until_colours -le 3
+until_colours -le 3 $ROWS
 check "... another tmux window current: the image is gone ($n colours)" '[ "$n" -le 3 ]' "$n colours"
 sleep 1     # tmux is asked every 500 ms (MUX_POLL_MS): a quicker return goes unseen
 $TM select-window -t zv:0
-until_colours -gt 14
-check "... the viewer's window current again: the image is back ($n colours)" '[ "$n" -gt 14 ]' "$n colours"
+until_colours -gt 30 $ROWS
+check "... the viewer's window current again: the image is back ($n colours)" '[ "$n" -gt 30 ]' "$n colours"
 $TM send-keys -t zv:0 q
 i=0
 while [ ! -s "$T/rc" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
-until_colours -le 3
+until_colours -le 3 $ROWS
 check "... q: the viewer ends (status $(cat "$T/rc" 2>/dev/null)) and leaves no image ($n colours)" \
     '[ "$(cat "$T/rc" 2>/dev/null)" = 0 ] && [ "$n" -le 3 ]' "$n colours"
 
@@ -97,8 +63,8 @@ rm -f "$T/rc"
 $TM respawn-pane -k -t zv:0 "$VIEW"
 screen_has "zbuffer"
 sleep 1
-until_colours -ge 3
-check "tmux with allow-passthrough off: cells ($n colours)" '[ "$n" -ge 3 ] && [ "$n" -le 12 ]' "$n colours"
+until_colours -ge 3 $ROWS
+check "tmux with allow-passthrough off: cells ($n colours)" '[ "$n" -ge 3 ] && [ "$n" -le 18 ]' "$n colours"
 check "... the status bar says how to turn it on" 'screen_has "set -g allow-passthrough on"' \
     "$($TM capture-pane -p -t zv:0 | tail -1)"
 $TM send-keys -t zv:0 i

@@ -52,6 +52,9 @@ if [ -w /dev/full ]; then
     expect_err "... one line naming it" "$T/full.stl: $NOSPC"
     n=$(wc -l <"$T/err")
     [ "$n" -eq 1 ] && ok "... one line only" || notok "... one line only" "$n lines"
+    # on two threads the file is written beside the check of the result
+    expect_status "-o a full device on two threads exits 1" 1 "$Z" --repair -j 2 assets/knot.obj -o "$T/full.stl"
+    expect_err "... one line naming it" "$T/full.stl: $NOSPC"
     expect_status "-o - to a full device exits 1" 1 sh -c "\"$Z\" --repair assets/knot.obj -o - --format ply >/dev/full"
     expect_err "... naming standard output" "standard output: $NOSPC"
 else
@@ -90,6 +93,19 @@ subprocess.run([z, "--repair", knot, "-o", t + "/knot.obj"], stdout=subprocess.D
 assert vs(t + "/knot.obj") == vs(knot), "knot"
 EOF
 then ok "positions read back as the input's floats, bit for bit (cube, knot)"; else notok "positions read back as the input's floats, bit for bit (cube, knot)"; fi
+
+# one thread or two (the file written beside the check of the result):
+# the same bytes and the same report but its times
+for j in 1 2; do
+    mkdir "$T/j$j"
+    "$Z" --repair -j $j --json assets/scene.obj -o "$T/j$j/s.obj" 2>/dev/null | sed 's/"ms": {[^}]*}//; s#/j[12]/#/jN/#g' >"$T/j$j.json"
+done
+if cmp -s "$T/j1/s.obj" "$T/j2/s.obj" && cmp -s "$T/j1/s.mtl" "$T/j2/s.mtl" && cmp -s "$T/j1.json" "$T/j2.json" &&
+    [ -s "$T/j2/s.obj" ]; then
+    ok "-j 1 and -j 2 write the same bytes and report the same"
+else
+    notok "-j 1 and -j 2 write the same bytes and report the same" "$(diff "$T/j1.json" "$T/j2.json" | head -5)"
+fi
 
 # --json: the documented members, and ok as the exit status says
 "$Z" --repair --json assets/scene.obj -o "$T/scene.obj" >"$T/scene.json" 2>"$T/err"
