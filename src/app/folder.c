@@ -18,6 +18,7 @@
 #include <sys/stat.h>
 
 #include "app.h"
+#include "grow.h"
 #include "mesh.h"
 
 /* The folders entered, by device and inode: open addressing. */
@@ -61,14 +62,12 @@ static int dirset_add(DirSet *s, dev_t dev, ino_t ino)
 
 static int add_path(FolderList *l, const char *path)
 {
-    if (l->n == l->cap) {
-        int cap = l->cap ? 2 * l->cap : 64;
-        char **p = realloc(l->path, (size_t)cap * sizeof *p);
-        if (!p)
-            return -1;
-        l->path = p;
-        l->cap = cap;
-    }
+    uint32_t cap = (uint32_t)l->cap;
+    void *p = l->path;
+    if (grow_array(&p, &cap, (uint32_t)l->n + 1, sizeof *l->path))
+        return -1;
+    l->path = p;
+    l->cap = (int)cap;
     if (!(l->path[l->n] = strdup(path)))
         return -1;
     l->n++;

@@ -18,6 +18,7 @@
 #include <sys/stat.h>
 
 #include "gallery.h"
+#include "grow.h"
 #include "mesh.h"
 
 int gallery_is_model_name(const char *name)
@@ -25,17 +26,16 @@ int gallery_is_model_name(const char *name)
     return mesh_path_is_model(name);
 }
 
-/* Room for one more tile: 0, or -1 out of memory. */
+/* Room for one more tile (at most GALLERY_MAX_FILES: the int holds
+ * it): 0, or -1 out of memory. */
 static int grow(GalleryList *l)
 {
-    if (l->n < l->cap)
-        return 0;
-    int nc = l->cap ? l->cap * 2 : 64;
-    GalleryTile *t = realloc(l->tile, (size_t)nc * sizeof *t);
-    if (!t)
+    uint32_t cap = (uint32_t)l->cap;
+    void *p = l->tile;
+    if (grow_array(&p, &cap, (uint32_t)l->n + 1, sizeof *l->tile))
         return -1;
-    l->tile = t;
-    l->cap = nc;
+    l->tile = p;
+    l->cap = (int)cap;
     return 0;
 }
 
