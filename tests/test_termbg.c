@@ -204,6 +204,24 @@ typedef struct {
     int    nkeys;
 } Outcome;
 
+/* The viewer's terminal opened as cfg says (its descriptors and TERM
+ * filled in) on a pty p whose other side, t on thread th, replies as
+ * t->reply says. */
+static void open_on_fake(Pty *p, FakeTerm *t, pthread_t *th, TermConfig cfg)
+{
+    pty_make(p);
+    t->m = p->m;
+    cr_assert_eq(pthread_create(th, NULL, fake_terminal, t), 0);
+    char err[128];
+    cfg.out = p->out;
+    cfg.in = p->in;
+    cfg.termname = "xterm-256color";
+    if (term_open(&cfg, err, sizeof err)) {
+        pthread_join(*th, NULL);
+        cr_skip_test("no xterm-256color description: %s", err);
+    }
+}
+
 /* The viewer's terminal opened on a pty whose other side replies as
  * told, waiting ask_ms for the answers (0: the viewer's TERM_ASK_MS);
  * then the events that follow. The tests that need an answer in time
@@ -212,18 +230,9 @@ typedef struct {
 static Outcome open_and_ask(Reply reply, int ask_ms)
 {
     Pty p;
-    pty_make(&p);
-    FakeTerm t = { .m = p.m, .reply = reply };
+    FakeTerm t = { .reply = reply };
     pthread_t th;
-    cr_assert_eq(pthread_create(&th, NULL, fake_terminal, &t), 0);
-    char err[128];
-    TermConfig cfg = { .out = p.out, .in = p.in, .termname = "xterm-256color", .colour = COLOUR_TRUE,
-                       .ask_bg = 1, .ask_ms = ask_ms };
-    int opened = term_open(&cfg, err, sizeof err);
-    if (opened) {
-        pthread_join(th, NULL);
-        cr_skip_test("no xterm-256color description: %s", err);
-    }
+    open_on_fake(&p, &t, &th, (TermConfig){ .colour = COLOUR_TRUE, .ask_bg = 1, .ask_ms = ask_ms });
     Outcome o = { 0 };
     o.told = term_background(o.rgb, &o.waited_ms);
     /* the answers read by the parser, the keys left: nothing but x (the
@@ -322,17 +331,9 @@ Test(termbg, an_answer_after_the_wait_is_dropped_whole, .timeout = 30)
 Test(termbg, a_late_colour_answer_is_taken_when_it_comes, .timeout = 30)
 {
     Pty p;
-    pty_make(&p);
-    FakeTerm t = { .m = p.m, .reply = COLOUR_LATE };
+    FakeTerm t = { .reply = COLOUR_LATE };
     pthread_t th;
-    cr_assert_eq(pthread_create(&th, NULL, fake_terminal, &t), 0);
-    char err[128];
-    TermConfig cfg = { .out = p.out, .in = p.in, .termname = "xterm-256color", .colour = COLOUR_256,
-                       .colour_env = 1 };
-    if (term_open(&cfg, err, sizeof err)) {
-        pthread_join(th, NULL);
-        cr_skip_test("no xterm-256color description: %s", err);
-    }
+    open_on_fake(&p, &t, &th, (TermConfig){ .colour = COLOUR_256, .colour_env = 1 });
     cr_expect(memmem(t.seen, t.nseen, "\033P$qm", 5), "the SGR was asked back");
     cr_expect_eq(term_colour(), COLOUR_256, "before the answer: the environment's");
     TermEvent ev;
