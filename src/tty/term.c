@@ -544,7 +544,7 @@ static void ask_terminal(Term *t, const TermConfig *cfg)
      * comes is still read for pixels until kitty's (the best) or
      * KP_LATE_MS */
     t->pix_late = asks && t->pix != PIX_KITTY;
-    t->pix_news = 0;
+    t->late_news = 0;
     t->pix_shown = 0;
     t->ack_wait = t->ack_told = t->acks_seen = t->unanswered = 0;
     t->pace_ms = PACE_MIN_MS;

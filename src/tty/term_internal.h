@@ -56,7 +56,7 @@ typedef struct {
     PixelScan   pix_scan;       /* its answers to the pixels' questions, read so far */
     int         pix_late;       /* the input is read for them too (a slow link's come late) */
     double      pix_asked_ms;   /* when they were asked */
-    int         pix_news;       /* they came late and named pixels, or colours: the viewer is told
+    int         late_news;      /* answers came late naming better pixels or more colours: the viewer is told
                                    (TE_RESIZE) */
     BgScan      colour_scan;    /* the colour question's answers, read on when it came late */
     int         colour_late;    /* the input is read for it too (until the attributes' answer) */

@@ -35,7 +35,7 @@ static void late_pixels(Term *t, const unsigned char *b, size_t n)
     PixelProto p = pixels_scanned(&t->pix_scan);
     if (p != PIX_CELLS && p != t->pix) {
         t->pix = p;
-        t->pix_news = 1;
+        t->late_news = 1;
     }
     t->pix_late = p != PIX_KITTY;
 }
@@ -55,7 +55,7 @@ static void late_colour(Term *t, const unsigned char *b, size_t n)
     if (t->colour_scan.colour > t->depth) {
         term_colour_said(t, t->colour_scan.colour);
         if (t->depth == t->colour_scan.colour)
-            t->pix_news = 1;
+            t->late_news = 1;
     }
     if (t->colour_scan.got_da || t->colour_scan.colour)
         t->colour_late = 0;
@@ -190,8 +190,8 @@ int term_read(TermEvent *ev, int timeout_ms)
         memset(ev, 0, sizeof *ev);
         if (term_signalled(t, ev) || parsed(t, ev))
             return 1;
-        if (t->pix_news) {
-            t->pix_news = 0;
+        if (t->late_news) {
+            t->late_news = 0;
             ev->type = TE_RESIZE;       /* drawn again, in the pixels that came late */
             return 1;
         }
