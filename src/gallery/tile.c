@@ -62,6 +62,8 @@ static int load(const char *path, const Options *o, const int *cancel, Mesh **m,
     lo.cancel = cancel;
     lo.no_textures = 1;
     lo.threads = 1;
+    lo.quiet = 1;       /* a tile's loader warnings would land on the grid curses draws (a missing MTL:
+                           the tile shows the model in its colours, and the verdict says the rest) */
     SandboxOpts so = app_sandbox_opts(o);
     *m = calloc(1, sizeof **m);
     if (!*m) {

@@ -80,6 +80,14 @@ expect_status "--gallery -o FILE.txt is refused" 2 "$Z" --gallery "$G" -o "$T/x.
 expect_status "a file that is not there is a tile" 0 "$Z" --gallery "$T/nothing-here.obj" --print --size 40x12 --color none
 expect_out "... that says so" "unreadable: No such"
 
+# a tile's loader warnings would land on the grid curses draws: none
+# goes to stderr (the grid on the terminal is the same tiles' code)
+mkdir -p "$T/mtlgone"
+printf 'mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$T/mtlgone/a.obj"
+"$Z" --gallery "$T/mtlgone" --print --size 40x12 --color none >"$T/out" 2>"$T/err"
+check "a tile's loader warning (its MTL missing) stays off the screen" '[ ! -s "$T/err" ] && grep -q "a.obj" "$T/out"' \
+    "$(head -c 300 "$T/err")"
+
 # ==== the grid on the terminal ====
 . "$(dirname "$0")/tmux.sh"
 start 100 30 "$G"
