@@ -65,7 +65,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq bench-step bench-gallery bench-folder
+.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models test-long noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq bench-step bench-gallery bench-folder
 
 all: $(BIN) $(if $(filter 1,$(OCCT)),$(OCCT_SHIM))
 
@@ -83,8 +83,11 @@ help:
 	@echo '                     (2 min 34 s warm on 2 idle cores, the e2e scripts 4 at a time: E2E_JOBS; 10 min at load 16)'
 	@echo '                     a check skipped for want of a tool fails it; ZV_ALLOW_SKIPS=1 allows that outside CI'
 	@echo '  make unit          the unit tests alone; make e2e the end-to-end ones alone'
-	@echo '  make asan          make test under AddressSanitizer + UBSan, in build-asan/ (about 3 minutes)'
+	@echo '  make asan          make test under AddressSanitizer + UBSan, in build-asan/ (about 3 minutes;'
+	@echo '                     ASAN_GOALS="test test-long" adds the long runs, as CI does)'
 	@echo '  make test-models   every algorithm against the z-buffer on ../shared/models'
+	@echo '  make test-long     what make test leaves out: the second half of the agreement and SIMD matrices,'
+	@echo '                     the assimp corpus (tests/e2e/long_*.sh); CI runs it, under ASan too'
 	@echo '  make replay        every input that ever failed, through the normal build'
 	@echo '  make mutate        each mutant of tests/mutants.txt must fail make test (about 15 minutes)'
 	@echo '  make mutate-rooms  mechanical mutants, PER_ROOM=10 lines of each room (SEED=1): the kill rate per room (hours;'
@@ -208,9 +211,9 @@ $(STANDIN): tests/standin/fakeassimp.c
 # and fail on them: the run has not tested what it says.
 # ZV_ALLOW_SKIPS=1 lets a local run pass with them; under CI=true
 # nothing does (tests/skips.sh). The unit suites "models" (needs
-# ../shared/models: make test-models) and "tools" (run by tools/
-# scripts) are not part of it.
-UNIT_FILTER := !(models/*|tools/*)
+# ../shared/models: make test-models), "tools" (run by tools/
+# scripts) and "long" (make test-long) are not part of it.
+UNIT_FILTER := !(models/*|tools/*|long/*)
 test: all $(TESTBIN) $(REPLAYS) $(STANDIN) $(OCCTGEN)
 	ZVIEW=$(abspath $(BIN)) ZV_STANDIN_LIB=$(abspath $(dir $(STANDIN))) ZV_OCCTGEN=$(abspath $(OCCTGEN)) \
 	    sh tests/suite.sh $(TESTBIN) '$(UNIT_FILTER)' $(BUILD)
@@ -222,6 +225,15 @@ unit: $(TESTBIN)
 # and the loaders on them (the unit suite "models").
 test-models: $(TESTBIN)
 	ZV_MODELS=1 sh tests/unit.sh $(TESTBIN) --jobs 2 --filter 'models/*'
+
+# The long runs make test leaves out so that it stays within two
+# minutes (.ci/run runs both): the second half of the seeded views of the
+# agreement matrix and of the SIMD levels' comparisons on the assets
+# (suite "long"; make test runs the first half), and the end-to-end
+# scripts tests/e2e/long_*.sh (every file of the assimp test models).
+test-long: all $(TESTBIN)
+	sh tests/unit.sh $(TESTBIN) --jobs 2 --filter 'long/*'
+	ZVIEW=$(abspath $(BIN)) E2E_PREFIX=long_ E2E_TIMES=$(abspath $(BUILD))/e2e-times-long sh tests/e2e/run.sh
 
 # Mutation testing: each mutant of tests/mutants.txt (a small meaningful
 # change to src/) applied alone to a copy of the tree, then make test's
@@ -255,9 +267,10 @@ e2e: all $(STANDIN) $(OCCTGEN)
 
 # Sanitized build in its own folder, same tests, with the invariants
 # on (-DZV_CHECKS turns ZV_ASSERT on: include/invariant.h).
+ASAN_GOALS ?= test
 asan:
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 $(MAKE) BUILD=build-asan BIN=build-asan/zview \
-	    OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -DZV_CHECKS" test
+	    OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -DZV_CHECKS" $(ASAN_GOALS)
 
 # The build without assimp, in its own folder (both must compile).
 noassimp:

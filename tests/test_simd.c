@@ -170,12 +170,13 @@ static void points_twice(Scene *s, int n)
     cr_assert_eq(scene_build(s, m, 1, err, sizeof err), 0, "%s", err);
 }
 
-/* check on one model from VIEWS random views (odd sizes, pixel aspect 1
+/* check on one model from the random views views[0]..views[1]-1 (odd sizes, pixel aspect 1
  * and 2, culling on and off, perspective half the time with the near
  * plane cutting now and then). */
-static void each_view(Scene *s, const char *name, void (*check)(const Case *c, void *arg), void *arg)
+static void each_view(Scene *s, const char *name, const int views[2], void (*check)(const Case *c, void *arg),
+                      void *arg)
 {
-    for (uint32_t seed = 0; seed < VIEWS; seed++) {
+    for (uint32_t seed = (uint32_t)views[0]; seed < (uint32_t)views[1]; seed++) {
         tl_random_view(s, seed, (int)(seed & 1));
         const int *sz = sizes[seed % 3];
         Case c = { s, name, { sz[0], sz[1], seed % 4 == 1 ? 2.0f : 1.0f, seed % 3 == 0 }, seed };
@@ -184,8 +185,12 @@ static void each_view(Scene *s, const char *name, void (*check)(const Case *c, v
 }
 
 /* Calls check on every bundled model, on the grid of faces twice and on
- * the points twice, from VIEWS random views each. Returns the cases. */
-static int each_case(void (*check)(const Case *c, void *arg), void *arg)
+ * the points twice, from the random views views[0]..views[1]-1 of each.
+ * Returns the cases. make test takes the first half of the VIEWS (FIRST),
+ * make test-long the second (suite "long": SECOND). */
+static const int FIRST[2] = { 0, VIEWS / 2 }, SECOND[2] = { VIEWS / 2, VIEWS };
+
+static int each_case(const int views[2], void (*check)(const Case *c, void *arg), void *arg)
 {
     glob_t g;
     cr_assert_eq(glob("assets/*.obj", 0, NULL, &g), 0, "no assets/*.obj (run from the source tree)");
@@ -193,19 +198,19 @@ static int each_case(void (*check)(const Case *c, void *arg), void *arg)
     for (size_t k = 0; k < g.gl_pathc; k++) {
         Scene s;
         cr_assert_eq(tl_scene_from_file(&s, g.gl_pathv[k]), 0, "%s", g.gl_pathv[k]);
-        each_view(&s, g.gl_pathv[k], check, arg);
+        each_view(&s, g.gl_pathv[k], views, check, arg);
         scene_free(&s);
     }
     Scene s;
     char *text = twice_obj(24);
     cr_assert_eq(tl_scene_from_text(&s, "twice", text), 0);
     free(text);
-    each_view(&s, "every face twice", check, arg);
+    each_view(&s, "every face twice", views, check, arg);
     scene_free(&s);
     points_twice(&s, 40);
-    each_view(&s, "points twice", check, arg);
+    each_view(&s, "points twice", views, check, arg);
     scene_free(&s);
-    int cases = (int)(g.gl_pathc + 2) * VIEWS;
+    int cases = (int)(g.gl_pathc + 2) * (views[1] - views[0]);
     globfree(&g);
     return cases;
 }
@@ -258,12 +263,15 @@ static void front_end_case(const Case *c, void *arg)
     screen_free(&ref);
 }
 
-Test(simd, front_end_levels_give_the_same_polygons)
+static void front_end_levels_agree(const int views[2])
 {
     int drawn = 0;
-    int cases = each_case(front_end_case, &drawn);
+    int cases = each_case(views, front_end_case, &drawn);
     cr_assert_gt(drawn, cases / 2, "most views show something (%d of %d)", drawn, cases);
 }
+
+Test(simd, front_end_levels_give_the_same_polygons) { front_end_levels_agree(FIRST); }
+Test(long, simd_front_end_levels_give_the_same_polygons) { front_end_levels_agree(SECOND); }
 
 /* ==== points ==== */
 
@@ -318,12 +326,15 @@ static void points_case(const Case *c, void *arg)
     scene_free(&cloud);
 }
 
-Test(simd, point_levels_give_the_same_squares)
+static void point_levels_agree(const int views[2])
 {
     int squares = 0;
-    each_case(points_case, &squares);
+    each_case(views, points_case, &squares);
     cr_assert_gt(squares, 1000, "the clouds drew squares");
 }
+
+Test(simd, point_levels_give_the_same_squares) { point_levels_agree(FIRST); }
+Test(long, simd_point_levels_give_the_same_squares) { point_levels_agree(SECOND); }
 
 /* ==== hidden surfaces ==== */
 
@@ -419,38 +430,28 @@ static void algo_case(const Case *c, void *arg)
     algo_order(arg, c, ORDER_SHUFFLE);
 }
 
-static void algo_levels_agree(const char *name)
+static void algo_levels_agree(const char *name, const int views[2])
 {
     AlgoArg a = { hsr_find(name), 0 };
     cr_assert(a.algo, "%s", name);
-    each_case(algo_case, &a);
+    each_case(views, algo_case, &a);
     cr_assert_gt(a.covered, 10000, "the views covered samples");
 }
 
-Test(simd, zbuffer_levels_give_the_same_buffers)
-{
-    algo_levels_agree("zbuffer");
-}
+Test(simd, zbuffer_levels_give_the_same_buffers) { algo_levels_agree("zbuffer", FIRST); }
+Test(long, simd_zbuffer_levels_give_the_same_buffers) { algo_levels_agree("zbuffer", SECOND); }
 
-Test(simd, scanline_levels_give_the_same_buffers)
-{
-    algo_levels_agree("scanline");
-}
+Test(simd, scanline_levels_give_the_same_buffers) { algo_levels_agree("scanline", FIRST); }
+Test(long, simd_scanline_levels_give_the_same_buffers) { algo_levels_agree("scanline", SECOND); }
 
-Test(simd, span_levels_give_the_same_buffers)
-{
-    algo_levels_agree("span");
-}
+Test(simd, span_levels_give_the_same_buffers) { algo_levels_agree("span", FIRST); }
+Test(long, simd_span_levels_give_the_same_buffers) { algo_levels_agree("span", SECOND); }
 
-Test(simd, hzb_levels_give_the_same_buffers)
-{
-    algo_levels_agree("hzb");
-}
+Test(simd, hzb_levels_give_the_same_buffers) { algo_levels_agree("hzb", FIRST); }
+Test(long, simd_hzb_levels_give_the_same_buffers) { algo_levels_agree("hzb", SECOND); }
 
-Test(simd, hzb_octree_levels_give_the_same_buffers)
-{
-    algo_levels_agree("hzb-octree");
-}
+Test(simd, hzb_octree_levels_give_the_same_buffers) { algo_levels_agree("hzb-octree", FIRST); }
+Test(long, simd_hzb_octree_levels_give_the_same_buffers) { algo_levels_agree("hzb-octree", SECOND); }
 
 /* ==== shading ==== */
 
@@ -515,12 +516,15 @@ static void shade_case(const Case *c, void *arg)
     screen_free(&sp);
 }
 
-Test(simd, shading_levels_give_the_same_pixels)
+static void shading_levels_agree(const int views[2])
 {
     long lit = 0;
-    each_case(shade_case, &lit);
+    each_case(views, shade_case, &lit);
     cr_assert_gt(lit, 10000, "the views lit pixels");
 }
+
+Test(simd, shading_levels_give_the_same_pixels) { shading_levels_agree(FIRST); }
+Test(long, simd_shading_levels_give_the_same_pixels) { shading_levels_agree(SECOND); }
 
 /* ==== the second screening of small triangles, against brute force ==== */
 

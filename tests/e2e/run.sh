@@ -1,5 +1,6 @@
 #!/bin/sh
-# Run every tests/e2e/test_*.sh; each prints "ok - name" / "not ok - name"
+# Run every tests/e2e/test_*.sh (make test; E2E_PREFIX=long_ runs the
+# long_*.sh of make test-long instead); each prints "ok - name" / "not ok - name"
 # lines, and "ok - name # skip reason" for a check it could not run here
 # (lib.sh's skip). Ends with "N passed, N failed, N skipped", the skips
 # named; fails on a failure, and on a skip unless skips are allowed
@@ -32,6 +33,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 : "${E2E_FIRST:=}"
 : "${E2E_EXCLUDE:=}"
 : "${E2E_FAIL_FAST:=}"
+: "${E2E_PREFIX:=test_}"
 export ZVIEW
 # the python3 interpreter, found once for every script (lib.sh)
 if [ -z "${ZV_PYTHON:-}" ] && command -v python3 >/dev/null 2>&1; then
@@ -67,7 +69,7 @@ fi
 # a failure, which it then meets sooner
 order=-rn
 [ -z "$E2E_FAIL_FAST" ] || order=-n
-for t in "$here"/test_*.sh; do
+for t in "$here/$E2E_PREFIX"*.sh; do
     n=$(basename "$t" .sh)
     s=$(awk -v n="$n" '$1 == n { print $2 }' "$E2E_TIMES" 2>/dev/null)
     echo "${s:-999} $t"
@@ -93,7 +95,7 @@ fi
 : >"$work/times"
 failed=
 notrun=
-for t in "$here"/test_*.sh; do
+for t in "$here/$E2E_PREFIX"*.sh; do
     n=$(basename "$t" .sh)
     out="$work/$n.out"
     case " $E2E_EXCLUDE " in *" $n "*) continue ;; esac

@@ -1,7 +1,8 @@
 #!/bin/sh
 # Every file of Debian's assimp test models (assimp-testmodels, installed
 # by tools/deps.sh) through zview --info (issue 28; corpus.py walks it,
-# two at a time): a refusal is one line naming the file, assimp's words
+# two at a time; about 600 loads, so make test-long runs it, not make
+# test): a refusal is one line naming the file, assimp's words
 # and a library's own output included; nothing raw reaches the terminal;
 # no reference inside a model's folder is refused as outside it.
 . "$(dirname "$0")/lib.sh"
