@@ -27,7 +27,7 @@
 /* Pieces of this many bytes (the last ones a little more): big enough
  * that the merge is a small part of the work, small enough that both
  * cores have several to take. */
-#define PIECE_BYTES ((uint64_t)16 << 20)
+#define PIECE_BYTES ((uint64_t)8 << 20)
 #define MAX_PIECES 4096
 /* A cut is looked for this far past where a piece would end. */
 #define CUT_LOOK ((size_t)64 << 10)
