@@ -4,6 +4,8 @@
 #define _DEFAULT_SOURCE
 
 #include <criterion/criterion.h>
+#include <errno.h>
+#include <limits.h>
 #include <criterion/redirect.h>
 #include <signal.h>
 #include <stdio.h>
@@ -103,6 +105,41 @@ Test(util, a_safe_file_replaces_the_old_one_only_when_complete)
     cr_expect_eq(st.st_mode & 0777, 0666 & ~um, "mode %o, as fopen would make it", st.st_mode & 0777);
     unlink(path);
     rmdir(dir);
+}
+
+/* A name as long as the array that keeps it, or longer, is refused as
+ * too long before anything is copied (no name of PATH_MAX bytes or more
+ * can be opened: the limit counts the NUL); one byte shorter goes on to
+ * the file system, which says what it says of a missing folder. The
+ * SafeFile sits between two guards that must keep their bytes. */
+Test(util, a_safe_file_refuses_a_name_too_long_for_it)
+{
+    static char name[PATH_MAX + 2];
+    struct {
+        char before[64];
+        SafeFile sf;
+        char after[64];
+    } g;
+    for (int extra = -1; extra <= 1; extra++) {
+        size_t len = sizeof g.sf.path + extra;
+        memset(name, 'a', len);
+        name[0] = '/';
+        memcpy(name + 1, "zv-no-such-dir/", 15);
+        name[len] = 0;
+        memset(&g, 0x5a, sizeof g);
+        errno = 0;
+        FILE *f = safefile_open(&g.sf, name, "w");
+        cr_assert_null(f, "a name of %zu bytes opened", len);
+        if (extra >= 0)
+            cr_expect_eq(errno, ENAMETOOLONG, "%zu bytes: errno %d", len, errno);
+        else
+            cr_expect_eq(errno, ENOENT, "%zu bytes: errno %d", len, errno);
+        for (size_t i = 0; i < sizeof g.before; i++)
+            cr_assert(g.before[i] == 0x5a && g.after[i] == 0x5a, "%zu bytes: a guard's byte %zu written", len, i);
+        if (extra >= 0)
+            cr_expect(g.sf.tmp[0] == 0 && (unsigned char)g.sf.tmp[1] == 0x5a,
+                      "%zu bytes: a temporary name was made of it", len);
+    }
 }
 
 Test(util, a_safe_file_writes_a_device_as_it_is)
