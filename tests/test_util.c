@@ -218,6 +218,24 @@ Test(util, a_pool_runs_every_task_once_and_no_other)
     pool_free(pools[0]);
 }
 
+/* Asked for more helpers than it holds, a pool starts 63 (the caller
+ * makes 64 workers, the most a projection uses: SCREEN_MAX_THREADS) and
+ * runs every task once on them. */
+Test(util, a_pool_asked_for_a_thousand_helpers_starts_at_most_63)
+{
+    Pool *p = pool_create(1000);
+    cr_assert_not_null(p);
+    int n = pool_helpers(p);
+    cr_assert(n >= 1 && n <= 63, "%d helpers", n);
+    int runs[201] = { 0 };
+    PoolTally c = { 200, n, runs, 0 };
+    pool_run(p, 200, tally_task, &c);
+    cr_assert_eq(c.bad, 0, "a task or worker out of range");
+    for (int t = 0; t < 200; t++)
+        cr_assert_eq(runs[t], 1, "task %d ran %d times", t, runs[t]);
+    pool_free(p);
+}
+
 /* ZV_ASSERT is on exactly in the checked builds (make asan, the
  * fuzzers): there it evaluates its condition once; elsewhere not at all. */
 Test(util, invariants_are_evaluated_only_in_checked_builds)
