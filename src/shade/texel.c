@@ -529,6 +529,155 @@ static inline void encode_px(const SrgbEnc *enc, const float c[3], float k, int 
         px[a] = srgb_enc(enc, c[a] * k);
 }
 
+/* ==== Rows of a face seen flat on (SSE2 and AVX2) ==== */
+
+/* Samples a row's run is taken in: the texture coordinates of ROW_RUN
+ * positions, then the lookups of those inside the face. */
+#define ROW_RUN 64
+
+/* flat1_colour's test and coordinates for positions xs .. xs + n - 1 of
+ * row Y, a lane a position (same operations, same bits): in[i] is
+ * nonzero where the sample is inside the triangle. Writes whole vectors
+ * (the arrays hold ROW_RUN + 8). */
+static void flat1_uv_sse2(const TriSetup *t, int xs, int n, float Y, float *u, float *v, int32_t *in)
+{
+#ifdef ZV_SSE2
+    __m128 a0 = _mm_set1_ps(t->a[0]), a1 = _mm_set1_ps(t->a[1]), a2 = _mm_set1_ps(t->a[2]);
+    __m128 y0 = _mm_set1_ps(t->b[0] * Y), y1 = _mm_set1_ps(t->b[1] * Y), y2 = _mm_set1_ps(t->b[2] * Y);
+    __m128 c0 = _mm_set1_ps(t->c[0]), c1 = _mm_set1_ps(t->c[1]), c2 = _mm_set1_ps(t->c[2]);
+    __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), half = _mm_set1_ps(0.5f);
+    for (int i = 0; i < n; i += 4) {
+        __m128 X = _mm_add_ps(_mm_cvtepi32_ps(_mm_add_epi32(_mm_set1_epi32(xs + i), _mm_setr_epi32(0, 1, 2, 3))), half);
+        __m128 m0 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(a0, X), y0), c0);
+        __m128 m1 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(a1, X), y1), c1);
+        __m128 m2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(a2, X), y2), c2);
+        __m128 l = _mm_add_ps(_mm_add_ps(m0, m1), m2);
+        __m128 ok = _mm_and_ps(_mm_cmpge_ps(_mm_mul_ps(m0, l), zero), _mm_cmpge_ps(_mm_mul_ps(m1, l), zero));
+        ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(_mm_mul_ps(m2, l), zero), _mm_cmpneq_ps(l, zero)));
+        __m128 inv = _mm_div_ps(one, l);
+        __m128 uu = _mm_add_ps(_mm_add_ps(_mm_mul_ps(m0, _mm_set1_ps(t->at[0][0])), _mm_mul_ps(m1, _mm_set1_ps(t->at[1][0]))),
+                               _mm_mul_ps(m2, _mm_set1_ps(t->at[2][0])));
+        __m128 vv = _mm_add_ps(_mm_add_ps(_mm_mul_ps(m0, _mm_set1_ps(t->at[0][1])), _mm_mul_ps(m1, _mm_set1_ps(t->at[1][1]))),
+                               _mm_mul_ps(m2, _mm_set1_ps(t->at[2][1])));
+        _mm_storeu_ps(u + i, _mm_mul_ps(uu, inv));
+        _mm_storeu_ps(v + i, _mm_mul_ps(vv, inv));
+        _mm_storeu_si128((__m128i *)(void *)(in + i), _mm_castps_si128(ok));
+    }
+#else
+    (void)t, (void)xs, (void)n, (void)Y, (void)u, (void)v, (void)in;
+#endif
+}
+
+#ifdef ZV_AVX2
+/* flat1_uv_sse2 eight lanes at a time. */
+static ZV_AVX2_FN void flat1_uv_avx2(const TriSetup *t, int xs, int n, float Y, float *u, float *v, int32_t *in)
+{
+    __m256 a0 = _mm256_set1_ps(t->a[0]), a1 = _mm256_set1_ps(t->a[1]), a2 = _mm256_set1_ps(t->a[2]);
+    __m256 y0 = _mm256_set1_ps(t->b[0] * Y), y1 = _mm256_set1_ps(t->b[1] * Y), y2 = _mm256_set1_ps(t->b[2] * Y);
+    __m256 c0 = _mm256_set1_ps(t->c[0]), c1 = _mm256_set1_ps(t->c[1]), c2 = _mm256_set1_ps(t->c[2]);
+    __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
+    for (int i = 0; i < n; i += 8) {
+        __m256i xi = _mm256_add_epi32(_mm256_set1_epi32(xs + i), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+        __m256 X = _mm256_add_ps(_mm256_cvtepi32_ps(xi), half);
+        __m256 m0 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a0, X), y0), c0);
+        __m256 m1 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a1, X), y1), c1);
+        __m256 m2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a2, X), y2), c2);
+        __m256 l = _mm256_add_ps(_mm256_add_ps(m0, m1), m2);
+        __m256 ok = _mm256_and_ps(_mm256_cmp_ps(_mm256_mul_ps(m0, l), zero, _CMP_GE_OQ),
+                                  _mm256_cmp_ps(_mm256_mul_ps(m1, l), zero, _CMP_GE_OQ));
+        ok = _mm256_and_ps(ok, _mm256_and_ps(_mm256_cmp_ps(_mm256_mul_ps(m2, l), zero, _CMP_GE_OQ),
+                                             _mm256_cmp_ps(l, zero, _CMP_NEQ_UQ)));
+        __m256 inv = _mm256_div_ps(one, l);
+        __m256 uu = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(m0, _mm256_set1_ps(t->at[0][0])),
+                                                _mm256_mul_ps(m1, _mm256_set1_ps(t->at[1][0]))),
+                                  _mm256_mul_ps(m2, _mm256_set1_ps(t->at[2][0])));
+        __m256 vv = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(m0, _mm256_set1_ps(t->at[0][1])),
+                                                _mm256_mul_ps(m1, _mm256_set1_ps(t->at[1][1]))),
+                                  _mm256_mul_ps(m2, _mm256_set1_ps(t->at[2][1])));
+        _mm256_storeu_ps(u + i, _mm256_mul_ps(uu, inv));
+        _mm256_storeu_ps(v + i, _mm256_mul_ps(vv, inv));
+        _mm256_storeu_si256((__m256i *)(void *)(in + i), _mm256_castps_si256(ok));
+    }
+}
+#endif
+
+/* The sample's bytes from a lookup's colour (4 floats, the fourth
+ * ignored): times the face's factor, then encode_px's SSE2 lanes. */
+static inline void encode_fac(const SrgbEnc *enc, const SurfSetup *st, const float *c, uint8_t *px)
+{
+#ifdef ZV_SSE2
+    __m128 v = _mm_mul_ps(_mm_mul_ps(_mm_loadu_ps(c), _mm_setr_ps(st->fac[0], st->fac[1], st->fac[2], 0)),
+                          _mm_set1_ps(st->klin));
+    v = _mm_min_ps(_mm_max_ps(v, _mm_setzero_ps()), _mm_set1_ps(1.0f));
+    __m128i i = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(v, _mm_set1_ps((float)SRGB_ENC_SIZE)), _mm_set1_ps(0.5f)));
+    int32_t ix[4];
+    _mm_storeu_si128((__m128i *)(void *)ix, i);
+    px[0] = enc->b[ix[0]];
+    px[1] = enc->b[ix[1]];
+    px[2] = enc->b[ix[2]];
+#else
+    (void)enc, (void)st, (void)c, (void)px;
+#endif
+}
+
+/* shade_box's samples of a face seen flat on (st->flat1), rows y0 ..
+ * y1 - 1, at SSE2 or AVX2: each row's run from its first sample of the
+ * face to its last, the coordinates several positions at a time, the
+ * samples inside the triangle gathered over the rows and looked up
+ * together (texture_lookup_row: a face has a dozen samples, a row of it
+ * a few), the rest as eval_face has them. The bytes of the
+ * sample-by-sample pass. */
+static void shade_rows_flat1(SurfFrame *f, InstCache *ic, const FrameBufs *fb, const SurfSetup *st, int32_t id, int x0,
+                             int x1, int y0, int y1, Image *out)
+{
+    const SrgbEnc *enc = f->sc->enc;
+    float u[ROW_RUN + 8], v[ROW_RUN + 8], lu[ROW_RUN], lv[ROW_RUN], col[4 * ROW_RUN];
+    int32_t in[ROW_RUN + 8];
+    size_t lp[ROW_RUN];
+    int k = 0;
+    for (int y = y0; y < y1; y++) {
+        const int32_t *ids = fb->ids + (size_t)y * fb->w;
+        int a = x0, b = x1;
+        while (a < b && ids[a] != id)
+            a++;
+        while (b > a && ids[b - 1] != id)
+            b--;
+        size_t row = (size_t)y * fb->w;
+        float Y = (float)y + 0.5f;
+        for (int xs = a; xs < b; xs += ROW_RUN) {
+            int n = b - xs < ROW_RUN ? b - xs : ROW_RUN;
+#ifdef ZV_AVX2
+            if (f->simd >= SIMD_AVX2)
+                flat1_uv_avx2(&st->tri[0], xs, n, Y, u, v, in);
+            else
+#endif
+                flat1_uv_sse2(&st->tri[0], xs, n, Y, u, v, in);
+            for (int i = 0; i < n; i++) {
+                if (ids[xs + i] != id)
+                    continue;
+                if (in[i]) {
+                    if (k == ROW_RUN) {
+                        texture_lookup_row(&st->tl, lu, lv, k, f->simd, col);
+                        for (int j = 0; j < k; j++)
+                            encode_fac(enc, st, col + 4 * j, out->rgb + 3 * lp[j]);
+                        k = 0;
+                    }
+                    lu[k] = u[i];
+                    lv[k] = v[i];
+                    lp[k++] = row + (size_t)(xs + i);
+                    continue;
+                }
+                float c[3];
+                eval_face(f, ic, st, id, (float)(xs + i) + 0.5f, Y, c);
+                encode_px(enc, c, st->klin, f->simd, out->rgb + 3 * (row + (size_t)(xs + i)));
+            }
+        }
+    }
+    texture_lookup_row(&st->tl, lu, lv, k, f->simd, col);
+    for (int j = 0; j < k; j++)
+        encode_fac(enc, st, col + 4 * j, out->rgb + 3 * lp[j]);
+}
+
 /* The samples of face id within polygon box [x0, x1) x [y0, y1), each
  * its own colour under the face's light. The face is set up at its
  * first sample: a polygon whose face lost every sample costs a scan of
@@ -557,6 +706,10 @@ static void shade_box(SurfFrame *f, InstCache *ic, const FrameBufs *fb, int32_t 
                     ic->inst = inst;
                     ic->fwd = m4_mul(f->view, object_matrix(&s->objs[inst]));
                 }
+            }
+            if (st->flat1 && f->simd >= SIMD_SSE2) {
+                shade_rows_flat1(f, ic, fb, st, id, x0, x1, y, y1, out);
+                return;
             }
             float c[3];
             if (!st->flat1 || !flat1_colour(st, (float)x + 0.5f, (float)y + 0.5f, f->simd, c))
