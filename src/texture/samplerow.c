@@ -60,20 +60,10 @@ static inline __m128 axis4(__m128 c, int n, int repeat, int32_t *a, int32_t *b)
     return f;
 }
 
-/* A group of m <= 4 into p (the lanes past m repeat the first): 0, or
- * -1 when a coordinate is not tame (the group then goes through
- * texture_lookup). */
-static inline int prep4(const TexLod *l, const float *u, const float *v, int m, RowPrep *p)
+/* A group of 4 into p: 0, or -1 when a coordinate is not tame (the
+ * group then goes through texture_lookup). */
+static inline int prep4(const TexLod *l, const float *u, const float *v, RowPrep *p)
 {
-    float pu[4], pv[4];
-    if (m < 4) {
-        for (int j = 0; j < 4; j++) {
-            pu[j] = u[j < m ? j : 0];
-            pv[j] = v[j < m ? j : 0];
-        }
-        u = pu;
-        v = pv;
-    }
     __m128 cu = _mm_loadu_ps(u), cv = _mm_loadu_ps(v), big = _mm_set1_ps(1e6f), abs = _mm_set1_ps(-0.0f);
     __m128 ok = _mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(abs, cu), big), _mm_cmple_ps(_mm_andnot_ps(abs, cv), big));
     if (_mm_movemask_ps(ok) != 0xf)
@@ -112,14 +102,14 @@ static inline __m128 sum4(const TexLod *l, const RowPrep *p, int k, int j)
     return _mm_add_ps(t, _mm_mul_ps(_mm_set1_ps(p->w[k][3][j]), texel4(r1 + xb)));
 }
 
-/* Groups of 4, the last one padded. */
+/* Groups of 4, the last one padded (u and v hold whole groups). */
 static void row_sse2(const TexLod *l, const float *u, const float *v, int n, float *out)
 {
     RowPrep p;
     __m128 unit = _mm_set1_ps(1.0f / 65535.0f), wt0 = _mm_set1_ps(l->wt[0]), wt1 = _mm_set1_ps(l->wt[1]);
     for (int i = 0; i < n; i += 4) {
         int m = n - i < 4 ? n - i : 4;
-        if (prep4(l, u + i, v + i, m, &p) < 0) {
+        if (prep4(l, u + i, v + i, &p) < 0) {
             for (int j = 0; j < m; j++)
                 texture_lookup(l, u[i + j], v[i + j], SIMD_SSE2, out + 4 * (i + j));
             continue;
@@ -193,19 +183,9 @@ static ZV_AVX2_FN inline __m256 axis8(__m256 c, int n, int repeat, int mul, __m2
     return f;
 }
 
-/* A group of m <= 8 into p (the lanes past m repeat the first): 0, or
- * -1 when a coordinate is not tame. */
-static ZV_AVX2_FN int prep8(const TexLod *l, const float *u, const float *v, int m, RowPrep8 *p)
+/* A group of 8 into p: 0, or -1 when a coordinate is not tame. */
+static ZV_AVX2_FN int prep8(const TexLod *l, const float *u, const float *v, RowPrep8 *p)
 {
-    float pu[8], pv[8];
-    if (m < 8) {
-        for (int j = 0; j < 8; j++) {
-            pu[j] = u[j < m ? j : 0];
-            pv[j] = v[j < m ? j : 0];
-        }
-        u = pu;
-        v = pv;
-    }
     __m256 cu = _mm256_loadu_ps(u), cv = _mm256_loadu_ps(v), big = _mm256_set1_ps(1e6f), abs = _mm256_set1_ps(-0.0f);
     __m256 ok = _mm256_and_ps(_mm256_cmp_ps(_mm256_andnot_ps(abs, cu), big, _CMP_LE_OQ),
                               _mm256_cmp_ps(_mm256_andnot_ps(abs, cv), big, _CMP_LE_OQ));
@@ -233,7 +213,7 @@ static ZV_AVX2_FN int prep8(const TexLod *l, const float *u, const float *v, int
     return 0;
 }
 
-/* Groups of 8, the last one padded. */
+/* Groups of 8, the last one padded (u and v hold whole groups). */
 static ZV_AVX2_FN void row_avx2(const TexLod *l, const float *u, const float *v, int n, float *out)
 {
     RowPrep8 p;
@@ -241,7 +221,7 @@ static ZV_AVX2_FN void row_avx2(const TexLod *l, const float *u, const float *v,
     __m256 wt = _mm256_set_m128(_mm_set1_ps(l->wt[1]), _mm_set1_ps(l->wt[0]));
     for (int i = 0; i < n; i += 8) {
         int m = n - i < 8 ? n - i : 8;
-        if (prep8(l, u + i, v + i, m, &p) < 0) {
+        if (prep8(l, u + i, v + i, &p) < 0) {
             for (int j = 0; j < m; j++)
                 texture_lookup(l, u[i + j], v[i + j], SIMD_AVX2, out + 4 * (i + j));
             continue;
