@@ -531,6 +531,7 @@ static inline void encode_px(const SrgbEnc *enc, const float c[3], float k, int 
 
 /* ==== The samples of a face seen flat on, together (SSE2 and AVX2) ==== */
 
+#ifdef ZV_SSE2
 /* Samples gathered before they are looked up: a face has a dozen on
  * average at 1920x1080, a row of it a few, so the vector work goes
  * over the face's samples, not along rows. */
@@ -544,7 +545,6 @@ static inline void encode_px(const SrgbEnc *enc, const float c[3], float k, int 
 static void flat1_uv_sse2(const TriSetup *t, const int32_t *x, const int32_t *y, int n, float *u, float *v,
                           int32_t *in)
 {
-#ifdef ZV_SSE2
     __m128 a0 = _mm_set1_ps(t->a[0]), a1 = _mm_set1_ps(t->a[1]), a2 = _mm_set1_ps(t->a[2]);
     __m128 b0 = _mm_set1_ps(t->b[0]), b1 = _mm_set1_ps(t->b[1]), b2 = _mm_set1_ps(t->b[2]);
     __m128 c0 = _mm_set1_ps(t->c[0]), c1 = _mm_set1_ps(t->c[1]), c2 = _mm_set1_ps(t->c[2]);
@@ -567,9 +567,6 @@ static void flat1_uv_sse2(const TriSetup *t, const int32_t *x, const int32_t *y,
         _mm_storeu_ps(v + i, _mm_mul_ps(vv, inv));
         _mm_storeu_si128((__m128i *)(void *)(in + i), _mm_castps_si128(ok));
     }
-#else
-    (void)t, (void)x, (void)y, (void)n, (void)u, (void)v, (void)in;
-#endif
 }
 
 #ifdef ZV_AVX2
@@ -608,7 +605,6 @@ static ZV_AVX2_FN void flat1_uv_avx2(const TriSetup *t, const int32_t *x, const 
  * ignored): times the face's factor, then encode_px's SSE2 lanes. */
 static inline void encode_fac(const SrgbEnc *enc, const SurfSetup *st, const float *c, uint8_t *px)
 {
-#ifdef ZV_SSE2
     __m128 v = _mm_mul_ps(_mm_mul_ps(_mm_loadu_ps(c), _mm_setr_ps(st->fac[0], st->fac[1], st->fac[2], 0)),
                           _mm_set1_ps(st->klin));
     v = _mm_min_ps(_mm_max_ps(v, _mm_setzero_ps()), _mm_set1_ps(1.0f));
@@ -618,9 +614,6 @@ static inline void encode_fac(const SrgbEnc *enc, const SurfSetup *st, const flo
     px[0] = enc->b[ix[0]];
     px[1] = enc->b[ix[1]];
     px[2] = enc->b[ix[2]];
-#else
-    (void)enc, (void)st, (void)c, (void)px;
-#endif
 }
 
 /* Samples (x[i], y[i]), i < n, of face st seen flat on: those inside
@@ -684,6 +677,7 @@ static void shade_flat1(SurfFrame *f, InstCache *ic, const FrameBufs *fb, const 
     }
     flat1_batch(f, ic, st, id, x, y, n, fb->w, out);
 }
+#endif
 
 /* The samples of face id within polygon box [x0, x1) x [y0, y1), each
  * its own colour under the face's light. The face is set up at its
@@ -714,10 +708,12 @@ static void shade_box(SurfFrame *f, InstCache *ic, const FrameBufs *fb, int32_t 
                     ic->fwd = m4_mul(f->view, object_matrix(&s->objs[inst]));
                 }
             }
+#ifdef ZV_SSE2
             if (st->flat1 && f->simd >= SIMD_SSE2) {
                 shade_flat1(f, ic, fb, st, id, x0, x1, y, y1, out);
                 return;
             }
+#endif
             float c[3];
             if (!st->flat1 || !flat1_colour(st, (float)x + 0.5f, (float)y + 0.5f, f->simd, c))
                 eval_face(f, ic, st, id, (float)x + 0.5f, (float)y + 0.5f, c);
