@@ -13,6 +13,7 @@
  * serial parse's in every case (tests/test_objpar.c compares them). */
 #define _GNU_SOURCE     /* memrchr */
 
+#include <fcntl.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -114,6 +115,13 @@ static Piece *cut_pieces(Run *r, size_t from, uint64_t piece, int *n)
         return NULL;
     int k = 0;
     pc[0].from = from;
+    /* the probes for a cut are far apart: no read-ahead for them (a
+     * kernel reading ahead megabytes at each, of a sparse file's zeros,
+     * took 1.5 s for a 1 GB file's 128 probes of 64 KB) */
+    MeshFile *f = r->c->file;
+    int probe_fd = f && f->map ? f->fd : -1;
+    if (probe_fd >= 0)
+        posix_fadvise(probe_fd, 0, 0, POSIX_FADV_RANDOM);
     for (uint64_t at = from + piece; at + piece / 2 < r->len && k + 1 < most; at += piece) {
         size_t cut = find_cut(r, (size_t)at);
         if (!cut || cut <= pc[k].from || cut >= r->len)
@@ -121,6 +129,8 @@ static Piece *cut_pieces(Run *r, size_t from, uint64_t piece, int *n)
         pc[k].to = cut;
         pc[++k].from = cut;
     }
+    if (probe_fd >= 0)
+        posix_fadvise(probe_fd, 0, 0, POSIX_FADV_NORMAL);
     pc[k].to = r->len;
     *n = k + 1;
     return pc;

@@ -68,7 +68,7 @@ static const int allowed[] = {
     SCMP_SYS(sched_getaffinity), SCMP_SYS(getrandom), SCMP_SYS(getrusage), SCMP_SYS(times),
     SCMP_SYS(sysinfo), SCMP_SYS(uname), SCMP_SYS(getrlimit),
     SCMP_SYS(membarrier), SCMP_SYS(restart_syscall), SCMP_SYS(sched_getparam),
-    SCMP_SYS(sched_getscheduler), SCMP_SYS(mincore),
+    SCMP_SYS(sched_getscheduler), SCMP_SYS(mincore), SCMP_SYS(fadvise64),
 };
 
 /* What an attacker wants: the child dies (SIGSYS) and the parent says so. */
