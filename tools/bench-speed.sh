@@ -44,6 +44,10 @@ cleanup() {
 trap cleanup EXIT
 trap 'exit 1' HUP INT PIPE TERM
 sh "$HERE/stamp.sh" "make bench-speed (tools/bench-speed.sh), zview $ZV, RUNS=$RUNS VIEWS=$VIEWS"
+# the commit of the zview measured, when it was built in a git tree
+# other than this one (another commit's build, for a "before" column)
+zc=$(git -C "$(dirname "$ZV")" rev-parse --short HEAD 2>/dev/null)
+[ -n "$zc" ] && echo "# zview measured: $ZV, built at commit $zc"
 
 D=$S/dragon.obj B=$S/stanford-bunny.obj
 if [ ! -f "$D" ] || [ ! -f "$B" ]; then
