@@ -139,7 +139,7 @@ if [ -x "$GLREF" ] && LIBGL_ALWAYS_SOFTWARE=1 "$GLREF" --views 1 --size 16x16 "$
         gc=$(awk '{ for (i = 1; i < NF; i++) if ($i == "cpu_ms") print $(i + 1) }' "$TMP/g1")
         gf=$(awk '{ for (i = 1; i < NF; i++) if ($i == "frame_ms") print $(i + 1) }' "$TMP/g1")
         g2=$(awk '{ for (i = 1; i < NF; i++) if ($i == "frame_ms") print $(i + 1) }' "$TMP/g2")
-        { echo "zview 1 thread: $(cat "$TMP/z1" | tr -d '\n')"; echo "zview 2 threads: $(tr -d '\n' <"$TMP/z2")"
+        { echo "zview 1 thread: $(tr -d '\n' <"$TMP/z1")"; echo "zview 2 threads: $(tr -d '\n' <"$TMP/z2")"
           echo "glref 1 thread: $(cat "$TMP/g1")"; echo "glref 2 threads: $(cat "$TMP/g2")"; } >>"$TMP/gl.txt"
         row "1080p z-buffer frame against llvmpipe, $n" \
             "$(awk -v a="$zc" -v b="$gc" 'BEGIN { printf "%.3f", (b > 0 ? a / b : 0) }')" "<= 0.18" \
