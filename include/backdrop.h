@@ -51,6 +51,9 @@ int   backdrop_parse(const char *s, uint8_t rgb_out[3]);
 extern const char backdrop_names[];
 /* OKLab L of an sRGB colour, 0 (black) to 1 (white). */
 float backdrop_lightness(const uint8_t rgb[3]);
+/* OKLab L of linear light (each channel 0 to 1): the one formula of
+ * both, in contrast.c, where the rule asks it many times a colour. */
+float contrast_lightness(const float lin[3]);
 /* Ink is darker than the background on it (its L above one half):
  * the text outputs then draw more of a darker pixel, not less. */
 int   backdrop_is_light(const Backdrop *b);

@@ -117,8 +117,10 @@ GalleryJobs *gallery_jobs_start(GalleryList *l, const GalleryLook *look, int nth
 void gallery_jobs_want(GalleryJobs *j, const int *order, int first, int n);
 void gallery_jobs_lock(GalleryJobs *j);
 void gallery_jobs_unlock(GalleryJobs *j);
-/* Tiles made so far (under the lock or not: a snapshot). */
-int  gallery_jobs_made(GalleryJobs *j);
+/* Tiles written back so far, pictured or checked: each may have moved
+ * in an order (its faces known, then its verdict). A snapshot, under
+ * the lock or not. */
+int  gallery_jobs_stored(GalleryJobs *j);
 /* Wait until every tile is made. */
 void gallery_jobs_wait(GalleryJobs *j);
 /* Stop the workers (after the tile each is making) and free the jobs. */
@@ -157,6 +159,12 @@ void gallery_sort(int *order, int n, const GalleryTile *t, GallerySort by);
 /* Keep in order[0..n) the tiles whose name contains needle (ASCII case
  * ignored; "" keeps all), in the same order; returns how many. */
 int  gallery_filter(int *order, int n, const GalleryTile *t, const char *needle);
+/* Is the order to be made again, now that `now` tiles are stored
+ * (gallery_jobs_stored) and *seen were at the last look? Only when a
+ * tile was stored since, and the order is not by name (which no tile's
+ * making changes): sorting on every tick of the grid would cost as much
+ * with nothing new. *seen becomes now. */
+int  gallery_order_due(int *seen, int now, GallerySort by);
 /* The rank of a tile in the verdict sort: unreadable, problems (more
  * kinds first), sound, then not yet made. */
 int  gallery_verdict_rank(const GalleryTile *t);

@@ -12,7 +12,9 @@
 typedef void (*PoolFn)(void *arg, int task, int worker);
 typedef struct Pool Pool;
 
-/* Start up to `helpers` threads (fewer when the system refuses more).
+/* Start up to `helpers` threads, at most 63 (a run's workers are the
+ * caller and the helpers: 64, SCREEN_MAX_THREADS), fewer when the system
+ * refuses more.
  * NULL when out of memory; a pool with no helper is fine: pool_run()
  * then runs every task on the caller. */
 Pool *pool_create(int helpers);

@@ -96,6 +96,13 @@ typedef struct {
 } TexLod;
 void texture_lod(const Texture *t, float lod, TexLod *l);
 void texture_lookup(const TexLod *l, float u, float v, int simd, float out[3]);
+/* texture_lookup of n samples (u[i], v[i]) into out[4 i .. 4 i + 2]
+ * (out[4 i + 3] is scratch), several at a time: the same bits, sample
+ * by sample, at every level. u and v are read in whole groups of
+ * TEX_ROW_PAD: the caller fills them to n rounded up (with a sample's
+ * coordinates: lanes past n are computed and dropped). */
+#define TEX_ROW_PAD 8
+void texture_lookup_row(const TexLod *l, const float *u, const float *v, int n, int simd, float *out);
 
 /* sRGB transfer (IEC 61966-2-1): a byte to linear light, and back. */
 float   srgb_to_linear(uint8_t v);

@@ -68,6 +68,16 @@ Test(backdrop, lightness_runs_from_black_to_white)
     cr_expect_float_eq(L((const uint8_t[3]){ 128, 128, 128 }), 0.5999f, 1e-3f);
     /* blue is darker than green at the same byte */
     cr_expect_lt(L((const uint8_t[3]){ 0, 0, 200 }), L((const uint8_t[3]){ 0, 200, 0 }));
+    /* the primaries and secondaries: OKLab's published L of sRGB's pure
+     * colours (Ottosson 2020), each weighing the three cone rows apart */
+    static const struct {
+        uint8_t rgb[3];
+        float l;
+    } pure[] = { { { 255, 0, 0 }, 0.62796f },   { { 0, 255, 0 }, 0.86644f },   { { 0, 0, 255 }, 0.45201f },
+                 { { 0, 255, 255 }, 0.90540f }, { { 255, 0, 255 }, 0.70167f }, { { 255, 255, 0 }, 0.96798f } };
+    for (size_t i = 0; i < sizeof pure / sizeof pure[0]; i++)
+        cr_expect_float_eq(L(pure[i].rgb), pure[i].l, 1e-4f, "(%d,%d,%d): %.5f, not %.5f", pure[i].rgb[0],
+                           pure[i].rgb[1], pure[i].rgb[2], L(pure[i].rgb), pure[i].l);
     cr_expect(!backdrop_is_light(&on_black));
     cr_expect(backdrop_is_light(&on_white));
     cr_expect(!backdrop_is_light(NULL), "no backdrop: a dark terminal's");

@@ -174,6 +174,69 @@ Test(gallery, each_sort_orders_every_pair_and_is_the_same_from_any_start)
     cr_assert_str_eq(tiles[order[4]].name, "Bunny.obj");
 }
 
+/* The grid's order as galleryui.c's loop keeps it: sorted once at the
+ * start, then again after a tick of the workers when gallery_order_due
+ * says. Six tiles are pictured (their faces known) and later checked
+ * (their verdict known), some ticks storing none, one or two. After
+ * every tick, in every sort, each pair of tiles shown is in the order
+ * the rule says (before_or_tie, the brute force), and a tick that stored
+ * nothing sorts nothing. */
+Test(gallery, the_order_follows_each_tile_pictured_or_checked_and_idle_ticks_sort_nothing)
+{
+    static const char *names[6] = { "a.obj", "b.obj", "c.obj", "d.obj", "e.obj", "f.obj" };
+    static char paths[6][16];
+    for (int i = 0; i < 6; i++)
+        snprintf(paths[i], sizeof paths[i], "dir/%s", names[i]);
+    static const uint64_t sizes[6] = { 30, 10, 60, 20, 50, 40 };
+    static const uint32_t faces[6] = { 5, 900, 12, 40, 3, 77 };
+    static const uint32_t problems[6] = { 0, 2, 0, 1, 0, 3 };
+    /* the tiles stored at each tick, -1 ends: a tile's first time its
+     * picture, its second its check */
+    static const int ticks[][3] = { { -1 }, { 1, -1 }, { -1 },    { 4, 2, -1 }, { 1, -1 }, { -1 }, { 5, -1 },
+                                    { 0, 3, -1 }, { 4, -1 }, { 2, 5, -1 }, { 0, -1 }, { 3, -1 }, { -1 } };
+    int nticks = (int)(sizeof ticks / sizeof ticks[0]);
+    for (int by = 0; by < GSORT_COUNT; by++) {
+        GalleryTile t[6];
+        int order[6], times[6] = { 0 };
+        for (int i = 0; i < 6; i++) {
+            t[i] = (GalleryTile){ .path = paths[i], .name = names[i], .size = sizes[i], .state = GS_PENDING };
+            order[i] = 5 - i;
+        }
+        gallery_sort(order, 6, t, (GallerySort)by);
+        int stored = 0, seen = -1, last = -1, sorts = 0, news = 0;
+        for (int k = 0; k < nticks; k++) {
+            for (int j = 0; ticks[k][j] >= 0; j++) {
+                int i = ticks[k][j];
+                if (times[i]++ == 0) {
+                    t[i].state = GS_PICTURED;
+                    t[i].faces = faces[i];
+                } else {
+                    t[i].state = problems[i] ? GS_PROBLEM : GS_SOUND;
+                    t[i].problems = problems[i];
+                }
+                stored++;
+            }
+            int fresh = stored != last;     /* the first tick too: the loop's first look */
+            news += fresh;
+            last = stored;
+            if (gallery_order_due(&seen, stored, (GallerySort)by)) {
+                cr_assert(fresh, "sort %s, tick %d: nothing stored, sorted again", gallery_sort_names[by], k);
+                gallery_sort(order, 6, t, (GallerySort)by);
+                sorts++;
+            }
+            for (int i = 0; i + 1 < 6; i++)
+                for (int m = i + 1; m < 6; m++)
+                    cr_assert(before_or_tie(&t[order[i]], &t[order[m]], (GallerySort)by),
+                              "sort %s, tick %d: %s shown before %s", gallery_sort_names[by], k, t[order[i]].name,
+                              t[order[m]].name);
+        }
+        cr_assert_eq(stored, 12, "each tile pictured and checked");
+        /* by name nothing a tile's making knows moves it */
+        cr_assert_eq(sorts, by == GSORT_NAME ? 0 : news, "sort %s: %d sorts, %d ticks with news", gallery_sort_names[by],
+                     sorts, news);
+    }
+}
+
 Test(gallery, the_filter_keeps_the_names_containing_it_in_their_order)
 {
     make_tiles();
@@ -432,6 +495,9 @@ Test(gallery, one_worker_makes_every_tile_the_screens_first, .timeout = 60)
         usleep(200);
     }
     gallery_jobs_wait(j);
+    /* each time a tile is written back the grid's order may change */
+    cr_assert_eq(gallery_jobs_stored(j), 8, "the two asked for stored twice (pictured, then checked), the other "
+                                            "four once (made whole): %d", gallery_jobs_stored(j));
     gallery_jobs_stop(j);
     for (int i = 0; i < 6; i++)
         cr_assert(l.tile[i].state == GS_PROBLEM && !strcmp(l.tile[i].verdict, "1 hole") && l.tile[i].pic.w == 16,

@@ -323,3 +323,52 @@ Test(measure, the_thickness_ramp_runs_red_to_blue)
     shade_thickness_colour(2 / 3.0, c);
     cr_assert(c[1] > 150 && c[0] < 80 && c[2] < 100, "2/3 green: %d %d %d", c[0], c[1], c[2]);
 }
+
+/* The centre of a face is the mean of its corners as the file gives
+ * them, whatever polygons the scene splits it into and whichever object
+ * it is in: two objects, each with a quad bent out of its plane (two
+ * triangles of one face) and faces after it, marked on the first
+ * object's quad, the second object's third face and the first's
+ * triangle. The distances are those of the corners' means. */
+Test(measure, a_face_mark_is_the_mean_of_its_corners_in_any_object)
+{
+    static const char *obj = "o a\nv 0 0 0\nv 2 0 0\nv 2 2 1\nv 0 2 0\nv 4 0 0\nf 1 2 3 4\nf 2 5 3\n"
+                             "o b\nv 10 0 0\nv 12 0 0\nv 12 3 1\nv 10 3 0\nv 14 0 0\nv 14 3 2\n"
+                             "f 6 7 8 9\nf 7 10 8\nf 10 11 8\n";
+    /* the corners of each face marked, from the text above */
+    static const double corners[3][4][3] = {
+        { { 0, 0, 0 }, { 2, 0, 0 }, { 2, 2, 1 }, { 0, 2, 0 } },
+        { { 14, 0, 0 }, { 14, 3, 2 }, { 12, 3, 1 } },
+        { { 2, 0, 0 }, { 4, 0, 0 }, { 2, 2, 1 } },
+    };
+    static const int ncorners[3] = { 4, 3, 3 };
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "two.obj", obj), 0);
+    cr_assert_eq(s.nobjs, 2);
+    cr_assert(s.poly_lface && s.npolys == 7, "the bent quads are split: %u polygons", s.npolys);
+    double c[3][3] = { { 0 } };
+    for (int m = 0; m < 3; m++)
+        for (int i = 0; i < ncorners[m]; i++)
+            for (int j = 0; j < 3; j++)
+                c[m][j] += corners[m][i][j] / ncorners[m];
+    double ab = sqrt(pow(c[1][0] - c[0][0], 2) + pow(c[1][1] - c[0][1], 2) + pow(c[1][2] - c[0][2], 2));
+    double bc = sqrt(pow(c[2][0] - c[1][0], 2) + pow(c[2][1] - c[1][1], 2) + pow(c[2][2] - c[1][2], 2));
+    MeasureMarks mk = { .n = 3,
+                        .mark = { { .obj = 0, .kind = MEASURE_FACE, .a = 0 },
+                                  { .obj = 1, .kind = MEASURE_FACE, .a = 2 },
+                                  { .obj = 0, .kind = MEASURE_FACE, .a = 1 } } };
+    char words[200];
+    app_measure_words(&s, &mk, 0, words, sizeof words);
+    double got_ab, dx, dy, dz, got_bc;
+    cr_assert_eq(sscanf(words, "AB %lf (dx %lf dy %lf dz %lf), BC %lf", &got_ab, &dx, &dy, &dz, &got_bc), 5, "%s",
+                 words);
+    cr_assert(fabs(got_ab - ab) <= 1e-5 * ab && fabs(got_bc - bc) <= 1e-5 * bc, "%s: AB %g BC %g", words, ab, bc);
+    double want[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] }, d[3] = { dx, dy, dz };
+    for (int j = 0; j < 3; j++)
+        cr_assert(fabs(fabs(d[j]) - fabs(want[j])) <= 1e-3 * fabs(want[j]), "%s: axis %d %g", words, j, want[j]);
+    /* a face past the object's last is no point of the scene */
+    mk.mark[1].a = 3;
+    app_measure_words(&s, &mk, 0, words, sizeof words);
+    cr_assert(strstr(words, "a mark is on no point of the scene"), "%s", words);
+    scene_free(&s);
+}

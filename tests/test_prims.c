@@ -420,6 +420,63 @@ Test(prims, a_wireframe_edge_wins_against_its_own_face)
     scene_free(&s);
 }
 
+/* The lines of obj rendered under view v at 120 x 90 by the z-buffer into fb; sp kept for its
+ * projection. */
+static void line_frame(const char *obj, const TlView *v, ScreenPolys *sp, FrameBufs *fb)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_text(&s, "l.obj", obj), 0);
+    tl_set_view(&s, v);
+    PrimWork *w = NULL;
+    Viewport vp = { 120, 90, 1.0f, 0 };
+    PrimStyle st = { 1, 1, 0, 0, 0, 0 };
+    cr_assert_eq(tl_project(sp, &s, &vp, &st, &w), 0);
+    HsrInput in = { .sp = sp, .scene = &s, .vp = &vp };
+    cr_assert_eq(tl_render_poisoned(&hsr_zbuffer, 1, &in, fb), 0);
+    prims_free(&w);
+    scene_free(&s);
+}
+
+Test(prims, a_line_through_the_near_plane_is_cut_there_not_turned)
+{
+    /* A (z -1) and M (z 0.5) in front of the eye, B (z 1) behind it, on
+     * one line off the axis. Both scenes fit the same box (the second
+     * line, at z 1 behind the eye, draws nothing): centre 0, the eye at
+     * 0.81 at zoom 4.2, the near plane 0.017 before it. The part of
+     * A -> B the camera sees is A -> M and on past M (off the picture's
+     * right edge, M at x 155): every sample of A -> M is one of A -> B,
+     * at its depth, and A -> B has no more. A far end left behind the
+     * eye projects to the other side: the line would turn back through
+     * the centre. */
+    const char *pts = "v 0.3 0.2 -1\nv 0.3 0.2 0.5\nv 0.3 0.2 1\nv -1 -1 1\nv 1 1 1\nl 4 5\n";
+    char ab[160], am[160];
+    snprintf(ab, sizeof ab, "%sl 1 3\n", pts);
+    snprintf(am, sizeof am, "%sl 1 2\n", pts);
+    TlView v = { 0, 0, 0, 0, 0, 0, 4.2f, 0, 0, 1, 50 };
+    ScreenPolys spb = { 0 }, spm = { 0 };
+    FrameBufs fb = { 0 }, fm = { 0 };
+    line_frame(ab, &v, &spb, &fb);
+    line_frame(am, &v, &spm, &fm);
+    /* the view is as said: B behind the eye, M in front of the near plane */
+    cr_assert(spb.persp && spb.eye_z < 1 && spb.eye_z - 0.5f > spb.near_z, "eye %g near %g", spb.eye_z, spb.near_z);
+    int nm = 0, both = 0, nb = 0;
+    for (int i = 0; i < fm.w * fm.h; i++) {
+        nb += fb.ids[i] == 1;
+        if (fm.ids[i] != 1)
+            continue;
+        nm++;
+        if (fb.ids[i] == 1 && fabsf(fb.depth[i] - fm.depth[i]) <= 1e-4f * fabsf(fm.depth[i]))
+            both++;
+    }
+    cr_assert_gt(nm, 30, "A -> M crosses the picture from A to its right edge: %d samples", nm);
+    cr_assert_geq(both, nm - 2, "A -> B covers %d of A -> M's %d samples at their depth", both, nm);
+    cr_assert_leq(nb, nm + 2, "A -> B has %d samples, A -> M %d: it goes no further on the picture", nb, nm);
+    fbuf_free(&fb);
+    fbuf_free(&fm);
+    screen_free(&spb);
+    screen_free(&spm);
+}
+
 /* ==== shading ==== */
 
 Test(prims, points_take_their_vertex_colours)

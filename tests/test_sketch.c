@@ -106,6 +106,36 @@ Test(sketch, undo_clear_and_bad_points)
     sketch_free(&k);
 }
 
+/* A cleared sketch starts again: the squares drawn after a flip and a
+ * clear make the OBJ a fresh sketch of them makes, the last drawn in
+ * front. Its arrays hold what few polygons it has (grow_array's first
+ * 64 entries), not room for billions. */
+Test(sketch, a_cleared_sketch_draws_as_a_new_one)
+{
+    Sketch fresh, k;
+    two_squares(&fresh);
+    two_squares(&k);
+    sketch_flip(&k);
+    sketch_clear(&k);
+    const float a[4][2] = { { -0.8f, -0.5f }, { 0.2f, -0.5f }, { 0.2f, 0.5f }, { -0.8f, 0.5f } };
+    const float b[4][2] = { { -0.2f, -0.3f }, { 0.8f, -0.3f }, { 0.8f, 0.7f }, { -0.2f, 0.7f } };
+    for (int i = 0; i < 4; i++)
+        cr_assert_eq(sketch_add_point(&k, a[i][0], a[i][1]), 0);
+    cr_assert_eq(sketch_close(&k), 0);
+    for (int i = 0; i < 4; i++)
+        cr_assert_eq(sketch_add_point(&k, b[i][0], b[i][1]), 0);
+    cr_assert_eq(sketch_close(&k), 0);
+    char *want = sketch_to_text(&fresh, NULL), *got = sketch_to_text(&k, NULL);
+    cr_assert(want && got);
+    cr_expect_str_eq(got, want);
+    cr_expect_eq(seen_at(&k, 0, 0), 1, "B, drawn last, in front");
+    cr_expect_leq(fresh.cap_start, 64u, "%u entries for 2 polygons", fresh.cap_start);
+    free(want);
+    free(got);
+    sketch_free(&fresh);
+    sketch_free(&k);
+}
+
 Test(sketch, two_corners_do_not_close)
 {
     /* a polygon needs an area: two corners are a line */

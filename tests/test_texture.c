@@ -335,6 +335,56 @@ Test(texture, the_16_bit_lookup_is_the_reference_to_8e_6_and_every_simd_level_gi
     texture_free(&t);
 }
 
+Test(texture, lookups_of_a_row_of_samples_give_each_samples_bits_at_every_level)
+{
+    /* texture_lookup_row against texture_lookup sample by sample: runs
+     * of every length to 40 (whole groups and padded ones), both wraps
+     * the vector paths take and mirror, one level and two, a level of
+     * 1 x 1, and groups holding a coordinate too big or NaN */
+    Texture t;
+    make_grey(&t, 37, 23, noise);
+    cr_assert_not_null(t.lin);
+    const TexWrap modes[3] = { TEX_REPEAT, TEX_CLAMP, TEX_MIRROR };
+    const float lods[5] = { -1.0f, 0.0f, 1.37f, 3.5f, 9.0f };
+    uint32_t r = 777;
+    float u[40 + TEX_ROW_PAD], v[40 + TEX_ROW_PAD], got[4 * 40], want[3];
+    long compared = 0;
+    for (int m = 0; m < 9; m++) {
+        t.wrap_u = modes[m % 3];
+        t.wrap_v = modes[m / 3];
+        for (int li = 0; li < 5; li++) {
+            TexLod l;
+            texture_lod(&t, lods[li], &l);
+            for (int n = 0; n <= 40; n++) {
+                for (int i = 0; i < n + TEX_ROW_PAD; i++) {
+                    r = r * 1664525u + 1013904223u;
+                    u[i] = (float)((int)(r >> 8) % 40000 - 20000) / 4096.0f;
+                    r = r * 1664525u + 1013904223u;
+                    v[i] = (float)((int)(r >> 8) % 40000 - 20000) / 4096.0f;
+                }
+                if (n % 7 == 3)
+                    u[n / 2] = n % 2 ? 3e30f : NAN;
+                if (n % 11 == 5)
+                    v[n - 1] = -2e6f;
+                for (int lv = SIMD_SCALAR; lv < SIMD_LEVELS; lv++) {
+                    texture_lookup_row(&l, u, v, n, lv, got);
+                    for (int i = 0; i < n; i++, compared++) {
+                        texture_lookup(&l, u[i], v[i], SIMD_SCALAR, want);
+                        cr_assert(!memcmp(got + 4 * i, want, sizeof want),
+                                  "level %d, wrap %d, lod %g, sample %d of %d at (%g, %g): %.9g %.9g %.9g, one at a time "
+                                  "%.9g %.9g %.9g",
+                                  lv, m, (double)lods[li], i, n, (double)u[i], (double)v[i], (double)got[4 * i],
+                                  (double)got[4 * i + 1], (double)got[4 * i + 2], (double)want[0], (double)want[1],
+                                  (double)want[2]);
+                    }
+                }
+            }
+        }
+    }
+    cr_assert_gt(compared, 100000);
+    texture_free(&t);
+}
+
 /* ==== hostile images (issue 28) ==== */
 
 /* The decode of `data` run in a child: its peak resident memory (KB),

@@ -4,6 +4,8 @@
 #define _DEFAULT_SOURCE
 
 #include <criterion/criterion.h>
+#include <errno.h>
+#include <limits.h>
 #include <criterion/redirect.h>
 #include <signal.h>
 #include <stdio.h>
@@ -105,6 +107,41 @@ Test(util, a_safe_file_replaces_the_old_one_only_when_complete)
     rmdir(dir);
 }
 
+/* A name as long as the array that keeps it, or longer, is refused as
+ * too long before anything is copied (no name of PATH_MAX bytes or more
+ * can be opened: the limit counts the NUL); one byte shorter goes on to
+ * the file system, which says what it says of a missing folder. The
+ * SafeFile sits between two guards that must keep their bytes. */
+Test(util, a_safe_file_refuses_a_name_too_long_for_it)
+{
+    static char name[PATH_MAX + 2];
+    struct {
+        char before[64];
+        SafeFile sf;
+        char after[64];
+    } g;
+    for (int extra = -1; extra <= 1; extra++) {
+        size_t len = sizeof g.sf.path + extra;
+        memset(name, 'a', len);
+        name[0] = '/';
+        memcpy(name + 1, "zv-no-such-dir/", 15);
+        name[len] = 0;
+        memset(&g, 0x5a, sizeof g);
+        errno = 0;
+        FILE *f = safefile_open(&g.sf, name, "w");
+        cr_assert_null(f, "a name of %zu bytes opened", len);
+        if (extra >= 0)
+            cr_expect_eq(errno, ENAMETOOLONG, "%zu bytes: errno %d", len, errno);
+        else
+            cr_expect_eq(errno, ENOENT, "%zu bytes: errno %d", len, errno);
+        for (size_t i = 0; i < sizeof g.before; i++)
+            cr_assert(g.before[i] == 0x5a && g.after[i] == 0x5a, "%zu bytes: a guard's byte %zu written", len, i);
+        if (extra >= 0)
+            cr_expect(g.sf.tmp[0] == 0 && (unsigned char)g.sf.tmp[1] == 0x5a,
+                      "%zu bytes: a temporary name was made of it", len);
+    }
+}
+
 Test(util, a_safe_file_writes_a_device_as_it_is)
 {
     SafeFile sf;
@@ -179,6 +216,24 @@ Test(util, a_pool_runs_every_task_once_and_no_other)
                 cr_assert_eq(runs[ntasks], 0, "a task past the last ran (%d tasks)", ntasks);
             }
     pool_free(pools[0]);
+}
+
+/* Asked for more helpers than it holds, a pool starts 63 (the caller
+ * makes 64 workers, the most a projection uses: SCREEN_MAX_THREADS) and
+ * runs every task once on them. */
+Test(util, a_pool_asked_for_a_thousand_helpers_starts_at_most_63)
+{
+    Pool *p = pool_create(1000);
+    cr_assert_not_null(p);
+    int n = pool_helpers(p);
+    cr_assert(n >= 1 && n <= 63, "%d helpers", n);
+    int runs[201] = { 0 };
+    PoolTally c = { 200, n, runs, 0 };
+    pool_run(p, 200, tally_task, &c);
+    cr_assert_eq(c.bad, 0, "a task or worker out of range");
+    for (int t = 0; t < 200; t++)
+        cr_assert_eq(runs[t], 1, "task %d ran %d times", t, runs[t]);
+    pool_free(p);
 }
 
 /* ZV_ASSERT is on exactly in the checked builds (make asan, the

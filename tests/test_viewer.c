@@ -272,6 +272,37 @@ Test(viewer, devices_and_standard_input_are_refused_at_once)
     cr_expect(strstr(err, "standard input"), "-: %s", err);
 }
 
+/* ==== The prompt's scrolling ==== */
+
+/* A line longer than the screen shows its end with the cursor on it:
+ * the fewest characters dropped from the left that bring the cursor to
+ * column cols - 2 or before (brute force: each count tried in turn, the
+ * columns counted by hand, an escape shown as the four columns of
+ * \x1b), every width from one column to past the line. */
+Test(viewer, a_long_prompt_drops_the_fewest_characters_that_show_the_cursor)
+{
+    static const char *lines[] = { " Open: models/teapot.obj", " Open: a\x1b" "b/c.obj" };
+    for (int l = 0; l < 2; l++) {
+        const char *bar = lines[l];
+        /* each character's columns */
+        int n = 0, w[64];
+        for (const char *p = bar; *p; p++)
+            w[n++] = *p == 0x1b ? 4 : 1;
+        int total = 0;
+        for (int i = 0; i < n; i++)
+            total += w[i];
+        for (int cols = 1; cols <= total + 4; cols++) {
+            int drop = 0, at = total;
+            while (drop < n && at > cols - 2)
+                at -= w[drop++];
+            int got = total;
+            const char *show = viewer_prompt_scroll(bar, cols, &got);
+            cr_assert_eq(show - bar, drop, "line %d, %d columns: %td dropped, not %d", l, cols, show - bar, drop);
+            cr_assert_eq(got, at, "line %d, %d columns: the cursor at %d, not %d", l, cols, got, at);
+        }
+    }
+}
+
 /* ==== The help overlay's scrolling ==== */
 
 Test(viewer, page_keys_home_and_end_scroll_a_help_that_does_not_fit)

@@ -25,25 +25,45 @@ void diff_free(Diff *d)
 }
 
 /* The box of the vertices m's faces use into lo, hi (grown); -1 with
- * the reason for a vertex that is not a finite point. In float, in
- * locals (the arrays written through pointers would make every corner
- * read m's fields again): the box of floats is floats. */
+ * the reason for a vertex that is not a finite point. The corners mark
+ * the vertices they use, and the box is of the vertices marked, each
+ * once (a vertex has about six corners): min and max of the same floats,
+ * in float, so the same box as corner by corner, but for the sign of a
+ * zero, which neither the diagonal nor the curve's codes can see. A
+ * vertex that is not finite is named as the corners meet it, the first
+ * in corner order, so the message is the one a pass over the corners
+ * gives. */
 static int faces_box(const Mesh *m, double lo[3], double hi[3], char *err, size_t errlen)
 {
     const float *pos = m->pos;
     const uint32_t *corner = m->corner;
     uint32_t n = m->face_start ? m->face_start[m->nfaces] : 0;
+    uint8_t *used = calloc((size_t)m->nverts + 1, 1);
+    if (!used) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    for (uint32_t c = 0; c < n; c++)
+        used[corner[c]] = 1;
     float l[3] = { INFINITY, INFINITY, INFINITY }, h[3] = { -INFINITY, -INFINITY, -INFINITY };
-    for (uint32_t c = 0; c < n; c++) {
-        const float *p = &pos[3 * (size_t)corner[c]];
+    int finite = 1;
+    for (uint32_t v = 0; v < m->nverts; v++) {
+        if (!used[v])
+            continue;
+        const float *p = &pos[3 * (size_t)v];
         /* a NaN fails every comparison, an infinity the bound */
-        if (!(fabsf(p[0]) <= FLT_MAX && fabsf(p[1]) <= FLT_MAX && fabsf(p[2]) <= FLT_MAX)) {
-            snprintf(err, errlen, "%s: vertex %u is not a finite point", m->path ? m->path : "?", corner[c] + 1);
-            return -1;
-        }
+        finite &= fabsf(p[0]) <= FLT_MAX && fabsf(p[1]) <= FLT_MAX && fabsf(p[2]) <= FLT_MAX;
         for (int k = 0; k < 3; k++) {
             l[k] = p[k] < l[k] ? p[k] : l[k];
             h[k] = p[k] > h[k] ? p[k] : h[k];
+        }
+    }
+    free(used);
+    for (uint32_t c = 0; !finite && c < n; c++) {
+        const float *p = &pos[3 * (size_t)corner[c]];
+        if (!(fabsf(p[0]) <= FLT_MAX && fabsf(p[1]) <= FLT_MAX && fabsf(p[2]) <= FLT_MAX)) {
+            snprintf(err, errlen, "%s: vertex %u is not a finite point", m->path ? m->path : "?", corner[c] + 1);
+            return -1;
         }
     }
     for (int k = 0; k < 3; k++) {

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "diff.h"
+#include "thread.h"
 
 const char *const diff_show_names[DIFF_SHOW_COUNT] = { "both", "a", "b", "heat" };
 
@@ -21,11 +22,13 @@ int diff_show_from_name(const char *name)
     return -1;
 }
 
-/* One file; 1 with the message when it cannot be read or has no faces. */
-static int load_one(const Options *o, const char *path, Mesh *m, char *err, size_t errlen)
+/* One file; 1 with the message when it cannot be read or has no faces.
+ * quiet: its warnings kept off stderr (still counted in its info). */
+static int load_one(const Options *o, const char *path, int quiet, Mesh *m, char *err, size_t errlen)
 {
     MeshLoadOpts lo = app_load_opts(o);
     lo.no_textures = 1;         /* the picture's colours are the distances */
+    lo.quiet = quiet;
     SandboxOpts so = app_sandbox_opts(o);
     if (sandbox_load(m, path, &lo, &so, err, errlen))
         return 1;
@@ -33,6 +36,54 @@ static int load_one(const Options *o, const char *path, Mesh *m, char *err, size
     if (!m->nfaces) {
         snprintf(err, errlen, "%s: no faces (--diff compares surfaces)", path);
         mesh_free(m);
+        return 1;
+    }
+    return 0;
+}
+
+/* B's load on a thread of its own, beside A's. */
+typedef struct {
+    const Options *o;
+    Mesh          *m;
+    int            rc;
+    char           err[1024];
+} LoadB;
+
+static void *load_b_main(void *arg)
+{
+    LoadB *l = arg;
+    l->rc = load_one(l->o, l->o->files[1], 1, l->m, l->err, sizeof l->err);
+    return NULL;
+}
+
+/* Both files into m[0], m[1]: 0, or 1 with the first failure's message.
+ * On several threads B loads beside A (each load's parse has a serial
+ * part, and the sandbox's round trip), quietly; what the command says
+ * is the same bytes as loading in turn: B loads again in turn, aloud,
+ * when its quiet load warned or failed (its warnings then follow A's,
+ * and its error, as before), and A's failure discards B. Standard input
+ * is read in turn (it cannot be read twice). */
+static int load_both(const Options *o, Mesh *m, char *err, size_t errlen)
+{
+    int threads = o->threads > 0 ? o->threads : default_threads();
+    LoadB lb = { .o = o, .m = &m[1], .rc = -1 };
+    pthread_t th;
+    int beside = threads > 1 && strcmp(o->files[0], "-") && strcmp(o->files[1], "-") &&
+                 thread_start(&th, load_b_main, &lb) == 0;
+    int rc = load_one(o, o->files[0], 0, &m[0], err, errlen);
+    if (beside) {
+        pthread_join(th, NULL);
+        if (lb.rc == 0 && (rc || m[1].info.warnings)) {
+            mesh_free(&m[1]);
+            lb.rc = -1;
+        }
+    }
+    if (rc)
+        return 1;
+    if (lb.rc == 0)
+        return 0;
+    if (load_one(o, o->files[1], 0, &m[1], err, errlen)) {
+        mesh_free(&m[0]);
         return 1;
     }
     return 0;
@@ -84,12 +135,7 @@ int diff_load(DiffSet *ds, const Options *o, int scene, char *err, size_t errlen
         snprintf(err, errlen, "out of memory");
         return -1;
     }
-    if (load_one(o, o->files[0], &m[0], err, errlen)) {
-        free(m);
-        return 1;
-    }
-    if (load_one(o, o->files[1], &m[1], err, errlen)) {
-        mesh_free(&m[0]);
+    if (load_both(o, m, err, errlen)) {
         free(m);
         return 1;
     }

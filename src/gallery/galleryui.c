@@ -367,7 +367,7 @@ static int grid_key(Ui *u, int key, const TermConfig *cfg)
 
 static int loop(Ui *u, const TermConfig *cfg)
 {
-    int made = -1;
+    int stored = -1;
     for (;;) {
         want_screen(u);
         if (draw(u))
@@ -387,10 +387,8 @@ static int loop(Ui *u, const TermConfig *cfg)
                     return rc < 0 ? 1 : 0;
             }
         }
-        int now_made = gallery_jobs_made(u->jobs);
-        if (now_made != made && u->sort != GSORT_NAME)
-            reorder(u);         /* a finished tile may move in the order */
-        made = now_made;
+        if (gallery_order_due(&stored, gallery_jobs_stored(u->jobs), u->sort))
+            reorder(u);         /* a tile pictured or checked may move in the order */
         if (!u->spin.running && u->n && now_ms() - u->sel_since >= SPIN_WAIT_MS)
             spin_start(u);
         spin_step(u);

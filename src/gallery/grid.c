@@ -142,6 +142,13 @@ static int contains(const char *hay, const char *needle)
     return m == 0;
 }
 
+int gallery_order_due(int *seen, int now, GallerySort by)
+{
+    int due = now != *seen && by != GSORT_NAME;
+    *seen = now;
+    return due;
+}
+
 int gallery_filter(int *order, int n, const GalleryTile *t, const char *needle)
 {
     int k = 0;

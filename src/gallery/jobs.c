@@ -29,6 +29,7 @@ struct GalleryJobs {
     int             nwant;
     int             next;       /* the rest: the first that may be pending */
     int             made;       /* tiles made (the unreadable ones of the listing too) */
+    int             stored;     /* tiles written back, pictured or checked */
 };
 
 /* The scheduling alone (the policy the tests replay step by step). */
@@ -85,6 +86,7 @@ static void *worker(void *arg)
             image_free(&dst->pic);
         *dst = t;
         j->made += t.state >= GS_SOUND;
+        j->stored++;
         pthread_cond_broadcast(&j->done);
     }
     pthread_mutex_unlock(&j->mu);
@@ -145,10 +147,10 @@ void gallery_jobs_unlock(GalleryJobs *j)
     pthread_mutex_unlock(&j->mu);
 }
 
-int gallery_jobs_made(GalleryJobs *j)
+int gallery_jobs_stored(GalleryJobs *j)
 {
     pthread_mutex_lock(&j->mu);
-    int n = j->made;
+    int n = j->stored;
     pthread_mutex_unlock(&j->mu);
     return n;
 }

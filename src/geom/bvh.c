@@ -303,25 +303,18 @@ void bvh_closest_from(const Bvh *b, const double q[3], uint32_t hint, BvhHit *hi
     float lim = box_limit(best, &qf);
     /* invariant: each entry on the stack is a child (a node, or a leaf's
      * first triangle and count) with its box's distance, which was within
-     * the limit when it was pushed */
+     * the limit when it was pushed. The nearest child of a node is not
+     * pushed but walked at once (cur): it would be the next popped, and
+     * within the limit, which has not moved since */
     struct {
         uint32_t child, count;
         float    d2;
     } stack[STACK_MAX];
-    int top = 0;
-    if (b->nnodes) {
-        stack[0].child = 0;
-        stack[0].count = 0;
-        stack[0].d2 = 0;
-        top = 1;
-    }
-    while (top > 0) {
-        top--;
-        if (stack[top].d2 > lim)
-            continue;
-        if (stack[top].count) {
-            uint32_t t0 = stack[top].child;
-            for (uint32_t t = t0; t < t0 + stack[top].count; t++) {
+    int top = 0, have = b->nnodes > 0;
+    uint32_t cur = 0, cur_count = 0;
+    while (have) {
+        if (cur_count) {
+            for (uint32_t t = cur; t < cur + cur_count; t++) {
                 if (t == hint)
                     continue;
                 /* the corners read once for both tests */
@@ -337,16 +330,32 @@ void bvh_closest_from(const Bvh *b, const double q[3], uint32_t hint, BvhHit *hi
                     lim = box_limit(best, &qf);
                 }
             }
-            continue;
+        } else {
+            const BvhNode *n = &b->node[cur];
+            float e[BVH_WIDTH];
+            child_dist2(n, qf.q, e);
+            int idx[BVH_WIDTH], k = children_within(n, e, lim, idx);
+            if (k > 0) {
+                for (int j = 0; j + 1 < k; j++) {
+                    stack[top].child = n->child[idx[j]];
+                    stack[top].count = n->count[idx[j]];
+                    stack[top++].d2 = e[idx[j]];
+                }
+                cur = n->child[idx[k - 1]];
+                cur_count = n->count[idx[k - 1]];
+                continue;
+            }
         }
-        const BvhNode *n = &b->node[stack[top].child];
-        float e[BVH_WIDTH];
-        child_dist2(n, qf.q, e);
-        int idx[BVH_WIDTH], k = children_within(n, e, lim, idx);
-        for (int j = 0; j < k; j++) {
-            stack[top].child = n->child[idx[j]];
-            stack[top].count = n->count[idx[j]];
-            stack[top++].d2 = e[idx[j]];
+        /* the next one on the stack still within the limit */
+        have = 0;
+        while (top > 0) {
+            top--;
+            if (stack[top].d2 <= lim) {
+                cur = stack[top].child;
+                cur_count = stack[top].count;
+                have = 1;
+                break;
+            }
         }
     }
     hit->d2 = best;

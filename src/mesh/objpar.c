@@ -27,7 +27,7 @@
 /* Pieces of this many bytes (the last ones a little more): big enough
  * that the merge is a small part of the work, small enough that both
  * cores have several to take. */
-#define PIECE_BYTES ((uint64_t)16 << 20)
+#define PIECE_BYTES ((uint64_t)8 << 20)
 #define MAX_PIECES 4096
 /* A cut is looked for this far past where a piece would end. */
 #define CUT_LOOK ((size_t)64 << 10)
@@ -57,6 +57,9 @@ typedef struct {
     pthread_mutex_t mu;
     int             merged; /* pieces merged so far */
     int             stop;   /* the first piece not to be merged (n: none); atomic */
+    int             failed; /* the first piece known to have failed (n: none); atomic:
+                             * the pieces after it are read again serially whatever
+                             * they hold, so none is parsed alone any more */
     int             fatal;  /* the load fails (the serial parser's message) */
     int             first_rc;
     uint64_t        lines;  /* lines of the pieces merged */
@@ -443,7 +446,7 @@ static void piece_task(void *arg, int k, int worker)
     Run *r = arg;
     Piece *p = &r->pc[k];
     int state = PC_FAILED;
-    if (k < __atomic_load_n(&r->stop, __ATOMIC_RELAXED)) {
+    if (k < __atomic_load_n(&r->stop, __ATOMIC_RELAXED) && k < __atomic_load_n(&r->failed, __ATOMIC_RELAXED)) {
         if (k == 0) {
             /* the serial parser itself, in place */
             LineReader lr;
@@ -458,6 +461,8 @@ static void piece_task(void *arg, int k, int worker)
     }
     pthread_mutex_lock(&r->mu);
     p->state = state;
+    if (state == PC_FAILED && k < r->failed)
+        __atomic_store_n(&r->failed, k, __ATOMIC_RELAXED);
     pthread_mutex_unlock(&r->mu);
     merge_ready(r);
 }
@@ -485,6 +490,7 @@ int obj_parse_parallel(Parser *ps, MeshCtx *c, const char *text, size_t from, si
         return obj_lines(ps, &lr, text + len);
     }
     r.stop = r.n;
+    r.failed = r.n;
     pthread_mutex_init(&r.mu, NULL);
     Pool *pool = pool_create(threads - 1);
     pool_run(pool, r.n, piece_task, &r);

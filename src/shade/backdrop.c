@@ -65,12 +65,8 @@ int backdrop_parse(const char *s, uint8_t rgb_out[3])
 
 float backdrop_lightness(const uint8_t rgb[3])
 {
-    float r = srgb_to_linear(rgb[0]), g = srgb_to_linear(rgb[1]), b = srgb_to_linear(rgb[2]);
-    /* OKLab's first matrix, its cube roots and the row that gives L */
-    float l = cbrtf(0.4122214708f * r + 0.5363325363f * g + 0.0514459929f * b);
-    float m = cbrtf(0.2119034982f * r + 0.6806995451f * g + 0.1073969566f * b);
-    float s = cbrtf(0.0883024619f * r + 0.2817188376f * g + 0.6299787005f * b);
-    return 0.2104542553f * l + 0.7936177850f * m - 0.0040720468f * s;
+    float lin[3] = { srgb_to_linear(rgb[0]), srgb_to_linear(rgb[1]), srgb_to_linear(rgb[2]) };
+    return contrast_lightness(lin);
 }
 
 int backdrop_is_light(const Backdrop *b)

@@ -45,7 +45,7 @@ static inline Cones cones(const float c[3])
                     0.0883024619f * c[0] + 0.2817188376f * c[1] + 0.6299787005f * c[2] };
 }
 
-static float lightness_of(const float c[3])
+float contrast_lightness(const float c[3])
 {
     Cones k = cones(c);
     return OK_A * cbrtf(k.l) + OK_B * cbrtf(k.m) - OK_C * cbrtf(k.s);
@@ -191,7 +191,7 @@ static void reach(const float lin[3], float L, float want, float out[3])
         float t = 0.5f * (lo + hi), mix[3];
         for (int a = 0; a < 3; a++)
             mix[a] = base[a] + t * (1.0f - base[a]);
-        if (lightness_of(mix) < want)
+        if (contrast_lightness(mix) < want)
             lo = t;
         else
             hi = t;
@@ -217,7 +217,7 @@ void contrast_colour(Contrast *c, const uint8_t rgb[3], uint8_t out[3])
 {
     float lin[3], moved[3];
     linear(rgb, lin);
-    float L = lightness_of(lin), want = target(c, L);
+    float L = contrast_lightness(lin), want = target(c, L);
     if (want == L) {
         memcpy(out, rgb, 3);
         return;
@@ -314,7 +314,7 @@ Backdrop backdrop_pick(const Image *im, float min)
             Cones k = cones(lin);
             int far_black = k.l >= not_black3 && k.m >= not_black3;
             int far_white = k.l <= not_white3 && k.m <= not_white3;
-            float L = far_black && far_white ? 0.5f : lightness_of(lin);
+            float L = far_black && far_white ? 0.5f : contrast_lightness(lin);
             black = !far_black && L < min;
             white = !far_white && L > 1 - min;
         }

@@ -208,6 +208,20 @@ int viewer_command_layout(const App *a, int cols, char *buf, size_t len, const c
 }
 
 
+const char *viewer_prompt_scroll(const char *bar, int cols, int *cursor)
+{
+    int at = *cursor;
+    const char *show = bar;
+    while (at > cols - 2 && *show) {
+        char piece[SAFETEXT_PIECE];
+        size_t took = safetext_next(show, piece, SAFETEXT_TEXT);
+        at -= vt_text_cols(show, took);                      /* drop a character from the left */
+        show += took;
+    }
+    *cursor = at;
+    return show;
+}
+
 /* The prompt in the status line: its label and line, scrolled so that
  * the cursor shows, the cursor out of reverse video. A name completed
  * from the folder may hold controls: they show as vt_text shows them
@@ -218,13 +232,7 @@ static void draw_prompt(const Prompt *pr, int row, int cols)
     snprintf(bar, sizeof bar, " %s%s", pr->label, pr->buf);
     size_t head = 1 + strlen(pr->label);
     int at = vt_text_cols(bar, head + (size_t)pr->cur);      /* the cursor's column */
-    const char *show = bar;
-    while (at > cols - 2 && *show) {
-        char piece[SAFETEXT_PIECE];
-        size_t took = safetext_next(show, piece, SAFETEXT_TEXT);
-        at -= vt_text_cols(show, took);                      /* drop a character from the left */
-        show += took;
-    }
+    const char *show = viewer_prompt_scroll(bar, cols, &at);
     term_draw_bar(row, show);
     term_bar_cursor(row, at);
 }

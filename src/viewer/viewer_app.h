@@ -326,6 +326,12 @@ int      viewer_help_layout(App *a, int cols, int rows, const char **lines);
 /* The status bar's text for a window width columns wide (statusbar.c):
  * frame_ms the last frame's time, fps_cap the auto-rotate cap. */
 void viewer_status_text(const App *a, char *buf, size_t len, double frame_ms, int fps_cap, int width);
+/* The prompt's line bar in cols columns, the cursor at column *cursor
+ * of it: the characters dropped from the left until the cursor is at
+ * most at column cols - 2 (the last column kept free), as few as that
+ * takes. Returns where the line shown starts; *cursor becomes the
+ * cursor's column on the screen. */
+const char *viewer_prompt_scroll(const char *bar, int cols, int *cursor);
 
 /* viewer.c: the App set up for a scene (a load of the first file under
  * way when loading), and everything it made freed (also what a failed

@@ -49,6 +49,20 @@ expect_status "--diff --check: status 2" 2 "$Z" --diff --check "$T/cube.obj" "$T
 printf 'v 0 0 0\nv 1 0 0\n' >"$T/points.obj"
 expect_status "a model without faces: status 1" 1 "$Z" --diff "$T/cube.obj" "$T/points.obj"
 expect_err "... it says why" "no faces (--diff compares surfaces)"
+# B loads beside A on two threads, quietly: its warnings (and its error)
+# are still said, after A's, as when the two load in turn
+{ echo "mtllib a-none.mtl"; cat "$T/cube.obj"; } >"$T/warn-a.obj"
+{ echo "mtllib b-none.mtl"; cat "$T/moved.obj"; } >"$T/warn-b.obj"
+for j in 1 2; do
+    "$Z" --threads $j --diff --quiet "$T/warn-a.obj" "$T/warn-b.obj" 2>"$T/werr$j"
+    check "-j $j: A's missing MTL warned, then B's" \
+        'sed -n 1p "$T/werr$j" | grep -q a-none.mtl && sed -n 2p "$T/werr$j" | grep -q b-none.mtl && [ "$(wc -l <"$T/werr$j")" -eq 2 ]' \
+        "stderr: $(cat "$T/werr$j")"
+done
+check "... the same bytes on 1 and 2 threads" 'cmp -s "$T/werr1" "$T/werr2"' "$(cat "$T/werr2")"
+expect_status "-j 2: B that cannot be read, after A's warning: status 1" 1 "$Z" --threads 2 --diff "$T/warn-a.obj" \
+    "$T/nothing.obj"
+expect_err "... the warning and the error both said" "a-none.mtl"
 out=$("$Z" --diff --quiet "$T/cube.obj" "$T/moved.obj" || echo changed)
 check "--quiet prints nothing: zview --diff --quiet a b || echo changed" '[ "$out" = changed ]' "got '$out'"
 out=$("$Z" --diff --quiet "$T/cube.obj" "$T/cube.obj" || echo changed)

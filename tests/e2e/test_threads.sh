@@ -12,9 +12,9 @@ for tool in strace python3; do
     command -v "$tool" >/dev/null 2>&1 || { skip "-j 1 starts no thread" "no $tool"; exit 0; }
 done
 
-# an OBJ past the parse's two pieces of 16 MB (objpar.c), so that more
+# an OBJ of 24 MB, past the parse's two pieces of 8 MB (objpar.c), so that more
 # than one thread would be used
-awk 'BEGIN { n = 820; for (i = 0; i < n; i++) for (j = 0; j < n; j++) printf "v %.6f %.6f %.6f\n", i / n, j / n, (i * j) % 7 / 70.0;
+awk 'BEGIN { n = 640; for (i = 0; i < n; i++) for (j = 0; j < n; j++) printf "v %.6f %.6f %.6f\n", i / n, j / n, (i * j) % 7 / 70.0;
              for (i = 0; i < n - 1; i++) for (j = 0; j < n - 1; j++) { a = i * n + j + 1; printf "f %d %d %d %d\n", a, a + 1, a + n + 1, a + n } }' >"$T/big.obj"
 trace() { strace -f -qq -e trace=clone,clone3,fork,vfork -o "$T/st" "$@" >/dev/null 2>&1 </dev/null; }
 counts() { python3 tests/e2e/threads.py "$T/st"; }
