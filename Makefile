@@ -65,7 +65,7 @@ TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
 
-.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models test-long noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq bench-step bench-gallery bench-folder
+.PHONY: all help test unit e2e mutate mutate-rooms asan run bench bench-formats views install clean assets test-models test-long noassimp nosimd colour-error fuzz fuzz-run fuzz-run-mesh fuzz-run-check fuzz-run-tex fuzz-run-repair fuzz-run-dist fuzz-seeds replay bench-check bench-repair bench-repair-cli bench-points bench-order bench-textures bench-pixels bench-sandbox bench-load bench-memory bench-preview bench-diff bench-printq bench-step bench-gallery bench-folder bench-speed
 
 all: $(BIN) $(if $(filter 1,$(OCCT)),$(OCCT_SHIM))
 
@@ -118,6 +118,7 @@ help:
 	@echo '  make bench-folder  --check --jsonl over 10,000 cubes, sandboxed and not (target 60 s)'
 	@echo '  make bench-step    a 1 MB STEP part to its first picture, against f3d (needs OCCT and f3d)'
 	@echo '  make bench-gallery zview DIR on 100 bunnies: the first screen of tiles (target 1 s), the verdicts, all checked'
+	@echo '  make bench-speed   issue 35'"'"'s targets, one row each with its goal: load against wc -l, sandbox, textures, check, llvmpipe, threads, f3d'
 	@echo '  make colour-error  how far 256/16/8-colour pictures are from truecolor'
 	@echo 'Other'
 	@echo '  make assets        regenerate the bundled models (they are committed)'
@@ -408,6 +409,19 @@ $(BUILD)/uvmodel: tools/uvmodel.c $(LIBOBJS)
 # against --no-sandbox, medians, pinned to one core.
 bench-sandbox: $(BIN)
 	ZVIEW=$(abspath $(BIN)) sh tools/bench-sandbox.sh
+
+# Issue 35's targets, one row each with its goal (doc/benchmarks.md:
+# Issue 35 targets): the rows of bench-load, bench-sandbox,
+# bench-textures, bench-check and bench-threads, the z-buffer against
+# llvmpipe (tools/glref.c, built here only: it needs EGL and OpenGL's
+# headers, tools/deps.sh's benchmark part) and zview -o against f3d.
+$(BUILD)/glref: tools/glref.c
+	@mkdir -p $(BUILD)
+	$(CC) $(OPT) -g -std=c11 -Wall -Wextra -o $@ $< -lEGL -lGL -lm
+
+bench-speed: $(BIN) $(BUILD)/subdiv $(BUILD)/checkbench $(BUILD)/uvmodel $(BUILD)/glref
+	ZVIEW=$(abspath $(BIN)) SUBDIV=$(BUILD)/subdiv CHECKBENCH=$(BUILD)/checkbench UVMODEL=$(BUILD)/uvmodel \
+	    GLREF=$(BUILD)/glref sh tools/bench-speed.sh
 
 # The sandbox's cost a file: --check --jsonl over a folder of 10,000
 # cubes (issue 34), sandboxed against --no-sandbox, wall and CPU.

@@ -7,7 +7,8 @@
 # core. Then the texels' memory as --info reports it, and a 16k x 16k
 # image: how long one picture takes with it (JPEG, decoded at a quarter
 # of its size; PNG, halved as its rows are decoded), against the viewer, which
-# draws its first picture before decoding such an image.
+# draws its first picture before decoding such an image. TABLE_ONLY=1
+# stops after the textured-against-untextured table.
 set -u
 ZV=${ZVIEW:-./zview}
 UVMODEL=${UVMODEL:-build/uvmodel}
@@ -44,6 +45,8 @@ echo "| case (zbuffer, 1 thread, pinned; ms, medians of $VIEWS views) | frame | 
 echo "|---|---:|---:|---:|---:|---:|---|"
 case_row "dragon 160x96, 4 samples" "<= 1.25x" "$TMP/dragon-uv.obj" --size 160x96 --samples 4
 case_row "bunny 1920x1080, 1 sample" "<= +2 ms (issue 35)" "$TMP/stanford-bunny-uv.obj" --size 1920x1080 --samples 1
+# TABLE_ONLY=1: the two rows above and nothing more (bench-speed.sh)
+[ "${TABLE_ONLY:-0}" = 1 ] && exit 0
 # Instructions (callgrind, no timing noise: the machine's cores are
 # shared) in shade_frame, textured and not, over a --views 2 run:
 # CALLGRIND=0 leaves them out. --no-sandbox: under valgrind the loading

@@ -99,17 +99,8 @@ if [ -f "$D" ]; then
     [ -f "$S/stanford-bunny.obj" ] &&
         target "bunny 1920x1080, 1 thread" "<= 5" --threads 1 --size 1920x1080 --samples 1 --algo zbuffer "$S/stanford-bunny.obj"
     target "dragon 1920x1080, 1 thread" "<= 35" --threads 1 --size 1920x1080 --samples 1 --algo zbuffer "$D"
-    for args in "--size 1920x1080 --samples 1" "--size 160x96 --samples 4"; do
-        # shellcheck disable=SC2086
-        one=$(row --threads 1 --algo zbuffer $args "$D" | cut -d' ' -f1)
-        # shellcheck disable=SC2086
-        two=$(row --threads 2 --algo zbuffer $args "$D" | cut -d' ' -f1)
-        # shellcheck disable=SC2086
-        set -- $args
-        other "dragon $2 x$4: 2 threads against 1" \
-            "$(awk -v o="$one" -v t="$two" 'BEGIN { printf "%.2fx", (t > 0 ? o / t : 0) }')" \
-            ">= 1.8x ($one ms against $two ms)"
-    done
+    # two threads against one (tools/bench-threads.sh, same columns)
+    ZVIEW="$ZV" VIEWS=$VIEWS MODEL="$D" PIN="$PIN" sh "$HERE/bench-threads.sh"
 
     # the first picture against wc -l and the bytes a triangle keeps
     # resident: tools/bench-load.sh's table, on the same big models

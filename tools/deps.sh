@@ -48,10 +48,14 @@ if $SUDO apt-get install -y -qq --no-install-recommends $FUZZ_PKGS >/dev/null; t
 else
     echo "deps: could not install $FUZZ_PKGS (needed by make fuzz only)"
 fi
-# make bench-step only: f3d, the viewer a STEP part's first picture is
-# timed against (tools/bench-step.sh); no test needs it
-if $SUDO apt-get install -y -qq --no-install-recommends f3d >/dev/null; then
-    echo "deps: installed f3d"
+# The benchmarks only (no test needs them): f3d, which a STEP part's
+# first picture (tools/bench-step.sh) and the dragon's -o
+# (tools/bench-speed.sh; f3d runs under xvfb, installed above) are timed
+# against; EGL's and OpenGL's headers, for tools/glref.c, the llvmpipe reference
+# of make bench-speed (Mesa's llvmpipe is libgl1-mesa-dri, above)
+BENCH_PKGS="f3d libegl-dev libgl1-mesa-dev"
+if $SUDO apt-get install -y -qq --no-install-recommends $BENCH_PKGS >/dev/null; then
+    echo "deps: installed $BENCH_PKGS"
 else
-    echo "deps: could not install f3d (needed by make bench-step only)"
+    echo "deps: could not install $BENCH_PKGS (needed by make bench-step and make bench-speed only)"
 fi
