@@ -415,3 +415,24 @@ Test(viewer, w_and_d_move_the_selected_object_up_and_right_on_the_screen)
                   (double)len);
     }
 }
+
+/* ==== The status bar ==== */
+
+/* As the window narrows the rank 0 fields take their brief forms, the
+ * help's one character ("?") among them: in a window exactly as wide as
+ * the brief bar, that bar whole, nothing of the name cut. The bars are
+ * written out here from the scene's counts. */
+Test(viewer, a_narrow_status_bar_takes_the_brief_forms)
+{
+    snprintf(app.name, sizeof app.name, "knot.obj");
+    char bar[512], brief[128];
+    viewer_status_text(&app, bar, sizeof bar, 0, 30, 400);
+    char faces[64];
+    snprintf(faces, sizeof faces, " | faces %u drawn %u | ", scene.nfaces, app.p.sp.npolys);
+    cr_expect(strncmp(bar, " knot.obj | ", 12) == 0 && strstr(bar, faces), "wide: %s", bar);
+    cr_expect(strlen(bar) > 6 && strcmp(bar + strlen(bar) - 9, " | ? help") == 0, "wide: %s", bar);
+    snprintf(brief, sizeof brief, " knot.obj | %u/%u | zbuffer %.2fms | ?", app.p.sp.npolys, scene.nfaces,
+             app.p.hsr_ms);
+    viewer_status_text(&app, bar, sizeof bar, 0, 30, (int)strlen(brief));
+    cr_expect_str_eq(bar, brief);
+}
