@@ -557,7 +557,16 @@ Test(vt, frames_wait_on_a_stalled_pty, .timeout = 60)
     }
     cr_expect(frames > 1 && frames < 20000, "frames went on into a stalled line (%d)", frames);
     cr_expect(!term_ready());
-    cr_expect_gt(term_pace_ms(), 0);
+    /* while the line is busy the viewer looks again after term_pace_ms:
+     * each wait twice the last, up to a cap it never passes (the cap is
+     * where the waits stop growing) */
+    int w[10];
+    for (int i = 0; i < 10; i++)
+        w[i] = term_pace_ms();
+    cr_expect_gt(w[0], 0);
+    for (int i = 0; i + 1 < 10; i++)
+        cr_expect(w[i] <= w[9] && w[i + 1] == (2 * w[i] < w[9] ? 2 * w[i] : w[9]), "wait %d: %d ms, then %d (cap %d)",
+                  i, w[i], w[i + 1], w[9]);
     /* the reader catches up: the line drains */
     int fl = fcntl(m, F_GETFL);
     fcntl(m, F_SETFL, fl | O_NONBLOCK);
