@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "../src/viewer/viewer_app.h"
+#include "clock.h"
 #include "tty.h"
 
 static Options opt;
@@ -435,4 +436,16 @@ Test(viewer, a_narrow_status_bar_takes_the_brief_forms)
              app.p.hsr_ms);
     viewer_status_text(&app, bar, sizeof bar, 0, 30, (int)strlen(brief));
     cr_expect_str_eq(bar, brief);
+}
+
+/* The info panel's output time includes the cells' making, timed around
+ * that call: within the render's own time (the same monotonic clock,
+ * read around it here), never negative. */
+Test(viewer, the_cells_time_is_within_the_render)
+{
+    double t0 = now_ms();
+    cr_assert_eq(viewer_render(&app, 80, 24), 0);
+    double took = now_ms() - t0;
+    cr_expect(app.p.cells_ms >= 0 && app.p.cells_ms <= took, "cells %g ms of a render of %g ms", app.p.cells_ms,
+              took);
 }
