@@ -450,8 +450,10 @@ Test(options, zsh_completion_knows_every_option_and_its_words)
 
 Test(options, the_docs_name_no_option_that_does_not_exist)
 {
-    /* flags of other tools the docs show (the test runner, libFuzzer, f3d, valgrind) */
-    static const char *const others[] = { "filter", "jobs", "verbose", "help", "fail-fast", "no-render", "tool", "separate-threads", NULL };
+    /* flags of other tools the docs show (the test runner, libFuzzer, f3d,
+     * valgrind and its callgrind) */
+    static const char *const others[] = { "filter",    "jobs",      "verbose", "help",
+                                          "fail-fast", "no-render", "tool", "separate-threads", NULL };
     static const char *const docs[] = { "README.md", "CONTRIBUTING.md", "doc/design.md", "doc/benchmarks.md" };
     for (int i = 0; i < 4; i++) {
         FILE *f = fopen(docs[i], "rb");

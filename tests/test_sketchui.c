@@ -229,3 +229,36 @@ Test(sketchui, D_goes_back_to_the_model_and_help_lists_the_keys)
     app.sk.only = 1;
     cr_expect(viewer_key(&app, TK_ESC) & RE_QUIT, "started with --sketch: Esc quits");
 }
+
+/* The canvas's corners: each a corner mark, a side's first cell and the
+ * first cell down (or up) the side, the rest of the picture unmarked but
+ * for the cursor in the middle. The canvas is 38 pixels square (95% of
+ * the 40-pixel height), centred: its sides at x = 11 and 49 and at
+ * y = 1 and 39, in cells 11 and 49 and rows 0 and 19; the rows are drawn
+ * here by hand. */
+Test(sketchui, the_canvas_corners)
+{
+    start();
+    frame();
+    cr_assert_eq(cells_from_image(&app.p.img, app.mode, COLOUR_TRUE, &app.p.cells), 0);
+    for (int i = 0; i < COLS * ROWS; i++)
+        app.p.cells.cells[i].ch = ' ';
+    sketch_mode_marks(&app, &app.p.cells);
+    char want[ROWS][COLS + 1];
+    for (int y = 0; y < ROWS; y++)
+        snprintf(want[y], sizeof want[y], "%*s", COLS, "");
+    memcpy(want[0] + 11, ",-", 2);
+    memcpy(want[0] + 48, "-.", 2);
+    want[1][11] = want[1][49] = '|';
+    want[18][11] = want[18][49] = '|';
+    memcpy(want[19] + 11, "`-", 2);
+    memcpy(want[19] + 48, "-'", 2);
+    want[ROWS / 2][COLS / 2] = '+';
+    for (int y = 0; y < ROWS; y++) {
+        char got[COLS + 1];
+        for (int x = 0; x < COLS; x++)
+            got[x] = (char)app.p.cells.cells[y * COLS + x].ch;
+        got[COLS] = 0;
+        cr_expect_str_eq(got, want[y], "row %d: [%s]", y, got);
+    }
+}

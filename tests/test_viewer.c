@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "../src/viewer/viewer_app.h"
+#include "clock.h"
 #include "tty.h"
 
 static Options opt;
@@ -414,4 +415,37 @@ Test(viewer, w_and_d_move_the_selected_object_up_and_right_on_the_screen)
                   "key %c: (%g %g %g) on the screen, %g long", keys[k], (double)v.x, (double)v.y, (double)v.z,
                   (double)len);
     }
+}
+
+/* ==== The status bar ==== */
+
+/* As the window narrows the rank 0 fields take their brief forms, the
+ * help's one character ("?") among them: in a window exactly as wide as
+ * the brief bar, that bar whole, nothing of the name cut. The bars are
+ * written out here from the scene's counts. */
+Test(viewer, a_narrow_status_bar_takes_the_brief_forms)
+{
+    snprintf(app.name, sizeof app.name, "knot.obj");
+    char bar[512], brief[128];
+    viewer_status_text(&app, bar, sizeof bar, 0, 30, 400);
+    char faces[64];
+    snprintf(faces, sizeof faces, " | faces %u drawn %u | ", scene.nfaces, app.p.sp.npolys);
+    cr_expect(strncmp(bar, " knot.obj | ", 12) == 0 && strstr(bar, faces), "wide: %s", bar);
+    cr_expect(strlen(bar) > 6 && strcmp(bar + strlen(bar) - 9, " | ? help") == 0, "wide: %s", bar);
+    snprintf(brief, sizeof brief, " knot.obj | %u/%u | zbuffer %.2fms | ?", app.p.sp.npolys, scene.nfaces,
+             app.p.hsr_ms);
+    viewer_status_text(&app, bar, sizeof bar, 0, 30, (int)strlen(brief));
+    cr_expect_str_eq(bar, brief);
+}
+
+/* The info panel's output time includes the cells' making, timed around
+ * that call: within the render's own time (the same monotonic clock,
+ * read around it here), never negative. */
+Test(viewer, the_cells_time_is_within_the_render)
+{
+    double t0 = now_ms();
+    cr_assert_eq(viewer_render(&app, 80, 24), 0);
+    double took = now_ms() - t0;
+    cr_expect(app.p.cells_ms >= 0 && app.p.cells_ms <= took, "cells %g ms of a render of %g ms", app.p.cells_ms,
+              took);
 }

@@ -456,6 +456,44 @@ Test(vt, controls_in_text_never_reach_the_terminal)
     vt_free(&v);
 }
 
+/* row_text V Y OUT: row Y's characters as a string (ASCII cells) */
+static void row_text(Vt *v, int y, char *out)
+{
+    int x = 0;
+    for (; x < v->cols; x++)
+        out[x] = (char)vt_at(v, y, x)->ch;
+    out[x] = 0;
+}
+
+/* A box is its lines framed with a column of margin each side; in a
+ * window narrower than that, the box takes the window's width and each
+ * line is cut where the right frame begins, the margin given up, no
+ * column short (the screens below are drawn by hand). */
+Test(vt, a_box_cuts_its_lines_at_its_frame)
+{
+    VtCaps c = xterm_caps();
+    Vt v;
+    vt_init(&v, &c);
+    cr_assert_eq(vt_resize(&v, 12, 6), 0);
+    char row[16];
+    const char *fits[] = { "ab", "abcd" };
+    vt_box(&v, fits, 2, -2, -2);
+    const char *want_fits[] = { "  +------+  ", "  | ab   |  ", "  | abcd |  ", "  +------+  ", "            " };
+    for (int y = 0; y < 5; y++) {
+        row_text(&v, y, row);
+        cr_expect_str_eq(row, want_fits[y], "row %d", y);
+    }
+    vt_clear(&v);
+    const char *wide[] = { "abcdefghijklmnop" };
+    vt_box(&v, wide, 1, -2, -2);
+    const char *want_wide[] = { "            ", "+----------+", "| abcdefghi|", "+----------+" };
+    for (int y = 0; y < 4; y++) {
+        row_text(&v, y, row);
+        cr_expect_str_eq(row, want_wide[y], "row %d", y);
+    }
+    vt_free(&v);
+}
+
 Test(vt, looks)
 {
     VtCell up = { UPPER, CK_PAL(1), CK_PAL(2), 0 }, low = { LOWER, CK_PAL(2), CK_PAL(1), 0 };
@@ -519,7 +557,16 @@ Test(vt, frames_wait_on_a_stalled_pty, .timeout = 60)
     }
     cr_expect(frames > 1 && frames < 20000, "frames went on into a stalled line (%d)", frames);
     cr_expect(!term_ready());
-    cr_expect_gt(term_pace_ms(), 0);
+    /* while the line is busy the viewer looks again after term_pace_ms:
+     * each wait twice the last, up to a cap it never passes (the cap is
+     * where the waits stop growing) */
+    int w[10];
+    for (int i = 0; i < 10; i++)
+        w[i] = term_pace_ms();
+    cr_expect_gt(w[0], 0);
+    for (int i = 0; i + 1 < 10; i++)
+        cr_expect(w[i] <= w[9] && w[i + 1] == (2 * w[i] < w[9] ? 2 * w[i] : w[9]), "wait %d: %d ms, then %d (cap %d)",
+                  i, w[i], w[i + 1], w[9]);
     /* the reader catches up: the line drains */
     int fl = fcntl(m, F_GETFL);
     fcntl(m, F_SETFL, fl | O_NONBLOCK);
