@@ -22,22 +22,27 @@ typedef struct {
 } RowPrep;
 
 #ifdef ZV_SSE2
+/* floor(x) of tame lanes as integers: truncated, less one where that
+ * rounded up (x negative and not whole). */
+static inline __m128i floor4(__m128 x)
+{
+    __m128i i = _mm_cvttps_epi32(x);
+    return _mm_add_epi32(i, _mm_castps_si128(_mm_cmpgt_ps(_mm_cvtepi32_ps(i), x)));
+}
+
 /* The lanes' coordinate c wrapped as wrap_coord does (c tame). */
 static inline __m128 wrap4(__m128 c, int repeat)
 {
     if (!repeat)
         return _mm_min_ps(_mm_max_ps(c, _mm_set1_ps(-1.0f)), _mm_set1_ps(2.0f));
-    __m128i i = _mm_cvttps_epi32(c);
-    __m128 fi = _mm_cvtepi32_ps(_mm_add_epi32(i, _mm_castps_si128(_mm_cmpgt_ps(_mm_cvtepi32_ps(i), c))));
-    return _mm_sub_ps(c, fi);
+    return _mm_sub_ps(c, _mm_cvtepi32_ps(floor4(c)));
 }
 
 /* texel_pair_w on lanes: the indices into a, b; returns the fraction. */
 static inline __m128 axis4(__m128 c, int n, int repeat, int32_t *a, int32_t *b)
 {
     __m128 x = _mm_sub_ps(_mm_mul_ps(c, _mm_set1_ps((float)n)), _mm_set1_ps(0.5f));
-    __m128i i = _mm_cvttps_epi32(x);
-    i = _mm_add_epi32(i, _mm_castps_si128(_mm_cmpgt_ps(_mm_cvtepi32_ps(i), x)));
+    __m128i i = floor4(x);
     __m128 f = _mm_sub_ps(x, _mm_cvtepi32_ps(i));
     __m128i vn = _mm_set1_epi32(n), last = _mm_set1_epi32(n - 1), zero = _mm_setzero_si128();
     __m128i i1 = _mm_add_epi32(i, _mm_set1_epi32(1)), ia, ib;
@@ -152,13 +157,18 @@ static ZV_AVX2_FN inline __m128 sum8(const TexLod *l, const RowPrep8 *p, int j, 
     return l->n == 2 ? _mm_add_ps(lo, _mm256_extractf128_ps(s, 1)) : lo;
 }
 
+/* floor4 on eight lanes. */
+static ZV_AVX2_FN inline __m256i floor8(__m256 x)
+{
+    __m256i i = _mm256_cvttps_epi32(x);
+    return _mm256_add_epi32(i, _mm256_castps_si256(_mm256_cmp_ps(_mm256_cvtepi32_ps(i), x, _CMP_GT_OQ)));
+}
+
 static ZV_AVX2_FN inline __m256 wrap8(__m256 c, int repeat)
 {
     if (!repeat)
         return _mm256_min_ps(_mm256_max_ps(c, _mm256_set1_ps(-1.0f)), _mm256_set1_ps(2.0f));
-    __m256i i = _mm256_cvttps_epi32(c);
-    __m256 gt = _mm256_cmp_ps(_mm256_cvtepi32_ps(i), c, _CMP_GT_OQ);
-    return _mm256_sub_ps(c, _mm256_cvtepi32_ps(_mm256_add_epi32(i, _mm256_castps_si256(gt))));
+    return _mm256_sub_ps(c, _mm256_cvtepi32_ps(floor8(c)));
 }
 
 /* texel_pair_w on lanes: the indices a, b (times mul); returns the
@@ -166,8 +176,7 @@ static ZV_AVX2_FN inline __m256 wrap8(__m256 c, int repeat)
 static ZV_AVX2_FN inline __m256 axis8(__m256 c, int n, int repeat, int mul, __m256i *a, __m256i *b)
 {
     __m256 x = _mm256_sub_ps(_mm256_mul_ps(c, _mm256_set1_ps((float)n)), _mm256_set1_ps(0.5f));
-    __m256i i = _mm256_cvttps_epi32(x);
-    i = _mm256_add_epi32(i, _mm256_castps_si256(_mm256_cmp_ps(_mm256_cvtepi32_ps(i), x, _CMP_GT_OQ)));
+    __m256i i = floor8(x);
     __m256 f = _mm256_sub_ps(x, _mm256_cvtepi32_ps(i));
     __m256i vn = _mm256_set1_epi32(n), last = _mm256_set1_epi32(n - 1), zero = _mm256_setzero_si256();
     __m256i i1 = _mm256_add_epi32(i, _mm256_set1_epi32(1)), ia, ib;
