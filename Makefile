@@ -60,7 +60,7 @@ endif
 LIBSRCS := $(filter-out src/main/main.c,$(SRCS))
 OBJS    := $(SRCS:%.c=$(BUILD)/%.o)
 LIBOBJS := $(LIBSRCS:%.c=$(BUILD)/%.o)
-TSRCS   := $(wildcard tests/test_*.c) tests/testlib.c tests/writers.c
+TSRCS   := $(wildcard tests/test_*.c) tests/testlib.c tests/writers.c tests/nocerts.c
 TOBJS   := $(TSRCS:%.c=$(BUILD)/%.o)
 TESTBIN := $(BUILD)/zview-tests
 BIN     ?= zview
@@ -151,7 +151,7 @@ $(BUILD)/occtgen: tools/occtgen.cpp
 OCCTGEN := $(if $(filter 1,$(OCCT)),$(BUILD)/occtgen)
 
 $(TESTBIN): $(LIBOBJS) $(TOBJS) $(CONFIG)
-	$(CC) $(CFLAGS) -o $@ $(filter %.o,$^) $(LDLIBS) -lcriterion
+	$(CC) $(CFLAGS) -o $@ $(filter %.o,$^) $(LDLIBS) -lcriterion -Wl,--export-dynamic-symbol=mbedtls_x509_crt_parse_file
 
 # The fuzz harnesses (tests/fuzz/) linked with a plain main() instead of
 # libFuzzer: they replay the seed and regression corpora in every build.
