@@ -107,7 +107,8 @@ static int check_of(CheckCounts *out, const Mesh *m, char *err, size_t errlen)
 
 /* The work of a diff, as tasks: each model's check, each hierarchy (B's,
  * against which A is measured, and A's), the vertices' match, the
- * sides' arrays, then the chunks of samples (diffsample.c): A's
+ * sides' arrays, the caller's task beside (several threads only), then
+ * the chunks of samples (diffsample.c): A's
  * vertices, B's, A's faces, B's. On several threads they are taken in
  * that order from one queue (pool.h), each after what it needs: the
  * checks need nothing and run beside the rest, so the threads stay busy
@@ -120,6 +121,7 @@ enum {
     T_SIDES,        /* both sides' arrays and areas */
     T_CHECK_A,
     T_CHECK_B,
+    T_BESIDE,       /* the caller's (DiffOpts.beside): long, so before the chunks */
     T_BVH_A,
     T_CHUNKS,       /* then the chunks: the groups below */
     G_VERTS_A = T_CHUNKS,
@@ -135,6 +137,8 @@ typedef struct {
     const float *box;
     int         checks;
     const int  *cancel;
+    void      (*beside)(void *arg);
+    void       *beside_arg;
     Bvh         bvh[2];         /* [0]: B's, for A's samples; [1]: A's */
     DiffVerts   v[2];
     DiffSideRun side[2];
@@ -159,6 +163,10 @@ static void prep_task(Work *w, int task)
     case T_BVH_B:
     case T_BVH_A:
         w->rc[task] = build_of(&w->bvh[task == T_BVH_A], w->m[task == T_BVH_B], err, 256);
+        break;
+    case T_BESIDE:
+        if (w->beside)
+            w->beside(w->beside_arg);
         break;
     case T_SIDES:
         for (int i = 0; i < 2 && !w->rc[task]; i++)
@@ -343,6 +351,8 @@ int diff_compute(Diff *d, const Mesh *a, const Mesh *b, const DiffOpts *o, char 
     w->box = box;
     w->checks = o->checks;
     w->cancel = o->cancel;
+    w->beside = o->beside;
+    w->beside_arg = o->beside_arg;
     int rc = threads > 1 ? measure_together(w, threads, err, errlen) : measure_in_turn(w, err, errlen);
     rc = rc || diff_regions(d, a, b, err, errlen);
     for (int i = 0; i < 2; i++) {

@@ -262,7 +262,7 @@ static void object_bounds(Object *o, const MeshObject *mo, const uint32_t *face_
  * HUGE_COORD: a power of two scales finite floats exactly, so the model
  * keeps its shape, and the transforms stay finite. Returns k (0 for
  * ordinary models, which are not touched). */
-static int shrink_huge_meshes(Scene *s, int take_over)
+static double scene_reach(const Scene *s)
 {
     /* in double: centre + half of finite floats can pass FLT_MAX */
     double big = 0;
@@ -271,6 +271,12 @@ static int shrink_huge_meshes(Scene *s, int take_over)
         big = fmax(big, fmax(fabs(o->centre.x), fmax(fabs(o->centre.y), fabs(o->centre.z))) +
                             fmax(o->half.x, fmax(o->half.y, o->half.z)));
     }
+    return big;
+}
+
+static int shrink_huge_meshes(Scene *s, int take_over)
+{
+    double big = scene_reach(s);
     if (!(big > HUGE_COORD))
         return 0;
     int k = 0;
@@ -476,10 +482,10 @@ static void store_normals(Scene *s, const Mesh *meshes, int nmeshes)
 /* The polygon lists: taken over from the mesh (the compact form: no
  * normals, no face of each polygon, and for triangles no offsets), or
  * allocated to be written, with the normals. -1 out of memory. */
-static int alloc_polys(Scene *s, Mesh *meshes, int nmeshes, SceneCounts *c)
+static int alloc_polys(Scene *s, Mesh *meshes, int nmeshes, SceneCounts *c, int keep)
 {
     uint64_t npolys = c->npolys, ncorners = c->ncorners, nfaces = c->nfaces;
-    c->take_over = can_take_over(meshes, nmeshes, c);
+    c->take_over = !keep && can_take_over(meshes, nmeshes, c);
     if (c->take_over) {
         s->poly_start = meshes[0].face_start;
         s->poly_corner = meshes[0].corner;
@@ -655,7 +661,9 @@ static void take_over_uv(Scene *s, const Mesh *m)
     }
 }
 
-int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
+/* keep: the meshes are only read (scene_build_kept): their faces stay,
+ * none is taken over, and a model that would be shrunk is not built (1). */
+static int build(Scene *s, Mesh *meshes, int nmeshes, int keep, char *err, size_t errlen)
 {
     memset(s, 0, sizeof *s);
     s->meshes = meshes;
@@ -663,10 +671,10 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     SceneCounts c = { 0 };
     if (count_meshes(meshes, nmeshes, &c, err, errlen))
         return -1;
-    int oom = alloc_face_arrays(s, &c);
+    int oom = alloc_face_arrays(s, &c), rc = -1;
     if (!oom)
         oom = surf_build_start(&c.surf, s, meshes, nmeshes, c.nfaces);
-    if (oom || face_data(s, meshes, nmeshes, &c, err, errlen) || (oom = alloc_polys(s, meshes, nmeshes, &c)))
+    if (oom || face_data(s, meshes, nmeshes, &c, err, errlen) || (oom = alloc_polys(s, meshes, nmeshes, &c, keep)))
         goto fail;
     build_objects(s, meshes, nmeshes, &c);
     if (c.take_over && s->poly_uv)
@@ -674,12 +682,17 @@ int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
     surf_build_end(&c.surf, s);
     free(c.planar);
     c.planar = NULL;
+    if (keep && scene_reach(s) > HUGE_COORD) {
+        rc = 1;     /* the shrink writes the positions another thread reads */
+        goto fail;
+    }
     s->pos_exp = shrink_huge_meshes(s, c.take_over);
     if (scene_number_prims(s)) {
         scene_too_large(meshes, nmeshes, 0, (uint64_t)INT32_MAX + 1, err, errlen);
         goto fail;
     }
-    release_mesh_faces(meshes, nmeshes);
+    if (!keep)
+        release_mesh_faces(meshes, nmeshes);
     light_set(&s->light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
     scene_reset(s);
     return 0;
@@ -692,7 +705,22 @@ fail:
     scene_free(s);
     if (oom)
         snprintf(err, errlen, "out of memory building the scene");
-    return -1;
+    return rc;
+}
+
+int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
+{
+    return build(s, meshes, nmeshes, 0, err, errlen);
+}
+
+int scene_build_kept(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
+{
+    return build(s, meshes, nmeshes, 1, err, errlen);
+}
+
+void scene_release_faces(Scene *s)
+{
+    release_mesh_faces(s->meshes, s->nmeshes);
 }
 
 int scene_make_grid(Scene *s, int n, char *err, size_t errlen)
