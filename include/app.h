@@ -267,6 +267,12 @@ int  app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, siz
  * of the same meshes. */
 int  app_scene_from_meshes(const Options *o, Mesh *meshes, int nfiles, Scene *s, FirstView *fv, char *err,
                            size_t errlen);
+/* The same scene while other threads read the meshes (scene_build_kept):
+ * their faces stay until scene_release_faces, and on failure (-1, or 1
+ * when the model is one scene_build scales down: not built) the meshes
+ * and their array stay the caller's. */
+int  app_scene_beside(const Options *o, Mesh *meshes, int nfiles, Scene *s, FirstView *fv, char *err,
+                      size_t errlen);
 /* Refuse (-1, the reason in err) a scene that, with its --grid copies,
  * would have more than --max-polys polygons, or, without --max-polys,
  * whose copies and one frame would need more memory than is available;

@@ -85,6 +85,12 @@ typedef struct {
     const int *cancel;              /* NULL, or set (atomically) to stop: diff_compute fails "cancelled" */
     uint32_t   samples;             /* face samples a side about; 0: DIFF_SAMPLES (the fuzzer asks fewer) */
     int        checks;              /* check each model too (Diff.check) */
+    /* NULL, or the caller's task run beside the diff's on several
+     * threads (one of the queue's, once A is measured and B's hierarchy
+     * freed), never on one: it may read the meshes, not write them
+     * (--diff's picture) */
+    void     (*beside)(void *arg);
+    void      *beside_arg;
 } DiffOpts;
 
 typedef struct {

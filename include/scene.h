@@ -280,6 +280,15 @@ int  scene_wire_build(Scene *s, char *err, size_t errlen);
  * the scene's polygon lists and per-face arrays replace them.
  * Returns 0, or -1 with a message in err (out of memory). */
 int  scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen);
+/* scene_build for a caller whose other threads read the meshes while it
+ * runs (--diff's picture made beside its measures): the meshes are not
+ * written, their face arrays stay until scene_release_faces (the scene
+ * never reads them once built). The same scene; but 1, nothing built,
+ * for a model whose coordinates scene_build would scale down (it
+ * writes the positions): the caller builds it with scene_build once the
+ * readers are done. On failure (-1, 1) the meshes stay the caller's. */
+int  scene_build_kept(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen);
+void scene_release_faces(Scene *s);
 
 /* edit.c: the viewer's open, remove and clear. Every one keeps the
  * scene as scene_build would have made it from the files that remain:

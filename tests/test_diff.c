@@ -84,7 +84,7 @@ static void copy_mesh(Mesh *dst, const Mesh *src, void (*f)(float *p, const void
 
 static const Diff *run_tol(double tol)
 {
-    DiffOpts o = { 2, tol, NULL, 0, 1 };
+    DiffOpts o = { 2, tol, NULL, 0, 1, NULL, NULL };
     diff_free(&D);
     cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), 0, "%s", E);
     return &D;
@@ -381,7 +381,7 @@ Test(diff, a_tilted_plane_has_the_mean_of_its_middle_at_any_sampling)
      * r = 3 */
     static const uint32_t budget[3] = { 64, 512, 4608 };
     for (int k = 0; k < 3; k++) {
-        DiffOpts o = { 1, tol, NULL, budget[k], 0 };
+        DiffOpts o = { 1, tol, NULL, budget[k], 0, NULL, NULL };
         diff_free(&D);
         cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), 0, "%s", E);
         cr_assert_float_eq(D.a.area, 1.0, 1e-9);
@@ -556,12 +556,12 @@ Test(diff, the_same_bits_on_any_threads)
     sheet(&MA, 200, 0);
     sheet(&MB, 200, 0x2545F4914F6CDD1Dull);
     Diff one;
-    DiffOpts o1 = { 1, -1, NULL, 0, 1 };
+    DiffOpts o1 = { 1, -1, NULL, 0, 1, NULL, NULL };
     cr_assert_eq(diff_compute(&one, &MA, &MB, &o1, E, sizeof E), 0, "%s", E);
     cr_assert_gt(one.hausdorff, 0.005);
     cr_assert_geq(one.nregions, 1);
     for (int threads = 2; threads <= 4; threads++) {
-        DiffOpts o = { threads, -1, NULL, 0, 1 };
+        DiffOpts o = { threads, -1, NULL, 0, 1, NULL, NULL };
         diff_free(&D);
         cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), 0, "%s", E);
         same_side(&one.a, &D.a, "A");
@@ -581,7 +581,7 @@ Test(diff, a_vertex_not_a_finite_point_is_refused)
         load(&MA, "assets/knot.obj");
         copy_mesh(&MB, &MA, NULL, NULL);
         MB.pos[3 * MB.corner[2] + 1] = bad[i];
-        DiffOpts o = { 2, -1, NULL, 0, 1 };
+        DiffOpts o = { 2, -1, NULL, 0, 1, NULL, NULL };
         diff_free(&D);
         cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), -1);
         char want[64];
@@ -607,7 +607,8 @@ static void write_file(const char *path, const char *text)
 static const char *const CUBE = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
                                 "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n";
 
-static void load_set(const char *a, const char *b, const char *show, int scene)
+/* The set of files a and b into set (threads: 0, one per core). */
+static void load_set_on(DiffSet *set, const char *a, const char *b, const char *show, int scene, int threads)
 {
     char pa[64], pb[64];
     snprintf(pa, sizeof pa, "/tmp/zv-diff-%d-a.obj", (int)getpid());
@@ -618,9 +619,16 @@ static void load_set(const char *a, const char *b, const char *show, int scene)
     Options o;
     cr_assert_eq(cli_parse(6, argv, &o, E, sizeof E), 0, "%s", E);
     o.no_sandbox = 1;
-    cr_assert_eq(diff_load(&S, &o, scene, E, sizeof E), 0, "%s", E);
+    if (threads)
+        o.threads = threads;
+    cr_assert_eq(diff_load(set, &o, scene, E, sizeof E), 0, "%s", E);
     unlink(pa);
     unlink(pb);
+}
+
+static void load_set(const char *a, const char *b, const char *show, int scene)
+{
+    load_set_on(&S, a, b, show, scene, 0);
 }
 
 Test(diff, a_hole_made_is_the_headline)
@@ -705,6 +713,101 @@ Test(diff, the_picture_colours_and_every_algorithm_agrees)
     diff_set_free(&S);
 }
 
+Test(diff, the_scene_made_beside_the_measures_is_the_one_made_after)
+{
+    /* on one thread the scene is made after the diff, on two beside it
+     * (DiffOpts.beside): the same objects, colours, camera and picture,
+     * and either way the meshes' faces are gone once it is made */
+    char two[1024];
+    snprintf(two, sizeof two,
+             "%sf 4 1 5 8\nv 3 0 0\nv 4 0 0\nv 4 1 0\nv 3 1 0\nv 3 0 1\nv 4 0 1\nv 4 1 1\nv 3 1 1\n"
+             "f 9 12 11 10\nf 13 14 15 16\nf 9 10 14 13\nf 10 11 15 14\nf 11 12 16 15\nf 12 9 13 16\n",
+             CUBE);
+    DiffSet one;
+    load_set_on(&one, CUBE, two, "both", 1, 1);
+    load_set_on(&S, CUBE, two, "both", 1, 2);
+    Scene *a = &one.scene, *b = &S.scene;
+    cr_assert(one.has_scene && S.has_scene);
+    cr_assert_eq(a->nfaces, b->nfaces);
+    cr_assert_eq(a->nobjs, b->nobjs);
+    cr_assert_eq(one.nobjs_a, S.nobjs_a);
+    cr_assert(!memcmp(a->face_rgb, b->face_rgb, 3 * (size_t)a->nfaces), "the colours");
+    cr_assert(!memcmp(&a->cam, &b->cam, sizeof a->cam), "the camera");
+    for (int i = 0; i < 2; i++) {
+        cr_assert_null(a->meshes[i].face_start, "mesh %d's faces", i);
+        cr_assert_null(b->meshes[i].face_start, "mesh %d's faces, made beside", i);
+        cr_assert_null(b->meshes[i].corner);
+    }
+    FrameBufs fa = { 0 }, fb = { 0 };
+    ScreenPolys sp = { 0 };
+    HsrStats st;
+    cr_assert_eq(tl_render(a, hsr_algos[0], 1, 96, 64, 0, &sp, &fa, &st), 0);
+    cr_assert_eq(tl_render(b, hsr_algos[0], 1, 96, 64, 0, &sp, &fb, &st), 0);
+    int x, y;
+    cr_assert_eq(tl_diff(&fa, &fb, &x, &y), 0, "the pictures differ at %d,%d", x, y);
+    fbuf_free(&fa);
+    fbuf_free(&fb);
+    screen_free(&sp);
+    diff_set_free(&one);
+    diff_set_free(&S);
+}
+
+static void count_call(void *arg)
+{
+    ++*(int *)arg;
+}
+
+Test(diff, the_callers_task_runs_once_beside_on_several_threads_only)
+{
+    cr_assert_eq(tl_mesh_init(&MA, "a.obj"), 0);
+    cube(&MA, 0, 0, 0);
+    cr_assert_eq(tl_mesh_finish(&MA), 0);
+    cr_assert_eq(tl_mesh_init(&MB, "b.obj"), 0);
+    cube(&MB, 0.5f, 0, 0);
+    cr_assert_eq(tl_mesh_finish(&MB), 0);
+    for (int threads = 1; threads <= 3; threads++) {
+        int calls = 0;
+        DiffOpts o = { threads, -1, NULL, 0, 1, count_call, &calls };
+        diff_free(&D);
+        cr_assert_eq(diff_compute(&D, &MA, &MB, &o, E, sizeof E), 0, "%s", E);
+        cr_assert_eq(calls, threads > 1, "%d threads: %d calls", threads, calls);
+    }
+}
+
+Test(diff, a_model_the_scene_shrinks_is_not_made_beside)
+{
+    /* scene_build scales a model past 2^120 down, writing the positions
+     * the diff reads: scene_build_kept leaves it (1), untouched, and
+     * makes an ordinary one keeping the faces */
+    cr_assert_eq(tl_mesh_init(&MA, "a.obj"), 0);
+    cube(&MA, 1e38f, 0, 0);
+    cr_assert_eq(tl_mesh_finish(&MA), 0);
+    Mesh *m = calloc(1, sizeof *m);
+    cr_assert(m);
+    *m = MA;
+    memset(&MA, 0, sizeof MA);
+    float before = m->pos[0];
+    Scene s;
+    cr_assert_eq(scene_build_kept(&s, m, 1, E, sizeof E), 1);
+    cr_assert(m->pos[0] == before && m->face_start && m->corner, "the mesh as it was");
+    cr_assert_eq(tl_mesh_init(&MB, "b.obj"), 0);
+    cube(&MB, 0, 0, 0);
+    cr_assert_eq(tl_mesh_finish(&MB), 0);
+    Mesh *k = calloc(1, sizeof *k);
+    cr_assert(k);
+    *k = MB;
+    memset(&MB, 0, sizeof MB);
+    cr_assert_eq(scene_build_kept(&s, k, 1, E, sizeof E), 0, "%s", E);
+    cr_assert(k->face_start && k->corner, "the faces kept");
+    cr_assert_eq(s.nfaces, 6);
+    cr_assert(s.poly_corner != k->corner, "none taken over");
+    scene_release_faces(&s);
+    cr_assert_null(k->face_start);
+    scene_free(&s);         /* frees k */
+    mesh_free(m);
+    free(m);
+}
+
 Test(diff, the_ramp_rises_in_lightness)
 {
     double last = -1;
@@ -752,7 +855,7 @@ Test(models, diff_of_the_dragon, .timeout = 900)
     mesh_free(&MB);
     static uint64_t st = 0x9E3779B97F4A7C15ull;
     copy_mesh(&MB, &MA, wobble, &st);
-    DiffOpts o1 = { 1, -1, NULL, 0, 1 };
+    DiffOpts o1 = { 1, -1, NULL, 0, 1, NULL, NULL };
     Diff one;
     cr_assert_eq(diff_compute(&one, &MA, &MB, &o1, E, sizeof E), 0, "%s", E);
     d = run();

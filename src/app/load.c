@@ -236,10 +236,15 @@ int app_load_scene_ex(const Options *o, Scene *s, FirstView *fv, char *err, size
     return app_scene_from_meshes(o, meshes, nfiles, s, fv, err, errlen);
 }
 
-int app_scene_from_meshes(const Options *o, Mesh *meshes, int nfiles, Scene *s, FirstView *fv, char *err,
-                          size_t errlen)
+/* keep: scene_build_kept's (app_scene_beside): on failure the meshes
+ * stay the caller's. */
+static int scene_from_meshes(const Options *o, Mesh *meshes, int nfiles, Scene *s, FirstView *fv, int keep,
+                             char *err, size_t errlen)
 {
-    if (scene_build(s, meshes, nfiles, err, errlen)) {
+    int rc = keep ? scene_build_kept(s, meshes, nfiles, err, errlen) : scene_build(s, meshes, nfiles, err, errlen);
+    if (rc) {
+        if (keep)
+            return rc;
         for (int k = 0; k < nfiles; k++)
             mesh_free(&meshes[k]);
         free(meshes);
@@ -265,9 +270,25 @@ int app_scene_from_meshes(const Options *o, Mesh *meshes, int nfiles, Scene *s, 
     scene_layout(s, (LayoutKind)o->layout, deg2rad(py));
     if (app_check_size(o, s, err, errlen) || (o->grid > 1 && scene_make_grid(s, o->grid, err, errlen)) ||
         place_objects(o, s, err, errlen)) {
+        if (keep) {
+            s->meshes = NULL;       /* still the caller's */
+            s->nmeshes = 0;
+        }
         scene_free(s);
         return -1;
     }
     set_camera(o, s, vy + o->yaw, vp + o->pitch);
     return 0;
+}
+
+int app_scene_from_meshes(const Options *o, Mesh *meshes, int nfiles, Scene *s, FirstView *fv, char *err,
+                          size_t errlen)
+{
+    return scene_from_meshes(o, meshes, nfiles, s, fv, 0, err, errlen);
+}
+
+int app_scene_beside(const Options *o, Mesh *meshes, int nfiles, Scene *s, FirstView *fv, char *err,
+                     size_t errlen)
+{
+    return scene_from_meshes(o, meshes, nfiles, s, fv, 1, err, errlen);
 }

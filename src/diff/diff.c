@@ -108,12 +108,16 @@ static int check_of(CheckCounts *out, const Mesh *m, char *err, size_t errlen)
 /* The work of a diff, as tasks: each model's check, each hierarchy (B's,
  * against which A is measured, and A's), the vertices' match, the
  * sides' arrays, then the chunks of samples (diffsample.c): A's
- * vertices, B's, A's faces, B's. On several threads they are taken in
- * that order from one queue (pool.h), each after what it needs: the
- * checks need nothing and run beside the rest, so the threads stay busy
- * until the last chunk. A task that needs another waits for it, and
- * what it waits for was taken before it (every need comes earlier in
- * the queue), so the wait ends. */
+ * vertices, A's faces, the caller's task (DiffOpts.beside, several
+ * threads only), B's vertices, B's faces. On several threads they are
+ * taken in that order from one queue (pool.h), each after what it
+ * needs: the checks need nothing and run beside the rest, so the
+ * threads stay busy until the last chunk. A task that needs another
+ * waits for it, and what it waits for was taken before it (every need
+ * comes earlier in the queue), so the wait ends. B's hierarchy is freed
+ * once A's faces are done; the caller's task comes then, so what it
+ * makes (the picture's scene) and that hierarchy are not held at once,
+ * and B's chunks, after it, keep the other threads busy meanwhile. */
 enum {
     T_BVH_B,        /* first: A's vertices need it */
     T_MATCH,
@@ -123,8 +127,9 @@ enum {
     T_BVH_A,
     T_CHUNKS,       /* then the chunks: the groups below */
     G_VERTS_A = T_CHUNKS,
-    G_VERTS_B,
     G_FACES_A,
+    G_BESIDE,       /* one task: the caller's */
+    G_VERTS_B,
     G_FACES_B,
     NGROUPS
 };
@@ -135,6 +140,8 @@ typedef struct {
     const float *box;
     int         checks;
     const int  *cancel;
+    void      (*beside)(void *arg);
+    void       *beside_arg;
     Bvh         bvh[2];         /* [0]: B's, for A's samples; [1]: A's */
     DiffVerts   v[2];
     DiffSideRun side[2];
@@ -232,9 +239,13 @@ static int wait_for(Work *w, unsigned need)
 static void task_done(Work *w, int g)
 {
     pthread_mutex_lock(&w->mu);
-    if (--w->left[g] == 0)
+    int last = --w->left[g] == 0;
+    if (last)
         pthread_cond_broadcast(&w->cv);
     pthread_mutex_unlock(&w->mu);
+    /* A's samples all taken: nothing reads B's hierarchy again */
+    if (last && g == G_FACES_A)
+        bvh_free(&w->bvh[0]);
 }
 
 #define NEED(g) (1u << (g))
@@ -257,7 +268,10 @@ static void queue_task(void *arg, int task, int worker)
     };
     if (g < T_CHUNKS)
         prep_task(w, g);
-    else if (!wait_for(w, need[g])) {
+    else if (g == G_BESIDE) {
+        if (w->beside)
+            w->beside(w->beside_arg);
+    } else if (!wait_for(w, need[g])) {
         DiffSideRun *r = &w->side[g == G_VERTS_B || g == G_FACES_B];
         if (g == G_VERTS_A || g == G_VERTS_B)
             diff_side_verts(r, chunk);
@@ -279,6 +293,7 @@ static int measure_together(Work *w, int threads, char *err, size_t errlen)
     count[G_VERTS_B] = nv[1];
     count[G_FACES_A] = nf[0];
     count[G_FACES_B] = nf[1];
+    count[G_BESIDE] = 1;
     uint64_t total = 0;
     for (int g = 0; g < NGROUPS; g++) {
         w->first[g] = (uint32_t)total;
@@ -343,6 +358,8 @@ int diff_compute(Diff *d, const Mesh *a, const Mesh *b, const DiffOpts *o, char 
     w->box = box;
     w->checks = o->checks;
     w->cancel = o->cancel;
+    w->beside = o->beside;
+    w->beside_arg = o->beside_arg;
     int rc = threads > 1 ? measure_together(w, threads, err, errlen) : measure_in_turn(w, err, errlen);
     rc = rc || diff_regions(d, a, b, err, errlen);
     for (int i = 0; i < 2; i++) {

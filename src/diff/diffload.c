@@ -98,14 +98,19 @@ void diff_set_free(DiffSet *ds)
     memset(ds, 0, sizeof *ds);
 }
 
-/* The scene of both, each object's counts kept for diff_show. */
-static int make_scene(DiffSet *ds, const Options *o, Mesh *meshes, char *err, size_t errlen)
+/* The options the scene of both is made with: no layout (a model and
+ * its edited copy overlap where they agree), standing as A says. */
+static Options scene_opts(const Options *o, const Mesh *meshes)
 {
     Options so = *o;
     so.layout = LAYOUT_NONE;
     so.up = o->up >= 0 ? o->up : meshes[0].info.up >= 0 && meshes[0].info.up < UP_COUNT ? meshes[0].info.up : UP_Y;
-    if (app_scene_from_meshes(&so, meshes, 2, &ds->scene, NULL, err, errlen))
-        return -1;
+    return so;
+}
+
+/* The scene made, each object's counts kept for diff_show. */
+static int scene_made(DiffSet *ds, const Options *o, char *err, size_t errlen)
+{
     ds->has_scene = 1;
     Scene *s = &ds->scene;
     ds->obj_counts = malloc((size_t)(s->nobjs ? s->nobjs : 1) * 3 * sizeof *ds->obj_counts);
@@ -122,6 +127,35 @@ static int make_scene(DiffSet *ds, const Options *o, Mesh *meshes, char *err, si
         ds->obj_counts[3 * i + 2] = ob->seg_count;
     }
     return diff_show(ds, NULL, o->show);
+}
+
+/* The scene of both, after the diff (it takes the meshes). */
+static int make_scene(DiffSet *ds, const Options *o, Mesh *meshes, char *err, size_t errlen)
+{
+    Options so = scene_opts(o, meshes);
+    if (app_scene_from_meshes(&so, meshes, 2, &ds->scene, NULL, err, errlen))
+        return -1;
+    return scene_made(ds, o, err, errlen);
+}
+
+/* The scene made beside the diff (DiffOpts.beside, on several threads):
+ * the picture's part that needs no distance, on one of the diff's
+ * threads while the others measure, instead of after them. The meshes
+ * are only read meanwhile; their faces go once the diff is done. */
+typedef struct {
+    const Options *o;
+    Mesh          *m;
+    Scene         *scene;       /* the DiffSet's */
+    int            ran, rc;
+    char           err[1024];
+} Beside;
+
+static void scene_beside(void *arg)
+{
+    Beside *b = arg;
+    Options so = scene_opts(b->o, b->m);
+    b->rc = app_scene_beside(&so, b->m, 2, b->scene, NULL, b->err, sizeof b->err);
+    b->ran = 1;
 }
 
 int diff_load(DiffSet *ds, const Options *o, int scene, char *err, size_t errlen)
@@ -145,10 +179,33 @@ int diff_load(DiffSet *ds, const Options *o, int scene, char *err, size_t errlen
         ds->nverts[i] = m[i].nverts;
         ds->nfaces[i] = m[i].nfaces;
     }
-    DiffOpts dop = { o->threads, o->tolerance, NULL, 0, 1 };
+    Beside *b = scene ? calloc(1, sizeof *b) : NULL;
+    if (b) {
+        b->o = o;
+        b->m = m;
+        b->scene = &ds->scene;
+    }
+    DiffOpts dop = { o->threads, o->tolerance, NULL, 0, 1, b ? scene_beside : NULL, b };
     int rc = diff_compute(&ds->d, &m[0], &m[1], &dop, err, errlen);
-    if (!rc && scene)
+    if (b && b->ran && b->rc == 0) {
+        /* the scene holds the meshes now; the errors come in the order
+         * they would after the diff: its own, then the scene's */
+        free(b);
+        if (rc) {
+            scene_free(&ds->scene);
+            return -1;
+        }
+        scene_release_faces(&ds->scene);
+        return scene_made(ds, o, err, errlen) ? -1 : 0;
+    }
+    if (b && b->ran && b->rc < 0 && !rc) {
+        snprintf(err, errlen, "%s", b->err);
+        rc = -1;
+    } else if (!rc && scene) {
+        free(b);
         return make_scene(ds, o, m, err, errlen) ? -1 : 0;      /* the scene took the meshes */
+    }
+    free(b);
     mesh_free(&m[0]);
     mesh_free(&m[1]);
     free(m);

@@ -125,6 +125,26 @@ static inline double len3(const double u[3])
     return sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
 }
 
+/* The larger and the smaller, inline: libm's fmax and fmin are calls,
+ * five a face. Their values for numbers that are not NaN, which these
+ * are (lengths and distances of finite points, zeros all +0). */
+static inline double max2(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+static inline double min2(double a, double b)
+{
+    return a < b ? a : b;
+}
+
+/* floor(x) for x >= 0.5 without the call: an integral x below 2^52
+ * converts back exactly; past it (or infinite), libm's. */
+static inline double floor_pos(double x)
+{
+    return x < 0x1p52 ? (double)(uint64_t)x : floor(x);
+}
+
 /* The share of a triangle where the linear function of its corner
  * values d[] is above t (d sorted here). */
 static double share_above(double d0, double d1, double d2, double t)
@@ -164,20 +184,19 @@ static void tri_samples(const DiffSideRun *w, Acc *a, FaceAcc *fa, BvhHit *hit, 
         ab[k] = V[1][k] - V[0][k];
         ac[k] = V[2][k] - V[0][k];
         bc[k] = V[2][k] - V[1][k];
-        g[k] = (V[0][k] + V[1][k] + V[2][k]) / 3;
     }
     double n[3] = { ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0] };
     double area = 0.5 * len3(n);
     fa->area += area;
     a->tris++;
-    double r = w->unit > 0 && area > 0 ? floor(sqrt(area / w->unit) + 0.5) : 0;
+    double r = w->unit > 0 && area > 0 ? floor_pos(sqrt(area / w->unit) + 0.5) : 0;
     uint32_t cuts = r > R_MAX ? R_MAX : (uint32_t)r;
     if (cuts == 0) {
         /* its corners cover it: no point of it is farther from them than
          * its circumradius (abc / 4 area), nor than its longest side */
-        double la = len3(ab), lb = len3(ac), lc = len3(bc), lmax = fmax(la, fmax(lb, lc));
-        double rho = area > 0 ? fmin(la * lb * lc / (4 * area), lmax) : lmax;
-        double dmax = fmax(dv[0], fmax(dv[1], dv[2]));
+        double la = len3(ab), lb = len3(ac), lc = len3(bc), lmax = max2(la, max2(lb, lc));
+        double rho = area > 0 ? min2(la * lb * lc / (4 * area), lmax) : lmax;
+        double dmax = max2(dv[0], max2(dv[1], dv[2]));
         if (dmax + rho > a->bound)
             a->bound = dmax + rho;
         a->sum_dw += area * (dv[0] + dv[1] + dv[2]) / 3;
@@ -187,6 +206,9 @@ static void tri_samples(const DiffSideRun *w, Acc *a, FaceAcc *fa, BvhHit *hit, 
         fa->over += over;
         return;
     }
+    /* the centre, for the samples' reach (a face of no samples needs none) */
+    for (int k = 0; k < 3; k++)
+        g[k] = (V[0][k] + V[1][k] + V[2][k]) / 3;
     double rho = 0;
     for (int i = 0; i < 3; i++) {
         double e[3] = { V[i][0] - g[0], V[i][1] - g[1], V[i][2] - g[2] };

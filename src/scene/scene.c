@@ -262,7 +262,7 @@ static void object_bounds(Object *o, const MeshObject *mo, const uint32_t *face_
  * HUGE_COORD: a power of two scales finite floats exactly, so the model
  * keeps its shape, and the transforms stay finite. Returns k (0 for
  * ordinary models, which are not touched). */
-static int shrink_huge_meshes(Scene *s, int take_over)
+static double scene_reach(const Scene *s)
 {
     /* in double: centre + half of finite floats can pass FLT_MAX */
     double big = 0;
@@ -271,6 +271,12 @@ static int shrink_huge_meshes(Scene *s, int take_over)
         big = fmax(big, fmax(fabs(o->centre.x), fmax(fabs(o->centre.y), fabs(o->centre.z))) +
                             fmax(o->half.x, fmax(o->half.y, o->half.z)));
     }
+    return big;
+}
+
+static int shrink_huge_meshes(Scene *s, int take_over)
+{
+    double big = scene_reach(s);
     if (!(big > HUGE_COORD))
         return 0;
     int k = 0;
@@ -476,10 +482,10 @@ static void store_normals(Scene *s, const Mesh *meshes, int nmeshes)
 /* The polygon lists: taken over from the mesh (the compact form: no
  * normals, no face of each polygon, and for triangles no offsets), or
  * allocated to be written, with the normals. -1 out of memory. */
-static int alloc_polys(Scene *s, Mesh *meshes, int nmeshes, SceneCounts *c)
+static int alloc_polys(Scene *s, Mesh *meshes, int nmeshes, SceneCounts *c, int keep)
 {
     uint64_t npolys = c->npolys, ncorners = c->ncorners, nfaces = c->nfaces;
-    c->take_over = can_take_over(meshes, nmeshes, c);
+    c->take_over = !keep && can_take_over(meshes, nmeshes, c);     /* keep: the caller's lists stay its own */
     if (c->take_over) {
         s->poly_start = meshes[0].face_start;
         s->poly_corner = meshes[0].corner;
@@ -655,44 +661,88 @@ static void take_over_uv(Scene *s, const Mesh *m)
     }
 }
 
-int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
+/* A build that failed: what it made freed, the meshes left to the caller. */
+static void build_failed(Scene *s, SceneCounts *c, int oom, char *err, size_t errlen)
 {
-    memset(s, 0, sizeof *s);
-    s->meshes = meshes;
-    s->nmeshes = nmeshes;
-    SceneCounts c = { 0 };
-    if (count_meshes(meshes, nmeshes, &c, err, errlen))
-        return -1;
-    int oom = alloc_face_arrays(s, &c);
-    if (!oom)
-        oom = surf_build_start(&c.surf, s, meshes, nmeshes, c.nfaces);
-    if (oom || face_data(s, meshes, nmeshes, &c, err, errlen) || (oom = alloc_polys(s, meshes, nmeshes, &c)))
-        goto fail;
-    build_objects(s, meshes, nmeshes, &c);
-    if (c.take_over && s->poly_uv)
-        take_over_uv(s, &meshes[0]);
-    surf_build_end(&c.surf, s);
-    free(c.planar);
-    c.planar = NULL;
-    s->pos_exp = shrink_huge_meshes(s, c.take_over);
-    if (scene_number_prims(s)) {
-        scene_too_large(meshes, nmeshes, 0, (uint64_t)INT32_MAX + 1, err, errlen);
-        goto fail;
-    }
-    release_mesh_faces(meshes, nmeshes);
-    light_set(&s->light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
-    scene_reset(s);
-    return 0;
-
-fail:
-    free(c.planar);
-    free(c.surf.matsurf);
+    free(c->planar);
+    free(c->surf.matsurf);
     s->meshes = NULL;   /* the caller still owns them on failure */
     s->nmeshes = 0;
     scene_free(s);
     if (oom)
         snprintf(err, errlen, "out of memory building the scene");
-    return -1;
+}
+
+/* The objects and their polygon lists (take: a mesh's face lists may be
+ * taken over). A function of its own, so that the flag is not held
+ * across the loops over the faces. 0, or -1 (failed, undone). */
+static __attribute__((noinline)) int build_lists(Scene *s, Mesh *meshes, int nmeshes, int take, SceneCounts *c,
+                                                 char *err, size_t errlen)
+{
+    memset(s, 0, sizeof *s);
+    s->meshes = meshes;
+    s->nmeshes = nmeshes;
+    if (count_meshes(meshes, nmeshes, c, err, errlen))
+        return -1;
+    int oom = alloc_face_arrays(s, c);
+    if (!oom)
+        oom = surf_build_start(&c->surf, s, meshes, nmeshes, c->nfaces);
+    if (oom || face_data(s, meshes, nmeshes, c, err, errlen) || (oom = alloc_polys(s, meshes, nmeshes, c, !take))) {
+        build_failed(s, c, oom, err, errlen);
+        return -1;
+    }
+    build_objects(s, meshes, nmeshes, c);
+    if (c->take_over && s->poly_uv)
+        take_over_uv(s, &meshes[0]);
+    surf_build_end(&c->surf, s);
+    free(c->planar);
+    c->planar = NULL;
+    return 0;
+}
+
+/* The rest, once the positions are final: ids, light, view; the
+ * meshes' face lists released unless kept. */
+static int build_end(Scene *s, Mesh *meshes, int nmeshes, SceneCounts *c, int keep, char *err, size_t errlen)
+{
+    if (scene_number_prims(s)) {
+        scene_too_large(meshes, nmeshes, 0, (uint64_t)INT32_MAX + 1, err, errlen);
+        build_failed(s, c, 0, err, errlen);
+        return -1;
+    }
+    if (!keep)
+        release_mesh_faces(meshes, nmeshes);
+    light_set(&s->light, LIGHT_YAW, LIGHT_PITCH, LIGHT_AMBIENT);
+    scene_reset(s);
+    return 0;
+}
+
+int scene_build(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
+{
+    SceneCounts c = { 0 };
+    if (build_lists(s, meshes, nmeshes, 1, &c, err, errlen))
+        return -1;
+    s->pos_exp = shrink_huge_meshes(s, c.take_over);
+    return build_end(s, meshes, nmeshes, &c, 0, err, errlen);
+}
+
+int scene_build_kept(Scene *s, Mesh *meshes, int nmeshes, char *err, size_t errlen)
+{
+    /* the meshes are only read: their faces stay, none is taken over,
+     * and a model the shrink would scale is left (1): it writes the
+     * positions the caller's other threads read */
+    SceneCounts c = { 0 };
+    if (build_lists(s, meshes, nmeshes, 0, &c, err, errlen))
+        return -1;
+    if (scene_reach(s) > HUGE_COORD) {
+        build_failed(s, &c, 0, err, errlen);
+        return 1;
+    }
+    return build_end(s, meshes, nmeshes, &c, 1, err, errlen);
+}
+
+void scene_release_faces(Scene *s)
+{
+    release_mesh_faces(s->meshes, s->nmeshes);
 }
 
 int scene_make_grid(Scene *s, int n, char *err, size_t errlen)

@@ -196,7 +196,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     if (ok) {
         /* a small sample budget: the brute force is the fuzzer's time */
-        DiffOpts o = { how & 8 ? 2 : 1, how & 16 ? 0 : -1, NULL, 512, 0 };
+        DiffOpts o = { how & 8 ? 2 : 1, how & 16 ? 0 : -1, NULL, 512, 0, NULL, NULL };
         Diff d, e;
         char err[256];
         if (diff_compute(&d, &a, &b, &o, err, sizeof err) == 0) {
