@@ -776,3 +776,39 @@ Test(save, ply_polygons_of_255_256_and_300_corners_read_back)
         mesh_free(&m);
     }
 }
+
+/* A binary STL's facet normal is its triangle's unit normal, by the
+ * right-hand rule (the corners counter-clockwise seen from outside):
+ * each worked out by hand here, none through the origin. */
+Test(save, stl_facet_normals_are_the_triangles_unit_normals)
+{
+    Mesh m;
+    cr_assert_eq(tl_mesh_init(&m, "n.obj"), 0);
+    static const float v[9][3] = { { 0, 0, 5 }, { 2, 0, 5 }, { 0, 2, 5 },      /* z = 5, normal +z */
+                                   { 1, 0, 2 }, { 1, 1, 2 }, { 1, 0, 3 },      /* x = 1, normal +x */
+                                   { 0, 0, 7 }, { 0, 0, 10 }, { 3, 4, 7 } };   /* (-0.8, 0.6, 0) */
+    static const float want[3][3] = { { 0, 0, 1 }, { 1, 0, 0 }, { -0.8f, 0.6f, 0 } };
+    for (int i = 0; i < 9; i++)
+        cr_assert_eq(tl_mesh_vertex(&m, v[i][0], v[i][1], v[i][2]), 0);
+    for (uint32_t t = 0; t < 3; t++) {
+        uint32_t c[3] = { 3 * t, 3 * t + 1, 3 * t + 2 };
+        cr_assert_eq(tl_mesh_face(&m, c, 3), 0);
+    }
+    cr_assert_eq(tl_mesh_finish(&m), 0);
+    SaveReport rep;
+    cr_assert_eq(save_mesh(&m, tmp("n.stl"), SAVE_STL, &rep, E, sizeof E), 0, "%s", E);
+    mesh_free(&m);
+    unsigned char b[84 + 3 * 50];
+    FILE *f = fopen(tmp("n.stl"), "rb");
+    cr_assert(f);
+    cr_assert_eq(fread(b, 1, sizeof b, f), sizeof b);
+    cr_assert_eq(fgetc(f), EOF);
+    fclose(f);
+    cr_assert_eq(b[80] | b[81] << 8 | b[82] << 16 | (uint32_t)b[83] << 24, 3u);
+    for (int t = 0; t < 3; t++)
+        for (int k = 0; k < 3; k++) {
+            float n;
+            memcpy(&n, b + 84 + 50 * t + 4 * k, 4);     /* little-endian, as this machine */
+            cr_assert_float_eq(n, want[t][k], 1e-6, "triangle %d's normal[%d]: %g, not %g", t, k, n, want[t][k]);
+        }
+}
