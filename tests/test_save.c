@@ -812,3 +812,40 @@ Test(save, stl_facet_normals_are_the_triangles_unit_normals)
             cr_assert_float_eq(n, want[t][k], 1e-6, "triangle %d's normal[%d]: %g, not %g", t, k, n, want[t][k]);
         }
 }
+
+/* A texture's name longer than any path (a file may name anything) is
+ * written cut to PATH_MAX - 1 bytes, the longest path the system opens:
+ * map_Kd's line holds no more. */
+Test(save, a_texture_name_longer_than_a_path_is_cut_to_the_longest_path)
+{
+    static const char obj[] = "mtllib long.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl t\nf 1/1 2/1 3/1\n";
+    static const char mtl[] = "newmtl t\nmap_Kd x.png\n";
+    cr_assert_eq(w_save(tmp("long.obj"), obj, sizeof obj - 1), 0);
+    cr_assert_eq(w_save(tmp("long.mtl"), mtl, sizeof mtl - 1), 0);
+    Mesh m;
+    MeshLoadOpts lo = { .quiet = 1 };     /* x.png is not there: its name is what counts */
+    cr_assert_eq(mesh_load_ex(&m, tmp("long.obj"), &lo, E, sizeof E), 0, "%s", E);
+    cr_assert_eq(m.ntex, 1);
+    for (size_t len = PATH_MAX - 2; len <= PATH_MAX + 1; len++) {
+        free(m.tex[0].name);
+        m.tex[0].name = malloc(len + 1);
+        cr_assert(m.tex[0].name);
+        memset(m.tex[0].name, 'a', len);
+        m.tex[0].name[len] = 0;
+        SaveReport rep;
+        cr_assert_eq(save_mesh(&m, tmp("out.obj"), SAVE_OBJ, &rep, E, sizeof E), 0, "%s", E);
+        FILE *f = fopen(tmp("out.mtl"), "r");
+        cr_assert(f);
+        static char line[2 * PATH_MAX];
+        size_t got = 0;
+        while (fgets(line, sizeof line, f))
+            if (!strncmp(line, "map_Kd ", 7)) {
+                got = strcspn(line + 7, "\n");
+                cr_assert_eq(strspn(line + 7, "a"), got);
+            }
+        fclose(f);
+        size_t want = len < PATH_MAX ? len : PATH_MAX - 1;
+        cr_assert_eq(got, want, "a name of %zu bytes written as %zu, not %zu", len, got, want);
+    }
+    mesh_free(&m);
+}
