@@ -327,6 +327,29 @@ Test(gallery, a_folder_lists_its_models_and_the_links_that_loop_never_a_subfolde
     cr_assert_eq(system(q), 0);
 }
 
+/* A folder named with slashes at its end ("dir/", as a shell completes
+ * it): its files' paths, which the viewer opened from the gallery shows
+ * and an unreadable tile's verdict names, join it with one slash. */
+Test(gallery, a_folder_named_with_trailing_slashes_joins_its_files_with_one)
+{
+    char dir[] = "/tmp/zv-gallery-XXXXXX", p[600], q[600];
+    cr_assert(mkdtemp(dir));
+    touch(dir, "b.obj", "v 0 0 0\n");
+    snprintf(q, sizeof q, "%s/b.obj", dir);
+    for (int slashes = 0; slashes <= 3; slashes++) {
+        snprintf(p, sizeof p, "%s%.*s", dir, slashes, "///");
+        GalleryList l;
+        char err[256];
+        const char *args[1] = { p };
+        cr_assert_eq(gallery_scan(&l, args, 1, 0, err, sizeof err), 0, "%s", err);
+        cr_assert_eq(l.n, 1);
+        cr_assert_str_eq(l.tile[0].path, q, "%s: %s", p, l.tile[0].path);
+        gallery_list_free(&l);
+    }
+    snprintf(q, sizeof q, "rm -rf '%s'", dir);
+    cr_assert_eq(system(q), 0);
+}
+
 Test(gallery, a_folder_of_more_than_the_cap_lists_the_cap_and_counts_the_rest, .timeout = 60)
 {
     char dir[] = "/tmp/zv-gallery-XXXXXX", p[600];
@@ -425,6 +448,44 @@ Test(gallery, the_tiles_asked_for_are_pictured_then_checked_before_the_rest)
         cr_assert(i == order[k][0] && what == order[k][1], "step %zu: tile %d, what %d", k, i, what);
         cr_assert_eq(tiles[i].state, what == TILE_CHECK ? GS_CHECKING : GS_WORKING);
         tiles[i].state = what == TILE_PICTURE ? GS_PICTURED : GS_SOUND;     /* made */
+    }
+    cr_assert_eq(gallery_pick(&l, want, 2, &next, &what), -1, "nothing left");
+}
+
+/* A tile's name in UTF-8 is one cell a character, each cell the code
+ * point (the Unicode charts' numbers): two, three and four bytes. */
+Test(gallery, a_name_in_utf8_is_its_code_points_a_cell_each)
+{
+    GalleryGrid grid;
+    gallery_grid(&grid, 40, 12, 20, 9);
+    GalleryTile tile = { .name = "\xc3\xa9\xe2\x82\xac\xf0\x9d\x84\x9ez.obj", .state = GS_UNREADABLE,
+                         .verdict = "x" };
+    const uint32_t want[] = { 0xe9, 0x20ac, 0x1d11e, 'z', '.', 'o', 'b', 'j' };
+    Cell cells[40 * 12];
+    CellGrid g = { .cols = 40, .rows = 12, .cells = cells, .cap = 40 * 12 };
+    int order[1] = { 0 };
+    Backdrop bd = { 0 };
+    cr_assert_eq(gallery_compose(&g, &grid, &tile, order, 1, 0, -1, MODE_ASCII, COLOUR_NONE, &bd), 0);
+    const Cell *row = &cells[(size_t)grid.pic_rows * g.cols + GALLERY_GAP / 2];
+    for (size_t k = 0; k < sizeof want / sizeof want[0]; k++)
+        cr_assert_eq(row[k].ch, want[k], "cell %zu: U+%04X, not U+%04X", k, (unsigned)row[k].ch, (unsigned)want[k]);
+    cr_assert_eq(row[sizeof want / sizeof want[0]].ch, ' ');
+}
+
+/* The same with the list's first tiles on the screen (the gallery as it
+ * opens): tile 0 asked for is a tile like any other, pictured with the
+ * screen's before any is checked. */
+Test(gallery, the_first_tile_asked_for_is_pictured_with_the_screens)
+{
+    GalleryTile tiles[4] = { 0 };
+    GalleryList l = { .tile = tiles, .n = 4, .cap = 4 };
+    int want[2] = { 1, 0 }, next = 0, what;
+    const int order[][2] = { { 1, TILE_PICTURE }, { 0, TILE_PICTURE }, { 1, TILE_CHECK },
+                             { 0, TILE_CHECK },   { 2, TILE_BOTH },    { 3, TILE_BOTH } };
+    for (size_t k = 0; k < sizeof order / sizeof order[0]; k++) {
+        int i = gallery_pick(&l, want, 2, &next, &what);
+        cr_assert(i == order[k][0] && what == order[k][1], "step %zu: tile %d, what %d", k, i, what);
+        tiles[i].state = what == TILE_PICTURE ? GS_PICTURED : GS_SOUND;
     }
     cr_assert_eq(gallery_pick(&l, want, 2, &next, &what), -1, "nothing left");
 }

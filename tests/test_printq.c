@@ -272,6 +272,24 @@ Test(printq, a_solid_box_is_as_thick_as_it_is_across)
     mesh_free(&m);
 }
 
+/* --min-thickness T: "the area of the faces thinner than T" (zview.1),
+ * so a wall exactly T thick is not counted. The thicknesses are given,
+ * not measured, so that they are exactly 10, 20 and 5: the box's x
+ * sides (20 x 5 each), y sides (10 x 5) and z sides (10 x 20). */
+Test(printq, a_wall_exactly_as_thick_as_the_limit_is_not_thinner)
+{
+    Mesh m;
+    box_mesh(&m, 10, 20, 5);
+    float face[6] = { 10, 10, 20, 20, 5, 5 };
+    PrintqThickness t = { .face = face, .nfaces = 6, .measured = 6 };
+    cr_assert_float_eq(printq_thin_area(&m, &t, 5), 0, 0, "the z sides, 5 thick, are not thinner than 5");
+    cr_assert_float_eq(printq_thin_area(&m, &t, 5.0001), 2 * 200, 1e-9);
+    cr_assert_float_eq(printq_thin_area(&m, &t, 10), 2 * 200, 1e-9, "nor the x sides, 10 thick, than 10");
+    cr_assert_float_eq(printq_thin_area(&m, &t, 20), 2 * 200 + 2 * 100, 1e-9);
+    cr_assert_float_eq(printq_thin_area(&m, &t, 20.5), 2 * 200 + 2 * 100 + 2 * 50, 1e-9);
+    mesh_free(&m);
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;

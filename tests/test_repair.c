@@ -1211,3 +1211,26 @@ Test(models, shared_models_come_out_no_worse, .timeout = 600)
     if (!n)
         cr_skip_test("no ../shared/models");
 }
+
+/* A fill is refused when it would cross the model, before it is made:
+ * not found worse afterwards (the object then held back, repaired again
+ * with less). A box of triangles whose top (z = 1) lacks one of its two,
+ * (0 0) (1 1) (0 1), and inside it, in the same object, a closed spike
+ * whose tip passes through that hole near its corner (0 0): the hole's
+ * fill would cut the spike, so it stays open. The one fill's grid has 2
+ * cells a side, and the spike lies in the first cell only. */
+Test(repair, a_fill_that_would_cross_the_model_near_its_corner_is_refused)
+{
+    start();
+    cr_assert_eq(tl_mesh_cube(&M, 0, 0, 0, 1, 1, 0, 1), 0);
+    tri(4, 5, 6);
+    uint32_t a = vert(0.02f, 0.07f, 0.5f), b = vert(0.06f, 0.12f, 0.5f), c = vert(0.02f, 0.12f, 0.5f),
+             t = vert(0.04f, 0.1f, 1.5f);
+    tri(a, c, b);
+    tri(a, b, t);
+    tri(b, c, t);
+    tri(c, a, t);
+    repair();
+    cr_assert_eq(R.filled, 0, "the hole was filled through the spike");
+    cr_assert_eq(R.held_back, 0, "the fill was made, and the object found worse after");
+}

@@ -20,6 +20,7 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 #include "../src/mesh/mesh_internal.h"
@@ -81,6 +82,75 @@ Test(sandbox, a_sandboxed_load_gives_the_same_mesh)
     cr_assert(sandbox_available());
     load_both("assets/demo.obj");       /* materials, objects */
     load_both("assets/torus.obj");
+}
+
+/* read(2) for this whole test binary, the sandbox's parent included: as
+ * the system's, but one byte a call while ZV_TEST_READ_ONE is set. A
+ * pipe may hand a reader any part of what was written: the parent must
+ * put a child's message together whole however it comes (an honest
+ * child writes each in one piece, which a pipe never splits; one whose
+ * loader was taken over writes as it likes). */
+ssize_t read(int fd, void *buf, size_t n)
+{
+    if (n > 1 && getenv("ZV_TEST_READ_ONE"))
+        n = 1;
+    return syscall(SYS_read, fd, buf, n);
+}
+
+Test(sandbox, a_childs_messages_read_a_byte_at_a_time_give_the_same_mesh)
+{
+    cr_assert_eq(setenv("ZV_TEST_READ_ONE", "1", 1), 0);
+    load_both("assets/demo.obj");       /* names demo.mtl: a message of its path */
+    load_both("assets/scene.obj");
+    cr_assert_eq(unsetenv("ZV_TEST_READ_ONE"), 0);
+}
+
+/* write(2) for this whole test binary, the sandbox's child included
+ * (it is a fork of it): as the system's, but while ZV_TEST_FORGE_REF is
+ * set a child's message naming a file ('f', its kind, a 16-bit length,
+ * the path) is sent with the length that variable gives and that many
+ * bytes of path: what a child whose loader was taken over could send. */
+ssize_t write(int fd, const void *buf, size_t n)
+{
+    const char *forge = getenv("ZV_TEST_FORGE_REF");
+    const unsigned char *b = buf;
+    if (forge && n >= 4 && b[0] == 'f' && n == 4 + ((size_t)b[2] | (size_t)b[3] << 8)) {
+        size_t len = strtoul(forge, NULL, 10);
+        unsigned char msg[4 + 4096];
+        cr_assert(len <= 4096);
+        msg[0] = 'f';
+        msg[1] = b[1];
+        msg[2] = (unsigned char)(len & 255);
+        msg[3] = (unsigned char)(len >> 8);
+        memset(msg + 4, 'a', len);
+        return syscall(SYS_write, fd, msg, 4 + len) == (ssize_t)(4 + len) ? (ssize_t)n : -1;
+    }
+    return syscall(SYS_write, fd, buf, n);
+}
+
+/* A child that names a file of no bytes, or of more than REF_PATH_MAX
+ * (more than it may send, and than the parent's buffer holds), broke the
+ * protocol: it is stopped, and the load fails saying so. The longest
+ * path it may send is taken. */
+Test(sandbox, a_child_naming_a_path_too_long_or_empty_is_stopped)
+{
+    const struct { const char *len; int ok; } cases[] = { { "0", 0 }, { "4001", 0 }, { "4000", 1 }, { "7", 1 } };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        cr_assert_eq(setenv("ZV_TEST_FORGE_REF", cases[i].len, 1), 0);
+        Mesh m;
+        char err[512] = "";
+        MeshLoadOpts lo = { .quiet = 1 };
+        SandboxOpts on = { 0 };
+        int rc = sandbox_load(&m, "assets/demo.obj", &lo, &on, err, sizeof err);
+        if (cases[i].ok) {
+            cr_assert_eq(rc, 0, "a path of %s bytes: %s", cases[i].len, err);
+            mesh_free(&m);
+        } else {
+            cr_assert_eq(rc, -1, "a path of %s bytes was taken", cases[i].len);
+            cr_assert(strstr(err, "broke the sandbox's protocol"), "%s", err);
+        }
+    }
+    cr_assert_eq(unsetenv("ZV_TEST_FORGE_REF"), 0);
 }
 
 Test(sandbox, textures_cross_the_wire)

@@ -776,3 +776,76 @@ Test(save, ply_polygons_of_255_256_and_300_corners_read_back)
         mesh_free(&m);
     }
 }
+
+/* A binary STL's facet normal is its triangle's unit normal, by the
+ * right-hand rule (the corners counter-clockwise seen from outside):
+ * each worked out by hand here, none through the origin. */
+Test(save, stl_facet_normals_are_the_triangles_unit_normals)
+{
+    Mesh m;
+    cr_assert_eq(tl_mesh_init(&m, "n.obj"), 0);
+    static const float v[9][3] = { { 0, 0, 5 }, { 2, 0, 5 }, { 0, 2, 5 },      /* z = 5, normal +z */
+                                   { 1, 0, 2 }, { 1, 1, 2 }, { 1, 0, 3 },      /* x = 1, normal +x */
+                                   { 0, 0, 7 }, { 0, 0, 10 }, { 3, 4, 7 } };   /* (-0.8, 0.6, 0) */
+    static const float want[3][3] = { { 0, 0, 1 }, { 1, 0, 0 }, { -0.8f, 0.6f, 0 } };
+    for (int i = 0; i < 9; i++)
+        cr_assert_eq(tl_mesh_vertex(&m, v[i][0], v[i][1], v[i][2]), 0);
+    for (uint32_t t = 0; t < 3; t++) {
+        uint32_t c[3] = { 3 * t, 3 * t + 1, 3 * t + 2 };
+        cr_assert_eq(tl_mesh_face(&m, c, 3), 0);
+    }
+    cr_assert_eq(tl_mesh_finish(&m), 0);
+    SaveReport rep;
+    cr_assert_eq(save_mesh(&m, tmp("n.stl"), SAVE_STL, &rep, E, sizeof E), 0, "%s", E);
+    mesh_free(&m);
+    unsigned char b[84 + 3 * 50];
+    FILE *f = fopen(tmp("n.stl"), "rb");
+    cr_assert(f);
+    cr_assert_eq(fread(b, 1, sizeof b, f), sizeof b);
+    cr_assert_eq(fgetc(f), EOF);
+    fclose(f);
+    cr_assert_eq(b[80] | b[81] << 8 | b[82] << 16 | (uint32_t)b[83] << 24, 3u);
+    for (int t = 0; t < 3; t++)
+        for (int k = 0; k < 3; k++) {
+            float n;
+            memcpy(&n, b + 84 + 50 * t + 4 * k, 4);     /* little-endian, as this machine */
+            cr_assert_float_eq(n, want[t][k], 1e-6, "triangle %d's normal[%d]: %g, not %g", t, k, n, want[t][k]);
+        }
+}
+
+/* A texture's name longer than any path (a file may name anything) is
+ * written cut to PATH_MAX - 1 bytes, the longest path the system opens:
+ * map_Kd's line holds no more. */
+Test(save, a_texture_name_longer_than_a_path_is_cut_to_the_longest_path)
+{
+    static const char obj[] = "mtllib long.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl t\nf 1/1 2/1 3/1\n";
+    static const char mtl[] = "newmtl t\nmap_Kd x.png\n";
+    cr_assert_eq(w_save(tmp("long.obj"), obj, sizeof obj - 1), 0);
+    cr_assert_eq(w_save(tmp("long.mtl"), mtl, sizeof mtl - 1), 0);
+    Mesh m;
+    MeshLoadOpts lo = { .quiet = 1 };     /* x.png is not there: its name is what counts */
+    cr_assert_eq(mesh_load_ex(&m, tmp("long.obj"), &lo, E, sizeof E), 0, "%s", E);
+    cr_assert_eq(m.ntex, 1);
+    for (size_t len = PATH_MAX - 2; len <= PATH_MAX + 1; len++) {
+        free(m.tex[0].name);
+        m.tex[0].name = malloc(len + 1);
+        cr_assert(m.tex[0].name);
+        memset(m.tex[0].name, 'a', len);
+        m.tex[0].name[len] = 0;
+        SaveReport rep;
+        cr_assert_eq(save_mesh(&m, tmp("out.obj"), SAVE_OBJ, &rep, E, sizeof E), 0, "%s", E);
+        FILE *f = fopen(tmp("out.mtl"), "r");
+        cr_assert(f);
+        static char line[2 * PATH_MAX];
+        size_t got = 0;
+        while (fgets(line, sizeof line, f))
+            if (!strncmp(line, "map_Kd ", 7)) {
+                got = strcspn(line + 7, "\n");
+                cr_assert_eq(strspn(line + 7, "a"), got);
+            }
+        fclose(f);
+        size_t want = len < PATH_MAX ? len : PATH_MAX - 1;
+        cr_assert_eq(got, want, "a name of %zu bytes written as %zu, not %zu", len, got, want);
+    }
+    mesh_free(&m);
+}

@@ -15,6 +15,7 @@
 #include "app.h"
 #include "testlib.h"
 #include "simd.h"
+#include "writers.h"
 
 static const char *cube_obj =
     "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
@@ -813,4 +814,47 @@ Test(scene, computed_normals_are_the_stored_ones_at_every_simd_level)
     scene_free(&c);
     scene_free(&full);
     free(t);
+}
+
+/* A textured face's corners keep their texture coordinates, u and v,
+ * in the polygons a planar quad stays whole in and those a warped one
+ * is fanned into: here each vertex has its own, (0.1 k, 0.05 k + 0.3)
+ * for vertex k, so every corner of a polygon is checked by its vertex.
+ * v is counted from the image's top row, as its rows are stored: the
+ * file's v (OBJ's, from the bottom) taken from 1. */
+Test(scene, texture_coordinates_follow_their_corners_whole_and_fanned)
+{
+    char dir[] = "/tmp/zv-scene-XXXXXX", p[600];
+    cr_assert(mkdtemp(dir));
+    size_t n;
+    char *tga = w_tga_rle(4, 4, 1, &n);
+    cr_assert(tga);
+    snprintf(p, sizeof p, "%s/tex.tga", dir);
+    cr_assert_eq(w_save(p, tga, n), 0);
+    free(tga);
+    static const char mtl[] = "newmtl t\nmap_Kd tex.tga\n";
+    snprintf(p, sizeof p, "%s/q.mtl", dir);
+    cr_assert_eq(w_save(p, mtl, sizeof mtl - 1), 0);
+    static const char obj[] = "mtllib q.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0.5\nv 2 1 0\n"
+                              "vt 0.1 0.35\nvt 0.2 0.4\nvt 0.3 0.45\nvt 0.4 0.5\nvt 0.5 0.55\nvt 0.6 0.6\n"
+                              "usemtl t\nf 1/1 2/2 3/3 4/4\nf 2/2 5/5 6/6 3/3\n";
+    snprintf(p, sizeof p, "%s/q.obj", dir);
+    cr_assert_eq(w_save(p, obj, sizeof obj - 1), 0);
+    Mesh *m = calloc(1, sizeof *m);
+    char err[512];
+    cr_assert(m);
+    cr_assert_eq(mesh_load(m, p, err, sizeof err), 0, "%s", err);
+    Scene s;
+    cr_assert_eq(scene_build(&s, m, 1, err, sizeof err), 0, "%s", err);
+    cr_assert(s.poly_uv, "a textured scene keeps texture coordinates");
+    cr_assert_eq(s.npolys, 3, "the planar quad whole, the warped one as two triangles");
+    for (uint32_t c = 0; c < s.poly_start[s.npolys]; c++) {
+        uint32_t k = s.poly_corner[c] + 1;
+        cr_assert_float_eq(s.poly_uv[2 * c], 0.1f * k, 1e-6, "corner %u (vertex %u): u %g", c, k, s.poly_uv[2 * c]);
+        cr_assert_float_eq(s.poly_uv[2 * c + 1], 1 - (0.05f * k + 0.3f), 1e-6, "corner %u (vertex %u): v %g", c, k,
+                           s.poly_uv[2 * c + 1]);
+    }
+    scene_free(&s);
+    snprintf(p, sizeof p, "rm -rf '%s'", dir);
+    cr_assert_eq(system(p), 0);
 }

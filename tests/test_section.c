@@ -313,3 +313,29 @@ Test(section, points_and_lines_are_cut)
     fbuf_free(&fb);
     scene_free(&s);
 }
+
+/* Two planes, x = 1 and y = 1, take the corner x > 1, y > 1 out of the
+ * square 0..4 (z = 0): the kept part is the square split where each of
+ * its four edges crosses a plane, (1 0) (4 1) (1 4) (0 1), back to its
+ * first corner, then the removed corner's outline (section.h). */
+Test(section, two_planes_split_every_edge_they_cross)
+{
+    SectionPlane pl[2];
+    char err[128];
+    cr_assert_eq(section_parse("x=1", &pl[0], err, sizeof err), 0, "%s", err);
+    cr_assert_eq(section_parse("y=1", &pl[1], err, sizeof err), 0, "%s", err);
+    const float sq[4][3] = { { 0, 0, 0 }, { 4, 0, 0 }, { 4, 4, 0 }, { 0, 4, 0 } };
+    uint8_t masks[4];
+    section_masks(pl, 2, &sq[0][0], 4, masks);
+    cr_assert(masks[0] == 0 && masks[1] == 1 && masks[2] == 3 && masks[3] == 2);
+    SectionClip c = { 0 };
+    int n = section_clip_poly(pl, 2, &sq[0][0], masks, 4, &c);
+    const float want[9][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 4, 0, 0 }, { 4, 1, 0 }, { 4, 4, 0 },
+                               { 1, 4, 0 }, { 0, 4, 0 }, { 0, 1, 0 }, { 0, 0, 0 } };
+    cr_assert_geq(n, 9 + 4, "the outline, its first corner again, and the removed corner: %d points", n);
+    for (int k = 0; k < 9; k++)
+        cr_assert(c.pts[3 * k] == want[k][0] && c.pts[3 * k + 1] == want[k][1] && c.pts[3 * k + 2] == want[k][2],
+                  "point %d: (%g %g %g), not (%g %g %g)", k, c.pts[3 * k], c.pts[3 * k + 1], c.pts[3 * k + 2],
+                  want[k][0], want[k][1], want[k][2]);
+    section_clip_free(&c);
+}

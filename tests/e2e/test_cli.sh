@@ -163,6 +163,10 @@ for key in model polygons algo width height threads views median_ms min_ms frame
 done
 if grep -q '"polygons": 48,' "$T/b.json"; then ok "grid polygons count every copy"; else notok "grid polygons count every copy" "$(head -c 300 "$T/b.json")"; fi
 if head -c 1 "$T/b.json" | grep -q '\[' && tail -n 1 "$T/b.json" | grep -q '^\]$'; then ok "bench --json is one array"; else notok "bench --json is one array"; fi
+# JSON that a strict parser reads, each object naming the model and its copies
+m=$(python3 -c 'import json, sys; print(" ".join(sorted(set(o["model"] for o in json.load(open(sys.argv[1]))))))' "$T/b.json" 2>&1)
+if [ "$m" = "cube.obj x2^3" ]; then ok "bench --json parses, its model the file's name and the grid"
+else notok "bench --json parses, its model the file's name and the grid" "$m"; fi
 # each algorithm's first frame and its time to ready are spans of this
 # run: from 0 to the whole run's time as the shell measured it, first <= ready
 bad=$(tr ',' '\n' <"$T/b.json" | awk -v wall="$wall_ms" '

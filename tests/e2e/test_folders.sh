@@ -39,6 +39,9 @@ import json, sys
 lines = open(sys.argv[1]).read().split("\n")
 assert lines[-1] == "", "ends with a newline"
 objs = [json.loads(l) for l in lines[:-1]]
+# the pretty layout folded, none of its indent left: "{" first, and no
+# two spaces in a row (the test's paths have none)
+assert all(l.startswith("{") and "  " not in l for l in lines[:-1]), lines[:-1]
 paths = [o["path"] for o in objs]
 d = sys.argv[2]
 want = [d + "/" + p for p in ["concave.obj", "cube.obj", "knot.obj", "sub/broken.stl", "sub/c2.obj", "sub/deeper/c3.obj"]]
