@@ -783,3 +783,31 @@ Test(load, lenient_ply_and_off_skip_bad_faces, .init = cr_redirect_stderr)
     cr_assert_eq(M.nfaces, 1);
     cr_assert_eq(M.info.skipped, 2);
 }
+
+/* More than INT32_MAX faces and edges cannot be numbered: the wireframe
+ * is refused, saying so, and every object is left without wire edges.
+ * A scene that big takes gigabytes, so an object's mark count stands in
+ * for the rest of them; a sentinel object past the end of the scene's
+ * array must come out as it went in (the reset touches the scene's
+ * objects only). */
+Test(prims, a_wireframe_past_the_ids_is_refused_and_leaves_no_edges)
+{
+    Scene s;
+    cr_assert_eq(tl_scene_from_file(&s, "assets/cube.obj"), 0);
+    Object *o = realloc(s.objs, ((size_t)s.nobjs + 1) * sizeof *o);
+    cr_assert(o);
+    s.objs = o;
+    memset(&o[s.nobjs], 0, sizeof o[s.nobjs]);
+    o[s.nobjs].wire_count = 77;
+    o[0].mark_count = INT32_MAX;
+    char err[128] = "";
+    cr_assert_eq(scene_wire_build(&s, err, sizeof err), -1);
+    cr_assert_str_eq(err, "--wireframe: more than 2147483647 faces and edges");
+    for (int k = 0; k < s.nobjs; k++)
+        cr_assert_eq(s.objs[k].wire_count, 0);
+    cr_assert_null(s.wire);
+    cr_assert_eq(s.nwire_edges, 0);
+    cr_assert_eq(o[s.nobjs].wire_count, 77, "the object past the scene's was written");
+    o[0].mark_count = 0;
+    scene_free(&s);
+}
