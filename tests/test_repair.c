@@ -863,6 +863,50 @@ Test(repair, an_object_the_repair_would_make_worse_is_held_back)
     meshcheck_free(&b);
 }
 
+/* An object held back keeps its faces' texture coordinates, moved down
+ * with its corners when an earlier object lost a face. Here the weld
+ * within 0.01 would move B's vertex at z = -0.001 onto the one at
+ * z = 0.001, above the interior of B's big triangle: a triangle would
+ * then pierce it, a crossing the input has not, at every level down to
+ * weld and clean alone, so B is left as it was; A's degenerate face
+ * (a point twice) goes, three corners before B's. */
+Test(repair, an_object_held_back_keeps_its_texture_coordinates)
+{
+    static const char obj[] = "o A\nv 10 0 0\nv 11 0 0\nv 10 1 0\nv 12 0 0\nf 1 2 2\nf 1 2 3\n"
+                              "o B\nv 0 0 0\nv 4 0 0\nv 0 4 0\n"
+                              "v 1 1 0.001\nv 1.5 1 0.5\nv 1 1.5 0.5\n"
+                              "v 1 1 -0.001\nv 1.5 1 -0.5\nv 1 1.5 -0.5\n"
+                              "f 5 6 7\nf 8 9 10\nf 11 13 12\n";
+    cr_assert_eq(mesh_parse(&M, "t.obj", obj, sizeof obj - 1, E, sizeof E), 0, "%s", E);
+    /* each corner its own texture coordinates (the loader keeps them only
+     * for a textured material): corner c has uv c */
+    uint32_t nc = M.face_start[M.nfaces];
+    cr_assert_eq(nc, 15);
+    M.nuv = nc;
+    M.uv = calloc(2 * (size_t)nc, sizeof *M.uv);
+    M.corner_uv = malloc(nc * sizeof *M.corner_uv);
+    cr_assert(M.uv && M.corner_uv);
+    for (uint32_t c = 0; c < nc; c++)
+        M.corner_uv[c] = c;
+    RepairOpts o = { .steps = REPAIR_DEFAULT, .threads = 1, .intersections = 1, .weld_eps = 0.01 };
+    cr_assert_eq(repair_mesh(&M, &o, &R, E, sizeof E), 0, "%s", E);
+    cr_assert_eq(R.held_back, 1);
+    cr_assert_eq(M.nobjs, 2);
+    cr_assert_eq(M.nfaces, 4, "A's degenerate face dropped, B's three kept");
+    /* B's corners as the file gives them (its sixth corner is 11 13 12's) */
+    static const float want[9][3] = { { 0, 0, 0 },       { 4, 0, 0 },       { 0, 4, 0 },
+                                      { 1, 1, 0.001f },  { 1.5f, 1, 0.5f }, { 1, 1.5f, 0.5f },
+                                      { 1, 1, -0.001f }, { 1, 1.5f, -0.5f }, { 1.5f, 1, -0.5f } };
+    const MeshObject *b = &M.objs[1];
+    cr_assert_eq(b->face_count, 3);
+    for (uint32_t k = 0; k < 9; k++) {
+        uint32_t c = M.face_start[b->face_first] + k, v = M.corner[c];
+        for (int j = 0; j < 3; j++)
+            cr_assert_eq(M.pos[3 * v + j], want[k][j], "B's corner %u: its position", k);
+        cr_assert_eq(M.corner_uv[c], 6 + k, "B's corner %u: uv %u, wanted %u", k, M.corner_uv[c], 6 + k);
+    }
+}
+
 /* ==== The checks handed over ==== */
 
 /* Every figure of the check the same in a and b, object by object. */
