@@ -327,14 +327,16 @@ static void find_degenerate(ObjCheck *o)
         }
 }
 
-int check_topology(ObjCheck *o)
+int check_pairing(ObjCheck *o)
 {
     Buckets b = { 0 };
     find_degenerate(o);
-    if (buckets_build(o, &b) || classify(o, &b)) {
-        buckets_free(&b);
-        return -1;
-    }
+    int r = buckets_build(o, &b) || classify(o, &b) ? -1 : 0;
     buckets_free(&b);
+    return r;
+}
+
+int check_vertices(ObjCheck *o)
+{
     return count_holes(o) || count_fans(o) || check_locate_topology(o) ? -1 : 0;
 }
