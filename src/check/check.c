@@ -6,7 +6,7 @@
  * measures (shape.c), duplicates, then the crossing pairs (cross.c).
  * Each pass frees what it built before the next starts: the check's
  * memory stays within the mesh's own (the benchmark says how far). With
- * two threads, passes that read what the others write not run beside
+ * two threads, passes that read nothing the others write run beside
  * them (the vertices beside the winding, the measures beside the
  * crossing test), only where what they hold at once stays below the
  * pairing's buckets, the check's own peak. The
