@@ -5,7 +5,11 @@
  * size, not the file's), the topology (topo.c), the winding and the
  * measures (shape.c), duplicates, then the crossing pairs (cross.c).
  * Each pass frees what it built before the next starts: the check's
- * memory stays within the mesh's own (the benchmark says how far). The
+ * memory stays within the mesh's own (the benchmark says how far). With
+ * two threads, passes that read nothing the others write run beside
+ * them (the vertices beside the winding, the measures beside the
+ * crossing test), only where what they hold at once stays below the
+ * pairing's buckets, the check's own peak. The
  * objects' figures are summed into the file's, and said in words, by
  * the rows of counts.c. */
 
@@ -15,6 +19,7 @@
 
 #include "check_internal.h"
 #include "clock.h"
+#include "thread.h"
 
 typedef struct {
     const Mesh      *m;
@@ -90,20 +95,72 @@ static int cancelled(const Run *r)
     return r->opt->cancel && __atomic_load_n(r->opt->cancel, __ATOMIC_RELAXED);
 }
 
+/* The measures on a helper thread, beside the crossing test: they read
+ * the positions and the flags, and write figures the crossing test does
+ * not; the crossing test's own set-up (the sort, the tree) is on one
+ * thread, so the other core has room for them. */
+typedef struct {
+    ObjCheck *o;
+    double    ms;
+} Measures;
+
+static void *measures_main(void *arg)
+{
+    Measures *m = arg;
+    double t = now_ms();
+    check_measures(m->o);
+    m->ms = now_ms() - t;
+    return NULL;
+}
+
+/* The holes and non-manifold vertices on a helper thread, beside the
+ * winding and the duplicates. */
+typedef struct {
+    ObjCheck *o;
+    double    ms;
+    int       rc;
+} Vertices;
+
+static void *vertices_main(void *arg)
+{
+    Vertices *v = arg;
+    double t = now_ms();
+    v->rc = check_vertices(v->o);
+    v->ms = now_ms() - t;
+    return NULL;
+}
+
 /* The passes, each timed into ms[]. */
 static int obj_passes(Run *r, ObjCheck *o, double *ms)
 {
     double t = now_ms();
     o->mate = check_big(((size_t)o->nc + 1) * sizeof *o->mate, 0);
-    if (!o->mate || check_topology(o))
+    if (!o->mate || check_pairing(o))
         return -1;
+    /* beside the winding when two threads are allowed and no list or
+     * location is asked for (check_vertices writes them too): what they
+     * hold at once (the pairing, a union-find over corners and one over
+     * faces) is less than the pairing's buckets were */
+    Vertices ve = { .o = o };
+    pthread_t vth;
+    int vbeside = r->opt->threads > 1 && !r->opt->detail && !r->opt->locations &&
+                  thread_start(&vth, vertices_main, &ve) == 0;
+    if (!vbeside)
+        vertices_main(&ve);
     double t2 = now_ms();
     ms[CHECK_T_EDGES] += t2 - t;
-    if (cancelled(r) || check_shape(o))
-        return -1;
+    int rs = vbeside ? 0 : ve.rc;  /* beside: its result is read once it is joined */
+    if (rs == 0)
+        rs = cancelled(r) || check_shape(o) ? -1 : 0;
     t = now_ms();
     ms[CHECK_T_SHAPE] += t - t2;
-    if (cancelled(r) || check_duplicates(o) || check_locate_faces(o))
+    if (rs == 0)
+        rs = cancelled(r) || check_duplicates(o) || check_locate_faces(o) ? -1 : 0;
+    if (vbeside) {
+        pthread_join(vth, NULL);
+        ms[CHECK_T_EDGES] += ve.ms;
+    }
+    if (rs || ve.rc)
         return -1;
     free(o->mate);
     free(o->nm_half);
@@ -115,13 +172,24 @@ static int obj_passes(Run *r, ObjCheck *o, double *ms)
     }
     t2 = now_ms();
     ms[CHECK_T_DUPS] += t2 - t;
+    Measures me = { .o = o };
+    pthread_t th;
+    int beside = r->opt->intersections && r->pool && thread_start(&th, measures_main, &me) == 0;
+    if (!beside) {
+        measures_main(&me);
+        t2 = now_ms();
+    }
+    int rc = 0;
     if (r->opt->intersections) {
-        if (cancelled(r) || check_crossings(o) || check_locate_crossings(o))
-            return -1;
-        o->c->intersections_tested = 1;
+        rc = cancelled(r) || check_crossings(o) || check_locate_crossings(o) ? -1 : 0;
+        if (rc == 0)
+            o->c->intersections_tested = 1;
         ms[CHECK_T_CROSS] += now_ms() - t2;
     }
-    return cancelled(r) ? -1 : 0;
+    if (beside)
+        pthread_join(th, NULL);
+    ms[CHECK_T_SHAPE] += me.ms;
+    return rc || cancelled(r) ? -1 : 0;
 }
 
 static int check_object(Run *r, MeshCheck *mc, uint32_t i, char *err, size_t errlen)
@@ -161,13 +229,24 @@ out:
 
 /* ==== The file ==== */
 
-/* Vertices no face, point or line of the mesh uses: the file's, and
- * each object's within the range of vertices it uses. */
-static int count_unused(const Mesh *m, MeshCheck *mc)
+/* Vertices no face, point or line of the mesh uses: the file's (*file),
+ * and each object's within the range of vertices it uses (obj[i]). It
+ * reads the mesh alone, so it may run beside the objects' passes. */
+typedef struct {
+    const Mesh *m;
+    uint32_t    file;
+    uint32_t   *obj;            /* per object */
+    int         rc;
+} Unused;
+
+static void *count_unused(void *arg)
 {
+    Unused *u = arg;
+    const Mesh *m = u->m;
     uint8_t *used = calloc((size_t)m->nverts + 1, 1);
+    u->rc = -1;
     if (!used)
-        return -1;
+        return NULL;
     uint32_t ncorners = m->nfaces ? m->face_start[m->nfaces] : 0;
     for (uint32_t c = 0; c < ncorners; c++)
         used[m->corner[c]] = 1;
@@ -177,16 +256,17 @@ static int count_unused(const Mesh *m, MeshCheck *mc)
     for (uint32_t i = 0; i < nl; i++)
         used[m->line_corner[i]] = 1;
     for (uint32_t v = 0; v < m->nverts; v++)
-        mc->file.unused_vertices += !used[v];
-    for (uint32_t i = 0; i < mc->nobjs; i++) {
+        u->file += !used[v];
+    for (uint32_t i = 0; i < m->nobjs; i++) {
         const MeshObject *mo = &m->objs[i];
         if (mo->face_count + mo->point_count + mo->line_count == 0)
             continue;
         for (uint32_t v = mo->vert_min; v <= mo->vert_max && v < m->nverts; v++)
-            mc->objs[i].c.unused_vertices += !used[v];
+            u->obj[i] += !used[v];
     }
     free(used);
-    return 0;
+    u->rc = 0;
+    return NULL;
 }
 
 /* The file's figures: the objects' summed, but its points and unused
@@ -248,10 +328,25 @@ int meshcheck_run(MeshCheck *mc, const Mesh *m, const CheckOpts *opt, char *err,
     Run r = { .m = m, .opt = opt };
     err[0] = 0;
     int rc = run_start(&r, mc);
+    /* the unused vertices on a helper thread beside the objects when
+     * two threads are allowed (they read the mesh alone) */
+    Unused un = { .m = m, .obj = calloc((size_t)m->nobjs + 1, sizeof *un.obj), .rc = -1 };
+    pthread_t th;
+    int beside = rc == 0 && un.obj && opt->threads > 1 && thread_start(&th, count_unused, &un) == 0;
     for (uint32_t i = 0; rc == 0 && i < m->nobjs; i++)
         rc = check_object(&r, mc, i, err, errlen);
-    if (rc == 0)
-        rc = count_unused(m, mc);
+    if (beside)
+        pthread_join(th, NULL);
+    else if (rc == 0 && un.obj)
+        count_unused(&un);
+    if (rc == 0 && un.rc == 0) {
+        mc->file.unused_vertices += un.file;
+        for (uint32_t i = 0; i < mc->nobjs; i++)
+            mc->objs[i].c.unused_vertices += un.obj[i];
+    } else if (rc == 0) {
+        rc = -1;
+    }
+    free(un.obj);
     uint32_t used = 0;
     for (uint32_t p = 0; rc == 0 && p < r.np; p++)
         used += r.used[p];

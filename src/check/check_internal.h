@@ -93,16 +93,23 @@ int      check_union(uint32_t *p, uint32_t a, uint32_t b);
  * of memory). */
 int  check_weld(const Mesh *m, uint32_t *pid, uint32_t *npts_out);
 
-/* topo.c: the degenerate faces (flagged and counted first: the rest
- * leaves them out), the half-edge pairing (mate, the non-manifold
- * groups), the boundary, holes, non-manifold edges and vertices. */
-int  check_topology(ObjCheck *o);
+/* topo.c: check_pairing: the degenerate faces (flagged and counted
+ * first: the rest leaves them out), the half-edge pairing (mate, the
+ * non-manifold groups), the boundary and non-manifold edges; then
+ * check_vertices: the holes and the non-manifold vertices (and their
+ * locations). check_vertices reads mate[] and the groups and writes no
+ * flag, so that it may run beside check_shape and check_duplicates
+ * when no list or location is asked for (they write their own). */
+int  check_pairing(ObjCheck *o);
+int  check_vertices(ObjCheck *o);
 
 /* shape.c: the winding (fewest flips, non-orientable parts) and the
- * parts (without the degenerate faces: their part is CHECK_NONE), then
- * area, volume and centre of mass;
- * duplicate faces (dups.c). Both read mate[]. */
+ * parts (without the degenerate faces: their part is CHECK_NONE);
+ * duplicate faces (dups.c). Both read mate[]. check_measures, after
+ * the winding: area, volume and centre of mass (it reads the positions
+ * and the flags alone, so it may run beside the crossing test). */
 int  check_shape(ObjCheck *o);
+void check_measures(ObjCheck *o);
 int  check_duplicates(ObjCheck *o);
 /* Is relative face f degenerate (all its corners on one line)? */
 int  check_face_degenerate(const ObjCheck *o, uint32_t f);

@@ -231,24 +231,51 @@ static int collect(Cross *x, uint32_t **face_out, uint32_t **fan_out)
     return 0;
 }
 
+/* The set-up's loops over the triangles, each triangle's work its own:
+ * split into SPLIT runs for the pool (the results do not depend on how). */
+#define SPLIT 8
+
+typedef struct {
+    Cross          *x;
+    const uint32_t *uface, *ufan;
+    uint32_t       *key, *idx;
+} Keys;
+
+static void run_range(uint32_t n, int task, uint32_t *lo, uint32_t *hi)
+{
+    *lo = (uint32_t)((uint64_t)n * (uint32_t)task / SPLIT);
+    *hi = (uint32_t)((uint64_t)n * ((uint32_t)task + 1) / SPLIT);
+}
+
+/* The Morton keys of triangles [lo, hi) of one run. */
+static void keys_run(void *arg, int task, int worker)
+{
+    (void)worker;
+    Keys *k = arg;
+    const ObjCheck *o = k->x->o;
+    uint32_t lo_i, hi_i;
+    run_range(k->x->n, task, &lo_i, &hi_i);
+    for (uint32_t i = lo_i; i < hi_i; i++) {
+        uint32_t c[3];
+        float lo[3], hi[3];
+        fan_corners(o, k->uface[i], k->ufan ? k->ufan[i] : 1, c);
+        corners_box(o, c, lo, hi);
+        k->key[i] = morton(k->x, lo, hi);
+        k->idx[i] = i;
+    }
+}
+
 /* Sort the triangles along the Morton curve: x->face, x->fan. */
 static int sort_tris(Cross *x, uint32_t *uface, uint32_t *ufan)
 {
-    ObjCheck *o = x->o;
     size_t n = (size_t)x->n + 1;
     uint32_t *key = check_big(n * sizeof *key, 0), *idx = check_big(n * sizeof *idx, 0);
     uint32_t *k2 = check_big(n * sizeof *k2, 0), *v2 = check_big(n * sizeof *v2, 0);
     int r = -1;
     if (!key || !idx || !k2 || !v2)
         goto out;
-    for (uint32_t i = 0; i < x->n; i++) {
-        uint32_t c[3];
-        float lo[3], hi[3];
-        fan_corners(o, uface[i], ufan ? ufan[i] : 1, c);
-        corners_box(o, c, lo, hi);
-        key[i] = morton(x, lo, hi);
-        idx[i] = i;
-    }
+    Keys k = { x, uface, ufan, key, idx };
+    pool_run(x->o->pool, SPLIT, keys_run, &k);
     radix_sort(key, idx, k2, v2, x->n);
     free(key);
     free(k2);
@@ -307,33 +334,72 @@ static int renumber(Cross *x)
 
 /* ==== The tree ==== */
 
-/* Every triangle's box, quantized. */
-static int tri_boxes(Cross *x)
+/* The quantized boxes of one run of triangles. */
+static void boxes_run(void *arg, int task, int worker)
 {
-    x->qbox = check_big((6 * (size_t)x->n + 1) * sizeof *x->qbox, 0);
-    if (!x->qbox)
-        return -1;
-    for (uint32_t i = 0; i < x->n; i++) {
+    (void)worker;
+    Cross *x = arg;
+    uint32_t lo_i, hi_i;
+    run_range(x->n, task, &lo_i, &hi_i);
+    for (uint32_t i = lo_i; i < hi_i; i++) {
         const float *p[3];
         float lo[3], hi[3];
         tri_pos(x, i, p);
         box3(p[0], p[1], p[2], lo, hi);
         quantize(x, lo, hi, x->qbox + 6 * (size_t)i, x->qbox + 6 * (size_t)i + 3);
     }
+}
+
+/* Every triangle's box, quantized. */
+static int tri_boxes(Cross *x)
+{
+    x->qbox = check_big((6 * (size_t)x->n + 1) * sizeof *x->qbox, 0);
+    if (!x->qbox)
+        return -1;
+    pool_run(x->o->pool, SPLIT, boxes_run, x);
     return 0;
 }
 
-/* Depth first from node `me` over triangles [first, end); returns `me`. */
-static uint32_t build(Cross *x, uint32_t first, uint32_t end)
+static inline int is_leaf(const Node *n)
 {
-    uint32_t me = x->nnodes++;
-    /* splits on multiples of LEAF: every leaf full but the last, so the
-     * tree has at most 2 ceil(n / LEAF) nodes, the array's size */
-    ZV_ASSERT(first % LEAF == 0 && first < end && x->nnodes <= 2 * ((x->n + LEAF - 1) / LEAF));
+    return n->end - n->first <= LEAF;
+}
+
+/* Node me's box: its children's joined. */
+static void join_children(Cross *x, uint32_t me)
+{
+    Node *nd = &x->node[me];
+    uint32_t l = me + 1, r = x->node[l].skip;
+    for (int k = 0; k < 3; k++) {
+        nd->lo[k] = x->node[l].lo[k] < x->node[r].lo[k] ? x->node[l].lo[k] : x->node[r].lo[k];
+        nd->hi[k] = x->node[l].hi[k] > x->node[r].hi[k] ? x->node[l].hi[k] : x->node[r].hi[k];
+    }
+}
+
+/* Node me over triangles [first, end), but not its box; its leaves (at
+ * least 1). The splits fall on multiples of LEAF, half the leaves each
+ * side, and every node has two children or none: a subtree of L leaves
+ * is 2L - 1 nodes, so where each subtree starts is known before its
+ * left neighbour is built, and subtrees can be built at once. */
+static uint32_t node_at(Cross *x, uint32_t me, uint32_t first, uint32_t end)
+{
+    uint32_t leaves = (end - first + LEAF - 1) / LEAF;
+    /* every leaf full but the last: the tree has at most 2 ceil(n /
+     * LEAF) nodes, the array's size */
+    ZV_ASSERT(first % LEAF == 0 && first < end && me + 2 * leaves - 1 <= 2 * ((x->n + LEAF - 1) / LEAF));
     Node *nd = &x->node[me];
     nd->first = first;
     nd->end = end;
-    if (end - first <= LEAF) {
+    nd->skip = me + 2 * leaves - 1;
+    return leaves;
+}
+
+/* Node me and its subtree, depth first, boxes included. */
+static void build_at(Cross *x, uint32_t me, uint32_t first, uint32_t end)
+{
+    uint32_t leaves = node_at(x, me, first, end);
+    if (leaves == 1) {
+        Node *nd = &x->node[me];
         memcpy(nd->lo, x->qbox + 6 * (size_t)first, 6 * sizeof *nd->lo);
         for (uint32_t i = first + 1; i < end; i++) {
             const uint16_t *b = x->qbox + 6 * (size_t)i;
@@ -342,24 +408,55 @@ static uint32_t build(Cross *x, uint32_t first, uint32_t end)
                 nd->hi[k] = b[3 + k] > nd->hi[k] ? b[3 + k] : nd->hi[k];
             }
         }
-    } else {
-        /* first is a multiple of LEAF: split on one, half the leaves each side */
-        uint32_t leaves = (end - first + LEAF - 1) / LEAF;
-        uint32_t l = build(x, first, first + leaves / 2 * LEAF);
-        uint32_t r = build(x, first + leaves / 2 * LEAF, end);
-        for (int k = 0; k < 3; k++) {
-            nd->lo[k] = x->node[l].lo[k] < x->node[r].lo[k] ? x->node[l].lo[k] : x->node[r].lo[k];
-            nd->hi[k] = x->node[l].hi[k] > x->node[r].hi[k] ? x->node[l].hi[k] : x->node[r].hi[k];
-        }
+        return;
     }
-    nd->skip = x->nnodes;
-    return me;
+    uint32_t half = leaves / 2;
+    build_at(x, me + 1, first, first + half * LEAF);
+    build_at(x, me + 2 * half, first + half * LEAF, end);
+    join_children(x, me);
 }
 
-static inline int is_leaf(const Node *n)
+/* The tree: its top two levels laid out first, the four subtrees under
+ * them built by the pool, then the top's boxes joined. */
+typedef struct {
+    Cross   *x;
+    uint32_t sub[4][3];         /* node, first, end */
+} Tree;
+
+static void tree_run(void *arg, int task, int worker)
 {
-    return n->end - n->first <= LEAF;
+    (void)worker;
+    Tree *t = arg;
+    build_at(t->x, t->sub[task][0], t->sub[task][1], t->sub[task][2]);
 }
+
+static void build(Cross *x)
+{
+    uint32_t leaves = (x->n + LEAF - 1) / LEAF;
+    x->nnodes = 2 * leaves - 1;
+    if (leaves < 4 || !x->o->pool) {
+        build_at(x, 0, 0, x->n);
+        return;
+    }
+    Tree t = { x, { { 0 } } };
+    uint32_t top[3], k = 0;
+    top[0] = 0;
+    uint32_t half = node_at(x, 0, 0, x->n) / 2, mid = half * LEAF;
+    uint32_t side[2][3] = { { 1, 0, mid }, { 2 * half, mid, x->n } };
+    for (int i = 0; i < 2; i++) {
+        uint32_t me = side[i][0], first = side[i][1], end = side[i][2];
+        top[1 + i] = me;
+        uint32_t h = node_at(x, me, first, end) / 2;
+        uint32_t sub[2][3] = { { me + 1, first, first + h * LEAF }, { me + 2 * h, first + h * LEAF, end } };
+        for (int j = 0; j < 2; j++, k++)
+            memcpy(t.sub[k], sub[j], sizeof sub[j]);
+    }
+    pool_run(x->o->pool, 4, tree_run, &t);
+    join_children(x, top[1]);
+    join_children(x, top[2]);
+    join_children(x, top[0]);
+}
+
 
 /* ==== The budget ==== */
 
@@ -702,7 +799,7 @@ int check_crossings(ObjCheck *o)
         cross_free(&x);
         return -1;
     }
-    build(&x, 0, x.n);
+    build(&x);
     uint32_t threads = (uint32_t)pool_helpers(o->pool) + 1;
     r = make_jobs(&x, threads > 1 ? 32 * threads : 1);
     if (r == 0 && !(x.found = calloc(x.njobs, sizeof *x.found)))

@@ -281,16 +281,19 @@ static int winding(ObjCheck *o)
 
 /* ==== The measures ==== */
 
-static void measures(ObjCheck *o)
+void check_measures(ObjCheck *o)
 {
     CheckCounts *c = o->c;
     double vol = 0, mom[3] = { 0, 0, 0 };
     for (uint32_t f = 0; f < o->nf; f++) {
         FaceMeasure fm;
         face_measure(o, f, &fm);
-        if (!(o->flags[f] & CHECK_DEGENERATE))
+        /* the crossing test may be setting CHECK_INTERSECTS beside this
+         * (check.c): the flags are read as it writes them, atomically */
+        uint8_t fl = __atomic_load_n(&o->flags[f], __ATOMIC_RELAXED);
+        if (!(fl & CHECK_DEGENERATE))
             c->area += fm.area;
-        double s = o->flags[f] & CHECK_FLIPPED ? -1 : 1;
+        double s = fl & CHECK_FLIPPED ? -1 : 1;
         vol += s * fm.vol;
         for (int k = 0; k < 3; k++)
             mom[k] += s * fm.mom[k];
@@ -310,8 +313,5 @@ static void measures(ObjCheck *o)
 
 int check_shape(ObjCheck *o)
 {
-    if (winding(o))
-        return -1;
-    measures(o);
-    return 0;
+    return winding(o);
 }

@@ -73,6 +73,44 @@ static void bucket_sort(uint32_t *to, uint32_t *he, uint32_t n, uint64_t *scratc
     }
 }
 
+/* The buckets sorted, in runs of points by the pool (each bucket is its
+ * own: how they are shared out changes nothing), a scratch for a long
+ * bucket per worker. */
+#define TOPO_SPLIT 8
+
+typedef struct {
+    Buckets   *b;
+    uint32_t   np, maxdeg;
+    uint64_t **scratch;         /* per worker, when maxdeg > 32 */
+} SortRun;
+
+static void sort_run(void *arg, int task, int worker)
+{
+    SortRun *s = arg;
+    const Buckets *b = s->b;
+    uint32_t lo = (uint32_t)((uint64_t)s->np * (uint32_t)task / TOPO_SPLIT);
+    uint32_t hi = (uint32_t)((uint64_t)s->np * ((uint32_t)task + 1) / TOPO_SPLIT);
+    for (uint32_t p = lo; p < hi; p++)
+        bucket_sort(b->to + b->off[p], b->he + b->off[p], b->off[p + 1] - b->off[p],
+                    s->maxdeg > 32 ? s->scratch[worker] : NULL);
+}
+
+static int sort_buckets(ObjCheck *o, Buckets *b, uint32_t maxdeg)
+{
+    int workers = pool_helpers(o->pool) + 1, r = 0;
+    uint64_t *scratch[64] = { 0 };
+    for (int w = 0; maxdeg > 32 && w < workers && w < 64; w++)
+        if (!(scratch[w] = malloc((size_t)maxdeg * sizeof *scratch[w])))
+            r = -1;
+    if (r == 0) {
+        SortRun s = { b, o->npts, maxdeg, scratch };
+        pool_run(o->pool, TOPO_SPLIT, sort_run, &s);
+    }
+    for (int w = 0; w < 64; w++)
+        free(scratch[w]);
+    return r;
+}
+
 /* Bucket every half-edge of a non-degenerate face that joins two
  * different points; mate[] of the others is MATE_DEGENERATE, of a
  * degenerate face's corners MATE_SKIPPED. mate[] first holds each
@@ -100,11 +138,8 @@ static int buckets_build(ObjCheck *o, Buckets *b)
     }
     b->to = check_big(((size_t)nhe + 1) * sizeof *b->to, 0);
     b->he = check_big(((size_t)nhe + 1) * sizeof *b->he, 0);
-    uint64_t *scratch = maxdeg > 32 ? malloc((size_t)maxdeg * sizeof *scratch) : NULL;
-    if (!b->to || !b->he || (maxdeg > 32 && !scratch)) {
-        free(scratch);
+    if (!b->to || !b->he)
         return -1;
-    }
     /* fill with off[p] as the cursor, then shift it back one bucket;
      * a face's points are read before its mate[] entries are set */
     for (uint32_t f = 0; f < o->nf; f++) {
@@ -132,10 +167,7 @@ static int buckets_build(ObjCheck *o, Buckets *b)
     ZV_ASSERT(np == 0 || b->off[np - 1] == nhe);
     memmove(b->off + 1, b->off, (size_t)np * sizeof *b->off);
     b->off[0] = 0;
-    for (uint32_t p = 0; p < np; p++)
-        bucket_sort(b->to + b->off[p], b->he + b->off[p], b->off[p + 1] - b->off[p], scratch);
-    free(scratch);
-    return 0;
+    return sort_buckets(o, b, maxdeg);
 }
 
 /* The run of half-edges reaching `a` in point p's sorted bucket:
@@ -204,10 +236,113 @@ static int edge_group(ObjCheck *o, EdgeLists *l, const uint32_t *same, uint32_t 
     return push_edge(o, &o->out->nm_edges, &l->nn, &l->capn, first);
 }
 
+/* ==== Classifying in runs of points ====
+ *
+ * Without the detail lists, the edges are classified by the pool in
+ * runs of points: each edge is met once, in the bucket of one point, so
+ * its half-edges' mates are that run's alone; the counts and the
+ * non-manifold groups are the run's own, joined in run order after (the
+ * groups then in the order one pass makes them), and the faces' flags,
+ * which two runs may share, are set atomically. */
+
+typedef struct {
+    uint32_t  boundary, nonmanifold;
+    uint32_t *half, *group;     /* the run's non-manifold groups (group: starts in half) */
+    size_t    nhalf, halfcap, ngroup, groupcap;
+    int       rc;
+} EdgeRun;
+
+typedef struct {
+    ObjCheck      *o;
+    const Buckets *b;
+    EdgeRun        run[TOPO_SPLIT];
+} Classify;
+
+static void edge_group_run(ObjCheck *o, EdgeRun *e, const uint32_t *same, uint32_t ns, const uint32_t *opp,
+                           uint32_t no)
+{
+    uint32_t n = ns + no;
+    uint32_t first = ns ? same[0] : opp[0];
+    if (n == 1) {
+        e->boundary++;
+        __atomic_fetch_or(&o->flags[oc_face(o, first)], CHECK_OPEN, __ATOMIC_RELAXED);
+        return;
+    }
+    if (n == 2) {
+        uint32_t h1 = first, h2 = ns == 2 ? same[1] : no == 2 ? opp[1] : opp[0];
+        /* every edge is met once (see edge_group) */
+        ZV_ASSERT(h1 != h2 && o->mate[h1] == MATE_BOUNDARY && o->mate[h2] == MATE_BOUNDARY);
+        o->mate[h1] = h2;
+        o->mate[h2] = h1;
+        return;
+    }
+    e->nonmanifold++;
+    if (check_push(&e->group, &e->ngroup, &e->groupcap, (uint32_t)e->nhalf))
+        e->rc = -1;
+    for (uint32_t k = 0; k < n; k++) {
+        uint32_t h = k < ns ? same[k] : opp[k - ns];
+        o->mate[h] = MATE_NONMANIF;
+        __atomic_fetch_or(&o->flags[oc_face(o, h)], CHECK_NONMANIFOLD, __ATOMIC_RELAXED);
+        if (check_push(&e->half, &e->nhalf, &e->halfcap, h))
+            e->rc = -1;
+    }
+}
+
+static void classify_run(void *arg, int task, int worker)
+{
+    (void)worker;
+    Classify *cl = arg;
+    ObjCheck *o = cl->o;
+    const Buckets *b = cl->b;
+    EdgeRun *e = &cl->run[task];
+    uint32_t lo = (uint32_t)((uint64_t)o->npts * (uint32_t)task / TOPO_SPLIT);
+    uint32_t hi = (uint32_t)((uint64_t)o->npts * ((uint32_t)task + 1) / TOPO_SPLIT);
+    for (uint32_t a = lo; a < hi && e->rc == 0; a++) {
+        uint32_t j = b->off[a], end = b->off[a + 1];
+        while (j < end) {
+            uint32_t pb = b->to[j], j1 = j + 1;
+            while (j1 < end && b->to[j1] == pb)
+                j1++;
+            uint32_t k0, k1;
+            find_run(b, pb, a, &k0, &k1);
+            if (!(pb < a && k1 > k0))
+                edge_group_run(o, e, b->he + j, j1 - j, b->he + k0, k1 - k0);
+            j = j1;
+        }
+    }
+}
+
+static int classify_runs(ObjCheck *o, const Buckets *b)
+{
+    Classify *cl = calloc(1, sizeof *cl);
+    if (!cl)
+        return -1;
+    cl->o = o;
+    cl->b = b;
+    pool_run(o->pool, TOPO_SPLIT, classify_run, cl);
+    int r = 0;
+    for (int t = 0; t < TOPO_SPLIT; t++) {
+        EdgeRun *e = &cl->run[t];
+        r |= e->rc;
+        o->c->boundary_edges += e->boundary;
+        o->c->nonmanifold_edges += e->nonmanifold;
+        for (size_t g = 0; r == 0 && g < e->ngroup; g++)
+            r = check_push(&o->nm_group, &o->nm_ngroup, &o->nm_group_cap, (uint32_t)(o->nm_nhalf + e->group[g]));
+        for (size_t h = 0; r == 0 && h < e->nhalf; h++)
+            r = check_push(&o->nm_half, &o->nm_nhalf, &o->nm_half_cap, e->half[h]);
+        free(e->half);
+        free(e->group);
+    }
+    free(cl);
+    return r ? -1 : check_push(&o->nm_group, &o->nm_ngroup, &o->nm_group_cap, (uint32_t)o->nm_nhalf);
+}
+
 /* Every edge once: from the bucket of its smaller point, or from the
  * only bucket that has it. */
 static int classify(ObjCheck *o, const Buckets *b)
 {
+    if (!o->opt->detail)
+        return classify_runs(o, b);
     EdgeLists l = { 0 };
     for (uint32_t a = 0; a < o->npts; a++) {
         uint32_t j = b->off[a], end = b->off[a + 1];
@@ -318,23 +453,44 @@ static int count_fans(ObjCheck *o)
 }
 
 /* Flag and count the degenerate faces, before anything leaves them out. */
-static void find_degenerate(ObjCheck *o)
+typedef struct {
+    ObjCheck *o;
+    uint32_t  count[TOPO_SPLIT];
+} Degenerate;
+
+static void degenerate_run(void *arg, int task, int worker)
 {
-    for (uint32_t f = 0; f < o->nf; f++)
+    (void)worker;
+    Degenerate *d = arg;
+    ObjCheck *o = d->o;
+    uint32_t lo = (uint32_t)((uint64_t)o->nf * (uint32_t)task / TOPO_SPLIT);
+    uint32_t hi = (uint32_t)((uint64_t)o->nf * ((uint32_t)task + 1) / TOPO_SPLIT);
+    for (uint32_t f = lo; f < hi; f++)
         if (check_face_degenerate(o, f)) {
             o->flags[f] |= CHECK_DEGENERATE;
-            o->c->degenerate_faces++;
+            d->count[task]++;
         }
 }
 
-int check_topology(ObjCheck *o)
+/* In runs of faces by the pool: each face is its own. */
+static void find_degenerate(ObjCheck *o)
+{
+    Degenerate d = { .o = o };
+    pool_run(o->pool, TOPO_SPLIT, degenerate_run, &d);
+    for (int t = 0; t < TOPO_SPLIT; t++)
+        o->c->degenerate_faces += d.count[t];
+}
+
+int check_pairing(ObjCheck *o)
 {
     Buckets b = { 0 };
     find_degenerate(o);
-    if (buckets_build(o, &b) || classify(o, &b)) {
-        buckets_free(&b);
-        return -1;
-    }
+    int r = buckets_build(o, &b) || classify(o, &b) ? -1 : 0;
     buckets_free(&b);
+    return r;
+}
+
+int check_vertices(ObjCheck *o)
+{
     return count_holes(o) || count_fans(o) || check_locate_topology(o) ? -1 : 0;
 }
