@@ -19,10 +19,10 @@ set -e
 # at through a screenshot (tests/e2e/test_xterm.sh). kitty, with the
 # software OpenGL it draws with under Xvfb (libgl1, libgl1-mesa-dri) and
 # a monospace font: a real terminal that answers the kitty graphics
-# query, and draws the viewer's pictures in its pixels (test_kitty.sh).
-# mlterm: a second real terminal that draws sixel (test_mlterm.sh);
+# query, and draws the viewer's pictures in its pixels (long_kitty.sh, make test-long).
+# mlterm: a second real terminal that draws sixel (long_mlterm.sh, make test-long);
 # screen: GNU screen, in which the viewer keeps cells and says why
-# (test_mux.sh, which also runs tmux inside xterm -ti vt340).
+# (long_mux.sh, make test-long, which also runs tmux inside xterm -ti vt340).
 # admesh: the STL repair tool --repair is held against on broken parts
 # (tests/e2e/test_repair_parts.sh, tools/repair-table.sh).
 # lf and fzf: the file manager and the finder whose previews

@@ -296,7 +296,7 @@ main() {
         make -C "$copy" -j2 $bins $bins_rest >"$MUTATE_LOGS/baseline.log" 2>&1 && {
             staged "" src/none "$MUTATE_LOGS/baseline.log" || {
                 # an e2e script that fails twice without any mutant: the
-                # machine is too loaded for its clock (test_kitty's 200 ms
+                # machine is too loaded for its clock (long_kitty's 200 ms
                 # for the terminal's answer). It is left out, and said.
                 case $by in "e2e "*) ;; *) false ;; esac &&
                     exclude=$(echo $failed) && [ -n "$exclude" ] &&

@@ -1,5 +1,5 @@
 # xshot.sh: a real terminal under Xvfb, looked at through screenshots
-# (sourced after lib.sh by test_xterm, test_mlterm, test_mux, test_kitty).
+# (sourced after lib.sh by test_xterm, long_mlterm, long_mux, long_kitty).
 # What a person sees is counted, not read: the distinct colours of the
 # screenshot's top rows (cells have a terminal's few colours; a picture
 # in pixels many shades), or the columns where colours change along a
