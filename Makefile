@@ -79,7 +79,7 @@ help:
 	@echo '  make OCCT=0        without the OpenCASCADE shim (libzview-occt.so: STEP, IGES, BREP)'
 	@echo '  make nosimd        SIMD compiled out (-DZV_NO_SIMD), in build-nosimd/, and its unit tests'
 	@echo 'Tests'
-	@echo '  make test          every test: unit (Criterion), fuzz replays, end-to-end; about 2.8 min of CPU'
+	@echo '  make test          every test: unit (Criterion), fuzz replays, end-to-end; about 2.9 min of CPU'
 	@echo '                     (1 min 53 s warm on 2 quiet cores, median of 4 runs from 1 min 47 s to 2 min 1 s;'
 	@echo '                     the e2e scripts 4 at a time: E2E_JOBS;'
 	@echo '                     7 min at load 14)'
